@@ -1,0 +1,14 @@
+/* autobal.h: umbrella header of the autobal library.
+ *
+ * autobal computes the dynamics of rotors with passive automatic balancers:
+ * the planar two-pendulum autobalancer and a rotor in a massive housing with
+ * one or two ball autobalancers.  See README.md and include/autobal/ for the
+ * modules.  A host program should call gsl_set_error_handler_off() once. */
+#ifndef AUTOBAL_H
+#define AUTOBAL_H
+
+#include "autobal/export.h"
+#include "autobal/status.h"
+#include "autobal/version.h"
+
+#endif

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Install everything autobal needs on Debian (idempotent; run as root or with sudo).
+set -euo pipefail
+PKGS="build-essential cmake ninja-build pkg-config git libgsl-dev libhdf5-dev hdf5-tools libinih-dev
+      python3 python3-numpy python3-scipy python3-h5py python3-xarray python3-h5netcdf python3-matplotlib valgrind"
+missing=""
+for p in $PKGS; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  echo "autobal: installing Debian packages:$missing"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing
+fi
