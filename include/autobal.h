@@ -10,5 +10,10 @@
 #include "autobal/export.h"
 #include "autobal/status.h"
 #include "autobal/version.h"
+#include "autobal/rotor.h"
+#include "autobal/stability.h"
+#include "autobal/transient.h"
+#include "autobal/pendulum.h"
+#include "autobal/archive.h"
 
 #endif

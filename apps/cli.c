@@ -1,0 +1,536 @@
+/* cli.c: configuration (inih + --set), errors, progress, signals, JSON. */
+#define _POSIX_C_SOURCE 200809L
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <ini.h>
+
+/* ---- errors ------------------------------------------------------------------ */
+int cli_fail(cli_ctx *ctx, int code, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(ctx->err, sizeof ctx->err, fmt, ap);
+  va_end(ap);
+  return code;
+}
+
+int cli_exit_code(int status) {
+  switch (status) {
+    case AUTOBAL_SUCCESS:
+    case AUTOBAL_WARNING:
+    case AUTOBAL_EVENT:
+      return CLI_EXIT_OK;
+    case AUTOBAL_EINVAL:
+    case AUTOBAL_ECONFIG:
+    case AUTOBAL_EUNSUPPORTED:
+      return CLI_EXIT_INPUT;
+    case AUTOBAL_EIO:
+    case AUTOBAL_EEXIST:
+    case AUTOBAL_EFORMAT:
+      return CLI_EXIT_IO;
+    case AUTOBAL_ECANCELLED:
+      return CLI_EXIT_INTERRUPTED;
+    case AUTOBAL_ENUMERIC:
+    case AUTOBAL_ESTEP:
+    case AUTOBAL_EMAXSTEPS:
+    case AUTOBAL_ERHS:
+      return CLI_EXIT_NUMERIC;
+    default:
+      return CLI_EXIT_INTERNAL;
+  }
+}
+
+/* ---- configuration ----------------------------------------------------------- */
+typedef struct cli_entry {
+  char *section;
+  char *key;
+  char *value;
+  int from_set; /* 1: --set override, 0: file */
+  int used;
+} cli_entry;
+
+struct cli_config {
+  cli_entry *entries;
+  size_t n, cap;
+  char **known; /* "section.key" declared by getters, or "section.*" */
+  size_t nknown, capknown;
+  const char *path;
+  int dup_error; /* set by the ini handler on a duplicated key */
+  char dup_what[256];
+};
+
+static char *dupstr(const char *s) {
+  size_t len = strlen(s) + 1;
+  char *p = malloc(len);
+  if (p) memcpy(p, s, len);
+  return p;
+}
+
+cli_config *cli_config_new(const char *path) {
+  cli_config *c = calloc(1, sizeof *c);
+  if (c) c->path = path;
+  return c;
+}
+
+void cli_config_free(cli_config *c) {
+  size_t i;
+  if (!c) return;
+  for (i = 0; i < c->n; i++) {
+    free(c->entries[i].section);
+    free(c->entries[i].key);
+    free(c->entries[i].value);
+  }
+  for (i = 0; i < c->nknown; i++) free(c->known[i]);
+  free(c->entries);
+  free(c->known);
+  free(c);
+}
+
+static cli_entry *find_entry(cli_config *c, const char *section, const char *key) {
+  size_t i;
+  for (i = 0; i < c->n; i++)
+    if (strcmp(c->entries[i].section, section) == 0 && strcmp(c->entries[i].key, key) == 0) return &c->entries[i];
+  return NULL;
+}
+
+static int add_entry(cli_config *c, const char *section, const char *key, const char *value, int from_set) {
+  cli_entry *e = find_entry(c, section, key);
+  if (e) {
+    char *v;
+    if (!from_set && !e->from_set) {
+      c->dup_error = 1;
+      snprintf(c->dup_what, sizeof c->dup_what, "%s.%s", section, key);
+      return 0;
+    }
+    v = dupstr(value);
+    if (!v) return -1;
+    free(e->value);
+    e->value = v;
+    e->from_set = from_set;
+    return 0;
+  }
+  if (c->n == c->cap) {
+    size_t cap = c->cap ? 2 * c->cap : 32;
+    cli_entry *p = realloc(c->entries, cap * sizeof *p);
+    if (!p) return -1;
+    c->entries = p;
+    c->cap = cap;
+  }
+  e = &c->entries[c->n];
+  e->section = dupstr(section);
+  e->key = dupstr(key);
+  e->value = dupstr(value);
+  e->from_set = from_set;
+  e->used = 0;
+  if (!e->section || !e->key || !e->value) {
+    free(e->section);
+    free(e->key);
+    free(e->value);
+    return -1;
+  }
+  c->n++;
+  return 0;
+}
+
+static int ini_handler_fn(void *user, const char *section, const char *name, const char *value) {
+  cli_config *c = user;
+  return add_entry(c, section, name, value, 0) == 0 && !c->dup_error;
+}
+
+int cli_config_load(cli_ctx *ctx) {
+  cli_config *c = ctx->cfg;
+  FILE *f;
+  int rc;
+  if (!ctx->config_path) return CLI_EXIT_OK;
+  f = fopen(ctx->config_path, "r");
+  if (!f)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "cannot read config file '%s': %s", ctx->config_path, strerror(errno));
+  rc = ini_parse_file(f, ini_handler_fn, c);
+  fclose(f);
+  if (c->dup_error)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "config file '%s': key '%s' is given more than once (or continued on an indented line)",
+                    ctx->config_path, c->dup_what);
+  if (rc > 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "config file '%s', line %d: cannot parse (expected '[section]', 'key = value' or a ';' comment)",
+                    ctx->config_path, rc);
+  if (rc < 0) return cli_fail(ctx, CLI_EXIT_INPUT, "cannot read config file '%s'", ctx->config_path);
+  return CLI_EXIT_OK;
+}
+
+int cli_config_override(cli_ctx *ctx, const char *assignment) {
+  const char *dot = strchr(assignment, '.');
+  const char *eq = strchr(assignment, '=');
+  char section[128], key[128];
+  size_t ls, lk;
+  if (!dot || !eq || dot > eq || dot == assignment || eq == dot + 1)
+    return cli_fail(ctx, CLI_EXIT_USAGE, "--set expects section.key=value, got '%s'", assignment);
+  ls = (size_t)(dot - assignment);
+  lk = (size_t)(eq - dot - 1);
+  if (ls >= sizeof section || lk >= sizeof key)
+    return cli_fail(ctx, CLI_EXIT_USAGE, "--set: name too long in '%s'", assignment);
+  memcpy(section, assignment, ls);
+  section[ls] = '\0';
+  memcpy(key, dot + 1, lk);
+  key[lk] = '\0';
+  if (add_entry(ctx->cfg, section, key, eq + 1, 1) != 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  return CLI_EXIT_OK;
+}
+
+static void declare(cli_config *c, const char *section, const char *key) {
+  char buf[256];
+  size_t i;
+  char *s;
+  snprintf(buf, sizeof buf, "%s.%s", section, key);
+  for (i = 0; i < c->nknown; i++)
+    if (strcmp(c->known[i], buf) == 0) return;
+  if (c->nknown == c->capknown) {
+    size_t cap = c->capknown ? 2 * c->capknown : 64;
+    char **p = realloc(c->known, cap * sizeof *p);
+    if (!p) return;
+    c->known = p;
+    c->capknown = cap;
+  }
+  s = dupstr(buf);
+  if (s) c->known[c->nknown++] = s;
+}
+
+void cli_declare_section(cli_ctx *ctx, const char *section) {
+  size_t i;
+  declare(ctx->cfg, section, "*");
+  for (i = 0; i < ctx->cfg->n; i++)
+    if (strcmp(ctx->cfg->entries[i].section, section) == 0) ctx->cfg->entries[i].used = 1;
+}
+
+int cli_section_present(cli_ctx *ctx, const char *section) {
+  size_t i;
+  for (i = 0; i < ctx->cfg->n; i++)
+    if (strcmp(ctx->cfg->entries[i].section, section) == 0) return 1;
+  return 0;
+}
+
+static const char *where(cli_ctx *ctx, const cli_entry *e) {
+  return e->from_set ? "--set" : (ctx->config_path ? ctx->config_path : "config");
+}
+
+static cli_entry *lookup(cli_ctx *ctx, const char *section, const char *key, int *present) {
+  cli_entry *e;
+  declare(ctx->cfg, section, key);
+  e = find_entry(ctx->cfg, section, key);
+  if (present) *present = e != NULL;
+  if (e) e->used = 1;
+  return e;
+}
+
+static int parse_double(const char *s, double *out) {
+  char *end;
+  double v;
+  while (*s == ' ' || *s == '\t') s++;
+  if (*s == '\0') return -1;
+  errno = 0;
+  v = strtod(s, &end);
+  if (end == s) return -1;
+  while (*end == ' ' || *end == '\t') end++;
+  if (*end != '\0') return -1;
+  if (!isfinite(v) || errno == ERANGE) return -2;
+  *out = v;
+  return 0;
+}
+
+int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double def, double *out, int *present) {
+  cli_entry *e = lookup(ctx, section, key, present);
+  int rc;
+  if (!e) {
+    *out = def;
+    return CLI_EXIT_OK;
+  }
+  rc = parse_double(e->value, out);
+  if (rc == -1)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' is not a number", where(ctx, e), section, key, e->value);
+  if (rc == -2)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' is not a finite number (NaN and infinities are not allowed)",
+                    where(ctx, e), section, key, e->value);
+  return CLI_EXIT_OK;
+}
+
+int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, long *out, int *present) {
+  cli_entry *e = lookup(ctx, section, key, present);
+  char *end;
+  long v;
+  if (!e) {
+    *out = def;
+    return CLI_EXIT_OK;
+  }
+  errno = 0;
+  v = strtol(e->value, &end, 10);
+  while (*end == ' ' || *end == '\t') end++;
+  if (end == e->value || *end != '\0' || errno == ERANGE)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' is not an integer", where(ctx, e), section, key, e->value);
+  *out = v;
+  return CLI_EXIT_OK;
+}
+
+int cli_get_bool(cli_ctx *ctx, const char *section, const char *key, int def, int *out, int *present) {
+  cli_entry *e = lookup(ctx, section, key, present);
+  const char *v;
+  if (!e) {
+    *out = def;
+    return CLI_EXIT_OK;
+  }
+  v = e->value;
+  if (!strcasecmp(v, "true") || !strcasecmp(v, "yes") || !strcasecmp(v, "on") || !strcmp(v, "1")) *out = 1;
+  else if (!strcasecmp(v, "false") || !strcasecmp(v, "no") || !strcasecmp(v, "off") || !strcmp(v, "0")) *out = 0;
+  else
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' is not a boolean (true/false, yes/no, on/off, 1/0)",
+                    where(ctx, e), section, key, v);
+  return CLI_EXIT_OK;
+}
+
+int cli_get_string(cli_ctx *ctx, const char *section, const char *key, const char *def, const char **out,
+                   int *present) {
+  cli_entry *e = lookup(ctx, section, key, present);
+  if (!e) {
+    *out = def;
+    return CLI_EXIT_OK;
+  }
+  if (e->value[0] == '\0')
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s has no value", where(ctx, e), section, key);
+  *out = e->value;
+  return CLI_EXIT_OK;
+}
+
+int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *out, size_t cap, size_t *n,
+                    int *present) {
+  cli_entry *e = lookup(ctx, section, key, present);
+  char buf[4096];
+  char *tok, *save = NULL;
+  size_t count = 0;
+  *n = 0;
+  if (!e) return CLI_EXIT_OK;
+  if (strlen(e->value) >= sizeof buf)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: list too long", where(ctx, e), section, key);
+  strcpy(buf, e->value);
+  for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    double v;
+    int rc = parse_double(tok, &v);
+    if (rc != 0)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: item %zu '%s' is not a finite number", where(ctx, e), section,
+                      key, count + 1, tok);
+    if (count == cap)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: more than %zu values", where(ctx, e), section, key, cap);
+    out[count++] = v;
+  }
+  if (count == 0) return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s has no value", where(ctx, e), section, key);
+  *n = count;
+  return CLI_EXIT_OK;
+}
+
+static int tolower_ascii(int ch) { return (ch >= 'A' && ch <= 'Z') ? ch - 'A' + 'a' : ch; }
+
+/* Levenshtein distance, case-insensitive, for "did you mean". */
+static size_t edit_distance(const char *a, const char *b) {
+  size_t la = strlen(a), lb = strlen(b), i, j;
+  size_t row[256];
+  if (la > 255 || lb > 255) return (size_t)-1;
+  for (j = 0; j <= lb; j++) row[j] = j;
+  for (i = 1; i <= la; i++) {
+    size_t prev = row[0];
+    row[0] = i;
+    for (j = 1; j <= lb; j++) {
+      size_t cur = row[j];
+      size_t cost = (tolower_ascii(a[i - 1]) == tolower_ascii(b[j - 1])) ? 0 : 1;
+      size_t best = prev + cost;
+      if (row[j] + 1 < best) best = row[j] + 1;
+      if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+      row[j] = best;
+      prev = cur;
+    }
+  }
+  return row[lb];
+}
+
+int cli_config_check_unused(cli_ctx *ctx) {
+  cli_config *c = ctx->cfg;
+  size_t i, k;
+  for (i = 0; i < c->n; i++) {
+    cli_entry *e = &c->entries[i];
+    char full[256], sect_star[256];
+    const char *best = NULL;
+    size_t bestd = (size_t)-1;
+    int section_known = 0;
+    if (e->used) continue;
+    snprintf(full, sizeof full, "%s.%s", e->section, e->key);
+    snprintf(sect_star, sizeof sect_star, "%s.", e->section);
+    for (k = 0; k < c->nknown; k++) {
+      size_t d = edit_distance(full, c->known[k]);
+      if (strncmp(c->known[k], sect_star, strlen(sect_star)) == 0) section_known = 1;
+      if (strstr(c->known[k], ".*")) continue;
+      if (d < bestd) {
+        bestd = d;
+        best = c->known[k];
+      }
+    }
+    if (best && bestd <= 3)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s'; did you mean '%s'?", where(ctx, e),
+                      section_known ? "key" : "section/key", full, ctx->command, best);
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s' (see 'autobal %s --help' for the keys)",
+                    where(ctx, e), section_known ? "key" : "section", full, ctx->command, ctx->command);
+  }
+  return CLI_EXIT_OK;
+}
+
+/* ---- signals and progress ------------------------------------------------------ */
+static volatile sig_atomic_t g_signal = 0; /* app-level only: the library has no globals */
+
+static void on_signal(int sig) { g_signal = sig; }
+
+void cli_signals_install(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+}
+
+int cli_interrupted(void) { return g_signal != 0; }
+int cli_signal_number(void) { return (int)g_signal; }
+
+int cli_progress(cli_ctx *ctx, const char *label, double fraction) {
+  if (ctx->progress) {
+    int width = 40, filled, i;
+    if (fraction < 0) fraction = 0;
+    if (fraction > 1) fraction = 1;
+    filled = (int)(fraction * width + 0.5);
+    fprintf(stderr, "\r%-18s [", label);
+    for (i = 0; i < width; i++) fputc(i < filled ? '#' : '.', stderr);
+    fprintf(stderr, "] %5.1f%%", 100.0 * fraction);
+    fflush(stderr);
+  }
+  return cli_interrupted();
+}
+
+void cli_progress_done(cli_ctx *ctx) {
+  if (ctx->progress) {
+    fputc('\n', stderr);
+    fflush(stderr);
+  }
+}
+
+/* ---- JSON ---------------------------------------------------------------------- */
+static void json_sep(cli_json *j, const char *key) {
+  if (!j->first[j->depth]) fputc(',', j->f);
+  j->first[j->depth] = 0;
+  if (key) {
+    const char *p;
+    fputc('"', j->f);
+    for (p = key; *p; p++) {
+      if (*p == '"' || *p == '\\') fputc('\\', j->f);
+      fputc(*p, j->f);
+    }
+    fputs("\":", j->f);
+  }
+}
+
+static void json_push(cli_json *j, char open) {
+  fputc(open, j->f);
+  if (j->depth < 15) j->depth++;
+  j->first[j->depth] = 1;
+}
+
+void cli_json_begin(cli_json *j, FILE *f) {
+  j->f = f;
+  j->depth = 0;
+  j->first[0] = 1;
+  json_push(j, '{');
+}
+void cli_json_end(cli_json *j) {
+  fputs("}\n", j->f);
+  j->depth = 0;
+}
+void cli_json_key(cli_json *j, const char *key) { json_sep(j, key); }
+void cli_json_object(cli_json *j, const char *key) {
+  json_sep(j, key);
+  json_push(j, '{');
+}
+void cli_json_object_end(cli_json *j) {
+  fputc('}', j->f);
+  if (j->depth > 0) j->depth--;
+}
+void cli_json_array(cli_json *j, const char *key) {
+  json_sep(j, key);
+  json_push(j, '[');
+}
+void cli_json_array_end(cli_json *j) {
+  fputc(']', j->f);
+  if (j->depth > 0) j->depth--;
+}
+static void json_num(FILE *f, double v) {
+  if (isfinite(v)) fprintf(f, "%.17g", v);
+  else fputs("null", f);
+}
+void cli_json_number(cli_json *j, const char *key, double v) {
+  json_sep(j, key);
+  json_num(j->f, v);
+}
+void cli_json_int(cli_json *j, const char *key, long v) {
+  json_sep(j, key);
+  fprintf(j->f, "%ld", v);
+}
+void cli_json_bool(cli_json *j, const char *key, int v) {
+  json_sep(j, key);
+  fputs(v ? "true" : "false", j->f);
+}
+void cli_json_string(cli_json *j, const char *key, const char *s) {
+  const unsigned char *p;
+  json_sep(j, key);
+  fputc('"', j->f);
+  for (p = (const unsigned char *)(s ? s : ""); *p; p++) {
+    if (*p == '"' || *p == '\\') fprintf(j->f, "\\%c", *p);
+    else if (*p < 0x20) fprintf(j->f, "\\u%04x", *p);
+    else fputc(*p, j->f);
+  }
+  fputc('"', j->f);
+}
+void cli_json_numbers(cli_json *j, const char *key, const double *v, size_t n) {
+  size_t i;
+  cli_json_array(j, key);
+  for (i = 0; i < n; i++) {
+    if (i) fputc(',', j->f);
+    json_num(j->f, v[i]);
+  }
+  j->first[j->depth] = n == 0;
+  cli_json_array_end(j);
+}
+
+char *cli_config_to_ini(const cli_config *c) {
+  size_t i, j, len = 1, pos = 0;
+  char *out;
+  for (i = 0; i < c->n; i++)
+    len += strlen(c->entries[i].section) + strlen(c->entries[i].key) + strlen(c->entries[i].value) + 8;
+  out = malloc(len);
+  if (!out) return NULL;
+  out[0] = '\0';
+  /* group by section, in order of first appearance */
+  for (i = 0; i < c->n; i++) {
+    int seen = 0;
+    for (j = 0; j < i; j++)
+      if (strcmp(c->entries[j].section, c->entries[i].section) == 0) seen = 1;
+    if (seen) continue;
+    pos += (size_t)snprintf(out + pos, len - pos, "[%s]\n", c->entries[i].section);
+    for (j = i; j < c->n; j++)
+      if (strcmp(c->entries[j].section, c->entries[i].section) == 0)
+        pos += (size_t)snprintf(out + pos, len - pos, "%s = %s\n", c->entries[j].key, c->entries[j].value);
+  }
+  return out;
+}

@@ -1,0 +1,150 @@
+/* cli.h: the command-line layer's shared infrastructure (not installed).
+ *
+ * The apps are the only place that wires a model, an analysis and the
+ * archive together.  This header gives every subcommand the same:
+ *   - configuration: an INI file read with inih, then `--set section.key=value`
+ *     overrides; typed getters that record which keys the command knows, and a
+ *     final check that rejects unknown sections/keys with a "did you mean";
+ *   - common options (-o, --force, --json, --set, --quiet, --no-progress);
+ *   - exit codes (CLI_EXIT_*), error reporting, a progress bar on a terminal,
+ *     SIGINT/SIGTERM turned into a cancellation flag;
+ *   - a tiny JSON writer for `--json` summaries on stdout.
+ */
+#ifndef AUTOBAL_APPS_CLI_H
+#define AUTOBAL_APPS_CLI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "autobal.h"
+
+/* Exit codes (documented in README and `autobal --help`). */
+enum {
+  CLI_EXIT_OK = 0,          /* success (the verdict may still be "unstable") */
+  CLI_EXIT_USAGE = 2,       /* bad command line */
+  CLI_EXIT_INPUT = 3,       /* bad configuration or parameter out of range */
+  CLI_EXIT_IO = 4,          /* output/input file problem (exists, unwritable, not an archive) */
+  CLI_EXIT_NUMERIC = 5,     /* numerical failure; partial results were written */
+  CLI_EXIT_INTERRUPTED = 6, /* SIGINT/SIGTERM; partial results written, archive marked incomplete */
+  CLI_EXIT_INTERNAL = 7     /* out of memory or another internal failure */
+};
+
+/* ---- configuration -------------------------------------------------------- */
+typedef struct cli_config cli_config;
+
+typedef struct cli_ctx {
+  int argc;                 /* the full command line, for provenance */
+  char **argv;
+  const char *command;      /* e.g. "pendulum roots" */
+  const char *config_path;  /* NULL: built-in defaults only */
+  const char *output;       /* -o FILE.h5, NULL: no archive */
+  int force;                /* --force: overwrite an existing output file */
+  int json;                 /* --json: machine-readable summary on stdout */
+  int quiet;                /* --quiet: no human summary */
+  int progress;             /* progress bar allowed (terminal, not --no-progress) */
+  cli_config *cfg;
+  char err[1024];           /* the message printed on failure */
+} cli_ctx;
+
+cli_config *cli_config_new(const char *path);
+void cli_config_free(cli_config *c);
+/* Read ctx->config_path (if any) into ctx->cfg: a duplicated key or an unparsable line is an
+ * error naming the file and line. */
+int cli_config_load(cli_ctx *ctx);
+/* The effective configuration (file + overrides) as INI text (malloc'ed; NULL: no memory). */
+char *cli_config_to_ini(const cli_config *c);
+/* Apply one `--set section.key=value`. */
+int cli_config_override(cli_ctx *ctx, const char *assignment);
+
+/* A subcommand: parses nothing itself; everything comes through ctx. Returns a CLI_EXIT_* code
+ * and, on failure, leaves the message in ctx->err. */
+typedef int (*cli_command_fn)(cli_ctx *ctx);
+
+/* Record a failure message (printf-style) and return `code`. */
+int cli_fail(cli_ctx *ctx, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* Map a library status to an exit code. */
+int cli_exit_code(int status);
+
+/* Getters.  Each declares the key as known to this command (for the unknown-key check and the
+ * "did you mean" suggestion) and marks it used.  If the key is absent, *out = def and 0 is
+ * returned (*present, when not NULL, is set to 0/1).  A malformed value (not a number, NaN,
+ * infinity, empty, trailing junk) returns CLI_EXIT_INPUT with ctx->err naming section.key and the
+ * file. */
+int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double def, double *out, int *present);
+int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, long *out, int *present);
+int cli_get_bool(cli_ctx *ctx, const char *section, const char *key, int def, int *out, int *present);
+/* A string; the returned pointer stays valid until the config is freed. */
+int cli_get_string(cli_ctx *ctx, const char *section, const char *key, const char *def, const char **out,
+                   int *present);
+/* Comma-separated doubles; at most `cap` values; *n set to the count (0 if absent). */
+int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *out, size_t cap, size_t *n,
+                    int *present);
+/* Declare a whole section as known (for sections whose keys are read elsewhere). */
+void cli_declare_section(cli_ctx *ctx, const char *section);
+/* After all getters: fail on any key or section in the file/overrides that the command does not
+ * know, with a suggestion.  Returns 0 or CLI_EXIT_INPUT. */
+int cli_config_check_unused(cli_ctx *ctx);
+/* Whether any key of `section` is present in the file or overrides. */
+int cli_section_present(cli_ctx *ctx, const char *section);
+
+/* ---- archive helpers (write a parameter with its unit into /parameters etc.) ---- */
+struct autobal_archive;
+/* Open ctx->output (if any) with provenance; *out is NULL when no -o was given.  Refuses to
+ * overwrite without --force.  Returns a CLI_EXIT_* code. */
+int cli_archive_open(cli_ctx *ctx, const char *title, struct autobal_archive **out);
+/* Close (rename to the final name) or, when `exit_code` says the run failed before anything
+ * useful, still close so that what was written stays readable; status attribute set from the
+ * code.  Returns exit_code, or CLI_EXIT_IO if closing failed. */
+int cli_archive_finish(cli_ctx *ctx, struct autobal_archive *a, int exit_code);
+/* The config file text itself is stored as /input attribute "config" for re-runs. */
+
+/* ---- progress and signals ------------------------------------------------- */
+/* Install SIGINT/SIGTERM handlers that set a flag (the run stops cleanly at the next check). */
+void cli_signals_install(void);
+/* Non-zero once SIGINT/SIGTERM arrived; the signal number via cli_signal_number(). */
+int cli_interrupted(void);
+int cli_signal_number(void);
+/* Draw/update a progress bar on stderr (only if ctx->progress); fraction in [0,1]. Returns
+ * non-zero when the run should stop (a signal arrived). Finish with cli_progress_done. */
+int cli_progress(cli_ctx *ctx, const char *label, double fraction);
+void cli_progress_done(cli_ctx *ctx);
+
+/* ---- JSON summary on stdout ----------------------------------------------- */
+typedef struct cli_json {
+  FILE *f;
+  int depth;
+  int first[16]; /* whether the next member at each depth is the first one */
+} cli_json;
+void cli_json_begin(cli_json *j, FILE *f);      /* opens the top-level object */
+void cli_json_end(cli_json *j);                 /* closes it, newline */
+void cli_json_key(cli_json *j, const char *key);
+void cli_json_object(cli_json *j, const char *key); /* key NULL inside arrays */
+void cli_json_object_end(cli_json *j);
+void cli_json_array(cli_json *j, const char *key);
+void cli_json_array_end(cli_json *j);
+void cli_json_number(cli_json *j, const char *key, double v);  /* NaN/inf -> null */
+void cli_json_int(cli_json *j, const char *key, long v);
+void cli_json_bool(cli_json *j, const char *key, int v);
+void cli_json_string(cli_json *j, const char *key, const char *s);
+void cli_json_numbers(cli_json *j, const char *key, const double *v, size_t n);
+
+/* ---- shared model plumbing ---------------------------------------------------- */
+#include "autobal/pendulum.h"
+/* Read [pendulum] (dimensionless R_w, R_m, H, h, k|psi0, or the physical M, e, m, l, c, H1, H2,
+ * omega) into *p; *physical says which form was given (phys filled then). */
+int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_pendulum_physical *phys,
+                             int *physical);
+/* Write them as attributes of /pendulum (and /pendulum/physical). */
+int cli_write_pendulum_params(cli_ctx *ctx, struct autobal_archive *a, const autobal_pendulum_params *p,
+                              const autobal_pendulum_physical *phys, int physical);
+
+/* ---- subcommands ------------------------------------------------------------ */
+int cli_cmd_pendulum_roots(cli_ctx *ctx);
+int cli_cmd_pendulum_critical(cli_ctx *ctx);
+int cli_cmd_pendulum_map(cli_ctx *ctx);
+
+#endif

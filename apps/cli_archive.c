@@ -1,0 +1,53 @@
+/* cli_archive.c: opening and finishing an archive for a command (provenance, the effective
+ * configuration for re-runs, the status attribute from the exit code). */
+#define _POSIX_C_SOURCE 200809L
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/archive.h"
+#include "cli.h"
+
+int cli_archive_open(cli_ctx *ctx, const char *title, autobal_archive **out) {
+  autobal_error err;
+  int st;
+  char *ini = NULL;
+  *out = NULL;
+  if (!ctx->output) return CLI_EXIT_OK;
+  autobal_error_clear(&err);
+  st = autobal_archive_create(ctx->output, ctx->force, out, &err);
+  if (st == AUTOBAL_EEXIST)
+    return cli_fail(ctx, CLI_EXIT_IO, "output file '%s' exists; use --force to overwrite it", ctx->output);
+  if (st != AUTOBAL_SUCCESS) return cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+  st = autobal_archive_provenance(*out, title, ctx->argc, (const char *const *)ctx->argv);
+  if (st == AUTOBAL_SUCCESS) st = autobal_archive_attr_string(*out, "/", "command", ctx->command);
+  if (st == AUTOBAL_SUCCESS) {
+    ini = cli_config_to_ini(ctx->cfg);
+    if (!ini) st = AUTOBAL_ENOMEM;
+    else st = autobal_archive_attr_string(*out, "/", "input_config", ini);
+    free(ini);
+  }
+  if (st != AUTOBAL_SUCCESS) {
+    int code = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(*out));
+    autobal_archive_discard(*out);
+    *out = NULL;
+    return code;
+  }
+  return CLI_EXIT_OK;
+}
+
+int cli_archive_finish(cli_ctx *ctx, autobal_archive *a, int exit_code) {
+  autobal_error err;
+  if (!a) return exit_code;
+  if (exit_code == CLI_EXIT_INTERRUPTED) {
+    int sig = cli_signal_number();
+    autobal_archive_set_status(a, "incomplete", sig == SIGTERM ? "interrupted by SIGTERM" : "interrupted by SIGINT");
+  } else if (exit_code != CLI_EXIT_OK) {
+    autobal_archive_set_status(a, "incomplete", ctx->err[0] ? ctx->err : "failed");
+  }
+  autobal_error_clear(&err);
+  if (autobal_archive_close(a, &err) != AUTOBAL_SUCCESS) {
+    if (exit_code == CLI_EXIT_OK) return cli_fail(ctx, CLI_EXIT_IO, "%s", err.message);
+  }
+  return exit_code;
+}

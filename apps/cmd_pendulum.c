@@ -1,0 +1,563 @@
+/* cmd_pendulum.c: `autobal pendulum roots|critical|map`. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/archive.h"
+#include "autobal/pendulum.h"
+#include "cli.h"
+
+/* Defaults of the built-in example (dimensionless). */
+#define DEF_RW 3.0
+#define DEF_RM 0.1
+#define DEF_H 0.1
+#define DEF_HP 0.5
+#define DEF_K 0.5
+
+int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_pendulum_physical *phys,
+                             int *physical) {
+  static const char *const pkeys[] = {"M", "e", "m", "l", "c", "H1", "H2", "omega"};
+  double pv[8];
+  int present[8], any_phys = 0, all_phys = 1, rc, i;
+  int has_rw, has_rm, has_H, has_h, has_k, has_psi0;
+  double R_w, R_m, H, h, k, psi0;
+  autobal_error err;
+  autobal_error_clear(&err);
+  for (i = 0; i < 8; i++) {
+    if ((rc = cli_get_double(ctx, "pendulum", pkeys[i], 0.0, &pv[i], &present[i]))) return rc;
+    any_phys |= present[i];
+    all_phys &= present[i];
+  }
+  if ((rc = cli_get_double(ctx, "pendulum", "R_w", DEF_RW, &R_w, &has_rw))) return rc;
+  if ((rc = cli_get_double(ctx, "pendulum", "R_m", DEF_RM, &R_m, &has_rm))) return rc;
+  if ((rc = cli_get_double(ctx, "pendulum", "H", DEF_H, &H, &has_H))) return rc;
+  if ((rc = cli_get_double(ctx, "pendulum", "h", DEF_HP, &h, &has_h))) return rc;
+  if ((rc = cli_get_double(ctx, "pendulum", "k", DEF_K, &k, &has_k))) return rc;
+  if ((rc = cli_get_double(ctx, "pendulum", "psi0", 0.0, &psi0, &has_psi0))) return rc;
+  *physical = any_phys;
+  if (any_phys) {
+    if (has_rw || has_rm || has_H || has_h || has_k || has_psi0)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[pendulum]: give either the dimensionless keys (R_w, R_m, H, h, k or psi0) or the physical "
+                      "keys (M, e, m, l, c, H1, H2, omega), not both");
+    if (!all_phys) {
+      for (i = 0; i < 8; i++)
+        if (!present[i])
+          return cli_fail(ctx, CLI_EXIT_INPUT,
+                          "[pendulum]: physical parameters need all of M, e, m, l, c, H1, H2, omega; '%s' is missing",
+                          pkeys[i]);
+    }
+    phys->M = pv[0];
+    phys->e = pv[1];
+    phys->m = pv[2];
+    phys->l = pv[3];
+    phys->c = pv[4];
+    phys->H1 = pv[5];
+    phys->H2 = pv[6];
+    phys->omega = pv[7];
+    if (autobal_pendulum_params_from_physical(phys, p, &err) != AUTOBAL_SUCCESS)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[pendulum]: %s", err.message);
+    return CLI_EXIT_OK;
+  }
+  if (has_k && has_psi0)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[pendulum]: give k or psi0, not both");
+  if (has_psi0) {
+    p->R_w = R_w;
+    p->R_m = R_m;
+    p->H = H;
+    p->h = h;
+    p->psi0 = psi0;
+    if (autobal_pendulum_params_validate(p, &err) != AUTOBAL_SUCCESS)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[pendulum]: %s", err.message);
+    return CLI_EXIT_OK;
+  }
+  if (autobal_pendulum_params_from_k(R_w, R_m, H, h, k, p, &err) != AUTOBAL_SUCCESS)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[pendulum]: %s", err.message);
+  return CLI_EXIT_OK;
+}
+
+/* Parameters as attributes of /pendulum (dimensionless, units "1"), plus the physical set. */
+int cli_write_pendulum_params(cli_ctx *ctx, autobal_archive *a, const autobal_pendulum_params *p,
+                              const autobal_pendulum_physical *phys, int physical) {
+  int st = autobal_archive_group(a, "/pendulum");
+  if (!st) st = autobal_archive_attr_string(a, "/pendulum", "model", "planar two-pendulum autobalancer (spec pendulum.md)");
+  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_w", p->R_w, "1");
+  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_m", p->R_m, "1");
+  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "H", p->H, "1");
+  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "h", p->h, "1");
+  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "psi0", p->psi0, "rad");
+  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "k", autobal_pendulum_k(p), "1");
+  if (!st && physical) {
+    st = autobal_archive_group(a, "/pendulum/physical");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "M", phys->M, "kg");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "e", phys->e, "m");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "m", phys->m, "kg");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "l", phys->l, "m");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "c", phys->c, "N/m");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H1", phys->H1, "N m s");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H2", phys->H2, "N s/m");
+    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "omega", phys->omega, "rad/s");
+  }
+  if (st) return cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+  return CLI_EXIT_OK;
+}
+
+static void print_params(const autobal_pendulum_params *p) {
+  printf("parameters (dimensionless): R_w = %.6g  R_m = %.6g  H = %.6g  h = %.6g  psi0 = %.6g rad  k = %.6g\n", p->R_w,
+         p->R_m, p->H, p->h, p->psi0, autobal_pendulum_k(p));
+}
+
+static const char *cond_text(const autobal_pendulum_sufficient *c) {
+  if (c->predicts_stable) return c->applicable ? "predicts stable (applicable)" : "predicts stable (not applicable here)";
+  return c->applicable ? "predicts unstable (applicable)" : "predicts unstable (not applicable here)";
+}
+
+/* ---- pendulum roots --------------------------------------------------------------- */
+int cli_cmd_pendulum_roots(cli_ctx *ctx) {
+  autobal_pendulum_params p;
+  autobal_pendulum_physical phys;
+  autobal_pendulum_result r;
+  autobal_pendulum_workspace *ws = NULL;
+  autobal_archive *a = NULL;
+  int physical = 0, rc, st;
+  size_t i;
+
+  if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
+  if ((rc = cli_config_check_unused(ctx))) return rc;
+  ws = autobal_pendulum_workspace_alloc();
+  if (!ws) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  st = autobal_pendulum_analyze(ws, &p, &r);
+  if (st != AUTOBAL_SUCCESS) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
+    autobal_pendulum_workspace_free(ws);
+    return rc;
+  }
+  autobal_pendulum_workspace_free(ws);
+
+  if ((rc = cli_archive_open(ctx, "autobal pendulum roots", &a))) return rc;
+  if (a) {
+    static const char *const dim_root[] = {"root"};
+    static const char *const dim_power[] = {"power"};
+    double power[AUTOBAL_PENDULUM_NCOEF];
+    const char *g = "/pendulum/roots";
+    for (i = 0; i < AUTOBAL_PENDULUM_NCOEF; i++) power[i] = (double)i;
+    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
+    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
+    if (!st) st = autobal_archive_dim(a, g, "root", AUTOBAL_PENDULUM_ORDER, "index of a characteristic root");
+    if (!st) st = autobal_archive_coord(a, g, "power", AUTOBAL_PENDULUM_NCOEF, power, "1", "power of lambda");
+    if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dim_power, r.coef, "1", "coefficients of the characteristic polynomial (6), ascending powers of lambda");
+    if (!st) st = autobal_archive_var(a, g, "root_real", 1, dim_root, r.root_re, "1", "real part of the roots of (6) (dimensionless, per tau)");
+    if (!st) st = autobal_archive_var(a, g, "root_imag", 1, dim_root, r.root_im, "1", "imaginary part of the roots of (6)");
+    if (!st) st = autobal_archive_var(a, g, "eig_real", 1, dim_root, r.eig_re, "1", "real part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
+    if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, dim_root, r.eig_im, "1", "imaginary part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
+    if (!st) st = autobal_archive_attr_string(a, g, "verdict", autobal_verdict_name(r.verdict));
+    if (!st) st = autobal_archive_attr_string(a, g, "verdict_roots", autobal_verdict_name(r.verdict_roots));
+    if (!st) st = autobal_archive_attr_double(a, g, "max_real", r.max_real, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.mismatch, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "n_right_half_plane", r.n_rhp);
+    if (!st) st = autobal_archive_attr_int(a, g, "cond7_applicable", r.cond7.applicable);
+    if (!st) st = autobal_archive_attr_int(a, g, "cond7_predicts_stable", r.cond7.predicts_stable);
+    if (!st) st = autobal_archive_attr_int(a, g, "cond8_applicable", r.cond8.applicable);
+    if (!st) st = autobal_archive_attr_int(a, g, "cond8_predicts_stable", r.cond8.predicts_stable);
+    if (!st) st = autobal_archive_attr_int(a, g, "cond9_applicable", r.cond9.applicable);
+    if (!st) st = autobal_archive_attr_int(a, g, "cond9_predicts_stable", r.cond9.predicts_stable);
+    if (st && !rc) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    if (rc) return rc;
+  }
+
+  if (ctx->json) {
+    cli_json j;
+    cli_json_begin(&j, stdout);
+    cli_json_string(&j, "command", ctx->command);
+    cli_json_object(&j, "parameters");
+    cli_json_number(&j, "R_w", p.R_w);
+    cli_json_number(&j, "R_m", p.R_m);
+    cli_json_number(&j, "H", p.H);
+    cli_json_number(&j, "h", p.h);
+    cli_json_number(&j, "psi0", p.psi0);
+    cli_json_number(&j, "k", autobal_pendulum_k(&p));
+    cli_json_object_end(&j);
+    cli_json_string(&j, "verdict", autobal_verdict_name(r.verdict));
+    cli_json_string(&j, "verdict_roots", autobal_verdict_name(r.verdict_roots));
+    cli_json_number(&j, "max_real", r.max_real);
+    cli_json_number(&j, "root_eig_mismatch", r.mismatch);
+    cli_json_numbers(&j, "char_poly", r.coef, AUTOBAL_PENDULUM_NCOEF);
+    cli_json_numbers(&j, "root_real", r.root_re, AUTOBAL_PENDULUM_ORDER);
+    cli_json_numbers(&j, "root_imag", r.root_im, AUTOBAL_PENDULUM_ORDER);
+    cli_json_numbers(&j, "eig_real", r.eig_re, AUTOBAL_PENDULUM_ORDER);
+    cli_json_numbers(&j, "eig_imag", r.eig_im, AUTOBAL_PENDULUM_ORDER);
+    cli_json_bool(&j, "cond7_predicts_stable", r.cond7.predicts_stable);
+    cli_json_bool(&j, "cond8_predicts_stable", r.cond8.predicts_stable);
+    cli_json_bool(&j, "cond9_predicts_stable", r.cond9.predicts_stable);
+    if (ctx->output) cli_json_string(&j, "output", ctx->output);
+    cli_json_end(&j);
+  } else if (!ctx->quiet) {
+    print_params(&p);
+    printf("main motion (4): %s (Routh-Hurwitz on (6)); roots say %s; margin max Re(lambda) = %.6e\n",
+           autobal_verdict_name(r.verdict), autobal_verdict_name(r.verdict_roots), r.max_real);
+    printf("  %-3s %24s %24s   %24s %24s\n", "#", "root of (6): Re", "Im", "eigenvalue of (5): Re", "Im");
+    for (i = 0; i < AUTOBAL_PENDULUM_ORDER; i++)
+      printf("  %-3zu %24.15e %24.15e   %24.15e %24.15e\n", i, r.root_re[i], r.root_im[i], r.eig_re[i], r.eig_im[i]);
+    printf("  roots vs eigenvalues: max |difference| = %.3e\n", r.mismatch);
+    printf("sufficient conditions (asymptotic, for comparison only):\n");
+    printf("  (7) R_m << 1 or h >> 1, stable if R_w > 1:   %s\n", cond_text(&r.cond7));
+    printf("  (8) R_w >> 1, stable if h > H sqrt(R_m):     %s\n", cond_text(&r.cond8));
+    printf("  (9) H >> 1 (corrected):                       %s\n", cond_text(&r.cond9));
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+  return CLI_EXIT_OK;
+}
+
+/* ---- pendulum critical ------------------------------------------------------------- */
+static const char *kind_name(int kind) {
+  return kind > 0 ? "stability gained" : kind < 0 ? "stability lost" : "touch (no change)";
+}
+
+static void print_intervals(const autobal_pendulum_crit_set *s) {
+  size_t i;
+  printf("  stable for R_w in:");
+  if (s->n_stable == 0) printf(" (none)");
+  for (i = 0; i < s->n_stable; i++) {
+    if (isinf(s->stable_hi[i])) printf(" (%.10g, inf)", s->stable_lo[i]);
+    else printf(" (%.10g, %.10g)", s->stable_lo[i], s->stable_hi[i]);
+  }
+  printf("\n");
+}
+
+static int write_crit_set(autobal_archive *a, const char *g, const char *prefix, const autobal_pendulum_crit_set *s) {
+  char dimc[64], dimi[64], name[96];
+  const char *dc[1], *di[1];
+  int st = 0, kinds[AUTOBAL_PENDULUM_MAX_CRIT];
+  size_t i;
+  snprintf(dimc, sizeof dimc, "%s_critical", prefix);
+  snprintf(dimi, sizeof dimi, "%s_interval", prefix);
+  dc[0] = dimc;
+  di[0] = dimi;
+  snprintf(name, sizeof name, "n_%s", dimc);
+  st = autobal_archive_attr_int(a, g, name, (long)s->n);
+  if (!st && s->n > 0) {
+    for (i = 0; i < s->n; i++) kinds[i] = s->kind[i];
+    st = autobal_archive_dim(a, g, dimc, s->n, "index of a critical speed");
+    snprintf(name, sizeof name, "%s_R_w", prefix);
+    if (!st) st = autobal_archive_var(a, g, name, 1, dc, s->R_w, "1", "critical speed R_w = omega/omega0");
+    snprintf(name, sizeof name, "%s_kind", prefix);
+    if (!st) st = autobal_archive_var_int(a, g, name, 1, dc, kinds, "1", "1: stability gained above, -1: lost above, 0: touch (no change)");
+  }
+  if (!st && s->n_stable > 0) {
+    st = autobal_archive_dim(a, g, dimi, s->n_stable, "index of a stable speed interval");
+    snprintf(name, sizeof name, "%s_stable_lo", prefix);
+    if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_lo, "1", "lower end of a stable R_w interval");
+    snprintf(name, sizeof name, "%s_stable_hi", prefix);
+    if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_hi, "1", "upper end of a stable R_w interval (inf: unbounded)");
+  }
+  return st;
+}
+
+int cli_cmd_pendulum_critical(cli_ctx *ctx) {
+  autobal_pendulum_params p;
+  autobal_pendulum_physical phys;
+  autobal_pendulum_workspace *ws = NULL;
+  autobal_pendulum_crit_set und, damped;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  int physical = 0, rc, st = 0, have_damped;
+  double rm_min, rm_max, rw_min, rw_max, k, rm1 = NAN, rw_rm1 = NAN;
+  long n_rm, n_sweep;
+  double *rm = NULL, *c0 = NULL, *c1 = NULL, *series = NULL;
+  size_t i, nrm;
+  /* closed forms at the given R_m */
+  double rw1_13 = NAN, s2 = NAN, s3 = NAN, l2 = NAN, l3 = NAN, rw1_16 = NAN, u16 = NAN, rw1_17 = NAN, rw23_18 = NAN;
+  autobal_pendulum_crit_set k0set, k1set;
+
+  autobal_error_clear(&err);
+  if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rm_min", 0.001, &rm_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rm_max", 0.499, &rm_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "critical", "n_Rm", 499, &n_rm, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rw_min", 0.0, &rw_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rw_max", 6.0, &rw_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "critical", "n_sweep", 3000, &n_sweep, NULL))) return rc;
+  if ((rc = cli_config_check_unused(ctx))) return rc;
+  if (!(rm_min > 0 && rm_min < rm_max && rm_max < 0.5))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: need 0 < Rm_min < Rm_max < 0.5, got Rm_min = %g, Rm_max = %g",
+                    rm_min, rm_max);
+  if (n_rm < 2 || n_rm > 1000000)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: n_Rm = %ld is out of range: allowed [2, 1000000]", n_rm);
+  if (!(rw_min >= 0 && rw_min < rw_max))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: need 0 <= Rw_min < Rw_max, got Rw_min = %g, Rw_max = %g", rw_min,
+                    rw_max);
+  if (n_sweep < 2 || n_sweep > 100000000)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: n_sweep = %ld is out of range: allowed [2, 1e8]", n_sweep);
+  k = autobal_pendulum_k(&p);
+  nrm = (size_t)n_rm;
+
+  ws = autobal_pendulum_workspace_alloc();
+  rm = malloc(nrm * sizeof *rm);
+  c0 = malloc(3 * nrm * sizeof *c0);
+  c1 = malloc(3 * nrm * sizeof *c1);
+  series = malloc(5 * nrm * sizeof *series);
+  if (!ws || !rm || !c0 || !c1 || !series) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+    goto done;
+  }
+  st = autobal_pendulum_critical_speeds(ws, p.R_m, k, &und);
+  have_damped = p.H > 0 || p.h > 0;
+  if (!st && have_damped) st = autobal_pendulum_critical_speeds_damped(ws, &p, rw_min, rw_max, (size_t)n_sweep, &damped);
+  if (!st) st = autobal_pendulum_critical_speeds(ws, p.R_m, 0.0, &k0set);
+  if (!st) st = autobal_pendulum_critical_speeds(ws, p.R_m, 1.0, &k1set);
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
+    goto done;
+  }
+  autobal_pendulum_rw1_k0(p.R_m, &rw1_13, NULL);
+  autobal_pendulum_rw23_k0_series_small(p.R_m, &s2, &s3, NULL);
+  if (p.R_m < 0.25) autobal_pendulum_rw23_k0_series_large(p.R_m, &l2, &l3, NULL);
+  autobal_pendulum_rw1_k1(p.R_m, &rw1_16, &u16, NULL);
+  autobal_pendulum_rw1_k1_series(p.R_m, &rw1_17, NULL);
+  if (p.R_m < 0.25) autobal_pendulum_rw23_k1(p.R_m, &rw23_18, NULL);
+  if ((st = autobal_pendulum_rm1(&rm1, &rw_rm1, &err))) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    goto done;
+  }
+  /* curves vs R_m for k = 0 and k = 1 */
+  for (i = 0; i < nrm; i++) rm[i] = rm_min + (rm_max - rm_min) * (double)i / (double)(nrm - 1);
+  st = autobal_pendulum_critical_curves(ws, 0.0, rm, nrm, 3, c0);
+  if (!st) st = autobal_pendulum_critical_curves(ws, 1.0, rm, nrm, 3, c1);
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
+    goto done;
+  }
+  /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18) */
+  for (i = 0; i < nrm; i++) {
+    double a2 = NAN, a3 = NAN, b2 = NAN, b3 = NAN, f16 = NAN, f17 = NAN, f18 = NAN;
+    autobal_pendulum_rw23_k0_series_small(rm[i], &a2, &a3, NULL);
+    if (rm[i] < 0.25) autobal_pendulum_rw23_k0_series_large(rm[i], &b2, &b3, NULL);
+    autobal_pendulum_rw1_k1(rm[i], &f16, NULL, NULL);
+    autobal_pendulum_rw1_k1_series(rm[i], &f17, NULL);
+    if (rm[i] > rm1 && rm[i] < 0.25) autobal_pendulum_rw23_k1(rm[i], &f18, NULL);
+    series[0 * nrm + i] = rm[i] < 0.05 ? a2 : b2;
+    series[1 * nrm + i] = rm[i] < 0.05 ? a3 : b3;
+    series[2 * nrm + i] = f16;
+    series[3 * nrm + i] = f17;
+    series[4 * nrm + i] = f18;
+  }
+
+  if ((rc = cli_archive_open(ctx, "autobal pendulum critical", &a))) goto done;
+  if (a) {
+    const char *g = "/pendulum/critical", *gc = "/pendulum/critical/curves";
+    static const char *const dims2[] = {"R_m", "branch"};
+    static const char *const dims1[] = {"R_m"};
+    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
+    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
+    if (!st) st = autobal_archive_attr_string(a, g, "description", "critical speeds of the undamped balancer (H = h = 0) at the R_m and k of /pendulum, from the discriminant of (10); damped_* at the given H, h from (6)");
+    if (!st) st = write_crit_set(a, g, "undamped", &und);
+    if (!st && have_damped) st = write_crit_set(a, g, "damped", &damped);
+    if (!st) st = write_crit_set(a, g, "undamped_k0", &k0set);
+    if (!st) st = write_crit_set(a, g, "undamped_k1", &k1set);
+    if (!st) st = autobal_archive_attr_double(a, g, "R_m1", rm1, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "R_w_at_R_m1", rw_rm1, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq13_R_w1_k0", rw1_13, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w2_k0_small", s2, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w3_k0_small", s3, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w2_k0_large", l2, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w3_k0_large", l3, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq16_R_w1_k1", rw1_16, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq17_R_w1_k1_series", rw1_17, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "eq18_R_w23_k1", rw23_18, "1");
+    if (!st) st = autobal_archive_group(a, gc);
+    if (!st) st = autobal_archive_attr_string(a, gc, "description", "critical-speed curves R_wj(R_m) of the undamped balancer (figure 2): region A is R_w > R_w3(R_m, k=0); region B is R_w1(R_m, k=1) < R_w < R_w2(R_m, k=0); for R_m >= 0.25 the region stable for every unbalance is R_w > R_w1(R_m, k=1)");
+    if (!st) st = autobal_archive_coord(a, gc, "R_m", nrm, rm, "1", "mass ratio m/(M + 2m)");
+    if (!st) st = autobal_archive_dim(a, gc, "branch", 3, "critical speed index j-1 (R_w1, R_w2, R_w3)");
+    if (!st) st = autobal_archive_var(a, gc, "R_w_k0", 2, dims2, c0, "1", "critical speeds R_wj(R_m, k=0), NaN where the branch does not exist");
+    if (!st) st = autobal_archive_var(a, gc, "R_w_k1", 2, dims2, c1, "1", "critical speeds R_wj(R_m, k=1), NaN where the branch does not exist");
+    if (!st) st = autobal_archive_var(a, gc, "eq14_R_w2_k0", 1, dims1, series, "1", "series (14) for R_w2(R_m, 0) (first form below R_m = 0.05, second above)");
+    if (!st) st = autobal_archive_var(a, gc, "eq14_R_w3_k0", 1, dims1, series + nrm, "1", "series (14) for R_w3(R_m, 0)");
+    if (!st) st = autobal_archive_var(a, gc, "eq16_R_w1_k1", 1, dims1, series + 2 * nrm, "1", "closed form (16) for R_w1(R_m, 1)");
+    if (!st) st = autobal_archive_var(a, gc, "eq17_R_w1_k1", 1, dims1, series + 3 * nrm, "1", "series (17) for R_w1(R_m, 1)");
+    if (!st) st = autobal_archive_var(a, gc, "eq18_R_w23_k1", 1, dims1, series + 4 * nrm, "1", "closed form (18) for R_w2/3(R_m, 1), for R_m^(1) < R_m < 0.25");
+    if (st && !rc) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    a = NULL;
+    if (rc) goto done;
+  }
+
+  if (ctx->json) {
+    cli_json j;
+    cli_json_begin(&j, stdout);
+    cli_json_string(&j, "command", ctx->command);
+    cli_json_number(&j, "R_m", p.R_m);
+    cli_json_number(&j, "k", k);
+    cli_json_numbers(&j, "undamped_critical_R_w", und.R_w, und.n);
+    cli_json_array(&j, "undamped_kind");
+    for (i = 0; i < und.n; i++) cli_json_int(&j, NULL, und.kind[i]);
+    cli_json_array_end(&j);
+    cli_json_numbers(&j, "undamped_stable_lo", und.stable_lo, und.n_stable);
+    cli_json_numbers(&j, "undamped_stable_hi", und.stable_hi, und.n_stable);
+    if (have_damped) {
+      cli_json_numbers(&j, "damped_critical_R_w", damped.R_w, damped.n);
+      cli_json_numbers(&j, "damped_stable_lo", damped.stable_lo, damped.n_stable);
+      cli_json_numbers(&j, "damped_stable_hi", damped.stable_hi, damped.n_stable);
+    }
+    cli_json_numbers(&j, "k0_critical_R_w", k0set.R_w, k0set.n);
+    cli_json_numbers(&j, "k1_critical_R_w", k1set.R_w, k1set.n);
+    cli_json_number(&j, "R_m1", rm1);
+    cli_json_number(&j, "R_w_at_R_m1", rw_rm1);
+    if (ctx->output) cli_json_string(&j, "output", ctx->output);
+    cli_json_end(&j);
+  } else if (!ctx->quiet) {
+    print_params(&p);
+    printf("undamped critical speeds at R_m = %.6g, k = %.6g (exact, from the discriminant of (10)):\n", p.R_m, k);
+    for (i = 0; i < und.n; i++) printf("  R_w = %.12f   %s\n", und.R_w[i], kind_name(und.kind[i]));
+    print_intervals(&und);
+    printf("k = 0 (numerical): ");
+    for (i = 0; i < k0set.n; i++) printf(" %.12f", k0set.R_w[i]);
+    printf("\n  paper: (13) R_w1 = %.12f", rw1_13);
+    if (p.R_m < 0.05) printf("; (14) R_w2 ~ %.12f, R_w3 ~ %.12f", s2, s3);
+    else if (p.R_m < 0.25) printf("; (14) R_w2 ~ %.12f, R_w3 ~ %.12f", l2, l3);
+    printf("\nk = 1 (numerical): ");
+    for (i = 0; i < k1set.n; i++) printf(" %.12f%s", k1set.R_w[i], k1set.kind[i] == 0 ? "(touch)" : "");
+    printf("\n  paper: (16) R_w1 = %.12f (u = %.10f), (17) R_w1 ~ %.12f", rw1_16, u16, rw1_17);
+    if (p.R_m > rm1 && p.R_m < 0.25) printf(", (18) R_w2/3 = %.12f", rw23_18);
+    printf("\nR_m^(1) = %.12f (curves (16) and (18) touch at R_w = %.12f)\n", rm1, rw_rm1);
+    if (have_damped) {
+      printf("damped critical speeds (H = %.6g, h = %.6g) on R_w in [%g, %g]:\n", p.H, p.h, rw_min, rw_max);
+      for (i = 0; i < damped.n; i++) printf("  R_w = %.12f   %s\n", damped.R_w[i], kind_name(damped.kind[i]));
+      print_intervals(&damped);
+    }
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+  rc = CLI_EXIT_OK;
+done:
+  autobal_pendulum_workspace_free(ws);
+  free(rm);
+  free(c0);
+  free(c1);
+  free(series);
+  return rc;
+}
+
+/* ---- pendulum map -------------------------------------------------------------------- */
+int cli_cmd_pendulum_map(cli_ctx *ctx) {
+  autobal_pendulum_params p;
+  autobal_pendulum_physical phys;
+  autobal_pendulum_map_spec spec;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  int physical = 0, rc, st, every = 0, want_max = 0, k_given = 0;
+  double rm_min, rm_max, rw_min, rw_max;
+  long n_rm, n_rw, n_k, threads;
+  double *rm = NULL, *rw = NULL, *ks = NULL, *maxre = NULL;
+  signed char *v = NULL;
+  int *vi = NULL;
+  size_t i, n, nstable = 0;
+  double k;
+
+  autobal_error_clear(&err);
+  if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rm_min", 0.005, &rm_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rm_max", 0.495, &rm_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_Rm", 200, &n_rm, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rw_min", 0.05, &rw_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rw_max", 5.0, &rw_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_Rw", 200, &n_rw, NULL))) return rc;
+  if ((rc = cli_get_bool(ctx, "map", "every_unbalance", 0, &every, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_k", 65, &n_k, &k_given))) return rc;
+  if ((rc = cli_get_bool(ctx, "map", "max_real", 0, &want_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "threads", 0, &threads, NULL))) return rc;
+  if ((rc = cli_config_check_unused(ctx))) return rc;
+  if (!(rm_min > 0 && rm_min <= rm_max && rm_max < 0.5))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 < Rm_min <= Rm_max < 0.5, got Rm_min = %g, Rm_max = %g", rm_min,
+                    rm_max);
+  if (!(rw_min >= 0 && rw_min <= rw_max))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 <= Rw_min <= Rw_max, got Rw_min = %g, Rw_max = %g", rw_min,
+                    rw_max);
+  if (n_rm < 1 || n_rm > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_Rm = %ld is out of range: allowed [1, 100000]", n_rm);
+  if (n_rw < 1 || n_rw > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_Rw = %ld is out of range: allowed [1, 100000]", n_rw);
+  if (n_k < 2 || n_k > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k = %ld is out of range: allowed [2, 100000]", n_k);
+  if (threads < 0 || threads > 1024) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: threads = %ld is out of range: allowed [0, 1024]", threads);
+  if (k_given && !every) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k is used only with every_unbalance = true");
+  k = autobal_pendulum_k(&p);
+  n = (size_t)n_rm * (size_t)n_rw;
+  rm = malloc((size_t)n_rm * sizeof *rm);
+  rw = malloc((size_t)n_rw * sizeof *rw);
+  ks = malloc((size_t)(every ? n_k : 1) * sizeof *ks);
+  v = malloc(n);
+  vi = malloc(n * sizeof *vi);
+  if (want_max) maxre = malloc(n * sizeof *maxre);
+  if (!rm || !rw || !ks || !v || !vi || (want_max && !maxre)) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+    goto done;
+  }
+  for (i = 0; i < (size_t)n_rm; i++) rm[i] = n_rm == 1 ? rm_min : rm_min + (rm_max - rm_min) * (double)i / (double)(n_rm - 1);
+  for (i = 0; i < (size_t)n_rw; i++) rw[i] = n_rw == 1 ? rw_min : rw_min + (rw_max - rw_min) * (double)i / (double)(n_rw - 1);
+  if (every)
+    for (i = 0; i < (size_t)n_k; i++) ks[i] = (double)i / (double)(n_k - 1);
+  else
+    ks[0] = k;
+  memset(&spec, 0, sizeof spec);
+  spec.R_m = rm;
+  spec.n_Rm = (size_t)n_rm;
+  spec.R_w = rw;
+  spec.n_Rw = (size_t)n_rw;
+  spec.H = p.H;
+  spec.h = p.h;
+  spec.k = ks;
+  spec.n_k = every ? (size_t)n_k : 1;
+  spec.n_threads = (int)threads;
+  st = autobal_pendulum_map(&spec, v, maxre, &err);
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    goto done;
+  }
+  for (i = 0; i < n; i++) {
+    vi[i] = v[i];
+    nstable += v[i] > 0;
+  }
+  if ((rc = cli_archive_open(ctx, every ? "autobal pendulum map (every unbalance)" : "autobal pendulum map", &a)))
+    goto done;
+  if (a) {
+    const char *g = "/pendulum/map";
+    static const char *const dims[] = {"R_m", "R_w"};
+    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
+    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
+    if (!st) st = autobal_archive_attr_string(a, g, "criterion", (p.H > 0 || p.h > 0) ? "Routh-Hurwitz sign test on the characteristic polynomial (6)" : "undamped: all roots x = lambda^2 of (10) real and <= 0");
+    if (!st) st = autobal_archive_attr_int(a, g, "every_unbalance", every);
+    if (!st) st = autobal_archive_attr_double_array(a, g, "k_values", spec.n_k, ks, "1");
+    if (!st) st = autobal_archive_coord(a, g, "R_m", (size_t)n_rm, rm, "1", "mass ratio m/(M + 2m)");
+    if (!st) st = autobal_archive_coord(a, g, "R_w", (size_t)n_rw, rw, "1", "rotor speed omega/omega0");
+    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vi, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
+    if (!st && maxre) st = autobal_archive_var(a, g, "max_real", 2, dims, maxre, "1", "largest real part of the roots of (6) (over k_values)");
+    if (st && !rc) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    if (rc) goto done;
+  }
+  if (ctx->json) {
+    cli_json j;
+    cli_json_begin(&j, stdout);
+    cli_json_string(&j, "command", ctx->command);
+    cli_json_bool(&j, "every_unbalance", every);
+    cli_json_int(&j, "n_Rm", n_rm);
+    cli_json_int(&j, "n_Rw", n_rw);
+    cli_json_int(&j, "n_stable", (long)nstable);
+    cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
+    if (ctx->output) cli_json_string(&j, "output", ctx->output);
+    cli_json_end(&j);
+  } else if (!ctx->quiet) {
+    print_params(&p);
+    printf("map %ld x %ld over R_m in [%g, %g], R_w in [%g, %g], %s\n", n_rm, n_rw, rm_min, rm_max, rw_min, rw_max,
+           every ? "stable for every k in the set" : "one k");
+    printf("stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+  rc = CLI_EXIT_OK;
+done:
+  free(rm);
+  free(rw);
+  free(ks);
+  free(v);
+  free(vi);
+  free(maxre);
+  return rc;
+}

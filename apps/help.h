@@ -1,0 +1,48 @@
+/* help.h: configuration keys of each command, shown by `autobal CMD --help`. */
+#ifndef AUTOBAL_APPS_HELP_H
+#define AUTOBAL_APPS_HELP_H
+
+#define HELP_PENDULUM_PARAMS                                                                      \
+  "[pendulum] the two-pendulum autobalancer (spec pendulum.md), dimensionless form (2)-(3):\n"    \
+  "  R_w   = 3.0    rotor speed omega/omega0, >= 0\n"                                             \
+  "  R_m   = 0.1    mass ratio m/(M + 2m), in (0, 0.5)\n"                                         \
+  "  H     = 0.1    external damping H2/(omega0 (M + 2m)), >= 0\n"                                \
+  "  h     = 0.5    pendulum damping H1/(m l^2 omega0), >= 0\n"                                   \
+  "  k     = 0.5    unbalance parameter sin^2(2 psi0), in [0, 1]   (or psi0 in rad, [0, pi/2))\n" \
+  "or the physical form (SI; all eight keys, converted by (2)-(3); not mixed with the above):\n"   \
+  "  M [kg]  e [m]  m [kg]  l [m]  c [N/m]  H1 [N m s]  H2 [N s/m]  omega [rad/s]\n"              \
+  "  (requires M e < 2 m l)\n"
+
+#define HELP_PENDULUM_ROOTS                                                                   \
+  "Roots of the characteristic polynomial (6) (GSL complex polynomial solver), eigenvalues\n" \
+  "of the 8x8 first-order matrix of (5) (GSL), their agreement, the Routh-Hurwitz verdict,\n" \
+  "the stability margin (largest real part) and the sufficient conditions (7)-(9).\n\n"       \
+  HELP_PENDULUM_PARAMS                                                                        \
+  "\narchive: /pendulum (parameters as attributes), /pendulum/roots\n"
+
+#define HELP_PENDULUM_CRITICAL                                                                  \
+  "Critical speeds of the undamped balancer (H = h = 0) at the given R_m and k, located\n"      \
+  "exactly from the discriminant of (10); the paper's closed forms and series (13)-(18) with\n" \
+  "their errors; R_m^(1); critical-speed curves R_wj(R_m) for k = 0 and k = 1 (figure 2,\n"     \
+  "regions A and B); and, when H or h > 0, the critical speeds of the damped system (6).\n\n"   \
+  HELP_PENDULUM_PARAMS                                                                          \
+  "\n[critical]\n"                                                                              \
+  "  Rm_min = 0.001   Rm_max = 0.499   n_Rm = 499   R_m grid of the curves\n"                   \
+  "  Rw_min = 0       Rw_max = 6       n_sweep = 3000   sweep of the damped search\n"           \
+  "\narchive: /pendulum/critical, /pendulum/critical/curves\n"
+
+#define HELP_PENDULUM_MAP                                                                      \
+  "Stability map of the main motion (4) over an (R_m, R_w) grid: for one k, or for every\n"    \
+  "unbalance (stable for all k of a set in [0, 1]).  Damped: Routh-Hurwitz sign test on (6);\n" \
+  "undamped (H = h = 0): all roots of (10) real and <= 0.  OpenMP-parallel.\n\n"               \
+  HELP_PENDULUM_PARAMS                                                                         \
+  "\n[map]\n"                                                                                  \
+  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     R_m axis\n"                                \
+  "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     R_w axis\n"                                \
+  "  every_unbalance = false   true: stable for all k in {j/(n_k-1)}, j = 0..n_k-1\n"          \
+  "  n_k = 65                  size of that k set (>= 2)\n"                                    \
+  "  max_real = false          also store the largest real part of the roots (slower)\n"       \
+  "  threads = 0               OpenMP threads (0: default)\n"                                  \
+  "\narchive: /pendulum/map (verdict[R_m][R_w]: 1 stable, 0 marginal, -1 unstable)\n"
+
+#endif

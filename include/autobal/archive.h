@@ -1,0 +1,294 @@
+/* autobal/archive.h: the HDF5 archive (knows no physics).
+ *
+ * An archive is one HDF5 1.10 file laid out so that h5py and
+ * `xarray.open_dataset(file, engine="h5netcdf", group=...)` show named
+ * dimensions, coordinates and units:
+ *
+ *   /                      root attributes (see autobal_archive_provenance):
+ *                          Conventions = "autobal-1", status, title, versions, ...
+ *   /<group>/...           groups created by autobal_archive_group()
+ *   /<group>/<coord>       1-D coordinate = HDF5 dimension scale whose NAME is the
+ *                          dimension name (= the dataset name); attributes units, long_name
+ *   /<group>/<var>         N-D variable (rank 0..4) with its dimension scales attached
+ *                          (DIMENSION_LIST); attributes units, long_name
+ *   parameters             attributes NAME = value and NAME_units = "unit" on any group
+ *                          or dataset ("1" marks a dimensionless quantity)
+ *
+ * Every dataset carries `units` and `long_name` (variable-length UTF-8 strings, read
+ * as str by h5py and xarray).  Datasets larger than 64 KiB are chunked and compressed
+ * (shuffle + deflate level 4); smaller ones are contiguous.  Streamed time series use
+ * an unlimited dimension (see autobal_archive_series_open).
+ *
+ * Paths.  A `group` argument is a slash-separated group path; "/pendulum/map" and
+ * "pendulum/map" are the same group, "/" (or "") is the root group.  An `obj`
+ * argument names a group or a dataset the same way ("/pendulum/map/omega").
+ * Names of groups, datasets and attributes are non-empty, contain no '/', no control
+ * characters, are valid UTF-8 and at most AUTOBAL_ARCHIVE_NAME_MAX bytes long.
+ * Attribute names reserved by HDF5 dimension scales and netCDF (CLASS, NAME,
+ * DIMENSION_LIST, REFERENCE_LIST, names starting with "_Netcdf" or "_nc") are
+ * rejected.  String values must be valid UTF-8.
+ *
+ * Atomic creation.  autobal_archive_create() writes to "<path>.partial-<pid>" in the
+ * same directory; only autobal_archive_close() renames it to `path` (an existing file
+ * of that name is replaced atomically when overwrite was allowed).  So a file under
+ * the final name is always complete in the HDF5 sense; its root attribute `status`
+ * says whether the computation was ("complete") or was not (e.g. "incomplete" with a
+ * `status_reason` such as "interrupted by SIGINT").
+ *
+ * Errors.  Functions return an autobal status (0 success, < 0 failure).  A function
+ * on a handle records the message in the handle (autobal_archive_errmsg); the
+ * message names the path/object concerned and, for HDF5 failures, carries the HDF5
+ * error-stack text (and the OS reason, e.g. "Permission denied").  HDF5's automatic
+ * error printing is switched off during each call and restored on return, so the
+ * library never prints and leaves the global HDF5 error handler as it found it.
+ * After a failed write the archive stays usable and everything written before stays
+ * readable; a failed call writes nothing partial that a reader would mistake for data
+ * except as noted per function.
+ *
+ * Threads.  Debian's HDF5 is the serial, non-thread-safe build: all HDF5 calls of a
+ * process (all archives) must come from one thread at a time.  No globals are used.
+ *
+ * Memory.  Handles are owned by the caller and freed by _close/_discard.  Input arrays
+ * are only read during the call.  No allocation happens per appended row of a series
+ * (the row buffer is sized at _series_open).
+ */
+#ifndef AUTOBAL_ARCHIVE_H
+#define AUTOBAL_ARCHIVE_H
+
+#include <stddef.h>
+
+#include "autobal/export.h"
+#include "autobal/status.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* Value of the root attribute `Conventions`. */
+#define AUTOBAL_ARCHIVE_CONVENTIONS "autobal-1"
+/* Highest rank of a variable. */
+#define AUTOBAL_ARCHIVE_MAX_RANK 4
+/* Longest name (group component, dataset, attribute), in bytes. */
+#define AUTOBAL_ARCHIVE_NAME_MAX 255
+/* Datasets with more bytes than this are chunked and compressed. */
+#define AUTOBAL_ARCHIVE_COMPRESS_BYTES 65536
+/* Rows buffered by a series before they are written (= the series chunk length). */
+#define AUTOBAL_ARCHIVE_SERIES_ROWS 4096
+
+typedef struct autobal_archive autobal_archive;               /* opaque */
+typedef struct autobal_archive_series autobal_archive_series; /* opaque streaming table */
+
+/* ------------------------------------------------------------------------ */
+/* Writing                                                                   */
+/* ------------------------------------------------------------------------ */
+
+/* Create an archive that will be named `path`.  Data goes to the temporary file
+ * "<path>.partial-<pid>" in the same directory (if that name is taken, "-2", "-3", ...
+ * is appended), renamed to `path` by autobal_archive_close().  The new file has the
+ * root attributes Conventions = "autobal-1" and status = "incomplete".
+ * Returns
+ *   AUTOBAL_SUCCESS  *out is the new handle;
+ *   AUTOBAL_EINVAL   path NULL/empty/a directory, out NULL;
+ *   AUTOBAL_EEXIST   `path` exists and overwrite == 0 (nothing is created);
+ *   AUTOBAL_EIO      the temporary file cannot be created (unwritable or missing
+ *                    directory): the message names the path and gives the OS/HDF5 reason;
+ *   AUTOBAL_ENOMEM.
+ * On failure *out is NULL, nothing is left on disk, and err (may be NULL) holds the
+ * message. */
+AUTOBAL_API int autobal_archive_create(const char *path, int overwrite, autobal_archive **out,
+                                       autobal_error *err);
+
+/* Last error message of the handle, "" if none (never NULL; "" for a NULL handle).
+ * Owned by the handle, valid until the next call on it. */
+AUTOBAL_API const char *autobal_archive_errmsg(const autobal_archive *a);
+/* Last status of the handle (AUTOBAL_SUCCESS if none). */
+AUTOBAL_API int autobal_archive_status(const autobal_archive *a);
+
+/* Write the provenance root attributes (all strings):
+ *   title            `title` ("" if NULL)
+ *   autobal_version  git_revision  gsl_version  hdf5_version   (of the running library)
+ *   command_line     argv[0..argc-1] joined by spaces with POSIX-shell quoting, so that it
+ *                    can be pasted into a shell ("" if argc == 0; bytes that are not
+ *                    valid UTF-8 are replaced by '?')
+ *   created          time of this call, ISO 8601 UTC, "YYYY-MM-DDThh:mm:ssZ"
+ *   status           "incomplete" (until close)
+ *   Conventions      "autobal-1"
+ * May be called again (attributes are replaced).  argc < 0, or argc > 0 with argv NULL
+ * or an argv[i] NULL: AUTOBAL_EINVAL.  AUTOBAL_EIO on HDF5 failure. */
+AUTOBAL_API int autobal_archive_provenance(autobal_archive *a, const char *title, int argc,
+                                           const char *const *argv);
+
+/* Set the status autobal_archive_close() will write (default "complete"), and an
+ * optional reason (NULL: none) written as the root attribute `status_reason`.
+ * E.g. ("incomplete", "interrupted by SIGINT").  Nothing is written before close;
+ * until then the file says "incomplete".  status must be a non-empty UTF-8 string of at
+ * most 63 bytes, reason at most 255 bytes: AUTOBAL_EINVAL otherwise. */
+AUTOBAL_API int autobal_archive_set_status(autobal_archive *a, const char *status,
+                                           const char *reason);
+
+/* Create group `group` and any missing parents ("/pendulum/map").  Idempotent: an
+ * existing group is fine.  AUTOBAL_EINVAL for a bad name or when a component exists
+ * but is not a group; AUTOBAL_EIO on HDF5 failure. */
+AUTOBAL_API int autobal_archive_group(autobal_archive *a, const char *group);
+
+/* Attributes on an existing group or dataset `obj`.  An attribute of the same name is
+ * replaced.  A parameter is written as attribute NAME = value plus attribute
+ * NAME_units = units (a string; omitted when units is NULL; use "1" for dimensionless).
+ *   _double       64-bit float scalar; value may be any double (NaN/inf are stored as is)
+ *   _int          64-bit signed integer scalar
+ *   _string       variable-length UTF-8 string scalar (value NULL: AUTOBAL_EINVAL)
+ *   _double_array 1-D array of n >= 1 doubles (copied)
+ * AUTOBAL_EINVAL: obj does not exist, bad/reserved name, n == 0, NULL pointers.
+ * AUTOBAL_EIO: HDF5 failure. */
+AUTOBAL_API int autobal_archive_attr_double(autobal_archive *a, const char *obj, const char *name,
+                                            double value, const char *units);
+AUTOBAL_API int autobal_archive_attr_int(autobal_archive *a, const char *obj, const char *name,
+                                         long value);
+AUTOBAL_API int autobal_archive_attr_string(autobal_archive *a, const char *obj, const char *name,
+                                            const char *value);
+AUTOBAL_API int autobal_archive_attr_double_array(autobal_archive *a, const char *obj,
+                                                  const char *name, size_t n, const double *v,
+                                                  const char *units);
+
+/* A 1-D coordinate variable: dataset `name` in `group` (created if missing) with the n
+ * values (float64), made a dimension scale whose dimension name is `name`, with
+ * attributes units (required, non-NULL; "1" for dimensionless) and long_name (NULL:
+ * `name`).  n >= 1.  The dimension then exists for variables in this group and its
+ * subgroups (netCDF scoping).  AUTOBAL_EINVAL: bad name, NULL values/units, n == 0,
+ * `name` already exists in the group.  AUTOBAL_EIO: HDF5 failure. */
+AUTOBAL_API int autobal_archive_coord(autobal_archive *a, const char *group, const char *name,
+                                      size_t n, const double *values, const char *units,
+                                      const char *long_name);
+
+/* A dimension without physical coordinate values (a root index, a channel): a
+ * dimension scale `name` of int32 values 0..n-1 with units "1" and long_name (NULL:
+ * `name`).  Same rules and errors as autobal_archive_coord. */
+AUTOBAL_API int autobal_archive_dim(autobal_archive *a, const char *group, const char *name,
+                                    size_t n, const char *long_name);
+
+/* An N-D variable `name` in `group` (created if missing), rank 0..4, over the
+ * dimensions dims[0..rank-1]: each is the name of a coordinate/dimension made by
+ * _coord/_dim/_series_open in `group` or one of its parent groups (the nearest wins),
+ * or an absolute path to one ("/pendulum/omega").  The shape is taken from those
+ * dimensions (an unlimited series dimension contributes its current length); `data`
+ * holds the product of the sizes in C (row-major) order.  rank 0 is a scalar (dims
+ * may be NULL).  The dimension scales are attached, and units (required) and
+ * long_name (NULL: `name`) written.  Above AUTOBAL_ARCHIVE_COMPRESS_BYTES the dataset
+ * is chunked (about 256 KiB chunks) and compressed (shuffle + deflate 4).
+ *   _var      float64 values
+ *   _var_int  int32 values
+ * AUTOBAL_EINVAL: bad name or rank, unknown dimension, `name` exists, NULL data or
+ * units.  AUTOBAL_EIO: HDF5 failure (the half-made dataset is removed). */
+AUTOBAL_API int autobal_archive_var(autobal_archive *a, const char *group, const char *name,
+                                    int rank, const char *const *dims, const double *data,
+                                    const char *units, const char *long_name);
+AUTOBAL_API int autobal_archive_var_int(autobal_archive *a, const char *group, const char *name,
+                                        int rank, const char *const *dims, const int *data,
+                                        const char *units, const char *long_name);
+
+/* ------------------------------------------------------------------------ */
+/* Streaming time series                                                      */
+/* ------------------------------------------------------------------------ */
+
+/* Open a table in `group` (created if missing) with an unlimited dimension `dim` (a
+ * float64 coordinate, e.g. "time" in "s", long_name dim_long_name, NULL: dim) and
+ * nvars >= 1 float64 variables names[i] along it with units[i] (required) and
+ * long_names[i] (long_names NULL or long_names[i] NULL: the name).  Rows are appended
+ * with _series_append; they are kept in a buffer of AUTOBAL_ARCHIVE_SERIES_ROWS rows
+ * (allocated here, the only allocation) that is written out (datasets extended) when
+ * full, on _series_flush, _series_close and autobal_archive_close.  Memory does not
+ * grow with the run length.  Chunks are AUTOBAL_ARCHIVE_SERIES_ROWS rows, shuffle +
+ * deflate 4.  Errors are recorded in the archive (autobal_archive_errmsg).
+ * AUTOBAL_EINVAL: bad or duplicate names, existing `dim` or variable, NULL arrays,
+ * nvars == 0.  AUTOBAL_EIO: HDF5 failure (whatever this call made is removed again).
+ * The series belongs to the archive: it must be closed before the archive, or is
+ * closed (flushed and freed) by autobal_archive_close/_discard, after which the
+ * series pointer is invalid. */
+AUTOBAL_API int autobal_archive_series_open(autobal_archive *a, const char *group, const char *dim,
+                                            const char *dim_units, const char *dim_long_name,
+                                            size_t nvars, const char *const *names,
+                                            const char *const *units,
+                                            const char *const *long_names,
+                                            autobal_archive_series **out);
+/* Append nrows rows: t[0..nrows-1] are the values of the dimension coordinate, rows is
+ * nrows x nvars in row-major order (rows[i*nvars + j] = variable j at t[i]).  nrows may
+ * be 0.  Values are copied.  AUTOBAL_EINVAL for NULL arrays (nrows > 0).  AUTOBAL_EIO
+ * when a buffer flush fails: the rows that did not fit are dropped, the series keeps the
+ * rows written before and refuses further appends (AUTOBAL_EIO). */
+AUTOBAL_API int autobal_archive_series_append(autobal_archive_series *s, size_t nrows,
+                                              const double *t, const double *rows);
+/* Write the buffered rows to the file now (and flush HDF5 buffers to disk). */
+AUTOBAL_API int autobal_archive_series_flush(autobal_archive_series *s);
+/* Rows appended so far (written + buffered); 0 for NULL. */
+AUTOBAL_API size_t autobal_archive_series_length(const autobal_archive_series *s);
+/* Flush, close the datasets and free the series (NULL: AUTOBAL_SUCCESS).  The series is
+ * freed even when the flush fails (status returned, message in the archive). */
+AUTOBAL_API int autobal_archive_series_close(autobal_archive_series *s);
+
+/* ------------------------------------------------------------------------ */
+/* Finishing                                                                  */
+/* ------------------------------------------------------------------------ */
+
+/* Close the open series (flushing them), write the final root attribute status (see
+ * _set_status, default "complete") and status_reason, close the file and rename the
+ * temporary file to the final path.  Frees `a` in all cases (NULL: AUTOBAL_SUCCESS).
+ * On failure the temporary file is left in place for inspection, and err (may be
+ * NULL) names it and says why (AUTOBAL_EIO).  For a handle from
+ * autobal_archive_open_read this just closes the file. */
+AUTOBAL_API int autobal_archive_close(autobal_archive *a, autobal_error *err);
+
+/* Abandon: close the series and the file and delete the temporary file; nothing is
+ * left under either name (an existing file at the final path is untouched).  Frees `a`
+ * (NULL ok).  For a read handle: just closes. */
+AUTOBAL_API void autobal_archive_discard(autobal_archive *a);
+
+/* ------------------------------------------------------------------------ */
+/* Reading                                                                    */
+/* ------------------------------------------------------------------------ */
+
+/* Open an existing archive read-only.  AUTOBAL_EIO if the file does not exist or
+ * cannot be read; AUTOBAL_EFORMAT if it is not an HDF5 file (also a truncated or
+ * damaged one) or its root attribute Conventions is missing or not "autobal-1".  The
+ * message names the path.  On failure *out is NULL.  Close with autobal_archive_close
+ * (or _discard, which for a read handle only closes).  Write functions on a read handle
+ * return AUTOBAL_EINVAL. */
+AUTOBAL_API int autobal_archive_open_read(const char *path, autobal_archive **out,
+                                          autobal_error *err);
+
+/* 1 if `obj` (group or dataset path) exists and, when attr is not NULL, has attribute
+ * `attr`; 0 otherwise (also for bad arguments).  Works on read and write handles. */
+AUTOBAL_API int autobal_archive_has(autobal_archive *a, const char *obj, const char *attr);
+
+/* Read string attribute `name` of `obj` into buf (size bytes, NUL-terminated).  If
+ * len is not NULL it receives the full length of the value in bytes (without NUL).
+ * Returns AUTOBAL_SUCCESS; AUTOBAL_WARNING if the value was truncated to fit;
+ * AUTOBAL_EINVAL if obj/attribute does not exist, buf is NULL or size == 0;
+ * AUTOBAL_EFORMAT if the attribute is not a scalar string. */
+AUTOBAL_API int autobal_archive_read_attr_string(autobal_archive *a, const char *obj,
+                                                 const char *name, char *buf, size_t size,
+                                                 size_t *len);
+/* Read a numeric scalar (or 1-element) attribute as double (integers are converted).
+ * AUTOBAL_EINVAL: missing; AUTOBAL_EFORMAT: not numeric or more than one element. */
+AUTOBAL_API int autobal_archive_read_attr_double(autobal_archive *a, const char *obj,
+                                                 const char *name, double *value);
+
+/* Shape of dataset `path`: *rank (0..AUTOBAL_ARCHIVE_MAX_RANK) and dims[0..rank-1]
+ * (dims must hold AUTOBAL_ARCHIVE_MAX_RANK entries); *count (may be NULL) receives the
+ * number of elements.  AUTOBAL_EINVAL: no such dataset; AUTOBAL_EUNSUPPORTED: rank > 4. */
+AUTOBAL_API int autobal_archive_var_shape(autobal_archive *a, const char *path, int *rank,
+                                          size_t *dims, size_t *count);
+/* Read all elements of the numeric dataset `path` into buf (n >= number of elements),
+ * as double, C order.  AUTOBAL_EINVAL: no such dataset or n too small (the message
+ * gives the size needed); AUTOBAL_EFORMAT: not numeric.  AUTOBAL_EIO: read failure. */
+AUTOBAL_API int autobal_archive_read_var(autobal_archive *a, const char *path, double *buf,
+                                         size_t n);
+
+/* Call fn(name, is_group, ctx) for each direct member of `group` (groups and
+ * datasets), in creation order where the file tracks it (files written by this library
+ * do), else by name.  A non-zero return from fn stops the iteration and is returned.
+ * AUTOBAL_EINVAL: no such group. */
+typedef int (*autobal_archive_list_fn)(const char *name, int is_group, void *ctx);
+AUTOBAL_API int autobal_archive_list(autobal_archive *a, const char *group,
+                                     autobal_archive_list_fn fn, void *ctx);
+
+AUTOBAL_END_DECLS
+
+#endif

@@ -1,0 +1,489 @@
+/* autobal/pendulum.h: the planar two-pendulum autobalancer
+ * (spec: shared/spec/pendulum.md; Filimonikhin 1996, equation numbers (1)-(18)).
+ *
+ * EVERYTHING IN THIS MODULE IS DIMENSIONLESS (eqs. (2), (3)): time is
+ * tau = omega0 t, lengths are in units of the rod length l, and the
+ * parameters are
+ *     R_w = omega / omega0        rotor speed            (omega0^2 = c / M_sigma)
+ *     R_m = m / M_sigma           pendulum mass ratio    (M_sigma = M + 2m), in (0, 1/2)
+ *     H   = H2 / (omega0 M_sigma) external (shaft) damping
+ *     h   = H1 / (m l^2 omega0)   pendulum damping
+ *     psi0                        pendulum angle of the main motion (4), radians,
+ *                                 sin psi0 = M e / (2 m l); k = sin^2(2 psi0) in [0, 1].
+ * Only autobal_pendulum_physical is in SI units; it is converted with
+ * autobal_pendulum_params_from_physical().
+ *
+ * Status codes: every function returning int returns AUTOBAL_SUCCESS (0) or
+ * a negative status (AUTOBAL_EINVAL for a bad parameter: the message names
+ * the parameter, its value and the allowed range; AUTOBAL_ENOMEM;
+ * AUTOBAL_ENUMERIC for a GSL failure, with GSL's text).  Functions that take
+ * a workspace record the message in it (autobal_pendulum_errmsg()); the
+ * others take an `autobal_error *err` (NULL allowed).  After a failure the
+ * outputs hold unspecified values (never uninitialised memory); inputs are
+ * never modified.
+ *
+ * Memory: the library allocates only in autobal_pendulum_workspace_alloc()
+ * and (once per thread, up front) inside autobal_pendulum_map(); all other
+ * outputs are caller-owned structs or arrays of documented size.
+ * Threads: every function is reentrant; a workspace is used by one thread
+ * at a time (one workspace per thread).
+ */
+#ifndef AUTOBAL_PENDULUM_H
+#define AUTOBAL_PENDULUM_H
+
+#include <stddef.h>
+#include "autobal/export.h"
+#include "autobal/status.h"
+#include "autobal/stability.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* ======================================================================== */
+/* Parameters (2), (3)                                                      */
+/* ======================================================================== */
+
+/* Dimensionless parameters (all fields dimensionless, psi0 in radians). */
+typedef struct autobal_pendulum_params {
+  double R_w;  /* rotor speed omega/omega0, in [0, inf)                        */
+  double R_m;  /* mass ratio m/(M + 2m), in (0, 1/2)                           */
+  double H;    /* external damping H2/(omega0 M_sigma), in [0, inf)            */
+  double h;    /* pendulum damping H1/(m l^2 omega0), in [0, inf)              */
+  double psi0; /* main-motion angle (4), rad, in [0, pi/2) (sin psi0 = Me/2ml) */
+} autobal_pendulum_params;
+
+/* Physical parameters, SI units. */
+typedef struct autobal_pendulum_physical {
+  double M;     /* rotor mass, kg, > 0                                   */
+  double e;     /* eccentricity of the rotor's centre of mass, m, >= 0   */
+  double m;     /* mass of each pendulum, kg, > 0                        */
+  double l;     /* pendulum rod length, m, > 0                           */
+  double c;     /* shaft stiffness, N/m, > 0                             */
+  double H1;    /* viscous moment coefficient of each pendulum, N m s, >= 0 */
+  double H2;    /* external viscous damping of the shaft, N s/m, >= 0    */
+  double omega; /* rotor angular speed, rad/s, >= 0                      */
+} autobal_pendulum_physical;
+
+/* Check every field of p (ranges above; finite).  The first bad field is
+ * reported: "parameter R_m = 0.5 is out of range: allowed (0, 0.5)". */
+AUTOBAL_API int autobal_pendulum_params_validate(const autobal_pendulum_params *p,
+                                                 autobal_error *err);
+
+/* Fill *out from R_w, R_m, H, h and k = sin^2(2 psi0) in [0, 1], choosing
+ * psi0 = asin(sqrt(k))/2 in [0, pi/4].  Validates everything (k out of
+ * [0, 1] is reported as parameter k).  *out is written only on success. */
+AUTOBAL_API int autobal_pendulum_params_from_k(double R_w, double R_m, double H, double h, double k,
+                                               autobal_pendulum_params *out, autobal_error *err);
+
+/* k = sin^2(2 psi0) of p (no validation). */
+AUTOBAL_API double autobal_pendulum_k(const autobal_pendulum_params *p);
+
+/* Convert physical (SI) to dimensionless parameters by (2)-(3):
+ *   M_sigma = M + 2m, omega0 = sqrt(c/M_sigma), R_w = omega/omega0,
+ *   R_m = m/M_sigma, H = H2/(omega0 M_sigma), h = H1/(m l^2 omega0),
+ *   psi0 = asin(M e/(2 m l)).
+ * Rejects non-finite or out-of-range fields by name and M e >= 2 m l (the
+ * pendulums cannot balance the unbalance; reported as "M*e" with the limit
+ * 2*m*l).  *out is written only on success. */
+AUTOBAL_API int autobal_pendulum_params_from_physical(const autobal_pendulum_physical *phys,
+                                                      autobal_pendulum_params *out,
+                                                      autobal_error *err);
+
+/* ======================================================================== */
+/* Linearization (5) and characteristic polynomial (6)                      */
+/* ======================================================================== */
+
+#define AUTOBAL_PENDULUM_ORDER 8 /* degree of (6) = size of the first-order system */
+#define AUTOBAL_PENDULUM_NCOEF 9 /* coefficients of (6)                           */
+
+/* The complex polynomials of (6) in lambda, 3 complex coefficients each
+ * (ascending powers, interleaved re/im: 6 doubles each):
+ *   a11 = (lambda + iR_w)^2 + H (lambda + iR_w) + 1,
+ *   a31 = (lambda + iR_w)^2,  a33 = lambda^2 + h lambda.
+ * Any output pointer may be NULL.  Validates p. */
+AUTOBAL_API int autobal_pendulum_char_blocks(const autobal_pendulum_params *p, double a11[6],
+                                             double a31[6], double a33[6], autobal_error *err);
+
+/* Characteristic polynomial (6), ascending powers of lambda, 9 real
+ * coefficients, built by complex polynomial arithmetic from a11, a31, a33:
+ *   (a11 a33 - R_m a31^2)(conj(a11) a33 - R_m conj(a31)^2)
+ *     - R_m^2 cos^2(2 psi0) a31^2 conj(a31)^2.
+ * It equals det(M lambda^2 + C lambda + K) of (5) exactly (factor 1).
+ * The leading coefficient is 1 - 2R_m + k R_m^2 > 0.  Validates p. */
+AUTOBAL_API int autobal_pendulum_char_poly(const autobal_pendulum_params *p, double coef[9],
+                                           autobal_error *err);
+
+/* The factor P1 = a11 a33 - R_m a31^2 of (15) (5 complex coefficients,
+ * interleaved, ascending).  At k = 1, (6) = P1 conj(P1).  Validates p. */
+AUTOBAL_API int autobal_pendulum_char_p1(const autobal_pendulum_params *p, double p1[10],
+                                         autobal_error *err);
+
+/* The matrices of the linearization (5), M q'' + C q' + K q = 0 with
+ * q = (xi, eta, alpha, beta), each 4x4 row-major (rows: the four equations
+ * of (5) in the spec's order).  Any output may be NULL.  Validates p. */
+AUTOBAL_API int autobal_pendulum_linear_matrices(const autobal_pendulum_params *p, double Mm[16],
+                                                 double C[16], double K[16], autobal_error *err);
+
+/* The 8x8 first-order matrix A of (5), state (q, q'):
+ *   A = [ 0, I ; -M^{-1} K, -M^{-1} C ]   (row-major, 64 doubles);
+ * M is inverted by LU with partial pivoting (non-singular for R_m < 1/2;
+ * AUTOBAL_ENUMERIC if it is singular to working precision). */
+AUTOBAL_API int autobal_pendulum_first_order_matrix(const autobal_pendulum_params *p, double A[64],
+                                                    autobal_error *err);
+
+/* ======================================================================== */
+/* Workspace and the one-call analysis                                      */
+/* ======================================================================== */
+
+/* Holds the GSL workspaces (roots of degree 4, 8, 12; eigenvalues 8x8) and
+ * the last error.  Allocate once, reuse; one per thread. */
+typedef struct autobal_pendulum_workspace autobal_pendulum_workspace;
+AUTOBAL_API autobal_pendulum_workspace *autobal_pendulum_workspace_alloc(void); /* NULL: no memory */
+AUTOBAL_API void autobal_pendulum_workspace_free(autobal_pendulum_workspace *ws); /* NULL safe */
+/* Last error message of ws ("" after success; never NULL; ws may be NULL). */
+AUTOBAL_API const char *autobal_pendulum_errmsg(const autobal_pendulum_workspace *ws);
+/* Last status of ws (AUTOBAL_SUCCESS after success). */
+AUTOBAL_API int autobal_pendulum_status(const autobal_pendulum_workspace *ws);
+
+/* Relative tolerance of the Routh-Hurwitz sign test used by the analysis
+ * and the maps (see autobal_poly_hurwitz()). */
+#define AUTOBAL_PENDULUM_HURWITZ_RTOL 1e-12
+/* Tolerance of the root-based verdict (see autobal_roots_verdict()). */
+#define AUTOBAL_PENDULUM_ROOTS_TOL 1e-9
+/* An asymptotic condition (7)-(9) is reported "applicable" when its small
+ * parameter (R_m or 1/h for (7), 1/R_w for (8), 1/H for (9)) is at most this. */
+#define AUTOBAL_PENDULUM_ASYMPTOTIC_SMALL 0.05
+
+/* A sufficient (asymptotic) condition, reported beside the exact verdict. */
+typedef struct autobal_pendulum_sufficient {
+  int applicable;      /* 1 if its small parameter <= AUTOBAL_PENDULUM_ASYMPTOTIC_SMALL */
+  int predicts_stable; /* 1 if the condition predicts stability (evaluated even when
+                          not applicable)                                            */
+  double small;        /* the value of the small parameter                           */
+} autobal_pendulum_sufficient;
+
+typedef struct autobal_pendulum_result {
+  double coef[AUTOBAL_PENDULUM_NCOEF];      /* (6), ascending powers of lambda           */
+  double root_re[AUTOBAL_PENDULUM_ORDER];   /* roots of (6) (GSL), sorted by Re, then Im  */
+  double root_im[AUTOBAL_PENDULUM_ORDER];
+  double eig_re[AUTOBAL_PENDULUM_ORDER];    /* eigenvalues of the 8x8 matrix of (5),     */
+  double eig_im[AUTOBAL_PENDULUM_ORDER];    /* reordered so eig[i] is matched to root[i] */
+  double max_real;      /* margin: largest real part of the roots of (6)                */
+  double max_real_eig;  /* largest real part of the eigenvalues                         */
+  double mismatch;      /* bottleneck-optimal max_i |root_i - eig_i| (autobal_match_roots) */
+  double mismatch_rel;  /* mismatch / max(1, max |root|)                                 */
+  int verdict;          /* autobal_verdict of the main motion: the Routh-Hurwitz sign
+                           test on coef (AUTOBAL_PENDULUM_HURWITZ_RTOL); when k == 0 the
+                           structural root lambda = 0 (the family psi = -phi of balanced
+                           states) is divided out first, see zero_root_deflated          */
+  int verdict_roots;    /* verdict from the roots alone (AUTOBAL_PENDULUM_ROOTS_TOL),
+                           with the same deflation                                       */
+  int verdicts_agree;   /* verdict == verdict_roots                                      */
+  int n_rhp;            /* roots with Re > 0 by the Routh array (see autobal_poly_hurwitz) */
+  int zero_root_deflated; /* 1 when k == 0 exactly and lambda = 0 was divided out        */
+  int undamped;         /* 1 when H == 0 and h == 0: then (6) is even in lambda and the  */
+  int undamped_verdict; /* verdict "in the first approximation" of (10): STABLE when all
+                           roots x = lambda^2 of (10) are real and <= 0, else UNSTABLE
+                           (autobal_pendulum_undamped_verdict); 0 when not undamped      */
+  autobal_pendulum_sufficient cond7; /* (7): R_m << 1 or h >> 1: stable if R_w > 1       */
+  autobal_pendulum_sufficient cond8; /* (8): R_w >> 1: stable if h > H sqrt(R_m)         */
+  autobal_pendulum_sufficient cond9; /* (9) corrected: H >> 1: stable iff
+                                        R_m k W^2 / h^2 < W - 1, W = R_w^2 (h > 0)       */
+} autobal_pendulum_result;
+
+/* Everything about the main motion (4) at p, in one call: (6) and its roots,
+ * the eigenvalues of (5), their matching, the sign-test verdict
+ * cross-checked with the roots, the margin max Re, the flags of (7)-(9).
+ * Allocates nothing (uses ws).  On failure *res is unspecified, the status is
+ * returned and recorded in ws. */
+AUTOBAL_API int autobal_pendulum_analyze(autobal_pendulum_workspace *ws,
+                                         const autobal_pendulum_params *p,
+                                         autobal_pendulum_result *res);
+
+/* Sign-test verdict only (cheap: builds (6) and runs the Routh test, with
+ * the k == 0 deflation; no roots, no workspace).  *n_rhp may be NULL. */
+AUTOBAL_API int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict,
+                                         int *n_rhp, autobal_error *err);
+
+/* ======================================================================== */
+/* No damping (10)-(12)                                                     */
+/* ======================================================================== */
+
+/* P(x) of (10), x = lambda^2, 5 coefficients ascending in x:
+ *   P = x (a6 x^3 + a4 x^2 + a2 x + a0) + k R_m^2 (x + R_w^2)^4.
+ * Requires R_m in (0, 1/2), R_w >= 0, k in [0, 1]. */
+AUTOBAL_API int autobal_pendulum_undamped_poly(double R_m, double R_w, double k, double coef[5],
+                                               autobal_error *err);
+
+/* Stability in the first approximation of the undamped system: *verdict =
+ * AUTOBAL_VERDICT_STABLE when every root x of (10) is real and <= 0
+ * (decided exactly on the coefficients: Sturm count of distinct real roots
+ * in (-inf, 0] plus coefficient signs, with x = 0 divided out when k = 0),
+ * AUTOBAL_VERDICT_UNSTABLE otherwise.  No workspace. */
+AUTOBAL_API int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
+                                                  autobal_error *err);
+
+/* Condition (12) at k = 0: *lhs = -a2^2 a4^2 + 4 a2^3 a6 + 27 a0^2 a6^2
+ * - 18 a0 a2 a4 a6 + 4 a0 a4^3 (the negated discriminant of the cubic) and
+ * *stable = (a0 > 0 && a2 > 0 && a4 > 0 && a6 > 0 && lhs <= 0).  Either
+ * output may be NULL. */
+AUTOBAL_API int autobal_pendulum_cond12(double R_m, double R_w, double *lhs, int *stable,
+                                        autobal_error *err);
+
+/* Discriminant of P(x) of (10) with respect to x, as a polynomial in
+ * W = R_w^2 of degree <= 12: disc[0..12] ascending in W, built by
+ * polynomial arithmetic on the coefficients of (10) (which are polynomials
+ * in W).  Its positive roots are the candidate critical speeds. */
+AUTOBAL_API int autobal_pendulum_undamped_discriminant(double R_m, double k, double disc[13],
+                                                       autobal_error *err);
+
+/* ======================================================================== */
+/* Critical speeds                                                          */
+/* ======================================================================== */
+
+typedef enum autobal_crit_kind {
+  AUTOBAL_CRIT_LOST = -1,  /* stable just below, not stable just above          */
+  AUTOBAL_CRIT_TOUCH = 0,  /* a root of the discriminant where the verdict does
+                              not change (e.g. the double root at (18), k = 1)  */
+  AUTOBAL_CRIT_GAINED = 1  /* not stable just below, stable just above          */
+} autobal_crit_kind;
+
+#define AUTOBAL_PENDULUM_MAX_CRIT 32
+
+/* Critical speeds on the R_w axis, sorted ascending.  Stable intervals:
+ * (stable_lo[i], stable_hi[i]) for i < n_stable, stable_hi may be INFINITY. */
+typedef struct autobal_pendulum_crit_set {
+  size_t n;                                  /* entries of R_w[]/kind[] (incl. touches) */
+  double R_w[AUTOBAL_PENDULUM_MAX_CRIT];
+  int kind[AUTOBAL_PENDULUM_MAX_CRIT];       /* autobal_crit_kind                      */
+  size_t n_stable;
+  double stable_lo[AUTOBAL_PENDULUM_MAX_CRIT + 1];
+  double stable_hi[AUTOBAL_PENDULUM_MAX_CRIT + 1];
+} autobal_pendulum_crit_set;
+
+/* Number of entries of s with kind != TOUCH, and the j-th of them (j from
+ * 0; NaN if it does not exist). */
+AUTOBAL_API size_t autobal_pendulum_crit_count(const autobal_pendulum_crit_set *s);
+AUTOBAL_API double autobal_pendulum_crit_get(const autobal_pendulum_crit_set *s, size_t j);
+
+/* Critical speeds of the UNDAMPED system (H = h = 0) for R_m in (0, 1/2),
+ * k in [0, 1], located exactly: positive real roots W of the discriminant
+ * (autobal_pendulum_undamped_discriminant), plus W = 1 when k = 0 (where the
+ * root x = 0 of (10) meets the cubic), each refined to 1e-12 relative by
+ * Brent's method on the discriminant; the verdict
+ * (autobal_pendulum_undamped_verdict) on each interval between consecutive
+ * candidates decides GAINED / LOST / TOUCH.  R_w = sqrt(W).
+ * Narrow unstable windows (k slightly below 1, near (18)) are found as long
+ * as their two ends are distinct in double precision. */
+AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
+                                                 double k, autobal_pendulum_crit_set *out);
+
+/* Critical speeds of the DAMPED system: p gives R_m, H, h, psi0 (p->R_w is
+ * ignored).  The sign-test verdict (autobal_pendulum_verdict) is sampled at
+ * n_sweep >= 2 points evenly spaced on [rw_min, rw_max] (0 <= rw_min <
+ * rw_max); every change is refined to 1e-12 relative by Brent's method on
+ * max Re of the roots of (6) (bisection on the verdict where that is not
+ * bracketing).  Kinds are GAINED/LOST only; changes narrower than the
+ * sampling step can be missed (documented limitation of any sweep).  The
+ * stable intervals are clipped to [rw_min, rw_max] (stable_hi = rw_max for
+ * the last one, not INFINITY). */
+AUTOBAL_API int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
+                                                        const autobal_pendulum_params *p,
+                                                        double rw_min, double rw_max,
+                                                        size_t n_sweep,
+                                                        autobal_pendulum_crit_set *out);
+
+/* Critical-speed curves of the undamped system for one k over an R_m grid:
+ * rw[i*n_curve + j] = the j-th critical speed (kind != TOUCH) at R_m[i], or
+ * NaN where that branch does not exist (e.g. k = 0, n_curve = 3 gives
+ * R_w1 = 1, R_w2, R_w3 of figure 2, R_w2/3 NaN for R_m >= 1/4). */
+AUTOBAL_API int autobal_pendulum_critical_curves(autobal_pendulum_workspace *ws, double k,
+                                                 const double *R_m, size_t n_Rm, size_t n_curve,
+                                                 double *rw);
+
+/* ---- the paper's closed forms and series (for comparison) ------------- */
+
+/* (13): R_w1(R_m, 0) = 1. */
+AUTOBAL_API int autobal_pendulum_rw1_k0(double R_m, double *rw1, autobal_error *err);
+
+/* (14), first form (meant for 0 < R_m < 0.05; accepted for R_m in (0, 1/2)):
+ *   R_w2 = 1 + (49/16) R_m + (12397/1024) R_m^2,
+ *   R_w3 = 1 + 2 eps + (7/3) eps^2 + (29/8) eps^3, eps = (R_m/2)^(1/3). */
+AUTOBAL_API int autobal_pendulum_rw23_k0_series_small(double R_m, double *rw2, double *rw3,
+                                                      autobal_error *err);
+
+/* (14), second form (meant for 0.05 <= R_m < 0.25; accepted for R_m in
+ * (0, 1/4)): R_w2/3 = (1/(8q^2)) (1 -/+ 2q + (11/2) q^2 +/- (37/4) q^3
+ * - (155/8) q^4), q = sqrt((0.25 - R_m)/2). */
+AUTOBAL_API int autobal_pendulum_rw23_k0_series_large(double R_m, double *rw2, double *rw3,
+                                                      autobal_error *err);
+
+/* (16): R_w1(R_m, 1) = sqrt(1 - u^2)/(1 - 2u^2), where u in (0, 1/sqrt 2)
+ * solves R_m = (u^3/(1 - 2u^2))^2 (monotone; solved by Brent to 1e-15).
+ * *u may be NULL. */
+AUTOBAL_API int autobal_pendulum_rw1_k1(double R_m, double *rw1, double *u, autobal_error *err);
+
+/* (17): R_w1(R_m, 1) = 1 + (3/2) s + (7/8) s^2 + (1/48) s^3, s = R_m^(1/3). */
+AUTOBAL_API int autobal_pendulum_rw1_k1_series(double R_m, double *rw1, autobal_error *err);
+
+/* (18): R_w2/3(R_m, 1) = sqrt(2(1 - 2R_m))/(1 - 4R_m) (defined for
+ * R_m in (0, 1/4); a critical speed only for R_m^(1) < R_m < 1/4, where it is
+ * the k -> 1 limit of a narrow unstable window). */
+AUTOBAL_API int autobal_pendulum_rw23_k1(double R_m, double *rw23, autobal_error *err);
+
+/* R_m^(1): the R_m at which curves (16) and (18) touch with a common
+ * tangent (three critical speeds coincide), computed from the equations to
+ * 1e-12; *rw (may be NULL) receives the common R_w there. */
+AUTOBAL_API int autobal_pendulum_rm1(double *rm1, double *rw, autobal_error *err);
+
+/* ======================================================================== */
+/* Stability maps                                                           */
+/* ======================================================================== */
+
+typedef struct autobal_pendulum_map_spec {
+  const double *R_m; /* n_Rm values in (0, 1/2)                                  */
+  size_t n_Rm;
+  const double *R_w; /* n_Rw values >= 0                                         */
+  size_t n_Rw;
+  double H, h;       /* damping (both 0: the undamped criterion of (10) is used) */
+  const double *k;   /* n_k values in [0, 1]; a point is STABLE only if stable
+                        for every k ("every unbalance"); NULL with n_k = 0 means
+                        the default set k = j/64, j = 0..64                      */
+  size_t n_k;
+  int n_threads;     /* OpenMP threads: 0 = runtime default, 1 = serial          */
+} autobal_pendulum_map_spec;
+
+/* Stability map over the grid, row-major [n_Rm][n_Rw]:
+ * verdict[i*n_Rw + j] (int8) = the worst verdict over the k set at
+ * (R_m[i], R_w[j]):
+ *  - damped (H > 0 or h > 0): the Routh-Hurwitz sign test on (6)
+ *    (autobal_pendulum_verdict): 1 stable, 0 marginal, -1 unstable;
+ *  - undamped (H = h = 0): autobal_pendulum_undamped_verdict: 1 stable in
+ *    the first approximation, -1 unstable.
+ * max_real (may be NULL) receives the largest real part of the roots of (6)
+ * over the k set (for the undamped system this is about 0 when stable, at
+ * rounding level); computing it costs a root solve per point and k.
+ * Parallel over grid points with OpenMP when built with it; the result is
+ * bitwise identical to the serial one.  Validates the whole spec before
+ * writing anything; AUTOBAL_ENOMEM if a per-thread workspace cannot be
+ * allocated (then the arrays are partially written). */
+AUTOBAL_API int autobal_pendulum_map(const autobal_pendulum_map_spec *spec, signed char *verdict,
+                                     double *max_real, autobal_error *err);
+
+/* ======================================================================== */
+/* Equations of motion (1)                                                  */
+/* (reserved: transients, src/pendulum_motion.c, another module owner)      */
+/* ======================================================================== */
+
+/* The explicit first-order form of (1) (src/pendulum_motion.c).
+ *
+ * State: 8 doubles, dimensionless, in this order
+ *     y = (xi, eta, psi, phi, xi', eta', psi', phi'),
+ * displacements of the shaft centre in units of l along the rotating axes
+ * X, Y (parallel to U, V), pendulum angles in radians (psi counter-clockwise
+ * from +V, phi clockwise from -V), primes d/dtau, tau = omega0 t.
+ * The 4x4 acceleration system of (1) reduces to a 2x2 system for the
+ * absolute acceleration of the shaft centre, solved in closed form (its
+ * determinant is >= 1 - 2R_m > 0); no allocation, O(1).
+ *
+ * The right-hand side and Jacobian have GSL's signatures (and those of
+ * autobal_transient_system): params is a `const autobal_pendulum_params *`
+ * passed as void*; it is not validated per call (validate once with
+ * autobal_pendulum_params_validate() before a run).  They return
+ * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL argument) or AUTOBAL_ENUMERIC (the
+ * acceleration system is singular: only for R_m >= 1/2 or NaN input).
+ * Use, with transient.h:
+ *     autobal_transient_system sys = {autobal_pendulum_rhs, autobal_pendulum_jac,
+ *                                     AUTOBAL_PENDULUM_STATE_DIM, (void *)&params};
+ */
+#define AUTOBAL_PENDULUM_STATE_DIM 8
+enum {
+  AUTOBAL_PENDULUM_Y_XI = 0,
+  AUTOBAL_PENDULUM_Y_ETA = 1,
+  AUTOBAL_PENDULUM_Y_PSI = 2,
+  AUTOBAL_PENDULUM_Y_PHI = 3,
+  AUTOBAL_PENDULUM_Y_DXI = 4,
+  AUTOBAL_PENDULUM_Y_DETA = 5,
+  AUTOBAL_PENDULUM_Y_DPSI = 6,
+  AUTOBAL_PENDULUM_Y_DPHI = 7
+};
+
+/* dydt = f(tau, y) of (1) (autonomous: tau is unused). */
+AUTOBAL_API int autobal_pendulum_rhs(double tau, const double y[], double dydt[], void *params);
+
+/* Analytic Jacobian of autobal_pendulum_rhs: dfdy[i*8 + j] = d f_i / d y_j
+ * (64 doubles, row-major), dfdt[8] = 0.  At the main motion (4) it equals
+ * the first-order matrix of the linearization (5). */
+AUTOBAL_API int autobal_pendulum_jac(double tau, const double y[], double *dfdy, double dfdt[],
+                                     void *params);
+
+/* The state of the main motion (4): xi = eta = 0, psi = phi = psi0, at rest
+ * in the rotating frame (8 doubles). */
+AUTOBAL_API void autobal_pendulum_main_motion(const autobal_pendulum_params *p, double y[]);
+
+/* Angle wrapped to (-pi, pi]. */
+AUTOBAL_API double autobal_pendulum_wrap_angle(double a);
+
+/* Shaft displacement amplitude sqrt(xi^2 + eta^2), in units of l. */
+AUTOBAL_API double autobal_pendulum_shaft_amplitude(const double y[]);
+
+/* Residual unbalance of rotor plus pendulums about the shaft centre O, in
+ * units of 2 m l: the vector sum of M e along +U and the pendulum moments
+ * m l (-sin psi, cos psi) and m l (-sin phi, -cos phi), divided by 2 m l:
+ *     d_u = sin psi0 - (sin psi + sin phi)/2,   d_v = (cos psi - cos phi)/2
+ * (sin psi0 = M e/(2 m l)).  In (1) it enters as the centrifugal forcing
+ * 2 R_m R_w^2 (d_u, d_v).  Zero at the main motion (4) and at
+ * psi = phi = pi - psi0; equals sin psi0 for pendulums that cancel each
+ * other (psi = phi = 0).  Multiply by 2 R_m for units of M_sigma l.
+ * Returns |d|; d_u, d_v may be NULL. */
+AUTOBAL_API double autobal_pendulum_residual_unbalance(const autobal_pendulum_params *p,
+                                                       const double y[], double *d_u,
+                                                       double *d_v);
+
+/* |d| above with the signature of a transient scalar/event function
+ * (params = const autobal_pendulum_params *), for the "time to balance"
+ * dwell event: autobal_transient_add_dwell_event(tr,
+ * autobal_pendulum_unbalance_scalar, &params, tolerance, duration, 0). */
+AUTOBAL_API double autobal_pendulum_unbalance_scalar(double tau, const double y[], void *params);
+
+/* Jacobi integral of the rotating frame (the model at constant speed), in
+ * units of M_sigma l^2 omega0^2, constants dropped:  E = T2 - T0 + V, where
+ * with the positions of the rotor's centre of mass and the pendulum masses
+ * relative to K in the rotating axes,
+ *   T2 = 1/2 sum m |r'|^2  (velocities relative to the rotating frame)
+ *      = 1/2 (xi'^2 + eta'^2 + R_m (psi'^2 + phi'^2))
+ *        - R_m xi' (psi' cos psi + phi' cos phi) - R_m eta' (psi' sin psi - phi' sin phi),
+ *   T0 = 1/2 R_w^2 sum m |r|^2
+ *      = 1/2 R_w^2 (xi^2 + eta^2 + 2 R_m (xi (2 sin psi0 - sin psi - sin phi)
+ *                                        + eta (cos psi - cos phi))) + const,
+ *   V  = 1/2 (xi^2 + eta^2).
+ * The Lagrangian in the rotating frame is T2 + T1 + T0 - V (T1 linear in
+ * the velocities, gyroscopic); it does not depend on time, so
+ * dE/dtau = the power of the damping forces (autobal_pendulum_jacobi_power),
+ * and E is conserved when H = h = 0. */
+AUTOBAL_API double autobal_pendulum_jacobi_integral(const autobal_pendulum_params *p,
+                                                    const double y[]);
+
+/* dE/dtau = -H [(xi' - R_w eta) xi' + (eta' + R_w xi) eta'] - R_m h (psi'^2 + phi'^2)
+ * (<= 0 is not guaranteed: the external damping force is opposite to the
+ * absolute velocity, the power is taken in the rotating frame). */
+AUTOBAL_API double autobal_pendulum_jacobi_power(const autobal_pendulum_params *p,
+                                                 const double y[]);
+
+/* Quantities derived from a state, as written to the archive. */
+typedef struct autobal_pendulum_motion_derived {
+  double amplitude;   /* sqrt(xi^2 + eta^2), units of l                              */
+  double unbalance;   /* |residual unbalance|, units of 2 m l                        */
+  double unbalance_u; /* its components along U and V                                */
+  double unbalance_v;
+  double alpha;       /* psi - psi0 wrapped to (-pi, pi], rad                        */
+  double beta;        /* phi - psi0 wrapped to (-pi, pi], rad                        */
+  double jacobi;      /* Jacobi integral E, units of M_sigma l^2 omega0^2            */
+} autobal_pendulum_motion_derived;
+
+AUTOBAL_API void autobal_pendulum_motion_derive(const autobal_pendulum_params *p,
+                                                const double y[],
+                                                autobal_pendulum_motion_derived *out);
+
+AUTOBAL_END_DECLS
+
+#endif

@@ -1,0 +1,305 @@
+/* autobal/rotor.h: a rotor in a massive housing on visco-elastic supports with
+ * one or two ball autobalancers (spec: rotor.md, equations (2.1)-(3.16)).
+ *
+ * Model.  An axisymmetric rotor (m_p, A_p, C_p) fixed in a housing (M_k, A_k)
+ * on a left support in the plane z = -l_L and a right one in z = +l_R spins at
+ * the constant speed omega.  Small motions of the common centre of mass O:
+ * x, y, z and the Resal angles alpha (about x), beta (about y); a body point at
+ * axial coordinate p moves by (x + p beta, y - p alpha).  In each balancer
+ * plane z = d_j: a static unbalance m_j0 at radius r_j0 and angle psi_j0
+ * relative to the rotor, and n_j balls (point masses m_ji on tracks of radius
+ * r_ji, viscous relative damping h_ji).  Gravity is neglected.
+ *
+ * Units: SI throughout (kg, m, s, rad, N/m, N s/m, N m/rad, ...), stated field
+ * by field below.
+ *
+ * State vectors.  With N = total number of balls (plane 1's balls first, then
+ * plane 2's), the FIXED-FRAME state (autobal_rotor_rhs) is
+ *
+ *   y = (x, y, alpha, beta, x', y', alpha', beta',
+ *        phi_1 .. phi_N, phi_1' .. phi_N' [, z, z'])           dimension 8 + 2N (+ 2)
+ *
+ * with phi the ABSOLUTE ball angles in the fixed axes (unwrapped, they grow like
+ * omega t).  The ROTATING-FRAME state (autobal_rotor_rhs_rotating) is the same
+ * with phi_k replaced by psi_k = phi_k - omega t and phi_k' by psi_k' = phi_k' - omega
+ * (rotor coordinates stay in the fixed frame).  Ball k of plane j has index
+ * k = autobal_rotor_ball_index(r, j, i): angle y[8 + k], rate y[8 + N + k].
+ * The unbalance of plane j is at phi_j0 = omega t + psi_j0.
+ *
+ * Two models (autobal_rotor_params.inertia):
+ *  AUTOBAL_ROTOR_INERTIA_PAPER (default): the paper's simplification (2.2): the
+ *    balls' and unbalances' masses do not enter M and A; the effective mass
+ *    matrix of the rotor is diag(M, M, A, A) minus the balls' tangential part.
+ *    It is derived from the kinetic energy
+ *      T = 1/2 q'^T diag(M,M,A,A) q' + sum_i [ 1/2 m_i r_i^2 phi_i'^2 + m_i r_i phi_i' g_i . q' ]
+ *    with g_i = (-sin phi_i, cos phi_i, -d cos phi_i, -d sin phi_i) (plus the same
+ *    term of the unbalance with phi_0' = omega); results are meaningful to O(m/M).
+ *  AUTOBAL_ROTOR_INERTIA_FULL: also keeps 1/2 m |v_D|^2 of every ball and of the
+ *    unbalance (their full translational inertia), i.e. adds
+ *    (m_0 + sum m_i) E^T E to the rotor's mass matrix, E = [[1,0,0,d],[0,1,-d,0]].
+ *    The ball equations (3.4) are unchanged.
+ *
+ * Threads.  A handle owns a workspace used by the right-hand sides: do not
+ * evaluate one handle from two threads at once; allocate one handle per thread
+ * (cheap).  Two handles never interfere.  No allocation happens after
+ * autobal_rotor_alloc(); the right-hand sides are O(N) per call.
+ *
+ * GSL: the library calls GSL only so that failures come back as statuses; a
+ * host program should call gsl_set_error_handler_off() once.
+ */
+#ifndef AUTOBAL_ROTOR_H
+#define AUTOBAL_ROTOR_H
+
+#include <stddef.h>
+
+#include "autobal/export.h"
+#include "autobal/status.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* Largest number of balancer planes (the paper treats one or two; the code
+ * loops over planes, so this is a sizing constant only). */
+#define AUTOBAL_ROTOR_MAX_PLANES 2
+/* Largest total number of balls over all planes. */
+#define AUTOBAL_ROTOR_MAX_BALLS 1000000
+
+/* Which support data are authoritative (autobal_rotor_params.input). */
+typedef enum autobal_rotor_input {
+  AUTOBAL_ROTOR_HARDWARE = 0, /* hw is used; the lumped coefficients are computed (2.7)-(2.11) */
+  AUTOBAL_ROTOR_LUMPED = 1    /* lumped is used; of hw only l_L, l_R are read (for outputs) */
+} autobal_rotor_input;
+
+/* Inertia model (see the top of this header). */
+typedef enum autobal_rotor_inertia {
+  AUTOBAL_ROTOR_INERTIA_PAPER = 0,
+  AUTOBAL_ROTOR_INERTIA_FULL = 1
+} autobal_rotor_inertia;
+
+/* Which state vector a function receives. */
+typedef enum autobal_rotor_frame {
+  AUTOBAL_ROTOR_FIXED = 0,   /* ball angles phi (absolute) */
+  AUTOBAL_ROTOR_ROTATING = 1 /* ball angles psi = phi - omega t (relative to the rotor) */
+} autobal_rotor_frame;
+
+/* Hardware values (the paper's section 2).  Supports: left in z = -l_L, right in z = +l_R. */
+typedef struct autobal_rotor_hardware {
+  double M_k;  /* kg, housing mass, > 0 */
+  double A_k;  /* kg m^2, housing transverse moment of inertia about O, > 0 */
+  double m_p;  /* kg, rotor mass, > 0 */
+  double A_p;  /* kg m^2, rotor transverse moment of inertia about O, > 0 */
+  double C_p;  /* kg m^2, rotor polar moment of inertia, >= 0 */
+  double l_L;  /* m, the left support is in the plane z = -l_L (finite; l_L + l_R > 0) */
+  double l_R;  /* m, the right support is in the plane z = +l_R */
+  double c_Lx, c_Ly, c_Lz; /* N/m, left support stiffnesses (x, y, axial), >= 0 */
+  double c_Rx, c_Ry;       /* N/m, right support stiffnesses, >= 0 */
+  double h_Lx, h_Ly, h_Lz; /* N s/m, left support viscosities, >= 0 */
+  double h_Rx, h_Ry;       /* N s/m, right support viscosities, >= 0 */
+} autobal_rotor_hardware;
+
+/* Lumped coefficients (2.7), (2.9), (2.11). */
+typedef struct autobal_rotor_lumped {
+  double M;       /* kg, M = M_k + m_p, > 0 */
+  double A;       /* kg m^2, A = A_k + A_p, > 0 */
+  double C;       /* kg m^2, C = C_p, >= 0 */
+  double c_x;     /* N/m,   c_Lx + c_Rx */
+  double c_y;     /* N/m,   c_Ly + c_Ry */
+  double c_z;     /* N/m,   c_Lz */
+  double c_alpha; /* N m,   c_Ly l_L^2 + c_Ry l_R^2 */
+  double c_beta;  /* N m,   c_Lx l_L^2 + c_Rx l_R^2 */
+  double c_xbeta; /* N,     c_Lx l_L - c_Rx l_R */
+  double c_yalpha;/* N,     c_Ly l_L - c_Ry l_R */
+  double h_x, h_y, h_z;       /* N s/m, the same formulas with h_L., h_R. */
+  double h_alpha, h_beta;     /* N m s */
+  double h_xbeta, h_yalpha;   /* N s */
+} autobal_rotor_lumped;
+/* Validation of lumped values: M, A > 0; C >= 0; c_x, c_y, c_z, c_alpha,
+ * c_beta >= 0 and the 2x2 blocks [[c_x, -c_xbeta], [-c_xbeta, c_beta]] and
+ * [[c_y, c_yalpha], [c_yalpha, c_alpha]] positive semidefinite (same for h). */
+
+/* One balancer plane: its unbalance and its balls.  The arrays are read
+ * (copied) by autobal_rotor_alloc(); the caller keeps ownership. */
+typedef struct autobal_rotor_plane {
+  double d;                   /* m, signed axial coordinate of the plane, z = d (finite) */
+  double m0;                  /* kg, unbalance mass m_j0, >= 0 */
+  double r0;                  /* m, unbalance radius r_j0, >= 0 */
+  double psi0;                /* rad, unbalance angle relative to the rotor axes (finite) */
+  size_t n_balls;             /* number of balls n_j (0 allowed) */
+  const double *ball_mass;    /* kg, m_ji > 0; n_balls entries (may be NULL if n_balls == 0) */
+  const double *ball_radius;  /* m, track radius r_ji > 0 */
+  const double *ball_damping; /* kg/s (N s/m), h_ji >= 0: force h_ji r_ji (phi_ji' - omega) */
+  const double *ball_psi;     /* rad, initial angle relative to the rotor; NULL: all 0 */
+  const double *ball_rate;    /* rad/s, initial relative rate psi_ji'; NULL: all 0 */
+} autobal_rotor_plane;
+
+typedef struct autobal_rotor_params {
+  int input;                  /* autobal_rotor_input */
+  autobal_rotor_hardware hw;  /* used when input == AUTOBAL_ROTOR_HARDWARE */
+  autobal_rotor_lumped lumped;/* used when input == AUTOBAL_ROTOR_LUMPED */
+  int inertia;                /* autobal_rotor_inertia (default PAPER) */
+  double omega;               /* rad/s, constant spin speed (finite; sign = sense of rotation) */
+  int axial;                  /* 1: append (z, z') to the state, M z'' + h_z z' + c_z z = 0 (2.12) */
+  size_t n_planes;            /* 1 .. AUTOBAL_ROTOR_MAX_PLANES */
+  autobal_rotor_plane plane[AUTOBAL_ROTOR_MAX_PLANES];
+  double q0[4];               /* initial x (m), y (m), alpha (rad), beta (rad); default 0 */
+  double qd0[4];              /* initial rates, m/s and rad/s; default 0 */
+  double z0, zd0;             /* initial axial displacement (m) and rate (m/s) */
+} autobal_rotor_params;
+
+/* The spec's default example: M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,
+ * C_p = 0.03; l_L = 0.20, l_R = 0.15; c_Lx = c_Ly = 1e5, c_Rx = c_Ry = 1.5e5,
+ * c_Lz = 2e5; h_Lx = h_Ly = 100, h_Rx = h_Ry = 150, h_Lz = 200; one plane
+ * d = 0.10 with m0 = 0.02 at r0 = 0.1, psi0 = 0, two balls of 0.05 kg on
+ * r = 0.1 with h = 0.1, starting at rest relative to the rotor at psi = 1.0 and
+ * 2.5; omega = 500; hardware input; paper inertia; no axial motion.  The
+ * lumped block is filled too (consistent with hw).  The ball arrays point to
+ * static constant data (never written). */
+AUTOBAL_API autobal_rotor_params autobal_rotor_params_default(void);
+
+/* Lumped coefficients (2.7), (2.9), (2.11) from the hardware values.
+ * Validates hw; returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL (out untouched). */
+AUTOBAL_API int autobal_rotor_lumped_from_hardware(const autobal_rotor_hardware *hw,
+                                                   autobal_rotor_lumped *out, autobal_error *err);
+
+/* Validate a parameter set.  Returns AUTOBAL_SUCCESS; AUTOBAL_WARNING (with a
+ * message) when some plane's balls cannot cancel its unbalance (see
+ * autobal_rotor_plane_can_balance); or AUTOBAL_EINVAL with a message naming the
+ * parameter (e.g. "plane[0].ball_radius[1]"), its value and the allowed range.
+ * In the PAPER inertia model the balls must also be light enough for the
+ * effective mass matrix to stay positive definite in every configuration:
+ * sum_j sum_i m_ji (1/M + d_j^2/A) < 1 (a sufficient condition; EINVAL otherwise). */
+AUTOBAL_API int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err);
+
+/* Existence of a balanced configuration of one plane (3.14): balls with
+ * a_i = m_i r_i can cancel s0 = m0 r0 iff
+ *   max(0, 2 max_i a_i - sum_i a_i) <= s0 <= sum_i a_i
+ * (relative slack 1e-12).  Returns 1 if they can, 0 otherwise (n = 0: s0 == 0). */
+AUTOBAL_API int autobal_rotor_plane_can_balance(double s0, const double *a, size_t n);
+
+/* Balanced angles of two balls (3.14), general masses: angles psi[0], psi[1]
+ * relative to the rotor such that a1 e^{i psi1} + a2 e^{i psi2} = -s0 e^{i psi0}.
+ * For a1 = a2 = a: psi_1,2 = psi0 + pi -/+ arccos(s0 / (2 a)).  For s0 = 0 and
+ * a1 = a2 the pair psi0 + pi -/+ pi/2 is returned.  Angles are wrapped to
+ * (-pi, pi].  Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL when no such pair exists
+ * (message says why). */
+AUTOBAL_API int autobal_rotor_balanced_angles_two(double s0, double a1, double a2, double psi0,
+                                                  double psi[2], autobal_error *err);
+
+/* ---- the model handle -------------------------------------------------- */
+typedef struct autobal_rotor autobal_rotor;
+
+/* Validate p (autobal_rotor_params_check) and build a handle owning copies of
+ * the ball arrays, the lumped coefficients and a workspace.  Returns NULL on
+ * failure (err: AUTOBAL_EINVAL or AUTOBAL_ENOMEM).  On success err (if not
+ * NULL) holds AUTOBAL_SUCCESS or AUTOBAL_WARNING with the warning's message
+ * (the handle is usable in both cases).  Free with autobal_rotor_free(). */
+AUTOBAL_API autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error *err);
+/* NULL is allowed. */
+AUTOBAL_API void autobal_rotor_free(autobal_rotor *r);
+/* Last message recorded on the handle (alloc warning, rhs failure, ...); never NULL. */
+AUTOBAL_API const char *autobal_rotor_errmsg(const autobal_rotor *r);
+
+/* The parameters held by the handle (its plane arrays point into the handle;
+ * valid until autobal_rotor_free). */
+AUTOBAL_API const autobal_rotor_params *autobal_rotor_get_params(const autobal_rotor *r);
+/* The lumped coefficients in use (computed from hw for HARDWARE input). */
+AUTOBAL_API const autobal_rotor_lumped *autobal_rotor_get_lumped(const autobal_rotor *r);
+/* State dimension 8 + 2N (+2 with axial motion). */
+AUTOBAL_API size_t autobal_rotor_dim(const autobal_rotor *r);
+AUTOBAL_API size_t autobal_rotor_n_planes(const autobal_rotor *r);
+/* Number of balls of plane j (0 for j out of range), and total N. */
+AUTOBAL_API size_t autobal_rotor_n_balls(const autobal_rotor *r, size_t plane);
+AUTOBAL_API size_t autobal_rotor_n_balls_total(const autobal_rotor *r);
+/* Global index k of ball i of plane j (angle at y[8 + k], rate at y[8 + N + k]);
+ * (size_t)-1 if out of range. */
+AUTOBAL_API size_t autobal_rotor_ball_index(const autobal_rotor *r, size_t plane, size_t i);
+AUTOBAL_API double autobal_rotor_omega(const autobal_rotor *r);
+/* Change the spin speed (rad/s, finite).  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+AUTOBAL_API int autobal_rotor_set_omega(autobal_rotor *r, double omega);
+
+/* Initial state at time t0 from the parameters (q0, qd0, ball_psi, ball_rate,
+ * z0, zd0) in the given frame: phi = omega t0 + psi, phi' = omega + psi'.
+ * y has dim entries (dim must equal autobal_rotor_dim).  Returns
+ * AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+AUTOBAL_API int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, double *y,
+                                            size_t dim);
+/* Convert a state between frames at time t (psi = phi - omega t,
+ * psi' = phi' - omega; other entries copied).  in and out may alias. */
+AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_frame,
+                                            double t, const double *in, double *out, size_t dim);
+
+/* Right-hand side of (3.2)+(3.4) ((3.5)-(3.8) for two planes) in the fixed
+ * frame, GSL signature; params = an autobal_rotor*.  The implicit system is
+ * reduced exactly to a 4x4 symmetric positive definite system in (x'', y'',
+ * alpha'', beta'') (see rotor.md "Solving for the accelerations"), solved by
+ * Cholesky; then phi'' from (3.4).  O(N), no allocation.  Returns 0 (GSL_SUCCESS),
+ * or GSL_EBADFUNC when the effective mass matrix is not positive definite or the
+ * state is not finite (message recorded on the handle; dydt then undefined). */
+AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor);
+
+/* The same motion with the balls in the rotating frame (3.9)-(3.13): ball
+ * angles psi, (3.13) for the balls with the acceleration of D projected on the
+ * rotor axes; rotor equations (3.2) in the fixed frame.  An independent second
+ * implementation (same return codes). */
+AUTOBAL_API int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor);
+
+/* ---- derived quantities ------------------------------------------------- */
+/* Unbalance of plane j at time t (3.1), (3.10): s[0] = s_u, s[1] = s_v (fixed
+ * axes), s[2] = s_xi, s[3] = s_eta (rotor axes), all kg m, including the
+ * unbalance itself.  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+AUTOBAL_API int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t plane, int frame,
+                                              double t, const double *y, double s[4]);
+
+/* "Time to balance" monitor: max over planes of |s_j| / s_ref,j with
+ * s_ref,j = m_j0 r_j0 if positive, else sum_i m_ji r_ji, else 1 kg m.
+ * Dimensionless; 0 on a balanced motion.  NAN for bad arguments. */
+AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t,
+                                                 const double *y);
+
+/* Number of derived outputs per sample and their layout:
+ *   0 amp_G  |(x, y)|                                  m   at the centre of mass
+ *   1 amp_L  |(x - l_L beta, y + l_L alpha)|           m   at the left support  (p = -l_L)
+ *   2 amp_R  |(x + l_R beta, y - l_R alpha)|           m   at the right support (p = +l_R)
+ *   then per plane j (7 entries, j = 1..n_planes):
+ *     p<j>_s_u, p<j>_s_v, p<j>_s_xi, p<j>_s_eta  kg m   (3.1), (3.10)
+ *     p<j>_s_abs   |s_j|                          kg m   residual unbalance
+ *     p<j>_s_rel   |s_j| / s_ref,j                1      (see the monitor)
+ *     p<j>_amp_D   |(x + d beta, y - d alpha)|    m      at the balancer plane
+ *   then per ball (6 entries, in state order; names p<j>_b<i>_...):
+ *     phi, phi_w   absolute angle, unwrapped and wrapped to (-pi, pi]   rad
+ *     psi, psi_w   angle relative to the rotor, unwrapped and wrapped    rad
+ *     phi_rate, psi_rate                                                 rad/s
+ * With LUMPED input and non-finite hw.l_L / hw.l_R, amp_L / amp_R are NAN. */
+AUTOBAL_API size_t autobal_rotor_output_count(const autobal_rotor *r);
+/* Fill out[0 .. n_out-1] (n_out must equal autobal_rotor_output_count) for
+ * the state y (in the given frame) at time t.  Returns AUTOBAL_SUCCESS or
+ * AUTOBAL_EINVAL. */
+AUTOBAL_API int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y,
+                                      double *out, size_t n_out);
+/* Name (written to buf, NUL-terminated, truncated to len) and unit (static
+ * string; "1" for dimensionless) of output k.  Returns AUTOBAL_SUCCESS or
+ * AUTOBAL_EINVAL (k out of range or buf NULL). */
+AUTOBAL_API int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_t len,
+                                          const char **unit);
+
+/* A balanced configuration of plane j (3.14): ball angles psi[0..n-1] relative
+ * to the rotor, wrapped to (-pi, pi], with sum_i m_i r_i e^{i psi_i} =
+ * -m0 r0 e^{i psi0}.  n = 1: psi0 + pi when m_1 r_1 = m0 r0; n = 2: the unique
+ * pair of autobal_rotor_balanced_angles_two (ball 1 gets the "-" angle);
+ * n >= 3 with identical a_i = m_i r_i: the symmetric fan psi_i = psi0 + pi +
+ * (i - (n-1)/2) delta (i = 0..n-1) with delta in (0, 2 pi / n] solving
+ * sum cos = s0 / a; n >= 3 otherwise: a member built ball by ball (each
+ * remaining sub-chain keeps the remaining target inside its reachable annulus).
+ * n must equal the plane's ball count.  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL
+ * (bad arguments, or no balanced configuration exists; message in err, which may be NULL). */
+AUTOBAL_API int autobal_rotor_balanced_angles(const autobal_rotor *r, size_t plane, double *psi,
+                                              size_t n, autobal_error *err);
+
+/* First time t[k] from which the sampled monitor values stay below
+ * threshold to the end of the series (a post-processing helper for "time to
+ * balance").  Returns NAN if the last sample is not below threshold or n == 0. */
+AUTOBAL_API double autobal_rotor_time_to_balance(const double *t, const double *monitor, size_t n,
+                                                 double threshold);
+
+AUTOBAL_END_DECLS
+
+#endif

@@ -1,0 +1,1384 @@
+/* pendulum.c: the planar two-pendulum autobalancer, stability of the main
+ * motion (spec: shared/spec/pendulum.md, equations (2)-(18)).
+ * Everything here is dimensionless (see include/autobal/pendulum.h). */
+#include "autobal/pendulum.h"
+#include "internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef AUTOBAL_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+#define PEND_PI 3.14159265358979323846
+#define U_D DBL_EPSILON
+#define U_LD LDBL_EPSILON
+/* Safety factor on first-order rounding-error bounds (number of operations
+ * per coefficient is far below this). */
+#define PEND_GAMMA 64.0
+
+/* ======================================================================== */
+/* Parameters (2), (3)                                                      */
+/* ======================================================================== */
+
+int autobal_pendulum_params_validate(const autobal_pendulum_params *p, autobal_error *err) {
+  int st;
+  if (p == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum parameters: NULL pointer");
+  if ((st = autobal_check_param(err, "R_w", p->R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "R_m", p->R_m, 0.0, 1, 0.5, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "H", p->H, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "h", p->h, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "psi0", p->psi0, 0.0, 0, PEND_PI / 2, 1, "rad")) != 0)
+    return st;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_params_from_k(double R_w, double R_m, double H, double h, double k,
+                                   autobal_pendulum_params *out, autobal_error *err) {
+  autobal_pendulum_params p;
+  int st;
+  if (out == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum parameters: NULL output");
+  if ((st = autobal_check_param(err, "k", k, 0.0, 0, 1.0, 0, "")) != 0) return st;
+  p.R_w = R_w;
+  p.R_m = R_m;
+  p.H = H;
+  p.h = h;
+  p.psi0 = 0.5 * asin(sqrt(k)); /* in [0, pi/4]; k = sin^2(2 psi0) */
+  if ((st = autobal_pendulum_params_validate(&p, err)) != 0) return st;
+  *out = p;
+  return AUTOBAL_SUCCESS;
+}
+
+double autobal_pendulum_k(const autobal_pendulum_params *p) {
+  double s = sin(2.0 * p->psi0);
+  return s * s;
+}
+
+int autobal_pendulum_params_from_physical(const autobal_pendulum_physical *q,
+                                          autobal_pendulum_params *out, autobal_error *err) {
+  autobal_pendulum_params p;
+  double Ms, w0;
+  int st;
+  if (q == NULL || out == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum physical parameters: NULL pointer");
+  if ((st = autobal_check_param(err, "M", q->M, 0.0, 1, INFINITY, 1, "kg")) != 0) return st;
+  if ((st = autobal_check_param(err, "e", q->e, 0.0, 0, INFINITY, 1, "m")) != 0) return st;
+  if ((st = autobal_check_param(err, "m", q->m, 0.0, 1, INFINITY, 1, "kg")) != 0) return st;
+  if ((st = autobal_check_param(err, "l", q->l, 0.0, 1, INFINITY, 1, "m")) != 0) return st;
+  if ((st = autobal_check_param(err, "c", q->c, 0.0, 1, INFINITY, 1, "N/m")) != 0) return st;
+  if ((st = autobal_check_param(err, "H1", q->H1, 0.0, 0, INFINITY, 1, "N m s")) != 0) return st;
+  if ((st = autobal_check_param(err, "H2", q->H2, 0.0, 0, INFINITY, 1, "N s/m")) != 0) return st;
+  if ((st = autobal_check_param(err, "omega", q->omega, 0.0, 0, INFINITY, 1, "rad/s")) != 0)
+    return st;
+  /* sin psi0 = M e / (2 m l) < 1: the pendulums must be able to balance */
+  if ((st = autobal_check_param(err, "M*e", q->M * q->e, 0.0, 0, 2.0 * q->m * q->l, 1,
+                                "kg m (limit 2*m*l)")) != 0)
+    return st;
+  Ms = q->M + 2.0 * q->m;    /* (2) M_sigma */
+  w0 = sqrt(q->c / Ms);      /* (2) omega0  */
+  p.R_w = q->omega / w0;     /* (3) */
+  p.R_m = q->m / Ms;         /* (3) */
+  p.H = q->H2 / (w0 * Ms);   /* (3) */
+  p.h = q->H1 / (q->m * q->l * q->l * w0); /* (3) */
+  p.psi0 = asin(q->M * q->e / (2.0 * q->m * q->l)); /* (3) */
+  if ((st = autobal_pendulum_params_validate(&p, err)) != 0) return st;
+  *out = p;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Characteristic polynomial (6)                                            */
+/* ======================================================================== */
+
+/* a11, a31, a33 of (6) as complex quadratics in lambda (interleaved). */
+static void blocks(double R_w, double H, double h, double a11[6], double a31[6], double a33[6]) {
+  /* (lambda + i R_w)^2 = lambda^2 + 2 i R_w lambda - R_w^2 */
+  a31[0] = -R_w * R_w;
+  a31[1] = 0.0;
+  a31[2] = 0.0;
+  a31[3] = 2.0 * R_w;
+  a31[4] = 1.0;
+  a31[5] = 0.0;
+  /* a11 = a31 + H (lambda + i R_w) + 1 */
+  a11[0] = 1.0 - R_w * R_w;
+  a11[1] = H * R_w;
+  a11[2] = H;
+  a11[3] = 2.0 * R_w;
+  a11[4] = 1.0;
+  a11[5] = 0.0;
+  /* a33 = lambda^2 + h lambda */
+  a33[0] = 0.0;
+  a33[1] = 0.0;
+  a33[2] = h;
+  a33[3] = 0.0;
+  a33[4] = 1.0;
+  a33[5] = 0.0;
+}
+
+static void cabs_poly(const double *a, size_t len, double *out) {
+  size_t i;
+  for (i = 0; i < len; i++) {
+    out[2 * i] = hypot(a[2 * i], a[2 * i + 1]);
+    out[2 * i + 1] = 0.0;
+  }
+}
+
+/* The two parts of (6): A = P1 conj(P1) with P1 = a11 a33 - R_m a31^2 (15),
+ * B = a31^2 conj(a31)^2, so that (6) = A - R_m^2 cos^2(2 psi0) B; plus
+ * coefficient-wise bounds Aabs, Babs of the magnitudes that enter each
+ * coefficient (for the rounding-error bound).  Optionally P1 itself. */
+static void char_parts(double R_w, double R_m, double H, double h, double A[9], double B[9],
+                       double Aabs[9], double Babs[9], double p1_out[10]) {
+  double a11[6], a31[6], a33[6], t1[10], t2[10], p1[10], p1c[10], q[18];
+  double a11a[6], a31a[6], a33a[6], p1a[10];
+  blocks(R_w, H, h, a11, a31, a33);
+  /* P1 = a11 a33 - R_m a31^2 (15) */
+  autobal_cpoly_mul(a11, 3, a33, 3, t1, 5, NULL);
+  autobal_cpoly_mul(a31, 3, a31, 3, t2, 5, NULL);
+  autobal_cpoly_axpby(1.0, 0.0, t1, 5, -R_m, 0.0, t2, 5, p1, 5, NULL);
+  if (p1_out) memcpy(p1_out, p1, sizeof p1);
+  autobal_cpoly_conj(p1, 5, p1c);
+  autobal_cpoly_mul(p1, 5, p1c, 5, q, 9, NULL);
+  autobal_cpoly_real_part(q, 9, A, NULL);
+  /* B = a31^2 conj(a31^2) */
+  autobal_cpoly_conj(t2, 5, p1c);
+  autobal_cpoly_mul(t2, 5, p1c, 5, q, 9, NULL);
+  autobal_cpoly_real_part(q, 9, B, NULL);
+  /* magnitude polynomials: same products on |coefficients| */
+  cabs_poly(a11, 3, a11a);
+  cabs_poly(a31, 3, a31a);
+  cabs_poly(a33, 3, a33a);
+  autobal_cpoly_mul(a11a, 3, a33a, 3, t1, 5, NULL);
+  autobal_cpoly_mul(a31a, 3, a31a, 3, t2, 5, NULL);
+  autobal_cpoly_axpby(1.0, 0.0, t1, 5, R_m, 0.0, t2, 5, p1a, 5, NULL);
+  autobal_cpoly_mul(p1a, 5, p1a, 5, q, 9, NULL);
+  autobal_cpoly_real_part(q, 9, Aabs, NULL);
+  autobal_cpoly_mul(t2, 5, t2, 5, q, 9, NULL);
+  autobal_cpoly_real_part(q, 9, Babs, NULL);
+}
+
+/* (6) for given k (kc = cos^2(2 psi0) = 1 - k) with absolute error bounds
+ * cerr (may be NULL): AUTOBAL_PENDULUM_HURWITZ_RTOL relative plus rounding. */
+static void char_poly_k(double R_w, double R_m, double H, double h, double k, double kc,
+                        double coef[9], double cerr[9]) {
+  double A[9], B[9], Aa[9], Ba[9];
+  size_t j;
+  double W = R_w * R_w;
+  char_parts(R_w, R_m, H, h, A, B, Aa, Ba, NULL);
+  for (j = 0; j < 9; j++) {
+    coef[j] = A[j] - R_m * R_m * kc * B[j]; /* eq. (6) */
+    if (cerr)
+      cerr[j] = PEND_GAMMA * U_D * (Aa[j] + R_m * R_m * kc * Ba[j]) +
+                AUTOBAL_PENDULUM_HURWITZ_RTOL * fabs(coef[j]);
+  }
+  /* The constant term is the difference of two terms of size R_m^2 W^4 and
+   * cancels catastrophically for small k; its exact value k R_m^2 W^4 (the
+   * spec's "useful fact", checked in the tests against the arithmetic above)
+   * is used instead, so that the structural root lambda = 0 at k = 0 is
+   * exact and small k keep the right sign. */
+  coef[0] = k * R_m * R_m * W * W * W * W;
+  if (cerr) cerr[0] = (4.0 * U_D + AUTOBAL_PENDULUM_HURWITZ_RTOL) * coef[0];
+}
+
+static void k_and_kc(const autobal_pendulum_params *p, double *k, double *kc) {
+  double s = sin(2.0 * p->psi0), c = cos(2.0 * p->psi0);
+  *k = s * s;
+  *kc = c * c;
+}
+
+int autobal_pendulum_char_blocks(const autobal_pendulum_params *p, double a11[6], double a31[6],
+                                 double a33[6], autobal_error *err) {
+  double b11[6], b31[6], b33[6];
+  int st = autobal_pendulum_params_validate(p, err);
+  if (st) return st;
+  blocks(p->R_w, p->H, p->h, b11, b31, b33);
+  if (a11) memcpy(a11, b11, sizeof b11);
+  if (a31) memcpy(a31, b31, sizeof b31);
+  if (a33) memcpy(a33, b33, sizeof b33);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_char_poly(const autobal_pendulum_params *p, double coef[9],
+                               autobal_error *err) {
+  double k, kc;
+  int st = autobal_pendulum_params_validate(p, err);
+  if (st) return st;
+  if (coef == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "char_poly: NULL output");
+  k_and_kc(p, &k, &kc);
+  char_poly_k(p->R_w, p->R_m, p->H, p->h, k, kc, coef, NULL);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_char_p1(const autobal_pendulum_params *p, double p1[10], autobal_error *err) {
+  double A[9], B[9], Aa[9], Ba[9];
+  int st = autobal_pendulum_params_validate(p, err);
+  if (st) return st;
+  if (p1 == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "char_p1: NULL output");
+  char_parts(p->R_w, p->R_m, p->H, p->h, A, B, Aa, Ba, p1);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_linear_matrices(const autobal_pendulum_params *p, double Mm[16], double C[16],
+                                     double K[16], autobal_error *err) {
+  double s, c, R, Rm, R2;
+  int st = autobal_pendulum_params_validate(p, err);
+  if (st) return st;
+  s = sin(p->psi0);
+  c = cos(p->psi0);
+  R = p->R_w;
+  R2 = R * R;
+  Rm = p->R_m;
+  /* eq. (5), q = (xi, eta, alpha, beta); rows are the four equations of (5) */
+  if (Mm) {
+    const double m[16] = {1, 0, -Rm * c, -Rm * c, 0, 1, -Rm * s, Rm * s,
+                          -c, -s, 1, 0, -c, s, 0, 1};
+    memcpy(Mm, m, sizeof m);
+  }
+  if (C) {
+    const double d[16] = {p->H, -2 * R, 2 * Rm * R * s, -2 * Rm * R * s,
+                          2 * R, p->H, -2 * Rm * R * c, -2 * Rm * R * c,
+                          -2 * R * s, 2 * R * c, p->h, 0,
+                          2 * R * s, 2 * R * c, 0, p->h};
+    memcpy(C, d, sizeof d);
+  }
+  if (K) {
+    const double kk[16] = {1 - R2, -p->H * R, Rm * R2 * c, Rm * R2 * c,
+                           p->H * R, 1 - R2, Rm * R2 * s, -Rm * R2 * s,
+                           R2 * c, R2 * s, 0, 0,
+                           R2 * c, -R2 * s, 0, 0};
+    memcpy(K, kk, sizeof kk);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_first_order_matrix(const autobal_pendulum_params *p, double A[64],
+                                        autobal_error *err) {
+  double Mm[16], C[16], K[16], aug[4][8];
+  size_t i, j, r;
+  int st = autobal_pendulum_linear_matrices(p, Mm, C, K, err);
+  if (st) return st;
+  if (A == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "first_order_matrix: NULL output");
+  /* solve M X = [K C] by Gaussian elimination with partial pivoting */
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) {
+      aug[i][j] = K[4 * i + j];
+      aug[i][4 + j] = C[4 * i + j];
+    }
+  for (r = 0; r < 4; r++) {
+    size_t piv = r;
+    double best = fabs(Mm[4 * r + r]);
+    for (i = r + 1; i < 4; i++)
+      if (fabs(Mm[4 * i + r]) > best) {
+        best = fabs(Mm[4 * i + r]);
+        piv = i;
+      }
+    if (!(best > 1e-14))
+      return autobal_error_set(err, AUTOBAL_ENUMERIC,
+                               "first_order_matrix: mass matrix of (5) is singular (pivot %g)",
+                               best);
+    if (piv != r) {
+      for (j = 0; j < 4; j++) {
+        double t = Mm[4 * r + j];
+        Mm[4 * r + j] = Mm[4 * piv + j];
+        Mm[4 * piv + j] = t;
+      }
+      for (j = 0; j < 8; j++) {
+        double t = aug[r][j];
+        aug[r][j] = aug[piv][j];
+        aug[piv][j] = t;
+      }
+    }
+    for (i = r + 1; i < 4; i++) {
+      double f = Mm[4 * i + r] / Mm[4 * r + r];
+      for (j = r; j < 4; j++) Mm[4 * i + j] -= f * Mm[4 * r + j];
+      for (j = 0; j < 8; j++) aug[i][j] -= f * aug[r][j];
+    }
+  }
+  for (r = 4; r-- > 0;) {
+    for (j = 0; j < 8; j++) {
+      double s = aug[r][j];
+      for (i = r + 1; i < 4; i++) s -= Mm[4 * r + i] * aug[i][j];
+      aug[r][j] = s / Mm[4 * r + r];
+    }
+  }
+  for (i = 0; i < 64; i++) A[i] = 0.0;
+  for (i = 0; i < 4; i++) {
+    A[8 * i + 4 + i] = 1.0;
+    for (j = 0; j < 4; j++) {
+      A[8 * (4 + i) + j] = -aug[i][j];         /* -M^{-1} K */
+      A[8 * (4 + i) + 4 + j] = -aug[i][4 + j]; /* -M^{-1} C */
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Workspace                                                                */
+/* ======================================================================== */
+
+#define PEND_MAXDEG 12
+
+struct autobal_pendulum_workspace {
+  autobal_poly_workspace *pw[PEND_MAXDEG + 1]; /* roots of degree d = 1..12 */
+  autobal_eigen_workspace *ew;
+  autobal_error err;
+};
+
+autobal_pendulum_workspace *autobal_pendulum_workspace_alloc(void) {
+  size_t d;
+  autobal_pendulum_workspace *ws = (autobal_pendulum_workspace *)calloc(1, sizeof *ws);
+  if (ws == NULL) return NULL;
+  for (d = 1; d <= PEND_MAXDEG; d++) {
+    ws->pw[d] = autobal_poly_workspace_alloc(d);
+    if (ws->pw[d] == NULL) {
+      autobal_pendulum_workspace_free(ws);
+      return NULL;
+    }
+  }
+  ws->ew = autobal_eigen_workspace_alloc(AUTOBAL_PENDULUM_ORDER);
+  if (ws->ew == NULL) {
+    autobal_pendulum_workspace_free(ws);
+    return NULL;
+  }
+  autobal_error_clear(&ws->err);
+  return ws;
+}
+
+void autobal_pendulum_workspace_free(autobal_pendulum_workspace *ws) {
+  size_t d;
+  if (ws == NULL) return;
+  for (d = 0; d <= PEND_MAXDEG; d++) autobal_poly_workspace_free(ws->pw[d]);
+  autobal_eigen_workspace_free(ws->ew);
+  free(ws);
+}
+
+const char *autobal_pendulum_errmsg(const autobal_pendulum_workspace *ws) {
+  return ws ? ws->err.message : "";
+}
+
+int autobal_pendulum_status(const autobal_pendulum_workspace *ws) {
+  return ws ? ws->err.status : AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Verdicts                                                                 */
+/* ======================================================================== */
+
+/* Sign-test verdict of (6) from raw values (no validation). */
+static int damped_verdict_k(double R_w, double R_m, double H, double h, double k, double kc,
+                            int *verdict, int *n_rhp, autobal_error *err) {
+  double coef[9], cerr[9];
+  char_poly_k(R_w, R_m, H, h, k, kc, coef, cerr);
+  if (k == 0.0) /* deflate the structural root lambda = 0 */
+    return autobal_poly_hurwitz_err(coef + 1, cerr + 1, 8, verdict, n_rhp, err);
+  return autobal_poly_hurwitz_err(coef, cerr, 9, verdict, n_rhp, err);
+}
+
+int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict, int *n_rhp,
+                             autobal_error *err) {
+  double k, kc;
+  int st = autobal_pendulum_params_validate(p, err);
+  if (st) return st;
+  if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "verdict: NULL output");
+  k_and_kc(p, &k, &kc);
+  return damped_verdict_k(p->R_w, p->R_m, p->H, p->h, k, kc, verdict, n_rhp, err);
+}
+
+/* ---- (10) in long double -------------------------------------------------- */
+
+/* Coefficients c_j(W) of P(x) of (10) at a given W, long double. */
+static void undamped_coefs_ld(long double Rm, long double W, long double k, long double c[5]) {
+  long double r2 = k * Rm * Rm;
+  long double a0 = 2.0L * Rm * W * W * (W - 1.0L);                    /* (10) */
+  long double a2 = (W - 1.0L) * (W - 1.0L) + 2.0L * Rm * W * (W + 6.0L); /* (10) */
+  long double a4 = 2.0L * (1.0L - Rm) * (W + 1.0L);                   /* (10) */
+  long double a6 = 1.0L - 2.0L * Rm;                                  /* (10) */
+  c[0] = r2 * W * W * W * W;
+  c[1] = a0 + 4.0L * r2 * W * W * W;
+  c[2] = a2 + 6.0L * r2 * W * W;
+  c[3] = a4 + 4.0L * r2 * W;
+  c[4] = a6 + r2;
+}
+
+/* The 16 terms of the discriminant of a x^4 + b x^3 + c x^2 + d x + e:
+ * coefficient and exponents of (a, b, c, d, e). */
+static const struct {
+  int coef;
+  int ex[5];
+} QUARTIC_DISC[16] = {
+    {256, {3, 0, 0, 0, 3}}, {-192, {2, 1, 0, 1, 2}}, {-128, {2, 0, 2, 0, 2}},
+    {144, {2, 0, 1, 2, 1}}, {-27, {2, 0, 0, 4, 0}},  {144, {1, 2, 1, 0, 2}},
+    {-6, {1, 2, 0, 2, 1}},  {-80, {1, 1, 2, 1, 1}},  {18, {1, 1, 1, 3, 0}},
+    {16, {1, 0, 4, 0, 1}},  {-4, {1, 0, 3, 2, 0}},   {-27, {0, 4, 0, 0, 2}},
+    {18, {0, 3, 1, 1, 1}},  {-4, {0, 3, 0, 3, 0}},   {-4, {0, 2, 3, 0, 1}},
+    {1, {0, 2, 2, 2, 0}}};
+
+static long double ipow_ld(long double x, int n) {
+  long double r = 1.0L;
+  while (n-- > 0) r *= x;
+  return r;
+}
+
+/* Discriminant of the quartic c[0] + ... + c[4] x^4 and the sum of the
+ * magnitudes of its terms (for the error bound). */
+static void quartic_disc_ld(const long double c[5], long double *disc, long double *mag) {
+  long double s = 0.0L, m = 0.0L;
+  long double v[5];
+  int t, j;
+  v[0] = c[4]; /* a */
+  v[1] = c[3]; /* b */
+  v[2] = c[2]; /* c */
+  v[3] = c[1]; /* d */
+  v[4] = c[0]; /* e */
+  for (t = 0; t < 16; t++) {
+    long double p = (long double)QUARTIC_DISC[t].coef;
+    for (j = 0; j < 5; j++) p *= ipow_ld(v[j], QUARTIC_DISC[t].ex[j]);
+    s += p;
+    m += fabsl(p);
+  }
+  *disc = s;
+  *mag = m;
+}
+
+/* Verdict of the undamped system at W = R_w^2 (see the header).  Exact sign
+ * criteria, evaluated in long double with first-order error bounds:
+ *  k = 0: x = 0 plus the cubic a6 x^3 + a4 x^2 + a2 x + a0, all roots real and
+ *         <= 0 iff a_j >= 0 and its discriminant >= 0 (i.e. (12) lhs <= 0);
+ *  k > 0: c0 > 0, so all roots real and <= 0 iff all c_j > 0 (Descartes) and
+ *         the quartic has four real roots: discriminant > 0 with
+ *         8ac - 3b^2 < 0 and 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 < 0
+ *         (distinct roots), or discriminant = 0 on the boundary (MARGINAL). */
+static int undamped_verdict_ld(long double Rm, long double W, long double k) {
+  long double c[5];
+  undamped_coefs_ld(Rm, W, k, c);
+  if (k == 0.0L) {
+    long double a0 = c[1], a2 = c[2], a4 = c[3], a6 = c[4];
+    long double t[5], d = 0.0L, m = 0.0L;
+    int i;
+    long double ba0 = PEND_GAMMA * U_LD * 2.0L * Rm * W * W * (W + 1.0L);
+    if (a2 <= 0.0L || a4 <= 0.0L || a6 <= 0.0L) return AUTOBAL_VERDICT_UNSTABLE;
+    if (a0 < -ba0) return AUTOBAL_VERDICT_UNSTABLE;
+    t[0] = 18.0L * a6 * a4 * a2 * a0; /* discriminant of the cubic = -(12) lhs */
+    t[1] = -4.0L * a4 * a4 * a4 * a0;
+    t[2] = a4 * a4 * a2 * a2;
+    t[3] = -4.0L * a6 * a2 * a2 * a2;
+    t[4] = -27.0L * a6 * a6 * a0 * a0;
+    for (i = 0; i < 5; i++) {
+      d += t[i];
+      m += fabsl(t[i]);
+    }
+    if (d < -PEND_GAMMA * U_LD * m) return AUTOBAL_VERDICT_UNSTABLE;
+    if (a0 <= ba0 || d <= PEND_GAMMA * U_LD * m) return AUTOBAL_VERDICT_MARGINAL;
+    return AUTOBAL_VERDICT_STABLE;
+  }
+  {
+    long double a = c[4], b = c[3], cc = c[2], d = c[1], e = c[0];
+    long double disc, mag, P8, D4;
+    long double bnd;
+    if (b <= 0.0L || cc <= 0.0L || d <= 0.0L) return AUTOBAL_VERDICT_UNSTABLE;
+    quartic_disc_ld(c, &disc, &mag);
+    bnd = PEND_GAMMA * U_LD * mag;
+    if (disc < -bnd) return AUTOBAL_VERDICT_UNSTABLE;
+    P8 = 8.0L * a * cc - 3.0L * b * b;
+    D4 = 64.0L * a * a * a * e - 16.0L * a * a * cc * cc + 16.0L * a * b * b * cc -
+         16.0L * a * a * b * d - 3.0L * b * b * b * b;
+    if (P8 >= 0.0L || D4 >= 0.0L) {
+      /* two complex pairs unless on the boundary disc = 0 */
+      return AUTOBAL_VERDICT_UNSTABLE;
+    }
+    if (disc <= bnd) return AUTOBAL_VERDICT_MARGINAL;
+    return AUTOBAL_VERDICT_STABLE;
+  }
+}
+
+static int check_rm_k(double R_m, double k, autobal_error *err) {
+  int st;
+  if ((st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "k", k, 0.0, 0, 1.0, 0, "")) != 0) return st;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_undamped_poly(double R_m, double R_w, double k, double coef[5],
+                                   autobal_error *err) {
+  double W, r2, a0, a2, a4, a6;
+  int st;
+  if ((st = check_rm_k(R_m, k, err)) != 0) return st;
+  if ((st = autobal_check_param(err, "R_w", R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if (coef == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "undamped_poly: NULL output");
+  W = R_w * R_w;
+  r2 = k * R_m * R_m;
+  a0 = 2.0 * R_m * W * W * (W - 1.0);                       /* (10) */
+  a2 = (W - 1.0) * (W - 1.0) + 2.0 * R_m * W * (W + 6.0);   /* (10) */
+  a4 = 2.0 * (1.0 - R_m) * (W + 1.0);                       /* (10) */
+  a6 = 1.0 - 2.0 * R_m;                                     /* (10) */
+  /* P = x (a6 x^3 + a4 x^2 + a2 x + a0) + k R_m^2 (x + W)^4 */
+  coef[0] = r2 * W * W * W * W;
+  coef[1] = a0 + 4.0 * r2 * W * W * W;
+  coef[2] = a2 + 6.0 * r2 * W * W;
+  coef[3] = a4 + 4.0 * r2 * W;
+  coef[4] = a6 + r2;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
+                                      autobal_error *err) {
+  int st;
+  if ((st = check_rm_k(R_m, k, err)) != 0) return st;
+  if ((st = autobal_check_param(err, "R_w", R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "undamped_verdict: NULL output");
+  *verdict = undamped_verdict_ld(R_m, (long double)R_w * (long double)R_w, k);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_cond12(double R_m, double R_w, double *lhs, int *stable, autobal_error *err) {
+  double W, a0, a2, a4, a6, L;
+  int st;
+  if ((st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "R_w", R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  W = R_w * R_w;
+  a0 = 2.0 * R_m * W * W * (W - 1.0);
+  a2 = (W - 1.0) * (W - 1.0) + 2.0 * R_m * W * (W + 6.0);
+  a4 = 2.0 * (1.0 - R_m) * (W + 1.0);
+  a6 = 1.0 - 2.0 * R_m;
+  /* (12), with the corrected 4 a2^3 a6 */
+  L = -a2 * a2 * a4 * a4 + 4.0 * a2 * a2 * a2 * a6 + 27.0 * a0 * a0 * a6 * a6 -
+      18.0 * a0 * a2 * a4 * a6 + 4.0 * a0 * a4 * a4 * a4;
+  if (lhs) *lhs = L;
+  if (stable) *stable = (a0 > 0 && a2 > 0 && a4 > 0 && a6 > 0 && L <= 0) ? 1 : 0;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- discriminant in W, long double polynomial arithmetic ---------------- */
+
+#define LDP_LEN 16
+
+static void ldp_zero(long double *a) {
+  int i;
+  for (i = 0; i < LDP_LEN; i++) a[i] = 0.0L;
+}
+
+/* out = a * b truncated to LDP_LEN (degrees here never exceed 12) */
+static void ldp_mul(const long double *a, const long double *b, long double *out) {
+  long double t[LDP_LEN];
+  int i, j;
+  ldp_zero(t);
+  for (i = 0; i < LDP_LEN; i++) {
+    if (a[i] == 0.0L) continue;
+    for (j = 0; i + j < LDP_LEN; j++) t[i + j] += a[i] * b[j];
+  }
+  memcpy(out, t, sizeof t);
+}
+
+static long double ldp_eval(const long double *a, int len, long double x) {
+  long double s = 0.0L;
+  int j = len;
+  while (j-- > 0) s = s * x + a[j];
+  return s;
+}
+
+/* c_j(W) of (10) as polynomials in W (long double), and |.| versions. */
+static void undamped_coef_polys(long double Rm, long double k, long double c[5][LDP_LEN]) {
+  long double r2 = k * Rm * Rm;
+  int j;
+  for (j = 0; j < 5; j++) ldp_zero(c[j]);
+  /* c0 = k R_m^2 W^4 */
+  c[0][4] = r2;
+  /* c1 = a0 + 4 r2 W^3, a0 = 2 R_m W^2 (W - 1) */
+  c[1][2] = -2.0L * Rm;
+  c[1][3] = 2.0L * Rm + 4.0L * r2;
+  /* c2 = a2 + 6 r2 W^2, a2 = (W - 1)^2 + 2 R_m W (W + 6) */
+  c[2][0] = 1.0L;
+  c[2][1] = -2.0L + 12.0L * Rm;
+  c[2][2] = 1.0L + 2.0L * Rm + 6.0L * r2;
+  /* c3 = a4 + 4 r2 W, a4 = 2 (1 - R_m)(W + 1) */
+  c[3][0] = 2.0L * (1.0L - Rm);
+  c[3][1] = 2.0L * (1.0L - Rm) + 4.0L * r2;
+  /* c4 = a6 + r2, a6 = 1 - 2 R_m */
+  c[4][0] = 1.0L - 2.0L * Rm + r2;
+}
+
+/* The discriminant of (10) in x as a polynomial in W (13 coefficients) and
+ * the magnitude polynomial (same products on |coefficients|). */
+static void undamped_disc_poly(long double Rm, long double k, long double D[LDP_LEN],
+                               long double Dm[LDP_LEN]) {
+  long double c[5][LDP_LEN], ca[5][LDP_LEN];
+  long double pw[5][5][LDP_LEN], pa[5][5][LDP_LEN];
+  int i, j, t;
+  undamped_coef_polys(Rm, k, c);
+  for (i = 0; i < 5; i++)
+    for (j = 0; j < LDP_LEN; j++) ca[i][j] = fabsl(c[i][j]);
+  /* powers 0..4 of each coefficient polynomial; index v: 0=a=c4 ... 4=e=c0 */
+  for (i = 0; i < 5; i++) {
+    const long double *base = c[4 - i], *basea = ca[4 - i];
+    ldp_zero(pw[i][0]);
+    ldp_zero(pa[i][0]);
+    pw[i][0][0] = 1.0L;
+    pa[i][0][0] = 1.0L;
+    for (j = 1; j < 5; j++) {
+      ldp_mul(pw[i][j - 1], base, pw[i][j]);
+      ldp_mul(pa[i][j - 1], basea, pa[i][j]);
+    }
+  }
+  ldp_zero(D);
+  ldp_zero(Dm);
+  for (t = 0; t < 16; t++) {
+    long double term[LDP_LEN], terma[LDP_LEN];
+    ldp_zero(term);
+    ldp_zero(terma);
+    term[0] = (long double)QUARTIC_DISC[t].coef;
+    terma[0] = fabsl(term[0]);
+    for (i = 0; i < 5; i++) {
+      ldp_mul(term, pw[i][QUARTIC_DISC[t].ex[i]], term);
+      ldp_mul(terma, pa[i][QUARTIC_DISC[t].ex[i]], terma);
+    }
+    for (j = 0; j < LDP_LEN; j++) {
+      D[j] += term[j];
+      Dm[j] += terma[j];
+    }
+  }
+  /* Degree <= 11: the W^12 coefficient is the discriminant of the top-degree
+   * parts T(y) = sum_j c_j^top y^j, which has the double root y = -1
+   * (T = (y+1)^2 [y((1-2R_m) y + 2R_m) + k R_m^2 (y+1)^2]), so it vanishes
+   * identically; drop its rounding noise. */
+  for (j = 12; j < LDP_LEN; j++) D[j] = 0.0L;
+}
+
+int autobal_pendulum_undamped_discriminant(double R_m, double k, double disc[13],
+                                           autobal_error *err) {
+  long double D[LDP_LEN], Dm[LDP_LEN];
+  int st, j;
+  if ((st = check_rm_k(R_m, k, err)) != 0) return st;
+  if (disc == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "undamped_discriminant: NULL output");
+  undamped_disc_poly(R_m, k, D, Dm);
+  for (j = 0; j < 13; j++) disc[j] = (double)D[j];
+  return AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Analysis                                                                 */
+/* ======================================================================== */
+
+static void sufficient_conditions(const autobal_pendulum_params *p, double k,
+                                  autobal_pendulum_result *r) {
+  double W = p->R_w * p->R_w;
+  double s7 = p->R_m;
+  if (p->h > 0 && 1.0 / p->h < s7) s7 = 1.0 / p->h;
+  /* (7): R_m << 1 or h >> 1: stable if R_w > 1 */
+  r->cond7.small = s7;
+  r->cond7.applicable = s7 <= AUTOBAL_PENDULUM_ASYMPTOTIC_SMALL;
+  r->cond7.predicts_stable = p->R_w > 1.0;
+  /* (8): R_w >> 1: stable if h > H sqrt(R_m) */
+  r->cond8.small = p->R_w > 0 ? 1.0 / p->R_w : INFINITY;
+  r->cond8.applicable = r->cond8.small <= AUTOBAL_PENDULUM_ASYMPTOTIC_SMALL;
+  r->cond8.predicts_stable = p->h > p->H * sqrt(p->R_m);
+  /* (9), corrected: H >> 1: stable iff R_m k W^2 / h^2 < W - 1 */
+  r->cond9.small = p->H > 0 ? 1.0 / p->H : INFINITY;
+  r->cond9.applicable = r->cond9.small <= AUTOBAL_PENDULUM_ASYMPTOTIC_SMALL;
+  if (p->h > 0) r->cond9.predicts_stable = p->R_m * k * W * W < (W - 1.0) * p->h * p->h;
+  else r->cond9.predicts_stable = (k == 0.0 && W > 1.0);
+}
+
+int autobal_pendulum_analyze(autobal_pendulum_workspace *ws, const autobal_pendulum_params *p,
+                             autobal_pendulum_result *r) {
+  double cerr[9], A[64], k, kc, scale;
+  size_t perm[AUTOBAL_PENDULUM_ORDER], i;
+  double er[AUTOBAL_PENDULUM_ORDER], ei[AUTOBAL_PENDULUM_ORDER];
+  int st;
+  if (ws == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&ws->err);
+  if ((st = autobal_pendulum_params_validate(p, &ws->err)) != 0) return st;
+  if (r == NULL) return autobal_error_set(&ws->err, AUTOBAL_EINVAL, "analyze: NULL result");
+  memset(r, 0, sizeof *r);
+  k_and_kc(p, &k, &kc);
+  char_poly_k(p->R_w, p->R_m, p->H, p->h, k, kc, r->coef, cerr);
+  if ((st = autobal_poly_roots(ws->pw[8], r->coef, 9, r->root_re, r->root_im, &ws->err)) != 0)
+    return st;
+  if ((st = autobal_pendulum_first_order_matrix(p, A, &ws->err)) != 0) return st;
+  if ((st = autobal_eigen_nonsymm(ws->ew, A, er, ei, &ws->err)) != 0) return st;
+  if ((st = autobal_match_roots(8, r->root_re, r->root_im, er, ei, perm, &r->mismatch,
+                                &ws->err)) != 0)
+    return st;
+  scale = 1.0;
+  for (i = 0; i < 8; i++) {
+    double m = hypot(r->root_re[i], r->root_im[i]);
+    if (m > scale) scale = m;
+    r->eig_re[i] = er[perm[i]];
+    r->eig_im[i] = ei[perm[i]];
+  }
+  r->mismatch_rel = r->mismatch / scale;
+  r->zero_root_deflated = (k == 0.0);
+  /* sign test on the coefficients */
+  if (k == 0.0) st = autobal_poly_hurwitz_err(r->coef + 1, cerr + 1, 8, &r->verdict, &r->n_rhp,
+                                              &ws->err);
+  else st = autobal_poly_hurwitz_err(r->coef, cerr, 9, &r->verdict, &r->n_rhp, &ws->err);
+  if (st) return st;
+  /* verdict from the roots (drop the root nearest 0 when deflated) */
+  {
+    double rr[8], ri[8], emax = -INFINITY;
+    size_t n = 0, skip = 8, esk = 8;
+    if (k == 0.0) {
+      double best = INFINITY;
+      for (i = 0; i < 8; i++)
+        if (hypot(r->root_re[i], r->root_im[i]) < best) {
+          best = hypot(r->root_re[i], r->root_im[i]);
+          skip = i;
+        }
+      esk = skip; /* eig[i] is matched to root[i] */
+    }
+    for (i = 0; i < 8; i++) {
+      if (i == skip) continue;
+      rr[n] = r->root_re[i];
+      ri[n] = r->root_im[i];
+      n++;
+    }
+    r->verdict_roots = autobal_roots_verdict(n, rr, ri, AUTOBAL_PENDULUM_ROOTS_TOL, &r->max_real);
+    for (i = 0; i < 8; i++)
+      if (i != esk && r->eig_re[i] > emax) emax = r->eig_re[i];
+    r->max_real_eig = emax;
+  }
+  r->verdicts_agree = r->verdict == r->verdict_roots;
+  r->undamped = (p->H == 0.0 && p->h == 0.0);
+  if (r->undamped)
+    r->undamped_verdict = undamped_verdict_ld(p->R_m, (long double)p->R_w * p->R_w, k);
+  sufficient_conditions(p, k, r);
+  return AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Critical speeds of the undamped system                                   */
+/* ======================================================================== */
+
+typedef struct {
+  const long double *q;
+  int len;
+} ldpoly_ctx;
+
+static int ldpoly_fn(double x, void *ctx, double *fx) {
+  const ldpoly_ctx *c = (const ldpoly_ctx *)ctx;
+  long double v = ldp_eval(c->q, c->len, x);
+  /* keep the sign even if the magnitude is outside double's range */
+  if (v > 0) *fx = v > (long double)DBL_MAX ? DBL_MAX : (v < (long double)DBL_MIN ? DBL_MIN : (double)v);
+  else if (v < 0)
+    *fx = -v > (long double)DBL_MAX ? -DBL_MAX : (-v < (long double)DBL_MIN ? -DBL_MIN : (double)v);
+  else *fx = 0.0;
+  return AUTOBAL_SUCCESS;
+}
+
+/* sign of q at x, 0 if |q(x)| is within the rounding bound */
+static int ld_sign(const long double *q, const long double *qa, int len, long double x) {
+  long double v = ldp_eval(q, len, x);
+  long double b = PEND_GAMMA * U_LD * ldp_eval(qa, len, fabsl(x));
+  if (v > b) return 1;
+  if (v < -b) return -1;
+  return 0;
+}
+
+static int cmp_dbl(const void *pa, const void *pb) {
+  double a = *(const double *)pa, b = *(const double *)pb;
+  return (a > b) - (a < b);
+}
+
+/* Positive real roots of q (long double, len <= LDP_LEN) with magnitude
+ * polynomial qa: isolation between the critical points of q (roots of q',
+ * by GSL, polished by Newton in long double), sign changes refined by Brent,
+ * critical points where |q| is within its rounding bound reported as
+ * (double) roots.  Writes up to maxout sorted roots. */
+static int positive_roots(autobal_pendulum_workspace *ws, const long double *q0,
+                          const long double *qa, int len0, double *out, size_t maxout,
+                          size_t *nout) {
+  long double q[LDP_LEN], dq[LDP_LEN], ddq[LDP_LEN];
+  double dqd[LDP_LEN], rre[LDP_LEN], rim[LDP_LEN];
+  double brk[LDP_LEN + 2];
+  size_t nb = 0, n = 0, i;
+  int len = len0, deg, j, st;
+  ldpoly_ctx ctx;
+  while (len > 0 && q0[len - 1] == 0.0L) len--;
+  *nout = 0;
+  if (len < 2) return AUTOBAL_SUCCESS;
+  for (j = 0; j < LDP_LEN; j++) q[j] = j < len ? q0[j] : 0.0L;
+  deg = len - 1;
+  for (j = 0; j < LDP_LEN; j++) {
+    dq[j] = j + 1 < len ? (long double)(j + 1) * q[j + 1] : 0.0L;
+    ddq[j] = j + 2 < len ? (long double)((j + 2) * (j + 1)) * q[j + 2] : 0.0L;
+  }
+  brk[nb++] = 0.0;
+  if (deg >= 2) {
+    /* critical points: roots of q' (degree deg-1) */
+    for (j = 0; j < deg; j++) dqd[j] = (double)dq[j];
+    st = autobal_poly_roots(ws->pw[deg - 1], dqd, (size_t)deg, rre, rim, &ws->err);
+    if (st) return st;
+    for (j = 0; j < deg - 1; j++) {
+      long double x;
+      int it;
+      if (!(rre[j] > 0.0) || fabs(rim[j]) > 1e-3 * fabs(rre[j])) continue;
+      x = rre[j];
+      for (it = 0; it < 6; it++) { /* Newton on q' */
+        long double f = ldp_eval(dq, len, x), fp = ldp_eval(ddq, len, x);
+        long double nx;
+        if (fp == 0.0L) break;
+        nx = x - f / fp;
+        if (!(nx > 0.0L) || fabsl(nx - x) > 1e-2L * x) break;
+        x = nx;
+      }
+      brk[nb++] = (double)x;
+    }
+  }
+  {
+    /* upper bound of the positive roots (Cauchy) */
+    long double m = 0.0L;
+    for (j = 0; j < deg; j++)
+      if (fabsl(q[j] / q[deg]) > m) m = fabsl(q[j] / q[deg]);
+    m = 2.0L * (1.0L + m);
+    if (m > 1e150L) m = 1e150L;
+    brk[nb++] = (double)m;
+  }
+  qsort(brk + 1, nb - 2, sizeof(double), cmp_dbl);
+  ctx.q = q;
+  ctx.len = len;
+  for (i = 0; i + 1 < nb; i++) {
+    double a = brk[i], b = brk[i + 1];
+    int sa, sb;
+    if (!(b > a)) continue;
+    sa = ld_sign(q, qa, len, a);
+    sb = ld_sign(q, qa, len, b);
+    if (i > 0 && sa == 0) {
+      /* (near-)double root at a critical point */
+      if (n == 0 || out[n - 1] < a * (1 - 1e-14)) {
+        if (n < maxout) out[n++] = a;
+      }
+    }
+    if (sa != 0 && sb != 0 && sa != sb) {
+      double root;
+      st = autobal_root_brent(ldpoly_fn, &ctx, a, b, 0.0, 1e-15, 400, &root, &ws->err);
+      if (st) return st;
+      if (n == 0 || out[n - 1] < root * (1 - 1e-14)) {
+        if (n < maxout) out[n++] = root;
+      }
+    }
+  }
+  *nout = n;
+  return AUTOBAL_SUCCESS;
+}
+
+static int crit_set_fill(autobal_pendulum_crit_set *out, const double *rw, const int *vint,
+                         size_t nc, int keep_touch_stable_only, double lo_end, double hi_end) {
+  /* vint[i] = verdict (1 stable) on interval i: (rw[i-1], rw[i]), i = 0..nc */
+  size_t i;
+  out->n = 0;
+  out->n_stable = 0;
+  for (i = 0; i < nc; i++) {
+    int l = vint[i] == AUTOBAL_VERDICT_STABLE, r = vint[i + 1] == AUTOBAL_VERDICT_STABLE;
+    int kind = l == r ? AUTOBAL_CRIT_TOUCH : (r ? AUTOBAL_CRIT_GAINED : AUTOBAL_CRIT_LOST);
+    if (kind == AUTOBAL_CRIT_TOUCH && keep_touch_stable_only && !l) continue;
+    if (out->n < AUTOBAL_PENDULUM_MAX_CRIT) {
+      out->R_w[out->n] = rw[i];
+      out->kind[out->n] = kind;
+      out->n++;
+    }
+  }
+  for (i = 0; i <= nc; i++) {
+    double a = i == 0 ? lo_end : rw[i - 1];
+    double b = i == nc ? hi_end : rw[i];
+    if (vint[i] != AUTOBAL_VERDICT_STABLE) continue;
+    if (out->n_stable > 0 && out->stable_hi[out->n_stable - 1] == a) {
+      out->stable_hi[out->n_stable - 1] = b; /* merge across a touch */
+    } else if (out->n_stable < AUTOBAL_PENDULUM_MAX_CRIT + 1) {
+      out->stable_lo[out->n_stable] = a;
+      out->stable_hi[out->n_stable] = b;
+      out->n_stable++;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m, double k,
+                                     autobal_pendulum_crit_set *out) {
+  long double D[LDP_LEN], Dm[LDP_LEN];
+  double Wr[AUTOBAL_PENDULUM_MAX_CRIT], rw[AUTOBAL_PENDULUM_MAX_CRIT];
+  int vint[AUTOBAL_PENDULUM_MAX_CRIT + 1];
+  size_t nW = 0, i;
+  int st, len;
+  if (ws == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&ws->err);
+  if ((st = check_rm_k(R_m, k, &ws->err)) != 0) return st;
+  if (out == NULL) return autobal_error_set(&ws->err, AUTOBAL_EINVAL, "critical_speeds: NULL output");
+  memset(out, 0, sizeof *out);
+  if (k == 0.0) {
+    /* x = 0 plus the cubic: its discriminant in W (degree 6), and W = 1
+     * where a0 = 2 R_m W^2 (W - 1) changes sign (13) */
+    long double c[5][LDP_LEN], ca[5][LDP_LEN], t[LDP_LEN], ta[LDP_LEN];
+    long double *a0, *a2, *a4, *a6;
+    static const int TERMS[5][5] = {/* coef, exps of a6, a4, a2, a0 */
+                                    {18, 1, 1, 1, 1},
+                                    {-4, 0, 3, 0, 1},
+                                    {1, 0, 2, 2, 0},
+                                    {-4, 1, 0, 3, 0},
+                                    {-27, 2, 0, 0, 2}};
+    int tt, v, e, j;
+    undamped_coef_polys(R_m, 0.0L, c);
+    for (v = 0; v < 5; v++)
+      for (j = 0; j < LDP_LEN; j++) ca[v][j] = fabsl(c[v][j]);
+    a0 = c[1];
+    a2 = c[2];
+    a4 = c[3];
+    a6 = c[4];
+    ldp_zero(D);
+    ldp_zero(Dm);
+    for (tt = 0; tt < 5; tt++) {
+      long double *base[4], *basea[4];
+      base[0] = a6;
+      base[1] = a4;
+      base[2] = a2;
+      base[3] = a0;
+      basea[0] = ca[4];
+      basea[1] = ca[3];
+      basea[2] = ca[2];
+      basea[3] = ca[1];
+      ldp_zero(t);
+      ldp_zero(ta);
+      t[0] = TERMS[tt][0];
+      ta[0] = fabsl(t[0]);
+      for (v = 0; v < 4; v++)
+        for (e = 0; e < TERMS[tt][v + 1]; e++) {
+          ldp_mul(t, base[v], t);
+          ldp_mul(ta, basea[v], ta);
+        }
+      for (j = 0; j < LDP_LEN; j++) {
+        D[j] += t[j];
+        Dm[j] += ta[j];
+      }
+    }
+    len = 7;
+    if ((st = positive_roots(ws, D, Dm, len, Wr, AUTOBAL_PENDULUM_MAX_CRIT - 1, &nW)) != 0)
+      return st;
+    /* add W = 1 */
+    {
+      int have = 0;
+      for (i = 0; i < nW; i++)
+        if (fabs(Wr[i] - 1.0) <= 1e-14) {
+          Wr[i] = 1.0;
+          have = 1;
+        }
+      if (!have) Wr[nW++] = 1.0;
+      qsort(Wr, nW, sizeof(double), cmp_dbl);
+    }
+  } else {
+    undamped_disc_poly(R_m, k, D, Dm);
+    /* D = W^4 Q(W): the coefficients of W^0..W^3 vanish exactly (every term
+     * of the discriminant holds e = c0 ~ W^4 or d^2 = c1^2 ~ W^4) */
+    if ((st = positive_roots(ws, D + 4, Dm + 4, 8, Wr, AUTOBAL_PENDULUM_MAX_CRIT, &nW)) != 0)
+      return st;
+  }
+  /* verdict on every interval between consecutive candidates */
+  for (i = 0; i <= nW; i++) {
+    long double a = i == 0 ? 0.0L : Wr[i - 1];
+    long double b = i == nW ? 2.0L * a + 1.0L : Wr[i];
+    vint[i] = undamped_verdict_ld(R_m, 0.5L * (a + b), k);
+  }
+  for (i = 0; i < nW; i++) rw[i] = sqrt(Wr[i]);
+  return crit_set_fill(out, rw, vint, nW, 1, 0.0, INFINITY);
+}
+
+size_t autobal_pendulum_crit_count(const autobal_pendulum_crit_set *s) {
+  size_t i, n = 0;
+  if (s == NULL) return 0;
+  for (i = 0; i < s->n; i++)
+    if (s->kind[i] != AUTOBAL_CRIT_TOUCH) n++;
+  return n;
+}
+
+double autobal_pendulum_crit_get(const autobal_pendulum_crit_set *s, size_t j) {
+  size_t i, n = 0;
+  if (s == NULL) return NAN;
+  for (i = 0; i < s->n; i++)
+    if (s->kind[i] != AUTOBAL_CRIT_TOUCH) {
+      if (n == j) return s->R_w[i];
+      n++;
+    }
+  return NAN;
+}
+
+int autobal_pendulum_critical_curves(autobal_pendulum_workspace *ws, double k, const double *R_m,
+                                     size_t n_Rm, size_t n_curve, double *rw) {
+  size_t i, j;
+  int st;
+  if (ws == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&ws->err);
+  if ((st = autobal_check_param(&ws->err, "k", k, 0.0, 0, 1.0, 0, "")) != 0) return st;
+  if ((n_Rm > 0 && R_m == NULL) || (n_Rm * n_curve > 0 && rw == NULL))
+    return autobal_error_set(&ws->err, AUTOBAL_EINVAL, "critical_curves: NULL array");
+  for (i = 0; i < n_Rm; i++) {
+    char name[32];
+    snprintf(name, sizeof name, "R_m[%zu]", i);
+    if ((st = autobal_check_param(&ws->err, name, R_m[i], 0.0, 1, 0.5, 1, "")) != 0) return st;
+  }
+  for (i = 0; i < n_Rm; i++) {
+    autobal_pendulum_crit_set s;
+    if ((st = autobal_pendulum_critical_speeds(ws, R_m[i], k, &s)) != 0) return st;
+    for (j = 0; j < n_curve; j++) rw[i * n_curve + j] = autobal_pendulum_crit_get(&s, j);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Critical speeds of the damped system                                     */
+/* ======================================================================== */
+
+typedef struct {
+  autobal_pendulum_workspace *ws;
+  double R_m, H, h, k, kc;
+} damped_ctx;
+
+static int damped_stable_pred(double R_w, void *vctx, int *value) {
+  const damped_ctx *c = (const damped_ctx *)vctx;
+  int v, st;
+  st = damped_verdict_k(R_w, c->R_m, c->H, c->h, c->k, c->kc, &v, NULL, &c->ws->err);
+  *value = v == AUTOBAL_VERDICT_STABLE;
+  return st;
+}
+
+/* max Re of the roots of (6) (deflated at k = 0) */
+static int damped_maxre_fn(double R_w, void *vctx, double *fx) {
+  const damped_ctx *c = (const damped_ctx *)vctx;
+  double coef[9], re[8], im[8];
+  int st;
+  char_poly_k(R_w, c->R_m, c->H, c->h, c->k, c->kc, coef, NULL);
+  if (c->k == 0.0) st = autobal_poly_roots(c->ws->pw[7], coef + 1, 8, re, im, &c->ws->err);
+  else st = autobal_poly_roots(c->ws->pw[8], coef, 9, re, im, &c->ws->err);
+  if (st) return st;
+  autobal_roots_verdict(c->k == 0.0 ? 7 : 8, re, im, 0.0, fx);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
+                                            const autobal_pendulum_params *p, double rw_min,
+                                            double rw_max, size_t n_sweep,
+                                            autobal_pendulum_crit_set *out) {
+  damped_ctx ctx;
+  double rw[AUTOBAL_PENDULUM_MAX_CRIT];
+  int vint[AUTOBAL_PENDULUM_MAX_CRIT + 1];
+  size_t nc = 0, i;
+  int st, prev;
+  autobal_pendulum_params q;
+  if (ws == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&ws->err);
+  if (p == NULL) return autobal_error_set(&ws->err, AUTOBAL_EINVAL, "critical_speeds_damped: NULL parameters");
+  q = *p;
+  q.R_w = 0.0;
+  if ((st = autobal_pendulum_params_validate(&q, &ws->err)) != 0) return st;
+  if ((st = autobal_check_param(&ws->err, "rw_min", rw_min, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(&ws->err, "rw_max", rw_max, rw_min, 1, INFINITY, 1, "")) != 0)
+    return st;
+  if (n_sweep < 2)
+    return autobal_error_set(&ws->err, AUTOBAL_EINVAL,
+                             "parameter n_sweep = %zu is out of range: allowed [2, inf)", n_sweep);
+  if (out == NULL) return autobal_error_set(&ws->err, AUTOBAL_EINVAL, "critical_speeds_damped: NULL output");
+  memset(out, 0, sizeof *out);
+  ctx.ws = ws;
+  ctx.R_m = p->R_m;
+  ctx.H = p->H;
+  ctx.h = p->h;
+  k_and_kc(p, &ctx.k, &ctx.kc);
+  if ((st = damped_stable_pred(rw_min, &ctx, &prev)) != 0) return st;
+  vint[0] = prev ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
+  for (i = 1; i < n_sweep; i++) {
+    double a = rw_min + (rw_max - rw_min) * (double)(i - 1) / (double)(n_sweep - 1);
+    double b = i + 1 == n_sweep ? rw_max : rw_min + (rw_max - rw_min) * (double)i / (double)(n_sweep - 1);
+    int cur;
+    if ((st = damped_stable_pred(b, &ctx, &cur)) != 0) return st;
+    if (cur != prev && nc < AUTOBAL_PENDULUM_MAX_CRIT) {
+      double lo, hi, x, fa, fb;
+      if ((st = autobal_bisect_change(damped_stable_pred, &ctx, a, b, 0.0, 1e-13, &lo, &hi,
+                                      &ws->err)) != 0)
+        return st;
+      x = 0.5 * (lo + hi);
+      /* polish on max Re (continuous, crosses 0 transversally) */
+      {
+        double wa = lo - 1e-9 * (1 + lo), wb = hi + 1e-9 * (1 + hi);
+        if (wa < a) wa = a;
+        if (wb > b) wb = b;
+        if ((st = damped_maxre_fn(wa, &ctx, &fa)) != 0) return st;
+        if ((st = damped_maxre_fn(wb, &ctx, &fb)) != 0) return st;
+        if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
+          double root;
+          if (autobal_root_brent(damped_maxre_fn, &ctx, wa, wb, 0.0, 1e-14, 200, &root, &ws->err) ==
+              AUTOBAL_SUCCESS)
+            x = root;
+        }
+      }
+      autobal_error_clear(&ws->err);
+      rw[nc] = x;
+      vint[nc + 1] = cur ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
+      nc++;
+    }
+    prev = cur;
+  }
+  return crit_set_fill(out, rw, vint, nc, 0, rw_min, rw_max);
+}
+
+/* ======================================================================== */
+/* Closed forms and series (13)-(18), R_m^(1)                               */
+/* ======================================================================== */
+
+int autobal_pendulum_rw1_k0(double R_m, double *rw1, autobal_error *err) {
+  int st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "");
+  if (st) return st;
+  if (rw1) *rw1 = 1.0; /* (13) */
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_rw23_k0_series_small(double R_m, double *rw2, double *rw3,
+                                          autobal_error *err) {
+  double eps;
+  int st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "");
+  if (st) return st;
+  eps = cbrt(R_m / 2.0);
+  /* (14), 0 < R_m < 0.05 */
+  if (rw2) *rw2 = 1.0 + (49.0 / 16.0) * R_m + (12397.0 / 1024.0) * R_m * R_m;
+  if (rw3) *rw3 = 1.0 + 2.0 * eps + (7.0 / 3.0) * eps * eps + (29.0 / 8.0) * eps * eps * eps;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_rw23_k0_series_large(double R_m, double *rw2, double *rw3,
+                                          autobal_error *err) {
+  double q, q2, pre, even, odd;
+  int st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.25, 1, "");
+  if (st) return st;
+  q = sqrt((0.25 - R_m) / 2.0); /* (14), corrected q */
+  q2 = q * q;
+  pre = 1.0 / (8.0 * q2);
+  even = 1.0 + 5.5 * q2 - (155.0 / 8.0) * q2 * q2;
+  odd = 2.0 * q - (37.0 / 4.0) * q2 * q;
+  /* upper signs R_w3, lower signs R_w2 */
+  if (rw3) *rw3 = pre * (even + odd);
+  if (rw2) *rw2 = pre * (even - odd);
+  return AUTOBAL_SUCCESS;
+}
+
+typedef struct {
+  double s;
+} u_ctx;
+
+/* R_m = (u^3/(1-2u^2))^2  <=>  u^3 + 2 sqrt(R_m) u^2 - sqrt(R_m) = 0 on (0, 1/sqrt 2) */
+static int u_fn(double u, void *vctx, double *fx) {
+  const u_ctx *c = (const u_ctx *)vctx;
+  *fx = u * u * u + 2.0 * c->s * u * u - c->s;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_rw1_k1(double R_m, double *rw1, double *u_out, autobal_error *err) {
+  u_ctx c;
+  double u;
+  int st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "");
+  if (st) return st;
+  c.s = sqrt(R_m);
+  /* f(0) = -s < 0, f(1/sqrt 2) = 2^{-3/2} > 0, f increasing on u > 0 */
+  st = autobal_root_brent(u_fn, &c, 0.0, sqrt(0.5), 1e-300, 4 * DBL_EPSILON, 400, &u, err);
+  if (st) return st;
+  if (u_out) *u_out = u;
+  if (rw1) *rw1 = sqrt(1.0 - u * u) / (1.0 - 2.0 * u * u); /* (16) */
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_rw1_k1_series(double R_m, double *rw1, autobal_error *err) {
+  double s;
+  int st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "");
+  if (st) return st;
+  s = cbrt(R_m);
+  if (rw1) *rw1 = 1.0 + 1.5 * s + 0.875 * s * s + (1.0 / 48.0) * s * s * s; /* (17) */
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_rw23_k1(double R_m, double *rw23, autobal_error *err) {
+  int st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.25, 1, "");
+  if (st) return st;
+  if (rw23) *rw23 = sqrt(2.0 * (1.0 - 2.0 * R_m)) / (1.0 - 4.0 * R_m); /* (18) */
+  return AUTOBAL_SUCCESS;
+}
+
+/* g'(u) for g(u) = R_w1(u) of (16) - R_w2/3(R_m(u)) of (18) */
+static int g_prime_fn(double u, void *vctx, double *fx) {
+  double A = sqrt(1.0 - u * u), B = 1.0 - 2.0 * u * u;
+  double t = u * u * u / B, tp = (3.0 * u * u * B + 4.0 * u * u * u * u) / (B * B);
+  double Rm = t * t, Rmp = 2.0 * t * tp;
+  double C = sqrt(2.0 * (1.0 - 2.0 * Rm)), E = 1.0 - 4.0 * Rm;
+  double d16 = (-u * B / A + 4.0 * u * A) / (B * B);
+  double d18 = (-2.0 * E / C + 4.0 * C) / (E * E);
+  (void)vctx;
+  *fx = d16 - d18 * Rmp;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_rm1(double *rm1, double *rw, autobal_error *err) {
+  /* The curves touch where g has a double zero: g <= 0 near it with a
+   * maximum 0, so g'(u) = 0 there.  Bracket the sign change of g' from + to -
+   * by a scan over u (R_m(u) < 1/4 needs u < 0.5615), then Brent. */
+  double a = 0.30, fa, u = 0.0, g;
+  int i, st, found = 0;
+  g_prime_fn(a, NULL, &fa);
+  for (i = 1; i <= 200 && !found; i++) {
+    double b = 0.30 + (0.56 - 0.30) * i / 200.0, fb;
+    g_prime_fn(b, NULL, &fb);
+    if (fa > 0 && fb <= 0) {
+      st = autobal_root_brent(g_prime_fn, NULL, a, b, 1e-300, 4 * DBL_EPSILON, 400, &u, err);
+      if (st) return st;
+      found = 1;
+    }
+    a = b;
+    fa = fb;
+  }
+  if (!found)
+    return autobal_error_set(err, AUTOBAL_ENUMERIC, "rm1: no maximum of (16) - (18) found");
+  {
+    double B = 1.0 - 2.0 * u * u, t = u * u * u / B, Rm = t * t;
+    double r16 = sqrt(1.0 - u * u) / B;
+    double r18 = sqrt(2.0 * (1.0 - 2.0 * Rm)) / (1.0 - 4.0 * Rm);
+    g = r16 - r18;
+    if (fabs(g) > 1e-8 * r16)
+      return autobal_error_set(err, AUTOBAL_ENUMERIC,
+                               "rm1: curves (16) and (18) do not touch at u = %.17g (gap %g)", u, g);
+    if (rm1) *rm1 = Rm;
+    if (rw) *rw = r16;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* ======================================================================== */
+/* Maps                                                                     */
+/* ======================================================================== */
+
+#define MAP_DEFAULT_NK 65
+
+static int map_point(const autobal_pendulum_map_spec *s, const double *ks, size_t nk, double Rm,
+                     double Rw, autobal_pendulum_workspace *ws, signed char *v, double *mr) {
+  size_t i;
+  int worst = AUTOBAL_VERDICT_STABLE;
+  double mre = -INFINITY;
+  int undamped = s->H == 0.0 && s->h == 0.0;
+  for (i = 0; i < nk; i++) {
+    double k = ks[i], kc = 1.0 - k;
+    int vv;
+    if (undamped) {
+      vv = undamped_verdict_ld(Rm, (long double)Rw * Rw, k);
+      if (vv == AUTOBAL_VERDICT_MARGINAL) vv = AUTOBAL_VERDICT_STABLE; /* on a boundary */
+    } else {
+      int st = damped_verdict_k(Rw, Rm, s->H, s->h, k, kc, &vv, NULL, NULL);
+      if (st) return st;
+    }
+    if (vv < worst) worst = vv;
+    if (mr) {
+      damped_ctx c;
+      double m;
+      int st;
+      c.ws = ws;
+      c.R_m = Rm;
+      c.H = s->H;
+      c.h = s->h;
+      c.k = k;
+      c.kc = kc;
+      st = damped_maxre_fn(Rw, &c, &m);
+      if (st) return st;
+      if (m > mre) mre = m;
+    }
+  }
+  *v = (signed char)worst;
+  if (mr) *mr = mre;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdict,
+                         double *max_real, autobal_error *err) {
+  double kdef[MAP_DEFAULT_NK];
+  const double *ks;
+  size_t nk, i, ntot;
+  int st, fail = AUTOBAL_SUCCESS;
+  char name[40];
+  if (s == NULL || verdict == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "map: NULL spec or output");
+  if ((s->n_Rm > 0 && s->R_m == NULL) || (s->n_Rw > 0 && s->R_w == NULL))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "map: NULL grid array");
+  if ((st = autobal_check_param(err, "H", s->H, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "h", s->h, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if (s->n_threads < 0)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter n_threads = %d is out of range: allowed [0, inf)",
+                             s->n_threads);
+  for (i = 0; i < s->n_Rm; i++) {
+    snprintf(name, sizeof name, "R_m[%zu]", i);
+    if ((st = autobal_check_param(err, name, s->R_m[i], 0.0, 1, 0.5, 1, "")) != 0) return st;
+  }
+  for (i = 0; i < s->n_Rw; i++) {
+    snprintf(name, sizeof name, "R_w[%zu]", i);
+    if ((st = autobal_check_param(err, name, s->R_w[i], 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  }
+  if (s->k == NULL || s->n_k == 0) {
+    if (s->k == NULL && s->n_k != 0)
+      return autobal_error_set(err, AUTOBAL_EINVAL, "map: k is NULL but n_k = %zu", s->n_k);
+    for (i = 0; i < MAP_DEFAULT_NK; i++) kdef[i] = (double)i / (double)(MAP_DEFAULT_NK - 1);
+    ks = kdef;
+    nk = MAP_DEFAULT_NK;
+  } else {
+    for (i = 0; i < s->n_k; i++) {
+      snprintf(name, sizeof name, "k[%zu]", i);
+      if ((st = autobal_check_param(err, name, s->k[i], 0.0, 0, 1.0, 0, "")) != 0) return st;
+    }
+    ks = s->k;
+    nk = s->n_k;
+  }
+  ntot = s->n_Rm * s->n_Rw;
+  if (ntot == 0) return AUTOBAL_SUCCESS;
+#ifdef AUTOBAL_HAVE_OPENMP
+  {
+    int nth = s->n_threads > 0 ? s->n_threads : omp_get_max_threads();
+#pragma omp parallel num_threads(nth)
+    {
+      autobal_pendulum_workspace *ws = NULL;
+      int local = AUTOBAL_SUCCESS;
+      long long idx;
+      if (max_real) {
+        ws = autobal_pendulum_workspace_alloc();
+        if (ws == NULL) local = AUTOBAL_ENOMEM;
+      }
+#pragma omp for schedule(dynamic, 64)
+      for (idx = 0; idx < (long long)ntot; idx++) {
+        size_t ii = (size_t)idx / s->n_Rw, jj = (size_t)idx % s->n_Rw;
+        if (local != AUTOBAL_SUCCESS) continue;
+        local = map_point(s, ks, nk, s->R_m[ii], s->R_w[jj], ws, &verdict[idx],
+                          max_real ? &max_real[idx] : NULL);
+      }
+      if (local != AUTOBAL_SUCCESS) {
+#pragma omp critical(autobal_pendulum_map_fail)
+        {
+          if (fail == AUTOBAL_SUCCESS) fail = local;
+        }
+      }
+      autobal_pendulum_workspace_free(ws);
+    }
+  }
+#else
+  {
+    autobal_pendulum_workspace *ws = NULL;
+    size_t idx;
+    if (max_real) {
+      ws = autobal_pendulum_workspace_alloc();
+      if (ws == NULL) fail = AUTOBAL_ENOMEM;
+    }
+    for (idx = 0; idx < ntot && fail == AUTOBAL_SUCCESS; idx++) {
+      size_t ii = idx / s->n_Rw, jj = idx % s->n_Rw;
+      fail = map_point(s, ks, nk, s->R_m[ii], s->R_w[jj], ws, &verdict[idx],
+                       max_real ? &max_real[idx] : NULL);
+    }
+    autobal_pendulum_workspace_free(ws);
+  }
+#endif
+  if (fail == AUTOBAL_ENOMEM)
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "map: cannot allocate a per-thread workspace");
+  if (fail != AUTOBAL_SUCCESS)
+    return autobal_error_set(err, fail, "map: evaluation failed at a grid point (%s)",
+                             autobal_strerror(fail));
+  return AUTOBAL_SUCCESS;
+}

@@ -1,0 +1,223 @@
+/* pendulum_motion.c: the explicit first-order form of the equations of
+ * motion (1) of the two-pendulum autobalancer, its Jacobian and derived
+ * quantities (spec: shared/spec/pendulum.md).  Dimensionless throughout
+ * (time tau = omega0 t, lengths in units of l).  No allocation, O(1).
+ *
+ * Derivation of the explicit form.  Write the absolute acceleration of the
+ * shaft centre in the rotating axes as
+ *     A = xi'' - 2R_w eta' - R_w^2 xi,   B = eta'' + 2R_w xi' - R_w^2 eta.
+ * The pendulum equations of (1) give the pendulum accelerations in terms of
+ * (A, B):
+ *     psi'' = -h psi' + A cos psi + B sin psi,
+ *     phi'' = -h phi' + A cos phi - B sin phi.                    eq. (1c,d)
+ * Substituted into the shaft equations (1a,b) they leave a symmetric 2x2
+ * system for (A, B):
+ *     [1 - R_m (c1^2 + c2^2)]  A - R_m (s1 c1 - s2 c2) B = r1,
+ *     -R_m (s1 c1 - s2 c2) A + [1 - R_m (s1^2 + s2^2)]  B = r2,
+ * (c1, s1 = cos, sin psi; c2, s2 = cos, sin phi) with
+ *     r1 = -H (xi' - R_w eta) - xi + R_m [ -h (psi' c1 + phi' c2)
+ *          - 2R_w (psi' s1 - phi' s2) - psi'^2 s1 - phi'^2 s2 + R_w^2 (2 s0 - s1 - s2) ],
+ *     r2 = -H (eta' + R_w xi) - eta + R_m [ -h (psi' s1 - phi' s2)
+ *          + 2R_w (psi' c1 + phi' c2) + psi'^2 c1 - phi'^2 c2 + R_w^2 (c1 - c2) ].
+ * Its determinant is 1 - 2R_m + R_m^2 (|u|^2 |v|^2 - (u.v)^2) with
+ * u = (c1, c2), v = (s1, -s2), hence >= 1 - 2R_m > 0 for R_m < 1/2
+ * (Cauchy-Schwarz): the system is solved in closed form (Cramer), then
+ *     xi'' = A + 2R_w eta' + R_w^2 xi,  eta'' = B - 2R_w xi' + R_w^2 eta.
+ */
+#include "autobal/pendulum.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* The 2x2 system for (A, B) at state y. */
+typedef struct motion_parts {
+  double s1, c1, s2, c2;     /* sin, cos of psi and phi */
+  double m11, m12, m22, det; /* the symmetric matrix and its determinant */
+  double r1, r2;             /* right-hand sides */
+  double A, B;               /* absolute acceleration of the shaft centre (rotating axes) */
+} motion_parts;
+
+static void motion_solve(const autobal_pendulum_params *p, const double *y, motion_parts *q) {
+  const double Rw = p->R_w, Rm = p->R_m, H = p->H, h = p->h;
+  const double Rw2 = Rw * Rw, s0 = sin(p->psi0);
+  const double xi = y[0], eta = y[1], dxi = y[4], deta = y[5], dpsi = y[6], dphi = y[7];
+  const double s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
+  q->s1 = s1;
+  q->c1 = c1;
+  q->s2 = s2;
+  q->c2 = c2;
+  q->m11 = 1.0 - Rm * (c1 * c1 + c2 * c2);
+  q->m22 = 1.0 - Rm * (s1 * s1 + s2 * s2);
+  q->m12 = -Rm * (s1 * c1 - s2 * c2);
+  q->det = q->m11 * q->m22 - q->m12 * q->m12;
+  q->r1 = -H * (dxi - Rw * eta) - xi +
+          Rm * (-h * (dpsi * c1 + dphi * c2) - 2.0 * Rw * (dpsi * s1 - dphi * s2) -
+                dpsi * dpsi * s1 - dphi * dphi * s2 + Rw2 * (2.0 * s0 - s1 - s2));
+  q->r2 = -H * (deta + Rw * xi) - eta +
+          Rm * (-h * (dpsi * s1 - dphi * s2) + 2.0 * Rw * (dpsi * c1 + dphi * c2) +
+                dpsi * dpsi * c1 - dphi * dphi * c2 + Rw2 * (c1 - c2));
+  q->A = (q->m22 * q->r1 - q->m12 * q->r2) / q->det;
+  q->B = (q->m11 * q->r2 - q->m12 * q->r1) / q->det;
+}
+
+int autobal_pendulum_rhs(double tau, const double y[], double dydt[], void *params) {
+  const autobal_pendulum_params *p = (const autobal_pendulum_params *)params;
+  motion_parts q;
+  double Rw, h;
+  (void)tau;
+  if (p == NULL || y == NULL || dydt == NULL) return AUTOBAL_EINVAL;
+  Rw = p->R_w;
+  h = p->h;
+  motion_solve(p, y, &q);
+  if (!(q.det > 0.0)) return AUTOBAL_ENUMERIC; /* only for R_m >= 1/2 or NaN input */
+  dydt[0] = y[4];
+  dydt[1] = y[5];
+  dydt[2] = y[6];
+  dydt[3] = y[7];
+  dydt[4] = q.A + 2.0 * Rw * y[5] + Rw * Rw * y[0];      /* eq. (1a) */
+  dydt[5] = q.B - 2.0 * Rw * y[4] + Rw * Rw * y[1];      /* eq. (1b) */
+  dydt[6] = -h * y[6] + q.A * q.c1 + q.B * q.s1;         /* eq. (1c) */
+  dydt[7] = -h * y[7] + q.A * q.c2 - q.B * q.s2;         /* eq. (1d) */
+  return AUTOBAL_SUCCESS;
+}
+
+/* Analytic Jacobian: differentiate M (A, B)^T = r,
+ *   M d(A, B)/dz = dr/dz - (dM/dz) (A, B),
+ * then the four acceleration formulas above. */
+int autobal_pendulum_jac(double tau, const double y[], double *dfdy, double dfdt[],
+                         void *params) {
+  const autobal_pendulum_params *p = (const autobal_pendulum_params *)params;
+  motion_parts q;
+  double Rw, Rm, H, h, Rw2, dpsi, dphi;
+  double dr1[8], dr2[8], dm11[8], dm12[8], dm22[8];
+  size_t z;
+  (void)tau;
+  if (p == NULL || y == NULL || dfdy == NULL || dfdt == NULL) return AUTOBAL_EINVAL;
+  Rw = p->R_w;
+  Rm = p->R_m;
+  H = p->H;
+  h = p->h;
+  Rw2 = Rw * Rw;
+  dpsi = y[6];
+  dphi = y[7];
+  motion_solve(p, y, &q);
+  if (!(q.det > 0.0)) return AUTOBAL_ENUMERIC;
+  {
+    const double s1 = q.s1, c1 = q.c1, s2 = q.s2, c2 = q.c2;
+    memset(dm11, 0, sizeof dm11);
+    memset(dm12, 0, sizeof dm12);
+    memset(dm22, 0, sizeof dm22);
+    dm11[2] = 2.0 * Rm * c1 * s1;
+    dm11[3] = 2.0 * Rm * c2 * s2;
+    dm12[2] = -Rm * (c1 * c1 - s1 * s1);
+    dm12[3] = Rm * (c2 * c2 - s2 * s2);
+    dm22[2] = -2.0 * Rm * s1 * c1;
+    dm22[3] = -2.0 * Rm * s2 * c2;
+
+    dr1[0] = -1.0;
+    dr1[1] = H * Rw;
+    dr1[2] = Rm * (h * dpsi * s1 - 2.0 * Rw * dpsi * c1 - dpsi * dpsi * c1 - Rw2 * c1);
+    dr1[3] = Rm * (h * dphi * s2 + 2.0 * Rw * dphi * c2 - dphi * dphi * c2 - Rw2 * c2);
+    dr1[4] = -H;
+    dr1[5] = 0.0;
+    dr1[6] = Rm * (-h * c1 - 2.0 * Rw * s1 - 2.0 * dpsi * s1);
+    dr1[7] = Rm * (-h * c2 + 2.0 * Rw * s2 - 2.0 * dphi * s2);
+
+    dr2[0] = -H * Rw;
+    dr2[1] = -1.0;
+    dr2[2] = Rm * (-h * dpsi * c1 - 2.0 * Rw * dpsi * s1 - dpsi * dpsi * s1 - Rw2 * s1);
+    dr2[3] = Rm * (h * dphi * c2 - 2.0 * Rw * dphi * s2 + dphi * dphi * s2 + Rw2 * s2);
+    dr2[4] = 0.0;
+    dr2[5] = -H;
+    dr2[6] = Rm * (-h * s1 + 2.0 * Rw * c1 + 2.0 * dpsi * c1);
+    dr2[7] = Rm * (h * s2 + 2.0 * Rw * c2 - 2.0 * dphi * c2);
+
+    memset(dfdy, 0, 64 * sizeof(double));
+    dfdy[0 * 8 + 4] = 1.0;
+    dfdy[1 * 8 + 5] = 1.0;
+    dfdy[2 * 8 + 6] = 1.0;
+    dfdy[3 * 8 + 7] = 1.0;
+    for (z = 0; z < 8; z++) {
+      const double b1 = dr1[z] - dm11[z] * q.A - dm12[z] * q.B;
+      const double b2 = dr2[z] - dm12[z] * q.A - dm22[z] * q.B;
+      const double dA = (q.m22 * b1 - q.m12 * b2) / q.det;
+      const double dB = (q.m11 * b2 - q.m12 * b1) / q.det;
+      dfdy[4 * 8 + z] = dA;
+      dfdy[5 * 8 + z] = dB;
+      dfdy[6 * 8 + z] = dA * c1 + dB * s1;
+      dfdy[7 * 8 + z] = dA * c2 - dB * s2;
+    }
+    dfdy[4 * 8 + 5] += 2.0 * Rw;
+    dfdy[4 * 8 + 0] += Rw2;
+    dfdy[5 * 8 + 4] += -2.0 * Rw;
+    dfdy[5 * 8 + 1] += Rw2;
+    dfdy[6 * 8 + 6] += -h;
+    dfdy[6 * 8 + 2] += -q.A * s1 + q.B * c1;
+    dfdy[7 * 8 + 7] += -h;
+    dfdy[7 * 8 + 3] += -q.A * s2 - q.B * c2;
+  }
+  for (z = 0; z < 8; z++) dfdt[z] = 0.0; /* autonomous */
+  return AUTOBAL_SUCCESS;
+}
+
+void autobal_pendulum_main_motion(const autobal_pendulum_params *p, double y[]) {
+  size_t i;
+  for (i = 0; i < 8; i++) y[i] = 0.0;
+  y[2] = y[3] = p->psi0; /* eq. (4) */
+}
+
+double autobal_pendulum_wrap_angle(double a) {
+  double w = remainder(a, 2.0 * M_PI); /* in [-pi, pi] */
+  if (w <= -M_PI) w += 2.0 * M_PI;
+  return w;
+}
+
+double autobal_pendulum_shaft_amplitude(const double y[]) { return hypot(y[0], y[1]); }
+
+double autobal_pendulum_residual_unbalance(const autobal_pendulum_params *p, const double y[],
+                                           double *d_u, double *d_v) {
+  const double du = sin(p->psi0) - 0.5 * (sin(y[2]) + sin(y[3]));
+  const double dv = 0.5 * (cos(y[2]) - cos(y[3]));
+  if (d_u) *d_u = du;
+  if (d_v) *d_v = dv;
+  return hypot(du, dv);
+}
+
+double autobal_pendulum_unbalance_scalar(double tau, const double y[], void *params) {
+  (void)tau;
+  return autobal_pendulum_residual_unbalance((const autobal_pendulum_params *)params, y, NULL,
+                                             NULL);
+}
+
+double autobal_pendulum_jacobi_integral(const autobal_pendulum_params *p, const double y[]) {
+  const double Rw2 = p->R_w * p->R_w, Rm = p->R_m, s0 = sin(p->psi0);
+  const double xi = y[0], eta = y[1], dxi = y[4], deta = y[5], dpsi = y[6], dphi = y[7];
+  const double s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
+  const double T2 = 0.5 * (dxi * dxi + deta * deta + Rm * (dpsi * dpsi + dphi * dphi)) -
+                    Rm * dxi * (c1 * dpsi + c2 * dphi) - Rm * deta * (s1 * dpsi - s2 * dphi);
+  const double T0 =
+      0.5 * Rw2 * (xi * xi + eta * eta + 2.0 * Rm * (xi * (2.0 * s0 - s1 - s2) + eta * (c1 - c2)));
+  const double V = 0.5 * (xi * xi + eta * eta);
+  return T2 - T0 + V;
+}
+
+double autobal_pendulum_jacobi_power(const autobal_pendulum_params *p, const double y[]) {
+  const double Rw = p->R_w;
+  const double vx = y[4] - Rw * y[1], vy = y[5] + Rw * y[0]; /* absolute shaft velocity */
+  return -p->H * (vx * y[4] + vy * y[5]) - p->R_m * p->h * (y[6] * y[6] + y[7] * y[7]);
+}
+
+void autobal_pendulum_motion_derive(const autobal_pendulum_params *p, const double y[],
+                                    autobal_pendulum_motion_derived *out) {
+  out->amplitude = autobal_pendulum_shaft_amplitude(y);
+  out->unbalance = autobal_pendulum_residual_unbalance(p, y, &out->unbalance_u, &out->unbalance_v);
+  out->alpha = autobal_pendulum_wrap_angle(y[2] - p->psi0);
+  out->beta = autobal_pendulum_wrap_angle(y[3] - p->psi0);
+  out->jacobi = autobal_pendulum_jacobi_integral(p, y);
+}

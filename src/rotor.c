@@ -1,0 +1,1030 @@
+/* rotor.c: the rotor - massive housing - ball autobalancer model (spec rotor.md):
+ * parameters and lumped coefficients (2.7)-(2.11), the right-hand sides in the
+ * fixed frame (3.2)-(3.8) and with the balls in the rotating frame (3.9)-(3.13),
+ * derived outputs, balanced configurations (3.14). */
+#include "autobal/rotor.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+struct autobal_rotor {
+  autobal_rotor_params p;  /* copy; plane arrays point into `store` */
+  autobal_rotor_lumped L;  /* lumped coefficients in use */
+  size_t n_planes, N, dim;
+  size_t off[AUTOBAL_ROTOR_MAX_PLANES], cnt[AUTOBAL_ROTOR_MAX_PLANES];
+  double s0[AUTOBAL_ROTOR_MAX_PLANES];    /* m0 r0, kg m */
+  double sref[AUTOBAL_ROTOR_MAX_PLANES];  /* reference of the monitor, kg m */
+  double mtot[AUTOBAL_ROTOR_MAX_PLANES];  /* m0 + sum m_i (FULL inertia), kg */
+  double l_L, l_R;                        /* support positions for outputs (may be NAN) */
+  /* per ball (length N each, state order) */
+  double *m, *r, *mr, *hr, *kappa, *psi_init, *rate_init, *h;
+  /* workspace of the right-hand sides */
+  double *sn, *cs;
+  double *store;
+  autobal_error err;
+};
+
+/* ---- helpers ------------------------------------------------------------ */
+
+/* Wrap an angle to (-pi, pi]. */
+static double wrap_pi(double a) {
+  double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
+  if (w <= -M_PI) w += 2.0 * M_PI;
+  if (w > M_PI) w -= 2.0 * M_PI;
+  return w;
+}
+
+/* Cholesky solve of a symmetric positive definite 4x4 system (lower triangle
+ * of a is used and overwritten); b is overwritten with the solution.  Returns
+ * 0, or -1 when a pivot is not positive (relative to the diagonal) or NaN. */
+static int chol4_solve(double a[4][4], double b[4]) {
+  int i, j, k;
+  for (j = 0; j < 4; j++) {
+    double s = a[j][j];
+    double scale = fabs(a[j][j]);
+    for (k = 0; k < j; k++) s -= a[j][k] * a[j][k];
+    if (!(s > 1e-13 * scale)) return -1;
+    a[j][j] = sqrt(s);
+    for (i = j + 1; i < 4; i++) {
+      double t = a[i][j];
+      for (k = 0; k < j; k++) t -= a[i][k] * a[j][k];
+      a[i][j] = t / a[j][j];
+    }
+  }
+  for (i = 0; i < 4; i++) {
+    double s = b[i];
+    for (k = 0; k < i; k++) s -= a[i][k] * b[k];
+    b[i] = s / a[i][i];
+  }
+  for (i = 3; i >= 0; i--) {
+    double s = b[i];
+    for (k = i + 1; k < 4; k++) s -= a[k][i] * b[k];
+    b[i] = s / a[i][i];
+  }
+  return 0;
+}
+
+/* Rotor part of (3.2): the mass matrix diag(M, M, A, A) in a and the
+ * right-hand side b = -(damping + gyroscopic + stiffness forces). */
+static void rotor_base(const autobal_rotor_lumped *L, double omega, const double *q,
+                       const double *qd, double a[4][4], double b[4]) {
+  const double x = q[0], yy = q[1], al = q[2], be = q[3];
+  const double xd = qd[0], yd = qd[1], ald = qd[2], bed = qd[3];
+  memset(a, 0, 16 * sizeof(double));
+  a[0][0] = L->M;
+  a[1][1] = L->M;
+  a[2][2] = L->A;
+  a[3][3] = L->A;
+  /* eq. (3.2) / (3.5)-(3.8), everything but the s'' terms moved to the right */
+  b[0] = -(L->h_x * xd + L->c_x * x - L->h_xbeta * bed - L->c_xbeta * be);
+  b[1] = -(L->h_y * yd + L->c_y * yy + L->h_yalpha * ald + L->c_yalpha * al);
+  b[2] = -(L->h_alpha * ald + L->c_alpha * al + L->C * omega * bed + L->h_yalpha * yd +
+           L->c_yalpha * yy);
+  b[3] = -(L->h_beta * bed + L->c_beta * be - L->C * omega * ald - L->h_xbeta * xd -
+           L->c_xbeta * x);
+}
+
+/* Add one plane to the 4x4 system.  The plane's unbalance (fixed axes) obeys
+ *   s_u'' = Suu u_D'' + Suv v_D'' + Fu,   s_v'' = Suv u_D'' + Svv v_D'' + Fv,
+ * with u_D'' = eu . q'', v_D'' = ev . q'' (3.3), eu = (1, 0, 0, d), ev = (0, 1, -d, 0).
+ * In (3.2)/(3.5)-(3.8) s_u'' enters the rows along eu and s_v'' along ev, so
+ *   a += Suu eu eu^T + Suv (eu ev^T + ev eu^T) + Svv ev ev^T,  b -= Fu eu + Fv ev.
+ * mfull (FULL inertia only, else 0) adds mfull (eu eu^T + ev ev^T). */
+static void add_plane(double a[4][4], double b[4], double d, double Suu, double Suv, double Svv,
+                      double Fu, double Fv, double mfull) {
+  const double eu[4] = {1.0, 0.0, 0.0, d};
+  const double ev[4] = {0.0, 1.0, -d, 0.0};
+  int i, k;
+  Suu += mfull;
+  Svv += mfull;
+  for (i = 0; i < 4; i++) {
+    for (k = 0; k < 4; k++)
+      a[i][k] += Suu * eu[i] * eu[k] + Suv * (eu[i] * ev[k] + ev[i] * eu[k]) + Svv * ev[i] * ev[k];
+    b[i] -= Fu * eu[i] + Fv * ev[i];
+  }
+}
+
+static int rhs_fail(autobal_rotor *R, double t, const char *which) {
+  autobal_error_set(&R->err, AUTOBAL_ENUMERIC,
+                    "%s right-hand side failed at t = %.17g s: the effective mass matrix is not "
+                    "positive definite or the state is not finite",
+                    which, t);
+  return GSL_EBADFUNC;
+}
+
+/* ---- right-hand sides ------------------------------------------------------ */
+
+int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
+  autobal_rotor *R = (autobal_rotor *)rotor;
+  const size_t N = R->N;
+  const double omega = R->p.omega;
+  const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
+  double a[4][4], b[4];
+  size_t j, k;
+
+  rotor_base(&R->L, omega, q, qd, a, b);
+  for (j = 0; j < R->n_planes; j++) {
+    const double phi0 = omega * t + R->p.plane[j].psi0;
+    const double w2s0 = omega * omega * R->s0[j];
+    /* the unbalance: phi_0' = omega, phi_0'' = 0 */
+    double Sss = 0.0, Ssc = 0.0, Scc = 0.0;
+    double Fu = -w2s0 * cos(phi0), Fv = -w2s0 * sin(phi0);
+    const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+    for (k = k0; k < k1; k++) {
+      const double s = sin(phi[k]), c = cos(phi[k]);
+      const double m = R->m[k], pd = phid[k], rel = pd - omega;
+      R->sn[k] = s;
+      R->cs[k] = c;
+      Sss += m * s * s;
+      Ssc += m * s * c;
+      Scc += m * c * c;
+      /* F_u, F_v of "Solving for the accelerations" */
+      Fu += R->hr[k] * rel * s - R->mr[k] * pd * pd * c;
+      Fv += -R->hr[k] * rel * c - R->mr[k] * pd * pd * s;
+    }
+    /* s_u'' = -S_ss u_D'' + S_sc v_D'' + F_u, s_v'' = S_sc u_D'' - S_cc v_D'' + F_v */
+    add_plane(a, b, R->p.plane[j].d, -Sss, Ssc, -Scc, Fu, Fv, R->mtot[j]);
+  }
+  if (chol4_solve(a, b) != 0 || !isfinite(b[0] + b[1] + b[2] + b[3]))
+    return rhs_fail(R, t, "fixed-frame");
+
+  for (k = 0; k < 4; k++) {
+    dydt[k] = qd[k];
+    dydt[4 + k] = b[k];
+  }
+  for (j = 0; j < R->n_planes; j++) {
+    const double d = R->p.plane[j].d;
+    const double uDdd = b[0] + d * b[3], vDdd = b[1] - d * b[2]; /* eq. (3.3) */
+    const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+    for (k = k0; k < k1; k++) {
+      dydt[8 + k] = phid[k];
+      /* eq. (3.4) solved for phi_i'' */
+      dydt[8 + N + k] = (uDdd * R->sn[k] - vDdd * R->cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
+    }
+  }
+  if (R->p.axial) { /* eq. (2.12) */
+    const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
+    dydt[8 + 2 * N] = zd;
+    dydt[9 + 2 * N] = -(R->L.h_z * zd + R->L.c_z * z) / R->L.M;
+  }
+  return GSL_SUCCESS;
+}
+
+int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor) {
+  autobal_rotor *R = (autobal_rotor *)rotor;
+  const size_t N = R->N;
+  const double omega = R->p.omega, w2 = omega * omega;
+  const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
+  const double cw = cos(omega * t), sw = sin(omega * t);
+  double a[4][4], b[4];
+  size_t j, k;
+
+  rotor_base(&R->L, omega, q, qd, a, b);
+  for (j = 0; j < R->n_planes; j++) {
+    /* rotor-axes quantities (3.10): s_xi, s_eta and their rates */
+    double sxi = R->s0[j] * cos(R->p.plane[j].psi0), seta = R->s0[j] * sin(R->p.plane[j].psi0);
+    double sxid = 0.0, setad = 0.0;
+    /* s_xi'' = Txx a_xi + Txe a_eta + Gxi, s_eta'' = Txe a_xi + Tee a_eta + Geta,
+     * from s_xi'' = -sum m r (psi'' sin + psi'^2 cos), s_eta'' = sum m r (psi'' cos - psi'^2 sin)
+     * and (3.13): psi'' = (a_xi sin psi - a_eta cos psi) / r - (h/m) psi' */
+    double Txx = 0.0, Txe = 0.0, Tee = 0.0, Gxi = 0.0, Geta = 0.0;
+    const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+    for (k = k0; k < k1; k++) {
+      const double s = sin(psi[k]), c = cos(psi[k]);
+      const double m = R->m[k], mr = R->mr[k], hr = R->hr[k], pd = psid[k];
+      R->sn[k] = s;
+      R->cs[k] = c;
+      sxi += mr * c;
+      seta += mr * s;
+      sxid -= mr * pd * s;
+      setad += mr * pd * c;
+      Txx -= m * s * s;
+      Txe += m * s * c;
+      Tee -= m * c * c;
+      Gxi += hr * pd * s - mr * pd * pd * c;
+      Geta += -hr * pd * c - mr * pd * pd * s;
+    }
+    {
+      /* (3.11) differentiated twice:
+       * s_u'' = (s_xi'' - 2w s_eta' - w^2 s_xi) cos wt - (s_eta'' + 2w s_xi' - w^2 s_eta) sin wt
+       * s_v'' = (s_xi'' - 2w s_eta' - w^2 s_xi) sin wt + (s_eta'' + 2w s_xi' - w^2 s_eta) cos wt */
+      const double cxi = Gxi - 2.0 * omega * setad - w2 * sxi;
+      const double ceta = Geta + 2.0 * omega * sxid - w2 * seta;
+      const double Fu = cxi * cw - ceta * sw, Fv = cxi * sw + ceta * cw;
+      /* (a_xi, a_eta) = Rot^T (u_D'', v_D''): the fixed-axes coupling is Rot T Rot^T */
+      const double t00 = cw * Txx - sw * Txe, t01 = cw * Txe - sw * Tee; /* Rot T, row 0 */
+      const double t10 = sw * Txx + cw * Txe, t11 = sw * Txe + cw * Tee; /* Rot T, row 1 */
+      const double Suu = t00 * cw - t01 * sw;
+      const double Suv = t00 * sw + t01 * cw;
+      const double Svv = t10 * sw + t11 * cw;
+      add_plane(a, b, R->p.plane[j].d, Suu, Suv, Svv, Fu, Fv, R->mtot[j]);
+    }
+  }
+  if (chol4_solve(a, b) != 0 || !isfinite(b[0] + b[1] + b[2] + b[3]))
+    return rhs_fail(R, t, "rotating-frame");
+
+  for (k = 0; k < 4; k++) {
+    dydt[k] = qd[k];
+    dydt[4 + k] = b[k];
+  }
+  for (j = 0; j < R->n_planes; j++) {
+    const double d = R->p.plane[j].d;
+    const double uDdd = b[0] + d * b[3], vDdd = b[1] - d * b[2]; /* eq. (3.3) */
+    /* acceleration of D on the rotor axes (spec, after (3.13)) */
+    const double axi = uDdd * cw + vDdd * sw, aeta = -uDdd * sw + vDdd * cw;
+    const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+    for (k = k0; k < k1; k++) {
+      dydt[8 + k] = psid[k];
+      /* eq. (3.13) divided by m r^2 */
+      dydt[8 + N + k] = (axi * R->sn[k] - aeta * R->cs[k]) / R->r[k] - R->kappa[k] * psid[k];
+    }
+  }
+  if (R->p.axial) { /* eq. (2.12) */
+    const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
+    dydt[8 + 2 * N] = zd;
+    dydt[9 + 2 * N] = -(R->L.h_z * zd + R->L.c_z * z) / R->L.M;
+  }
+  return GSL_SUCCESS;
+}
+
+/* ---- parameters ----------------------------------------------------------- */
+
+static const double default_ball_mass[2] = {0.05, 0.05};
+static const double default_ball_radius[2] = {0.1, 0.1};
+static const double default_ball_damping[2] = {0.1, 0.1};
+static const double default_ball_psi[2] = {1.0, 2.5};
+static const double default_ball_rate[2] = {0.0, 0.0};
+
+autobal_rotor_params autobal_rotor_params_default(void) {
+  autobal_rotor_params p;
+  memset(&p, 0, sizeof p);
+  p.input = AUTOBAL_ROTOR_HARDWARE;
+  p.hw.M_k = 6.0;
+  p.hw.A_k = 0.12;
+  p.hw.m_p = 4.0;
+  p.hw.A_p = 0.04;
+  p.hw.C_p = 0.03;
+  p.hw.l_L = 0.20;
+  p.hw.l_R = 0.15;
+  p.hw.c_Lx = 1.0e5;
+  p.hw.c_Ly = 1.0e5;
+  p.hw.c_Lz = 2.0e5;
+  p.hw.c_Rx = 1.5e5;
+  p.hw.c_Ry = 1.5e5;
+  p.hw.h_Lx = 100.0;
+  p.hw.h_Ly = 100.0;
+  p.hw.h_Lz = 200.0;
+  p.hw.h_Rx = 150.0;
+  p.hw.h_Ry = 150.0;
+  (void)autobal_rotor_lumped_from_hardware(&p.hw, &p.lumped, NULL);
+  p.inertia = AUTOBAL_ROTOR_INERTIA_PAPER;
+  p.omega = 500.0;
+  p.axial = 0;
+  p.n_planes = 1;
+  p.plane[0].d = 0.10;
+  p.plane[0].m0 = 0.02;
+  p.plane[0].r0 = 0.1;
+  p.plane[0].psi0 = 0.0;
+  p.plane[0].n_balls = 2;
+  p.plane[0].ball_mass = default_ball_mass;
+  p.plane[0].ball_radius = default_ball_radius;
+  p.plane[0].ball_damping = default_ball_damping;
+  p.plane[0].ball_psi = default_ball_psi;
+  p.plane[0].ball_rate = default_ball_rate;
+  return p;
+}
+
+static int check_hw(const autobal_rotor_hardware *hw, autobal_error *err) {
+  int st;
+  if (hw == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "hardware parameters are NULL");
+#define CHK(field, lo, lo_open, unit)                                                          \
+  if ((st = autobal_check_param(err, "hw." #field, hw->field, lo, lo_open, INFINITY, 1, unit)) != \
+      AUTOBAL_SUCCESS)                                                                         \
+    return st;
+  CHK(M_k, 0.0, 1, "kg")
+  CHK(A_k, 0.0, 1, "kg m^2")
+  CHK(m_p, 0.0, 1, "kg")
+  CHK(A_p, 0.0, 1, "kg m^2")
+  CHK(C_p, 0.0, 0, "kg m^2")
+  CHK(l_L, -INFINITY, 1, "m")
+  CHK(l_R, -INFINITY, 1, "m")
+  CHK(c_Lx, 0.0, 0, "N/m")
+  CHK(c_Ly, 0.0, 0, "N/m")
+  CHK(c_Lz, 0.0, 0, "N/m")
+  CHK(c_Rx, 0.0, 0, "N/m")
+  CHK(c_Ry, 0.0, 0, "N/m")
+  CHK(h_Lx, 0.0, 0, "N s/m")
+  CHK(h_Ly, 0.0, 0, "N s/m")
+  CHK(h_Lz, 0.0, 0, "N s/m")
+  CHK(h_Rx, 0.0, 0, "N s/m")
+  CHK(h_Ry, 0.0, 0, "N s/m")
+#undef CHK
+  if (!(hw->l_L + hw->l_R > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "support positions: the left support (z = -l_L = %.17g m) must lie left "
+                             "of the right one (z = l_R = %.17g m): need l_L + l_R > 0",
+                             -hw->l_L, hw->l_R);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_lumped_from_hardware(const autobal_rotor_hardware *hw, autobal_rotor_lumped *out,
+                                       autobal_error *err) {
+  int st = check_hw(hw, err);
+  autobal_rotor_lumped L;
+  if (st != AUTOBAL_SUCCESS) return st;
+  if (out == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "output lumped struct is NULL");
+  /* eq. (2.7) */
+  L.M = hw->M_k + hw->m_p;
+  L.A = hw->A_k + hw->A_p;
+  L.C = hw->C_p;
+  /* eq. (2.9), with the corrected c_z = c_Lz */
+  L.c_x = hw->c_Lx + hw->c_Rx;
+  L.c_y = hw->c_Ly + hw->c_Ry;
+  L.c_z = hw->c_Lz;
+  L.c_alpha = hw->c_Ly * hw->l_L * hw->l_L + hw->c_Ry * hw->l_R * hw->l_R;
+  L.c_beta = hw->c_Lx * hw->l_L * hw->l_L + hw->c_Rx * hw->l_R * hw->l_R;
+  L.c_xbeta = hw->c_Lx * hw->l_L - hw->c_Rx * hw->l_R;
+  L.c_yalpha = hw->c_Ly * hw->l_L - hw->c_Ry * hw->l_R;
+  /* eq. (2.11) */
+  L.h_x = hw->h_Lx + hw->h_Rx;
+  L.h_y = hw->h_Ly + hw->h_Ry;
+  L.h_z = hw->h_Lz;
+  L.h_alpha = hw->h_Ly * hw->l_L * hw->l_L + hw->h_Ry * hw->l_R * hw->l_R;
+  L.h_beta = hw->h_Lx * hw->l_L * hw->l_L + hw->h_Rx * hw->l_R * hw->l_R;
+  L.h_xbeta = hw->h_Lx * hw->l_L - hw->h_Rx * hw->l_R;
+  L.h_yalpha = hw->h_Ly * hw->l_L - hw->h_Ry * hw->l_R;
+  *out = L;
+  return AUTOBAL_SUCCESS;
+}
+
+/* 2x2 block [[d1, o], [o, d2]] positive semidefinite (relative slack). */
+static int check_psd(autobal_error *err, const char *what, const char *n1, double d1,
+                     const char *n2, double d2, const char *no, double o, const char *unit) {
+  if (o * o > d1 * d2 * (1.0 + 1e-12))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "lumped %s block is not positive semidefinite: %s^2 = %.17g exceeds "
+                             "%s*%s = %.17g (%s = %.17g %s)",
+                             what, no, o * o, n1, n2, d1 * d2, no, o, unit);
+  return AUTOBAL_SUCCESS;
+}
+
+static int check_lumped(const autobal_rotor_lumped *L, autobal_error *err) {
+  int st;
+#define CHK(field, lo, lo_open, unit)                                                              \
+  if ((st = autobal_check_param(err, "lumped." #field, L->field, lo, lo_open, INFINITY, 1, unit)) != \
+      AUTOBAL_SUCCESS)                                                                             \
+    return st;
+  CHK(M, 0.0, 1, "kg")
+  CHK(A, 0.0, 1, "kg m^2")
+  CHK(C, 0.0, 0, "kg m^2")
+  CHK(c_x, 0.0, 0, "N/m")
+  CHK(c_y, 0.0, 0, "N/m")
+  CHK(c_z, 0.0, 0, "N/m")
+  CHK(c_alpha, 0.0, 0, "N m")
+  CHK(c_beta, 0.0, 0, "N m")
+  CHK(c_xbeta, -INFINITY, 1, "N")
+  CHK(c_yalpha, -INFINITY, 1, "N")
+  CHK(h_x, 0.0, 0, "N s/m")
+  CHK(h_y, 0.0, 0, "N s/m")
+  CHK(h_z, 0.0, 0, "N s/m")
+  CHK(h_alpha, 0.0, 0, "N m s")
+  CHK(h_beta, 0.0, 0, "N m s")
+  CHK(h_xbeta, -INFINITY, 1, "N s")
+  CHK(h_yalpha, -INFINITY, 1, "N s")
+#undef CHK
+  if ((st = check_psd(err, "stiffness x-beta", "c_x", L->c_x, "c_beta", L->c_beta, "c_xbeta",
+                      L->c_xbeta, "N")) != AUTOBAL_SUCCESS)
+    return st;
+  if ((st = check_psd(err, "stiffness y-alpha", "c_y", L->c_y, "c_alpha", L->c_alpha, "c_yalpha",
+                      L->c_yalpha, "N")) != AUTOBAL_SUCCESS)
+    return st;
+  if ((st = check_psd(err, "damping x-beta", "h_x", L->h_x, "h_beta", L->h_beta, "h_xbeta",
+                      L->h_xbeta, "N s")) != AUTOBAL_SUCCESS)
+    return st;
+  return check_psd(err, "damping y-alpha", "h_y", L->h_y, "h_alpha", L->h_alpha, "h_yalpha",
+                   L->h_yalpha, "N s");
+}
+
+int autobal_rotor_plane_can_balance(double s0, const double *a, size_t n) {
+  double sum = 0.0, amax = 0.0, lo;
+  size_t i;
+  if (!(s0 >= 0.0)) return 0;
+  if (n == 0) return s0 == 0.0;
+  if (a == NULL) return 0;
+  for (i = 0; i < n; i++) {
+    if (!(a[i] >= 0.0) || !isfinite(a[i])) return 0;
+    sum += a[i];
+    if (a[i] > amax) amax = a[i];
+  }
+  lo = 2.0 * amax - sum;
+  if (lo < 0.0) lo = 0.0;
+  return s0 <= sum * (1.0 + 1e-12) && s0 >= lo - 1e-12 * sum;
+}
+
+static int check_plane(const autobal_rotor_plane *pl, size_t j, autobal_error *err, int *warn,
+                       char *warnmsg, size_t warnlen, double *msum) {
+  char name[96];
+  int st;
+  size_t i;
+  double s0, asum = 0.0;
+#define CHKP(field, lo, lo_open, hi, hi_open, unit)                                        \
+  snprintf(name, sizeof name, "plane[%zu]." #field, j);                                   \
+  if ((st = autobal_check_param(err, name, pl->field, lo, lo_open, hi, hi_open, unit)) != \
+      AUTOBAL_SUCCESS)                                                                    \
+    return st;
+  CHKP(d, -INFINITY, 1, INFINITY, 1, "m")
+  CHKP(m0, 0.0, 0, INFINITY, 1, "kg")
+  CHKP(r0, 0.0, 0, INFINITY, 1, "m")
+  CHKP(psi0, -INFINITY, 1, INFINITY, 1, "rad")
+#undef CHKP
+  if (pl->n_balls > AUTOBAL_ROTOR_MAX_BALLS)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter plane[%zu].n_balls = %zu is out of range: allowed [0, %d]", j,
+                             pl->n_balls, AUTOBAL_ROTOR_MAX_BALLS);
+  if (pl->n_balls > 0 &&
+      (pl->ball_mass == NULL || pl->ball_radius == NULL || pl->ball_damping == NULL))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "plane[%zu]: n_balls = %zu but ball_mass, ball_radius or ball_damping "
+                             "is NULL",
+                             j, pl->n_balls);
+  for (i = 0; i < pl->n_balls; i++) {
+#define CHKB(arr, lo, lo_open, unit)                                                          \
+  snprintf(name, sizeof name, "plane[%zu]." #arr "[%zu]", j, i);                              \
+  if ((st = autobal_check_param(err, name, pl->arr[i], lo, lo_open, INFINITY, 1, unit)) !=    \
+      AUTOBAL_SUCCESS)                                                                        \
+    return st;
+    CHKB(ball_mass, 0.0, 1, "kg")
+    CHKB(ball_radius, 0.0, 1, "m")
+    CHKB(ball_damping, 0.0, 0, "kg/s")
+    if (pl->ball_psi) {
+      CHKB(ball_psi, -INFINITY, 1, "rad")
+    }
+    if (pl->ball_rate) {
+      CHKB(ball_rate, -INFINITY, 1, "rad/s")
+    }
+#undef CHKB
+    asum += pl->ball_mass[i] * pl->ball_radius[i];
+    *msum += pl->ball_mass[i];
+  }
+  /* existence of a balanced configuration (3.14): a warning, not an error */
+  s0 = pl->m0 * pl->r0;
+  {
+    double amax = 0.0, lo;
+    for (i = 0; i < pl->n_balls; i++)
+      if (pl->ball_mass[i] * pl->ball_radius[i] > amax) amax = pl->ball_mass[i] * pl->ball_radius[i];
+    lo = 2.0 * amax - asum;
+    if (lo < 0.0) lo = 0.0;
+    if (!(s0 <= asum * (1.0 + 1e-12))) {
+      if (!*warn)
+        snprintf(warnmsg, warnlen,
+                 "plane[%zu]: the balls cannot cancel the unbalance: sum m_i r_i = %.6g kg m < "
+                 "m0 r0 = %.6g kg m (no balanced motion exists)",
+                 j, asum, s0);
+      *warn = 1;
+    } else if (!(s0 >= lo - 1e-12 * asum)) {
+      if (!*warn)
+        snprintf(warnmsg, warnlen,
+                 "plane[%zu]: the balls cannot cancel the unbalance: m0 r0 = %.6g kg m is below "
+                 "2 max m_i r_i - sum m_i r_i = %.6g kg m (the heaviest ball dominates; no "
+                 "balanced motion exists)",
+                 j, s0, lo);
+      *warn = 1;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err) {
+  autobal_rotor_lumped L;
+  int st, warn = 0;
+  char warnmsg[AUTOBAL_ERRMSG_SIZE];
+  size_t j, ntot = 0;
+  double heavy = 0.0;
+  warnmsg[0] = '\0';
+  if (p == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "rotor parameters are NULL");
+  if (p->input == AUTOBAL_ROTOR_HARDWARE) {
+    if ((st = autobal_rotor_lumped_from_hardware(&p->hw, &L, err)) != AUTOBAL_SUCCESS) return st;
+  } else if (p->input == AUTOBAL_ROTOR_LUMPED) {
+    L = p->lumped;
+    if ((st = check_lumped(&L, err)) != AUTOBAL_SUCCESS) return st;
+    if (!isnan(p->hw.l_L) && !isfinite(p->hw.l_L))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "parameter hw.l_L = %g m must be finite or NAN (unknown)", p->hw.l_L);
+    if (!isnan(p->hw.l_R) && !isfinite(p->hw.l_R))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "parameter hw.l_R = %g m must be finite or NAN (unknown)", p->hw.l_R);
+  } else {
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter input = %d is not valid: use AUTOBAL_ROTOR_HARDWARE (0) or "
+                             "AUTOBAL_ROTOR_LUMPED (1)",
+                             p->input);
+  }
+  if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER && p->inertia != AUTOBAL_ROTOR_INERTIA_FULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter inertia = %d is not valid: use AUTOBAL_ROTOR_INERTIA_PAPER "
+                             "(0) or AUTOBAL_ROTOR_INERTIA_FULL (1)",
+                             p->inertia);
+  if (p->axial != 0 && p->axial != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter axial = %d is not valid: use 0 or 1",
+                             p->axial);
+  if ((st = autobal_check_param(err, "omega", p->omega, -INFINITY, 1, INFINITY, 1, "rad/s")) !=
+      AUTOBAL_SUCCESS)
+    return st;
+  if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
+                             AUTOBAL_ROTOR_MAX_PLANES);
+  {
+    static const char *const qn[4] = {"q0[0] (x)", "q0[1] (y)", "q0[2] (alpha)", "q0[3] (beta)"};
+    static const char *const qdn[4] = {"qd0[0] (x')", "qd0[1] (y')", "qd0[2] (alpha')",
+                                       "qd0[3] (beta')"};
+    for (j = 0; j < 4; j++) {
+      if ((st = autobal_check_param(err, qn[j], p->q0[j], -INFINITY, 1, INFINITY, 1,
+                                    j < 2 ? "m" : "rad")) != AUTOBAL_SUCCESS)
+        return st;
+      if ((st = autobal_check_param(err, qdn[j], p->qd0[j], -INFINITY, 1, INFINITY, 1,
+                                    j < 2 ? "m/s" : "rad/s")) != AUTOBAL_SUCCESS)
+        return st;
+    }
+    if ((st = autobal_check_param(err, "z0", p->z0, -INFINITY, 1, INFINITY, 1, "m")) != AUTOBAL_SUCCESS)
+      return st;
+    if ((st = autobal_check_param(err, "zd0", p->zd0, -INFINITY, 1, INFINITY, 1, "m/s")) !=
+        AUTOBAL_SUCCESS)
+      return st;
+  }
+  for (j = 0; j < p->n_planes; j++) {
+    double msum = 0.0;
+    if ((st = check_plane(&p->plane[j], j, err, &warn, warnmsg, sizeof warnmsg, &msum)) !=
+        AUTOBAL_SUCCESS)
+      return st;
+    ntot += p->plane[j].n_balls;
+    heavy += msum * (1.0 / L.M + p->plane[j].d * p->plane[j].d / L.A);
+  }
+  if (ntot > AUTOBAL_ROTOR_MAX_BALLS)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "total number of balls %zu is out of range: allowed [0, %d]", ntot,
+                             AUTOBAL_ROTOR_MAX_BALLS);
+  if (p->inertia == AUTOBAL_ROTOR_INERTIA_PAPER && !(heavy < 1.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "balls too heavy for the paper's inertia simplification: "
+                             "sum_j sum_i m_ji (1/M + d_j^2/A) = %.6g must be < 1 (the effective mass "
+                             "matrix could become singular; use the FULL inertia model or lighter balls)",
+                             heavy);
+  if (warn) return autobal_error_set(err, AUTOBAL_WARNING, "%s", warnmsg);
+  autobal_error_clear(err);
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- the handle ------------------------------------------------------------ */
+
+autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error *err) {
+  autobal_rotor *R;
+  autobal_error e;
+  int st = autobal_rotor_params_check(p, &e);
+  size_t j, k, N = 0;
+  if (err != NULL) *err = e;
+  if (st < 0) return NULL;
+  for (j = 0; j < p->n_planes; j++) N += p->plane[j].n_balls;
+  R = (autobal_rotor *)calloc(1, sizeof *R);
+  if (R == NULL) {
+    autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
+    return NULL;
+  }
+  /* 10 arrays of N doubles (N may be 0: allocate at least one element) */
+  R->store = (double *)calloc(10 * N + 1, sizeof(double));
+  if (R->store == NULL) {
+    free(R);
+    autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating arrays for %zu balls", N);
+    return NULL;
+  }
+  R->m = R->store;
+  R->r = R->m + N;
+  R->h = R->r + N;
+  R->mr = R->h + N;
+  R->hr = R->mr + N;
+  R->kappa = R->hr + N;
+  R->psi_init = R->kappa + N;
+  R->rate_init = R->psi_init + N;
+  R->sn = R->rate_init + N;
+  R->cs = R->sn + N;
+  R->p = *p;
+  if (p->input == AUTOBAL_ROTOR_HARDWARE) {
+    (void)autobal_rotor_lumped_from_hardware(&p->hw, &R->L, NULL);
+    R->l_L = p->hw.l_L;
+    R->l_R = p->hw.l_R;
+  } else {
+    R->L = p->lumped;
+    R->l_L = isfinite(p->hw.l_L) ? p->hw.l_L : NAN;
+    R->l_R = isfinite(p->hw.l_R) ? p->hw.l_R : NAN;
+  }
+  R->p.lumped = R->L;
+  R->n_planes = p->n_planes;
+  R->N = N;
+  R->dim = 8 + 2 * N + (p->axial ? 2u : 0u);
+  k = 0;
+  for (j = 0; j < p->n_planes; j++) {
+    const autobal_rotor_plane *pl = &p->plane[j];
+    size_t i;
+    double asum = 0.0;
+    R->off[j] = k;
+    R->cnt[j] = pl->n_balls;
+    R->s0[j] = pl->m0 * pl->r0;
+    R->mtot[j] = 0.0;
+    for (i = 0; i < pl->n_balls; i++, k++) {
+      R->m[k] = pl->ball_mass[i];
+      R->r[k] = pl->ball_radius[i];
+      R->h[k] = pl->ball_damping[i];
+      R->mr[k] = R->m[k] * R->r[k];
+      R->hr[k] = R->h[k] * R->r[k];
+      R->kappa[k] = R->h[k] / R->m[k];
+      R->psi_init[k] = pl->ball_psi ? pl->ball_psi[i] : 0.0;
+      R->rate_init[k] = pl->ball_rate ? pl->ball_rate[i] : 0.0;
+      asum += R->mr[k];
+      R->mtot[j] += R->m[k];
+    }
+    R->mtot[j] = p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? R->mtot[j] + pl->m0 : 0.0;
+    R->sref[j] = R->s0[j] > 0.0 ? R->s0[j] : (asum > 0.0 ? asum : 1.0);
+    /* the handle's copy of the plane points into the handle's own arrays */
+    R->p.plane[j].ball_mass = R->m + R->off[j];
+    R->p.plane[j].ball_radius = R->r + R->off[j];
+    R->p.plane[j].ball_damping = R->h + R->off[j];
+    R->p.plane[j].ball_psi = R->psi_init + R->off[j];
+    R->p.plane[j].ball_rate = R->rate_init + R->off[j];
+  }
+  for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) memset(&R->p.plane[j], 0, sizeof R->p.plane[j]);
+  R->err = e;
+  return R;
+}
+
+void autobal_rotor_free(autobal_rotor *r) {
+  if (r == NULL) return;
+  free(r->store);
+  free(r);
+}
+
+const char *autobal_rotor_errmsg(const autobal_rotor *r) {
+  if (r == NULL) return "rotor handle is NULL";
+  return r->err.message;
+}
+
+const autobal_rotor_params *autobal_rotor_get_params(const autobal_rotor *r) {
+  return r ? &r->p : NULL;
+}
+const autobal_rotor_lumped *autobal_rotor_get_lumped(const autobal_rotor *r) {
+  return r ? &r->L : NULL;
+}
+size_t autobal_rotor_dim(const autobal_rotor *r) { return r ? r->dim : 0; }
+size_t autobal_rotor_n_planes(const autobal_rotor *r) { return r ? r->n_planes : 0; }
+size_t autobal_rotor_n_balls(const autobal_rotor *r, size_t plane) {
+  return (r && plane < r->n_planes) ? r->cnt[plane] : 0;
+}
+size_t autobal_rotor_n_balls_total(const autobal_rotor *r) { return r ? r->N : 0; }
+size_t autobal_rotor_ball_index(const autobal_rotor *r, size_t plane, size_t i) {
+  if (r == NULL || plane >= r->n_planes || i >= r->cnt[plane]) return (size_t)-1;
+  return r->off[plane] + i;
+}
+double autobal_rotor_omega(const autobal_rotor *r) { return r ? r->p.omega : NAN; }
+
+int autobal_rotor_set_omega(autobal_rotor *r, double omega) {
+  int st;
+  if (r == NULL) return AUTOBAL_EINVAL;
+  st = autobal_check_param(&r->err, "omega", omega, -INFINITY, 1, INFINITY, 1, "rad/s");
+  if (st == AUTOBAL_SUCCESS) r->p.omega = omega;
+  return st;
+}
+
+static int check_frame_dim(const autobal_rotor *r, int frame, size_t dim, autobal_error *err) {
+  if (r == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "rotor handle is NULL");
+  if (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "frame = %d is not valid: use AUTOBAL_ROTOR_FIXED (0) or "
+                             "AUTOBAL_ROTOR_ROTATING (1)",
+                             frame);
+  if (dim != r->dim)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "state dimension %zu does not match the model's %zu",
+                             dim, r->dim);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, double *y, size_t dim) {
+  size_t k;
+  int st = check_frame_dim(r, frame, dim, NULL);
+  if (st != AUTOBAL_SUCCESS || y == NULL || !isfinite(t0)) return AUTOBAL_EINVAL;
+  for (k = 0; k < 4; k++) {
+    y[k] = r->p.q0[k];
+    y[4 + k] = r->p.qd0[k];
+  }
+  for (k = 0; k < r->N; k++) {
+    if (frame == AUTOBAL_ROTOR_FIXED) {
+      y[8 + k] = r->p.omega * t0 + r->psi_init[k];
+      y[8 + r->N + k] = r->p.omega + r->rate_init[k];
+    } else {
+      y[8 + k] = r->psi_init[k];
+      y[8 + r->N + k] = r->rate_init[k];
+    }
+  }
+  if (r->p.axial) {
+    y[8 + 2 * r->N] = r->p.z0;
+    y[9 + 2 * r->N] = r->p.zd0;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_frame, double t,
+                                const double *in, double *out, size_t dim) {
+  size_t k;
+  double sgn;
+  if (check_frame_dim(r, from_frame, dim, NULL) != AUTOBAL_SUCCESS ||
+      check_frame_dim(r, to_frame, dim, NULL) != AUTOBAL_SUCCESS || in == NULL || out == NULL ||
+      !isfinite(t))
+    return AUTOBAL_EINVAL;
+  if (in != out) memmove(out, in, dim * sizeof(double));
+  if (from_frame == to_frame) return AUTOBAL_SUCCESS;
+  sgn = to_frame == AUTOBAL_ROTOR_ROTATING ? -1.0 : 1.0;
+  for (k = 0; k < r->N; k++) {
+    out[8 + k] += sgn * r->p.omega * t;
+    out[8 + r->N + k] += sgn * r->p.omega;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- derived quantities ------------------------------------------------------ */
+
+/* s_u, s_v, s_xi, s_eta of plane j; the state's ball angle + offset = absolute angle phi. */
+static void plane_unbalance(const autobal_rotor *r, size_t j, int frame, double t, const double *y,
+                            double s[4]) {
+  const double wt = r->p.omega * t;
+  const double psi0 = r->p.plane[j].psi0;
+  /* relative angle = state angle - shift; absolute = state angle + (wt - shift) */
+  const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+  double sxi = r->s0[j] * cos(psi0), seta = r->s0[j] * sin(psi0); /* eq. (3.10) */
+  size_t k;
+  for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) {
+    const double psi = y[8 + k] - shift;
+    sxi += r->mr[k] * cos(psi);
+    seta += r->mr[k] * sin(psi);
+  }
+  s[2] = sxi;
+  s[3] = seta;
+  s[0] = sxi * cos(wt) - seta * sin(wt); /* eq. (3.11) */
+  s[1] = sxi * sin(wt) + seta * cos(wt);
+}
+
+int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t plane, int frame, double t,
+                                  const double *y, double s[4]) {
+  if (r == NULL || plane >= r->n_planes || y == NULL || s == NULL || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
+    return AUTOBAL_EINVAL;
+  plane_unbalance(r, plane, frame, t, y, s);
+  return AUTOBAL_SUCCESS;
+}
+
+double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t, const double *y) {
+  double worst = 0.0, s[4];
+  size_t j;
+  if (r == NULL || y == NULL || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
+    return NAN;
+  for (j = 0; j < r->n_planes; j++) {
+    double rel;
+    plane_unbalance(r, j, frame, t, y, s);
+    rel = hypot(s[2], s[3]) / r->sref[j];
+    if (rel > worst) worst = rel;
+  }
+  return worst;
+}
+
+#define N_GLOBAL_OUT 3u
+#define N_PLANE_OUT 7u
+#define N_BALL_OUT 6u
+
+size_t autobal_rotor_output_count(const autobal_rotor *r) {
+  if (r == NULL) return 0;
+  return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N;
+}
+
+int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                          size_t n_out) {
+  size_t j, k;
+  double x, yy, al, be, wt;
+  double *o;
+  if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
+      n_out != autobal_rotor_output_count(r))
+    return AUTOBAL_EINVAL;
+  x = y[0];
+  yy = y[1];
+  al = y[2];
+  be = y[3];
+  wt = r->p.omega * t;
+  out[0] = hypot(x, yy);
+  /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
+  out[1] = hypot(x - r->l_L * be, yy + r->l_L * al);
+  out[2] = hypot(x + r->l_R * be, yy - r->l_R * al);
+  o = out + N_GLOBAL_OUT;
+  for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
+    const double d = r->p.plane[j].d;
+    double s[4];
+    plane_unbalance(r, j, frame, t, y, s);
+    o[0] = s[0];
+    o[1] = s[1];
+    o[2] = s[2];
+    o[3] = s[3];
+    o[4] = hypot(s[2], s[3]);
+    o[5] = o[4] / r->sref[j];
+    o[6] = hypot(x + d * be, yy - d * al);
+  }
+  for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
+    const double ang = y[8 + k], rate = y[8 + r->N + k];
+    double phi, psi, phid, psid;
+    if (frame == AUTOBAL_ROTOR_FIXED) {
+      phi = ang;
+      psi = ang - wt;
+      phid = rate;
+      psid = rate - r->p.omega;
+    } else {
+      psi = ang;
+      phi = ang + wt;
+      psid = rate;
+      phid = rate + r->p.omega;
+    }
+    o[0] = phi;
+    o[1] = wrap_pi(phi);
+    o[2] = psi;
+    o[3] = wrap_pi(psi);
+    o[4] = phid;
+    o[5] = psid;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_t len,
+                              const char **unit) {
+  static const char *const gname[N_GLOBAL_OUT] = {"amp_G", "amp_L", "amp_R"};
+  static const char *const pname[N_PLANE_OUT] = {"s_u", "s_v", "s_xi", "s_eta",
+                                                 "s_abs", "s_rel", "amp_D"};
+  static const char *const punit[N_PLANE_OUT] = {"kg m", "kg m", "kg m", "kg m", "kg m", "1", "m"};
+  static const char *const bname[N_BALL_OUT] = {"phi", "phi_w", "psi", "psi_w", "phi_rate", "psi_rate"};
+  static const char *const bunit[N_BALL_OUT] = {"rad", "rad", "rad", "rad", "rad/s", "rad/s"};
+  const char *u;
+  if (r == NULL || buf == NULL || len == 0 || k >= autobal_rotor_output_count(r)) return AUTOBAL_EINVAL;
+  if (k < N_GLOBAL_OUT) {
+    snprintf(buf, len, "%s", gname[k]);
+    u = "m";
+  } else if (k < N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes) {
+    size_t kk = k - N_GLOBAL_OUT;
+    snprintf(buf, len, "p%zu_%s", kk / N_PLANE_OUT + 1, pname[kk % N_PLANE_OUT]);
+    u = punit[kk % N_PLANE_OUT];
+  } else {
+    size_t kk = k - N_GLOBAL_OUT - N_PLANE_OUT * r->n_planes;
+    size_t ball = kk / N_BALL_OUT, j = 0;
+    while (j + 1 < r->n_planes && ball >= r->off[j + 1]) j++;
+    snprintf(buf, len, "p%zu_b%zu_%s", j + 1, ball - r->off[j] + 1, bname[kk % N_BALL_OUT]);
+    u = bunit[kk % N_BALL_OUT];
+  }
+  if (unit) *unit = u;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- balanced configurations (3.14) --------------------------------------------- */
+
+int autobal_rotor_balanced_angles_two(double s0, double a1, double a2, double psi0, double psi[2],
+                                      autobal_error *err) {
+  int st;
+  double g1, g2, c1, c2;
+  if ((st = autobal_check_param(err, "s0", s0, 0.0, 0, INFINITY, 1, "kg m")) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_check_param(err, "a1", a1, 0.0, 1, INFINITY, 1, "kg m")) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_check_param(err, "a2", a2, 0.0, 1, INFINITY, 1, "kg m")) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_check_param(err, "psi0", psi0, -INFINITY, 1, INFINITY, 1, "rad")) != AUTOBAL_SUCCESS)
+    return st;
+  if (psi == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "output array psi is NULL");
+  {
+    const double a[2] = {a1, a2};
+    if (!autobal_rotor_plane_can_balance(s0, a, 2))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "two balls with m r = %.6g and %.6g kg m cannot cancel m0 r0 = %.6g kg "
+                               "m (need |a1 - a2| <= m0 r0 <= a1 + a2)",
+                               a1, a2, s0);
+  }
+  if (s0 == 0.0) {
+    /* a1 == a2 here (can_balance): any diametrically opposite pair */
+    g1 = 0.5 * M_PI;
+    g2 = 0.5 * M_PI;
+  } else {
+    /* triangle with sides s0, a1, a2; g1, g2: angles of the balls from the
+     * direction psi0 + pi opposite the unbalance (law of cosines) */
+    c1 = (s0 * s0 + a1 * a1 - a2 * a2) / (2.0 * a1 * s0);
+    c2 = (s0 * s0 + a2 * a2 - a1 * a1) / (2.0 * a2 * s0);
+    if (c1 > 1.0) c1 = 1.0;
+    if (c1 < -1.0) c1 = -1.0;
+    if (c2 > 1.0) c2 = 1.0;
+    if (c2 < -1.0) c2 = -1.0;
+    g1 = acos(c1);
+    g2 = acos(c2);
+  }
+  /* eq. (3.14): psi_1,2 = pi -/+ arccos(m0 r0 / (2 m r)) for a1 = a2 */
+  psi[0] = wrap_pi(psi0 + M_PI - g1);
+  psi[1] = wrap_pi(psi0 + M_PI + g2);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_balanced_angles(const autobal_rotor *r, size_t plane, double *psi, size_t n,
+                                  autobal_error *err) {
+  const double *a;
+  size_t i, n_b;
+  double s0, psi0;
+  if (r == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "rotor handle is NULL");
+  if (plane >= r->n_planes)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "plane index %zu is out of range: %zu plane(s)",
+                             plane, r->n_planes);
+  n_b = r->cnt[plane];
+  if (n != n_b || (n > 0 && psi == NULL))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "balanced angles: n = %zu must equal the plane's ball count %zu", n, n_b);
+  a = r->mr + r->off[plane];
+  s0 = r->s0[plane];
+  psi0 = r->p.plane[plane].psi0;
+  if (!autobal_rotor_plane_can_balance(s0, a, n))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "plane[%zu]: no balanced configuration exists for m0 r0 = %.6g kg m", plane,
+                             s0);
+  if (n == 0) return AUTOBAL_SUCCESS;
+  if (n == 1) {
+    psi[0] = wrap_pi(psi0 + M_PI);
+    return AUTOBAL_SUCCESS;
+  }
+  if (n == 2) return autobal_rotor_balanced_angles_two(s0, a[0], a[1], psi0, psi, err);
+  {
+    int identical = 1;
+    for (i = 1; i < n; i++)
+      if (fabs(a[i] - a[0]) > 1e-12 * a[0]) identical = 0;
+    if (identical) {
+      /* symmetric fan: sum_i e^{i (i-(n-1)/2) delta} = sin(n x) / sin(x), x = delta/2,
+       * decreasing from n (x -> 0) to 0 (x = pi/n); solve = s0/a by bisection */
+      const double target = s0 / a[0], nn = (double)n;
+      double lo = 0.0, hi = M_PI / nn, x;
+      int it;
+      for (it = 0; it < 200; it++) {
+        const double mid = 0.5 * (lo + hi);
+        const double f = sin(nn * mid) / sin(mid);
+        if (f > target) lo = mid;
+        else hi = mid;
+      }
+      x = 0.5 * (lo + hi);
+      if (target >= nn) x = 0.0;
+      for (i = 0; i < n; i++)
+        psi[i] = wrap_pi(psi0 + M_PI + ((double)i - 0.5 * (nn - 1.0)) * 2.0 * x);
+      return AUTOBAL_SUCCESS;
+    }
+  }
+  {
+    /* general masses: place balls one by one; T = remaining target vector */
+    double Tx = -s0 * cos(psi0), Ty = -s0 * sin(psi0);
+    for (i = 0; i + 2 < n; i++) {
+      double rest = 0.0, amax = 0.0, lrest, tau, lo, hi, rho, ang, cg;
+      size_t k;
+      for (k = i + 1; k < n; k++) {
+        rest += a[k];
+        if (a[k] > amax) amax = a[k];
+      }
+      lrest = 2.0 * amax - rest;
+      if (lrest < 0.0) lrest = 0.0;
+      tau = hypot(Tx, Ty);
+      lo = fmax(lrest, fabs(tau - a[i]));
+      hi = fmin(rest, tau + a[i]);
+      rho = 0.5 * (lo + hi);
+      if (tau > 0.0) {
+        cg = (tau * tau + a[i] * a[i] - rho * rho) / (2.0 * tau * a[i]);
+        cg = cg > 1.0 ? 1.0 : (cg < -1.0 ? -1.0 : cg);
+        ang = atan2(Ty, Tx) + ((i % 2) ? -acos(cg) : acos(cg));
+      } else {
+        ang = 0.0;
+      }
+      psi[i] = wrap_pi(ang);
+      Tx -= a[i] * cos(ang);
+      Ty -= a[i] * sin(ang);
+    }
+    /* the last two balls: a triangle on the remaining target T = -s e^{i p0} */
+    return autobal_rotor_balanced_angles_two(hypot(Tx, Ty), a[n - 2], a[n - 1], atan2(-Ty, -Tx),
+                                             psi + n - 2, err);
+  }
+}
+
+double autobal_rotor_time_to_balance(const double *t, const double *monitor, size_t n,
+                                     double threshold) {
+  size_t k;
+  if (t == NULL || monitor == NULL || n == 0 || !(monitor[n - 1] < threshold)) return NAN;
+  k = n - 1;
+  while (k > 0 && monitor[k - 1] < threshold) k--;
+  return t[k];
+}

@@ -1,0 +1,1076 @@
+/* transient.c: the transient engine (model-agnostic gsl_odeiv2 driver).
+ * See include/autobal/transient.h for the contract. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "autobal/transient.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include "internal.h"
+
+/* ------------------------------------------------------------------------ */
+/* Stepper table                                                            */
+/* ------------------------------------------------------------------------ */
+
+typedef struct stepper_entry {
+  const char *name;
+  const gsl_odeiv2_step_type *const *type; /* address of GSL's exported pointer */
+} stepper_entry;
+
+static const stepper_entry k_steppers[] = {
+    {"rk2", &gsl_odeiv2_step_rk2},       {"rk4", &gsl_odeiv2_step_rk4},
+    {"rkf45", &gsl_odeiv2_step_rkf45},   {"rkck", &gsl_odeiv2_step_rkck},
+    {"rk8pd", &gsl_odeiv2_step_rk8pd},   {"rk1imp", &gsl_odeiv2_step_rk1imp},
+    {"rk2imp", &gsl_odeiv2_step_rk2imp}, {"rk4imp", &gsl_odeiv2_step_rk4imp},
+    {"bsimp", &gsl_odeiv2_step_bsimp},   {"msadams", &gsl_odeiv2_step_msadams},
+    {"msbdf", &gsl_odeiv2_step_msbdf},
+};
+#define N_STEPPERS (sizeof k_steppers / sizeof k_steppers[0])
+
+static const char k_stepper_names[] =
+    "rk2, rk4, rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams, msbdf";
+
+const char *autobal_transient_stepper_names(void) { return k_stepper_names; }
+
+static const stepper_entry *find_stepper(const char *name) {
+  size_t i;
+  if (name == NULL) name = "rk8pd";
+  for (i = 0; i < N_STEPPERS; i++)
+    if (strcmp(name, k_steppers[i].name) == 0) return &k_steppers[i];
+  return NULL;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Options                                                                  */
+/* ------------------------------------------------------------------------ */
+
+autobal_transient_options autobal_transient_options_default(void) {
+  autobal_transient_options o;
+  o.stepper = "rk8pd";
+  o.rtol = 1e-10;
+  o.atol = 1e-12;
+  o.h_init = 0.0;
+  o.h_max = 0.0;
+  o.h_min = 0.0;
+  o.max_steps = 100000000UL;
+  o.dt_out = 0.0;
+  o.event_tol = 1e-10;
+  o.progress_step = 0.005;
+  o.progress_wall = 0.0;
+  return o;
+}
+
+int autobal_transient_options_validate(const autobal_transient_options *opt, autobal_error *err) {
+  int rc;
+  if (opt == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "options: NULL pointer");
+  if (find_stepper(opt->stepper) == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option stepper = \"%s\" is not a known GSL stepper: valid names are %s",
+                             opt->stepper, k_stepper_names);
+  if ((rc = autobal_check_param(err, "rtol", opt->rtol, 0.0, 1, INFINITY, 1, "")) != 0) return rc;
+  if ((rc = autobal_check_param(err, "atol", opt->atol, 0.0, 1, INFINITY, 1, "")) != 0) return rc;
+  if ((rc = autobal_check_param(err, "h_init", opt->h_init, 0.0, 0, INFINITY, 1, "")) != 0)
+    return rc;
+  if ((rc = autobal_check_param(err, "h_max", opt->h_max, 0.0, 0, INFINITY, 1, "")) != 0)
+    return rc;
+  if ((rc = autobal_check_param(err, "h_min", opt->h_min, 0.0, 0, INFINITY, 1, "")) != 0)
+    return rc;
+  if (opt->h_max > 0.0 && opt->h_min > opt->h_max)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option h_min = %.17g is larger than h_max = %.17g", opt->h_min,
+                             opt->h_max);
+  if (opt->h_max > 0.0 && opt->h_init > opt->h_max)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option h_init = %.17g is larger than h_max = %.17g", opt->h_init,
+                             opt->h_max);
+  if ((rc = autobal_check_param(err, "dt_out", opt->dt_out, 0.0, 0, INFINITY, 1, "")) != 0)
+    return rc;
+  if ((rc = autobal_check_param(err, "event_tol", opt->event_tol, 0.0, 1, INFINITY, 1, "")) != 0)
+    return rc;
+  if ((rc = autobal_check_param(err, "progress_step", opt->progress_step, 0.0, 1, 1.0, 0, "")) !=
+      0)
+    return rc;
+  if ((rc = autobal_check_param(err, "progress_wall", opt->progress_wall, 0.0, 0, INFINITY, 1,
+                                "s")) != 0)
+    return rc;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ------------------------------------------------------------------------ */
+/* The handle                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* One stepper with its error control and the buffers of the step loop.  The
+ * GSL driver object is used only because the multistep methods (msadams,
+ * msbdf) reach the control object through it; its evolve object is unused. */
+typedef struct stepper_ctx {
+  gsl_odeiv2_driver *d;
+  double *y0;       /* state at the start of the step (restored on rejection) */
+  double *yerr;     /* error estimate */
+  double *dydt_in;  /* f(t, y) at the start of the step */
+  double *dydt_out; /* f at the end of the step */
+  int have_dydt;    /* dydt_in is valid for the current (t, y) */
+} stepper_ctx;
+
+enum { DWELL_ABOVE = 0, DWELL_BELOW = 1, DWELL_FIRED = 2 };
+
+typedef struct event_item {
+  autobal_transient_scalar_fn g;
+  void *user;
+  int direction, terminal;
+  int dwell;
+  double threshold, duration;
+  /* state of a run */
+  double g_prev; /* g (or s - threshold) at the last accepted step */
+  int dwell_state;
+  double t_enter;
+  unsigned long count;
+  autobal_transient_event_hit first;
+  /* scratch of one step */
+  int pending;
+  double t_hit;
+  double t_start;
+  int dir_hit;
+} event_item;
+
+struct autobal_transient {
+  size_t dim;
+  autobal_transient_options opt;
+  const gsl_odeiv2_step_type *type;
+  gsl_odeiv2_system gsys; /* the adapters below, params = this handle */
+  stepper_ctx main, aux;
+  autobal_transient_system sys; /* the user's system during run() */
+  /* finite-difference Jacobian */
+  double *fd_f0, *fd_f1, *fd_y;
+  /* run workspace */
+  double *y_prev; /* state at the start of the last accepted step */
+  double *y_work; /* event location */
+  double *y_evt;  /* state at a located event */
+  /* events */
+  event_item *ev;
+  size_t nev, cap;
+  size_t *order; /* cap entries: pending events sorted by time */
+  /* callbacks */
+  autobal_transient_observer_fn observer;
+  void *observer_user;
+  autobal_transient_progress_fn progress;
+  void *progress_user;
+  autobal_transient_event_handler_fn handler;
+  void *handler_user;
+  /* failure record of the adapters */
+  int fail_kind; /* 0 none, 1 rhs returned non-zero, 2 rhs non-finite, 3 jac non-zero,
+                    4 jac non-finite */
+  int fail_code;
+  double fail_t;
+  size_t fail_index;
+  int in_aux;
+  autobal_transient_stats stats;
+  autobal_error err;
+};
+
+/* ---- adapters between GSL and the user's system ---------------------------- */
+
+static int rhs_adapter(double t, const double y[], double dydt[], void *params) {
+  autobal_transient *tr = (autobal_transient *)params;
+  size_t i;
+  int rc;
+  tr->stats.rhs_evals++;
+  rc = tr->sys.rhs(t, y, dydt, tr->sys.params);
+  if (rc != 0) {
+    if (tr->fail_kind == 0) {
+      tr->fail_kind = 1;
+      tr->fail_code = rc;
+      tr->fail_t = t;
+    }
+    return GSL_EBADFUNC;
+  }
+  for (i = 0; i < tr->dim; i++) {
+    if (!isfinite(dydt[i])) {
+      if (tr->fail_kind == 0) {
+        tr->fail_kind = 2;
+        tr->fail_t = t;
+        tr->fail_index = i;
+      }
+      return GSL_EBADFUNC;
+    }
+  }
+  return GSL_SUCCESS;
+}
+
+/* Forward differences (see the header for the increments). */
+static int fd_jacobian(autobal_transient *tr, double t, const double y[], double *dfdy,
+                       double dfdt[]) {
+  const size_t n = tr->dim;
+  const double sq = sqrt(DBL_EPSILON);
+  size_t i, j;
+  int rc;
+  tr->stats.fd_jac_evals++;
+  if ((rc = rhs_adapter(t, y, tr->fd_f0, tr)) != GSL_SUCCESS) return rc;
+  memcpy(tr->fd_y, y, n * sizeof(double));
+  for (j = 0; j < n; j++) {
+    const double yj = y[j];
+    double dj = sq * fmax(fabs(yj), 1.0);
+    tr->fd_y[j] = yj + dj;
+    dj = tr->fd_y[j] - yj; /* the increment actually represented */
+    if ((rc = rhs_adapter(t, tr->fd_y, tr->fd_f1, tr)) != GSL_SUCCESS) return rc;
+    for (i = 0; i < n; i++) dfdy[i * n + j] = (tr->fd_f1[i] - tr->fd_f0[i]) / dj;
+    tr->fd_y[j] = yj;
+  }
+  {
+    double dt = sq * fmax(fabs(t), 1.0);
+    const double t1 = t + dt;
+    dt = t1 - t;
+    if ((rc = rhs_adapter(t1, y, tr->fd_f1, tr)) != GSL_SUCCESS) return rc;
+    for (i = 0; i < n; i++) dfdt[i] = (tr->fd_f1[i] - tr->fd_f0[i]) / dt;
+  }
+  return GSL_SUCCESS;
+}
+
+static int jac_adapter(double t, const double y[], double *dfdy, double dfdt[], void *params) {
+  autobal_transient *tr = (autobal_transient *)params;
+  const size_t n = tr->dim;
+  size_t i;
+  int rc;
+  tr->stats.jac_evals++;
+  if (tr->sys.jac == NULL) return fd_jacobian(tr, t, y, dfdy, dfdt);
+  rc = tr->sys.jac(t, y, dfdy, dfdt, tr->sys.params);
+  if (rc != 0) {
+    if (tr->fail_kind == 0) {
+      tr->fail_kind = 3;
+      tr->fail_code = rc;
+      tr->fail_t = t;
+    }
+    return GSL_EBADFUNC;
+  }
+  for (i = 0; i < n * n + n; i++) {
+    const double v = i < n * n ? dfdy[i] : dfdt[i - n * n];
+    if (!isfinite(v)) {
+      if (tr->fail_kind == 0) {
+        tr->fail_kind = 4;
+        tr->fail_t = t;
+        tr->fail_index = i;
+      }
+      return GSL_EBADFUNC;
+    }
+  }
+  return GSL_SUCCESS;
+}
+
+/* ---- allocation -------------------------------------------------------------- */
+
+static void ctx_free(stepper_ctx *c) {
+  if (c->d) gsl_odeiv2_driver_free(c->d);
+  free(c->y0);
+  free(c->yerr);
+  free(c->dydt_in);
+  free(c->dydt_out);
+  memset(c, 0, sizeof *c);
+}
+
+/* The GSL driver keeps &tr->gsys; tr must not move (it is heap-allocated). */
+static int ctx_alloc(autobal_transient *tr, stepper_ctx *c, const gsl_odeiv2_step_type *T,
+                     double atol, double rtol) {
+  const size_t n = tr->dim;
+  memset(c, 0, sizeof *c);
+  /* hstart (1.0) is never used: the step loop keeps its own step size.  The
+   * arguments are valid, so GSL's error handler is not invoked except for
+   * out-of-memory. */
+  c->d = gsl_odeiv2_driver_alloc_y_new(&tr->gsys, T, 1.0, atol, rtol);
+  c->y0 = malloc(n * sizeof(double));
+  c->yerr = malloc(n * sizeof(double));
+  c->dydt_in = malloc(n * sizeof(double));
+  c->dydt_out = malloc(n * sizeof(double));
+  if (!c->d || !c->y0 || !c->yerr || !c->dydt_in || !c->dydt_out) {
+    ctx_free(c);
+    return AUTOBAL_ENOMEM;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_options *opt,
+                                           autobal_error *err) {
+  autobal_transient_options o = opt ? *opt : autobal_transient_options_default();
+  const stepper_entry *se;
+  autobal_transient *tr;
+  if (dim == 0) {
+    autobal_error_set(err, AUTOBAL_EINVAL, "parameter dim = 0 is out of range: allowed >= 1");
+    return NULL;
+  }
+  if (dim > (size_t)1 << 20) {
+    autobal_error_set(err, AUTOBAL_EINVAL,
+                      "parameter dim = %zu is out of range: allowed [1, 1048576]", dim);
+    return NULL;
+  }
+  if (autobal_transient_options_validate(&o, err) != AUTOBAL_SUCCESS) return NULL;
+  se = find_stepper(o.stepper);
+  o.stepper = se->name; /* a static string from now on */
+  tr = calloc(1, sizeof *tr);
+  if (tr == NULL) {
+    autobal_error_set(err, AUTOBAL_ENOMEM, "transient: out of memory allocating the handle");
+    return NULL;
+  }
+  tr->dim = dim;
+  tr->opt = o;
+  tr->type = *se->type;
+  tr->gsys.function = rhs_adapter;
+  tr->gsys.jacobian = jac_adapter;
+  tr->gsys.dimension = dim;
+  tr->gsys.params = tr;
+  tr->fd_f0 = malloc(dim * sizeof(double));
+  tr->fd_f1 = malloc(dim * sizeof(double));
+  tr->fd_y = malloc(dim * sizeof(double));
+  tr->y_prev = malloc(dim * sizeof(double));
+  tr->y_work = malloc(dim * sizeof(double));
+  tr->y_evt = malloc(dim * sizeof(double));
+  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt ||
+      ctx_alloc(tr, &tr->main, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS ||
+      ctx_alloc(tr, &tr->aux, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS) {
+    autobal_transient_free(tr);
+    autobal_error_set(err, AUTOBAL_ENOMEM, "transient: out of memory (dim = %zu, stepper %s)",
+                      dim, o.stepper);
+    return NULL;
+  }
+  tr->stats.event_index = -1;
+  autobal_error_clear(&tr->err);
+  autobal_error_clear(err);
+  return tr;
+}
+
+void autobal_transient_free(autobal_transient *tr) {
+  if (tr == NULL) return;
+  ctx_free(&tr->main);
+  ctx_free(&tr->aux);
+  free(tr->fd_f0);
+  free(tr->fd_f1);
+  free(tr->fd_y);
+  free(tr->y_prev);
+  free(tr->y_work);
+  free(tr->y_evt);
+  free(tr->ev);
+  free(tr->order);
+  free(tr);
+}
+
+const char *autobal_transient_errmsg(const autobal_transient *tr) {
+  return tr ? tr->err.message : "";
+}
+
+int autobal_transient_set_options(autobal_transient *tr, const autobal_transient_options *opt) {
+  autobal_transient_options o;
+  const stepper_entry *se;
+  stepper_ctx m, a;
+  if (tr == NULL) return AUTOBAL_EINVAL;
+  if (opt == NULL) return autobal_error_set(&tr->err, AUTOBAL_EINVAL, "options: NULL pointer");
+  o = *opt;
+  if (autobal_transient_options_validate(&o, &tr->err) != AUTOBAL_SUCCESS) return AUTOBAL_EINVAL;
+  se = find_stepper(o.stepper);
+  o.stepper = se->name;
+  if (ctx_alloc(tr, &m, *se->type, o.atol, o.rtol) != AUTOBAL_SUCCESS)
+    return autobal_error_set(&tr->err, AUTOBAL_ENOMEM, "transient: out of memory");
+  if (ctx_alloc(tr, &a, *se->type, o.atol, o.rtol) != AUTOBAL_SUCCESS) {
+    ctx_free(&m);
+    return autobal_error_set(&tr->err, AUTOBAL_ENOMEM, "transient: out of memory");
+  }
+  ctx_free(&tr->main);
+  ctx_free(&tr->aux);
+  tr->main = m;
+  tr->aux = a;
+  tr->type = *se->type;
+  tr->opt = o;
+  autobal_error_clear(&tr->err);
+  return AUTOBAL_SUCCESS;
+}
+
+autobal_transient_options autobal_transient_get_options(const autobal_transient *tr) {
+  return tr ? tr->opt : autobal_transient_options_default();
+}
+
+void autobal_transient_set_observer(autobal_transient *tr, autobal_transient_observer_fn fn,
+                                    void *user) {
+  if (tr == NULL) return;
+  tr->observer = fn;
+  tr->observer_user = user;
+}
+
+void autobal_transient_set_progress(autobal_transient *tr, autobal_transient_progress_fn fn,
+                                    void *user) {
+  if (tr == NULL) return;
+  tr->progress = fn;
+  tr->progress_user = user;
+}
+
+void autobal_transient_set_event_handler(autobal_transient *tr,
+                                         autobal_transient_event_handler_fn fn, void *user) {
+  if (tr == NULL) return;
+  tr->handler = fn;
+  tr->handler_user = user;
+}
+
+static int event_push(autobal_transient *tr, const event_item *it) {
+  if (tr->nev == tr->cap) {
+    size_t cap = tr->cap ? 2 * tr->cap : 4;
+    event_item *ev = realloc(tr->ev, cap * sizeof *ev);
+    size_t *ord;
+    if (ev == NULL) return autobal_error_set(&tr->err, AUTOBAL_ENOMEM, "transient: out of memory");
+    tr->ev = ev;
+    ord = realloc(tr->order, cap * sizeof *ord);
+    if (ord == NULL) return autobal_error_set(&tr->err, AUTOBAL_ENOMEM, "transient: out of memory");
+    tr->order = ord;
+    tr->cap = cap;
+  }
+  tr->ev[tr->nev] = *it;
+  tr->nev++;
+  return (int)(tr->nev - 1);
+}
+
+int autobal_transient_add_event(autobal_transient *tr, autobal_transient_scalar_fn g, void *user,
+                                int direction, int terminal) {
+  event_item it;
+  if (tr == NULL) return AUTOBAL_EINVAL;
+  if (g == NULL) return autobal_error_set(&tr->err, AUTOBAL_EINVAL, "event function g is NULL");
+  if (direction < -1 || direction > 1)
+    return autobal_error_set(&tr->err, AUTOBAL_EINVAL,
+                             "parameter direction = %d is out of range: allowed -1, 0, +1",
+                             direction);
+  if (tr->nev >= 100000)
+    return autobal_error_set(&tr->err, AUTOBAL_EINVAL, "too many events (limit 100000)");
+  memset(&it, 0, sizeof it);
+  it.g = g;
+  it.user = user;
+  it.direction = direction;
+  it.terminal = terminal != 0;
+  return event_push(tr, &it);
+}
+
+int autobal_transient_add_dwell_event(autobal_transient *tr, autobal_transient_scalar_fn s,
+                                      void *user, double threshold, double duration,
+                                      int terminal) {
+  event_item it;
+  int rc;
+  if (tr == NULL) return AUTOBAL_EINVAL;
+  if (s == NULL)
+    return autobal_error_set(&tr->err, AUTOBAL_EINVAL, "dwell event: monitored scalar is NULL");
+  if ((rc = autobal_check_param(&tr->err, "threshold", threshold, -INFINITY, 1, INFINITY, 1,
+                                "")) != 0)
+    return rc;
+  if ((rc = autobal_check_param(&tr->err, "duration", duration, 0.0, 0, INFINITY, 1, "")) != 0)
+    return rc;
+  if (tr->nev >= 100000)
+    return autobal_error_set(&tr->err, AUTOBAL_EINVAL, "too many events (limit 100000)");
+  memset(&it, 0, sizeof it);
+  it.g = s;
+  it.user = user;
+  it.direction = -1;
+  it.terminal = terminal != 0;
+  it.dwell = 1;
+  it.threshold = threshold;
+  it.duration = duration;
+  return event_push(tr, &it);
+}
+
+void autobal_transient_clear_events(autobal_transient *tr) {
+  if (tr) tr->nev = 0;
+}
+
+int autobal_transient_event_result(const autobal_transient *tr, size_t index,
+                                   unsigned long *count, autobal_transient_event_hit *first) {
+  if (tr == NULL || index >= tr->nev) return AUTOBAL_EINVAL;
+  if (count) *count = tr->ev[index].count;
+  if (tr->ev[index].count > 0 && first) *first = tr->ev[index].first;
+  return tr->ev[index].count > 0 ? 1 : 0;
+}
+
+void autobal_transient_get_stats(const autobal_transient *tr, autobal_transient_stats *stats) {
+  if (stats == NULL) return;
+  if (tr == NULL) {
+    memset(stats, 0, sizeof *stats);
+    stats->event_index = -1;
+    return;
+  }
+  *stats = tr->stats;
+}
+
+const char *autobal_transient_stop_name(int stop_reason) {
+  switch (stop_reason) {
+    case AUTOBAL_TRANSIENT_STOP_END: return "end";
+    case AUTOBAL_TRANSIENT_STOP_EVENT: return "event";
+    case AUTOBAL_TRANSIENT_STOP_OBSERVER: return "observer";
+    case AUTOBAL_TRANSIENT_STOP_CANCELLED: return "cancelled";
+    case AUTOBAL_TRANSIENT_STOP_ERROR: return "error";
+    default: return "none";
+  }
+}
+
+/* ------------------------------------------------------------------------ */
+/* The step                                                                 */
+/* ------------------------------------------------------------------------ */
+
+static double now_seconds(void) {
+  struct timespec ts;
+  if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return 0.0;
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Record the failure of the adapters as AUTOBAL_ERHS. */
+static int rhs_failure(autobal_transient *tr) {
+  switch (tr->fail_kind) {
+    case 1:
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                               "right-hand side returned %d at t = %.17g", tr->fail_code,
+                               tr->fail_t);
+    case 2:
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                               "right-hand side returned a non-finite value in component %zu "
+                               "at t = %.17g",
+                               tr->fail_index, tr->fail_t);
+    case 3:
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS, "Jacobian returned %d at t = %.17g",
+                               tr->fail_code, tr->fail_t);
+    case 4:
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                               "Jacobian returned a non-finite value (entry %zu) at t = %.17g",
+                               tr->fail_index, tr->fail_t);
+    default:
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                               "GSL stepper reported a bad function (GSL_EBADFUNC)");
+  }
+}
+
+/* One accepted step of context c from (*t, y) towards t_target (> *t), never
+ * past it; *h (> 0) is the trial step on entry and the suggested next step on
+ * return.  The retry rules follow gsl_odeiv2_evolve_apply: a stepper failure
+ * halves the step, an error estimate above tolerance shrinks it as the
+ * control says, until the step no longer changes t (ESTEP) or falls below
+ * h_min (ESTEP).  On success *t is advanced (to exactly t_target when the
+ * step was cut to reach it); on failure y and *t are unchanged.  *rejected
+ * is incremented per rejected trial step. */
+static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_target, double *h,
+                     double *y, unsigned long *rejected, double *h_taken) {
+  const size_t n = tr->dim;
+  gsl_odeiv2_step *s = c->d->s;
+  const int use_in = s->type->can_use_dydt_in;
+  const double t0 = *t;
+  const double dt = t_target - t0;
+  const double h_in = *h;
+  double h0 = *h;
+  unsigned long rej = 0;
+  memcpy(c->y0, y, n * sizeof(double));
+  if (use_in && !c->have_dydt) {
+    if (rhs_adapter(t0, y, c->dydt_in, tr) != GSL_SUCCESS) return rhs_failure(tr);
+    c->have_dydt = 1;
+  }
+  for (;;) {
+    int final_step, st, adj;
+    double h_old;
+    if (h0 >= dt) {
+      h0 = dt;
+      final_step = 1;
+    } else {
+      final_step = 0;
+    }
+    if (!final_step && tr->opt.h_min > 0.0 && h0 < tr->opt.h_min) {
+      *rejected += rej;
+      return autobal_error_set(&tr->err, AUTOBAL_ESTEP,
+                               "step size %.6g needed at t = %.17g is below h_min = %.6g", h0, t0,
+                               tr->opt.h_min);
+    }
+    st = gsl_odeiv2_step_apply(s, t0, h0, y, c->yerr, use_in ? c->dydt_in : NULL, c->dydt_out,
+                               &tr->gsys);
+    if (st == GSL_EBADFUNC || tr->fail_kind != 0) {
+      memcpy(y, c->y0, n * sizeof(double));
+      *rejected += rej;
+      return rhs_failure(tr);
+    }
+    if (st != GSL_SUCCESS) {
+      /* the stepper could not compute the step (e.g. Newton iteration
+       * failed): halve, as gsl_odeiv2_evolve_apply does */
+      h_old = h0;
+      h0 *= 0.5;
+      memcpy(y, c->y0, n * sizeof(double));
+      if (h0 < h_old && t0 + h0 != t0) {
+        rej++;
+        continue;
+      }
+      *rejected += rej;
+      return autobal_error_set(&tr->err, AUTOBAL_ESTEP,
+                               "GSL stepper failed (%s) at t = %.17g with step %.6g, which can "
+                               "not be reduced further",
+                               gsl_strerror(st), t0, h_old);
+    }
+    h_old = h0;
+    adj = gsl_odeiv2_control_hadjust(c->d->c, s, y, c->yerr, c->dydt_out, &h0);
+    if (adj == GSL_ODEIV_HADJ_DEC) {
+      memcpy(y, c->y0, n * sizeof(double));
+      if (h0 < h_old && t0 + h0 != t0) {
+        rej++;
+        continue;
+      }
+      *rejected += rej;
+      return autobal_error_set(&tr->err, AUTOBAL_ESTEP,
+                               "step size underflow at t = %.17g: the error tolerance can not be "
+                               "met with the smallest step that changes t (%.6g)",
+                               t0, h_old);
+    }
+    /* accepted */
+    *t = final_step ? t_target : t0 + h_old;
+    *h_taken = h_old;
+    if (!final_step)
+      *h = h0;
+    else
+      *h = rej ? h0 : fmax(h_in, h0); /* a step cut short to land on t_target says little */
+    *rejected += rej;
+    if (s->type->gives_exact_dydt_out) {
+      double *tmp = c->dydt_in;
+      c->dydt_in = c->dydt_out;
+      c->dydt_out = tmp;
+      c->have_dydt = 1;
+    } else {
+      c->have_dydt = 0;
+    }
+    return AUTOBAL_SUCCESS;
+  }
+}
+
+/* Reset a context for a fresh integration. */
+static void ctx_reset(stepper_ctx *c) {
+  gsl_odeiv2_step_reset(c->d->s);
+  gsl_odeiv2_evolve_reset(c->d->e);
+  c->have_dydt = 0;
+}
+
+/* Integrate with the auxiliary context from (ta, ya) to tb >= ta into yout
+ * (adaptive, same stepper and tolerances; usually one step when tb - ta is
+ * no longer than an accepted step). */
+static int aux_integrate(autobal_transient *tr, double ta, const double *ya, double tb,
+                         double *yout, double h_hint) {
+  double t = ta, h = tb - ta, h_taken = 0.0;
+  unsigned long nsteps = 0, rej = 0;
+  memcpy(yout, ya, tr->dim * sizeof(double));
+  if (!(tb > ta)) return AUTOBAL_SUCCESS;
+  ctx_reset(&tr->aux);
+  if (h_hint > 0.0 && h_hint < h) h = h_hint;
+  if (tr->opt.h_max > 0.0 && h > tr->opt.h_max) h = tr->opt.h_max;
+  while (t < tb) {
+    int rc;
+    if (tr->opt.h_max > 0.0 && h > tr->opt.h_max) h = tr->opt.h_max;
+    rc = take_step(tr, &tr->aux, &t, tb, &h, yout, &rej, &h_taken);
+    if (rc != AUTOBAL_SUCCESS) return rc;
+    nsteps++;
+    tr->stats.event_steps++;
+    if (tr->opt.max_steps > 0 && nsteps >= tr->opt.max_steps && t < tb)
+      return autobal_error_set(&tr->err, AUTOBAL_EMAXSTEPS,
+                               "locating an event: %lu steps did not reach t = %.17g", nsteps,
+                               tb);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* Value whose sign change is the event: g, or s - threshold for a dwell event. */
+static int event_value(autobal_transient *tr, const event_item *e, double t, const double *y,
+                       double *v) {
+  double g = e->g(t, y, e->user);
+  if (e->dwell) g -= e->threshold;
+  if (isnan(g))
+    return autobal_error_set(&tr->err, AUTOBAL_ENUMERIC,
+                             "event function of event %ld returned NaN at t = %.17g",
+                             (long)(e - tr->ev), t);
+  *v = g;
+  return AUTOBAL_SUCCESS;
+}
+
+static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
+
+/* Locate the sign change of event e in (ta, tb], with values ga (at ta, the
+ * start of the accepted step, state ya) and gb (at tb, non-zero sign
+ * different from ga, or 0).  Illinois iteration; each trial point is
+ * integrated from (ta, ya).  *t_hit is on the far side of the crossing. */
+static int locate(autobal_transient *tr, const event_item *e, double ta, const double *ya,
+                  double ga, double tb, double gb, double h_hint, double *t_hit) {
+  double a = ta, fa = ga, b = tb, fb = gb;
+  int side = 0, iter;
+  if (fb == 0.0) {
+    *t_hit = tb;
+    return AUTOBAL_SUCCESS;
+  }
+  for (iter = 0; iter < 200 && b - a > tr->opt.event_tol; iter++) {
+    double c, fc = 0.0;
+    int rc;
+    c = b - fb * (b - a) / (fb - fa);
+    if (!(c > a && c < b)) c = a + 0.5 * (b - a);
+    if (!(c > a && c < b)) break; /* a and b adjacent doubles */
+    rc = aux_integrate(tr, ta, ya, c, tr->y_work, h_hint);
+    if (rc != AUTOBAL_SUCCESS) return rc;
+    if ((rc = event_value(tr, e, c, tr->y_work, &fc)) != AUTOBAL_SUCCESS) return rc;
+    if (fc == 0.0 || sgn(fc) == sgn(fb)) {
+      b = c;
+      fb = fc;
+      if (fc == 0.0) break;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    } else {
+      a = c;
+      fa = fc;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    }
+  }
+  *t_hit = b;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ------------------------------------------------------------------------ */
+/* run                                                                      */
+/* ------------------------------------------------------------------------ */
+
+/* Automatic first step (Hairer, Norsett & Wanner, Solving ODEs I, II.4),
+ * with the max norm of GSL's control.  Leaves f(t0, y0) in main.dydt_in. */
+static int initial_step(autobal_transient *tr, double t0, const double *y0, double span,
+                        double *h_out) {
+  const size_t n = tr->dim;
+  const double atol = tr->opt.atol, rtol = tr->opt.rtol;
+  double *f0 = tr->main.dydt_in, *f1 = tr->main.dydt_out, *y1 = tr->y_work;
+  double d0 = 0.0, d1 = 0.0, d2 = 0.0, h0, h1, dmax;
+  *h_out = 0.0;
+  unsigned int p;
+  size_t i;
+  if (rhs_adapter(t0, y0, f0, tr) != GSL_SUCCESS) return rhs_failure(tr);
+  tr->main.have_dydt = 1;
+  for (i = 0; i < n; i++) {
+    const double sc = atol + rtol * fabs(y0[i]);
+    d0 = fmax(d0, fabs(y0[i]) / sc);
+    d1 = fmax(d1, fabs(f0[i]) / sc);
+  }
+  h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+  h0 = fmin(h0, span);
+  for (i = 0; i < n; i++) y1[i] = y0[i] + h0 * f0[i];
+  if (rhs_adapter(t0 + h0, y1, f1, tr) != GSL_SUCCESS) return rhs_failure(tr);
+  for (i = 0; i < n; i++) {
+    const double sc = atol + rtol * fabs(y0[i]);
+    d2 = fmax(d2, fabs(f1[i] - f0[i]) / sc);
+  }
+  d2 /= h0;
+  p = gsl_odeiv2_step_order(tr->main.d->s);
+  if (p < 1) p = 1;
+  dmax = fmax(d1, d2);
+  h1 = dmax <= 1e-15 ? fmax(1e-6, 1e-3 * h0) : pow(0.01 / dmax, 1.0 / (double)(p + 1));
+  *h_out = fmin(100.0 * h0, h1);
+  return AUTOBAL_SUCCESS;
+}
+
+static void insertion_sort_pending(autobal_transient *tr, size_t np) {
+  size_t i, j;
+  for (i = 1; i < np; i++) {
+    size_t k = tr->order[i];
+    j = i;
+    while (j > 0 && tr->ev[tr->order[j - 1]].t_hit > tr->ev[k].t_hit) {
+      tr->order[j] = tr->order[j - 1];
+      j--;
+    }
+    tr->order[j] = k;
+  }
+}
+
+/* Output time number k (k >= 1), clamped to t1 near the end. */
+static double output_time(const autobal_transient *tr, double t0, double t1, unsigned long k) {
+  double to;
+  if (tr->opt.dt_out <= 0.0) return t1;
+  to = t0 + (double)k * tr->opt.dt_out;
+  if (to > t1 - 1e-9 * tr->opt.dt_out) to = t1;
+  return to;
+}
+
+/* Finish: fill the statistics, return status. */
+static int finish(autobal_transient *tr, int status, int reason, double t, double *t_reached,
+                  double wall0) {
+  tr->stats.status = status;
+  tr->stats.stop_reason = reason;
+  tr->stats.t_end = t;
+  tr->stats.wall_seconds = now_seconds() - wall0;
+  if (tr->stats.h_min_used == INFINITY) tr->stats.h_min_used = 0.0;
+  if (t_reached) *t_reached = t;
+  if (status == AUTOBAL_SUCCESS) autobal_error_clear(&tr->err);
+  tr->err.status = status;
+  return status;
+}
+
+/* Process the events of the accepted step (t_prev, y_prev) -> (*t, y).
+ * Returns AUTOBAL_SUCCESS (continue), AUTOBAL_EVENT (stop; y and *t hold the
+ * event state) or a failure. */
+static int process_events(autobal_transient *tr, double t_prev, double *t, double *y,
+                          double h_taken) {
+  const double tn = *t;
+  size_t i, np = 0;
+  int rc;
+  for (i = 0; i < tr->nev; i++) {
+    event_item *e = &tr->ev[i];
+    double gn = 0.0;
+    e->pending = 0;
+    if (e->dwell && e->dwell_state == DWELL_FIRED) continue;
+    if ((rc = event_value(tr, e, tn, y, &gn)) != AUTOBAL_SUCCESS) return rc;
+    if (!e->dwell) {
+      const int rising = e->g_prev < 0.0 && gn >= 0.0;
+      const int falling = e->g_prev > 0.0 && gn <= 0.0;
+      if ((rising && e->direction != -1) || (falling && e->direction != 1)) {
+        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, &e->t_hit);
+        if (rc != AUTOBAL_SUCCESS) return rc;
+        e->t_start = e->t_hit;
+        e->dir_hit = rising ? 1 : -1;
+        e->pending = 1;
+      }
+    } else {
+      if (e->dwell_state == DWELL_ABOVE && gn < 0.0) {
+        double tc;
+        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, &tc);
+        if (rc != AUTOBAL_SUCCESS) return rc;
+        e->dwell_state = DWELL_BELOW;
+        e->t_enter = tc;
+      } else if (e->dwell_state == DWELL_BELOW && gn >= 0.0) {
+        e->dwell_state = DWELL_ABOVE;
+      }
+      if (e->dwell_state == DWELL_BELOW && tn >= e->t_enter + e->duration) {
+        e->t_hit = fmax(e->t_enter + e->duration, t_prev);
+        if (e->t_hit > tn) e->t_hit = tn;
+        e->t_start = e->t_enter;
+        e->dir_hit = -1;
+        e->pending = 1;
+      }
+    }
+    e->g_prev = gn;
+    if (e->pending) tr->order[np++] = i;
+  }
+  if (np == 0) return AUTOBAL_SUCCESS;
+  insertion_sort_pending(tr, np);
+  for (i = 0; i < np; i++) {
+    event_item *e = &tr->ev[tr->order[i]];
+    autobal_transient_event_hit hit;
+    int stop;
+    const double *ys;
+    if (e->t_hit >= tn) {
+      ys = y;
+    } else {
+      rc = aux_integrate(tr, t_prev, tr->y_prev, e->t_hit, tr->y_evt, h_taken);
+      if (rc != AUTOBAL_SUCCESS) return rc;
+      ys = tr->y_evt;
+    }
+    hit.index = tr->order[i];
+    hit.t = e->t_hit;
+    hit.t_start = e->t_start;
+    hit.direction = e->dir_hit;
+    hit.terminal = e->terminal;
+    if (e->dwell) e->dwell_state = DWELL_FIRED;
+    stop = e->terminal;
+    if (tr->handler) {
+      int uc = tr->handler(&hit, ys, tr->handler_user);
+      if (uc != 0) {
+        stop = 1;
+        tr->stats.user_code = uc;
+      }
+    }
+    hit.terminal = stop;
+    e->count++;
+    if (e->count == 1) e->first = hit;
+    tr->stats.events++;
+    if (stop) {
+      if (ys != y) memcpy(y, ys, tr->dim * sizeof(double));
+      *t = e->t_hit;
+      tr->stats.event_index = (int)tr->order[i];
+      return AUTOBAL_EVENT;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_transient_run(autobal_transient *tr, const autobal_transient_system *sys, double t0,
+                          double t1, double y[], double *t_reached) {
+  const double wall0 = now_seconds();
+  size_t i, n;
+  double t, h = 0.0, span, prog_last = 0.0, wall_last = wall0, t_out;
+  unsigned long k_out = 1;
+  int rc;
+
+  if (tr == NULL) return AUTOBAL_EINVAL;
+  n = tr->dim;
+  memset(&tr->stats, 0, sizeof tr->stats);
+  tr->stats.event_index = -1;
+  tr->stats.t_start = t0;
+  tr->stats.t_end = t0;
+  tr->stats.h_min_used = INFINITY;
+  tr->fail_kind = 0;
+  if (t_reached) *t_reached = t0;
+  if (sys == NULL || sys->rhs == NULL) {
+    autobal_error_set(&tr->err, AUTOBAL_EINVAL, "system or its right-hand side is NULL");
+    return finish(tr, AUTOBAL_EINVAL, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+  }
+  if (sys->dim != n) {
+    autobal_error_set(&tr->err, AUTOBAL_EINVAL,
+                      "system dimension %zu differs from the driver's dimension %zu", sys->dim,
+                      n);
+    return finish(tr, AUTOBAL_EINVAL, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+  }
+  if (y == NULL) {
+    autobal_error_set(&tr->err, AUTOBAL_EINVAL, "state y is NULL");
+    return finish(tr, AUTOBAL_EINVAL, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+  }
+  if ((rc = autobal_check_param(&tr->err, "t0", t0, -INFINITY, 1, INFINITY, 1, "")) != 0 ||
+      (rc = autobal_check_param(&tr->err, "t1", t1, t0, 0, INFINITY, 1, "")) != 0)
+    return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+  for (i = 0; i < n; i++) {
+    if (!isfinite(y[i])) {
+      autobal_error_set(&tr->err, AUTOBAL_EINVAL,
+                        "initial state y[%zu] = %g is not finite", i, y[i]);
+      return finish(tr, AUTOBAL_EINVAL, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+    }
+  }
+  tr->sys = *sys;
+  ctx_reset(&tr->main);
+  span = t1 - t0;
+  t = t0;
+
+  /* events at t0 */
+  for (i = 0; i < tr->nev; i++) {
+    event_item *e = &tr->ev[i];
+    e->count = 0;
+    e->pending = 0;
+    e->dwell_state = DWELL_ABOVE;
+    if ((rc = event_value(tr, e, t0, y, &e->g_prev)) != AUTOBAL_SUCCESS)
+      return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+    if (e->dwell && e->g_prev < 0.0) {
+      e->dwell_state = DWELL_BELOW;
+      e->t_enter = t0;
+    }
+  }
+
+  if (tr->observer) {
+    int uc = tr->observer(t0, y, tr->observer_user);
+    tr->stats.observer_calls++;
+    if (uc != 0) {
+      tr->stats.user_code = uc;
+      autobal_error_set(&tr->err, AUTOBAL_EVENT, "observer requested a stop (%d) at t = %.17g",
+                        uc, t0);
+      return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_OBSERVER, t0, t_reached, wall0);
+    }
+  }
+  if (tr->progress) {
+    int uc = tr->progress(0.0, tr->progress_user);
+    if (uc != 0) {
+      tr->stats.user_code = uc;
+      autobal_error_set(&tr->err, AUTOBAL_ECANCELLED, "cancelled by the progress callback (%d) at t = %.17g", uc, t0);
+      return finish(tr, AUTOBAL_ECANCELLED, AUTOBAL_TRANSIENT_STOP_CANCELLED, t0, t_reached,
+                    wall0);
+    }
+  }
+  if (!(span > 0.0)) {
+    if (tr->progress) (void)tr->progress(1.0, tr->progress_user);
+    return finish(tr, AUTOBAL_SUCCESS, AUTOBAL_TRANSIENT_STOP_END, t0, t_reached, wall0);
+  }
+
+  /* first step */
+  if (tr->opt.h_init > 0.0) {
+    h = tr->opt.h_init;
+  } else {
+    rc = initial_step(tr, t0, y, span, &h);
+    if (rc != AUTOBAL_SUCCESS)
+      return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t0, t_reached, wall0);
+    if (tr->opt.h_min > 0.0 && h < tr->opt.h_min) h = tr->opt.h_min;
+  }
+  t_out = output_time(tr, t0, t1, k_out);
+
+  while (t < t1) {
+    double target = t_out, t_prev = t, h_taken = 0.0;
+    if (tr->opt.max_steps > 0 && tr->stats.steps >= tr->opt.max_steps) {
+      autobal_error_set(&tr->err, AUTOBAL_EMAXSTEPS,
+                        "maximum number of steps (%lu) reached at t = %.17g before t1 = %.17g",
+                        tr->opt.max_steps, t, t1);
+      return finish(tr, AUTOBAL_EMAXSTEPS, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
+    }
+    /* land exactly on pending dwell completions */
+    for (i = 0; i < tr->nev; i++) {
+      const event_item *e = &tr->ev[i];
+      if (e->dwell && e->dwell_state == DWELL_BELOW) {
+        const double tf = e->t_enter + e->duration;
+        if (tf > t && tf < target) target = tf;
+      }
+    }
+    if (tr->opt.h_max > 0.0 && h > tr->opt.h_max) h = tr->opt.h_max;
+    memcpy(tr->y_prev, y, n * sizeof(double));
+    rc = take_step(tr, &tr->main, &t, target, &h, y, &tr->stats.rejected, &h_taken);
+    if (rc != AUTOBAL_SUCCESS) {
+      tr->stats.user_code = tr->fail_code;
+      return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
+    }
+    tr->stats.steps++;
+    tr->stats.h_last = h_taken;
+    if (h_taken < tr->stats.h_min_used) tr->stats.h_min_used = h_taken;
+    if (h_taken > tr->stats.h_max_used) tr->stats.h_max_used = h_taken;
+    for (i = 0; i < n; i++) {
+      if (!isfinite(y[i])) {
+        memcpy(y, tr->y_prev, n * sizeof(double));
+        autobal_error_set(&tr->err, AUTOBAL_ENUMERIC,
+                          "state component %zu became non-finite in the step from t = %.17g",
+                          i, t_prev);
+        return finish(tr, AUTOBAL_ENUMERIC, AUTOBAL_TRANSIENT_STOP_ERROR, t_prev, t_reached,
+                      wall0);
+      }
+    }
+    if (tr->nev > 0) {
+      rc = process_events(tr, t_prev, &t, y, h_taken);
+      if (rc == AUTOBAL_EVENT) {
+        autobal_error_set(&tr->err, AUTOBAL_EVENT, "stopped at event %d at t = %.17g",
+                          tr->stats.event_index, t);
+        return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_EVENT, t, t_reached, wall0);
+      }
+      if (rc != AUTOBAL_SUCCESS) {
+        /* keep the last good state: the end of this accepted step */
+        if (tr->fail_kind != 0) rc = rhs_failure(tr);
+        return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
+      }
+    }
+    if (t >= t_out) {
+      if (tr->observer) {
+        int uc = tr->observer(t, y, tr->observer_user);
+        tr->stats.observer_calls++;
+        if (uc != 0) {
+          tr->stats.user_code = uc;
+          autobal_error_set(&tr->err, AUTOBAL_EVENT,
+                            "observer requested a stop (%d) at t = %.17g", uc, t);
+          return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_OBSERVER, t, t_reached, wall0);
+        }
+      }
+      k_out++;
+      t_out = output_time(tr, t0, t1, k_out);
+    }
+    if (tr->progress && t < t1) {
+      const double frac = (t - t0) / span;
+      if (frac - prog_last >= tr->opt.progress_step) {
+        int call = 1;
+        double wnow = 0.0;
+        if (tr->opt.progress_wall > 0.0) {
+          wnow = now_seconds();
+          call = wnow - wall_last >= tr->opt.progress_wall;
+        }
+        if (call) {
+          int uc = tr->progress(frac, tr->progress_user);
+          prog_last = frac;
+          wall_last = wnow;
+          if (uc != 0) {
+            tr->stats.user_code = uc;
+            autobal_error_set(&tr->err, AUTOBAL_ECANCELLED,
+                              "cancelled by the progress callback (%d) at t = %.17g", uc, t);
+            return finish(tr, AUTOBAL_ECANCELLED, AUTOBAL_TRANSIENT_STOP_CANCELLED, t,
+                          t_reached, wall0);
+          }
+        }
+      }
+    }
+  }
+  /* the run is complete: a request to cancel at 1 changes nothing */
+  if (tr->progress) (void)tr->progress(1.0, tr->progress_user);
+  return finish(tr, AUTOBAL_SUCCESS, AUTOBAL_TRANSIENT_STOP_END, t, t_reached, wall0);
+}

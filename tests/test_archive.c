@@ -1,0 +1,939 @@
+/* test_archive.c: the HDF5 archive module.
+ *
+ * Without arguments: writes archives in the build's test directory and reads them back
+ * with the plain HDF5 C API (independent of the library's reading side) and with the
+ * library's reading side; compares exactly; provokes every error path.
+ * With `--write FILE`: writes the sample archive checked by tests/archive_readback.py
+ * (values there are recomputed from the same formulas, sample_* below). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <hdf5.h>
+#include <hdf5_hl.h>
+
+#include "autobal.h"
+#include "check.h"
+
+#ifndef AUTOBAL_TEST_TMP_DIR
+#define AUTOBAL_TEST_TMP_DIR "."
+#endif
+
+static int exists(const char *p) {
+  struct stat st;
+  return stat(p, &st) == 0;
+}
+
+/* ---------------------------------------------------------------------- */
+/* Plain HDF5 readers (independent of archive.c)                           */
+/* ---------------------------------------------------------------------- */
+
+/* Read a scalar vlen string attribute; returns malloc'ed copy or NULL.  *is_vlen_utf8
+ * reports whether it is stored as a variable-length UTF-8 string. */
+static char *h5_attr_str(hid_t file, const char *obj, const char *name, int *is_vlen_utf8) {
+  hid_t o = -1, at = -1, ft = -1, mt = -1, sp = -1;
+  char *p = NULL, *res = NULL;
+  if (is_vlen_utf8) *is_vlen_utf8 = 0;
+  o = H5Oopen(file, obj, H5P_DEFAULT);
+  if (o < 0) return NULL;
+  if (H5Aexists(o, name) <= 0) goto done;
+  at = H5Aopen(o, name, H5P_DEFAULT);
+  ft = H5Aget_type(at);
+  sp = H5Aget_space(at);
+  if (H5Tget_class(ft) != H5T_STRING || H5Tis_variable_str(ft) <= 0) goto done;
+  if (is_vlen_utf8)
+    *is_vlen_utf8 = H5Tget_cset(ft) == H5T_CSET_UTF8 && H5Sget_simple_extent_type(sp) == H5S_SCALAR;
+  mt = H5Tcopy(H5T_C_S1);
+  H5Tset_size(mt, H5T_VARIABLE);
+  H5Tset_cset(mt, H5T_CSET_UTF8);
+  if (H5Aread(at, mt, &p) < 0) goto done;
+  res = malloc(strlen(p) + 1);
+  if (res) strcpy(res, p);
+  H5free_memory(p);
+done:
+  if (mt >= 0) H5Tclose(mt);
+  if (sp >= 0) H5Sclose(sp);
+  if (ft >= 0) H5Tclose(ft);
+  if (at >= 0) H5Aclose(at);
+  H5Oclose(o);
+  return res;
+}
+
+static int h5_attr_str_is(hid_t file, const char *obj, const char *name, const char *want) {
+  int vu = 0;
+  char *s = h5_attr_str(file, obj, name, &vu);
+  int ok = s != NULL && vu && strcmp(s, want) == 0;
+  if (!ok) printf("     %s@%s = \"%s\" (vlen utf8 %d), want \"%s\"\n", obj, name, s ? s : "(missing)", vu, want);
+  free(s);
+  return ok;
+}
+
+static double h5_attr_double(hid_t file, const char *obj, const char *name) {
+  double v = NAN;
+  hid_t o = H5Oopen(file, obj, H5P_DEFAULT), at;
+  if (o < 0) return v;
+  at = H5Aopen(o, name, H5P_DEFAULT);
+  if (at >= 0) {
+    if (H5Aread(at, H5T_NATIVE_DOUBLE, &v) < 0) v = NAN;
+    H5Aclose(at);
+  }
+  H5Oclose(o);
+  return v;
+}
+
+/* Read a whole dataset as double; returns malloc'ed buffer, *n elements. */
+static double *h5_read(hid_t file, const char *path, size_t *n) {
+  hid_t ds = H5Dopen2(file, path, H5P_DEFAULT), sp;
+  hssize_t np;
+  double *buf;
+  *n = 0;
+  if (ds < 0) return NULL;
+  sp = H5Dget_space(ds);
+  np = H5Sget_simple_extent_npoints(sp);
+  H5Sclose(sp);
+  buf = malloc((size_t)(np > 0 ? np : 1) * sizeof *buf);
+  if (buf && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+    free(buf);
+    buf = NULL;
+  }
+  H5Dclose(ds);
+  *n = (size_t)np;
+  return buf;
+}
+
+/* 1 if dimension scale `scale` is attached to dimension idx of `var`. */
+static int h5_attached(hid_t file, const char *var, const char *scale, unsigned idx) {
+  hid_t v = H5Dopen2(file, var, H5P_DEFAULT), s = H5Dopen2(file, scale, H5P_DEFAULT);
+  int r = v >= 0 && s >= 0 && H5DSis_attached(v, s, idx) > 0;
+  if (v >= 0) H5Dclose(v);
+  if (s >= 0) H5Dclose(s);
+  return r;
+}
+
+static int h5_scale_name_is(hid_t file, const char *path, const char *want) {
+  char buf[256] = "";
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  int ok;
+  if (d < 0) return 0;
+  ok = H5DSis_scale(d) > 0 && H5DSget_scale_name(d, buf, sizeof buf) > 0 && strcmp(buf, want) == 0;
+  H5Dclose(d);
+  return ok;
+}
+
+/* Layout and number of filters of a dataset. */
+static void h5_layout(hid_t file, const char *path, H5D_layout_t *layout, int *nfilters) {
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT), p;
+  *layout = H5D_LAYOUT_ERROR;
+  *nfilters = -1;
+  if (d < 0) return;
+  p = H5Dget_create_plist(d);
+  *layout = H5Pget_layout(p);
+  *nfilters = H5Pget_nfilters(p);
+  H5Pclose(p);
+  H5Dclose(d);
+}
+
+static int h5_maxdim_unlimited(hid_t file, const char *path) {
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT), sp;
+  hsize_t cur = 0, mx = 0;
+  int r;
+  if (d < 0) return 0;
+  sp = H5Dget_space(d);
+  r = H5Sget_simple_extent_ndims(sp) == 1 && H5Sget_simple_extent_dims(sp, &cur, &mx) == 1 && mx == H5S_UNLIMITED;
+  H5Sclose(sp);
+  H5Dclose(d);
+  return r;
+}
+
+/* ---------------------------------------------------------------------- */
+/* The sample archive (also checked by archive_readback.py)                */
+/* ---------------------------------------------------------------------- */
+
+#define SAMPLE_NOMEGA 5
+#define SAMPLE_NROOT 3
+#define SAMPLE_NROWS 10000 /* > 2 series chunks */
+static double sample_omega(size_t i) { return 10.0 * (double)(i + 1); }          /* rad/s */
+static double sample_re(size_t i, size_t j) { return sample_omega(i) + 0.25 * (double)j; }
+static int sample_flag(size_t i, size_t j) { return (int)(i * 10 + j) - 7; }
+
+static int write_sample(const char *path) {
+  autobal_archive *a = NULL;
+  autobal_archive_series *s = NULL;
+  autobal_error err;
+  double omega[SAMPLE_NOMEGA], re[SAMPLE_NOMEGA * SAMPLE_NROOT], lam[SAMPLE_NOMEGA];
+  int flag[SAMPLE_NOMEGA * SAMPLE_NROOT];
+  const char *d2[2] = {"omega", "root"};
+  const char *d1[1] = {"omega"};
+  const char *names[2] = {"x", "y"}, *units[2] = {"m", "m"}, *lns[2] = {"displacement x", NULL};
+  const char *argv[3] = {"test_archive", "--write", path};
+  const double par2[2] = {1.5, -2.0};
+  size_t i, j;
+  int rc = 0;
+  for (i = 0; i < SAMPLE_NOMEGA; i++) {
+    omega[i] = sample_omega(i);
+    lam[i] = -0.5 * omega[i];
+    for (j = 0; j < SAMPLE_NROOT; j++) {
+      re[i * SAMPLE_NROOT + j] = sample_re(i, j);
+      flag[i * SAMPLE_NROOT + j] = sample_flag(i, j);
+    }
+  }
+  rc |= autobal_archive_create(path, 1, &a, &err);
+  if (rc) {
+    fprintf(stderr, "create: %s\n", err.message);
+    return 1;
+  }
+  rc |= autobal_archive_provenance(a, "archive sample", 3, argv);
+  rc |= autobal_archive_group(a, "/pendulum/map");
+  rc |= autobal_archive_attr_double(a, "/pendulum", "mass", 0.5, "kg");
+  rc |= autobal_archive_attr_int(a, "/pendulum", "n_pendulums", 2);
+  rc |= autobal_archive_attr_string(a, "/pendulum", "model", "two pendulums");
+  rc |= autobal_archive_attr_double_array(a, "/pendulum", "pair", 2, par2, "1");
+  rc |= autobal_archive_coord(a, "/pendulum/map", "omega", SAMPLE_NOMEGA, omega, "rad/s", "rotor speed");
+  rc |= autobal_archive_dim(a, "/pendulum/map", "root", SAMPLE_NROOT, "root index");
+  rc |= autobal_archive_var(a, "/pendulum/map", "re", 2, d2, re, "1/s", "real part");
+  rc |= autobal_archive_var_int(a, "/pendulum/map", "flag", 2, d2, flag, "1", "flag");
+  rc |= autobal_archive_var(a, "/pendulum/map", "omega_crit", 0, NULL, omega, "rad/s", "critical speed");
+  rc |= autobal_archive_var(a, "/pendulum/map/sub", "lam", 1, d1, lam, "1/s", "uses parent dim");
+  rc |= autobal_archive_series_open(a, "/rotor/transient", "time", "s", "time", 2, names, units, lns, &s);
+  for (i = 0; i < SAMPLE_NROWS && rc == 0; i++) {
+    double t = 1e-3 * (double)i, row[2];
+    row[0] = (double)i;
+    row[1] = -0.5 * (double)i;
+    rc |= autobal_archive_series_append(s, 1, &t, row);
+  }
+  rc |= autobal_archive_series_close(s);
+  if (rc) {
+    fprintf(stderr, "writing the sample failed: %s\n", autobal_archive_errmsg(a));
+    autobal_archive_discard(a);
+    return 1;
+  }
+  if (autobal_archive_close(a, &err) != 0) {
+    fprintf(stderr, "close: %s\n", err.message);
+    return 1;
+  }
+  return 0;
+}
+
+/* ---------------------------------------------------------------------- */
+/* Checks                                                                   */
+/* ---------------------------------------------------------------------- */
+
+static int silent_handler_calls = 0;
+static herr_t counting_handler(hid_t estack, void *data) {
+  (void)estack;
+  (void)data;
+  silent_handler_calls++;
+  return 0;
+}
+
+static int list_count_cb(const char *name, int is_group, void *ctx) {
+  int *c = (int *)ctx;
+  (void)name;
+  c[is_group ? 1 : 0]++;
+  return 0;
+}
+
+static int list_stop_cb(const char *name, int is_group, void *ctx) {
+  (void)is_group;
+  (void)ctx;
+  return strcmp(name, "b") == 0 ? 42 : 0;
+}
+
+static void copy_prefix(const char *src, const char *dst, long nbytes) {
+  FILE *in = fopen(src, "rb"), *out = fopen(dst, "wb");
+  long k;
+  int c;
+  for (k = 0; in && out && k < nbytes && (c = fgetc(in)) != EOF; k++) fputc(c, out);
+  if (in) fclose(in);
+  if (out) fclose(out);
+}
+
+static long file_size(const char *p) {
+  struct stat st;
+  return stat(p, &st) == 0 ? (long)st.st_size : -1;
+}
+
+#define NX 300
+#define NY 200
+#define NROWS 20000
+#define NV 5
+
+int main(int argc, char **argv) {
+  char path[1024], tmp[1100], p2[1024], buf[256];
+  autobal_archive *a = NULL, *r = NULL;
+  autobal_archive_series *s = NULL;
+  autobal_error err;
+  H5E_auto2_t old_func = NULL;
+  void *old_data = NULL;
+  static double x[NX], y[NY], big[NX * NY], series_rows[NROWS * NV], t[NROWS];
+  double small[NX], omega[50], m2[50 * 4];
+  int im2[50 * 4];
+  size_t i, j;
+  int rc;
+
+  setvbuf(stdout, NULL, _IOLBF, 0); /* keep the log complete if something crashes */
+  if (argc == 3 && strcmp(argv[1], "--write") == 0) return write_sample(argv[2]);
+  if (argc != 1) {
+    fprintf(stderr, "usage: %s [--write FILE]\n", argv[0]);
+    return 2;
+  }
+
+  /* A counting HDF5 error handler: the library must never trigger it (no printing)
+   * and must leave it installed. */
+  H5Eset_auto2(H5E_DEFAULT, counting_handler, NULL);
+
+  snprintf(path, sizeof path, "%s/test_archive_%ld.h5", AUTOBAL_TEST_TMP_DIR, (long)getpid());
+  snprintf(tmp, sizeof tmp, "%s.partial-%ld", path, (long)getpid());
+  remove(path);
+  remove(tmp);
+
+  /* ---- creation, temporary name ---------------------------------------- */
+  rc = autobal_archive_create(path, 0, &a, &err);
+  CHECK_STATUS("create", rc, AUTOBAL_SUCCESS);
+  if (a == NULL) return check_summary() + 1;
+  CHECK("final name absent before close", !exists(path));
+  CHECK("temporary <path>.partial-<pid> exists", exists(tmp));
+  CHECK("errmsg empty after success", strcmp(autobal_archive_errmsg(a), "") == 0);
+
+  {
+    const char *av[6] = {"autobal", "run", "my file.ini", "it's", "", "--x=1,2"};
+    const char *avnull[2] = {"autobal", NULL};
+    CHECK_STATUS("provenance argc < 0", autobal_archive_provenance(a, "t", -1, av), AUTOBAL_EINVAL);
+    CHECK_STATUS("provenance argv NULL", autobal_archive_provenance(a, "t", 2, NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("provenance argv[1] NULL", autobal_archive_provenance(a, "t", 2, avnull), AUTOBAL_EINVAL);
+    CHECK_MSG("names argv[1]", autobal_archive_errmsg(a), "argv[1]");
+    CHECK_STATUS("provenance title not UTF-8", autobal_archive_provenance(a, "\xc3", 0, NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("provenance", autobal_archive_provenance(a, "a title", 6, av), AUTOBAL_SUCCESS);
+  }
+
+  /* ---- groups ------------------------------------------------------------ */
+  CHECK_STATUS("group with parents", autobal_archive_group(a, "/pendulum/map"), AUTOBAL_SUCCESS);
+  CHECK_STATUS("group idempotent", autobal_archive_group(a, "pendulum//map/"), AUTOBAL_SUCCESS);
+  CHECK_STATUS("root group", autobal_archive_group(a, "/"), AUTOBAL_SUCCESS);
+  CHECK_STATUS("group name with control char", autobal_archive_group(a, "/bad\tname"), AUTOBAL_EINVAL);
+  CHECK_STATUS("group name '..'", autobal_archive_group(a, "/a/../b"), AUTOBAL_EINVAL);
+  CHECK_STATUS("group NULL", autobal_archive_group(a, NULL), AUTOBAL_EINVAL);
+  CHECK_STATUS("group invalid UTF-8", autobal_archive_group(a, "/caf\xe9"), AUTOBAL_EINVAL);
+  CHECK_MSG("invalid UTF-8 message", autobal_archive_errmsg(a), "UTF-8");
+
+  /* ---- coordinates, dims, variables ------------------------------------ */
+  for (i = 0; i < 50; i++) omega[i] = 0.1 * (double)i;
+  for (i = 0; i < 50; i++)
+    for (j = 0; j < 4; j++) {
+      m2[i * 4 + j] = 10.0 * (double)i + (double)j + 0.5;
+      im2[i * 4 + j] = (int)(i * 4 + j) - 100;
+    }
+  CHECK_STATUS("coord omega", autobal_archive_coord(a, "/pendulum/map", "omega", 50, omega, "rad/s", "speed"),
+               AUTOBAL_SUCCESS);
+  CHECK_STATUS("dim root", autobal_archive_dim(a, "/pendulum/map", "root", 4, NULL), AUTOBAL_SUCCESS);
+  {
+    const char *d2[2] = {"omega", "root"};
+    const char *dabs[2] = {"/pendulum/map/omega", "root"};
+    const char *dbad[2] = {"omega", "nosuch"};
+    const char *dvar[1] = {"m2"};
+    CHECK_STATUS("var m2(omega,root)", autobal_archive_var(a, "/pendulum/map", "m2", 2, d2, m2, "1/s", NULL),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("var_int", autobal_archive_var_int(a, "/pendulum/map", "im2", 2, d2, im2, "1", "ints"),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("var with absolute dim path",
+                 autobal_archive_var(a, "/pendulum/map", "m2b", 2, dabs, m2, "1/s", NULL), AUTOBAL_SUCCESS);
+    CHECK_STATUS("var in subgroup uses parent's dim",
+                 autobal_archive_var(a, "/pendulum/map/deep/er", "v", 1, d2, omega, "rad/s", NULL), AUTOBAL_SUCCESS);
+    {
+      const char *drr[2] = {"root", "root"};
+      double sq[16];
+      for (i = 0; i < 16; i++) sq[i] = (double)i;
+      CHECK_STATUS("square var over (root, root)", autobal_archive_var(a, "/pendulum/map", "sq", 2, drr, sq, "1", NULL),
+                   AUTOBAL_SUCCESS);
+    }
+    CHECK_STATUS("scalar var", autobal_archive_var(a, "/pendulum", "s0", 0, NULL, &omega[3], "rad/s", "scalar"),
+                 AUTOBAL_SUCCESS);
+    /* errors */
+    CHECK_STATUS("unknown dimension", autobal_archive_var(a, "/pendulum/map", "z", 2, dbad, m2, "1", NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("unknown dimension named", autobal_archive_errmsg(a), "nosuch");
+    CHECK("failed var not created (no half-made dataset)",
+          !autobal_archive_has(a, "/pendulum/map/z", NULL));
+    CHECK_STATUS("dimension that is a variable", autobal_archive_var(a, "/pendulum/map", "z", 1, dvar, m2, "1", NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("not-a-dimension message", autobal_archive_errmsg(a), "not a dimension");
+    CHECK_STATUS("dimension not visible from a sibling group",
+                 autobal_archive_var(a, "/rotor", "z", 1, d2, m2, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("duplicate variable", autobal_archive_var(a, "/pendulum/map", "m2", 2, d2, m2, "1/s", NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("duplicate message", autobal_archive_errmsg(a), "already exists");
+    CHECK_STATUS("rank 5", autobal_archive_var(a, "/pendulum/map", "z", 5, d2, m2, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_MSG("rank message", autobal_archive_errmsg(a), "rank 5");
+    CHECK_STATUS("rank -1", autobal_archive_var(a, "/pendulum/map", "z", -1, d2, m2, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("NULL units", autobal_archive_var(a, "/pendulum/map", "z", 2, d2, m2, NULL, NULL), AUTOBAL_EINVAL);
+    CHECK_MSG("NULL units message", autobal_archive_errmsg(a), "units");
+    CHECK_STATUS("NULL data", autobal_archive_var(a, "/pendulum/map", "z", 2, d2, NULL, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("NULL dims", autobal_archive_var(a, "/pendulum/map", "z", 2, NULL, m2, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("name with slash", autobal_archive_var(a, "/pendulum/map", "a/b", 2, d2, m2, "1", NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("empty name", autobal_archive_coord(a, "/pendulum/map", "", 50, omega, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("coord n = 0", autobal_archive_coord(a, "/pendulum/map", "q", 0, omega, "1", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("coord NULL values", autobal_archive_coord(a, "/pendulum/map", "q", 3, NULL, "1", NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("coord NULL units", autobal_archive_coord(a, "/pendulum/map", "q", 3, omega, NULL, NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("coord exists", autobal_archive_coord(a, "/pendulum/map", "omega", 3, omega, "1", NULL),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("dim n = 0", autobal_archive_dim(a, "/pendulum/map", "q", 0, NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("group over a dataset", autobal_archive_group(a, "/pendulum/map/m2/x"), AUTOBAL_EINVAL);
+    CHECK_MSG("not-a-group message", autobal_archive_errmsg(a), "not a group");
+  }
+  /* large variable: chunked + compressed; small one contiguous */
+  for (i = 0; i < NX; i++) x[i] = 1e-3 * (double)i;
+  for (j = 0; j < NY; j++) y[j] = -2.0 + 0.01 * (double)j;
+  for (i = 0; i < NX; i++)
+    for (j = 0; j < NY; j++) big[i * NY + j] = x[i] * 1000.0 + y[j] * 0.5 + (double)((i * 7 + j * 13) % 11);
+  for (i = 0; i < NX; i++) small[i] = (double)i * 0.125;
+  {
+    const char *dxy[2] = {"x", "y"}, *dx[1] = {"x"};
+    CHECK_STATUS("coord x", autobal_archive_coord(a, "/big", "x", NX, x, "m", "x position"), AUTOBAL_SUCCESS);
+    CHECK_STATUS("coord y", autobal_archive_coord(a, "/big", "y", NY, y, "m", "y position"), AUTOBAL_SUCCESS);
+    CHECK_STATUS("big var (480 kB)", autobal_archive_var(a, "/big", "field", 2, dxy, big, "Pa", "a field"),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("small var (2.4 kB)", autobal_archive_var(a, "/big", "small", 1, dx, small, "1", NULL),
+                 AUTOBAL_SUCCESS);
+  }
+
+  /* ---- attributes -------------------------------------------------------- */
+  {
+    const double arr[3] = {1.0, -2.5, 1e-300};
+    CHECK_STATUS("attr double", autobal_archive_attr_double(a, "/pendulum", "mass", 0.25, "kg"), AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr double replaced", autobal_archive_attr_double(a, "/pendulum", "mass", 0.5, "kg"),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr double dimensionless", autobal_archive_attr_double(a, "/pendulum", "zeta", 0.01, "1"),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr double no units", autobal_archive_attr_double(a, "/pendulum", "plain", 3.0, NULL),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr int", autobal_archive_attr_int(a, "/pendulum", "n", -1234567890123L), AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr string on dataset", autobal_archive_attr_string(a, "/pendulum/map/m2", "note", "h\xc3\xa9llo"),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr array", autobal_archive_attr_double_array(a, "/", "arr", 3, arr, "m"), AUTOBAL_SUCCESS);
+    CHECK_STATUS("attr on missing object", autobal_archive_attr_double(a, "/nope", "q", 1.0, NULL), AUTOBAL_EINVAL);
+    CHECK_MSG("missing object named", autobal_archive_errmsg(a), "/nope");
+    CHECK_STATUS("reserved attr CLASS", autobal_archive_attr_string(a, "/pendulum", "CLASS", "x"), AUTOBAL_EINVAL);
+    CHECK_MSG("reserved message", autobal_archive_errmsg(a), "reserved");
+    CHECK_STATUS("reserved attr _Netcdf4Dimid", autobal_archive_attr_int(a, "/pendulum", "_Netcdf4Dimid", 1),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("attr string NULL", autobal_archive_attr_string(a, "/pendulum", "s", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("attr string invalid UTF-8", autobal_archive_attr_string(a, "/pendulum", "s", "\xff"),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("attr array n = 0", autobal_archive_attr_double_array(a, "/", "arr", 0, arr, NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("attr array NULL", autobal_archive_attr_double_array(a, "/", "arr", 2, NULL, NULL), AUTOBAL_EINVAL);
+  }
+
+  /* ---- series: 20000 rows x 5 variables (> 4 buffers / chunks) ---------- */
+  {
+    const char *names[NV] = {"a", "b", "c", "d", "e"};
+    const char *units[NV] = {"m", "m/s", "rad", "rad/s", "N"};
+    const char *dup[2] = {"a", "a"}, *clash[1] = {"time"}, *uu[2] = {"1", "1"};
+    const char *nullu[2] = {"1", NULL};
+    size_t done = 0, batches[5] = {1, 7, 4089, 9000, NROWS - 1 - 1 - 7 - 4089 - 9000};
+    for (i = 0; i < NROWS; i++) {
+      t[i] = 0.5e-3 * (double)i;
+      for (j = 0; j < NV; j++) series_rows[i * NV + j] = (double)i * (double)(j + 1) - 0.25 * (double)j;
+    }
+    CHECK_STATUS("series duplicate names",
+                 autobal_archive_series_open(a, "/ts", "time", "s", NULL, 2, dup, uu, NULL, &s), AUTOBAL_EINVAL);
+    CHECK("series NULL on failure", s == NULL);
+    CHECK_STATUS("series var named like dim",
+                 autobal_archive_series_open(a, "/ts", "time", "s", NULL, 1, clash, uu, NULL, &s), AUTOBAL_EINVAL);
+    CHECK_STATUS("series NULL unit",
+                 autobal_archive_series_open(a, "/ts", "time", "s", NULL, 2, names, nullu, NULL, &s), AUTOBAL_EINVAL);
+    CHECK_STATUS("series nvars 0", autobal_archive_series_open(a, "/ts", "time", "s", NULL, 0, names, units, NULL, &s),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("series over existing dataset",
+                 autobal_archive_series_open(a, "/pendulum/map", "omega", "s", NULL, 1, names, units, NULL, &s),
+                 AUTOBAL_EINVAL);
+    CHECK("nothing left by failed opens", !autobal_archive_has(a, "/ts/time", NULL));
+    CHECK_STATUS("series open", autobal_archive_series_open(a, "/ts", "time", "s", "time", NV, names, units, NULL, &s),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("append 0 rows", autobal_archive_series_append(s, 0, NULL, NULL), AUTOBAL_SUCCESS);
+    CHECK_STATUS("append NULL", autobal_archive_series_append(s, 3, NULL, series_rows), AUTOBAL_EINVAL);
+    for (i = 0; i < 5; i++) {
+      rc = autobal_archive_series_append(s, batches[i], t + done, series_rows + done * NV);
+      if (rc != AUTOBAL_SUCCESS) break;
+      done += batches[i];
+      if (i == 2) CHECK_STATUS("series flush mid-way", autobal_archive_series_flush(s), AUTOBAL_SUCCESS);
+    }
+    CHECK_STATUS("series appends", rc, AUTOBAL_SUCCESS);
+    CHECK("series length after batches", autobal_archive_series_length(s) == NROWS - 1);
+    /* a variable over the series dimension sees the rows appended so far */
+    {
+      const char *dt[1] = {"time"};
+      CHECK_STATUS("var over the series dim", autobal_archive_var(a, "/ts", "tcopy", 1, dt, t, "s", NULL),
+                   AUTOBAL_SUCCESS);
+    }
+    rc = autobal_archive_series_append(s, 1, t + NROWS - 1, series_rows + (NROWS - 1) * NV);
+    CHECK_STATUS("last row", rc, AUTOBAL_SUCCESS);
+    CHECK("series length", autobal_archive_series_length(s) == NROWS);
+    CHECK_STATUS("series close", autobal_archive_series_close(s), AUTOBAL_SUCCESS);
+    CHECK_STATUS("series close NULL", autobal_archive_series_close(NULL), AUTOBAL_SUCCESS);
+    CHECK("series length NULL", autobal_archive_series_length(NULL) == 0);
+    /* a second series left open: closed (flushed) by archive_close */
+    CHECK_STATUS("series 2 open", autobal_archive_series_open(a, "/ts2", "t", "s", NULL, 1, names, units, NULL, &s),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("series 2 append", autobal_archive_series_append(s, 3, t, series_rows), AUTOBAL_SUCCESS);
+  }
+
+  /* ---- status ------------------------------------------------------------ */
+  CHECK_STATUS("set_status empty", autobal_archive_set_status(a, "", NULL), AUTOBAL_EINVAL);
+  CHECK_STATUS("set_status NULL", autobal_archive_set_status(a, NULL, NULL), AUTOBAL_EINVAL);
+  CHECK_STATUS("set_status too long",
+               autobal_archive_set_status(a, "0123456789012345678901234567890123456789012345678901234567890123456789", NULL),
+               AUTOBAL_EINVAL);
+  CHECK_STATUS("set_status", autobal_archive_set_status(a, "incomplete", "interrupted by SIGINT"), AUTOBAL_SUCCESS);
+  CHECK("still no final name", !exists(path));
+  rc = autobal_archive_close(a, &err);
+  a = NULL;
+  CHECK_STATUS("close", rc, AUTOBAL_SUCCESS);
+  CHECK("final name exists after close", exists(path));
+  CHECK("temporary gone after close", !exists(tmp));
+
+  /* ---- read back with the plain HDF5 API ------------------------------- */
+  {
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    size_t n;
+    double *v;
+    H5D_layout_t lay;
+    int nf, ok;
+    char *created;
+    CHECK("HDF5 opens the archive", f >= 0);
+    CHECK("Conventions", h5_attr_str_is(f, "/", "Conventions", "autobal-1"));
+    CHECK("status written by close", h5_attr_str_is(f, "/", "status", "incomplete"));
+    CHECK("status_reason", h5_attr_str_is(f, "/", "status_reason", "interrupted by SIGINT"));
+    CHECK("title", h5_attr_str_is(f, "/", "title", "a title"));
+    CHECK("autobal_version", h5_attr_str_is(f, "/", "autobal_version", AUTOBAL_VERSION_STRING));
+    CHECK("git_revision", h5_attr_str_is(f, "/", "git_revision", autobal_git_revision()));
+    CHECK("gsl_version", h5_attr_str_is(f, "/", "gsl_version", autobal_gsl_version()));
+    {
+      unsigned maj, mn, rel;
+      char hv[32];
+      H5get_libversion(&maj, &mn, &rel);
+      snprintf(hv, sizeof hv, "%u.%u.%u", maj, mn, rel);
+      CHECK("hdf5_version", h5_attr_str_is(f, "/", "hdf5_version", hv));
+    }
+    /* POSIX shell quoting: safe words bare, others in '...', ' as '\'' */
+    CHECK("command_line shell-quoted",
+          h5_attr_str_is(f, "/", "command_line", "autobal run 'my file.ini' 'it'\\''s' '' --x=1,2"));
+    created = h5_attr_str(f, "/", "created", NULL);
+    ok = created != NULL && strlen(created) == 20 && created[4] == '-' && created[7] == '-' && created[10] == 'T' &&
+         created[13] == ':' && created[16] == ':' && created[19] == 'Z';
+    if (ok) {
+      /* within a day of now (UTC date of the test run) */
+      struct tm tmv;
+      time_t now = time(NULL);
+      int yy, mo, dd;
+      gmtime_r(&now, &tmv);
+      ok = sscanf(created, "%4d-%2d-%2d", &yy, &mo, &dd) == 3 && yy == tmv.tm_year + 1900 && mo >= 1 && mo <= 12;
+    }
+    CHECK("created is ISO 8601 UTC of this year", ok);
+    free(created);
+
+    v = h5_read(f, "/pendulum/map/omega", &n);
+    ok = v != NULL && n == 50;
+    for (i = 0; ok && i < 50; i++) ok = v[i] == omega[i];
+    CHECK("omega values exact", ok);
+    free(v);
+    v = h5_read(f, "/pendulum/map/root", &n);
+    ok = v != NULL && n == 4;
+    for (i = 0; ok && i < 4; i++) ok = v[i] == (double)i;
+    CHECK("root dim = 0..3", ok);
+    free(v);
+    v = h5_read(f, "/pendulum/map/m2", &n);
+    ok = v != NULL && n == 200;
+    for (i = 0; ok && i < 200; i++) ok = v[i] == m2[i];
+    CHECK("m2 values exact (C order)", ok);
+    free(v);
+    v = h5_read(f, "/pendulum/map/im2", &n);
+    ok = v != NULL && n == 200;
+    for (i = 0; ok && i < 200; i++) ok = v[i] == (double)im2[i];
+    CHECK("im2 values exact", ok);
+    free(v);
+    {
+      hid_t d = H5Dopen2(f, "/pendulum/map/im2", H5P_DEFAULT), ty = H5Dget_type(d);
+      CHECK("im2 stored as 32-bit integer", H5Tget_class(ty) == H5T_INTEGER && H5Tget_size(ty) == 4);
+      H5Tclose(ty);
+      H5Dclose(d);
+    }
+    v = h5_read(f, "/pendulum/s0", &n);
+    CHECK("scalar var", v != NULL && n == 1 && v[0] == omega[3]);
+    free(v);
+    CHECK("omega is a dimension scale named omega", h5_scale_name_is(f, "/pendulum/map/omega", "omega"));
+    CHECK("root is a dimension scale named root", h5_scale_name_is(f, "/pendulum/map/root", "root"));
+    CHECK("m2 dim 0 = omega", h5_attached(f, "/pendulum/map/m2", "/pendulum/map/omega", 0));
+    CHECK("m2 dim 1 = root", h5_attached(f, "/pendulum/map/m2", "/pendulum/map/root", 1));
+    CHECK("m2 dim 0 is not root", !h5_attached(f, "/pendulum/map/m2", "/pendulum/map/root", 0));
+    CHECK("sq dims 0 and 1 = root", h5_attached(f, "/pendulum/map/sq", "/pendulum/map/root", 0) &&
+                                       h5_attached(f, "/pendulum/map/sq", "/pendulum/map/root", 1));
+    CHECK("m2b (absolute dim) dim 0 = omega", h5_attached(f, "/pendulum/map/m2b", "/pendulum/map/omega", 0));
+    CHECK("subgroup var attached to parent's omega",
+          h5_attached(f, "/pendulum/map/deep/er/v", "/pendulum/map/omega", 0));
+    CHECK("m2 units", h5_attr_str_is(f, "/pendulum/map/m2", "units", "1/s"));
+    CHECK("m2 long_name defaults to name", h5_attr_str_is(f, "/pendulum/map/m2", "long_name", "m2"));
+    CHECK("omega units", h5_attr_str_is(f, "/pendulum/map/omega", "units", "rad/s"));
+    CHECK("omega long_name", h5_attr_str_is(f, "/pendulum/map/omega", "long_name", "speed"));
+    CHECK("root units 1", h5_attr_str_is(f, "/pendulum/map/root", "units", "1"));
+    CHECK("root long_name", h5_attr_str_is(f, "/pendulum/map/root", "long_name", "root"));
+    CHECK("string attr on dataset (UTF-8)", h5_attr_str_is(f, "/pendulum/map/m2", "note", "h\xc3\xa9llo"));
+    CHECK_CLOSE("mass replaced", h5_attr_double(f, "/pendulum", "mass"), 0.5, 0, 0);
+    CHECK("mass_units", h5_attr_str_is(f, "/pendulum", "mass_units", "kg"));
+    CHECK("zeta_units", h5_attr_str_is(f, "/pendulum", "zeta_units", "1"));
+    CHECK("no plain_units", h5_attr_str(f, "/pendulum", "plain_units", NULL) == NULL);
+    CHECK_CLOSE("int attr", h5_attr_double(f, "/pendulum", "n"), -1234567890123.0, 0, 0);
+    {
+      hid_t o = H5Oopen(f, "/", H5P_DEFAULT), at = H5Aopen(o, "arr", H5P_DEFAULT), sp = H5Aget_space(at);
+      double arr[3] = {0, 0, 0};
+      hsize_t nn = 0;
+      H5Sget_simple_extent_dims(sp, &nn, NULL);
+      H5Aread(at, H5T_NATIVE_DOUBLE, arr);
+      CHECK("array attr", nn == 3 && arr[0] == 1.0 && arr[1] == -2.5 && arr[2] == 1e-300);
+      H5Sclose(sp);
+      H5Aclose(at);
+      H5Oclose(o);
+      CHECK("arr_units", h5_attr_str_is(f, "/", "arr_units", "m"));
+    }
+    v = h5_read(f, "/big/field", &n);
+    ok = v != NULL && n == NX * NY;
+    for (i = 0; ok && i < NX * NY; i++) ok = v[i] == big[i];
+    CHECK("big field exact", ok);
+    free(v);
+    h5_layout(f, "/big/field", &lay, &nf);
+    CHECK("big field chunked", lay == H5D_CHUNKED);
+    CHECK("big field shuffle + deflate", nf == 2);
+    h5_layout(f, "/big/small", &lay, &nf);
+    CHECK("small var contiguous, unfiltered", lay == H5D_CONTIGUOUS && nf == 0);
+    {
+      long sz = file_size(path);
+      printf("     archive size %ld bytes (uncompressed payload > %ld)\n", sz,
+             (long)(sizeof big + sizeof series_rows + sizeof t));
+      CHECK("compression made the file smaller than the raw payload",
+            sz > 0 && sz < (long)(sizeof big + sizeof series_rows + sizeof t));
+    }
+    /* series */
+    v = h5_read(f, "/ts/time", &n);
+    ok = v != NULL && n == NROWS;
+    for (i = 0; ok && i < NROWS; i++) ok = v[i] == t[i];
+    CHECK("series time: 20000 rows exact", ok);
+    free(v);
+    for (j = 0; j < NV; j++) {
+      char p[16], what[96];
+      snprintf(p, sizeof p, "/ts/%c", (char)('a' + j));
+      v = h5_read(f, p, &n);
+      ok = v != NULL && n == NROWS;
+      for (i = 0; ok && i < NROWS; i++) ok = v[i] == series_rows[i * NV + j];
+      snprintf(what, sizeof what, "series column %s exact", p);
+      CHECK(what, ok);
+      free(v);
+      snprintf(what, sizeof what, "series column %s attached to time", p);
+      CHECK(what, h5_attached(f, p, "/ts/time", 0));
+    }
+    CHECK("series d units", h5_attr_str_is(f, "/ts/d", "units", "rad/s"));
+    CHECK("series time units", h5_attr_str_is(f, "/ts/time", "units", "s"));
+    CHECK("series time is unlimited", h5_maxdim_unlimited(f, "/ts/time"));
+    CHECK("series time is a scale", h5_scale_name_is(f, "/ts/time", "time"));
+    h5_layout(f, "/ts/a", &lay, &nf);
+    CHECK("series chunked + compressed", lay == H5D_CHUNKED && nf == 2);
+    v = h5_read(f, "/ts/tcopy", &n);
+    CHECK("var over series dim has the rows appended before it", v != NULL && n == NROWS - 1 && v[7] == t[7]);
+    free(v);
+    v = h5_read(f, "/ts2/a", &n);
+    CHECK("unclosed series flushed by archive_close", v != NULL && n == 3 && v[2] == series_rows[2]);
+    free(v);
+    H5Fclose(f);
+  }
+
+  /* ---- read back with the library's reading side ----------------------- */
+  rc = autobal_archive_open_read(path, &r, &err);
+  CHECK_STATUS("open_read", rc, AUTOBAL_SUCCESS);
+  if (r != NULL) {
+    size_t len = 0, dims[AUTOBAL_ARCHIVE_MAX_RANK], count = 0;
+    double dv = 0, rb[200];
+    int rank = -1, cnt[2] = {0, 0};
+    CHECK_STATUS("read status", autobal_archive_read_attr_string(r, "/", "status", buf, sizeof buf, &len),
+                 AUTOBAL_SUCCESS);
+    CHECK("status value", strcmp(buf, "incomplete") == 0 && len == 10);
+    CHECK_STATUS("truncating read", autobal_archive_read_attr_string(r, "/", "status", buf, 5, &len), AUTOBAL_WARNING);
+    CHECK("truncated to 4 chars, full length reported", strcmp(buf, "inco") == 0 && len == 10);
+    CHECK_STATUS("read fixed-length NAME attr of a scale",
+                 autobal_archive_read_attr_string(r, "/pendulum/map/omega", "NAME", buf, sizeof buf, NULL),
+                 AUTOBAL_SUCCESS);
+    CHECK("NAME = omega", strcmp(buf, "omega") == 0);
+    CHECK_STATUS("read double", autobal_archive_read_attr_double(r, "/pendulum", "mass", &dv), AUTOBAL_SUCCESS);
+    CHECK_CLOSE("mass", dv, 0.5, 0, 0);
+    CHECK_STATUS("read int as double", autobal_archive_read_attr_double(r, "/pendulum", "n", &dv), AUTOBAL_SUCCESS);
+    CHECK_CLOSE("n", dv, -1234567890123.0, 0, 0);
+    CHECK_STATUS("string as double", autobal_archive_read_attr_double(r, "/pendulum", "mass_units", &dv),
+                 AUTOBAL_EFORMAT);
+    CHECK_STATUS("array as double", autobal_archive_read_attr_double(r, "/", "arr", &dv), AUTOBAL_EFORMAT);
+    CHECK_STATUS("double as string", autobal_archive_read_attr_string(r, "/pendulum", "mass", buf, sizeof buf, NULL),
+                 AUTOBAL_EFORMAT);
+    CHECK_STATUS("missing attr", autobal_archive_read_attr_double(r, "/pendulum", "nosuch", &dv), AUTOBAL_EINVAL);
+    CHECK_MSG("missing attr named", autobal_archive_errmsg(r), "nosuch");
+    CHECK_STATUS("missing object", autobal_archive_read_attr_double(r, "/x/y", "mass", &dv), AUTOBAL_EINVAL);
+    CHECK_STATUS("shape", autobal_archive_var_shape(r, "/pendulum/map/m2", &rank, dims, &count), AUTOBAL_SUCCESS);
+    CHECK("shape 50 x 4", rank == 2 && dims[0] == 50 && dims[1] == 4 && count == 200);
+    CHECK_STATUS("shape scalar", autobal_archive_var_shape(r, "/pendulum/s0", &rank, dims, &count), AUTOBAL_SUCCESS);
+    CHECK("rank 0, 1 element", rank == 0 && count == 1);
+    CHECK_STATUS("shape of a group", autobal_archive_var_shape(r, "/pendulum", &rank, dims, NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("read_var", autobal_archive_read_var(r, "/pendulum/map/im2", rb, 200), AUTOBAL_SUCCESS);
+    CHECK("read_var int -> double exact", rb[0] == -100.0 && rb[199] == 99.0);
+    CHECK_STATUS("read_var buffer too small", autobal_archive_read_var(r, "/pendulum/map/m2", rb, 199), AUTOBAL_EINVAL);
+    CHECK_MSG("size needed in message", autobal_archive_errmsg(r), "200");
+    CHECK_STATUS("read_var missing", autobal_archive_read_var(r, "/none", rb, 200), AUTOBAL_EINVAL);
+    CHECK("has group", autobal_archive_has(r, "/pendulum/map", NULL) == 1);
+    CHECK("has attr", autobal_archive_has(r, "/", "command_line") == 1);
+    CHECK("has not", autobal_archive_has(r, "/pendulum/zzz", NULL) == 0 && autobal_archive_has(r, "/", "zz") == 0);
+    CHECK_STATUS("list /pendulum/map", autobal_archive_list(r, "/pendulum/map", list_count_cb, cnt), AUTOBAL_SUCCESS);
+    /* omega root m2 im2 m2b sq (datasets) + deep (group) */
+    CHECK("list counts 6 datasets, 1 group", cnt[0] == 6 && cnt[1] == 1);
+    CHECK_STATUS("list missing group", autobal_archive_list(r, "/nope", list_count_cb, cnt), AUTOBAL_EINVAL);
+    CHECK_STATUS("write on read handle", autobal_archive_group(r, "/x"), AUTOBAL_EINVAL);
+    CHECK_MSG("read-only message", autobal_archive_errmsg(r), "read-only");
+    CHECK_STATUS("set_status on read handle", autobal_archive_set_status(r, "complete", NULL), AUTOBAL_EINVAL);
+    CHECK_STATUS("close read handle", autobal_archive_close(r, &err), AUTOBAL_SUCCESS);
+    CHECK("file still there after closing a read handle", exists(path));
+    r = NULL;
+    CHECK_STATUS("open_read again", autobal_archive_open_read(path, &r, &err), AUTOBAL_SUCCESS);
+    autobal_archive_discard(r);
+    r = NULL;
+    CHECK("discarding a read handle keeps the file", exists(path));
+  }
+
+  /* ---- EEXIST, overwrite -------------------------------------------------- */
+  autobal_error_clear(&err);
+  rc = autobal_archive_create(path, 0, &a, &err);
+  CHECK_STATUS("existing file without overwrite", rc, AUTOBAL_EEXIST);
+  CHECK("out NULL on failure", a == NULL);
+  CHECK_MSG("EEXIST names path", err.message, path);
+  CHECK("no temporary left", !exists(tmp));
+  rc = autobal_archive_create(path, 1, &a, &err);
+  CHECK_STATUS("overwrite allowed", rc, AUTOBAL_SUCCESS);
+  CHECK_STATUS("provenance new title", autobal_archive_provenance(a, "second", 0, NULL), AUTOBAL_SUCCESS);
+  CHECK("old file still in place while writing", exists(path) && exists(tmp));
+  {
+    /* old content intact until close */
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    CHECK("old title readable during rewrite", f >= 0 && h5_attr_str_is(f, "/", "title", "a title"));
+    if (f >= 0) H5Fclose(f);
+  }
+  CHECK_STATUS("close overwrite", autobal_archive_close(a, NULL), AUTOBAL_SUCCESS);
+  {
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    CHECK("replaced: new title", f >= 0 && h5_attr_str_is(f, "/", "title", "second"));
+    CHECK("default final status complete", f >= 0 && h5_attr_str_is(f, "/", "status", "complete"));
+    CHECK("no status_reason by default", f >= 0 && h5_attr_str(f, "/", "status_reason", NULL) == NULL);
+    CHECK("empty command line", f >= 0 && h5_attr_str_is(f, "/", "command_line", ""));
+    if (f >= 0) H5Fclose(f);
+  }
+
+  /* ---- the final name appearing while writing (no overwrite) ------------ */
+  snprintf(p2, sizeof p2, "%s/test_archive_race_%ld.h5", AUTOBAL_TEST_TMP_DIR, (long)getpid());
+  remove(p2);
+  rc = autobal_archive_create(p2, 0, &a, &err);
+  CHECK_STATUS("create p2", rc, AUTOBAL_SUCCESS);
+  {
+    FILE *fp = fopen(p2, "w");
+    char tmp2[1100];
+    if (fp) {
+      fputs("someone else's file\n", fp);
+      fclose(fp);
+    }
+    snprintf(tmp2, sizeof tmp2, "%s.partial-%ld", p2, (long)getpid());
+    rc = autobal_archive_close(a, &err);
+    CHECK_STATUS("close refuses to clobber a file that appeared", rc, AUTOBAL_EEXIST);
+    CHECK_MSG("message names the kept temporary", err.message, tmp2);
+    CHECK("temporary kept for inspection", exists(tmp2));
+    CHECK("other file untouched", file_size(p2) == 20);
+    remove(tmp2);
+    remove(p2);
+  }
+
+  /* ---- a command line that is not UTF-8: bad bytes become '?' ----------- */
+  rc = autobal_archive_create(p2, 1, &a, &err);
+  CHECK_STATUS("create p2 (argv)", rc, AUTOBAL_SUCCESS);
+  {
+    const char *av[3] = {"autobal", "caf\xe9", "a\"b"};
+    CHECK_STATUS("provenance with a non-UTF-8 argument", autobal_archive_provenance(a, "x", 3, av),
+                 AUTOBAL_SUCCESS);
+    CHECK_STATUS("close p2", autobal_archive_close(a, NULL), AUTOBAL_SUCCESS);
+    {
+      hid_t f = H5Fopen(p2, H5F_ACC_RDONLY, H5P_DEFAULT);
+      CHECK("invalid byte replaced, double quote single-quoted",
+            f >= 0 && h5_attr_str_is(f, "/", "command_line", "autobal 'caf?' 'a\"b'"));
+      if (f >= 0) H5Fclose(f);
+    }
+    remove(p2);
+  }
+
+  /* ---- discard ------------------------------------------------------------ */
+  rc = autobal_archive_create(p2, 0, &a, &err);
+  CHECK_STATUS("create for discard", rc, AUTOBAL_SUCCESS);
+  {
+    const char *nm[1] = {"q"}, *un[1] = {"1"};
+    autobal_archive_coord(a, "/g", "c", 3, omega, "1", NULL);
+    autobal_archive_series_open(a, "/g", "t", "s", NULL, 1, nm, un, NULL, &s);
+    autobal_archive_series_append(s, 2, t, series_rows);
+  }
+  autobal_archive_discard(a);
+  a = NULL;
+  {
+    char tmp2[1100];
+    snprintf(tmp2, sizeof tmp2, "%s.partial-%ld", p2, (long)getpid());
+    CHECK("discard leaves no final file", !exists(p2));
+    CHECK("discard leaves no temporary", !exists(tmp2));
+  }
+  autobal_archive_discard(NULL);
+  CHECK_STATUS("close NULL", autobal_archive_close(NULL, NULL), AUTOBAL_SUCCESS);
+
+  /* ---- unwritable paths ---------------------------------------------------- */
+  rc = autobal_archive_create("/nonexistent-autobal-dir/x.h5", 0, &a, &err);
+  CHECK_STATUS("missing directory", rc, AUTOBAL_EIO);
+  CHECK("no handle", a == NULL);
+  CHECK_MSG("names the path", err.message, "/nonexistent-autobal-dir/x.h5");
+  CHECK_MSG("gives the OS reason", err.message, "No such file or directory");
+  rc = autobal_archive_create("/proc/autobal.h5", 0, &a, &err);
+  CHECK_STATUS("/proc/autobal.h5", rc, AUTOBAL_EIO);
+  CHECK_MSG("names the path", err.message, "/proc/autobal.h5");
+  rc = autobal_archive_create(AUTOBAL_TEST_TMP_DIR, 1, &a, &err);
+  CHECK_STATUS("a directory", rc, AUTOBAL_EINVAL);
+  CHECK_STATUS("empty path", autobal_archive_create("", 0, &a, &err), AUTOBAL_EINVAL);
+  CHECK_STATUS("NULL out", autobal_archive_create(path, 1, NULL, NULL), AUTOBAL_EINVAL);
+
+  /* ---- open_read on foreign / damaged files -------------------------------- */
+  {
+    char q[1100];
+    FILE *fp;
+    char sample[1100];
+    long full;
+    /* a real archive with data to truncate: the sample */
+    snprintf(sample, sizeof sample, "%s.sample", path);
+    CHECK("sample archive written", write_sample(sample) == 0);
+    full = file_size(sample);
+    rc = autobal_archive_open_read("/nonexistent-autobal-dir/x.h5", &r, &err);
+    CHECK_STATUS("open_read missing file", rc, AUTOBAL_EIO);
+    CHECK("no handle", r == NULL);
+    snprintf(q, sizeof q, "%s.txt", path);
+    fp = fopen(q, "w");
+    if (fp) {
+      fputs("[rotor]\nmass = 1\n", fp);
+      fclose(fp);
+    }
+    rc = autobal_archive_open_read(q, &r, &err);
+    CHECK_STATUS("text file", rc, AUTOBAL_EFORMAT);
+    CHECK_MSG("says not HDF5", err.message, "not an HDF5 file");
+    CHECK_MSG("names the file", err.message, q);
+    remove(q);
+    snprintf(q, sizeof q, "%s.trunc", path);
+    rc = autobal_archive_open_read(sample, &r, &err);
+    CHECK_STATUS("the untruncated sample opens", rc, AUTOBAL_SUCCESS);
+    autobal_archive_close(r, NULL);
+    r = NULL;
+    copy_prefix(sample, q, full - 1);
+    CHECK_STATUS("truncated archive (one byte short)", autobal_archive_open_read(q, &r, &err), AUTOBAL_EFORMAT);
+    copy_prefix(sample, q, full / 2);
+    rc = autobal_archive_open_read(q, &r, &err);
+    CHECK_STATUS("truncated archive (half)", rc, AUTOBAL_EFORMAT);
+    printf("     message: %s\n", err.message);
+    CHECK_MSG("truncated: names the file", err.message, q);
+    copy_prefix(sample, q, 200);
+    CHECK_STATUS("truncated archive (200 bytes)", autobal_archive_open_read(q, &r, &err), AUTOBAL_EFORMAT);
+    copy_prefix(sample, q, 4);
+    CHECK_STATUS("truncated archive (4 bytes)", autobal_archive_open_read(q, &r, &err), AUTOBAL_EFORMAT);
+    copy_prefix(sample, q, 0);
+    CHECK_STATUS("empty file", autobal_archive_open_read(q, &r, &err), AUTOBAL_EFORMAT);
+    remove(q);
+    remove(sample);
+    /* a foreign HDF5 file: no Conventions, then a wrong one */
+    snprintf(q, sizeof q, "%s.foreign", path);
+    {
+      hid_t f = H5Fcreate(q, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+      H5Fclose(f);
+    }
+    rc = autobal_archive_open_read(q, &r, &err);
+    CHECK_STATUS("HDF5 without Conventions", rc, AUTOBAL_EFORMAT);
+    CHECK_MSG("says Conventions", err.message, "Conventions");
+    {
+      hid_t f = H5Fopen(q, H5F_ACC_RDWR, H5P_DEFAULT);
+      H5LTset_attribute_string(f, "/", "Conventions", "CF-1.8");
+      H5Fclose(f);
+    }
+    rc = autobal_archive_open_read(q, &r, &err);
+    CHECK_STATUS("HDF5 with other Conventions", rc, AUTOBAL_EFORMAT);
+    CHECK_MSG("quotes the value", err.message, "CF-1.8");
+    remove(q);
+  }
+
+  /* ---- write failures inside HDF5: a file-size limit (like a full disk) ---- */
+  {
+    struct rlimit old_lim, lim;
+    char tmp2[1100];
+    unsigned long long state = 12345u;
+    const char *dxy[2] = {"x", "y"}, *nm[1] = {"q"}, *un[1] = {"1"};
+    snprintf(tmp2, sizeof tmp2, "%s.partial-%ld", p2, (long)getpid());
+    remove(p2);
+    for (i = 0; i < NX * NY; i++) { /* incompressible: a linear congruential sequence */
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      big[i] = (double)(state >> 11) * 0x1.0p-53;
+    }
+    signal(SIGXFSZ, SIG_IGN); /* write() then fails with EFBIG instead of killing us */
+    if (getrlimit(RLIMIT_FSIZE, &old_lim) == 0 && autobal_archive_create(p2, 0, &a, &err) == AUTOBAL_SUCCESS) {
+      lim = old_lim;
+      lim.rlim_cur = 65536;
+      autobal_archive_coord(a, "/f", "x", NX, x, "m", NULL);
+      autobal_archive_coord(a, "/f", "y", NY, y, "m", NULL);
+      autobal_archive_series_open(a, "/f", "t", "s", NULL, 1, nm, un, NULL, &s);
+      autobal_archive_series_append(s, 10, t, series_rows);
+      CHECK("file-size limit set", setrlimit(RLIMIT_FSIZE, &lim) == 0);
+      rc = autobal_archive_var(a, "/f", "noise", 2, dxy, big, "1", NULL);
+      printf("     var under a 64 KiB file-size limit: %d %s\n", rc, autobal_archive_errmsg(a));
+      if (rc == AUTOBAL_SUCCESS) rc = autobal_archive_series_flush(s);
+      CHECK_STATUS("HDF5 write failure becomes EIO", rc, AUTOBAL_EIO);
+      CHECK_MSG("with the HDF5 text", autobal_archive_errmsg(a), "HDF5");
+      rc = autobal_archive_close(a, &err);
+      printf("     close: %s\n", err.message);
+      CHECK_STATUS("close fails with EIO", rc, AUTOBAL_EIO);
+      CHECK_MSG("close names the kept temporary", err.message, tmp2);
+      CHECK("final name not created", !exists(p2));
+      CHECK("temporary kept for inspection", exists(tmp2));
+      setrlimit(RLIMIT_FSIZE, &old_lim);
+      remove(tmp2);
+    } else {
+      CHECK("set up the file-size limit test", 0);
+    }
+    signal(SIGXFSZ, SIG_DFL);
+  }
+
+  /* ---- no printing, handler restored, no leaked HDF5 ids ------------------ */
+  {
+    H5Eget_auto2(H5E_DEFAULT, &old_func, &old_data);
+    CHECK("HDF5 error handler restored", old_func == counting_handler);
+    printf("     HDF5 automatic error handler calls: %d\n", silent_handler_calls);
+    CHECK("HDF5 never reported an error through the auto handler", silent_handler_calls == 0);
+    CHECK("no open HDF5 objects left", H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL) == 0);
+  }
+  /* list: early stop returns the callback's value */
+  rc = autobal_archive_create(p2, 1, &a, &err);
+  if (rc == AUTOBAL_SUCCESS) {
+    autobal_archive_group(a, "/a");
+    autobal_archive_group(a, "/b");
+    autobal_archive_group(a, "/c");
+    CHECK_STATUS("list stops with the callback's value", autobal_archive_list(a, "/", list_stop_cb, NULL), 42);
+    autobal_archive_discard(a);
+  }
+
+  remove(path);
+  return check_summary();
+}

@@ -1,0 +1,1439 @@
+/* test_rotor.c: the rotor - housing - ball autobalancer model (spec rotor.md).
+ *
+ * Every expected value has a reason independent of src/rotor.c:
+ *  - the spec's stated numbers (lumped coefficients, natural frequencies at rest,
+ *    balanced angles), not copied from the program;
+ *  - a direct solve of the full (4+N)x(4+N) mass-matrix system assembled here from
+ *    (3.2)/(3.5)-(3.8) and (3.4), with the support stiffness built from the potential
+ *    energy of the individual supports (not from the lumped formulas);
+ *  - energy: the kinetic energy of the model (documented in rotor.h) gives
+ *    dE/dt = -dissipation + power of the unbalance drive; with no damping and no
+ *    unbalance E is conserved along a transient;
+ *  - two implementations (fixed / rotating frame), symmetries (rotation of an
+ *    isotropic system, mirror z -> -z, splitting a plane in two), the linear limit
+ *    without balls against the complex 4x4 steady harmonic response, and the
+ *    equilibrium condition of the balls in a subcritical run.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <gsl/gsl_complex.h>
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_odeiv2.h>
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_sort_vector.h>
+
+#include "autobal.h"
+#include "check.h"
+#include "internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define MAXDIM 64
+
+/* ---- small helpers -------------------------------------------------------- */
+
+static unsigned long long rng_state = 0x9E3779B97F4A7C15ull;
+static double urand(double lo, double hi) { /* xorshift64*, deterministic */
+  rng_state ^= rng_state >> 12;
+  rng_state ^= rng_state << 25;
+  rng_state ^= rng_state >> 27;
+  return lo + (hi - lo) * (double)((rng_state * 2685821657736338717ull) >> 11) / 9007199254740992.0;
+}
+
+static double wrap(double a) { return atan2(sin(a), cos(a)); }
+
+/* integrate with GSL's rk8pd driver (the library's transient driver is tested on its own) */
+static int integrate(int (*f)(double, const double *, double *, void *), autobal_rotor *r,
+                     double t0, double t1, double *y, double rtol, double atol) {
+  gsl_odeiv2_system sys;
+  gsl_odeiv2_driver *d;
+  double t = t0;
+  int st;
+  sys.function = f;
+  sys.jacobian = NULL;
+  sys.dimension = autobal_rotor_dim(r);
+  sys.params = r;
+  d = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-5, atol, rtol);
+  if (d == NULL) return -1;
+  gsl_odeiv2_driver_set_nmax(d, 50000000);
+  st = gsl_odeiv2_driver_apply(d, &t, t1, y);
+  gsl_odeiv2_driver_free(d);
+  return st;
+}
+
+/* stiffness / damping of the supports from their potential energy
+ * 1/2 c (displacement at the support)^2, a point at p moving by (x + p beta, y - p alpha) */
+static void supports_matrix(double l_L, double l_R, double Lx, double Ly, double Rx, double Ry,
+                            double K[4][4]) {
+  const double eLx[4] = {1, 0, 0, -l_L}, eLy[4] = {0, 1, l_L, 0};
+  const double eRx[4] = {1, 0, 0, l_R}, eRy[4] = {0, 1, -l_R, 0};
+  int i, k;
+  for (i = 0; i < 4; i++)
+    for (k = 0; k < 4; k++)
+      K[i][k] = Lx * eLx[i] * eLx[k] + Ly * eLy[i] * eLy[k] + Rx * eRx[i] * eRx[k] + Ry * eRy[i] * eRy[k];
+}
+
+/* ball data of a handle, flattened */
+typedef struct model_view {
+  size_t np, N;
+  double d[2], s0[2], psi0[2], mfull[2];
+  size_t plane_of[MAXDIM];
+  double m[MAXDIM], r[MAXDIM], h[MAXDIM];
+} model_view;
+
+static void view(const autobal_rotor *R, model_view *v) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  size_t j, i, k = 0;
+  v->np = p->n_planes;
+  for (j = 0; j < p->n_planes; j++) {
+    v->d[j] = p->plane[j].d;
+    v->s0[j] = p->plane[j].m0 * p->plane[j].r0;
+    v->psi0[j] = p->plane[j].psi0;
+    v->mfull[j] = p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? p->plane[j].m0 : 0.0;
+    for (i = 0; i < p->plane[j].n_balls; i++, k++) {
+      v->plane_of[k] = j;
+      v->m[k] = p->plane[j].ball_mass[i];
+      v->r[k] = p->plane[j].ball_radius[i];
+      v->h[k] = p->plane[j].ball_damping[i];
+      if (p->inertia == AUTOBAL_ROTOR_INERTIA_FULL) v->mfull[j] += v->m[k];
+    }
+  }
+  v->N = k;
+}
+
+/* rotor matrices D, K, H, G assembled from the hardware (independent of the lumped formulas) */
+static void rotor_matrices(const autobal_rotor_params *p, double Dm[4], double K[4][4],
+                           double H[4][4], double G[4][4]) {
+  const autobal_rotor_hardware *hw = &p->hw;
+  int i, k;
+  Dm[0] = Dm[1] = hw->M_k + hw->m_p;
+  Dm[2] = Dm[3] = hw->A_k + hw->A_p;
+  supports_matrix(hw->l_L, hw->l_R, hw->c_Lx, hw->c_Ly, hw->c_Rx, hw->c_Ry, K);
+  supports_matrix(hw->l_L, hw->l_R, hw->h_Lx, hw->h_Ly, hw->h_Rx, hw->h_Ry, H);
+  for (i = 0; i < 4; i++)
+    for (k = 0; k < 4; k++) G[i][k] = 0.0;
+  G[2][3] = hw->C_p * p->omega;  /* + C omega beta' in the alpha equation (3.2) */
+  G[3][2] = -hw->C_p * p->omega; /* - C omega alpha' in the beta equation */
+}
+
+/* Direct solve of the full (4+N) mass-matrix system of (3.2)/(3.5)-(3.8) and (3.4)
+ * at a fixed-frame state; writes q''[4] and phi''[N]. */
+static int direct_solve(const autobal_rotor *R, double t, const double *y, double *qdd,
+                        double *phidd) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  model_view v;
+  double Dm[4], K[4][4], H[4][4], G[4][4];
+  size_t n, i, k, j;
+  gsl_matrix *A;
+  gsl_vector *b, *x;
+  gsl_permutation *perm;
+  int sgn, st;
+  const double w = p->omega;
+  view(R, &v);
+  rotor_matrices(p, Dm, K, H, G);
+  n = 4 + v.N;
+  A = gsl_matrix_calloc(n, n);
+  b = gsl_vector_calloc(n);
+  x = gsl_vector_alloc(n);
+  perm = gsl_permutation_alloc(n);
+  for (i = 0; i < 4; i++) {
+    double f = 0.0;
+    gsl_matrix_set(A, i, i, Dm[i]);
+    for (k = 0; k < 4; k++) f += (H[i][k] + G[i][k]) * y[4 + k] + K[i][k] * y[k];
+    gsl_vector_set(b, i, -f);
+  }
+  for (j = 0; j < v.np; j++) {
+    const double d = v.d[j];
+    const double eu[4] = {1, 0, 0, d}, ev[4] = {0, 1, -d, 0};
+    const double phi0 = w * t + v.psi0[j];
+    /* s_u'' eu + s_v'' ev enters the rotor rows; the unbalance: s'' = -s0 w^2 (cos, sin) */
+    for (i = 0; i < 4; i++) {
+      gsl_vector_set(b, i, gsl_vector_get(b, i) + v.s0[j] * w * w * (cos(phi0) * eu[i] + sin(phi0) * ev[i]));
+      for (k = 0; k < 4; k++) /* FULL inertia: m |v_D|^2 / 2 of balls and unbalance */
+        gsl_matrix_set(A, i, k, gsl_matrix_get(A, i, k) + v.mfull[j] * (eu[i] * eu[k] + ev[i] * ev[k]));
+    }
+  }
+  for (k = 0; k < v.N; k++) {
+    const size_t jj = v.plane_of[k];
+    const double d = v.d[jj];
+    const double eu[4] = {1, 0, 0, d}, ev[4] = {0, 1, -d, 0};
+    const double phi = y[8 + k], phid = y[8 + v.N + k];
+    const double m = v.m[k], r = v.r[k];
+    for (i = 0; i < 4; i++) {
+      /* s_u'' = sum m r (-sin phi phi'' - cos phi phi'^2), s_v'' = sum m r (cos phi phi'' - sin phi phi'^2) */
+      gsl_matrix_set(A, i, 4 + k, m * r * (-sin(phi) * eu[i] + cos(phi) * ev[i]));
+      gsl_vector_set(b, i, gsl_vector_get(b, i) + m * r * phid * phid * (cos(phi) * eu[i] + sin(phi) * ev[i]));
+      /* (3.4): m r [ r phi'' - u_D'' sin phi + v_D'' cos phi ] + h r^2 (phi' - w) = 0 */
+      gsl_matrix_set(A, 4 + k, i, m * r * (-sin(phi) * eu[i] + cos(phi) * ev[i]));
+    }
+    gsl_matrix_set(A, 4 + k, 4 + k, m * r * r);
+    gsl_vector_set(b, 4 + k, -v.h[k] * r * r * (phid - w));
+  }
+  st = gsl_linalg_LU_decomp(A, perm, &sgn);
+  if (st == 0) st = gsl_linalg_LU_solve(A, perm, b, x);
+  if (st == 0) {
+    for (i = 0; i < 4; i++) qdd[i] = gsl_vector_get(x, i);
+    for (k = 0; k < v.N; k++) phidd[k] = gsl_vector_get(x, 4 + k);
+  }
+  gsl_matrix_free(A);
+  gsl_vector_free(b);
+  gsl_vector_free(x);
+  gsl_permutation_free(perm);
+  return st;
+}
+
+/* Energy of the model: T (rotor.h) + V, without the prescribed unbalance. */
+static double energy(const autobal_rotor *R, const double *y) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  model_view v;
+  double Dm[4], K[4][4], H[4][4], G[4][4], E = 0.0;
+  size_t i, k, j;
+  view(R, &v);
+  rotor_matrices(p, Dm, K, H, G);
+  for (i = 0; i < 4; i++) {
+    E += 0.5 * Dm[i] * y[4 + i] * y[4 + i];
+    for (k = 0; k < 4; k++) E += 0.5 * y[i] * K[i][k] * y[k];
+  }
+  for (j = 0; j < v.np; j++) {
+    const double uDd = y[4] + v.d[j] * y[7], vDd = y[5] - v.d[j] * y[6];
+    E += 0.5 * v.mfull[j] * (uDd * uDd + vDd * vDd);
+  }
+  for (k = 0; k < v.N; k++) {
+    const double d = v.d[v.plane_of[k]];
+    const double phi = y[8 + k], phid = y[8 + v.N + k];
+    const double g[4] = {-sin(phi), cos(phi), -d * cos(phi), -d * sin(phi)};
+    double gq = 0.0;
+    for (i = 0; i < 4; i++) gq += g[i] * y[4 + i];
+    E += 0.5 * v.m[k] * v.r[k] * v.r[k] * phid * phid + v.m[k] * v.r[k] * phid * gq;
+  }
+  if (p->axial) {
+    const size_t iz = 8 + 2 * v.N;
+    E += 0.5 * (p->hw.M_k + p->hw.m_p) * y[iz + 1] * y[iz + 1] + 0.5 * p->hw.c_Lz * y[iz] * y[iz];
+  }
+  return E;
+}
+
+/* dE/dt along the flow, by the chain rule with the analytic gradient of E */
+static double energy_rate(const autobal_rotor *R, const double *y, const double *f) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  model_view v;
+  double Dm[4], K[4][4], H[4][4], G[4][4], dEdqd[4], rate = 0.0;
+  size_t i, k, j;
+  view(R, &v);
+  rotor_matrices(p, Dm, K, H, G);
+  for (i = 0; i < 4; i++) {
+    double kq = 0.0;
+    for (k = 0; k < 4; k++) kq += K[i][k] * y[k];
+    rate += kq * y[4 + i]; /* dE/dq . q' */
+    dEdqd[i] = Dm[i] * y[4 + i];
+  }
+  for (j = 0; j < v.np; j++) {
+    const double d = v.d[j];
+    const double uDd = y[4] + d * y[7], vDd = y[5] - d * y[6];
+    dEdqd[0] += v.mfull[j] * uDd;
+    dEdqd[3] += v.mfull[j] * d * uDd;
+    dEdqd[1] += v.mfull[j] * vDd;
+    dEdqd[2] -= v.mfull[j] * d * vDd;
+  }
+  for (k = 0; k < v.N; k++) {
+    const double d = v.d[v.plane_of[k]];
+    const double phi = y[8 + k], phid = y[8 + v.N + k];
+    const double mr = v.m[k] * v.r[k];
+    const double g[4] = {-sin(phi), cos(phi), -d * cos(phi), -d * sin(phi)};
+    const double gp[4] = {-cos(phi), -sin(phi), d * sin(phi), -d * cos(phi)};
+    double gq = 0.0, gpq = 0.0;
+    for (i = 0; i < 4; i++) {
+      gq += g[i] * y[4 + i];
+      gpq += gp[i] * y[4 + i];
+      dEdqd[i] += mr * phid * g[i];
+    }
+    rate += mr * phid * gpq * f[8 + k];                           /* dE/dphi phi' */
+    rate += (v.m[k] * v.r[k] * v.r[k] * phid + mr * gq) * f[8 + v.N + k]; /* dE/dphi' phi'' */
+  }
+  for (i = 0; i < 4; i++) rate += dEdqd[i] * f[4 + i];
+  if (p->axial) {
+    const size_t iz = 8 + 2 * v.N;
+    rate += (p->hw.M_k + p->hw.m_p) * y[iz + 1] * f[iz + 1] + p->hw.c_Lz * y[iz] * f[iz];
+  }
+  return rate;
+}
+
+/* -dissipation + power of the unbalance drive at (t, y) (fixed frame) */
+static double power_balance(const autobal_rotor *R, double t, const double *y, double *scale) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  model_view v;
+  double Dm[4], K[4][4], H[4][4], G[4][4], P = 0.0, S = 0.0;
+  size_t i, k, j;
+  const double w = p->omega;
+  view(R, &v);
+  rotor_matrices(p, Dm, K, H, G);
+  for (i = 0; i < 4; i++)
+    for (k = 0; k < 4; k++) {
+      P -= y[4 + i] * (H[i][k] + G[i][k]) * y[4 + k];
+      S += fabs(y[4 + i] * (H[i][k] + G[i][k]) * y[4 + k]);
+    }
+  for (k = 0; k < v.N; k++) {
+    const double phid = y[8 + v.N + k];
+    const double term = v.h[k] * v.r[k] * v.r[k] * (phid - w) * phid;
+    P -= term;
+    S += fabs(term);
+  }
+  for (j = 0; j < v.np; j++) {
+    const double d = v.d[j], phi0 = w * t + v.psi0[j];
+    /* generalized force of the unbalance on q: s0 w^2 (cos phi0 eu + sin phi0 ev) */
+    const double F[4] = {cos(phi0), sin(phi0), -d * sin(phi0), d * cos(phi0)};
+    for (i = 0; i < 4; i++) {
+      P += v.s0[j] * w * w * F[i] * y[4 + i];
+      S += fabs(v.s0[j] * w * w * F[i] * y[4 + i]);
+    }
+  }
+  if (p->axial) {
+    const size_t iz = 8 + 2 * v.N;
+    P -= p->hw.h_Lz * y[iz + 1] * y[iz + 1];
+    S += fabs(p->hw.h_Lz * y[iz + 1] * y[iz + 1]);
+  }
+  if (scale) *scale = S;
+  return P;
+}
+
+static void random_state(const autobal_rotor *R, double *y) {
+  const size_t N = autobal_rotor_n_balls_total(R), dim = autobal_rotor_dim(R);
+  const double w = autobal_rotor_omega(R);
+  size_t k;
+  y[0] = urand(-1e-3, 1e-3);
+  y[1] = urand(-1e-3, 1e-3);
+  y[2] = urand(-5e-3, 5e-3);
+  y[3] = urand(-5e-3, 5e-3);
+  y[4] = urand(-0.3, 0.3);
+  y[5] = urand(-0.3, 0.3);
+  y[6] = urand(-2, 2);
+  y[7] = urand(-2, 2);
+  for (k = 0; k < N; k++) {
+    y[8 + k] = urand(-20, 20);
+    y[8 + N + k] = w + urand(-80, 80);
+  }
+  if (dim > 8 + 2 * N) {
+    y[8 + 2 * N] = urand(-1e-3, 1e-3);
+    y[9 + 2 * N] = urand(-0.1, 0.1);
+  }
+}
+
+/* ---- parameter sets ----------------------------------------------------------- */
+
+/* two planes, anisotropic supports, unequal balls, axial motion */
+static const double tp_m1[2] = {0.05, 0.04}, tp_r1[2] = {0.1, 0.11}, tp_h1[2] = {0.1, 0.3};
+static const double tp_psi1[2] = {1.0, 2.5}, tp_rate1[2] = {0.0, 3.0};
+static const double tp_m2[3] = {0.02, 0.03, 0.025}, tp_r2[3] = {0.08, 0.08, 0.09};
+static const double tp_h2[3] = {0.05, 0.05, 0.2}, tp_psi2[3] = {-1.0, 0.3, 2.0};
+static const double tp_rate2[3] = {1.0, -2.0, 0.0};
+
+static autobal_rotor_params two_plane_params(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.hw.c_Ly = 0.8e5;
+  p.hw.c_Ry = 1.9e5;
+  p.hw.h_Ly = 60.0;
+  p.hw.h_Ry = 170.0;
+  p.axial = 1;
+  p.z0 = 1e-4;
+  p.zd0 = -0.01;
+  p.q0[0] = 1e-4;
+  p.q0[3] = -2e-4;
+  p.qd0[2] = 0.05;
+  p.n_planes = 2;
+  p.plane[0].d = 0.10;
+  p.plane[0].m0 = 0.02;
+  p.plane[0].r0 = 0.1;
+  p.plane[0].psi0 = 0.0;
+  p.plane[0].n_balls = 2;
+  p.plane[0].ball_mass = tp_m1;
+  p.plane[0].ball_radius = tp_r1;
+  p.plane[0].ball_damping = tp_h1;
+  p.plane[0].ball_psi = tp_psi1;
+  p.plane[0].ball_rate = tp_rate1;
+  p.plane[1].d = -0.12;
+  p.plane[1].m0 = 0.01;
+  p.plane[1].r0 = 0.09;
+  p.plane[1].psi0 = 0.7;
+  p.plane[1].n_balls = 3;
+  p.plane[1].ball_mass = tp_m2;
+  p.plane[1].ball_radius = tp_r2;
+  p.plane[1].ball_damping = tp_h2;
+  p.plane[1].ball_psi = tp_psi2;
+  p.plane[1].ball_rate = tp_rate2;
+  return p;
+}
+
+/* ---- tests ------------------------------------------------------------------------ */
+
+static void test_defaults(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_error err;
+  autobal_rotor *R = autobal_rotor_alloc(&p, &err);
+  const autobal_rotor_lumped *L;
+  printf("-- defaults and lumped coefficients (spec: default example)\n");
+  CHECK("default params alloc", R != NULL);
+  if (R == NULL) return;
+  CHECK_STATUS("default params: no warning", err.status, AUTOBAL_SUCCESS);
+  L = autobal_rotor_get_lumped(R);
+  /* values stated in the spec */
+  CHECK_CLOSE("M = M_k + m_p", L->M, 10.0, 1e-15, 0);
+  CHECK_CLOSE("A = A_k + A_p", L->A, 0.16, 1e-15, 0);
+  CHECK_CLOSE("C = C_p", L->C, 0.03, 1e-15, 0);
+  CHECK_CLOSE("c_x (spec 2.5e5)", L->c_x, 2.5e5, 1e-15, 0);
+  CHECK_CLOSE("c_y (spec 2.5e5)", L->c_y, 2.5e5, 1e-15, 0);
+  CHECK_CLOSE("c_alpha (spec 7375)", L->c_alpha, 7375.0, 1e-14, 0);
+  CHECK_CLOSE("c_beta (spec 7375)", L->c_beta, 7375.0, 1e-14, 0);
+  CHECK_CLOSE("c_xbeta (spec -2500)", L->c_xbeta, -2500.0, 1e-13, 0);
+  CHECK_CLOSE("c_yalpha (spec -2500)", L->c_yalpha, -2500.0, 1e-13, 0);
+  /* by hand from (2.9)/(2.11) with the corrected c_z = c_Lz */
+  CHECK_CLOSE("c_z = c_Lz (typo fix)", L->c_z, 2.0e5, 1e-15, 0);
+  CHECK_CLOSE("h_z = h_Lz", L->h_z, 200.0, 1e-15, 0);
+  CHECK_CLOSE("h_x = 100 + 150", L->h_x, 250.0, 1e-15, 0);
+  CHECK_CLOSE("h_alpha = 100*0.2^2 + 150*0.15^2", L->h_alpha, 7.375, 1e-14, 0);
+  CHECK_CLOSE("h_xbeta = 100*0.2 - 150*0.15", L->h_xbeta, -2.5, 1e-13, 0);
+  CHECK("dim = 8 + 2*2", autobal_rotor_dim(R) == 12);
+  CHECK("two balls, one plane", autobal_rotor_n_balls_total(R) == 2 && autobal_rotor_n_planes(R) == 1);
+  CHECK("ball index", autobal_rotor_ball_index(R, 0, 1) == 1 && autobal_rotor_ball_index(R, 0, 2) == (size_t)-1);
+  CHECK_CLOSE("omega", autobal_rotor_omega(R), 500.0, 0, 0);
+  {
+    double y[12];
+    CHECK_STATUS("initial state", autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.2, y, 12), AUTOBAL_SUCCESS);
+    CHECK_CLOSE("initial phi_1 = omega t0 + 1.0", y[8], 500.0 * 0.2 + 1.0, 1e-15, 0);
+    CHECK_CLOSE("initial phi_2' = omega", y[11], 500.0, 1e-15, 0);
+    CHECK("rotor at rest at the origin", y[0] == 0 && y[3] == 0 && y[4] == 0 && y[7] == 0);
+  }
+  /* the lumped block of the default params agrees with lumped_from_hardware */
+  {
+    autobal_rotor_lumped L2;
+    CHECK_STATUS("lumped_from_hardware", autobal_rotor_lumped_from_hardware(&p.hw, &L2, &err), AUTOBAL_SUCCESS);
+    CHECK("default lumped block consistent", memcmp(&L2, &p.lumped, sizeof L2) == 0);
+  }
+  autobal_rotor_free(R);
+}
+
+static void test_natural_frequencies(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  const autobal_rotor_lumped *L;
+  autobal_rotor *R;
+  double want[4] = {157.5323, 157.5323, 215.1217, 215.1217};
+  size_t i, k;
+  printf("-- natural frequencies at rest (spec: 157.5323 and 215.1217 rad/s, each double)\n");
+  R = autobal_rotor_alloc(&p, NULL);
+  if (R == NULL) return;
+  L = autobal_rotor_get_lumped(R);
+  {
+    /* generalized eigenproblem K v = w^2 diag(M,M,A,A) v with the lumped stiffness (3.2) */
+    gsl_matrix *K = gsl_matrix_calloc(4, 4), *Dm = gsl_matrix_calloc(4, 4);
+    gsl_vector *ev = gsl_vector_alloc(4);
+    gsl_eigen_gensymm_workspace *w = gsl_eigen_gensymm_alloc(4);
+    gsl_matrix_set(K, 0, 0, L->c_x);
+    gsl_matrix_set(K, 0, 3, -L->c_xbeta);
+    gsl_matrix_set(K, 3, 0, -L->c_xbeta);
+    gsl_matrix_set(K, 3, 3, L->c_beta);
+    gsl_matrix_set(K, 1, 1, L->c_y);
+    gsl_matrix_set(K, 1, 2, L->c_yalpha);
+    gsl_matrix_set(K, 2, 1, L->c_yalpha);
+    gsl_matrix_set(K, 2, 2, L->c_alpha);
+    gsl_matrix_set(Dm, 0, 0, L->M);
+    gsl_matrix_set(Dm, 1, 1, L->M);
+    gsl_matrix_set(Dm, 2, 2, L->A);
+    gsl_matrix_set(Dm, 3, 3, L->A);
+    CHECK("gensymm", gsl_eigen_gensymm(K, Dm, ev, w) == 0);
+    gsl_sort_vector(ev);
+    for (i = 0; i < 4; i++) CHECK_CLOSE("natural frequency (lumped K, diag(M,M,A,A))", sqrt(gsl_vector_get(ev, i)), want[i], 0, 1e-4);
+    gsl_eigen_gensymm_free(w);
+    gsl_vector_free(ev);
+    gsl_matrix_free(K);
+    gsl_matrix_free(Dm);
+  }
+  autobal_rotor_free(R);
+  {
+    /* the right-hand side itself: no spin, no balls, no unbalance, no damping -> its
+     * (exact, the system is linear) Jacobian has eigenvalues +-i w_k */
+    autobal_rotor_params q = autobal_rotor_params_default();
+    double y0[8] = {0}, fp[8], fm[8], im[8];
+    gsl_matrix *J = gsl_matrix_alloc(8, 8);
+    gsl_vector_complex *ev = gsl_vector_complex_alloc(8);
+    gsl_eigen_nonsymm_workspace *w = gsl_eigen_nonsymm_alloc(8);
+    double maxre = 0.0;
+    q.omega = 0.0;
+    q.plane[0].n_balls = 0;
+    q.plane[0].m0 = 0.0;
+    q.hw.h_Lx = q.hw.h_Ly = q.hw.h_Rx = q.hw.h_Ry = 0.0;
+    R = autobal_rotor_alloc(&q, NULL);
+    CHECK("no-ball model", R != NULL && autobal_rotor_dim(R) == 8);
+    if (R == NULL) return;
+    for (k = 0; k < 8; k++) {
+      y0[k] = 1e-3;
+      autobal_rotor_rhs(0.0, y0, fp, R);
+      y0[k] = -1e-3;
+      autobal_rotor_rhs(0.0, y0, fm, R);
+      y0[k] = 0.0;
+      for (i = 0; i < 8; i++) gsl_matrix_set(J, i, k, (fp[i] - fm[i]) / 2e-3);
+    }
+    CHECK("nonsymm eig", gsl_eigen_nonsymm(J, ev, w) == 0);
+    for (i = 0; i < 8; i++) {
+      gsl_complex z = gsl_vector_complex_get(ev, i);
+      im[i] = GSL_IMAG(z);
+      if (fabs(GSL_REAL(z)) > maxre) maxre = fabs(GSL_REAL(z));
+    }
+    gsl_sort(im, 1, 8);
+    for (i = 0; i < 4; i++) CHECK_CLOSE("rhs Jacobian eigenvalue Im (positive half)", im[4 + i], want[i], 0, 1e-4);
+    CHECK_CLOSE("rhs Jacobian eigenvalues are imaginary", maxre, 0.0, 0, 1e-6);
+    gsl_eigen_nonsymm_free(w);
+    gsl_vector_complex_free(ev);
+    gsl_matrix_free(J);
+    autobal_rotor_free(R);
+  }
+}
+
+static double g_max_direct = 0.0;
+
+static void check_direct(const char *label, autobal_rotor_params *p, int nstates) {
+  autobal_rotor *R = autobal_rotor_alloc(p, NULL);
+  double y[MAXDIM], f[MAXDIM], qdd[4], phidd[MAXDIM], worst = 0.0, zworst = 0.0;
+  int s, ok = 1;
+  size_t N, k, dim;
+  CHECK(label, R != NULL);
+  if (R == NULL) return;
+  N = autobal_rotor_n_balls_total(R);
+  dim = autobal_rotor_dim(R);
+  for (s = 0; s < nstates; s++) {
+    const double t = urand(0, 3);
+    double scale_q = 0.0, scale_p = 0.0, dq = 0.0, dp = 0.0;
+    random_state(R, y);
+    if (autobal_rotor_rhs(t, y, f, R) != 0 || direct_solve(R, t, y, qdd, phidd) != 0) {
+      ok = 0;
+      continue;
+    }
+    for (k = 0; k < 4; k++) {
+      scale_q = fmax(scale_q, fabs(qdd[k]));
+      dq = fmax(dq, fabs(f[4 + k] - qdd[k]));
+      if (f[k] != y[4 + k]) ok = 0;
+    }
+    for (k = 0; k < N; k++) {
+      scale_p = fmax(scale_p, fabs(phidd[k]));
+      dp = fmax(dp, fabs(f[8 + N + k] - phidd[k]));
+      if (f[8 + k] != y[8 + N + k]) ok = 0;
+    }
+    worst = fmax(worst, dq / scale_q);
+    if (N > 0) worst = fmax(worst, dp / scale_p);
+    if (dim > 8 + 2 * N) {
+      const autobal_rotor_lumped *L = autobal_rotor_get_lumped(R);
+      const double zdd = -(p->hw.h_Lz * y[9 + 2 * N] + p->hw.c_Lz * y[8 + 2 * N]) / L->M;
+      zworst = fmax(zworst, fabs(f[9 + 2 * N] - zdd) / fabs(zdd));
+    }
+  }
+  CHECK("rhs and direct solve ran; velocity rows are copies", ok);
+  printf("     %s:\n", label);
+  CHECK_CLOSE("   max relative |rhs - direct (4+N) LU| over random states", worst, 0.0, 0, 1e-10);
+  CHECK_CLOSE("   axial z'' (2.12)", zworst, 0.0, 0, 1e-14);
+  if (worst > g_max_direct) g_max_direct = worst;
+  autobal_rotor_free(R);
+}
+
+static void test_direct_solve(void) {
+  autobal_rotor_params p;
+  printf("-- O(N) 4x4 reduction vs direct solve of the full (4+N) system (GSL LU)\n");
+  p = autobal_rotor_params_default();
+  check_direct("default", &p, 30);
+  p = two_plane_params();
+  check_direct("two planes, anisotropic, unequal balls, axial", &p, 30);
+  p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  check_direct("same, FULL inertia variant", &p, 30);
+  p = autobal_rotor_params_default();
+  p.plane[0].n_balls = 0;
+  check_direct("no balls", &p, 5);
+  printf("     max mismatch over all configurations: %.3g\n", g_max_direct);
+}
+
+static void test_frames_instantaneous(void) {
+  autobal_rotor_params ps[2];
+  int c, s;
+  printf("-- fixed-frame rhs vs rotating-frame rhs (3.13) at the same physical states\n");
+  ps[0] = autobal_rotor_params_default();
+  ps[1] = two_plane_params();
+  ps[1].inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  for (c = 0; c < 2; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&ps[c], NULL);
+    double worst = 0.0, rworst = 0.0;
+    size_t N, k, dim;
+    if (R == NULL) continue;
+    N = autobal_rotor_n_balls_total(R);
+    dim = autobal_rotor_dim(R);
+    for (s = 0; s < 30; s++) {
+      double y[MAXDIM], yr[MAXDIM], f[MAXDIM], fr[MAXDIM], sc = 0.0;
+      const double t = urand(0, 3);
+      random_state(R, y);
+      autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim);
+      autobal_rotor_rhs(t, y, f, R);
+      autobal_rotor_rhs_rotating(t, yr, fr, R);
+      for (k = 0; k < dim; k++) sc = fmax(sc, fabs(f[k]));
+      for (k = 4; k < 8; k++) worst = fmax(worst, fabs(f[k] - fr[k]) / fabs(f[k]));
+      for (k = 0; k < N; k++) {
+        /* psi'' = phi'', psi' = phi' - omega */
+        worst = fmax(worst, fabs(f[8 + N + k] - fr[8 + N + k]) / fmax(fabs(f[8 + N + k]), 1.0));
+        rworst = fmax(rworst, fabs(fr[8 + k] + autobal_rotor_omega(R) - f[8 + k]));
+      }
+    }
+    CHECK_CLOSE(c == 0 ? "default: max relative difference of accelerations"
+                       : "two planes FULL: max relative difference of accelerations",
+                worst, 0.0, 0, 1e-10);
+    CHECK_CLOSE("angle rates psi' + omega = phi'", rworst, 0.0, 0, 1e-12);
+    autobal_rotor_free(R);
+  }
+}
+
+static double g_frame_diff_q = 0.0, g_frame_diff_ang = 0.0;
+
+static void test_frames_transient(void) {
+  autobal_rotor_params p[2];
+  int c;
+  printf("-- transient in the fixed frame vs the rotating frame (rtol 1e-10)\n");
+  p[0] = autobal_rotor_params_default();
+  p[1] = two_plane_params();
+  for (c = 0; c < 2; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&p[c], NULL);
+    double y[MAXDIM], yr[MAXDIM], yc[MAXDIM], dq = 0.0, da = 0.0, amp = 0.0;
+    const double T = c == 0 ? 1.0 : 0.5;
+    size_t k, dim, N;
+    int st1, st2;
+    if (R == NULL) continue;
+    dim = autobal_rotor_dim(R);
+    N = autobal_rotor_n_balls_total(R);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_ROTATING, 0.0, yr, dim);
+    st1 = integrate(autobal_rotor_rhs, R, 0.0, T, y, 1e-10, 1e-13);
+    st2 = integrate(autobal_rotor_rhs_rotating, R, 0.0, T, yr, 1e-10, 1e-13);
+    CHECK("both integrations succeeded", st1 == 0 && st2 == 0);
+    autobal_rotor_convert_state(R, AUTOBAL_ROTOR_ROTATING, AUTOBAL_ROTOR_FIXED, T, yr, yc, dim);
+    for (k = 0; k < 2; k++) amp = fmax(amp, fabs(y[k]));
+    for (k = 0; k < 4; k++) dq = fmax(dq, fabs(y[k] - yc[k]));
+    for (k = 0; k < N; k++) da = fmax(da, fabs(y[8 + k] - yc[8 + k]));
+    printf("     %s, t = %g s, |x|,|y| up to %.3g m\n", c == 0 ? "default" : "two planes", T, amp);
+    CHECK_CLOSE("   max |q_fixed - q_rotating| (m, rad)", dq, 0.0, 0, 1e-10);
+    CHECK_CLOSE("   max |phi_fixed - (psi_rotating + omega t)| (rad)", da, 0.0, 0, 1e-6);
+    g_frame_diff_q = fmax(g_frame_diff_q, dq);
+    g_frame_diff_ang = fmax(g_frame_diff_ang, da);
+    autobal_rotor_free(R);
+  }
+}
+
+/* rotate a fixed-frame state by theta about z: W = x + i y and Theta = beta - i alpha
+ * turn by e^{i theta}, absolute ball angles increase by theta */
+static void rotate_state(double th, const double *y, double *out, size_t N) {
+  const double c = cos(th), s = sin(th);
+  int o;
+  for (o = 0; o < 8; o += 4) {
+    const double x = y[o], yy = y[o + 1], al = y[o + 2], be = y[o + 3];
+    const double tr = be, ti = -al; /* Theta */
+    out[o] = c * x - s * yy;
+    out[o + 1] = s * x + c * yy;
+    out[o + 3] = c * tr - s * ti;
+    out[o + 2] = -(s * tr + c * ti);
+  }
+  for (size_t k = 0; k < N; k++) {
+    out[8 + k] = y[8 + k] + th;
+    out[8 + N + k] = y[8 + N + k];
+  }
+}
+
+static double rotation_mismatch(autobal_rotor_params pa, double th) {
+  autobal_rotor_params pb = pa;
+  double psi_b[2], ya[MAXDIM], yb[MAXDIM], yrot[MAXDIM], worst = 0.0;
+  autobal_rotor *A, *B;
+  size_t k, N, dim;
+  pa.q0[0] = 2e-4;
+  pa.q0[1] = -1e-4;
+  pa.q0[2] = 3e-4;
+  pa.q0[3] = 1e-4;
+  pa.qd0[0] = 0.01;
+  pa.qd0[3] = -0.05;
+  pb = pa;
+  /* rotated problem: unbalance and ball angles + th, rotor state rotated */
+  pb.plane[0].psi0 = pa.plane[0].psi0 + th;
+  psi_b[0] = pa.plane[0].ball_psi[0] + th;
+  psi_b[1] = pa.plane[0].ball_psi[1] + th;
+  pb.plane[0].ball_psi = psi_b;
+  {
+    double in[MAXDIM] = {0}, out[MAXDIM];
+    for (k = 0; k < 4; k++) {
+      in[k] = pa.q0[k];
+      in[4 + k] = pa.qd0[k];
+    }
+    rotate_state(th, in, out, 0);
+    for (k = 0; k < 4; k++) {
+      pb.q0[k] = out[k];
+      pb.qd0[k] = out[4 + k];
+    }
+  }
+  A = autobal_rotor_alloc(&pa, NULL);
+  B = autobal_rotor_alloc(&pb, NULL);
+  if (A == NULL || B == NULL) {
+    autobal_rotor_free(A);
+    autobal_rotor_free(B);
+    return INFINITY;
+  }
+  dim = autobal_rotor_dim(A);
+  N = autobal_rotor_n_balls_total(A);
+  autobal_rotor_initial_state(A, AUTOBAL_ROTOR_FIXED, 0.0, ya, dim);
+  autobal_rotor_initial_state(B, AUTOBAL_ROTOR_FIXED, 0.0, yb, dim);
+  integrate(autobal_rotor_rhs, A, 0.0, 0.5, ya, 1e-10, 1e-13);
+  integrate(autobal_rotor_rhs, B, 0.0, 0.5, yb, 1e-10, 1e-13);
+  rotate_state(th, ya, yrot, N);
+  for (k = 0; k < 4; k++) worst = fmax(worst, fabs(yrot[k] - yb[k]) / 1e-4); /* in units of 0.1 mm */
+  for (k = 0; k < N; k++) worst = fmax(worst, fabs(yrot[8 + k] - yb[8 + k]));
+  autobal_rotor_free(A);
+  autobal_rotor_free(B);
+  return worst;
+}
+
+static void test_rotation_invariance(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  double mis;
+  printf("-- rotation invariance of the isotropic default (rotate state and unbalance by 0.9 rad)\n");
+  mis = rotation_mismatch(p, 0.9);
+  CHECK_CLOSE("isotropic: solution rotates with the data (q in 0.1 mm, angles in rad)", mis, 0.0, 0, 1e-6);
+  /* the same check must fail for anisotropic supports (the test has teeth) */
+  p.hw.c_Ly = 0.7e5;
+  mis = rotation_mismatch(p, 0.9);
+  CHECK("anisotropic supports break rotation invariance (mismatch > 1e-3)", mis > 1e-3);
+}
+
+static void test_mirror(void) {
+  autobal_rotor_params p = two_plane_params(), m;
+  autobal_rotor *A, *B;
+  double ya[MAXDIM], yb[MAXDIM], worst = 0.0;
+  size_t k, N, dim;
+  printf("-- mirror z -> -z: swap supports, negate d_j: x, y, phi unchanged, alpha, beta negated\n");
+  m = p;
+  m.hw.l_L = p.hw.l_R;
+  m.hw.l_R = p.hw.l_L;
+  m.hw.c_Lx = p.hw.c_Rx;
+  m.hw.c_Rx = p.hw.c_Lx;
+  m.hw.c_Ly = p.hw.c_Ry;
+  m.hw.c_Ry = p.hw.c_Ly;
+  m.hw.h_Lx = p.hw.h_Rx;
+  m.hw.h_Rx = p.hw.h_Lx;
+  m.hw.h_Ly = p.hw.h_Ry;
+  m.hw.h_Ry = p.hw.h_Ly;
+  m.plane[0].d = -p.plane[0].d;
+  m.plane[1].d = -p.plane[1].d;
+  m.q0[2] = -p.q0[2];
+  m.q0[3] = -p.q0[3];
+  m.qd0[2] = -p.qd0[2];
+  m.qd0[3] = -p.qd0[3];
+  A = autobal_rotor_alloc(&p, NULL);
+  B = autobal_rotor_alloc(&m, NULL);
+  CHECK("mirror pair alloc", A && B);
+  if (A && B) {
+    dim = autobal_rotor_dim(A);
+    N = autobal_rotor_n_balls_total(A);
+    autobal_rotor_initial_state(A, AUTOBAL_ROTOR_FIXED, 0.0, ya, dim);
+    autobal_rotor_initial_state(B, AUTOBAL_ROTOR_FIXED, 0.0, yb, dim);
+    integrate(autobal_rotor_rhs, A, 0.0, 0.4, ya, 1e-10, 1e-13);
+    integrate(autobal_rotor_rhs, B, 0.0, 0.4, yb, 1e-10, 1e-13);
+    worst = fmax(fabs(ya[0] - yb[0]), fabs(ya[1] - yb[1])) / 1e-4;
+    worst = fmax(worst, fmax(fabs(ya[2] + yb[2]), fabs(ya[3] + yb[3])) / 1e-4);
+    for (k = 0; k < N; k++) worst = fmax(worst, fabs(ya[8 + k] - yb[8 + k]));
+    CHECK_CLOSE("mirrored solution (q in 0.1 mm, angles rad)", worst, 0.0, 0, 1e-6);
+    CHECK("alpha is not trivially zero", fabs(ya[2]) > 1e-7);
+  }
+  autobal_rotor_free(A);
+  autobal_rotor_free(B);
+  {
+    /* a self-mirrored system: symmetric supports, planes at +-d with the same data ->
+     * pure translation (alpha = beta = 0) and equal ball motion in both planes */
+    autobal_rotor_params s = autobal_rotor_params_default();
+    autobal_rotor *S;
+    double y[MAXDIM], maxab = 0.0, dphi = 0.0;
+    s.hw.l_L = s.hw.l_R = 0.18;
+    s.hw.c_Rx = s.hw.c_Ry = s.hw.c_Lx;
+    s.hw.h_Rx = s.hw.h_Ry = s.hw.h_Lx;
+    s.n_planes = 2;
+    s.plane[1] = s.plane[0];
+    s.plane[1].d = -s.plane[0].d;
+    S = autobal_rotor_alloc(&s, NULL);
+    CHECK("symmetric two-plane alloc", S != NULL);
+    if (S) {
+      int i;
+      autobal_rotor_initial_state(S, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(S));
+      for (i = 1; i <= 5; i++) {
+        integrate(autobal_rotor_rhs, S, 0.1 * (i - 1), 0.1 * i, y, 1e-10, 1e-13);
+        maxab = fmax(maxab, fmax(fabs(y[2]), fabs(y[3])));
+        dphi = fmax(dphi, fmax(fabs(y[8] - y[10]), fabs(y[9] - y[11])));
+      }
+      CHECK_CLOSE("symmetric: alpha, beta stay 0 (rad)", maxab, 0.0, 0, 1e-13);
+      CHECK_CLOSE("symmetric: plane 1 balls = plane 2 balls (rad)", dphi, 0.0, 0, 1e-10);
+      CHECK("symmetric: the rotor does move", fabs(y[0]) + fabs(y[1]) > 1e-7);
+    }
+    autobal_rotor_free(S);
+  }
+}
+
+static void test_plane_split(void) {
+  static const double m1[1] = {0.05}, r1[1] = {0.1}, h1[1] = {0.1}, psiA[1] = {1.0}, psiB[1] = {2.5};
+  autobal_rotor_params a = autobal_rotor_params_default(), b = a, c = a;
+  autobal_rotor *A, *B, *C;
+  double ya[MAXDIM], yb[MAXDIM], yc[MAXDIM], wb = 0.0, wc = 0.0;
+  size_t k;
+  printf("-- one code path for planes: a plane split in two at the same d; an empty extra plane\n");
+  b.n_planes = 2;
+  b.plane[0].n_balls = 1;
+  b.plane[0].ball_mass = m1;
+  b.plane[0].ball_radius = r1;
+  b.plane[0].ball_damping = h1;
+  b.plane[0].ball_psi = psiA;
+  b.plane[0].ball_rate = NULL;
+  b.plane[1] = b.plane[0];
+  b.plane[1].ball_psi = psiB;
+  b.plane[1].m0 = 0.0;
+  c.n_planes = 2;
+  memset(&c.plane[1], 0, sizeof c.plane[1]);
+  c.plane[1].d = -0.3;
+  A = autobal_rotor_alloc(&a, NULL);
+  B = autobal_rotor_alloc(&b, NULL);
+  C = autobal_rotor_alloc(&c, NULL);
+  CHECK("split/empty-plane models alloc", A && B && C);
+  if (A && B && C) {
+    CHECK("same state dimension", autobal_rotor_dim(A) == 12 && autobal_rotor_dim(B) == 12 && autobal_rotor_dim(C) == 12);
+    autobal_rotor_initial_state(A, AUTOBAL_ROTOR_FIXED, 0.0, ya, 12);
+    autobal_rotor_initial_state(B, AUTOBAL_ROTOR_FIXED, 0.0, yb, 12);
+    autobal_rotor_initial_state(C, AUTOBAL_ROTOR_FIXED, 0.0, yc, 12);
+    integrate(autobal_rotor_rhs, A, 0.0, 0.5, ya, 1e-10, 1e-13);
+    integrate(autobal_rotor_rhs, B, 0.0, 0.5, yb, 1e-10, 1e-13);
+    integrate(autobal_rotor_rhs, C, 0.0, 0.5, yc, 1e-10, 1e-13);
+    for (k = 0; k < 12; k++) {
+      const double sc = k < 4 ? 1e-4 : (k < 8 ? 1e-1 : 1.0);
+      wb = fmax(wb, fabs(ya[k] - yb[k]) / sc);
+      wc = fmax(wc, fabs(ya[k] - yc[k]) / sc);
+    }
+    CHECK_CLOSE("plane split in two at the same d (scaled)", wb, 0.0, 0, 1e-7);
+    CHECK_CLOSE("extra plane with no balls and no unbalance (scaled)", wc, 0.0, 0, 1e-7);
+  }
+  autobal_rotor_free(A);
+  autobal_rotor_free(B);
+  autobal_rotor_free(C);
+}
+
+/* Complex steady harmonic response of the rotor to a rotating unbalance S (complex, rotor
+ * axes, kg m) in plane d: D q'' + (H + G) q' + K q = Re(w^2 S (eu - i ev) e^{i w t}).
+ * Q[2k], Q[2k+1] = Re, Im of coordinate k's complex amplitude. */
+static int steady_response(const autobal_rotor_params *p, const double *S_re, const double *S_im,
+                           const double *dplanes, size_t np, double Q[8]) {
+  double Dm[4], K[4][4], H[4][4], G[4][4];
+  const double w = p->omega;
+  gsl_matrix_complex *Z = gsl_matrix_complex_alloc(4, 4);
+  gsl_vector_complex *F = gsl_vector_complex_calloc(4), *X = gsl_vector_complex_alloc(4);
+  gsl_permutation *perm = gsl_permutation_alloc(4);
+  int i, k, sgn, st;
+  size_t j;
+  rotor_matrices(p, Dm, K, H, G);
+  for (i = 0; i < 4; i++)
+    for (k = 0; k < 4; k++)
+      gsl_matrix_complex_set(Z, (size_t)i, (size_t)k,
+                             gsl_complex_rect(K[i][k] - (i == k ? w * w * Dm[i] : 0.0), w * (H[i][k] + G[i][k])));
+  for (j = 0; j < np; j++) {
+    const double d = dplanes[j];
+    const double eu[4] = {1, 0, 0, d}, ev[4] = {0, 1, -d, 0};
+    const gsl_complex S = gsl_complex_rect(S_re[j], S_im[j]);
+    for (i = 0; i < 4; i++) {
+      gsl_complex f = gsl_complex_mul(gsl_complex_mul_real(S, w * w), gsl_complex_rect(eu[i], -ev[i]));
+      gsl_vector_complex_set(F, (size_t)i, gsl_complex_add(gsl_vector_complex_get(F, (size_t)i), f));
+    }
+  }
+  st = gsl_linalg_complex_LU_decomp(Z, perm, &sgn);
+  if (st == 0) st = gsl_linalg_complex_LU_solve(Z, perm, F, X);
+  for (i = 0; i < 4 && st == 0; i++) {
+    Q[2 * i] = GSL_REAL(gsl_vector_complex_get(X, (size_t)i));
+    Q[2 * i + 1] = GSL_IMAG(gsl_vector_complex_get(X, (size_t)i));
+  }
+  gsl_matrix_complex_free(Z);
+  gsl_vector_complex_free(F);
+  gsl_vector_complex_free(X);
+  gsl_permutation_free(perm);
+  return st;
+}
+
+static double g_steady_err = 0.0;
+
+static void test_no_balls_steady(void) {
+  const double omegas[3] = {500.0, 180.0, 100.0};
+  int c;
+  printf("-- no balls: transient after decay vs the closed-form steady unbalance response\n");
+  for (c = 0; c < 3; c++) {
+    autobal_rotor_params p = two_plane_params();
+    autobal_rotor *R;
+    double y[MAXDIM], Q[8], amp = 0.0, err = 0.0, t = 0.0;
+    double sre[2], sim[2], dpl[2];
+    int i, k;
+    p.omega = omegas[c];
+    p.axial = 0;
+    p.plane[0].n_balls = 0;
+    p.plane[1].n_balls = 0;
+    for (i = 0; i < 2; i++) {
+      sre[i] = p.plane[i].m0 * p.plane[i].r0 * cos(p.plane[i].psi0);
+      sim[i] = p.plane[i].m0 * p.plane[i].r0 * sin(p.plane[i].psi0);
+      dpl[i] = p.plane[i].d;
+    }
+    R = autobal_rotor_alloc(&p, NULL);
+    if (R == NULL || steady_response(&p, sre, sim, dpl, 2, Q) != 0) {
+      CHECK("no-ball model and steady response", 0);
+      autobal_rotor_free(R);
+      continue;
+    }
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 8);
+    integrate(autobal_rotor_rhs, R, 0.0, 3.0, y, 1e-11, 1e-14);
+    t = 3.0;
+    for (k = 0; k < 4; k++) amp = fmax(amp, hypot(Q[2 * k], Q[2 * k + 1]) * (k < 2 ? 1.0 : 0.1));
+    for (i = 0; i < 8; i++) { /* 8 samples over one revolution */
+      const double t1 = 3.0 + (i + 1) * (2.0 * M_PI / p.omega) / 8.0;
+      integrate(autobal_rotor_rhs, R, t, t1, y, 1e-11, 1e-14);
+      t = t1;
+      for (k = 0; k < 4; k++) {
+        const double want = Q[2 * k] * cos(p.omega * t) - Q[2 * k + 1] * sin(p.omega * t);
+        err = fmax(err, fabs(y[k] - want) * (k < 2 ? 1.0 : 0.1));
+      }
+    }
+    printf("     omega = %g rad/s: steady amplitude %.4g (m-equivalent)\n", p.omega, amp);
+    CHECK_CLOSE("   max |q(t) - Re(Q e^{iwt})| / amplitude over one revolution at t = 3 s", err / amp, 0.0, 0, 1e-7);
+    g_steady_err = fmax(g_steady_err, err / amp);
+    autobal_rotor_free(R);
+  }
+}
+
+static double g_energy_rate_err = 0.0, g_energy_drift = 0.0;
+
+static void test_energy(void) {
+  autobal_rotor_params ps[3];
+  int c, s;
+  printf("-- energy: dE/dt = -dissipation + power of the unbalance drive (random states)\n");
+  ps[0] = autobal_rotor_params_default();
+  ps[1] = two_plane_params();
+  ps[2] = two_plane_params();
+  ps[2].inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  for (c = 0; c < 3; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&ps[c], NULL);
+    double worst = 0.0;
+    if (R == NULL) continue;
+    for (s = 0; s < 30; s++) {
+      double y[MAXDIM], f[MAXDIM], scale;
+      const double t = urand(0, 2);
+      double P, dE;
+      random_state(R, y);
+      autobal_rotor_rhs(t, y, f, R);
+      dE = energy_rate(R, y, f);
+      P = power_balance(R, t, y, &scale);
+      worst = fmax(worst, fabs(dE - P) / scale);
+    }
+    CHECK_CLOSE(c == 0 ? "default: |dE/dt - P| / scale" : (c == 1 ? "two planes: |dE/dt - P| / scale" : "two planes FULL inertia: |dE/dt - P| / scale"),
+                worst, 0.0, 0, 1e-9);
+    g_energy_rate_err = fmax(g_energy_rate_err, worst);
+    autobal_rotor_free(R);
+  }
+  printf("-- energy conservation: no damping, no unbalance, omega = 500 (gyroscopic terms on)\n");
+  for (c = 0; c < 2; c++) {
+    static const double zero[3] = {0, 0, 0}, rates1[2] = {3.0, -5.0};
+    autobal_rotor_params p = two_plane_params();
+    autobal_rotor *R;
+    double y[MAXDIM], E0, E1, Emax = 0.0, t = 0.0;
+    int i;
+    p.inertia = c == 0 ? AUTOBAL_ROTOR_INERTIA_PAPER : AUTOBAL_ROTOR_INERTIA_FULL;
+    p.hw.h_Lx = p.hw.h_Ly = p.hw.h_Lz = p.hw.h_Rx = p.hw.h_Ry = 0.0;
+    p.plane[0].ball_damping = zero;
+    p.plane[1].ball_damping = zero;
+    p.plane[0].m0 = 0.0;
+    p.plane[1].m0 = 0.0;
+    p.plane[0].ball_rate = rates1;
+    p.q0[1] = -2e-4;
+    p.q0[2] = 1e-3;
+    R = autobal_rotor_alloc(&p, NULL);
+    if (R == NULL) continue;
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+    E0 = energy(R, y);
+    for (i = 1; i <= 10; i++) {
+      integrate(autobal_rotor_rhs, R, t, 0.05 * i, y, 1e-11, 1e-14);
+      t = 0.05 * i;
+      E1 = energy(R, y);
+      Emax = fmax(Emax, fabs(E1 - E0) / E0);
+    }
+    CHECK_CLOSE(c == 0 ? "paper model: max |E(t) - E(0)| / E(0) over 0.5 s" : "FULL inertia: max |E(t) - E(0)| / E(0) over 0.5 s",
+                Emax, 0.0, 0, 1e-8);
+    g_energy_drift = fmax(g_energy_drift, Emax);
+    autobal_rotor_free(R);
+  }
+}
+
+static void test_balanced_angles(void) {
+  autobal_error err;
+  double psi[8];
+  printf("-- balanced angles (3.14) and the existence test\n");
+  /* spec: default example psi~ = +-1.7721542 */
+  CHECK_STATUS("two identical balls", autobal_rotor_balanced_angles_two(0.002, 0.005, 0.005, 0.0, psi, &err), AUTOBAL_SUCCESS);
+  CHECK_CLOSE("psi_1 = pi - arccos(0.2) (spec 1.7721542)", psi[0], 1.7721542, 0, 1e-7);
+  CHECK_CLOSE("psi_2 = pi + arccos(0.2) = -1.7721542 mod 2pi", psi[1], -1.7721542, 0, 1e-7);
+  {
+    /* unequal balls, nonzero psi0: the vector sum must vanish */
+    const double a1 = 0.006, a2 = 0.004, s0 = 0.003, p0 = 0.8;
+    double sx, sy;
+    CHECK_STATUS("two unequal balls", autobal_rotor_balanced_angles_two(s0, a1, a2, p0, psi, &err), AUTOBAL_SUCCESS);
+    sx = s0 * cos(p0) + a1 * cos(psi[0]) + a2 * cos(psi[1]);
+    sy = s0 * sin(p0) + a1 * sin(psi[0]) + a2 * sin(psi[1]);
+    CHECK_CLOSE("unequal pair cancels the unbalance (kg m)", hypot(sx, sy), 0.0, 0, 1e-15);
+  }
+  CHECK_STATUS("s0 = 0, identical: opposite pair", autobal_rotor_balanced_angles_two(0.0, 0.005, 0.005, 0.0, psi, &err), AUTOBAL_SUCCESS);
+  CHECK_CLOSE("opposite pair", fabs(wrap(psi[0] - psi[1])), M_PI, 0, 1e-14);
+  CHECK_STATUS("too light pair", autobal_rotor_balanced_angles_two(0.011, 0.005, 0.005, 0.0, psi, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("too light pair message", err.message, "cannot cancel");
+  CHECK_STATUS("dominant ball", autobal_rotor_balanced_angles_two(0.001, 0.008, 0.002, 0.0, psi, &err), AUTOBAL_EINVAL);
+  CHECK_STATUS("negative s0", autobal_rotor_balanced_angles_two(-1.0, 0.008, 0.002, 0.0, psi, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("negative s0 message", err.message, "s0");
+  {
+    const double a[3] = {0.004, 0.003, 0.002};
+    CHECK("can balance: inside the annulus", autobal_rotor_plane_can_balance(0.005, a, 3) == 1);
+    CHECK("can balance: at the outer edge", autobal_rotor_plane_can_balance(0.009, a, 3) == 1);
+    CHECK("cannot: beyond sum", autobal_rotor_plane_can_balance(0.0091, a, 3) == 0);
+    CHECK("can: s0 = 0 when 2 max <= sum", autobal_rotor_plane_can_balance(0.0, a, 3) == 1);
+    const double b[2] = {0.008, 0.002};
+    CHECK("cannot: heaviest ball dominates", autobal_rotor_plane_can_balance(0.005, b, 2) == 0);
+    CHECK("can: at the inner edge", autobal_rotor_plane_can_balance(0.006, b, 2) == 1);
+    CHECK("no balls, no unbalance", autobal_rotor_plane_can_balance(0.0, NULL, 0) == 1);
+    CHECK("no balls, unbalance", autobal_rotor_plane_can_balance(1e-6, NULL, 0) == 0);
+  }
+  /* plane-level balanced configurations for n = 1, 2, 5 identical, 4 different */
+  {
+    static const double m5[5] = {0.01, 0.01, 0.01, 0.01, 0.01}, r5[5] = {0.1, 0.1, 0.1, 0.1, 0.1};
+    static const double m4[4] = {0.01, 0.02, 0.015, 0.008}, r4[4] = {0.1, 0.09, 0.1, 0.12};
+    static const double h5[5] = {0.1, 0.1, 0.1, 0.1, 0.1};
+    static const double m1[1] = {0.02};
+    struct { size_t n; const double *m, *r; double m0, psi0; } cases[4] = {
+      {5, m5, r5, 0.02, 0.3}, {4, m4, r4, 0.025, -1.1}, {1, m1, r5, 0.02, 0.5}, {5, m5, r5, 0.0, 0.0}};
+    int c;
+    for (c = 0; c < 4; c++) {
+      autobal_rotor_params p = autobal_rotor_params_default();
+      autobal_rotor *R;
+      double sx, sy;
+      size_t i;
+      p.plane[0].n_balls = cases[c].n;
+      p.plane[0].ball_mass = cases[c].m;
+      p.plane[0].ball_radius = cases[c].r;
+      p.plane[0].ball_damping = h5;
+      p.plane[0].ball_psi = NULL;
+      p.plane[0].ball_rate = NULL;
+      p.plane[0].m0 = cases[c].m0;
+      p.plane[0].psi0 = cases[c].psi0;
+      R = autobal_rotor_alloc(&p, NULL);
+      if (R == NULL) {
+        CHECK("plane model alloc", 0);
+        continue;
+      }
+      CHECK_STATUS("plane balanced angles", autobal_rotor_balanced_angles(R, 0, psi, cases[c].n, &err), AUTOBAL_SUCCESS);
+      sx = p.plane[0].m0 * p.plane[0].r0 * cos(p.plane[0].psi0);
+      sy = p.plane[0].m0 * p.plane[0].r0 * sin(p.plane[0].psi0);
+      for (i = 0; i < cases[c].n; i++) {
+        sx += cases[c].m[i] * cases[c].r[i] * cos(psi[i]);
+        sy += cases[c].m[i] * cases[c].r[i] * sin(psi[i]);
+      }
+      CHECK_CLOSE("   configuration cancels the unbalance (kg m)", hypot(sx, sy), 0.0, 0, 1e-15);
+      {
+        /* and the model agrees: monitor is 0 on that configuration */
+        double y[MAXDIM] = {0};
+        for (i = 0; i < cases[c].n; i++) y[8 + i] = psi[i];
+        CHECK_CLOSE("   monitor on the balanced configuration", autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_ROTATING, 0.0, y), 0.0, 0, 1e-12);
+      }
+      if (c == 0) { /* symmetric fan about psi0 + pi */
+        CHECK_CLOSE("   fan is symmetric about psi0 + pi", wrap(psi[0] + psi[4] - 2.0 * (0.3 + M_PI)), 0.0, 0, 1e-12);
+      }
+      autobal_rotor_free(R);
+    }
+  }
+  {
+    autobal_rotor_params p = autobal_rotor_params_default();
+    autobal_rotor *R;
+    p.plane[0].m0 = 0.2; /* far beyond 2 m r */
+    R = autobal_rotor_alloc(&p, &err);
+    CHECK_STATUS("unbalanceable plane: alloc warns", err.status, AUTOBAL_WARNING);
+    CHECK("unbalanceable plane: handle still usable", R != NULL);
+    if (R) {
+      CHECK_MSG("warning is on the handle", autobal_rotor_errmsg(R), "cannot cancel");
+      CHECK_STATUS("no balanced angles", autobal_rotor_balanced_angles(R, 0, psi, 2, &err), AUTOBAL_EINVAL);
+      CHECK_MSG("no balanced angles message", err.message, "no balanced configuration");
+      CHECK_STATUS("wrong n", autobal_rotor_balanced_angles(R, 0, psi, 3, &err), AUTOBAL_EINVAL);
+      CHECK_STATUS("wrong plane", autobal_rotor_balanced_angles(R, 1, psi, 2, &err), AUTOBAL_EINVAL);
+    }
+    autobal_rotor_free(R);
+  }
+}
+
+/* Supercritical: the default (omega = 500 > 215 rad/s) reaches the balanced angles. */
+static double g_bal_err = 0.0, g_ttb = 0.0;
+static void test_supercritical(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_rotor *R = autobal_rotor_alloc(&p, NULL);
+  double y[12], out[32], psi_b[2], e1, e2, ts[301], mon[301], t = 0.0;
+  size_t nout;
+  int i, ok = 1;
+  printf("-- supercritical run (omega = 500): balls reach psi~ = pi -/+ arccos(m0 r0 / 2 m r)\n");
+  if (R == NULL) return;
+  nout = autobal_rotor_output_count(R);
+  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
+  for (i = 0; i <= 300; i++) {
+    const double t1 = 0.1 * i;
+    if (i > 0 && integrate(autobal_rotor_rhs, R, t, t1, y, 1e-10, 1e-13) != 0) ok = 0;
+    t = t1;
+    ts[i] = t;
+    mon[i] = autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, t, y);
+  }
+  CHECK("30 s integrated", ok);
+  autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, t, y, out, nout);
+  /* (3.14), computed from the formula here */
+  psi_b[0] = M_PI - acos(0.02 * 0.1 / (2.0 * 0.05 * 0.1));
+  psi_b[1] = -psi_b[0];
+  /* compare as a set, modulo 2 pi (outputs 13 and 19: wrapped psi of balls 1, 2; 15, 21: psi') */
+  e1 = fmax(fabs(wrap(out[13] - psi_b[0])), fabs(wrap(out[19] - psi_b[1])));
+  e2 = fmax(fabs(wrap(out[13] - psi_b[1])), fabs(wrap(out[19] - psi_b[0])));
+  g_bal_err = fmin(e1, e2);
+  CHECK_CLOSE("balanced angles reached at t = 30 s (rad, mod 2 pi, as a set)", g_bal_err, 0.0, 0, 1e-6);
+  CHECK_CLOSE("residual unbalance |s| / m0 r0", out[8], 0.0, 0, 1e-6);
+  CHECK_CLOSE("rotor amplitude at the centre of mass (m)", out[0], 0.0, 0, 1e-10);
+  CHECK_CLOSE("relative rates psi' (rad/s)", fmax(fabs(out[15]), fabs(out[21])), 0.0, 0, 1e-6);
+  CHECK("monitor started large", mon[0] > 1.0);
+  g_ttb = autobal_rotor_time_to_balance(ts, mon, 301, 1e-2);
+  printf("     time to balance (|s| / m0 r0 < 1e-2 for good): %.2f s\n", g_ttb);
+  CHECK("time to balance found, within the run", isfinite(g_ttb) && g_ttb > 0.0 && g_ttb < 30.0);
+  autobal_rotor_free(R);
+}
+
+/* Subcritical: below the first resonance the balls gather on the heavy side at the
+ * angle where the displacement of D (steady response to the total unbalance) points
+ * along them: the tangential force on the balls (3.13) vanishes. */
+static double eq_residual(const autobal_rotor_params *p, double psi, double Q[8]) {
+  const double s0 = p->plane[0].m0 * p->plane[0].r0;
+  double sre = s0, sim = 0.0, d = p->plane[0].d, uD, vD;
+  size_t i;
+  for (i = 0; i < p->plane[0].n_balls; i++) {
+    sre += p->plane[0].ball_mass[i] * p->plane[0].ball_radius[i] * cos(psi);
+    sim += p->plane[0].ball_mass[i] * p->plane[0].ball_radius[i] * sin(psi);
+  }
+  steady_response(p, &sre, &sim, &d, 1, Q);
+  /* position of D in the rotor axes (= fixed axes at t = 0) */
+  uD = Q[0] + d * Q[6];
+  vD = Q[2] - d * Q[4];
+  return wrap(atan2(vD, uD) - psi);
+}
+
+static void test_subcritical(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_rotor *R;
+  double y[12], out[32], Q[8], m0, m1, lo, hi, root;
+  int i;
+  printf("-- subcritical run (omega = 100 < 157.5 rad/s): balls go to the heavy side\n");
+  p.omega = 100.0;
+  R = autobal_rotor_alloc(&p, NULL);
+  if (R == NULL) return;
+  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
+  m0 = autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, 0.0, y);
+  CHECK("30 s integrated", integrate(autobal_rotor_rhs, R, 0.0, 30.0, y, 1e-10, 1e-13) == 0);
+  autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 30.0, y, out, autobal_rotor_output_count(R));
+  m1 = out[8];
+  CHECK_CLOSE("balls together (psi_1 - psi_2, rad)", wrap(out[13] - out[19]), 0.0, 0, 1e-6);
+  CHECK("residual unbalance grew", m1 > m0 && m1 > 1.0);
+  CHECK_CLOSE("|s| = |m0 r0 + 2 m r e^{i psi}| / m0 r0",
+              m1, hypot(0.002 + 0.01 * cos(out[13]), 0.01 * sin(out[13])) / 0.002, 1e-9, 0);
+  CHECK("balls on the heavy side (cos psi > 0)", cos(out[13]) > 0.0);
+  /* equilibrium angle from the closed-form steady response, by bisection on
+   * [-pi/2, pi/2] (eq_residual changes sign there), independent of the transient */
+  lo = -0.5 * M_PI;
+  hi = 0.5 * M_PI;
+  CHECK("equilibrium bracketed", eq_residual(&p, lo, Q) * eq_residual(&p, hi, Q) < 0.0);
+  for (i = 0; i < 100; i++) {
+    const double mid = 0.5 * (lo + hi);
+    if (eq_residual(&p, mid, Q) * eq_residual(&p, lo, Q) > 0.0) lo = mid;
+    else hi = mid;
+  }
+  root = 0.5 * (lo + hi);
+  printf("     equilibrium angle of the balls from the steady response: %.9f rad\n", root);
+  CHECK_CLOSE("transient ball angle = equilibrium of the steady response (rad)", out[13], root, 0, 1e-6);
+  eq_residual(&p, root, Q);
+  CHECK_CLOSE("rotor amplitude = closed form |Q_x| (m)", out[0], hypot(Q[0], Q[1]), 1e-6, 0);
+  autobal_rotor_free(R);
+}
+
+static void test_outputs(void) {
+  autobal_rotor_params p = two_plane_params();
+  autobal_rotor *R = autobal_rotor_alloc(&p, NULL);
+  double y[MAXDIM], yr[MAXDIM], o1[64], o2[64], s[4];
+  char name[64], prev[64][64];
+  const char *unit = NULL;
+  size_t n, k, dim, i;
+  int uniq = 1, wrapped = 1, same = 1;
+  const double t = 0.37;
+  printf("-- derived outputs: layout, names, frames\n");
+  if (R == NULL) return;
+  n = autobal_rotor_output_count(R);
+  dim = autobal_rotor_dim(R);
+  CHECK("output count = 3 + 7 planes + 6 balls", n == 3 + 7 * 2 + 6 * 5);
+  random_state(R, y);
+  autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim);
+  CHECK_STATUS("outputs (fixed)", autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, t, y, o1, n), AUTOBAL_SUCCESS);
+  CHECK_STATUS("outputs (rotating)", autobal_rotor_outputs(R, AUTOBAL_ROTOR_ROTATING, t, yr, o2, n), AUTOBAL_SUCCESS);
+  for (k = 0; k < n; k++)
+    if (fabs(o1[k] - o2[k]) > 1e-12 * fmax(1.0, fabs(o1[k]))) same = 0;
+  CHECK("fixed and rotating states give the same outputs", same);
+  CHECK_CLOSE("amp_G", o1[0], hypot(y[0], y[1]), 1e-15, 0);
+  CHECK_CLOSE("amp_L: point p = -l_L", o1[1], hypot(y[0] - 0.2 * y[3], y[1] + 0.2 * y[2]), 1e-15, 0);
+  CHECK_CLOSE("amp_R: point p = +l_R", o1[2], hypot(y[0] + 0.15 * y[3], y[1] - 0.15 * y[2]), 1e-15, 0);
+  CHECK_CLOSE("p2_amp_D: point p = d_2", o1[3 + 7 + 6], hypot(y[0] - 0.12 * y[3], y[1] + 0.12 * y[2]), 1e-15, 0);
+  {
+    /* s_u, s_v of plane 1 from (3.1) with absolute angles */
+    double su = 0.002 * cos(500 * t), sv = 0.002 * sin(500 * t);
+    for (i = 0; i < 2; i++) {
+      su += tp_m1[i] * tp_r1[i] * cos(y[8 + i]);
+      sv += tp_m1[i] * tp_r1[i] * sin(y[8 + i]);
+    }
+    CHECK_CLOSE("p1_s_u (3.1)", o1[3], su, 1e-12, 1e-17);
+    CHECK_CLOSE("p1_s_v (3.1)", o1[4], sv, 1e-12, 1e-17);
+    CHECK_CLOSE("|s| invariant: hypot(s_u, s_v) = hypot(s_xi, s_eta)", hypot(o1[3], o1[4]), hypot(o1[5], o1[6]), 1e-12, 0);
+    CHECK_CLOSE("p1_s_rel = |s| / m0 r0", o1[8], o1[7] / 0.002, 1e-15, 0);
+    CHECK_STATUS("plane_unbalance", autobal_rotor_plane_unbalance(R, 1, AUTOBAL_ROTOR_FIXED, t, y, s), AUTOBAL_SUCCESS);
+    CHECK_CLOSE("plane_unbalance p2 s_xi = output", s[2], o1[3 + 7 + 2], 1e-15, 0);
+    CHECK_CLOSE("monitor = max_j s_rel", autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, t, y),
+                fmax(o1[8], o1[3 + 7 + 5]), 1e-15, 0);
+  }
+  for (k = 0; k < 5; k++) {
+    const double *b = o1 + 3 + 14 + 6 * k;
+    if (!(b[1] > -M_PI && b[1] <= M_PI && b[3] > -M_PI && b[3] <= M_PI)) wrapped = 0;
+    if (fabs(wrap(b[1] - b[0])) > 1e-9 || fabs(wrap(b[3] - b[2])) > 1e-9) wrapped = 0;
+    if (b[0] != y[8 + k] || fabs(b[2] - (y[8 + k] - 500 * t)) > 1e-12) wrapped = 0;
+    if (b[4] != y[13 + k] || fabs(b[5] - (y[13 + k] - 500)) > 1e-12) wrapped = 0;
+  }
+  CHECK("ball angles: wrapped in (-pi, pi], equal mod 2 pi, psi = phi - omega t", wrapped);
+  for (k = 0; k < n && k < 64; k++) {
+    autobal_rotor_output_name(R, k, name, sizeof name, &unit);
+    for (i = 0; i < k; i++)
+      if (strcmp(prev[i], name) == 0) uniq = 0;
+    snprintf(prev[k], sizeof prev[k], "%s", name);
+  }
+  CHECK("output names unique", uniq);
+  autobal_rotor_output_name(R, 3 + 14 + 6 * 3 + 3, name, sizeof name, &unit);
+  CHECK("name of plane 2 ball 2 psi_w", strcmp(name, "p2_b2_psi_w") == 0 && strcmp(unit, "rad") == 0);
+  autobal_rotor_output_name(R, 3 + 7 + 5, name, sizeof name, &unit);
+  CHECK("name p2_s_rel dimensionless", strcmp(name, "p2_s_rel") == 0 && strcmp(unit, "1") == 0);
+  CHECK_STATUS("output name out of range", autobal_rotor_output_name(R, n, name, sizeof name, &unit), AUTOBAL_EINVAL);
+  CHECK_STATUS("outputs: wrong count", autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, t, y, o1, n - 1), AUTOBAL_EINVAL);
+  CHECK_STATUS("outputs: bad frame", autobal_rotor_outputs(R, 7, t, y, o1, n), AUTOBAL_EINVAL);
+  CHECK_STATUS("plane_unbalance: bad plane", autobal_rotor_plane_unbalance(R, 2, AUTOBAL_ROTOR_FIXED, t, y, s), AUTOBAL_EINVAL);
+  CHECK("monitor: bad frame gives NaN", isnan(autobal_rotor_balance_monitor(R, 5, t, y)));
+  autobal_rotor_free(R);
+  {
+    const double ts[6] = {0, 1, 2, 3, 4, 5}, mo[6] = {5, 0.5, 2, 0.9, 0.1, 0.05};
+    CHECK_CLOSE("time_to_balance: last entry below stays", autobal_rotor_time_to_balance(ts, mo, 6, 1.0), 3.0, 0, 0);
+    CHECK("time_to_balance: never settles -> NaN", isnan(autobal_rotor_time_to_balance(ts, mo, 6, 0.01)));
+    CHECK_CLOSE("time_to_balance: always below", autobal_rotor_time_to_balance(ts, mo, 6, 10.0), 0.0, 0, 0);
+  }
+}
+
+static void test_lumped_input(void) {
+  autobal_rotor_params h = two_plane_params(), l;
+  autobal_rotor *A, *B;
+  double y[MAXDIM], fa[MAXDIM], fb[MAXDIM], oa[64], ob[64], worst = 0.0;
+  size_t k;
+  printf("-- lumped input gives the same model as the hardware values\n");
+  l = h;
+  l.input = AUTOBAL_ROTOR_LUMPED;
+  autobal_rotor_lumped_from_hardware(&h.hw, &l.lumped, NULL);
+  memset(&l.hw, 0, sizeof l.hw);
+  l.hw.l_L = NAN;
+  l.hw.l_R = NAN;
+  A = autobal_rotor_alloc(&h, NULL);
+  B = autobal_rotor_alloc(&l, NULL);
+  CHECK("both alloc", A && B);
+  if (A && B) {
+    random_state(A, y);
+    autobal_rotor_rhs(0.3, y, fa, A);
+    autobal_rotor_rhs(0.3, y, fb, B);
+    for (k = 0; k < autobal_rotor_dim(A); k++) worst = fmax(worst, fabs(fa[k] - fb[k]));
+    CHECK_CLOSE("identical right-hand sides", worst, 0.0, 0, 0);
+    autobal_rotor_outputs(B, AUTOBAL_ROTOR_FIXED, 0.3, y, ob, autobal_rotor_output_count(B));
+    autobal_rotor_outputs(A, AUTOBAL_ROTOR_FIXED, 0.3, y, oa, autobal_rotor_output_count(A));
+    CHECK("support outputs NaN with unknown l_L, l_R", isnan(ob[1]) && isnan(ob[2]) && !isnan(oa[1]));
+    CHECK("other outputs available", ob[0] == oa[0]);
+  }
+  autobal_rotor_free(A);
+  autobal_rotor_free(B);
+}
+
+static void test_errors(void) {
+  autobal_rotor_params p;
+  autobal_error err;
+  autobal_rotor *R;
+  static const double negr[2] = {0.1, -0.1}, zerom[2] = {0.05, 0.0}, nanpsi[2] = {1.0, NAN};
+  static const double negh[2] = {0.1, -0.1}, heavy[2] = {4.0, 4.0};
+  printf("-- validation and failure paths\n");
+#define EXPECT_BAD(label, needle)                                                  \
+  do {                                                                             \
+    R = autobal_rotor_alloc(&p, &err);                                             \
+    CHECK(label ": alloc refused", R == NULL);                                     \
+    CHECK_STATUS(label ": status", err.status, AUTOBAL_EINVAL);                    \
+    CHECK_MSG(label ": message", err.message, needle);                             \
+    CHECK_STATUS(label ": params_check agrees", autobal_rotor_params_check(&p, NULL), AUTOBAL_EINVAL); \
+    autobal_rotor_free(R);                                                         \
+  } while (0)
+  R = autobal_rotor_alloc(NULL, &err);
+  CHECK("NULL params", R == NULL && err.status == AUTOBAL_EINVAL);
+  p = autobal_rotor_params_default();
+  p.plane[0].ball_radius = negr;
+  EXPECT_BAD("ball on a negative radius", "plane[0].ball_radius[1] = -0.1");
+  p = autobal_rotor_params_default();
+  p.plane[0].ball_mass = zerom;
+  EXPECT_BAD("zero ball mass", "plane[0].ball_mass[1]");
+  p = autobal_rotor_params_default();
+  p.plane[0].ball_damping = negh;
+  EXPECT_BAD("negative ball damping", "ball_damping[1]");
+  p = autobal_rotor_params_default();
+  p.plane[0].ball_psi = nanpsi;
+  EXPECT_BAD("NaN initial angle", "ball_psi[1]");
+  p = autobal_rotor_params_default();
+  p.hw.M_k = 0.0;
+  EXPECT_BAD("zero housing mass", "hw.M_k = 0");
+  p = autobal_rotor_params_default();
+  p.hw.c_Rx = -1.0;
+  EXPECT_BAD("negative stiffness", "hw.c_Rx");
+  p = autobal_rotor_params_default();
+  p.hw.h_Lz = INFINITY;
+  EXPECT_BAD("infinite viscosity", "hw.h_Lz");
+  p = autobal_rotor_params_default();
+  p.hw.l_L = -0.2;
+  p.hw.l_R = 0.1;
+  EXPECT_BAD("supports in the wrong order", "l_L + l_R > 0");
+  p = autobal_rotor_params_default();
+  p.omega = NAN;
+  EXPECT_BAD("NaN omega", "omega");
+  p = autobal_rotor_params_default();
+  p.n_planes = 0;
+  EXPECT_BAD("no planes", "n_planes = 0");
+  p = autobal_rotor_params_default();
+  p.n_planes = 3;
+  EXPECT_BAD("three planes", "n_planes = 3");
+  p = autobal_rotor_params_default();
+  p.plane[0].m0 = -0.01;
+  EXPECT_BAD("negative unbalance mass", "plane[0].m0");
+  p = autobal_rotor_params_default();
+  p.plane[0].ball_mass = NULL;
+  EXPECT_BAD("NULL ball array", "NULL");
+  p = autobal_rotor_params_default();
+  p.input = 7;
+  EXPECT_BAD("bad input kind", "input = 7");
+  p = autobal_rotor_params_default();
+  p.inertia = 3;
+  EXPECT_BAD("bad inertia model", "inertia = 3");
+  p = autobal_rotor_params_default();
+  p.axial = 2;
+  EXPECT_BAD("bad axial flag", "axial = 2");
+  p = autobal_rotor_params_default();
+  p.q0[2] = NAN;
+  EXPECT_BAD("NaN initial alpha", "q0[2]");
+  p = autobal_rotor_params_default();
+  p.plane[0].ball_mass = heavy;
+  EXPECT_BAD("balls too heavy for the paper model", "too heavy");
+  p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  R = autobal_rotor_alloc(&p, &err);
+  CHECK("heavy balls accepted by the FULL inertia model", R != NULL && err.status == AUTOBAL_SUCCESS);
+  autobal_rotor_free(R);
+  p = autobal_rotor_params_default();
+  p.input = AUTOBAL_ROTOR_LUMPED;
+  p.lumped.c_xbeta = 5e4; /* c_xbeta^2 > c_x c_beta */
+  EXPECT_BAD("lumped stiffness not positive semidefinite", "c_xbeta");
+  p = autobal_rotor_params_default();
+  p.input = AUTOBAL_ROTOR_LUMPED;
+  p.lumped.A = 0.0;
+  EXPECT_BAD("lumped zero inertia", "lumped.A");
+  p = autobal_rotor_params_default();
+  p.input = AUTOBAL_ROTOR_LUMPED;
+  p.hw.l_L = INFINITY;
+  EXPECT_BAD("lumped with infinite l_L", "hw.l_L");
+  {
+    autobal_rotor_lumped L;
+    autobal_rotor_hardware hw = autobal_rotor_params_default().hw;
+    hw.A_p = -1.0;
+    CHECK_STATUS("lumped_from_hardware validates", autobal_rotor_lumped_from_hardware(&hw, &L, &err), AUTOBAL_EINVAL);
+    CHECK_MSG("lumped_from_hardware message", err.message, "hw.A_p");
+  }
+  /* warnings: the balls cannot cancel the unbalance */
+  p = autobal_rotor_params_default();
+  p.plane[0].m0 = 0.05; /* m0 r0 = 0.005 < 2 m r = 0.01: fine */
+  CHECK_STATUS("enough balancing capacity", autobal_rotor_params_check(&p, &err), AUTOBAL_SUCCESS);
+  p.plane[0].m0 = 0.11;
+  CHECK_STATUS("sum m r < m0 r0: warning", autobal_rotor_params_check(&p, &err), AUTOBAL_WARNING);
+  CHECK_MSG("warning names the plane", err.message, "plane[0]");
+  CHECK_MSG("warning names the sums", err.message, "sum m_i r_i");
+  {
+    static const double unequal[2] = {0.09, 0.01};
+    p = autobal_rotor_params_default();
+    p.plane[0].ball_mass = unequal;
+    CHECK_STATUS("heaviest ball dominates: warning", autobal_rotor_params_check(&p, &err), AUTOBAL_WARNING);
+    CHECK_MSG("dominant-ball warning", err.message, "heaviest ball");
+  }
+  /* failing right-hand side */
+  p = autobal_rotor_params_default();
+  R = autobal_rotor_alloc(&p, &err);
+  if (R) {
+    double y[12], f[12];
+    int i;
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
+    y[9] = NAN;
+    CHECK_STATUS("rhs with a NaN state fails", autobal_rotor_rhs(0.0, y, f, R), GSL_EBADFUNC);
+    CHECK_MSG("rhs failure recorded on the handle", autobal_rotor_errmsg(R), "right-hand side failed");
+    CHECK_STATUS("rotating rhs with a NaN state fails", autobal_rotor_rhs_rotating(0.0, y, f, R), GSL_EBADFUNC);
+    CHECK_MSG("rotating rhs failure message", autobal_rotor_errmsg(R), "rotating-frame");
+    for (i = 0; i < 12; i++) y[i] = 0.0;
+    y[4] = INFINITY;
+    CHECK_STATUS("rhs with an infinite rate fails", autobal_rotor_rhs(0.0, y, f, R), GSL_EBADFUNC);
+    CHECK_STATUS("set_omega NaN", autobal_rotor_set_omega(R, NAN), AUTOBAL_EINVAL);
+    CHECK_MSG("set_omega message", autobal_rotor_errmsg(R), "omega");
+    CHECK_STATUS("set_omega", autobal_rotor_set_omega(R, 300.0), AUTOBAL_SUCCESS);
+    CHECK_CLOSE("omega changed", autobal_rotor_omega(R), 300.0, 0, 0);
+    CHECK_STATUS("initial state: wrong dim", autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 11), AUTOBAL_EINVAL);
+    CHECK_STATUS("initial state: bad frame", autobal_rotor_initial_state(R, 9, 0.0, y, 12), AUTOBAL_EINVAL);
+    CHECK_STATUS("convert: wrong dim", autobal_rotor_convert_state(R, 0, 1, 0.0, y, f, 13), AUTOBAL_EINVAL);
+  }
+  autobal_rotor_free(R);
+  autobal_rotor_free(NULL);
+  CHECK("errmsg(NULL) not NULL", autobal_rotor_errmsg(NULL) != NULL);
+  CHECK("dim(NULL) = 0", autobal_rotor_dim(NULL) == 0);
+#undef EXPECT_BAD
+}
+
+int main(void) {
+  gsl_set_error_handler_off();
+  test_defaults();
+  test_natural_frequencies();
+  test_direct_solve();
+  test_frames_instantaneous();
+  test_frames_transient();
+  test_rotation_invariance();
+  test_mirror();
+  test_plane_split();
+  test_no_balls_steady();
+  test_energy();
+  test_balanced_angles();
+  test_supercritical();
+  test_subcritical();
+  test_outputs();
+  test_lumped_input();
+  test_errors();
+  printf("summary: rhs vs direct solve %.3g; fixed vs rotating frame |dq| %.3g, |dangle| %.3g rad; "
+         "steady response rel. error %.3g; energy-rate rel. error %.3g, drift %.3g; "
+         "balanced angle error %.3g rad; time to balance %.2f s\n",
+         g_max_direct, g_frame_diff_q, g_frame_diff_ang, g_steady_err, g_energy_rate_err,
+         g_energy_drift, g_bal_err, g_ttb);
+  return check_summary();
+}
