@@ -338,7 +338,7 @@ int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *
 static int tolower_ascii(int ch) { return (ch >= 'A' && ch <= 'Z') ? ch - 'A' + 'a' : ch; }
 
 /* Levenshtein distance, case-insensitive, for "did you mean". */
-static size_t edit_distance(const char *a, const char *b) {
+static size_t edit_distance(const char *a, const char *b, int fold) {
   size_t la = strlen(a), lb = strlen(b), i, j;
   size_t row[256];
   if (la > 255 || lb > 255) return (size_t)-1;
@@ -348,7 +348,7 @@ static size_t edit_distance(const char *a, const char *b) {
     row[0] = i;
     for (j = 1; j <= lb; j++) {
       size_t cur = row[j];
-      size_t cost = (tolower_ascii(a[i - 1]) == tolower_ascii(b[j - 1])) ? 0 : 1;
+      size_t cost = (fold ? tolower_ascii(a[i - 1]) == tolower_ascii(b[j - 1]) : a[i - 1] == b[j - 1]) ? 0 : 1;
       size_t best = prev + cost;
       if (row[j] + 1 < best) best = row[j] + 1;
       if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
@@ -372,7 +372,8 @@ int cli_config_check_unused(cli_ctx *ctx) {
     snprintf(full, sizeof full, "%s.%s", e->section, e->key);
     snprintf(sect_star, sizeof sect_star, "%s.", e->section);
     for (k = 0; k < c->nknown; k++) {
-      size_t d = edit_distance(full, c->known[k]);
+      /* case-insensitive distance first, the exact one breaks ties */
+      size_t d = 4 * edit_distance(full, c->known[k], 1) + edit_distance(full, c->known[k], 0);
       if (strncmp(c->known[k], sect_star, strlen(sect_star)) == 0) section_known = 1;
       if (strstr(c->known[k], ".*")) continue;
       if (d < bestd) {
@@ -380,9 +381,19 @@ int cli_config_check_unused(cli_ctx *ctx) {
         best = c->known[k];
       }
     }
-    if (best && bestd <= 3)
-      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s'; did you mean '%s'?", where(ctx, e),
-                      section_known ? "key" : "section/key", full, ctx->command, best);
+    if (best && bestd <= 4 * 3 + 6) {
+      /* every candidate at the best distance: "did you mean 'a' or 'b'?" */
+      char list[512];
+      size_t pos = 0;
+      list[0] = '\0';
+      for (k = 0; k < c->nknown && pos < sizeof list - 80; k++) {
+        if (strstr(c->known[k], ".*")) continue;
+        if (4 * edit_distance(full, c->known[k], 1) + edit_distance(full, c->known[k], 0) != bestd) continue;
+        pos += (size_t)snprintf(list + pos, sizeof list - pos, "%s'%s'", pos ? " or " : "", c->known[k]);
+      }
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s'; did you mean %s?", where(ctx, e),
+                      section_known ? "key" : "section/key", full, ctx->command, list);
+    }
     return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s' (see 'autobal %s --help' for the keys)",
                     where(ctx, e), section_known ? "key" : "section", full, ctx->command, ctx->command);
   }

@@ -3,7 +3,9 @@
 #define _POSIX_C_SOURCE 200809L
 #include <signal.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "autobal/archive.h"
 #include "cli.h"
@@ -47,7 +49,13 @@ int cli_archive_finish(cli_ctx *ctx, autobal_archive *a, int exit_code) {
   }
   autobal_error_clear(&err);
   if (autobal_archive_close(a, &err) != AUTOBAL_SUCCESS) {
-    if (exit_code == CLI_EXIT_OK) return cli_fail(ctx, CLI_EXIT_IO, "%s", err.message);
+    /* HDF5 1.10 can crash in its exit handler after a failed close (disk full; fixed upstream
+     * in 1.14.1): report and leave at once, as archive.h advises. */
+    fprintf(stderr, "autobal: error: %s\n", exit_code == CLI_EXIT_OK ? err.message : ctx->err);
+    if (exit_code != CLI_EXIT_OK) fprintf(stderr, "autobal: error: %s\n", err.message);
+    fflush(stdout);
+    fflush(stderr);
+    _exit(exit_code == CLI_EXIT_OK ? CLI_EXIT_IO : exit_code);
   }
   return exit_code;
 }

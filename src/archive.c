@@ -90,12 +90,24 @@ typedef struct {
 static herr_t h5walk_cb(unsigned n, const H5E_error2_t *e, void *vctx) {
   h5walk_ctx *w = (h5walk_ctx *)vctx;
   const char *desc = (e->desc != NULL && e->desc[0] != '\0') ? e->desc : "(no description)";
-  char *tail;
+  char *p;
   if (n == 0) snprintf(w->outer, sizeof w->outer, "%s", desc);
   snprintf(w->inner, sizeof w->inner, "%s", desc);
-  /* H5FD open failures end in ", flags = ..., o_flags = ...": noise for a user. */
-  tail = strstr(w->inner, ", flags = ");
-  if (tail != NULL) *tail = '\0';
+  /* Drop what is noise for a user: the tails ", flags = ..." (open failures) and
+   * ", buf = 0x..." (write failures), the "time = <ctime>\n, " part of write
+   * failures; flatten any remaining control characters. */
+  if ((p = strstr(w->inner, ", flags = ")) != NULL) *p = '\0';
+  if ((p = strstr(w->inner, ", buf = ")) != NULL) *p = '\0';
+  if ((p = strstr(w->inner, "time = ")) != NULL) {
+    char *q = strchr(p, '\n');
+    if (q != NULL) {
+      q++;
+      if (q[0] == ',' && q[1] == ' ') q += 2;
+      memmove(p, q, strlen(q) + 1);
+    }
+  }
+  for (p = w->inner; *p; p++)
+    if ((unsigned char)*p < 0x20u) *p = ' ';
   w->n++;
   return 0;
 }
@@ -988,7 +1000,7 @@ static int write_var(autobal_archive *a, const char *group, const char *name, in
   /* After a failure, detach the scales so their REFERENCE_LIST does not point at the
    * dataset removed below. */
   for (i = 0; i < nattached && rc != AUTOBAL_SUCCESS; i++) (void)H5DSdetach_scale(ds, scales[i], (unsigned)i);
-  if (ds >= 0 && H5Dclose(ds) < 0 && rc == AUTOBAL_SUCCESS) rc = h5fail(&a->err, "cannot close '%s'", path);
+  if (ds >= 0 && H5Dclose(ds) < 0 && rc == AUTOBAL_SUCCESS) rc = h5fail(&a->err, "cannot finish writing '%s'", path);
   for (i = 0; i < rank; i++)
     if (scales[i] >= 0) (void)H5Dclose(scales[i]);
   if (rc != AUTOBAL_SUCCESS && ds >= 0) remove_link(a->file, path);

@@ -454,6 +454,27 @@ static void quartic_disc_ld(const long double c[5], long double *disc, long doub
  *         (distinct roots), or discriminant = 0 on the boundary (MARGINAL). */
 static int undamped_verdict_ld(long double Rm, long double W, long double k) {
   long double c[5];
+  if (k == 1.0L) {
+    /* (15): stable iff f(nu) = (1-R_m) nu^4 - 2R nu^3 + (R^2-1) nu^2 + 2R nu - R^2
+     * (P1 at lambda = i(nu - R)) has four real roots (the roots of conj(P1)
+     * are their mirror images); exact quartic criterion on f, whose
+     * discriminant stays away from 0 at the double roots of (10) on (18). */
+    long double R = sqrtl(W), f[5], disc, mag, P8, D4;
+    f[0] = -W;
+    f[1] = 2.0L * R;
+    f[2] = W - 1.0L;
+    f[3] = -2.0L * R;
+    f[4] = 1.0L - Rm;
+    quartic_disc_ld(f, &disc, &mag);
+    if (disc < -PEND_GAMMA * U_LD * mag) return AUTOBAL_VERDICT_UNSTABLE;
+    P8 = 8.0L * f[4] * f[2] - 3.0L * f[3] * f[3];
+    D4 = 64.0L * f[4] * f[4] * f[4] * f[0] - 16.0L * f[4] * f[4] * f[2] * f[2] +
+         16.0L * f[4] * f[3] * f[3] * f[2] - 16.0L * f[4] * f[4] * f[3] * f[1] -
+         3.0L * f[3] * f[3] * f[3] * f[3];
+    if (P8 >= 0.0L || D4 >= 0.0L) return AUTOBAL_VERDICT_UNSTABLE;
+    if (disc <= PEND_GAMMA * U_LD * mag) return AUTOBAL_VERDICT_MARGINAL;
+    return AUTOBAL_VERDICT_STABLE;
+  }
   undamped_coefs_ld(Rm, W, k, c);
   if (k == 0.0L) {
     long double a0 = c[1], a2 = c[2], a4 = c[3], a6 = c[4];
@@ -601,16 +622,14 @@ static void undamped_coef_polys(long double Rm, long double k, long double c[5][
   c[4][0] = 1.0L - 2.0L * Rm + r2;
 }
 
-/* The discriminant of (10) in x as a polynomial in W (13 coefficients) and
- * the magnitude polynomial (same products on |coefficients|). */
-static void undamped_disc_poly(long double Rm, long double k, long double D[LDP_LEN],
-                               long double Dm[LDP_LEN]) {
-  long double c[5][LDP_LEN], ca[5][LDP_LEN];
+/* Discriminant of the quartic sum_j c[j] x^j whose coefficients c[j] are
+ * polynomials (in W or R), by polynomial arithmetic on the 16 terms; ca are
+ * the coefficient-wise magnitudes; Dm receives the magnitude polynomial
+ * (same products on |.|) for rounding-error bounds. */
+static void quartic_disc_poly(long double c[5][LDP_LEN], long double ca[5][LDP_LEN],
+                              long double D[LDP_LEN], long double Dm[LDP_LEN]) {
   long double pw[5][5][LDP_LEN], pa[5][5][LDP_LEN];
   int i, j, t;
-  undamped_coef_polys(Rm, k, c);
-  for (i = 0; i < 5; i++)
-    for (j = 0; j < LDP_LEN; j++) ca[i][j] = fabsl(c[i][j]);
   /* powers 0..4 of each coefficient polynomial; index v: 0=a=c4 ... 4=e=c0 */
   for (i = 0; i < 5; i++) {
     const long double *base = c[4 - i], *basea = ca[4 - i];
@@ -640,6 +659,18 @@ static void undamped_disc_poly(long double Rm, long double k, long double D[LDP_
       Dm[j] += terma[j];
     }
   }
+}
+
+/* The discriminant of (10) in x as a polynomial in W (13 coefficients) and
+ * the magnitude polynomial. */
+static void undamped_disc_poly(long double Rm, long double k, long double D[LDP_LEN],
+                               long double Dm[LDP_LEN]) {
+  long double c[5][LDP_LEN], ca[5][LDP_LEN];
+  int i, j;
+  undamped_coef_polys(Rm, k, c);
+  for (i = 0; i < 5; i++)
+    for (j = 0; j < LDP_LEN; j++) ca[i][j] = fabsl(c[i][j]);
+  quartic_disc_poly(c, ca, D, Dm);
   /* Degree <= 11: the W^12 coefficient is the discriminant of the top-degree
    * parts T(y) = sum_j c_j^top y^j, which has the double root y = -1
    * (T = (y+1)^2 [y((1-2R_m) y + 2R_m) + k R_m^2 (y+1)^2]), so it vanishes
@@ -952,7 +983,11 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
         Dm[j] += ta[j];
       }
     }
-    len = 7;
+    /* Degree <= 5: the W^6 coefficient is the discriminant of the top-degree
+     * parts (1-2R_m) y^3 + 2(1-R_m) y^2 + (1+2R_m) y + 2R_m = (y+1)^2 ((1-2R_m) y
+     * + 2R_m), which has a double root, so it vanishes identically. */
+    for (j = 6; j < LDP_LEN; j++) D[j] = 0.0L;
+    len = 6;
     if ((st = positive_roots(ws, D, Dm, len, Wr, AUTOBAL_PENDULUM_MAX_CRIT - 1, &nW)) != 0)
       return st;
     /* add W = 1 */
@@ -967,12 +1002,64 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
       qsort(Wr, nW, sizeof(double), cmp_dbl);
     }
   } else {
+    size_t nT = 0;
+    double T[AUTOBAL_PENDULUM_MAX_CRIT];
+    if (k == 1.0) {
+      /* (15): at k = 1, with lambda = i mu and nu = mu + R_w, P1 becomes the
+       * real quartic f(nu) = (nu - R_w)^2 (nu^2 - 1) - R_m nu^4 and (6) is
+       * stable in the first approximation iff f has four real roots; the
+       * verdict changes only where disc_nu(f) = 0.  Its roots are located on
+       * their own (the double root of (6) at (18) is not one of them, so no
+       * near-triple root arises near R_m^(1)). */
+      long double F[5][LDP_LEN], Fa[5][LDP_LEN], E[LDP_LEN], Ea[LDP_LEN];
+      long double Q1[LDP_LEN], Q1a[LDP_LEN];
+      int j;
+      for (j = 0; j < 5; j++) ldp_zero(F[j]);
+      F[0][2] = -1.0L;             /* -R^2          */
+      F[1][1] = 2.0L;              /* 2R nu         */
+      F[2][0] = -1.0L;             /* (R^2 - 1) nu^2 */
+      F[2][2] = 1.0L;
+      F[3][1] = -2.0L;             /* -2R nu^3      */
+      F[4][0] = 1.0L - (long double)R_m; /* (1 - R_m) nu^4 */
+      for (j = 0; j < 5; j++) {
+        int m;
+        for (m = 0; m < LDP_LEN; m++) Fa[j][m] = fabsl(F[j][m]);
+      }
+      quartic_disc_poly(F, Fa, E, Ea);
+      /* disc is even in R (each term has an even number of odd factors b, d),
+       * so it is a polynomial in W = R^2 */
+      ldp_zero(Q1);
+      ldp_zero(Q1a);
+      for (j = 0; 2 * j < LDP_LEN; j++) {
+        Q1[j] = E[2 * j];
+        Q1a[j] = Ea[2 * j];
+      }
+      if ((st = positive_roots(ws, Q1, Q1a, 8, T, AUTOBAL_PENDULUM_MAX_CRIT / 2, &nT)) != 0)
+        return st;
+    }
     undamped_disc_poly(R_m, k, D, Dm);
     /* D = W^4 Q(W): the coefficients of W^0..W^3 vanish exactly (every term
      * of the discriminant holds e = c0 ~ W^4 or d^2 = c1^2 ~ W^4) */
-    if ((st = positive_roots(ws, D + 4, Dm + 4, 8, Wr, AUTOBAL_PENDULUM_MAX_CRIT, &nW)) != 0)
+    if ((st = positive_roots(ws, D + 4, Dm + 4, 8, Wr, AUTOBAL_PENDULUM_MAX_CRIT / 2, &nW)) != 0)
       return st;
+    if (k == 1.0) {
+      /* keep the exact transitions T, plus the candidates of D that are not
+       * one of them (touches such as the double root at (18)) */
+      size_t n2 = 0, a, b;
+      for (a = 0; a < nW; a++) {
+        int dup = 0;
+        for (b = 0; b < nT; b++)
+          if (fabs(Wr[a] - T[b]) <= 1e-6 * T[b]) dup = 1;
+        if (!dup) Wr[n2++] = Wr[a];
+      }
+      for (b = 0; b < nT; b++) Wr[n2++] = T[b];
+      nW = n2;
+      qsort(Wr, nW, sizeof(double), cmp_dbl);
+    }
   }
+#ifdef PEND_DEBUG
+  for (i = 0; i < nW; i++) fprintf(stderr, "cand W %.17g\n", Wr[i]);
+#endif
   /* verdict on every interval between consecutive candidates */
   for (i = 0; i <= nW; i++) {
     long double a = i == 0 ? 0.0L : Wr[i - 1];

@@ -17,6 +17,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <gsl/gsl_complex.h>
@@ -369,6 +370,220 @@ static autobal_rotor_params two_plane_params(void) {
   p.plane[1].ball_psi = tp_psi2;
   p.plane[1].ball_rate = tp_rate2;
   return p;
+}
+
+
+/* ---- the example configs in data/: a minimal INI reader (the app uses inih) ---- */
+
+typedef struct ini_plane_arrays {
+  double v[5][16]; /* ball_mass, ball_radius, ball_damping, ball_psi, ball_rate */
+  size_t n[5];
+} ini_plane_arrays;
+
+static size_t parse_list(const char *s, double *out, size_t cap) {
+  size_t n = 0;
+  char *end;
+  while (*s && n < cap) {
+    const double v = strtod(s, &end);
+    if (end == s) return (size_t)-1;
+    out[n++] = v;
+    s = end;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s == ',') s++;
+    else if (*s) return (size_t)-1;
+  }
+  return n;
+}
+
+/* one key of a [planeN] section: 1 consumed, 0 unknown, -1 bad value */
+static int plane_key(size_t j, const char *key, const char *val, autobal_rotor_params *p,
+                     ini_plane_arrays pa[2]) {
+  static const char *const ball_keys[5] = {"ball_mass", "ball_radius", "ball_damping", "ball_psi", "ball_rate"};
+  double *field = NULL;
+  char *e;
+  size_t i;
+  if (strcmp(key, "d") == 0) field = &p->plane[j].d;
+  if (strcmp(key, "m0") == 0) field = &p->plane[j].m0;
+  if (strcmp(key, "r0") == 0) field = &p->plane[j].r0;
+  if (strcmp(key, "psi0") == 0) field = &p->plane[j].psi0;
+  if (field) {
+    *field = strtod(val, &e);
+    return (e == val || *e) ? -1 : 1;
+  }
+  for (i = 0; i < 5; i++)
+    if (strcmp(key, ball_keys[i]) == 0) {
+      pa[j].n[i] = parse_list(val, pa[j].v[i], 16);
+      return pa[j].n[i] == (size_t)-1 ? -1 : 1;
+    }
+  return 0;
+}
+
+/* Fill p from an INI file in the documented format; returns 0, or -1 with why in bad. */
+static int load_rotor_ini(const char *path, autobal_rotor_params *p, ini_plane_arrays pa[2], char *bad,
+                          size_t badlen) {
+  static const char *const ball_keys[5] = {"ball_mass", "ball_radius", "ball_damping", "ball_psi", "ball_rate"};
+  char line[512], section[64] = "";
+  FILE *f = fopen(path, "r");
+  size_t j, i;
+  memset(p, 0, sizeof *p);
+  memset(pa, 0, 2 * sizeof *pa);
+  if (f == NULL) {
+    snprintf(bad, badlen, "cannot open %.200s", path);
+    return -1;
+  }
+  while (fgets(line, sizeof line, f)) {
+    char *c = strpbrk(line, ";#"), *key, *val, *eq, *e;
+    if (c) *c = '\0';
+    key = line;
+    while (*key == ' ' || *key == '\t') key++;
+    e = key + strlen(key);
+    while (e > key && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\n' || e[-1] == '\r')) *--e = '\0';
+    if (*key == '\0') continue;
+    if (*key == '[') {
+      snprintf(section, sizeof section, "%.*s", (int)(strlen(key) - 2), key + 1);
+      continue;
+    }
+    eq = strchr(key, '=');
+    if (eq == NULL) {
+      snprintf(bad, badlen, "no '=' in line \"%.100s\"", key);
+      fclose(f);
+      return -1;
+    }
+    *eq = '\0';
+    val = eq + 1;
+    while (*val == ' ') val++;
+    e = key + strlen(key);
+    while (e > key && e[-1] == ' ') *--e = '\0';
+#define KEY(sec, name, field)                                        \
+  if (strcmp(section, sec) == 0 && strcmp(key, name) == 0) {         \
+    field = strtod(val, &e);                                         \
+    if (e == val || *e) goto bad_value;                              \
+    continue;                                                        \
+  }
+    KEY("rotor", "M_k", p->hw.M_k)
+    KEY("rotor", "A_k", p->hw.A_k)
+    KEY("rotor", "m_p", p->hw.m_p)
+    KEY("rotor", "A_p", p->hw.A_p)
+    KEY("rotor", "C_p", p->hw.C_p)
+    KEY("rotor", "omega", p->omega)
+    KEY("supports", "l_L", p->hw.l_L)
+    KEY("supports", "l_R", p->hw.l_R)
+    KEY("supports", "c_Lx", p->hw.c_Lx)
+    KEY("supports", "c_Ly", p->hw.c_Ly)
+    KEY("supports", "c_Lz", p->hw.c_Lz)
+    KEY("supports", "c_Rx", p->hw.c_Rx)
+    KEY("supports", "c_Ry", p->hw.c_Ry)
+    KEY("supports", "h_Lx", p->hw.h_Lx)
+    KEY("supports", "h_Ly", p->hw.h_Ly)
+    KEY("supports", "h_Lz", p->hw.h_Lz)
+    KEY("supports", "h_Rx", p->hw.h_Rx)
+    KEY("supports", "h_Ry", p->hw.h_Ry)
+    if (strcmp(section, "plane1") == 0 || strcmp(section, "plane2") == 0) {
+      const int rc = plane_key(section[5] == '1' ? 0 : 1, key, val, p, pa);
+      if (rc < 0) goto bad_value;
+      if (rc > 0) continue;
+    }
+#undef KEY
+    if (strcmp(section, "rotor") == 0 && strcmp(key, "inertia") == 0) {
+      if (strcmp(val, "paper") == 0) p->inertia = AUTOBAL_ROTOR_INERTIA_PAPER;
+      else if (strcmp(val, "full") == 0) p->inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+      else goto bad_value;
+      continue;
+    }
+    if (strcmp(section, "rotor") == 0 && strcmp(key, "axial") == 0) {
+      p->axial = atoi(val);
+      continue;
+    }
+    if (strcmp(section, "transient") == 0 &&
+        (strcmp(key, "t_end") == 0 || strcmp(key, "dt_out") == 0 || strcmp(key, "rtol") == 0 ||
+         strcmp(key, "atol") == 0 || strcmp(key, "balance_tol") == 0 || strcmp(key, "balance_dwell") == 0)) {
+      const double v = strtod(val, &e);
+      if (e == val || *e || !(v > 0.0)) goto bad_value;
+      continue;
+    }
+    if (strcmp(section, "transient") == 0 && (strcmp(key, "stepper") == 0 || strcmp(key, "frame") == 0))
+      continue;
+    snprintf(bad, badlen, "unknown key [%.30s] %.60s", section, key);
+    fclose(f);
+    return -1;
+  bad_value:
+    snprintf(bad, badlen, "bad value [%.30s] %.60s = %.100s", section, key, val);
+    fclose(f);
+    return -1;
+  }
+  fclose(f);
+  p->input = AUTOBAL_ROTOR_HARDWARE;
+  p->n_planes = pa[1].n[0] > 0 || p->plane[1].m0 > 0 ? 2 : 1;
+  for (j = 0; j < p->n_planes; j++) {
+    p->plane[j].n_balls = pa[j].n[0];
+    for (i = 1; i < 5; i++)
+      if (pa[j].n[i] != pa[j].n[0] && !(i == 4 && pa[j].n[i] == 0)) {
+        snprintf(bad, badlen, "plane%zu: %s has %zu entries, ball_mass %zu", j + 1, ball_keys[i], pa[j].n[i], pa[j].n[0]);
+        return -1;
+      }
+    p->plane[j].ball_mass = pa[j].v[0];
+    p->plane[j].ball_radius = pa[j].v[1];
+    p->plane[j].ball_damping = pa[j].v[2];
+    p->plane[j].ball_psi = pa[j].v[3];
+    p->plane[j].ball_rate = pa[j].n[4] ? pa[j].v[4] : NULL;
+  }
+  return 0;
+}
+
+static void test_config_files(void) {
+  static const char *const files[5] = {"rotor_default.ini", "rotor_two_planes.ini", "rotor_four_balls.ini",
+                                       "rotor_anisotropic.ini", "rotor_subcritical.ini"};
+  autobal_rotor_params p, d = autobal_rotor_params_default();
+  ini_plane_arrays pa[2];
+  char path[1024], bad[256];
+  autobal_error err;
+  size_t i, k;
+  printf("-- example configs in data/ (format of rotor_default.ini)\n");
+  for (k = 0; k < 5; k++) {
+    snprintf(path, sizeof path, "%s/%s", AUTOBAL_TEST_DATA_DIR, files[k]);
+    bad[0] = '\0';
+    CHECK(files[k], load_rotor_ini(path, &p, pa, bad, sizeof bad) == 0);
+    if (bad[0]) printf("     %s\n", bad);
+    CHECK_STATUS("   valid parameters, no warning", autobal_rotor_params_check(&p, &err), AUTOBAL_SUCCESS);
+    if (err.status) printf("     %s\n", err.message);
+    if (k == 0) {
+      int same = memcmp(&p.hw, &d.hw, sizeof p.hw) == 0 && p.omega == d.omega && p.n_planes == 1 &&
+                 p.axial == d.axial && p.inertia == d.inertia;
+      same = same && p.plane[0].d == d.plane[0].d && p.plane[0].m0 == d.plane[0].m0 &&
+             p.plane[0].r0 == d.plane[0].r0 && p.plane[0].psi0 == d.plane[0].psi0 &&
+             p.plane[0].n_balls == d.plane[0].n_balls;
+      for (i = 0; same && i < d.plane[0].n_balls; i++)
+        same = p.plane[0].ball_mass[i] == d.plane[0].ball_mass[i] &&
+               p.plane[0].ball_radius[i] == d.plane[0].ball_radius[i] &&
+               p.plane[0].ball_damping[i] == d.plane[0].ball_damping[i] &&
+               p.plane[0].ball_psi[i] == d.plane[0].ball_psi[i] &&
+               (p.plane[0].ball_rate ? p.plane[0].ball_rate[i] : 0.0) == d.plane[0].ball_rate[i];
+      CHECK("   rotor_default.ini = autobal_rotor_params_default()", same);
+    }
+    if (k == 1) CHECK("   two planes", p.n_planes == 2 && p.plane[1].n_balls == 2);
+    if (k == 2) CHECK("   four balls of different masses", p.plane[0].n_balls == 4 && p.plane[0].ball_mass[0] != p.plane[0].ball_mass[3]);
+    if (k == 3) CHECK("   anisotropic supports", p.hw.c_Lx != p.hw.c_Ly);
+    if (k == 4) CHECK("   subcritical: omega below the first natural frequency", p.omega < 157.0);
+    if (k >= 1 && k <= 3) {
+      /* supercritical examples: the run ends balanced (3.14): s_j = 0 in every plane,
+       * the rotor at rest; for two identical balls at pi -/+ arccos(m0 r0 / 2 m r) */
+      autobal_rotor *R = autobal_rotor_alloc(&p, NULL);
+      double y[MAXDIM], out[128], mon;
+      if (R == NULL) continue;
+      autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+      CHECK("   30 s integrated", integrate(autobal_rotor_rhs, R, 0.0, 30.0, y, 1e-10, 1e-13) == 0);
+      mon = autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, 30.0, y);
+      autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 30.0, y, out, autobal_rotor_output_count(R));
+      CHECK_CLOSE("   balanced at t = 30 s: max_j |s_j| / m_j0 r_j0", mon, 0.0, 0, 1e-6);
+      CHECK_CLOSE("   rotor at rest: amplitude at both supports (m)", fmax(out[1], out[2]), 0.0, 0, 1e-10);
+      if (k == 3) {
+        const double pb = M_PI - acos(0.002 / 0.01);
+        CHECK_CLOSE("   anisotropic: |psi| = pi - arccos(m0 r0 / 2 m r)", fabs(out[13]), pb, 0, 1e-6);
+        CHECK_CLOSE("   anisotropic: balls on opposite sides", out[13] + out[19], 0.0, 0, 2e-6);
+      }
+      autobal_rotor_free(R);
+    }
+  }
 }
 
 /* ---- tests ------------------------------------------------------------------------ */
@@ -1430,6 +1645,7 @@ int main(void) {
   test_outputs();
   test_lumped_input();
   test_errors();
+  test_config_files();
   printf("summary: rhs vs direct solve %.3g; fixed vs rotating frame |dq| %.3g, |dangle| %.3g rad; "
          "steady response rel. error %.3g; energy-rate rel. error %.3g, drift %.3g; "
          "balanced angle error %.3g rad; time to balance %.2f s\n",

@@ -232,7 +232,15 @@ AUTOBAL_API int autobal_archive_series_close(autobal_archive_series *s);
  * temporary file to the final path.  Frees `a` in all cases (NULL: AUTOBAL_SUCCESS).
  * On failure the temporary file is left in place for inspection, and err (may be
  * NULL) names it and says why (AUTOBAL_EIO).  For a handle from
- * autobal_archive_open_read this just closes the file. */
+ * autobal_archive_open_read this just closes the file.
+ *
+ * Known HDF5 1.10 defect (h5py issue #914; fixed upstream in HDF5 1.14.1 by
+ * HDFGroup/hdf5 PR #2291): when HDF5 cannot write the file any more (disk full, file
+ * size limit), the failed close leaves a broken file object inside HDF5 that makes the
+ * process crash in HDF5's atexit handler.  The library cannot repair that.  A host
+ * program that gets AUTOBAL_EIO from autobal_archive_close (or any write failure whose
+ * message mentions errno 27/28) should report it, fflush its streams and leave with
+ * _exit(status) rather than exit(). */
 AUTOBAL_API int autobal_archive_close(autobal_archive *a, autobal_error *err);
 
 /* Abandon: close the series and the file and delete the temporary file; nothing is

@@ -1,0 +1,459 @@
+/* test_stability.c: the model-agnostic stability tools (stability.h, src/poly.c).
+ * Known answers: products and roots of polynomials built from known factors,
+ * eigenvalues of block-triangular matrices, a brute-force assignment, the
+ * Routh-Hurwitz count against roots, Sturm counts against roots, Brent on
+ * functions with known zeros (cbrt 2, the Dottie number). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "autobal/stability.h"
+#include "check.h"
+#include "internal.h"
+
+/* deterministic uniform [0, 1) (xorshift64*) */
+static unsigned long long rng_state = 0x9E3779B97F4A7C15ULL;
+static double urand(void) {
+  rng_state ^= rng_state >> 12;
+  rng_state ^= rng_state << 25;
+  rng_state ^= rng_state >> 27;
+  return (double)((rng_state * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* build a real polynomial from real roots r[] and complex pairs (pr +- i pi) */
+static size_t poly_from_roots(const double *r, size_t nr, const double *pr, const double *pim,
+                              size_t np, double lead, double *out) {
+  double a[AUTOBAL_POLY_MAXLEN], t[AUTOBAL_POLY_MAXLEN];
+  size_t len = 1, i;
+  a[0] = lead;
+  for (i = 0; i < nr; i++) {
+    double f[2] = {-r[i], 1.0};
+    autobal_poly_mul(a, len, f, 2, t, len + 1, NULL);
+    len++;
+    memcpy(a, t, len * sizeof(double));
+  }
+  for (i = 0; i < np; i++) {
+    double f[3] = {pr[i] * pr[i] + pim[i] * pim[i], -2.0 * pr[i], 1.0};
+    autobal_poly_mul(a, len, f, 3, t, len + 2, NULL);
+    len += 2;
+    memcpy(a, t, len * sizeof(double));
+  }
+  memcpy(out, a, len * sizeof(double));
+  return len;
+}
+
+static int f_cubic(double x, void *ctx, double *fx) {
+  (void)ctx;
+  *fx = x * x * x - 2.0;
+  return AUTOBAL_SUCCESS;
+}
+static int f_dottie(double x, void *ctx, double *fx) {
+  (void)ctx;
+  *fx = cos(x) - x;
+  return AUTOBAL_SUCCESS;
+}
+static int f_fail(double x, void *ctx, double *fx) {
+  (void)ctx;
+  *fx = x;
+  return x > 0.5 ? AUTOBAL_ERHS : AUTOBAL_SUCCESS;
+}
+static int p_above_sqrt2(double x, void *ctx, int *v) {
+  (void)ctx;
+  *v = x * x > 2.0;
+  return AUTOBAL_SUCCESS;
+}
+
+static void test_arithmetic(void) {
+  autobal_error err;
+  double a[2] = {1, 1}, b[2] = {1, -1}, out[4], d[3];
+  double ca[4] = {0, 1, 1, 0}; /* i + x */
+  double cb[4], cc[6], re, im, mi, rp[3];
+  printf("-- real and complex arithmetic\n");
+  CHECK_STATUS("mul (1+x)(1-x)", autobal_poly_mul(a, 2, b, 2, out, 4, NULL), AUTOBAL_SUCCESS);
+  CHECK("(1+x)(1-x) = 1 - x^2 (extra entry zeroed)",
+        out[0] == 1 && out[1] == 0 && out[2] == -1 && out[3] == 0);
+  CHECK_CLOSE("eval 1 - x^2 at 3", autobal_poly_eval(out, 3, 3.0), -8.0, 0, 0);
+  autobal_poly_eval_complex(out, 3, 0.0, 2.0, &re, &im); /* 1 - (2i)^2 = 5 */
+  CHECK("eval 1 - x^2 at 2i = 5", re == 5.0 && im == 0.0);
+  CHECK("degree of 1 - x^2 + 0 x^3 is 2", autobal_poly_degree(out, 4) == 2);
+  CHECK_STATUS("deriv", autobal_poly_deriv(out, 3, d, 2, NULL), AUTOBAL_SUCCESS);
+  CHECK("d/dx (1 - x^2) = -2x", d[0] == 0 && d[1] == -2);
+  CHECK_STATUS("axpby", autobal_poly_axpby(2.0, a, 2, 3.0, out, 3, d, 3, NULL), AUTOBAL_SUCCESS);
+  CHECK("2(1+x) + 3(1-x^2) = 5 + 2x - 3x^2", d[0] == 5 && d[1] == 2 && d[2] == -3);
+  autobal_error_clear(&err);
+  CHECK_STATUS("mul: outlen too small", autobal_poly_mul(a, 2, b, 2, out, 2, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("mul: message names outlen", err.message, "outlen");
+  CHECK_STATUS("axpby: outlen too small", autobal_poly_axpby(1, a, 2, 1, out, 3, d, 2, &err),
+               AUTOBAL_EINVAL);
+  CHECK_STATUS("deriv: outlen too small", autobal_poly_deriv(out, 3, d, 1, &err), AUTOBAL_EINVAL);
+  CHECK_STATUS("mul: empty", autobal_poly_mul(a, 0, b, 2, out, 4, &err), AUTOBAL_EINVAL);
+  /* (x + i)(x - i) = x^2 + 1 */
+  autobal_cpoly_conj(ca, 2, cb);
+  CHECK("conj(x + i) = x - i", cb[0] == 0 && cb[1] == -1 && cb[2] == 1 && cb[3] == 0);
+  CHECK_STATUS("cmul", autobal_cpoly_mul(ca, 2, cb, 2, cc, 3, NULL), AUTOBAL_SUCCESS);
+  autobal_cpoly_real_part(cc, 3, rp, &mi);
+  CHECK("(x+i)(x-i) = 1 + x^2, imaginary part 0",
+        rp[0] == 1 && rp[1] == 0 && rp[2] == 1 && mi == 0.0);
+  autobal_cpoly_eval(ca, 2, 1.0, 2.0, &re, &im); /* (1+2i) + i */
+  CHECK("eval x + i at 1 + 2i = 1 + 3i", re == 1.0 && im == 3.0);
+  /* (1+i)(x+i) + 2 (x - i) */
+  CHECK_STATUS("caxpby", autobal_cpoly_axpby(1, 1, ca, 2, 2, 0, cb, 2, cc, 2, NULL),
+               AUTOBAL_SUCCESS);
+  CHECK("(1+i)(x+i) + 2(x-i) = (-1-i) + (3+i) x",
+        cc[0] == -1 && cc[1] == -1 && cc[2] == 3 && cc[3] == 1);
+  CHECK_STATUS("cmul: outlen too small", autobal_cpoly_mul(ca, 2, cb, 2, cc, 2, &err),
+               AUTOBAL_EINVAL);
+  CHECK_STATUS("caxpby: outlen too small", autobal_cpoly_axpby(1, 0, ca, 2, 1, 0, cb, 2, cc, 1, &err),
+               AUTOBAL_EINVAL);
+}
+
+static void test_roots_eigen(void) {
+  double r[3] = {1, 2, 3}, pr[1] = {-0.5}, pim[1] = {2.0}, c[AUTOBAL_POLY_MAXLEN];
+  double re[8], im[8], wre[8], wim[8], md, A[64];
+  size_t len, i, j, perm[8];
+  autobal_poly_workspace *w;
+  autobal_eigen_workspace *ew;
+  autobal_error err;
+  printf("-- roots (GSL) and eigenvalues (GSL)\n");
+  len = poly_from_roots(r, 3, pr, pim, 1, 2.5, c); /* degree 5 */
+  w = autobal_poly_workspace_alloc(5);
+  CHECK("poly workspace allocated", w != NULL && autobal_poly_workspace_degree(w) == 5);
+  CHECK_STATUS("roots of 2.5 (x-1)(x-2)(x-3)(x^2+x+4.25)", autobal_poly_roots(w, c, len, re, im, NULL),
+               AUTOBAL_SUCCESS);
+  wre[0] = -0.5, wim[0] = -2.0, wre[1] = -0.5, wim[1] = 2.0;
+  wre[2] = 1, wre[3] = 2, wre[4] = 3, wim[2] = wim[3] = wim[4] = 0;
+  for (i = 0; i < 5; i++) {
+    CHECK_CLOSE("root re (sorted by Re then Im)", re[i], wre[i], 1e-12, 1e-12);
+    CHECK_CLOSE("root im", im[i], wim[i], 1e-12, 1e-12);
+  }
+  autobal_error_clear(&err);
+  CHECK_STATUS("roots: wrong length", autobal_poly_roots(w, c, 5, re, im, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("roots: message names len", err.message, "len");
+  c[5] = 0.0;
+  CHECK_STATUS("roots: zero leading coefficient", autobal_poly_roots(w, c, 6, re, im, &err),
+               AUTOBAL_EINVAL);
+  CHECK_MSG("roots: message says leading", err.message, "leading");
+  c[5] = 2.5;
+  c[2] = NAN;
+  CHECK_STATUS("roots: NaN coefficient", autobal_poly_roots(w, c, 6, re, im, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("roots: message names c[2]", err.message, "c[2]");
+  autobal_poly_workspace_free(w);
+  autobal_poly_workspace_free(NULL);
+  CHECK("degree-0 workspace refused", autobal_poly_workspace_alloc(0) == NULL);
+
+  /* eigenvalues of an upper block-triangular 5x5: blocks [[a, b], [-b, a]]
+   * (eigenvalues a +- ib), then diag 4, -7, 0.5; random upper part */
+  ew = autobal_eigen_workspace_alloc(5);
+  CHECK("eigen workspace allocated", ew != NULL && autobal_eigen_workspace_size(ew) == 5);
+  for (i = 0; i < 25; i++) A[i] = 0.0;
+  for (i = 0; i < 5; i++)
+    for (j = i + 1; j < 5; j++) A[5 * i + j] = urand() - 0.5;
+  A[0] = -0.3, A[1] = 1.7, A[5] = -1.7, A[6] = -0.3;
+  A[12] = 4.0, A[18] = -7.0, A[24] = 0.5;
+  CHECK_STATUS("eigenvalues of block-triangular matrix", autobal_eigen_nonsymm(ew, A, re, im, NULL),
+               AUTOBAL_SUCCESS);
+  wre[0] = -7, wim[0] = 0, wre[1] = -0.3, wim[1] = -1.7, wre[2] = -0.3, wim[2] = 1.7;
+  wre[3] = 0.5, wim[3] = 0, wre[4] = 4, wim[4] = 0;
+  CHECK_STATUS("match", autobal_match_roots(5, re, im, wre, wim, perm, &md, NULL), AUTOBAL_SUCCESS);
+  CHECK_CLOSE("eigenvalues vs diagonal blocks: max distance", md, 0.0, 0, 1e-12);
+  A[7] = INFINITY;
+  autobal_error_clear(&err);
+  CHECK_STATUS("eigen: inf entry", autobal_eigen_nonsymm(ew, A, re, im, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("eigen: message names the entry", err.message, "(1, 2)");
+  autobal_eigen_workspace_free(ew);
+  autobal_eigen_workspace_free(NULL);
+
+  /* companion matrix eigenvalues == polynomial roots (two GSL paths) */
+  {
+    double worst = 0.0;
+    int t;
+    autobal_poly_workspace *w8 = autobal_poly_workspace_alloc(8);
+    autobal_eigen_workspace *e8 = autobal_eigen_workspace_alloc(8);
+    for (t = 0; t < 50; t++) {
+      double cc[9], er[8], ei[8];
+      for (i = 0; i < 9; i++) cc[i] = urand() * 2 - 1;
+      cc[8] = 1.0 + urand();
+      for (i = 0; i < 64; i++) A[i] = 0.0;
+      for (i = 0; i < 7; i++) A[8 * (i + 1) + i] = 1.0;
+      for (i = 0; i < 8; i++) A[8 * i + 7] = -cc[i] / cc[8];
+      autobal_poly_roots(w8, cc, 9, re, im, NULL);
+      autobal_eigen_nonsymm(e8, A, er, ei, NULL);
+      autobal_match_roots(8, re, im, er, ei, NULL, &md, NULL);
+      if (md > worst) worst = md;
+    }
+    CHECK_CLOSE("50 random degree-8: roots vs companion eigenvalues, max distance", worst, 0, 0,
+                1e-6);
+    autobal_poly_workspace_free(w8);
+    autobal_eigen_workspace_free(e8);
+  }
+}
+
+/* brute force: min over permutations of max |a_i - b_p(i)| */
+static double brute_bottleneck(size_t n, const double *ar, const double *ai, const double *br,
+                               const double *bi, size_t *p, size_t k, int *used, double cur) {
+  size_t j;
+  double best = INFINITY;
+  if (k == n) return cur;
+  for (j = 0; j < n; j++) {
+    double d, v;
+    if (used[j]) continue;
+    d = hypot(ar[k] - br[j], ai[k] - bi[j]);
+    used[j] = 1;
+    p[k] = j;
+    v = brute_bottleneck(n, ar, ai, br, bi, p, k + 1, used, d > cur ? d : cur);
+    used[j] = 0;
+    if (v < best) best = v;
+  }
+  return best;
+}
+
+static void test_matching(void) {
+  double ar[2] = {0.0, 0.5}, ai[2] = {0, 0}, br[2] = {0.4, 1.2}, bi[2] = {0, 0}, md;
+  size_t perm[AUTOBAL_MATCH_MAXN];
+  int t, bad = 0;
+  autobal_error err;
+  printf("-- bottleneck matching\n");
+  /* greedy by smallest distance pairs 0.5-0.4 then 0-1.2 (max 1.2); optimum 0.7 */
+  autobal_match_roots(2, ar, ai, br, bi, perm, &md, NULL);
+  CHECK_CLOSE("bottleneck beats greedy: max distance", md, 0.7, 1e-15, 0);
+  CHECK("bottleneck pairing 0->0.4, 0.5->1.2", perm[0] == 0 && perm[1] == 1);
+  for (t = 0; t < 40; t++) {
+    double xr[6], xi[6], yr[6], yi[6], bf;
+    size_t pp[6], i;
+    int used[6] = {0};
+    for (i = 0; i < 6; i++) {
+      xr[i] = urand(), xi[i] = urand(), yr[i] = urand(), yi[i] = urand();
+    }
+    bf = brute_bottleneck(6, xr, xi, yr, yi, pp, 0, used, 0.0);
+    autobal_match_roots(6, xr, xi, yr, yi, perm, &md, NULL);
+    if (md != bf) bad++;
+    for (i = 0; i < 6; i++)
+      if (hypot(xr[i] - yr[perm[i]], xi[i] - yi[perm[i]]) > md) bad++;
+  }
+  CHECK("40 random 6-sets: bottleneck == brute force over 720 permutations", bad == 0);
+  CHECK_STATUS("n = 0", autobal_match_roots(0, NULL, NULL, NULL, NULL, NULL, &md, NULL),
+               AUTOBAL_SUCCESS);
+  autobal_error_clear(&err);
+  CHECK_STATUS("n too large", autobal_match_roots(AUTOBAL_MATCH_MAXN + 1, ar, ai, br, bi, NULL, &md, &err),
+               AUTOBAL_EINVAL);
+  CHECK_MSG("n too large: message names n", err.message, "n = ");
+}
+
+static void test_hurwitz(void) {
+  double c[AUTOBAL_POLY_MAXLEN], re[32], im[32];
+  int v, nr, t, disagree = 0, decided = 0;
+  size_t len;
+  autobal_error err;
+  printf("-- Routh-Hurwitz sign test\n");
+  {
+    double r[3] = {-1, -2, -3};
+    len = poly_from_roots(r, 3, NULL, NULL, 0, 1.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("(x+1)(x+2)(x+3) stable", v == AUTOBAL_VERDICT_STABLE && nr == 0);
+    len = poly_from_roots(r, 3, NULL, NULL, 0, -2.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("negative leading coefficient: still stable", v == AUTOBAL_VERDICT_STABLE);
+  }
+  {
+    double r[2] = {1, -2};
+    len = poly_from_roots(r, 2, NULL, NULL, 0, 1.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("(x-1)(x+2): unstable, one root in RHP", v == AUTOBAL_VERDICT_UNSTABLE && nr == 1);
+  }
+  {
+    double r[1] = {-1}, pr[2] = {1, -0.1}, pim[2] = {2, 3};
+    len = poly_from_roots(r, 1, pr, pim, 2, 1.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("(x+1)(pair 1 +- 2i)(pair -0.1 +- 3i): two RHP roots", v == AUTOBAL_VERDICT_UNSTABLE && nr == 2);
+  }
+  {
+    double r[1] = {-1}, pr[1] = {0}, pim[1] = {1};
+    len = poly_from_roots(r, 1, pr, pim, 1, 1.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("(x+1)(x^2+1): marginal", v == AUTOBAL_VERDICT_MARGINAL);
+    len = poly_from_roots(r, 1, NULL, NULL, 0, 1.0, c);
+    c[2] = c[1], c[1] = c[0], c[0] = 0.0; /* x (x + 1) */
+    autobal_poly_hurwitz(c, 3, 0.0, &v, &nr, NULL);
+    CHECK("x (x+1): marginal (root 0)", v == AUTOBAL_VERDICT_MARGINAL);
+  }
+  {
+    /* near-axis pair -eps +- i: decided with rtol 0, marginal with rtol >> eps */
+    double r[1] = {-2}, pr[1] = {-1e-9}, pim[1] = {1};
+    len = poly_from_roots(r, 1, pr, pim, 1, 1.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("pair -1e-9 +- i, rtol 0: stable", v == AUTOBAL_VERDICT_STABLE);
+    autobal_poly_hurwitz(c, len, 1e-6, &v, &nr, NULL);
+    CHECK("pair -1e-9 +- i, rtol 1e-6: marginal", v == AUTOBAL_VERDICT_MARGINAL);
+    pr[0] = +1e-9;
+    len = poly_from_roots(r, 1, pr, pim, 1, 1.0, c);
+    autobal_poly_hurwitz(c, len, 0.0, &v, &nr, NULL);
+    CHECK("pair +1e-9 +- i, rtol 0: unstable", v == AUTOBAL_VERDICT_UNSTABLE && nr == 2);
+  }
+  /* random polynomials of degree 1..12 built from random roots: the count of
+   * RHP roots equals the number of sign changes, whenever the margin is clear */
+  for (t = 0; t < 400; t++) {
+    size_t nrr = (size_t)(urand() * 5), np = (size_t)(urand() * 4), i, nrhp = 0;
+    double rr[6], ppr[6], ppi[6];
+    double mre;
+    int vr;
+    if (nrr + np == 0) nrr = 1;
+    for (i = 0; i < nrr; i++) {
+      rr[i] = (urand() - 0.7) * 4.0;
+      if (rr[i] > 0) nrhp++;
+    }
+    for (i = 0; i < np; i++) {
+      ppr[i] = (urand() - 0.7) * 2.0;
+      ppi[i] = urand() * 3.0 + 0.1;
+      if (ppr[i] > 0) nrhp += 2;
+    }
+    len = poly_from_roots(rr, nrr, ppr, ppi, np, urand() + 0.5, c);
+    autobal_poly_hurwitz(c, len, 1e-12, &v, &nr, NULL);
+    /* the same through GSL roots */
+    {
+      autobal_poly_workspace *w = autobal_poly_workspace_alloc(len - 1);
+      autobal_poly_roots(w, c, len, re, im, NULL);
+      autobal_poly_workspace_free(w);
+    }
+    vr = autobal_roots_verdict(len - 1, re, im, 1e-9, &mre);
+    if (fabs(mre) > 1e-3) {
+      decided++;
+      if (v != vr || (v == AUTOBAL_VERDICT_UNSTABLE && (size_t)nr != nrhp)) disagree++;
+    }
+  }
+  printf("   (random sets decided: %d)\n", decided);
+  CHECK("400 random polynomials: Routh verdict and RHP count == from the roots", disagree == 0);
+  CHECK("most random sets were decided", decided > 300);
+  autobal_error_clear(&err);
+  CHECK_STATUS("hurwitz: rtol < 0", autobal_poly_hurwitz(c, 3, -1.0, &v, NULL, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("hurwitz: message names rtol", err.message, "rtol");
+  c[0] = NAN;
+  CHECK_STATUS("hurwitz: NaN", autobal_poly_hurwitz(c, 3, 0.0, &v, NULL, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("hurwitz: message names c[0]", err.message, "c[0]");
+  c[0] = 1.0, c[2] = 0.0;
+  CHECK_STATUS("hurwitz: zero leading", autobal_poly_hurwitz(c, 3, 0.0, &v, NULL, &err), AUTOBAL_EINVAL);
+  CHECK_STATUS("hurwitz: len too large",
+               autobal_poly_hurwitz(c, AUTOBAL_POLY_MAXLEN + 1, 0.0, &v, NULL, &err), AUTOBAL_EINVAL);
+  {
+    double ce[3] = {0, -1, 0};
+    c[2] = 1.0;
+    CHECK_STATUS("hurwitz_err: negative bound", autobal_poly_hurwitz_err(c, ce, 3, &v, NULL, &err),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("hurwitz_err: message names cerr[1]", err.message, "cerr[1]");
+  }
+  {
+    double r1[2] = {1.0, -2.0}, r2[2] = {-2.0, -3.0}, i2[2] = {0.5, 4.0};
+    double m;
+    CHECK("roots_verdict: Re 1 > 0 -> unstable",
+          autobal_roots_verdict(2, r1, i2, 1e-9, &m) == AUTOBAL_VERDICT_UNSTABLE && m == 1.0);
+    CHECK("roots_verdict: all Re < 0 -> stable",
+          autobal_roots_verdict(2, r2, i2, 1e-9, &m) == AUTOBAL_VERDICT_STABLE && m == -2.0);
+    r2[0] = -1e-12;
+    CHECK("roots_verdict: Re -1e-12 -> marginal",
+          autobal_roots_verdict(2, r2, i2, 1e-9, NULL) == AUTOBAL_VERDICT_MARGINAL);
+  }
+}
+
+static void test_sturm(void) {
+  double c[AUTOBAL_POLY_MAXLEN], re[32], im[32];
+  double r[3] = {1, 2, 3}, pr[1] = {0.5}, pim[1] = {1};
+  size_t len;
+  int n, t, bad = 0;
+  autobal_error err;
+  printf("-- Sturm sequences\n");
+  len = poly_from_roots(r, 3, pr, pim, 1, 1.0, c);
+  autobal_poly_sturm_count(c, len, -INFINITY, INFINITY, 0, &n, NULL);
+  CHECK("(x-1)(x-2)(x-3)(x^2-x+1.25): 3 real roots", n == 3);
+  autobal_poly_sturm_count(c, len, 1.5, 2.5, 0, &n, NULL);
+  CHECK("... one in (1.5, 2.5]", n == 1);
+  autobal_poly_sturm_count(c, len, 0.0, 1.0, 0, &n, NULL);
+  CHECK("... one in (0, 1] (root at the right end counts)", n == 1);
+  autobal_poly_sturm_count(c, len, 1.0, 1.5, 0, &n, NULL);
+  CHECK("... none in (1, 1.5] (root at the left end does not)", n == 0);
+  {
+    double r2[3] = {1, 1, -1};
+    len = poly_from_roots(r2, 3, NULL, NULL, 0, 1.0, c);
+    autobal_poly_sturm_count(c, len, -INFINITY, INFINITY, 0, &n, NULL);
+    CHECK("(x-1)^2 (x+1): 2 distinct real roots", n == 2);
+  }
+  for (t = 0; t < 200; t++) {
+    double rr[5], ppr[3], ppi[3], a = urand() * 4 - 2, b = a + urand() * 3;
+    size_t nrr = 1 + (size_t)(urand() * 4), np = (size_t)(urand() * 3), i;
+    int want = 0;
+    for (i = 0; i < nrr; i++) {
+      rr[i] = urand() * 6 - 3;
+      if (rr[i] > a && rr[i] <= b) want++;
+      if (fabs(rr[i] - a) < 1e-3 || fabs(rr[i] - b) < 1e-3) want = -100; /* too close to call */
+    }
+    for (i = 0; i < np; i++) ppr[i] = urand() * 4 - 2, ppi[i] = 0.05 + urand();
+    len = poly_from_roots(rr, nrr, ppr, ppi, np, 1.0, c);
+    if (want < 0) continue;
+    {
+      int close = 0;
+      size_t x, y;
+      for (x = 0; x < nrr; x++)
+        for (y = x + 1; y < nrr; y++)
+          if (fabs(rr[x] - rr[y]) < 1e-3) close = 1;
+      if (close) continue;
+    }
+    autobal_poly_sturm_count(c, len, a, b, 0, &n, NULL);
+    if (n != want) bad++;
+  }
+  CHECK("200 random polynomials: Sturm count == count of the known real roots", bad == 0);
+  (void)re, (void)im;
+  autobal_error_clear(&err);
+  CHECK_STATUS("sturm: a > b", autobal_poly_sturm_count(c, len, 2.0, 1.0, 0, &n, &err), AUTOBAL_EINVAL);
+  c[0] = NAN;
+  CHECK_STATUS("sturm: NaN", autobal_poly_sturm_count(c, len, 0.0, 1.0, 0, &n, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("sturm: message names c[0]", err.message, "c[0]");
+  c[0] = 0.0;
+  CHECK_STATUS("sturm: zero polynomial", autobal_poly_sturm_count(c, 1, 0.0, 1.0, 0, &n, &err),
+               AUTOBAL_EINVAL);
+}
+
+static void test_brent(void) {
+  double x, lo, hi;
+  autobal_error err;
+  printf("-- Brent and bisection\n");
+  CHECK_STATUS("brent x^3 - 2", autobal_root_brent(f_cubic, NULL, 0.0, 3.0, 0.0, 1e-15, 100, &x, NULL),
+               AUTOBAL_SUCCESS);
+  CHECK_CLOSE("root of x^3 - 2 = cbrt(2)", x, cbrt(2.0), 4e-15, 0);
+  autobal_root_brent(f_dottie, NULL, 0.0, 1.0, 0.0, 1e-15, 100, &x, NULL);
+  CHECK_CLOSE("root of cos x - x (Dottie number)", x, 0.739085133215160641655312087673873, 4e-15, 0);
+  autobal_error_clear(&err);
+  CHECK_STATUS("brent: no sign change", autobal_root_brent(f_cubic, NULL, 2.0, 3.0, 0, 1e-12, 100, &x, &err),
+               AUTOBAL_EINVAL);
+  CHECK_MSG("brent: message says bracket", err.message, "bracket");
+  CHECK_STATUS("brent: status of f propagated", autobal_root_brent(f_fail, NULL, -1.0, 1.0, 0, 1e-12, 100, &x, &err),
+               AUTOBAL_ERHS);
+  CHECK_STATUS("brent: max_iter reached", autobal_root_brent(f_dottie, NULL, 0.0, 1.0, 0, 1e-15, 2, &x, &err),
+               AUTOBAL_ENUMERIC);
+  CHECK_STATUS("brent: bad tolerance", autobal_root_brent(f_dottie, NULL, 0.0, 1.0, 0, 0, 100, &x, &err),
+               AUTOBAL_EINVAL);
+  CHECK_STATUS("bisect x^2 > 2", autobal_bisect_change(p_above_sqrt2, NULL, 0.0, 2.0, 0, 1e-14, &lo, &hi, NULL),
+               AUTOBAL_SUCCESS);
+  CHECK("bracket contains sqrt 2", lo * lo <= 2.0 && hi * hi > 2.0 && hi - lo <= 3e-14);
+  CHECK_STATUS("bisect: same value at both ends",
+               autobal_bisect_change(p_above_sqrt2, NULL, 0.0, 1.0, 0, 1e-14, &lo, &hi, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("bisect: message says same value", err.message, "same value");
+  CHECK_STATUS("bisect: a >= b", autobal_bisect_change(p_above_sqrt2, NULL, 2.0, 0.0, 0, 1e-14, &lo, &hi, &err),
+               AUTOBAL_EINVAL);
+  CHECK("verdict names", strcmp(autobal_verdict_name(1), "stable") == 0 &&
+                             strcmp(autobal_verdict_name(-1), "unstable") == 0 &&
+                             strcmp(autobal_verdict_name(0), "marginal") == 0 &&
+                             strcmp(autobal_verdict_name(7), "unknown") == 0);
+}
+
+int main(void) {
+  gsl_set_error_handler_off();
+  test_arithmetic();
+  test_roots_eigen();
+  test_matching();
+  test_hurwitz();
+  test_sturm();
+  test_brent();
+  return check_summary();
+}
