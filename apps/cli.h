@@ -146,5 +146,6 @@ int cli_write_pendulum_params(cli_ctx *ctx, struct autobal_archive *a, const aut
 int cli_cmd_pendulum_roots(cli_ctx *ctx);
 int cli_cmd_pendulum_critical(cli_ctx *ctx);
 int cli_cmd_pendulum_map(cli_ctx *ctx);
+int cli_cmd_rotor_transient(cli_ctx *ctx);
 
 #endif

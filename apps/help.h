@@ -45,4 +45,27 @@
   "  threads = 0               OpenMP threads (0: default)\n"                                  \
   "\narchive: /pendulum/map (verdict[R_m][R_w]: 1 stable, 0 marginal, -1 unstable)\n"
 
+#define HELP_ROTOR_PARAMS                                                                          \
+  "[rotor]     M_k = 6  A_k = 0.12  m_p = 4  A_p = 0.04  C_p = 0.03   (kg, kg m^2)\n"                 \
+  "            omega = 500 (rad/s)   inertia = paper|full   axial = false\n"                           \
+  "[supports]  l_L = 0.20  l_R = 0.15 (m)   c_Lx c_Ly c_Lz c_Rx c_Ry (N/m)   h_Lx h_Ly h_Lz h_Rx h_Ry (N s/m)\n" \
+  "            defaults: c_Lx = c_Ly = 1e5, c_Rx = c_Ry = 1.5e5, c_Lz = 2e5, h_L. = 100, h_R. = 150, h_Lz = 200\n" \
+  "[lumped]    optional, replaces [supports]: M A C c_x c_y c_z c_alpha c_beta c_xbeta c_yalpha and h_ (all)\n" \
+  "[initial]   x y (m)  alpha beta (rad)  x_rate y_rate (m/s)  alpha_rate beta_rate (rad/s)  z z_rate\n"      \
+  "[plane1]    d = 0.10 (m)  m0 = 0.02 (kg)  r0 = 0.1 (m)  psi0 = 0 (rad, unbalance angle on the rotor)\n"   \
+  "            ball_mass = 0.05, 0.05 (kg)  ball_radius = 0.1, 0.1 (m)  ball_damping = 0.1, 0.1 (kg/s)\n"    \
+  "            ball_psi = 1.0, 2.5 (rad, initial angles relative to the rotor)  ball_rate = 0, 0 (rad/s)\n"   \
+  "[plane2]    optional second balancer plane, same keys as [plane1]\n"
+
+#define HELP_ROTOR_TRANSIENT                                                                       \
+  "Transient of the rotor in a massive housing with ball autobalancers (spec rotor.md): the\n"     \
+  "fixed-frame equations (3.2)+(3.4) (or the balls in the rotating frame, (3.13)), integrated\n"   \
+  "with a GSL stepper, streamed to HDF5; summary: balanced or not, time to balance, residual\n"    \
+  "unbalance and vibration before/after.\n\n" HELP_ROTOR_PARAMS                                    \
+  "[transient] t_end = 20 (s)   revs_out = 0.25 (output every quarter revolution) or dt_out (s)\n" \
+  "            stepper = rk8pd   rtol = 1e-8   atol = 1e-10   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
+  "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50\n"    \
+  "            stop_at_balance = false\n"                                                          \
+  "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'), /rotor/revolutions\n"
+
 #endif

@@ -4,14 +4,19 @@
 Same problem, same nominal tolerances; the final state of every run is
 compared with a tight reference, so accuracy is checked as well as time.
 
-Problem: R_w = 3, R_m = 0.1, H = 0.2, h = 1, psi0 = 0.5 (stable main
-motion); start-up from rest with xi = eta = psi = phi = 0; tau in [0, T1].
+Problem: R_w = 3, R_m = 0.1, H = 0.05, h = 0.1, psi0 = 0.5 (stable main
+motion, lightly damped: the slowest mode decays as exp(-0.025 tau), so at
+tau = 100 the motion is still under way and errors made early are not damped
+away); start-up from rest with xi = eta = psi = phi = 0; tau in [0, T1].
 
 Error norms differ: GSL's control bounds every component,
 |err_i| <= atol + rtol |y_i| (max norm), SciPy's bounds the RMS over the 8
 components of err_i / (atol + rtol |y_i|).  A max-norm bound is at most
 sqrt(8) times an RMS one, so rows "tol/sqrt(8)" give SciPy the tighter,
 max-norm-equivalent tolerance as well.
+
+Times are the best of N runs for both (autobal: --c-repeats, SciPy:
+--scipy-repeats), which removes most scheduling noise on a shared machine.
 
 Run through bench/run.sh (builds bench_pendulum first) with /usr/bin/python3.
 """
@@ -26,7 +31,7 @@ import numpy as np
 import scipy
 from scipy.integrate import solve_ivp
 
-P = dict(Rw=3.0, Rm=0.1, H=0.2, h=1.0, psi0=0.5)
+P = dict(Rw=3.0, Rm=0.1, H=0.05, h=0.1, psi0=0.5)
 
 
 def make_rhs(Rw, Rm, H, h, psi0):
@@ -87,10 +92,10 @@ def autobal_run(exe, stepper, rtol, atol, t1, repeats):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bench", required=True, help="path of the bench_pendulum binary")
-    ap.add_argument("--t1", type=float, default=300.0)
+    ap.add_argument("--t1", type=float, default=100.0)
     ap.add_argument("--tols", default="1e-6,1e-8,1e-10")
-    ap.add_argument("--scipy-repeats", type=int, default=3)
-    ap.add_argument("--c-repeats", type=int, default=51)
+    ap.add_argument("--scipy-repeats", type=int, default=5)
+    ap.add_argument("--c-repeats", type=int, default=201)
     args = ap.parse_args()
     t1 = args.t1
     tols = [float(s) for s in args.tols.split(",")]
@@ -116,7 +121,7 @@ def main():
     for tol in tols:
         c = autobal_run(args.bench, "rk8pd", tol, tol, t1, args.c_repeats)
         c_err = np.max(np.abs(np.array(c["y"]) - ref))
-        tc = c["seconds"]
+        tc = c["seconds_min"]  # best of N, like SciPy's best of --scipy-repeats
         print(f"{'autobal rk8pd (C)':<26}{tol:>8.0e}{tc * 1e3:>12.3f}{c['rhs_evals']:>11d}"
               f"{c_err:>11.2e}{1.0:>16.1f}")
         for method, scale, label in (("DOP853", 1.0, "SciPy DOP853"),

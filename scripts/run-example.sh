@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 bash scripts/deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)" >/dev/null
-exec build/apps/autobal pendulum critical -o example.h5 --force "$@"
+exec build/apps/autobal rotor transient -o example.h5 --force "$@"

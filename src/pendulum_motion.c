@@ -43,9 +43,18 @@ typedef struct motion_parts {
   double A, B;               /* absolute acceleration of the shaft centre (rotating axes) */
 } motion_parts;
 
-static void motion_solve(const autobal_pendulum_params *p, const double *y, motion_parts *q) {
+#if defined(__GNUC__)
+#define MOTION_INLINE static inline __attribute__((always_inline))
+#else
+#define MOTION_INLINE static inline
+#endif
+
+/* s0 = sin(psi0), passed in so that a prepared autobal_pendulum_motion does
+ * not recompute it at every call. */
+MOTION_INLINE void motion_solve(const autobal_pendulum_params *p, double s0, const double *y,
+                                motion_parts *q) {
   const double Rw = p->R_w, Rm = p->R_m, H = p->H, h = p->h;
-  const double Rw2 = Rw * Rw, s0 = sin(p->psi0);
+  const double Rw2 = Rw * Rw;
   const double xi = y[0], eta = y[1], dxi = y[4], deta = y[5], dpsi = y[6], dphi = y[7];
   const double s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
   q->s1 = s1;
@@ -62,43 +71,67 @@ static void motion_solve(const autobal_pendulum_params *p, const double *y, moti
   q->r2 = -H * (deta + Rw * xi) - eta +
           Rm * (-h * (dpsi * s1 - dphi * s2) + 2.0 * Rw * (dpsi * c1 + dphi * c2) +
                 dpsi * dpsi * c1 - dphi * dphi * c2 + Rw2 * (c1 - c2));
-  q->A = (q->m22 * q->r1 - q->m12 * q->r2) / q->det;
-  q->B = (q->m11 * q->r2 - q->m12 * q->r1) / q->det;
+  {
+    const double inv = 1.0 / q->det; /* Cramer's rule */
+    q->A = (q->m22 * q->r1 - q->m12 * q->r2) * inv;
+    q->B = (q->m11 * q->r2 - q->m12 * q->r1) * inv;
+  }
+}
+
+MOTION_INLINE void motion_rhs(const autobal_pendulum_params *p, double s0, const double y[],
+                              double dydt[], motion_parts *q) {
+  const double Rw = p->R_w, h = p->h;
+  motion_solve(p, s0, y, q);
+  dydt[0] = y[4];
+  dydt[1] = y[5];
+  dydt[2] = y[6];
+  dydt[3] = y[7];
+  dydt[4] = q->A + 2.0 * Rw * y[5] + Rw * Rw * y[0];   /* eq. (1a) */
+  dydt[5] = q->B - 2.0 * Rw * y[4] + Rw * Rw * y[1];   /* eq. (1b) */
+  dydt[6] = -h * y[6] + q->A * q->c1 + q->B * q->s1;   /* eq. (1c) */
+  dydt[7] = -h * y[7] + q->A * q->c2 - q->B * q->s2;   /* eq. (1d) */
 }
 
 int autobal_pendulum_rhs(double tau, const double y[], double dydt[], void *params) {
   const autobal_pendulum_params *p = (const autobal_pendulum_params *)params;
   motion_parts q;
-  double Rw, h;
   (void)tau;
   if (p == NULL || y == NULL || dydt == NULL) return AUTOBAL_EINVAL;
-  Rw = p->R_w;
-  h = p->h;
-  motion_solve(p, y, &q);
+  motion_rhs(p, sin(p->psi0), y, dydt, &q);
   if (!(q.det > 0.0)) return AUTOBAL_ENUMERIC; /* only for R_m >= 1/2 or NaN input */
-  dydt[0] = y[4];
-  dydt[1] = y[5];
-  dydt[2] = y[6];
-  dydt[3] = y[7];
-  dydt[4] = q.A + 2.0 * Rw * y[5] + Rw * Rw * y[0];      /* eq. (1a) */
-  dydt[5] = q.B - 2.0 * Rw * y[4] + Rw * Rw * y[1];      /* eq. (1b) */
-  dydt[6] = -h * y[6] + q.A * q.c1 + q.B * q.s1;         /* eq. (1c) */
-  dydt[7] = -h * y[7] + q.A * q.c2 - q.B * q.s2;         /* eq. (1d) */
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_motion_rhs(double tau, const double y[], double dydt[], void *motion) {
+  const autobal_pendulum_motion *m = (const autobal_pendulum_motion *)motion;
+  motion_parts q;
+  (void)tau;
+  if (m == NULL || y == NULL || dydt == NULL) return AUTOBAL_EINVAL;
+  motion_rhs(&m->p, m->sin_psi0, y, dydt, &q);
+  if (!(q.det > 0.0)) return AUTOBAL_ENUMERIC;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_motion_init(autobal_pendulum_motion *m, const autobal_pendulum_params *p,
+                                 autobal_error *err) {
+  int rc;
+  if (m == NULL || p == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum motion: NULL argument");
+  if ((rc = autobal_pendulum_params_validate(p, err)) != AUTOBAL_SUCCESS) return rc;
+  m->p = *p;
+  m->sin_psi0 = sin(p->psi0);
   return AUTOBAL_SUCCESS;
 }
 
 /* Analytic Jacobian: differentiate M (A, B)^T = r,
  *   M d(A, B)/dz = dr/dz - (dM/dz) (A, B),
  * then the four acceleration formulas above. */
-int autobal_pendulum_jac(double tau, const double y[], double *dfdy, double dfdt[],
-                         void *params) {
-  const autobal_pendulum_params *p = (const autobal_pendulum_params *)params;
+static int motion_jac(const autobal_pendulum_params *p, double s0, const double y[], double *dfdy,
+                      double dfdt[]) {
   motion_parts q;
   double Rw, Rm, H, h, Rw2, dpsi, dphi;
   double dr1[8], dr2[8], dm11[8], dm12[8], dm22[8];
   size_t z;
-  (void)tau;
-  if (p == NULL || y == NULL || dfdy == NULL || dfdt == NULL) return AUTOBAL_EINVAL;
   Rw = p->R_w;
   Rm = p->R_m;
   H = p->H;
@@ -106,7 +139,7 @@ int autobal_pendulum_jac(double tau, const double y[], double *dfdy, double dfdt
   Rw2 = Rw * Rw;
   dpsi = y[6];
   dphi = y[7];
-  motion_solve(p, y, &q);
+  motion_solve(p, s0, y, &q);
   if (!(q.det > 0.0)) return AUTOBAL_ENUMERIC;
   {
     const double s1 = q.s1, c1 = q.c1, s2 = q.s2, c2 = q.c2;
@@ -164,6 +197,22 @@ int autobal_pendulum_jac(double tau, const double y[], double *dfdy, double dfdt
   }
   for (z = 0; z < 8; z++) dfdt[z] = 0.0; /* autonomous */
   return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_jac(double tau, const double y[], double *dfdy, double dfdt[],
+                         void *params) {
+  const autobal_pendulum_params *p = (const autobal_pendulum_params *)params;
+  (void)tau;
+  if (p == NULL || y == NULL || dfdy == NULL || dfdt == NULL) return AUTOBAL_EINVAL;
+  return motion_jac(p, sin(p->psi0), y, dfdy, dfdt);
+}
+
+int autobal_pendulum_motion_jac(double tau, const double y[], double *dfdy, double dfdt[],
+                                void *motion) {
+  const autobal_pendulum_motion *m = (const autobal_pendulum_motion *)motion;
+  (void)tau;
+  if (m == NULL || y == NULL || dfdy == NULL || dfdt == NULL) return AUTOBAL_EINVAL;
+  return motion_jac(&m->p, m->sin_psi0, y, dfdy, dfdt);
 }
 
 void autobal_pendulum_main_motion(const autobal_pendulum_params *p, double y[]) {

@@ -177,9 +177,12 @@ struct autobal_transient {
 
 /* ---- adapters between GSL and the user's system ---------------------------- */
 
+/* The rhs adapter only counts and maps a non-zero return to GSL_EBADFUNC.
+ * Non-finite values are caught once per step, on the stepper's result and
+ * error estimate (a NaN or inf in any stage propagates into them), which
+ * is cheaper than testing every evaluation (see take_step). */
 static int rhs_adapter(double t, const double y[], double dydt[], void *params) {
   autobal_transient *tr = (autobal_transient *)params;
-  size_t i;
   int rc;
   tr->stats.rhs_evals++;
   rc = tr->sys.rhs(t, y, dydt, tr->sys.params);
@@ -191,16 +194,35 @@ static int rhs_adapter(double t, const double y[], double dydt[], void *params) 
     }
     return GSL_EBADFUNC;
   }
-  for (i = 0; i < tr->dim; i++) {
-    if (!isfinite(dydt[i])) {
-      if (tr->fail_kind == 0) {
-        tr->fail_kind = 2;
-        tr->fail_t = t;
-        tr->fail_index = i;
-      }
-      return GSL_EBADFUNC;
-    }
+  return GSL_SUCCESS;
+}
+
+/* All of v[0..n-1] finite?  Branch-free (vectorizable); NaN fails too. */
+static int all_finite(const double *v, size_t n) {
+  int ok = 1;
+  size_t i;
+  for (i = 0; i < n; i++) ok &= fabs(v[i]) <= DBL_MAX;
+  return ok;
+}
+
+/* Record a non-finite rhs value (kind 2) at t, first bad component of v. */
+static int nonfinite_failure(autobal_transient *tr, double t, const double *v) {
+  size_t i = 0;
+  while (i < tr->dim && isfinite(v[i])) i++;
+  if (tr->fail_kind == 0) {
+    tr->fail_kind = 2;
+    tr->fail_t = t;
+    tr->fail_index = i;
   }
+  return GSL_EBADFUNC;
+}
+
+/* rhs evaluation with the finiteness test, for the few evaluations made
+ * outside a step (first derivative, initial step, finite differences). */
+static int rhs_checked(autobal_transient *tr, double t, const double y[], double dydt[]) {
+  int rc = rhs_adapter(t, y, dydt, tr);
+  if (rc != GSL_SUCCESS) return rc;
+  if (!all_finite(dydt, tr->dim)) return nonfinite_failure(tr, t, dydt);
   return GSL_SUCCESS;
 }
 
@@ -212,14 +234,14 @@ static int fd_jacobian(autobal_transient *tr, double t, const double y[], double
   size_t i, j;
   int rc;
   tr->stats.fd_jac_evals++;
-  if ((rc = rhs_adapter(t, y, tr->fd_f0, tr)) != GSL_SUCCESS) return rc;
+  if ((rc = rhs_checked(tr, t, y, tr->fd_f0)) != GSL_SUCCESS) return rc;
   memcpy(tr->fd_y, y, n * sizeof(double));
   for (j = 0; j < n; j++) {
     const double yj = y[j];
     double dj = sq * fmax(fabs(yj), 1.0);
     tr->fd_y[j] = yj + dj;
     dj = tr->fd_y[j] - yj; /* the increment actually represented */
-    if ((rc = rhs_adapter(t, tr->fd_y, tr->fd_f1, tr)) != GSL_SUCCESS) return rc;
+    if ((rc = rhs_checked(tr, t, tr->fd_y, tr->fd_f1)) != GSL_SUCCESS) return rc;
     for (i = 0; i < n; i++) dfdy[i * n + j] = (tr->fd_f1[i] - tr->fd_f0[i]) / dj;
     tr->fd_y[j] = yj;
   }
@@ -227,7 +249,7 @@ static int fd_jacobian(autobal_transient *tr, double t, const double y[], double
     double dt = sq * fmax(fabs(t), 1.0);
     const double t1 = t + dt;
     dt = t1 - t;
-    if ((rc = rhs_adapter(t1, y, tr->fd_f1, tr)) != GSL_SUCCESS) return rc;
+    if ((rc = rhs_checked(tr, t1, y, tr->fd_f1)) != GSL_SUCCESS) return rc;
     for (i = 0; i < n; i++) dfdt[i] = (tr->fd_f1[i] - tr->fd_f0[i]) / dt;
   }
   return GSL_SUCCESS;
@@ -283,10 +305,10 @@ static int ctx_alloc(autobal_transient *tr, stepper_ctx *c, const gsl_odeiv2_ste
    * arguments are valid, so GSL's error handler is not invoked except for
    * out-of-memory. */
   c->d = gsl_odeiv2_driver_alloc_y_new(&tr->gsys, T, 1.0, atol, rtol);
-  c->y0 = malloc(n * sizeof(double));
-  c->yerr = malloc(n * sizeof(double));
-  c->dydt_in = malloc(n * sizeof(double));
-  c->dydt_out = malloc(n * sizeof(double));
+  c->y0 = calloc(n, sizeof(double));
+  c->yerr = calloc(n, sizeof(double));
+  c->dydt_in = calloc(n, sizeof(double));
+  c->dydt_out = calloc(n, sizeof(double));
   if (!c->d || !c->y0 || !c->yerr || !c->dydt_in || !c->dydt_out) {
     ctx_free(c);
     return AUTOBAL_ENOMEM;
@@ -527,8 +549,8 @@ static int rhs_failure(autobal_transient *tr) {
                                tr->fail_t);
     case 2:
       return autobal_error_set(&tr->err, AUTOBAL_ERHS,
-                               "right-hand side returned a non-finite value in component %zu "
-                               "at t = %.17g",
+                               "right-hand side returned a non-finite value (component %zu) in "
+                               "the step from t = %.17g",
                                tr->fail_index, tr->fail_t);
     case 3:
       return autobal_error_set(&tr->err, AUTOBAL_ERHS, "Jacobian returned %d at t = %.17g",
@@ -563,7 +585,7 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
   unsigned long rej = 0;
   memcpy(c->y0, y, n * sizeof(double));
   if (use_in && !c->have_dydt) {
-    if (rhs_adapter(t0, y, c->dydt_in, tr) != GSL_SUCCESS) return rhs_failure(tr);
+    if (rhs_checked(tr, t0, y, c->dydt_in) != GSL_SUCCESS) return rhs_failure(tr);
     c->have_dydt = 1;
   }
   for (;;) {
@@ -603,6 +625,16 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
                                "GSL stepper failed (%s) at t = %.17g with step %.6g, which can "
                                "not be reduced further",
                                gsl_strerror(st), t0, h_old);
+    }
+    if (!all_finite(y, n) || !all_finite(c->yerr, n) ||
+        (s->type->gives_exact_dydt_out && !all_finite(c->dydt_out, n))) {
+      /* a stage derivative was NaN or inf (or the step overflowed); dydt_out
+       * is tested only where it is reused as the next first stage */
+      const double *bad = !all_finite(y, n) ? y : !all_finite(c->yerr, n) ? c->yerr : c->dydt_out;
+      nonfinite_failure(tr, t0, bad);
+      memcpy(y, c->y0, n * sizeof(double));
+      *rejected += rej;
+      return rhs_failure(tr);
     }
     h_old = h0;
     adj = gsl_odeiv2_control_hadjust(c->d->c, s, y, c->yerr, c->dydt_out, &h0);
@@ -740,7 +772,7 @@ static int initial_step(autobal_transient *tr, double t0, const double *y0, doub
   *h_out = 0.0;
   unsigned int p;
   size_t i;
-  if (rhs_adapter(t0, y0, f0, tr) != GSL_SUCCESS) return rhs_failure(tr);
+  if (rhs_checked(tr, t0, y0, f0) != GSL_SUCCESS) return rhs_failure(tr);
   tr->main.have_dydt = 1;
   for (i = 0; i < n; i++) {
     const double sc = atol + rtol * fabs(y0[i]);
@@ -750,7 +782,7 @@ static int initial_step(autobal_transient *tr, double t0, const double *y0, doub
   h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
   h0 = fmin(h0, span);
   for (i = 0; i < n; i++) y1[i] = y0[i] + h0 * f0[i];
-  if (rhs_adapter(t0 + h0, y1, f1, tr) != GSL_SUCCESS) return rhs_failure(tr);
+  if (rhs_checked(tr, t0 + h0, y1, f1) != GSL_SUCCESS) return rhs_failure(tr);
   for (i = 0; i < n; i++) {
     const double sc = atol + rtol * fabs(y0[i]);
     d2 = fmax(d2, fabs(f1[i] - f0[i]) / sc);

@@ -738,6 +738,34 @@ static void test_errors(void) {
   }
 }
 
+/* ---- 9. prepared parameters ------------------------------------------------------------- */
+
+static void test_prepared(void) {
+  autobal_pendulum_motion m;
+  autobal_pendulum_params bad = P_HEAVY;
+  autobal_error err;
+  unsigned long seed = 4242;
+  int i, j, same = 1;
+  CHECK_STATUS("motion_init", autobal_pendulum_motion_init(&m, &P_HEAVY, &err), AUTOBAL_SUCCESS);
+  CHECK("motion_init stores sin(psi0)", m.sin_psi0 == sin(P_HEAVY.psi0));
+  for (i = 0; i < 20; i++) {
+    double y[8], f1[8], f2[8], J1[64], J2[64], d1[8], d2[8];
+    random_state(&seed, y);
+    autobal_pendulum_rhs(0.0, y, f1, &P_HEAVY);
+    autobal_pendulum_motion_rhs(0.0, y, f2, &m);
+    autobal_pendulum_jac(0.0, y, J1, d1, &P_HEAVY);
+    autobal_pendulum_motion_jac(0.0, y, J2, d2, &m);
+    for (j = 0; j < 8; j++) same &= f1[j] == f2[j];
+    for (j = 0; j < 64; j++) same &= J1[j] == J2[j];
+  }
+  CHECK("prepared rhs and Jacobian are bitwise equal to the plain ones", same);
+  bad.R_m = 0.6;
+  CHECK_STATUS("motion_init rejects R_m = 0.6", autobal_pendulum_motion_init(&m, &bad, &err),
+               AUTOBAL_EINVAL);
+  CHECK_MSG("motion_init message names R_m", err.message, "R_m");
+  CHECK("motion_rhs with NULL fails", autobal_pendulum_motion_rhs(0.0, NULL, NULL, &m) != 0);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_equations();
@@ -748,5 +776,6 @@ int main(void) {
   test_steppers_agree();
   test_derived();
   test_errors();
+  test_prepared();
   return check_summary();
 }

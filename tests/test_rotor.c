@@ -51,22 +51,26 @@ static double urand(double lo, double hi) { /* xorshift64*, deterministic */
 
 static double wrap(double a) { return atan2(sin(a), cos(a)); }
 
-/* integrate with GSL's rk8pd driver (the library's transient driver is tested on its own) */
+/* integrate with the library's transient driver (rk8pd; tested on its own in test_transient) */
 static int integrate(int (*f)(double, const double *, double *, void *), autobal_rotor *r,
                      double t0, double t1, double *y, double rtol, double atol) {
-  gsl_odeiv2_system sys;
-  gsl_odeiv2_driver *d;
-  double t = t0;
+  autobal_transient_options opt = autobal_transient_options_default();
+  autobal_transient_system sys;
+  autobal_transient *tr;
   int st;
-  sys.function = f;
-  sys.jacobian = NULL;
-  sys.dimension = autobal_rotor_dim(r);
+  opt.stepper = "rk8pd";
+  opt.rtol = rtol;
+  opt.atol = atol;
+  opt.h_init = 1e-5;
+  opt.max_steps = 50000000ul;
+  sys.rhs = f;
+  sys.jac = NULL;
+  sys.dim = autobal_rotor_dim(r);
   sys.params = r;
-  d = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-5, atol, rtol);
-  if (d == NULL) return -1;
-  gsl_odeiv2_driver_set_nmax(d, 50000000);
-  st = gsl_odeiv2_driver_apply(d, &t, t1, y);
-  gsl_odeiv2_driver_free(d);
+  tr = autobal_transient_alloc(sys.dim, &opt, NULL);
+  if (tr == NULL) return -1;
+  st = autobal_transient_run(tr, &sys, t0, t1, y, NULL);
+  autobal_transient_free(tr);
   return st;
 }
 
@@ -571,7 +575,7 @@ static void test_config_files(void) {
       double y[MAXDIM], out[128], mon;
       if (R == NULL) continue;
       autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
-      CHECK("   30 s integrated", integrate(autobal_rotor_rhs, R, 0.0, 30.0, y, 1e-10, 1e-13) == 0);
+      CHECK("   30 s integrated", integrate(autobal_rotor_rhs, R, 0.0, 30.0, y, 1e-10, 1e-12) == 0);
       mon = autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, 30.0, y);
       autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 30.0, y, out, autobal_rotor_output_count(R));
       CHECK_CLOSE("   balanced at t = 30 s: max_j |s_j| / m_j0 r_j0", mon, 0.0, 0, 1e-6);
@@ -1288,27 +1292,59 @@ static void test_balanced_angles(void) {
   }
 }
 
+static double monitor_fixed(double t, const double y[], void *user) {
+  return autobal_rotor_balance_monitor((const autobal_rotor *)user, AUTOBAL_ROTOR_FIXED, t, y);
+}
+
 /* Supercritical: the default (omega = 500 > 215 rad/s) reaches the balanced angles. */
 static double g_bal_err = 0.0, g_ttb = 0.0;
+#define SUPER_NS 30001
+typedef struct series_rec {
+  const autobal_rotor *R;
+  double *t, *mon;
+  size_t n;
+} series_rec;
+
+static int record_monitor(double t, const double y[], void *user) {
+  series_rec *s = (series_rec *)user;
+  if (s->n < SUPER_NS) {
+    s->t[s->n] = t;
+    s->mon[s->n] = autobal_rotor_balance_monitor(s->R, AUTOBAL_ROTOR_FIXED, t, y);
+    s->n++;
+  }
+  return 0;
+}
+
 static void test_supercritical(void) {
+  static double ts[SUPER_NS], mon[SUPER_NS];
   autobal_rotor_params p = autobal_rotor_params_default();
   autobal_rotor *R = autobal_rotor_alloc(&p, NULL);
-  double y[12], out[32], psi_b[2], e1, e2, ts[301], mon[301], t = 0.0;
-  size_t nout;
-  int i, ok = 1;
+  double y[12], out[32], psi_b[2], e1, e2;
+  autobal_transient_options opt = autobal_transient_options_default();
+  autobal_transient_system sys = {autobal_rotor_rhs, NULL, 12, NULL};
+  autobal_transient *tr;
+  series_rec rec;
   printf("-- supercritical run (omega = 500): balls reach psi~ = pi -/+ arccos(m0 r0 / 2 m r)\n");
   if (R == NULL) return;
-  nout = autobal_rotor_output_count(R);
-  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
-  for (i = 0; i <= 300; i++) {
-    const double t1 = 0.1 * i;
-    if (i > 0 && integrate(autobal_rotor_rhs, R, t, t1, y, 1e-10, 1e-13) != 0) ok = 0;
-    t = t1;
-    ts[i] = t;
-    mon[i] = autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, t, y);
+  sys.params = R;
+  opt.rtol = 1e-10;
+  opt.atol = 1e-12;
+  opt.dt_out = 1e-3;
+  tr = autobal_transient_alloc(12, &opt, NULL);
+  if (tr == NULL) {
+    CHECK("transient driver", 0);
+    autobal_rotor_free(R);
+    return;
   }
-  CHECK("30 s integrated", ok);
-  autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, t, y, out, nout);
+  rec.R = R;
+  rec.t = ts;
+  rec.mon = mon;
+  rec.n = 0;
+  autobal_transient_set_observer(tr, record_monitor, &rec);
+  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
+  CHECK_STATUS("30 s integrated, monitor recorded every 1 ms", autobal_transient_run(tr, &sys, 0.0, 30.0, y, NULL), AUTOBAL_SUCCESS);
+  CHECK("30001 samples", rec.n == SUPER_NS);
+  autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 30.0, y, out, autobal_rotor_output_count(R));
   /* (3.14), computed from the formula here */
   psi_b[0] = M_PI - acos(0.02 * 0.1 / (2.0 * 0.05 * 0.1));
   psi_b[1] = -psi_b[0];
@@ -1321,9 +1357,26 @@ static void test_supercritical(void) {
   CHECK_CLOSE("rotor amplitude at the centre of mass (m)", out[0], 0.0, 0, 1e-10);
   CHECK_CLOSE("relative rates psi' (rad/s)", fmax(fabs(out[15]), fabs(out[21])), 0.0, 0, 1e-6);
   CHECK("monitor started large", mon[0] > 1.0);
-  g_ttb = autobal_rotor_time_to_balance(ts, mon, 301, 1e-2);
-  printf("     time to balance (|s| / m0 r0 < 1e-2 for good): %.2f s\n", g_ttb);
+  g_ttb = autobal_rotor_time_to_balance(ts, mon, rec.n, 1e-2);
+  printf("     time to balance (|s| / m0 r0 < 1e-2 for good): %.3f s\n", g_ttb);
   CHECK("time to balance found, within the run", isfinite(g_ttb) && g_ttb > 0.0 && g_ttb < 30.0);
+  {
+    /* the same quantity from the transient driver's dwell event on the monitor scalar:
+     * its located crossing vs the first 1 ms sample of the final run below the threshold */
+    autobal_transient_event_hit hit;
+    opt.dt_out = 0.0;
+    autobal_transient_set_options(tr, &opt);
+    autobal_transient_set_observer(tr, NULL, NULL);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
+    if (autobal_transient_add_dwell_event(tr, monitor_fixed, R, 1e-2, 29.9 - g_ttb, 1) == 0) {
+      CHECK_STATUS("dwell event stops the run", autobal_transient_run(tr, &sys, 0.0, 30.0, y, NULL), AUTOBAL_EVENT);
+      CHECK("dwell event fired", autobal_transient_event_result(tr, 0, NULL, &hit) == 1);
+      CHECK_CLOSE("time to balance: driver's located crossing vs 1 ms samples (s)", hit.t_start, g_ttb - 0.0005, 0, 0.0005 + 1e-9);
+    } else {
+      CHECK("transient driver with a dwell event", 0);
+    }
+  }
+  autobal_transient_free(tr);
   autobal_rotor_free(R);
 }
 
@@ -1356,7 +1409,7 @@ static void test_subcritical(void) {
   if (R == NULL) return;
   autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, 12);
   m0 = autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, 0.0, y);
-  CHECK("30 s integrated", integrate(autobal_rotor_rhs, R, 0.0, 30.0, y, 1e-10, 1e-13) == 0);
+  CHECK("30 s integrated", integrate(autobal_rotor_rhs, R, 0.0, 30.0, y, 1e-10, 1e-12) == 0);
   autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 30.0, y, out, autobal_rotor_output_count(R));
   m1 = out[8];
   CHECK_CLOSE("balls together (psi_1 - psi_2, rad)", wrap(out[13] - out[19]), 0.0, 0, 1e-6);
