@@ -179,7 +179,8 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   c->frame_name = "fixed";
   {
     double revs_out = 0.25;
-    int has_dt = 0, has_revs = 0;
+    int has_dt = 0, has_revs = 0, has_brevs = 0, has_dwell = 0;
+    double dwell = 0.0;
     if ((rc = get_d(ctx, "transient", "t_end", &c->t_end))) return rc;
     if ((rc = cli_get_double(ctx, "transient", "dt_out", 0.0, &c->dt_out, &has_dt))) return rc;
     if ((rc = cli_get_double(ctx, "transient", "revs_out", revs_out, &revs_out, &has_revs))) return rc;
@@ -190,7 +191,8 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if ((rc = cli_get_string(ctx, "transient", "stepper", c->stepper, &c->stepper, NULL))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "frame", c->frame_name, &c->frame_name, NULL))) return rc;
     if ((rc = get_d(ctx, "transient", "balance_tol", &c->balance_tol))) return rc;
-    if ((rc = get_d(ctx, "transient", "balance_revs", &c->balance_revs))) return rc;
+    if ((rc = cli_get_double(ctx, "transient", "balance_revs", c->balance_revs, &c->balance_revs, &has_brevs))) return rc;
+    if ((rc = cli_get_double(ctx, "transient", "balance_dwell", 0.0, &dwell, &has_dwell))) return rc;
     if ((rc = cli_get_bool(ctx, "transient", "stop_at_balance", 0, &c->stop_at_balance, NULL))) return rc;
     if (has_dt && has_revs) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: give dt_out or revs_out, not both");
     if (!(c->t_end > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end = %g s is out of range: allowed (0, inf)", c->t_end);
@@ -204,6 +206,13 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if (c->t_end / c->dt_out > 5e8)
       return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end/dt_out = %.3g samples is too many (at most 5e8)", c->t_end / c->dt_out);
     if (!(c->balance_tol > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_tol = %g is out of range: allowed (0, inf)", c->balance_tol);
+    if (has_brevs && has_dwell)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: give balance_revs (revolutions) or balance_dwell (s), not both");
+    if (has_dwell) {
+      if (!(dwell >= 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_dwell = %g s is out of range: allowed [0, inf)", dwell);
+      if (!(fabs(c->p.omega) > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_dwell needs omega != 0");
+      c->balance_revs = dwell * fabs(c->p.omega) / TWO_PI;
+    }
     if (!(c->balance_revs >= 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_revs = %g is out of range: allowed [0, inf)", c->balance_revs);
     if (c->max_steps < 1) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: max_steps = %ld is out of range: allowed [1, inf)", c->max_steps);
     if (!strcmp(c->frame_name, "fixed")) c->frame = AUTOBAL_ROTOR_FIXED;

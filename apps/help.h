@@ -64,7 +64,7 @@
   "unbalance and vibration before/after.\n\n" HELP_ROTOR_PARAMS                                    \
   "[transient] t_end = 20 (s)   revs_out = 0.25 (output every quarter revolution) or dt_out (s)\n" \
   "            stepper = rk8pd   rtol = 1e-8   atol = 1e-10   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
-  "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50\n"    \
+  "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n"    \
   "            stop_at_balance = false\n"                                                          \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'), /rotor/revolutions\n"
 

@@ -1057,9 +1057,6 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
       qsort(Wr, nW, sizeof(double), cmp_dbl);
     }
   }
-#ifdef PEND_DEBUG
-  for (i = 0; i < nW; i++) fprintf(stderr, "cand W %.17g\n", Wr[i]);
-#endif
   /* verdict on every interval between consecutive candidates */
   for (i = 0; i <= nW; i++) {
     long double a = i == 0 ? 0.0L : Wr[i - 1];
