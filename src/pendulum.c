@@ -895,6 +895,159 @@ static int positive_roots(autobal_pendulum_workspace *ws, const long double *q0,
   return AUTOBAL_SUCCESS;
 }
 
+/* ---- the colliding pair of roots of (10): a well-conditioned local test ---- */
+
+/* Quadratic factor x^2 + u x + v of the quartic a[0..4] (ascending) near the
+ * initial (u, v), by Bairstow's method in long double; b[2..4] receive the
+ * quotient b4 x^2 + b3 x + b2.  Returns 0 on convergence. */
+static int bairstow(const long double a[5], long double *u, long double *v, long double q[3]) {
+  long double b[5], c[5], prev = INFINITY;
+  int it, i, conv = 0;
+  for (it = 0; it < 100; it++) {
+    long double det, du, dv;
+    b[4] = a[4];
+    b[3] = a[3] - *u * b[4];
+    for (i = 2; i >= 0; i--) b[i] = a[i] - *u * b[i + 1] - *v * b[i + 2];
+    c[4] = b[4];
+    c[3] = b[3] - *u * c[4];
+    for (i = 2; i >= 1; i--) c[i] = b[i] - *u * c[i + 1] - *v * c[i + 2];
+    det = c[2] * c[2] - c[1] * c[3];
+    if (det == 0.0L) return -1;
+    du = (b[1] * c[2] - b[0] * c[3]) / det;
+    dv = (c[2] * b[0] - c[1] * b[1]) / det;
+    *u += du;
+    *v += dv;
+    {
+      /* converged when the step is at rounding level, or stops shrinking
+       * once below 1e-15 relative (quadratic convergence has ended) */
+      long double step = fabsl(du) / (1 + fabsl(*u)) + fabsl(dv) / (1 + fabsl(*v));
+      if (step <= 16 * U_LD || (step < 1e-15L && step >= 0.5L * prev)) {
+        conv = 1;
+        break;
+      }
+      prev = step;
+    }
+  }
+  b[4] = a[4];
+  b[3] = a[3] - *u * b[4];
+  b[2] = a[2] - *u * b[3] - *v * b[4];
+  q[0] = b[2];
+  q[1] = b[3];
+  q[2] = b[4];
+  return conv ? 0 : -1;
+}
+
+/* The closest pair of roots of (10) at W as a quadratic factor: *g = u^2 - 4v
+ * (> 0: the pair is real and distinct, < 0: complex), *rest_ok = 1 when both
+ * quadratics have real roots <= 0 apart from the sign of g. */
+static int undamped_cluster(autobal_pendulum_workspace *ws, long double Rm, long double W,
+                            long double k, long double *g, int *rest_ok) {
+  long double c[5], u, v, q[3];
+  double cd[5], re[4], im[4], best = INFINITY;
+  int i, j, bi = 0, bj = 1, st;
+  undamped_coefs_ld(Rm, W, k, c);
+  for (i = 0; i < 5; i++) cd[i] = (double)c[i];
+  if ((st = autobal_poly_roots(ws->pw[4], cd, 5, re, im, &ws->err)) != 0) return st;
+  for (i = 0; i < 4; i++)
+    for (j = i + 1; j < 4; j++) {
+      double d;
+      int conj = im[i] != 0.0 && im[i] == -im[j] && re[i] == re[j];
+      int reals = im[i] == 0.0 && im[j] == 0.0;
+      if (!conj && !reals) continue;
+      d = hypot(re[i] - re[j], im[i] - im[j]);
+      if (d < best) {
+        best = d;
+        bi = i;
+        bj = j;
+      }
+    }
+  u = -((long double)re[bi] + re[bj]);
+  v = (long double)re[bi] * re[bj] - (long double)im[bi] * im[bj];
+  if (bairstow(c, &u, &v, q) != 0)
+    return autobal_error_set(&ws->err, AUTOBAL_ENUMERIC,
+                             "critical speeds: Bairstow iteration did not converge at W = %.17Lg", W);
+  *g = u * u - 4.0L * v;
+  *rest_ok = (q[1] * q[1] - 4.0L * q[2] * q[0] >= 0.0L) && q[1] * q[2] >= 0.0L &&
+             q[0] * q[2] >= 0.0L && u >= 0.0L && v >= 0.0L;
+  return AUTOBAL_SUCCESS;
+}
+
+typedef struct {
+  autobal_pendulum_workspace *ws;
+  long double Rm, k;
+} cluster_ctx;
+
+static int cluster_fn(double W, void *vctx, double *fx) {
+  const cluster_ctx *c = (const cluster_ctx *)vctx;
+  long double g;
+  int ok, st = undamped_cluster(c->ws, c->Rm, W, c->k, &g, &ok);
+  *fx = (double)g;
+  return st;
+}
+
+/* Verdict with the cluster test as fallback where the quartic criterion is
+ * undecided (very narrow windows, double roots). */
+static int undamped_verdict_robust(autobal_pendulum_workspace *ws, long double Rm, long double W,
+                                   long double k, int *verdict) {
+  long double g;
+  int ok, st;
+  *verdict = undamped_verdict_ld(Rm, W, k);
+  if (*verdict != AUTOBAL_VERDICT_MARGINAL || k == 0.0L || k == 1.0L) return AUTOBAL_SUCCESS;
+  if ((st = undamped_cluster(ws, Rm, W, k, &g, &ok)) != 0) return st;
+  if (g < 0.0L || !ok) *verdict = AUTOBAL_VERDICT_UNSTABLE;
+  else if (g > 0.0L) *verdict = AUTOBAL_VERDICT_STABLE;
+  return AUTOBAL_SUCCESS;
+}
+
+/* Refine a root W0 of the discriminant on the pair discriminant g: find a
+ * sign change of g within W0 (1 -+ h), h = 1e-12 ... 1e-3, then Brent. */
+static int refine_on_cluster(cluster_ctx *cc, double W0, double *W) {
+  double h, fa, fb, f0;
+  int st;
+  *W = W0;
+  if ((st = cluster_fn(W0, cc, &f0)) != 0) return st;
+  for (h = 1e-12; h <= 1e-3; h *= 4) {
+    double a = W0 * (1 - h), b = W0 * (1 + h);
+    if ((st = cluster_fn(a, cc, &fa)) != 0) return st;
+    if ((st = cluster_fn(b, cc, &fb)) != 0) return st;
+    if ((fa < 0) != (f0 < 0) || (fb < 0) != (f0 < 0)) {
+      double lo = (fa < 0) != (f0 < 0) ? a : W0, hi = (fa < 0) != (f0 < 0) ? W0 : b;
+      if (lo == W0 && (fb < 0) == (f0 < 0)) return AUTOBAL_SUCCESS;
+      return autobal_root_brent(cluster_fn, cc, lo, hi, 0.0, 1e-15, 200, W, &cc->ws->err);
+    }
+  }
+  return AUTOBAL_SUCCESS; /* no sign change of g nearby (touch): keep W0 */
+}
+
+/* k in (0, 1) near 1: the double root of (10) at k = 1, W18 = 2(1-2R_m)/(1-4R_m)^2
+ * ((18) squared), opens into an unstable window (pair complex) when
+ * R_m^(1) < R_m < 1/4.  Look for it directly: if the pair is complex at W18,
+ * walk outwards until it is real and refine both ends on g. */
+static int window_at_18(cluster_ctx *cc, double *lo, double *hi, int *found) {
+  double W18 = 2.0 * (1.0 - 2.0 * (double)cc->Rm) / ((1.0 - 4.0 * (double)cc->Rm) * (1.0 - 4.0 * (double)cc->Rm));
+  double g0, h, ga, gb, a = 0, b = 0;
+  int st, fa = 0, fb = 0;
+  *found = 0;
+  if (!isfinite(W18) || !(W18 > 0)) return AUTOBAL_SUCCESS;
+  if ((st = cluster_fn(W18, cc, &g0)) != 0) return st;
+  if (!(g0 < 0)) return AUTOBAL_SUCCESS;
+  for (h = 1e-15; h < 0.5 && !(fa && fb); h *= 2) {
+    if (!fa) {
+      if ((st = cluster_fn(W18 * (1 - h), cc, &ga)) != 0) return st;
+      if (ga > 0) fa = 1, a = W18 * (1 - h);
+    }
+    if (!fb) {
+      if ((st = cluster_fn(W18 * (1 + h), cc, &gb)) != 0) return st;
+      if (gb > 0) fb = 1, b = W18 * (1 + h);
+    }
+  }
+  if (!(fa && fb)) return AUTOBAL_SUCCESS;
+  if ((st = autobal_root_brent(cluster_fn, cc, a, W18, 0.0, 1e-15, 300, lo, &cc->ws->err)) != 0) return st;
+  if ((st = autobal_root_brent(cluster_fn, cc, W18, b, 0.0, 1e-15, 300, hi, &cc->ws->err)) != 0) return st;
+  *found = 1;
+  return AUTOBAL_SUCCESS;
+}
+
 static int crit_set_fill(autobal_pendulum_crit_set *out, const double *rw, const int *vint,
                          size_t nc, int keep_touch_stable_only, double lo_end, double hi_end) {
   /* vint[i] = verdict (1 stable) on interval i: (rw[i-1], rw[i]), i = 0..nc */
@@ -1057,11 +1210,48 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
       qsort(Wr, nW, sizeof(double), cmp_dbl);
     }
   }
+  if (k > 0.0 && k < 1.0) {
+    /* refine every candidate on the pair discriminant (well conditioned,
+     * from the coefficients of (10) at W rather than the expanded
+     * discriminant in W), then look for a window at (18) too narrow for the
+     * discriminant in W */
+    cluster_ctx cc;
+    double wlo, whi;
+    int found;
+    cc.ws = ws;
+    cc.Rm = R_m;
+    cc.k = k;
+    for (i = 0; i < nW; i++) {
+      double Wn;
+      if ((st = refine_on_cluster(&cc, Wr[i], &Wn)) != 0) return st;
+      Wr[i] = Wn;
+    }
+    if ((st = window_at_18(&cc, &wlo, &whi, &found)) != 0) return st;
+    if (found) {
+      size_t n2 = 0;
+      double pad = 10.0 * (whi - wlo) + 1e-6 * whi;
+      for (i = 0; i < nW; i++)
+        if (Wr[i] < wlo - pad || Wr[i] > whi + pad) Wr[n2++] = Wr[i];
+      if (n2 + 2 <= AUTOBAL_PENDULUM_MAX_CRIT) {
+        Wr[n2++] = wlo;
+        Wr[n2++] = whi;
+      }
+      nW = n2;
+    }
+    qsort(Wr, nW, sizeof(double), cmp_dbl);
+    {
+      /* merge duplicates produced by the refinement */
+      size_t n2 = 0;
+      for (i = 0; i < nW; i++)
+        if (n2 == 0 || Wr[i] > Wr[n2 - 1] * (1 + 4 * DBL_EPSILON)) Wr[n2++] = Wr[i];
+      nW = n2;
+    }
+  }
   /* verdict on every interval between consecutive candidates */
   for (i = 0; i <= nW; i++) {
     long double a = i == 0 ? 0.0L : Wr[i - 1];
     long double b = i == nW ? 2.0L * a + 1.0L : Wr[i];
-    vint[i] = undamped_verdict_ld(R_m, 0.5L * (a + b), k);
+    if ((st = undamped_verdict_robust(ws, R_m, 0.5L * (a + b), k, &vint[i])) != 0) return st;
   }
   for (i = 0; i < nW; i++) rw[i] = sqrt(Wr[i]);
   return crit_set_fill(out, rw, vint, nW, 1, 0.0, INFINITY);

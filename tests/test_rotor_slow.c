@@ -182,6 +182,31 @@ static double eq_res(const autobal_rotor *r, double psi) {
   return wrap(displacement_angle(r, 0.002 + 0.01 * cos(psi), 0.01 * sin(psi), 0.1, NULL) - psi);
 }
 
+/* roots of the balls' equilibrium condition on the whole circle (scan + bisection);
+ * returns the number found and the distance of the nearest one to psi */
+static int equilibria(const autobal_rotor *r, double psi, double *nearest) {
+  int i, count = 0;
+  *nearest = INFINITY;
+  for (i = 0; i < 720; i++) {
+    double a = -M_PI + 2.0 * M_PI * i / 720.0, b = a + 2.0 * M_PI / 720.0;
+    double fa = eq_res(r, a), fb = eq_res(r, b);
+    int it;
+    if (!(fa * fb <= 0.0) || fabs(fa - fb) > 1.0) continue; /* skip the +-pi jumps of wrap() */
+    for (it = 0; it < 80; it++) {
+      const double m = 0.5 * (a + b), fm = eq_res(r, m);
+      if (fm * fa > 0.0) {
+        a = m;
+        fa = fm;
+      } else {
+        b = m;
+      }
+    }
+    count++;
+    *nearest = fmin(*nearest, fabs(wrap(0.5 * (a + b) - psi)));
+  }
+  return count;
+}
+
 static void test_subcritical_sweep(void) {
   const double oms[3] = {60, 100, 140};
   int c;
@@ -189,69 +214,63 @@ static void test_subcritical_sweep(void) {
   for (c = 0; c < 3; c++) {
     autobal_rotor_params p = autobal_rotor_params_default();
     autobal_rotor *r;
-    double y[12], psi, best = INFINITY, amp;
-    int i;
+    double y[12], psi, best, amp;
+    int nroots;
     p.omega = oms[c];
     r = autobal_rotor_alloc(&p, NULL);
     if (r == NULL) continue;
     autobal_rotor_initial_state(r, AUTOBAL_ROTOR_ROTATING, 0.0, y, 12);
     integrate(autobal_rotor_rhs_rotating, r, 0.0, 60.0, y, 1e-10, 1e-12);
     psi = wrap(y[8]);
-    printf("     omega = %g rad/s: balls at %.6f and %.6f rad\n", p.omega, psi, wrap(y[9]));
+    nroots = equilibria(r, psi, &best);
+    printf("     omega = %g rad/s: balls at %.6f and %.6f rad, rates %.3g, %.3g rad/s; %d equilibria\n",
+           p.omega, psi, wrap(y[9]), y[10], y[11], nroots);
     CHECK_CLOSE("   balls together (rad)", wrap(y[8] - y[9]), 0.0, 0, 1e-6);
-    /* roots of the equilibrium condition on the whole circle: scan + bisection */
-    for (i = 0; i < 720; i++) {
-      double a = -M_PI + 2.0 * M_PI * i / 720.0, b = a + 2.0 * M_PI / 720.0, fa = eq_res(r, a), fb = eq_res(r, b);
-      int it;
-      if (!(fa * fb < 0.0) || fabs(fa - fb) > 1.0) continue; /* skip the +-pi jumps */
-      for (it = 0; it < 80; it++) {
-        const double m = 0.5 * (a + b), fm = eq_res(r, m);
-        if (fm * fa > 0.0) {
-          a = m;
-          fa = fm;
-        } else {
-          b = m;
-        }
-      }
-      best = fmin(best, fabs(wrap(0.5 * (a + b) - psi)));
-    }
-    CHECK_CLOSE("   ball angle = nearest equilibrium of the steady response (rad)", best, 0.0, 0, 1e-6);
-    displacement_angle(r, 0.002 + 0.01 * cos(psi), 0.01 * sin(psi), 0.1, &amp);
-    CHECK_CLOSE("   centre-of-mass amplitude = |Q_x| of the steady response (m)", hypot(y[0], y[1]), amp, 1e-6, 0);
     CHECK("   residual unbalance larger than the unbalance alone",
           autobal_rotor_balance_monitor(r, AUTOBAL_ROTOR_ROTATING, 60.0, y) > 1.0);
+    if (nroots > 0) {
+      CHECK_CLOSE("   ball angle = nearest equilibrium of the steady response (rad)", best, 0.0, 0, 1e-6);
+      displacement_angle(r, 0.002 + 0.01 * cos(psi), 0.01 * sin(psi), 0.1, &amp);
+      CHECK_CLOSE("   centre-of-mass amplitude = |Q_x| of the steady response (m)", hypot(y[0], y[1]), amp, 1e-6, 0);
+    } else {
+      /* no synchronous equilibrium with the balls together exists: they must keep moving
+       * relative to the rotor (they lag it, circulating slower than the shaft) */
+      CHECK("   no equilibrium: the balls keep moving relative to the rotor (|psi'| > 1 rad/s)",
+            fabs(y[10]) > 1.0 && fabs(y[11]) > 1.0);
+    }
     autobal_rotor_free(r);
   }
 }
 
 static void test_families_and_variants(void) {
-  static const double m3[3] = {0.04, 0.04, 0.04}, r3[3] = {0.1, 0.1, 0.1}, h3[3] = {0.08, 0.08, 0.08};
-  static const double p3[3] = {0.3, 1.7, 2.9};
+  static const double m3[3] = {0.03, 0.03, 0.03}, r3[3] = {0.1, 0.1, 0.1}, h3[3] = {0.06, 0.06, 0.06};
+  static const double p3[3] = {0.3, 1.6, 2.9};
   static const double m5[5] = {0.02, 0.02, 0.02, 0.02, 0.02}, r5[5] = {0.1, 0.1, 0.1, 0.1, 0.1};
-  static const double h5[5] = {0.04, 0.04, 0.04, 0.04, 0.04}, p5[5] = {0.1, 0.9, 1.8, 2.6, 3.4};
+  static const double h5[5] = {0.04, 0.04, 0.04, 0.04, 0.04}, p5[5] = {0.3, 1.6, 2.9, 4.2, 5.5};
   static const double m4[4] = {0.03, 0.025, 0.02, 0.015}, r4[4] = {0.1, 0.1, 0.1, 0.1};
   static const double h4[4] = {0.06, 0.05, 0.04, 0.03}, p4[4] = {0.5, 1.5, 2.5, 3.5};
   int c;
-  printf("-- families of balanced configurations, FULL inertia, frames over 60 s (omega = 500)\n");
+  printf("-- families of balanced configurations (h_i/m_i = 2 1/s), FULL inertia (omega = 500)\n");
   for (c = 0; c < 4; c++) {
     autobal_rotor_params p = autobal_rotor_params_default();
     autobal_rotor *r;
-    double y[MAXDIM], mon;
+    double y[MAXDIM], mon, mu[MAXDIM];
     const char *label[4] = {"3 identical balls", "5 identical balls", "4 different balls", "FULL inertia, default balls"};
+    size_t n = 2, k, dim;
     if (c == 0) {
-      p.plane[0].n_balls = 3;
+      n = 3;
       p.plane[0].ball_mass = m3;
       p.plane[0].ball_radius = r3;
       p.plane[0].ball_damping = h3;
       p.plane[0].ball_psi = p3;
     } else if (c == 1) {
-      p.plane[0].n_balls = 5;
+      n = 5;
       p.plane[0].ball_mass = m5;
       p.plane[0].ball_radius = r5;
       p.plane[0].ball_damping = h5;
       p.plane[0].ball_psi = p5;
     } else if (c == 2) {
-      p.plane[0].n_balls = 4;
+      n = 4;
       p.plane[0].ball_mass = m4;
       p.plane[0].ball_radius = r4;
       p.plane[0].ball_damping = h4;
@@ -259,10 +278,12 @@ static void test_families_and_variants(void) {
     } else {
       p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
     }
+    p.plane[0].n_balls = n;
     if (c < 3) p.plane[0].ball_rate = NULL;
     r = autobal_rotor_alloc(&p, NULL);
     if (r == NULL) continue;
-    autobal_rotor_initial_state(r, AUTOBAL_ROTOR_ROTATING, 0.0, y, autobal_rotor_dim(r));
+    dim = autobal_rotor_dim(r);
+    autobal_rotor_initial_state(r, AUTOBAL_ROTOR_ROTATING, 0.0, y, dim);
     integrate(autobal_rotor_rhs_rotating, r, 0.0, 60.0, y, 1e-10, 1e-12);
     mon = autobal_rotor_balance_monitor(r, AUTOBAL_ROTOR_ROTATING, 60.0, y);
     printf("     %s:\n", label[c]);
@@ -271,6 +292,23 @@ static void test_families_and_variants(void) {
     if (c == 3) {
       const double pb = M_PI - acos(0.2);
       CHECK_CLOSE("   FULL inertia: same balanced angles (3.14)", fabs(wrap(y[8])), pb, 0, 1e-6);
+    }
+    /* the member reached: exactly balanced copy of it, rotor at rest, balls at rest */
+    for (k = 0; k < 8; k++) y[k] = 0.0;
+    for (k = 0; k < n; k++) y[8 + n + k] = 0.0;
+    if (floquet_abs(r, y, mu) == 0) {
+      const double kappa_mu = exp(-2.0 * 2.0 * M_PI / 500.0); /* e^{-(h/m) T}, h/m = 2 1/s */
+      size_t n1 = 0, nk = 0;
+      for (k = 0; k < dim; k++) {
+        if (fabs(mu[k] - 1.0) < 1e-6) n1++;
+        if (fabs(mu[k] - kappa_mu) < 1e-6) nk++;
+      }
+      printf("     largest |mu| at the member reached: %.9f %.9f %.9f\n", mu[0], mu[1], mu[2]);
+      CHECK_CLOSE("   member reached is not linearly unstable: max |mu| <= 1", fmax(mu[0] - 1.0, 0.0), 0.0, 0, 1e-6);
+      CHECK("   n - 2 neutral multipliers (|mu| = 1) of the family", n1 == n - 2);
+      CHECK("   at least n - 2 multipliers e^{-(h/m) 2 pi / omega}", nk >= n - 2);
+    } else {
+      CHECK("   Floquet multipliers", 0);
     }
     autobal_rotor_free(r);
   }

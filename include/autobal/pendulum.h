@@ -491,7 +491,8 @@ typedef struct autobal_pendulum_motion_derived {
   double unbalance;   /* |residual unbalance|, units of 2 m l                        */
   double unbalance_u; /* its components along U and V                                */
   double unbalance_v;
-  double alpha;       /* psi - psi0 wrapped to (-pi, pi], rad                        */
+  double alpha;       /* psi - psi0 wrapped to (-pi, pi], rad (the other balanced
+                         state psi = phi = pi - psi0 shows alpha = beta = pi - 2 psi0) */
   double beta;        /* phi - psi0 wrapped to (-pi, pi], rad                        */
   double jacobi;      /* Jacobi integral E, units of M_sigma l^2 omega0^2            */
 } autobal_pendulum_motion_derived;

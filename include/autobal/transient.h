@@ -50,7 +50,9 @@
  *   status:
  *     AUTOBAL_EINVAL      bad arguments (nothing integrated, y untouched)
  *     AUTOBAL_ERHS        the right-hand side (or Jacobian) returned non-zero,
- *                         or returned a non-finite value
+ *                         or returned a non-finite value (tested on every
+ *                         step's result and error estimate, into which a NaN
+ *                         or inf of any stage propagates)
  *     AUTOBAL_ESTEP       step size below h_min, or below what changes t by
  *                         one ulp, or the stepper failed at that size
  *     AUTOBAL_EMAXSTEPS   max_steps accepted steps did not reach t1
@@ -132,8 +134,10 @@ AUTOBAL_API const char *autobal_transient_stepper_names(void);
 /* ---- callbacks -------------------------------------------------------------- */
 
 /* Observer: called at t0, at every output time t0 + k dt_out < t1 and at t1
- * (each once), with the state there.  Return non-zero to stop the run
- * (status AUTOBAL_EVENT, stop reason OBSERVER). */
+ * (each once), with the state there.  A run stopped early (event, failure,
+ * cancellation) makes no extra observer call at the stopping time: the
+ * final state is in y.  Return non-zero to stop the run (status
+ * AUTOBAL_EVENT, stop reason OBSERVER). */
 typedef int (*autobal_transient_observer_fn)(double t, const double y[], void *user);
 
 /* Progress: fraction of [t0, t1] done, in [0, 1], non-decreasing; called at
