@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# App test: valgrind memcheck finds no leak and no error in the apps on the default examples
+# (and on an error path).  Skipped in the sanitizer build (ASan and valgrind do not mix).
+set -u
+: "${AUTOBAL:?}" "${SCRATCH:?}"
+if [ "${SANITIZE:-0}" = "1" ]; then echo "sanitizer build: valgrind test skipped"; echo "0 passed, 0 failed"; exit 0; fi
+if ! command -v valgrind >/dev/null; then echo "FAIL valgrind not installed (scripts/deps.sh installs it)"; exit 1; fi
+rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+fail=0; pass=0
+vg() {
+  local want=$1; shift
+  valgrind --quiet --leak-check=full --show-leak-kinds=definite,indirect,possible --errors-for-leak-kinds=definite,indirect,possible \
+    --error-exitcode=99 "$@" >out.txt 2>vg.txt
+  local rc=$?
+  if [ $rc -eq "$want" ]; then echo "ok   valgrind clean (exit $rc): ${*#$AUTOBAL }"; pass=$((pass+1));
+  else echo "FAIL valgrind exit $rc (want $want): $*"; cat vg.txt | head -40; fail=$((fail+1)); fi
+}
+vg 0 "$AUTOBAL" rotor transient --set transient.t_end=2 -o r.h5
+vg 0 "$AUTOBAL" rotor transient --set transient.t_end=0.5 --set transient.frame=rotating --json
+vg 0 "$AUTOBAL" pendulum roots -o p.h5
+vg 0 "$AUTOBAL" pendulum critical --set critical.n_Rm=50 -o c.h5
+vg 0 "$AUTOBAL" pendulum map --set map.n_Rm=30 --set map.n_Rw=30 --set map.threads=1 -o m.h5
+vg 3 "$AUTOBAL" rotor transient --set plane1.ball_radius=-1,1
+vg 4 "$AUTOBAL" pendulum roots -o p.h5
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
