@@ -147,5 +147,6 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx);
 int cli_cmd_pendulum_critical(cli_ctx *ctx);
 int cli_cmd_pendulum_map(cli_ctx *ctx);
 int cli_cmd_rotor_transient(cli_ctx *ctx);
+int cli_cmd_pendulum_transient(cli_ctx *ctx);
 
 #endif

@@ -16,7 +16,6 @@
 
 /* Declared in cli.h by the command table's owner; repeated here so that this file compiles on
  * its own. */
-int cli_cmd_pendulum_transient(cli_ctx *ctx);
 
 typedef struct ptr_cfg {
   autobal_pendulum_params p;

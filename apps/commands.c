@@ -10,6 +10,8 @@ const cli_command cli_commands[] = {
      HELP_PENDULUM_CRITICAL, cli_cmd_pendulum_critical},
     {"pendulum map", "stability map over (R_m, R_w) for one k or every unbalance", HELP_PENDULUM_MAP,
      cli_cmd_pendulum_map},
+    {"pendulum transient", "transient of the two-pendulum autobalancer (1): time series, time to balance",
+     HELP_PENDULUM_TRANSIENT, cli_cmd_pendulum_transient},
     {"rotor transient", "transient of the rotor with ball autobalancers (3.2)/(3.4), 1 or 2 planes",
      HELP_ROTOR_TRANSIENT, cli_cmd_rotor_transient},
 };

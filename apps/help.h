@@ -45,6 +45,17 @@
   "  threads = 0               OpenMP threads (0: default)\n"                                  \
   "\narchive: /pendulum/map (verdict[R_m][R_w]: 1 stable, 0 marginal, -1 unstable)\n"
 
+#define HELP_PENDULUM_TRANSIENT                                                                     \
+  "Transient of the two-pendulum autobalancer: the nonlinear equations (1) in dimensionless time\n" \
+  "tau = omega0 t, integrated with a GSL stepper and streamed to HDF5; derived quantities: shaft\n"  \
+  "amplitude, residual unbalance of rotor plus pendulums (units of 2 m l), pendulum angles relative\n" \
+  "to the balancing position, Jacobi integral; time to balance.\n\n" HELP_PENDULUM_PARAMS            \
+  "\n[initial]   xi eta (units of l)  psi phi (rad)  xi_rate eta_rate psi_rate phi_rate   (all 0)\n" \
+  "[transient] t_end = 300 (tau)   revs_out = 0.25 (or dt_out, tau)   stepper = rk8pd\n"           \
+  "            rtol = 1e-10   atol = 1e-12   h_max = 0   max_steps = 1e8\n"                         \
+  "            balance_tol = 1e-3 (units of 2 m l)   balance_revs = 20   stop_at_balance = false\n"   \
+  "\narchive: /pendulum (parameters), /pendulum/transient (series over 'tau'), /pendulum/transient/solver\n"
+
 #define HELP_ROTOR_PARAMS                                                                          \
   "[rotor]     M_k = 6  A_k = 0.12  m_p = 4  A_p = 0.04  C_p = 0.03   (kg, kg m^2)\n"                 \
   "            omega = 500 (rad/s)   inertia = paper|full   axial = false\n"                           \

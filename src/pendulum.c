@@ -444,6 +444,28 @@ static void quartic_disc_ld(const long double c[5], long double *disc, long doub
   *mag = m;
 }
 
+/* 8ac - 3b^2 and 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 of the quartic
+ * c[0] + ... + c[4] x^4 (a = c[4], ..., e = c[0]); *sure is cleared when
+ * either is within its rounding bound of 0. */
+static void quartic_aux_ld(const long double c[5], long double *P8, long double *D4, int *sure) {
+  long double a = c[4], b = c[3], cc = c[2], d = c[1], e = c[0];
+  long double t[5], m8, m4 = 0.0L, s4 = 0.0L;
+  int i;
+  *P8 = 8.0L * a * cc - 3.0L * b * b;
+  m8 = fabsl(8.0L * a * cc) + fabsl(3.0L * b * b);
+  t[0] = 64.0L * a * a * a * e;
+  t[1] = -16.0L * a * a * cc * cc;
+  t[2] = 16.0L * a * b * b * cc;
+  t[3] = -16.0L * a * a * b * d;
+  t[4] = -3.0L * b * b * b * b;
+  for (i = 0; i < 5; i++) {
+    s4 += t[i];
+    m4 += fabsl(t[i]);
+  }
+  *D4 = s4;
+  if (fabsl(*P8) <= PEND_GAMMA * U_LD * m8 || fabsl(*D4) <= PEND_GAMMA * U_LD * m4) *sure = 0;
+}
+
 /* Verdict of the undamped system at W = R_w^2 (see the header).  Exact sign
  * criteria, evaluated in long double with first-order error bounds:
  *  k = 0: x = 0 plus the cubic a6 x^3 + a4 x^2 + a2 x + a0, all roots real and
@@ -452,8 +474,11 @@ static void quartic_disc_ld(const long double c[5], long double *disc, long doub
  *         the quartic has four real roots: discriminant > 0 with
  *         8ac - 3b^2 < 0 and 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 < 0
  *         (distinct roots), or discriminant = 0 on the boundary (MARGINAL). */
-static int undamped_verdict_ld(long double Rm, long double W, long double k) {
+static int undamped_verdict_ld(long double Rm, long double W, long double k, int *sure) {
   long double c[5];
+  int sure_dummy;
+  if (sure == NULL) sure = &sure_dummy;
+  *sure = 1;
   if (k == 1.0L) {
     /* (15): stable iff f(nu) = (1-R_m) nu^4 - 2R nu^3 + (R^2-1) nu^2 + 2R nu - R^2
      * (P1 at lambda = i(nu - R)) has four real roots (the roots of conj(P1)
@@ -467,12 +492,12 @@ static int undamped_verdict_ld(long double Rm, long double W, long double k) {
     f[4] = 1.0L - Rm;
     quartic_disc_ld(f, &disc, &mag);
     if (disc < -PEND_GAMMA * U_LD * mag) return AUTOBAL_VERDICT_UNSTABLE;
-    P8 = 8.0L * f[4] * f[2] - 3.0L * f[3] * f[3];
-    D4 = 64.0L * f[4] * f[4] * f[4] * f[0] - 16.0L * f[4] * f[4] * f[2] * f[2] +
-         16.0L * f[4] * f[3] * f[3] * f[2] - 16.0L * f[4] * f[4] * f[3] * f[1] -
-         3.0L * f[3] * f[3] * f[3] * f[3];
+    quartic_aux_ld(f, &P8, &D4, sure);
     if (P8 >= 0.0L || D4 >= 0.0L) return AUTOBAL_VERDICT_UNSTABLE;
-    if (disc <= PEND_GAMMA * U_LD * mag) return AUTOBAL_VERDICT_MARGINAL;
+    if (disc <= PEND_GAMMA * U_LD * mag) {
+      *sure = 0;
+      return AUTOBAL_VERDICT_MARGINAL;
+    }
     return AUTOBAL_VERDICT_STABLE;
   }
   undamped_coefs_ld(Rm, W, k, c);
@@ -493,7 +518,10 @@ static int undamped_verdict_ld(long double Rm, long double W, long double k) {
       m += fabsl(t[i]);
     }
     if (d < -PEND_GAMMA * U_LD * m) return AUTOBAL_VERDICT_UNSTABLE;
-    if (a0 <= ba0 || d <= PEND_GAMMA * U_LD * m) return AUTOBAL_VERDICT_MARGINAL;
+    if (a0 <= ba0 || d <= PEND_GAMMA * U_LD * m) {
+      *sure = 0;
+      return AUTOBAL_VERDICT_MARGINAL;
+    }
     return AUTOBAL_VERDICT_STABLE;
   }
   {
@@ -501,17 +529,19 @@ static int undamped_verdict_ld(long double Rm, long double W, long double k) {
     long double disc, mag, P8, D4;
     long double bnd;
     if (b <= 0.0L || cc <= 0.0L || d <= 0.0L) return AUTOBAL_VERDICT_UNSTABLE;
+    (void)a, (void)e;
     quartic_disc_ld(c, &disc, &mag);
     bnd = PEND_GAMMA * U_LD * mag;
     if (disc < -bnd) return AUTOBAL_VERDICT_UNSTABLE;
-    P8 = 8.0L * a * cc - 3.0L * b * b;
-    D4 = 64.0L * a * a * a * e - 16.0L * a * a * cc * cc + 16.0L * a * b * b * cc -
-         16.0L * a * a * b * d - 3.0L * b * b * b * b;
+    quartic_aux_ld(c, &P8, &D4, sure);
     if (P8 >= 0.0L || D4 >= 0.0L) {
       /* two complex pairs unless on the boundary disc = 0 */
       return AUTOBAL_VERDICT_UNSTABLE;
     }
-    if (disc <= bnd) return AUTOBAL_VERDICT_MARGINAL;
+    if (disc <= bnd) {
+      *sure = 0;
+      return AUTOBAL_VERDICT_MARGINAL;
+    }
     return AUTOBAL_VERDICT_STABLE;
   }
 }
@@ -551,7 +581,7 @@ int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *ver
   if ((st = check_rm_k(R_m, k, err)) != 0) return st;
   if ((st = autobal_check_param(err, "R_w", R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
   if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "undamped_verdict: NULL output");
-  *verdict = undamped_verdict_ld(R_m, (long double)R_w * (long double)R_w, k);
+  *verdict = undamped_verdict_ld(R_m, (long double)R_w * (long double)R_w, k, NULL);
   return AUTOBAL_SUCCESS;
 }
 
@@ -774,7 +804,7 @@ int autobal_pendulum_analyze(autobal_pendulum_workspace *ws, const autobal_pendu
   r->verdicts_agree = r->verdict == r->verdict_roots;
   r->undamped = (p->H == 0.0 && p->h == 0.0);
   if (r->undamped)
-    r->undamped_verdict = undamped_verdict_ld(p->R_m, (long double)p->R_w * p->R_w, k);
+    r->undamped_verdict = undamped_verdict_ld(p->R_m, (long double)p->R_w * p->R_w, k, NULL);
   sufficient_conditions(p, k, r);
   return AUTOBAL_SUCCESS;
 }
@@ -963,9 +993,17 @@ static int undamped_cluster(autobal_pendulum_workspace *ws, long double Rm, long
     }
   u = -((long double)re[bi] + re[bj]);
   v = (long double)re[bi] * re[bj] - (long double)im[bi] * im[bj];
-  if (bairstow(c, &u, &v, q) != 0)
-    return autobal_error_set(&ws->err, AUTOBAL_ENUMERIC,
-                             "critical speeds: Bairstow iteration did not converge at W = %.17Lg", W);
+  if (bairstow(c, &u, &v, q) != 0) {
+    /* no convergence (e.g. a third root close by): fall back on the double
+     * precision roots themselves */
+    long double dr = (long double)re[bi] - re[bj], di = (long double)im[bi] - im[bj];
+    int m, okr = 1;
+    *g = dr * dr - di * di;
+    for (m = 0; m < 4; m++)
+      if (m != bi && m != bj && (im[m] != 0.0 || re[m] > 0.0)) okr = 0;
+    *rest_ok = okr && re[bi] + re[bj] <= 0.0;
+    return AUTOBAL_SUCCESS;
+  }
   *g = u * u - 4.0L * v;
   *rest_ok = (q[1] * q[1] - 4.0L * q[2] * q[0] >= 0.0L) && q[1] * q[2] >= 0.0L &&
              q[0] * q[2] >= 0.0L && u >= 0.0L && v >= 0.0L;
@@ -990,9 +1028,9 @@ static int cluster_fn(double W, void *vctx, double *fx) {
 static int undamped_verdict_robust(autobal_pendulum_workspace *ws, long double Rm, long double W,
                                    long double k, int *verdict) {
   long double g;
-  int ok, st;
-  *verdict = undamped_verdict_ld(Rm, W, k);
-  if (*verdict != AUTOBAL_VERDICT_MARGINAL || k == 0.0L || k == 1.0L) return AUTOBAL_SUCCESS;
+  int ok, st, sure;
+  *verdict = undamped_verdict_ld(Rm, W, k, &sure);
+  if (sure || k == 0.0L || k == 1.0L) return AUTOBAL_SUCCESS;
   if ((st = undamped_cluster(ws, Rm, W, k, &g, &ok)) != 0) return st;
   if (g < 0.0L || !ok) *verdict = AUTOBAL_VERDICT_UNSTABLE;
   else if (g > 0.0L) *verdict = AUTOBAL_VERDICT_STABLE;
@@ -1537,7 +1575,7 @@ static int map_point(const autobal_pendulum_map_spec *s, const double *ks, size_
     double k = ks[i], kc = 1.0 - k;
     int vv;
     if (undamped) {
-      vv = undamped_verdict_ld(Rm, (long double)Rw * Rw, k);
+      vv = undamped_verdict_ld(Rm, (long double)Rw * Rw, k, NULL);
       if (vv == AUTOBAL_VERDICT_MARGINAL) vv = AUTOBAL_VERDICT_STABLE; /* on a boundary */
     } else {
       int st = damped_verdict_k(Rw, Rm, s->H, s->h, k, kc, &vv, NULL, NULL);
