@@ -142,6 +142,12 @@ int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_p
 int cli_write_pendulum_params(cli_ctx *ctx, struct autobal_archive *a, const autobal_pendulum_params *p,
                               const autobal_pendulum_physical *phys, int physical);
 
+#include "autobal/rotor.h"
+/* Read the rotor model sections [rotor], [supports], [lumped], [initial], [plane1], [plane2]
+ * (defaults: the spec's default example) into *p.  The ball arrays of *p point into *storage,
+ * which the caller releases with free(*storage) after the last use of *p. */
+int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage);
+
 /* ---- subcommands ------------------------------------------------------------ */
 int cli_cmd_pendulum_roots(cli_ctx *ctx);
 int cli_cmd_pendulum_critical(cli_ctx *ctx);

@@ -87,7 +87,7 @@ static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
   return CLI_EXIT_OK;
 }
 
-static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
+static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   autobal_rotor_hardware *hw = &c->p.hw;
   autobal_rotor_lumped *lu = &c->p.lumped;
   const char *inertia = "paper";
@@ -166,6 +166,27 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   } else {
     c->p.n_planes = 1;
   }
+  return CLI_EXIT_OK;
+}
+
+int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage) {
+  rotor_cfg *c = calloc(1, sizeof *c);
+  int rc;
+  *storage = NULL;
+  if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  rc = read_rotor_model(ctx, c);
+  if (rc) {
+    free(c);
+    return rc;
+  }
+  *p = c->p; /* the ball arrays point into c, which the caller frees with free(*storage) */
+  *storage = c;
+  return CLI_EXIT_OK;
+}
+
+static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
+  int rc;
+  if ((rc = read_rotor_model(ctx, c))) return rc;
   /* [transient] */
   c->t_end = 20.0;
   c->dt_out = 0.0; /* 0: revs_out */
