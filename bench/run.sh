@@ -1,10 +1,42 @@
 #!/usr/bin/env bash
-# Build bench_pendulum (Release, standalone CMake project in bench/) and run
-# the autobal-vs-SciPy comparison; prints a table.  Extra arguments go to
-# pendulum_scipy.py (e.g. --t1 100 --tols 1e-8).
+# Build the benchmarks (Release, standalone CMake project in bench/) and run
+# the autobal-vs-SciPy comparisons; prints the tables.  Not part of CTest.
+#
+#   bench/run.sh                     pendulum, then rotor (default options)
+#   bench/run.sh pendulum [ARGS...]  only the pendulum; ARGS go to pendulum_scipy.py
+#                                    (e.g. --t1 50 --tols 1e-8)
+#   bench/run.sh rotor [ARGS...]     only the rotor; ARGS go to rotor_scipy.py
+#                                    (e.g. --balls 8 --tols 1e-8, --only rhs)
+#
+# Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
+what=all
+if [ $# -gt 0 ]; then
+  case "$1" in
+    all|pendulum|rotor) what=$1; shift ;;
+    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum or rotor; see --help)" >&2
+       exit 2 ;;
+  esac
+fi
+if [ "$what" = all ] && [ $# -gt 0 ]; then
+  echo "run.sh: options need a benchmark name first (run.sh pendulum ... or run.sh rotor ...)" >&2
+  exit 2
+fi
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
-cmake --build "$build" --target bench_pendulum > /dev/null
-exec /usr/bin/python3 "$here/pendulum_scipy.py" --bench "$build/bench_pendulum" "$@"
+case "$what" in
+  pendulum) targets=(bench_pendulum) ;;
+  rotor) targets=(bench_rotor) ;;
+  all) targets=(bench_pendulum bench_rotor) ;;
+esac
+cmake --build "$build" --target "${targets[@]}" > /dev/null
+py=/usr/bin/python3
+if [ "$what" = pendulum ] || [ "$what" = all ]; then
+  "$py" "$here/pendulum_scipy.py" --bench "$build/bench_pendulum" "$@"
+fi
+if [ "$what" = all ]; then echo; fi
+if [ "$what" = rotor ] || [ "$what" = all ]; then
+  "$py" "$here/rotor_scipy.py" --bench "$build/bench_rotor" "$@"
+fi

@@ -161,14 +161,14 @@ static void char_parts(double R_w, double R_m, double H, double h, double A[9], 
   autobal_cpoly_real_part(q, 9, Babs, NULL);
 }
 
-/* (6) for given k (kc = cos^2(2 psi0) = 1 - k) with absolute error bounds
- * cerr (may be NULL): AUTOBAL_PENDULUM_HURWITZ_RTOL relative plus rounding. */
-static void char_poly_k(double R_w, double R_m, double H, double h, double k, double kc,
-                        double coef[9], double cerr[9]) {
-  double A[9], B[9], Aa[9], Ba[9];
+/* (6) from its parts A, B (char_parts) for given k (kc = cos^2(2 psi0) =
+ * 1 - k), with absolute error bounds cerr (may be NULL):
+ * AUTOBAL_PENDULUM_HURWITZ_RTOL relative plus rounding. */
+static void char_poly_from_parts(double R_w, double R_m, const double A[9], const double B[9],
+                                 const double Aa[9], const double Ba[9], double k, double kc,
+                                 double coef[9], double cerr[9]) {
   size_t j;
   double W = R_w * R_w;
-  char_parts(R_w, R_m, H, h, A, B, Aa, Ba, NULL);
   for (j = 0; j < 9; j++) {
     coef[j] = A[j] - R_m * R_m * kc * B[j]; /* eq. (6) */
     if (cerr)
@@ -182,6 +182,14 @@ static void char_poly_k(double R_w, double R_m, double H, double h, double k, do
    * exact and small k keep the right sign. */
   coef[0] = k * R_m * R_m * W * W * W * W;
   if (cerr) cerr[0] = (4.0 * U_D + AUTOBAL_PENDULUM_HURWITZ_RTOL) * coef[0];
+}
+
+/* (6) for given k, see char_poly_from_parts */
+static void char_poly_k(double R_w, double R_m, double H, double h, double k, double kc,
+                        double coef[9], double cerr[9]) {
+  double A[9], B[9], Aa[9], Ba[9];
+  char_parts(R_w, R_m, H, h, A, B, Aa, Ba, NULL);
+  char_poly_from_parts(R_w, R_m, A, B, Aa, Ba, k, kc, coef, cerr);
 }
 
 static void k_and_kc(const autobal_pendulum_params *p, double *k, double *kc) {
@@ -931,7 +939,7 @@ static int positive_roots(autobal_pendulum_workspace *ws, const long double *q0,
  * initial (u, v), by Bairstow's method in long double; b[2..4] receive the
  * quotient b4 x^2 + b3 x + b2.  Returns 0 on convergence. */
 static int bairstow(const long double a[5], long double *u, long double *v, long double q[3]) {
-  long double b[5], c[5], prev = INFINITY;
+  long double b[5], c[5], prev = INFINITY, best = INFINITY, bu = *u, bv = *v;
   int it, i, conv = 0;
   for (it = 0; it < 100; it++) {
     long double det, du, dv;
@@ -949,15 +957,24 @@ static int bairstow(const long double a[5], long double *u, long double *v, long
     *v += dv;
     {
       /* converged when the step is at rounding level, or stops shrinking
-       * once below 1e-15 relative (quadratic convergence has ended) */
+       * once small (quadratic convergence has ended in rounding noise);
+       * the iterate after the smallest step is kept */
       long double step = fabsl(du) / (1 + fabsl(*u)) + fabsl(dv) / (1 + fabsl(*v));
-      if (step <= 16 * U_LD || (step < 1e-15L && step >= 0.5L * prev)) {
+      if (step < best) {
+        best = step;
+        bu = *u;
+        bv = *v;
+      }
+      if (step <= 16 * U_LD || (step < 1e-14L && step >= 0.5L * prev)) {
         conv = 1;
         break;
       }
       prev = step;
     }
   }
+  if (!conv && best < 1e-13L) conv = 1;
+  *u = bu;
+  *v = bv;
   b[4] = a[4];
   b[3] = a[3] - *u * b[4];
   b[2] = a[2] - *u * b[3] - *v * b[4];
@@ -1057,12 +1074,15 @@ static int refine_on_cluster(cluster_ctx *cc, double W0, double *W) {
   return AUTOBAL_SUCCESS; /* no sign change of g nearby (touch): keep W0 */
 }
 
-/* k in (0, 1) near 1: the double root of (10) at k = 1, W18 = 2(1-2R_m)/(1-4R_m)^2
- * ((18) squared), opens into an unstable window (pair complex) when
- * R_m^(1) < R_m < 1/4.  Look for it directly: if the pair is complex at W18,
- * walk outwards until it is real and refine both ends on g. */
-static int window_at_18(cluster_ctx *cc, double *lo, double *hi, int *found) {
-  double W18 = 2.0 * (1.0 - 2.0 * (double)cc->Rm) / ((1.0 - 4.0 * (double)cc->Rm) * (1.0 - 4.0 * (double)cc->Rm));
+/* The degenerate points of the limits k -> 1 and k -> 0 open into windows
+ * where a pair of roots of (10) is complex, of width ~ sqrt(1-k) resp.
+ * sqrt(k), too narrow for the discriminant in W when k is close to 1 or 0:
+ *  - k -> 1: the double root of (10) at k = 1, W18 = 2(1-2R_m)/(1-4R_m)^2
+ *    ((18) squared), an unstable window when R_m^(1) < R_m < 1/4;
+ *  - k -> 0: W = 1, where x = 0 meets the cubic (13).
+ * Look for a window at such a point W18 directly: if the pair is complex
+ * there, walk outwards until it is real and refine both ends on g. */
+static int window_at(cluster_ctx *cc, double W18, double *lo, double *hi, int *found) {
   double g0, h, ga, gb, a = 0, b = 0;
   int st, fa = 0, fb = 0;
   *found = 0;
@@ -1248,40 +1268,47 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
       qsort(Wr, nW, sizeof(double), cmp_dbl);
     }
   }
-  if (k > 0.0 && k < 1.0) {
+  if (k < 1.0) {
     /* refine every candidate on the pair discriminant (well conditioned,
      * from the coefficients of (10) at W rather than the expanded
      * discriminant in W), then look for a window at (18) too narrow for the
      * discriminant in W */
     cluster_ctx cc;
     double wlo, whi;
-    int found;
+    int found, pt;
     cc.ws = ws;
     cc.Rm = R_m;
     cc.k = k;
     for (i = 0; i < nW; i++) {
       double Wn;
+      if (k == 0.0 && Wr[i] == 1.0) continue; /* exact (13) */
       if ((st = refine_on_cluster(&cc, Wr[i], &Wn)) != 0) return st;
       Wr[i] = Wn;
     }
-    if ((st = window_at_18(&cc, &wlo, &whi, &found)) != 0) return st;
-    if (found) {
+    for (pt = 0; pt < 2 && k > 0.0; pt++) {
+      double Wc = pt == 0 ? 2.0 * (1.0 - 2.0 * R_m) / ((1.0 - 4.0 * R_m) * (1.0 - 4.0 * R_m)) : 1.0;
+      if ((st = window_at(&cc, Wc, &wlo, &whi, &found)) != 0) return st;
+      if (!found) continue;
+      /* candidates that approximated the ends were refined onto them above
+       * (merged below); inside a window too narrow for the discriminant in W
+       * any candidate is an artefact */
       size_t n2 = 0;
-      double pad = 10.0 * (whi - wlo) + 1e-6 * whi;
+      int narrow = whi - wlo < 1e-6 * whi;
       for (i = 0; i < nW; i++)
-        if (Wr[i] < wlo - pad || Wr[i] > whi + pad) Wr[n2++] = Wr[i];
+        if (!(narrow && Wr[i] > wlo && Wr[i] < whi)) Wr[n2++] = Wr[i];
       if (n2 + 2 <= AUTOBAL_PENDULUM_MAX_CRIT) {
         Wr[n2++] = wlo;
         Wr[n2++] = whi;
       }
       nW = n2;
+      qsort(Wr, nW, sizeof(double), cmp_dbl);
     }
     qsort(Wr, nW, sizeof(double), cmp_dbl);
     {
       /* merge duplicates produced by the refinement */
       size_t n2 = 0;
       for (i = 0; i < nW; i++)
-        if (n2 == 0 || Wr[i] > Wr[n2 - 1] * (1 + 4 * DBL_EPSILON)) Wr[n2++] = Wr[i];
+        if (n2 == 0 || Wr[i] > Wr[n2 - 1] * (1 + 1e-13)) Wr[n2++] = Wr[i];
       nW = n2;
     }
   }
@@ -1290,9 +1317,32 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
     long double a = i == 0 ? 0.0L : Wr[i - 1];
     long double b = i == nW ? 2.0L * a + 1.0L : Wr[i];
     if ((st = undamped_verdict_robust(ws, R_m, 0.5L * (a + b), k, &vint[i])) != 0) return st;
+
   }
   for (i = 0; i < nW; i++) rw[i] = sqrt(Wr[i]);
-  return crit_set_fill(out, rw, vint, nW, 1, 0.0, INFINITY);
+  st = crit_set_fill(out, rw, vint, nW, 1, 0.0, INFINITY);
+  {
+    /* a touch within 1e-8 of a transition is an artefact of the rounding of
+     * the pair discriminant (large W): drop it */
+    size_t n2 = 0;
+    for (i = 0; i < out->n; i++) {
+      int drop = 0;
+      if (out->kind[i] == AUTOBAL_CRIT_TOUCH) {
+        if (i > 0 && out->kind[i - 1] != AUTOBAL_CRIT_TOUCH && out->R_w[i] - out->R_w[i - 1] < 1e-8 * out->R_w[i])
+          drop = 1;
+        if (i + 1 < out->n && out->kind[i + 1] != AUTOBAL_CRIT_TOUCH &&
+            out->R_w[i + 1] - out->R_w[i] < 1e-8 * out->R_w[i])
+          drop = 1;
+      }
+      if (!drop) {
+        out->R_w[n2] = out->R_w[i];
+        out->kind[n2] = out->kind[i];
+        n2++;
+      }
+    }
+    out->n = n2;
+  }
+  return st;
 }
 
 size_t autobal_pendulum_crit_count(const autobal_pendulum_crit_set *s) {
@@ -1571,6 +1621,8 @@ static int map_point(const autobal_pendulum_map_spec *s, const double *ks, size_
   int worst = AUTOBAL_VERDICT_STABLE;
   double mre = -INFINITY;
   int undamped = s->H == 0.0 && s->h == 0.0;
+  double A[9], B[9], Aa[9], Ba[9];
+  if (!undamped) char_parts(Rw, Rm, s->H, s->h, A, B, Aa, Ba, NULL); /* independent of k */
   for (i = 0; i < nk; i++) {
     double k = ks[i], kc = 1.0 - k;
     int vv;
@@ -1578,7 +1630,11 @@ static int map_point(const autobal_pendulum_map_spec *s, const double *ks, size_
       vv = undamped_verdict_ld(Rm, (long double)Rw * Rw, k, NULL);
       if (vv == AUTOBAL_VERDICT_MARGINAL) vv = AUTOBAL_VERDICT_STABLE; /* on a boundary */
     } else {
-      int st = damped_verdict_k(Rw, Rm, s->H, s->h, k, kc, &vv, NULL, NULL);
+      double coef[9], cerr[9];
+      int st;
+      char_poly_from_parts(Rw, Rm, A, B, Aa, Ba, k, kc, coef, cerr);
+      if (k == 0.0) st = autobal_poly_hurwitz_err(coef + 1, cerr + 1, 8, &vv, NULL, NULL);
+      else st = autobal_poly_hurwitz_err(coef, cerr, 9, &vv, NULL, NULL);
       if (st) return st;
     }
     if (vv < worst) worst = vv;

@@ -487,6 +487,39 @@ static void test_critical(void) {
       w_prev = b - a;
     }
   }
+  /* windows far narrower than the discriminant in W can resolve (1 - k down
+   * to 1e-16): still found, centred on (18), width ~ sqrt(1 - k) */
+  {
+    double r18, a, b, w10;
+    autobal_pendulum_rw23_k1(0.2, &r18, NULL);
+    autobal_pendulum_critical_speeds(ws, 0.2, 1.0 - 1e-10, &s);
+    w10 = autobal_pendulum_crit_get(&s, 2) - autobal_pendulum_crit_get(&s, 1);
+    autobal_pendulum_critical_speeds(ws, 0.2, 1.0 - 1e-14, &s);
+    a = autobal_pendulum_crit_get(&s, 1);
+    b = autobal_pendulum_crit_get(&s, 2);
+    CHECK("R_m = 0.2, k = 1 - 1e-14: window found around (18)",
+          autobal_pendulum_crit_count(&s) == 3 && a < r18 && r18 < b);
+    CHECK_CLOSE("... width(1 - 1e-10) / width(1 - 1e-14) = sqrt(1e4)", w10 / (b - a), 100.0, 0.01, 0);
+  }
+  /* k -> 0: R_w1(R_m, k) - 1 ~ sqrt(k) (the pair at x = 0, W = 1 of (13)) */
+  {
+    double d12, d16;
+    autobal_pendulum_critical_speeds(ws, 0.1, 1e-12, &s);
+    d12 = autobal_pendulum_crit_get(&s, 0) - 1.0;
+    autobal_pendulum_critical_speeds(ws, 0.1, 1e-16, &s);
+    d16 = autobal_pendulum_crit_get(&s, 0) - 1.0;
+    CHECK("k = 1e-16: R_w1 above 1, stability gained", d16 > 0 && s.kind[0] == AUTOBAL_CRIT_GAINED);
+    CHECK_CLOSE("R_w1 - 1 at k = 1e-12 over k = 1e-16: sqrt(1e4) = 100", d12 / d16, 100.0, 1e-4, 0);
+  }
+  /* near R_m = 1/4 (R_w ~ 250): reference roots of the cubic discriminant in W
+   * computed independently with mpmath (50 digits, findroot on (12)'s lhs) */
+  {
+    autobal_pendulum_critical_speeds(ws, 0.249, 0.0, &s);
+    CHECK_CLOSE("R_m = 0.249: R_w2(R_m, 0) vs 50-digit reference", autobal_pendulum_crit_get(&s, 1),
+                239.53175855327261, 1e-10, 0);
+    CHECK_CLOSE("R_m = 0.249: R_w3(R_m, 0) vs 50-digit reference", autobal_pendulum_crit_get(&s, 2),
+                261.8408115730119, 1e-10, 0);
+  }
   /* R_m^(1): the symbolic factorisation of (16)^2 - (18)^2 in u gives
    * (3u^2 - 1)(4u^6 - 8u^4 + 6u^2 - 1)^2, so the touch is at the root v of
    * 4v^3 - 8v^2 + 6v - 1 = 0, v = u^2 */
@@ -716,14 +749,13 @@ static void test_map(void) {
   {
     autobal_pendulum_workspace *ws = autobal_pendulum_workspace_alloc();
     autobal_pendulum_crit_set s;
-    double rm3[3] = {0.02, 0.1, 0.2}, rwA[3], rwB[3], rwU[3], r1, r2, r3, g1;
+    double rm3[3] = {0.02, 0.1, 0.2}, rwA[3], rwB[3], rwU[3], r2, r3, g1;
     signed char va[9];
     for (i = 0; i < 3; i++) {
       autobal_pendulum_critical_speeds(ws, rm3[i], 0.0, &s);
       r2 = autobal_pendulum_crit_get(&s, 1);
       r3 = autobal_pendulum_crit_get(&s, 2);
       autobal_pendulum_rw1_k1(rm3[i], &g1, NULL, NULL);
-      (void)r1;
       rwA[i] = 1.05 * r3;
       rwB[i] = g1 < r2 ? 0.5 * (g1 + r2) : NAN;
       rwU[i] = 0.5 * (r2 + r3);

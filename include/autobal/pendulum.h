@@ -184,8 +184,12 @@ typedef struct autobal_pendulum_result {
   int undamped_verdict; /* verdict "in the first approximation" of (10): STABLE when all
                            roots x = lambda^2 of (10) are real and <= 0, else UNSTABLE
                            (autobal_pendulum_undamped_verdict); 0 when not undamped      */
-  autobal_pendulum_sufficient cond7; /* (7): R_m << 1 or h >> 1: stable if R_w > 1       */
-  autobal_pendulum_sufficient cond8; /* (8): R_w >> 1: stable if h > H sqrt(R_m)         */
+  autobal_pendulum_sufficient cond7; /* (7): R_m << 1 or h >> 1: stable if R_w > 1
+                                        (converges slowly: the exact threshold at k = 1 is
+                                        R_w1 ~ 1 + 1.5 R_m^(1/3), (17))                 */
+  autobal_pendulum_sufficient cond8; /* (8): R_w >> 1: stable if h > H sqrt(R_m) (sharp
+                                        at k = 1, sufficient for every k: the threshold
+                                        on h is lower for k < 1)                       */
   autobal_pendulum_sufficient cond9; /* (9) corrected: H >> 1: stable iff
                                         R_m k W^2 / h^2 < W - 1, W = R_w^2 (h > 0)       */
 } autobal_pendulum_result;
@@ -194,7 +198,9 @@ typedef struct autobal_pendulum_result {
  * the eigenvalues of (5), their matching, the sign-test verdict
  * cross-checked with the roots, the margin max Re, the flags of (7)-(9).
  * Allocates nothing (uses ws).  On failure *res is unspecified, the status is
- * returned and recorded in ws. */
+ * returned and recorded in ws.  For very large speeds (R_w of order 1e4) the
+ * rounding bounds of the sign test grow like R_w^8 and it may
+ * answer MARGINAL where verdict_roots still decides. */
 AUTOBAL_API int autobal_pendulum_analyze(autobal_pendulum_workspace *ws,
                                          const autobal_pendulum_params *p,
                                          autobal_pendulum_result *res);
@@ -215,10 +221,15 @@ AUTOBAL_API int autobal_pendulum_undamped_poly(double R_m, double R_w, double k,
                                                autobal_error *err);
 
 /* Stability in the first approximation of the undamped system: *verdict =
- * AUTOBAL_VERDICT_STABLE when every root x of (10) is real and <= 0
- * (decided exactly on the coefficients: Sturm count of distinct real roots
- * in (-inf, 0] plus coefficient signs, with x = 0 divided out when k = 0),
- * AUTOBAL_VERDICT_UNSTABLE otherwise.  No workspace. */
+ * AUTOBAL_VERDICT_STABLE when every root x of (10) is real and <= 0,
+ * AUTOBAL_VERDICT_UNSTABLE otherwise, decided by exact sign criteria on the
+ * coefficients evaluated in long double with rounding-error bounds (no
+ * roots): k = 0: (12) for the cubic (x = 0 divided out); 0 < k < 1: all
+ * c_j > 0 and the quartic's discriminant > 0 with 8ac - 3b^2 < 0 and
+ * 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 < 0; k = 1: the same test on
+ * the factor P1 of (15) at lambda = i mu (four real mu).
+ * AUTOBAL_VERDICT_MARGINAL when a deciding quantity is zero within its
+ * rounding bound (on a critical speed, e.g. a double root).  No workspace. */
 AUTOBAL_API int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
                                                   autobal_error *err);
 
@@ -266,14 +277,32 @@ AUTOBAL_API size_t autobal_pendulum_crit_count(const autobal_pendulum_crit_set *
 AUTOBAL_API double autobal_pendulum_crit_get(const autobal_pendulum_crit_set *s, size_t j);
 
 /* Critical speeds of the UNDAMPED system (H = h = 0) for R_m in (0, 1/2),
- * k in [0, 1], located exactly: positive real roots W of the discriminant
- * (autobal_pendulum_undamped_discriminant), plus W = 1 when k = 0 (where the
- * root x = 0 of (10) meets the cubic), each refined to 1e-12 relative by
- * Brent's method on the discriminant; the verdict
- * (autobal_pendulum_undamped_verdict) on each interval between consecutive
- * candidates decides GAINED / LOST / TOUCH.  R_w = sqrt(W).
- * Narrow unstable windows (k slightly below 1, near (18)) are found as long
- * as their two ends are distinct in double precision. */
+ * k in [0, 1], located exactly (no sampling), R_w = sqrt(W):
+ *  1. candidates: the positive real roots W of the discriminant of (10) in x
+ *     (autobal_pendulum_undamped_discriminant, built in long double; k = 0:
+ *     of the cubic, plus W = 1 of (13); k = 1: of the factor P1 of (15),
+ *     whose roots are the exact transitions, plus the double roots of (10)
+ *     such as (18)), isolated between the critical points of the polynomial
+ *     and refined by Brent's method;
+ *  2. 0 <= k < 1: every candidate is refined again by Brent on the
+ *     discriminant u^2 - 4v of the quadratic factor x^2 + u x + v of (10)
+ *     that holds the colliding pair (Bairstow, long double) -- well
+ *     conditioned, unlike the expanded discriminant -- and the degenerate
+ *     points W = 2(1-2R_m)/(1-4R_m)^2 ((18) squared, limit k -> 1) and W = 1
+ *     (limit k -> 0) are searched directly for a window in which that pair
+ *     is complex: windows of width ~ sqrt(1-k) are found down to 1-k = 1e-16
+ *     for R_m up to ~0.2 (tested);
+ *  3. the verdict on each interval between consecutive candidates
+ *     (autobal_pendulum_undamped_verdict, with the pair test as fallback
+ *     where it is undecided) gives the kind.  A TOUCH is reported only
+ *     inside a stable region (a double root of (10) where stability is kept,
+ *     e.g. (18) at k = 1); touches in unstable regions are dropped.
+ * Accuracy: about 1e-13 relative for R_m <= 0.2 (checked against (16) and
+ * against 50-digit references); near R_m -> 1/4, where R_w2, R_w3 ~ 1/(1-4R_m),
+ * it degrades: at R_m = 0.249 (R_w ~ 250) critical speeds about 1e-11, the
+ * ends of a narrow k -> 1 window about 1e-8, and windows with 1-k < 1e-10
+ * are missed.  Near the triple point R_m^(1) the three values separate only
+ * by ~|R_m - R_m^(1)|, and their accuracy is limited accordingly. */
 AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
                                                  double k, autobal_pendulum_crit_set *out);
 
