@@ -17,6 +17,11 @@ max-norm-equivalent tolerance as well.
 
 Times are the best of N runs for both (autobal: --c-repeats, SciPy:
 --scipy-repeats), which removes most scheduling noise on a shared machine.
+SciPy's is the process CPU time (time.process_time): a 20-100 ms SciPy run on
+the shared 2-core machine is nearly always preempted when the load is above 2,
+which inflated its best-of-5 wall time up to 2x (ratios near 200x instead of
+100x), while autobal's best of 201 sub-millisecond runs (driver wall time)
+stays at its quiet-machine value.
 
 Run through bench/run.sh (builds bench_pendulum first) with /usr/bin/python3.
 """
@@ -75,9 +80,9 @@ def scipy_run(method, rtol, atol, t1, repeats):
     best = math.inf
     sol = None
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0 = time.process_time()  # CPU time: see the module docstring
         sol = solve_ivp(rhs, (0.0, t1), np.zeros(8), method=method, rtol=rtol, atol=atol)
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, time.process_time() - t0)
         if not sol.success:
             raise RuntimeError(f"{method}: {sol.message}")
     return best, sol.nfev, sol.y[:, -1]

@@ -17,12 +17,14 @@ t in [0, T1] (T1 = 0.5 s: 40 revolutions), final state only.
 
 The SciPy right-hand side is written here from the spec's equations (3.2),
 (3.3), (3.4) and "Solving for the accelerations", independently of the C code
-(which assembles a 4x4 system and solves it by Cholesky): NumPy-vectorized over
-the balls (np.sin/np.cos, dot products for S_ss, S_sc, S_cc, F_u, F_v), and the
-4x4 system reduced in closed form to a 2x2 one in (u_D'', v_D'') (the mass
-matrix is diag(M, M, A, A) plus a rank-2 term, see make_rhs).  Before timing,
-it is checked against the library's right-hand side at 5 states
-(`bench_rotor check`).
+(which assembles a 4x4 system and solves it by Cholesky), with the 4x4 system
+reduced in closed form to a 2x2 one in (u_D'', v_D'') (the mass matrix is
+diag(M, M, A, A) plus a rank-2 term, see make_rhs), in two versions:
+NumPy-vectorized over the balls (make_rhs: np.sin/np.cos, dot products for
+S_ss, S_sc, S_cc, F_u, F_v) and plain Python floats (make_rhs_plain: loops,
+math.sin/cos), which is faster below about 35 balls.  Both are checked
+against the library's right-hand side at 5 states (`bench_rotor check`)
+before anything is timed, and every solver is timed with both.
 
 Error norms differ: GSL's control bounds every component (max norm), SciPy's
 the RMS over the dim components, so DOP853 is also run at tol/sqrt(dim).
@@ -33,7 +35,15 @@ reference trajectory of the group of y_i ({x, y}, {alpha, beta}, {x', y'},
 {alpha', beta'}, {phi}, {phi'}); "ball err" is the largest absolute error of a
 ball angle, in rad.
 
-Times: best of N runs (autobal: --c-repeats, SciPy: --scipy-repeats).
+Times: best of N runs (autobal: --c-repeats, SciPy: --scipy-repeats) of the
+process CPU time (C: CLOCK_PROCESS_CPUTIME_ID around autobal_transient_run;
+Python: time.process_time around solve_ivp; both single-threaded).  CPU time,
+not wall time: on the shared 2-core machine a 50-300 ms SciPy run is almost
+always preempted by other jobs when the load is above 2, which doubled SciPy's
+best-of-5 wall time (while autobal's best of 201 short runs was unaffected);
+CPU time leaves that out, and agrees with the wall time of a quiet machine.
+The right-hand-side table times chunks of a few ms by wall clock, best of
+many (C: 51, Python: 31), which filters preemption the same way.
 
 Run through bench/run.sh (builds bench_rotor first) with /usr/bin/python3.
 """
@@ -235,9 +245,9 @@ def scipy_run(n, method, rtol, atol, t1, repeats, t_eval=None, variant="numpy"):
     best = math.inf
     sol = None
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0 = time.process_time()  # CPU time: see the module docstring
         sol = solve_ivp(rhs, (0.0, t1), y0, method=method, rtol=rtol, atol=atol, t_eval=t_eval)
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, time.process_time() - t0)
         if not sol.success:
             raise RuntimeError(f"{method}: {sol.message}")
     return best, sol.nfev, sol.y[:, -1], sol
@@ -276,7 +286,10 @@ def check_rhs(exe, n):
     return worst, len(data["states"])
 
 
-def time_py_rhs(n, calls, reps, variant):
+def time_py_rhs(n, seconds, reps, variant):
+    """Seconds per call: best of reps chunks of calls lasting >= seconds each
+    (short chunks, many of them, as for the C timing: the best one is a chunk
+    the scheduler did not interrupt), cycling through 16 random states."""
     rhs = RHS[variant](n)
     rng = np.random.default_rng(1234 + n)
     states = []
@@ -287,14 +300,19 @@ def time_py_rhs(n, calls, reps, variant):
                             OMEGA * t + rng.uniform(-math.pi, math.pi, n),
                             OMEGA + rng.uniform(-50, 50, n)))
         states.append((t, y))
-    best = math.inf
-    for _ in range(reps):
-        t0 = time.perf_counter()
+    pc = time.perf_counter
+
+    def chunk(calls):
+        t0 = pc()
         for k in range(calls):
             t, y = states[k & 15]
             rhs(t, y)
-        best = min(best, time.perf_counter() - t0)
-    return best / calls
+        return pc() - t0
+
+    calls = 4
+    while chunk(calls) < seconds:
+        calls *= 2
+    return min(chunk(calls) for _ in range(reps)) / calls
 
 
 def fit_line(n, c):
@@ -321,74 +339,89 @@ def transient_tables(args, tols):
         ref_dphi = np.max(np.abs(ref - ref_c)[8:8 + n])
         psi_end = ref[8:8 + n] - OMEGA * args.t1
         print(f"== {n} balls (dim {dim}), t in [0, {args.t1:g}] s, omega = {OMEGA:g} rad/s ==")
-        print(f"SciPy rhs vs library rhs at {nst} states: max difference {worst:.1e} "
-              f"(relative to each group's largest |component|)")
+        print(f"SciPy rhs (NumPy and plain) vs library rhs at {nst} states: max difference "
+              f"{worst:.1e} (relative to each group's largest |component|)")
         print(f"reference: SciPy DOP853 rtol=atol=1e-13 ({ref_nfev} rhs evals); autobal rk8pd "
               f"1e-13 differs from it by {ref_diff:.1e} (max rel) / {ref_dphi:.1e} rad (balls)")
+        if ref_diff > 1e-9:
+            print("WARNING: the two references differ by more than 1e-9: the accuracy columns "
+                  "are not reliable below that")
         print("state scales: |x,y| %.2e m, |alpha,beta| %.2e rad, |x',y'| %.2e m/s, "
               "|alpha',beta'| %.2e rad/s" % (scale[0], scale[2], scale[4], scale[6]))
         print("final psi = phi - omega t [rad]: " +
               ", ".join(f"{v:.4f}" for v in np.mod(psi_end + math.pi, 2 * math.pi) - math.pi))
         print()
-        hdr = (f"{'solver':<26}{'tol':>8}{'time [ms]':>11}{'rhs evals':>11}{'max rel err':>13}"
-               f"{'ball err':>10}{'time / autobal':>16}")
+        hdr = (f"{'':<26}{'':>8}{'':>11}{'':>11}{'':>10}{'--- NumPy rhs ---':>24}"
+               f"{'--- plain rhs ---':>24}")
+        print(hdr)
+        hdr = (f"{'solver':<26}{'tol':>8}{'rhs evals':>11}{'max rel err':>12}{'ball err':>10}"
+               f"{'time [ms]':>12}{'/ autobal':>12}{'time [ms]':>12}{'/ autobal':>12}")
         print(hdr)
         print("-" * len(hdr))
         for tol in tols:
             c = bench(args.bench, "run", n, "rk8pd", tol, tol, repr(args.t1), args.c_repeats)
             yc = np.array(c["y"])
-            tc = c["seconds_min"]
-            print(f"{'autobal rk8pd (C)':<26}{tol:>8.0e}{tc * 1e3:>11.3f}{c['rhs_evals']:>11d}"
-                  f"{np.max(np.abs(yc - ref) / scale):>13.2e}"
-                  f"{np.max(np.abs(yc - ref)[8:8 + n]):>10.1e}{1.0:>16.1f}")
+            tc = c["cpu_seconds_min"]
+            print(f"{'autobal rk8pd (C)':<26}{tol:>8.0e}{c['rhs_evals']:>11d}"
+                  f"{np.max(np.abs(yc - ref) / scale):>12.2e}"
+                  f"{np.max(np.abs(yc - ref)[8:8 + n]):>10.1e}{tc * 1e3:>12.3f}{1.0:>12.1f}")
             summary[(n, "autobal", tol)] = (tc, c["rhs_evals"])
             for method, fac, label in (("DOP853", 1.0, "SciPy DOP853"),
-                                       ("DOP853", 1 / math.sqrt(dim), f"SciPy DOP853 tol/sqrt({dim})"),
+                                       ("DOP853", 1 / math.sqrt(dim), "SciPy DOP853 tol/sqrt(dim)"),
                                        ("LSODA", 1.0, "SciPy LSODA")):
                 ts, nfev, yend, _ = scipy_run(n, method, tol * fac, tol * fac, args.t1,
                                               args.scipy_repeats)
-                ratio = ts / tc
-                summary[(n, label if fac == 1.0 else "SciPy DOP853 tol/sqrt(dim)", tol)] = \
-                    (ts, nfev, ratio)
-                print(f"{label:<26}{tol * fac:>8.1e}{ts * 1e3:>11.3f}{nfev:>11d}"
-                      f"{np.max(np.abs(yend - ref) / scale):>13.2e}"
-                      f"{np.max(np.abs(yend - ref)[8:8 + n]):>10.1e}{ratio:>16.1f}")
+                tp, nfev_p, _, _ = scipy_run(n, method, tol * fac, tol * fac, args.t1,
+                                             args.scipy_repeats, variant="plain")
+                summary[(n, label, tol)] = (ts / tc, tp / tc, ts / nfev, tp / nfev_p)
+                shown = label.replace("dim", str(dim))
+                print(f"{shown:<26}{tol * fac:>8.1e}{nfev:>11d}"
+                      f"{np.max(np.abs(yend - ref) / scale):>12.2e}"
+                      f"{np.max(np.abs(yend - ref)[8:8 + n]):>10.1e}"
+                      f"{ts * 1e3:>12.3f}{ts / tc:>12.1f}{tp * 1e3:>12.3f}{tp / tc:>12.1f}"
+                      + ("" if nfev_p == nfev else f"  (plain: {nfev_p} evals)"))
             print()
-        per_c = [summary[(n, "autobal", t)][0] / summary[(n, "autobal", t)][1] for t in tols]
-        per_s = [summary[(n, "SciPy DOP853", t)][0] / summary[(n, "SciPy DOP853", t)][1]
-                 for t in tols]
-        print(f"time per rhs evaluation incl. the stepper: autobal {min(per_c) * 1e9:.0f} ns, "
-              f"SciPy DOP853 {min(per_s) * 1e6:.1f} us")
+        per_c = min(summary[(n, "autobal", t)][0] / summary[(n, "autobal", t)][1] for t in tols)
+        per_n = min(summary[(n, "SciPy DOP853", t)][2] for t in tols)
+        per_p = min(summary[(n, "SciPy DOP853", t)][3] for t in tols)
+        print(f"time per rhs evaluation incl. the stepper: autobal {per_c * 1e9:.0f} ns, "
+              f"SciPy DOP853 {per_n * 1e6:.1f} us (NumPy rhs) / {per_p * 1e6:.1f} us (plain rhs)")
         print()
-    print("time ratios SciPy / autobal at equal nominal tolerance (min .. max over tolerances):")
+    print("time ratios SciPy / autobal, min .. max over the tolerances:")
+    print(f"  {'':<36}{'NumPy rhs':>16}{'plain rhs':>16}")
     for n in args.balls:
         for label in ("SciPy DOP853", "SciPy DOP853 tol/sqrt(dim)", "SciPy LSODA"):
-            r = [summary[(n, label, t)][2] for t in tols]
-            print(f"  {n} balls, {label:<28}{min(r):>8.0f}x .. {max(r):.0f}x")
+            rn = [summary[(n, label, t)][0] for t in tols]
+            rp = [summary[(n, label, t)][1] for t in tols]
+            print(f"  {n} balls, {label:<28}{min(rn):>7.0f} .. {max(rn):<6.0f}"
+                  f"{min(rp):>7.0f} .. {max(rp):<6.0f}")
     print()
 
 
 def rhs_table(args):
     sizes = [2 ** k for k in range(1, int(math.log2(args.nmax)) + 1)]
     c = bench(args.bench, "rhs", args.nmax, args.rhs_seconds)
-    py = [time_py_rhs(n, args.py_calls, args.py_reps) * 1e9 for n in sizes]
-    print(f"== cost of one right-hand side vs number of balls n "
-          f"(balls of 0.1/n kg; best of {args.py_reps} x {args.py_calls} calls for SciPy) ==")
+    pyn = [time_py_rhs(n, args.py_seconds, args.py_reps, "numpy") * 1e9 for n in sizes]
+    pyp = [time_py_rhs(n, args.py_seconds, args.py_reps, "plain") * 1e9 for n in sizes]
+    print(f"== cost of one right-hand side vs number of balls n (balls of 0.1/n kg; C: best of "
+          f"51 chunks of >= {args.rhs_seconds * 1e3:g} ms; SciPy: best of {args.py_reps} chunks of "
+          f">= {args.py_seconds * 1e3:g} ms) ==")
     hdr = (f"{'n':>5}{'dim':>6}{'C fixed [ns]':>14}{'per ball':>10}{'C rotating [ns]':>17}"
-           f"{'per ball':>10}{'SciPy rhs [us]':>16}{'per ball':>10}{'SciPy / C':>11}")
+           f"{'per ball':>10}{'NumPy rhs [us]':>16}{'plain rhs [us]':>16}{'best Py / C':>13}")
     print(hdr)
     print("-" * len(hdr))
     for i, n in enumerate(sizes):
-        cf, cr, p = c["fixed_ns"][i], c["rotating_ns"][i], py[i]
+        cf, cr = c["fixed_ns"][i], c["rotating_ns"][i]
         print(f"{n:>5d}{8 + 2 * n:>6d}{cf:>14.1f}{cf / n:>10.1f}{cr:>17.1f}{cr / n:>10.1f}"
-              f"{p / 1e3:>16.2f}{p / n / 1e3:>10.3f}{p / cf:>11.0f}")
+              f"{pyn[i] / 1e3:>16.2f}{pyp[i] / 1e3:>16.2f}{min(pyn[i], pyp[i]) / cf:>13.0f}")
     print()
     print("least-squares line cost = a + b n over all n:")
     for label, vals, unit, k in (("autobal fixed frame", c["fixed_ns"], "ns", 1.0),
                                  ("autobal rotating frame", c["rotating_ns"], "ns", 1.0),
-                                 ("SciPy (NumPy) fixed frame", py, "us", 1e-3)):
+                                 ("SciPy rhs, NumPy", pyn, "us", 1e-3),
+                                 ("SciPy rhs, plain Python", pyp, "us", 1e-3)):
         a, b, r2, mr = fit_line(c["n"], vals)
-        print(f"  {label:<26} a = {a * k:8.2f} {unit}, b = {b * k:7.3f} {unit}/ball, "
+        print(f"  {label:<24} a = {a * k:8.2f} {unit}, b = {b * k:7.3f} {unit}/ball, "
               f"R^2 = {r2:.6f}, max |residual| / cost = {mr * 100:.1f}%")
     # increments per added ball between consecutive sizes (constant if linear)
     inc = [(c["fixed_ns"][i + 1] - c["fixed_ns"][i]) / (sizes[i + 1] - sizes[i])
@@ -409,8 +442,9 @@ def main():
     ap.add_argument("--nmax", type=int, default=256, help="largest n of the RHS-cost table")
     ap.add_argument("--rhs-seconds", type=float, default=0.002,
                     help="length of one timed chunk of C rhs calls (best of 51 chunks)")
-    ap.add_argument("--py-calls", type=int, default=2000)
-    ap.add_argument("--py-reps", type=int, default=5)
+    ap.add_argument("--py-seconds", type=float, default=0.003,
+                    help="length of one timed chunk of Python rhs calls")
+    ap.add_argument("--py-reps", type=int, default=31)
     ap.add_argument("--only", choices=("transient", "rhs"), default=None)
     args = ap.parse_args()
     args.balls = [int(s) for s in args.balls.split(",")]
