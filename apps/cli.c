@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -146,26 +147,99 @@ static int ini_handler_fn(void *user, const char *section, const char *name, con
   return add_entry(c, section, name, value, 0) == 0 && !c->dup_error;
 }
 
-int cli_config_load(cli_ctx *ctx) {
+/* Parse INI text (len bytes, no NUL inside; text[len] must be '\0').  Before inih sees it, two
+ * things inih would get wrong silently are rejected: a NUL byte (inih's line reader stops at it
+ * and drops the rest of the line) and a line longer than inih's INI_MAX_LINE - 1 bytes (inih
+ * parses the remainder as a new line, so the error, if any, names the wrong line). */
+static int config_parse_text(cli_ctx *ctx, const char *name, const char *text, size_t len) {
   cli_config *c = ctx->cfg;
-  FILE *f;
+  size_t i, line = 1, col = 0;
   int rc;
+  for (i = 0; i < len; i++) {
+    if (text[i] == '\0')
+      return cli_fail(ctx, CLI_EXIT_INPUT, "config file '%s', line %zu: contains a NUL byte (not a text file?)", name,
+                      line);
+    /* inih reads a line with its newline into INI_MAX_LINE bytes including the terminating NUL */
+    if (++col > INI_MAX_LINE - 1)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "config file '%s', line %zu: longer than %d characters (the limit of the INI reader); "
+                      "shorten it (a list of equal values can be given as one value)",
+                      name, line, INI_MAX_LINE - 2);
+    if (text[i] == '\n') {
+      line++;
+      col = 0;
+    }
+  }
+  rc = ini_parse_string(text, ini_handler_fn, c);
+  if (c->dup_error)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "config file '%s': key '%s' is given more than once (or continued on an indented line)", name,
+                    c->dup_what);
+  if (rc > 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "config file '%s', line %d: cannot parse (expected '[section]', 'key = value' or a ';' comment)",
+                    name, rc);
+  if (rc < 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "config file '%s': out of memory", name);
+  return CLI_EXIT_OK;
+}
+
+int cli_config_load_text(cli_ctx *ctx, const char *name, const char *text, size_t len) {
+  char *copy;
+  int rc;
+  if (memchr(text, '\0', len)) return config_parse_text(ctx, name, text, len); /* reports the NUL */
+  copy = malloc(len + 1);
+  if (!copy) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  memcpy(copy, text, len);
+  copy[len] = '\0';
+  rc = config_parse_text(ctx, name, copy, len);
+  free(copy);
+  return rc;
+}
+
+/* Largest configuration file read (a config is a few kB; this stops a data file given by mistake). */
+#define CLI_CONFIG_MAX_BYTES (1u << 20)
+
+int cli_config_load(cli_ctx *ctx) {
+  FILE *f;
+  struct stat sb;
+  char *buf;
+  size_t len = 0;
+  int rc, read_errno = 0;
   if (!ctx->config_path) return CLI_EXIT_OK;
   f = fopen(ctx->config_path, "r");
   if (!f)
     return cli_fail(ctx, CLI_EXIT_INPUT, "cannot read config file '%s': %s", ctx->config_path, strerror(errno));
-  rc = ini_parse_file(f, ini_handler_fn, c);
+  /* fopen() succeeds on a directory; reading it then fails (or looks like an empty file) */
+  if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    fclose(f);
+    return cli_fail(ctx, CLI_EXIT_INPUT, "cannot read config file '%s': %s", ctx->config_path, strerror(EISDIR));
+  }
+  buf = malloc(CLI_CONFIG_MAX_BYTES + 1);
+  if (!buf) {
+    fclose(f);
+    return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  }
+  errno = 0;
+  for (;;) {
+    size_t got = fread(buf + len, 1, CLI_CONFIG_MAX_BYTES + 1 - len, f);
+    len += got;
+    if (got == 0 || len > CLI_CONFIG_MAX_BYTES) break;
+  }
+  if (ferror(f)) read_errno = errno ? errno : EIO;
   fclose(f);
-  if (c->dup_error)
-    return cli_fail(ctx, CLI_EXIT_INPUT,
-                    "config file '%s': key '%s' is given more than once (or continued on an indented line)",
-                    ctx->config_path, c->dup_what);
-  if (rc > 0)
-    return cli_fail(ctx, CLI_EXIT_INPUT,
-                    "config file '%s', line %d: cannot parse (expected '[section]', 'key = value' or a ';' comment)",
-                    ctx->config_path, rc);
-  if (rc < 0) return cli_fail(ctx, CLI_EXIT_INPUT, "cannot read config file '%s'", ctx->config_path);
-  return CLI_EXIT_OK;
+  if (read_errno) {
+    free(buf);
+    return cli_fail(ctx, CLI_EXIT_INPUT, "cannot read config file '%s': %s", ctx->config_path, strerror(read_errno));
+  }
+  if (len > CLI_CONFIG_MAX_BYTES) {
+    free(buf);
+    return cli_fail(ctx, CLI_EXIT_INPUT, "config file '%s' is larger than %u bytes (not a configuration file?)",
+                    ctx->config_path, CLI_CONFIG_MAX_BYTES);
+  }
+  buf[len] = '\0';
+  rc = config_parse_text(ctx, ctx->config_path, buf, len);
+  free(buf);
+  return rc;
 }
 
 int cli_config_override(cli_ctx *ctx, const char *assignment) {
@@ -242,9 +316,19 @@ static int parse_double(const char *s, double *out) {
   if (end == s) return -1;
   while (*end == ' ' || *end == '\t') end++;
   if (*end != '\0') return -1;
-  if (!isfinite(v) || errno == ERANGE) return -2;
+  if (!isfinite(v) && errno != ERANGE) return -2; /* "nan", "inf" written out */
+  if (errno == ERANGE) return -3;                 /* overflow, or underflow below DBL_MIN */
   *out = v;
   return 0;
+}
+
+/* The message of a parse_double() failure. */
+static const char *parse_double_problem(int rc) {
+  switch (rc) {
+    case -2: return "is not a finite number (NaN and infinities are not allowed)";
+    case -3: return "is outside the range of a double (magnitude 0 or from 2.2e-308 to 1.8e308)";
+    default: return "is not a number";
+  }
 }
 
 int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double def, double *out, int *present) {
@@ -255,11 +339,9 @@ int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double de
     return CLI_EXIT_OK;
   }
   rc = parse_double(e->value, out);
-  if (rc == -1)
-    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' is not a number", where(ctx, e), section, key, e->value);
-  if (rc == -2)
-    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' is not a finite number (NaN and infinities are not allowed)",
-                    where(ctx, e), section, key, e->value);
+  if (rc != 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' %s", where(ctx, e), section, key, e->value,
+                    parse_double_problem(rc));
   return CLI_EXIT_OK;
 }
 
@@ -324,8 +406,8 @@ int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *
     double v;
     int rc = parse_double(tok, &v);
     if (rc != 0)
-      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: item %zu '%s' is not a finite number", where(ctx, e), section,
-                      key, count + 1, tok);
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: item %zu '%s' %s", where(ctx, e), section, key, count + 1, tok,
+                      parse_double_problem(rc));
     if (count == cap)
       return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: more than %zu values", where(ctx, e), section, key, cap);
     out[count++] = v;

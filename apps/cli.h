@@ -48,9 +48,12 @@ typedef struct cli_ctx {
 
 cli_config *cli_config_new(const char *path);
 void cli_config_free(cli_config *c);
-/* Read ctx->config_path (if any) into ctx->cfg: a duplicated key or an unparsable line is an
- * error naming the file and line. */
+/* Read ctx->config_path (if any) into ctx->cfg: a duplicated key, an unparsable line, a NUL byte
+ * or a line longer than the INI reader's limit (INI_MAX_LINE - 2 characters) is an error naming the
+ * file and line; so is a directory, a read error or a file larger than 1 MiB. */
 int cli_config_load(cli_ctx *ctx);
+/* The same from INI text in memory (len bytes; `name` stands for the file in messages). */
+int cli_config_load_text(cli_ctx *ctx, const char *name, const char *text, size_t len);
 /* The effective configuration (file + overrides) as INI text (malloc'ed; NULL: no memory). */
 char *cli_config_to_ini(const cli_config *c);
 /* Apply one `--set section.key=value`. */
@@ -154,5 +157,9 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx);
 int cli_cmd_pendulum_map(cli_ctx *ctx);
 int cli_cmd_rotor_transient(cli_ctx *ctx);
 int cli_cmd_pendulum_transient(cli_ctx *ctx);
+int cli_cmd_rotor_stability(cli_ctx *ctx);
+int cli_cmd_rotor_sweep(cli_ctx *ctx);
+int cli_cmd_rotor_map(cli_ctx *ctx);
+int cli_cmd_rotor_campbell(cli_ctx *ctx);
 
 #endif

@@ -3,6 +3,12 @@
 #include "commands.h"
 #include "help.h"
 
+/* Single-word commands on an archive (apps/cmd_info.c, cmd_rerun.c, cmd_plot.c): they take
+ * FILE.h5 where the others take CONFIG.ini (main.c passes it as ctx->config_path). */
+int cli_cmd_info(cli_ctx *ctx);
+int cli_cmd_rerun(cli_ctx *ctx);
+int cli_cmd_plot(cli_ctx *ctx);
+
 const cli_command cli_commands[] = {
     {"pendulum roots", "characteristic roots (6) and eigenvalues of (5), stability verdict", HELP_PENDULUM_ROOTS,
      cli_cmd_pendulum_roots},
@@ -14,5 +20,17 @@ const cli_command cli_commands[] = {
      HELP_PENDULUM_TRANSIENT, cli_cmd_pendulum_transient},
     {"rotor transient", "transient of the rotor with ball autobalancers (3.2)/(3.4), 1 or 2 planes",
      HELP_ROTOR_TRANSIENT, cli_cmd_rotor_transient},
+    {"rotor stability", "balanced motion (3.14): stability (Delta, closed matrix, full model, Floquet), critical speeds",
+     HELP_ROTOR_STABILITY, cli_cmd_rotor_stability},
+    {"rotor sweep", "stability margin along omega, ball damping/mass, support stiffness...; critical values",
+     HELP_ROTOR_SWEEP, cli_cmd_rotor_sweep},
+    {"rotor map", "stability map over two parameters (e.g. omega x ball damping), OpenMP-parallel", HELP_ROTOR_MAP,
+     cli_cmd_rotor_map},
+    {"rotor campbell", "natural frequencies, Campbell diagram, unbalance response, resonance speeds",
+     HELP_ROTOR_CAMPBELL, cli_cmd_rotor_campbell},
+    {"info", "FILE.h5: what an archive holds: command, parameters, results, datasets", HELP_INFO, cli_cmd_info},
+    {"rerun", "FILE.h5 -o NEW.h5: repeat the recorded run (same data, bit for bit)", HELP_RERUN, cli_cmd_rerun},
+    {"plot", "FILE.h5 [-o DIR]: matplotlib pictures of an archive (tools/autobal_plot.py)", HELP_PLOT,
+     cli_cmd_plot},
 };
 const size_t cli_ncommands = sizeof cli_commands / sizeof cli_commands[0];

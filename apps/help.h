@@ -79,4 +79,59 @@
   "            stop_at_balance = false\n"                                                          \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'), /rotor/revolutions\n"
 
+#define HELP_INFO                                                                                   \
+  "A readable summary of any autobal archive: the command that wrote it, its status, provenance\n"   \
+  "and configuration; the headline results (verdicts, critical speeds, stable intervals, time to\n" \
+  "balance, residual unbalance); then every group with its attributes (parameters with units,\n"   \
+  "solver settings and statistics) and datasets (dimensions, shape, type, units, long_name).\n"    \
+  "--json prints the same as one JSON object (keys: file, root, command, status, headline[],\n"    \
+  "groups[] with attributes {name: {value, units}} and datasets[] {name, path, shape, dims,\n"     \
+  "dtype, coordinate, units, long_name, values (up to 64 elements)}).\n"                          \
+  "Exit 4 (with the reason) when FILE.h5 is missing, not HDF5, truncated or not an autobal archive.\n"
+
+#define HELP_RERUN                                                                                   \
+  "Run again the command recorded in FILE.h5 (root attribute `command`) with the configuration\n"   \
+  "recorded there (`input_config`: the configuration file plus --set overrides; built-in defaults\n" \
+  "fill the rest, as in the original run) and write NEW.h5.  With the same version of autobal\n"    \
+  "every dataset is reproduced bit for bit (provenance such as `created` and wall times differ).\n" \
+  "Options: -o NEW.h5 (required, not FILE.h5 itself), --force, --json, --quiet.  --set is refused.\n"
+
+#define HELP_PLOT                                                                                     \
+  "Draw PNG pictures of an archive with matplotlib: runs `/usr/bin/python3 autobal_plot.py FILE.h5\n" \
+  "-o DIR` (tools/ in the source tree, share/autobal/tools when installed; override with\n"          \
+  "AUTOBAL_TOOLS_DIR and AUTOBAL_PYTHON).  The script reads only the archive and writes\n"             \
+  "DIR/<stem>_<kind>.png (stem = FILE without .h5) for each group it knows: critical-speed curves\n" \
+  "with regions A and B (figure 2), stability maps, roots, transients (displacement, residual\n"     \
+  "unbalance on a log scale, ball/pendulum angles, time to balance).  -o DIR defaults to the current\n" \
+  "directory; the names of the files written are printed.\n"
+
+#define HELP_ROTOR_STAB_OPTS \
+  "[stability] method = auto|poly|closed|full|floquet   tol = 1e-9   floquet_rtol = 1e-11   floquet_atol = 1e-13\n" \
+  "            member1 = default|symmetric|free|given   member1_angles = (rad: balls 1..n-2 for free, all for given)\n" \
+  "            member2, member2_angles (plane 2)\n"
+#define HELP_ROTOR_STABILITY \
+  "Stability of the balanced motion (3.14): the degree-12 polynomial Delta (GSL roots, Routh-Hurwitz), the closed\n" \
+  "12x12 (16x16) matrix, the full model in rotating coordinates, Floquet multipliers (any supports); critical\n" \
+  "speeds and the stable speed intervals.\n\n" HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
+  "            critical_speeds = true  omega_min, omega_max (rad/s; default 5% of the 1st natural frequency .. 4x)\n" \
+  "            n_omega = 400  xtol_rel = 1e-8\n" \
+  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical\n"
+#define HELP_ROTOR_SWEEP \
+  "Stability margin along one parameter; every verdict change refined to xtol_rel; stable intervals.\n\n" \
+  HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
+  "[sweep] param = omega|ball_damping|ball_mass|stiffness_scale|damping_scale|unbalance_mass  min  max  n = 1000\n" \
+  "        xtol_rel = 1e-8\n" \
+  "\narchive: /rotor/sweep (margin and verdict over the parameter, critical_value, stable_lo/hi)\n"
+#define HELP_ROTOR_MAP \
+  "Two-parameter stability map, OpenMP-parallel (results independent of the thread count).\n\n" \
+  HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
+  "[map] param1 = omega  min1 max1 n1 = 120   param2 = ball_damping  min2 max2 n2 = 60   threads = 0\n" \
+  "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n"
+#define HELP_ROTOR_CAMPBELL \
+  "Rotor-housing without balls: natural frequencies at rest (undamped, damped), Campbell diagram (C omega\n" \
+  "gyroscopic), steady unbalance response, critical speeds (frequency = omega) and response peaks.\n\n" \
+  HELP_ROTOR_PARAMS \
+  "[campbell] omega_min = 0  omega_max  n = 401  n_resonance = 4000  xtol_rel = 1e-10\n" \
+  "\narchive: /rotor/campbell\n"
+
 #endif

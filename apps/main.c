@@ -14,6 +14,7 @@ static void print_usage(FILE *f) {
   size_t i;
   fprintf(f,
           "usage: autobal <model> <action> [CONFIG.ini] [options]\n"
+          "       autobal info|rerun|plot FILE.h5 [options]\n"
           "       autobal --help | --version\n"
           "\n"
           "Dynamics of rotors with passive automatic balancers.  Every command runs on built-in\n"
@@ -45,6 +46,16 @@ static void print_version(void) {
   autobal_hdf5_version(h5, sizeof h5);
   printf("autobal %s (git %s), GSL %s, HDF5 %s\n", autobal_version(), autobal_git_revision(), autobal_gsl_version(),
          h5);
+}
+
+/* A single-word command (info, rerun, plot): it works on an archive FILE.h5, given where the
+ * "model action" commands take CONFIG.ini; main passes it as ctx->config_path and loads no
+ * configuration. */
+static const cli_command *find_archive_command(const char *word) {
+  size_t i;
+  for (i = 0; i < cli_ncommands; i++)
+    if (!strchr(cli_commands[i].name, ' ') && strcmp(cli_commands[i].name, word) == 0) return &cli_commands[i];
+  return NULL;
 }
 
 static const cli_command *find_command(const char *model, const char *action) {
@@ -118,6 +129,32 @@ int main(int argc, char **argv) {
     }
     print_usage(stderr);
     return CLI_EXIT_USAGE;
+  }
+  cmd = find_archive_command(model);
+  if (cmd) {
+    if (want_help) {
+      free(sets);
+      printf("usage: autobal %s FILE.h5 [options]\n\n%s", cmd->name, cmd->help);
+      return CLI_EXIT_OK;
+    }
+    if (ctx.config_path || nsets > 0) {
+      fprintf(stderr, "autobal: error: '%s' takes one archive FILE.h5%s (see 'autobal %s --help')\n", cmd->name,
+              nsets > 0 ? " and no --set" : "", cmd->name);
+      free(sets);
+      return CLI_EXIT_USAGE;
+    }
+    free(sets);
+    ctx.command = cmd->name;
+    ctx.config_path = action; /* the archive; NULL: the command says what is missing */
+    if (ctx.json) ctx.progress = 0;
+    ctx.cfg = cli_config_new(NULL);
+    if (!ctx.cfg) return CLI_EXIT_INTERNAL;
+    cli_signals_install();
+    rc = cmd->run(&ctx);
+    if (rc != CLI_EXIT_OK)
+      fprintf(stderr, "autobal: error: %s\n", ctx.err[0] ? ctx.err : "failed (no message)");
+    cli_config_free(ctx.cfg);
+    return rc;
   }
   cmd = find_command(model, action);
   if (!cmd) {

@@ -11,6 +11,7 @@
 #include "autobal/status.h"
 #include "autobal/version.h"
 #include "autobal/rotor.h"
+#include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
 #include "autobal/transient.h"
 #include "autobal/pendulum.h"

@@ -6,6 +6,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -119,61 +120,115 @@ static void blocks(double R_w, double H, double h, double a11[6], double a31[6],
   a33[5] = 0.0;
 }
 
-static void cabs_poly(const double *a, size_t len, double *out) {
-  size_t i;
-  for (i = 0; i < len; i++) {
-    out[2 * i] = hypot(a[2 * i], a[2 * i + 1]);
-    out[2 * i + 1] = 0.0;
+/* ---- lanes ---------------------------------------------------------------
+ * The maps evaluate MAP_LANES grid points or k values side by side: with GCC
+ * or Clang a vector extension type (plain element-wise IEEE arithmetic, so
+ * every lane gives bitwise the result of the same expression in scalar
+ * code; no fused multiply-add: C11 mode has FP contraction off), else
+ * MAP_LANES = 1 and plain doubles.  The scalar entry points below run the
+ * same code on broadcast values, so the map and the one-point functions
+ * share one implementation of (6) and agree bitwise. */
+#if defined(__GNUC__)
+#define MAP_LANES 4
+typedef double mvec __attribute__((vector_size(MAP_LANES * sizeof(double))));
+typedef int64_t mmask __attribute__((vector_size(MAP_LANES * sizeof(int64_t))));
+#define MV_L(v, l) ((v)[l])
+#define MV_BCAST(x) ((mvec){(x), (x), (x), (x)})
+#define MV_ABS(a) ((mvec)((mmask)(a) & (mmask){INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX}))
+#else
+#define MAP_LANES 1
+typedef double mvec;
+#define MV_L(v, l) (v)
+#define MV_BCAST(x) (x)
+#define MV_ABS(a) fabs(a)
+#endif
+
+/* The map's hot functions are compiled twice, for AVX2 and for the baseline
+ * x86-64, and the best is picked when the library is loaded (GCC function
+ * multiversioning, glibc ifunc).  The lanes give the same bits either way
+ * (element-wise IEEE arithmetic; AVX2 without FMA). */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8 && defined(__x86_64__) && \
+    defined(__linux__) && !defined(AUTOBAL_NO_CLONES)
+#define MAP_CLONES __attribute__((target_clones("avx2", "default")))
+#define MAP_INLINE __attribute__((always_inline)) inline
+#else
+#define MAP_CLONES
+#define MAP_INLINE inline
+#endif
+
+/* The two parts of (6): A = P1 conj(P1) with P1 = a11 a33 - R_m a31^2 (15),
+ * B = a31^2 conj(a31)^2 = (lambda^2 + W)^4 (W = R_w^2), so that
+ * (6) = A - R_m^2 cos^2(2 psi0) B; plus coefficient-wise bounds Aabs of the
+ * magnitudes that enter each coefficient of A (for the rounding-error bound;
+ * the coefficients of B are positive, they are their own bound).
+ * Optionally P1 itself (5 complex coefficients, interleaved).  One lane per
+ * entry of R_w (lanes of one vector).
+ *
+ * Real arithmetic (no complex products): expanding a11 a33 - R_m a31^2 with
+ * a31 = (lambda + i R_w)^2 = lambda^2 + 2i R_w lambda - W gives P1 = sum p_j lambda^j,
+ *   p4 = 1 - R_m,                  p3 = (H + h) + 2i R_w (1 - 2R_m),
+ *   p2 = 1 - W + hH + 6R_m W + i R_w (H + 2h),
+ *   p1 = h (1 - W) + i R_w (hH + 4R_m W),   p0 = -R_m W^2,
+ * and A_m = sum_{j+l=m} (x_j x_l + y_j y_l) with p_j = x_j + i y_j (the tests
+ * check this against the complex products of the blocks and against
+ * det(M lambda^2 + C lambda + K)).  Aabs is the same sum over the magnitudes
+ * of the terms of x_j, y_j (W - 1 counted as W + 1). */
+static MAP_INLINE void char_parts_v(const mvec *Rw, double R_m, double H, double h, mvec A[9], mvec Aabs[9],
+                         mvec B[9], mvec p1_out[10]) {
+  mvec R_w = *Rw, W = R_w * R_w;
+  mvec y3 = 2.0 * R_w * (1.0 - 2.0 * R_m);
+  mvec x2 = 1.0 - W + h * H + 6.0 * R_m * W, y2 = R_w * (H + 2.0 * h);
+  mvec x1 = h * (1.0 - W), y1 = R_w * (h * H + 4.0 * R_m * W);
+  mvec x0 = -R_m * W * W;
+  mvec xa2 = 1.0 + W + h * H + 6.0 * R_m * W, xa1 = h * (1.0 + W), xa0 = R_m * W * W;
+  double x4 = 1.0 - R_m, x3 = H + h;
+  A[8] = MV_BCAST(x4 * x4);
+  A[7] = MV_BCAST(2.0 * (x4 * x3));
+  A[6] = 2.0 * (x4 * x2) + (x3 * x3 + y3 * y3);
+  A[5] = 2.0 * (x4 * x1 + x3 * x2 + y3 * y2);
+  A[4] = 2.0 * (x4 * x0 + x3 * x1 + y3 * y1) + (x2 * x2 + y2 * y2);
+  A[3] = 2.0 * (x3 * x0 + x2 * x1 + y2 * y1);
+  A[2] = 2.0 * (x2 * x0) + (x1 * x1 + y1 * y1);
+  A[1] = 2.0 * (x1 * x0);
+  A[0] = x0 * x0;
+  Aabs[8] = A[8];
+  Aabs[7] = A[7];
+  Aabs[6] = 2.0 * (x4 * xa2) + (x3 * x3 + y3 * y3);
+  Aabs[5] = 2.0 * (x4 * xa1 + x3 * xa2 + y3 * y2);
+  Aabs[4] = 2.0 * (x4 * xa0 + x3 * xa1 + y3 * y1) + (xa2 * xa2 + y2 * y2);
+  Aabs[3] = 2.0 * (x3 * xa0 + xa2 * xa1 + y2 * y1);
+  Aabs[2] = 2.0 * (xa2 * xa0) + (xa1 * xa1 + y1 * y1);
+  Aabs[1] = 2.0 * (xa1 * xa0);
+  Aabs[0] = A[0];
+  /* B = (lambda^2 + W)^4 */
+  B[8] = MV_BCAST(1.0);
+  B[6] = 4.0 * W;
+  B[4] = 6.0 * W * W;
+  B[2] = 4.0 * W * W * W;
+  B[0] = W * W * W * W;
+  B[7] = B[5] = B[3] = B[1] = MV_BCAST(0.0);
+  if (p1_out) {
+    p1_out[0] = x0, p1_out[1] = MV_BCAST(0.0);
+    p1_out[2] = x1, p1_out[3] = y1;
+    p1_out[4] = x2, p1_out[5] = y2;
+    p1_out[6] = MV_BCAST(x3), p1_out[7] = y3;
+    p1_out[8] = MV_BCAST(x4), p1_out[9] = MV_BCAST(0.0);
   }
 }
 
-/* The two parts of (6): A = P1 conj(P1) with P1 = a11 a33 - R_m a31^2 (15),
- * B = a31^2 conj(a31)^2, so that (6) = A - R_m^2 cos^2(2 psi0) B; plus
- * coefficient-wise bounds Aabs, Babs of the magnitudes that enter each
- * coefficient (for the rounding-error bound).  Optionally P1 itself. */
-static void char_parts(double R_w, double R_m, double H, double h, double A[9], double B[9],
-                       double Aabs[9], double Babs[9], double p1_out[10]) {
-  double a11[6], a31[6], a33[6], t1[10], t2[10], p1[10], p1c[10], q[18];
-  double a11a[6], a31a[6], a33a[6], p1a[10];
-  blocks(R_w, H, h, a11, a31, a33);
-  /* P1 = a11 a33 - R_m a31^2 (15) */
-  autobal_cpoly_mul(a11, 3, a33, 3, t1, 5, NULL);
-  autobal_cpoly_mul(a31, 3, a31, 3, t2, 5, NULL);
-  autobal_cpoly_axpby(1.0, 0.0, t1, 5, -R_m, 0.0, t2, 5, p1, 5, NULL);
-  if (p1_out) memcpy(p1_out, p1, sizeof p1);
-  autobal_cpoly_conj(p1, 5, p1c);
-  autobal_cpoly_mul(p1, 5, p1c, 5, q, 9, NULL);
-  autobal_cpoly_real_part(q, 9, A, NULL);
-  /* B = a31^2 conj(a31^2) */
-  autobal_cpoly_conj(t2, 5, p1c);
-  autobal_cpoly_mul(t2, 5, p1c, 5, q, 9, NULL);
-  autobal_cpoly_real_part(q, 9, B, NULL);
-  /* magnitude polynomials: same products on |coefficients| */
-  cabs_poly(a11, 3, a11a);
-  cabs_poly(a31, 3, a31a);
-  cabs_poly(a33, 3, a33a);
-  autobal_cpoly_mul(a11a, 3, a33a, 3, t1, 5, NULL);
-  autobal_cpoly_mul(a31a, 3, a31a, 3, t2, 5, NULL);
-  autobal_cpoly_axpby(1.0, 0.0, t1, 5, R_m, 0.0, t2, 5, p1a, 5, NULL);
-  autobal_cpoly_mul(p1a, 5, p1a, 5, q, 9, NULL);
-  autobal_cpoly_real_part(q, 9, Aabs, NULL);
-  autobal_cpoly_mul(t2, 5, t2, 5, q, 9, NULL);
-  autobal_cpoly_real_part(q, 9, Babs, NULL);
-}
-
-/* (6) from its parts A, B (char_parts) for given k (kc = cos^2(2 psi0) =
- * 1 - k), with absolute error bounds cerr (may be NULL):
- * AUTOBAL_PENDULUM_HURWITZ_RTOL relative plus rounding. */
-static void char_poly_from_parts(double R_w, double R_m, const double A[9], const double B[9],
-                                 const double Aa[9], const double Ba[9], double k, double kc,
-                                 double coef[9], double cerr[9]) {
+/* (6) from its parts (char_parts_v) for given k (kc = cos^2(2 psi0) = 1 - k),
+ * with absolute error bounds cerr (may be NULL):
+ * AUTOBAL_PENDULUM_HURWITZ_RTOL relative plus rounding.  Lane-wise. */
+static MAP_INLINE void char_poly_from_parts_v(const mvec *Rw, double R_m, const mvec A[9], const mvec Aa[9],
+                                   const mvec B[9], const mvec *kp, const mvec *kcp,
+                                   mvec coef[9], mvec cerr[9]) {
   size_t j;
-  double W = R_w * R_w;
+  mvec W = *Rw * *Rw, k = *kp, kc = *kcp;
   for (j = 0; j < 9; j++) {
     coef[j] = A[j] - R_m * R_m * kc * B[j]; /* eq. (6) */
     if (cerr)
-      cerr[j] = PEND_GAMMA * U_D * (Aa[j] + R_m * R_m * kc * Ba[j]) +
-                AUTOBAL_PENDULUM_HURWITZ_RTOL * fabs(coef[j]);
+      cerr[j] = PEND_GAMMA * U_D * (Aa[j] + R_m * R_m * kc * B[j]) +
+                AUTOBAL_PENDULUM_HURWITZ_RTOL * MV_ABS(coef[j]);
   }
   /* The constant term is the difference of two terms of size R_m^2 W^4 and
    * cancels catastrophically for small k; its exact value k R_m^2 W^4 (the
@@ -184,12 +239,37 @@ static void char_poly_from_parts(double R_w, double R_m, const double A[9], cons
   if (cerr) cerr[0] = (4.0 * U_D + AUTOBAL_PENDULUM_HURWITZ_RTOL) * coef[0];
 }
 
+/* Scalar forms (lane 0 of broadcast values). */
+typedef struct {
+  mvec A[9], Aa[9], B[9];
+} char_parts_t;
+
+static void char_parts(double R_w, double R_m, double H, double h, char_parts_t *P,
+                       double p1_out[10]) {
+  mvec Rw = MV_BCAST(R_w), p1[10];
+  size_t j;
+  char_parts_v(&Rw, R_m, H, h, P->A, P->Aa, P->B, p1_out ? p1 : NULL);
+  if (p1_out)
+    for (j = 0; j < 10; j++) p1_out[j] = MV_L(p1[j], 0);
+}
+
+static void char_poly_from_parts(double R_w, double R_m, const char_parts_t *P, double k,
+                                 double kc, double coef[9], double cerr[9]) {
+  mvec Rw = MV_BCAST(R_w), kv = MV_BCAST(k), kcv = MV_BCAST(kc), c[9], ce[9];
+  size_t j;
+  char_poly_from_parts_v(&Rw, R_m, P->A, P->Aa, P->B, &kv, &kcv, c, cerr ? ce : NULL);
+  for (j = 0; j < 9; j++) {
+    coef[j] = MV_L(c[j], 0);
+    if (cerr) cerr[j] = MV_L(ce[j], 0);
+  }
+}
+
 /* (6) for given k, see char_poly_from_parts */
 static void char_poly_k(double R_w, double R_m, double H, double h, double k, double kc,
                         double coef[9], double cerr[9]) {
-  double A[9], B[9], Aa[9], Ba[9];
-  char_parts(R_w, R_m, H, h, A, B, Aa, Ba, NULL);
-  char_poly_from_parts(R_w, R_m, A, B, Aa, Ba, k, kc, coef, cerr);
+  char_parts_t P;
+  char_parts(R_w, R_m, H, h, &P, NULL);
+  char_poly_from_parts(R_w, R_m, &P, k, kc, coef, cerr);
 }
 
 static void k_and_kc(const autobal_pendulum_params *p, double *k, double *kc) {
@@ -222,11 +302,11 @@ int autobal_pendulum_char_poly(const autobal_pendulum_params *p, double coef[9],
 }
 
 int autobal_pendulum_char_p1(const autobal_pendulum_params *p, double p1[10], autobal_error *err) {
-  double A[9], B[9], Aa[9], Ba[9];
+  char_parts_t P;
   int st = autobal_pendulum_params_validate(p, err);
   if (st) return st;
   if (p1 == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "char_p1: NULL output");
-  char_parts(p->R_w, p->R_m, p->H, p->h, A, B, Aa, Ba, p1);
+  char_parts(p->R_w, p->R_m, p->H, p->h, &P, p1);
   return AUTOBAL_SUCCESS;
 }
 
@@ -1614,47 +1694,453 @@ int autobal_pendulum_rm1(double *rm1, double *rw, autobal_error *err) {
 /* ======================================================================== */
 
 #define MAP_DEFAULT_NK 65
+/* Grid points per OpenMP work item (one row segment; a multiple of MAP_LANES,
+ * so that the grouping of points into lanes does not depend on the schedule) */
+#define MAP_TILE 64
+#define MAP_MAXW 5 /* width of the Routh array for degree <= 8 */
+/* full unrolling of the short fixed loops of the Routh kernel (GCC >= 8) */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8
+#define MAP_UNROLL _Pragma("GCC unroll 16")
+#else
+#define MAP_UNROLL
+#endif
 
-static int map_point(const autobal_pendulum_map_spec *s, const double *ks, size_t nk, double Rm,
-                     double Rw, autobal_pendulum_workspace *ws, signed char *v, double *mr) {
+/* ---- the Routh test on MAP_LANES polynomials at once -------------------- */
+
+/* The map decides with exactly the verdicts of autobal_poly_hurwitz_err (the
+ * Routh array with a running error bound per entry), in two stages:
+ *
+ * 1. routh_quick: the Routh array of MAP_LANES polynomials of degree n (7 or
+ *    8, positive leading coefficient) side by side, with the values of
+ *    autobal_poly_hurwitz_err operation for operation (so the first-column
+ *    entries are bitwise the same), but instead of one error bound per entry
+ *    two per row: with weights s2^-j on column j (s2 = max(1, W), the scale
+ *    of lambda^2, which makes the entries of a row comparable), G_t >= the
+ *    weighted sum of the bounds of the entries j >= 1 of row t, and F_t >=
+ *    the bound of its first entry; N_t = the weighted sum of |entries j >= 1|
+ *    (sums, no comparisons: they vectorize); from the test's recurrence
+ *      F_{t+1} = G_{t+1} = s2 (G_{t-1} + |q| G_t + N_t eq + u (N_{t-1} + 2|q| N_t)),
+ *    eq = (F_{t-1} + |q| F_t)/|a| + u|q|.  About a third of the work.
+ * 2. a lane whose first-column entries all clear twice their row bound
+ *    (|a| > 2 F_t, up to the first negative one) has the verdict of the full
+ *    test, since there |a| > e_t too (the factor 2 covers the rounding of the
+ *    bounds themselves); any other lane (an entry within 2 F_t of zero: near
+ *    a stability boundary, rare) is decided by the full scalar test
+ *    autobal_poly_hurwitz_err.
+ * Rows of the generic test beyond len(t) = (n - t)/2 + 1 entries are
+ * structural zeros, which never reach the first column of rows <= n (entry
+ * j of row t+1 depends on entries j+1 of rows t and t-1): not computed.
+ * The lanes give the processor independent work (the divisions are the
+ * critical path of one array) and vectorize. */
+static MAP_INLINE void routh_quick(size_t n, const mvec *c, const mvec *ce, const mvec *s2p,
+                               mvec *col, mvec *colU) {
+  /* per row t: b[.][j] the entries, F the bound of entry 0, G >= the
+   * weighted sum of the bounds of entries j >= 1, N = the weighted sum of
+   * |entries j >= 1| (entries j >= 1 are the ones that enter the next rows
+   * as x and y; entry 0 enters only through q) */
+  mvec b[3][MAP_MAXW], F[3], G[3], N[3], w[MAP_MAXW];
+  const double u = DBL_EPSILON;
+  mvec s2 = *s2p, is2 = 1.0 / s2, zero = MV_BCAST(0.0), ez;
+  size_t j, row, i0 = 0, i1 = 1, i2 = 2;
+  w[0] = MV_BCAST(1.0);
+  for (j = 1; j < MAP_MAXW; j++) w[j] = w[j - 1] * is2;
+  G[0] = N[0] = G[1] = N[1] = zero;
+  MAP_UNROLL
+  for (j = 0; 2 * j <= n; j++) {
+    mvec v = c[n - 2 * j], av = MV_ABS(v), ev = ce[n - 2 * j] + u * av;
+    b[0][j] = v;
+    if (j == 0) F[0] = ev;
+    else G[0] = G[0] + ev * w[j], N[0] = N[0] + av * w[j];
+  }
+  MAP_UNROLL
+  for (j = 0; 2 * j + 1 <= n; j++) {
+    mvec v = c[n - 2 * j - 1], av = MV_ABS(v), ev = ce[n - 2 * j - 1] + u * av;
+    b[1][j] = v;
+    if (j == 0) F[1] = ev;
+    else G[1] = G[1] + ev * w[j], N[1] = N[1] + av * w[j];
+  }
+  /* The single entry of row n is the lowest coefficient c[0], copied down
+   * from row n mod 2 two rows at a time (as x - q*0 = x); the full test's
+   * bound of it grows only by u|c[0]| per copy.  That bound, bitwise the
+   * full test's, replaces the row bound there (which would be far too wide
+   * when c[0] is small, e.g. for small k). */
+  ez = ce[0] + u * MV_ABS(c[0]);
+  for (row = n % 2 + 2; row <= n; row += 2) ez = ez + u * MV_ABS(c[0]);
+  MAP_UNROLL
+  for (row = 1; row <= n; row++) {
+    /* rows row-1 (i0) and row (i1) give row+1 (i2): entry j from entries
+     * j+1 (weight s2 w_{j+1} = w_j), so the weighted sum of the new bounds
+     * is at most s2 (G0 + |q| G1 + N1 eq + u (N0 + 2|q| N1)) */
+    size_t len1 = (n - row) / 2 + 1, len2 = row < n ? (n - row - 1) / 2 + 1 : 0;
+    mvec a = b[i1][0], q, fq, eq, t;
+    col[row] = a;
+    colU[row] = row < n ? F[i1] : ez;
+    if (row == n) break;
+    q = b[i0][0] / a;
+    fq = MV_ABS(q);
+    eq = (F[i0] + fq * F[i1]) / MV_ABS(a) + u * fq;
+    t = s2 * (G[i0] + fq * G[i1] + N[i1] * eq + u * (N[i0] + 2.0 * fq * N[i1]));
+    F[i2] = t;
+    G[i2] = t;
+    N[i2] = zero;
+    MAP_UNROLL
+    for (j = 0; j < len2; j++) { /* j + 1 < len(row - 1) = len2 + 1 always */
+      mvec x = b[i0][j + 1], y = j + 1 < len1 ? b[i1][j + 1] : zero;
+      mvec v = x - q * y;
+      b[i2][j] = v;
+      if (j > 0) N[i2] = N[i2] + MV_ABS(v) * w[j];
+    }
+    {
+      size_t tmp = i0;
+      i0 = i1, i1 = i2, i2 = tmp;
+    }
+  }
+}
+
+/* the two degrees used, with n a compile-time constant (full unrolling) */
+static MAP_INLINE void routh_quick7(const mvec *c, const mvec *ce, const mvec *s2, mvec *col, mvec *colU) {
+  routh_quick(7, c, ce, s2, col, colU);
+}
+static MAP_INLINE void routh_quick8(const mvec *c, const mvec *ce, const mvec *s2, mvec *col, mvec *colU) {
+  routh_quick(8, c, ce, s2, col, colU);
+}
+
+/* Verdict of lane l from stage 1, or 2 when it must be decided by the full
+ * test (stops at the first sign change, which makes the verdict UNSTABLE). */
+static MAP_INLINE int routh_quick_verdict(size_t n, const mvec *col, const mvec *colU, size_t l) {
+  size_t row;
+  for (row = 1; row <= n; row++) {
+    double a = MV_L(col[row], l);
+    if (!(fabs(a) > 2.0 * MV_L(colU[row], l))) return 2;
+    if (a < 0) return AUTOBAL_VERDICT_UNSTABLE;
+  }
+  return AUTOBAL_VERDICT_STABLE;
+}
+
+/* Damped verdicts of MAP_LANES polynomials (6) with coefficients c[j] and
+ * bounds ce[j], j = 0..8 (deflate: lambda = 0 divided out, degree 7, for
+ * k == 0), s2 = max(1, W) per lane.  A lane with a non-finite coefficient
+ * or bound (overflow at huge R_w) or a leading coefficient <= 0 goes to the
+ * scalar test, which reports it (AUTOBAL_EINVAL) like autobal_pendulum_verdict. */
+static MAP_INLINE int damped_lanes(const mvec *c, const mvec *ce, const mvec *s2, int deflate, int *v) {
+  mvec col[9], colU[9], chk = ce[0];
+  size_t l, j, n = deflate ? 7 : 8, off = deflate ? 1 : 0;
+  int ok = 1;
+  for (j = 1; j < 9; j++) chk = chk + ce[j];
+  for (l = 0; l < MAP_LANES; l++)
+    if (!isfinite(MV_L(chk, l)) || !(MV_L(c[8], l) > 0)) ok = 0;
+  if (ok) {
+    if (deflate) routh_quick7(c + 1, ce + 1, s2, col, colU);
+    else routh_quick8(c, ce, s2, col, colU);
+  }
+  for (l = 0; l < MAP_LANES; l++) {
+    v[l] = ok ? routh_quick_verdict(n, col, colU, l) : 2;
+    if (v[l] == 2) { /* near the boundary (or a bad lane): the full test */
+      double cl[9], cel[9];
+      int st;
+      for (j = 0; j < 9; j++) cl[j] = MV_L(c[j], l), cel[j] = MV_L(ce[j], l);
+      st = autobal_poly_hurwitz_err(cl + off, cel + off, n + 1, &v[l], NULL, NULL);
+      if (st) return st;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- undamped verdicts with a double-precision filter ------------------- */
+
+/* The map's undamped verdict (MARGINAL, a point on a boundary, counts as
+ * STABLE) is that of undamped_verdict_ld.  Its deciding quantities are
+ * evaluated first in double together with the magnitude sums of their terms
+ * (built from magnitudes of the coefficients, W - 1 counted as W + 1); a
+ * quantity whose value exceeds MAP_FILTER times its magnitude sum has the
+ * same sign in long double, far beyond the long-double rounding bound
+ * PEND_GAMMA * LDBL_EPSILON (the double evaluation and the difference
+ * between W in double and in long double perturb it by < 1e3 DBL_EPSILON of
+ * the same sum).  Only when a needed quantity is below that threshold (near
+ * a critical speed) is the long-double test run: the verdicts are those of
+ * autobal_pendulum_undamped_verdict. */
+#define MAP_FILTER 1e-10
+
+/* The deciding quantities of the quartic c (ascending, lane-wise) and the
+ * sums of the magnitudes of their terms evaluated on m (>= |c|): the
+ * discriminant (the 16 terms of quartic_disc_ld), P8 = 8ac - 3b^2 and
+ * D4 = 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 (quartic_aux_ld). */
+typedef struct {
+  mvec disc, mag, P8, m8, D4, m4;
+} quartic_q;
+
+static MAP_INLINE void quartic_quantities(const mvec *c, const mvec *m, quartic_q *r) {
+  mvec a = c[4], b = c[3], cc = c[2], d = c[1], e = c[0];
+  mvec a2 = a * a, b2 = b * b, c2 = cc * cc, d2 = d * d, e2 = e * e;
+  mvec ma = m[4], mb = m[3], mc = m[2], md = m[1], me = m[0];
+  mvec ma2 = ma * ma, mb2 = mb * mb, mc2 = mc * mc, md2 = md * md, me2 = me * me;
+  r->disc = 256.0 * a2 * a * e2 * e - 192.0 * a2 * b * d * e2 - 128.0 * a2 * c2 * e2 +
+            144.0 * a2 * cc * d2 * e - 27.0 * a2 * d2 * d2 + 144.0 * a * b2 * cc * e2 -
+            6.0 * a * b2 * d2 * e - 80.0 * a * b * c2 * d * e + 18.0 * a * b * cc * d2 * d +
+            16.0 * a * c2 * c2 * e - 4.0 * a * c2 * cc * d2 - 27.0 * b2 * b2 * e2 +
+            18.0 * b2 * b * cc * d * e - 4.0 * b2 * b * d2 * d - 4.0 * b2 * c2 * cc * e +
+            b2 * c2 * d2;
+  r->mag = 256.0 * ma2 * ma * me2 * me + 192.0 * ma2 * mb * md * me2 + 128.0 * ma2 * mc2 * me2 +
+           144.0 * ma2 * mc * md2 * me + 27.0 * ma2 * md2 * md2 + 144.0 * ma * mb2 * mc * me2 +
+           6.0 * ma * mb2 * md2 * me + 80.0 * ma * mb * mc2 * md * me +
+           18.0 * ma * mb * mc * md2 * md + 16.0 * ma * mc2 * mc2 * me +
+           4.0 * ma * mc2 * mc * md2 + 27.0 * mb2 * mb2 * me2 + 18.0 * mb2 * mb * mc * md * me +
+           4.0 * mb2 * mb * md2 * md + 4.0 * mb2 * mc2 * mc * me + mb2 * mc2 * md2;
+  r->P8 = 8.0 * a * cc - 3.0 * b2;
+  r->m8 = 8.0 * ma * mc + 3.0 * mb2;
+  r->D4 = 64.0 * a2 * a * e - 16.0 * a2 * c2 + 16.0 * a * b2 * cc - 16.0 * a2 * b * d -
+          3.0 * b2 * b2;
+  r->m4 = 64.0 * ma2 * ma * me + 16.0 * ma2 * mc2 + 16.0 * ma * mb2 * mc + 16.0 * ma2 * mb * md +
+          3.0 * mb2 * mb2;
+}
+
+/* sign of x if |x| > MAP_FILTER * mag, else 0 (undecided) */
+static MAP_INLINE int filt_sign(double x, double mag) {
+  if (x > MAP_FILTER * mag) return 1;
+  if (x < -MAP_FILTER * mag) return -1;
+  return 0;
+}
+
+/* The quartic part of the undamped test (k > 0) for lane l: UNSTABLE iff
+ * disc < 0 or P8 >= 0 or D4 >= 0; 0 when undecided. */
+static MAP_INLINE int quartic_decide(const quartic_q *q, size_t l) {
+  int sd = filt_sign(MV_L(q->disc, l), MV_L(q->mag, l)), s8, s4;
+  if (sd < 0) return AUTOBAL_VERDICT_UNSTABLE;
+  if (sd == 0) return 0;
+  s8 = filt_sign(MV_L(q->P8, l), MV_L(q->m8, l));
+  if (s8 > 0) return AUTOBAL_VERDICT_UNSTABLE;
+  s4 = filt_sign(MV_L(q->D4, l), MV_L(q->m4, l));
+  if (s4 > 0) return AUTOBAL_VERDICT_UNSTABLE;
+  if (s8 < 0 && s4 < 0) return AUTOBAL_VERDICT_STABLE;
+  return 0;
+}
+
+/* the exact long-double test, with the map's convention MARGINAL -> STABLE */
+static int undamped_map_exact(double Rm, double Rw, double k) {
+  int v = undamped_verdict_ld(Rm, (long double)Rw * Rw, k, NULL);
+  return v == AUTOBAL_VERDICT_MARGINAL ? AUTOBAL_VERDICT_STABLE : v; /* on a boundary */
+}
+
+/* The map's undamped verdicts for 0 < k < 1 of MAP_LANES lanes (R_w[l], k[l]):
+ * P(x) of (10), c_j with magnitudes m_j; unstable iff c_1 < 0 or the quartic
+ * test says so (c_0, c_2, c_3, c_4 > 0 always). */
+static MAP_INLINE void undamped_lanes(const mvec *Rwp, double Rm, const mvec *kp, int *v) {
+  mvec Rw = *Rwp, k = *kp, W = Rw * Rw, r2 = k * Rm * Rm, W2 = W * W, W3 = W2 * W;
+  mvec a0 = 2.0 * Rm * W2 * (W - 1.0), m0 = 2.0 * Rm * W2 * (W + 1.0);
+  mvec a2 = (W - 1.0) * (W - 1.0) + 2.0 * Rm * W * (W + 6.0);
+  mvec m2 = (W + 1.0) * (W + 1.0) + 2.0 * Rm * W * (W + 6.0);
+  mvec a4 = 2.0 * (1.0 - Rm) * (W + 1.0);
+  mvec c[5], m[5];
+  quartic_q q;
+  size_t l;
+  c[0] = r2 * W2 * W2, m[0] = c[0];
+  c[1] = a0 + 4.0 * r2 * W3, m[1] = m0 + 4.0 * r2 * W3;
+  c[2] = a2 + 6.0 * r2 * W2, m[2] = m2 + 6.0 * r2 * W2;
+  c[3] = a4 + 4.0 * r2 * W, m[3] = c[3];
+  c[4] = (1.0 - 2.0 * Rm) + r2, m[4] = c[4];
+  quartic_quantities(c, m, &q);
+  for (l = 0; l < MAP_LANES; l++) {
+    int sd = filt_sign(MV_L(c[1], l), MV_L(m[1], l));
+    v[l] = sd < 0 ? AUTOBAL_VERDICT_UNSTABLE : sd > 0 ? quartic_decide(&q, l) : 0;
+    if (v[l] == 0) v[l] = undamped_map_exact(Rm, MV_L(Rw, l), MV_L(k, l));
+  }
+}
+
+/* The map's undamped verdict at one point and one k: STABLE or UNSTABLE. */
+static int undamped_map_verdict(double Rm, double Rw, double k) {
+  double W = Rw * Rw;
+  int v = 0;
+  if (k == 1.0) {
+    mvec c[5], m[5];
+    quartic_q q;
+    c[0] = MV_BCAST(-W), m[0] = MV_BCAST(W);
+    c[1] = MV_BCAST(2.0 * Rw), m[1] = c[1];
+    c[2] = MV_BCAST(W - 1.0), m[2] = MV_BCAST(W + 1.0);
+    c[3] = MV_BCAST(-2.0 * Rw), m[3] = c[1];
+    c[4] = MV_BCAST(1.0 - Rm), m[4] = c[4];
+    quartic_quantities(c, m, &q);
+    v = quartic_decide(&q, 0);
+  } else if (k == 0.0) {
+    /* x times the cubic a6 x^3 + a4 x^2 + a2 x + a0: unstable iff a0 < 0 or
+     * its discriminant < 0 */
+    double a0 = 2.0 * Rm * W * W * (W - 1.0), m0 = 2.0 * Rm * W * W * (W + 1.0);
+    double a2 = (W - 1.0) * (W - 1.0) + 2.0 * Rm * W * (W + 6.0);
+    double m2 = (W + 1.0) * (W + 1.0) + 2.0 * Rm * W * (W + 6.0);
+    double a4 = 2.0 * (1.0 - Rm) * (W + 1.0), a6 = 1.0 - 2.0 * Rm;
+    int s0 = filt_sign(a0, m0);
+    if (s0 < 0) v = AUTOBAL_VERDICT_UNSTABLE;
+    else if (s0 > 0) {
+      double d = 18.0 * a6 * a4 * a2 * a0 - 4.0 * a4 * a4 * a4 * a0 + a4 * a4 * a2 * a2 -
+                 4.0 * a6 * a2 * a2 * a2 - 27.0 * a6 * a6 * a0 * a0;
+      double md = 18.0 * a6 * a4 * m2 * m0 + 4.0 * a4 * a4 * a4 * m0 + a4 * a4 * m2 * m2 +
+                  4.0 * a6 * m2 * m2 * m2 + 27.0 * a6 * a6 * m0 * m0;
+      int sd = filt_sign(d, md);
+      v = sd < 0 ? AUTOBAL_VERDICT_UNSTABLE : sd > 0 ? AUTOBAL_VERDICT_STABLE : 0;
+    }
+  } else {
+    mvec Rwv = MV_BCAST(Rw), kv = MV_BCAST(k);
+    int vl[MAP_LANES];
+    undamped_lanes(&Rwv, Rm, &kv, vl);
+    return vl[0];
+  }
+  if (v == 0) v = undamped_map_exact(Rm, Rw, k); /* undecided in double */
+  return v;
+}
+
+/* ---- grid points --------------------------------------------------------- */
+
+typedef struct {
+  const autobal_pendulum_map_spec *s;
+  const double *ks;
+  size_t nk;
+  int undamped;
+  int has_zero; /* some k == 0 (the damped test deflates lambda = 0 there) */
+  int has_one;  /* some k == 1 (the undamped test uses the factor P1 there) */
+} map_ctx;
+
+/* Point (Rm, Rw) with a root solve per k for max_real (the slow path). */
+static int map_point(const map_ctx *mc, double Rm, double Rw, autobal_pendulum_workspace *ws,
+                     signed char *v, double *mr) {
+  const autobal_pendulum_map_spec *s = mc->s;
   size_t i;
   int worst = AUTOBAL_VERDICT_STABLE;
   double mre = -INFINITY;
-  int undamped = s->H == 0.0 && s->h == 0.0;
-  double A[9], B[9], Aa[9], Ba[9];
-  if (!undamped) char_parts(Rw, Rm, s->H, s->h, A, B, Aa, Ba, NULL); /* independent of k */
-  for (i = 0; i < nk; i++) {
-    double k = ks[i], kc = 1.0 - k;
-    int vv;
-    if (undamped) {
-      vv = undamped_verdict_ld(Rm, (long double)Rw * Rw, k, NULL);
-      if (vv == AUTOBAL_VERDICT_MARGINAL) vv = AUTOBAL_VERDICT_STABLE; /* on a boundary */
+  char_parts_t P;
+  if (!mc->undamped) char_parts(Rw, Rm, s->H, s->h, &P, NULL); /* independent of k */
+  for (i = 0; i < mc->nk; i++) {
+    double k = mc->ks[i], kc = 1.0 - k, m;
+    int vv, st;
+    damped_ctx c;
+    if (mc->undamped) {
+      vv = undamped_map_verdict(Rm, Rw, k);
     } else {
       double coef[9], cerr[9];
-      int st;
-      char_poly_from_parts(Rw, Rm, A, B, Aa, Ba, k, kc, coef, cerr);
+      char_poly_from_parts(Rw, Rm, &P, k, kc, coef, cerr);
       if (k == 0.0) st = autobal_poly_hurwitz_err(coef + 1, cerr + 1, 8, &vv, NULL, NULL);
       else st = autobal_poly_hurwitz_err(coef, cerr, 9, &vv, NULL, NULL);
       if (st) return st;
     }
     if (vv < worst) worst = vv;
-    if (mr) {
-      damped_ctx c;
-      double m;
-      int st;
-      c.ws = ws;
-      c.R_m = Rm;
-      c.H = s->H;
-      c.h = s->h;
-      c.k = k;
-      c.kc = kc;
-      st = damped_maxre_fn(Rw, &c, &m);
-      if (st) return st;
-      if (m > mre) mre = m;
-    }
+    c.ws = ws;
+    c.R_m = Rm;
+    c.H = s->H;
+    c.h = s->h;
+    c.k = k;
+    c.kc = kc;
+    st = damped_maxre_fn(Rw, &c, &m);
+    if (st) return st;
+    if (m > mre) mre = m;
   }
   *v = (signed char)worst;
-  if (mr) *mr = mre;
+  *mr = mre;
+  return AUTOBAL_SUCCESS;
+}
+
+/* Verdict at one point over the whole k set (no max_real): the k set is
+ * taken MAP_LANES at a time and the scan stops at the first UNSTABLE group.
+ * *hint (per thread) is the group that was unstable last time, tried first:
+ * the verdict (a minimum over all k) does not depend on the order. */
+MAP_CLONES static int map_point_all_k(const map_ctx *mc, double Rm, double Rw, size_t *hint,
+                           signed char *v) {
+  const autobal_pendulum_map_spec *s = mc->s;
+  size_t ng = (mc->nk + MAP_LANES - 1) / MAP_LANES, t, l;
+  int worst = AUTOBAL_VERDICT_STABLE, st, und = mc->undamped;
+  char_parts_t P;
+  mvec c[9], ce[9], s2, Rwv = MV_BCAST(Rw);
+  /* the special values, once each: k == 0 (damped: lambda = 0 deflated;
+   * undamped: the cubic) and, undamped, k == 1 (the factor P1) */
+  if (und) {
+    if (mc->has_zero) worst = undamped_map_verdict(Rm, Rw, 0.0);
+    if (mc->has_one && worst != AUTOBAL_VERDICT_UNSTABLE) {
+      int v1 = undamped_map_verdict(Rm, Rw, 1.0);
+      if (v1 < worst) worst = v1;
+    }
+  } else {
+    s2 = MV_BCAST(Rw * Rw > 1.0 ? Rw * Rw : 1.0);
+    char_parts_v(&Rwv, Rm, s->H, s->h, P.A, P.Aa, P.B, NULL);
+    if (mc->has_zero) {
+      mvec kz = MV_BCAST(0.0), kcz = MV_BCAST(1.0);
+      int vz[MAP_LANES];
+      char_poly_from_parts_v(&Rwv, Rm, P.A, P.Aa, P.B, &kz, &kcz, c, ce);
+      if ((st = damped_lanes(c, ce, &s2, 1, vz)) != 0) return st;
+      worst = vz[0];
+    }
+  }
+  for (t = 0; t < ng && worst != AUTOBAL_VERDICT_UNSTABLE; t++) {
+    size_t g = (*hint + t) % ng, i0 = g * MAP_LANES, n = 0;
+    double fill = 0.0;
+    mvec kv;
+    int vl[MAP_LANES];
+    for (l = 0; l < MAP_LANES && i0 + l < mc->nk; l++) {
+      double k = mc->ks[i0 + l];
+      if (k != 0.0 && !(und && k == 1.0)) fill = k, n++;
+    }
+    if (n == 0) continue; /* only special values here, done above */
+    kv = MV_BCAST(fill);
+    for (l = 0; l < MAP_LANES && i0 + l < mc->nk; l++) {
+      double k = mc->ks[i0 + l];
+      if (k != 0.0 && !(und && k == 1.0)) MV_L(kv, l) = k;
+    }
+    if (und) {
+      undamped_lanes(&Rwv, Rm, &kv, vl);
+    } else {
+      mvec kcv = 1.0 - kv;
+      char_poly_from_parts_v(&Rwv, Rm, P.A, P.Aa, P.B, &kv, &kcv, c, ce);
+      if ((st = damped_lanes(c, ce, &s2, 0, vl)) != 0) return st;
+    }
+    for (l = 0; l < MAP_LANES; l++)
+      if (vl[l] < worst) worst = vl[l];
+    if (worst == AUTOBAL_VERDICT_UNSTABLE) *hint = g;
+  }
+  *v = (signed char)worst;
+  return AUTOBAL_SUCCESS;
+}
+
+/* One work item: row i, columns [j0, j1). */
+MAP_CLONES static int map_tile(const map_ctx *mc, size_t i, size_t j0, size_t j1,
+                    autobal_pendulum_workspace *ws, size_t *hint, signed char *verdict,
+                    double *max_real) {
+  const autobal_pendulum_map_spec *s = mc->s;
+  double Rm = s->R_m[i];
+  size_t j, l, base = i * s->n_Rw;
+  int st;
+  if (max_real) {
+    for (j = j0; j < j1; j++)
+      if ((st = map_point(mc, Rm, s->R_w[j], ws, &verdict[base + j], &max_real[base + j])) != 0)
+        return st;
+    return AUTOBAL_SUCCESS;
+  }
+  if (mc->nk > 1 || (mc->undamped && (mc->ks[0] == 0.0 || mc->ks[0] == 1.0))) {
+    for (j = j0; j < j1; j++)
+      if ((st = map_point_all_k(mc, Rm, s->R_w[j], hint, &verdict[base + j])) != 0) return st;
+    return AUTOBAL_SUCCESS;
+  }
+  if (mc->undamped) { /* one k in (0, 1): MAP_LANES neighbouring R_w at once */
+    for (j = j0; j < j1; j += MAP_LANES) {
+      mvec Rwv, kv = MV_BCAST(mc->ks[0]);
+      int vl[MAP_LANES];
+      for (l = 0; l < MAP_LANES; l++) MV_L(Rwv, l) = s->R_w[j + l < j1 ? j + l : j1 - 1];
+      undamped_lanes(&Rwv, Rm, &kv, vl);
+      for (l = 0; l < MAP_LANES && j + l < j1; l++) verdict[base + j + l] = (signed char)vl[l];
+    }
+    return AUTOBAL_SUCCESS;
+  }
+  /* damped, one k: MAP_LANES neighbouring R_w at once (the last group is
+   * padded with copies of its last point) */
+  for (j = j0; j < j1; j += MAP_LANES) {
+    mvec c[9], ce[9], s2, Rwv, kv = MV_BCAST(mc->ks[0]), kcv = 1.0 - kv;
+    char_parts_t P;
+    int vl[MAP_LANES];
+    for (l = 0; l < MAP_LANES; l++) {
+      double Rw = s->R_w[j + l < j1 ? j + l : j1 - 1];
+      MV_L(Rwv, l) = Rw;
+      MV_L(s2, l) = Rw * Rw > 1.0 ? Rw * Rw : 1.0;
+    }
+    char_parts_v(&Rwv, Rm, s->H, s->h, P.A, P.Aa, P.B, NULL);
+    char_poly_from_parts_v(&Rwv, Rm, P.A, P.Aa, P.B, &kv, &kcv, c, ce);
+    if ((st = damped_lanes(c, ce, &s2, mc->ks[0] == 0.0, vl)) != 0) return st;
+    for (l = 0; l < MAP_LANES && j + l < j1; l++) verdict[base + j + l] = (signed char)vl[l];
+  }
   return AUTOBAL_SUCCESS;
 }
 
@@ -1662,9 +2148,10 @@ int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdic
                          double *max_real, autobal_error *err) {
   double kdef[MAP_DEFAULT_NK];
   const double *ks;
-  size_t nk, i, ntot;
+  size_t nk, i, ntot, tpr, ntiles;
   int st, fail = AUTOBAL_SUCCESS;
   char name[40];
+  map_ctx mc;
   if (s == NULL || verdict == NULL)
     return autobal_error_set(err, AUTOBAL_EINVAL, "map: NULL spec or output");
   if ((s->n_Rm > 0 && s->R_m == NULL) || (s->n_Rw > 0 && s->R_w == NULL))
@@ -1699,6 +2186,17 @@ int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdic
   }
   ntot = s->n_Rm * s->n_Rw;
   if (ntot == 0) return AUTOBAL_SUCCESS;
+  mc.s = s;
+  mc.ks = ks;
+  mc.nk = nk;
+  mc.undamped = s->H == 0.0 && s->h == 0.0;
+  mc.has_zero = mc.has_one = 0;
+  for (i = 0; i < nk; i++) {
+    if (ks[i] == 0.0) mc.has_zero = 1;
+    if (ks[i] == 1.0) mc.has_one = 1;
+  }
+  tpr = (s->n_Rw + MAP_TILE - 1) / MAP_TILE;
+  ntiles = s->n_Rm * tpr;
 #ifdef AUTOBAL_HAVE_OPENMP
   {
     int nth = s->n_threads > 0 ? s->n_threads : omp_get_max_threads();
@@ -1706,17 +2204,18 @@ int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdic
     {
       autobal_pendulum_workspace *ws = NULL;
       int local = AUTOBAL_SUCCESS;
-      long long idx;
+      size_t hint = 0;
+      long long t;
       if (max_real) {
         ws = autobal_pendulum_workspace_alloc();
         if (ws == NULL) local = AUTOBAL_ENOMEM;
       }
-#pragma omp for schedule(dynamic, 64)
-      for (idx = 0; idx < (long long)ntot; idx++) {
-        size_t ii = (size_t)idx / s->n_Rw, jj = (size_t)idx % s->n_Rw;
+#pragma omp for schedule(dynamic, 1)
+      for (t = 0; t < (long long)ntiles; t++) {
+        size_t ii = (size_t)t / tpr, j0 = ((size_t)t % tpr) * MAP_TILE;
+        size_t j1 = j0 + MAP_TILE < s->n_Rw ? j0 + MAP_TILE : s->n_Rw;
         if (local != AUTOBAL_SUCCESS) continue;
-        local = map_point(s, ks, nk, s->R_m[ii], s->R_w[jj], ws, &verdict[idx],
-                          max_real ? &max_real[idx] : NULL);
+        local = map_tile(&mc, ii, j0, j1, ws, &hint, verdict, max_real);
       }
       if (local != AUTOBAL_SUCCESS) {
 #pragma omp critical(autobal_pendulum_map_fail)
@@ -1730,15 +2229,15 @@ int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdic
 #else
   {
     autobal_pendulum_workspace *ws = NULL;
-    size_t idx;
+    size_t t, hint = 0;
     if (max_real) {
       ws = autobal_pendulum_workspace_alloc();
       if (ws == NULL) fail = AUTOBAL_ENOMEM;
     }
-    for (idx = 0; idx < ntot && fail == AUTOBAL_SUCCESS; idx++) {
-      size_t ii = idx / s->n_Rw, jj = idx % s->n_Rw;
-      fail = map_point(s, ks, nk, s->R_m[ii], s->R_w[jj], ws, &verdict[idx],
-                       max_real ? &max_real[idx] : NULL);
+    for (t = 0; t < ntiles && fail == AUTOBAL_SUCCESS; t++) {
+      size_t ii = t / tpr, j0 = (t % tpr) * MAP_TILE;
+      size_t j1 = j0 + MAP_TILE < s->n_Rw ? j0 + MAP_TILE : s->n_Rw;
+      fail = map_tile(&mc, ii, j0, j1, ws, &hint, verdict, max_real);
     }
     autobal_pendulum_workspace_free(ws);
   }

@@ -1,0 +1,168 @@
+/* cmd_rerun.c: `autobal rerun FILE.h5 -o NEW.h5 [--force] [--json] [-q]`: repeat the run
+ * recorded in an archive.  Every archive holds, as root attributes, the command (`command`,
+ * e.g. "rotor transient") and the effective configuration (`input_config`: the INI text of
+ * the configuration file plus the --set overrides, written by cli_archive_open).  This
+ * command reads both, rebuilds the configuration from that text and runs the command again,
+ * writing NEW.h5.  Built-in defaults fill the keys that were not given, as in the original
+ * run, so the data are reproduced bit for bit by the same version of autobal (the
+ * provenance attributes `created` and `command_line` and the solver's wall time differ).
+ * NEW.h5 records the same `command` and `input_config`, so it can be re-run in turn. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "autobal/archive.h"
+#include "cli.h"
+#include "commands.h"
+
+int cli_cmd_rerun(cli_ctx *ctx); /* registered in commands.c */
+
+/* Read string attribute `name` of the root group into a malloc'ed buffer (*out; NULL when
+ * absent).  Returns an AUTOBAL status. */
+static int read_root_string(autobal_archive *a, const char *name, char **out) {
+  size_t len = 0;
+  char probe[2];
+  int st;
+  *out = NULL;
+  if (!autobal_archive_has(a, "/", name)) return AUTOBAL_SUCCESS;
+  st = autobal_archive_read_attr_string(a, "/", name, probe, sizeof probe, &len);
+  if (st < 0) return st;
+  *out = malloc(len + 1);
+  if (!*out) return AUTOBAL_ENOMEM;
+  st = autobal_archive_read_attr_string(a, "/", name, *out, len + 1, NULL);
+  if (st != AUTOBAL_SUCCESS) {
+    free(*out);
+    *out = NULL;
+    return st < 0 ? st : AUTOBAL_EFORMAT;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* Apply the INI text written by cli_config_to_ini ("[section]" lines and "key = value"
+ * lines) to inner->cfg as section.key=value assignments.  The value is everything after the
+ * first " = ", byte for byte (no comment stripping: the text was written by us).  Returns a
+ * CLI_EXIT_* code; on failure the message is in outer->err. */
+static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const char *ini) {
+  const char *p = ini;
+  char section[256] = "";
+  size_t lineno = 0;
+  while (*p) {
+    const char *nl = strchr(p, '\n');
+    size_t len = nl ? (size_t)(nl - p) : strlen(p);
+    lineno++;
+    if (len > 0) {
+      char *line = malloc(len + 1), *assign;
+      const char *eq;
+      int rc;
+      if (!line) return cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
+      memcpy(line, p, len);
+      line[len] = '\0';
+      if (line[0] == '[' && line[len - 1] == ']' && len - 2 < sizeof section) {
+        memcpy(section, line + 1, len - 2);
+        section[len - 2] = '\0';
+        free(line);
+      } else if ((eq = strstr(line, " = ")) != NULL && eq > line && section[0]) {
+        size_t klen = (size_t)(eq - line), vlen = strlen(eq + 3);
+        assign = malloc(strlen(section) + klen + vlen + 3);
+        if (!assign) {
+          free(line);
+          return cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
+        }
+        sprintf(assign, "%s.%.*s=%s", section, (int)klen, line, eq + 3);
+        rc = cli_config_override(inner, assign);
+        free(assign);
+        free(line);
+        if (rc != CLI_EXIT_OK)
+          return cli_fail(outer, CLI_EXIT_IO, "'%s': root attribute input_config, line %zu: %s", file, lineno,
+                          inner->err);
+      } else {
+        free(line);
+        return cli_fail(outer, CLI_EXIT_IO,
+                        "'%s': root attribute input_config, line %zu is neither '[section]' nor 'key = value'",
+                        file, lineno);
+      }
+    }
+    if (!nl) break;
+    p = nl + 1;
+  }
+  return CLI_EXIT_OK;
+}
+
+int cli_cmd_rerun(cli_ctx *ctx) {
+  const char *path = ctx->config_path; /* the archive argument (see main.c) */
+  autobal_archive *a = NULL;
+  autobal_error err;
+  char *command = NULL, *ini = NULL, *status = NULL, *version = NULL;
+  const cli_command *cmd = NULL;
+  cli_ctx inner;
+  struct stat si, so;
+  size_t i;
+  int rc = CLI_EXIT_OK, st;
+
+  if (!path) return cli_fail(ctx, CLI_EXIT_USAGE, "rerun: give an archive: autobal rerun FILE.h5 -o NEW.h5");
+  if (!ctx->output)
+    return cli_fail(ctx, CLI_EXIT_USAGE, "rerun: give the new archive with -o NEW.h5 (FILE.h5 is never modified)");
+  autobal_error_clear(&err);
+  st = autobal_archive_open_read(path, &a, &err);
+  if (st != AUTOBAL_SUCCESS)
+    return cli_fail(ctx, st == AUTOBAL_ENOMEM ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "%s", err.message);
+  st = read_root_string(a, "command", &command);
+  if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "input_config", &ini);
+  if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "status", &status);
+  if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "autobal_version", &version);
+  if (st != AUTOBAL_SUCCESS) {
+    rc = cli_fail(ctx, st == AUTOBAL_ENOMEM ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "'%s': %s", path,
+                  autobal_archive_errmsg(a)[0] ? autobal_archive_errmsg(a) : autobal_strerror(st));
+    goto done;
+  }
+  autobal_archive_close(a, NULL);
+  a = NULL;
+  if (!command || !ini) {
+    rc = cli_fail(ctx, CLI_EXIT_IO, "'%s' cannot be re-run: it has no root attribute '%s'", path,
+                  command ? "input_config" : "command");
+    goto done;
+  }
+  for (i = 0; i < cli_ncommands; i++)
+    if (strcmp(cli_commands[i].name, command) == 0 && strchr(command, ' ')) cmd = &cli_commands[i];
+  if (!cmd) {
+    rc = cli_fail(ctx, CLI_EXIT_IO, "'%s' records the command '%s', which this autobal cannot run", path, command);
+    goto done;
+  }
+  if (stat(path, &si) == 0 && stat(ctx->output, &so) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
+    rc = cli_fail(ctx, CLI_EXIT_USAGE, "rerun: the new archive '%s' is the archive being re-run; choose another name",
+                  ctx->output);
+    goto done;
+  }
+  if (!ctx->json) {
+    if (version && strcmp(version, autobal_version()) != 0)
+      fprintf(stderr, "autobal: warning: '%s' was written by autobal %s, this is %s: results may differ\n", path,
+              version, autobal_version());
+    if (status && strcmp(status, "complete") != 0)
+      fprintf(stderr, "autobal: note: the recorded run did not complete (status '%s'); running it in full\n", status);
+  }
+
+  inner = *ctx;
+  inner.command = cmd->name;
+  inner.config_path = NULL;
+  inner.err[0] = '\0';
+  inner.cfg = cli_config_new(NULL);
+  if (!inner.cfg) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+    goto done;
+  }
+  rc = apply_ini(ctx, &inner, path, ini);
+  if (rc == CLI_EXIT_OK) {
+    rc = cmd->run(&inner);
+    if (rc != CLI_EXIT_OK) cli_fail(ctx, rc, "%s", inner.err[0] ? inner.err : "re-run failed (no message)");
+  }
+  cli_config_free(inner.cfg);
+done:
+  if (a) autobal_archive_close(a, NULL);
+  free(command);
+  free(ini);
+  free(status);
+  free(version);
+  return rc;
+}

@@ -1,0 +1,807 @@
+/* cmd_rotor_stability.c: `autobal rotor stability|sweep|map|campbell`: balanced motions of the
+ * rotor with ball autobalancers, their stability (spec rotor.md (3.14)-(3.16), anisotropic
+ * supports by Floquet), critical speeds, parameter sweeps, two-parameter maps, natural
+ * frequencies, the Campbell diagram and the unbalance-response critical speeds. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/archive.h"
+#include "autobal/rotor.h"
+#include "autobal/rotor_stability.h"
+#include "cli.h"
+
+/* declared here until apps/cli.h lists them */
+int cli_cmd_rotor_stability(cli_ctx *ctx);
+int cli_cmd_rotor_sweep(cli_ctx *ctx);
+int cli_cmd_rotor_map(cli_ctx *ctx);
+int cli_cmd_rotor_campbell(cli_ctx *ctx);
+
+#define MAX_MEMBER_ANGLES 4096
+#define TWO_PI 6.283185307179586476925286766559
+
+/* ---- configuration shared by the commands --------------------------------------- */
+
+typedef struct stab_cfg {
+  autobal_rotor_params p;
+  void *storage; /* ball arrays of p (cli_rotor_config_read) */
+  autobal_rotor_stab_options opt;
+  double angles[AUTOBAL_ROTOR_MAX_PLANES][MAX_MEMBER_ANGLES];
+  const char *method_name;
+  const char *member_name[AUTOBAL_ROTOR_MAX_PLANES];
+} stab_cfg;
+
+static int parse_member(cli_ctx *ctx, stab_cfg *c, size_t j) {
+  char key[32], akey[40];
+  size_t n = 0;
+  int rc, present = 0;
+  const char *name = "default";
+  autobal_rotor_member *m = &c->opt.member[j];
+  snprintf(key, sizeof key, "member%zu", j + 1);
+  snprintf(akey, sizeof akey, "member%zu_angles", j + 1);
+  if ((rc = cli_get_string(ctx, "stability", key, name, &name, NULL))) return rc;
+  if ((rc = cli_get_doubles(ctx, "stability", akey, c->angles[j], MAX_MEMBER_ANGLES, &n, &present))) return rc;
+  c->member_name[j] = name;
+  if (!strcmp(name, "default")) m->kind = AUTOBAL_ROTOR_MEMBER_DEFAULT;
+  else if (!strcmp(name, "symmetric")) m->kind = AUTOBAL_ROTOR_MEMBER_SYMMETRIC;
+  else if (!strcmp(name, "free")) m->kind = AUTOBAL_ROTOR_MEMBER_FREE;
+  else if (!strcmp(name, "given")) m->kind = AUTOBAL_ROTOR_MEMBER_GIVEN;
+  else
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[stability]: %s = '%s' is not one of: default, symmetric, free, given", key,
+                    name);
+  if (j >= c->p.n_planes && strcmp(name, "default"))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[stability]: %s is given but there is no plane %zu", key, j + 1);
+  if ((m->kind == AUTOBAL_ROTOR_MEMBER_FREE || m->kind == AUTOBAL_ROTOR_MEMBER_GIVEN) && !present)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[stability]: %s = %s needs %s (the angles of balls 1..n-2 for 'free', of every ball for "
+                    "'given', rad)",
+                    key, name, akey);
+  if (present && !(m->kind == AUTOBAL_ROTOR_MEMBER_FREE || m->kind == AUTOBAL_ROTOR_MEMBER_GIVEN))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[stability]: %s is used only with %s = free or given", akey, key);
+  m->n_angles = n;
+  m->angles = n ? c->angles[j] : NULL;
+  return CLI_EXIT_OK;
+}
+
+/* Read the rotor model and [stability]; validates by allocating a handle once. */
+static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
+  int rc;
+  size_t j;
+  autobal_error err;
+  autobal_rotor_stab *probe;
+  c->opt = autobal_rotor_stab_options_default();
+  if ((rc = cli_rotor_config_read(ctx, &c->p, &c->storage))) return rc;
+  cli_declare_section(ctx, "transient"); /* the same config files as `rotor transient` */
+  c->method_name = "auto";
+  if ((rc = cli_get_string(ctx, "stability", "method", c->method_name, &c->method_name, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "stability", "tol", c->opt.tol, &c->opt.tol, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "stability", "floquet_rtol", c->opt.floquet_rtol, &c->opt.floquet_rtol, NULL)))
+    return rc;
+  if ((rc = cli_get_double(ctx, "stability", "floquet_atol", c->opt.floquet_atol, &c->opt.floquet_atol, NULL)))
+    return rc;
+  {
+    static const char *const names[] = {"auto", "poly", "closed", "full", "floquet"};
+    int k, found = -1;
+    for (k = 0; k < 5; k++)
+      if (!strcmp(c->method_name, names[k])) found = k;
+    if (found < 0)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[stability]: method = '%s' is not one of: auto, poly, closed, full, floquet",
+                      c->method_name);
+    c->opt.method = found;
+  }
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++)
+    if ((rc = parse_member(ctx, c, j))) return rc;
+  autobal_error_clear(&err);
+  probe = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
+  if (!probe) return cli_fail(ctx, cli_exit_code(err.status), "%s", err.message);
+  if (err.status == AUTOBAL_WARNING && !ctx->json && !ctx->quiet) fprintf(stderr, "autobal: warning: %s\n", err.message);
+  autobal_rotor_stab_free(probe);
+  return CLI_EXIT_OK;
+}
+
+/* A linear grid [lo, hi] with n points. */
+static double *grid(double lo, double hi, size_t n) {
+  double *v = malloc((n ? n : 1) * sizeof *v);
+  size_t i;
+  if (!v) return NULL;
+  for (i = 0; i < n; i++) v[i] = n == 1 ? lo : (i + 1 == n ? hi : lo + (hi - lo) * (double)i / (double)(n - 1));
+  return v;
+}
+
+/* ---- archive: the model and the analysis options ----------------------------------- */
+
+static int write_model(autobal_archive *a, const stab_cfg *c) {
+  const autobal_rotor_params *p = &c->p;
+  autobal_rotor_lumped L;
+  const char *g = "/rotor", *gl = "/rotor/lumped";
+  char grp[64];
+  size_t j;
+  int st;
+  if (p->input == AUTOBAL_ROTOR_HARDWARE) (void)autobal_rotor_lumped_from_hardware(&p->hw, &L, NULL);
+  else L = p->lumped;
+  st = autobal_archive_group(a, g);
+#define AD(obj, name, v, u) \
+  if (!st) st = autobal_archive_attr_double(a, obj, name, v, u)
+#define AS(obj, name, v) \
+  if (!st) st = autobal_archive_attr_string(a, obj, name, v)
+  AS(g, "model", "rotor in a massive housing with ball autobalancers (spec rotor.md)");
+  AS(g, "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
+  AS(g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
+  AD(g, "omega", p->omega, "rad/s");
+  if (!st) st = autobal_archive_group(a, gl);
+  AD(gl, "M", L.M, "kg");
+  AD(gl, "A", L.A, "kg m^2");
+  AD(gl, "C", L.C, "kg m^2");
+  AD(gl, "c_x", L.c_x, "N/m");
+  AD(gl, "c_y", L.c_y, "N/m");
+  AD(gl, "c_alpha", L.c_alpha, "N m");
+  AD(gl, "c_beta", L.c_beta, "N m");
+  AD(gl, "c_xbeta", L.c_xbeta, "N");
+  AD(gl, "c_yalpha", L.c_yalpha, "N");
+  AD(gl, "h_x", L.h_x, "N s/m");
+  AD(gl, "h_y", L.h_y, "N s/m");
+  AD(gl, "h_alpha", L.h_alpha, "N m s");
+  AD(gl, "h_beta", L.h_beta, "N m s");
+  AD(gl, "h_xbeta", L.h_xbeta, "N s");
+  AD(gl, "h_yalpha", L.h_yalpha, "N s");
+  for (j = 0; j < p->n_planes && !st; j++) {
+    const autobal_rotor_plane *pl = &p->plane[j];
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_group(a, grp);
+    AD(grp, "d", pl->d, "m");
+    AD(grp, "m0", pl->m0, "kg");
+    AD(grp, "r0", pl->r0, "m");
+    AD(grp, "psi0", pl->psi0, "rad");
+    if (!st) st = autobal_archive_attr_int(a, grp, "n_balls", (long)pl->n_balls);
+    if (!st && pl->n_balls > 0) {
+      st = autobal_archive_attr_double_array(a, grp, "ball_mass", pl->n_balls, pl->ball_mass, "kg");
+      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_radius", pl->n_balls, pl->ball_radius, "m");
+      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_damping", pl->n_balls, pl->ball_damping, "kg/s");
+    }
+    AS(grp, "member", c->member_name[j]);
+    if (!st && c->opt.member[j].n_angles > 0)
+      st = autobal_archive_attr_double_array(a, grp, "member_angles", c->opt.member[j].n_angles,
+                                             c->opt.member[j].angles, "rad");
+  }
+  return st;
+}
+
+static int write_options(autobal_archive *a, const char *g, const stab_cfg *c) {
+  int st = autobal_archive_attr_string(a, g, "method_option", c->method_name);
+  if (!st) st = autobal_archive_attr_double(a, g, "tol", c->opt.tol, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "floquet_rtol", c->opt.floquet_rtol, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "floquet_atol", c->opt.floquet_atol, "1");
+  return st;
+}
+
+static int write_crit(autobal_archive *a, const char *g, const autobal_rotor_crit *cr, const char *unit) {
+  int st = autobal_archive_attr_int(a, g, "n_critical", (long)cr->n);
+  int kinds[AUTOBAL_ROTOR_MAX_CRIT];
+  size_t i;
+  static const char *const dc[] = {"critical"}, *const di[] = {"interval"};
+  if (!st) st = autobal_archive_attr_int(a, g, "n_stable_intervals", (long)cr->n_stable);
+  if (!st) st = autobal_archive_attr_int(a, g, "truncated", cr->truncated);
+  if (!st && cr->n > 0) {
+    for (i = 0; i < cr->n; i++) kinds[i] = cr->kind[i];
+    st = autobal_archive_dim(a, g, "critical", cr->n, "index of a critical value (verdict change)");
+    if (!st) st = autobal_archive_var(a, g, "critical_value", 1, dc, cr->value, unit, "critical value: the margin crosses 0 here (refined)");
+    if (!st) st = autobal_archive_var_int(a, g, "critical_kind", 1, dc, kinds, "1", "1: stable above, -1: unstable above, 0: a balanced configuration exists on one side only");
+  }
+  if (!st && cr->n_stable > 0) {
+    st = autobal_archive_dim(a, g, "interval", cr->n_stable, "index of a stable interval");
+    if (!st) st = autobal_archive_var(a, g, "stable_lo", 1, di, cr->stable_lo, unit, "lower end of a stable interval (the sweep's start when stable there)");
+    if (!st) st = autobal_archive_var(a, g, "stable_hi", 1, di, cr->stable_hi, unit, "upper end of a stable interval (the sweep's end when stable there)");
+  }
+  return st;
+}
+
+static void print_intervals(const char *what, const char *unit, const autobal_rotor_crit *cr, double lo, double hi) {
+  size_t i;
+  printf("  critical values of %s in [%g, %g] %s:", what, lo, hi, unit);
+  if (cr->n == 0) printf(" none");
+  for (i = 0; i < cr->n; i++)
+    printf(" %.10g (%s)", cr->value[i],
+           cr->kind[i] > 0 ? "stable above" : (cr->kind[i] < 0 ? "unstable above" : "balanced configuration appears/disappears"));
+  printf("\n  STABLE %s intervals:", what);
+  if (cr->n_stable == 0) printf(" none in the range");
+  for (i = 0; i < cr->n_stable; i++) {
+    printf(" [%.10g, %.10g]", cr->stable_lo[i], cr->stable_hi[i]);
+    if (cr->stable_hi[i] == hi) printf(" (to the end of the range)");
+  }
+  printf("%s\n", cr->truncated ? "  (list truncated)" : "");
+}
+
+static void json_crit(cli_json *j, const autobal_rotor_crit *cr) {
+  size_t i;
+  cli_json_numbers(j, "critical_values", cr->value, cr->n);
+  cli_json_array(j, "critical_kind");
+  for (i = 0; i < cr->n; i++) cli_json_int(j, NULL, cr->kind[i]);
+  cli_json_array_end(j);
+  cli_json_numbers(j, "stable_lo", cr->stable_lo, cr->n_stable);
+  cli_json_numbers(j, "stable_hi", cr->stable_hi, cr->n_stable);
+}
+
+static const char *verdict_text(int v) {
+  return v == AUTOBAL_ROTOR_VERDICT_NONE ? "none (no balanced configuration)" : autobal_verdict_name(v);
+}
+
+/* A default speed range for critical speeds: from 5% of the lowest natural frequency at rest to
+ * 4 times the larger of the highest one and |omega|. */
+static void default_speed_range(const autobal_rotor_params *p, double *lo, double *hi) {
+  double f[4] = {100, 100, 100, 100};
+  (void)autobal_rotor_modes(p, 0.0, 1, f, NULL, NULL, NULL, NULL);
+  *lo = 0.05 * (f[0] > 0 ? f[0] : 1.0);
+  *hi = 4.0 * fmax(f[3], fabs(p->omega));
+  if (!(*hi > *lo)) *hi = *lo + 1.0;
+}
+
+/* ---- rotor stability ------------------------------------------------------------------ */
+int cli_cmd_rotor_stability(cli_ctx *ctx) {
+  stab_cfg *c = calloc(1, sizeof *c);
+  autobal_rotor_stab *s = NULL;
+  autobal_rotor_stab_result r;
+  autobal_rotor_crit cr;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  double clo = 0, chi = 0, xtol = 1e-8;
+  long cn = 400;
+  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = 1;
+  size_t i;
+  memset(&cr, 0, sizeof cr);
+  if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  if ((rc = read_stab_cfg(ctx, c))) goto done;
+  default_speed_range(&c->p, &clo, &chi);
+  if ((rc = cli_get_bool(ctx, "stability", "critical_speeds", 1, &do_crit, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "stability", "omega_min", clo, &clo, &have_lo))) goto done;
+  if ((rc = cli_get_double(ctx, "stability", "omega_max", chi, &chi, &have_hi))) goto done;
+  if ((rc = cli_get_int(ctx, "stability", "n_omega", cn, &cn, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "stability", "xtol_rel", xtol, &xtol, NULL))) goto done;
+  if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (!(c->p.omega != 0.0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: omega = 0: the balanced motion of a rotor at rest has no stability to analyse");
+    goto done;
+  }
+  if (do_crit && (!(clo > 0 && clo < chi) || cn < 2 || cn > 10000000 || !(xtol > 0 && xtol < 0.1))) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[stability]: need 0 < omega_min < omega_max, n_omega in [2, 1e7], xtol_rel in (0, 0.1); got %g, %g, %ld, %g",
+                  clo, chi, cn, xtol);
+    goto done;
+  }
+  autobal_error_clear(&err);
+  s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
+  if (!s) {
+    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", err.message);
+    goto done;
+  }
+  st = autobal_rotor_stab_analyze(s, &r);
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_rotor_stab_errmsg(s));
+    goto done;
+  }
+  if (do_crit) {
+    double lo = c->p.omega > 0 ? clo : -chi, hi = c->p.omega > 0 ? chi : -clo;
+    st = autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, (size_t)cn, xtol, &cr);
+    if (st) {
+      rc = cli_fail(ctx, cli_exit_code(st), "critical speeds: %s", autobal_rotor_stab_errmsg(s));
+      goto done;
+    }
+    /* the analysis above stays valid: critical() restores omega but overwrites the workspace */
+    st = autobal_rotor_stab_analyze(s, &r);
+    if (st) {
+      rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_rotor_stab_errmsg(s));
+      goto done;
+    }
+  }
+  if ((rc = cli_archive_open(ctx, "autobal rotor stability", &a))) goto done;
+  if (a) {
+    const char *g = "/rotor/stability";
+    static const char *const droot[] = {"root"}, *const dpow[] = {"power"}, *const dfull[] = {"full_root"},
+                             *const dmu[] = {"multiplier"}, *const dball[] = {"ball"};
+    double power[AUTOBAL_ROTOR_POLY_LEN];
+    for (i = 0; i < AUTOBAL_ROTOR_POLY_LEN; i++) power[i] = (double)i;
+    st = write_model(a, c);
+    if (!st) st = autobal_archive_group(a, g);
+    if (!st) st = write_options(a, g, c);
+    if (!st) st = autobal_archive_attr_string(a, g, "method", autobal_rotor_stab_method_name(r.method));
+    if (!st) st = autobal_archive_attr_string(a, g, "verdict", verdict_text(r.verdict));
+    if (!st) st = autobal_archive_attr_double(a, g, "margin", r.margin, "1/s");
+    if (!st) st = autobal_archive_attr_double(a, g, "period", r.period, "s");
+    if (!st) st = autobal_archive_attr_int(a, g, "isotropic", r.isotropic);
+    if (!st) st = autobal_archive_attr_int(a, g, "closure_ok", r.closure_ok);
+    if (!st) st = autobal_archive_attr_int(a, g, "n_family", (long)r.n_family);
+    if (!st) st = autobal_archive_dim(a, g, "ball", r.n_balls, "ball index in state order (plane 1 first)");
+    if (!st) st = autobal_archive_var(a, g, "psi_balanced", 1, dball, r.psi, "rad", "balanced ball angles (3.14) of the analysed member, relative to the rotor");
+    if (!st && r.n_closed > 0) {
+      st = autobal_archive_dim(a, g, "root", r.n_closed, "index of a characteristic root of the closed system");
+      if (!st) st = autobal_archive_var(a, g, "root_real", 1, droot, r.root_re, "1/s", r.n_poly ? "real part of the roots of Delta (GSL polynomial solver)" : "real part of the eigenvalues of the closed matrix");
+      if (!st) st = autobal_archive_var(a, g, "root_imag", 1, droot, r.root_im, "1/s", "imaginary part of the same (rotating frame)");
+      if (!st) st = autobal_archive_var(a, g, "eig_real", 1, droot, r.closed_eig_re, "1/s", "real part of the eigenvalues of the closed first-order matrix, matched to the roots");
+      if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, droot, r.closed_eig_im, "1/s", "imaginary part of the same");
+      if (!st) st = autobal_archive_attr_double(a, g, "closed_margin", r.closed_margin, "1/s");
+      if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.root_eig_mismatch, "1");
+    }
+    if (!st && r.n_poly > 0) {
+      st = autobal_archive_coord(a, g, "power", AUTOBAL_ROTOR_POLY_LEN, power, "1", "power of lambda");
+      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "1", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers of lambda (lambda in 1/s; coefficient k in SI units of Delta times s^k)");
+      if (!st) st = autobal_archive_attr_string(a, g, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
+      if (!st) st = autobal_archive_attr_int(a, g, "hurwitz_n_rhp", r.hurwitz_n_rhp);
+    }
+    if (!st && r.n_full > 0) {
+      st = autobal_archive_dim(a, g, "full_root", r.n_full, "index of an eigenvalue of the full model's linearization");
+      if (!st) st = autobal_archive_var(a, g, "full_real", 1, dfull, r.full_re, "1/s", "real part of the eigenvalues of the full model's linearization in rotating coordinates");
+      if (!st) st = autobal_archive_var(a, g, "full_imag", 1, dfull, r.full_im, "1/s", "imaginary part of the same");
+      if (!st) st = autobal_archive_attr_double(a, g, "full_margin", r.full_margin, "1/s");
+      if (!st) st = autobal_archive_attr_double(a, g, "full_mismatch", r.full_mismatch, "1");
+    }
+    if (!st && r.n_floquet > 0) {
+      st = autobal_archive_dim(a, g, "multiplier", r.n_floquet, "index of a Floquet multiplier (by decreasing modulus)");
+      if (!st) st = autobal_archive_var(a, g, "floquet_real", 1, dmu, r.mu_re, "1", "real part of the Floquet multipliers (monodromy over T = 2 pi/|omega|)");
+      if (!st) st = autobal_archive_var(a, g, "floquet_imag", 1, dmu, r.mu_im, "1", "imaginary part of the same");
+      if (!st) st = autobal_archive_attr_double(a, g, "floquet_margin", r.floquet_margin, "1/s");
+      if (!st) st = autobal_archive_attr_double(a, g, "floquet_mismatch", r.floquet_mismatch, "1");
+    }
+    if (!st && do_crit) {
+      const char *gc = "/rotor/stability/critical";
+      st = autobal_archive_group(a, gc);
+      if (!st) st = autobal_archive_attr_double(a, gc, "omega_min", clo, "rad/s");
+      if (!st) st = autobal_archive_attr_double(a, gc, "omega_max", chi, "rad/s");
+      if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", cn);
+      if (!st) st = write_crit(a, gc, &cr, "rad/s");
+    }
+    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    a = NULL;
+    if (rc) goto done;
+  }
+  if (ctx->json) {
+    cli_json j;
+    cli_json_begin(&j, stdout);
+    cli_json_string(&j, "command", ctx->command);
+    cli_json_number(&j, "omega", c->p.omega);
+    cli_json_string(&j, "method", autobal_rotor_stab_method_name(r.method));
+    cli_json_string(&j, "verdict", verdict_text(r.verdict));
+    cli_json_number(&j, "margin", r.margin);
+    cli_json_numbers(&j, "psi_balanced", r.psi, r.n_balls);
+    cli_json_int(&j, "n_family", (long)r.n_family);
+    if (r.n_poly) cli_json_string(&j, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
+    cli_json_number(&j, "root_eig_mismatch", r.n_closed ? r.root_eig_mismatch : NAN);
+    cli_json_number(&j, "full_mismatch", r.full_mismatch);
+    cli_json_number(&j, "floquet_mismatch", r.floquet_mismatch);
+    if (do_crit) json_crit(&j, &cr);
+    if (ctx->output) cli_json_string(&j, "output", ctx->output);
+    cli_json_end(&j);
+  } else if (!ctx->quiet) {
+    printf("rotor stability at omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %s supports\n", c->p.omega,
+           c->p.omega * 60.0 / TWO_PI, c->p.n_planes, r.n_balls, r.isotropic ? "isotropic" : "anisotropic");
+    printf("  balanced configuration (3.14), member %s:", c->member_name[0]);
+    for (i = 0; i < r.n_balls && i < 16; i++) printf(" %.7f", r.psi[i]);
+    printf(" rad\n");
+    if (r.n_family)
+      printf("  neutral family: %zu root(s) at 0 (Floquet multipliers 1) excluded: the verdict is the stability of the family\n",
+             r.n_family);
+    printf("  BALANCED MOTION: %s (method %s), margin max Re(lambda) = %.6e 1/s\n", verdict_text(r.verdict),
+           autobal_rotor_stab_method_name(r.method), r.margin);
+    if (r.n_poly)
+      printf("  Routh-Hurwitz on Delta: %s (%d root(s) with Re > 0)\n", autobal_verdict_name(r.hurwitz_verdict),
+             r.hurwitz_n_rhp);
+    if (r.n_closed) {
+      printf("  %-3s %22s %22s\n", "#", "root: Re (1/s)", "Im (1/s)");
+      for (i = 0; i < r.n_closed; i++) printf("  %-3zu %22.12e %22.12e\n", i, r.root_re[i], r.root_im[i]);
+      printf("  roots vs closed-matrix eigenvalues: %.3e (relative)\n", r.root_eig_mismatch);
+    }
+    if (r.n_full) printf("  full model (rotating coordinates) vs closed roots + family: %.3e (relative)\n", r.full_mismatch);
+    if (r.n_floquet)
+      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; vs exp(lambda T): %.3e\n", r.period, r.floquet_margin,
+             r.floquet_mismatch);
+    if (do_crit) print_intervals("speed (omega)", "rad/s", &cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+done:
+  if (a) rc = cli_archive_finish(ctx, a, rc);
+  autobal_rotor_stab_free(s);
+  if (c) free(c->storage);
+  free(c);
+  return rc;
+}
+
+/* ---- rotor sweep ------------------------------------------------------------------------ */
+static int read_param(cli_ctx *ctx, const char *sec, const char *key, const char *def, int *param) {
+  const char *name = def;
+  int rc;
+  if ((rc = cli_get_string(ctx, sec, key, def, &name, NULL))) return rc;
+  *param = autobal_rotor_stab_param_from_name(name);
+  if (*param < 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[%s]: %s = '%s' is not one of: omega, ball_damping, ball_mass, stiffness_scale, damping_scale, "
+                    "unbalance_mass",
+                    sec, key, name);
+  return CLI_EXIT_OK;
+}
+
+static double param_default_hi(const stab_cfg *c, int param) {
+  switch (param) {
+    case AUTOBAL_ROTOR_PARAM_OMEGA: {
+      double lo, hi;
+      default_speed_range(&c->p, &lo, &hi);
+      return hi;
+    }
+    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return 10.0 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_damping[0] : 0.1) + 1e-3;
+    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return 4.0 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_mass[0] : 0.05);
+    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return 4.0 * c->p.plane[0].m0 + 1e-3;
+    default: return 4.0;
+  }
+}
+static double param_default_lo(const stab_cfg *c, int param) {
+  switch (param) {
+    case AUTOBAL_ROTOR_PARAM_OMEGA: {
+      double lo, hi;
+      default_speed_range(&c->p, &lo, &hi);
+      return lo;
+    }
+    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return 0.0;
+    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return 0.1 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_mass[0] : 0.05);
+    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return 0.0;
+    case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE: return 0.0;
+    default: return 0.25;
+  }
+}
+
+int cli_cmd_rotor_sweep(cli_ctx *ctx) {
+  stab_cfg *c = calloc(1, sizeof *c);
+  autobal_rotor_stab *s = NULL;
+  autobal_rotor_crit cr;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  double lo, hi, xtol = 1e-8, *vals = NULL, *mg = NULL;
+  int *vd = NULL, param = 0, rc = CLI_EXIT_OK, st;
+  long n = 1000;
+  size_t i, nstable = 0;
+  const char *pname, *unit;
+  memset(&cr, 0, sizeof cr);
+  if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  if ((rc = read_stab_cfg(ctx, c))) goto done;
+  if ((rc = read_param(ctx, "sweep", "param", "omega", &param))) goto done;
+  lo = param_default_lo(c, param);
+  hi = param_default_hi(c, param);
+  if ((rc = cli_get_double(ctx, "sweep", "min", lo, &lo, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "sweep", "max", hi, &hi, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "sweep", "n", n, &n, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "sweep", "xtol_rel", xtol, &xtol, NULL))) goto done;
+  if ((rc = cli_config_check_unused(ctx))) goto done;
+  pname = autobal_rotor_stab_param_name(param);
+  unit = autobal_rotor_stab_param_unit(param);
+  if (!(lo < hi) || n < 2 || n > 10000000 || !(xtol > 0 && xtol < 0.1)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[sweep]: need min < max, n in [2, 1e7], xtol_rel in (0, 0.1); got %g, %g, %ld, %g",
+                  lo, hi, n, xtol);
+    goto done;
+  }
+  if (param != AUTOBAL_ROTOR_PARAM_OMEGA && !(c->p.omega != 0.0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: omega = 0: nothing to analyse");
+    goto done;
+  }
+  autobal_error_clear(&err);
+  s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
+  vals = grid(lo, hi, (size_t)n);
+  mg = malloc((size_t)n * sizeof *mg);
+  vd = malloc((size_t)n * sizeof *vd);
+  if (!s || !vals || !mg || !vd) {
+    rc = cli_fail(ctx, s ? CLI_EXIT_INTERNAL : cli_exit_code(err.status), "%s", s ? "out of memory" : err.message);
+    goto done;
+  }
+  /* the sweep in chunks, for progress and interruption */
+  for (i = 0; i < (size_t)n; i += 64) {
+    size_t m = (size_t)n - i < 64 ? (size_t)n - i : 64;
+    st = autobal_rotor_stab_sweep(s, param, vals + i, m, mg + i, vd + i);
+    if (st) {
+      rc = cli_fail(ctx, cli_exit_code(st), "%s = %.9g %s: %s", pname, vals[i], unit, autobal_rotor_stab_errmsg(s));
+      goto done;
+    }
+    if (cli_progress(ctx, "rotor sweep", 0.5 * (double)(i + m) / (double)n)) {
+      rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted");
+      goto done;
+    }
+  }
+  st = autobal_rotor_stab_critical(s, param, lo, hi, (size_t)n, xtol, &cr);
+  cli_progress_done(ctx);
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "critical values: %s", autobal_rotor_stab_errmsg(s));
+    goto done;
+  }
+  for (i = 0; i < (size_t)n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
+  if ((rc = cli_archive_open(ctx, "autobal rotor sweep", &a))) goto done;
+  if (a) {
+    const char *g = "/rotor/sweep";
+    const char *dims[1];
+    char lname[160];
+    dims[0] = pname;
+    snprintf(lname, sizeof lname, "swept parameter %s", pname);
+    st = write_model(a, c);
+    if (!st) st = autobal_archive_group(a, g);
+    if (!st) st = write_options(a, g, c);
+    if (!st) st = autobal_archive_attr_string(a, g, "param", pname);
+    if (!st) st = autobal_archive_coord(a, g, pname, (size_t)n, vals, unit, lname);
+    if (!st) st = autobal_archive_var(a, g, "margin", 1, dims, mg, "1/s", "stability margin: largest real part of the characteristic roots (family roots excluded; Floquet: log max|mu| / T); NaN: no balanced configuration");
+    if (!st) st = autobal_archive_var_int(a, g, "verdict", 1, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
+    if (!st) st = write_crit(a, g, &cr, unit);
+    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    a = NULL;
+    if (rc) goto done;
+  }
+  if (ctx->json) {
+    cli_json j;
+    cli_json_begin(&j, stdout);
+    cli_json_string(&j, "command", ctx->command);
+    cli_json_string(&j, "param", pname);
+    cli_json_string(&j, "unit", unit);
+    cli_json_number(&j, "min", lo);
+    cli_json_number(&j, "max", hi);
+    cli_json_int(&j, "n", n);
+    cli_json_int(&j, "n_stable_points", (long)nstable);
+    json_crit(&j, &cr);
+    if (ctx->output) cli_json_string(&j, "output", ctx->output);
+    cli_json_end(&j);
+  } else if (!ctx->quiet) {
+    printf("rotor sweep of %s over [%g, %g] %s, %ld points (omega = %.6g rad/s unless swept)\n", pname, lo, hi, unit, n,
+           c->p.omega);
+    printf("  stable points: %zu of %ld; %zu evaluations for the refinement\n", nstable, n, cr.evaluations);
+    print_intervals(pname, unit, &cr, lo, hi);
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+done:
+  if (a) rc = cli_archive_finish(ctx, a, rc);
+  autobal_rotor_stab_free(s);
+  free(vals);
+  free(mg);
+  free(vd);
+  if (c) free(c->storage);
+  free(c);
+  return rc;
+}
+
+/* ---- rotor map ---------------------------------------------------------------------------- */
+int cli_cmd_rotor_map(cli_ctx *ctx) {
+  stab_cfg *c = calloc(1, sizeof *c);
+  autobal_archive *a = NULL;
+  autobal_error err;
+  double lo1, hi1, lo2, hi2, *v1 = NULL, *v2 = NULL, *mg = NULL;
+  int *vd = NULL, p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
+  long n1 = 120, n2 = 60, threads = 0;
+  size_t i, n, nstable = 0;
+  if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  if ((rc = read_stab_cfg(ctx, c))) goto done;
+  if ((rc = read_param(ctx, "map", "param1", "omega", &p1))) goto done;
+  if ((rc = read_param(ctx, "map", "param2", "ball_damping", &p2))) goto done;
+  lo1 = param_default_lo(c, p1);
+  hi1 = param_default_hi(c, p1);
+  lo2 = param_default_lo(c, p2);
+  hi2 = param_default_hi(c, p2);
+  if ((rc = cli_get_double(ctx, "map", "min1", lo1, &lo1, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "map", "max1", hi1, &hi1, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "map", "n1", n1, &n1, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "map", "min2", lo2, &lo2, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "map", "max2", hi2, &hi2, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "map", "n2", n2, &n2, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "map", "threads", threads, &threads, NULL))) goto done;
+  if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (p1 == p2) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[map]: param1 and param2 must differ (both %s)", autobal_rotor_stab_param_name(p1));
+    goto done;
+  }
+  if (!(lo1 <= hi1) || !(lo2 <= hi2) || n1 < 1 || n2 < 1 || n1 > 100000 || n2 > 100000 || threads < 0 || threads > 1024) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[map]: need min1 <= max1, min2 <= max2, n1, n2 in [1, 100000], threads in [0, 1024]");
+    goto done;
+  }
+  n = (size_t)n1 * (size_t)n2;
+  v1 = grid(lo1, hi1, (size_t)n1);
+  v2 = grid(lo2, hi2, (size_t)n2);
+  mg = malloc(n * sizeof *mg);
+  vd = malloc(n * sizeof *vd);
+  if (!v1 || !v2 || !mg || !vd) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+    goto done;
+  }
+  autobal_error_clear(&err);
+  st = autobal_rotor_stab_map(&c->p, &c->opt, p1, v1, (size_t)n1, p2, v2, (size_t)n2, (int)threads, mg, vd, &err);
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    goto done;
+  }
+  for (i = 0; i < n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
+  if ((rc = cli_archive_open(ctx, "autobal rotor map", &a))) goto done;
+  if (a) {
+    const char *g = "/rotor/map";
+    const char *n1s = autobal_rotor_stab_param_name(p1), *n2s = autobal_rotor_stab_param_name(p2);
+    const char *dims[2];
+    dims[0] = n1s;
+    dims[1] = n2s;
+    st = write_model(a, c);
+    if (!st) st = autobal_archive_group(a, g);
+    if (!st) st = write_options(a, g, c);
+    if (!st) st = autobal_archive_attr_string(a, g, "param1", n1s);
+    if (!st) st = autobal_archive_attr_string(a, g, "param2", n2s);
+    if (!st) st = autobal_archive_coord(a, g, n1s, (size_t)n1, v1, autobal_rotor_stab_param_unit(p1), "first parameter (rows)");
+    if (!st) st = autobal_archive_coord(a, g, n2s, (size_t)n2, v2, autobal_rotor_stab_param_unit(p2), "second parameter (columns)");
+    if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, mg, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
+    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
+    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    a = NULL;
+    if (rc) goto done;
+  }
+  if (ctx->json) {
+    cli_json j;
+    cli_json_begin(&j, stdout);
+    cli_json_string(&j, "command", ctx->command);
+    cli_json_string(&j, "param1", autobal_rotor_stab_param_name(p1));
+    cli_json_string(&j, "param2", autobal_rotor_stab_param_name(p2));
+    cli_json_int(&j, "n1", n1);
+    cli_json_int(&j, "n2", n2);
+    cli_json_int(&j, "n_stable", (long)nstable);
+    cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
+    if (ctx->output) cli_json_string(&j, "output", ctx->output);
+    cli_json_end(&j);
+  } else if (!ctx->quiet) {
+    printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
+           hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
+           autobal_rotor_stab_param_unit(p2));
+    printf("  stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+done:
+  free(v1);
+  free(v2);
+  free(mg);
+  free(vd);
+  if (c) free(c->storage);
+  free(c);
+  return rc;
+}
+
+/* ---- rotor campbell ------------------------------------------------------------------------- */
+int cli_cmd_rotor_campbell(cli_ctx *ctx) {
+  autobal_rotor_params p;
+  void *storage = NULL;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  autobal_rotor_resonances rr;
+  double lo = 0.0, hi = 0.0, xtol = 1e-10, *om = NULL, *fr = NULL, *ze = NULL, *ag = NULL, *ad = NULL;
+  double fu[4], fd[4], zd[4];
+  int *wh = NULL, rc, st;
+  long n = 401, nres = 4000;
+  size_t i, j, np;
+  autobal_error_clear(&err);
+  if ((rc = cli_rotor_config_read(ctx, &p, &storage))) return rc;
+  cli_declare_section(ctx, "transient");
+  cli_declare_section(ctx, "stability");
+  {
+    double l0, h0;
+    default_speed_range(&p, &l0, &h0);
+    hi = h0;
+  }
+  if ((rc = cli_get_double(ctx, "campbell", "omega_min", lo, &lo, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "campbell", "omega_max", hi, &hi, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "campbell", "n", n, &n, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "campbell", "n_resonance", nres, &nres, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "campbell", "xtol_rel", xtol, &xtol, NULL))) goto done;
+  if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (!(lo >= 0 && lo < hi) || n < 2 || n > 10000000 || nres < 3 || nres > 10000000 || !(xtol > 0 && xtol < 0.1)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[campbell]: need 0 <= omega_min < omega_max, n in [2, 1e7], n_resonance in [3, 1e7], xtol_rel in (0, 0.1)");
+    goto done;
+  }
+  np = p.n_planes;
+  om = grid(lo, hi, (size_t)n);
+  fr = malloc(4 * (size_t)n * sizeof *fr);
+  ze = malloc(4 * (size_t)n * sizeof *ze);
+  wh = malloc(4 * (size_t)n * sizeof *wh);
+  ag = malloc((size_t)n * sizeof *ag);
+  ad = malloc(np * (size_t)n * sizeof *ad);
+  if (!om || !fr || !ze || !wh || !ag || !ad) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+    goto done;
+  }
+  if ((st = autobal_rotor_modes(&p, 0.0, 1, fu, NULL, NULL, NULL, &err)) ||
+      (st = autobal_rotor_modes(&p, 0.0, 0, fd, zd, NULL, NULL, &err)) ||
+      (st = autobal_rotor_campbell(&p, om, (size_t)n, fr, ze, wh, &err))) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    goto done;
+  }
+  for (i = 0; i < (size_t)n; i++) {
+    double d2[AUTOBAL_ROTOR_MAX_PLANES];
+    if (autobal_rotor_unbalance_response(&p, om[i], &ag[i], d2, NULL) != AUTOBAL_SUCCESS) {
+      ag[i] = INFINITY; /* an undamped resonance exactly on the grid */
+      for (j = 0; j < np; j++) d2[j] = INFINITY;
+    }
+    for (j = 0; j < np; j++) ad[i * np + j] = d2[j];
+  }
+  if ((st = autobal_rotor_resonance_speeds(&p, lo, hi, (size_t)nres, xtol, &rr, &err))) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    goto done;
+  }
+  if ((rc = cli_archive_open(ctx, "autobal rotor campbell", &a))) goto done;
+  if (a) {
+    const char *g = "/rotor/campbell";
+    static const char *const d2[] = {"omega", "mode"}, *const d1[] = {"omega"}, *const dp[] = {"omega", "plane"},
+                             *const dm[] = {"mode"}, *const dc[] = {"crossing"}, *const dk[] = {"peak"};
+    stab_cfg tmp;
+    memset(&tmp, 0, sizeof tmp);
+    tmp.p = p;
+    for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) tmp.member_name[j] = "default";
+    st = write_model(a, &tmp);
+    if (!st) st = autobal_archive_group(a, g);
+    if (!st) st = autobal_archive_attr_string(a, g, "description", "rotor-housing without balls (the unbalances drive the response; FULL inertia keeps their masses): natural frequencies, damping ratios and whirl vs omega (gyroscopic C omega), steady unbalance response");
+    if (!st) st = autobal_archive_coord(a, g, "omega", (size_t)n, om, "rad/s", "spin speed");
+    if (!st) st = autobal_archive_dim(a, g, "mode", 4, "mode index, by increasing frequency at each speed");
+    if (!st) st = autobal_archive_dim(a, g, "plane", np, "balancer plane index");
+    if (!st) st = autobal_archive_var(a, g, "frequency", 2, d2, fr, "rad/s", "damped natural frequency Im(lambda) in the fixed frame");
+    if (!st) st = autobal_archive_var(a, g, "damping_ratio", 2, d2, ze, "1", "-Re(lambda)/|lambda|");
+    if (!st) st = autobal_archive_var_int(a, g, "whirl", 2, d2, wh, "1", "1 forward, -1 backward, 0 undecided");
+    if (!st) st = autobal_archive_var(a, g, "amp_G", 1, d1, ag, "m", "steady unbalance response: major semi-axis of the orbit of the centre of mass");
+    if (!st) st = autobal_archive_var(a, g, "amp_D", 2, dp, ad, "m", "steady unbalance response at each balancer plane");
+    if (!st) st = autobal_archive_var(a, g, "natural_frequency_undamped", 1, dm, fu, "rad/s", "natural frequencies at rest without damping");
+    if (!st) st = autobal_archive_var(a, g, "natural_frequency_damped", 1, dm, fd, "rad/s", "damped natural frequencies at rest");
+    if (!st) st = autobal_archive_var(a, g, "damping_ratio_at_rest", 1, dm, zd, "1", "damping ratios at rest");
+    if (!st) st = autobal_archive_attr_int(a, g, "n_crossing", (long)rr.n_cross);
+    if (!st) st = autobal_archive_attr_int(a, g, "n_peak", (long)rr.n_peak);
+    if (!st && rr.n_cross > 0) {
+      st = autobal_archive_dim(a, g, "crossing", rr.n_cross, "index of a speed where a natural frequency equals omega");
+      if (!st) st = autobal_archive_var(a, g, "crossing_omega", 1, dc, rr.cross, "rad/s", "critical speed: natural frequency = omega");
+      if (!st) st = autobal_archive_var_int(a, g, "crossing_mode", 1, dc, rr.cross_mode, "1", "mode index");
+      if (!st) st = autobal_archive_var_int(a, g, "crossing_whirl", 1, dc, rr.cross_whirl, "1", "1 forward, -1 backward");
+    }
+    if (!st && rr.n_peak > 0) {
+      st = autobal_archive_dim(a, g, "peak", rr.n_peak, "index of a peak of the unbalance response");
+      if (!st) st = autobal_archive_var(a, g, "peak_omega", 1, dk, rr.peak, "rad/s", "unbalance-response critical speed (local maximum of amp_G)");
+      if (!st) st = autobal_archive_var(a, g, "peak_amp_G", 1, dk, rr.peak_amp, "m", "amp_G at the peak");
+    }
+    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    rc = cli_archive_finish(ctx, a, rc);
+    a = NULL;
+    if (rc) goto done;
+  }
+  if (ctx->json) {
+    cli_json jj;
+    cli_json_begin(&jj, stdout);
+    cli_json_string(&jj, "command", ctx->command);
+    cli_json_numbers(&jj, "natural_frequency_undamped", fu, 4);
+    cli_json_numbers(&jj, "natural_frequency_damped", fd, 4);
+    cli_json_numbers(&jj, "damping_ratio_at_rest", zd, 4);
+    cli_json_numbers(&jj, "crossing_omega", rr.cross, rr.n_cross);
+    cli_json_array(&jj, "crossing_whirl");
+    for (i = 0; i < rr.n_cross; i++) cli_json_int(&jj, NULL, rr.cross_whirl[i]);
+    cli_json_array_end(&jj);
+    cli_json_numbers(&jj, "peak_omega", rr.peak, rr.n_peak);
+    if (ctx->output) cli_json_string(&jj, "output", ctx->output);
+    cli_json_end(&jj);
+  } else if (!ctx->quiet) {
+    printf("rotor-housing (balls removed): natural frequencies at rest\n");
+    printf("  undamped: %.7g %.7g %.7g %.7g rad/s\n", fu[0], fu[1], fu[2], fu[3]);
+    printf("  damped:   %.7g %.7g %.7g %.7g rad/s (damping ratios %.4g %.4g %.4g %.4g)\n", fd[0], fd[1], fd[2], fd[3],
+           zd[0], zd[1], zd[2], zd[3]);
+    printf("Campbell diagram over omega in [%g, %g] rad/s (%ld points)\n", lo, hi, n);
+    printf("  critical speeds (natural frequency = omega):");
+    if (rr.n_cross == 0) printf(" none");
+    for (i = 0; i < rr.n_cross; i++)
+      printf(" %.8g (%s)", rr.cross[i], rr.cross_whirl[i] > 0 ? "forward" : (rr.cross_whirl[i] < 0 ? "backward" : "?"));
+    printf("\n  unbalance-response peaks (centre of mass):");
+    if (rr.n_peak == 0) printf(" none");
+    for (i = 0; i < rr.n_peak; i++) printf(" %.8g rad/s (%.4g um)", rr.peak[i], rr.peak_amp[i] * 1e6);
+    printf("\n");
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+  rc = CLI_EXIT_OK;
+done:
+  if (a) rc = cli_archive_finish(ctx, a, rc);
+  free(om);
+  free(fr);
+  free(ze);
+  free(wh);
+  free(ag);
+  free(ad);
+  free(storage);
+  return rc;
+}

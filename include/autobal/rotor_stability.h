@@ -1,0 +1,444 @@
+/* autobal/rotor_stability.h: balanced ("main") motions of the rotor with ball
+ * autobalancers, their stability, critical speeds, sweeps and maps, natural
+ * frequencies, the Campbell diagram and the unbalance response
+ * (spec rotor.md, "Balanced motions (3.14)", "Stability of the balanced motion
+ * (3.14)-(3.16)", "Anisotropic supports").
+ *
+ * The balanced motion.  x = y = alpha = beta = 0, every ball at rest relative
+ * to the rotor at angles psi~_i with sum_i m_i r_i e^{i psi~_i} = -m0 r0 e^{i psi0}
+ * in every plane (3.14).  For n = 2 balls the configuration is unique (up to
+ * swapping); for n >= 3 the balanced angles form an (n-2)-parameter family and
+ * the verdict depends on the member: see autobal_rotor_member.
+ *
+ * Four computations of the linear stability of a balanced motion
+ * (autobal_rotor_stab_method):
+ *
+ *  POLY  (isotropic supports, one plane, common h_i/m_i = kappa): the rotor
+ *    equations rotated with the shaft, W = (x + i y) e^{-i w t},
+ *    Theta = (beta - i alpha) e^{-i w t}, p(f) = f'' + 2 i w f' - w^2 f,
+ *    q(f) = f' + i w f (spec):
+ *      M p(W) + h q(W) + c W - h_c q(Theta) - c_c Theta + p(sigma) = 0
+ *      A p(Theta) + (h_t - i C w) q(Theta) + c_t Theta - h_c q(W) - c_c W + d p(sigma) = 0
+ *    closed by the corrected complex (3.16) for sigma = s_xi + i s_eta,
+ *      sigma'' + kappa sigma' = (1/2) (Q conj(a) - m_b a),   a = p(W + d Theta),
+ *    m_b = sum_i m_i, Q = sum_i m_i e^{2 i psi~_i} (= m sum e^{2 i psi~_i} for
+ *    identical balls).  With P = lambda + i w, Pb = lambda - i w and X* the
+ *    polynomial with conjugated coefficients, the degree-12 real characteristic
+ *    polynomial is
+ *      K11 = M P^2 + h P + c,  K12 = -(h_c P + c_c),  K22 = A P^2 + (h_t - i C w) P + c_t
+ *      D = K11 K22 - K12^2,  N = K22 - 2 d K12 + d^2 K11,
+ *      F = (lambda^2 + kappa lambda) D - (m_b / 2) P^4 N,
+ *      Delta = F F* - (|Q| / 2)^2 P^4 Pb^4 N N*
+ *    (the spec's D, N, F, Delta; in the FULL inertia model K11 += m_a P^2,
+ *    K12 += m_a d P^2, K22 += m_a d^2 P^2 with m_a = m0 + sum m_i, which leaves N
+ *    unchanged).  It is built by complex polynomial arithmetic and solved with
+ *    GSL (autobal_poly_roots) after the substitution lambda = w_s s, w_s =
+ *    |Delta_0 / Delta_12|^{1/12} (roots are returned in 1/s).
+ *  CLOSED (isotropic, one or two planes, common kappa per plane): the same closed
+ *    linear system written as a real first-order system of dimension 8 + 4 n_planes
+ *    (state: Re/Im of W, Theta, sigma_j, then their rates) and its eigenvalues
+ *    (GSL gsl_eigen_nonsymm).  For one plane its eigenvalues are the roots of
+ *    Delta (an independent computation of the same numbers).
+ *  FULL (isotropic): the linearization of the full transient model (every ball
+ *    angle, no closure) about the balanced state, written in fully rotating
+ *    coordinates.  The model's rotating-frame right-hand side
+ *    (autobal_rotor_rhs_rotating) keeps the rotor coordinates in the fixed frame,
+ *    so its Jacobian J(t) at the (constant) balanced state is time-periodic.  With
+ *    z = T(t) y, T = [[S, 0], [S', S]], S(t) = blockdiag(R(-w t), R(-w t) P)
+ *    acting on (x, y) and on (alpha, beta) (R a rotation, P (alpha, beta) =
+ *    (beta, -alpha), so that S maps to (Re W, Im W, Re Theta, Im Theta)), one finds
+ *    S^-1 S' = Omega = w blockdiag(J2, J2), J2 = [[0, 1], [-1, 0]], hence
+ *    T^-1 T' = blockdiag(Omega, Omega), and for isotropic supports
+ *        T^-1 (dz/dt Jacobian) T = J(t) + blockdiag(Omega, Omega, 0)
+ *    is constant: its eigenvalues (at t = 0, where T = I on the balls) are the
+ *    characteristic roots of the full model.  For n balls in a plane they are the
+ *    closed roots plus n - 2 zeros (the neutral family) and n - 2 roots
+ *    -kappa (identical kappa), when the balls are not all on one line.
+ *  FLOQUET (any supports): the variational equation Phi' = J(t) Phi of the
+ *    (8 + 2N)-dimensional linearization (mixed frame: rotor coordinates fixed,
+ *    ball angles relative), integrated over one period T = 2 pi / |w| from the
+ *    identity with the transient driver (rk8pd), and the eigenvalues mu of the
+ *    monodromy matrix Phi(T).  For isotropic supports mu = exp(lambda T) for the
+ *    roots lambda of FULL (the similarity T(t) is 2 pi / w periodic).  The state
+ *    is scaled by a constant diagonal similarity (lengths by sum m_i r_i / M,
+ *    rates by a natural frequency) which does not change mu.
+ *  J(t) for FULL and FLOQUET is the analytic linearization of (3.2) + (3.13):
+ *    M(t) X'' + C(t) X' + K(t) X = 0, X = (x, y, alpha, beta, dpsi_1..N), with
+ *    d(s_u + i s_v) = sum_i i m_i r_i e^{i (w t + psi~_i)} dpsi_i and
+ *    dpsi_i'' + kappa_i dpsi_i' = (sin phi~_i (x'' + d beta'') - cos phi~_i (y'' - d alpha'')) / r_i,
+ *    phi~_i = w t + psi~_i; it is checked in the tests against central differences
+ *    of the model's own autobal_rotor_rhs_rotating (autobal_rotor_model_jacobian).
+ *
+ * Verdict and margin.  The margin is the largest real part of the roots (1/s),
+ * for FLOQUET log(max |mu|) / T; the roots (multipliers) of the neutral family,
+ * n_j - rank_j per plane (n - 2 for n >= 3 balls not all on one line), are
+ * excluded: they are the ones closest to 0 (to 1).  The verdict is then the
+ * stability of the family, not asymptotic stability of one configuration.
+ * Verdict: STABLE if margin < -tol * scale, UNSTABLE if > tol * scale, else
+ * MARGINAL, with scale = max(1/s, largest |root|) (FLOQUET: scale = 1/T).
+ * The closure needs the balls of a plane not all on one line through the axis
+ * (for n = 2: 0 < m0 r0 < 2 m r strictly); otherwise AUTO uses FULL.
+ *
+ * Units: SI (rad/s, 1/s, kg, m).  Axial motion (2.12) is decoupled and always
+ * ignored here.
+ *
+ * Threads: a handle (autobal_rotor_stab) owns all its workspaces; one handle per
+ * thread; two handles never interfere.  Nothing allocates after _alloc except
+ * where said.  The library never prints.  A host program should call
+ * gsl_set_error_handler_off() once.
+ *
+ * Errors: functions return AUTOBAL_SUCCESS or a negative status with the message
+ * on the handle (autobal_rotor_stab_errmsg) or in err.  After a failure, output
+ * arrays hold unspecified values (NaN where possible) and the handle stays usable.
+ */
+#ifndef AUTOBAL_ROTOR_STABILITY_H
+#define AUTOBAL_ROTOR_STABILITY_H
+
+#include <stddef.h>
+
+#include "autobal/export.h"
+#include "autobal/rotor.h"
+#include "autobal/status.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* Number of coefficients of Delta (degree 12). */
+#define AUTOBAL_ROTOR_POLY_LEN 13
+/* Largest dimension of the closed first-order system (two planes). */
+#define AUTOBAL_ROTOR_CLOSED_MAX 16
+/* Capacity of the critical-speed and interval lists. */
+#define AUTOBAL_ROTOR_MAX_CRIT 64
+/* Verdict code used in sweeps and maps when no balanced configuration exists
+ * (or it cannot be analysed) at a point; the margin is NaN there. */
+#define AUTOBAL_ROTOR_VERDICT_NONE (-2)
+
+/* ---- members of the family of balanced configurations ---------------------- */
+
+typedef enum autobal_rotor_member_kind {
+  /* n <= 2: the unique configuration (n = 2: autobal_rotor_balanced_angles_two,
+   * ball 1 on the "-" side); n >= 3 with identical m_i r_i: SYMMETRIC; otherwise
+   * FREE with the first n - 2 angles of autobal_rotor_balanced_angles() at the
+   * parameters given to autobal_rotor_stab_alloc (held fixed in sweeps). */
+  AUTOBAL_ROTOR_MEMBER_DEFAULT = 0,
+  /* the symmetric fan psi_i = psi0 + pi + (i - (n-1)/2) delta (identical m_i r_i
+   * only; recomputed at every point of a sweep) */
+  AUTOBAL_ROTOR_MEMBER_SYMMETRIC = 1,
+  /* balls 1 .. n-2 at the given angles (n_angles = n - 2), the last two placed by
+   * the closed form for two balls (the "-" solution first) */
+  AUTOBAL_ROTOR_MEMBER_FREE = 2,
+  /* all n angles given; they must balance: |sum m_i r_i e^{i psi_i} + m0 r0 e^{i psi0}|
+   * <= 1e-9 (m0 r0 + sum m_i r_i) */
+  AUTOBAL_ROTOR_MEMBER_GIVEN = 3
+} autobal_rotor_member_kind;
+
+typedef struct autobal_rotor_member {
+  int kind;              /* autobal_rotor_member_kind */
+  size_t n_angles;       /* FREE: n - 2; GIVEN: n; else ignored */
+  const double *angles;  /* rad, relative to the rotor; copied at alloc */
+} autobal_rotor_member;
+
+/* Balanced angles psi[0..n-1] (rad, wrapped to (-pi, pi]) of one plane for the
+ * member `mem` (NULL: DEFAULT; DEFAULT for n >= 3 with unequal m_i r_i builds
+ * the member like autobal_rotor_balanced_angles).  Returns AUTOBAL_SUCCESS, or
+ * AUTOBAL_EINVAL (no balanced configuration, bad member: wrong count, unreachable
+ * target for the last two balls, SYMMETRIC with unequal m_i r_i, GIVEN angles
+ * that do not balance).  Allocation-free. */
+AUTOBAL_API int autobal_rotor_member_angles(const autobal_rotor_plane *pl,
+                                            const autobal_rotor_member *mem, double *psi,
+                                            size_t n, autobal_error *err);
+
+/* ---- the closed linear system (isotropic supports) ------------------------- */
+
+typedef struct autobal_rotor_closed_plane {
+  double d;        /* m, plane coordinate */
+  double mass;     /* kg, m_b = sum_i m_i */
+  double Q_re;     /* kg, Re sum_i m_i e^{2 i psi~_i} */
+  double Q_im;     /* kg, Im of the same */
+  double kappa;    /* 1/s, common h_i / m_i */
+  double m_add;    /* kg, m0 + sum m_i in the FULL inertia model, else 0 */
+  size_t n_balls;
+  size_t rank;     /* rank (0..2) of dpsi -> dsigma at the member */
+  size_t family;   /* n_balls - rank: dimension of the neutral family */
+} autobal_rotor_closed_plane;
+
+typedef struct autobal_rotor_closed {
+  autobal_rotor_lumped L;  /* lumped coefficients (c = c_x, c_t = c_alpha, c_c = c_xbeta, ...) */
+  double omega;            /* rad/s */
+  size_t n_planes;
+  autobal_rotor_closed_plane plane[AUTOBAL_ROTOR_MAX_PLANES];
+  int isotropic;           /* 1 if c_x = c_y, c_alpha = c_beta, c_xbeta = c_yalpha and the
+                              same for h (relative 1e-12) */
+  int closure_ok;          /* 1 if every plane has rank 2 and a common kappa (relative 1e-12) */
+} autobal_rotor_closed;
+
+/* Characteristic polynomial Delta (see the top) of a one-plane closed system:
+ * coef[0..12] ascending powers of lambda (lambda in 1/s).  cerr (may be NULL)
+ * receives a running bound of the absolute rounding error of each coefficient
+ * (for autobal_poly_hurwitz_err).  AUTOBAL_EINVAL: NULL, n_planes != 1, not
+ * isotropic.  Allocation-free. */
+AUTOBAL_API int autobal_rotor_char_poly(const autobal_rotor_closed *c, double coef[13],
+                                        double cerr[13], autobal_error *err);
+
+/* Dimension of the closed first-order system: 8 + 4 n_planes. */
+AUTOBAL_API size_t autobal_rotor_closed_dim(const autobal_rotor_closed *c);
+
+/* The real first-order matrix (row-major, dim x dim, dim = autobal_rotor_closed_dim)
+ * of the closed system in rotating coordinates; state (Re W, Im W, Re Theta, Im Theta,
+ * Re sigma_1, Im sigma_1, [.. sigma_2], then the rates in the same order).
+ * AUTOBAL_EINVAL: NULL, wrong dim, not isotropic; AUTOBAL_ENUMERIC: singular mass
+ * matrix.  Allocates a small GSL LU workspace per call. */
+AUTOBAL_API int autobal_rotor_closed_matrix(const autobal_rotor_closed *c, double *a, size_t dim,
+                                            autobal_error *err);
+
+/* ---- the analysis handle ----------------------------------------------------- */
+
+typedef enum autobal_rotor_stab_method {
+  AUTOBAL_ROTOR_STAB_AUTO = 0,    /* POLY if possible, else CLOSED, else FULL, else FLOQUET */
+  AUTOBAL_ROTOR_STAB_POLY = 1,
+  AUTOBAL_ROTOR_STAB_CLOSED = 2,
+  AUTOBAL_ROTOR_STAB_FULL = 3,
+  AUTOBAL_ROTOR_STAB_FLOQUET = 4
+} autobal_rotor_stab_method;
+
+/* Static name: "auto", "poly", "closed", "full", "floquet" ("unknown"). */
+AUTOBAL_API const char *autobal_rotor_stab_method_name(int method);
+
+/* Parameters a sweep or map can vary (autobal_rotor_stab_set). */
+typedef enum autobal_rotor_stab_param {
+  AUTOBAL_ROTOR_PARAM_OMEGA = 0,           /* rad/s, spin speed (!= 0 for the analysis) */
+  AUTOBAL_ROTOR_PARAM_BALL_DAMPING = 1,    /* kg/s, h_i of every ball of every plane, >= 0 */
+  AUTOBAL_ROTOR_PARAM_BALL_MASS = 2,       /* kg, m_i of every ball of every plane, > 0 */
+  AUTOBAL_ROTOR_PARAM_STIFFNESS_SCALE = 3, /* 1, factor on every support stiffness (all c_ of
+                                              the lumped set), > 0 */
+  AUTOBAL_ROTOR_PARAM_DAMPING_SCALE = 4,   /* 1, factor on every support viscosity, >= 0 */
+  AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS = 5   /* kg, m0 of every plane, >= 0 */
+} autobal_rotor_stab_param;
+
+/* Static name ("omega", "ball_damping", "ball_mass", "stiffness_scale",
+ * "damping_scale", "unbalance_mass"; NULL for an unknown id) and unit. */
+AUTOBAL_API const char *autobal_rotor_stab_param_name(int param);
+AUTOBAL_API const char *autobal_rotor_stab_param_unit(int param);
+/* Parameter id from its name; -1 if unknown. */
+AUTOBAL_API int autobal_rotor_stab_param_from_name(const char *name);
+
+typedef struct autobal_rotor_stab_options {
+  int method;        /* autobal_rotor_stab_method for verdicts and sweeps (default AUTO) */
+  autobal_rotor_member member[AUTOBAL_ROTOR_MAX_PLANES]; /* default: all DEFAULT */
+  double tol;        /* relative verdict tolerance (default 1e-9) */
+  double floquet_rtol; /* relative tolerance of the monodromy integration (default 1e-11) */
+  double floquet_atol; /* absolute tolerance, scaled state (default 1e-13) */
+} autobal_rotor_stab_options;
+
+AUTOBAL_API autobal_rotor_stab_options autobal_rotor_stab_options_default(void);
+
+typedef struct autobal_rotor_stab autobal_rotor_stab;
+
+/* Validate p (autobal_rotor_params_check; a warning is fine) and the options, copy
+ * them (ball arrays and member angles included) and allocate every workspace
+ * (polynomial and eigenvalue workspaces, LU, the Floquet integrator of dimension
+ * (8 + 2N)^2).  The balanced angles are not computed yet (a missing balanced
+ * configuration is reported by the analysis, not here).  Returns NULL on failure
+ * (err: AUTOBAL_EINVAL, AUTOBAL_ENOMEM). */
+AUTOBAL_API autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
+                                                         const autobal_rotor_stab_options *opt,
+                                                         autobal_error *err);
+AUTOBAL_API void autobal_rotor_stab_free(autobal_rotor_stab *s); /* NULL is safe */
+AUTOBAL_API const char *autobal_rotor_stab_errmsg(const autobal_rotor_stab *s); /* never NULL */
+
+/* Change one parameter of the handle's working copy (see autobal_rotor_stab_param);
+ * the base values given at alloc are kept for the scale factors.  AUTOBAL_EINVAL for
+ * an unknown id or a value out of range (the handle is unchanged). */
+AUTOBAL_API int autobal_rotor_stab_set(autobal_rotor_stab *s, int param, double value);
+/* Current value (NaN for an unknown id; for BALL_MASS / BALL_DAMPING the value of ball 1). */
+AUTOBAL_API double autobal_rotor_stab_get(const autobal_rotor_stab *s, int param);
+/* The working parameters (ball arrays point into the handle). */
+AUTOBAL_API const autobal_rotor_params *autobal_rotor_stab_params(const autobal_rotor_stab *s);
+/* Total number of balls N (state dimension of the full model 8 + 2N). */
+AUTOBAL_API size_t autobal_rotor_stab_n_balls(const autobal_rotor_stab *s);
+
+/* Balanced angles of the analysed member, all planes in state order (N entries). */
+AUTOBAL_API int autobal_rotor_stab_balanced_angles(autobal_rotor_stab *s, double *psi, size_t n);
+/* The closed system at the current parameters and member. */
+AUTOBAL_API int autobal_rotor_stab_closed(autobal_rotor_stab *s, autobal_rotor_closed *c);
+
+/* The analytic linearization of the full model at the balanced state, mixed frame
+ * (rotor coordinates fixed, dpsi relative), at time t: a (row-major, dim x dim,
+ * dim = 8 + 2N, state (x, y, alpha, beta, rates, dpsi_1..N, dpsi_1'..N')).  With
+ * rotating = 1 the rotating-coordinate matrix J(t) + blockdiag(Omega, Omega, 0)
+ * (constant for isotropic supports; the state's rotor part is then (Re W, Im W,
+ * Re Theta, Im Theta) and rates at t = 0).  AUTOBAL_EINVAL, AUTOBAL_ENUMERIC. */
+AUTOBAL_API int autobal_rotor_stab_linearization(autobal_rotor_stab *s, double t, int rotating,
+                                                 double *a, size_t dim);
+
+/* Margin and verdict at the current parameters with `method` (AUTO: the handle's
+ * option).  *margin: 1/s (NaN when no balanced configuration exists: then
+ * *verdict = AUTOBAL_ROTOR_VERDICT_NONE and AUTOBAL_SUCCESS is returned).
+ * AUTOBAL_EUNSUPPORTED: the method does not apply (e.g. POLY with anisotropic
+ * supports or two planes, CLOSED without closure, FULL anisotropic, omega == 0);
+ * AUTOBAL_ENUMERIC, integration failures of FLOQUET (its status).  No allocation. */
+AUTOBAL_API int autobal_rotor_stab_margin(autobal_rotor_stab *s, int method, double *margin,
+                                          int *verdict);
+
+/* Everything at one point.  Arrays of length n_full point into the handle (valid
+ * until the next call on it). */
+typedef struct autobal_rotor_stab_result {
+  int method;          /* the method of the verdict (AUTO resolved) */
+  int verdict;         /* AUTOBAL_VERDICT_* or AUTOBAL_ROTOR_VERDICT_NONE */
+  double margin;       /* 1/s */
+  int isotropic, closure_ok;
+  size_t n_balls;      /* N */
+  const double *psi;   /* N balanced angles (rad) */
+  size_t n_family;     /* neutral roots excluded from the verdict (sum over planes) */
+  /* closed system (isotropic, closure_ok): n_closed = 12 or 16, else 0 */
+  size_t n_closed;
+  double poly[AUTOBAL_ROTOR_POLY_LEN]; /* Delta, one plane only (n_poly = 13), else zeros */
+  size_t n_poly;
+  double root_re[AUTOBAL_ROTOR_CLOSED_MAX], root_im[AUTOBAL_ROTOR_CLOSED_MAX];
+      /* roots of Delta (one plane) or eigenvalues of the closed matrix (two planes), 1/s */
+  double closed_eig_re[AUTOBAL_ROTOR_CLOSED_MAX], closed_eig_im[AUTOBAL_ROTOR_CLOSED_MAX];
+      /* eigenvalues of the closed matrix, ordered to match root_* */
+  double root_eig_mismatch;  /* max |root - eigenvalue| / max(1, max |root|) (0 for two planes) */
+  int hurwitz_verdict;       /* Routh-Hurwitz on Delta (one plane), else AUTOBAL_VERDICT_MARGINAL */
+  int hurwitz_n_rhp;         /* sign changes of the Routh array (roots with Re > 0) */
+  double closed_margin;      /* max real part of root_* (1/s) */
+  /* full model (isotropic): eigenvalues of the rotating-coordinate linearization */
+  size_t n_full;             /* 8 + 2N if computed, else 0 */
+  const double *full_re, *full_im;
+  double full_mismatch;      /* full eig vs closed roots + 0^(family) + (-kappa)^(n-2) (relative
+                                to max(1, max |root|)); NaN if not comparable */
+  double full_margin;        /* max real part excluding the family roots */
+  /* Floquet (always computed when omega != 0 and N <= 12) */
+  size_t n_floquet;
+  const double *mu_re, *mu_im;
+  double floquet_margin;     /* log(max |mu|) / T over the non-family multipliers */
+  double floquet_mismatch;   /* isotropic: max |mu - exp(lambda T)| over matched pairs (full
+                                roots), else NaN */
+  double period;             /* T = 2 pi / |omega| (s) */
+} autobal_rotor_stab_result;
+
+/* Compute every applicable method at the current parameters: POLY (+ Hurwitz) and
+ * CLOSED when the closure applies, FULL when isotropic, FLOQUET always (N <= 12).
+ * The verdict/margin come from the handle's method (AUTO: POLY > CLOSED > FULL >
+ * FLOQUET).  AUTOBAL_EINVAL: omega == 0 or no balanced configuration (message
+ * says which); AUTOBAL_ENUMERIC / integration statuses. */
+AUTOBAL_API int autobal_rotor_stab_analyze(autobal_rotor_stab *s, autobal_rotor_stab_result *res);
+
+/* Floquet multipliers alone: mu_re/mu_im (n = 8 + 2N entries, sorted by decreasing
+ * modulus); monodromy (may be NULL; n*n, row-major, unscaled mixed-frame state).
+ * AUTOBAL_EINVAL (omega == 0, wrong n, no balanced configuration), integration
+ * statuses (AUTOBAL_ESTEP, AUTOBAL_EMAXSTEPS, ...). */
+AUTOBAL_API int autobal_rotor_stab_floquet(autobal_rotor_stab *s, double *mu_re, double *mu_im,
+                                           size_t n, double *monodromy);
+
+/* ---- sweeps, critical speeds and maps ----------------------------------------- */
+
+/* margin[k], verdict[k] at param = values[k] (k < n), with the handle's method;
+ * the parameter is restored afterwards.  Points without a balanced configuration
+ * get AUTOBAL_ROTOR_VERDICT_NONE and NaN.  A failure at a point stops the sweep
+ * (its status; the entries before it are valid). */
+AUTOBAL_API int autobal_rotor_stab_sweep(autobal_rotor_stab *s, int param, const double *values,
+                                         size_t n, double *margin, int *verdict);
+
+typedef struct autobal_rotor_crit {
+  int param;                  /* the swept parameter */
+  size_t n;                   /* number of verdict changes found */
+  double value[AUTOBAL_ROTOR_MAX_CRIT];  /* where the margin crosses 0 (refined) */
+  int kind[AUTOBAL_ROTOR_MAX_CRIT];      /* +1: stable above, -1: unstable above, 0: to/from NONE */
+  size_t n_stable;            /* stable intervals within [lo, hi] */
+  double stable_lo[AUTOBAL_ROTOR_MAX_CRIT], stable_hi[AUTOBAL_ROTOR_MAX_CRIT];
+  int truncated;              /* 1 if more changes than AUTOBAL_ROTOR_MAX_CRIT */
+  size_t evaluations;         /* margin evaluations used */
+} autobal_rotor_crit;
+
+/* Critical values of `param` in [lo, hi] (lo < hi; for OMEGA both of one sign and
+ * non-zero): the margin is sampled on n_grid >= 2 equally spaced points, every
+ * change of its sign (or to/from NONE) is bracketed and refined by Brent's method
+ * (on the margin) to |bracket| <= xtol_rel |value| (e.g. 1e-8; changes to/from NONE
+ * by bisection).  Stable intervals are the maximal sub-intervals of [lo, hi] where
+ * the verdict is STABLE (their ends are critical values or lo/hi).  The parameter
+ * is restored afterwards.  Changes between two grid points that cancel (a window
+ * narrower than the grid) are not seen. */
+AUTOBAL_API int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, double hi,
+                                            size_t n_grid, double xtol_rel, autobal_rotor_crit *out);
+
+/* Two-parameter map: margin[i * n2 + j] and verdict[i * n2 + j] at
+ * (param1 = v1[i], param2 = v2[j]), with the options' method.  OpenMP-parallel over
+ * the grid points when built with OpenMP (n_threads <= 0: the default number), one
+ * handle per thread; the results do not depend on the number of threads.
+ * AUTOBAL_EINVAL (bad arguments, param1 == param2), AUTOBAL_ENOMEM, or the first
+ * failing point's status. */
+AUTOBAL_API int autobal_rotor_stab_map(const autobal_rotor_params *p,
+                                       const autobal_rotor_stab_options *opt, int param1,
+                                       const double *v1, size_t n1, int param2, const double *v2,
+                                       size_t n2, int n_threads, double *margin, int *verdict,
+                                       autobal_error *err);
+
+/* ---- the rotor-housing without balls: natural frequencies, Campbell diagram,
+ *      unbalance response (the balls are removed; in the FULL inertia model the
+ *      masses m0 + sum m_i stay attached at their planes) ------------------------- */
+
+/* Number of modes: 4 (two translational-angular pairs in x-beta and y-alpha). */
+#define AUTOBAL_ROTOR_N_MODES 4
+
+/* Natural frequencies at omega (rad/s) of M q'' + (H + G(omega)) q' + K q = 0,
+ * G the gyroscopic coupling C omega.  The 4 modes with the largest imaginary parts
+ * (>= 0) of the 8 eigenvalues, sorted by increasing frequency:
+ *   freq[k]  = Im lambda (rad/s, the damped natural frequency),
+ *   zeta[k]  = -Re lambda / |lambda| (damping ratio, 1),
+ *   growth[k] = Re lambda (1/s),
+ *   whirl[k] = +1 forward (orbit in the sense of omega), -1 backward, 0 undecided
+ *              (from the eigenvector: |v_x + i v_y|^2 M + |v_beta - i v_alpha|^2 A vs the
+ *              same with -i; at omega = 0 the sense of +x -> +y counts as forward).
+ * undamped = 1 drops H.  Any of the outputs may be NULL.  AUTOBAL_EINVAL,
+ * AUTOBAL_ENUMERIC.  Allocates GSL workspaces per call. */
+AUTOBAL_API int autobal_rotor_modes(const autobal_rotor_params *p, double omega, int undamped,
+                                    double freq[4], double zeta[4], double growth[4], int whirl[4],
+                                    autobal_error *err);
+
+/* Campbell diagram: modes at omega[k] (k < n); freq, zeta, whirl are n x 4 row-major
+ * (any may be NULL).  Modes sorted by frequency at every speed. */
+AUTOBAL_API int autobal_rotor_campbell(const autobal_rotor_params *p, const double *omega, size_t n,
+                                       double *freq, double *zeta, int *whirl, autobal_error *err);
+
+/* Steady unbalance response of the rotor-housing without balls at omega: the
+ * unbalances m_j0 r_j0 at psi_j0 of every plane drive
+ *   (K + i omega (H + G) - omega^2 M) Q = omega^2 sum_j m_j0 r_j0 e^{i psi_j0} (e_u,j - i e_v,j),
+ * q(t) = Re(Q e^{i omega t}).  amp_G: major semi-axis of the orbit of the centre of
+ * mass (m) = (|Q_x + i Q_y| + |Q_x - i Q_y|) / 2; amp_D[j] (may be NULL; n_planes
+ * entries) the same at each balancer plane (x + d beta, y - d alpha).  AUTOBAL_EINVAL,
+ * AUTOBAL_ENUMERIC (singular: an undamped resonance). */
+AUTOBAL_API int autobal_rotor_unbalance_response(const autobal_rotor_params *p, double omega,
+                                                 double *amp_G, double *amp_D, autobal_error *err);
+
+/* Critical speeds of the rotor-housing in [lo, hi] (0 <= lo < hi, rad/s, n_grid >= 3):
+ *  - crossings: where a natural frequency (Campbell) equals omega, freq_k(omega) =
+ *    omega, refined by Brent to xtol_rel; whirl of that mode there in cross_whirl;
+ *  - peaks: local maxima of amp_G(omega), refined by golden-section search to xtol_rel.
+ * Up to AUTOBAL_ROTOR_MAX_CRIT of each (*n_cross, *n_peak). */
+typedef struct autobal_rotor_resonances {
+  size_t n_cross;
+  double cross[AUTOBAL_ROTOR_MAX_CRIT];
+  int cross_mode[AUTOBAL_ROTOR_MAX_CRIT]; /* mode index 0..3 (by frequency) */
+  int cross_whirl[AUTOBAL_ROTOR_MAX_CRIT];
+  size_t n_peak;
+  double peak[AUTOBAL_ROTOR_MAX_CRIT];
+  double peak_amp[AUTOBAL_ROTOR_MAX_CRIT]; /* amp_G at the peak, m */
+} autobal_rotor_resonances;
+
+AUTOBAL_API int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, double hi,
+                                               size_t n_grid, double xtol_rel,
+                                               autobal_rotor_resonances *out, autobal_error *err);
+
+/* ---- the full model's own Jacobian (for cross-checks) ---------------------------- */
+
+/* Central-difference Jacobian of autobal_rotor_rhs_rotating (rotor coordinates in
+ * the fixed frame, ball angles relative) at (t, y): J[i*dim + j] = d f_i / d y_j,
+ * step h_j = 1e-6 max(|y_j|, 1) (positions/angles) and the same for rates; work
+ * must hold 3*dim doubles.  dim = autobal_rotor_dim(r) (axial included if on).
+ * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL, AUTOBAL_ERHS (message on the rotor). */
+AUTOBAL_API int autobal_rotor_model_jacobian(autobal_rotor *r, double t, const double *y, double *J,
+                                             size_t dim, double *work);
+
+AUTOBAL_END_DECLS
+
+#endif

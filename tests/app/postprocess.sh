@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# App test: the archive as a product for Python users (issue 6).  Archives of every command are
+# opened with xarray (engine="h5netcdf", group by group) and h5py, and their names, units and
+# values checked (postprocess_check.py); `autobal info` (text and --json) is compared with what
+# h5py reads; `autobal rerun` must reproduce every dataset bit for bit; `autobal plot` and the
+# tools/autobal_plot.py one-liner must write readable PNG files.  Error paths: missing, truncated,
+# foreign and non-HDF5 files, bad command lines.
+set -u
+: "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${TOOLS:?}" "${PY:=/usr/bin/python3}"
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+fail=0; pass=0
+ok()  { echo "ok   $*"; pass=$((pass+1)); }
+bad() { echo "FAIL $*"; fail=$((fail+1)); }
+expect() {
+  local code=$1 needle=$2; shift 2
+  "$@" >out.txt 2>err.txt; local rc=$?
+  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
+  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat out.txt err.txt; return; fi
+  ok "exit $code${needle:+ and '$needle'}: $*"
+}
+py() { "$PY" "$here/postprocess_check.py" "$@" >py.txt 2>&1 && ok "postprocess_check.py $* ($(tail -1 py.txt))" || { bad "postprocess_check.py $*"; grep -v '^ok' py.txt; }; }
+
+# ---- 1. archives of every command (grids and durations cut to keep the test fast) -------------
+printf '[critical]\nn_Rm = 99\n' >crit_over.ini
+printf '[map]\nn_Rm = 40\nn_Rw = 30\nmax_real = true\n' >map_over.ini
+printf '[map]\nn_Rm = 40\nn_Rw = 50\nn_k = 9\n' >every_over.ini
+printf '[transient]\nt_end = 150\n' >ptr_over.ini
+printf '[transient]\nt_end = 10\n' >rot_over.ini
+printf '[transient]\nt_end = 3\ndt_out = 0.002\n' >rot2_over.ini
+expect 0 "" "$AUTOBAL" pendulum roots "$DATA/pendulum_default.ini" -o roots.h5
+expect 0 "" "$AUTOBAL" pendulum roots "$DATA/pendulum_physical.ini" -o roots_phys.h5
+expect 0 "" "$AUTOBAL" pendulum critical "$DATA/pendulum_critical_k1.ini" --set critical.n_Rm=99 -o critical.h5
+expect 0 "" "$AUTOBAL" pendulum map --set map.n_Rm=40 --set map.n_Rw=30 --set map.max_real=true -o map.h5
+expect 0 "" "$AUTOBAL" pendulum map "$DATA/pendulum_map_every.ini" --set map.n_Rm=40 --set map.n_Rw=50 --set map.n_k=9 -o map_every.h5
+expect 0 "" "$AUTOBAL" pendulum transient "$DATA/pendulum_transient.ini" --set transient.t_end=150 -o ptrans.h5
+expect 0 "" "$AUTOBAL" rotor transient --set transient.t_end=10 -o rotor.h5
+expect 0 "" "$AUTOBAL" rotor transient "$DATA/rotor_two_planes.ini" --set transient.t_end=3 --set transient.dt_out=0.002 -o rotor2.h5
+archives="roots roots_phys critical map map_every ptrans rotor rotor2"
+# The rotor stability commands (apps/cmd_rotor_stability.c) are covered when they are registered.
+stab=""
+if "$AUTOBAL" rotor stability --help >/dev/null 2>&1; then
+  expect 0 "" "$AUTOBAL" rotor stability -o rstab.h5
+  expect 0 "" "$AUTOBAL" rotor sweep --set sweep.n=200 -o rsweep.h5
+  expect 0 "" "$AUTOBAL" rotor map --set map.n1=40 --set map.n2=12 -o rmap.h5
+  expect 0 "" "$AUTOBAL" rotor campbell --set campbell.n=300 -o rcampbell.h5
+  stab="rstab rsweep rmap rcampbell"
+else
+  echo "note: 'autobal rotor stability|sweep|map|campbell' are not registered: not covered"
+fi
+archives="$archives $stab"
+
+# ---- 2. xarray (h5netcdf) and h5py: names, units, values ----------------------------------------
+py layout roots roots.h5 "$DATA/pendulum_default.ini"
+py layout roots roots_phys.h5 "$DATA/pendulum_physical.ini"
+py layout critical critical.h5 "$DATA/pendulum_critical_k1.ini,crit_over.ini"
+py layout map map.h5 map_over.ini
+py layout map map_every.h5 "$DATA/pendulum_map_every.ini,every_over.ini" critical.h5
+py layout pendulum_transient ptrans.h5 "$DATA/pendulum_transient.ini,ptr_over.ini"
+py layout rotor_transient rotor.h5 rot_over.ini
+py layout rotor_transient rotor2.h5 "$DATA/rotor_two_planes.ini,rot2_over.ini"
+for a in $stab; do py layout rotor_stability "$a.h5" -; done
+
+# ---- 3. autobal info ---------------------------------------------------------------------------
+triples=""
+for a in $archives; do
+  "$AUTOBAL" info "$a.h5" >"$a.info.txt" 2>err.txt && "$AUTOBAL" info --json "$a.h5" >"$a.info.json" 2>>err.txt \
+    && ok "info and info --json on $a.h5" || { bad "info on $a.h5"; cat err.txt; }
+  triples="$triples $a.h5 $a.info.txt $a.info.json"
+done
+py info $triples
+expect 4 "No such file" "$AUTOBAL" info missing.h5
+head -c 4000 rotor.h5 >truncated.h5
+expect 4 "truncated" "$AUTOBAL" info truncated.h5
+"$PY" -c "import h5py; h = h5py.File('foreign.h5', 'w'); h['x'] = [1.0, 2.0]" && ok "made a foreign HDF5 file"
+expect 4 "not an autobal archive" "$AUTOBAL" info foreign.h5
+"$PY" -c "import h5py; h = h5py.File('wrongconv.h5', 'w'); h.attrs['Conventions'] = 'CF-1.8'"
+expect 4 "CF-1.8" "$AUTOBAL" info wrongconv.h5
+echo "not hdf5" >text.h5
+expect 4 "not an HDF5 file" "$AUTOBAL" info text.h5
+mkdir -p adir
+expect 4 "directory" "$AUTOBAL" info adir
+expect 4 "not an autobal archive" "$AUTOBAL" info --json foreign.h5
+[ ! -s out.txt ] && ok "info --json on a foreign file prints nothing on stdout" || bad "info --json printed on failure"
+expect 2 "give an archive" "$AUTOBAL" info
+expect 2 "takes one archive" "$AUTOBAL" info roots.h5 map.h5
+expect 2 "no --set" "$AUTOBAL" info roots.h5 --set pendulum.R_w=2
+expect 0 "usage: autobal info FILE.h5" "$AUTOBAL" info --help
+"$AUTOBAL" --help >help.txt 2>&1
+grep -q "^  info " help.txt && grep -q "^  rerun " help.txt && grep -q "^  plot " help.txt \
+  && ok "autobal --help lists info, rerun, plot" || bad "autobal --help does not list info/rerun/plot"
+# an interrupted run: info says so
+"$AUTOBAL" pendulum transient --set transient.max_steps=10 -o partial.h5 >/dev/null 2>&1
+expect 0 "WARNING: the run did not complete" "$AUTOBAL" info partial.h5
+
+# ---- 4. autobal rerun: bit for bit ------------------------------------------------------------
+pairs=""
+for a in $archives; do
+  expect 0 "" "$AUTOBAL" rerun "$a.h5" -o "re_$a.h5" --quiet
+  pairs="$pairs $a.h5 re_$a.h5"
+done
+expect 0 "" "$AUTOBAL" rerun re_ptrans.h5 -o re_re_ptrans.h5 --json
+py same $pairs ptrans.h5 re_re_ptrans.h5
+"$PY" -c "import json; json.load(open('out.txt'))" && ok "rerun --json prints the command's JSON summary" || bad "rerun --json output"
+# a changed input must change the data: the comparison can fail
+expect 0 "" "$AUTOBAL" pendulum transient "$DATA/pendulum_transient.ini" --set transient.t_end=150 --set pendulum.R_w=3.01 -o ptrans_other.h5
+"$PY" "$here/postprocess_check.py" same ptrans.h5 ptrans_other.h5 >py.txt 2>&1 && bad "comparison did not see R_w = 3.01" || ok "bit-for-bit comparison detects a changed R_w"
+expect 4 "exists" "$AUTOBAL" rerun roots.h5 -o re_roots.h5
+expect 0 "" "$AUTOBAL" rerun roots.h5 -o re_roots.h5 --force
+expect 2 "-o NEW.h5" "$AUTOBAL" rerun roots.h5
+expect 2 "is the archive being re-run" "$AUTOBAL" rerun roots.h5 -o roots.h5 --force
+expect 2 "no --set" "$AUTOBAL" rerun roots.h5 -o x.h5 --set pendulum.R_w=2
+expect 4 "not an autobal archive" "$AUTOBAL" rerun foreign.h5 -o x.h5
+expect 4 "No such file" "$AUTOBAL" rerun missing.h5 -o x.h5
+cp roots.h5 noconfig.h5 && "$PY" -c "import h5py; h = h5py.File('noconfig.h5', 'r+'); del h.attrs['input_config']"
+expect 4 "no root attribute 'input_config'" "$AUTOBAL" rerun noconfig.h5 -o x.h5
+cp roots.h5 badcmd.h5 && "$PY" -c "import h5py; h = h5py.File('badcmd.h5', 'r+'); h.attrs['command'] = 'rotor levitate'"
+expect 4 "rotor levitate" "$AUTOBAL" rerun badcmd.h5 -o x.h5
+cp roots.h5 badcfg.h5 && "$PY" -c "import h5py; h = h5py.File('badcfg.h5', 'r+'); h.attrs['input_config'] = '[pendulum]\nR_w = 2\n[pendulum]\nR_q = 1\n'"
+expect 3 "R_q" "$AUTOBAL" rerun badcfg.h5 -o x.h5
+[ ! -e x.h5 ] && ok "no x.h5 left by the failed reruns" || bad "a failed rerun left x.h5"
+cp roots.h5 garbled.h5 && "$PY" -c "import h5py; h = h5py.File('garbled.h5', 'r+'); h.attrs['input_config'] = 'R_w: 2\n'"
+expect 4 "neither" "$AUTOBAL" rerun garbled.h5 -o x.h5
+
+# ---- 5. autobal plot and the one-liner -----------------------------------------------------------
+declare -A kinds=([roots]=roots [roots_phys]=roots [critical]=critical_speeds [map]=stability_map
+                  [map_every]=stability_map [ptrans]=transient [rotor]=transient [rotor2]=transient
+                  [rstab]=stability [rsweep]=stability_sweep [rmap]=stability_map [rcampbell]=campbell)
+pngs=""
+for a in $archives; do
+  expect 0 "png/${a}_${kinds[$a]}.png" "$AUTOBAL" plot "$a.h5" -o png
+  pngs="$pngs png/${a}_${kinds[$a]}.png"
+done
+py png $pngs
+expect 0 "one/x_critical_speeds.png" "$PY" "$TOOLS/autobal_plot.py" critical.h5 -o one --stem x
+[ -f one/x_critical_speeds.png ] && ok "one-liner wrote one/x_critical_speeds.png" || bad "one-liner"
+expect 4 "not an autobal archive" "$AUTOBAL" plot foreign.h5 -o png
+expect 4 "No such file" "$AUTOBAL" plot missing.h5
+"$PY" -c "import h5py; h = h5py.File('empty.h5', 'w'); h.attrs['Conventions'] = 'autobal-1'"
+expect 3 "nothing to draw" "$AUTOBAL" plot empty.h5 -o png
+AUTOBAL_PYTHON=/nonexistent/python3 "$AUTOBAL" plot roots.h5 -o png >out.txt 2>err.txt; rc=$?
+[ $rc -eq 7 ] && grep -q "/nonexistent/python3" err.txt && ok "plot with a missing interpreter: exit 7 naming it" || { bad "missing interpreter gave $rc"; cat err.txt; }
+(cd png && "$AUTOBAL" plot ../ptrans.h5 -q) && [ -f png/ptrans_transient.png ] && ok "plot without -o writes to the current directory" || bad "plot without -o"
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,659 @@
+#!/usr/bin/python3
+"""autobal_plot.py: pictures of an autobal HDF5 archive, drawn with matplotlib.
+
+Reads ONLY the archive (h5py + numpy); every number, label unit and title comes from it.
+Use Debian's interpreter, which has h5py, numpy and matplotlib:
+
+    /usr/bin/python3 tools/autobal_plot.py run.h5 -o pictures/      # or: autobal plot run.h5 -o pictures/
+
+For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name without .h5):
+
+    /pendulum/critical/curves   <stem>_critical_speeds.png  R_wj(R_m) for k = 0 and k = 1 (the
+                                paper's figure 2) with regions A and B shaded
+    /pendulum/map               <stem>_stability_map.png    verdict over (R_m, R_w) [+ max_real]
+    /pendulum/roots             <stem>_roots.png            roots of (6) and eigenvalues of (5)
+    /pendulum/transient         <stem>_transient.png        shaft amplitude, residual unbalance
+                                (log scale), pendulum angles; time to balance marked
+    /rotor/transient            <stem>_transient.png        displacement, residual unbalance (log
+                                scale), ball angles relative to the rotor; time to balance marked
+    /rotor/stability            <stem>_stability.png        characteristic roots of the balanced motion
+                                and its stable speed intervals (autobal rotor stability)
+    /rotor/sweep                <stem>_stability_sweep.png  margin along the swept parameter, stable
+                                intervals and critical values (autobal rotor sweep)
+    /rotor/map                  <stem>_stability_map.png    verdict and margin over two parameters
+    /rotor/campbell             <stem>_campbell.png         Campbell diagram (natural frequencies vs
+                                spin speed, whirl, critical speeds) and unbalance response
+
+The functions below can be imported (plot_archive(path, outdir) returns the written files).
+Exit codes: 0 done, 2 bad command line, 3 nothing this script can draw in the archive,
+4 the file is missing, not HDF5, damaged, or not an autobal archive.
+"""
+import argparse
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+
+try:
+    import h5py
+except ImportError:  # pragma: no cover
+    sys.stderr.write("autobal_plot.py: needs h5py: use /usr/bin/python3 (Debian's python3-h5py)\n")
+    sys.exit(7)
+
+DPI = 110
+
+
+# ---- small helpers -------------------------------------------------------------------
+def s(v):
+    """An attribute as str (h5py returns str for variable-length UTF-8, bytes otherwise)."""
+    if isinstance(v, bytes):
+        return v.decode("utf-8", "replace")
+    return str(v)
+
+
+def units(obj):
+    """The units attribute of a dataset, '?' if missing."""
+    return s(obj.attrs.get("units", "?"))
+
+
+def ubr(u):
+    """Units for an axis label: [-] for dimensionless."""
+    return "[–]" if u == "1" else "[%s]" % u
+
+
+def param(g, name, default=None):
+    """Parameter attribute `name` of group g as float (or default)."""
+    if name in g.attrs:
+        try:
+            return float(np.asarray(g.attrs[name]).ravel()[0])
+        except (TypeError, ValueError):
+            return default
+    return default
+
+
+def punit(g, name):
+    return s(g.attrs.get(name + "_units", "1"))
+
+
+def fmt(v, digits=4):
+    return ("%%.%dg" % digits) % v
+
+
+def status_note(h):
+    st = s(h.attrs.get("status", "?"))
+    return "" if st == "complete" else "  [run %s]" % st
+
+
+def save(fig, outdir, stem, kind, written):
+    path = os.path.join(outdir, "%s_%s.png" % (stem, kind))
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    written.append(path)
+
+
+def mark_time(axes, t, label, color="k"):
+    """A vertical line at t on every axis; labelled on the first."""
+    if t is None or not np.isfinite(t):
+        return
+    for i, ax in enumerate(axes):
+        ax.axvline(t, color=color, ls="--", lw=1.0, label=label if i == 0 else None)
+
+
+def break_wraps(t, a):
+    """NaN where a wrapped angle jumps by more than pi, so that lines do not cross the plot."""
+    a = np.array(a, dtype=float)
+    t = np.array(t, dtype=float)
+    jump = np.abs(np.diff(a)) > np.pi
+    if not jump.any():
+        return t, a
+    idx = np.nonzero(jump)[0] + 1
+    return np.insert(t, idx, np.nan), np.insert(a, idx, np.nan)
+
+
+def pendulum_params_text(h):
+    p = h["pendulum"]
+    parts = []
+    for name, sym in (("R_w", "R_w"), ("R_m", "R_m"), ("H", "H"), ("h", "h"), ("k", "k")):
+        v = param(p, name)
+        if v is not None:
+            parts.append("%s = %s" % (sym, fmt(v, 3)))
+    return ", ".join(parts)
+
+
+# ---- pendulum ---------------------------------------------------------------------------
+def plot_pendulum_critical(h, outdir, stem, written):
+    """Figure 2: critical speeds R_wj(R_m) for k = 0 and k = 1, regions A and B shaded."""
+    g = h["pendulum/critical/curves"]
+    rm = g["R_m"][:]
+    c0 = g["R_w_k0"][:]
+    c1 = g["R_w_k1"][:]
+    u = units(g["R_w_k0"])
+    fig, ax = plt.subplots(figsize=(9, 7.5), constrained_layout=True)
+    finite1 = c1[np.isfinite(c1)]
+    top = max(4.0, 1.3 * float(finite1.max())) if finite1.size else 4.0
+
+    w1k1 = c1[:, 0]
+    w2k0, w3k0 = c0[:, 1], c0[:, 2]
+    # region A: above R_w3(R_m, 0) (and, for R_m >= 0.25 where that branch is gone, above
+    # R_w1(R_m, 1)); region B: R_w1(R_m, 1) < R_w < R_w2(R_m, 0) where that is non-empty
+    lowA = np.where(np.isfinite(w3k0), np.fmax(w3k0, w1k1), w1k1)
+    okA = np.isfinite(lowA) & (lowA < top)
+    ax.fill_between(rm, np.where(okA, lowA, np.nan), top, where=okA, color="tab:green", alpha=0.22, lw=0,
+                    label="region A: R_w > R_w3(R_m, 0); for R_m ≥ 0.25: R_w > R_w1(R_m, 1)")
+    okB = np.isfinite(w1k1) & np.isfinite(w2k0) & (w2k0 > w1k1)
+    ax.fill_between(rm, w1k1, np.fmin(w2k0, top), where=okB, color="tab:orange", alpha=0.30, lw=0,
+                    label="region B: R_w1(R_m, 1) < R_w < R_w2(R_m, 0)")
+
+    for j in range(c0.shape[1]):
+        ax.plot(rm, c0[:, j], color="tab:blue", lw=1.8, label="k = 0: R_w1, R_w2, R_w3" if j == 0 else None)
+    # names of the k = 0 branches, written beside the curves
+    for j, target in ((0, None), (1, 0.45 * top), (2, 0.8 * top)):
+        if j >= c0.shape[1]:
+            break
+        col = c0[:, j]
+        if target is None:
+            i = int(0.75 * (len(rm) - 1))
+        else:
+            hit = np.nonzero(np.isfinite(col) & (col >= target))[0]
+            if not hit.size:
+                continue
+            i = int(hit[0])
+        if np.isfinite(col[i]):
+            ax.annotate("R_w%d(R_m, 0)" % (j + 1), (rm[i], col[i]), textcoords="offset points",
+                        xytext=(6, 4 if target is None else -4), color="tab:blue", fontsize=9)
+    for j in range(c1.shape[1]):
+        if np.isfinite(c1[:, j]).any():
+            ax.plot(rm, c1[:, j], color="tab:red", lw=1.8, ls="--",
+                    label="k = 1: R_w1 (16)" if j == 0 else "k = 1: critical speed %d" % (j + 1))
+    if "eq18_R_w23_k1" in g:
+        e18 = g["eq18_R_w23_k1"][:]
+        if np.isfinite(e18).any():
+            ax.plot(rm, e18, color="tab:red", lw=1.2, ls=":",
+                    label="k = 1: R_w2 = R_w3 (18), touch without a change of stability")
+    if "pendulum/critical" in h:
+        pc = h["pendulum/critical"]
+        r1, w1 = param(pc, "R_m1"), param(pc, "R_w_at_R_m1")
+        if r1 is not None and w1 is not None and np.isfinite(r1):
+            ax.plot([r1], [w1], "kD", ms=5, label="R_m^(1) = %s: (16) and (18) touch" % fmt(r1, 5))
+        rm_run = param(h["pendulum"], "R_m")
+        for key, col, mk, lab in (("undamped_k0_R_w", "tab:blue", "o", "k = 0"),
+                                  ("undamped_k1_R_w", "tab:red", "s", "k = 1")):
+            if key in pc and rm_run is not None and pc[key].size:
+                v = pc[key][:]
+                v = v[np.isfinite(v) & (v < top)]
+                ax.plot(np.full(v.shape, rm_run), v, mk, color=col, mfc="none", ms=7,
+                        label="critical speeds at R_m = %s, %s (this run)" % (fmt(rm_run, 3), lab))
+    # the letters A and B in the middle of their regions
+    if okA.any():
+        i = int(np.nonzero(okA)[0][max(0, int(0.04 * okA.sum()))])
+        ax.text(rm[i] + 0.01 * (rm.max() - rm.min()), 0.5 * (lowA[i] + top) + 0.15 * (top - lowA[i]), "A",
+                fontsize=18, fontweight="bold", color="darkgreen")
+        iA2 = np.nonzero(okA & (rm >= 0.25))[0]
+        if iA2.size:
+            i = int(iA2[int(0.5 * (iA2.size - 1))])
+            ax.text(rm[i], 0.5 * (lowA[i] + top), "A", fontsize=18, fontweight="bold", color="darkgreen")
+    if okB.any():
+        iB = np.nonzero(okB)[0]
+        i = int(iB[int(0.6 * (iB.size - 1))])
+        ax.text(rm[i], 0.5 * (w1k1[i] + min(w2k0[i], top)), "B", fontsize=18, fontweight="bold",
+                color="saddlebrown", ha="center", va="center")
+    ax.set_xlim(float(rm.min()), float(rm.max()))
+    ax.set_ylim(0.0, top)
+    ax.set_xlabel("mass ratio R_m = m/(M + 2m) %s" % ubr(units(g["R_m"])))
+    ax.set_ylabel("rotor speed R_w = ω/ω0 %s" % ubr(u))
+    ax.set_title("Two-pendulum autobalancer, undamped: critical speeds and the regions A, B\nstable for every unbalance (figure 2)%s" % status_note(h))
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.09), ncol=2, fontsize=8, frameon=False)
+    save(fig, outdir, stem, "critical_speeds", written)
+
+
+VERDICT_COLORS = {-2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
+VERDICT_NAMES = {-2: "no balanced motion", -1: "unstable", 0: "marginal", 1: "stable"}
+
+
+def verdict_image(ax, x, y, v):
+    """Draw an int verdict grid v[x, y] (values -2..1) with a fixed colour per verdict."""
+    codes = [-2, -1, 0, 1]
+    cmap = ListedColormap([VERDICT_COLORS[c] for c in codes])
+    norm = BoundaryNorm([-2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
+    ax.pcolormesh(x, y, np.asarray(v).T, cmap=cmap, norm=norm, shading="nearest")
+    present = sorted(set(np.unique(v).astype(int).tolist()) & set(codes))
+    return [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c]) for c in present]
+
+
+def plot_pendulum_map(h, outdir, stem, written):
+    g = h["pendulum/map"]
+    rm, rw = g["R_m"][:], g["R_w"][:]
+    v = g["verdict"][:]
+    has_mr = "max_real" in g
+    fig, axes = plt.subplots(1, 2 if has_mr else 1, figsize=(13 if has_mr else 8, 6), constrained_layout=True,
+                             squeeze=False)
+    ax = axes[0, 0]
+    handles = verdict_image(ax, rm, rw, v)
+    every = int(param(g, "every_unbalance", 0) or 0)
+    ks = np.atleast_1d(g.attrs.get("k_values", []))
+    p = h["pendulum"]
+    damp = "H = %s, h = %s" % (fmt(param(p, "H", np.nan), 3), fmt(param(p, "h", np.nan), 3))
+    if every:
+        what = "stable for every unbalance k in %d values from %s to %s" % (len(ks), fmt(ks.min(), 3),
+                                                                              fmt(ks.max(), 3))
+    else:
+        what = "k = %s" % ", ".join(fmt(k, 3) for k in ks)
+    ax.set_title("Stability of the main motion (4): %s\n%s%s" % (what, damp, status_note(h)), fontsize=11)
+    ax.set_xlabel("mass ratio R_m = m/(M + 2m) %s" % ubr(units(g["R_m"])))
+    ax.set_ylabel("rotor speed R_w = ω/ω0 %s" % ubr(units(g["R_w"])))
+    ax.legend(handles=handles, loc="upper right", fontsize=9, framealpha=0.9)
+    if has_mr:
+        ax2 = axes[0, 1]
+        mr = g["max_real"][:]
+        lim = np.nanmax(np.abs(mr)) if np.isfinite(mr).any() else 1.0
+        im = ax2.pcolormesh(rm, rw, mr.T, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
+        ax2.contour(rm, rw, mr.T, levels=[0.0], colors="k", linewidths=1.0)
+        fig.colorbar(im, ax=ax2, label="largest real part of the roots of (6) %s" % ubr(units(g["max_real"])))
+        ax2.set_title("stability margin (black line: max Re λ = 0)", fontsize=11)
+        ax2.set_xlabel(ax.get_xlabel())
+        ax2.set_ylabel(ax.get_ylabel())
+    save(fig, outdir, stem, "stability_map", written)
+
+
+def plot_pendulum_roots(h, outdir, stem, written):
+    g = h["pendulum/roots"]
+    fig, ax = plt.subplots(figsize=(7, 6), constrained_layout=True)
+    ax.plot(g["root_real"][:], g["root_imag"][:], "o", ms=9, mfc="none", label="roots of (6)")
+    ax.plot(g["eig_real"][:], g["eig_imag"][:], "x", ms=7, label="eigenvalues of the matrix of (5)")
+    ax.axvline(0.0, color="k", lw=0.8)
+    ax.axhline(0.0, color="k", lw=0.5, alpha=0.5)
+    ax.set_xlabel("Re λ %s (per unit of τ = ω0 t)" % ubr(units(g["root_real"])))
+    ax.set_ylabel("Im λ %s" % ubr(units(g["root_imag"])))
+    ax.set_title("Characteristic roots of the two-pendulum balancer\n%s; verdict %s, max Re λ = %s%s"
+                 % (pendulum_params_text(h), s(g.attrs.get("verdict", "?")), fmt(param(g, "max_real", np.nan)),
+                    status_note(h)), fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=9)
+    save(fig, outdir, stem, "roots", written)
+
+
+def plot_pendulum_transient(h, outdir, stem, written):
+    g = h["pendulum/transient"]
+    t = g["tau"][:]
+    tu = units(g["tau"])
+    ttb = param(g, "time_to_balance")
+    tol = param(g, "balance_tol")
+    fig, ax = plt.subplots(3, 1, figsize=(10, 9), sharex=True, constrained_layout=True)
+    ax[0].plot(t, g["amplitude"][:], lw=1.0, color="tab:blue")
+    ax[0].set_ylabel("shaft amplitude / l %s" % ubr(units(g["amplitude"])))
+    ax[1].semilogy(t, np.maximum(g["unbalance"][:], 1e-300), lw=1.0, color="tab:purple",
+                   label="|d| of rotor plus pendulums")
+    if tol is not None:
+        ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
+    ax[1].set_ylabel("residual unbalance / (2 m l) %s" % ubr(units(g["unbalance"])))
+    for name, lab, col in (("alpha", "pendulum 1: α = ψ - ψ0", "tab:green"),
+                           ("beta", "pendulum 2: β = φ - ψ0", "tab:orange")):
+        tt, a = break_wraps(t, g[name][:])
+        ax[2].plot(tt, a, lw=1.0, color=col, label=lab)
+    ax[2].axhline(0.0, color="k", lw=0.6)
+    ax[2].set_ylabel("angle from the balancing position %s" % ubr(units(g["alpha"])))
+    ax[2].set_xlabel("dimensionless time τ = ω0 t %s" % ubr(tu))
+    mark_time(ax, ttb, "time to balance τ = %s" % fmt(ttb) if ttb is not None and np.isfinite(ttb) else None)
+    for a in ax:
+        a.grid(True, alpha=0.3)
+    ax[1].legend(fontsize=8, loc="upper right")
+    ax[2].legend(fontsize=8, loc="upper right")
+    if ttb is not None and np.isfinite(ttb):
+        ax[0].legend(fontsize=8, loc="upper right")
+    bal = "balanced at τ = %s" % fmt(ttb) if int(param(g, "balanced", 0) or 0) else "not balanced"
+    fig.suptitle("Two-pendulum autobalancer transient: %s; %s%s" % (pendulum_params_text(h), bal, status_note(h)),
+                 fontsize=11)
+    save(fig, outdir, stem, "transient", written)
+
+
+# ---- rotor ----------------------------------------------------------------------------------
+def rotor_planes(h):
+    planes = []
+    j = 1
+    while "rotor/plane%d" % j in h:
+        planes.append(j)
+        j += 1
+    return planes
+
+
+def plot_rotor_transient(h, outdir, stem, written):
+    g = h["rotor/transient"]
+    t = g["time"][:]
+    tu = units(g["time"])
+    ttb = param(g, "time_to_balance")
+    tol = param(g, "balance_tol")
+    planes = rotor_planes(h)
+    omega = param(h["rotor"], "omega", np.nan)
+    nballs = sum(int(param(h["rotor/plane%d" % j], "n_balls", 0) or 0) for j in planes)
+    fig, ax = plt.subplots(3, 1, figsize=(10, 10), sharex=True, constrained_layout=True)
+    # (a) displacement amplitudes, in micrometres (the archive stores m)
+    scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
+    ax[0].plot(t, scale * g["amp_G"][:], lw=0.9, color="tab:blue", label="centre of mass |(x, y)|")
+    for j in planes:
+        name = "p%d_amp_D" % j
+        if name in g:
+            ax[0].plot(t, scale * g[name][:], lw=0.9, color=("tab:orange", "tab:green", "tab:red")[(j - 1) % 3],
+                       alpha=0.8, label="at balancer plane %d" % j)
+    ax[0].set_ylabel("displacement amplitude [%s]" % ulab)
+    ax[0].legend(fontsize=8, loc="upper right")
+    # (b) residual unbalance |s_j| / (m0 r0), log scale
+    for j in planes:
+        name = "p%d_s_rel" % j
+        if name in g:
+            ax[1].semilogy(t, np.maximum(g[name][:], 1e-300), lw=0.9, color=("tab:purple", "tab:brown")[(j - 1) % 2],
+                           label="plane %d: |s| / (m0 r0)" % j)
+    if tol is not None:
+        ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
+    ax[1].set_ylabel("relative residual unbalance %s" % ubr(units(g["p1_s_rel"]) if "p1_s_rel" in g else "1"))
+    ax[1].legend(fontsize=8, loc="upper right")
+    # (c) ball angles relative to the rotor (wrapped), with the balanced angles (3.14)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    k = 0
+    for j in planes:
+        pg = h["rotor/plane%d" % j]
+        nb = int(param(pg, "n_balls", 0) or 0)
+        bal = np.atleast_1d(pg.attrs["ball_psi_balanced"]) if "ball_psi_balanced" in pg.attrs else []
+        for i in range(1, nb + 1):
+            name = "p%d_b%d_psi_w" % (j, i)
+            if name not in g:
+                continue
+            col = colors[k % len(colors)]
+            k += 1
+            tt, a = break_wraps(t, g[name][:])
+            ax[2].plot(tt, a, lw=0.9, color=col, label="plane %d, ball %d" % (j, i))
+        for b in bal:  # the balanced set; the balls may take its angles in either order
+            if np.isfinite(b):
+                ax[2].axhline(b, color="k", ls=":", lw=1.0)
+    ax[2].set_ylim(-np.pi - 0.2, np.pi + 0.2)
+    ax[2].set_yticks([-np.pi, -np.pi / 2, 0, np.pi / 2, np.pi])
+    ax[2].set_yticklabels(["-π", "-π/2", "0", "π/2", "π"])
+    ax[2].set_ylabel("ball angle ψ relative to the rotor [rad]")
+    ax[2].set_xlabel("time t %s" % ubr(tu))
+    ax[2].legend(fontsize=8, loc="upper right", ncol=2, title="dotted: the balanced angles (3.14), in either order", title_fontsize=8)
+    mark_time(ax, ttb, "time to balance %s %s" % (fmt(ttb), tu) if ttb is not None and np.isfinite(ttb) else None)
+    if ttb is not None and np.isfinite(ttb):
+        ax[0].legend(fontsize=8, loc="upper right")
+    for a in ax:
+        a.grid(True, alpha=0.3)
+    baltxt = ("balanced after %s %s" % (fmt(ttb), tu)) if int(param(g, "balanced", 0) or 0) else "not balanced"
+    fig.suptitle("Rotor with ball autobalancer: ω = %s %s, %d plane(s), %d ball(s); %s%s"
+                 % (fmt(omega), punit(h["rotor"], "omega"), len(planes), nballs, baltxt, status_note(h)),
+                 fontsize=11)
+    save(fig, outdir, stem, "transient", written)
+
+
+# ---- rotor stability (autobal rotor stability|sweep|map|campbell) --------------------------
+def param_label(name, ds):
+    """Axis label for a swept rotor parameter from its coordinate dataset."""
+    sym = {"omega": "spin speed ω"}.get(name, name)
+    return "%s %s" % (sym, ubr(units(ds)))
+
+
+def shade_intervals(ax, lo, hi, label, color="tab:green", alpha=0.18):
+    for i, (a, b) in enumerate(zip(lo, hi)):
+        ax.axvspan(a, b, color=color, alpha=alpha, lw=0, label=label if i == 0 else None)
+
+
+def intervals_text(lo, hi, unit):
+    parts = ["[%s, %s]" % (fmt(a), fmt(b) if np.isfinite(b) else "∞") for a, b in zip(lo, hi)]
+    return ("stable for %s %s" % (" ∪ ".join(parts), unit)) if parts else "no stable interval"
+
+
+def plot_rotor_sweep(h, outdir, stem, written):
+    """Stability margin along a swept parameter, stable intervals shaded, critical values marked."""
+    g = h["rotor/sweep"]
+    pname = s(g.attrs.get("param", "omega"))
+    x = g[pname][:]
+    xu = units(g[pname])
+    mg = g["margin"][:]
+    v = g["verdict"][:]
+    fig, ax = plt.subplots(2, 1, figsize=(10, 7), sharex=True, constrained_layout=True,
+                           gridspec_kw={"height_ratios": [4, 1]})
+    lo = g["stable_lo"][:] if "stable_lo" in g else np.array([])
+    hi = g["stable_hi"][:] if "stable_hi" in g else np.array([])
+    shade_intervals(ax[0], lo, hi, "stable intervals")
+    ax[0].plot(x, mg, color="tab:blue", lw=1.4, label="stability margin (largest Re λ)")
+    ax[0].axhline(0.0, color="k", lw=0.8)
+    if "critical_value" in g:
+        cvs, kds = g["critical_value"][:], g["critical_kind"][:]
+        kindtxt = {1: "stable above", -1: "unstable above"}
+        lab = "critical values: " + ", ".join("%s (%s)" % (fmt(cv), kindtxt.get(int(kd), "edge"))
+                                               for cv, kd in zip(cvs, kds))
+        for i, cv in enumerate(cvs):
+            ax[0].axvline(cv, color="tab:red", ls="--", lw=1.0, label=lab if i == 0 else None)
+    ax[0].set_ylabel("margin %s" % ubr(units(g["margin"])))
+    ax[0].legend(fontsize=8, loc="lower right")
+    ax[0].grid(True, alpha=0.3)
+    verdict_image(ax[1], x, np.array([0.0, 1.0]), np.vstack([v, v]).T)
+    ax[1].set_yticks([])
+    ax[1].set_ylabel("verdict")
+    handles = [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c])
+               for c in sorted(set(np.unique(v).astype(int).tolist()) & set(VERDICT_COLORS))]
+    ax[1].legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.55), ncol=4,
+                 frameon=False)
+    ax[1].set_xlabel(param_label(pname, g[pname]))
+    fig.suptitle("Rotor with ball autobalancer: stability of the balanced motion (3.14) along %s\n%s%s"
+                 % ("the spin speed ω" if pname == "omega" else pname, intervals_text(lo, hi, xu), status_note(h)),
+                 fontsize=11)
+    save(fig, outdir, stem, "stability_sweep", written)
+
+
+def plot_rotor_map(h, outdir, stem, written):
+    g = h["rotor/map"]
+    p1, p2 = s(g.attrs["param1"]), s(g.attrs["param2"])
+    x, y = g[p1][:], g[p2][:]
+    v = g["verdict"][:]
+    has_m = "margin" in g
+    fig, axes = plt.subplots(1, 2 if has_m else 1, figsize=(13 if has_m else 8, 6), constrained_layout=True,
+                             squeeze=False)
+    ax = axes[0, 0]
+    handles = verdict_image(ax, x, y, v)
+    ax.set_xlabel(param_label(p1, g[p1]))
+    ax.set_ylabel(param_label(p2, g[p2]))
+    ax.legend(handles=handles, fontsize=9, loc="upper right", framealpha=0.9)
+    ax.set_title("Rotor with ball autobalancer: stability of the balanced motion (3.14)%s" % status_note(h),
+                 fontsize=11)
+    if has_m:
+        ax2 = axes[0, 1]
+        mg = g["margin"][:]
+        fin = mg[np.isfinite(mg)]
+        lim = float(np.percentile(np.abs(fin), 98)) if fin.size else 1.0
+        im = ax2.pcolormesh(x, y, mg.T, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
+        if fin.size and fin.min() < 0 < fin.max():
+            ax2.contour(x, y, mg.T, levels=[0.0], colors="k", linewidths=1.0)
+        fig.colorbar(im, ax=ax2, label="stability margin (largest Re λ) %s" % ubr(units(g["margin"])))
+        ax2.set_xlabel(ax.get_xlabel())
+        ax2.set_ylabel(ax.get_ylabel())
+        ax2.set_title("stability margin (black line: margin = 0)", fontsize=11)
+    save(fig, outdir, stem, "stability_map", written)
+
+
+def plot_rotor_campbell(h, outdir, stem, written):
+    """Campbell diagram (natural frequencies vs spin speed, whirl direction) and unbalance response."""
+    g = h["rotor/campbell"]
+    om = g["omega"][:]
+    fr = g["frequency"][:]
+    wh = g["whirl"][:]
+    fig, ax = plt.subplots(2, 1, figsize=(10, 9), sharex=True, constrained_layout=True,
+                           gridspec_kw={"height_ratios": [3, 2]})
+    from matplotlib.lines import Line2D
+    handles = []
+    for code, col, lab in ((1, "tab:blue", "forward whirl"), (-1, "tab:red", "backward whirl"),
+                           (0, "0.3", "whirl undecided")):
+        if np.any(wh == code):
+            handles.append(Line2D([], [], color=col, marker=".", ls="none", ms=8, label=lab))
+    for m in range(fr.shape[1]):
+        ax[0].plot(om, fr[:, m], color="0.6", lw=0.8, zorder=1)
+        for code, col in ((1, "tab:blue"), (-1, "tab:red"), (0, "0.3")):
+            sel = wh[:, m] == code
+            if sel.any():
+                ax[0].plot(om[sel], fr[sel, m], ".", ms=3, color=col, zorder=2)
+    top = float(np.nanmax(fr)) * 1.15 if np.isfinite(fr).any() else float(om.max())
+    handles += ax[0].plot(om, om, "k--", lw=1.0, label="frequency = ω (synchronous excitation by the unbalance)")
+    if "crossing_omega" in g:
+        co = g["crossing_omega"][:]
+        handles += ax[0].plot(co, co, "o", mfc="none", color="k", ms=9,
+                              label="critical speeds: crossings (fw forward, bw backward whirl)")
+        for i, (c, w) in enumerate(zip(co, g["crossing_whirl"][:])):
+            ax[0].annotate("%s (%s)" % (fmt(c), "fw" if w > 0 else "bw"), (c, c), textcoords="offset points",
+                           xytext=(10, -14) if i % 2 == 0 else (-62, 6), fontsize=8)
+    ax[0].set_ylim(0, top)
+    ax[0].set_ylabel("natural frequency %s" % ubr(units(g["frequency"])))
+    ax[0].legend(handles=handles, fontsize=8, loc="upper left")
+    ax[0].grid(True, alpha=0.3)
+    scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
+    ag = np.where(np.isfinite(g["amp_G"][:]), g["amp_G"][:], np.nan)
+    ax[1].semilogy(om, scale * ag, color="tab:blue", lw=1.2, label="centre of mass")
+    if "amp_D" in g:
+        ad = g["amp_D"][:]
+        for j in range(ad.shape[1]):
+            ax[1].semilogy(om, scale * np.where(np.isfinite(ad[:, j]), ad[:, j], np.nan), lw=1.0,
+                           color=("tab:orange", "tab:green")[j % 2], label="at balancer plane %d" % (j + 1))
+    if np.isfinite(ag).any():
+        ax[1].set_ylim(bottom=1e-3 * scale * float(np.nanmax(ag)))
+    if "peak_omega" in g:
+        for i, pk in enumerate(g["peak_omega"][:]):
+            ax[1].axvline(pk, color="tab:red", ls=":", lw=1.0,
+                          label="response peaks %s" % ", ".join(fmt(p) for p in g["peak_omega"][:]) if i == 0
+                          else None)
+    ax[1].set_ylabel("unbalance response amplitude [%s]" % ulab)
+    ax[1].set_xlabel("spin speed ω %s" % ubr(units(g["omega"])))
+    ax[1].legend(fontsize=8, loc="upper right")
+    ax[1].grid(True, which="both", alpha=0.3)
+    fig.suptitle("Rotor-housing without balls: Campbell diagram and steady unbalance response%s" % status_note(h),
+                 fontsize=11)
+    save(fig, outdir, stem, "campbell", written)
+
+
+def plot_rotor_stability(h, outdir, stem, written):
+    """Characteristic roots of the balanced motion and the stable speed intervals."""
+    g = h["rotor/stability"]
+    crit = "rotor/stability/critical" in h and "stable_lo" in h["rotor/stability/critical"]
+    fig, axes = plt.subplots(1, 2 if crit else 1, figsize=(13 if crit else 7, 6), constrained_layout=True,
+                             squeeze=False, gridspec_kw={"width_ratios": [3, 2]} if crit else None)
+    ax = axes[0, 0]
+    sets = (("root_real", "root_imag", "o", "roots of the closed system"),
+            ("full_real", "full_imag", "x", "eigenvalues of the full linearization"))
+    u = "1/s"
+    for re_, im_, mk, lab in sets:
+        if re_ in g:
+            u = units(g[re_])
+            ax.plot(g[re_][:], g[im_][:], mk, ms=8 if mk == "o" else 6, mfc="none" if mk == "o" else None, label=lab)
+    ax.axvline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("Re λ %s" % ubr(u))
+    ax.set_ylabel("Im λ %s (rotating frame)" % ubr(u))
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    om = param(h["rotor"], "omega", np.nan)
+    ax.set_title("balanced motion at ω = %s %s: %s, margin %s %s (%s)"
+                 % (fmt(om), punit(h["rotor"], "omega"), s(g.attrs.get("verdict", "?")),
+                    fmt(param(g, "margin", np.nan)), punit(g, "margin"), s(g.attrs.get("method", "?"))), fontsize=10)
+    if crit:
+        c = h["rotor/stability/critical"]
+        ax2 = axes[0, 1]
+        lo, hi = c["stable_lo"][:], c["stable_hi"][:]
+        wmin, wmax = param(c, "omega_min", 0.0), param(c, "omega_max", float(np.nanmax(hi)))
+        ax2.barh([0], [wmax - wmin], left=[wmin], color=VERDICT_COLORS[-1], height=0.5, label="unstable")
+        for i, (a, b) in enumerate(zip(lo, hi)):
+            ax2.barh([0], [b - a], left=[a], color=VERDICT_COLORS[1], height=0.5, label="stable" if i == 0 else None)
+        if "critical_value" in c:
+            cvs = c["critical_value"][:]
+            ax2.plot(cvs, np.full(cvs.shape, 0.32), "v", color="tab:red", ms=7,
+                     label="critical speeds: " + ", ".join(fmt(cv) for cv in cvs))
+        ax2.axvline(om, color="k", lw=1.5, label="ω of this run")
+        ax2.set_ylim(-1, 1)
+        ax2.set_yticks([])
+        ax2.set_xlabel("spin speed ω %s" % ubr(units(c["stable_lo"])))
+        ax2.legend(fontsize=8, loc="upper right")
+        ax2.set_title("stable speed intervals: %s" % intervals_text(lo, hi, units(c["stable_lo"])), fontsize=10)
+    fig.suptitle("Rotor with ball autobalancer: stability of the balanced motion (3.14)%s" % status_note(h),
+                 fontsize=11)
+    save(fig, outdir, stem, "stability", written)
+
+
+PLOTTERS = [
+    ("pendulum/critical/curves", plot_pendulum_critical),
+    ("pendulum/map", plot_pendulum_map),
+    ("pendulum/roots", plot_pendulum_roots),
+    ("pendulum/transient", plot_pendulum_transient),
+    ("rotor/transient", plot_rotor_transient),
+    ("rotor/stability", plot_rotor_stability),
+    ("rotor/sweep", plot_rotor_sweep),
+    ("rotor/map", plot_rotor_map),
+    ("rotor/campbell", plot_rotor_campbell),
+]
+
+
+class ArchiveError(Exception):
+    pass
+
+
+def open_archive(path):
+    if not os.path.exists(path):
+        raise ArchiveError("cannot open archive '%s': no such file" % path)
+    if os.path.isdir(path):
+        raise ArchiveError("cannot open archive '%s': is a directory" % path)
+    try:
+        h = h5py.File(path, "r")
+    except OSError as e:
+        raise ArchiveError("'%s' is not a readable HDF5 file (%s)" % (path, e))
+    if s(h.attrs.get("Conventions", "")) != "autobal-1":
+        h.close()
+        raise ArchiveError("'%s' is an HDF5 file but not an autobal archive (no Conventions = autobal-1)" % path)
+    return h
+
+
+def plot_archive(path, outdir=".", stem=None, notes=None):
+    """Draw every picture this script knows for the archive; returns the list of PNG paths."""
+    if stem is None:
+        stem = os.path.splitext(os.path.basename(path))[0]
+    os.makedirs(outdir, exist_ok=True)
+    written = []
+    with open_archive(path) as h:
+        for group, fn in PLOTTERS:
+            if group in h:
+                try:
+                    fn(h, outdir, stem, written)
+                except NotImplementedError as e:
+                    if notes is not None:
+                        notes.append(str(e))
+    return written
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="PNG pictures of an autobal HDF5 archive (reads only the archive).")
+    ap.add_argument("archive", help="FILE.h5 written by autobal")
+    ap.add_argument("-o", "--outdir", default=".", help="directory for the PNG files (created; default: .)")
+    ap.add_argument("--stem", default=None, help="file name prefix (default: archive name without .h5)")
+    ap.add_argument("-q", "--quiet", action="store_true", help="do not list the files written")
+    args = ap.parse_args(argv)
+    notes = []
+    try:
+        written = plot_archive(args.archive, args.outdir, args.stem, notes)
+    except ArchiveError as e:
+        sys.stderr.write("autobal_plot.py: error: %s\n" % e)
+        return 4
+    for n in notes:
+        sys.stderr.write("autobal_plot.py: note: %s\n" % n)
+    if not written:
+        with h5py.File(args.archive, "r") as h:
+            groups = []
+            h.visit(lambda n: groups.append("/" + n) if isinstance(h[n], h5py.Group) else None)
+        sys.stderr.write("autobal_plot.py: nothing to draw in '%s' (groups: %s)\n"
+                         % (args.archive, ", ".join(groups) or "none"))
+        return 3
+    if not args.quiet:
+        for w in written:
+            print(w)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
