@@ -323,7 +323,7 @@ static int is_headline_attr(const char *name) {
                                       "R_m1", "R_w_at_R_m1", "residual_unbalance_initial",
                                       "residual_unbalance_final", "unbalance_initial", "unbalance_final",
                                       "amplitude_first_10pct_max", "amplitude_last_10pct_max", "t_reached",
-                                      "stop_reason", "member", "method"};
+                                      "stop_reason", "method"};
   size_t i, len = strlen(name);
   for (i = 0; i < sizeof exact / sizeof exact[0]; i++)
     if (!strcmp(name, exact[i])) return 1;
@@ -365,6 +365,7 @@ static int dataset_headline_kind(const char *name, size_t count, int rank) {
     if (len >= 3 && !strcmp(name + len - 3, "R_w")) return 1;             /* pendulum critical speeds */
     if (strstr(name, "critical") || strstr(name, "stable_lo") || strstr(name, "stable_hi")) return 1;
     if (!strncmp(name, "omega_", 6) || strstr(name, "_omega")) return 1;      /* rotor critical speeds */
+    if (!strncmp(name, "natural_frequency", 17)) return 1;                     /* rotor at rest */
   }
   if (!strcmp(name, "verdict") && rank >= 1) return 2;
   return 0;

@@ -250,7 +250,7 @@ static int write_crit_set(autobal_archive *a, const char *g, const char *prefix,
     snprintf(name, sizeof name, "%s_stable_lo", prefix);
     if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_lo, "1", "lower end of a stable R_w interval");
     snprintf(name, sizeof name, "%s_stable_hi", prefix);
-    if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_hi, "1", "upper end of a stable R_w interval (inf: unbounded)");
+    if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_hi, "1", "upper end of a stable R_w interval (inf: unbounded; for the damped search, Rw_max: stable to the end of the searched range)");
   }
   return st;
 }

@@ -254,7 +254,8 @@ typedef struct run_ctx {
   autobal_archive_series *revs;
   int io_failed;
   /* per-revolution summary */
-  double rev_period, rev_end, rev_max_G, rev_max_s;
+  double rev_period, rev_t0, rev_max_G, rev_max_s;
+  unsigned long rev_index; /* revolutions completed */
   double *rev_max_D;   /* per plane */
   double *rev_row;
   size_t n_planes;
@@ -279,7 +280,8 @@ static int observer(double t, const double y[], void *user) {
     r->first_sample_done = 1;
     r->amp_initial = out[0];
     r->s_rel_initial = out[plane_base(0) + 5];
-    r->rev_end = t + r->rev_period;
+    r->rev_t0 = t;
+    r->rev_index = 0;
   }
   if (out[0] > r->max_amp) r->max_amp = out[0];
   if (t <= r->t_first_window && out[0] > r->amp_first) r->amp_first = out[0];
@@ -292,7 +294,8 @@ static int observer(double t, const double y[], void *user) {
     if (out[plane_base(j) + 6] > r->rev_max_D[j]) r->rev_max_D[j] = out[plane_base(j) + 6];
     if (out[plane_base(j) + 5] > r->rev_max_s) r->rev_max_s = out[plane_base(j) + 5];
   }
-  if (t >= r->rev_end - 1e-12 * r->rev_period) {
+  /* revolution k ends at rev_t0 + (k+1) period; a sample within 1e-9 period of it closes it */
+  if (t >= r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period) {
     r->rev_row[0] = r->rev_max_G;
     r->rev_row[1] = r->rev_max_s;
     for (j = 0; j < r->n_planes; j++) r->rev_row[2 + j] = r->rev_max_D[j];
@@ -300,7 +303,7 @@ static int observer(double t, const double y[], void *user) {
       r->io_failed = 1;
     r->rev_max_G = r->rev_max_s = 0;
     for (j = 0; j < r->n_planes; j++) r->rev_max_D[j] = 0;
-    r->rev_end += r->rev_period;
+    r->rev_index++;
   }
   return 0;
 }
@@ -424,6 +427,9 @@ static int write_rotor_params(autobal_archive *a, const autobal_rotor *rot, cons
   AD("/rotor/transient", "rtol", c->rtol, "1");
   AD("/rotor/transient", "atol", c->atol, "1");
   AD("/rotor/transient", "h_max", c->h_max, "s");
+  AD("/rotor/transient", "max_steps", (double)c->max_steps, "1");
+  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q", 4, p->q0, "m, m, rad, rad");
+  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q_rate", 4, p->qd0, "m/s, m/s, rad/s, rad/s");
   AD("/rotor/transient", "balance_tol", c->balance_tol, "1");
   AD("/rotor/transient", "balance_revs", c->balance_revs, "1");
   if (!st) st = autobal_archive_attr_string(a, "/rotor/transient", "stepper", c->stepper);
@@ -432,25 +438,59 @@ static int write_rotor_params(autobal_archive *a, const autobal_rotor *rot, cons
   return st;
 }
 
+/* A readable long_name for a derived output named by autobal_rotor_output_name. */
+static void output_long_name(const char *name, char *buf, size_t len) {
+  unsigned pl = 0, b = 0;
+  char rest[48] = "";
+  if (!strcmp(name, "amp_G")) snprintf(buf, len, "displacement amplitude of the centre of mass");
+  else if (!strcmp(name, "amp_L")) snprintf(buf, len, "displacement amplitude at the left support (z = -l_L)");
+  else if (!strcmp(name, "amp_R")) snprintf(buf, len, "displacement amplitude at the right support (z = +l_R)");
+  else if (sscanf(name, "p%u_b%u_%47s", &pl, &b, rest) == 3) {
+    const char *what = !strcmp(rest, "phi") ? "absolute angle phi (unwrapped)"
+                       : !strcmp(rest, "phi_w") ? "absolute angle phi wrapped to (-pi, pi]"
+                       : !strcmp(rest, "psi") ? "angle psi relative to the rotor (unwrapped)"
+                       : !strcmp(rest, "psi_w") ? "angle psi relative to the rotor wrapped to (-pi, pi]"
+                       : !strcmp(rest, "phi_rate") ? "absolute angular rate dphi/dt"
+                       : !strcmp(rest, "psi_rate") ? "angular rate relative to the rotor dpsi/dt" : rest;
+    snprintf(buf, len, "ball %u of plane %u: %s", b, pl, what);
+  } else if (sscanf(name, "p%u_%47s", &pl, rest) == 2) {
+    const char *what = !strcmp(rest, "s_u") ? "unbalance s_u of rotor plus balls along fixed x (3.1)"
+                       : !strcmp(rest, "s_v") ? "unbalance s_v of rotor plus balls along fixed y (3.1)"
+                       : !strcmp(rest, "s_xi") ? "unbalance s_xi along the rotor axis xi (3.10)"
+                       : !strcmp(rest, "s_eta") ? "unbalance s_eta along the rotor axis eta (3.10)"
+                       : !strcmp(rest, "s_abs") ? "residual unbalance |s|"
+                       : !strcmp(rest, "s_rel") ? "residual unbalance |s| relative to m0 r0"
+                       : !strcmp(rest, "amp_D") ? "displacement amplitude at the balancer plane" : rest;
+    snprintf(buf, len, "plane %u: %s", pl, what);
+  } else
+    snprintf(buf, len, "%s", name);
+}
+
 static int open_series(run_ctx *r, autobal_archive *a, const rotor_cfg *c) {
   size_t n = r->ncols, k, nb = autobal_rotor_n_balls_total(r->rotor), j;
   char (*names)[64] = calloc(n, sizeof *names);
+  char (*lnames)[96] = calloc(n, sizeof *lnames);
   const char **np = calloc(n, sizeof *np), **up = calloc(n, sizeof *up), **lp = calloc(n, sizeof *lp);
   const char *rn[2 + AUTOBAL_ROTOR_MAX_PLANES], *ru[2 + AUTOBAL_ROTOR_MAX_PLANES], *rl[2 + AUTOBAL_ROTOR_MAX_PLANES];
   char rnb[AUTOBAL_ROTOR_MAX_PLANES][32];
   int st = AUTOBAL_SUCCESS;
-  if (!names || !np || !up || !lp) st = AUTOBAL_ENOMEM;
+  if (!names || !lnames || !np || !up || !lp) st = AUTOBAL_ENOMEM;
   for (k = 0; !st && k < r->dim; k++) {
     const char *nm = state_name(k, nb, c->p.axial, r->frame, names[k], sizeof names[k], &up[k], &lp[k]);
     if (nm != names[k]) snprintf(names[k], sizeof names[k], "%s", nm);
     np[k] = names[k];
+    if (k >= 8 && k < 8 + 2 * nb) { /* one long_name per ball */
+      snprintf(lnames[k], sizeof lnames[k], "%s of ball %zu (state order)", lp[k], (k - 8) % nb + 1);
+      lp[k] = lnames[k];
+    }
   }
   for (k = 0; !st && k < r->nout; k++) {
     const char *unit = NULL;
     st = autobal_rotor_output_name(r->rotor, k, names[r->dim + k], sizeof names[0], &unit);
     np[r->dim + k] = names[r->dim + k];
     up[r->dim + k] = unit;
-    lp[r->dim + k] = NULL;
+    output_long_name(names[r->dim + k], lnames[r->dim + k], sizeof lnames[0]);
+    lp[r->dim + k] = lnames[r->dim + k];
   }
   if (!st)
     st = autobal_archive_series_open(a, "/rotor/transient", "time", "s", "time", n, np, up, lp, &r->series);
@@ -471,6 +511,7 @@ static int open_series(run_ctx *r, autobal_archive *a, const rotor_cfg *c) {
                                      "time at the end of each revolution 2 pi/omega", 2 + r->n_planes, rn, ru, rl,
                                      &r->revs);
   free(names);
+  free(lnames);
   free(np);
   free(up);
   free(lp);
@@ -490,6 +531,7 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   run_ctx r;
   double *y = NULL, t_reached = 0, *psi_bal = NULL, s_final = NAN, ttb = NAN;
   int rc = CLI_EXIT_OK, st, warn = 0, balanced = 0, ev = -1;
+  size_t j;
 
   memset(&r, 0, sizeof r);
   autobal_error_clear(&err);
@@ -577,13 +619,26 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   balanced = autobal_transient_event_result(tr, (size_t)ev, NULL, &hit) == 1;
   if (balanced) ttb = hit.t_start;
   s_final = autobal_rotor_balance_monitor(rot, c->frame, t_reached, y);
-  /* balanced angles of plane 1 for comparison (when they exist) */
-  if (c->p.plane[0].n_balls > 0) {
-    psi_bal = calloc(c->p.plane[0].n_balls, sizeof *psi_bal);
-    if (psi_bal && autobal_rotor_balanced_angles(rot, 0, psi_bal, c->p.plane[0].n_balls, NULL) != AUTOBAL_SUCCESS) {
-      free(psi_bal);
-      psi_bal = NULL;
+  /* balanced angles (3.14) of each plane for comparison (when they exist); plane 1 is printed */
+  for (j = 0; j < c->p.n_planes; j++) {
+    size_t nbj = c->p.plane[j].n_balls;
+    double *pb;
+    if (nbj == 0) continue;
+    pb = calloc(nbj, sizeof *pb);
+    if (pb && autobal_rotor_balanced_angles(rot, j, pb, nbj, NULL) == AUTOBAL_SUCCESS) {
+      if (a) {
+        char grp[32];
+        snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+        if (autobal_archive_attr_double_array(a, grp, "ball_psi_balanced", nbj, pb, "rad") != AUTOBAL_SUCCESS &&
+            rc == CLI_EXIT_OK)
+          rc = cli_fail(ctx, CLI_EXIT_IO, "%s", autobal_archive_errmsg(a));
+      }
+      if (j == 0) {
+        psi_bal = pb;
+        pb = NULL;
+      }
     }
+    free(pb);
   }
 
   if (a) {
@@ -596,7 +651,6 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_first_10pct_max", r.amp_first, "m");
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_last_10pct_max", r.amp_last, "m");
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_max", r.max_amp, "m");
-    if (!st && psi_bal) st = autobal_archive_attr_double_array(a, "/rotor/plane1", "ball_psi_balanced", c->p.plane[0].n_balls, psi_bal, "rad");
     if (!st) st = autobal_archive_group(a, "/rotor/transient/solver");
     if (!st) {
       const char *gs = "/rotor/transient/solver";

@@ -3,11 +3,6 @@
 #include "commands.h"
 #include "help.h"
 
-/* Single-word commands on an archive (apps/cmd_info.c, cmd_rerun.c, cmd_plot.c): they take
- * FILE.h5 where the others take CONFIG.ini (main.c passes it as ctx->config_path). */
-int cli_cmd_info(cli_ctx *ctx);
-int cli_cmd_rerun(cli_ctx *ctx);
-int cli_cmd_plot(cli_ctx *ctx);
 
 const cli_command cli_commands[] = {
     {"pendulum roots", "characteristic roots (6) and eigenvalues of (5), stability verdict", HELP_PENDULUM_ROOTS,

@@ -173,6 +173,12 @@ typedef double mvec;
  * check this against the complex products of the blocks and against
  * det(M lambda^2 + C lambda + K)).  Aabs is the same sum over the magnitudes
  * of the terms of x_j, y_j (W - 1 counted as W + 1). */
+/* GCC 12 reports the broadcasts below as "may be used uninitialized" in the
+ * AVX2 clone of the map (a false positive: every output is assigned). */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 static MAP_INLINE void char_parts_v(const mvec *Rw, double R_m, double H, double h, mvec A[9], mvec Aabs[9],
                          mvec B[9], mvec p1_out[10]) {
   mvec R_w = *Rw, W = R_w * R_w;
@@ -181,9 +187,9 @@ static MAP_INLINE void char_parts_v(const mvec *Rw, double R_m, double H, double
   mvec x1 = h * (1.0 - W), y1 = R_w * (h * H + 4.0 * R_m * W);
   mvec x0 = -R_m * W * W;
   mvec xa2 = 1.0 + W + h * H + 6.0 * R_m * W, xa1 = h * (1.0 + W), xa0 = R_m * W * W;
-  double x4 = 1.0 - R_m, x3 = H + h;
-  A[8] = MV_BCAST(x4 * x4);
-  A[7] = MV_BCAST(2.0 * (x4 * x3));
+  double x4 = 1.0 - R_m, x3 = H + h, a8 = x4 * x4, a7 = 2.0 * (x4 * x3);
+  A[8] = MV_BCAST(a8);
+  A[7] = MV_BCAST(a7);
   A[6] = 2.0 * (x4 * x2) + (x3 * x3 + y3 * y3);
   A[5] = 2.0 * (x4 * x1 + x3 * x2 + y3 * y2);
   A[4] = 2.0 * (x4 * x0 + x3 * x1 + y3 * y1) + (x2 * x2 + y2 * y2);
@@ -191,15 +197,15 @@ static MAP_INLINE void char_parts_v(const mvec *Rw, double R_m, double H, double
   A[2] = 2.0 * (x2 * x0) + (x1 * x1 + y1 * y1);
   A[1] = 2.0 * (x1 * x0);
   A[0] = x0 * x0;
-  Aabs[8] = A[8];
-  Aabs[7] = A[7];
+  Aabs[8] = MV_BCAST(a8);
+  Aabs[7] = MV_BCAST(a7);
   Aabs[6] = 2.0 * (x4 * xa2) + (x3 * x3 + y3 * y3);
   Aabs[5] = 2.0 * (x4 * xa1 + x3 * xa2 + y3 * y2);
   Aabs[4] = 2.0 * (x4 * xa0 + x3 * xa1 + y3 * y1) + (xa2 * xa2 + y2 * y2);
   Aabs[3] = 2.0 * (x3 * xa0 + xa2 * xa1 + y2 * y1);
   Aabs[2] = 2.0 * (xa2 * xa0) + (xa1 * xa1 + y1 * y1);
   Aabs[1] = 2.0 * (xa1 * xa0);
-  Aabs[0] = A[0];
+  Aabs[0] = x0 * x0;
   /* B = (lambda^2 + W)^4 */
   B[8] = MV_BCAST(1.0);
   B[6] = 4.0 * W;
@@ -215,6 +221,10 @@ static MAP_INLINE void char_parts_v(const mvec *Rw, double R_m, double H, double
     p1_out[8] = MV_BCAST(x4), p1_out[9] = MV_BCAST(0.0);
   }
 }
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 /* (6) from its parts (char_parts_v) for given k (kc = cos^2(2 psi0) = 1 - k),
  * with absolute error bounds cerr (may be NULL):
@@ -2046,7 +2056,7 @@ MAP_CLONES static int map_point_all_k(const map_ctx *mc, double Rm, double Rw, s
   size_t ng = (mc->nk + MAP_LANES - 1) / MAP_LANES, t, l;
   int worst = AUTOBAL_VERDICT_STABLE, st, und = mc->undamped;
   char_parts_t P;
-  mvec c[9], ce[9], s2, Rwv = MV_BCAST(Rw);
+  mvec c[9], ce[9], s2 = MV_BCAST(1.0), Rwv = MV_BCAST(Rw);
   /* the special values, once each: k == 0 (damped: lambda = 0 deflated;
    * undamped: the cubic) and, undamped, k == 1 (the factor P1) */
   if (und) {
