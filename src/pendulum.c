@@ -29,6 +29,11 @@
 int autobal_pendulum_params_validate(const autobal_pendulum_params *p, autobal_error *err) {
   int st;
   if (p == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum parameters: NULL pointer");
+  /* fast path: exactly the conditions checked below */
+  if (isfinite(p->R_w) && p->R_w >= 0.0 && isfinite(p->R_m) && p->R_m > 0.0 && p->R_m < 0.5 &&
+      isfinite(p->H) && p->H >= 0.0 && isfinite(p->h) && p->h >= 0.0 && isfinite(p->psi0) &&
+      p->psi0 >= 0.0 && p->psi0 < PEND_PI / 2)
+    return AUTOBAL_SUCCESS;
   if ((st = autobal_check_param(err, "R_w", p->R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
   if ((st = autobal_check_param(err, "R_m", p->R_m, 0.0, 1, 0.5, 1, "")) != 0) return st;
   if ((st = autobal_check_param(err, "H", p->H, 0.0, 0, INFINITY, 1, "")) != 0) return st;
@@ -124,21 +129,26 @@ static void blocks(double R_w, double H, double h, double a11[6], double a31[6],
  * The maps evaluate MAP_LANES grid points or k values side by side: with GCC
  * or Clang a vector extension type (plain element-wise IEEE arithmetic, so
  * every lane gives bitwise the result of the same expression in scalar
- * code; no fused multiply-add: C11 mode has FP contraction off), else
- * MAP_LANES = 1 and plain doubles.  The scalar entry points below run the
+ * code; no fused multiply-add: C11 mode has FP contraction off), else (or
+ * with -DAUTOBAL_NO_VECTOR_EXT) MAP_LANES = 1 and plain doubles.  The scalar entry points below run the
  * same code on broadcast values, so the map and the one-point functions
  * share one implementation of (6) and agree bitwise. */
-#if defined(__GNUC__)
+#if defined(__GNUC__) && !defined(AUTOBAL_NO_VECTOR_EXT)
 #define MAP_LANES 4
 typedef double mvec __attribute__((vector_size(MAP_LANES * sizeof(double))));
 typedef int64_t mmask __attribute__((vector_size(MAP_LANES * sizeof(int64_t))));
 #define MV_L(v, l) ((v)[l])
 #define MV_BCAST(x) ((mvec){(x), (x), (x), (x)})
 #define MV_ABS(a) ((mvec)((mmask)(a) & (mmask){INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX}))
+#define MV_CMP(x) ((mmask)(x)) /* lane masks: -1 true, 0 false */
+#define MV_MASK0 ((mmask){0, 0, 0, 0})
 #else
 #define MAP_LANES 1
 typedef double mvec;
-#define MV_L(v, l) (v)
+typedef long long mmask;
+#define MV_CMP(x) ((mmask)(x))
+#define MV_MASK0 ((mmask)0)
+#define MV_L(v, l) (*((void)(l), &(v)))
 #define MV_BCAST(x) (x)
 #define MV_ABS(a) fabs(a)
 #endif
@@ -254,8 +264,8 @@ typedef struct {
   mvec A[9], Aa[9], B[9];
 } char_parts_t;
 
-static void char_parts(double R_w, double R_m, double H, double h, char_parts_t *P,
-                       double p1_out[10]) {
+static MAP_INLINE void char_parts(double R_w, double R_m, double H, double h, char_parts_t *P,
+                                  double p1_out[10]) {
   mvec Rw = MV_BCAST(R_w), p1[10];
   size_t j;
   char_parts_v(&Rw, R_m, H, h, P->A, P->Aa, P->B, p1_out ? p1 : NULL);
@@ -263,8 +273,9 @@ static void char_parts(double R_w, double R_m, double H, double h, char_parts_t 
     for (j = 0; j < 10; j++) p1_out[j] = MV_L(p1[j], 0);
 }
 
-static void char_poly_from_parts(double R_w, double R_m, const char_parts_t *P, double k,
-                                 double kc, double coef[9], double cerr[9]) {
+static MAP_INLINE void char_poly_from_parts(double R_w, double R_m, const char_parts_t *P,
+                                            double k, double kc, double coef[9],
+                                            double cerr[9]) {
   mvec Rw = MV_BCAST(R_w), kv = MV_BCAST(k), kcv = MV_BCAST(kc), c[9], ce[9];
   size_t j;
   char_poly_from_parts_v(&Rw, R_m, P->A, P->Aa, P->B, &kv, &kcv, c, cerr ? ce : NULL);
@@ -275,8 +286,8 @@ static void char_poly_from_parts(double R_w, double R_m, const char_parts_t *P, 
 }
 
 /* (6) for given k, see char_poly_from_parts */
-static void char_poly_k(double R_w, double R_m, double H, double h, double k, double kc,
-                        double coef[9], double cerr[9]) {
+static MAP_INLINE void char_poly_k(double R_w, double R_m, double H, double h, double k,
+                                   double kc, double coef[9], double cerr[9]) {
   char_parts_t P;
   char_parts(R_w, R_m, H, h, &P, NULL);
   char_poly_from_parts(R_w, R_m, &P, k, kc, coef, cerr);
@@ -462,18 +473,168 @@ int autobal_pendulum_status(const autobal_pendulum_workspace *ws) {
   return ws ? ws->err.status : AUTOBAL_SUCCESS;
 }
 
+#define MAP_MAXW 5 /* width of the Routh array for degree <= 8 */
+/* full unrolling of the short fixed loops of the Routh kernel (GCC >= 8) */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8
+#define MAP_UNROLL _Pragma("GCC unroll 16")
+#else
+#define MAP_UNROLL
+#endif
+
+/* ---- the Routh test on MAP_LANES polynomials at once -------------------- */
+
+/* The map decides with exactly the verdicts of autobal_poly_hurwitz_err (the
+ * Routh array with a running error bound per entry), in two stages:
+ *
+ * 1. routh_quick: the Routh array of MAP_LANES polynomials of degree n (7 or
+ *    8, positive leading coefficient) side by side, with the values of
+ *    autobal_poly_hurwitz_err operation for operation (so the first-column
+ *    entries are bitwise the same), but instead of one error bound per entry
+ *    two per row: with weights s2^-j on column j (s2 = max(1, W), the scale
+ *    of lambda^2, which makes the entries of a row comparable), G_t >= the
+ *    weighted sum of the bounds of the entries j >= 1 of row t, and F_t >=
+ *    the bound of its first entry; N_t = the weighted sum of |entries j >= 1|
+ *    (sums, no comparisons: they vectorize); from the test's recurrence
+ *      F_{t+1} = G_{t+1} = s2 (G_{t-1} + |q| G_t + N_t eq + u (N_{t-1} + 2|q| N_t)),
+ *    eq = (F_{t-1} + |q| F_t)/|a| + u|q|.  About a third of the work.
+ * 2. a lane whose first-column entries all clear twice their row bound
+ *    (|a| > 2 F_t, up to the first negative one) has the verdict of the full
+ *    test, since there |a| > e_t too (the factor 2 covers the rounding of the
+ *    bounds themselves); any other lane (an entry within 2 F_t of zero: near
+ *    a stability boundary, rare) is decided by the full scalar test
+ *    autobal_poly_hurwitz_err.
+ * Rows of the generic test beyond len(t) = (n - t)/2 + 1 entries are
+ * structural zeros, which never reach the first column of rows <= n (entry
+ * j of row t+1 depends on entries j+1 of rows t and t-1): not computed.
+ * The lanes give the processor independent work (the divisions are the
+ * critical path of one array) and vectorize. */
+static MAP_INLINE void routh_quick(size_t n, const mvec *c, const mvec *ce, const mvec *s2p,
+                               mvec *col, mvec *colU) {
+  /* per row t: b[.][j] the entries, F the bound of entry 0, G >= the
+   * weighted sum of the bounds of entries j >= 1, N = the weighted sum of
+   * |entries j >= 1| (entries j >= 1 are the ones that enter the next rows
+   * as x and y; entry 0 enters only through q) */
+  mvec b[3][MAP_MAXW], F[3], G[3], N[3], w[MAP_MAXW];
+  const double u = DBL_EPSILON;
+  mvec s2 = *s2p, is2 = 1.0 / s2, zero = MV_BCAST(0.0), ez;
+  size_t j, row, i0 = 0, i1 = 1, i2 = 2;
+  w[0] = MV_BCAST(1.0);
+  for (j = 1; j < MAP_MAXW; j++) w[j] = w[j - 1] * is2;
+  G[0] = N[0] = G[1] = N[1] = zero;
+  MAP_UNROLL
+  for (j = 0; 2 * j <= n; j++) {
+    mvec v = c[n - 2 * j], av = MV_ABS(v), ev = ce[n - 2 * j] + u * av;
+    b[0][j] = v;
+    if (j == 0) F[0] = ev;
+    else G[0] = G[0] + ev * w[j], N[0] = N[0] + av * w[j];
+  }
+  MAP_UNROLL
+  for (j = 0; 2 * j + 1 <= n; j++) {
+    mvec v = c[n - 2 * j - 1], av = MV_ABS(v), ev = ce[n - 2 * j - 1] + u * av;
+    b[1][j] = v;
+    if (j == 0) F[1] = ev;
+    else G[1] = G[1] + ev * w[j], N[1] = N[1] + av * w[j];
+  }
+  /* The single entry of row n is the lowest coefficient c[0], copied down
+   * from row n mod 2 two rows at a time (as x - q*0 = x); the full test's
+   * bound of it grows only by u|c[0]| per copy.  That bound, bitwise the
+   * full test's, replaces the row bound there (which would be far too wide
+   * when c[0] is small, e.g. for small k). */
+  ez = ce[0] + u * MV_ABS(c[0]);
+  for (row = n % 2 + 2; row <= n; row += 2) ez = ez + u * MV_ABS(c[0]);
+  MAP_UNROLL
+  for (row = 1; row <= n; row++) {
+    /* rows row-1 (i0) and row (i1) give row+1 (i2): entry j from entries
+     * j+1 (weight s2 w_{j+1} = w_j), so the weighted sum of the new bounds
+     * is at most s2 (G0 + |q| G1 + N1 eq + u (N0 + 2|q| N1)) */
+    size_t len1 = (n - row) / 2 + 1, len2 = row < n ? (n - row - 1) / 2 + 1 : 0;
+    mvec a = b[i1][0], q, fq, eq, t;
+    col[row] = a;
+    colU[row] = row < n ? F[i1] : ez;
+    if (row == n) break;
+    q = b[i0][0] / a;
+    fq = MV_ABS(q);
+    eq = (F[i0] + fq * F[i1]) / MV_ABS(a) + u * fq;
+    t = s2 * (G[i0] + fq * G[i1] + N[i1] * eq + u * (N[i0] + 2.0 * fq * N[i1]));
+    F[i2] = t;
+    G[i2] = t;
+    N[i2] = zero;
+    MAP_UNROLL
+    for (j = 0; j < len2; j++) { /* j + 1 < len(row - 1) = len2 + 1 always */
+      mvec x = b[i0][j + 1], y = j + 1 < len1 ? b[i1][j + 1] : zero;
+      mvec v = x - q * y;
+      b[i2][j] = v;
+      if (j > 0) N[i2] = N[i2] + MV_ABS(v) * w[j];
+    }
+    {
+      size_t tmp = i0;
+      i0 = i1, i1 = i2, i2 = tmp;
+    }
+  }
+}
+
+/* the two degrees used, with n a compile-time constant (full unrolling) */
+static MAP_INLINE void routh_quick7(const mvec *c, const mvec *ce, const mvec *s2, mvec *col,
+                                    mvec *colU) {
+  routh_quick(7, c, ce, s2, col, colU);
+}
+static MAP_INLINE void routh_quick8(const mvec *c, const mvec *ce, const mvec *s2, mvec *col,
+                                    mvec *colU) {
+  routh_quick(8, c, ce, s2, col, colU);
+}
+
+
+/* Sign test of (6) (coef, cerr from char_poly_from_parts; deflate: k == 0,
+ * lambda = 0 divided out) with the maps' two-stage Routh kernel: the
+ * verdict and count of autobal_poly_hurwitz_err bitwise (all first-column
+ * entries clear twice their row bound, so the full test decides them the
+ * same way; else the full test runs, which also reports bad input). */
+static MAP_INLINE int sign_test_poly_i(const double coef[9], const double cerr[9], double W,
+                                       int deflate, int *verdict, int *n_rhp,
+                                       autobal_error *err) {
+  mvec c[9], ce[9], col[9], colU[9], s2 = MV_BCAST(W > 1.0 ? W : 1.0);
+  double chk = 0.0;
+  size_t j, row, n = deflate ? 7 : 8, off = deflate ? 1 : 0;
+  int changes = 0, prev = 1, ok;
+  for (j = 0; j < 9; j++) {
+    c[j] = MV_BCAST(coef[j]);
+    ce[j] = MV_BCAST(cerr[j]);
+    chk += cerr[j];
+  }
+  ok = isfinite(chk) && coef[8] > 0 && verdict != NULL;
+  if (deflate) routh_quick7(c + 1, ce + 1, &s2, col, colU);
+  else routh_quick8(c, ce, &s2, col, colU);
+  if (ok) {
+    for (row = 1; row <= n && ok; row++) {
+      double a = MV_L(col[row], 0);
+      int sg = a > 0 ? 1 : -1;
+      if (!(fabs(a) > 2.0 * MV_L(colU[row], 0))) ok = 0;
+      if (sg != prev) changes++;
+      prev = sg;
+    }
+  }
+  if (!ok) return autobal_poly_hurwitz_err(coef + off, cerr + off, n + 1, verdict, n_rhp, err);
+  *verdict = changes == 0 ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
+  if (n_rhp) *n_rhp = changes;
+  return AUTOBAL_SUCCESS;
+}
+
+MAP_CLONES static int sign_test_poly(const double coef[9], const double cerr[9], double W,
+                                     int deflate, int *verdict, int *n_rhp, autobal_error *err) {
+  return sign_test_poly_i(coef, cerr, W, deflate, verdict, n_rhp, err);
+}
+
 /* ======================================================================== */
 /* Verdicts                                                                 */
 /* ======================================================================== */
 
 /* Sign-test verdict of (6) from raw values (no validation). */
-static int damped_verdict_k(double R_w, double R_m, double H, double h, double k, double kc,
-                            int *verdict, int *n_rhp, autobal_error *err) {
+MAP_CLONES static int damped_verdict_k(double R_w, double R_m, double H, double h, double k,
+                                       double kc, int *verdict, int *n_rhp, autobal_error *err) {
   double coef[9], cerr[9];
   char_poly_k(R_w, R_m, H, h, k, kc, coef, cerr);
-  if (k == 0.0) /* deflate the structural root lambda = 0 */
-    return autobal_poly_hurwitz_err(coef + 1, cerr + 1, 8, verdict, n_rhp, err);
-  return autobal_poly_hurwitz_err(coef, cerr, 9, verdict, n_rhp, err);
+  /* k == 0: deflate the structural root lambda = 0 */
+  return sign_test_poly_i(coef, cerr, R_w * R_w, k == 0.0, verdict, n_rhp, err);
 }
 
 int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict, int *n_rhp,
@@ -871,9 +1032,8 @@ int autobal_pendulum_analyze(autobal_pendulum_workspace *ws, const autobal_pendu
   r->mismatch_rel = r->mismatch / scale;
   r->zero_root_deflated = (k == 0.0);
   /* sign test on the coefficients */
-  if (k == 0.0) st = autobal_poly_hurwitz_err(r->coef + 1, cerr + 1, 8, &r->verdict, &r->n_rhp,
-                                              &ws->err);
-  else st = autobal_poly_hurwitz_err(r->coef, cerr, 9, &r->verdict, &r->n_rhp, &ws->err);
+  st = sign_test_poly(r->coef, cerr, p->R_w * p->R_w, k == 0.0, &r->verdict, &r->n_rhp,
+                      &ws->err);
   if (st) return st;
   /* verdict from the roots (drop the root nearest 0 when deflated) */
   {
@@ -1707,144 +1867,31 @@ int autobal_pendulum_rm1(double *rm1, double *rw, autobal_error *err) {
 /* Grid points per OpenMP work item (one row segment; a multiple of MAP_LANES,
  * so that the grouping of points into lanes does not depend on the schedule) */
 #define MAP_TILE 64
-#define MAP_MAXW 5 /* width of the Routh array for degree <= 8 */
-/* full unrolling of the short fixed loops of the Routh kernel (GCC >= 8) */
-#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8
-#define MAP_UNROLL _Pragma("GCC unroll 16")
-#else
-#define MAP_UNROLL
-#endif
-
-/* ---- the Routh test on MAP_LANES polynomials at once -------------------- */
-
-/* The map decides with exactly the verdicts of autobal_poly_hurwitz_err (the
- * Routh array with a running error bound per entry), in two stages:
- *
- * 1. routh_quick: the Routh array of MAP_LANES polynomials of degree n (7 or
- *    8, positive leading coefficient) side by side, with the values of
- *    autobal_poly_hurwitz_err operation for operation (so the first-column
- *    entries are bitwise the same), but instead of one error bound per entry
- *    two per row: with weights s2^-j on column j (s2 = max(1, W), the scale
- *    of lambda^2, which makes the entries of a row comparable), G_t >= the
- *    weighted sum of the bounds of the entries j >= 1 of row t, and F_t >=
- *    the bound of its first entry; N_t = the weighted sum of |entries j >= 1|
- *    (sums, no comparisons: they vectorize); from the test's recurrence
- *      F_{t+1} = G_{t+1} = s2 (G_{t-1} + |q| G_t + N_t eq + u (N_{t-1} + 2|q| N_t)),
- *    eq = (F_{t-1} + |q| F_t)/|a| + u|q|.  About a third of the work.
- * 2. a lane whose first-column entries all clear twice their row bound
- *    (|a| > 2 F_t, up to the first negative one) has the verdict of the full
- *    test, since there |a| > e_t too (the factor 2 covers the rounding of the
- *    bounds themselves); any other lane (an entry within 2 F_t of zero: near
- *    a stability boundary, rare) is decided by the full scalar test
- *    autobal_poly_hurwitz_err.
- * Rows of the generic test beyond len(t) = (n - t)/2 + 1 entries are
- * structural zeros, which never reach the first column of rows <= n (entry
- * j of row t+1 depends on entries j+1 of rows t and t-1): not computed.
- * The lanes give the processor independent work (the divisions are the
- * critical path of one array) and vectorize. */
-static MAP_INLINE void routh_quick(size_t n, const mvec *c, const mvec *ce, const mvec *s2p,
-                               mvec *col, mvec *colU) {
-  /* per row t: b[.][j] the entries, F the bound of entry 0, G >= the
-   * weighted sum of the bounds of entries j >= 1, N = the weighted sum of
-   * |entries j >= 1| (entries j >= 1 are the ones that enter the next rows
-   * as x and y; entry 0 enters only through q) */
-  mvec b[3][MAP_MAXW], F[3], G[3], N[3], w[MAP_MAXW];
-  const double u = DBL_EPSILON;
-  mvec s2 = *s2p, is2 = 1.0 / s2, zero = MV_BCAST(0.0), ez;
-  size_t j, row, i0 = 0, i1 = 1, i2 = 2;
-  w[0] = MV_BCAST(1.0);
-  for (j = 1; j < MAP_MAXW; j++) w[j] = w[j - 1] * is2;
-  G[0] = N[0] = G[1] = N[1] = zero;
-  MAP_UNROLL
-  for (j = 0; 2 * j <= n; j++) {
-    mvec v = c[n - 2 * j], av = MV_ABS(v), ev = ce[n - 2 * j] + u * av;
-    b[0][j] = v;
-    if (j == 0) F[0] = ev;
-    else G[0] = G[0] + ev * w[j], N[0] = N[0] + av * w[j];
-  }
-  MAP_UNROLL
-  for (j = 0; 2 * j + 1 <= n; j++) {
-    mvec v = c[n - 2 * j - 1], av = MV_ABS(v), ev = ce[n - 2 * j - 1] + u * av;
-    b[1][j] = v;
-    if (j == 0) F[1] = ev;
-    else G[1] = G[1] + ev * w[j], N[1] = N[1] + av * w[j];
-  }
-  /* The single entry of row n is the lowest coefficient c[0], copied down
-   * from row n mod 2 two rows at a time (as x - q*0 = x); the full test's
-   * bound of it grows only by u|c[0]| per copy.  That bound, bitwise the
-   * full test's, replaces the row bound there (which would be far too wide
-   * when c[0] is small, e.g. for small k). */
-  ez = ce[0] + u * MV_ABS(c[0]);
-  for (row = n % 2 + 2; row <= n; row += 2) ez = ez + u * MV_ABS(c[0]);
-  MAP_UNROLL
-  for (row = 1; row <= n; row++) {
-    /* rows row-1 (i0) and row (i1) give row+1 (i2): entry j from entries
-     * j+1 (weight s2 w_{j+1} = w_j), so the weighted sum of the new bounds
-     * is at most s2 (G0 + |q| G1 + N1 eq + u (N0 + 2|q| N1)) */
-    size_t len1 = (n - row) / 2 + 1, len2 = row < n ? (n - row - 1) / 2 + 1 : 0;
-    mvec a = b[i1][0], q, fq, eq, t;
-    col[row] = a;
-    colU[row] = row < n ? F[i1] : ez;
-    if (row == n) break;
-    q = b[i0][0] / a;
-    fq = MV_ABS(q);
-    eq = (F[i0] + fq * F[i1]) / MV_ABS(a) + u * fq;
-    t = s2 * (G[i0] + fq * G[i1] + N[i1] * eq + u * (N[i0] + 2.0 * fq * N[i1]));
-    F[i2] = t;
-    G[i2] = t;
-    N[i2] = zero;
-    MAP_UNROLL
-    for (j = 0; j < len2; j++) { /* j + 1 < len(row - 1) = len2 + 1 always */
-      mvec x = b[i0][j + 1], y = j + 1 < len1 ? b[i1][j + 1] : zero;
-      mvec v = x - q * y;
-      b[i2][j] = v;
-      if (j > 0) N[i2] = N[i2] + MV_ABS(v) * w[j];
-    }
-    {
-      size_t tmp = i0;
-      i0 = i1, i1 = i2, i2 = tmp;
-    }
-  }
-}
-
-/* the two degrees used, with n a compile-time constant (full unrolling) */
-static MAP_INLINE void routh_quick7(const mvec *c, const mvec *ce, const mvec *s2, mvec *col, mvec *colU) {
-  routh_quick(7, c, ce, s2, col, colU);
-}
-static MAP_INLINE void routh_quick8(const mvec *c, const mvec *ce, const mvec *s2, mvec *col, mvec *colU) {
-  routh_quick(8, c, ce, s2, col, colU);
-}
-
-/* Verdict of lane l from stage 1, or 2 when it must be decided by the full
- * test (stops at the first sign change, which makes the verdict UNSTABLE). */
-static MAP_INLINE int routh_quick_verdict(size_t n, const mvec *col, const mvec *colU, size_t l) {
-  size_t row;
-  for (row = 1; row <= n; row++) {
-    double a = MV_L(col[row], l);
-    if (!(fabs(a) > 2.0 * MV_L(colU[row], l))) return 2;
-    if (a < 0) return AUTOBAL_VERDICT_UNSTABLE;
-  }
-  return AUTOBAL_VERDICT_STABLE;
-}
-
 /* Damped verdicts of MAP_LANES polynomials (6) with coefficients c[j] and
  * bounds ce[j], j = 0..8 (deflate: lambda = 0 divided out, degree 7, for
  * k == 0), s2 = max(1, W) per lane.  A lane with a non-finite coefficient
  * or bound (overflow at huge R_w) or a leading coefficient <= 0 goes to the
  * scalar test, which reports it (AUTOBAL_EINVAL) like autobal_pendulum_verdict. */
-static MAP_INLINE int damped_lanes(const mvec *c, const mvec *ce, const mvec *s2, int deflate, int *v) {
+static MAP_INLINE int damped_lanes(const mvec *c, const mvec *ce, const mvec *s2, int deflate,
+                                   int *v) {
   mvec col[9], colU[9], chk = ce[0];
-  size_t l, j, n = deflate ? 7 : 8, off = deflate ? 1 : 0;
-  int ok = 1;
+  mmask alive, neg = MV_MASK0;
+  size_t l, j, row, n = deflate ? 7 : 8, off = deflate ? 1 : 0;
   for (j = 1; j < 9; j++) chk = chk + ce[j];
-  for (l = 0; l < MAP_LANES; l++)
-    if (!isfinite(MV_L(chk, l)) || !(MV_L(c[8], l) > 0)) ok = 0;
-  if (ok) {
-    if (deflate) routh_quick7(c + 1, ce + 1, s2, col, colU);
-    else routh_quick8(c, ce, s2, col, colU);
+  /* lanes stage 1 may decide: finite coefficients and bounds (chk - chk is
+   * NaN for inf and NaN) and a positive leading coefficient; the kernel
+   * runs on all lanes, the others' results are not used */
+  alive = MV_CMP(chk - chk == 0.0) & MV_CMP(c[8] > 0.0);
+  if (deflate) routh_quick7(c + 1, ce + 1, s2, col, colU);
+  else routh_quick8(c, ce, s2, col, colU);
+  /* the verdict rule, on all lanes at once: alive = every row so far
+   * clears its bound, neg = a decided negative entry was met while alive */
+  for (row = 1; row <= n; row++) {
+    alive = alive & MV_CMP(MV_ABS(col[row]) > 2.0 * colU[row]);
+    neg = neg | (alive & MV_CMP(col[row] < 0.0));
   }
   for (l = 0; l < MAP_LANES; l++) {
-    v[l] = ok ? routh_quick_verdict(n, col, colU, l) : 2;
+    v[l] = MV_L(neg, l) ? AUTOBAL_VERDICT_UNSTABLE : MV_L(alive, l) ? AUTOBAL_VERDICT_STABLE : 2;
     if (v[l] == 2) { /* near the boundary (or a bad lane): the full test */
       double cl[9], cel[9];
       int st;
@@ -2016,6 +2063,7 @@ static int map_point(const map_ctx *mc, double Rm, double Rw, autobal_pendulum_w
   int worst = AUTOBAL_VERDICT_STABLE;
   double mre = -INFINITY;
   char_parts_t P;
+  memset(&P, 0, sizeof P);
   if (!mc->undamped) char_parts(Rw, Rm, s->H, s->h, &P, NULL); /* independent of k */
   for (i = 0; i < mc->nk; i++) {
     double k = mc->ks[i], kc = 1.0 - k, m;
@@ -2026,8 +2074,7 @@ static int map_point(const map_ctx *mc, double Rm, double Rw, autobal_pendulum_w
     } else {
       double coef[9], cerr[9];
       char_poly_from_parts(Rw, Rm, &P, k, kc, coef, cerr);
-      if (k == 0.0) st = autobal_poly_hurwitz_err(coef + 1, cerr + 1, 8, &vv, NULL, NULL);
-      else st = autobal_poly_hurwitz_err(coef, cerr, 9, &vv, NULL, NULL);
+      st = sign_test_poly(coef, cerr, Rw * Rw, k == 0.0, &vv, NULL, NULL);
       if (st) return st;
     }
     if (vv < worst) worst = vv;
@@ -2051,30 +2098,27 @@ static int map_point(const map_ctx *mc, double Rm, double Rw, autobal_pendulum_w
  * *hint (per thread) is the group that was unstable last time, tried first:
  * the verdict (a minimum over all k) does not depend on the order. */
 MAP_CLONES static int map_point_all_k(const map_ctx *mc, double Rm, double Rw, size_t *hint,
-                           signed char *v) {
+                                      signed char *v) {
   const autobal_pendulum_map_spec *s = mc->s;
   size_t ng = (mc->nk + MAP_LANES - 1) / MAP_LANES, t, l;
   int worst = AUTOBAL_VERDICT_STABLE, st, und = mc->undamped;
   char_parts_t P;
-  mvec c[9], ce[9], s2 = MV_BCAST(1.0), Rwv = MV_BCAST(Rw);
+  mvec c[9], ce[9], s2 = MV_BCAST(Rw * Rw > 1.0 ? Rw * Rw : 1.0), Rwv = MV_BCAST(Rw);
   /* the special values, once each: k == 0 (damped: lambda = 0 deflated;
    * undamped: the cubic) and, undamped, k == 1 (the factor P1) */
+  char_parts_v(&Rwv, Rm, s->H, s->h, P.A, P.Aa, P.B, NULL); /* (unused when undamped) */
   if (und) {
     if (mc->has_zero) worst = undamped_map_verdict(Rm, Rw, 0.0);
     if (mc->has_one && worst != AUTOBAL_VERDICT_UNSTABLE) {
       int v1 = undamped_map_verdict(Rm, Rw, 1.0);
       if (v1 < worst) worst = v1;
     }
-  } else {
-    s2 = MV_BCAST(Rw * Rw > 1.0 ? Rw * Rw : 1.0);
-    char_parts_v(&Rwv, Rm, s->H, s->h, P.A, P.Aa, P.B, NULL);
-    if (mc->has_zero) {
-      mvec kz = MV_BCAST(0.0), kcz = MV_BCAST(1.0);
-      int vz[MAP_LANES];
-      char_poly_from_parts_v(&Rwv, Rm, P.A, P.Aa, P.B, &kz, &kcz, c, ce);
-      if ((st = damped_lanes(c, ce, &s2, 1, vz)) != 0) return st;
-      worst = vz[0];
-    }
+  } else if (mc->has_zero) {
+    mvec kz = MV_BCAST(0.0), kcz = MV_BCAST(1.0);
+    int vz[MAP_LANES];
+    char_poly_from_parts_v(&Rwv, Rm, P.A, P.Aa, P.B, &kz, &kcz, c, ce);
+    if ((st = damped_lanes(c, ce, &s2, 1, vz)) != 0) return st;
+    worst = vz[0];
   }
   for (t = 0; t < ng && worst != AUTOBAL_VERDICT_UNSTABLE; t++) {
     size_t g = (*hint + t) % ng, i0 = g * MAP_LANES, n = 0;

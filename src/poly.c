@@ -200,195 +200,7 @@ struct autobal_poly_workspace {
   size_t degree;
   gsl_poly_complex_workspace *w;
   double *z; /* 2*degree packed complex roots */
-  double *h; /* degree x degree companion matrix (companion_qr) */
 };
-
-/* ---- eigenvalues of the companion matrix --------------------------------
- * The roots are the eigenvalues of the upper Hessenberg companion matrix
- *     H[0][j] = -c[n-1-j]/c[n],  H[i][i-1] = 1   (n = degree),
- * balanced by powers of 2 (exact: Parlett-Reinsch, EISPACK balanc) and
- * reduced to quasi-triangular form by Francis implicit double-shift QR
- * steps restricted to the active block (EISPACK hqr, eigenvalues only; as
- * in Numerical Recipes' hqr, with a relative deflation test).  The same
- * algorithm as gsl_poly_complex_solve, in a compact form that costs about
- * a tenth of it for the degrees used here (the benchmark bench/perf
- * measures it).  Returns 0, or -1 if a block needs more than 60 iterations
- * (the caller then falls back to GSL). */
-#define HQR_MAXIT 60
-static void companion_balance(double *a, size_t n) {
-  const double radix = 2.0, sqrdx = 4.0;
-  int done = 0;
-  size_t i, j;
-  while (!done) {
-    done = 1;
-    for (i = 0; i < n; i++) {
-      double r = 0.0, c = 0.0, f = 1.0, g, s;
-      for (j = 0; j < n; j++)
-        if (j != i) {
-          c += fabs(a[j * n + i]);
-          r += fabs(a[i * n + j]);
-        }
-      if (c == 0.0 || r == 0.0) continue;
-      g = r / radix;
-      s = c + r;
-      while (c < g) {
-        f *= radix;
-        c *= sqrdx;
-      }
-      g = r * radix;
-      while (c > g) {
-        f /= radix;
-        c /= sqrdx;
-      }
-      if ((c + r) / f < 0.95 * s) {
-        done = 0;
-        g = 1.0 / f;
-        for (j = 0; j < n; j++) a[i * n + j] *= g;
-        for (j = 0; j < n; j++) a[j * n + i] *= f;
-      }
-    }
-  }
-}
-
-static double sign_of(double a, double b) { return b >= 0.0 ? fabs(a) : -fabs(a); }
-
-/* Eigenvalues of the upper Hessenberg n x n matrix a (row-major, destroyed)
- * into wr, wi (unsorted).  0-based transcription of hqr. */
-static int hessenberg_qr(double *a, size_t n, double *wr, double *wi) {
-#define A_(i, j) a[(size_t)(i) * n + (size_t)(j)]
-  long nn, m, l, k, j, i, mmin, its;
-  double z = 0.0, y, x, w, v, u, t = 0.0, s, r = 0.0, q = 0.0, p = 0.0, anorm = 0.0;
-  for (i = 0; i < (long)n; i++)
-    for (j = i > 0 ? i - 1 : 0; j < (long)n; j++) anorm += fabs(A_(i, j));
-  nn = (long)n - 1;
-  while (nn >= 0) {
-    its = 0;
-    do {
-      for (l = nn; l >= 1; l--) {
-        s = fabs(A_(l - 1, l - 1)) + fabs(A_(l, l));
-        if (s == 0.0) s = anorm;
-        if (fabs(A_(l, l - 1)) <= DBL_EPSILON * s) {
-          A_(l, l - 1) = 0.0;
-          break;
-        }
-      }
-      x = A_(nn, nn);
-      if (l == nn) { /* one root found */
-        wr[nn] = x + t;
-        wi[nn] = 0.0;
-        nn--;
-        its = 0;
-      } else {
-        y = A_(nn - 1, nn - 1);
-        w = A_(nn, nn - 1) * A_(nn - 1, nn);
-        if (l == nn - 1) { /* two roots found */
-          p = 0.5 * (y - x);
-          q = p * p + w;
-          z = sqrt(fabs(q));
-          x += t;
-          if (q >= 0.0) {
-            z = p + sign_of(z, p);
-            wr[nn - 1] = wr[nn] = x + z;
-            if (z != 0.0) wr[nn] = x - w / z;
-            wi[nn - 1] = wi[nn] = 0.0;
-          } else {
-            wr[nn - 1] = wr[nn] = x + p;
-            wi[nn - 1] = -(wi[nn] = z);
-          }
-          nn -= 2;
-          its = 0;
-        } else { /* no roots yet: a double-shift QR step */
-          if (its == HQR_MAXIT) return -1;
-          if (its == 10 || its == 20 || its == 40) { /* exceptional shift */
-            t += x;
-            for (i = 0; i <= nn; i++) A_(i, i) -= x;
-            s = fabs(A_(nn, nn - 1)) + fabs(A_(nn - 1, nn - 2));
-            y = x = 0.75 * s;
-            w = -0.4375 * s * s;
-          }
-          ++its;
-          for (m = nn - 2; m >= l; m--) {
-            z = A_(m, m);
-            r = x - z;
-            s = y - z;
-            p = (r * s - w) / A_(m + 1, m) + A_(m, m + 1);
-            q = A_(m + 1, m + 1) - z - r - s;
-            r = A_(m + 2, m + 1);
-            s = fabs(p) + fabs(q) + fabs(r);
-            p /= s;
-            q /= s;
-            r /= s;
-            if (m == l) break;
-            u = fabs(A_(m, m - 1)) * (fabs(q) + fabs(r));
-            v = fabs(p) * (fabs(A_(m - 1, m - 1)) + fabs(z) + fabs(A_(m + 1, m + 1)));
-            if (u <= DBL_EPSILON * v) break;
-          }
-          for (i = m + 2; i <= nn; i++) {
-            A_(i, i - 2) = 0.0;
-            if (i != m + 2) A_(i, i - 3) = 0.0;
-          }
-          for (k = m; k <= nn - 1; k++) {
-            if (k != m) {
-              p = A_(k, k - 1);
-              q = A_(k + 1, k - 1);
-              r = 0.0;
-              if (k != nn - 1) r = A_(k + 2, k - 1);
-              if ((x = fabs(p) + fabs(q) + fabs(r)) != 0.0) {
-                p /= x;
-                q /= x;
-                r /= x;
-              }
-            }
-            if ((s = sign_of(sqrt(p * p + q * q + r * r), p)) != 0.0) {
-              if (k == m) {
-                if (l != m) A_(k, k - 1) = -A_(k, k - 1);
-              } else {
-                A_(k, k - 1) = -s * x;
-              }
-              p += s;
-              x = p / s;
-              y = q / s;
-              z = r / s;
-              q /= p;
-              r /= p;
-              for (j = k; j <= nn; j++) {
-                p = A_(k, j) + q * A_(k + 1, j);
-                if (k != nn - 1) {
-                  p += r * A_(k + 2, j);
-                  A_(k + 2, j) -= p * z;
-                }
-                A_(k + 1, j) -= p * y;
-                A_(k, j) -= p * x;
-              }
-              mmin = nn < k + 3 ? nn : k + 3;
-              for (i = l; i <= mmin; i++) {
-                p = x * A_(i, k) + y * A_(i, k + 1);
-                if (k != nn - 1) {
-                  p += z * A_(i, k + 2);
-                  A_(i, k + 2) -= p * r;
-                }
-                A_(i, k + 1) -= p * q;
-                A_(i, k) -= p;
-              }
-            }
-          }
-        }
-      }
-    } while (nn >= 0 && l < nn - 1);
-  }
-  return 0;
-#undef A_
-}
-
-/* roots of c[0..n] (c[n] != 0, finite) by companion_balance + hessenberg_qr */
-static int companion_qr(double *h, const double *c, size_t n, double *re, double *im) {
-  size_t i, j;
-  for (i = 0; i < n * n; i++) h[i] = 0.0;
-  for (j = 0; j < n; j++) h[j] = -c[n - 1 - j] / c[n];
-  for (i = 1; i < n; i++) h[i * n + i - 1] = 1.0;
-  companion_balance(h, n);
-  return hessenberg_qr(h, n, re, im);
-}
 
 autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree) {
   autobal_poly_workspace *w;
@@ -402,8 +214,7 @@ autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree) {
     w->w = gsl_poly_complex_workspace_alloc(degree + 1);
   }
   w->z = (double *)calloc(2 * degree, sizeof(double));
-  w->h = (double *)calloc(degree * degree, sizeof(double));
-  if (w->w == NULL || w->z == NULL || w->h == NULL) {
+  if (w->w == NULL || w->z == NULL) {
     autobal_poly_workspace_free(w);
     return NULL;
   }
@@ -414,7 +225,6 @@ void autobal_poly_workspace_free(autobal_poly_workspace *w) {
   if (w == NULL) return;
   if (w->w) gsl_poly_complex_workspace_free(w->w);
   free(w->z);
-  free(w->h);
   free(w);
 }
 
@@ -454,16 +264,7 @@ int autobal_poly_roots(autobal_poly_workspace *w, const double *c, size_t len, d
   if (c[len - 1] == 0.0)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "autobal_poly_roots: leading coefficient c[%zu] is zero", len - 1);
-  if (w->degree == 1) {
-    re[0] = -c[0] / c[1];
-    im[0] = 0.0;
-    return AUTOBAL_SUCCESS;
-  }
-  if (companion_qr(w->h, c, w->degree, re, im) == 0) {
-    sort_pairs(w->degree, re, im);
-    return AUTOBAL_SUCCESS;
-  }
-  gs = gsl_poly_complex_solve(c, len, w->w, w->z); /* did not converge: GSL's own */
+  gs = gsl_poly_complex_solve(c, len, w->w, w->z);
   if (gs != GSL_SUCCESS) {
     for (i = 0; i < w->degree; i++) re[i] = im[i] = NAN;
     return autobal_error_set(err, AUTOBAL_ENUMERIC, "autobal_poly_roots: gsl_poly_complex_solve: %s",
@@ -623,11 +424,15 @@ int autobal_match_roots(size_t n, const double *a_re, const double *a_im, const 
 
 int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, int *verdict,
                              int *n_rhp, autobal_error *err) {
-  /* Routh array rows stored in two alternating buffers of width w. */
-  double r0[AUTOBAL_POLY_MAXLEN], r1[AUTOBAL_POLY_MAXLEN], rn[AUTOBAL_POLY_MAXLEN];
-  double e0[AUTOBAL_POLY_MAXLEN], e1[AUTOBAL_POLY_MAXLEN], en[AUTOBAL_POLY_MAXLEN];
+  /* Routh array: three rotating rows of width n/2 + 1 (values and bounds).
+   * Row t has len(t) = (n - t)/2 + 1 entries; the rest of the fixed width
+   * is structural zeros (value and bound 0), which never reach the first
+   * column of rows <= n (entry j of row t+1 depends on entries j+1 of rows
+   * t and t-1), so only the len(t+1) entries of each new row are computed,
+   * reading the structural zero y = 0 at the end of row t where needed. */
+  double rb[3][AUTOBAL_POLY_MAXLEN / 2 + 1], eb[3][AUTOBAL_POLY_MAXLEN / 2 + 1];
   const double u = DBL_EPSILON;
-  size_t n, width, i, j, row;
+  size_t n, width, i, j, row, i0 = 0, i1 = 1, i2 = 2;
   double sgn;
   int changes = 0, prev_sign, decided = 1;
   if (c == NULL || verdict == NULL)
@@ -656,15 +461,15 @@ int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, in
   for (j = 0; j < width; j++) {
     /* row 0: c[n], c[n-2], ...; row 1: c[n-1], c[n-3], ... */
     size_t k0 = 2 * j, k1 = 2 * j + 1;
-    r0[j] = k0 <= n ? sgn * c[n - k0] : 0.0;
-    e0[j] = k0 <= n ? (cerr ? cerr[n - k0] : 0.0) + u * fabs(c[n - k0]) : 0.0;
-    r1[j] = k1 <= n ? sgn * c[n - k1] : 0.0;
-    e1[j] = k1 <= n ? (cerr ? cerr[n - k1] : 0.0) + u * fabs(c[n - k1]) : 0.0;
+    rb[0][j] = k0 <= n ? sgn * c[n - k0] : 0.0;
+    eb[0][j] = k0 <= n ? (cerr ? cerr[n - k0] : 0.0) + u * fabs(c[n - k0]) : 0.0;
+    rb[1][j] = k1 <= n ? sgn * c[n - k1] : 0.0;
+    eb[1][j] = k1 <= n ? (cerr ? cerr[n - k1] : 0.0) + u * fabs(c[n - k1]) : 0.0;
   }
-  prev_sign = 1; /* r0[0] > 0 after normalisation */
+  prev_sign = 1; /* rb[0][0] > 0 after normalisation */
   for (row = 1; row <= n; row++) {
-    /* first-column entry of this row: r1[0] with bound e1[0] */
-    double a = r1[0], ea = e1[0];
+    /* first-column entry of this row: rb[i1][0] with bound eb[i1][0] */
+    double a = rb[i1][0], ea = eb[i1][0];
     int s;
     if (!(fabs(a) > ea)) {
       decided = 0;
@@ -676,18 +481,17 @@ int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, in
     if (row == n) break;
     /* next row: rn[j] = r0[j+1] - q r1[j+1], q = r0[0]/r1[0] */
     {
-      double q = r0[0] / a;
-      double eq = (e0[0] + fabs(q) * ea) / fabs(a) + u * fabs(q);
-      for (j = 0; j < width; j++) {
-        double x = j + 1 < width ? r0[j + 1] : 0.0, ex = j + 1 < width ? e0[j + 1] : 0.0;
-        double y = j + 1 < width ? r1[j + 1] : 0.0, ey = j + 1 < width ? e1[j + 1] : 0.0;
-        rn[j] = x - q * y;
-        en[j] = ex + fabs(q) * ey + fabs(y) * eq + u * (fabs(x) + 2.0 * fabs(q * y));
+      double q = rb[i0][0] / a;
+      double eq = (eb[i0][0] + fabs(q) * ea) / fabs(a) + u * fabs(q);
+      size_t len1 = (n - row) / 2 + 1, len2 = (n - row - 1) / 2 + 1, t;
+      for (j = 0; j < len2; j++) {
+        /* j + 1 < len(row - 1) = len2 + 1: x is always an entry */
+        double x = rb[i0][j + 1], ex = eb[i0][j + 1];
+        double y = j + 1 < len1 ? rb[i1][j + 1] : 0.0, ey = j + 1 < len1 ? eb[i1][j + 1] : 0.0;
+        rb[i2][j] = x - q * y;
+        eb[i2][j] = ex + fabs(q) * ey + fabs(y) * eq + u * (fabs(x) + 2.0 * fabs(q * y));
       }
-      memcpy(r0, r1, width * sizeof(double));
-      memcpy(e0, e1, width * sizeof(double));
-      memcpy(r1, rn, width * sizeof(double));
-      memcpy(e1, en, width * sizeof(double));
+      t = i0, i0 = i1, i1 = i2, i2 = t;
     }
   }
   if (n_rhp) *n_rhp = changes;

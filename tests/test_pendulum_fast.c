@@ -1,0 +1,181 @@
+/* test_pendulum_fast.c: the fast paths of the pendulum stability maps
+ * (src/pendulum.c: lanes of grid points or k values, the two-stage Routh
+ * kernel with its fall-back to the full test, the double-precision filter of
+ * the undamped criterion with its long-double fall-back, k groups with early
+ * exit, row tiles).  Independent reference for every map entry: the
+ * one-point public functions (autobal_pendulum_verdict,
+ * autobal_pendulum_undamped_verdict) called point by point and k by k, whose
+ * own correctness is tested in test_pendulum.c (roots, closed forms); and
+ * the sign test's two-stage Routh kernel against the generic Routh test of
+ * stability.h on the public coefficients of (6).
+ * Grids of odd sizes so that the last lane group and the last tile of each
+ * row are partial. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/pendulum.h"
+#include "check.h"
+
+/* worst verdict over ks at (Rm, Rw) from the one-point functions, with the
+ * map's conventions (undamped: MARGINAL counts as STABLE) */
+static int reference(double Rm, double Rw, double H, double h, const double *ks, size_t nk) {
+  int worst = AUTOBAL_VERDICT_STABLE;
+  size_t t;
+  for (t = 0; t < nk; t++) {
+    int v;
+    if (H == 0.0 && h == 0.0) {
+      autobal_pendulum_undamped_verdict(Rm, Rw, ks[t], &v, NULL);
+      if (v == AUTOBAL_VERDICT_MARGINAL) v = AUTOBAL_VERDICT_STABLE;
+    } else {
+      autobal_pendulum_params p;
+      autobal_pendulum_params_from_k(Rw, Rm, H, h, ks[t], &p, NULL);
+      autobal_pendulum_verdict(&p, &v, NULL, NULL);
+    }
+    if (v < worst) worst = v;
+  }
+  return worst;
+}
+
+/* map over [rm0, rm1] x [rw0, rw1] (nm x nw) with 1 and 2 threads: returns
+ * the number of entries that differ from the reference; *same = serial ==
+ * OpenMP bitwise; counts of the three verdicts in cnt[3] */
+static int check_map(size_t nm, size_t nw, double rm0, double rm1, double rw0, double rw1, double H,
+                     double h, const double *ks, size_t nk, int *same, long cnt[3]) {
+  double *rm = malloc(nm * sizeof *rm), *rw = malloc(nw * sizeof *rw);
+  signed char *v1 = malloc(nm * nw), *v2 = malloc(nm * nw);
+  double kdef[65];
+  autobal_pendulum_map_spec s;
+  size_t i, j;
+  int bad = 0;
+  for (i = 0; i < nm; i++) rm[i] = rm0 + (rm1 - rm0) * (double)i / (double)(nm - 1);
+  for (j = 0; j < nw; j++) rw[j] = rw0 + (rw1 - rw0) * (double)j / (double)(nw - 1);
+  memset(&s, 0, sizeof s);
+  s.R_m = rm, s.n_Rm = nm, s.R_w = rw, s.n_Rw = nw, s.H = H, s.h = h, s.k = ks, s.n_k = nk;
+  s.n_threads = 1;
+  if (autobal_pendulum_map(&s, v1, NULL, NULL) != AUTOBAL_SUCCESS) bad++;
+  s.n_threads = 2;
+  if (autobal_pendulum_map(&s, v2, NULL, NULL) != AUTOBAL_SUCCESS) bad++;
+  *same = memcmp(v1, v2, nm * nw) == 0;
+  if (ks == NULL) { /* the default set */
+    for (i = 0; i < 65; i++) kdef[i] = (double)i / 64.0;
+    ks = kdef, nk = 65;
+  }
+  cnt[0] = cnt[1] = cnt[2] = 0;
+  for (i = 0; i < nm; i++)
+    for (j = 0; j < nw; j++) {
+      int v = v1[i * nw + j];
+      cnt[v + 1]++;
+      if (v != reference(rm[i], rw[j], H, h, ks, nk)) bad++;
+    }
+  free(rm);
+  free(rw);
+  free(v1);
+  free(v2);
+  return bad;
+}
+
+int main(void) {
+  static const double kmix[] = {0.5, 0.0, 1.0, 1e-9, 0.999999, 0.25, 0.0, 0.75, 0.1};
+  static const double k03[] = {0.3}, k0[] = {0.0}, k1[] = {1.0};
+  int same, bad;
+  long cnt[3];
+
+  printf("-- damped maps vs autobal_pendulum_verdict point by point and k by k\n");
+  bad = check_map(23, 41, 0.01, 0.49, 0.05, 6.0, 0.05, 0.1, NULL, 0, &same, cnt);
+  CHECK("65 k (default set): entries == worst one-point verdict", bad == 0);
+  CHECK("... serial == 2 threads bitwise", same);
+  CHECK("... both verdicts occur", cnt[0] > 0 && cnt[2] > 0);
+  bad = check_map(19, 37, 0.01, 0.49, 0.05, 6.0, 0.05, 0.1, kmix, 9, &same, cnt);
+  CHECK("k set with 0, 1, 1e-9, repeats (partial lane groups): entries == reference", bad == 0);
+  CHECK("... serial == 2 threads bitwise", same);
+  bad = check_map(17, 131, 0.01, 0.49, 0.05, 6.0, 0.05, 0.1, k0, 1, &same, cnt);
+  CHECK("one k = 0 (lambda = 0 deflated, lanes across R_w, 3 tiles per row): entries == reference",
+        bad == 0);
+  CHECK("... serial == 2 threads bitwise", same);
+  bad = check_map(17, 131, 0.01, 0.49, 0.05, 6.0, 0.05, 0.1, k03, 1, &same, cnt);
+  CHECK("one k = 0.3: entries == reference", bad == 0);
+  /* H = 0, h > 0: boundary points where the sign test is MARGINAL; those are
+   * decided by the full test after the quick stage (the fall-back path) */
+  bad = check_map(29, 61, 0.01, 0.49, 0.0, 8.0, 0.0, 0.3, k03, 1, &same, cnt);
+  CHECK("H = 0, h = 0.3 (marginal entries, fall-back to the full test): entries == reference",
+        bad == 0);
+  CHECK("... marginal entries occur", cnt[1] > 0);
+  CHECK("... serial == 2 threads bitwise", same);
+  bad = check_map(11, 23, 0.01, 0.49, 100.0, 3000.0, 0.05, 0.1, NULL, 0, &same, cnt);
+  CHECK("very large speeds (R_w 100..3000, wide rounding bounds): entries == reference", bad == 0);
+
+  printf("-- undamped maps vs autobal_pendulum_undamped_verdict\n");
+  bad = check_map(23, 41, 0.01, 0.49, 0.0, 6.0, 0.0, 0.0, NULL, 0, &same, cnt);
+  CHECK("65 k (the cubic at k = 0, P1 at k = 1, quartics between): entries == reference", bad == 0);
+  CHECK("... serial == 2 threads bitwise", same);
+  CHECK("... both verdicts occur", cnt[0] > 0 && cnt[2] > 0);
+  bad = check_map(19, 37, 0.01, 0.49, 0.0, 6.0, 0.0, 0.0, kmix, 9, &same, cnt);
+  CHECK("k set with 0, 1, 1e-9, 0.999999, repeats: entries == reference", bad == 0);
+  bad = check_map(17, 131, 0.01, 0.49, 0.0, 6.0, 0.0, 0.0, k03, 1, &same, cnt);
+  CHECK("one k = 0.3 (lanes across R_w): entries == reference", bad == 0);
+  bad = check_map(17, 131, 0.01, 0.49, 0.0, 6.0, 0.0, 0.0, k0, 1, &same, cnt);
+  CHECK("one k = 0: entries == reference", bad == 0);
+  bad = check_map(17, 131, 0.01, 0.49, 0.0, 6.0, 0.0, 0.0, k1, 1, &same, cnt);
+  CHECK("one k = 1: entries == reference", bad == 0);
+  /* W = 1 exactly (R_w = 1): a_0 of (10) is 0, the double filter cannot
+   * decide and the long-double test runs */
+  bad = check_map(9, 3, 0.01, 0.49, 0.0, 2.0, 0.0, 0.0, NULL, 0, &same, cnt);
+  CHECK("grid through R_w = 1 (long-double fall-back): entries == reference", bad == 0);
+
+  printf("-- the sign test's quick Routh stage vs the generic Routh test\n");
+  {
+    /* autobal_pendulum_verdict (two-stage kernel with the bounds of the
+     * coefficient computation) against autobal_poly_hurwitz (the generic
+     * test with relative coefficient tolerances) on the public coefficients
+     * of (6): wherever the generic test decides robustly (the same verdict
+     * with rtol 1e-12 and 1e-9), verdict and number of right-half-plane
+     * roots must agree */
+    unsigned long long st = 0x853c49e6748fea9bULL;
+    int i, disagree = 0, robust = 0;
+    for (i = 0; i < 20000; i++) {
+      autobal_pendulum_params p;
+      double c[9], u[5];
+      int v, nr, g1, g2, n1, n2, j, defl;
+      for (j = 0; j < 5; j++) {
+        st ^= st << 13, st ^= st >> 7, st ^= st << 17;
+        u[j] = (double)(st >> 11) * (1.0 / 9007199254740992.0);
+      }
+      autobal_pendulum_params_from_k(6.0 * u[0], 0.005 + 0.49 * u[1], 0.5 * u[2], 0.5 * u[3],
+                                     i % 10 == 0 ? 0.0 : u[4], &p, NULL);
+      autobal_pendulum_verdict(&p, &v, &nr, NULL);
+      autobal_pendulum_char_poly(&p, c, NULL);
+      defl = i % 10 == 0; /* k = 0: lambda = 0 divided out, as the verdict does */
+      autobal_poly_hurwitz(c + defl, (size_t)(9 - defl), 1e-12, &g1, &n1, NULL);
+      autobal_poly_hurwitz(c + defl, (size_t)(9 - defl), 1e-9, &g2, &n2, NULL);
+      if (g1 != g2 || g1 == AUTOBAL_VERDICT_MARGINAL) continue;
+      robust++;
+      if (v != g1 || nr != n1) disagree++;
+    }
+    CHECK("20000 random parameter sets: verdict and RHP count == generic Routh test", disagree == 0);
+    CHECK("... on most of them (robustly decided)", robust > 19000);
+  }
+
+  printf("-- errors\n");
+  {
+    double rm = 0.1, rw[5] = {1.0, 2.0, 3.0, 1e80, 4.0}, k = 0.5;
+    signed char v[5];
+    autobal_pendulum_map_spec s;
+    autobal_pendulum_params p;
+    autobal_error err;
+    int vv;
+    memset(&s, 0, sizeof s);
+    s.R_m = &rm, s.n_Rm = 1, s.R_w = rw, s.n_Rw = 5, s.H = 0.05, s.h = 0.1, s.k = &k, s.n_k = 1;
+    CHECK_STATUS("map: R_w = 1e80 (coefficients overflow) is reported",
+                 autobal_pendulum_map(&s, v, NULL, &err), AUTOBAL_EINVAL);
+    CHECK_MSG("... as a failed grid point", err.message, "grid point");
+    s.n_k = 0, s.k = NULL;
+    CHECK_STATUS("map, 65 k: the same", autobal_pendulum_map(&s, v, NULL, &err), AUTOBAL_EINVAL);
+    autobal_pendulum_params_from_k(1e80, 0.1, 0.05, 0.1, 0.5, &p, NULL);
+    CHECK_STATUS("verdict: R_w = 1e80 is reported", autobal_pendulum_verdict(&p, &vv, NULL, &err),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("... naming the coefficient that is not finite", err.message, "not finite");
+  }
+  return check_summary();
+}
