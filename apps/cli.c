@@ -476,8 +476,12 @@ int cli_config_check_unused(cli_ctx *ctx) {
       return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s'; did you mean %s?", where(ctx, e),
                       section_known ? "key" : "section/key", full, ctx->command, list);
     }
-    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s' (see 'autobal %s --help' for the keys)",
-                    where(ctx, e), section_known ? "key" : "section", full, ctx->command, ctx->command);
+    if (section_known)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown key '%s' for 'autobal %s' (see 'autobal %s --help' for the keys)",
+                      where(ctx, e), full, ctx->command, ctx->command);
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "%s: unknown section [%s] (key '%s') for 'autobal %s' (see 'autobal %s --help' for the keys)",
+                    where(ctx, e), e->section, full, ctx->command, ctx->command);
   }
   return CLI_EXIT_OK;
 }

@@ -161,6 +161,9 @@ int cli_cmd_rotor_stability(cli_ctx *ctx);
 int cli_cmd_rotor_sweep(cli_ctx *ctx);
 int cli_cmd_rotor_map(cli_ctx *ctx);
 int cli_cmd_rotor_campbell(cli_ctx *ctx);
+/* apps/cmd_ensemble.c: many transients (grid or seeded random samples), OpenMP and optional MPI */
+int cli_cmd_rotor_ensemble(cli_ctx *ctx);
+int cli_cmd_pendulum_ensemble(cli_ctx *ctx);
 /* Single-word commands on an archive (cmd_info.c, cmd_rerun.c, cmd_plot.c): they take FILE.h5
  * where the others take CONFIG.ini (main.c passes it as ctx->config_path). */
 int cli_cmd_info(cli_ctx *ctx);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "autobal/archive.h"
@@ -16,6 +17,14 @@ int cli_archive_open(cli_ctx *ctx, const char *title, autobal_archive **out) {
   char *ini = NULL;
   *out = NULL;
   if (!ctx->output) return CLI_EXIT_OK;
+  if (ctx->output[0] == '\0') return cli_fail(ctx, CLI_EXIT_USAGE, "-o needs a file name, got an empty one");
+  if (ctx->config_path) {
+    struct stat so, sc;
+    if (stat(ctx->output, &so) == 0 && stat(ctx->config_path, &sc) == 0 && so.st_dev == sc.st_dev &&
+        so.st_ino == sc.st_ino)
+      return cli_fail(ctx, CLI_EXIT_IO, "output file '%s' is the configuration file itself; refusing to overwrite it",
+                      ctx->output);
+  }
   autobal_error_clear(&err);
   st = autobal_archive_create(ctx->output, ctx->force, out, &err);
   if (st == AUTOBAL_EEXIST)

@@ -285,9 +285,9 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
                     rm_min, rm_max);
   if (n_rm < 2 || n_rm > 1000000)
     return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: n_Rm = %ld is out of range: allowed [2, 1000000]", n_rm);
-  if (!(rw_min >= 0 && rw_min < rw_max))
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: need 0 <= Rw_min < Rw_max, got Rw_min = %g, Rw_max = %g", rw_min,
-                    rw_max);
+  if (!(rw_min >= 0 && rw_min < rw_max && rw_max <= 1e4))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: need 0 <= Rw_min < Rw_max <= 1e4, got Rw_min = %g, Rw_max = %g",
+                    rw_min, rw_max);
   if (n_sweep < 2 || n_sweep > 100000000)
     return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: n_sweep = %ld is out of range: allowed [2, 1e8]", n_sweep);
   k = autobal_pendulum_k(&p);
@@ -470,9 +470,9 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
   if (!(rm_min > 0 && rm_min <= rm_max && rm_max < 0.5))
     return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 < Rm_min <= Rm_max < 0.5, got Rm_min = %g, Rm_max = %g", rm_min,
                     rm_max);
-  if (!(rw_min >= 0 && rw_min <= rw_max))
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 <= Rw_min <= Rw_max, got Rw_min = %g, Rw_max = %g", rw_min,
-                    rw_max);
+  if (!(rw_min >= 0 && rw_min <= rw_max && rw_max <= 1e4))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 <= Rw_min <= Rw_max <= 1e4, got Rw_min = %g, Rw_max = %g",
+                    rw_min, rw_max);
   if (n_rm < 1 || n_rm > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_Rm = %ld is out of range: allowed [1, 100000]", n_rm);
   if (n_rw < 1 || n_rw > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_Rw = %ld is out of range: allowed [1, 100000]", n_rw);
   if (n_k < 2 || n_k > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k = %ld is out of range: allowed [2, 100000]", n_k);

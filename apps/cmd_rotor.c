@@ -227,6 +227,10 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if (c->t_end / c->dt_out > 5e8)
       return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end/dt_out = %.3g samples is too many (at most 5e8)", c->t_end / c->dt_out);
     if (!(c->balance_tol > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_tol = %g is out of range: allowed (0, inf)", c->balance_tol);
+    if (!(fabs(c->p.omega) > 0) && !has_dwell)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[transient]: with rotor.omega = 0 there are no revolutions: give balance_dwell (s) instead of "
+                      "balance_revs, and dt_out (s)");
     if (has_brevs && has_dwell)
       return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: give balance_revs (revolutions) or balance_dwell (s), not both");
     if (has_dwell) {
@@ -285,7 +289,7 @@ static int observer(double t, const double y[], void *user) {
   }
   if (out[0] > r->max_amp) r->max_amp = out[0];
   if (t <= r->t_first_window && out[0] > r->amp_first) r->amp_first = out[0];
-  if (t >= r->t_last_window_start && out[0] > r->amp_last) r->amp_last = out[0];
+  if (t >= r->t_last_window_start && !(out[0] <= r->amp_last)) r->amp_last = out[0]; /* NaN until sampled */
   if (r->series && !r->io_failed && autobal_archive_series_append(r->series, 1, &t, r->row) != AUTOBAL_SUCCESS)
     r->io_failed = 1;
   /* per-revolution maxima (of the sampled values) */
@@ -571,6 +575,7 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   r.t_end = c->t_end;
   r.t_first_window = 0.1 * c->t_end;
   r.t_last_window_start = 0.9 * c->t_end;
+  r.amp_last = NAN; /* stays NaN when the run stops (e.g. at balance) before the last 10% */
   r.row = calloc(r.ncols, sizeof *r.row);
   r.rev_max_D = calloc(r.n_planes, sizeof *r.rev_max_D);
   r.rev_row = calloc(2 + r.n_planes, sizeof *r.rev_row);
@@ -627,7 +632,7 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
     pb = calloc(nbj, sizeof *pb);
     if (pb && autobal_rotor_balanced_angles(rot, j, pb, nbj, NULL) == AUTOBAL_SUCCESS) {
       if (a) {
-        char grp[32];
+        char grp[64];
         snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
         if (autobal_archive_attr_double_array(a, grp, "ball_psi_balanced", nbj, pb, "rad") != AUTOBAL_SUCCESS &&
             rc == CLI_EXIT_OK)

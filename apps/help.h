@@ -134,4 +134,43 @@
   "[campbell] omega_min = 0  omega_max  n = 401  n_resonance = 4000  xtol_rel = 1e-10\n" \
   "\narchive: /rotor/campbell\n"
 
+#define HELP_ENSEMBLE_KEYS \
+  "[ensemble] mode = grid|random\n" \
+  "           param1 = NAME  min1 max1  n1 = 16   (grid axis; angles default to [-pi, pi])\n" \
+  "           param2, min2, max2, n2   param3, min3, max3, n3   (optional; none to drop an axis)\n" \
+  "           endpoint = (false when every parameter is an angle: n points over [min, max); else true)\n" \
+  "           samples = 256  seed = 1   (random: member m, parameter j <- splitmix64 output m*nparam + j)\n" \
+  "           series = (member numbers whose full time series is kept, e.g. 0, 17)\n" \
+  "           threads = 0 (OpenMP threads per process; 0: OMP_NUM_THREADS or all cores)\n" \
+  "           resume = false   (true: skip the members recorded in the journals FILE.h5.journal-*)\n" \
+  "           max_members = 0  time_limit = 0 (s)   (stop after that many members / that wall time;\n" \
+  "                                                  the archive is then incomplete: resume later)\n" \
+  "Members run in parallel (OpenMP; with the AUTOBAL_MPI build also `mpirun -np N autobal ...`, members\n" \
+  "dealt out cyclically over the ranks, rank 0 writes the archive).  The archive does not depend on the\n" \
+  "number of threads or ranks.  A failed member is recorded (status < 0) and the others go on (exit 0).\n"
+#define HELP_ROTOR_ENSEMBLE \
+  "Many transients of the rotor (as `rotor transient`) over a grid or random samples of initial\n" \
+  "conditions or parameters: per member balanced or not, time to balance, residual unbalance, amplitude,\n" \
+  "final ball angles, solver status; the basin-of-attraction map and the probability of balancing.\n\n" \
+  HELP_ROTOR_PARAMS \
+  "[transient] as `rotor transient` (t_end = 20, rtol = 1e-8, ...), but stop_at_balance = true by default\n" \
+  HELP_ENSEMBLE_KEYS \
+  "parameters: psi_K, rate_K (initial angle/rate of ball K relative to the rotor; K = 1..N, plane 1 first),\n" \
+  "            omega, ball_damping (every ball), m0 (plane 1), x, y (initial displacement)\n" \
+  "default: grid psi_1 x psi_2, 16 x 16 over [-pi, pi)\n" \
+  "\narchive: /rotor (model), /rotor/ensemble (variables over the parameter axes, or over 'member' when\n" \
+  "random; probability_balanced etc. as attributes), /rotor/ensemble/series/member_M, .../execution\n"
+#define HELP_PENDULUM_ENSEMBLE \
+  "Many transients of the two-pendulum autobalancer (as `pendulum transient`) over a grid or random\n" \
+  "samples of initial conditions or parameters: per member balanced or not, time to balance, residual\n" \
+  "unbalance, amplitude, final pendulum angles, solver status; basin map and probability of balancing.\n\n" \
+  HELP_PENDULUM_PARAMS \
+  "[initial]   xi eta psi phi xi_rate eta_rate psi_rate phi_rate   (all 0)\n" \
+  "[transient] as `pendulum transient` (t_end = 300, ...), but stop_at_balance = true by default\n" \
+  HELP_ENSEMBLE_KEYS \
+  "parameters: xi, eta, psi, phi, xi_rate, eta_rate, psi_rate, phi_rate (initial state), R_w, R_m, H, h,\n" \
+  "            psi0 or k\n" \
+  "default: grid psi x phi, 16 x 16 over [-pi, pi)\n" \
+  "\narchive: /pendulum (parameters), /pendulum/ensemble (as for the rotor)\n"
+
 #endif

@@ -523,9 +523,16 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
     return autobal_error_set(err, AUTOBAL_EINVAL, "archive path is NULL or empty");
   len = strlen(path);
   if (len > 4000) return autobal_error_set(err, AUTOBAL_EINVAL, "archive path is too long");
+  if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode) && stat(path, &st) != 0)
+    return autobal_error_set(err, AUTOBAL_EIO, "archive path '%s' is a dangling symbolic link", path);
   if (stat(path, &st) == 0) {
     if (S_ISDIR(st.st_mode))
-      return autobal_error_set(err, AUTOBAL_EINVAL, "archive path '%s' is a directory", path);
+      return autobal_error_set(err, AUTOBAL_EIO, "archive path '%s' is a directory", path);
+    if (!S_ISREG(st.st_mode))
+      return autobal_error_set(err, AUTOBAL_EIO,
+                               "archive path '%s' exists and is not a regular file (a device, FIFO or socket): "
+                               "refusing to replace it",
+                               path);
     if (!overwrite)
       return autobal_error_set(err, AUTOBAL_EEXIST, "archive '%s' exists (overwrite not allowed)", path);
   }

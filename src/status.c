@@ -58,7 +58,7 @@ int autobal_check_param(autobal_error *err, const char *name, double value, doub
     else snprintf(lo_s, sizeof lo_s, "%.6g", lo);
     if (isinf(hi)) snprintf(hi_s, sizeof hi_s, "inf");
     else snprintf(hi_s, sizeof hi_s, "%.6g", hi);
-    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter %s = %.17g%s%s is out of range: allowed %c%s, %s%c",
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter %s = %.16g%s%s is out of range: allowed %c%s, %s%c",
                              name, value, unit && unit[0] ? " " : "", unit ? unit : "",
                              lo_open ? '(' : '[', lo_s, hi_s, hi_open ? ')' : ']');
   }

@@ -74,7 +74,8 @@ int autobal_transient_options_validate(const autobal_transient_options *opt, aut
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "option stepper = \"%s\" is not a known GSL stepper: valid names are %s",
                              opt->stepper, k_stepper_names);
-  if ((rc = autobal_check_param(err, "rtol", opt->rtol, 0.0, 1, INFINITY, 1, "")) != 0) return rc;
+  /* rtol > 1 would switch the error control off */
+  if ((rc = autobal_check_param(err, "rtol", opt->rtol, 0.0, 1, 1.0, 0, "")) != 0) return rc;
   if ((rc = autobal_check_param(err, "atol", opt->atol, 0.0, 1, INFINITY, 1, "")) != 0) return rc;
   if ((rc = autobal_check_param(err, "h_init", opt->h_init, 0.0, 0, INFINITY, 1, "")) != 0)
     return rc;
@@ -1037,6 +1038,17 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
       tr->stats.user_code = tr->fail_code;
       return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
     }
+    if (!(h_taken > 0.0) || t <= t_prev) {
+      /* a step that does not advance t (e.g. the initial step computed from an overflowing
+       * derivative is 0): stop instead of repeating it until max_steps */
+      memcpy(y, tr->y_prev, n * sizeof(double));
+      t = t_prev;
+      autobal_error_set(&tr->err, AUTOBAL_ESTEP,
+                        "step size underflow at t = %.17g: the step %.6g does not advance t "
+                        "(is the right-hand side overflowing?)",
+                        t_prev, h_taken);
+      return finish(tr, AUTOBAL_ESTEP, AUTOBAL_TRANSIENT_STOP_ERROR, t_prev, t_reached, wall0);
+    }
     tr->stats.steps++;
     tr->stats.h_last = h_taken;
     if (h_taken < tr->stats.h_min_used) tr->stats.h_min_used = h_taken;
@@ -1080,7 +1092,9 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
     }
     if (tr->progress && t < t1) {
       const double frac = (t - t0) / span;
-      if (frac - prog_last >= tr->opt.progress_step) {
+      /* also every 4096 accepted steps, so that a cancellation is noticed when t hardly
+       * advances */
+      if (frac - prog_last >= tr->opt.progress_step || (tr->stats.steps & 4095UL) == 0) {
         int call = 1;
         double wnow = 0.0;
         if (tr->opt.progress_wall > 0.0) {

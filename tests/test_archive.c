@@ -809,7 +809,7 @@ int main(int argc, char **argv) {
   CHECK_STATUS("/proc/autobal.h5", rc, AUTOBAL_EIO);
   CHECK_MSG("names the path", err.message, "/proc/autobal.h5");
   rc = autobal_archive_create(AUTOBAL_TEST_TMP_DIR, 1, &a, &err);
-  CHECK_STATUS("a directory", rc, AUTOBAL_EINVAL);
+  CHECK_STATUS("a directory", rc, AUTOBAL_EIO);
   CHECK_STATUS("empty path", autobal_archive_create("", 0, &a, &err), AUTOBAL_EINVAL);
   CHECK_STATUS("NULL out", autobal_archive_create(path, 1, NULL, NULL), AUTOBAL_EINVAL);
 

@@ -86,8 +86,10 @@ typedef struct autobal_archive_series autobal_archive_series; /* opaque streamin
  * root attributes Conventions = "autobal-1" and status = "incomplete".
  * Returns
  *   AUTOBAL_SUCCESS  *out is the new handle;
- *   AUTOBAL_EINVAL   path NULL/empty/a directory, out NULL;
+ *   AUTOBAL_EINVAL   path NULL/empty, out NULL;
  *   AUTOBAL_EEXIST   `path` exists and overwrite == 0 (nothing is created);
+ *   AUTOBAL_EIO      `path` is a directory, a dangling symbolic link, or exists and is not a
+ *                    regular file (only regular files are ever replaced);
  *   AUTOBAL_EIO      the temporary file cannot be created (unwritable or missing
  *                    directory): the message names the path and gives the OS/HDF5 reason;
  *   AUTOBAL_ENOMEM.

@@ -102,7 +102,7 @@ typedef struct autobal_transient_system {
 
 typedef struct autobal_transient_options {
   const char *stepper;    /* GSL stepper name (list above); NULL means "rk8pd"          */
-  double rtol;            /* relative tolerance, > 0 and finite        (default 1e-10)  */
+  double rtol;            /* relative tolerance, in (0, 1]             (default 1e-10)  */
   double atol;            /* absolute tolerance, > 0 and finite        (default 1e-12)  */
   double h_init;          /* first trial step, >= 0; 0: automatic      (default 0)      */
   double h_max;           /* largest step, >= 0; 0: unlimited          (default 0)      */
@@ -141,8 +141,10 @@ AUTOBAL_API const char *autobal_transient_stepper_names(void);
 typedef int (*autobal_transient_observer_fn)(double t, const double y[], void *user);
 
 /* Progress: fraction of [t0, t1] done, in [0, 1], non-decreasing; called at
- * the start (0), as options.progress_step/progress_wall allow, and at the
- * end (1) of a run that reaches t1.  Return non-zero to cancel
+ * the start (0), as options.progress_step/progress_wall allow (and, within the
+ * progress_wall limit, at least every 4096 accepted steps so that a request to
+ * cancel is noticed even when t hardly advances), and at the end (1) of a run
+ * that reaches t1.  Return non-zero to cancel
  * (AUTOBAL_ECANCELLED). */
 typedef int (*autobal_transient_progress_fn)(double fraction, void *user);
 

@@ -75,14 +75,16 @@ const cli_command cli_commands[] = {
 const size_t cli_ncommands = sizeof cli_commands / sizeof cli_commands[0];
 
 #define MAX_ARGS 24
-static char g_config_path[64];
+static char g_config_path[4096];
 
 static void remove_config(void) { remove(g_config_path); }
 
 int LLVMFuzzerInitialize(int *argc, char **argv[]) {
   (void)argc;
   (void)argv;
-  snprintf(g_config_path, sizeof g_config_path, "/tmp/autobal-fuzz-cli-%ld.ini", (long)getpid());
+  const char *tmp = getenv("TMPDIR");
+  snprintf(g_config_path, sizeof g_config_path, "%s/autobal-fuzz-cli-%ld.ini", tmp && *tmp ? tmp : "/tmp",
+           (long)getpid());
   atexit(remove_config);
   return 0;
 }

@@ -84,11 +84,11 @@ echo "built $build/fuzz/fuzz_config and $build/fuzz/fuzz_cli"
 
 run_target() {
   local t=$1 secs=$2 extra=""
-  mkdir -p "$build/corpus-$t" "$build/findings-$t"
+  mkdir -p "$build/corpus-$t" "$build/findings-$t" "$build/tmp"
   [ "$t" = cli ] && extra="-close_fd_mask=3"
   echo "fuzzing $t for $secs s (log: $build/fuzz_$t.log)"
   ( cd "$build/findings-$t" &&
-    ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    TMPDIR="$build/tmp" ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/fuzz/fuzz_$t" -max_total_time="$secs" -max_len=4096 -timeout=20 -rss_limit_mb=2048 \
       -print_final_stats=1 -dict="$here/$t.dict" $extra ${FUZZ_FLAGS:-} \
       "$build/corpus-$t" "$here/corpus/$t" ) 2>&1 | tee "$build/fuzz_$t.log" | grep -E "^#[0-9]+ +(INITED|DONE|pulse)|stat::|ERROR|SUMMARY|==[0-9]+==|Test unit written|fuzz_(config|cli):" || true

@@ -12,7 +12,7 @@ static int host_error(const char *what, int status, const char *message) {
   return 1;
 }
 
-/* Residual unbalance relative to the initial one: the "time to balance" monitor. */
+/* Residual unbalance relative to m0 r0 (rotor.h): the "time to balance" monitor. */
 static double unbalance(double t, const double y[], void *rotor) {
   return autobal_rotor_balance_monitor(rotor, AUTOBAL_ROTOR_FIXED, t, y);
 }
@@ -50,7 +50,7 @@ int main(void) {
   printf("rejected: %s\n", err.message);
 
   /* 3. A 12 s transient of the default rotor (SI units, rotor.h) with a "time to balance"
-   *    event: the residual unbalance below 1% of the initial one for 50 revolutions. */
+   *    event: the residual unbalance below 1% of m0 r0 for 50 revolutions. */
   rp = autobal_rotor_params_default();
   rotor = autobal_rotor_alloc(&rp, &err);
   if (!rotor) return host_error("rotor", err.status, err.message);
