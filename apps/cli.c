@@ -609,6 +609,14 @@ void cli_json_numbers(cli_json *j, const char *key, const double *v, size_t n) {
   j->first[j->depth] = n == 0;
   cli_json_array_end(j);
 }
+void cli_json_summary_begin(cli_json *j, const cli_ctx *ctx) {
+  cli_json_begin(j, stdout);
+  cli_json_string(j, "command", ctx->command);
+}
+void cli_json_summary_end(cli_json *j, const cli_ctx *ctx) {
+  if (ctx->output) cli_json_string(j, "output", ctx->output);
+  cli_json_end(j);
+}
 
 char *cli_config_to_ini(const cli_config *c) {
   size_t i, j, len = 1, pos = 0;

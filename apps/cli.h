@@ -103,6 +103,19 @@ int cli_archive_open(cli_ctx *ctx, const char *title, struct autobal_archive **o
  * useful, still close so that what was written stays readable; status attribute set from the
  * code.  Returns exit_code, or CLI_EXIT_IO if closing failed. */
 int cli_archive_finish(cli_ctx *ctx, struct autobal_archive *a, int exit_code);
+/* The end of a command's archive writes: when `st` (the autobal status of the writes) is a
+ * failure and `exit_code` is still CLI_EXIT_OK, the archive's message becomes the failure
+ * (cli_exit_code(st)); then cli_archive_finish.  *a is set to NULL.  Returns the exit code. */
+int cli_archive_end(cli_ctx *ctx, struct autobal_archive **a, int st, int exit_code);
+/* The transient driver's statistics (autobal_transient_get_stats) as attributes of `group`,
+ * which is created: stepper, steps, rejected_steps, rhs_evaluations, jacobian_evaluations,
+ * wall_time (s), h_min_used and h_max_used (in `time_unit`: "s", or "1" for a dimensionless
+ * time), stop_reason and the driver's last message.  Returns an autobal status (the archive's
+ * message in autobal_archive_errmsg). */
+int cli_archive_solver_stats(struct autobal_archive *a, const char *group, const autobal_transient *tr,
+                             const autobal_transient_stats *stats, const char *time_unit);
+/* The same statistics as one line of the human summary on stdout. */
+void cli_print_solver_stats(const autobal_transient *tr, const autobal_transient_stats *stats);
 /* The config file text itself is stored as /input attribute "config" for re-runs. */
 
 /* ---- progress and signals ------------------------------------------------- */
@@ -134,6 +147,10 @@ void cli_json_int(cli_json *j, const char *key, long v);
 void cli_json_bool(cli_json *j, const char *key, int v);
 void cli_json_string(cli_json *j, const char *key, const char *s);
 void cli_json_numbers(cli_json *j, const char *key, const double *v, size_t n);
+/* A command's summary: cli_json_begin and "command"; at the end "output" (when -o was given)
+ * and cli_json_end. */
+void cli_json_summary_begin(cli_json *j, const cli_ctx *ctx);
+void cli_json_summary_end(cli_json *j, const cli_ctx *ctx);
 
 /* ---- shared model plumbing ---------------------------------------------------- */
 #include "autobal/pendulum.h"
@@ -146,10 +163,29 @@ int cli_write_pendulum_params(cli_ctx *ctx, struct autobal_archive *a, const aut
                               const autobal_pendulum_physical *phys, int physical);
 
 #include "autobal/rotor.h"
-/* Read the rotor model sections [rotor], [supports], [lumped], [initial], [plane1], [plane2]
+/* The rotor plumbing lives in apps/cmd_rotor.c beside the reader of `rotor transient` (the fuzz
+ * targets of tests/fuzz compile that file with cli.c, cli_archive.c and cmd_pendulum.c only).
+ * Read the rotor model sections [rotor], [supports], [lumped], [initial], [plane1], [plane2]
  * (defaults: the spec's default example) into *p.  The ball arrays of *p point into *storage,
  * which the caller releases with free(*storage) after the last use of *p. */
 int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage);
+/* Write the rotor model *p (apps/cmd_rotor.c): /rotor (model, input, inertia, omega, axial and,
+ * for hardware input, M_k, A_k, m_p, A_p, C_p and the [supports] keys), /rotor/lumped (the 17
+ * lumped coefficients the model uses, (2.7)-(2.11) for hardware input) and /rotor/plane<j>
+ * (d, m0, r0, psi0, n_balls, ball_mass, ball_radius, ball_damping; with `initial` also the balls'
+ * initial angles and rates ball_psi_initial, ball_rate_initial).  SI units on every attribute.
+ * Returns an autobal status (the archive's message in autobal_archive_errmsg). */
+int cli_write_rotor_params(struct autobal_archive *a, const autobal_rotor_params *p, int initial);
+/* A message of the rotor model (autobal_rotor_params_check, autobal_rotor_alloc,
+ * autobal_rotor_stab_alloc, ...) that names struct fields, in the configuration's names:
+ * hw.M_k -> rotor.M_k, hw.c_Lx -> supports.c_Lx, plane[0].ball_mass[1] -> plane1.ball_mass
+ * (ball 2), plane[1].m0 -> plane2.m0, q0[2] (alpha) -> initial.alpha, qd0[0] -> initial.x_rate,
+ * z0/zd0 -> initial.z/z_rate, plane[0].n_balls -> plane1 ball count, omega -> rotor.omega,
+ * option member[0] -> stability.member1, tol -> stability.tol; lumped.X stays.  The struct
+ * fields that were renamed are listed at the end ("(model field plane[0].ball_mass[1])") for
+ * those who embed the library (and the app tests' needles).  Writes at most len bytes (NUL
+ * included; a longer result is cut) into buf, which must not overlap msg, and returns buf. */
+const char *cli_rotor_message(const char *msg, char *buf, size_t len);
 
 /* ---- subcommands ------------------------------------------------------------ */
 int cli_cmd_pendulum_roots(cli_ctx *ctx);

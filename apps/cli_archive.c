@@ -1,5 +1,6 @@
 /* cli_archive.c: opening and finishing an archive for a command (provenance, the effective
- * configuration for re-runs, the status attribute from the exit code). */
+ * configuration for re-runs, the status attribute from the exit code), and the transient
+ * driver's statistics shared by the transient commands. */
 #define _POSIX_C_SOURCE 200809L
 #include <signal.h>
 #include <stdlib.h>
@@ -67,4 +68,34 @@ int cli_archive_finish(cli_ctx *ctx, autobal_archive *a, int exit_code) {
     _exit(exit_code == CLI_EXIT_OK ? CLI_EXIT_IO : exit_code);
   }
   return exit_code;
+}
+
+int cli_archive_end(cli_ctx *ctx, autobal_archive **a, int st, int exit_code) {
+  if (st != AUTOBAL_SUCCESS && exit_code == CLI_EXIT_OK)
+    exit_code = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(*a));
+  exit_code = cli_archive_finish(ctx, *a, exit_code);
+  *a = NULL;
+  return exit_code;
+}
+
+int cli_archive_solver_stats(autobal_archive *a, const char *group, const autobal_transient *tr,
+                             const autobal_transient_stats *stats, const char *time_unit) {
+  int st = autobal_archive_group(a, group);
+  if (!st) st = autobal_archive_attr_string(a, group, "stepper", autobal_transient_get_options(tr).stepper);
+  if (!st) st = autobal_archive_attr_int(a, group, "steps", (long)stats->steps);
+  if (!st) st = autobal_archive_attr_int(a, group, "rejected_steps", (long)stats->rejected);
+  if (!st) st = autobal_archive_attr_int(a, group, "rhs_evaluations", (long)stats->rhs_evals);
+  if (!st) st = autobal_archive_attr_int(a, group, "jacobian_evaluations", (long)stats->jac_evals);
+  if (!st) st = autobal_archive_attr_double(a, group, "wall_time", stats->wall_seconds, "s");
+  if (!st) st = autobal_archive_attr_double(a, group, "h_min_used", stats->h_min_used, time_unit);
+  if (!st) st = autobal_archive_attr_double(a, group, "h_max_used", stats->h_max_used, time_unit);
+  if (!st) st = autobal_archive_attr_string(a, group, "stop_reason", autobal_transient_stop_name(stats->stop_reason));
+  if (!st) st = autobal_archive_attr_string(a, group, "message", autobal_transient_errmsg(tr));
+  return st;
+}
+
+void cli_print_solver_stats(const autobal_transient *tr, const autobal_transient_stats *stats) {
+  printf("  solver %s: %lu steps, %lu rejected, %lu rhs evaluations, %.3f s wall\n",
+         autobal_transient_get_options(tr).stepper, stats->steps, stats->rejected, stats->rhs_evals,
+         stats->wall_seconds);
 }

@@ -492,7 +492,10 @@ static int read_spec(cli_ctx *ctx, ens_spec *s) {
     autobal_rotor *rot;
     if ((rc = cli_rotor_config_read(ctx, &s->rp, &s->rstorage))) return rc;
     rot = autobal_rotor_alloc(&s->rp, &err);
-    if (!rot) return cli_fail(ctx, cli_exit_code(err.status), "%s", err.message);
+    if (!rot) {
+      char msg[sizeof ctx->err];
+      return cli_fail(ctx, cli_exit_code(err.status), "%s", cli_rotor_message(err.message, msg, sizeof msg));
+    }
     s->n_balls = autobal_rotor_n_balls_total(rot);
     s->dim = autobal_rotor_dim(rot);
     s->nout = autobal_rotor_output_count(rot);
@@ -1288,55 +1291,6 @@ static void tally(const ens_spec *s, const ens_store *st, ens_tally *t) {
   free(ttb);
 }
 
-static int write_rotor_model(autobal_archive *a, const ens_spec *s) {
-  const autobal_rotor_params *p = &s->rp;
-  autobal_error err;
-  autobal_rotor *rot = autobal_rotor_alloc(p, &err);
-  int st;
-  size_t j;
-  char grp[64];
-  if (!rot) return AUTOBAL_EINVAL;
-  st = autobal_archive_group(a, "/rotor");
-  if (!st) st = autobal_archive_attr_string(a, "/rotor", "model", "rotor in a massive housing with ball autobalancers (spec rotor.md)");
-  if (!st) st = autobal_archive_attr_string(a, "/rotor", "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
-  if (!st) st = autobal_archive_attr_string(a, "/rotor", "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
-  if (!st) st = autobal_archive_attr_double(a, "/rotor", "omega", p->omega, "rad/s");
-  if (!st) st = autobal_archive_attr_int(a, "/rotor", "axial", p->axial);
-  if (!st) st = autobal_archive_group(a, "/rotor/lumped");
-  if (!st) {
-    const autobal_rotor_lumped *l = autobal_rotor_get_lumped(rot);
-    static const char *const names[17] = {"M", "A", "C", "c_x", "c_y", "c_z", "c_alpha", "c_beta", "c_xbeta",
-                                          "c_yalpha", "h_x", "h_y", "h_z", "h_alpha", "h_beta", "h_xbeta", "h_yalpha"};
-    static const char *const units[17] = {"kg", "kg m^2", "kg m^2", "N/m", "N/m", "N/m", "N m", "N m", "N",
-                                          "N", "N s/m", "N s/m", "N s/m", "N m s", "N m s", "N s", "N s"};
-    const double v[17] = {l->M, l->A, l->C, l->c_x, l->c_y, l->c_z, l->c_alpha, l->c_beta, l->c_xbeta,
-                          l->c_yalpha, l->h_x, l->h_y, l->h_z, l->h_alpha, l->h_beta, l->h_xbeta, l->h_yalpha};
-    size_t i;
-    for (i = 0; i < 17 && !st; i++) st = autobal_archive_attr_double(a, "/rotor/lumped", names[i], v[i], units[i]);
-  }
-  for (j = 0; j < p->n_planes && !st; j++) {
-    const autobal_rotor_plane *pl = &p->plane[j];
-    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-    st = autobal_archive_group(a, grp);
-    if (!st) st = autobal_archive_attr_double(a, grp, "d", pl->d, "m");
-    if (!st) st = autobal_archive_attr_double(a, grp, "m0", pl->m0, "kg");
-    if (!st) st = autobal_archive_attr_double(a, grp, "r0", pl->r0, "m");
-    if (!st) st = autobal_archive_attr_double(a, grp, "psi0", pl->psi0, "rad");
-    if (!st) st = autobal_archive_attr_int(a, grp, "n_balls", (long)pl->n_balls);
-    if (!st && pl->n_balls > 0) {
-      st = autobal_archive_attr_double_array(a, grp, "ball_mass", pl->n_balls, pl->ball_mass, "kg");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_radius", pl->n_balls, pl->ball_radius, "m");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_damping", pl->n_balls, pl->ball_damping, "kg/s");
-      if (!st && pl->ball_psi)
-        st = autobal_archive_attr_double_array(a, grp, "ball_psi_initial", pl->n_balls, pl->ball_psi, "rad");
-      if (!st && pl->ball_rate)
-        st = autobal_archive_attr_double_array(a, grp, "ball_rate_initial", pl->n_balls, pl->ball_rate, "rad/s");
-    }
-  }
-  autobal_rotor_free(rot);
-  return st;
-}
-
 /* Column names of a kept series. */
 static int series_names(const ens_spec *s, char (*names)[64], const char **units, const char **lnames) {
   size_t k;
@@ -1390,7 +1344,7 @@ static int write_archive(cli_ctx *ctx, autobal_archive *a, const ens_spec *s, co
   double *dv = NULL, *ang = NULL;
   int *iv = NULL;
   snprintf(g, sizeof g, "/%s/ensemble", s->mname);
-  if (rotor) e = write_rotor_model(a, s);
+  if (rotor) e = cli_write_rotor_params(a, &s->rp, 1);
   else if ((rc = cli_write_pendulum_params(ctx, a, &s->pp, &s->phys, s->physical))) return rc;
   if (!e) e = autobal_archive_group(a, g);
   /* settings */
@@ -1574,8 +1528,7 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const ens_store *st, 
   size_t j;
   if (ctx->json) {
     cli_json jj;
-    cli_json_begin(&jj, stdout);
-    cli_json_string(&jj, "command", ctx->command);
+    cli_json_summary_begin(&jj, ctx);
     cli_json_string(&jj, "mode", s->random ? "random" : "grid");
     cli_json_array(&jj, "parameters");
     for (j = 0; j < s->nparam; j++) cli_json_string(&jj, NULL, s->par[j].name);
@@ -1593,8 +1546,7 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const ens_store *st, 
     cli_json_int(&jj, "mpi_ranks", mp->size);
     cli_json_int(&jj, "threads_per_rank", threads);
     cli_json_number(&jj, "wall_time", wall);
-    if (ctx->output) cli_json_string(&jj, "output", ctx->output);
-    cli_json_end(&jj);
+    cli_json_summary_end(&jj, ctx);
     return;
   }
   if (ctx->quiet) return;

@@ -162,15 +162,13 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     if (!st) st = autobal_archive_attr_int(a, g, "cond8_predicts_stable", r.cond8.predicts_stable);
     if (!st) st = autobal_archive_attr_int(a, g, "cond9_applicable", r.cond9.applicable);
     if (!st) st = autobal_archive_attr_int(a, g, "cond9_predicts_stable", r.cond9.predicts_stable);
-    if (st && !rc) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) return rc;
   }
 
   if (ctx->json) {
     cli_json j;
-    cli_json_begin(&j, stdout);
-    cli_json_string(&j, "command", ctx->command);
+    cli_json_summary_begin(&j, ctx);
     cli_json_object(&j, "parameters");
     cli_json_number(&j, "R_w", p.R_w);
     cli_json_number(&j, "R_m", p.R_m);
@@ -191,8 +189,7 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_bool(&j, "cond7_predicts_stable", r.cond7.predicts_stable);
     cli_json_bool(&j, "cond8_predicts_stable", r.cond8.predicts_stable);
     cli_json_bool(&j, "cond9_predicts_stable", r.cond9.predicts_stable);
-    if (ctx->output) cli_json_string(&j, "output", ctx->output);
-    cli_json_end(&j);
+    cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p);
     printf("main motion (4): %s (Routh-Hurwitz on (6)); roots say %s; margin max Re(lambda) = %.6e\n",
@@ -377,16 +374,13 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     if (!st) st = autobal_archive_var(a, gc, "eq16_R_w1_k1", 1, dims1, series + 2 * nrm, "1", "closed form (16) for R_w1(R_m, 1)");
     if (!st) st = autobal_archive_var(a, gc, "eq17_R_w1_k1", 1, dims1, series + 3 * nrm, "1", "series (17) for R_w1(R_m, 1)");
     if (!st) st = autobal_archive_var(a, gc, "eq18_R_w23_k1", 1, dims1, series + 4 * nrm, "1", "closed form (18) for R_w2/3(R_m, 1), for R_m^(1) < R_m < 0.25");
-    if (st && !rc) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
 
   if (ctx->json) {
     cli_json j;
-    cli_json_begin(&j, stdout);
-    cli_json_string(&j, "command", ctx->command);
+    cli_json_summary_begin(&j, ctx);
     cli_json_number(&j, "R_m", p.R_m);
     cli_json_number(&j, "k", k);
     cli_json_numbers(&j, "undamped_critical_R_w", und.R_w, und.n);
@@ -404,8 +398,7 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     cli_json_numbers(&j, "k1_critical_R_w", k1set.R_w, k1set.n);
     cli_json_number(&j, "R_m1", rm1);
     cli_json_number(&j, "R_w_at_R_m1", rw_rm1);
-    if (ctx->output) cli_json_string(&j, "output", ctx->output);
-    cli_json_end(&j);
+    cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p);
     printf("undamped critical speeds at R_m = %.6g, k = %.6g (exact, from the discriminant of (10)):\n", p.R_m, k);
@@ -529,21 +522,18 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     if (!st) st = autobal_archive_coord(a, g, "R_w", (size_t)n_rw, rw, "1", "rotor speed omega/omega0");
     if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vi, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
     if (!st && maxre) st = autobal_archive_var(a, g, "max_real", 2, dims, maxre, "1", "largest real part of the roots of (6) (over k_values)");
-    if (st && !rc) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
   if (ctx->json) {
     cli_json j;
-    cli_json_begin(&j, stdout);
-    cli_json_string(&j, "command", ctx->command);
+    cli_json_summary_begin(&j, ctx);
     cli_json_bool(&j, "every_unbalance", every);
     cli_json_int(&j, "n_Rm", n_rm);
     cli_json_int(&j, "n_Rw", n_rw);
     cli_json_int(&j, "n_stable", (long)nstable);
     cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
-    if (ctx->output) cli_json_string(&j, "output", ctx->output);
-    cli_json_end(&j);
+    cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p);
     printf("map %ld x %ld over R_m in [%g, %g], R_w in [%g, %g], %s\n", n_rm, n_rw, rm_min, rm_max, rw_min, rw_max,

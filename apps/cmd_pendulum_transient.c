@@ -14,9 +14,6 @@
 
 #define TWO_PI 6.283185307179586476925286766559
 
-/* Declared in cli.h by the command table's owner; repeated here so that this file compiles on
- * its own. */
-
 typedef struct ptr_cfg {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
@@ -289,32 +286,15 @@ int cli_cmd_pendulum_transient(cli_ctx *ctx) {
     if (!st) st = autobal_archive_attr_double(a, g, "beta_final", dfin.beta, "rad");
     if (!st && have_verdict)
       st = autobal_archive_attr_string(a, g, "linear_verdict", autobal_verdict_name(verdict));
-    if (!st) st = autobal_archive_group(a, "/pendulum/transient/solver");
-    if (!st) {
-      const char *gs = "/pendulum/transient/solver";
-      st = autobal_archive_attr_string(a, gs, "stepper", autobal_transient_get_options(tr).stepper);
-      if (!st) st = autobal_archive_attr_int(a, gs, "steps", (long)stats.steps);
-      if (!st) st = autobal_archive_attr_int(a, gs, "rejected_steps", (long)stats.rejected);
-      if (!st) st = autobal_archive_attr_int(a, gs, "rhs_evaluations", (long)stats.rhs_evals);
-      if (!st) st = autobal_archive_attr_int(a, gs, "jacobian_evaluations", (long)stats.jac_evals);
-      if (!st) st = autobal_archive_attr_double(a, gs, "wall_time", stats.wall_seconds, "s");
-      if (!st) st = autobal_archive_attr_double(a, gs, "h_min_used", stats.h_min_used, "1");
-      if (!st) st = autobal_archive_attr_double(a, gs, "h_max_used", stats.h_max_used, "1");
-      if (!st) st = autobal_archive_attr_string(a, gs, "stop_reason", autobal_transient_stop_name(stats.stop_reason));
-      if (!st) st = autobal_archive_attr_string(a, gs, "message", autobal_transient_errmsg(tr));
-    }
-    if (st && rc == CLI_EXIT_OK) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    if (!st) st = cli_archive_solver_stats(a, "/pendulum/transient/solver", tr, &stats, "1");
+    rc = cli_archive_end(ctx, &a, st, rc);
   }
 finish:
-  if (a) {
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
-  }
+  if (a) rc = cli_archive_end(ctx, &a, AUTOBAL_SUCCESS, rc);
   if (rc == CLI_EXIT_OK || rc == CLI_EXIT_NUMERIC || rc == CLI_EXIT_INTERRUPTED) {
     if (ctx->json) {
       cli_json jj;
-      cli_json_begin(&jj, stdout);
-      cli_json_string(&jj, "command", ctx->command);
+      cli_json_summary_begin(&jj, ctx);
       if (have_verdict) cli_json_string(&jj, "linear_verdict", autobal_verdict_name(verdict));
       cli_json_bool(&jj, "balanced", balanced);
       cli_json_number(&jj, "time_to_balance", ttb);
@@ -329,8 +309,7 @@ finish:
       cli_json_int(&jj, "steps", (long)stats.steps);
       cli_json_int(&jj, "rhs_evaluations", (long)stats.rhs_evals);
       cli_json_number(&jj, "wall_time", stats.wall_seconds);
-      if (ctx->output) cli_json_string(&jj, "output", ctx->output);
-      cli_json_end(&jj);
+      cli_json_summary_end(&jj, ctx);
     } else if (!ctx->quiet) {
       printf("pendulum transient: R_w = %.6g  R_m = %.6g  H = %.6g  h = %.6g  psi0 = %.6g rad; tau in [0, %.6g] "
              "(%.1f revolutions)\n",
@@ -347,9 +326,7 @@ finish:
                c.balance_revs);
       else
         printf("  NOT balanced: |d| did not stay below %.3g for %.6g revolutions\n", c.balance_tol, c.balance_revs);
-      printf("  solver %s: %lu steps, %lu rejected, %lu rhs evaluations, %.3f s wall\n",
-             autobal_transient_get_options(tr).stepper, stats.steps, stats.rejected, stats.rhs_evals,
-             stats.wall_seconds);
+      cli_print_solver_stats(tr, &stats);
       if (ctx->output) printf("archive: %s\n", ctx->output);
     }
   }

@@ -1,7 +1,10 @@
 /* cmd_rotor.c: `autobal rotor transient`: the rotor in a massive housing with one or two ball
  * autobalancers (spec rotor.md), integrated in time, streamed to HDF5, summarised for a person. */
 #define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
 #include <math.h>
+#include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,6 +32,53 @@ typedef struct rotor_cfg {
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
   return cli_get_double(ctx, sec, key, *v, v, NULL);
+}
+
+/* ---- the rotor model's configuration keys, shared by every rotor command ---------------- */
+/* One double of a parameter struct: its configuration section and key (= the field's name), its
+ * SI unit and where it sits in the struct. */
+typedef struct rotor_key {
+  const char *section, *key, *unit;
+  size_t offset;
+} rotor_key;
+
+#define HW(sec, f, u) {sec, #f, u, offsetof(autobal_rotor_hardware, f)}
+/* autobal_rotor_hardware: the masses and inertias in [rotor], the supports in [supports] */
+static const rotor_key k_hw_keys[] = {
+    HW("rotor", M_k, "kg"),         HW("rotor", A_k, "kg m^2"),     HW("rotor", m_p, "kg"),
+    HW("rotor", A_p, "kg m^2"),     HW("rotor", C_p, "kg m^2"),     HW("supports", l_L, "m"),
+    HW("supports", l_R, "m"),       HW("supports", c_Lx, "N/m"),    HW("supports", c_Ly, "N/m"),
+    HW("supports", c_Lz, "N/m"),    HW("supports", c_Rx, "N/m"),    HW("supports", c_Ry, "N/m"),
+    HW("supports", h_Lx, "N s/m"),  HW("supports", h_Ly, "N s/m"),  HW("supports", h_Lz, "N s/m"),
+    HW("supports", h_Rx, "N s/m"),  HW("supports", h_Ry, "N s/m")};
+#undef HW
+#define LU(f, u) {"lumped", #f, u, offsetof(autobal_rotor_lumped, f)}
+/* autobal_rotor_lumped: [lumped] */
+static const rotor_key k_lumped_keys[] = {
+    LU(M, "kg"),         LU(A, "kg m^2"),     LU(C, "kg m^2"),      LU(c_x, "N/m"),      LU(c_y, "N/m"),
+    LU(c_z, "N/m"),      LU(c_alpha, "N m"),  LU(c_beta, "N m"),    LU(c_xbeta, "N"),    LU(c_yalpha, "N"),
+    LU(h_x, "N s/m"),    LU(h_y, "N s/m"),    LU(h_z, "N s/m"),     LU(h_alpha, "N m s"), LU(h_beta, "N m s"),
+    LU(h_xbeta, "N s"),  LU(h_yalpha, "N s")};
+#undef LU
+#define N_HW_KEYS (sizeof k_hw_keys / sizeof k_hw_keys[0])
+#define N_LUMPED_KEYS (sizeof k_lumped_keys / sizeof k_lumped_keys[0])
+
+static double *key_field(void *base, const rotor_key *k) {
+  return (double *)(void *)((char *)base + k->offset);
+}
+static double key_value(const void *base, const rotor_key *k) {
+  return *(const double *)(const void *)((const char *)base + k->offset);
+}
+
+/* Read the keys of `section` from the table into the struct at base (the current values are the
+ * defaults). */
+static int read_keys(cli_ctx *ctx, const rotor_key *keys, size_t n, const char *section, void *base) {
+  size_t i;
+  int rc;
+  for (i = 0; i < n; i++)
+    if (!strcmp(keys[i].section, section) && (rc = get_d(ctx, section, keys[i].key, key_field(base, &keys[i]))))
+      return rc;
+  return CLI_EXIT_OK;
 }
 
 static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
@@ -105,11 +155,7 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
     c->rate[0][i] = def.plane[0].ball_rate ? def.plane[0].ball_rate[i] : 0.0;
   }
   /* [rotor] */
-  if ((rc = get_d(ctx, "rotor", "M_k", &hw->M_k))) return rc;
-  if ((rc = get_d(ctx, "rotor", "A_k", &hw->A_k))) return rc;
-  if ((rc = get_d(ctx, "rotor", "m_p", &hw->m_p))) return rc;
-  if ((rc = get_d(ctx, "rotor", "A_p", &hw->A_p))) return rc;
-  if ((rc = get_d(ctx, "rotor", "C_p", &hw->C_p))) return rc;
+  if ((rc = read_keys(ctx, k_hw_keys, N_HW_KEYS, "rotor", hw))) return rc;
   if ((rc = get_d(ctx, "rotor", "omega", &c->p.omega))) return rc;
   if ((rc = cli_get_string(ctx, "rotor", "inertia", inertia, &inertia, NULL))) return rc;
   if ((rc = cli_get_bool(ctx, "rotor", "axial", 0, &axial, NULL))) return rc;
@@ -118,30 +164,15 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   else return cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: inertia = '%s' is not one of: paper, full", inertia);
   c->p.axial = axial;
   /* [supports] */
-  if ((rc = get_d(ctx, "supports", "l_L", &hw->l_L))) return rc;
-  if ((rc = get_d(ctx, "supports", "l_R", &hw->l_R))) return rc;
-  if ((rc = get_d(ctx, "supports", "c_Lx", &hw->c_Lx))) return rc;
-  if ((rc = get_d(ctx, "supports", "c_Ly", &hw->c_Ly))) return rc;
-  if ((rc = get_d(ctx, "supports", "c_Lz", &hw->c_Lz))) return rc;
-  if ((rc = get_d(ctx, "supports", "c_Rx", &hw->c_Rx))) return rc;
-  if ((rc = get_d(ctx, "supports", "c_Ry", &hw->c_Ry))) return rc;
-  if ((rc = get_d(ctx, "supports", "h_Lx", &hw->h_Lx))) return rc;
-  if ((rc = get_d(ctx, "supports", "h_Ly", &hw->h_Ly))) return rc;
-  if ((rc = get_d(ctx, "supports", "h_Lz", &hw->h_Lz))) return rc;
-  if ((rc = get_d(ctx, "supports", "h_Rx", &hw->h_Rx))) return rc;
-  if ((rc = get_d(ctx, "supports", "h_Ry", &hw->h_Ry))) return rc;
+  if ((rc = read_keys(ctx, k_hw_keys, N_HW_KEYS, "supports", hw))) return rc;
   /* [lumped]: if present, the lumped coefficients are authoritative (all must be given) */
   if (cli_section_present(ctx, "lumped")) {
-    static const char *const keys[] = {"M", "A", "C", "c_x", "c_y", "c_z", "c_alpha", "c_beta", "c_xbeta",
-                                       "c_yalpha", "h_x", "h_y", "h_z", "h_alpha", "h_beta", "h_xbeta", "h_yalpha"};
-    double *dst[] = {&lu->M, &lu->A, &lu->C, &lu->c_x, &lu->c_y, &lu->c_z, &lu->c_alpha, &lu->c_beta, &lu->c_xbeta,
-                     &lu->c_yalpha, &lu->h_x, &lu->h_y, &lu->h_z, &lu->h_alpha, &lu->h_beta, &lu->h_xbeta,
-                     &lu->h_yalpha};
-    for (i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+    for (i = 0; i < N_LUMPED_KEYS; i++) {
       int present;
-      if ((rc = cli_get_double(ctx, "lumped", keys[i], 0.0, dst[i], &present))) return rc;
+      if ((rc = cli_get_double(ctx, "lumped", k_lumped_keys[i].key, 0.0, key_field(lu, &k_lumped_keys[i]), &present)))
+        return rc;
       if (!present)
-        return cli_fail(ctx, CLI_EXIT_INPUT, "[lumped]: '%s' is missing (with a [lumped] section all of M, A, C, c_x, c_y, c_z, c_alpha, c_beta, c_xbeta, c_yalpha and the h_ analogues are required)", keys[i]);
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[lumped]: '%s' is missing (with a [lumped] section all of M, A, C, c_x, c_y, c_z, c_alpha, c_beta, c_xbeta, c_yalpha and the h_ analogues are required)", k_lumped_keys[i].key);
     }
     c->p.input = AUTOBAL_ROTOR_LUMPED;
   }
@@ -182,6 +213,194 @@ int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage)
   *p = c->p; /* the ball arrays point into c, which the caller frees with free(*storage) */
   *storage = c;
   return CLI_EXIT_OK;
+}
+
+int cli_write_rotor_params(autobal_archive *a, const autobal_rotor_params *p, int initial) {
+  autobal_rotor_lumped L;
+  const char *g = "/rotor", *gl = "/rotor/lumped";
+  char grp[64];
+  size_t i, j;
+  int st;
+  /* the coefficients the model uses (autobal_rotor_alloc does the same) */
+  if (p->input == AUTOBAL_ROTOR_HARDWARE) {
+    if ((st = autobal_rotor_lumped_from_hardware(&p->hw, &L, NULL))) return st;
+  } else {
+    L = p->lumped;
+  }
+  st = autobal_archive_group(a, g);
+  if (!st) st = autobal_archive_attr_string(a, g, "model", "rotor in a massive housing with ball autobalancers (spec rotor.md)");
+  if (!st) st = autobal_archive_attr_string(a, g, "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
+  if (!st) st = autobal_archive_attr_string(a, g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
+  if (!st) st = autobal_archive_attr_double(a, g, "omega", p->omega, "rad/s");
+  if (!st) st = autobal_archive_attr_int(a, g, "axial", p->axial);
+  for (i = 0; p->input == AUTOBAL_ROTOR_HARDWARE && i < N_HW_KEYS && !st; i++)
+    st = autobal_archive_attr_double(a, g, k_hw_keys[i].key, key_value(&p->hw, &k_hw_keys[i]), k_hw_keys[i].unit);
+  if (!st) st = autobal_archive_group(a, gl);
+  for (i = 0; i < N_LUMPED_KEYS && !st; i++)
+    st = autobal_archive_attr_double(a, gl, k_lumped_keys[i].key, key_value(&L, &k_lumped_keys[i]), k_lumped_keys[i].unit);
+  for (j = 0; j < p->n_planes && !st; j++) {
+    const autobal_rotor_plane *pl = &p->plane[j];
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_group(a, grp);
+    if (!st) st = autobal_archive_attr_double(a, grp, "d", pl->d, "m");
+    if (!st) st = autobal_archive_attr_double(a, grp, "m0", pl->m0, "kg");
+    if (!st) st = autobal_archive_attr_double(a, grp, "r0", pl->r0, "m");
+    if (!st) st = autobal_archive_attr_double(a, grp, "psi0", pl->psi0, "rad");
+    if (!st) st = autobal_archive_attr_int(a, grp, "n_balls", (long)pl->n_balls);
+    if (!st && pl->n_balls > 0) {
+      st = autobal_archive_attr_double_array(a, grp, "ball_mass", pl->n_balls, pl->ball_mass, "kg");
+      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_radius", pl->n_balls, pl->ball_radius, "m");
+      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_damping", pl->n_balls, pl->ball_damping, "kg/s");
+      if (!st && initial && pl->ball_psi)
+        st = autobal_archive_attr_double_array(a, grp, "ball_psi_initial", pl->n_balls, pl->ball_psi, "rad");
+      if (!st && initial && pl->ball_rate)
+        st = autobal_archive_attr_double_array(a, grp, "ball_rate_initial", pl->n_balls, pl->ball_rate, "rad/s");
+    }
+  }
+  return st;
+}
+
+/* ---- messages of the model in the configuration's names ----------------------------------- */
+typedef struct msg_buf {
+  char *buf;
+  size_t len, pos; /* pos < len: characters written so far (the rest is cut) */
+} msg_buf;
+
+static void msg_put(msg_buf *m, const char *s, size_t n) {
+  size_t k;
+  if (m->len == 0) return;
+  for (k = 0; k < n && m->pos + 1 < m->len; k++) m->buf[m->pos++] = s[k];
+  m->buf[m->pos] = '\0';
+}
+static void msg_puts(msg_buf *m, const char *s) { msg_put(m, s, strlen(s)); }
+
+static int ident_char(char ch) { return isalnum((unsigned char)ch) || ch == '_'; }
+static size_t ident_len(const char *s) {
+  size_t n = 0;
+  while (ident_char(s[n])) n++;
+  return n;
+}
+/* "[<digits>]" at s: its length (0 if none) and the number in *v. */
+static size_t index_len(const char *s, size_t *v) {
+  size_t n = 1;
+  if (s[0] != '[' || !isdigit((unsigned char)s[1])) return 0;
+  *v = 0;
+  while (isdigit((unsigned char)s[n])) {
+    if (*v < 100000000) *v = 10 * *v + (size_t)(s[n] - '0');
+    n++;
+  }
+  return s[n] == ']' ? n + 1 : 0;
+}
+/* Whether s starts with the word w (followed by no identifier character). */
+static int starts_word(const char *s, const char *w) {
+  size_t n = strlen(w);
+  return !strncmp(s, w, n) && !ident_char(s[n]);
+}
+
+/* Translate the name at s into out; the length of the recognised text, 0 if none.  *field is
+ * set to the length of the struct field's name at s worth citing after the message (0: none). */
+static size_t translate_name(const char *s, msg_buf *out, size_t *field) {
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+  static const char *const bare[][2] = {{"omega", "rotor.omega"},
+                                        {"tol", "stability.tol"},
+                                        {"floquet_rtol", "stability.floquet_rtol"},
+                                        {"floquet_atol", "stability.floquet_atol"},
+                                        {"z0", "initial.z"},
+                                        {"zd0", "initial.z_rate"}};
+  char tmp[160];
+  size_t n, v = 0, v2 = 0, k;
+  *field = 0;
+  if (!strncmp(s, "hw.", 3) && (n = ident_len(s + 3)) > 0) {
+    for (k = 0; k < N_HW_KEYS; k++)
+      if (strlen(k_hw_keys[k].key) == n && !strncmp(s + 3, k_hw_keys[k].key, n)) {
+        snprintf(tmp, sizeof tmp, "%s.%s", k_hw_keys[k].section, k_hw_keys[k].key);
+        msg_puts(out, tmp);
+        return *field = 3 + n;
+      }
+    return 0;
+  }
+  if (!strncmp(s, "plane", 5) && (n = index_len(s + 5, &v)) > 0) {
+    size_t len = 5 + n, m;
+    if (s[len] == '.' && (m = ident_len(s + len + 1)) > 0) {
+      const char *fname = s + len + 1;
+      size_t n2 = index_len(fname + m, &v2);
+      if (n2 > 0) /* plane[j].ball_Y[i] */
+        snprintf(tmp, sizeof tmp, "plane%zu.%.*s (ball %zu)", v + 1, (int)m, fname, v2 + 1);
+      else if (m == 7 && !strncmp(fname, "n_balls", 7))
+        snprintf(tmp, sizeof tmp, "plane%zu ball count (values of ball_mass)", v + 1);
+      else
+        snprintf(tmp, sizeof tmp, "plane%zu.%.*s", v + 1, (int)m, fname);
+      msg_puts(out, tmp);
+      return *field = len + 1 + m + n2;
+    }
+    snprintf(tmp, sizeof tmp, "plane%zu", v + 1);
+    msg_puts(out, tmp);
+    return len;
+  }
+  if (!strncmp(s, "q0", 2) || !strncmp(s, "qd0", 3)) { /* "q0[2] (alpha)", "qd0[0] (x')" */
+    size_t p0 = s[1] == 'd' ? 3 : 2, m;
+    if ((n = index_len(s + p0, &v)) > 0 && v < 4) {
+      m = p0 + n;
+      if (s[m] == ' ' && s[m + 1] == '(') {
+        const char *close = strchr(s + m, ')');
+        if (close) m = (size_t)(close - s) + 1;
+      }
+      snprintf(tmp, sizeof tmp, "initial.%s%s", qn[v], p0 == 3 ? "_rate" : "");
+      msg_puts(out, tmp);
+      *field = p0 + n;
+      return m;
+    }
+    return 0;
+  }
+  if (!strncmp(s, "option member", 13) && (n = index_len(s + 13, &v)) > 0) {
+    size_t len = 13 + n;
+    if (starts_word(s + len, ".kind")) len += 5;
+    snprintf(tmp, sizeof tmp, "stability.member%zu", v + 1);
+    msg_puts(out, tmp);
+    return len;
+  }
+  if (!strncmp(s, "parameter ", 10)) /* a bare field name after "parameter " */
+    for (k = 0; k < sizeof bare / sizeof bare[0]; k++)
+      if (starts_word(s + 10, bare[k][0]) && !strncmp(s + 10 + strlen(bare[k][0]), " = ", 3)) {
+        msg_puts(out, "parameter ");
+        msg_puts(out, bare[k][1]);
+        if (bare[k][0][0] == 'z') *field = 10 + strlen(bare[k][0]); /* z0, zd0: names of their own */
+        return 10 + strlen(bare[k][0]);
+      }
+  return 0;
+}
+
+const char *cli_rotor_message(const char *msg, char *buf, size_t len) {
+  msg_buf out, notes;
+  char nbuf[256];
+  size_t i = 0, nnotes = 0;
+  out.buf = buf, out.len = len, out.pos = 0;
+  notes.buf = nbuf, notes.len = sizeof nbuf, notes.pos = 0;
+  if (len) buf[0] = '\0';
+  nbuf[0] = '\0';
+  if (!msg) return buf;
+  while (msg[i]) {
+    size_t n = 0, field = 0;
+    if (i == 0 || (!ident_char(msg[i - 1]) && msg[i - 1] != '.')) n = translate_name(msg + i, &out, &field);
+    if (n == 0) {
+      msg_put(&out, msg + i, 1);
+      i++;
+      continue;
+    }
+    if (field > 0) { /* the struct field that was renamed, for those who embed the library */
+      const char *f = msg + i;
+      if (!strncmp(f, "parameter ", 10)) f += 10, field -= 10;
+      msg_puts(&notes, nnotes++ ? ", " : "");
+      msg_put(&notes, f, field);
+    }
+    i += n;
+  }
+  if (nnotes) {
+    msg_puts(&out, nnotes > 1 ? " (model fields " : " (model field ");
+    msg_puts(&out, nbuf);
+    msg_puts(&out, ")");
+  }
+  return buf;
 }
 
 static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
@@ -359,72 +578,9 @@ static const char *state_name(size_t k, size_t nb, int axial, int frame, char *b
 
 static int write_rotor_params(autobal_archive *a, const autobal_rotor *rot, const rotor_cfg *c) {
   const autobal_rotor_params *p = autobal_rotor_get_params(rot);
-  const autobal_rotor_lumped *l = autobal_rotor_get_lumped(rot);
-  const char *g = "/rotor";
-  int st = autobal_archive_group(a, g);
-  size_t j;
-  char grp[64];
+  int st = cli_write_rotor_params(a, p, 1);
 #define AD(obj, name, v, u) \
   if (!st) st = autobal_archive_attr_double(a, obj, name, v, u)
-  if (!st) st = autobal_archive_attr_string(a, g, "model", "rotor in a massive housing with ball autobalancers (spec rotor.md)");
-  if (!st) st = autobal_archive_attr_string(a, g, "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
-  if (!st) st = autobal_archive_attr_string(a, g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
-  AD(g, "omega", p->omega, "rad/s");
-  if (!st) st = autobal_archive_attr_int(a, g, "axial", p->axial);
-  if (p->input == AUTOBAL_ROTOR_HARDWARE) {
-    AD(g, "M_k", p->hw.M_k, "kg");
-    AD(g, "A_k", p->hw.A_k, "kg m^2");
-    AD(g, "m_p", p->hw.m_p, "kg");
-    AD(g, "A_p", p->hw.A_p, "kg m^2");
-    AD(g, "C_p", p->hw.C_p, "kg m^2");
-    AD(g, "l_L", p->hw.l_L, "m");
-    AD(g, "l_R", p->hw.l_R, "m");
-    AD(g, "c_Lx", p->hw.c_Lx, "N/m");
-    AD(g, "c_Ly", p->hw.c_Ly, "N/m");
-    AD(g, "c_Lz", p->hw.c_Lz, "N/m");
-    AD(g, "c_Rx", p->hw.c_Rx, "N/m");
-    AD(g, "c_Ry", p->hw.c_Ry, "N/m");
-    AD(g, "h_Lx", p->hw.h_Lx, "N s/m");
-    AD(g, "h_Ly", p->hw.h_Ly, "N s/m");
-    AD(g, "h_Lz", p->hw.h_Lz, "N s/m");
-    AD(g, "h_Rx", p->hw.h_Rx, "N s/m");
-    AD(g, "h_Ry", p->hw.h_Ry, "N s/m");
-  }
-  if (!st) st = autobal_archive_group(a, "/rotor/lumped");
-  AD("/rotor/lumped", "M", l->M, "kg");
-  AD("/rotor/lumped", "A", l->A, "kg m^2");
-  AD("/rotor/lumped", "C", l->C, "kg m^2");
-  AD("/rotor/lumped", "c_x", l->c_x, "N/m");
-  AD("/rotor/lumped", "c_y", l->c_y, "N/m");
-  AD("/rotor/lumped", "c_z", l->c_z, "N/m");
-  AD("/rotor/lumped", "c_alpha", l->c_alpha, "N m");
-  AD("/rotor/lumped", "c_beta", l->c_beta, "N m");
-  AD("/rotor/lumped", "c_xbeta", l->c_xbeta, "N");
-  AD("/rotor/lumped", "c_yalpha", l->c_yalpha, "N");
-  AD("/rotor/lumped", "h_x", l->h_x, "N s/m");
-  AD("/rotor/lumped", "h_y", l->h_y, "N s/m");
-  AD("/rotor/lumped", "h_z", l->h_z, "N s/m");
-  AD("/rotor/lumped", "h_alpha", l->h_alpha, "N m s");
-  AD("/rotor/lumped", "h_beta", l->h_beta, "N m s");
-  AD("/rotor/lumped", "h_xbeta", l->h_xbeta, "N s");
-  AD("/rotor/lumped", "h_yalpha", l->h_yalpha, "N s");
-  for (j = 0; j < p->n_planes && !st; j++) {
-    const autobal_rotor_plane *pl = &p->plane[j];
-    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-    st = autobal_archive_group(a, grp);
-    AD(grp, "d", pl->d, "m");
-    AD(grp, "m0", pl->m0, "kg");
-    AD(grp, "r0", pl->r0, "m");
-    AD(grp, "psi0", pl->psi0, "rad");
-    if (!st) st = autobal_archive_attr_int(a, grp, "n_balls", (long)pl->n_balls);
-    if (!st && pl->n_balls > 0) {
-      st = autobal_archive_attr_double_array(a, grp, "ball_mass", pl->n_balls, pl->ball_mass, "kg");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_radius", pl->n_balls, pl->ball_radius, "m");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_damping", pl->n_balls, pl->ball_damping, "kg/s");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_psi_initial", pl->n_balls, pl->ball_psi, "rad");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_rate_initial", pl->n_balls, pl->ball_rate, "rad/s");
-    }
-  }
   if (!st) st = autobal_archive_group(a, "/rotor/transient");
   AD("/rotor/transient", "t_end", c->t_end, "s");
   AD("/rotor/transient", "dt_out", c->dt_out, "s");
@@ -533,6 +689,7 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   autobal_archive *a = NULL;
   autobal_error err;
   run_ctx r;
+  char msg[sizeof ctx->err];
   double *y = NULL, t_reached = 0, *psi_bal = NULL, s_final = NAN, ttb = NAN;
   int rc = CLI_EXIT_OK, st, warn = 0, balanced = 0, ev = -1;
   size_t j;
@@ -544,12 +701,13 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   if ((rc = cli_config_check_unused(ctx))) goto done;
   rot = autobal_rotor_alloc(&c->p, &err);
   if (!rot) {
-    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", err.message);
+    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   if (err.status == AUTOBAL_WARNING) {
     warn = 1;
-    if (!ctx->json) fprintf(stderr, "autobal: warning: %s\n", err.message);
+    if (!ctx->json) fprintf(stderr, "autobal: warning: %s\n",
+        cli_rotor_message(err.message, msg, sizeof msg));
   }
   opt = autobal_transient_options_default();
   opt.stepper = c->stepper;
@@ -585,7 +743,8 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
     goto done;
   }
   if ((st = autobal_rotor_initial_state(rot, c->frame, 0.0, y, r.dim))) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_rotor_errmsg(rot));
+    rc = cli_fail(ctx, cli_exit_code(st), "%s",
+        cli_rotor_message(autobal_rotor_errmsg(rot), msg, sizeof msg));
     goto done;
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor transient", &a))) goto done;
@@ -656,33 +815,16 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_first_10pct_max", r.amp_first, "m");
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_last_10pct_max", r.amp_last, "m");
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_max", r.max_amp, "m");
-    if (!st) st = autobal_archive_group(a, "/rotor/transient/solver");
-    if (!st) {
-      const char *gs = "/rotor/transient/solver";
-      st = autobal_archive_attr_string(a, gs, "stepper", c->stepper);
-      if (!st) st = autobal_archive_attr_int(a, gs, "steps", (long)stats.steps);
-      if (!st) st = autobal_archive_attr_int(a, gs, "rejected_steps", (long)stats.rejected);
-      if (!st) st = autobal_archive_attr_int(a, gs, "rhs_evaluations", (long)stats.rhs_evals);
-      if (!st) st = autobal_archive_attr_int(a, gs, "jacobian_evaluations", (long)stats.jac_evals);
-      if (!st) st = autobal_archive_attr_double(a, gs, "wall_time", stats.wall_seconds, "s");
-      if (!st) st = autobal_archive_attr_double(a, gs, "h_min_used", stats.h_min_used, "s");
-      if (!st) st = autobal_archive_attr_double(a, gs, "h_max_used", stats.h_max_used, "s");
-      if (!st) st = autobal_archive_attr_string(a, gs, "stop_reason", autobal_transient_stop_name(stats.stop_reason));
-      if (!st) st = autobal_archive_attr_string(a, gs, "message", autobal_transient_errmsg(tr));
-    }
-    if (st && rc == CLI_EXIT_OK) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
+    if (!st) st = cli_archive_solver_stats(a, "/rotor/transient/solver", tr, &stats, "s");
+    rc = cli_archive_end(ctx, &a, st, rc);
   }
 finish:
-  if (a) {
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
-  }
+  if (a) rc = cli_archive_end(ctx, &a, AUTOBAL_SUCCESS, rc);
   if (rc == CLI_EXIT_OK || rc == CLI_EXIT_NUMERIC || rc == CLI_EXIT_INTERRUPTED) {
     double s0 = c->p.plane[0].m0 * c->p.plane[0].r0;
     if (ctx->json) {
       cli_json jj;
-      cli_json_begin(&jj, stdout);
-      cli_json_string(&jj, "command", ctx->command);
+      cli_json_summary_begin(&jj, ctx);
       cli_json_bool(&jj, "balanced", balanced);
       cli_json_number(&jj, "time_to_balance", ttb);
       cli_json_number(&jj, "t_reached", t_reached);
@@ -694,8 +836,7 @@ finish:
       cli_json_int(&jj, "rhs_evaluations", (long)stats.rhs_evals);
       cli_json_number(&jj, "wall_time", stats.wall_seconds);
       cli_json_bool(&jj, "warning", warn);
-      if (ctx->output) cli_json_string(&jj, "output", ctx->output);
-      cli_json_end(&jj);
+      cli_json_summary_end(&jj, ctx);
     } else if (!ctx->quiet) {
       size_t nb0 = c->p.plane[0].n_balls;
       printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
@@ -727,8 +868,7 @@ finish:
           printf("\n");
         }
       }
-      printf("  solver %s: %lu steps, %lu rejected, %lu rhs evaluations, %.3f s wall\n", c->stepper, stats.steps,
-             stats.rejected, stats.rhs_evals, stats.wall_seconds);
+      cli_print_solver_stats(tr, &stats);
       if (ctx->output) printf("archive: %s\n", ctx->output);
     }
   }

@@ -13,12 +13,6 @@
 #include "autobal/rotor_stability.h"
 #include "cli.h"
 
-/* declared here until apps/cli.h lists them */
-int cli_cmd_rotor_stability(cli_ctx *ctx);
-int cli_cmd_rotor_sweep(cli_ctx *ctx);
-int cli_cmd_rotor_map(cli_ctx *ctx);
-int cli_cmd_rotor_campbell(cli_ctx *ctx);
-
 #define MAX_MEMBER_ANGLES 4096
 #define TWO_PI 6.283185307179586476925286766559
 
@@ -71,6 +65,7 @@ static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
   size_t j;
   autobal_error err;
   autobal_rotor_stab *probe;
+  char msg[sizeof ctx->err];
   c->opt = autobal_rotor_stab_options_default();
   if ((rc = cli_rotor_config_read(ctx, &c->p, &c->storage))) return rc;
   cli_declare_section(ctx, "transient"); /* the same config files as `rotor transient` */
@@ -95,8 +90,10 @@ static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
     if ((rc = parse_member(ctx, c, j))) return rc;
   autobal_error_clear(&err);
   probe = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
-  if (!probe) return cli_fail(ctx, cli_exit_code(err.status), "%s", err.message);
-  if (err.status == AUTOBAL_WARNING && !ctx->json && !ctx->quiet) fprintf(stderr, "autobal: warning: %s\n", err.message);
+  if (!probe) return cli_fail(ctx, cli_exit_code(err.status), "%s",
+      cli_rotor_message(err.message, msg, sizeof msg));
+  if (err.status == AUTOBAL_WARNING && !ctx->json && !ctx->quiet)
+    fprintf(stderr, "autobal: warning: %s\n", cli_rotor_message(err.message, msg, sizeof msg));
   autobal_rotor_stab_free(probe);
   return CLI_EXIT_OK;
 }
@@ -112,55 +109,15 @@ static double *grid(double lo, double hi, size_t n) {
 
 /* ---- archive: the model and the analysis options ----------------------------------- */
 
+/* The rotor model (cli_write_rotor_params) and the balanced configuration analysed in each plane
+ * (the member of the family (3.14), with its given angles). */
 static int write_model(autobal_archive *a, const stab_cfg *c) {
-  const autobal_rotor_params *p = &c->p;
-  autobal_rotor_lumped L;
-  const char *g = "/rotor", *gl = "/rotor/lumped";
   char grp[64];
   size_t j;
-  int st;
-  if (p->input == AUTOBAL_ROTOR_HARDWARE) (void)autobal_rotor_lumped_from_hardware(&p->hw, &L, NULL);
-  else L = p->lumped;
-  st = autobal_archive_group(a, g);
-#define AD(obj, name, v, u) \
-  if (!st) st = autobal_archive_attr_double(a, obj, name, v, u)
-#define AS(obj, name, v) \
-  if (!st) st = autobal_archive_attr_string(a, obj, name, v)
-  AS(g, "model", "rotor in a massive housing with ball autobalancers (spec rotor.md)");
-  AS(g, "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
-  AS(g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
-  AD(g, "omega", p->omega, "rad/s");
-  if (!st) st = autobal_archive_group(a, gl);
-  AD(gl, "M", L.M, "kg");
-  AD(gl, "A", L.A, "kg m^2");
-  AD(gl, "C", L.C, "kg m^2");
-  AD(gl, "c_x", L.c_x, "N/m");
-  AD(gl, "c_y", L.c_y, "N/m");
-  AD(gl, "c_alpha", L.c_alpha, "N m");
-  AD(gl, "c_beta", L.c_beta, "N m");
-  AD(gl, "c_xbeta", L.c_xbeta, "N");
-  AD(gl, "c_yalpha", L.c_yalpha, "N");
-  AD(gl, "h_x", L.h_x, "N s/m");
-  AD(gl, "h_y", L.h_y, "N s/m");
-  AD(gl, "h_alpha", L.h_alpha, "N m s");
-  AD(gl, "h_beta", L.h_beta, "N m s");
-  AD(gl, "h_xbeta", L.h_xbeta, "N s");
-  AD(gl, "h_yalpha", L.h_yalpha, "N s");
-  for (j = 0; j < p->n_planes && !st; j++) {
-    const autobal_rotor_plane *pl = &p->plane[j];
+  int st = cli_write_rotor_params(a, &c->p, 0);
+  for (j = 0; j < c->p.n_planes && !st; j++) {
     snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-    st = autobal_archive_group(a, grp);
-    AD(grp, "d", pl->d, "m");
-    AD(grp, "m0", pl->m0, "kg");
-    AD(grp, "r0", pl->r0, "m");
-    AD(grp, "psi0", pl->psi0, "rad");
-    if (!st) st = autobal_archive_attr_int(a, grp, "n_balls", (long)pl->n_balls);
-    if (!st && pl->n_balls > 0) {
-      st = autobal_archive_attr_double_array(a, grp, "ball_mass", pl->n_balls, pl->ball_mass, "kg");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_radius", pl->n_balls, pl->ball_radius, "m");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_damping", pl->n_balls, pl->ball_damping, "kg/s");
-    }
-    AS(grp, "member", c->member_name[j]);
+    st = autobal_archive_attr_string(a, grp, "member", c->member_name[j]);
     if (!st && c->opt.member[j].n_angles > 0)
       st = autobal_archive_attr_double_array(a, grp, "member_angles", c->opt.member[j].n_angles,
                                              c->opt.member[j].angles, "rad");
@@ -245,6 +202,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   autobal_rotor_crit cr;
   autobal_archive *a = NULL;
   autobal_error err;
+  char msg[sizeof ctx->err];
   double clo = 0, chi = 0, xtol = 1e-8;
   long cn = 400;
   int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = 1;
@@ -272,25 +230,28 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   autobal_error_clear(&err);
   s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
   if (!s) {
-    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", err.message);
+    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   st = autobal_rotor_stab_analyze(s, &r);
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_rotor_stab_errmsg(s));
+    rc = cli_fail(ctx, cli_exit_code(st), "%s",
+        cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
     goto done;
   }
   if (do_crit) {
     double lo = c->p.omega > 0 ? clo : -chi, hi = c->p.omega > 0 ? chi : -clo;
     st = autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, (size_t)cn, xtol, &cr);
     if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "critical speeds: %s", autobal_rotor_stab_errmsg(s));
+      rc = cli_fail(ctx, cli_exit_code(st), "critical speeds: %s",
+          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
       goto done;
     }
     /* the analysis above stays valid: critical() restores omega but overwrites the workspace */
     st = autobal_rotor_stab_analyze(s, &r);
     if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_rotor_stab_errmsg(s));
+      rc = cli_fail(ctx, cli_exit_code(st), "%s",
+          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
       goto done;
     }
   }
@@ -315,30 +276,30 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     if (!st) st = autobal_archive_var(a, g, "psi_balanced", 1, dball, r.psi, "rad", "balanced ball angles (3.14) of the analysed member, relative to the rotor");
     if (!st && r.n_closed > 0) {
       st = autobal_archive_dim(a, g, "root", r.n_closed, "index of a characteristic root of the closed system");
-      if (!st) st = autobal_archive_var(a, g, "root_real", 1, droot, r.root_re, "1/s", r.n_poly ? "real part of the roots of Delta (GSL polynomial solver)" : "real part of the eigenvalues of the closed matrix");
-      if (!st) st = autobal_archive_var(a, g, "root_imag", 1, droot, r.root_im, "1/s", "imaginary part of the same (rotating frame)");
-      if (!st) st = autobal_archive_var(a, g, "eig_real", 1, droot, r.closed_eig_re, "1/s", "real part of the eigenvalues of the closed first-order matrix, matched to the roots");
-      if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, droot, r.closed_eig_im, "1/s", "imaginary part of the same");
+      if (!st) st = autobal_archive_var(a, g, "root_real", 1, droot, r.root_re, "1/s", r.n_poly ? "real part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "real part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
+      if (!st) st = autobal_archive_var(a, g, "root_imag", 1, droot, r.root_im, "1/s", r.n_poly ? "imaginary part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "imaginary part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
+      if (!st) st = autobal_archive_var(a, g, "eig_real", 1, droot, r.closed_eig_re, "1/s", "real part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
+      if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, droot, r.closed_eig_im, "1/s", "imaginary part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
       if (!st) st = autobal_archive_attr_double(a, g, "closed_margin", r.closed_margin, "1/s");
       if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.root_eig_mismatch, "1");
     }
     if (!st && r.n_poly > 0) {
       st = autobal_archive_coord(a, g, "power", AUTOBAL_ROTOR_POLY_LEN, power, "1", "power of lambda");
-      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "1", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers of lambda (lambda in 1/s; coefficient k in SI units of Delta times s^k)");
+      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "mixed SI powers: kg^4 m^4 s^(k-12) for power k", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers k of lambda (lambda in 1/s); Delta is in kg^4 m^4 s^-12, so the coefficient of lambda^k is in kg^4 m^4 s^(k-12)");
       if (!st) st = autobal_archive_attr_string(a, g, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
       if (!st) st = autobal_archive_attr_int(a, g, "hurwitz_n_rhp", r.hurwitz_n_rhp);
     }
     if (!st && r.n_full > 0) {
       st = autobal_archive_dim(a, g, "full_root", r.n_full, "index of an eigenvalue of the full model's linearization");
       if (!st) st = autobal_archive_var(a, g, "full_real", 1, dfull, r.full_re, "1/s", "real part of the eigenvalues of the full model's linearization in rotating coordinates");
-      if (!st) st = autobal_archive_var(a, g, "full_imag", 1, dfull, r.full_im, "1/s", "imaginary part of the same");
+      if (!st) st = autobal_archive_var(a, g, "full_imag", 1, dfull, r.full_im, "1/s", "imaginary part of the eigenvalues of the full model's linearization in rotating coordinates");
       if (!st) st = autobal_archive_attr_double(a, g, "full_margin", r.full_margin, "1/s");
       if (!st) st = autobal_archive_attr_double(a, g, "full_mismatch", r.full_mismatch, "1");
     }
     if (!st && r.n_floquet > 0) {
       st = autobal_archive_dim(a, g, "multiplier", r.n_floquet, "index of a Floquet multiplier (by decreasing modulus)");
-      if (!st) st = autobal_archive_var(a, g, "floquet_real", 1, dmu, r.mu_re, "1", "real part of the Floquet multipliers (monodromy over T = 2 pi/|omega|)");
-      if (!st) st = autobal_archive_var(a, g, "floquet_imag", 1, dmu, r.mu_im, "1", "imaginary part of the same");
+      if (!st) st = autobal_archive_var(a, g, "floquet_real", 1, dmu, r.mu_re, "1", "real part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
+      if (!st) st = autobal_archive_var(a, g, "floquet_imag", 1, dmu, r.mu_im, "1", "imaginary part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
       if (!st) st = autobal_archive_attr_double(a, g, "floquet_margin", r.floquet_margin, "1/s");
       if (!st) st = autobal_archive_attr_double(a, g, "floquet_mismatch", r.floquet_mismatch, "1");
     }
@@ -350,15 +311,12 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", cn);
       if (!st) st = write_crit(a, gc, &cr, "rad/s");
     }
-    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
   if (ctx->json) {
     cli_json j;
-    cli_json_begin(&j, stdout);
-    cli_json_string(&j, "command", ctx->command);
+    cli_json_summary_begin(&j, ctx);
     cli_json_number(&j, "omega", c->p.omega);
     cli_json_string(&j, "method", autobal_rotor_stab_method_name(r.method));
     cli_json_string(&j, "verdict", verdict_text(r.verdict));
@@ -370,8 +328,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     cli_json_number(&j, "full_mismatch", r.full_mismatch);
     cli_json_number(&j, "floquet_mismatch", r.floquet_mismatch);
     if (do_crit) json_crit(&j, &cr);
-    if (ctx->output) cli_json_string(&j, "output", ctx->output);
-    cli_json_end(&j);
+    cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor stability at omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %s supports\n", c->p.omega,
            c->p.omega * 60.0 / TWO_PI, c->p.n_planes, r.n_balls, r.isotropic ? "isotropic" : "anisotropic");
@@ -454,6 +411,7 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   autobal_rotor_crit cr;
   autobal_archive *a = NULL;
   autobal_error err;
+  char msg[sizeof ctx->err];
   double lo, hi, xtol = 1e-8, *vals = NULL, *mg = NULL;
   int *vd = NULL, param = 0, rc = CLI_EXIT_OK, st;
   long n = 1000;
@@ -487,7 +445,8 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   mg = malloc((size_t)n * sizeof *mg);
   vd = malloc((size_t)n * sizeof *vd);
   if (!s || !vals || !mg || !vd) {
-    rc = cli_fail(ctx, s ? CLI_EXIT_INTERNAL : cli_exit_code(err.status), "%s", s ? "out of memory" : err.message);
+    rc = cli_fail(ctx, s ? CLI_EXIT_INTERNAL : cli_exit_code(err.status), "%s",
+        s ? "out of memory" : cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   /* the sweep in chunks, for progress and interruption */
@@ -495,7 +454,8 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     size_t m = (size_t)n - i < 64 ? (size_t)n - i : 64;
     st = autobal_rotor_stab_sweep(s, param, vals + i, m, mg + i, vd + i);
     if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s = %.9g %s: %s", pname, vals[i], unit, autobal_rotor_stab_errmsg(s));
+      rc = cli_fail(ctx, cli_exit_code(st), "%s = %.9g %s: %s", pname, vals[i], unit,
+          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
       goto done;
     }
     if (cli_progress(ctx, "rotor sweep", 0.5 * (double)(i + m) / (double)n)) {
@@ -506,7 +466,8 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   st = autobal_rotor_stab_critical(s, param, lo, hi, (size_t)n, xtol, &cr);
   cli_progress_done(ctx);
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "critical values: %s", autobal_rotor_stab_errmsg(s));
+    rc = cli_fail(ctx, cli_exit_code(st), "critical values: %s",
+        cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
     goto done;
   }
   for (i = 0; i < (size_t)n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
@@ -525,15 +486,12 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     if (!st) st = autobal_archive_var(a, g, "margin", 1, dims, mg, "1/s", "stability margin: largest real part of the characteristic roots (family roots excluded; Floquet: log max|mu| / T); NaN: no balanced configuration");
     if (!st) st = autobal_archive_var_int(a, g, "verdict", 1, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
     if (!st) st = write_crit(a, g, &cr, unit);
-    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
   if (ctx->json) {
     cli_json j;
-    cli_json_begin(&j, stdout);
-    cli_json_string(&j, "command", ctx->command);
+    cli_json_summary_begin(&j, ctx);
     cli_json_string(&j, "param", pname);
     cli_json_string(&j, "unit", unit);
     cli_json_number(&j, "min", lo);
@@ -541,8 +499,7 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     cli_json_int(&j, "n", n);
     cli_json_int(&j, "n_stable_points", (long)nstable);
     json_crit(&j, &cr);
-    if (ctx->output) cli_json_string(&j, "output", ctx->output);
-    cli_json_end(&j);
+    cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor sweep of %s over [%g, %g] %s, %ld points (omega = %.6g rad/s unless swept)\n", pname, lo, hi, unit, n,
            c->p.omega);
@@ -566,6 +523,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
   autobal_archive *a = NULL;
   autobal_error err;
+  char msg[sizeof ctx->err];
   double lo1, hi1, lo2, hi2, *v1 = NULL, *v2 = NULL, *mg = NULL;
   int *vd = NULL, p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
   long n1 = 120, n2 = 60, threads = 0;
@@ -607,7 +565,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   autobal_error_clear(&err);
   st = autobal_rotor_stab_map(&c->p, &c->opt, p1, v1, (size_t)n1, p2, v2, (size_t)n2, (int)threads, mg, vd, &err);
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   for (i = 0; i < n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
@@ -627,23 +585,19 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     if (!st) st = autobal_archive_coord(a, g, n2s, (size_t)n2, v2, autobal_rotor_stab_param_unit(p2), "second parameter (columns)");
     if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, mg, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
     if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
-    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
   if (ctx->json) {
     cli_json j;
-    cli_json_begin(&j, stdout);
-    cli_json_string(&j, "command", ctx->command);
+    cli_json_summary_begin(&j, ctx);
     cli_json_string(&j, "param1", autobal_rotor_stab_param_name(p1));
     cli_json_string(&j, "param2", autobal_rotor_stab_param_name(p2));
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
     cli_json_int(&j, "n_stable", (long)nstable);
     cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
-    if (ctx->output) cli_json_string(&j, "output", ctx->output);
-    cli_json_end(&j);
+    cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
            hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
@@ -667,6 +621,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   void *storage = NULL;
   autobal_archive *a = NULL;
   autobal_error err;
+  char msg[sizeof ctx->err];
   autobal_rotor_resonances rr;
   double lo = 0.0, hi = 0.0, xtol = 1e-10, *om = NULL, *fr = NULL, *ze = NULL, *ag = NULL, *ad = NULL;
   double fu[4], fd[4], zd[4];
@@ -707,7 +662,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   if ((st = autobal_rotor_modes(&p, 0.0, 1, fu, NULL, NULL, NULL, &err)) ||
       (st = autobal_rotor_modes(&p, 0.0, 0, fd, zd, NULL, NULL, &err)) ||
       (st = autobal_rotor_campbell(&p, om, (size_t)n, fr, ze, wh, &err))) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   for (i = 0; i < (size_t)n; i++) {
@@ -719,7 +674,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     for (j = 0; j < np; j++) ad[i * np + j] = d2[j];
   }
   if ((st = autobal_rotor_resonance_speeds(&p, lo, hi, (size_t)nres, xtol, &rr, &err))) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor campbell", &a))) goto done;
@@ -758,15 +713,12 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
       if (!st) st = autobal_archive_var(a, g, "peak_omega", 1, dk, rr.peak, "rad/s", "unbalance-response critical speed (local maximum of amp_G)");
       if (!st) st = autobal_archive_var(a, g, "peak_amp_G", 1, dk, rr.peak_amp, "m", "amp_G at the peak");
     }
-    if (st) rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-    rc = cli_archive_finish(ctx, a, rc);
-    a = NULL;
+    rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
   if (ctx->json) {
     cli_json jj;
-    cli_json_begin(&jj, stdout);
-    cli_json_string(&jj, "command", ctx->command);
+    cli_json_summary_begin(&jj, ctx);
     cli_json_numbers(&jj, "natural_frequency_undamped", fu, 4);
     cli_json_numbers(&jj, "natural_frequency_damped", fd, 4);
     cli_json_numbers(&jj, "damping_ratio_at_rest", zd, 4);
@@ -775,8 +727,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     for (i = 0; i < rr.n_cross; i++) cli_json_int(&jj, NULL, rr.cross_whirl[i]);
     cli_json_array_end(&jj);
     cli_json_numbers(&jj, "peak_omega", rr.peak, rr.n_peak);
-    if (ctx->output) cli_json_string(&jj, "output", ctx->output);
-    cli_json_end(&jj);
+    cli_json_summary_end(&jj, ctx);
   } else if (!ctx->quiet) {
     printf("rotor-housing (balls removed): natural frequencies at rest\n");
     printf("  undamped: %.7g %.7g %.7g %.7g rad/s\n", fu[0], fu[1], fu[2], fu[3]);

@@ -67,6 +67,18 @@ static const cli_command *find_command(const char *model, const char *action) {
   return NULL;
 }
 
+/* Run the command unless `rc` already says the configuration failed; report a failure on stderr;
+ * release the configuration.  Returns the exit code. */
+static int run_command(cli_ctx *ctx, const cli_command *cmd, int rc) {
+  if (rc == CLI_EXIT_OK) {
+    cli_signals_install();
+    rc = cmd->run(ctx);
+  }
+  if (rc != CLI_EXIT_OK) fprintf(stderr, "autobal: error: %s\n", ctx->err[0] ? ctx->err : "failed (no message)");
+  cli_config_free(ctx->cfg);
+  return rc;
+}
+
 int main(int argc, char **argv) {
   cli_ctx ctx;
   const cli_command *cmd;
@@ -149,12 +161,7 @@ int main(int argc, char **argv) {
     if (ctx.json) ctx.progress = 0;
     ctx.cfg = cli_config_new(NULL);
     if (!ctx.cfg) return CLI_EXIT_INTERNAL;
-    cli_signals_install();
-    rc = cmd->run(&ctx);
-    if (rc != CLI_EXIT_OK)
-      fprintf(stderr, "autobal: error: %s\n", ctx.err[0] ? ctx.err : "failed (no message)");
-    cli_config_free(ctx.cfg);
-    return rc;
+    return run_command(&ctx, cmd, CLI_EXIT_OK);
   }
   cmd = find_command(model, action);
   if (!cmd) {
@@ -182,12 +189,5 @@ int main(int argc, char **argv) {
   rc = cli_config_load(&ctx);
   for (i = 0; rc == CLI_EXIT_OK && i < nsets; i++) rc = cli_config_override(&ctx, sets[i]);
   free(sets);
-  if (rc == CLI_EXIT_OK) {
-    cli_signals_install();
-    rc = cmd->run(&ctx);
-  }
-  if (rc != CLI_EXIT_OK)
-    fprintf(stderr, "autobal: error: %s\n", ctx.err[0] ? ctx.err : "failed (no message)");
-  cli_config_free(ctx.cfg);
-  return rc;
+  return run_command(&ctx, cmd, rc);
 }

@@ -17,7 +17,9 @@
  * Every dataset carries `units` and `long_name` (variable-length UTF-8 strings, read
  * as str by h5py and xarray).  Datasets larger than 64 KiB are chunked and compressed
  * (shuffle + deflate level 4); smaller ones are contiguous.  Streamed time series use
- * an unlimited dimension (see autobal_archive_series_open).
+ * an unlimited dimension and shuffle + deflate level 1 (see autobal_archive_series_open).
+ * Only the standard HDF5 filters are used: every HDF5 reader (h5py, xarray, netCDF-4)
+ * reads the files without plugins.
  *
  * Paths.  A `group` argument is a slash-separated group path; "/pendulum/map" and
  * "pendulum/map" are the same group, "/" (or "") is the root group.  An `obj`
@@ -45,12 +47,24 @@
  * readable; a failed call writes nothing partial that a reader would mistake for data
  * except as noted per function.
  *
- * Threads.  Debian's HDF5 is the serial, non-thread-safe build: all HDF5 calls of a
- * process (all archives) must come from one thread at a time.  No globals are used.
+ * Threads.  A handle (and its series) is used by one thread at a time; different
+ * handles may be used from different threads at the same time.  Full buffers of
+ * streamed series are written by a background thread of the archive (the "writer",
+ * started at the first full series buffer and joined by _close/_discard), so that the
+ * compression runs on another core while the caller computes; see
+ * autobal_archive_series_open.  The writer blocks all signals.  HDF5 is not thread-safe
+ * in every build (Debian 12's libhdf5 1.10.8 is built thread-safe, many others are not),
+ * so every HDF5 call this module makes, in any thread and for any archive, holds one
+ * process-wide lock (a statically initialised mutex inside archive.c; the only
+ * process-wide object of the library; it holds no data).  A host program that calls
+ * HDF5 itself while series are open should, with a non-thread-safe HDF5, do so only
+ * after autobal_archive_series_flush() of every open series (the writer is then idle
+ * until the next full buffer).  Do not fork() while series are open (a child would
+ * inherit the lock possibly held).  Close archives before the process exits.
  *
  * Memory.  Handles are owned by the caller and freed by _close/_discard.  Input arrays
  * are only read during the call.  No allocation happens per appended row of a series
- * (the row buffer is sized at _series_open).
+ * (its two row buffers are allocated at _series_open).
  */
 #ifndef AUTOBAL_ARCHIVE_H
 #define AUTOBAL_ARCHIVE_H
@@ -70,7 +84,7 @@ AUTOBAL_BEGIN_DECLS
 #define AUTOBAL_ARCHIVE_NAME_MAX 255
 /* Datasets with more bytes than this are chunked and compressed. */
 #define AUTOBAL_ARCHIVE_COMPRESS_BYTES 65536
-/* Rows buffered by a series before they are written (= the series chunk length). */
+/* Rows of each of the two buffers of a series (= the series chunk length). */
 #define AUTOBAL_ARCHIVE_SERIES_ROWS 4096
 
 typedef struct autobal_archive autobal_archive;               /* opaque */
@@ -194,11 +208,20 @@ AUTOBAL_API int autobal_archive_var_int(autobal_archive *a, const char *group, c
  * float64 coordinate, e.g. "time" in "s", long_name dim_long_name, NULL: dim) and
  * nvars >= 1 float64 variables names[i] along it with units[i] (required) and
  * long_names[i] (long_names NULL or long_names[i] NULL: the name).  Rows are appended
- * with _series_append; they are kept in a buffer of AUTOBAL_ARCHIVE_SERIES_ROWS rows
- * (allocated here, the only allocation) that is written out (datasets extended) when
- * full, on _series_flush, _series_close and autobal_archive_close.  Memory does not
- * grow with the run length.  Chunks are AUTOBAL_ARCHIVE_SERIES_ROWS rows, shuffle +
- * deflate 4.  Errors are recorded in the archive (autobal_archive_errmsg).
+ * with _series_append into one of two buffers of AUTOBAL_ARCHIVE_SERIES_ROWS rows
+ * (allocated here, the only allocation: 2 x (nvars + 1) x AUTOBAL_ARCHIVE_SERIES_ROWS
+ * doubles).  A full buffer is handed to the archive's writer thread, which extends the
+ * datasets and writes it (HDF5 compresses it there), while appends go on into the other
+ * buffer; an append waits only if the writer has not finished the previous buffer of
+ * this series.  The rest is written by _series_flush, _series_close,
+ * autobal_archive_close and before autobal_archive_var/_var_int (so that a variable
+ * over the series dimension sees every row appended).  Memory does not grow with the
+ * run length.  Chunks are AUTOBAL_ARCHIVE_SERIES_ROWS rows, shuffle + deflate level 1
+ * (a third less CPU than level 4 for files ~5% larger on smooth transients); after a
+ * _series_flush the next buffer is handed over early so that writes stay aligned with
+ * the chunks.  If the writer thread cannot be started, buffers are written in the
+ * caller's thread (the same results).  Errors are recorded in the archive
+ * (autobal_archive_errmsg).
  * AUTOBAL_EINVAL: bad or duplicate names, existing `dim` or variable, NULL arrays,
  * nvars == 0.  AUTOBAL_EIO: HDF5 failure (whatever this call made is removed again).
  * The series belongs to the archive: it must be closed before the archive, or is
@@ -212,24 +235,37 @@ AUTOBAL_API int autobal_archive_series_open(autobal_archive *a, const char *grou
                                             autobal_archive_series **out);
 /* Append nrows rows: t[0..nrows-1] are the values of the dimension coordinate, rows is
  * nrows x nvars in row-major order (rows[i*nvars + j] = variable j at t[i]).  nrows may
- * be 0.  Values are copied.  AUTOBAL_EINVAL for NULL arrays (nrows > 0).  AUTOBAL_EIO
- * when a buffer flush fails: the rows that did not fit are dropped, the series keeps the
- * rows written before and refuses further appends (AUTOBAL_EIO). */
+ * be 0.  Values are copied (bit for bit: NaN payloads, -0 and subnormals are kept).
+ * AUTOBAL_EINVAL for NULL arrays (nrows > 0).  AUTOBAL_EIO when writing a buffer
+ * failed: the message is the HDF5 failure ("series '<group>/<dim>': cannot write ...
+ * HDF5: ... File too large").  As buffers are written in the background, the failure of
+ * a buffer comes back from a later call on the series: the first _append after the
+ * writer failed (at the latest the one that fills the next buffer), or _series_flush,
+ * _series_close or autobal_archive_close.  Then the rows appended since the last
+ * written buffer are dropped, the series keeps the rows written before (its length
+ * becomes that number) and refuses further appends, flushes and closes (AUTOBAL_EIO,
+ * "unusable after an earlier write failure"); autobal_archive_close then returns
+ * AUTOBAL_EIO. */
 AUTOBAL_API int autobal_archive_series_append(autobal_archive_series *s, size_t nrows,
                                               const double *t, const double *rows);
-/* Write the buffered rows to the file now (and flush HDF5 buffers to disk). */
+/* Wait for the writer, write the buffered rows to the file now and flush HDF5 buffers
+ * to disk.  Reports a failure of the writer (AUTOBAL_EIO, see _series_append). */
 AUTOBAL_API int autobal_archive_series_flush(autobal_archive_series *s);
-/* Rows appended so far (written + buffered); 0 for NULL. */
+/* Rows appended so far (written + being written + buffered); after a write failure the
+ * rows in the file; 0 for NULL. */
 AUTOBAL_API size_t autobal_archive_series_length(const autobal_archive_series *s);
-/* Flush, close the datasets and free the series (NULL: AUTOBAL_SUCCESS).  The series is
- * freed even when the flush fails (status returned, message in the archive). */
+/* Wait for the writer, flush, close the datasets and free the series (NULL:
+ * AUTOBAL_SUCCESS).  The series is freed even when the flush fails or the writer had
+ * failed (AUTOBAL_EIO returned, message in the archive). */
 AUTOBAL_API int autobal_archive_series_close(autobal_archive_series *s);
 
 /* ------------------------------------------------------------------------ */
 /* Finishing                                                                  */
 /* ------------------------------------------------------------------------ */
 
-/* Close the open series (flushing them), write the final root attribute status (see
+/* Wait for the series writer and stop it, close the open series (flushing them; a
+ * failure of the writer is reported here if no call reported it before), write the
+ * final root attribute status (see
  * _set_status, default "complete") and status_reason, close the file and rename the
  * temporary file to the final path.  Frees `a` in all cases (NULL: AUTOBAL_SUCCESS).
  * On failure the temporary file is left in place for inspection, and err (may be
@@ -245,9 +281,9 @@ AUTOBAL_API int autobal_archive_series_close(autobal_archive_series *s);
  * _exit(status) rather than exit(). */
 AUTOBAL_API int autobal_archive_close(autobal_archive *a, autobal_error *err);
 
-/* Abandon: close the series and the file and delete the temporary file; nothing is
- * left under either name (an existing file at the final path is untouched).  Frees `a`
- * (NULL ok).  For a read handle: just closes. */
+/* Abandon: wait for the series writer and stop it, close the series and the file and
+ * delete the temporary file; nothing is left under either name (an existing file at the
+ * final path is untouched).  Frees `a` (NULL ok).  For a read handle: just closes. */
 AUTOBAL_API void autobal_archive_discard(autobal_archive *a);
 
 /* ------------------------------------------------------------------------ */
@@ -294,7 +330,8 @@ AUTOBAL_API int autobal_archive_read_var(autobal_archive *a, const char *path, d
 /* Call fn(name, is_group, ctx) for each direct member of `group` (groups and
  * datasets), in creation order where the file tracks it (files written by this library
  * do), else by name.  A non-zero return from fn stops the iteration and is returned.
- * AUTOBAL_EINVAL: no such group. */
+ * The names are collected first and fn is called after HDF5's iteration, so fn may
+ * call functions of this module.  AUTOBAL_EINVAL: no such group; AUTOBAL_ENOMEM. */
 typedef int (*autobal_archive_list_fn)(const char *name, int is_group, void *ctx);
 AUTOBAL_API int autobal_archive_list(autobal_archive *a, const char *group,
                                      autobal_archive_list_fn fn, void *ctx);

@@ -19,12 +19,24 @@
  * AUTOBAL_ENUMERIC for a GSL failure, with GSL's text).  Functions that take
  * a workspace record the message in it (autobal_pendulum_errmsg()); the
  * others take an `autobal_error *err` (NULL allowed).  After a failure the
- * outputs hold unspecified values (never uninitialised memory); inputs are
- * never modified.
+ * outputs hold unspecified values (never uninitialised memory) unless a
+ * function says more; inputs are never modified.  A function given a NULL
+ * workspace returns AUTOBAL_EINVAL without a message (there is nowhere to
+ * record it).
+ *
+ * No validation (plain formulas on the caller's data, no NULL checks, NaN in
+ * gives NaN out): autobal_pendulum_k, autobal_pendulum_main_motion,
+ * autobal_pendulum_wrap_angle, autobal_pendulum_shaft_amplitude,
+ * autobal_pendulum_residual_unbalance, autobal_pendulum_unbalance_scalar,
+ * autobal_pendulum_jacobi_integral, autobal_pendulum_jacobi_power,
+ * autobal_pendulum_motion_derive; the right-hand sides and Jacobians check
+ * their pointers only.  autobal_pendulum_crit_count/crit_get accept NULL
+ * (0, NaN).
  *
  * Memory: the library allocates only in autobal_pendulum_workspace_alloc()
- * and (once per thread, up front) inside autobal_pendulum_map(); all other
- * outputs are caller-owned structs or arrays of documented size.
+ * and (once per thread, up front) inside autobal_pendulum_map() when max_real
+ * is requested; all other outputs are caller-owned structs or arrays of
+ * documented size.
  * Threads: every function is reentrant; a workspace is used by one thread
  * at a time (one workspace per thread).
  */
@@ -302,7 +314,16 @@ AUTOBAL_API double autobal_pendulum_crit_get(const autobal_pendulum_crit_set *s,
  * it degrades: at R_m = 0.249 (R_w ~ 250) critical speeds about 1e-11, the
  * ends of a narrow k -> 1 window about 1e-8, and windows with 1-k < 1e-10
  * are missed.  Near the triple point R_m^(1) the three values separate only
- * by ~|R_m - R_m^(1)|, and their accuracy is limited accordingly. */
+ * by ~|R_m - R_m^(1)|, and their accuracy is limited accordingly.
+ * Capacity: the candidates are roots of polynomials of degree <= 7 in W plus
+ * at most four window ends (or W = 1 at k = 0): at most 14 critical speeds and
+ * 15 stable intervals, well below AUTOBAL_PENDULUM_MAX_CRIT, so nothing is ever
+ * cut off.
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL ws; R_m outside (0, 1/2) or
+ * k outside [0, 1], message naming it; out NULL): *out untouched; or a status
+ * of an internal root solve, refinement or verdict (AUTOBAL_ENUMERIC,
+ * AUTOBAL_EINVAL; not expected for valid input): *out is then all zeros
+ * (n = n_stable = 0).  The message is in ws ("" after success). */
 AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
                                                  double k, autobal_pendulum_crit_set *out);
 
@@ -314,7 +335,18 @@ AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws,
  * bracketing).  Kinds are GAINED/LOST only; changes narrower than the
  * sampling step can be missed (documented limitation of any sweep).  The
  * stable intervals are clipped to [rw_min, rw_max] (stable_hi = rw_max for
- * the last one, not INFINITY). */
+ * the last one, not INFINITY).  A failure of the final Brent polish is not an
+ * error (the bisection's midpoint is kept).
+ * Capacity: only the first AUTOBAL_PENDULUM_MAX_CRIT changes (in increasing
+ * R_w) are recorded; later changes are ignored without notice (there is no
+ * truncation flag): n stays at the capacity and the verdict after the last
+ * recorded change is taken to hold up to rw_max, so the last stable interval
+ * may be too long.  Choose [rw_min, rw_max] so that fewer changes occur.
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL ws or p; p invalid apart
+ * from R_w, which is ignored; rw_min < 0 or not finite; rw_max <= rw_min or
+ * not finite; n_sweep < 2; out NULL): *out untouched; or the status of a
+ * verdict or bisection at some speed (AUTOBAL_ENUMERIC, ...): *out is then all
+ * zeros.  The message is in ws ("" after success). */
 AUTOBAL_API int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
                                                         const autobal_pendulum_params *p,
                                                         double rw_min, double rw_max,
@@ -324,7 +356,12 @@ AUTOBAL_API int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspa
 /* Critical-speed curves of the undamped system for one k over an R_m grid:
  * rw[i*n_curve + j] = the j-th critical speed (kind != TOUCH) at R_m[i], or
  * NaN where that branch does not exist (e.g. k = 0, n_curve = 3 gives
- * R_w1 = 1, R_w2, R_w3 of figure 2, R_w2/3 NaN for R_m >= 1/4). */
+ * R_w1 = 1, R_w2, R_w3 of figure 2, R_w2/3 NaN for R_m >= 1/4).
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL ws; k outside [0, 1]; R_m
+ * NULL with n_Rm > 0 or rw NULL with n_Rm n_curve > 0; some R_m[i] outside
+ * (0, 1/2), named "R_m[i]"): rw untouched (everything is checked before the
+ * first row is written); or the status of autobal_pendulum_critical_speeds at
+ * R_m[i]: rows 0..i-1 are filled, the others untouched.  Message in ws. */
 AUTOBAL_API int autobal_pendulum_critical_curves(autobal_pendulum_workspace *ws, double k,
                                                  const double *R_m, size_t n_Rm, size_t n_curve,
                                                  double *rw);
@@ -392,9 +429,20 @@ typedef struct autobal_pendulum_map_spec {
  * over the k set (for the undamped system this is about 0 when stable, at
  * rounding level); computing it costs a root solve per point and k.
  * Parallel over grid points with OpenMP when built with it; the result is
- * bitwise identical to the serial one.  Validates the whole spec before
- * writing anything; AUTOBAL_ENOMEM if a per-thread workspace cannot be
- * allocated (then the arrays are partially written). */
+ * bitwise identical to the serial one.
+ * Returns AUTOBAL_SUCCESS (also for an empty grid: nothing written), or:
+ *   AUTOBAL_EINVAL, nothing written (the whole spec is validated first): spec
+ *     or verdict NULL; R_m or R_w NULL with a non-zero count; H or h < 0 or not
+ *     finite; n_threads < 0; k NULL with n_k > 0; an entry R_m[i] outside
+ *     (0, 1/2), R_w[j] < 0, k[i] outside [0, 1] or non-finite (named, e.g.
+ *     "R_m[3]");
+ *   AUTOBAL_ENOMEM: a per-thread workspace (needed only for max_real) could
+ *     not be allocated;
+ *   the status of a failing grid point (e.g. AUTOBAL_ENUMERIC from a root
+ *     solve for max_real), message "map: evaluation failed at a grid point".
+ * After AUTOBAL_ENOMEM or a failing point the arrays are partially written
+ * (which points are done depends on the threads' schedule); the message is in
+ * err. */
 AUTOBAL_API int autobal_pendulum_map(const autobal_pendulum_map_spec *spec, signed char *verdict,
                                      double *max_real, autobal_error *err);
 

@@ -195,13 +195,16 @@ typedef struct autobal_rotor autobal_rotor;
 AUTOBAL_API autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error *err);
 /* NULL is allowed. */
 AUTOBAL_API void autobal_rotor_free(autobal_rotor *r);
-/* Last message recorded on the handle (alloc warning, rhs failure, ...); never NULL. */
+/* Last message recorded on the handle (alloc warning, rhs failure, ...); never
+ * NULL ("rotor handle is NULL" for r == NULL); owned by the handle. */
 AUTOBAL_API const char *autobal_rotor_errmsg(const autobal_rotor *r);
 
-/* The parameters held by the handle (its plane arrays point into the handle;
- * valid until autobal_rotor_free). */
+/* Getters: a NULL handle gives NULL (pointers), 0 (counts) or NAN (omega).
+ * The parameters held by the handle (owned by it; its plane arrays point into
+ * the handle; valid until autobal_rotor_free; omega follows set_omega). */
 AUTOBAL_API const autobal_rotor_params *autobal_rotor_get_params(const autobal_rotor *r);
-/* The lumped coefficients in use (computed from hw for HARDWARE input). */
+/* The lumped coefficients in use (computed from hw for HARDWARE input; owned
+ * by the handle). */
 AUTOBAL_API const autobal_rotor_lumped *autobal_rotor_get_lumped(const autobal_rotor *r);
 /* State dimension 8 + 2N (+2 with axial motion). */
 AUTOBAL_API size_t autobal_rotor_dim(const autobal_rotor *r);
@@ -213,17 +216,24 @@ AUTOBAL_API size_t autobal_rotor_n_balls_total(const autobal_rotor *r);
  * (size_t)-1 if out of range. */
 AUTOBAL_API size_t autobal_rotor_ball_index(const autobal_rotor *r, size_t plane, size_t i);
 AUTOBAL_API double autobal_rotor_omega(const autobal_rotor *r);
-/* Change the spin speed (rad/s, finite).  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+/* Change the spin speed (rad/s, finite).  Returns AUTOBAL_SUCCESS, or
+ * AUTOBAL_EINVAL for a non-finite omega (message on the handle; omega is
+ * unchanged) or a NULL handle (no message). */
 AUTOBAL_API int autobal_rotor_set_omega(autobal_rotor *r, double omega);
 
 /* Initial state at time t0 from the parameters (q0, qd0, ball_psi, ball_rate,
  * z0, zd0) in the given frame: phi = omega t0 + psi, phi' = omega + psi'.
  * y has dim entries (dim must equal autobal_rotor_dim).  Returns
- * AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+ * AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r or y, a frame other than
+ * AUTOBAL_ROTOR_FIXED/ROTATING, dim != autobal_rotor_dim, t0 not finite; y is
+ * then untouched and no message is recorded on the handle). */
 AUTOBAL_API int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, double *y,
                                             size_t dim);
 /* Convert a state between frames at time t (psi = phi - omega t,
- * psi' = phi' - omega; other entries copied).  in and out may alias. */
+ * psi' = phi' - omega; other entries copied).  in and out may alias.
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r, in or out, a frame other
+ * than AUTOBAL_ROTOR_FIXED/ROTATING, dim != autobal_rotor_dim, t not finite;
+ * out is then untouched and no message is recorded on the handle). */
 AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_frame,
                                             double t, const double *in, double *out, size_t dim);
 
@@ -231,15 +241,24 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
  * frame, GSL signature; params = an autobal_rotor*.  The implicit system is
  * reduced exactly to a 4x4 symmetric positive definite system in (x'', y'',
  * alpha'', beta'') (see rotor.md "Solving for the accelerations"), solved by
- * Cholesky; then phi'' from (3.4).  O(N), no allocation.  Returns 0 (GSL_SUCCESS),
- * or GSL_EBADFUNC when the effective mass matrix is not positive definite or the
- * state is not finite (message recorded on the handle; dydt then undefined). */
+ * Cholesky; then phi'' from (3.4).  O(N), no allocation.  Units: t in s, y in
+ * the state layout of autobal_rotor_dim (SI), dydt per second.
+ * Return codes are GSL's, not autobal statuses, because this is the function
+ * handed to an ODE driver (gsl_odeiv2_system.function, or
+ * autobal_transient_system.rhs, which stops with AUTOBAL_ERHS on any non-zero
+ * return): 0 (GSL_SUCCESS), or GSL_EBADFUNC (a positive GSL code) when the
+ * effective mass matrix is not positive definite or the accelerations come out
+ * non-finite (e.g. from a non-finite state).
+ * Then the handle's message (autobal_rotor_errmsg) says at which t, recorded
+ * with status AUTOBAL_ENUMERIC, and dydt has not been written.  rotor must be a
+ * valid handle (not checked: no NULL test in the hot path).  Every call writes
+ * the handle's workspace: one handle per thread (see Threads above). */
 AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor);
 
 /* The same motion with the balls in the rotating frame (3.9)-(3.13): ball
  * angles psi, (3.13) for the balls with the acceleration of D projected on the
  * rotor axes; rotor equations (3.2) in the fixed frame.  An independent second
- * implementation (same return codes). */
+ * implementation (the same GSL return codes and failure behaviour). */
 AUTOBAL_API int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor);
 
 /* ---- derived quantities ------------------------------------------------- */
@@ -296,7 +315,10 @@ AUTOBAL_API int autobal_rotor_balanced_angles(const autobal_rotor *r, size_t pla
 
 /* First time t[k] from which the sampled monitor values stay below
  * threshold to the end of the series (a post-processing helper for "time to
- * balance").  Returns NAN if the last sample is not below threshold or n == 0. */
+ * balance").  t are the sample times in whatever unit the caller uses (s for
+ * the rotor model); the result is one of them, in the same unit, with no
+ * interpolation between samples.  Returns NAN if t or monitor is NULL, n == 0,
+ * or the last sample is not below threshold (NaN samples count as not below). */
 AUTOBAL_API double autobal_rotor_time_to_balance(const double *t, const double *monitor, size_t n,
                                                  double threshold);
 

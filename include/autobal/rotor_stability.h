@@ -214,11 +214,13 @@ typedef enum autobal_rotor_stab_param {
   AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS = 5   /* kg, m0 of every plane, >= 0 */
 } autobal_rotor_stab_param;
 
-/* Static name ("omega", "ball_damping", "ball_mass", "stiffness_scale",
- * "damping_scale", "unbalance_mass"; NULL for an unknown id) and unit. */
+/* Name ("omega", "ball_damping", "ball_mass", "stiffness_scale",
+ * "damping_scale", "unbalance_mass") and SI unit ("rad/s", "kg/s", "kg", "1",
+ * "1", "kg") of a parameter id.  Static strings owned by the library (never
+ * free them; valid for the life of the program); NULL for an unknown id. */
 AUTOBAL_API const char *autobal_rotor_stab_param_name(int param);
 AUTOBAL_API const char *autobal_rotor_stab_param_unit(int param);
-/* Parameter id from its name; -1 if unknown. */
+/* Parameter id from its name (exact, case-sensitive); -1 if unknown or NULL. */
 AUTOBAL_API int autobal_rotor_stab_param_from_name(const char *name);
 
 typedef struct autobal_rotor_stab_options {
@@ -243,22 +245,40 @@ AUTOBAL_API autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_par
                                                          const autobal_rotor_stab_options *opt,
                                                          autobal_error *err);
 AUTOBAL_API void autobal_rotor_stab_free(autobal_rotor_stab *s); /* NULL is safe */
-AUTOBAL_API const char *autobal_rotor_stab_errmsg(const autobal_rotor_stab *s); /* never NULL */
+/* The handle's last message (owned by the handle); never NULL: "rotor stability
+ * handle is NULL" for s == NULL.  A function given a NULL handle returns
+ * AUTOBAL_EINVAL without recording any message (there is nowhere to record it). */
+AUTOBAL_API const char *autobal_rotor_stab_errmsg(const autobal_rotor_stab *s);
 
 /* Change one parameter of the handle's working copy (see autobal_rotor_stab_param);
  * the base values given at alloc are kept for the scale factors.  AUTOBAL_EINVAL for
- * an unknown id or a value out of range (the handle is unchanged). */
+ * an unknown id or a value out of range (message on the handle; the handle is
+ * unchanged) or a NULL handle. */
 AUTOBAL_API int autobal_rotor_stab_set(autobal_rotor_stab *s, int param, double value);
-/* Current value (NaN for an unknown id; for BALL_MASS / BALL_DAMPING the value of ball 1). */
+/* Current value (for BALL_MASS / BALL_DAMPING the value of ball 1, NaN without
+ * balls; for UNBALANCE_MASS plane 1's m0).  NaN for an unknown id or a NULL
+ * handle. */
 AUTOBAL_API double autobal_rotor_stab_get(const autobal_rotor_stab *s, int param);
-/* The working parameters (ball arrays point into the handle). */
+/* The working parameters (owned by the handle; ball arrays point into it; valid
+ * until autobal_rotor_stab_free and changed by autobal_rotor_stab_set).  NULL for
+ * a NULL handle. */
 AUTOBAL_API const autobal_rotor_params *autobal_rotor_stab_params(const autobal_rotor_stab *s);
-/* Total number of balls N (state dimension of the full model 8 + 2N). */
+/* Total number of balls N (state dimension of the full model 8 + 2N); 0 for a
+ * NULL handle. */
 AUTOBAL_API size_t autobal_rotor_stab_n_balls(const autobal_rotor_stab *s);
 
-/* Balanced angles of the analysed member, all planes in state order (N entries). */
+/* Balanced angles of the analysed member at the current parameters, all planes in
+ * state order (n must equal N; rad, wrapped to (-pi, pi]).  Returns
+ * AUTOBAL_SUCCESS, or AUTOBAL_EINVAL: NULL handle (no message), n != N or psi
+ * NULL with n > 0, or no balanced configuration / an unusable member in some
+ * plane (autobal_rotor_member_angles; message "plane j: ..." on the handle).
+ * After a failure psi is untouched and the handle stays usable. */
 AUTOBAL_API int autobal_rotor_stab_balanced_angles(autobal_rotor_stab *s, double *psi, size_t n);
-/* The closed system at the current parameters and member. */
+/* The closed system at the current parameters and member (computes the balanced
+ * angles first).  Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL: s or c NULL (no
+ * message), or no balanced configuration / an unusable member (message on the
+ * handle, as for autobal_rotor_stab_balanced_angles).  After a failure *c is
+ * untouched.  Works for anisotropic supports too (c->isotropic = 0 says so). */
 AUTOBAL_API int autobal_rotor_stab_closed(autobal_rotor_stab *s, autobal_rotor_closed *c);
 
 /* The analytic linearization of the full model at the balanced state, mixed frame
@@ -332,10 +352,19 @@ AUTOBAL_API int autobal_rotor_stab_floquet(autobal_rotor_stab *s, double *mu_re,
 
 /* ---- sweeps, critical speeds and maps ----------------------------------------- */
 
-/* margin[k], verdict[k] at param = values[k] (k < n), with the handle's method;
- * the parameter is restored afterwards.  Points without a balanced configuration
- * get AUTOBAL_ROTOR_VERDICT_NONE and NaN.  A failure at a point stops the sweep
- * (its status; the entries before it are valid). */
+/* margin[k], verdict[k] at param = values[k] (k < n), with the handle's method.
+ * Points without a balanced configuration get AUTOBAL_ROTOR_VERDICT_NONE and NaN.
+ * Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL for a NULL handle (no message), a NULL
+ * array, an unknown id, or a value out of the parameter's range (message of
+ * autobal_rotor_stab_set); or the status of a failing margin evaluation
+ * (autobal_rotor_stab_margin).  A failure at a point stops the sweep: the entries
+ * before it are valid, the others unspecified.
+ * Afterwards (also after a failure) the parameter is set back with
+ * autobal_rotor_stab_set to the value autobal_rotor_stab_get gave before: for
+ * BALL_MASS / BALL_DAMPING every ball then gets ball 1's former value, for
+ * UNBALANCE_MASS every plane gets plane 1's former m0 (not restored at all when
+ * that value is NaN, i.e. without balls).  The results of the last
+ * autobal_rotor_stab_analyze (arrays pointing into the handle) are overwritten. */
 AUTOBAL_API int autobal_rotor_stab_sweep(autobal_rotor_stab *s, int param, const double *values,
                                          size_t n, double *margin, int *verdict);
 
@@ -356,8 +385,25 @@ typedef struct autobal_rotor_crit {
  * (on the margin) to |bracket| <= xtol_rel |value| (e.g. 1e-8; changes to/from NONE
  * by bisection).  Stable intervals are the maximal sub-intervals of [lo, hi] where
  * the verdict is STABLE (their ends are critical values or lo/hi).  The parameter
- * is restored afterwards.  Changes between two grid points that cancel (a window
- * narrower than the grid) are not seen. */
+ * is set back afterwards as by autobal_rotor_stab_sweep (same caveat for
+ * BALL_MASS / BALL_DAMPING / UNBALANCE_MASS; the last analysis is overwritten).
+ * Changes between two grid points that cancel (a window narrower than the grid)
+ * are not seen.  More than AUTOBAL_ROTOR_MAX_CRIT changes or stable intervals:
+ * the first ones are kept and out->truncated = 1.
+ * Returns AUTOBAL_SUCCESS, or:
+ *   AUTOBAL_EINVAL: NULL handle (no message, *out untouched); out NULL; unknown
+ *     id; lo, hi not finite or lo >= hi; an OMEGA range containing 0; n_grid
+ *     outside [2, 1e8]; xtol_rel outside (0, 0.1); a grid value out of the
+ *     parameter's range (autobal_rotor_stab_set);
+ *   the status of a failing margin evaluation at a grid point or during a
+ *   refinement (AUTOBAL_ENUMERIC, the FLOQUET integration statuses, ...),
+ *   except that AUTOBAL_ENUMERIC and AUTOBAL_EINVAL from Brent's method (no
+ *   convergence, a lost bracket, a point without a balanced configuration)
+ *   are not failures: its best estimate (or the bracket's midpoint) is kept.
+ * *out is zeroed first (out->param set) whenever out is not NULL and s is valid;
+ * after a failure during the scan it holds the changes found before it, the
+ * stable intervals closed before it (an open one is dropped) and the number of
+ * evaluations. */
 AUTOBAL_API int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, double hi,
                                             size_t n_grid, double xtol_rel, autobal_rotor_crit *out);
 
@@ -396,7 +442,12 @@ AUTOBAL_API int autobal_rotor_modes(const autobal_rotor_params *p, double omega,
                                     autobal_error *err);
 
 /* Campbell diagram: modes at omega[k] (k < n); freq, zeta, whirl are n x 4 row-major
- * (any may be NULL).  Modes sorted by frequency at every speed. */
+ * (any may be NULL).  Modes sorted by frequency at every speed.  Returns
+ * AUTOBAL_SUCCESS (also for n = 0: nothing written), or AUTOBAL_EINVAL (omega
+ * NULL with n > 0, a non-finite omega[k], invalid parameters: nothing written),
+ * AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (singular mass matrix or GSL eigensolver
+ * failure at some omega[k]: rows 0..k-1 are filled, the rest untouched); the
+ * message in err.  Allocates GSL workspaces once per call. */
 AUTOBAL_API int autobal_rotor_campbell(const autobal_rotor_params *p, const double *omega, size_t n,
                                        double *freq, double *zeta, int *whirl, autobal_error *err);
 
@@ -414,7 +465,15 @@ AUTOBAL_API int autobal_rotor_unbalance_response(const autobal_rotor_params *p, 
  *  - crossings: where a natural frequency (Campbell) equals omega, freq_k(omega) =
  *    omega, refined by Brent to xtol_rel; whirl of that mode there in cross_whirl;
  *  - peaks: local maxima of amp_G(omega), refined by golden-section search to xtol_rel.
- * Up to AUTOBAL_ROTOR_MAX_CRIT of each (*n_cross, *n_peak). */
+ * Up to AUTOBAL_ROTOR_MAX_CRIT of each (n_cross, n_peak); further ones are
+ * dropped without notice (there is no truncation flag).  A Brent refinement that
+ * does not converge keeps its best estimate.  Returns AUTOBAL_SUCCESS, or
+ * AUTOBAL_EINVAL (out NULL; lo, hi not finite or not 0 <= lo < hi; n_grid outside
+ * [3, 1e8]; xtol_rel outside (0, 0.1); invalid parameters, the message of
+ * autobal_rotor_params_check), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (singular mass
+ * matrix, GSL eigensolver failure); the message in err.  *out is zeroed first
+ * whenever out is not NULL; after a failure during the scan it holds the
+ * crossings and peaks found before it.  Allocates GSL workspaces per call. */
 typedef struct autobal_rotor_resonances {
   size_t n_cross;
   double cross[AUTOBAL_ROTOR_MAX_CRIT];

@@ -14,10 +14,16 @@
  *    interleaved: coefficient j is c[2j] + i c[2j+1] (so the array holds
  *    2*len doubles).  No C99 `double complex` appears in this header.
  *  - Roots and eigenvalues are returned in two arrays re[], im[] of length n.
- *  - Routines that work on the stack accept at most AUTOBAL_POLY_MAXLEN
- *    coefficients (degree AUTOBAL_POLY_MAXLEN-1); larger inputs give
- *    AUTOBAL_EINVAL.  None of the functions below allocates except the
- *    *_workspace_alloc functions.
+ *  - The routines that work on stack arrays accept at most AUTOBAL_POLY_MAXLEN
+ *    coefficients (degree AUTOBAL_POLY_MAXLEN-1) and give AUTOBAL_EINVAL for
+ *    larger inputs: autobal_poly_hurwitz, autobal_poly_hurwitz_err and
+ *    autobal_poly_sturm_count.  The arithmetic (poly_mul, poly_axpby,
+ *    poly_deriv, cpoly_*) and autobal_poly_roots have no such cap;
+ *    autobal_match_roots takes n <= AUTOBAL_MATCH_MAXN.  None of the functions
+ *    below allocates except the *_workspace_alloc functions.
+ *  - The functions that return no status (evaluation, degree, conj, real part,
+ *    verdict from roots) do no validation: their pointers must be valid for
+ *    the lengths given.
  *  - Every function that can fail returns an autobal status and, when an
  *    `autobal_error *err` is given (NULL allowed), records a message naming
  *    the offending argument.  After a failure the output arrays hold
@@ -68,18 +74,24 @@ AUTOBAL_API size_t autobal_poly_degree(const double *c, size_t len);
 
 /* out = a * b.  out must hold outlen >= alen + blen - 1 coefficients; the
  * entries beyond the product are set to 0.  out may not alias a or b.
- * Returns AUTOBAL_EINVAL if outlen is too small or an input is empty. */
+ * Returns AUTOBAL_EINVAL (out untouched) if a, b or out is NULL, alen or blen
+ * is 0, or outlen < alen + blen - 1. */
 AUTOBAL_API int autobal_poly_mul(const double *a, size_t alen, const double *b, size_t blen,
                                  double *out, size_t outlen, autobal_error *err);
 
 /* out = alpha a + beta b, outlen >= max(alen, blen) (extra entries zeroed).
- * out may alias a or b. */
+ * out may alias a or b.  An empty input (length 0, pointer may then be NULL)
+ * counts as the zero polynomial.  Returns AUTOBAL_EINVAL (out untouched) if
+ * out is NULL, a is NULL with alen > 0, b is NULL with blen > 0, or
+ * outlen < max(alen, blen). */
 AUTOBAL_API int autobal_poly_axpby(double alpha, const double *a, size_t alen, double beta,
                                    const double *b, size_t blen, double *out, size_t outlen,
                                    autobal_error *err);
 
-/* out = p'(x): outlen >= len - 1 (at least 1); extra entries zeroed.
- * out may alias c. */
+/* out = p'(x): outlen >= len - 1 (at least 1); extra entries zeroed (the
+ * derivative of a constant is the one coefficient 0).  out may alias c.
+ * Returns AUTOBAL_EINVAL (out untouched) if c or out is NULL, len is 0, or
+ * outlen < max(len - 1, 1). */
 AUTOBAL_API int autobal_poly_deriv(const double *c, size_t len, double *out, size_t outlen,
                                    autobal_error *err);
 
@@ -88,11 +100,16 @@ AUTOBAL_API int autobal_poly_deriv(const double *c, size_t len, double *out, siz
 /* ------------------------------------------------------------------------ */
 
 /* out = a * b; out holds outlen >= alen + blen - 1 complex coefficients
- * (2*outlen doubles); no aliasing. */
+ * (2*outlen doubles; the entries beyond the product are set to 0); no
+ * aliasing.  Returns AUTOBAL_EINVAL (out untouched) if a, b or out is NULL,
+ * alen or blen is 0, or outlen < alen + blen - 1. */
 AUTOBAL_API int autobal_cpoly_mul(const double *a, size_t alen, const double *b, size_t blen,
                                   double *out, size_t outlen, autobal_error *err);
 
-/* out = (ar + i ai) a + (br + i bi) b; outlen >= max(alen, blen); out may alias. */
+/* out = (ar + i ai) a + (br + i bi) b; outlen >= max(alen, blen) (extra
+ * entries zeroed); out may alias a or b; an empty input counts as zero.
+ * Returns AUTOBAL_EINVAL (out untouched) if out is NULL, a is NULL with
+ * alen > 0, b is NULL with blen > 0, or outlen < max(alen, blen). */
 AUTOBAL_API int autobal_cpoly_axpby(double ar, double ai, const double *a, size_t alen, double br,
                                     double bi, const double *b, size_t blen, double *out,
                                     size_t outlen, autobal_error *err);
@@ -198,7 +215,11 @@ AUTOBAL_API int autobal_poly_hurwitz_err(const double *c, const double *cerr, si
 /* Verdict from computed roots: with m = max Re(root) (written to *max_re,
  * may be NULL) and scale = max(1, max |root|):
  *   STABLE if m < -tol*scale, UNSTABLE if m > tol*scale, else MARGINAL.
- * n == 0 gives STABLE with *max_re = -inf. */
+ * n == 0 gives STABLE with *max_re = -inf.  Returns the verdict itself (not a
+ * status; no validation).  Non-finite input: a NaN real part anywhere gives
+ * m = NaN (written to *max_re) and MARGINAL; a NaN imaginary part does not
+ * enter scale (and changes nothing else); with tol >= 0 an infinite root
+ * makes scale infinite, hence MARGINAL; a NaN tol gives MARGINAL (n > 0). */
 AUTOBAL_API int autobal_roots_verdict(size_t n, const double *re, const double *im, double tol,
                                       double *max_re);
 

@@ -51,7 +51,8 @@ typedef enum autobal_status {
 /* Static message of a status code ("unknown status" for other values).
  * Never NULL; the string is owned by the library. */
 AUTOBAL_API const char *autobal_strerror(int status);
-/* Name of a status code, e.g. "AUTOBAL_EINVAL"; "AUTOBAL_UNKNOWN" otherwise. */
+/* Name of a status code, e.g. "AUTOBAL_EINVAL"; "AUTOBAL_UNKNOWN" otherwise.
+ * Never NULL; a static string owned by the library. */
 AUTOBAL_API const char *autobal_status_name(int status);
 
 /* An error record: the last status and a human-readable message that names
@@ -64,7 +65,9 @@ typedef struct autobal_error {
   char message[AUTOBAL_ERRMSG_SIZE];
 } autobal_error;
 
-/* Reset an error record to AUTOBAL_SUCCESS with an empty message. */
+/* Reset an error record to AUTOBAL_SUCCESS with an empty message (nothing
+ * for NULL).  Messages longer than AUTOBAL_ERRMSG_SIZE - 1 characters are
+ * truncated when recorded; message is always NUL-terminated. */
 AUTOBAL_API void autobal_error_clear(autobal_error *err);
 
 AUTOBAL_END_DECLS

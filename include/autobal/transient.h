@@ -228,10 +228,13 @@ AUTOBAL_API const char *autobal_transient_errmsg(const autobal_transient *tr);
  * callback).  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL or AUTOBAL_ENOMEM. */
 AUTOBAL_API int autobal_transient_set_options(autobal_transient *tr,
                                               const autobal_transient_options *opt);
-/* The current options (the stepper name points to a static string). */
+/* The current options (the stepper name points to a static string); the
+ * defaults of autobal_transient_options_default() when tr is NULL. */
 AUTOBAL_API autobal_transient_options autobal_transient_get_options(const autobal_transient *tr);
 
-/* Callbacks (fn NULL removes one). */
+/* Callbacks (fn NULL removes one; user is stored as given and passed back).
+ * They replace the previous callback of the same kind, take effect at the next
+ * run, and do nothing when tr is NULL (there is no status to return). */
 AUTOBAL_API void autobal_transient_set_observer(autobal_transient *tr,
                                                 autobal_transient_observer_fn fn, void *user);
 AUTOBAL_API void autobal_transient_set_progress(autobal_transient *tr,
@@ -243,7 +246,8 @@ AUTOBAL_API void autobal_transient_set_event_handler(autobal_transient *tr,
 /* Add an event g(t, y) = 0.  direction: +1 only rising crossings (g from < 0
  * to >= 0), -1 only falling ones, 0 both.  terminal: 1 to stop the run at
  * the first such event.  Returns the event's index (>= 0) or a negative
- * status (AUTOBAL_EINVAL, AUTOBAL_ENOMEM). */
+ * status (AUTOBAL_EINVAL: g NULL, bad direction, more than 100000 events, or
+ * tr NULL; AUTOBAL_ENOMEM); the events already added are kept. */
 AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_transient_scalar_fn g,
                                             void *user, int direction, int terminal);
 
@@ -251,18 +255,20 @@ AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_trans
  * threshold has held continuously for `duration` (>= 0, time units) - e.g.
  * the residual unbalance below a tolerance for N revolutions: "time to
  * balance" = hit.t_start.  If s(t0) < threshold, t_start = t0.  Returns the
- * index or a negative status. */
+ * index or a negative status (as autobal_transient_add_event; also
+ * AUTOBAL_EINVAL for a non-finite threshold or a duration < 0 or not finite). */
 AUTOBAL_API int autobal_transient_add_dwell_event(autobal_transient *tr,
                                                   autobal_transient_scalar_fn s, void *user,
                                                   double threshold, double duration,
                                                   int terminal);
 
-/* Remove all events. */
+/* Remove all events (their indices become invalid); nothing when tr is NULL. */
 AUTOBAL_API void autobal_transient_clear_events(autobal_transient *tr);
 
 /* After a run: how many times event `index` fired (*count, may be NULL) and
  * its first hit (*first, may be NULL; written only if it fired).  Returns 1
- * if it fired, 0 if not, AUTOBAL_EINVAL for a bad index. */
+ * if it fired, 0 if not, AUTOBAL_EINVAL for a bad index or a NULL tr (then
+ * nothing is written and no message is recorded). */
 AUTOBAL_API int autobal_transient_event_result(const autobal_transient *tr, size_t index,
                                                unsigned long *count,
                                                autobal_transient_event_hit *first);
@@ -275,7 +281,8 @@ AUTOBAL_API int autobal_transient_event_result(const autobal_transient *tr, size
 AUTOBAL_API int autobal_transient_run(autobal_transient *tr, const autobal_transient_system *sys,
                                       double t0, double t1, double y[], double *t_reached);
 
-/* Statistics of the last run (zeros before the first). */
+/* Statistics of the last run (zeros before the first; zeros with
+ * event_index = -1 when tr is NULL; nothing when stats is NULL). */
 AUTOBAL_API void autobal_transient_get_stats(const autobal_transient *tr,
                                              autobal_transient_stats *stats);
 
