@@ -8,7 +8,10 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -260,6 +263,413 @@ static void copy_prefix(const char *src, const char *dst, long nbytes) {
 static long file_size(const char *p) {
   struct stat st;
   return stat(p, &st) == 0 ? (long)st.st_size : -1;
+}
+
+/* ---------------------------------------------------------------------- */
+/* The series writer thread (archive.c writes full series buffers in a      */
+/* background thread; every HDF5 call of the module holds one process lock) */
+/* ---------------------------------------------------------------------- */
+/* Also run under ThreadSanitizer (no OpenMP: libgomp is not instrumented):
+ *   cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DAUTOBAL_OPENMP=OFF \
+ *     -DAUTOBAL_BUILD_APPS=OFF "-DCMAKE_C_FLAGS=-fsanitize=thread -g -O1" \
+ *     -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread -DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=thread
+ *   cmake --build build-tsan --target test_archive
+ *   TSAN_OPTIONS=halt_on_error=1 build-tsan/tests/test_archive
+ * HDF5 itself is not instrumented: TSan checks the module's own hand-over between the
+ * caller and the writer (it reports races when series_idle does not wait). */
+
+#define W_NV 6
+#define W_ROWS 100003 /* 24 full buffers of AUTOBAL_ARCHIVE_SERIES_ROWS and a partial one */
+#define W_CAP AUTOBAL_ARCHIVE_SERIES_ROWS
+
+/* Values of row i: exact binary fractions, and in the last variable an arbitrary 64-bit
+ * pattern (NaNs with payloads, infinities, subnormals, -0 among them): the file must
+ * hold the appended bits. */
+static uint64_t w_mix(uint64_t x) { /* splitmix64 */
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+static double w_time(size_t i, unsigned salt) { return 0.5 * (double)i + (double)salt; }
+static double w_value(size_t i, size_t j, size_t nv, unsigned salt) {
+  if (j == nv - 1) {
+    uint64_t x = w_mix((uint64_t)i ^ ((uint64_t)salt << 40));
+    double d;
+    memcpy(&d, &x, sizeof d);
+    return d;
+  }
+  return (double)i * (double)(j + 1) + 0.125 * (double)j - (double)salt;
+}
+static void w_row(size_t i, size_t nv, unsigned salt, double *row) {
+  size_t j;
+  for (j = 0; j < nv; j++) row[j] = w_value(i, j, nv, salt);
+}
+
+/* 1 if dataset `path` holds exactly (bitwise) n values f(i) of the series. */
+static int w_column_is(hid_t f, const char *path, size_t n, size_t j, size_t nv, unsigned salt) {
+  size_t got = 0, i;
+  double *v = h5_read(f, path, &got);
+  int ok = v != NULL && got == n;
+  for (i = 0; ok && i < n; i++) {
+    double want = j == (size_t)-1 ? w_time(i, salt) : w_value(i, j, nv, salt);
+    ok = memcmp(&v[i], &want, sizeof want) == 0;
+    if (!ok) printf("     %s[%zu] differs\n", path, i);
+  }
+  free(v);
+  return ok;
+}
+
+/* A second archive written by another thread while the main thread streams its own:
+ * one row per append, then close.  Returns 0 or the first failing status. */
+typedef struct {
+  char path[1100];
+  int status;
+  char msg[AUTOBAL_ERRMSG_SIZE];
+  size_t length;
+} w_other;
+
+static void *w_other_main(void *arg) {
+  w_other *o = (w_other *)arg;
+  const char *nm[3] = {"p", "q", "r"}, *un[3] = {"m", "1", "1"};
+  autobal_archive *a = NULL;
+  autobal_archive_series *s = NULL;
+  autobal_error err;
+  size_t i;
+  int rc = autobal_archive_create(o->path, 1, &a, &err);
+  if (rc != AUTOBAL_SUCCESS) {
+    o->status = rc;
+    snprintf(o->msg, sizeof o->msg, "%s", err.message);
+    return NULL;
+  }
+  rc = autobal_archive_series_open(a, "/other", "t", "s", NULL, 3, nm, un, NULL, &s);
+  for (i = 0; i < W_ROWS && rc == AUTOBAL_SUCCESS; i++) {
+    double t = w_time(i, 7), row[3];
+    w_row(i, 3, 7, row);
+    rc = autobal_archive_series_append(s, 1, &t, row);
+    /* many small HDF5 operations from this thread while the writers compress */
+    if (rc == AUTOBAL_SUCCESS && i % 64 == 0) rc = autobal_archive_attr_int(a, "/other", "rows", (long)i);
+  }
+  o->length = autobal_archive_series_length(s);
+  if (rc != AUTOBAL_SUCCESS) snprintf(o->msg, sizeof o->msg, "%s", autobal_archive_errmsg(a));
+  if (rc == AUTOBAL_SUCCESS) rc = autobal_archive_close(a, &err);
+  else autobal_archive_discard(a);
+  if (rc != AUTOBAL_SUCCESS && o->msg[0] == '\0') snprintf(o->msg, sizeof o->msg, "%s", err.message);
+  o->status = rc;
+  return NULL;
+}
+
+/* List callback that calls the archive again (the HDF5 lock must not be held). */
+typedef struct {
+  autobal_archive *a;
+  int n, has_units;
+} w_list_ctx;
+static int w_list_cb(const char *name, int is_group, void *vctx) {
+  w_list_ctx *c = (w_list_ctx *)vctx;
+  char p[300];
+  (void)is_group;
+  snprintf(p, sizeof p, "/w/a/%s", name);
+  c->n++;
+  c->has_units += autobal_archive_has(c->a, p, "units");
+  return 0;
+}
+
+/* Write failures inside the writer thread, in a child process (see the file-size limit
+ * test in main for why).  mode 0: the failure comes back from _series_flush; mode 1:
+ * from _series_append. */
+static void w_failure_child(const char *p, int mode) {
+  autobal_archive *a = NULL;
+  autobal_archive_series *s = NULL;
+  autobal_error err;
+  struct rlimit old_lim, lim;
+  const char *nm[2] = {"u", "v"}, *un[2] = {"1", "1"};
+  char tmp[1200];
+  size_t i, n_ok = 0, len;
+  int rc = AUTOBAL_SUCCESS;
+  char errpath[1200];
+  int errfd, savefd;
+  snprintf(tmp, sizeof tmp, "%s.partial-%ld", p, (long)getpid());
+  /* HDF5 keeps one error stack and automatic handler per thread (thread-safe builds):
+   * the writer thread starts with HDF5's printing handler, which the library must
+   * silence there too.  Catch anything printed on stderr. */
+  snprintf(errpath, sizeof errpath, "%s.stderr-%ld", p, (long)getpid());
+  fflush(stderr);
+  savefd = dup(2);
+  errfd = open(errpath, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (errfd >= 0) {
+    dup2(errfd, 2);
+    close(errfd);
+  }
+  signal(SIGXFSZ, SIG_IGN);
+  if (getrlimit(RLIMIT_FSIZE, &old_lim) != 0 || autobal_archive_create(p, 1, &a, &err) != AUTOBAL_SUCCESS ||
+      autobal_archive_series_open(a, "/e", "t", "s", NULL, 2, nm, un, NULL, &s) != AUTOBAL_SUCCESS) {
+    CHECK("[writer child] set up", 0);
+    return;
+  }
+  /* one buffer of incompressible rows (the last variable is random bits) fits */
+  for (i = 0; i < W_CAP && rc == AUTOBAL_SUCCESS; i++) {
+    double t = w_time(i, 0), row[2];
+    w_row(i, 2, 0, row);
+    rc = autobal_archive_series_append(s, 1, &t, row);
+  }
+  CHECK_STATUS("[writer child] first buffer appended", rc, AUTOBAL_SUCCESS);
+  CHECK_STATUS("[writer child] and flushed", autobal_archive_series_flush(s), AUTOBAL_SUCCESS);
+  lim = old_lim;
+  lim.rlim_cur = (rlim_t)file_size(tmp) + (mode == 0 ? 1024 : 200 * 1024);
+  CHECK("[writer child] file-size limit set", file_size(tmp) > 0 && setrlimit(RLIMIT_FSIZE, &lim) == 0);
+  if (mode == 0) {
+    /* A full buffer is handed to the writer: the append cannot know yet that the write
+     * fails (it would in a synchronous design); the flush waits and reports it. */
+    for (i = W_CAP; i < 2 * W_CAP && rc == AUTOBAL_SUCCESS; i++) {
+      double t = w_time(i, 0), row[2];
+      w_row(i, 2, 0, row);
+      rc = autobal_archive_series_append(s, 1, &t, row);
+    }
+    CHECK_STATUS("[writer child] append of the buffer that will fail returns (written in the background)", rc,
+                 AUTOBAL_SUCCESS);
+    rc = autobal_archive_series_flush(s);
+    printf("     flush after a failed background write: %d %s\n", rc, autobal_archive_errmsg(a));
+    CHECK_STATUS("[writer child] flush reports the writer's failure", rc, AUTOBAL_EIO);
+    len = autobal_archive_series_length(s);
+    CHECK("[writer child] length: the rows in the file before the failure", len == W_CAP);
+  } else {
+    /* Rows one at a time until an append reports the failure of a buffer written in
+     * the background.  It is the buffer after the `len` rows in the file; the caller
+     * cannot have appended more than that buffer and a full second one. */
+    for (i = W_CAP; i < 200 * W_CAP; i++) {
+      double t = w_time(i, 0), row[2];
+      w_row(i, 2, 0, row);
+      rc = autobal_archive_series_append(s, 1, &t, row);
+      if (rc != AUTOBAL_SUCCESS) break;
+      n_ok = i + 1;
+    }
+    printf("     append after a failed background write (row %zu): %d %s\n", i, rc, autobal_archive_errmsg(a));
+    CHECK_STATUS("[writer child] an append reports the writer's failure", rc, AUTOBAL_EIO);
+    len = autobal_archive_series_length(s);
+    printf("     rows accepted %zu, rows in the file %zu\n", n_ok, len);
+    CHECK("[writer child] length: whole buffers written before the failure", len >= W_CAP && len % W_CAP == 0);
+    CHECK("[writer child] reported no earlier than the failing buffer was handed over", n_ok >= len + W_CAP);
+    CHECK("[writer child] reported no later than the next buffer was handed over", n_ok < len + 2 * W_CAP);
+  }
+  CHECK_MSG("[writer child] names the series", autobal_archive_errmsg(a), "series '/e/t'");
+  CHECK_MSG("[writer child] with the HDF5 text", autobal_archive_errmsg(a), "HDF5");
+  CHECK_MSG("[writer child] with the OS reason", autobal_archive_errmsg(a), "File too large");
+  CHECK("[writer child] message on one line", strchr(autobal_archive_errmsg(a), '\n') == NULL);
+  {
+    double t = 0.0, row[2] = {0.0, 0.0};
+    CHECK_STATUS("[writer child] later appends refused", autobal_archive_series_append(s, 1, &t, row),
+                 AUTOBAL_EIO);
+    CHECK_MSG("[writer child] as unusable", autobal_archive_errmsg(a), "unusable after an earlier write failure");
+    CHECK("[writer child] length unchanged", autobal_archive_series_length(s) == len);
+  }
+  CHECK_STATUS("[writer child] flush refused", autobal_archive_series_flush(s), AUTOBAL_EIO);
+  rc = autobal_archive_close(a, &err);
+  printf("     close: %s\n", err.message);
+  CHECK_STATUS("[writer child] close fails with EIO", rc, AUTOBAL_EIO);
+  CHECK("[writer child] temporary kept for inspection", exists(tmp) && !exists(p));
+  CHECK("[writer child] no HDF5 auto-handler call", silent_handler_calls == 0);
+  setrlimit(RLIMIT_FSIZE, &old_lim);
+  fflush(stderr);
+  if (savefd >= 0) {
+    dup2(savefd, 2);
+    close(savefd);
+  }
+  printf("     stderr while failing: %ld bytes\n", file_size(errpath));
+  CHECK("[writer child] nothing printed on stderr (HDF5 silenced in the writer thread too)",
+        errfd >= 0 && file_size(errpath) == 0);
+  remove(errpath);
+  remove(tmp);
+}
+
+static void test_series_writer(const char *base) {
+  char pa[1100], pc[1100], tmpc[1200];
+  w_other other;
+  pthread_t th;
+  int th_ok;
+  autobal_archive *a = NULL, *c = NULL;
+  autobal_archive_series *s1 = NULL, *s2 = NULL, *sc = NULL;
+  autobal_error err;
+  const char *nm[W_NV] = {"v0", "v1", "v2", "v3", "v4", "bits"};
+  const char *un[W_NV] = {"m", "m", "1", "1", "s", "1"};
+  static const size_t batches[] = {1, 7, 4095, 4096, 4097, 1, 12289, 333, 2, 8191};
+  static double rows[12289 * W_NV], t[12289], rows2[12289 * 2], *tcopy;
+  size_t done = 0, done2 = 0, b = 0, i;
+  int rc = AUTOBAL_SUCCESS, rc2 = AUTOBAL_SUCCESS, flushed = 0, varred = 0;
+
+  printf("---- series writer thread ----\n");
+  snprintf(pa, sizeof pa, "%s.writer_a", base);
+  snprintf(other.path, sizeof other.path, "%s.writer_b", base);
+  snprintf(pc, sizeof pc, "%s.writer_c", base);
+  other.status = -1000;
+  other.msg[0] = '\0';
+  other.length = 0;
+  tcopy = malloc(W_ROWS * sizeof *tcopy);
+  CHECK("allocated", tcopy != NULL);
+  if (tcopy == NULL) return;
+  for (i = 0; i < W_ROWS; i++) tcopy[i] = w_time(i, 0);
+
+  /* archive B from a second thread, concurrently */
+  th_ok = pthread_create(&th, NULL, w_other_main, &other) == 0;
+  CHECK("second writing thread started", th_ok);
+
+  CHECK_STATUS("create A", autobal_archive_create(pa, 1, &a, &err), AUTOBAL_SUCCESS);
+  if (a == NULL) {
+    if (th_ok) pthread_join(th, NULL);
+    free(tcopy);
+    return;
+  }
+  CHECK_STATUS("series 1 (6 variables)", autobal_archive_series_open(a, "/w/a", "t", "s", NULL, W_NV, nm, un, NULL, &s1),
+               AUTOBAL_SUCCESS);
+  CHECK_STATUS("series 2 (2 variables)", autobal_archive_series_open(a, "/w/b", "t", "s", NULL, 2, nm, un, NULL, &s2),
+               AUTOBAL_SUCCESS);
+  /* Batches of 1 row to 3 buffers, the two series interleaved; meanwhile a flush at a
+   * row count that is not a chunk multiple, attributes, a variable over the series
+   * dimension (it must see every row appended before it) and a listing. */
+  while (done < W_ROWS && rc == AUTOBAL_SUCCESS && rc2 == AUTOBAL_SUCCESS) {
+    size_t n = batches[b++ % (sizeof batches / sizeof batches[0])], n2;
+    if (n > W_ROWS - done) n = W_ROWS - done;
+    for (i = 0; i < n; i++) {
+      t[i] = w_time(done + i, 0);
+      w_row(done + i, W_NV, 0, rows + i * W_NV);
+    }
+    rc = autobal_archive_series_append(s1, n, t, rows);
+    n2 = n / 2 + 1;
+    for (i = 0; i < n2; i++) {
+      t[i] = w_time(done2 + i, 3);
+      w_row(done2 + i, 2, 3, rows2 + i * 2);
+    }
+    rc2 = autobal_archive_series_append(s2, n2, t, rows2);
+    done += n;
+    done2 += n2;
+    if (rc == AUTOBAL_SUCCESS && !flushed && done > 3 * W_CAP) {
+      rc = autobal_archive_series_flush(s1);
+      flushed = 1;
+      printf("     flushed series 1 at %zu rows\n", done);
+    }
+    for (i = 0; i < 64 && rc == AUTOBAL_SUCCESS; i++)
+      rc = autobal_archive_attr_double(a, "/w", "rows", (double)done, "1");
+    if (rc == AUTOBAL_SUCCESS && !varred && done > W_ROWS / 2) {
+      const char *d1[1] = {"t"};
+      rc = autobal_archive_var(a, "/w/a", "tcopy", 1, d1, tcopy, "s", NULL);
+      varred = (int)done;
+    }
+  }
+  CHECK_STATUS("streamed series 1", rc, AUTOBAL_SUCCESS);
+  CHECK_STATUS("streamed series 2", rc2, AUTOBAL_SUCCESS);
+  if (rc != AUTOBAL_SUCCESS || rc2 != AUTOBAL_SUCCESS) printf("     %s\n", autobal_archive_errmsg(a));
+  CHECK("series 1 length", autobal_archive_series_length(s1) == W_ROWS);
+  CHECK("series 2 length", autobal_archive_series_length(s2) == done2);
+  {
+    w_list_ctx lc = {a, 0, 0};
+    CHECK_STATUS("list while streaming, callback calling the archive",
+                 autobal_archive_list(a, "/w/a", w_list_cb, &lc), AUTOBAL_SUCCESS);
+    CHECK("listed t, 6 variables, tcopy; all with units", lc.n == W_NV + 2 && lc.has_units == W_NV + 2);
+  }
+  CHECK_STATUS("close series 1", autobal_archive_series_close(s1), AUTOBAL_SUCCESS);
+  /* series 2 stays open: closed by archive_close, which waits for the writer */
+  CHECK_STATUS("close A", autobal_archive_close(a, &err), AUTOBAL_SUCCESS);
+  if (th_ok) pthread_join(th, NULL);
+  CHECK_STATUS("archive B written by another thread meanwhile", other.status, AUTOBAL_SUCCESS);
+  if (other.status != AUTOBAL_SUCCESS) printf("     %s\n", other.msg);
+  CHECK("archive B series length", other.length == W_ROWS);
+
+  /* read back with plain HDF5 */
+  {
+    hid_t f = H5Fopen(pa, H5F_ACC_RDONLY, H5P_DEFAULT);
+    char p[64];
+    size_t j, n = 0;
+    double *v;
+    int ok = f >= 0;
+    CHECK("A opens", f >= 0);
+    if (ok) {
+      CHECK("series 1 t: every row, bitwise", w_column_is(f, "/w/a/t", W_ROWS, (size_t)-1, W_NV, 0));
+      for (j = 0; j < W_NV; j++) {
+        char what[100];
+        snprintf(p, sizeof p, "/w/a/%s", nm[j]);
+        snprintf(what, sizeof what, "series 1 %s: every row, bitwise", nm[j]);
+        CHECK(what, w_column_is(f, p, W_ROWS, j, W_NV, 0));
+      }
+      CHECK("series 2 t: every row, bitwise", w_column_is(f, "/w/b/t", done2, (size_t)-1, 2, 3));
+      CHECK("series 2 v0: every row, bitwise", w_column_is(f, "/w/b/v0", done2, 0, 2, 3));
+      CHECK("series 2 v1: every row, bitwise", w_column_is(f, "/w/b/v1", done2, 1, 2, 3));
+      v = h5_read(f, "/w/a/tcopy", &n);
+      printf("     variable made at %d rows has %zu\n", varred, n);
+      CHECK("variable over the series dim made mid-stream has the rows appended before it",
+            v != NULL && varred > 0 && n == (size_t)varred);
+      free(v);
+      {
+        hid_t d = H5Dopen2(f, "/w/a/v1", H5P_DEFAULT), pl = d >= 0 ? H5Dget_create_plist(d) : -1;
+        hsize_t ch = 0;
+        int ok2 = pl >= 0 && H5Pget_layout(pl) == H5D_CHUNKED && H5Pget_chunk(pl, 1, &ch) == 1 &&
+                  ch == W_CAP && H5Pget_nfilters(pl) == 2;
+        if (ok2) {
+          unsigned flags, cd[4];
+          size_t ncd = 4;
+          ok2 = H5Pget_filter2(pl, 0, &flags, &ncd, cd, 0, NULL, NULL) == H5Z_FILTER_SHUFFLE;
+          ncd = 4;
+          ok2 = ok2 && H5Pget_filter2(pl, 1, &flags, &ncd, cd, 0, NULL, NULL) == H5Z_FILTER_DEFLATE;
+        }
+        CHECK("series columns: chunks of AUTOBAL_ARCHIVE_SERIES_ROWS rows, shuffle + deflate", ok2);
+        if (pl >= 0) H5Pclose(pl);
+        if (d >= 0) H5Dclose(d);
+      }
+      H5Fclose(f);
+      /* the random-bits column is incompressible; the rest compresses */
+      printf("     A: %ld bytes for %zu raw\n", file_size(pa), (size_t)(W_ROWS * (W_NV + 1) + done2 * 3) * 8);
+      CHECK("A is compressed", file_size(pa) > 0 && (size_t)file_size(pa) < (W_ROWS * (W_NV + 1) + done2 * 3) * 8 / 2);
+    }
+    f = H5Fopen(other.path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    CHECK("B opens", f >= 0);
+    if (f >= 0) {
+      CHECK("B t: every row, bitwise", w_column_is(f, "/other/t", W_ROWS, (size_t)-1, 3, 7));
+      CHECK("B p: every row, bitwise", w_column_is(f, "/other/p", W_ROWS, 0, 3, 7));
+      CHECK("B q: every row, bitwise", w_column_is(f, "/other/q", W_ROWS, 1, 3, 7));
+      CHECK("B r: every row, bitwise", w_column_is(f, "/other/r", W_ROWS, 2, 3, 7));
+      H5Fclose(f);
+    }
+  }
+  remove(pa);
+  remove(other.path);
+
+  /* discard while buffers are in flight: waits for the writer, leaves nothing */
+  CHECK_STATUS("create C", autobal_archive_create(pc, 1, &c, &err), AUTOBAL_SUCCESS);
+  if (c != NULL) {
+    rc = autobal_archive_series_open(c, "/c", "t", "s", NULL, W_NV, nm, un, NULL, &sc);
+    for (i = 0; i < 6 * W_CAP && rc == AUTOBAL_SUCCESS; i++) {
+      double tt = w_time(i, 0), row[W_NV];
+      w_row(i, W_NV, 0, row);
+      rc = autobal_archive_series_append(sc, 1, &tt, row);
+    }
+    CHECK_STATUS("C: 6 buffers appended", rc, AUTOBAL_SUCCESS);
+    autobal_archive_discard(c);
+    snprintf(tmpc, sizeof tmpc, "%s.partial-%ld", pc, (long)getpid());
+    CHECK("C discarded mid-stream: no final file, no temporary", !exists(pc) && !exists(tmpc));
+  }
+  free(tcopy);
+
+  /* failures inside the writer come back to the caller */
+  {
+    int mode;
+    for (mode = 0; mode < 2; mode++) {
+      pid_t pid;
+      int wst = 0;
+      fflush(stdout);
+      pid = fork();
+      if (pid == 0) {
+        check_failures_ = 0;
+        w_failure_child(pc, mode);
+        fflush(stdout);
+        _exit(check_failures_ == 0 ? 0 : 1);
+      }
+      CHECK("fork for the writer-failure test", pid > 0);
+      if (pid > 0) {
+        waitpid(pid, &wst, 0);
+        CHECK(mode == 0 ? "writer failure reported by flush: checks in the child passed"
+                        : "writer failure reported by append: checks in the child passed",
+              WIFEXITED(wst) && WEXITSTATUS(wst) == 0);
+      }
+    }
+  }
 }
 
 #define NX 300
@@ -935,6 +1345,9 @@ int main(int argc, char **argv) {
       CHECK("write-failure checks in the child passed", WIFEXITED(wst) && WEXITSTATUS(wst) == 0);
     }
   }
+
+  /* ---- the series writer thread ---------------------------------------------- */
+  test_series_writer(path);
 
   /* ---- no printing, handler restored, no leaked HDF5 ids ------------------ */
   {

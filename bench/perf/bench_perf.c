@@ -53,6 +53,14 @@ static double now(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+/* CPU time of the calling thread (the HDF5 measurement: the archive's writer
+ * thread is not counted) */
+static double thread_cpu_now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
 /* process CPU time: for the one-thread measurements (roots, verdicts), so
  * that time the process spends preempted by other processes does not count */
 static double cpu_now(void) {
@@ -251,6 +259,7 @@ static int cmd_hdf5(int argc, char **argv) {
   size_t nsamp, nch;
   int reps, r, st;
   double best_plain = INFINITY, best_write = INFINITY, t1, y[8];
+  double cpu_write = 0.0, main_cpu_write = 0.0, main_cpu_plain = INFINITY;
   long long fsize = 0;
   if (argc != 6) return die("hdf5", "usage: hdf5 NSAMP NCH REPS FILE");
   nsamp = (size_t)atol(argv[2]);
@@ -273,7 +282,7 @@ static int cmd_hdf5(int argc, char **argv) {
     int mode;
     for (mode = 0; mode < 2; mode++) {
       autobal_archive *a = NULL;
-      double t;
+      double t, cpu0 = cpu_now(), th0 = thread_cpu_now();
       oc.series = NULL;
       oc.status = 0;
       t = now();
@@ -293,7 +302,12 @@ static int cmd_hdf5(int argc, char **argv) {
       }
       t = now() - t;
       if (mode == 0 && t < best_plain) best_plain = t;
-      if (mode == 1 && t < best_write) best_write = t;
+      if (mode == 0 && thread_cpu_now() - th0 < main_cpu_plain) main_cpu_plain = thread_cpu_now() - th0;
+      if (mode == 1 && t < best_write) {
+        best_write = t;
+        cpu_write = cpu_now() - cpu0;
+        main_cpu_write = thread_cpu_now() - th0;
+      }
     }
   }
   autobal_transient_get_stats(tr, &stats);
@@ -304,10 +318,12 @@ static int cmd_hdf5(int argc, char **argv) {
   }
   printf("{\"samples\": %lu, \"channels\": %zu, \"reps\": %d, \"steps\": %lu, \"rhs_evals\": %lu, "
          "\"seconds_no_write\": %.6g, \"seconds_write\": %.6g, \"overhead\": %.4f, "
-         "\"raw_bytes\": %lld, \"file_bytes\": %lld, \"ratio\": %.3f}\n",
+         "\"raw_bytes\": %lld, \"file_bytes\": %lld, \"ratio\": %.3f, "
+         "\"main_cpu_no_write\": %.6g, \"main_cpu_write\": %.6g, \"process_cpu_write\": %.6g}\n",
          stats.observer_calls, nch, reps, stats.steps, stats.rhs_evals, best_plain, best_write,
          best_write / best_plain - 1.0, (long long)(stats.observer_calls * (nch + 1) * 8), fsize,
-         fsize > 0 ? (double)(stats.observer_calls * (nch + 1) * 8) / (double)fsize : 0.0);
+         fsize > 0 ? (double)(stats.observer_calls * (nch + 1) * 8) / (double)fsize : 0.0, main_cpu_plain,
+         main_cpu_write, cpu_write);
   autobal_transient_free(tr);
   return 0;
 }

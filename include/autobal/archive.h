@@ -209,11 +209,12 @@ AUTOBAL_API int autobal_archive_var_int(autobal_archive *a, const char *group, c
  * nvars >= 1 float64 variables names[i] along it with units[i] (required) and
  * long_names[i] (long_names NULL or long_names[i] NULL: the name).  Rows are appended
  * with _series_append into one of two buffers of AUTOBAL_ARCHIVE_SERIES_ROWS rows
- * (allocated here, the only allocation: 2 x (nvars + 1) x AUTOBAL_ARCHIVE_SERIES_ROWS
- * doubles).  A full buffer is handed to the archive's writer thread, which extends the
- * datasets and writes it (HDF5 compresses it there), while appends go on into the other
- * buffer; an append waits only if the writer has not finished the previous buffer of
- * this series.  The rest is written by _series_flush, _series_close,
+ * (allocated here with one column of scratch, the only allocation: (2 nvars + 3) x
+ * AUTOBAL_ARCHIVE_SERIES_ROWS doubles; the writer thread, started once per archive, has
+ * the default thread stack).  A full buffer is handed to the archive's writer thread,
+ * which extends the datasets and writes it (HDF5 compresses it there), while appends go
+ * on into the other buffer; an append waits only if the writer has not finished the
+ * previous buffer of this series.  The rest is written by _series_flush, _series_close,
  * autobal_archive_close and before autobal_archive_var/_var_int (so that a variable
  * over the series dimension sees every row appended).  Memory does not grow with the
  * run length.  Chunks are AUTOBAL_ARCHIVE_SERIES_ROWS rows, shuffle + deflate level 1
