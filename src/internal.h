@@ -22,4 +22,15 @@ int autobal_error_set(autobal_error *err, int status, const char *fmt, ...) AUTO
 int autobal_check_param(autobal_error *err, const char *name, double value, double lo, int lo_open,
                         double hi, int hi_open, const char *unit);
 
+/* The two root finders behind autobal_poly_roots (src/poly.c), for tests:
+ * c has degree(w) + 1 finite coefficients with c[degree] != 0 (not checked);
+ * the roots are NOT sorted.  Both return 0, or -1 when the method did not
+ * settle (re/im then unspecified).
+ * _aberth: exact zero roots split off, Aberth-Ehrlich iteration, real
+ *   structure restored (real roots with Im = 0, exact conjugate pairs).
+ * _qr: balanced companion matrix, Francis double-shift QR (LAPACK DLAHQR). */
+#include "autobal/stability.h"
+int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im);
+int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im);
+
 #endif

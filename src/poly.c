@@ -15,6 +15,10 @@
 #include <gsl/gsl_poly.h>
 #include <gsl/gsl_vector.h>
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 const char *autobal_verdict_name(int verdict) {
   switch (verdict) {
     case AUTOBAL_VERDICT_STABLE:
@@ -198,9 +202,556 @@ void autobal_cpoly_real_part(const double *a, size_t len, double *out, double *m
 
 struct autobal_poly_workspace {
   size_t degree;
-  gsl_poly_complex_workspace *w;
-  double *z; /* 2*degree packed complex roots */
+  gsl_poly_complex_workspace *w; /* last fall-back solver */
+  double *z;                     /* 2*degree packed complex roots (GSL) */
+  double *h;                     /* degree x degree companion matrix */
+  double *ab;                    /* Aberth: nrm[n], ca[n+1], starting-point tables */
+  unsigned char *flag;           /* Aberth: done[n], used[n] */
 };
+
+/* ---- eigenvalues of a small upper Hessenberg matrix ------------------------
+ * The Francis double-shift QR iteration of LAPACK's DLAHQR (version 3.x, with
+ * the Ahues-Tisseur deflation test and DLANV2 for the final 2 x 2 blocks),
+ * eigenvalues only: the reflectors are applied to the active block
+ * h[l..i][l..i] alone.  h is row-major with leading dimension ld and is
+ * overwritten.  Returns 0, or -1 when an eigenvalue did not converge in
+ * 30 max(10, n) iterations (the caller falls back to GSL). */
+#define HH(r, c) h[(size_t)(r) * ld + (size_t)(c)]
+
+/* Fortran SIGN(a, b) */
+static double sign_of(double a, double b) { return (b >= 0.0) ? fabs(a) : -fabs(a); }
+
+/* eigenvalues of the real 2 x 2 [[a, b], [c, d]] (DLANV2, Schur factor not formed) */
+static void eig2_standard(double a, double b, double c, double d, double *rt1r, double *rt1i,
+                          double *rt2r, double *rt2i) {
+  const double eps = DBL_EPSILON;
+  if (c == 0.0) {
+    /* already upper triangular */
+  } else if (b == 0.0) {
+    double t = d; /* swap rows and columns */
+    d = a;
+    a = t;
+    b = -c;
+    c = 0.0;
+  } else if ((a - d) == 0.0 && (b >= 0.0) != (c >= 0.0)) {
+    /* standard complex block */
+  } else {
+    const double temp = a - d;
+    double p = 0.5 * temp;
+    const double bcmax = fmax(fabs(b), fabs(c));
+    const double bcmis = fmin(fabs(b), fabs(c)) * sign_of(1.0, b) * sign_of(1.0, c);
+    const double scale = fmax(fabs(p), bcmax);
+    double z = (p / scale) * p + (bcmax / scale) * bcmis;
+    if (z >= 4.0 * eps) {
+      /* real eigenvalues */
+      z = p + sign_of(sqrt(scale) * sqrt(z), p);
+      a = d + z;
+      d = d - (bcmax / z) * bcmis;
+      b = b - c;
+      c = 0.0;
+    } else {
+      /* complex or nearly equal real eigenvalues: make the diagonal equal */
+      const double sigma = b + c;
+      const double tau = hypot(sigma, temp);
+      const double cs = sqrt(0.5 * (1.0 + fabs(sigma) / tau));
+      const double sn = -(p / (tau * cs)) * sign_of(1.0, sigma);
+      const double aa = a * cs + b * sn, bb = -a * sn + b * cs;
+      const double cc = c * cs + d * sn, dd = -c * sn + d * cs;
+      double mid;
+      a = aa * cs + cc * sn;
+      b = bb * cs + dd * sn;
+      c = -aa * sn + cc * cs;
+      d = -bb * sn + dd * cs;
+      mid = 0.5 * (a + d);
+      a = mid;
+      d = mid;
+      if (c != 0.0) {
+        if (b != 0.0) {
+          if ((b >= 0.0) == (c >= 0.0)) {
+            /* real eigenvalues */
+            const double sab = sqrt(fabs(b)), sac = sqrt(fabs(c));
+            p = sign_of(sab * sac, c);
+            a = mid + p;
+            d = mid - p;
+            b = b - c;
+            c = 0.0;
+          }
+        } else {
+          b = -c;
+          c = 0.0;
+        }
+      }
+    }
+  }
+  *rt1r = a;
+  *rt2r = d;
+  if (c == 0.0) {
+    *rt1i = 0.0;
+    *rt2i = 0.0;
+  } else {
+    *rt1i = sqrt(fabs(b)) * sqrt(fabs(c));
+    *rt2i = -*rt1i;
+  }
+}
+
+static double dmax(double a, double b) { return a > b ? a : b; }
+static double dmin(double a, double b) { return a < b ? a : b; }
+
+static int hessenberg_eigvals(int n, double *h, size_t ld, double *wr, double *wi) {
+  const double ulp = DBL_EPSILON, safmin = DBL_MIN;
+  const double smlnum = safmin * ((double)n / ulp);
+  const int itmax = 30 * (n > 10 ? n : 10), kexsh = 10;
+  const double dat1 = 0.75, dat2 = -0.4375;
+  int i = n - 1, kdefl = 0;
+  int j;
+  /* clear out the trash below the subdiagonal */
+  for (j = 0; j < n - 3; j++) {
+    HH(j + 2, j) = 0.0;
+    HH(j + 3, j) = 0.0;
+  }
+  if (n >= 3) HH(n - 1, n - 3) = 0.0;
+  while (i >= 0) {
+    int l = 0, its, converged = 0;
+    for (its = 0; its <= itmax; its++) {
+      int k, m;
+      double h11, h12, h21, h22, s, rt1r, rt1i, rt2r, rt2i, v[3] = {0.0, 0.0, 0.0};
+      /* look for a single small subdiagonal element */
+      for (k = i; k > l; k--) {
+        double tst, hkk1 = fabs(HH(k, k - 1));
+        if (hkk1 <= smlnum) break;
+        tst = fabs(HH(k - 1, k - 1)) + fabs(HH(k, k));
+        if (tst == 0.0) {
+          if (k - 2 >= 0) tst += fabs(HH(k - 1, k - 2));
+          if (k + 1 <= n - 1) tst += fabs(HH(k + 1, k));
+        }
+        if (hkk1 <= ulp * tst) {
+          const double hk1k = fabs(HH(k - 1, k));
+          const double ab = dmax(hkk1, hk1k), ba = dmin(hkk1, hk1k);
+          const double dk = fabs(HH(k - 1, k - 1) - HH(k, k));
+          const double aa = dmax(fabs(HH(k, k)), dk), bb = dmin(fabs(HH(k, k)), dk);
+          s = aa + ab;
+          if (ba * (ab / s) <= dmax(smlnum, ulp * (bb * (aa / s)))) break;
+        }
+      }
+      l = k;
+      if (l > 0) HH(l, l - 1) = 0.0;
+      if (l >= i - 1) {
+        converged = 1;
+        break;
+      }
+      kdefl++;
+      /* shifts */
+      if (kdefl % (2 * kexsh) == 0) { /* exceptional shift */
+        s = fabs(HH(i, i - 1)) + fabs(HH(i - 1, i - 2));
+        h11 = dat1 * s + HH(i, i);
+        h12 = dat2 * s;
+        h21 = s;
+        h22 = h11;
+      } else if (kdefl % kexsh == 0) {
+        s = fabs(HH(l + 1, l)) + fabs(HH(l + 2, l + 1));
+        h11 = dat1 * s + HH(l, l);
+        h12 = dat2 * s;
+        h21 = s;
+        h22 = h11;
+      } else {
+        h11 = HH(i - 1, i - 1);
+        h21 = HH(i, i - 1);
+        h12 = HH(i - 1, i);
+        h22 = HH(i, i);
+      }
+      s = fabs(h11) + fabs(h12) + fabs(h21) + fabs(h22);
+      if (s == 0.0) {
+        rt1r = rt1i = rt2r = rt2i = 0.0;
+      } else {
+        double tr, det, rtdisc;
+        h11 /= s;
+        h21 /= s;
+        h12 /= s;
+        h22 /= s;
+        tr = (h11 + h22) / 2.0;
+        det = (h11 - tr) * (h22 - tr) - h12 * h21;
+        rtdisc = sqrt(fabs(det));
+        if (det >= 0.0) { /* complex conjugate shifts */
+          rt1r = tr * s;
+          rt2r = rt1r;
+          rt1i = rtdisc * s;
+          rt2i = -rt1i;
+        } else { /* real shifts: use only one of them, twice */
+          rt1r = tr + rtdisc;
+          rt2r = tr - rtdisc;
+          if (fabs(rt1r - h22) <= fabs(rt2r - h22)) {
+            rt1r *= s;
+            rt2r = rt1r;
+          } else {
+            rt2r *= s;
+            rt1r = rt2r;
+          }
+          rt1i = rt2i = 0.0;
+        }
+      }
+      /* look for two consecutive small subdiagonal elements */
+      for (m = i - 2; m >= l; m--) {
+        double h21s = HH(m + 1, m), h00, h01;
+        s = fabs(HH(m, m) - rt2r) + fabs(rt2i) + fabs(h21s);
+        h21s = HH(m + 1, m) / s;
+        v[0] = h21s * HH(m, m + 1) + (HH(m, m) - rt1r) * ((HH(m, m) - rt2r) / s) - rt1i * (rt2i / s);
+        v[1] = h21s * (HH(m, m) + HH(m + 1, m + 1) - rt1r - rt2r);
+        v[2] = h21s * HH(m + 2, m + 1);
+        s = fabs(v[0]) + fabs(v[1]) + fabs(v[2]);
+        v[0] /= s;
+        v[1] /= s;
+        v[2] /= s;
+        if (m == l) break;
+        h00 = fabs(HH(m, m - 1)) * (fabs(v[1]) + fabs(v[2]));
+        h01 = fabs(v[0]) * (fabs(HH(m - 1, m - 1)) + fabs(HH(m, m)) + fabs(HH(m + 1, m + 1)));
+        if (h00 <= ulp * h01) break;
+      }
+      /* double-shift QR sweep on rows/columns l..i */
+      for (k = m; k <= i - 1; k++) {
+        const int nr = (i - k + 1 < 3) ? i - k + 1 : 3;
+        double alpha, xnorm, t1, v2, t2;
+        int jj;
+        if (k > m) {
+          v[0] = HH(k, k - 1);
+          v[1] = HH(k + 1, k - 1);
+          if (nr == 3) v[2] = HH(k + 2, k - 1);
+        }
+        /* DLARFG: reflector I - t1 (1, v2, v3)(1, v2, v3)^T mapping v to (beta, 0, 0) */
+        alpha = v[0];
+        xnorm = (nr == 3) ? v[1] * v[1] + v[2] * v[2] : v[1] * v[1]; /* squared */
+        if (xnorm == 0.0) {
+          t1 = 0.0;
+        } else {
+          /* plain sums of squares (hypot is ~10x slower); v was scaled to
+           * |v| ~ 1 above or holds entries of the balanced matrix */
+          double nrm = sqrt(alpha * alpha + xnorm);
+          double beta;
+          if (!(nrm > 1e-150 && nrm < 1e150)) nrm = hypot(alpha, hypot(v[1], nr == 3 ? v[2] : 0.0));
+          beta = -sign_of(nrm, alpha);
+          const double sc = 1.0 / (alpha - beta);
+          t1 = (beta - alpha) / beta;
+          v[1] *= sc;
+          if (nr == 3) v[2] *= sc;
+          v[0] = beta;
+        }
+        if (k > m) {
+          HH(k, k - 1) = v[0];
+          HH(k + 1, k - 1) = 0.0;
+          if (k < i - 1) HH(k + 2, k - 1) = 0.0;
+        } else if (m > l) {
+          HH(k, k - 1) *= (1.0 - t1);
+        }
+        v2 = v[1];
+        t2 = t1 * v2;
+        if (nr == 3) {
+          const double v3 = v[2], t3 = t1 * v3;
+          const int jmax = (k + 3 < i) ? k + 3 : i;
+          double *r0 = &HH(k, 0), *r1 = &HH(k + 1, 0), *r2 = &HH(k + 2, 0);
+          for (jj = k; jj <= i; jj++) {
+            const double sum = r0[jj] + v2 * r1[jj] + v3 * r2[jj];
+            r0[jj] -= sum * t1;
+            r1[jj] -= sum * t2;
+            r2[jj] -= sum * t3;
+          }
+          for (jj = l; jj <= jmax; jj++) {
+            double *rj = &HH(jj, k);
+            const double sum = rj[0] + v2 * rj[1] + v3 * rj[2];
+            rj[0] -= sum * t1;
+            rj[1] -= sum * t2;
+            rj[2] -= sum * t3;
+          }
+        } else {
+          double *r0 = &HH(k, 0), *r1 = &HH(k + 1, 0);
+          for (jj = k; jj <= i; jj++) {
+            const double sum = r0[jj] + v2 * r1[jj];
+            r0[jj] -= sum * t1;
+            r1[jj] -= sum * t2;
+          }
+          for (jj = l; jj <= i; jj++) {
+            double *rj = &HH(jj, k);
+            const double sum = rj[0] + v2 * rj[1];
+            rj[0] -= sum * t1;
+            rj[1] -= sum * t2;
+          }
+        }
+      }
+    }
+    if (!converged) return -1;
+    if (l == i) {
+      wr[i] = HH(i, i);
+      wi[i] = 0.0;
+    } else { /* l == i - 1 */
+      eig2_standard(HH(i - 1, i - 1), HH(i - 1, i), HH(i, i - 1), HH(i, i), &wr[i - 1], &wi[i - 1],
+                    &wr[i], &wi[i]);
+    }
+    kdefl = 0;
+    i = l - 1;
+  }
+  return 0;
+}
+#undef HH
+
+/* Balance the companion matrix m (nc x nc, row-major: ones on the subdiagonal,
+ * -c_i/c_n in the last column) by powers of 2, exploiting its sparsity: the
+ * algorithm of GSL's balance_companion_matrix (poly/balance.c), which is the
+ * Parlett-Reinsch balancing restricted to the non-zero entries.  Exact: only
+ * exponents change. */
+static void balance_companion(double *m, size_t nc) {
+  int not_converged = 1;
+  while (not_converged) {
+    size_t i, j;
+    not_converged = 0;
+    for (i = 0; i < nc; i++) {
+      double col_norm, row_norm, g, f, s;
+      /* column norm, excluding the diagonal */
+      if (i != nc - 1) {
+        col_norm = fabs(m[(i + 1) * nc + i]);
+      } else {
+        col_norm = 0.0;
+        for (j = 0; j < nc - 1; j++) col_norm += fabs(m[j * nc + nc - 1]);
+      }
+      /* row norm, excluding the diagonal */
+      if (i == 0)
+        row_norm = fabs(m[nc - 1]);
+      else if (i == nc - 1)
+        row_norm = fabs(m[i * nc + i - 1]);
+      else
+        row_norm = fabs(m[i * nc + i - 1]) + fabs(m[i * nc + nc - 1]);
+      if (col_norm == 0.0 || row_norm == 0.0) continue;
+      g = row_norm / 2.0;
+      f = 1.0;
+      s = col_norm + row_norm;
+      while (col_norm < g) {
+        f *= 2.0;
+        col_norm *= 4.0;
+      }
+      g = row_norm * 2.0;
+      while (col_norm > g) {
+        f /= 2.0;
+        col_norm /= 4.0;
+      }
+      if ((row_norm + col_norm) < 0.95 * s * f) {
+        not_converged = 1;
+        g = 1.0 / f;
+        if (i == 0) {
+          m[nc - 1] *= g;
+        } else {
+          m[i * nc + i - 1] *= g;
+          m[i * nc + nc - 1] *= g;
+        }
+        if (i == nc - 1)
+          for (j = 0; j < nc; j++) m[j * nc + i] *= f;
+        else
+          m[(i + 1) * nc + i] *= f;
+      }
+    }
+  }
+}
+
+/* ---- Aberth-Ehrlich iteration --------------------------------------------
+ * All roots of a real polynomial at once (O. Aberth, Math. Comp. 27 (1973);
+ * L. W. Ehrlich, Comm. ACM 10 (1967)) with the starting points and the
+ * stopping rule of D. A. Bini, Numer. Algorithms 13 (1996) (MPSolve):
+ *  - start: the moduli from the upper convex hull ("Newton polygon") of
+ *    (j, log|c_j|); the m roots of a hull segment of slope -log r are put on
+ *    the circle |z| = r at angles 2 pi t/m + 2 pi s/n + 0.7 (s = segment);
+ *  - update (Gauss-Seidel): N = p(z_i)/p'(z_i),
+ *    z_i <- z_i - N / (1 - N sum_{j != i} 1/(z_i - z_j));
+ *  - a root is accepted when |p(z_i)| <= 4 n eps sum_j |c_j| |z_i|^j (it is
+ *    then an exact root of a polynomial whose coefficients differ from c by
+ *    a relative 4 n eps: componentwise backward stable), after one more
+ *    update (which brings well-conditioned roots to rounding level).
+ * The result is accepted only when the Newton inclusion disks (a disk of
+ * radius n |p(z)/p'(z)| about z holds a root; (n + 1) |N| about the updated
+ * point) are pairwise disjoint, so that each holds exactly one root.  The
+ * real structure is then restored (real_structure): roots whose disk meets
+ * the real axis become real (Im = 0 exactly), the others are paired with
+ * their mirror images and replaced by exact conjugate pairs.  Anything that
+ * does not fit (no convergence in AB_MAXIT sweeps, overlapping disks, i.e.
+ * clustered or multiple roots, an odd number of non-real roots, a
+ * non-finite value) returns -1 and the caller uses the companion matrix QR
+ * instead. */
+#define AB_MAXIT 60
+
+/* approximate log2|x| for x != 0 (error < 0.09: enough for the hull) */
+static double log2_rough(double x) {
+  int e;
+  double m = frexp(fabs(x), &e); /* |x| = m 2^e, m in [0.5, 1) */
+  return (double)e - 2.0 + 2.0 * m;
+}
+
+static int aberth_roots(size_t n, const double *c, double *zr, double *zi, double *nrm,
+                        double *ca, unsigned char *done, const double *tab_re,
+                        const double *tab_im) {
+  const double tol = 4.0 * (double)n * DBL_EPSILON;
+  size_t i, j, nconv = 0, it;
+  /* Newton polygon: upper convex hull of (j, log2|c_j|), j = 0..n (c_0, c_n != 0) */
+  {
+    size_t hull[AUTOBAL_POLY_MAXLEN + 1], nh = 0, s;
+    double lg[AUTOBAL_POLY_MAXLEN + 1];
+    if (n + 1 > AUTOBAL_POLY_MAXLEN) return -1;
+    for (j = 0; j <= n; j++) {
+      ca[j] = fabs(c[j]);
+      lg[j] = (c[j] != 0.0) ? log2_rough(c[j]) : -HUGE_VAL;
+    }
+    for (j = 0; j <= n; j++) {
+      if (c[j] == 0.0) continue;
+      while (nh >= 2) { /* pop while the last point is not strictly above the chord */
+        const size_t a = hull[nh - 2], b = hull[nh - 1];
+        if ((lg[b] - lg[a]) * (double)(j - a) <= (lg[j] - lg[a]) * (double)(b - a)) nh--;
+        else break;
+      }
+      hull[nh++] = j;
+    }
+    i = 0;
+    for (s = 0; s + 1 < nh; s++) {
+      const size_t a = hull[s], b = hull[s + 1], m = b - a;
+      const double r = exp2((lg[a] - lg[b]) / (double)m);
+      const double rot_re = tab_re[n * (n + 1) / 2 + s], rot_im = tab_im[n * (n + 1) / 2 + s];
+      size_t t;
+      for (t = 0; t < m; t++, i++) {
+        const double ur = tab_re[m * (m - 1) / 2 + t], ui = tab_im[m * (m - 1) / 2 + t];
+        zr[i] = r * (ur * rot_re - ui * rot_im);
+        zi[i] = r * (ur * rot_im + ui * rot_re);
+        done[i] = 0;
+      }
+    }
+    if (i != n) return -1;
+  }
+  for (it = 0; it < AB_MAXIT && nconv < n; it++) {
+    for (i = 0; i < n; i++) {
+      double x, y, pr, pi, dr, di, b, ax, den, Nr, Ni, sr = 0.0, si = 0.0, tr, ti, q;
+      if (done[i] == 2) continue;
+      x = zr[i];
+      y = zi[i];
+      ax = sqrt(x * x + y * y);
+      pr = c[n];
+      pi = 0.0;
+      dr = 0.0;
+      di = 0.0;
+      b = ca[n];
+      for (j = n; j-- > 0;) {
+        const double t1 = dr * x - di * y + pr, t2 = pr * x - pi * y + c[j];
+        di = dr * y + di * x + pi;
+        dr = t1;
+        pi = pr * y + pi * x;
+        pr = t2;
+        b = b * ax + ca[j];
+      }
+      if (done[i] == 0 && pr * pr + pi * pi <= (tol * b) * (tol * b)) done[i] = 1;
+      den = dr * dr + di * di;
+      if (!(den > 0.0) || !isfinite(den)) {
+        if (done[i] == 1 || (pr == 0.0 && pi == 0.0)) { /* exact root or p' = 0 at an accepted point */
+          nrm[i] = 0.0;
+          done[i] = 2;
+          nconv++;
+          continue;
+        }
+        return -1;
+      }
+      den = 1.0 / den;
+      Nr = (pr * dr + pi * di) * den;
+      Ni = (pi * dr - pr * di) * den;
+      nrm[i] = (double)(n + 1) * sqrt(Nr * Nr + Ni * Ni); /* inclusion radius about the update */
+      for (j = 0; j < n; j++) {
+        double ur, ui;
+        if (j == i) continue;
+        ur = x - zr[j];
+        ui = y - zi[j];
+        q = ur * ur + ui * ui;
+        if (q > 0.0) {
+          q = 1.0 / q;
+          sr += ur * q;
+          si -= ui * q;
+        }
+      }
+      tr = 1.0 - (Nr * sr - Ni * si);
+      ti = -(Nr * si + Ni * sr);
+      q = tr * tr + ti * ti;
+      if (q > 0.0 && isfinite(q)) {
+        q = 1.0 / q;
+        zr[i] = x - (Nr * tr + Ni * ti) * q;
+        zi[i] = y - (Ni * tr - Nr * ti) * q;
+      }
+      if (done[i] == 1) { /* accepted: this was the final update */
+        done[i] = 2;
+        nconv++;
+      }
+    }
+  }
+  if (nconv < n) return -1;
+  for (i = 0; i < n; i++)
+    if (!isfinite(zr[i]) || !isfinite(zi[i])) return -1;
+  return 0;
+}
+
+/* Restore the structure of the roots of a real polynomial (see above):
+ * real roots get Im = 0, the others exact conjugate pairs.  -1 when the
+ * non-real roots do not pair up. */
+static int real_structure(size_t n, double *zr, double *zi, const double *nrm,
+                          unsigned char *used) {
+  size_t i, j, nup = 0, nlo = 0;
+  /* every root alone in its inclusion disk (else: a cluster, left to the QR,
+   * whose eigenvalues of one perturbed matrix keep e.g. the cluster's mean) */
+  for (i = 0; i < n; i++)
+    for (j = i + 1; j < n; j++) {
+      const double dr = zr[i] - zr[j], di = zi[i] - zi[j], rad = nrm[i] + nrm[j];
+      if (dr * dr + di * di <= rad * rad) return -1;
+    }
+  for (i = 0; i < n; i++) {
+    used[i] = 0;
+    if (fabs(zi[i]) <= nrm[i] + 4.0 * DBL_EPSILON * fabs(zr[i])) zi[i] = 0.0;
+    else if (zi[i] > 0.0) nup++;
+    else nlo++;
+  }
+  if (nup != nlo) return -1;
+  for (i = 0; i < n; i++) {
+    size_t best = n;
+    double bd = HUGE_VAL;
+    if (!(zi[i] > 0.0)) continue;
+    for (j = 0; j < n; j++) {
+      double d;
+      if (used[j] || !(zi[j] < 0.0)) continue;
+      d = fabs(zr[j] - zr[i]) + fabs(zi[j] + zi[i]);
+      if (d < bd) {
+        bd = d;
+        best = j;
+      }
+    }
+    /* the mirror image must lie within the two inclusion radii */
+    if (best == n || bd > 2.0 * (nrm[i] + nrm[best]) + 16.0 * DBL_EPSILON * (fabs(zr[i]) + zi[i]))
+      return -1;
+    used[best] = 1;
+    {
+      const double mr = 0.5 * (zr[i] + zr[best]), mi = 0.5 * (zi[i] - zi[best]);
+      zr[i] = zr[best] = mr;
+      zi[i] = mi;
+      zi[best] = -mi;
+    }
+  }
+  return 0;
+}
+
+/* Roots by the balanced companion matrix and hessenberg_eigvals; -1 when the
+ * iteration did not converge or produced a non-finite value. */
+int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im) {
+  const size_t n = w->degree;
+  double *h = w->h;
+  size_t i;
+  if (n == 1) {
+    re[0] = -c[0] / c[1];
+    im[0] = 0.0;
+    return isfinite(re[0]) ? 0 : -1;
+  }
+  memset(h, 0, n * n * sizeof *h);
+  for (i = 1; i < n; i++) h[i * n + i - 1] = 1.0;
+  for (i = 0; i < n; i++) h[i * n + n - 1] = -c[i] / c[n];
+  balance_companion(h, n);
+  if (hessenberg_eigvals((int)n, h, n, re, im) != 0) return -1;
+  for (i = 0; i < n; i++)
+    if (!isfinite(re[i]) || !isfinite(im[i])) return -1;
+  return 0;
+}
 
 autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree) {
   autobal_poly_workspace *w;
@@ -214,9 +765,29 @@ autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree) {
     w->w = gsl_poly_complex_workspace_alloc(degree + 1);
   }
   w->z = (double *)calloc(2 * degree, sizeof(double));
-  if (w->w == NULL || w->z == NULL) {
+  w->h = (degree <= 4096) ? (double *)malloc(degree * degree * sizeof(double)) : NULL;
+  w->ab = (degree <= 4096) ? (double *)malloc((2 * degree + 1 + 2 * (degree * (degree + 1) / 2 + degree)) * sizeof(double)) : NULL;
+  w->flag = (unsigned char *)malloc(2 * degree);
+  if (w->w == NULL || w->z == NULL || w->h == NULL || w->ab == NULL || w->flag == NULL) {
     autobal_poly_workspace_free(w);
     return NULL;
+  }
+  {
+    /* starting-point tables: e^{i (2 pi t/m + 0.7)} at m(m-1)/2 + t (m = 1..n),
+     * e^{i 2 pi s/n} at n(n+1)/2 + s */
+    const size_t nt = degree * (degree + 1) / 2 + degree;
+    double *tre = w->ab + 2 * degree + 1, *tim = tre + nt;
+    size_t m, t;
+    for (m = 1; m <= degree; m++)
+      for (t = 0; t < m; t++) {
+        const double a = 2.0 * M_PI * (double)t / (double)m + 0.7;
+        tre[m * (m - 1) / 2 + t] = cos(a);
+        tim[m * (m - 1) / 2 + t] = sin(a);
+      }
+    for (t = 0; t < degree; t++) {
+      tre[degree * (degree + 1) / 2 + t] = cos(2.0 * M_PI * (double)t / (double)degree);
+      tim[degree * (degree + 1) / 2 + t] = sin(2.0 * M_PI * (double)t / (double)degree);
+    }
   }
   return w;
 }
@@ -225,6 +796,9 @@ void autobal_poly_workspace_free(autobal_poly_workspace *w) {
   if (w == NULL) return;
   if (w->w) gsl_poly_complex_workspace_free(w->w);
   free(w->z);
+  free(w->h);
+  free(w->ab);
+  free(w->flag);
   free(w);
 }
 
@@ -246,6 +820,25 @@ static void sort_pairs(size_t n, double *re, double *im) {
   }
 }
 
+int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im) {
+  /* exact zero roots first, then Aberth on the rest */
+  const size_t n = w->degree, nt = n * (n + 1) / 2 + n;
+  size_t i, nz = 0, deg;
+  while (nz < n && c[nz] == 0.0) nz++;
+  deg = n - nz;
+  for (i = 0; i < nz; i++) re[deg + i] = im[deg + i] = 0.0;
+  if (deg == 0) return 0;
+  if (deg == 1) {
+    re[0] = -c[nz] / c[nz + 1];
+    im[0] = 0.0;
+    return isfinite(re[0]) ? 0 : -1;
+  }
+  if (aberth_roots(deg, c + nz, re, im, w->ab, w->ab + n, w->flag, w->ab + 2 * n + 1,
+                   w->ab + 2 * n + 1 + nt) != 0)
+    return -1;
+  return real_structure(deg, re, im, w->ab, w->flag + n);
+}
+
 int autobal_poly_roots(autobal_poly_workspace *w, const double *c, size_t len, double *re,
                        double *im, autobal_error *err) {
   size_t i;
@@ -264,6 +857,11 @@ int autobal_poly_roots(autobal_poly_workspace *w, const double *c, size_t len, d
   if (c[len - 1] == 0.0)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "autobal_poly_roots: leading coefficient c[%zu] is zero", len - 1);
+  if (autobal_poly_roots_aberth(w, c, re, im) == 0 || autobal_poly_roots_qr(w, c, re, im) == 0) {
+    sort_pairs(w->degree, re, im);
+    return AUTOBAL_SUCCESS;
+  }
+  /* neither settled (not seen in practice): GSL's companion QR (EISPACK hqr) */
   gs = gsl_poly_complex_solve(c, len, w->w, w->z);
   if (gs != GSL_SUCCESS) {
     for (i = 0; i < w->degree; i++) re[i] = im[i] = NAN;

@@ -15,6 +15,10 @@
 #include "check.h"
 #include "internal.h"
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 /* deterministic uniform [0, 1) (xorshift64*) */
 static unsigned long long rng_state = 0x9E3779B97F4A7C15ULL;
 static double urand(void) {
@@ -209,6 +213,209 @@ static double brute_bottleneck(size_t n, const double *ar, const double *ai, con
     if (v < best) best = v;
   }
   return best;
+}
+
+/* first-order error bounds for a simple root r of c (len coefficients):
+ * componentwise condition sum |c_j| |r|^j / |r p'(r)| (Aberth: backward
+ * error ~ n eps in every coefficient) and normwise condition
+ * ||c||_1 sum |r|^j / |r p'(r)| (companion QR: backward error ~ eps ||c||) */
+static void root_conditions(const double *c, size_t len, double rr, double ri, double *kc,
+                            double *kn) {
+  double dr, di, ar = hypot(rr, ri), sa = 0.0, sp = 0.0, cn = 0.0, d[AUTOBAL_POLY_MAXLEN];
+  size_t j;
+  for (j = 0; j < len; j++) {
+    sa += fabs(c[j]) * pow(ar, (double)j);
+    sp += pow(ar, (double)j);
+    cn += fabs(c[j]);
+  }
+  autobal_poly_deriv(c, len, d, len - 1, NULL);
+  autobal_poly_eval_complex(d, len - 1, rr, ri, &dr, &di);
+  *kc = sa / (ar * hypot(dr, di));
+  *kn = cn * sp / (ar * hypot(dr, di));
+}
+
+/* every root with Im != 0 has its exact mirror image; count real roots */
+static int exact_pairs(size_t n, const double *re, const double *im, size_t *nreal) {
+  size_t i, j;
+  *nreal = 0;
+  for (i = 0; i < n; i++) {
+    int found = 0;
+    if (im[i] == 0.0) {
+      (*nreal)++;
+      continue;
+    }
+    for (j = 0; j < n; j++)
+      if (j != i && re[j] == re[i] && im[j] == -im[i]) found = 1;
+    if (!found) return 0;
+  }
+  return 1;
+}
+
+typedef int (*roots_fn)(autobal_poly_workspace *, const double *, double *, double *);
+
+static void test_roots_methods(void) {
+  static const char *const name[3] = {"Aberth", "companion QR", "autobal_poly_roots"};
+  int m;
+  printf("-- root finders: Aberth-Ehrlich, companion QR (DLAHQR), the public entry\n");
+  for (m = 0; m < 3; m++) {
+    int t, bad_acc = 0, bad_struct = 0, bad_count = 0, unsettled = 0;
+    double worst = 0.0;
+    for (t = 0; t < 400; t++) {
+      /* known roots: a random mix of real roots and pairs, moduli in [0.1, 10],
+       * kept apart (pairwise distance >= 0.05 |r|) so every root is simple */
+      double r[12], pr[6], pim[6], c[AUTOBAL_POLY_MAXLEN], re[12], im[12], wr[12], wi[12];
+      size_t nr = (size_t)(urand() * 5.0), np = 1 + (size_t)(urand() * 4.0), n, i, j, k, nreal;
+      size_t perm[12];
+      double md;
+      int st;
+      autobal_poly_workspace *w;
+      for (i = 0, k = 0; i < nr + np; i++) {
+        int again;
+        do {
+          double mod = pow(10.0, 2.0 * urand() - 1.0), ang = M_PI * urand();
+          double zr = (i < nr) ? mod * (urand() < 0.5 ? -1.0 : 1.0) : mod * cos(ang);
+          double zi = (i < nr) ? 0.0 : mod * sin(ang) + 0.05 * mod;
+          again = 0;
+          for (j = 0; j < k; j++)
+            if (hypot(wr[j] - zr, wi[j] - zi) < 0.05 * mod || hypot(wr[j] - zr, wi[j] + zi) < 0.05 * mod)
+              again = 1;
+          if (!again) {
+            wr[k] = zr;
+            wi[k++] = zi;
+            if (zi != 0.0) {
+              wr[k] = zr;
+              wi[k++] = -zi;
+            }
+          }
+        } while (again);
+      }
+      for (i = 0, j = 0; i < k; i++) {
+        if (wi[i] == 0.0) r[j++] = wr[i];
+      }
+      for (i = 0, j = 0; i < k; i++)
+        if (wi[i] > 0.0) {
+          pr[j] = wr[i];
+          pim[j++] = wi[i];
+        }
+      n = poly_from_roots(r, nr, pr, pim, np, 0.5 + urand(), c) - 1;
+      w = autobal_poly_workspace_alloc(n);
+      if (m == 2) {
+        st = autobal_poly_roots(w, c, n + 1, re, im, NULL);
+      } else {
+        roots_fn f = (m == 0) ? autobal_poly_roots_aberth : autobal_poly_roots_qr;
+        st = f(w, c, re, im);
+      }
+      autobal_poly_workspace_free(w);
+      if (st != 0) {
+        unsettled++;
+        continue;
+      }
+      if (!exact_pairs(n, re, im, &nreal)) bad_struct++;
+      if (nreal != nr) bad_count++;
+      autobal_match_roots(n, wr, wi, re, im, perm, &md, NULL);
+      for (i = 0; i < n; i++) {
+        double kc, kn, err = hypot(re[perm[i]] - wr[i], im[perm[i]] - wi[i]);
+        double bound;
+        root_conditions(c, n + 1, wr[i], wi[i], &kc, &kn);
+        /* the polynomial itself carries rounding from poly_from_roots (~n eps
+         * componentwise), plus the method's own backward error */
+        bound = 64.0 * (double)n * DBL_EPSILON * (m == 1 ? kn : kc) * hypot(wr[i], wi[i]);
+        if (err > bound) bad_acc++;
+        if (err / bound > worst) worst = err / bound;
+      }
+    }
+    printf("   %s: worst error / first-order bound %.3g\n", name[m], worst);
+    CHECK(m == 1 ? "companion QR settles on 400 random polynomials with simple roots"
+                 : (m == 0 ? "Aberth settles on 400 random polynomials with simple roots"
+                           : "autobal_poly_roots succeeds on 400 random polynomials"),
+          unsettled == 0);
+    CHECK("errors within 64 n eps x condition x |r| (componentwise condition; normwise for QR)",
+          bad_acc == 0);
+    CHECK("real roots have Im = 0 exactly, the others come in exact conjugate pairs",
+          bad_struct == 0);
+    CHECK("number of real roots == number of known real roots", bad_count == 0);
+  }
+  /* roots of very different size: the componentwise backward stability of the
+   * Aberth stopping rule gives every root to a few ulps */
+  {
+    double r[5] = {1e-8, -1e-3, 1.0, 1e3, -1e8}, c[8], re[7], im[7], pr[1] = {2e4}, pim[1] = {3e4};
+    size_t len = poly_from_roots(r, 5, pr, pim, 1, 1.0, c), i, j;
+    autobal_poly_workspace *w = autobal_poly_workspace_alloc(len - 1);
+    double worst = 0.0;
+    CHECK_STATUS("roots spread over 16 decades", autobal_poly_roots(w, c, len, re, im, NULL), 0);
+    for (i = 0; i < 5; i++) {
+      double best = INFINITY;
+      for (j = 0; j < 7; j++) best = fmin(best, hypot(re[j] - r[i], im[j]) / fabs(r[i]));
+      worst = fmax(worst, best);
+    }
+    CHECK_CLOSE("roots 1e-8 .. 1e8: worst relative error of the real roots", worst, 0, 0, 1e-13);
+    autobal_poly_workspace_free(w);
+  }
+  /* exact zero roots are split off */
+  {
+    double c[7] = {0.0, 0.0, 0.0, -2.0, 1.0, -2.0, 1.0}, re[6], im[6]; /* x^3 (x - 2)(x^2 + 1) */
+    autobal_poly_workspace *w = autobal_poly_workspace_alloc(6);
+    size_t i, nz = 0;
+    CHECK_STATUS("x^3 (x - 2)(x^2 + 1)", autobal_poly_roots(w, c, 7, re, im, NULL), 0);
+    for (i = 0; i < 6; i++) nz += (re[i] == 0.0 && im[i] == 0.0);
+    CHECK("three roots exactly 0", nz == 3);
+    CHECK_CLOSE("root 2", re[5], 2.0, 1e-15, 0);
+    /* sorted by Re then Im: the pair (Re ~ 0) sits among the zeros */
+    {
+      size_t a = 6, b = 6;
+      for (i = 0; i < 6; i++) {
+        if (im[i] < 0.0) a = i;
+        if (im[i] > 0.0) b = i;
+      }
+      CHECK("+-i: exact pair", a < 6 && b < 6 && re[a] == re[b] && im[a] == -im[b]);
+      if (b < 6) CHECK_CLOSE("Im of the pair", im[b], 1.0, 1e-15, 0);
+    }
+    autobal_poly_workspace_free(w);
+  }
+  /* a 4-fold root: any backward-stable method gives it to ~eps^(1/4) */
+  {
+    double r[5] = {1.0, 1.0, 1.0, 1.0, -2.0}, c[6], re[5], im[5];
+    size_t len = poly_from_roots(r, 5, NULL, NULL, 0, 1.0, c), i;
+    autobal_poly_workspace *w = autobal_poly_workspace_alloc(5);
+    double d1 = 0.0, sum_r = 0.0, sum_i = 0.0;
+    CHECK_STATUS("(x - 1)^4 (x + 2)", autobal_poly_roots(w, c, len, re, im, NULL), 0);
+    CHECK_CLOSE("simple root -2", re[0], -2.0, 1e-14, 0);
+    for (i = 1; i < 5; i++) {
+      d1 = fmax(d1, hypot(re[i] - 1.0, im[i]));
+      sum_r += re[i];
+      sum_i += im[i];
+    }
+    CHECK_CLOSE("4-fold root 1: worst distance (~eps^(1/4))", d1, 0, 0, 1e-3);
+    /* the mean of a cluster is well conditioned */
+    CHECK_CLOSE("mean of the cluster", sum_r / 4.0, 1.0, 1e-12, 0);
+    CHECK_CLOSE("imaginary parts cancel", sum_i, 0.0, 0, 1e-15);
+    autobal_poly_workspace_free(w);
+  }
+  /* degrees 1 and 2, closed forms */
+  {
+    double c1[2] = {3.0, -2.0}, c2[3] = {5.0, 2.0, 1.0}, re[2], im[2]; /* x = 1.5; -1 +- 2i */
+    autobal_poly_workspace *w1 = autobal_poly_workspace_alloc(1), *w2 = autobal_poly_workspace_alloc(2);
+    CHECK_STATUS("degree 1", autobal_poly_roots(w1, c1, 2, re, im, NULL), 0);
+    CHECK("3 - 2x: root 1.5 exactly", re[0] == 1.5 && im[0] == 0.0);
+    CHECK_STATUS("degree 2", autobal_poly_roots(w2, c2, 3, re, im, NULL), 0);
+    CHECK_CLOSE("x^2 + 2x + 5: Re", re[0], -1.0, 1e-15, 0);
+    CHECK_CLOSE("x^2 + 2x + 5: Im", im[1], 2.0, 1e-15, 0);
+    CHECK("exact pair", re[0] == re[1] && im[0] == -im[1]);
+    autobal_poly_workspace_free(w1);
+    autobal_poly_workspace_free(w2);
+  }
+  /* Wilkinson's polynomial of degree 10 (roots 1..10, conditions up to ~1e7) */
+  {
+    double r[10], c[11], re[10], im[10], worst = 0.0;
+    size_t i, len;
+    autobal_poly_workspace *w = autobal_poly_workspace_alloc(10);
+    for (i = 0; i < 10; i++) r[i] = (double)(i + 1);
+    len = poly_from_roots(r, 10, NULL, NULL, 0, 1.0, c);
+    CHECK_STATUS("Wilkinson 10", autobal_poly_roots(w, c, len, re, im, NULL), 0);
+    for (i = 0; i < 10; i++) worst = fmax(worst, hypot(re[i] - r[i], im[i]));
+    CHECK_CLOSE("Wilkinson 10: worst error (conditions ~1e7 x eps)", worst, 0, 0, 1e-7);
+    autobal_poly_workspace_free(w);
+  }
 }
 
 static void test_matching(void) {
@@ -451,6 +658,7 @@ int main(void) {
   gsl_set_error_handler_off();
   test_arithmetic();
   test_roots_eigen();
+  test_roots_methods();
   test_matching();
   test_hurwitz();
   test_sturm();

@@ -129,23 +129,33 @@ AUTOBAL_API void autobal_cpoly_real_part(const double *a, size_t len, double *ou
                                          double *max_imag);
 
 /* ------------------------------------------------------------------------ */
-/* Roots and eigenvalues (GSL)                                              */
+/* Roots and eigenvalues                                                    */
 /* ------------------------------------------------------------------------ */
 
 /* Workspace for the roots of real polynomials of one fixed degree >= 1
- * (GSL's gsl_poly_complex_workspace).  NULL if out of memory or degree 0. */
+ * (iterates, a companion matrix and GSL's gsl_poly_complex_workspace).
+ * NULL if out of memory or degree 0 (or degree > 4096). */
 typedef struct autobal_poly_workspace autobal_poly_workspace;
 AUTOBAL_API autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree);
 AUTOBAL_API void autobal_poly_workspace_free(autobal_poly_workspace *w); /* NULL is safe */
 AUTOBAL_API size_t autobal_poly_workspace_degree(const autobal_poly_workspace *w);
 
-/* All complex roots of the real polynomial c[0..len-1] (companion matrix
- * QR, gsl_poly_complex_solve).  len must equal degree(w) + 1, c[len-1]
- * must be non-zero and every coefficient finite.  re[], im[] (length
- * len-1) receive the roots sorted by increasing real part, then increasing
- * imaginary part (deterministic order).
+/* All complex roots of the real polynomial c[0..len-1].  len must equal
+ * degree(w) + 1, c[len-1] must be non-zero and every coefficient finite.
+ * re[], im[] (length len-1) receive the roots sorted by increasing real
+ * part, then increasing imaginary part (deterministic order).  Real roots
+ * have im == 0 exactly, the others come in exact conjugate pairs, and
+ * zero coefficients c[0..j-1] give j roots exactly 0.
+ * Method: the Aberth-Ehrlich simultaneous iteration (Bini's starting
+ * points; a root is accepted when |p(z)| is within the rounding error of
+ * evaluating p, i.e. it is an exact root of a polynomial whose coefficients
+ * differ from c by a relative ~4 n eps), accepted when the Newton inclusion
+ * disks of the roots are pairwise disjoint; otherwise (clusters, multiple
+ * roots) the eigenvalues of the balanced companion matrix by the Francis
+ * double-shift QR (LAPACK DLAHQR), and GSL's gsl_poly_complex_solve if that
+ * does not converge either.  About 2x faster than GSL alone for degree 8.
  * Returns AUTOBAL_EINVAL (bad length, zero leading coefficient, NaN/inf)
- * or AUTOBAL_ENUMERIC (QR failed to converge; message carries GSL's text). */
+ * or AUTOBAL_ENUMERIC (no method converged; message carries GSL's text). */
 AUTOBAL_API int autobal_poly_roots(autobal_poly_workspace *w, const double *c, size_t len,
                                    double *re, double *im, autobal_error *err);
 
