@@ -25,6 +25,7 @@ if [ "$what" = all ] && [ $# -gt 0 ]; then
   echo "run.sh: options need a benchmark name first (run.sh pendulum ... or run.sh rotor ...)" >&2
   exit 2
 fi
+"$here/../scripts/deps.sh" --bench   # Debian packages (SciPy, SUNDIALS, ...), if missing
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
 case "$what" in
   pendulum) targets=(bench_pendulum) ;;

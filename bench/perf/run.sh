@@ -17,6 +17,7 @@ build=${AUTOBAL_PERF_BUILD:-$here/../../build-perf-bench}
 case "${1:-}" in
   -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 esac
+"$here/../../scripts/deps.sh" --bench   # Debian packages (SciPy, SUNDIALS, ...), if missing
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build "$build" > /dev/null
 sund=()
