@@ -1020,8 +1020,18 @@ int autobal_match_roots(size_t n, const double *a_re, const double *a_im, const 
 /* Routh-Hurwitz with running error bounds                                  */
 /* ------------------------------------------------------------------------ */
 
-int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, int *verdict,
-                             int *n_rhp, autobal_error *err) {
+#if defined(__GNUC__) || defined(__clang__)
+#define AUTOBAL_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define AUTOBAL_ALWAYS_INLINE inline
+#endif
+
+/* The Routh array with a running error bound per entry (see
+ * autobal_poly_hurwitz_err) for degree n >= 1 with c[n] != 0; inlined with
+ * n a compile-time constant for the common degrees, so that the loops
+ * unroll (the same operations in the same order: bitwise the same values). */
+static AUTOBAL_ALWAYS_INLINE void routh_err_core(size_t n, const double *c, const double *cerr,
+                                                 int *changes_out, int *decided_out) {
   /* Routh array: three rotating rows of width n/2 + 1 (values and bounds).
    * Row t has len(t) = (n - t)/2 + 1 entries; the rest of the fixed width
    * is structural zeros (value and bound 0), which never reach the first
@@ -1030,32 +1040,10 @@ int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, in
    * reading the structural zero y = 0 at the end of row t where needed. */
   double rb[3][AUTOBAL_POLY_MAXLEN / 2 + 1], eb[3][AUTOBAL_POLY_MAXLEN / 2 + 1];
   const double u = DBL_EPSILON;
-  size_t n, width, i, j, row, i0 = 0, i1 = 1, i2 = 2;
-  double sgn;
+  const double sgn = c[n] > 0 ? 1.0 : -1.0;
+  const size_t width = n / 2 + 1;
+  size_t j, row, i0 = 0, i1 = 1, i2 = 2;
   int changes = 0, prev_sign, decided = 1;
-  if (c == NULL || verdict == NULL)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "autobal_poly_hurwitz: NULL argument");
-  if (len < 2 || len > AUTOBAL_POLY_MAXLEN)
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "autobal_poly_hurwitz: len = %zu is out of range: allowed [2, %d]", len,
-                             AUTOBAL_POLY_MAXLEN);
-  for (i = 0; i < len; i++) {
-    if (!isfinite(c[i]))
-      return autobal_error_set(err, AUTOBAL_EINVAL,
-                               "autobal_poly_hurwitz: coefficient c[%zu] = %g is not finite", i,
-                               c[i]);
-    if (cerr && !(cerr[i] >= 0.0 && isfinite(cerr[i])))
-      return autobal_error_set(err, AUTOBAL_EINVAL,
-                               "autobal_poly_hurwitz: error bound cerr[%zu] = %g is out of range: "
-                               "allowed [0, inf)",
-                               i, cerr[i]);
-  }
-  n = len - 1;
-  if (c[n] == 0.0)
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "autobal_poly_hurwitz: leading coefficient c[%zu] is zero", n);
-  sgn = c[n] > 0 ? 1.0 : -1.0;
-  width = n / 2 + 1;
   for (j = 0; j < width; j++) {
     /* row 0: c[n], c[n-2], ...; row 1: c[n-1], c[n-3], ... */
     size_t k0 = 2 * j, k1 = 2 * j + 1;
@@ -1091,6 +1079,65 @@ int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, in
       }
       t = i0, i0 = i1, i1 = i2, i2 = t;
     }
+  }
+  *changes_out = changes;
+  *decided_out = decided;
+}
+
+int autobal_poly_hurwitz_err(const double *c, const double *cerr, size_t len, int *verdict,
+                             int *n_rhp, autobal_error *err) {
+  size_t i, n;
+  int changes = 0, decided = 1;
+  if (c == NULL || verdict == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "autobal_poly_hurwitz: NULL argument");
+  if (len < 2 || len > AUTOBAL_POLY_MAXLEN)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "autobal_poly_hurwitz: len = %zu is out of range: allowed [2, %d]", len,
+                             AUTOBAL_POLY_MAXLEN);
+  {
+    /* one test for the common case (sum finite: every term finite and >= 0
+     * where required); the slow loop names the culprit */
+    double chk = 0.0;
+    int ok = 1;
+    for (i = 0; i < len; i++) chk += fabs(c[i]);
+    if (cerr)
+      for (i = 0; i < len; i++) {
+        chk += cerr[i];
+        if (cerr[i] < 0.0) ok = 0;
+      }
+    if (!isfinite(chk) || !ok)
+      for (i = 0; i < len; i++) {
+        if (!isfinite(c[i]))
+          return autobal_error_set(err, AUTOBAL_EINVAL,
+                                   "autobal_poly_hurwitz: coefficient c[%zu] = %g is not finite", i,
+                                   c[i]);
+        if (cerr && !(cerr[i] >= 0.0 && isfinite(cerr[i])))
+          return autobal_error_set(err, AUTOBAL_EINVAL,
+                                   "autobal_poly_hurwitz: error bound cerr[%zu] = %g is out of range: "
+                                   "allowed [0, inf)",
+                                   i, cerr[i]);
+      }
+  }
+  n = len - 1;
+  if (c[n] == 0.0)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "autobal_poly_hurwitz: leading coefficient c[%zu] is zero", n);
+  switch (n) { /* constant degrees: unrolled copies of the same code */
+    case 4:
+      routh_err_core(4, c, cerr, &changes, &decided);
+      break;
+    case 7:
+      routh_err_core(7, c, cerr, &changes, &decided);
+      break;
+    case 8:
+      routh_err_core(8, c, cerr, &changes, &decided);
+      break;
+    case 12:
+      routh_err_core(12, c, cerr, &changes, &decided);
+      break;
+    default:
+      routh_err_core(n, c, cerr, &changes, &decided);
+      break;
   }
   if (n_rhp) *n_rhp = changes;
   if (decided) *verdict = changes == 0 ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
