@@ -234,6 +234,9 @@ static int write_crit_set(autobal_archive *a, const char *g, const char *prefix,
   di[0] = dimi;
   snprintf(name, sizeof name, "n_%s", dimc);
   st = autobal_archive_attr_int(a, g, name, (long)s->n);
+  /* 1: the list was full (the damped search): the set covers R_w up to its last critical speed only */
+  snprintf(name, sizeof name, "%s_truncated", prefix);
+  if (!st) st = autobal_archive_attr_int(a, g, name, s->truncated);
   if (!st && s->n > 0) {
     for (i = 0; i < s->n; i++) kinds[i] = s->kind[i];
     st = autobal_archive_dim(a, g, dimc, s->n, "index of a critical speed");
@@ -301,7 +304,14 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
   }
   st = autobal_pendulum_critical_speeds(ws, p.R_m, k, &und);
   have_damped = p.H > 0 || p.h > 0;
-  if (!st && have_damped) st = autobal_pendulum_critical_speeds_damped(ws, &p, rw_min, rw_max, (size_t)n_sweep, &damped);
+  if (!st && have_damped) {
+    st = autobal_pendulum_critical_speeds_damped(ws, &p, rw_min, rw_max, (size_t)n_sweep, &damped);
+    if (st == AUTOBAL_WARNING) {
+      /* the list was full: the data are valid up to its last entry (archived with the flag) */
+      if (!ctx->json) fprintf(stderr, "autobal: warning: %s\n", autobal_pendulum_errmsg(ws));
+      st = AUTOBAL_SUCCESS;
+    }
+  }
   if (!st) st = autobal_pendulum_critical_speeds(ws, p.R_m, 0.0, &k0set);
   if (!st) st = autobal_pendulum_critical_speeds(ws, p.R_m, 1.0, &k1set);
   if (st) {
@@ -393,6 +403,7 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
       cli_json_numbers(&j, "damped_critical_R_w", damped.R_w, damped.n);
       cli_json_numbers(&j, "damped_stable_lo", damped.stable_lo, damped.n_stable);
       cli_json_numbers(&j, "damped_stable_hi", damped.stable_hi, damped.n_stable);
+      cli_json_bool(&j, "damped_truncated", damped.truncated);
     }
     cli_json_numbers(&j, "k0_critical_R_w", k0set.R_w, k0set.n);
     cli_json_numbers(&j, "k1_critical_R_w", k1set.R_w, k1set.n);
@@ -418,6 +429,9 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
       printf("damped critical speeds (H = %.6g, h = %.6g) on R_w in [%g, %g]:\n", p.H, p.h, rw_min, rw_max);
       for (i = 0; i < damped.n; i++) printf("  R_w = %.12f   %s\n", damped.R_w[i], kind_name(damped.kind[i]));
       print_intervals(&damped);
+      if (damped.truncated)
+        printf("  (TRUNCATED: more critical speeds than the list holds; the results cover R_w in [%g, %.12f] only)\n",
+               rw_min, damped.R_w[damped.n - 1]);
     }
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }

@@ -167,7 +167,20 @@ static void print_intervals(const char *what, const char *unit, const autobal_ro
     printf(" [%.10g, %.10g]", cr->stable_lo[i], cr->stable_hi[i]);
     if (cr->stable_hi[i] == hi) printf(" (to the end of the range)");
   }
-  printf("%s\n", cr->truncated ? "  (list truncated)" : "");
+  printf("\n");
+  if (cr->truncated)
+    printf("  (TRUNCATED: more critical values than the list holds; the results cover [%g, %.10g] only)\n", lo,
+           cr->value[cr->n - 1]);
+}
+
+/* AUTOBAL_WARNING from a critical-value search (the list was truncated): a warning on stderr
+ * (not with --json, whose summary carries "truncated"), and the run goes on: the data are valid
+ * and the archive records the flag.  Other statuses are returned unchanged. */
+static int crit_warning(const cli_ctx *ctx, int st, const char *what, const char *message) {
+  char msg[sizeof ctx->err];
+  if (st != AUTOBAL_WARNING) return st;
+  if (!ctx->json) fprintf(stderr, "autobal: warning: %s: %s\n", what, cli_rotor_message(message, msg, sizeof msg));
+  return AUTOBAL_SUCCESS;
 }
 
 static void json_crit(cli_json *j, const autobal_rotor_crit *cr) {
@@ -178,6 +191,7 @@ static void json_crit(cli_json *j, const autobal_rotor_crit *cr) {
   cli_json_array_end(j);
   cli_json_numbers(j, "stable_lo", cr->stable_lo, cr->n_stable);
   cli_json_numbers(j, "stable_hi", cr->stable_hi, cr->n_stable);
+  cli_json_bool(j, "truncated", cr->truncated);
 }
 
 static const char *verdict_text(int v) {
@@ -242,6 +256,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if (do_crit) {
     double lo = c->p.omega > 0 ? clo : -chi, hi = c->p.omega > 0 ? chi : -clo;
     st = autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, (size_t)cn, xtol, &cr);
+    st = crit_warning(ctx, st, "critical speeds", autobal_rotor_stab_errmsg(s));
     if (st) {
       rc = cli_fail(ctx, cli_exit_code(st), "critical speeds: %s",
           cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
@@ -465,6 +480,7 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   }
   st = autobal_rotor_stab_critical(s, param, lo, hi, (size_t)n, xtol, &cr);
   cli_progress_done(ctx);
+  st = crit_warning(ctx, st, "critical values", autobal_rotor_stab_errmsg(s));
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "critical values: %s",
         cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
@@ -673,7 +689,9 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     }
     for (j = 0; j < np; j++) ad[i * np + j] = d2[j];
   }
-  if ((st = autobal_rotor_resonance_speeds(&p, lo, hi, (size_t)nres, xtol, &rr, &err))) {
+  st = autobal_rotor_resonance_speeds(&p, lo, hi, (size_t)nres, xtol, &rr, &err);
+  st = crit_warning(ctx, st, "resonance speeds", err.message);
+  if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
@@ -702,6 +720,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     if (!st) st = autobal_archive_var(a, g, "damping_ratio_at_rest", 1, dm, zd, "1", "damping ratios at rest");
     if (!st) st = autobal_archive_attr_int(a, g, "n_crossing", (long)rr.n_cross);
     if (!st) st = autobal_archive_attr_int(a, g, "n_peak", (long)rr.n_peak);
+    if (!st) st = autobal_archive_attr_int(a, g, "truncated", rr.truncated);
     if (!st && rr.n_cross > 0) {
       st = autobal_archive_dim(a, g, "crossing", rr.n_cross, "index of a speed where a natural frequency equals omega");
       if (!st) st = autobal_archive_var(a, g, "crossing_omega", 1, dc, rr.cross, "rad/s", "critical speed: natural frequency = omega");
@@ -727,6 +746,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     for (i = 0; i < rr.n_cross; i++) cli_json_int(&jj, NULL, rr.cross_whirl[i]);
     cli_json_array_end(&jj);
     cli_json_numbers(&jj, "peak_omega", rr.peak, rr.n_peak);
+    cli_json_bool(&jj, "truncated", rr.truncated);
     cli_json_summary_end(&jj, ctx);
   } else if (!ctx->quiet) {
     printf("rotor-housing (balls removed): natural frequencies at rest\n");
@@ -742,6 +762,8 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     if (rr.n_peak == 0) printf(" none");
     for (i = 0; i < rr.n_peak; i++) printf(" %.8g rad/s (%.4g um)", rr.peak[i], rr.peak_amp[i] * 1e6);
     printf("\n");
+    if (rr.truncated)
+      printf("  (TRUNCATED: more crossings or peaks than the lists hold; see the warning for the range covered)\n");
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;

@@ -1666,15 +1666,24 @@ static int damped_maxre_fn(double R_w, void *vctx, double *fx) {
   return AUTOBAL_SUCCESS;
 }
 
-int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
-                                            const autobal_pendulum_params *p, double rw_min,
-                                            double rw_max, size_t n_sweep,
-                                            autobal_pendulum_crit_set *out) {
+/* The damped search with at most cap recorded changes (1 <= cap <= AUTOBAL_PENDULUM_MAX_CRIT;
+ * the public function uses AUTOBAL_PENDULUM_MAX_CRIT).  A test hook for the truncation path
+ * (the damped system has far fewer changes than the capacity, see the header); declared here
+ * and in tests/test_pendulum.c, not part of the API.  AUTOBAL_EINVAL for cap out of range. */
+int autobal_pendulum_critical_speeds_damped_cap_(autobal_pendulum_workspace *ws,
+                                                 const autobal_pendulum_params *p, double rw_min,
+                                                 double rw_max, size_t n_sweep, size_t cap,
+                                                 autobal_pendulum_crit_set *out);
+
+int autobal_pendulum_critical_speeds_damped_cap_(autobal_pendulum_workspace *ws,
+                                                 const autobal_pendulum_params *p, double rw_min,
+                                                 double rw_max, size_t n_sweep, size_t cap,
+                                                 autobal_pendulum_crit_set *out) {
   damped_ctx ctx;
   double rw[AUTOBAL_PENDULUM_MAX_CRIT];
   int vint[AUTOBAL_PENDULUM_MAX_CRIT + 1];
   size_t nc = 0, i;
-  int st, prev;
+  int st, prev, truncated = 0;
   autobal_pendulum_params q;
   if (ws == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&ws->err);
@@ -1688,6 +1697,10 @@ int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
   if (n_sweep < 2)
     return autobal_error_set(&ws->err, AUTOBAL_EINVAL,
                              "parameter n_sweep = %zu is out of range: allowed [2, inf)", n_sweep);
+  if (cap < 1 || cap > AUTOBAL_PENDULUM_MAX_CRIT)
+    return autobal_error_set(&ws->err, AUTOBAL_EINVAL,
+                             "critical_speeds_damped: capacity %zu out of range [1, %d]", cap,
+                             AUTOBAL_PENDULUM_MAX_CRIT);
   if (out == NULL) return autobal_error_set(&ws->err, AUTOBAL_EINVAL, "critical_speeds_damped: NULL output");
   memset(out, 0, sizeof *out);
   ctx.ws = ws;
@@ -1702,7 +1715,12 @@ int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
     double b = i + 1 == n_sweep ? rw_max : rw_min + (rw_max - rw_min) * (double)i / (double)(n_sweep - 1);
     int cur;
     if ((st = damped_stable_pred(b, &ctx, &cur)) != 0) return st;
-    if (cur != prev && nc < AUTOBAL_PENDULUM_MAX_CRIT) {
+    if (cur != prev && nc >= cap) {
+      /* one change more than the list holds: stop before refining it */
+      truncated = 1;
+      break;
+    }
+    if (cur != prev) {
       double lo, hi, x, fa, fb;
       if ((st = autobal_bisect_change(damped_stable_pred, &ctx, a, b, 0.0, 1e-13, &lo, &hi,
                                       &ws->err)) != 0)
@@ -1729,7 +1747,33 @@ int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
     }
     prev = cur;
   }
-  return crit_set_fill(out, rw, vint, nc, 0, rw_min, rw_max);
+  if (!truncated) return crit_set_fill(out, rw, vint, nc, 0, rw_min, rw_max);
+  /* truncated (nc = cap >= 1): the results cover [rw_min, rw[nc-1]] only.  The interval
+   * after the last recorded change becomes (rw[nc-1], rw[nc-1]) and is dropped when stable:
+   * no stable interval extends past the last recorded change. */
+  (void)crit_set_fill(out, rw, vint, nc, 0, rw_min, rw[nc - 1]);
+  if (out->n_stable > 0 && out->stable_lo[out->n_stable - 1] == rw[nc - 1] &&
+      out->stable_hi[out->n_stable - 1] == rw[nc - 1]) {
+    out->n_stable--;
+    out->stable_lo[out->n_stable] = 0.0;
+    out->stable_hi[out->n_stable] = 0.0;
+  }
+  out->truncated = 1;
+  return autobal_error_set(&ws->err, AUTOBAL_WARNING,
+                           "critical_speeds_damped: more than %zu stability changes for R_w in "
+                           "[%.9g, %.9g] (the capacity of the list): the first %zu are kept and "
+                           "the search stopped at the next one; the results cover R_w in [%.9g, "
+                           "%.12g] only (up to the last kept change). Narrow the range (e.g. "
+                           "rw_max <= %.12g) or split it",
+                           cap, rw_min, rw_max, nc, rw_min, rw[nc - 1], rw[nc - 1]);
+}
+
+int autobal_pendulum_critical_speeds_damped(autobal_pendulum_workspace *ws,
+                                            const autobal_pendulum_params *p, double rw_min,
+                                            double rw_max, size_t n_sweep,
+                                            autobal_pendulum_crit_set *out) {
+  return autobal_pendulum_critical_speeds_damped_cap_(ws, p, rw_min, rw_max, n_sweep,
+                                                      AUTOBAL_PENDULUM_MAX_CRIT, out);
 }
 
 /* ======================================================================== */

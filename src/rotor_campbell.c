@@ -16,6 +16,7 @@
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
 #include "internal.h"
+#include "rotor_stab_internal.h"
 
 typedef struct modes_ws {
   gsl_eigen_nonsymmv_workspace *w;
@@ -335,28 +336,26 @@ static double amp_at(res_ctx *c, double x) {
   return a;
 }
 
-int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, double hi,
-                                   size_t n_grid, double xtol_rel, autobal_rotor_resonances *out,
-                                   autobal_error *err) {
+/* The scan of autobal_rotor_resonance_speeds with at most cap entries in each list.  At the
+ * first crossing or peak that does not fit, out->truncated = 1 and the scan stops there
+ * (nothing is refined further); *x_complete receives the speed up to which both lists are
+ * complete (to the grid's resolution): two grid steps before the step where the entry was
+ * dropped (a peak found at step k lies around grid point k - 1), lo at the earliest;
+ * *by_peak = 1 if the dropped entry was a peak, 0 if a crossing. */
+static int resonance_scan(const autobal_rotor_params *p, double lo, double hi, size_t n_grid,
+                          double xtol_rel, size_t cap, autobal_rotor_resonances *out,
+                          double *x_complete, int *by_peak, autobal_error *err) {
   modes_ws m;
   res_ctx rc;
   double fprev[4] = {0, 0, 0, 0}, aprev2 = NAN, aprev = NAN, xprev = lo, xprev2 = lo;
   size_t k;
   int st, mode;
-  if (out == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: NULL output");
-  memset(out, 0, sizeof *out);
-  if (!(isfinite(lo) && isfinite(hi) && lo >= 0.0 && lo < hi))
-    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: need 0 <= lo < hi, got [%g, %g]", lo, hi);
-  if (n_grid < 3 || n_grid > 100000000)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: n_grid = %zu out of range [3, 1e8]",
-                             n_grid);
-  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
-    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: xtol_rel = %g out of range (0, 0.1)",
-                             xtol_rel);
+  *x_complete = hi;
+  *by_peak = 0;
   if ((st = modes_ws_init(&m, p, err)) != AUTOBAL_SUCCESS) return st;
   rc.m = &m;
   rc.err = err;
-  for (k = 0; k < n_grid && st == AUTOBAL_SUCCESS; k++) {
+  for (k = 0; k < n_grid && st == AUTOBAL_SUCCESS && !out->truncated; k++) {
     const double x = k + 1 == n_grid ? hi : lo + (hi - lo) * (double)k / (double)(n_grid - 1);
     double f[4], a;
     int w4[4];
@@ -365,9 +364,13 @@ int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, dou
     if (k > 0) {
       for (mode = 0; mode < 4; mode++) {
         const double g0 = fprev[mode] - xprev, g1 = f[mode] - x;
-        if ((g0 > 0.0) != (g1 > 0.0) && out->n_cross < AUTOBAL_ROTOR_MAX_CRIT) {
+        if ((g0 > 0.0) != (g1 > 0.0)) {
           double root = NAN;
           int wv[4];
+          if (out->n_cross >= cap) {
+            out->truncated = 1;
+            break;
+          }
           rc.mode = mode;
           st = autobal_root_brent(cross_fn, &rc, xprev, x, 0.0, xtol_rel, 200, &root, err);
           if (st == AUTOBAL_ENUMERIC) st = AUTOBAL_SUCCESS;
@@ -381,14 +384,25 @@ int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, dou
           if ((st = modes_eval(&m, x, 0, f, NULL, NULL, w4, err)) != AUTOBAL_SUCCESS) break;
         }
       }
+      if (st != AUTOBAL_SUCCESS || out->truncated) {
+        *x_complete = xprev2;
+        break;
+      }
     }
-    if (k >= 2 && aprev > aprev2 && aprev >= a && isfinite(aprev) &&
-        out->n_peak < AUTOBAL_ROTOR_MAX_CRIT) {
+    if (k >= 2 && aprev > aprev2 && aprev >= a && isfinite(aprev)) {
       /* golden-section search for the maximum on [xprev2, x] */
       const double gr = 0.5 * (sqrt(5.0) - 1.0);
       double aa = xprev2, bb = x, c1 = bb - gr * (bb - aa), c2 = aa + gr * (bb - aa);
-      double f1 = amp_at(&rc, c1), f2 = amp_at(&rc, c2);
+      double f1, f2;
       int it;
+      if (out->n_peak >= cap) {
+        out->truncated = 1;
+        *by_peak = 1;
+        *x_complete = xprev2;
+        break;
+      }
+      f1 = amp_at(&rc, c1);
+      f2 = amp_at(&rc, c2);
       for (it = 0; it < 300 && (bb - aa) > xtol_rel * fabs(bb); it++) {
         if (f1 > f2) {
           bb = c2;
@@ -416,4 +430,47 @@ int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, dou
   }
   modes_ws_free(&m);
   return st;
+}
+
+static int resonances_checked(const autobal_rotor_params *p, double lo, double hi, size_t n_grid,
+                              double xtol_rel, size_t cap, autobal_rotor_resonances *out,
+                              autobal_error *err) {
+  double xc = hi;
+  int st, by_peak = 0;
+  if (out == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: NULL output");
+  memset(out, 0, sizeof *out);
+  if (!(isfinite(lo) && isfinite(hi) && lo >= 0.0 && lo < hi))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: need 0 <= lo < hi, got [%g, %g]", lo, hi);
+  if (n_grid < 3 || n_grid > 100000000)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: n_grid = %zu out of range [3, 1e8]",
+                             n_grid);
+  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: xtol_rel = %g out of range (0, 0.1)",
+                             xtol_rel);
+  if (cap < 1 || cap > AUTOBAL_ROTOR_MAX_CRIT)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: capacity %zu out of range [1, %d]",
+                             cap, AUTOBAL_ROTOR_MAX_CRIT);
+  st = resonance_scan(p, lo, hi, n_grid, xtol_rel, cap, out, &xc, &by_peak, err);
+  if (st == AUTOBAL_SUCCESS && out->truncated)
+    st = autobal_error_set(err, AUTOBAL_WARNING,
+                           "resonances: more than %zu %s in [%.9g, %.9g] rad/s (the capacity of "
+                           "the list): the search stopped there; the lists hold %zu crossings and "
+                           "%zu peaks and are complete for omega <= %.9g rad/s only. Narrow the "
+                           "range (e.g. omega_max <= %.9g) or split it",
+                           cap, by_peak ? "peaks of the unbalance response"
+                                        : "crossings (natural frequency = omega)",
+                           lo, hi, out->n_cross, out->n_peak, xc, xc);
+  return st;
+}
+
+int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, double hi,
+                                   size_t n_grid, double xtol_rel, autobal_rotor_resonances *out,
+                                   autobal_error *err) {
+  return resonances_checked(p, lo, hi, n_grid, xtol_rel, AUTOBAL_ROTOR_MAX_CRIT, out, err);
+}
+
+int autobal_rotor_resonance_speeds_cap_(const autobal_rotor_params *p, double lo, double hi,
+                                        size_t n_grid, double xtol_rel, size_t cap,
+                                        autobal_rotor_resonances *out, autobal_error *err) {
+  return resonances_checked(p, lo, hi, n_grid, xtol_rel, cap, out, err);
 }

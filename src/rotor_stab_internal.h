@@ -1,5 +1,7 @@
 /* rotor_stab_internal.h: private layout of the rotor stability handle, shared by
- * src/rotor_stability.c, src/rotor_floquet.c (not installed). */
+ * src/rotor_stability.c, src/rotor_floquet.c, and capacity-limited variants of the
+ * critical-value searches (src/rotor_stability.c, src/rotor_campbell.c) for the tests of
+ * their truncation path (not installed). */
 #ifndef AUTOBAL_ROTOR_STAB_INTERNAL_H
 #define AUTOBAL_ROTOR_STAB_INTERNAL_H
 
@@ -23,6 +25,8 @@ struct autobal_rotor_stab {
   double *store;                   /* one block for every array below */
   double *m, *r, *h, *psi_init, *rate_init; /* N each, current ball data */
   double *member_store;            /* member angles (sum n_j) */
+  double *m_save, *h_save;         /* N each: ball masses / dampings saved by a sweep or a
+                                      critical search (stab_save / stab_restore) */
   double *psi;                     /* N balanced angles of the member */
   int psi_status;                  /* status of the last member computation */
   /* workspaces */
@@ -59,5 +63,18 @@ int autobal_rotor_stab_floquet_(autobal_rotor_stab *s, double *monodromy);
 double autobal_rotor_stab_floquet_margin_(const autobal_rotor_stab *s, size_t family);
 /* Is the lumped set isotropic (relative 1e-12)? */
 int autobal_rotor_lumped_isotropic_(const autobal_rotor_lumped *L);
+
+/* autobal_rotor_stab_critical with the capacity of the list of critical values limited to
+ * cap (1 <= cap <= AUTOBAL_ROTOR_MAX_CRIT; the public function uses AUTOBAL_ROTOR_MAX_CRIT),
+ * so that the truncation path can be tested with few verdict changes.  AUTOBAL_EINVAL for
+ * cap out of range (message on the handle); otherwise exactly the public function. */
+int autobal_rotor_stab_critical_cap_(autobal_rotor_stab *s, int param, double lo, double hi,
+                                     size_t n_grid, double xtol_rel, size_t cap,
+                                     autobal_rotor_crit *out);
+/* autobal_rotor_resonance_speeds with both lists limited to cap entries (1 <= cap <=
+ * AUTOBAL_ROTOR_MAX_CRIT), for the same purpose. */
+int autobal_rotor_resonance_speeds_cap_(const autobal_rotor_params *p, double lo, double hi,
+                                        size_t n_grid, double xtol_rel, size_t cap,
+                                        autobal_rotor_resonances *out, autobal_error *err);
 
 #endif

@@ -710,7 +710,7 @@ autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
   else
     s->Lbase = p->lumped;
   s->L = s->Lbase;
-  nstore = 6 * N + nmem + 1;
+  nstore = 8 * N + nmem + 1;
   if (N <= MAX_FULL_BALLS) nstore += 7 * s->ns * s->ns + 9 * s->ns + 2 * s->nm * s->nm;
   s->store = (double *)calloc(nstore, sizeof(double));
   if (s->store == NULL) goto nomem;
@@ -721,8 +721,10 @@ autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
   s->rate_init = s->psi_init + N;
   s->psi = s->rate_init + N;
   s->member_store = s->psi + N;
+  s->m_save = s->member_store + nmem;
+  s->h_save = s->m_save + N;
   {
-    double *q = s->member_store + nmem;
+    double *q = s->h_save + N;
     size_t o2 = 0;
     for (j = 0; j < p->n_planes; j++) {
       const autobal_rotor_plane *pl = &p->plane[j];
@@ -1239,9 +1241,42 @@ int autobal_rotor_stab_analyze(autobal_rotor_stab *s, autobal_rotor_stab_result 
 
 /* ---- sweeps and critical values ------------------------------------------------------- */
 
+/* Everything autobal_rotor_stab_set can change (any parameter id): the working parameters
+ * (omega, input and lumped set, every plane's m0; the ball arrays hold the same pointers),
+ * the current lumped set and scale factors, and every ball's mass and damping (into the
+ * handle's m_save / h_save, sized at alloc).  A sweep or critical search saves them first
+ * and puts them back bitwise afterwards, also after a failure. */
+typedef struct stab_saved {
+  autobal_rotor_params cur;
+  autobal_rotor_lumped L;
+  double c_scale, h_scale;
+} stab_saved;
+
+static void stab_save(autobal_rotor_stab *s, stab_saved *sv) {
+  sv->cur = s->cur;
+  sv->L = s->L;
+  sv->c_scale = s->c_scale;
+  sv->h_scale = s->h_scale;
+  if (s->N > 0) {
+    memcpy(s->m_save, s->m, s->N * sizeof *s->m);
+    memcpy(s->h_save, s->h, s->N * sizeof *s->h);
+  }
+}
+
+static void stab_restore(autobal_rotor_stab *s, const stab_saved *sv) {
+  s->cur = sv->cur;
+  s->L = sv->L;
+  s->c_scale = sv->c_scale;
+  s->h_scale = sv->h_scale;
+  if (s->N > 0) {
+    memcpy(s->m, s->m_save, s->N * sizeof *s->m);
+    memcpy(s->h, s->h_save, s->N * sizeof *s->h);
+  }
+}
+
 int autobal_rotor_stab_sweep(autobal_rotor_stab *s, int param, const double *values, size_t n,
                              double *margin, int *verdict) {
-  double saved;
+  stab_saved sv;
   size_t k;
   int st = AUTOBAL_SUCCESS;
   if (s == NULL) return AUTOBAL_EINVAL;
@@ -1249,14 +1284,14 @@ int autobal_rotor_stab_sweep(autobal_rotor_stab *s, int param, const double *val
     return autobal_error_set(&s->err, AUTOBAL_EINVAL, "sweep: NULL array");
   if (autobal_rotor_stab_param_name(param) == NULL)
     return autobal_error_set(&s->err, AUTOBAL_EINVAL, "sweep: parameter id %d is not valid", param);
-  saved = autobal_rotor_stab_get(s, param);
+  stab_save(s, &sv);
   for (k = 0; k < n; k++) {
     if ((st = autobal_rotor_stab_set(s, param, values[k])) != AUTOBAL_SUCCESS) break;
     if ((st = autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_AUTO, &margin[k], &verdict[k])) !=
         AUTOBAL_SUCCESS)
       break;
   }
-  if (isfinite(saved)) (void)autobal_rotor_stab_set(s, param, saved);
+  stab_restore(s, &sv);
   return st;
 }
 
@@ -1291,31 +1326,14 @@ static int crit_exists(double x, void *ctx, int *value) {
 /* sign class of a margin: +1 stable side (< 0), -1 unstable side (>= 0), 0 none */
 static int side_of(double margin) { return isnan(margin) ? 0 : (margin < 0.0 ? 1 : -1); }
 
-int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, double hi,
-                                size_t n_grid, double xtol_rel, autobal_rotor_crit *out) {
+/* The scan of autobal_rotor_stab_critical with at most `cap` critical values (arguments
+ * checked by the caller, *out zeroed, the parameters saved and restored by the caller). */
+static int critical_scan(autobal_rotor_stab *s, int param, double lo, double hi, size_t n_grid,
+                         double xtol_rel, size_t cap, autobal_rotor_crit *out) {
   crit_ctx cc;
-  double saved, prev_x = lo, start = NAN;
+  double prev_x = lo, start = NAN;
   size_t k;
   int st = AUTOBAL_SUCCESS, prev_side = 0, in_stable = 0;
-  if (s == NULL) return AUTOBAL_EINVAL;
-  if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: NULL output");
-  memset(out, 0, sizeof *out);
-  out->param = param;
-  if (autobal_rotor_stab_param_name(param) == NULL)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: parameter id %d is not valid", param);
-  if (!(isfinite(lo) && isfinite(hi) && lo < hi))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
-                             "critical: need finite lo < hi, got [%g, %g]", lo, hi);
-  if (param == AUTOBAL_ROTOR_PARAM_OMEGA && !(lo > 0.0 || hi < 0.0))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
-                             "critical: the omega range [%g, %g] must not contain 0", lo, hi);
-  if (n_grid < 2 || n_grid > 100000000)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: n_grid = %zu out of range [2, 1e8]",
-                             n_grid);
-  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: xtol_rel = %g out of range (0, 0.1)",
-                             xtol_rel);
-  saved = autobal_rotor_stab_get(s, param);
   cc.s = s;
   cc.param = param;
   cc.evals = 0;
@@ -1337,6 +1355,13 @@ int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, dou
     } else if (side != prev_side) {
       double xc = NAN;
       int kind;
+      if (out->n >= cap) {
+        /* one change more than the list holds: stop here, before refining it.  The
+         * results cover [lo, value[n-1]]: an open stable interval (it began at the last
+         * recorded change) is not reported, nothing beyond it is claimed. */
+        out->truncated = 1;
+        break;
+      }
       if (side != 0 && prev_side != 0) {
         /* margin changes sign: Brent on the margin */
         st = autobal_root_brent(crit_margin, &cc, prev_x, x, 0.0, xtol_rel, 200, &xc, &s->err);
@@ -1350,20 +1375,15 @@ int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, dou
         kind = 0;
       }
       if (st != AUTOBAL_SUCCESS) break;
-      if (out->n < AUTOBAL_ROTOR_MAX_CRIT) {
-        out->value[out->n] = xc;
-        out->kind[out->n] = kind;
-        out->n++;
-      } else {
-        out->truncated = 1;
-      }
+      out->value[out->n] = xc;
+      out->kind[out->n] = kind;
+      out->n++;
       if (in_stable && side != 1) {
+        /* at most n/2 + 1 <= AUTOBAL_ROTOR_MAX_CRIT closed intervals: never full */
         if (out->n_stable < AUTOBAL_ROTOR_MAX_CRIT) {
           out->stable_lo[out->n_stable] = start;
           out->stable_hi[out->n_stable] = xc;
           out->n_stable++;
-        } else {
-          out->truncated = 1;
         }
         in_stable = 0;
       } else if (!in_stable && side == 1) {
@@ -1374,18 +1394,64 @@ int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, dou
     prev_side = side;
     prev_x = x;
   }
-  if (st == AUTOBAL_SUCCESS && in_stable) {
-    if (out->n_stable < AUTOBAL_ROTOR_MAX_CRIT) {
-      out->stable_lo[out->n_stable] = start;
-      out->stable_hi[out->n_stable] = hi;
-      out->n_stable++;
-    } else {
-      out->truncated = 1;
-    }
+  if (st == AUTOBAL_SUCCESS && in_stable && !out->truncated &&
+      out->n_stable < AUTOBAL_ROTOR_MAX_CRIT) {
+    out->stable_lo[out->n_stable] = start;
+    out->stable_hi[out->n_stable] = hi;
+    out->n_stable++;
   }
   out->evaluations = cc.evals;
-  if (isfinite(saved)) (void)autobal_rotor_stab_set(s, param, saved);
+  if (st == AUTOBAL_SUCCESS && out->truncated)
+    st = autobal_error_set(&s->err, AUTOBAL_WARNING,
+                           "critical: more than %zu verdict changes of %s in [%.9g, %.9g] (the "
+                           "capacity of the list): the first %zu are kept and the search stopped "
+                           "at the next one; the results cover [%.9g, %.12g] only (up to the last "
+                           "kept change). Narrow the range (e.g. an upper end <= %.12g) or split it",
+                           cap, autobal_rotor_stab_param_name(param), lo, hi, out->n, lo,
+                           out->value[out->n - 1], out->value[out->n - 1]);
   return st;
+}
+
+static int critical_checked(autobal_rotor_stab *s, int param, double lo, double hi, size_t n_grid,
+                            double xtol_rel, size_t cap, autobal_rotor_crit *out) {
+  stab_saved sv;
+  int st;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: NULL output");
+  memset(out, 0, sizeof *out);
+  out->param = param;
+  if (autobal_rotor_stab_param_name(param) == NULL)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: parameter id %d is not valid", param);
+  if (!(isfinite(lo) && isfinite(hi) && lo < hi))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "critical: need finite lo < hi, got [%g, %g]", lo, hi);
+  if (param == AUTOBAL_ROTOR_PARAM_OMEGA && !(lo > 0.0 || hi < 0.0))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "critical: the omega range [%g, %g] must not contain 0", lo, hi);
+  if (n_grid < 2 || n_grid > 100000000)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: n_grid = %zu out of range [2, 1e8]",
+                             n_grid);
+  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: xtol_rel = %g out of range (0, 0.1)",
+                             xtol_rel);
+  if (cap < 1 || cap > AUTOBAL_ROTOR_MAX_CRIT)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "critical: capacity %zu out of range [1, %d]",
+                             cap, AUTOBAL_ROTOR_MAX_CRIT);
+  stab_save(s, &sv);
+  st = critical_scan(s, param, lo, hi, n_grid, xtol_rel, cap, out);
+  stab_restore(s, &sv);
+  return st;
+}
+
+int autobal_rotor_stab_critical(autobal_rotor_stab *s, int param, double lo, double hi,
+                                size_t n_grid, double xtol_rel, autobal_rotor_crit *out) {
+  return critical_checked(s, param, lo, hi, n_grid, xtol_rel, AUTOBAL_ROTOR_MAX_CRIT, out);
+}
+
+int autobal_rotor_stab_critical_cap_(autobal_rotor_stab *s, int param, double lo, double hi,
+                                     size_t n_grid, double xtol_rel, size_t cap,
+                                     autobal_rotor_crit *out) {
+  return critical_checked(s, param, lo, hi, n_grid, xtol_rel, cap, out);
 }
 
 /* ---- maps ---------------------------------------------------------------------------- */

@@ -797,6 +797,65 @@ static void test_map(void) {
   CHECK_STATUS("map: NULL output", autobal_pendulum_map(&sp, NULL, NULL, &err), AUTOBAL_EINVAL);
 }
 
+/* Test hook in src/pendulum.c (not in the API): the damped search with the capacity of its
+ * list lowered to cap, to reach the truncation path with the few changes the model has. */
+int autobal_pendulum_critical_speeds_damped_cap_(autobal_pendulum_workspace *ws,
+                                                 const autobal_pendulum_params *p, double rw_min,
+                                                 double rw_max, size_t n_sweep, size_t cap,
+                                                 autobal_pendulum_crit_set *out);
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+static void test_damped_truncation(void) {
+  autobal_pendulum_workspace *ws = autobal_pendulum_workspace_alloc();
+  autobal_pendulum_params p;
+  autobal_pendulum_crit_set full, s;
+  int st;
+  printf("-- damped critical speeds: a full list is reported (capacity lowered for the test)\n");
+  /* (9) regime: H = 100, k = 1, h = 1, R_m = 0.1: gained at the lower end of the window of (9),
+   * lost at the upper end (two changes) */
+  autobal_pendulum_params_from_k(0, 0.1, 100.0, 1.0, 1.0, &p, NULL);
+  st = autobal_pendulum_critical_speeds_damped(ws, &p, 0.05, 5.0, 200, &full);
+  CHECK_STATUS("full capacity: success", st, AUTOBAL_SUCCESS);
+  CHECK("not truncated (flag 0), two changes gained/lost, one stable interval",
+        full.truncated == 0 && full.n == 2 && full.kind[0] == AUTOBAL_CRIT_GAINED &&
+            full.kind[1] == AUTOBAL_CRIT_LOST && full.n_stable == 1);
+  CHECK("message empty after success", autobal_pendulum_errmsg(ws)[0] == '\0');
+  st = autobal_pendulum_critical_speeds_damped_cap_(ws, &p, 0.05, 5.0, 200, 2, &s);
+  CHECK("capacity = number of changes: success, not truncated, identical",
+        st == AUTOBAL_SUCCESS && s.truncated == 0 && s.n == 2 && same_bits(s.R_w[0], full.R_w[0]) &&
+            same_bits(s.R_w[1], full.R_w[1]) && s.n_stable == 1 && same_bits(s.stable_hi[0], full.stable_hi[0]));
+  st = autobal_pendulum_critical_speeds_damped_cap_(ws, &p, 0.05, 5.0, 200, 1, &s);
+  CHECK_STATUS("capacity 1 < 2 changes: AUTOBAL_WARNING", st, AUTOBAL_WARNING);
+  CHECK_STATUS("... recorded in the workspace", autobal_pendulum_status(ws), AUTOBAL_WARNING);
+  CHECK("truncated = 1, the first change kept (bitwise)", s.truncated == 1 && s.n == 1 &&
+        s.kind[0] == AUTOBAL_CRIT_GAINED && same_bits(s.R_w[0], full.R_w[0]));
+  CHECK("the stable interval beginning at the last kept change is not extended (not listed)", s.n_stable == 0);
+  CHECK_MSG("message names the capacity", autobal_pendulum_errmsg(ws), "more than 1 stability changes");
+  CHECK_MSG("message says what to do", autobal_pendulum_errmsg(ws), "Narrow the range");
+  /* k = 0, R_m = 0.2, light damping: gained near R_w1 = 1 (13), lost near R_w2, gained near R_w3 */
+  autobal_pendulum_params_from_k(0, 0.2, 1e-3, 1e-3, 0.0, &p, NULL);
+  st = autobal_pendulum_critical_speeds_damped(ws, &p, 0.0, 10.0, 2000, &full);
+  CHECK("k = 0, R_m = 0.2: success, three changes gained/lost/gained, not truncated",
+        st == AUTOBAL_SUCCESS && full.truncated == 0 && full.n == 3 && full.kind[0] == AUTOBAL_CRIT_GAINED &&
+            full.kind[1] == AUTOBAL_CRIT_LOST && full.kind[2] == AUTOBAL_CRIT_GAINED && full.n_stable == 2 &&
+            full.stable_hi[1] == 10.0);
+  if (full.n == 3) CHECK_CLOSE("first change near R_w1 = 1 of (13) (light damping)", full.R_w[0], 1.0, 1e-2, 0);
+  st = autobal_pendulum_critical_speeds_damped_cap_(ws, &p, 0.0, 10.0, 2000, 2, &s);
+  CHECK_STATUS("capacity 2 < 3 changes: AUTOBAL_WARNING", st, AUTOBAL_WARNING);
+  CHECK("the closed stable interval [R_w(0), R_w(1)] is kept, nothing beyond R_w(1)",
+        s.truncated == 1 && s.n == 2 && s.n_stable == 1 && same_bits(s.stable_lo[0], full.R_w[0]) &&
+            same_bits(s.stable_hi[0], full.R_w[1]));
+  CHECK_STATUS("capacity 0 rejected", autobal_pendulum_critical_speeds_damped_cap_(ws, &p, 0.0, 10.0, 20, 0, &s), AUTOBAL_EINVAL);
+  CHECK_STATUS("capacity above AUTOBAL_PENDULUM_MAX_CRIT rejected",
+               autobal_pendulum_critical_speeds_damped_cap_(ws, &p, 0.0, 10.0, 20, AUTOBAL_PENDULUM_MAX_CRIT + 1, &s),
+               AUTOBAL_EINVAL);
+  /* the undamped search never truncates: its flag is 0 */
+  CHECK("undamped critical speeds: flag 0",
+        autobal_pendulum_critical_speeds(ws, 0.2, 1.0, &s) == AUTOBAL_SUCCESS && s.truncated == 0);
+  autobal_pendulum_workspace_free(ws);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_params();
@@ -806,6 +865,7 @@ int main(void) {
   test_critical();
   test_series();
   test_damped();
+  test_damped_truncation();
   test_map();
   return check_summary();
 }

@@ -19,6 +19,7 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "rotor_stab_internal.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -557,6 +558,7 @@ static void test_critical(void) {
   printf("-- critical speeds of the default example\n");
   CHECK_STATUS("critical", autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, 20.0, 1500.0, 300, 1e-9, &c), 0);
   CHECK("at least one critical speed", c.n >= 1);
+  CHECK("not truncated (flag 0 in the normal case)", c.truncated == 0);
   CHECK("omega restored", autobal_rotor_stab_get(s, AUTOBAL_ROTOR_PARAM_OMEGA) == 500.0);
   for (k = 0; k < c.n; k++) {
     /* independent: the Routh-Hurwitz count of right-half-plane roots changes across it */
@@ -727,6 +729,7 @@ static void test_campbell(void) {
     autobal_error err;
     CHECK_STATUS("resonances", autobal_rotor_resonance_speeds(&p, 1.0, 1000.0, 400, 1e-10, &rr, NULL), 0);
     CHECK("four crossings (two forward, two backward)", rr.n_cross == 4);
+    CHECK("resonance lists not truncated (flag 0)", rr.truncated == 0);
     for (k = 0; k < rr.n_cross; k++) {
       autobal_rotor_modes(&p, rr.cross[k], 0, f, NULL, NULL, wv, NULL);
       CHECK_CLOSE("freq(omega_c) = omega_c", f[rr.cross_mode[k]], rr.cross[k], 1e-9, 0);
@@ -963,6 +966,315 @@ static void test_errors(void) {
   CHECK("errmsg of NULL", autobal_rotor_stab_errmsg(NULL) != NULL);
 }
 
+/* ---- sweeps and critical searches put the working parameters back exactly ---------------- */
+
+/* Unequal balls in two planes with different unbalances: 3 balls (plane 1) and 2 balls
+ * (plane 2), every m_i and h_i different, hardware input (a scale parameter used to turn it
+ * into lumped input). */
+static double mu3[3] = {0.05, 0.04, 0.03}, ru3[3] = {0.1, 0.1, 0.1}, hu3[3] = {0.1, 0.07, 0.02};
+static double mu2[2] = {0.04, 0.035}, ru2[2] = {0.09, 0.09}, hu2[2] = {0.4, 0.3};
+static autobal_rotor_params unequal_two_planes(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.n_planes = 2;
+  p.plane[0].n_balls = 3;
+  p.plane[0].ball_mass = mu3;
+  p.plane[0].ball_radius = ru3;
+  p.plane[0].ball_damping = hu3;
+  p.plane[0].ball_psi = NULL;
+  p.plane[0].ball_rate = NULL;
+  p.plane[1] = p.plane[0];
+  p.plane[1].d = -0.12;
+  p.plane[1].m0 = 0.015;
+  p.plane[1].r0 = 0.09;
+  p.plane[1].psi0 = 2.0;
+  p.plane[1].n_balls = 2;
+  p.plane[1].ball_mass = mu2;
+  p.plane[1].ball_radius = ru2;
+  p.plane[1].ball_damping = hu2;
+  return p;
+}
+
+/* A deep copy of everything reachable through autobal_rotor_stab_params and _get. */
+typedef struct params_copy {
+  autobal_rotor_params p;
+  double m[8], r[8], h[8], psi[8], rate[8];
+  double get[6];
+} params_copy;
+
+static void params_take(autobal_rotor_stab *s, params_copy *c) {
+  const autobal_rotor_params *p = autobal_rotor_stab_params(s);
+  size_t j, i, o = 0;
+  int id;
+  memset(c, 0, sizeof *c);
+  c->p = *p;
+  for (j = 0; j < p->n_planes; j++)
+    for (i = 0; i < p->plane[j].n_balls; i++, o++) {
+      c->m[o] = p->plane[j].ball_mass[i];
+      c->r[o] = p->plane[j].ball_radius[i];
+      c->h[o] = p->plane[j].ball_damping[i];
+      c->psi[o] = p->plane[j].ball_psi[i];
+      c->rate[o] = p->plane[j].ball_rate[i];
+    }
+  for (id = 0; id < 6; id++) c->get[id] = autobal_rotor_stab_get(s, id);
+}
+
+#define SAME_BITS(a, b) (memcmp(&(a), &(b), sizeof(a)) == 0)
+
+/* Field by field, bitwise (doubles by memcmp, so -0.0 != 0.0 and NaN == NaN bits). */
+static int params_same(const params_copy *a, const params_copy *b, char *what, size_t len) {
+  size_t j;
+  int ok = 1;
+  what[0] = '\0';
+#define FIELD(x)                                                      \
+  if (ok && !SAME_BITS(a->x, b->x)) {                                 \
+    ok = 0;                                                           \
+    snprintf(what, len, "%s", #x);                                    \
+  }
+  FIELD(p.input) FIELD(p.hw) FIELD(p.lumped) FIELD(p.inertia) FIELD(p.omega) FIELD(p.axial)
+  FIELD(p.n_planes) FIELD(p.q0) FIELD(p.qd0) FIELD(p.z0) FIELD(p.zd0)
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) {
+    FIELD(p.plane[j].d) FIELD(p.plane[j].m0) FIELD(p.plane[j].r0) FIELD(p.plane[j].psi0)
+    FIELD(p.plane[j].n_balls) FIELD(p.plane[j].ball_mass) FIELD(p.plane[j].ball_radius)
+    FIELD(p.plane[j].ball_damping) FIELD(p.plane[j].ball_psi) FIELD(p.plane[j].ball_rate)
+  }
+  FIELD(m) FIELD(r) FIELD(h) FIELD(psi) FIELD(rate) FIELD(get)
+#undef FIELD
+  return ok;
+}
+
+/* The numbers of one analysis, copied out of the handle. */
+typedef struct analysis_copy {
+  int st, method, verdict;
+  double margin, closed_margin, full_margin, floquet_margin;
+  size_t n_full, n_floquet, n_closed;
+  double psi[8], full_re[32], full_im[32], mu_re[32], mu_im[32];
+} analysis_copy;
+
+static void analysis_take(autobal_rotor_stab *s, analysis_copy *c) {
+  autobal_rotor_stab_result r;
+  size_t n;
+  memset(c, 0, sizeof *c);
+  memset(&r, 0, sizeof r);
+  c->st = autobal_rotor_stab_analyze(s, &r);
+  c->method = r.method;
+  c->verdict = r.verdict;
+  c->margin = r.margin;
+  c->closed_margin = r.closed_margin;
+  c->full_margin = r.full_margin;
+  c->floquet_margin = r.floquet_margin;
+  c->n_full = r.n_full;
+  c->n_floquet = r.n_floquet;
+  c->n_closed = r.n_closed;
+  n = r.n_balls < 8 ? r.n_balls : 8;
+  if (r.psi) memcpy(c->psi, r.psi, n * sizeof(double));
+  if (r.full_re && r.n_full <= 32) {
+    memcpy(c->full_re, r.full_re, r.n_full * sizeof(double));
+    memcpy(c->full_im, r.full_im, r.n_full * sizeof(double));
+  }
+  if (r.mu_re && r.n_floquet <= 32) {
+    memcpy(c->mu_re, r.mu_re, r.n_floquet * sizeof(double));
+    memcpy(c->mu_im, r.mu_im, r.n_floquet * sizeof(double));
+  }
+}
+
+static void test_restore(void) {
+  autobal_rotor_params p = unequal_two_planes();
+  autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, NULL), *sc;
+  params_copy before, after;
+  analysis_copy a0, a1;
+  autobal_rotor_crit cr;
+  char what[64];
+  /* per id: values that change it, some of them to "no balanced configuration" */
+  static const double vals[6][3] = {{300.0, 450.0, 700.0},   {0.05, 0.2, 0.6},  {0.03, 0.06, 0.045},
+                                    {0.5, 1.5, 2.0},         {0.0, 0.5, 3.0},   {0.0, 0.01, 0.03}};
+  static const double crange[6][2] = {{300.0, 700.0}, {0.01, 0.5}, {0.02, 0.08},
+                                      {0.5, 2.0},     {0.0, 3.0},  {0.0, 0.04}};
+  double mg[3];
+  int vd[3], id, st;
+  printf("-- sweeps and critical searches restore every parameter bitwise (unequal balls, two planes)\n");
+  CHECK("handle allocated", s != NULL);
+  if (s == NULL) return;
+  params_take(s, &before);
+  CHECK("setup: ball masses and dampings all differ, m0 differ, hardware input",
+        before.m[0] != before.m[1] && before.m[1] != before.m[2] && before.m[3] != before.m[4] &&
+            before.h[0] != before.h[1] && before.h[3] != before.h[4] &&
+            before.p.plane[0].m0 != before.p.plane[1].m0 && before.p.input == AUTOBAL_ROTOR_HARDWARE);
+  analysis_take(s, &a0);
+  CHECK_STATUS("analysis before the sweeps", a0.st, 0);
+  CHECK("analysis computed the full model and Floquet (N = 5)", a0.n_full == 18 && a0.n_floquet == 18);
+  for (id = 0; id < 6; id++) {
+    char label[160];
+    st = autobal_rotor_stab_sweep(s, id, vals[id], 3, mg, vd);
+    snprintf(label, sizeof label, "sweep over %s", autobal_rotor_stab_param_name(id));
+    CHECK_STATUS(label, st, 0);
+    params_take(s, &after);
+    snprintf(label, sizeof label, "after the sweep over %s: parameters bitwise as before", autobal_rotor_stab_param_name(id));
+    CHECK(label, params_same(&before, &after, what, sizeof what));
+    if (what[0]) printf("   first difference: %s\n", what);
+    st = autobal_rotor_stab_critical(s, id, crange[id][0], crange[id][1], 6, 1e-6, &cr);
+    snprintf(label, sizeof label, "critical search over %s", autobal_rotor_stab_param_name(id));
+    CHECK(label, st == AUTOBAL_SUCCESS && cr.truncated == 0);
+    params_take(s, &after);
+    snprintf(label, sizeof label, "after the critical search over %s: parameters bitwise as before",
+             autobal_rotor_stab_param_name(id));
+    CHECK(label, params_same(&before, &after, what, sizeof what));
+    if (what[0]) printf("   first difference: %s\n", what);
+  }
+  analysis_take(s, &a1);
+  CHECK_STATUS("analysis after the sweeps", a1.st, 0);
+  CHECK("analysis after = before (verdict, margins, psi, full roots, Floquet multipliers; bitwise)",
+        a1.method == a0.method && a1.verdict == a0.verdict && SAME_BITS(a1.margin, a0.margin) &&
+            SAME_BITS(a1.full_margin, a0.full_margin) && SAME_BITS(a1.floquet_margin, a0.floquet_margin) &&
+            a1.n_full == a0.n_full && a1.n_floquet == a0.n_floquet && SAME_BITS(a1.psi, a0.psi) &&
+            SAME_BITS(a1.full_re, a0.full_re) && SAME_BITS(a1.full_im, a0.full_im) &&
+            SAME_BITS(a1.mu_re, a0.mu_re) && SAME_BITS(a1.mu_im, a0.mu_im));
+  /* a sweep that fails midway: the third value is out of range (after two changes) */
+  {
+    const double bad[3] = {0.045, 0.05, -1.0};
+    vd[0] = vd[1] = vd[2] = 99;
+    CHECK_STATUS("sweep of ball_mass failing at the third value", autobal_rotor_stab_sweep(s, AUTOBAL_ROTOR_PARAM_BALL_MASS, bad, 3, mg, vd), AUTOBAL_EINVAL);
+    CHECK_MSG("... names the parameter", autobal_rotor_stab_errmsg(s), "ball_mass");
+    CHECK("the first two points were evaluated (the parameters did change)", vd[0] != 99 && vd[1] != 99 && vd[2] == 99);
+    params_take(s, &after);
+    CHECK("after the failed sweep: parameters bitwise as before", params_same(&before, &after, what, sizeof what));
+    if (what[0]) printf("   first difference: %s\n", what);
+  }
+  autobal_rotor_stab_free(s);
+  /* margin failures midway: with the CLOSED method the closure needs a common h_i/m_i per
+   * plane: true at h = 0 for every ball, false for any common h > 0 with unequal masses */
+  o.method = AUTOBAL_ROTOR_STAB_CLOSED;
+  sc = autobal_rotor_stab_alloc(&p, &o, NULL);
+  CHECK("handle (method closed) allocated", sc != NULL);
+  if (sc == NULL) return;
+  params_take(sc, &before);
+  {
+    const double hv[3] = {0.0, 0.1, 0.2};
+    CHECK_STATUS("closed-method sweep of ball_damping: 0 works, 0.1 fails (no common kappa)",
+                 autobal_rotor_stab_sweep(sc, AUTOBAL_ROTOR_PARAM_BALL_DAMPING, hv, 3, mg, vd), AUTOBAL_EUNSUPPORTED);
+    CHECK("the point h = 0 was evaluated (closure holds there)", vd[0] != AUTOBAL_ROTOR_VERDICT_NONE && isfinite(mg[0]));
+    params_take(sc, &after);
+    CHECK("after the failed sweep (margin failure): parameters bitwise as before", params_same(&before, &after, what, sizeof what));
+    if (what[0]) printf("   first difference: %s\n", what);
+    CHECK_STATUS("closed-method critical search over ball_damping fails at the second grid point",
+                 autobal_rotor_stab_critical(sc, AUTOBAL_ROTOR_PARAM_BALL_DAMPING, 0.0, 0.2, 5, 1e-8, &cr), AUTOBAL_EUNSUPPORTED);
+    CHECK("... after two grid evaluations, no change recorded", cr.evaluations == 2 && cr.n == 0);
+    params_take(sc, &after);
+    CHECK("after the failed critical search: parameters bitwise as before", params_same(&before, &after, what, sizeof what));
+    if (what[0]) printf("   first difference: %s\n", what);
+  }
+  autobal_rotor_stab_free(sc);
+}
+
+/* ---- truncated lists: flag, status, message, meaning -------------------------------------- */
+
+/* The speed named after "complete for omega <= " in a resonance warning (NaN if absent). */
+static double complete_speed(const char *msg) {
+  const char *k = strstr(msg, "complete for omega <= ");
+  return k ? strtod(k + strlen("complete for omega <= "), NULL) : NAN;
+}
+
+static void test_truncation(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, NULL);
+  autobal_rotor_crit full, c;
+  size_t k;
+  int same, st;
+  printf("-- truncated critical-value and resonance lists (capacity lowered for the test)\n");
+  CHECK_STATUS("critical speeds, full capacity", autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, 20.0, 1500.0, 300, 1e-9, &full), 0);
+  CHECK("not truncated; three changes (gained, lost, gained) for this test", full.truncated == 0 && full.n == 3 &&
+        full.kind[0] == 1 && full.kind[1] == -1 && full.kind[2] == 1 && full.n_stable == 2);
+  /* capacity = number of changes: exactly full, not truncated */
+  st = autobal_rotor_stab_critical_cap_(s, AUTOBAL_ROTOR_PARAM_OMEGA, 20.0, 1500.0, 300, 1e-9, full.n, &c);
+  CHECK_STATUS("capacity = number of changes: success", st, 0);
+  same = c.n == full.n && c.n_stable == full.n_stable && c.truncated == 0;
+  for (k = 0; same && k < c.n; k++) same = SAME_BITS(c.value[k], full.value[k]);
+  for (k = 0; same && k < c.n_stable; k++) same = SAME_BITS(c.stable_lo[k], full.stable_lo[k]) && SAME_BITS(c.stable_hi[k], full.stable_hi[k]);
+  CHECK("... and identical to the full result (nothing dropped is not truncation)", same);
+  /* capacity 2: the third change (gained) is dropped */
+  st = autobal_rotor_stab_critical_cap_(s, AUTOBAL_ROTOR_PARAM_OMEGA, 20.0, 1500.0, 300, 1e-9, 2, &c);
+  CHECK_STATUS("capacity 2 < 3 changes: AUTOBAL_WARNING", st, AUTOBAL_WARNING);
+  CHECK("truncated = 1, n = 2", c.truncated == 1 && c.n == 2);
+  CHECK("the kept changes are the first ones of the full search (bitwise)", c.n == 2 && SAME_BITS(c.value[0], full.value[0]) &&
+        SAME_BITS(c.value[1], full.value[1]) && c.kind[0] == full.kind[0] && c.kind[1] == full.kind[1]);
+  CHECK("stable intervals: only the closed one [value0, value1]", c.n_stable == 1 && SAME_BITS(c.stable_lo[0], full.value[0]) &&
+        SAME_BITS(c.stable_hi[0], full.value[1]));
+  CHECK_MSG("message names the capacity", autobal_rotor_stab_errmsg(s), "more than 2 verdict changes");
+  CHECK_MSG("message says what to do", autobal_rotor_stab_errmsg(s), "Narrow the range");
+  CHECK("the search stopped early (fewer evaluations than the full one)", c.evaluations < full.evaluations);
+  CHECK("omega restored after a truncated search", autobal_rotor_stab_get(s, AUTOBAL_ROTOR_PARAM_OMEGA) == 500.0);
+  /* capacity 1: the first change gains stability; the stable interval that begins there is
+   * not extended past it (not listed at all) */
+  st = autobal_rotor_stab_critical_cap_(s, AUTOBAL_ROTOR_PARAM_OMEGA, 20.0, 1500.0, 300, 1e-9, 1, &c);
+  CHECK_STATUS("capacity 1: AUTOBAL_WARNING", st, AUTOBAL_WARNING);
+  CHECK("n = 1, no stable interval claimed beyond the last kept change", c.truncated == 1 && c.n == 1 && c.n_stable == 0 &&
+        SAME_BITS(c.value[0], full.value[0]));
+  CHECK_STATUS("capacity 0 rejected", autobal_rotor_stab_critical_cap_(s, 0, 20.0, 1500.0, 300, 1e-9, 0, &c), AUTOBAL_EINVAL);
+  CHECK_STATUS("capacity above AUTOBAL_ROTOR_MAX_CRIT rejected",
+               autobal_rotor_stab_critical_cap_(s, 0, 20.0, 1500.0, 300, 1e-9, AUTOBAL_ROTOR_MAX_CRIT + 1, &c), AUTOBAL_EINVAL);
+  autobal_rotor_stab_free(s);
+
+  /* resonances of the default rotor: 4 crossings, then capacity 2 (dropped by a crossing) */
+  {
+    autobal_rotor_resonances rf, rc;
+    autobal_error err;
+    double xc;
+    int missing = 0;
+    CHECK_STATUS("resonances, full capacity", autobal_rotor_resonance_speeds(&p, 1.0, 1000.0, 400, 1e-10, &rf, &err), 0);
+    CHECK("not truncated, 4 crossings", rf.truncated == 0 && rf.n_cross == 4);
+    st = autobal_rotor_resonance_speeds_cap_(&p, 1.0, 1000.0, 400, 1e-10, 4, &rc, &err);
+    CHECK("capacity 4 = number of crossings: success, not truncated, same lists",
+          st == 0 && rc.truncated == 0 && rc.n_cross == rf.n_cross && rc.n_peak == rf.n_peak &&
+              memcmp(rc.cross, rf.cross, rf.n_cross * sizeof(double)) == 0 &&
+              memcmp(rc.peak, rf.peak, rf.n_peak * sizeof(double)) == 0);
+    st = autobal_rotor_resonance_speeds_cap_(&p, 1.0, 1000.0, 400, 1e-10, 2, &rc, &err);
+    CHECK_STATUS("capacity 2 < 4 crossings: AUTOBAL_WARNING", st, AUTOBAL_WARNING);
+    CHECK_STATUS("... also in err", err.status, AUTOBAL_WARNING);
+    CHECK("truncated = 1, two crossings = the first two of the full search (bitwise)", rc.truncated == 1 && rc.n_cross == 2 &&
+          memcmp(rc.cross, rf.cross, 2 * sizeof(double)) == 0);
+    CHECK_MSG("message names the capacity", err.message, "more than 2 crossings");
+    CHECK_MSG("message says what to do", err.message, "Narrow the range");
+    xc = complete_speed(err.message);
+    printf("   lists complete for omega <= %.9g (message)\n", xc);
+    CHECK("that speed lies below the first dropped crossing", isfinite(xc) && xc < rf.cross[2]);
+    for (k = 0; k < rf.n_cross; k++)
+      if (rf.cross[k] <= xc && (k >= rc.n_cross || !SAME_BITS(rc.cross[k], rf.cross[k]))) missing++;
+    for (k = 0; k < rf.n_peak; k++)
+      if (rf.peak[k] <= xc && (k >= rc.n_peak || !SAME_BITS(rc.peak[k], rf.peak[k]))) missing++;
+    CHECK("every crossing and peak of the full search below that speed is kept", missing == 0);
+    CHECK_STATUS("resonances capacity 0 rejected", autobal_rotor_resonance_speeds_cap_(&p, 1.0, 1000.0, 400, 1e-10, 0, &rc, &err), AUTOBAL_EINVAL);
+  }
+  /* anisotropic, lightly damped supports: separated modes, each with a peak just above its
+   * crossing.  A range starting between the crossing and the peak of mode 2 and ending
+   * before the last crossing holds two peaks and one crossing: capacity 1 drops a peak. */
+  {
+    autobal_rotor_params q = autobal_rotor_params_default();
+    autobal_rotor_resonances rf, rw, rc;
+    autobal_error err;
+    double lo, hi, xc;
+    q.hw.c_Ly = 0.4e5;
+    q.hw.c_Ry = 0.8e5;
+    q.hw.h_Lx = q.hw.h_Ly = q.hw.h_Rx = q.hw.h_Ry = 5.0;
+    CHECK_STATUS("anisotropic resonances", autobal_rotor_resonance_speeds(&q, 1.0, 1000.0, 2000, 1e-10, &rf, &err), 0);
+    CHECK("4 crossings and 4 peaks, each peak above its crossing and below the next",
+          rf.n_cross == 4 && rf.n_peak == 4 && rf.peak[1] > rf.cross[1] && rf.peak[1] < rf.cross[2] &&
+              rf.peak[2] > rf.cross[2] && rf.peak[2] < rf.cross[3]);
+    if (rf.n_cross == 4 && rf.n_peak == 4) {
+      lo = rf.cross[1] + 0.25 * (rf.peak[1] - rf.cross[1]);
+      hi = 0.5 * (rf.peak[2] + rf.cross[3]);
+      CHECK_STATUS("sub-range, full capacity", autobal_rotor_resonance_speeds(&q, lo, hi, 2000, 1e-10, &rw, &err), 0);
+      CHECK("sub-range: 1 crossing, 2 peaks, not truncated", rw.n_cross == 1 && rw.n_peak == 2 && rw.truncated == 0);
+      st = autobal_rotor_resonance_speeds_cap_(&q, lo, hi, 2000, 1e-10, 1, &rc, &err);
+      CHECK_STATUS("capacity 1, two peaks: AUTOBAL_WARNING", st, AUTOBAL_WARNING);
+      CHECK("truncated by the peaks: 1 crossing, 1 peak (the first, bitwise)", rc.truncated == 1 && rc.n_cross == 1 &&
+            rc.n_peak == 1 && SAME_BITS(rc.peak[0], rw.peak[0]) && SAME_BITS(rc.cross[0], rw.cross[0]));
+      CHECK_MSG("message names the peaks", err.message, "more than 1 peaks");
+      xc = complete_speed(err.message);
+      CHECK("complete-up-to speed lies below the dropped peak", isfinite(xc) && xc < rw.peak[1]);
+    }
+  }
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_members();
@@ -975,5 +1287,7 @@ int main(void) {
   test_campbell();
   test_nonlinear_short();
   test_errors();
+  test_restore();
+  test_truncation();
   return check_summary();
 }

@@ -16,7 +16,9 @@
  * Status codes: every function returning int returns AUTOBAL_SUCCESS (0) or
  * a negative status (AUTOBAL_EINVAL for a bad parameter: the message names
  * the parameter, its value and the allowed range; AUTOBAL_ENOMEM;
- * AUTOBAL_ENUMERIC for a GSL failure, with GSL's text).  Functions that take
+ * AUTOBAL_ENUMERIC for a GSL failure, with GSL's text); the one exception is
+ * autobal_pendulum_critical_speeds_damped, which returns the positive
+ * AUTOBAL_WARNING when its list was full (valid data, see there).  Functions that take
  * a workspace record the message in it (autobal_pendulum_errmsg()); the
  * others take an `autobal_error *err` (NULL allowed).  After a failure the
  * outputs hold unspecified values (never uninitialised memory) unless a
@@ -281,6 +283,8 @@ typedef struct autobal_pendulum_crit_set {
   size_t n_stable;
   double stable_lo[AUTOBAL_PENDULUM_MAX_CRIT + 1];
   double stable_hi[AUTOBAL_PENDULUM_MAX_CRIT + 1];
+  int truncated;  /* 1: more changes than the capacity; the set covers only up to
+                     R_w[n-1] (autobal_pendulum_critical_speeds_damped); else 0 */
 } autobal_pendulum_crit_set;
 
 /* Number of entries of s with kind != TOUCH, and the j-th of them (j from
@@ -337,12 +341,18 @@ AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws,
  * stable intervals are clipped to [rw_min, rw_max] (stable_hi = rw_max for
  * the last one, not INFINITY).  A failure of the final Brent polish is not an
  * error (the bisection's midpoint is kept).
- * Capacity: only the first AUTOBAL_PENDULUM_MAX_CRIT changes (in increasing
- * R_w) are recorded; later changes are ignored without notice (there is no
- * truncation flag): n stays at the capacity and the verdict after the last
- * recorded change is taken to hold up to rw_max, so the last stable interval
- * may be too long.  Choose [rw_min, rw_max] so that fewer changes occur.
- * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL ws or p; p invalid apart
+ * Capacity: at most AUTOBAL_PENDULUM_MAX_CRIT changes are recorded (far more
+ * than the damped system shows in practice: a scan over R_m, k and H = h from
+ * 1e-14 to 1e-3 on R_w in [0, 100] found at most 3).  At the first change that
+ * does not fit the search stops (that change is not refined), out->truncated = 1 and
+ * AUTOBAL_WARNING is returned with a message naming the capacity and the range
+ * covered.  The set then describes [rw_min, R_w[n-1]] only (n = the capacity):
+ * the stable intervals end at or before R_w[n-1] -- the verdict after the last
+ * recorded change is not extended to rw_max, and a stable interval that begins
+ * at R_w[n-1] (kind GAINED) is not listed.  Narrow [rw_min, rw_max] (or split it)
+ * to get the rest.  out->truncated = 0 otherwise.
+ * Returns AUTOBAL_SUCCESS, AUTOBAL_WARNING (truncated, see above; the data are
+ * valid; the message is in ws), or AUTOBAL_EINVAL (NULL ws or p; p invalid apart
  * from R_w, which is ignored; rw_min < 0 or not finite; rw_max <= rw_min or
  * not finite; n_sweep < 2; out NULL): *out untouched; or the status of a
  * verdict or bisection at some speed (AUTOBAL_ENUMERIC, ...): *out is then all

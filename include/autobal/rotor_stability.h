@@ -88,7 +88,9 @@
  * gsl_set_error_handler_off() once.
  *
  * Errors: functions return AUTOBAL_SUCCESS or a negative status with the message
- * on the handle (autobal_rotor_stab_errmsg) or in err.  After a failure, output
+ * on the handle (autobal_rotor_stab_errmsg) or in err; autobal_rotor_stab_critical
+ * and autobal_rotor_resonance_speeds also return the positive AUTOBAL_WARNING when
+ * a list was full (truncated = 1; the data are valid).  After a failure, output
  * arrays hold unspecified values (NaN where possible) and the handle stays usable.
  */
 #ifndef AUTOBAL_ROTOR_STABILITY_H
@@ -359,12 +361,16 @@ AUTOBAL_API int autobal_rotor_stab_floquet(autobal_rotor_stab *s, double *mu_re,
  * autobal_rotor_stab_set); or the status of a failing margin evaluation
  * (autobal_rotor_stab_margin).  A failure at a point stops the sweep: the entries
  * before it are valid, the others unspecified.
- * Afterwards (also after a failure) the parameter is set back with
- * autobal_rotor_stab_set to the value autobal_rotor_stab_get gave before: for
- * BALL_MASS / BALL_DAMPING every ball then gets ball 1's former value, for
- * UNBALANCE_MASS every plane gets plane 1's former m0 (not restored at all when
- * that value is NaN, i.e. without balls).  The results of the last
- * autobal_rotor_stab_analyze (arrays pointing into the handle) are overwritten. */
+ * Afterwards (also after a failure) the working parameters are exactly (bitwise)
+ * those before the call: everything the parameter touches is saved first and put
+ * back -- every ball's own mass and damping (BALL_MASS / BALL_DAMPING set all balls
+ * to one value during the sweep), every plane's own m0 (UNBALANCE_MASS), omega, the
+ * scale factors and the lumped set with the input kind (STIFFNESS_SCALE /
+ * DAMPING_SCALE), i.e. all of autobal_rotor_stab_params() and
+ * autobal_rotor_stab_get().  An analysis after the sweep therefore gives the same
+ * results as one before it.  The results of the last autobal_rotor_stab_analyze
+ * (arrays pointing into the handle) are overwritten.  No allocation (the saved
+ * ball data live in the handle). */
 AUTOBAL_API int autobal_rotor_stab_sweep(autobal_rotor_stab *s, int param, const double *values,
                                          size_t n, double *margin, int *verdict);
 
@@ -375,7 +381,8 @@ typedef struct autobal_rotor_crit {
   int kind[AUTOBAL_ROTOR_MAX_CRIT];      /* +1: stable above, -1: unstable above, 0: to/from NONE */
   size_t n_stable;            /* stable intervals within [lo, hi] */
   double stable_lo[AUTOBAL_ROTOR_MAX_CRIT], stable_hi[AUTOBAL_ROTOR_MAX_CRIT];
-  int truncated;              /* 1 if more changes than AUTOBAL_ROTOR_MAX_CRIT */
+  int truncated;              /* 1 if there were more than AUTOBAL_ROTOR_MAX_CRIT changes:
+                                 the results cover [lo, value[n-1]] only (see below), else 0 */
   size_t evaluations;         /* margin evaluations used */
 } autobal_rotor_crit;
 
@@ -384,22 +391,31 @@ typedef struct autobal_rotor_crit {
  * change of its sign (or to/from NONE) is bracketed and refined by Brent's method
  * (on the margin) to |bracket| <= xtol_rel |value| (e.g. 1e-8; changes to/from NONE
  * by bisection).  Stable intervals are the maximal sub-intervals of [lo, hi] where
- * the verdict is STABLE (their ends are critical values or lo/hi).  The parameter
- * is set back afterwards as by autobal_rotor_stab_sweep (same caveat for
- * BALL_MASS / BALL_DAMPING / UNBALANCE_MASS; the last analysis is overwritten).
+ * the verdict is STABLE (their ends are critical values or lo/hi).  The working
+ * parameters are saved and restored exactly as by autobal_rotor_stab_sweep (also
+ * after a failure or a truncation; the last analysis is overwritten).
  * Changes between two grid points that cancel (a window narrower than the grid)
- * are not seen.  More than AUTOBAL_ROTOR_MAX_CRIT changes or stable intervals:
- * the first ones are kept and out->truncated = 1.
- * Returns AUTOBAL_SUCCESS, or:
+ * are not seen.
+ * Capacity: at most AUTOBAL_ROTOR_MAX_CRIT critical values (the stable intervals,
+ * at most n/2 + 1, always fit).  At the first change that does not fit the search
+ * stops (that change is not refined), out->truncated = 1 and AUTOBAL_WARNING is
+ * returned with a message naming the capacity and the range covered: then n =
+ * AUTOBAL_ROTOR_MAX_CRIT, the results describe [lo, value[n-1]] only, and a stable
+ * interval that begins at value[n-1] (kind +1) is NOT listed -- nothing is claimed
+ * beyond the last recorded change (every listed interval is complete; stable_hi
+ * <= value[n-1]).  Narrow [lo, hi] (or split it) to get the rest.
+ * Returns AUTOBAL_SUCCESS (out->truncated = 0), AUTOBAL_WARNING (truncated, see
+ * above; the data are valid), or:
  *   AUTOBAL_EINVAL: NULL handle (no message, *out untouched); out NULL; unknown
  *     id; lo, hi not finite or lo >= hi; an OMEGA range containing 0; n_grid
  *     outside [2, 1e8]; xtol_rel outside (0, 0.1); a grid value out of the
  *     parameter's range (autobal_rotor_stab_set);
  *   the status of a failing margin evaluation at a grid point or during a
- *   refinement (AUTOBAL_ENUMERIC, the FLOQUET integration statuses, ...),
- *   except that AUTOBAL_ENUMERIC and AUTOBAL_EINVAL from Brent's method (no
- *   convergence, a lost bracket, a point without a balanced configuration)
- *   are not failures: its best estimate (or the bracket's midpoint) is kept.
+ *   refinement (AUTOBAL_ENUMERIC, AUTOBAL_EUNSUPPORTED, the FLOQUET integration
+ *   statuses, ...), except that AUTOBAL_ENUMERIC and AUTOBAL_EINVAL from Brent's
+ *   method (no convergence, a lost bracket, a point without a balanced
+ *   configuration) are not failures: its best estimate (or the bracket's
+ *   midpoint) is kept.
  * *out is zeroed first (out->param set) whenever out is not NULL and s is valid;
  * after a failure during the scan it holds the changes found before it, the
  * stable intervals closed before it (an open one is dropped) and the number of
@@ -465,15 +481,20 @@ AUTOBAL_API int autobal_rotor_unbalance_response(const autobal_rotor_params *p, 
  *  - crossings: where a natural frequency (Campbell) equals omega, freq_k(omega) =
  *    omega, refined by Brent to xtol_rel; whirl of that mode there in cross_whirl;
  *  - peaks: local maxima of amp_G(omega), refined by golden-section search to xtol_rel.
- * Up to AUTOBAL_ROTOR_MAX_CRIT of each (n_cross, n_peak); further ones are
- * dropped without notice (there is no truncation flag).  A Brent refinement that
- * does not converge keeps its best estimate.  Returns AUTOBAL_SUCCESS, or
- * AUTOBAL_EINVAL (out NULL; lo, hi not finite or not 0 <= lo < hi; n_grid outside
- * [3, 1e8]; xtol_rel outside (0, 0.1); invalid parameters, the message of
- * autobal_rotor_params_check), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (singular mass
- * matrix, GSL eigensolver failure); the message in err.  *out is zeroed first
- * whenever out is not NULL; after a failure during the scan it holds the
- * crossings and peaks found before it.  Allocates GSL workspaces per call. */
+ * A Brent refinement that does not converge keeps its best estimate.
+ * Capacity: up to AUTOBAL_ROTOR_MAX_CRIT of each (n_cross, n_peak).  At the first
+ * crossing or peak that does not fit, the scan stops, out->truncated = 1 and
+ * AUTOBAL_WARNING is returned with a message naming the capacity and the speed
+ * omega_c up to which both lists are complete (two grid steps before the point
+ * where the entry was dropped); the entries found before the stop are kept (some
+ * may lie above omega_c).  Narrow the range (or split it) to get the rest.
+ * Returns AUTOBAL_SUCCESS (truncated = 0), AUTOBAL_WARNING (truncated; the data
+ * are valid), or AUTOBAL_EINVAL (out NULL; lo, hi not finite or not 0 <= lo < hi;
+ * n_grid outside [3, 1e8]; xtol_rel outside (0, 0.1); invalid parameters, the
+ * message of autobal_rotor_params_check), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC
+ * (singular mass matrix, GSL eigensolver failure); the message in err.  *out is
+ * zeroed first whenever out is not NULL; after a failure during the scan it holds
+ * the crossings and peaks found before it.  Allocates GSL workspaces per call. */
 typedef struct autobal_rotor_resonances {
   size_t n_cross;
   double cross[AUTOBAL_ROTOR_MAX_CRIT];
@@ -482,6 +503,8 @@ typedef struct autobal_rotor_resonances {
   size_t n_peak;
   double peak[AUTOBAL_ROTOR_MAX_CRIT];
   double peak_amp[AUTOBAL_ROTOR_MAX_CRIT]; /* amp_G at the peak, m */
+  int truncated; /* 1 if a crossing or peak was dropped (capacity reached; the lists are
+                    complete only up to the speed named in the message), else 0 */
 } autobal_rotor_resonances;
 
 AUTOBAL_API int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, double hi,

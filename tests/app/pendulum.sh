@@ -26,6 +26,13 @@ expect 0 "" "$AUTOBAL" pendulum critical "$DATA/pendulum_critical_k1.ini" -o cri
 "$PY" "$here/pendulum_check.py" critical crit.h5 && ok "critical archive checks (k = 1)" || bad "critical archive checks"
 expect 0 "" "$AUTOBAL" pendulum critical --set pendulum.k=0.7 --set pendulum.R_m=0.05 --set critical.n_Rm=99 -o crit2.h5
 "$PY" "$here/pendulum_check.py" critical crit2.h5 && ok "critical archive checks (k = 0.7)" || bad "critical archive checks (k = 0.7)"
+# damped critical speeds (the regime of (9): H >> 1): every list carries its truncation flag (0 here)
+expect 0 "damped critical speeds" "$AUTOBAL" pendulum critical --set pendulum.R_m=0.1 --set pendulum.k=1 --set pendulum.H=100 --set pendulum.h=1 --set critical.Rw_min=0.05 --set critical.Rw_max=5 --set critical.n_sweep=400 --set critical.n_Rm=49 -o critd.h5
+grep -q "TRUNCATED" out.txt err.txt && bad "damped critical speeds reported as truncated" || ok "no truncation reported (few changes)"
+"$PY" "$here/pendulum_check.py" critical critd.h5 && ok "damped critical archive checks (flags, sign changes of (6))" || bad "damped critical archive checks"
+expect 0 "" "$AUTOBAL" pendulum critical --set pendulum.R_m=0.1 --set pendulum.k=1 --set pendulum.H=100 --set pendulum.h=1 --set critical.Rw_min=0.05 --set critical.Rw_max=5 --set critical.n_sweep=400 --set critical.n_Rm=49 --json
+"$PY" -c "import json,sys; d=json.load(open('out.txt')); sys.exit(0 if d['damped_truncated'] is False and len(d['damped_critical_R_w']) == 2 else 1)" \
+  && ok "--json: damped_truncated = false, two damped critical speeds" || bad "--json damped_truncated"
 expect 0 "" "$AUTOBAL" pendulum map "$DATA/pendulum_map_every.ini" -o map.h5
 "$PY" "$here/pendulum_check.py" map map.h5 && ok "every-unbalance map checks" || bad "every-unbalance map checks"
 expect 0 "" "$AUTOBAL" pendulum map --set map.n_Rm=40 --set map.n_Rw=50 -o mapd.h5

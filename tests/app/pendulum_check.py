@@ -117,6 +117,28 @@ def do_critical(path):
         kind = g["undamped_kind"][()] if "undamped_kind" in g else np.array([])
         k1 = g["undamped_k1_R_w"][()]
         rm1 = float(g.attrs["R_m1"])
+        prefixes = ["undamped", "undamped_k0", "undamped_k1"] + (["damped"] if "n_damped_critical" in g.attrs else [])
+        trunc = {pre: g.attrs.get(pre + "_truncated") for pre in prefixes}
+        ncrit = {pre: int(g.attrs["n_%s_critical" % pre]) for pre in prefixes}
+        dcrit = g["damped_R_w"][()] if "damped_R_w" in g else np.array([])
+        dkind = g["damped_kind"][()] if "damped_kind" in g else np.array([])
+        dlo = g["damped_stable_lo"][()] if "damped_stable_lo" in g else np.array([])
+        dhi = g["damped_stable_hi"][()] if "damped_stable_hi" in g else np.array([])
+    # every list carries its truncation flag; these runs have few changes, far below the
+    # capacity (32), so none is truncated
+    for pre in prefixes:
+        check("attribute %s_truncated present and 0 (%d critical speeds)" % (pre, ncrit[pre]),
+              trunc[pre] is not None and int(trunc[pre]) == 0 and ncrit[pre] < 32, str(trunc[pre]))
+    # damped critical speeds: max Re of numpy's roots of (6) changes sign across each
+    if "damped" in prefixes:
+        maxre = lambda x: np.max(char_poly(x, Rm, H, h, psi0)[0].roots().real)
+        check("damped: some critical speeds", len(dcrit) >= 1, str(dcrit))
+        for c, kd in zip(dcrit, dkind):
+            lo, hi = maxre(c * (1 - 1e-6)), maxre(c * (1 + 1e-6))
+            check("damped: max Re of the roots of (6) changes sign at R_w = %.10f (kind %d)" % (c, kd),
+                  (lo < 0) != (hi < 0) and (hi < 0) == (kd > 0), "%.3e -> %.3e" % (lo, hi))
+        for a, b in zip(dlo, dhi):
+            check("damped: stable interval midpoint is stable (numpy roots)", maxre(0.5 * (a + b)) < 0, "[%.8g, %.8g]" % (a, b))
     # every reported change of stability is a real change for the independent (10)
     for c, kd in zip(crit, kind):
         if kd == 0:

@@ -47,8 +47,16 @@ for f in "$DATA"/rotor_*.ini; do
   expect 0 "BALANCED MOTION" "$AUTOBAL" rotor stability "$f" --set stability.n_omega=100
 done
 expect 0 "" "$AUTOBAL" rotor stability --json
-"$PY" -c "import json; d=json.load(open('out.txt')); assert d['verdict'] == 'stable' and len(d['critical_values']) >= 1" \
-  && ok "--json summary" || bad "--json summary"
+"$PY" -c "import json; d=json.load(open('out.txt')); assert d['verdict'] == 'stable' and len(d['critical_values']) >= 1 and d['truncated'] is False" \
+  && ok "--json summary (truncated = false)" || bad "--json summary"
+expect 0 "" "$AUTOBAL" rotor campbell --json
+"$PY" -c "import json; d=json.load(open('out.txt')); assert len(d['crossing_omega']) == 4 and d['truncated'] is False" \
+  && ok "campbell --json: 4 crossings, truncated = false" || bad "campbell --json"
+grep -q "TRUNCATED" out.txt err.txt && bad "campbell reported as truncated" || ok "campbell: no truncation reported"
+"$PY" -c "
+import h5py
+g = h5py.File('swh.h5')['rotor/sweep']
+assert int(g.attrs['truncated']) == 0 and int(g.attrs['n_critical']) < 64" && ok "sweep archive: truncated = 0 stored" || bad "sweep archive truncated attribute"
 # three identical balls: the family's member is reported, the neutral root excluded
 expect 0 "neutral family" "$AUTOBAL" rotor stability --set plane1.ball_mass=0.05,0.05,0.05 --set plane1.ball_radius=0.1 --set plane1.ball_damping=0.1 --set stability.critical_speeds=false
 expect 0 "member free" "$AUTOBAL" rotor stability --set plane1.ball_mass=0.05,0.05,0.05 --set plane1.ball_radius=0.1 --set plane1.ball_damping=0.1 --set stability.member1=free --set stability.member1_angles=0.5 --set stability.critical_speeds=false

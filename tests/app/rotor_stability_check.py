@@ -144,6 +144,10 @@ def do_stability(fn):
 
 
 def check_critical(g, margin):
+    # the truncation flag is always written; these runs have few changes (capacity 64)
+    check("attribute truncated present and 0 (%s critical values)" % g.attrs.get("n_critical"),
+          "truncated" in g.attrs and int(g.attrs["truncated"]) == 0 and int(g.attrs["n_critical"]) < 64,
+          str(g.attrs.get("truncated")))
     vals = np.array(g["critical_value"]) if "critical_value" in g else np.array([])
     kinds = np.array(g["critical_kind"]) if "critical_kind" in g else np.array([])
     check("some critical values", len(vals) >= 1, str(vals))
@@ -209,6 +213,9 @@ def do_campbell(fn):
     f = h5py.File(fn, "r")
     check_common(f)
     w, L, planes, inertia = load(f)
+    gc = f["rotor/campbell"]
+    check("campbell: attribute truncated present and 0 (%s crossings, %s peaks)" % (gc.attrs.get("n_crossing"), gc.attrs.get("n_peak")),
+          "truncated" in gc.attrs and int(gc.attrs["truncated"]) == 0, str(gc.attrs.get("truncated")))
     ds = xr.open_dataset(fn, engine="h5netcdf", group="rotor/campbell")
     check("xarray: frequency over (omega, mode)", ds["frequency"].dims == ("omega", "mode"))
     # (c - M nu^2)(c_t - A nu^2) = c_c^2 at rest, undamped (x-beta block)
