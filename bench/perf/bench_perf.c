@@ -10,7 +10,7 @@
  *       parameters (R_w in [0, 5], R_m in [0.005, 0.495], H, h in [0, 0.5],
  *       k in [0, 1]); their coefficients are written to FILE (N x 9
  *       float64, ascending) for the NumPy side.  Times per polynomial:
- *       autobal_poly_roots (degree 8, companion QR), the sign-test verdict
+ *       autobal_poly_roots (degree 8, Aberth / companion QR), the sign-test verdict
  *       autobal_pendulum_verdict (builds (6) + Routh test with rounding
  *       bounds, validation included) and autobal_poly_hurwitz on the stored
  *       coefficients.
@@ -138,6 +138,25 @@ static int cmd_roots(int argc, char **argv) {
     }
     t = cpu_now() - t;
     if (t < best_hurwitz) best_hurwitz = t;
+  }
+  { /* the roots, for the agreement check against NumPy: FILE.roots, (re, im) x 8 per polynomial */
+    char path[4096];
+    double *z = malloc(16 * n * sizeof *z);
+    if (!z) return die("roots", "out of memory");
+    for (i = 0; i < n; i++) {
+      size_t j;
+      if ((st = autobal_poly_roots(w, c + 9 * i, 9, re, im, &err)) != 0)
+        return die("poly_roots", err.message);
+      for (j = 0; j < 8; j++) {
+        z[16 * i + 2 * j] = re[j];
+        z[16 * i + 2 * j + 1] = im[j];
+      }
+    }
+    snprintf(path, sizeof path, "%s.roots", argv[4]);
+    f = fopen(path, "wb");
+    if (!f || fwrite(z, sizeof *z, 16 * n, f) != 16 * n || fclose(f))
+      return die("roots", "cannot write FILE.roots");
+    free(z);
   }
   printf("{\"n\": %zu, \"reps\": %d, \"roots_s_per_poly\": %.6g, \"roots_per_s\": %.6g, "
          "\"verdict_s\": %.6g, \"hurwitz_s\": %.6g, \"stable_fraction\": %.4f, \"sink\": %.6g}\n",

@@ -5,7 +5,7 @@ autobal (C, through bench_perf) against the best NumPy a skilled user would
 write for the same work:
 
   roots     roots of the pendulum's degree-8 polynomial (6): autobal_poly_roots
-            (companion QR, GSL) vs NumPy batched np.linalg.eigvals on a stack of
+            (Aberth-Ehrlich, companion QR fall-back) vs NumPy batched np.linalg.eigvals on a stack of
             companion matrices (the same 20000 polynomials, read from the file
             bench_perf writes); per core (OPENBLAS_NUM_THREADS=1, one thread).
   verdict   the sign-test verdict (autobal_pendulum_verdict: (6) + Routh test
@@ -167,12 +167,19 @@ def bench_roots(exe, n, reps, tmp):
     c = np.fromfile(path).reshape(n, 9)
     A = companion_stack(c)
     t_eig, ev = best_of(lambda: np.linalg.eigvals(A), reps)
+    # the same roots? distance of every autobal root to the nearest NumPy
+    # eigenvalue, relative to the largest root modulus of its polynomial
+    z = np.fromfile(path + ".roots").reshape(n, 8, 2)
+    za = z[:, :, 0] + 1j * z[:, :, 1]
+    dist = np.abs(za[:, :, None] - ev[:, None, :]).min(axis=2).max(axis=1)
+    rel = dist / np.abs(ev).max(axis=1)
     t_build, _ = best_of(lambda: companion_stack(c), reps)
     # NumPy sign test on the same polynomials (vectorized over the batch)
     desc = [c[:, j] for j in range(8, -1, -1)]
     t_routh, _ = best_of(lambda: routh_stable(desc), reps)
     return dict(c=c_res, numpy_eig_s=t_eig / n, numpy_build_s=t_build / n,
-                numpy_routh_s=t_routh / n, numpy_roots_per_s=8 * n / t_eig)
+                numpy_routh_s=t_routh / n, numpy_roots_per_s=8 * n / t_eig,
+                agree_median=float(np.median(rel)), agree_max=float(rel.max()))
 
 
 def bench_maps(exe, n, reps_map, reps_np, reps_65, tmp, do_np65):
@@ -272,6 +279,8 @@ def main():
             print("  autobal_poly_roots          %8.3f us/poly  %.3g roots/s" % (1e6 * c["roots_s_per_poly"], c["roots_per_s"]))
             print("  NumPy eigvals (batched)     %8.3f us/poly  %.3g roots/s  (+ %.3f us/poly to build the companion stack)" % (
                 1e6 * r["numpy_eig_s"], r["numpy_roots_per_s"], 1e6 * r["numpy_build_s"]))
+            print("  same roots: autobal vs NumPy, distance / max |root| per polynomial: median %.1e, max %.1e" % (
+                r["agree_median"], r["agree_max"]))
             print("  autobal_pendulum_verdict    %8.3f us       (coefficients + Routh test with rounding bounds)" % (1e6 * c["verdict_s"]))
             print("  autobal_poly_hurwitz        %8.3f us       (Routh test on given coefficients)" % (1e6 * c["hurwitz_s"]))
             print("  NumPy Routh (batched)       %8.3f us/poly" % (1e6 * r["numpy_routh_s"]))
