@@ -26,6 +26,8 @@ struct autobal_rotor {
   double sref[AUTOBAL_ROTOR_MAX_PLANES];  /* reference of the monitor, kg m */
   double mtot[AUTOBAL_ROTOR_MAX_PLANES];  /* m0 + sum m_i (FULL inertia), kg */
   double l_L, l_R;                        /* support positions for outputs (may be NAN) */
+  double inv_M, inv_A;                    /* 1/M (1/kg), 1/A (1/(kg m^2)) */
+  double g[AUTOBAL_ROTOR_MAX_PLANES];     /* 1/M + d_j^2/A (1/kg), one-plane closed form */
   /* per ball (length N each, state order) */
   double *m, *r, *mr, *hr, *kappa, *psi_init, *rate_init, *h;
   /* workspace of the right-hand sides */
@@ -44,48 +46,49 @@ static double wrap_pi(double a) {
   return w;
 }
 
-/* Cholesky solve of a symmetric positive definite 4x4 system (lower triangle
- * of a is used and overwritten); b is overwritten with the solution.  Returns
- * 0, or -1 when a pivot is not positive (relative to the diagonal) or NaN. */
-static int chol4_solve(double a[4][4], double b[4]) {
+/* Solve a symmetric positive definite 4x4 system by the root-free Cholesky
+ * factorization a = L D L^T (L unit lower triangular; the lower triangle of a
+ * is used and overwritten with L); b is overwritten with the solution.  The
+ * pivots D_jj are those of the Cholesky factorization squared; returns 0, or -1
+ * when a pivot is not positive relative to the diagonal entry a_jj (or NaN).
+ * No square roots and one division per pivot (the solve multiplies by 1/D_jj). */
+static int ldl4_solve(double a[4][4], double b[4]) {
+  double dg[4], dinv[4], v[4];
   int i, j, k;
   for (j = 0; j < 4; j++) {
     double s = a[j][j];
-    double scale = fabs(a[j][j]);
-    for (k = 0; k < j; k++) s -= a[j][k] * a[j][k];
-    if (!(s > 1e-13 * scale)) return -1;
-    a[j][j] = sqrt(s);
+    for (k = 0; k < j; k++) {
+      v[k] = a[j][k] * dg[k]; /* L_jk D_kk */
+      s -= a[j][k] * v[k];
+    }
+    if (!(s > 1e-13 * fabs(a[j][j]))) return -1;
+    dg[j] = s;
+    dinv[j] = 1.0 / s;
     for (i = j + 1; i < 4; i++) {
       double t = a[i][j];
-      for (k = 0; k < j; k++) t -= a[i][k] * a[j][k];
-      a[i][j] = t / a[j][j];
+      for (k = 0; k < j; k++) t -= a[i][k] * v[k];
+      a[i][j] = t * dinv[j];
     }
   }
-  for (i = 0; i < 4; i++) {
+  for (i = 0; i < 4; i++) { /* L z = b */
     double s = b[i];
     for (k = 0; k < i; k++) s -= a[i][k] * b[k];
-    b[i] = s / a[i][i];
+    b[i] = s;
   }
-  for (i = 3; i >= 0; i--) {
-    double s = b[i];
+  for (i = 3; i >= 0; i--) { /* L^T x = D^-1 z */
+    double s = b[i] * dinv[i];
     for (k = i + 1; k < 4; k++) s -= a[k][i] * b[k];
-    b[i] = s / a[i][i];
+    b[i] = s;
   }
   return 0;
 }
 
-/* Rotor part of (3.2): the mass matrix diag(M, M, A, A) in a and the
- * right-hand side b = -(damping + gyroscopic + stiffness forces). */
-static void rotor_base(const autobal_rotor_lumped *L, double omega, const double *q,
-                       const double *qd, double a[4][4], double b[4]) {
+/* Rotor part of (3.2) / (3.5)-(3.8) with everything but the mass terms moved
+ * to the right: b = -(damping + gyroscopic + stiffness forces). */
+static void rotor_forces(const autobal_rotor_lumped *L, double omega, const double *q,
+                         const double *qd, double b[4]) {
   const double x = q[0], yy = q[1], al = q[2], be = q[3];
   const double xd = qd[0], yd = qd[1], ald = qd[2], bed = qd[3];
-  memset(a, 0, 16 * sizeof(double));
-  a[0][0] = L->M;
-  a[1][1] = L->M;
-  a[2][2] = L->A;
-  a[3][3] = L->A;
-  /* eq. (3.2) / (3.5)-(3.8), everything but the s'' terms moved to the right */
   b[0] = -(L->h_x * xd + L->c_x * x - L->h_xbeta * bed - L->c_xbeta * be);
   b[1] = -(L->h_y * yd + L->c_y * yy + L->h_yalpha * ald + L->c_yalpha * al);
   b[2] = -(L->h_alpha * ald + L->c_alpha * al + L->C * omega * bed + L->h_yalpha * yd +
@@ -94,24 +97,99 @@ static void rotor_base(const autobal_rotor_lumped *L, double omega, const double
            L->c_xbeta * x);
 }
 
-/* Add one plane to the 4x4 system.  The plane's unbalance (fixed axes) obeys
+/* How the unbalance of one plane (fixed axes u, v) depends on the accelerations:
  *   s_u'' = Suu u_D'' + Suv v_D'' + Fu,   s_v'' = Suv u_D'' + Svv v_D'' + Fv,
  * with u_D'' = eu . q'', v_D'' = ev . q'' (3.3), eu = (1, 0, 0, d), ev = (0, 1, -d, 0).
- * In (3.2)/(3.5)-(3.8) s_u'' enters the rows along eu and s_v'' along ev, so
- *   a += Suu eu eu^T + Suv (eu ev^T + ev eu^T) + Svv ev ev^T,  b -= Fu eu + Fv ev.
- * mfull (FULL inertia only, else 0) adds mfull (eu eu^T + ev ev^T). */
-static void add_plane(double a[4][4], double b[4], double d, double Suu, double Suv, double Svv,
-                      double Fu, double Fv, double mfull) {
-  const double eu[4] = {1.0, 0.0, 0.0, d};
-  const double ev[4] = {0.0, 1.0, -d, 0.0};
-  int i, k;
-  Suu += mfull;
-  Svv += mfull;
-  for (i = 0; i < 4; i++) {
-    for (k = 0; k < 4; k++)
-      a[i][k] += Suu * eu[i] * eu[k] + Suv * (eu[i] * ev[k] + ev[i] * eu[k]) + Svv * ev[i] * ev[k];
-    b[i] -= Fu * eu[i] + Fv * ev[i];
+ * In (3.2)/(3.5)-(3.8) s_u'' enters the rows along eu and s_v'' along ev, so the
+ * plane adds U C U^T to the mass matrix diag(M, M, A, A) and -U (Fu, Fv) to the
+ * right-hand side, U = [eu ev], C = [[Suu, Suv], [Suv, Svv]].  In the FULL inertia
+ * model Suu and Svv include mfull (the term mfull (eu eu^T + ev ev^T)). */
+typedef struct plane_coupling {
+  double Suu, Suv, Svv; /* kg */
+  double Fu, Fv;        /* N */
+} plane_coupling;
+
+/* Lower triangle of a += U C U^T for one plane (see plane_coupling). */
+static void add_plane_mass(double a[4][4], double d, const plane_coupling *c) {
+  a[0][0] += c->Suu;
+  a[1][0] += c->Suv;
+  a[1][1] += c->Svv;
+  a[2][0] -= c->Suv * d;
+  a[2][1] -= c->Svv * d;
+  a[2][2] += c->Svv * d * d;
+  a[3][0] += c->Suu * d;
+  a[3][1] += c->Suv * d;
+  a[3][2] -= c->Suv * (d * d);
+  a[3][3] += c->Suu * d * d;
+}
+
+/* Solve the rotor equations (3.2) (one plane) or (3.5)-(3.8) (two planes) with
+ * the planes' couplings substituted,
+ *   a q'' = b - sum_j U_j (Fu_j, Fv_j),   a = D + sum_j U_j C_j U_j^T,  D = diag(M, M, A, A),
+ * for q'' = (x'', y'', alpha'', beta''), and the accelerations of the planes'
+ * centres uvdd[j] = (u_jD'', v_jD'') = U_j^T q'' (3.3).  b is overwritten.
+ * Returns 0, or -1 when a is not positive definite (one plane: see below; two
+ * planes: a Cholesky pivot not positive relative to the diagonal entry) or a
+ * result is not finite. */
+static int solve_accelerations(const autobal_rotor *R, const plane_coupling *cp, double b[4],
+                               double qdd[4], double uvdd[][2]) {
+  size_t j;
+  for (j = 0; j < R->n_planes; j++) { /* b -= Fu eu + Fv ev */
+    const double d = R->p.plane[j].d;
+    b[0] -= cp[j].Fu;
+    b[1] -= cp[j].Fv;
+    b[2] += d * cp[j].Fv;
+    b[3] -= d * cp[j].Fu;
   }
+  if (R->n_planes == 1) {
+    /* One plane, in closed form.  With w = U^T q'' = (u_D'', v_D''), a q'' = b reads
+     * D q'' + U C w = b, so q'' = D^-1 (b - U C w); applying U^T gives
+     *   (I + G C) w = U^T D^-1 b,   G = U^T D^-1 U = g I,   g = 1/M + d^2/A
+     * (eu and ev have disjoint supports, so G is diagonal).  D^-1/2 a D^-1/2 has the
+     * eigenvalues 1, 1 and those of I + g C: a is positive definite iff the 2x2
+     * S = I + g C is.  S counts as positive definite when tr S > 0 and
+     * det S > 1e-13 (tr S)^2, i.e. lambda_min / lambda_max > about 1e-13: a test
+     * invariant under rotations of the (u, v) axes, so both frames agree on it. */
+    const plane_coupling *c = &cp[0];
+    const double d = R->p.plane[0].d, g = R->g[0], iM = R->inv_M, iA = R->inv_A;
+    const double ru = b[0] * iM + d * b[3] * iA; /* U^T D^-1 b */
+    const double rv = b[1] * iM - d * b[2] * iA;
+    const double s11 = 1.0 + g * c->Suu, s12 = g * c->Suv, s22 = 1.0 + g * c->Svv;
+    const double det = s11 * s22 - s12 * s12, tr = s11 + s22;
+    double idet, wu, wv, cu, cv;
+    if (!(tr > 0.0) || !(det > 1e-13 * tr * tr)) return -1; /* also catches NaN */
+    idet = 1.0 / det;
+    wu = (s22 * ru - s12 * rv) * idet;
+    wv = (s11 * rv - s12 * ru) * idet;
+    cu = c->Suu * wu + c->Suv * wv; /* (cu, cv) = C w; U C w = (cu, cv, -d cv, d cu) */
+    cv = c->Suv * wu + c->Svv * wv;
+    qdd[0] = (b[0] - cu) * iM;
+    qdd[1] = (b[1] - cv) * iM;
+    qdd[2] = (b[2] + d * cv) * iA;
+    qdd[3] = (b[3] - d * cu) * iA;
+    uvdd[0][0] = wu;
+    uvdd[0][1] = wv;
+  } else {
+    /* Two planes: the 4x4 system by a root-free Cholesky (L D L^T) solve. */
+    double a[4][4];
+    memset(a, 0, sizeof a);
+    a[0][0] = R->L.M;
+    a[1][1] = R->L.M;
+    a[2][2] = R->L.A;
+    a[3][3] = R->L.A;
+    for (j = 0; j < R->n_planes; j++) add_plane_mass(a, R->p.plane[j].d, &cp[j]);
+    if (ldl4_solve(a, b) != 0) return -1;
+    for (j = 0; j < 4; j++) qdd[j] = b[j];
+    for (j = 0; j < R->n_planes; j++) {
+      const double d = R->p.plane[j].d;
+      uvdd[j][0] = qdd[0] + d * qdd[3]; /* eq. (3.3) */
+      uvdd[j][1] = qdd[1] - d * qdd[2];
+    }
+  }
+  if (!isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3])) return -1;
+  for (j = 0; j < R->n_planes; j++)
+    if (!isfinite(uvdd[j][0] + uvdd[j][1])) return -1;
+  return 0;
 }
 
 static int rhs_fail(autobal_rotor *R, double t, const char *which) {
@@ -129,10 +207,11 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   const size_t N = R->N;
   const double omega = R->p.omega;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
-  double a[4][4], b[4];
+  plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES];
+  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2];
   size_t j, k;
 
-  rotor_base(&R->L, omega, q, qd, a, b);
+  rotor_forces(&R->L, omega, q, qd, b);
   for (j = 0; j < R->n_planes; j++) {
     const double phi0 = omega * t + R->p.plane[j].psi0;
     const double w2s0 = omega * omega * R->s0[j];
@@ -153,18 +232,20 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
       Fv += -R->hr[k] * rel * c - R->mr[k] * pd * pd * s;
     }
     /* s_u'' = -S_ss u_D'' + S_sc v_D'' + F_u, s_v'' = S_sc u_D'' - S_cc v_D'' + F_v */
-    add_plane(a, b, R->p.plane[j].d, -Sss, Ssc, -Scc, Fu, Fv, R->mtot[j]);
+    cp[j].Suu = -Sss + R->mtot[j];
+    cp[j].Suv = Ssc;
+    cp[j].Svv = -Scc + R->mtot[j];
+    cp[j].Fu = Fu;
+    cp[j].Fv = Fv;
   }
-  if (chol4_solve(a, b) != 0 || !isfinite(b[0] + b[1] + b[2] + b[3]))
-    return rhs_fail(R, t, "fixed-frame");
+  if (solve_accelerations(R, cp, b, qdd, uvdd) != 0) return rhs_fail(R, t, "fixed-frame");
 
   for (k = 0; k < 4; k++) {
     dydt[k] = qd[k];
-    dydt[4 + k] = b[k];
+    dydt[4 + k] = qdd[k];
   }
   for (j = 0; j < R->n_planes; j++) {
-    const double d = R->p.plane[j].d;
-    const double uDdd = b[0] + d * b[3], vDdd = b[1] - d * b[2]; /* eq. (3.3) */
+    const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) {
       dydt[8 + k] = phid[k];
@@ -186,10 +267,11 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double cw = cos(omega * t), sw = sin(omega * t);
-  double a[4][4], b[4];
+  plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES];
+  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2];
   size_t j, k;
 
-  rotor_base(&R->L, omega, q, qd, a, b);
+  rotor_forces(&R->L, omega, q, qd, b);
   for (j = 0; j < R->n_planes; j++) {
     /* rotor-axes quantities (3.10): s_xi, s_eta and their rates */
     double sxi = R->s0[j] * cos(R->p.plane[j].psi0), seta = R->s0[j] * sin(R->p.plane[j].psi0);
@@ -220,26 +302,24 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
        * s_v'' = (s_xi'' - 2w s_eta' - w^2 s_xi) sin wt + (s_eta'' + 2w s_xi' - w^2 s_eta) cos wt */
       const double cxi = Gxi - 2.0 * omega * setad - w2 * sxi;
       const double ceta = Geta + 2.0 * omega * sxid - w2 * seta;
-      const double Fu = cxi * cw - ceta * sw, Fv = cxi * sw + ceta * cw;
       /* (a_xi, a_eta) = Rot^T (u_D'', v_D''): the fixed-axes coupling is Rot T Rot^T */
       const double t00 = cw * Txx - sw * Txe, t01 = cw * Txe - sw * Tee; /* Rot T, row 0 */
       const double t10 = sw * Txx + cw * Txe, t11 = sw * Txe + cw * Tee; /* Rot T, row 1 */
-      const double Suu = t00 * cw - t01 * sw;
-      const double Suv = t00 * sw + t01 * cw;
-      const double Svv = t10 * sw + t11 * cw;
-      add_plane(a, b, R->p.plane[j].d, Suu, Suv, Svv, Fu, Fv, R->mtot[j]);
+      cp[j].Suu = t00 * cw - t01 * sw + R->mtot[j];
+      cp[j].Suv = t00 * sw + t01 * cw;
+      cp[j].Svv = t10 * sw + t11 * cw + R->mtot[j];
+      cp[j].Fu = cxi * cw - ceta * sw;
+      cp[j].Fv = cxi * sw + ceta * cw;
     }
   }
-  if (chol4_solve(a, b) != 0 || !isfinite(b[0] + b[1] + b[2] + b[3]))
-    return rhs_fail(R, t, "rotating-frame");
+  if (solve_accelerations(R, cp, b, qdd, uvdd) != 0) return rhs_fail(R, t, "rotating-frame");
 
   for (k = 0; k < 4; k++) {
     dydt[k] = qd[k];
-    dydt[4 + k] = b[k];
+    dydt[4 + k] = qdd[k];
   }
   for (j = 0; j < R->n_planes; j++) {
-    const double d = R->p.plane[j].d;
-    const double uDdd = b[0] + d * b[3], vDdd = b[1] - d * b[2]; /* eq. (3.3) */
+    const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
     /* acceleration of D on the rotor axes (spec, after (3.13)) */
     const double axi = uDdd * cw + vDdd * sw, aeta = -uDdd * sw + vDdd * cw;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
@@ -628,6 +708,9 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->l_R = isfinite(p->hw.l_R) ? p->hw.l_R : NAN;
   }
   R->p.lumped = R->L;
+  R->inv_M = 1.0 / R->L.M;
+  R->inv_A = 1.0 / R->L.A;
+  for (j = 0; j < p->n_planes; j++) R->g[j] = R->inv_M + p->plane[j].d * p->plane[j].d * R->inv_A;
   R->n_planes = p->n_planes;
   R->N = N;
   R->dim = 8 + 2 * N + (p->axial ? 2u : 0u);

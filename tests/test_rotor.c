@@ -5,7 +5,11 @@
  *    balanced angles), not copied from the program;
  *  - a direct solve of the full (4+N)x(4+N) mass-matrix system assembled here from
  *    (3.2)/(3.5)-(3.8) and (3.4), with the support stiffness built from the potential
- *    energy of the individual supports (not from the lumped formulas);
+ *    energy of the individual supports (not from the lumped formulas), and the
+ *    reduced 4x4 system of "Solving for the accelerations" assembled here and solved
+ *    by GSL's Cholesky (the library solves one plane in closed form);
+ *  - the mass matrix at the paper model's limit sum m (1/M + d^2/A) -> 1, where
+ *    I + g C has the eigenvalue 1 - g m at every ball angle;
  *  - energy: the kinetic energy of the model (documented in rotor.h) gives
  *    dE/dt = -dissipation + power of the unbalance drive; with no damping and no
  *    unbalance E is conserved along a transient;
@@ -774,6 +778,189 @@ static void test_direct_solve(void) {
   printf("     max mismatch over all configurations: %.3g\n", g_max_direct);
 }
 
+/* ---- one plane: the closed-form 2x2 reduction of the right-hand sides ------------ */
+
+/* One plane at a random position d with a random unbalance and n balls of random
+ * masses (scaled so that sum_i m_i (1/M + d^2/A) = heavy), radii, damping and
+ * initial rates; FULL or PAPER inertia.  The arrays (n entries) are the caller's. */
+static autobal_rotor_params one_plane_params(size_t n, double heavy, int full, double *m, double *r,
+                                             double *h, double *psi, double *rate) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  const double M = p.hw.M_k + p.hw.m_p, A = p.hw.A_k + p.hw.A_p;
+  double wsum = 0.0, g;
+  size_t i;
+  p.inertia = full ? AUTOBAL_ROTOR_INERTIA_FULL : AUTOBAL_ROTOR_INERTIA_PAPER;
+  p.hw.c_Ly = 0.7e5; /* anisotropic supports */
+  p.hw.h_Ry = 210.0;
+  p.plane[0].d = urand(-0.25, 0.25);
+  p.plane[0].m0 = urand(0.005, 0.03);
+  p.plane[0].r0 = urand(0.05, 0.12);
+  p.plane[0].psi0 = urand(-3, 3);
+  p.plane[0].n_balls = n;
+  g = 1.0 / M + p.plane[0].d * p.plane[0].d / A;
+  for (i = 0; i < n; i++) {
+    m[i] = urand(0.5, 1.5);
+    wsum += m[i];
+    r[i] = urand(0.05, 0.15);
+    h[i] = urand(0.0, 0.5);
+    psi[i] = urand(-3, 3);
+    rate[i] = urand(-5, 5);
+  }
+  for (i = 0; i < n; i++) m[i] *= heavy / (g * wsum);
+  p.plane[0].ball_mass = m;
+  p.plane[0].ball_radius = r;
+  p.plane[0].ball_damping = h;
+  p.plane[0].ball_psi = psi;
+  p.plane[0].ball_rate = rate;
+  return p;
+}
+
+/* The reduced 4x4 system of "Solving for the accelerations", assembled here from
+ * the spec's S_ss, S_sc, S_cc, F_u, F_v and (3.2) with the hardware matrices, and
+ * solved by GSL's Cholesky: q'' at a fixed-frame state. */
+static int reduced_cholesky(const autobal_rotor *R, double t, const double *y, double *qdd) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  model_view v;
+  double Dm[4], K[4][4], H[4][4], G[4][4], a[16], bb[4], xx[4];
+  double Sss = 0.0, Ssc = 0.0, Scc = 0.0, Fu, Fv;
+  const double w = p->omega;
+  size_t i, k;
+  int st;
+  gsl_matrix_view am = gsl_matrix_view_array(a, 4, 4);
+  gsl_vector_view bv = gsl_vector_view_array(bb, 4), xv = gsl_vector_view_array(xx, 4);
+  view(R, &v);
+  rotor_matrices(p, Dm, K, H, G);
+  Fu = -v.s0[0] * w * w * cos(w * t + v.psi0[0]);
+  Fv = -v.s0[0] * w * w * sin(w * t + v.psi0[0]);
+  for (k = 0; k < v.N; k++) {
+    const double s = sin(y[8 + k]), c = cos(y[8 + k]), pd = y[8 + v.N + k];
+    Sss += v.m[k] * s * s;
+    Ssc += v.m[k] * s * c;
+    Scc += v.m[k] * c * c;
+    Fu += v.h[k] * v.r[k] * (pd - w) * s - v.m[k] * v.r[k] * pd * pd * c;
+    Fv += -v.h[k] * v.r[k] * (pd - w) * c - v.m[k] * v.r[k] * pd * pd * s;
+  }
+  {
+    const double d = v.d[0];
+    const double eu[4] = {1, 0, 0, d}, ev[4] = {0, 1, -d, 0};
+    /* s_u'' = (mfull - S_ss) u_D'' + S_sc v_D'' + F_u, s_v'' = S_sc u_D'' + (mfull - S_cc) v_D'' + F_v */
+    const double cuu = v.mfull[0] - Sss, cuv = Ssc, cvv = v.mfull[0] - Scc;
+    for (i = 0; i < 4; i++) {
+      double f = 0.0;
+      for (k = 0; k < 4; k++) {
+        a[4 * i + k] = (i == k ? Dm[i] : 0.0) + cuu * eu[i] * eu[k] +
+                       cuv * (eu[i] * ev[k] + ev[i] * eu[k]) + cvv * ev[i] * ev[k];
+        f += (H[i][k] + G[i][k]) * y[4 + k] + K[i][k] * y[k];
+      }
+      bb[i] = -f - Fu * eu[i] - Fv * ev[i];
+    }
+  }
+  st = gsl_linalg_cholesky_decomp1(&am.matrix);
+  if (st == 0) st = gsl_linalg_cholesky_solve(&am.matrix, &bv.vector, &xv.vector);
+  for (i = 0; i < 4; i++) qdd[i] = xx[i];
+  return st;
+}
+
+static double g_max_one_plane = 0.0;
+
+/* Both right-hand sides of a one-plane model against the direct (4+N) LU solve and
+ * the reduced 4x4 Cholesky at random states.  t = k/1024 s (k = 0..10; omega t =
+ * 500 k / 1024 exactly) and ball angles on a 2^-40 grid make the conversion
+ * psi = phi - omega t exact, so the two frames see the same configuration.  Relative
+ * errors: max |difference| / max |q''_i| for q'', and for the ball accelerations
+ * max |difference| / max over balls of the size of the terms of (3.4),
+ * (|u_D''| + |v_D''|) / r + (h/m) |phi' - omega| (phi'' itself may cancel to ~0). */
+static void check_one_plane(const char *label, const autobal_rotor_params *p, int nstates,
+                            double tol) {
+  autobal_rotor *R = autobal_rotor_alloc(p, NULL);
+  double y[MAXDIM], yr[MAXDIM], f[MAXDIM], fr[MAXDIM], qdd[4], qch[4], phidd[MAXDIM];
+  double e_fix = 0.0, e_rot = 0.0, e_chol = 0.0, e_w = 0.0;
+  int s, ok = 1;
+  size_t N, k, dim;
+  CHECK(label, R != NULL);
+  if (R == NULL) return;
+  N = autobal_rotor_n_balls_total(R);
+  dim = autobal_rotor_dim(R);
+  for (s = 0; s < nstates; s++) {
+    const double t = floor(urand(0, 11)) / 1024.0, w = autobal_rotor_omega(R), d = p->plane[0].d;
+    double sq = 0.0, sp = 0.0, dq = 0.0, dqr = 0.0, dqc = 0.0, dp = 0.0, dpr = 0.0, dpw = 0.0;
+    random_state(R, y);
+    for (k = 0; k < N; k++) y[8 + k] = ldexp(nearbyint(ldexp(y[8 + k], 40)), -40);
+    if (autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim) != 0 ||
+        autobal_rotor_rhs(t, y, f, R) != 0 || autobal_rotor_rhs_rotating(t, yr, fr, R) != 0 ||
+        direct_solve(R, t, y, qdd, phidd) != 0 || reduced_cholesky(R, t, y, qch) != 0) {
+      ok = 0;
+      continue;
+    }
+    for (k = 0; k < 4; k++) {
+      sq = fmax(sq, fabs(qdd[k]));
+      dq = fmax(dq, fabs(f[4 + k] - qdd[k]));
+      dqr = fmax(dqr, fabs(fr[4 + k] - qdd[k]));
+      dqc = fmax(dqc, fabs(f[4 + k] - qch[k]));
+    }
+    {
+      /* (3.3) and (3.4) applied to the returned q'': the ball accelerations must be
+       * those of u_D'' = x'' + d beta'', v_D'' = y'' - d alpha'' */
+      const double u = f[4] + d * f[7], vv = f[5] - d * f[6];
+      for (k = 0; k < N; k++) {
+        const double m = p->plane[0].ball_mass[k], r = p->plane[0].ball_radius[k];
+        const double hk = p->plane[0].ball_damping[k], ph = y[8 + k], pd = y[8 + N + k];
+        const double want = (u * sin(ph) - vv * cos(ph)) / r - hk / m * (pd - w);
+        sp = fmax(sp, (fabs(u) + fabs(vv)) / r + hk / m * fabs(pd - w));
+        dp = fmax(dp, fabs(f[8 + N + k] - phidd[k]));
+        dpr = fmax(dpr, fabs(fr[8 + N + k] - phidd[k]));
+        dpw = fmax(dpw, fabs(f[8 + N + k] - want));
+      }
+    }
+    e_fix = fmax(e_fix, dq / sq);
+    e_rot = fmax(e_rot, dqr / sq);
+    e_chol = fmax(e_chol, dqc / sq);
+    if (N > 0) {
+      e_fix = fmax(e_fix, dp / sp);
+      e_rot = fmax(e_rot, dpr / sp);
+      e_w = fmax(e_w, dpw / sp);
+    }
+  }
+  printf("     %s:\n", label);
+  CHECK("   all right-hand sides and reference solves ran", ok);
+  CHECK_CLOSE("   fixed frame vs direct (4+N) LU, max relative difference", e_fix, 0.0, 0, tol);
+  CHECK_CLOSE("   rotating frame vs direct (4+N) LU, max relative difference", e_rot, 0.0, 0, tol);
+  CHECK_CLOSE("   fixed-frame q'' vs reduced 4x4 Cholesky (GSL), max relative difference", e_chol,
+              0.0, 0, tol);
+  CHECK_CLOSE("   ball accelerations vs (3.3)-(3.4) from the returned q''", e_w, 0.0, 0, tol);
+  g_max_one_plane = fmax(g_max_one_plane, fmax(fmax(e_fix, e_rot), fmax(e_chol, e_w)));
+  autobal_rotor_free(R);
+}
+
+static void test_one_plane_closed_form(void) {
+  static const size_t nb[3] = {1, 2, 5};
+  double m[5], r[5], h[5], psi[5], rate[5];
+  char label[160];
+  autobal_rotor_params p;
+  int c, full;
+  printf("-- one plane: closed-form 2x2 reduction vs direct (4+N) LU and reduced 4x4 Cholesky\n");
+  p = autobal_rotor_params_default();
+  check_one_plane("default example (2 balls, PAPER)", &p, 40, 1e-14);
+  p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  check_one_plane("default example, FULL", &p, 40, 1e-14);
+  for (full = 0; full < 2; full++)
+    for (c = 0; c < 3; c++) {
+      p = one_plane_params(nb[c], 0.3, full, m, r, h, psi, rate);
+      snprintf(label, sizeof label, "%zu ball(s), random masses, sum m g = 0.3, %s, d = %.4f m", nb[c],
+               full ? "FULL" : "PAPER", p.plane[0].d);
+      check_one_plane(label, &p, 40, 1e-14);
+    }
+  /* heavier than the paper model allows: FULL only (I + g C >= I) */
+  p = one_plane_params(5, 4.0, 1, m, r, h, psi, rate);
+  check_one_plane("5 balls, sum m g = 4, FULL", &p, 40, 1e-14);
+  /* close to the paper model's limit: I + g C has eigenvalues down to 1 - 0.99 */
+  p = one_plane_params(2, 0.99, 0, m, r, h, psi, rate);
+  check_one_plane("2 balls, sum m g = 0.99, PAPER (ill-conditioned, cond <= 100)", &p, 40, 1e-13);
+  p = one_plane_params(0, 0.0, 1, m, r, h, psi, rate);
+  check_one_plane("no balls, FULL (C = m0 I)", &p, 10, 1e-14);
+  printf("     max mismatch over all one-plane configurations: %.3g\n", g_max_one_plane);
+}
+
 static void test_frames_instantaneous(void) {
   autobal_rotor_params ps[2];
   int c, s;
@@ -1539,6 +1726,132 @@ static void test_lumped_input(void) {
   autobal_rotor_free(B);
 }
 
+/* Failure of the right-hand sides when the effective mass matrix is (numerically)
+ * singular, with parameters that pass validation. */
+static int rhs_status_at(autobal_rotor *R, int frame, double phi) {
+  double y[MAXDIM], f[MAXDIM];
+  const size_t dim = autobal_rotor_dim(R);
+  autobal_rotor_initial_state(R, frame, 0.0, y, dim); /* t = 0: phi = psi */
+  y[8] = phi;
+  return frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs(0.0, y, f, R)
+                                      : autobal_rotor_rhs_rotating(0.0, y, f, R);
+}
+
+static void test_mass_matrix_failures(void) {
+  static double m1[1], r1[1] = {0.1}, h1[1] = {0.1}, psi1[1] = {0.0};
+  autobal_rotor_params p = autobal_rotor_params_default();
+  const double M = p.hw.M_k + p.hw.m_p, A = p.hw.A_k + p.hw.A_p, d = p.plane[0].d;
+  const double g = 1.0 / M + d * d / A; /* spec: u_D'' per unit force along eu or ev */
+  autobal_error err;
+  autobal_rotor *R;
+  int c, j, fails, frame;
+  printf("-- effective mass matrix singular to working precision: the rhs fails cleanly\n");
+  /* One ball of mass m in the PAPER model: C = -m (s, -c)(s, -c)^T, so I + g C has the
+   * eigenvalues 1 and 1 - g m at every ball angle; the mass matrix is singular to
+   * working precision when 1 - g m = 1e-15 (params_check only requires g m < 1). */
+  p.plane[0].n_balls = 1;
+  p.plane[0].ball_mass = m1;
+  p.plane[0].ball_radius = r1;
+  p.plane[0].ball_damping = h1;
+  p.plane[0].ball_psi = psi1;
+  p.plane[0].ball_rate = NULL;
+  for (c = 0; c < 4; c++) {
+    /* c = 0, 1: one plane; c = 2, 3: a second plane without balls (4x4 path) */
+    const int two = c >= 2, near = (c % 2) == 0;
+    const double gap = near ? 1e-15 : 1e-9;
+    char label[200];
+    m1[0] = (1.0 - gap) / g;
+    p.n_planes = two ? 2 : 1;
+    if (two) {
+      p.plane[1] = autobal_rotor_params_default().plane[0];
+      p.plane[1].d = -0.12;
+      p.plane[1].m0 = 0.01;
+      p.plane[1].r0 = 0.09;
+      p.plane[1].n_balls = 0;
+      p.plane[1].ball_mass = p.plane[1].ball_radius = p.plane[1].ball_damping = NULL;
+      p.plane[1].ball_psi = p.plane[1].ball_rate = NULL;
+    }
+    R = autobal_rotor_alloc(&p, &err);
+    snprintf(label, sizeof label, "%s, one ball with 1 - g m = %g: parameters accepted",
+             two ? "two planes" : "one plane", gap);
+    CHECK(label, R != NULL && err.status >= 0);
+    if (R == NULL) continue;
+    fails = 0;
+    if (!two) {
+      /* every angle, both frames */
+      for (frame = 0; frame < 2; frame++)
+        for (j = 0; j < 16; j++)
+          fails += rhs_status_at(R, frame, 2.0 * M_PI * j / 16.0 + 0.05) == GSL_EBADFUNC;
+      snprintf(label, sizeof label, "   calls that fail (16 ball angles x 2 frames; want %d)",
+               near ? 32 : 0);
+      CHECK_CLOSE(label, fails, near ? 32 : 0, 0, 0);
+    } else {
+      /* Cholesky of the 4x4 matrix, ball at phi = pi/2: the near-null vector
+       * D^-1 eu has beta-component d/A, and the last pivot relative to a_33 is
+       * about (1 - g m) g^2 M A / d^2 = 4.2 (1 - g m) */
+      for (frame = 0; frame < 2; frame++) fails += rhs_status_at(R, frame, 0.5 * M_PI) == GSL_EBADFUNC;
+      snprintf(label, sizeof label, "   calls that fail (ball at pi/2, 2 frames; want %d)", near ? 2 : 0);
+      CHECK_CLOSE(label, fails, near ? 2 : 0, 0, 0);
+    }
+    if (near) CHECK_MSG("   message", autobal_rotor_errmsg(R), "not positive definite");
+    if (!near) {
+      /* well-posed but ill-conditioned (cond ~ 1e9): still the direct solve's answer */
+      double y[MAXDIM], f[MAXDIM], qdd[4], phidd[MAXDIM], e = 0.0, sc = 0.0;
+      size_t k;
+      autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+      y[8] = 0.7;
+      y[4] = 0.01;
+      if (autobal_rotor_rhs(0.0, y, f, R) == 0 && direct_solve(R, 0.0, y, qdd, phidd) == 0) {
+        for (k = 0; k < 4; k++) {
+          sc = fmax(sc, fabs(qdd[k]));
+          e = fmax(e, fabs(f[4 + k] - qdd[k]));
+        }
+        CHECK_CLOSE("   q'' vs direct (4+N) LU, relative (cond ~ 1e9)", e / sc, 0.0, 0, 1e-5);
+      } else {
+        CHECK("   rhs and direct solve succeed", 0);
+      }
+    }
+    autobal_rotor_free(R);
+  }
+  /* FULL model: I + g C >= I analytically, but a ball of 1e300 kg (valid: any
+   * positive finite mass) overflows the products of the 2x2 solve */
+  p = autobal_rotor_params_default();
+  p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  p.plane[0].n_balls = 1;
+  m1[0] = 1e300;
+  p.plane[0].ball_mass = m1;
+  p.plane[0].ball_radius = r1;
+  p.plane[0].ball_damping = h1;
+  p.plane[0].ball_psi = psi1;
+  p.plane[0].ball_rate = NULL;
+  R = autobal_rotor_alloc(&p, &err);
+  CHECK("FULL, one ball of 1e300 kg: parameters accepted", R != NULL && err.status >= 0);
+  if (R != NULL) {
+    fails = 0;
+    for (frame = 0; frame < 2; frame++)
+      for (j = 0; j < 4; j++) fails += rhs_status_at(R, frame, 1.0 + j) == GSL_EBADFUNC;
+    CHECK_CLOSE("   calls that fail (overflow; 4 angles x 2 frames)", fails, 8, 0, 0);
+    CHECK_MSG("   message", autobal_rotor_errmsg(R), "not finite");
+  }
+  autobal_rotor_free(R);
+  /* NaN state with two planes (the 4x4 path) */
+  p = two_plane_params();
+  R = autobal_rotor_alloc(&p, NULL);
+  if (R != NULL) {
+    double y[MAXDIM], f[MAXDIM];
+    const size_t dim = autobal_rotor_dim(R);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+    y[8 + 3] = NAN; /* a ball of the second plane */
+    CHECK_STATUS("two planes, NaN ball angle: fixed-frame rhs fails", autobal_rotor_rhs(0.0, y, f, R),
+                 GSL_EBADFUNC);
+    CHECK_MSG("   message", autobal_rotor_errmsg(R), "fixed-frame");
+    CHECK_STATUS("two planes, NaN ball angle: rotating-frame rhs fails",
+                 autobal_rotor_rhs_rotating(0.0, y, f, R), GSL_EBADFUNC);
+    CHECK_MSG("   message", autobal_rotor_errmsg(R), "rotating-frame");
+  }
+  autobal_rotor_free(R);
+}
+
 static void test_errors(void) {
   autobal_rotor_params p;
   autobal_error err;
@@ -1685,6 +1998,7 @@ int main(void) {
   test_defaults();
   test_natural_frequencies();
   test_direct_solve();
+  test_one_plane_closed_form();
   test_frames_instantaneous();
   test_frames_transient();
   test_rotation_invariance();
@@ -1698,6 +2012,7 @@ int main(void) {
   test_outputs();
   test_lumped_input();
   test_errors();
+  test_mass_matrix_failures();
   test_config_files();
   printf("summary: rhs vs direct solve %.3g; fixed vs rotating frame |dq| %.3g, |dangle| %.3g rad; "
          "steady response rel. error %.3g; energy-rate rel. error %.3g, drift %.3g; "
