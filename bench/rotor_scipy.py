@@ -17,7 +17,8 @@ t in [0, T1] (T1 = 0.5 s: 40 revolutions), final state only.
 
 The SciPy right-hand side is written here from the spec's equations (3.2),
 (3.3), (3.4) and "Solving for the accelerations", independently of the C code
-(which assembles a 4x4 system and solves it by Cholesky), with the 4x4 system
+(which, for one plane, also reduces the 4x4 system to the 2x2 one in
+(u_D'', v_D''), but from its own derivation), with the 4x4 system
 reduced in closed form to a 2x2 one in (u_D'', v_D'') (the mass matrix is
 diag(M, M, A, A) plus a rank-2 term, see make_rhs), in two versions:
 NumPy-vectorized over the balls (make_rhs: np.sin/np.cos, dot products for

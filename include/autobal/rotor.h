@@ -240,8 +240,9 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
 /* Right-hand side of (3.2)+(3.4) ((3.5)-(3.8) for two planes) in the fixed
  * frame, GSL signature; params = an autobal_rotor*.  The implicit system is
  * reduced exactly to a 4x4 symmetric positive definite system in (x'', y'',
- * alpha'', beta'') (see rotor.md "Solving for the accelerations"), solved by
- * Cholesky; then phi'' from (3.4).  O(N), no allocation.  Units: t in s, y in
+ * alpha'', beta'') (see rotor.md "Solving for the accelerations"); one plane:
+ * solved in closed form through the 2x2 system in (u_D'', v_D''), two planes:
+ * by a 4x4 L D L^T factorization; then phi'' from (3.4).  O(N), no allocation.  Units: t in s, y in
  * the state layout of autobal_rotor_dim (SI), dydt per second.
  * Return codes are GSL's, not autobal statuses, because this is the function
  * handed to an ODE driver (gsl_odeiv2_system.function, or
