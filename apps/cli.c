@@ -55,9 +55,22 @@ typedef struct cli_entry {
   char *section;
   char *key;
   char *value;
-  int from_set; /* 1: --set override, 0: file */
+  int from_set;   /* 1: --set override, 0: file */
+  int is_default; /* 1: a ";default" line of a recorded effective configuration (rerun): the key
+                   * counts as not given, and its value replaces the getter's built-in default */
   int used;
 } cli_entry;
+
+/* One key read by a getter, for the effective configuration (cli_config_effective_ini). */
+typedef struct cli_read {
+  char *section;
+  char *key;
+  char *value;  /* the value used, as text: the given text, or the default formatted so that it
+                 * reads back exactly; NULL when the getter knows none (a list, a NULL string) */
+  int given;    /* the key was given (file or --set) */
+  int presence; /* the command asked whether the key was given (a `present` pointer) */
+  int varies;   /* read again, absent, with another default: no single default to record */
+} cli_read;
 
 struct cli_config {
   cli_entry *entries;
@@ -67,6 +80,14 @@ struct cli_config {
   const char *path;
   int dup_error; /* set by the ini handler on a duplicated key */
   char dup_what[256];
+  cli_read *reads; /* every key read, in the order of the first read */
+  size_t nreads, capreads;
+  int nomem;                 /* a read could not be recorded: no effective configuration */
+  char **absent_sections;    /* sections cli_section_present() found absent */
+  size_t nabsent, capabsent;
+  char *given_text;          /* cli_config_set_given_text: recorded instead of cli_config_to_ini */
+  unsigned long generation;  /* counts the recorded reads */
+  unsigned long archived;    /* generation when the effective configuration was last archived */
 };
 
 static char *dupstr(const char *s) {
@@ -91,12 +112,21 @@ void cli_config_free(cli_config *c) {
     free(c->entries[i].value);
   }
   for (i = 0; i < c->nknown; i++) free(c->known[i]);
+  for (i = 0; i < c->nreads; i++) {
+    free(c->reads[i].section);
+    free(c->reads[i].key);
+    free(c->reads[i].value);
+  }
+  for (i = 0; i < c->nabsent; i++) free(c->absent_sections[i]);
   free(c->entries);
   free(c->known);
+  free(c->reads);
+  free(c->absent_sections);
+  free(c->given_text);
   free(c);
 }
 
-static cli_entry *find_entry(cli_config *c, const char *section, const char *key) {
+static cli_entry *find_entry(const cli_config *c, const char *section, const char *key) {
   size_t i;
   for (i = 0; i < c->n; i++)
     if (strcmp(c->entries[i].section, section) == 0 && strcmp(c->entries[i].key, key) == 0) return &c->entries[i];
@@ -117,6 +147,7 @@ static int add_entry(cli_config *c, const char *section, const char *key, const 
     free(e->value);
     e->value = v;
     e->from_set = from_set;
+    e->is_default = 0;
     return 0;
   }
   if (c->n == c->cap) {
@@ -131,6 +162,7 @@ static int add_entry(cli_config *c, const char *section, const char *key, const 
   e->key = dupstr(key);
   e->value = dupstr(value);
   e->from_set = from_set;
+  e->is_default = 0;
   e->used = 0;
   if (!e->section || !e->key || !e->value) {
     free(e->section);
@@ -287,23 +319,125 @@ void cli_declare_section(cli_ctx *ctx, const char *section) {
 }
 
 int cli_section_present(cli_ctx *ctx, const char *section) {
+  cli_config *c = ctx->cfg;
   size_t i;
-  for (i = 0; i < ctx->cfg->n; i++)
-    if (strcmp(ctx->cfg->entries[i].section, section) == 0) return 1;
+  for (i = 0; i < c->n; i++)
+    if (!c->entries[i].is_default && strcmp(c->entries[i].section, section) == 0) return 1;
+  /* remembered: keys of this section must not be written as given into the effective
+   * configuration, which would make the section present in a re-run */
+  for (i = 0; i < c->nabsent; i++)
+    if (strcmp(c->absent_sections[i], section) == 0) return 0;
+  if (c->nabsent == c->capabsent) {
+    size_t cap = c->capabsent ? 2 * c->capabsent : 8;
+    char **p = realloc(c->absent_sections, cap * sizeof *p);
+    if (!p) {
+      c->nomem = 1;
+      return 0;
+    }
+    c->absent_sections = p;
+    c->capabsent = cap;
+  }
+  if ((c->absent_sections[c->nabsent] = dupstr(section)) != NULL) c->nabsent++;
+  else c->nomem = 1;
   return 0;
 }
 
 static const char *where(cli_ctx *ctx, const cli_entry *e) {
+  if (e->is_default) return "recorded configuration (;default line)";
   return e->from_set ? "--set" : (ctx->config_path ? ctx->config_path : "config");
 }
 
+/* ---- the record of the keys read (the effective configuration) ---------------------------- */
+/* Record that `section.key` was read: given (value = the given text) or not (value = the default
+ * used, as text, or NULL if unknown); presence: the caller asked whether it was given. */
+static void record_read(cli_config *c, const char *section, const char *key, const char *value, int given,
+                        int presence) {
+  cli_read *r = NULL;
+  size_t i;
+  c->generation++;
+  for (i = 0; i < c->nreads; i++)
+    if (strcmp(c->reads[i].section, section) == 0 && strcmp(c->reads[i].key, key) == 0) {
+      r = &c->reads[i];
+      break;
+    }
+  if (r) { /* read again: the last value counts; asking for presence once is enough */
+    char *v = NULL;
+    if (!given && !r->given && !r->varies &&
+        ((r->value == NULL) != (value == NULL) || (value && strcmp(r->value, value) != 0)))
+      r->varies = 1;
+    if (value && !(v = dupstr(value))) c->nomem = 1;
+    free(r->value);
+    r->value = v;
+    r->given = given;
+    r->presence |= presence;
+    return;
+  }
+  if (c->nreads == c->capreads) {
+    size_t cap = c->capreads ? 2 * c->capreads : 64;
+    cli_read *p = realloc(c->reads, cap * sizeof *p);
+    if (!p) {
+      c->nomem = 1;
+      return;
+    }
+    c->reads = p;
+    c->capreads = cap;
+  }
+  r = &c->reads[c->nreads];
+  memset(r, 0, sizeof *r);
+  r->section = dupstr(section);
+  r->key = dupstr(key);
+  r->value = value ? dupstr(value) : NULL;
+  r->given = given;
+  r->presence = presence;
+  if (!r->section || !r->key || (value && !r->value)) {
+    free(r->section);
+    free(r->key);
+    free(r->value);
+    c->nomem = 1;
+    return;
+  }
+  c->nreads++;
+}
+
+/* The shortest "%.{15,16,17}g" text that strtod reads back to exactly v (sign of zero kept). */
+static void format_double(double v, char *buf, size_t len) {
+  int prec;
+  for (prec = 15; prec <= 17; prec++) {
+    double back;
+    snprintf(buf, len, "%.*g", prec, v);
+    back = strtod(buf, NULL);
+    if (memcmp(&back, &v, sizeof v) == 0 || (isnan(v) && isnan(back))) return;
+  }
+}
+
+/* Find the key (declaring it known and marking it used).  *present: given, i.e. in the file or
+ * --set and not a recorded default. */
 static cli_entry *lookup(cli_ctx *ctx, const char *section, const char *key, int *present) {
   cli_entry *e;
   declare(ctx->cfg, section, key);
   e = find_entry(ctx->cfg, section, key);
-  if (present) *present = e != NULL;
+  if (present) *present = e != NULL && !e->is_default;
   if (e) e->used = 1;
   return e;
+}
+
+/* Record a read: e NULL (absent, `def` the default as text) or e given/recorded default. */
+static void record(cli_ctx *ctx, const char *section, const char *key, const cli_entry *e, const char *def,
+                   const int *present) {
+  if (e) record_read(ctx->cfg, section, key, e->value, !e->is_default, present != NULL);
+  else record_read(ctx->cfg, section, key, def, 0, present != NULL);
+}
+
+/* A number of a recorded default (";default" line): like parse_double, also NaN/infinity (a
+ * default may be a "not set" NaN). */
+static int parse_default_double(const char *s, double *out) {
+  char *end;
+  while (*s == ' ' || *s == '\t') s++;
+  if (*s == '\0') return -1;
+  *out = strtod(s, &end);
+  if (end == s) return -1;
+  while (*end == ' ' || *end == '\t') end++;
+  return *end == '\0' ? 0 : -1;
 }
 
 static int parse_double(const char *s, double *out) {
@@ -335,10 +469,14 @@ int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double de
   cli_entry *e = lookup(ctx, section, key, present);
   int rc;
   if (!e) {
+    char text[40];
+    format_double(def, text, sizeof text);
+    record(ctx, section, key, NULL, text, present);
     *out = def;
     return CLI_EXIT_OK;
   }
-  rc = parse_double(e->value, out);
+  record(ctx, section, key, e, NULL, present);
+  rc = e->is_default ? (parse_default_double(e->value, out) ? -1 : 0) : parse_double(e->value, out);
   if (rc != 0)
     return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' %s", where(ctx, e), section, key, e->value,
                     parse_double_problem(rc));
@@ -350,9 +488,13 @@ int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, lo
   char *end;
   long v;
   if (!e) {
+    char text[32];
+    snprintf(text, sizeof text, "%ld", def);
+    record(ctx, section, key, NULL, text, present);
     *out = def;
     return CLI_EXIT_OK;
   }
+  record(ctx, section, key, e, NULL, present);
   errno = 0;
   v = strtol(e->value, &end, 10);
   while (*end == ' ' || *end == '\t') end++;
@@ -366,9 +508,11 @@ int cli_get_bool(cli_ctx *ctx, const char *section, const char *key, int def, in
   cli_entry *e = lookup(ctx, section, key, present);
   const char *v;
   if (!e) {
+    record(ctx, section, key, NULL, def ? "true" : "false", present);
     *out = def;
     return CLI_EXIT_OK;
   }
+  record(ctx, section, key, e, NULL, present);
   v = e->value;
   if (!strcasecmp(v, "true") || !strcasecmp(v, "yes") || !strcasecmp(v, "on") || !strcmp(v, "1")) *out = 1;
   else if (!strcasecmp(v, "false") || !strcasecmp(v, "no") || !strcasecmp(v, "off") || !strcmp(v, "0")) *out = 0;
@@ -382,7 +526,13 @@ int cli_get_string(cli_ctx *ctx, const char *section, const char *key, const cha
                    int *present) {
   cli_entry *e = lookup(ctx, section, key, present);
   if (!e) {
+    record(ctx, section, key, NULL, def, present);
     *out = def;
+    return CLI_EXIT_OK;
+  }
+  record(ctx, section, key, e, NULL, present);
+  if (e->is_default) { /* the recorded default, also an empty one */
+    *out = e->value;
     return CLI_EXIT_OK;
   }
   if (e->value[0] == '\0')
@@ -398,6 +548,8 @@ int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *
   char *tok, *save = NULL;
   size_t count = 0;
   *n = 0;
+  /* an absent list: the caller's default is not known here (out holds it, of unknown length) */
+  record(ctx, section, key, e, NULL, present);
   if (!e) return CLI_EXIT_OK;
   if (strlen(e->value) >= sizeof buf)
     return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: list too long", where(ctx, e), section, key);
@@ -626,16 +778,174 @@ char *cli_config_to_ini(const cli_config *c) {
   out = malloc(len);
   if (!out) return NULL;
   out[0] = '\0';
-  /* group by section, in order of first appearance */
+  /* group by section, in order of first appearance; recorded defaults (rerun) are not given */
   for (i = 0; i < c->n; i++) {
     int seen = 0;
+    if (c->entries[i].is_default) continue;
     for (j = 0; j < i; j++)
-      if (strcmp(c->entries[j].section, c->entries[i].section) == 0) seen = 1;
+      if (!c->entries[j].is_default && strcmp(c->entries[j].section, c->entries[i].section) == 0) seen = 1;
     if (seen) continue;
     pos += (size_t)snprintf(out + pos, len - pos, "[%s]\n", c->entries[i].section);
     for (j = i; j < c->n; j++)
-      if (strcmp(c->entries[j].section, c->entries[i].section) == 0)
+      if (!c->entries[j].is_default && strcmp(c->entries[j].section, c->entries[i].section) == 0)
         pos += (size_t)snprintf(out + pos, len - pos, "%s = %s\n", c->entries[j].key, c->entries[j].value);
   }
   return out;
 }
+
+/* ---- the effective configuration ---------------------------------------------------------- */
+typedef struct sbuf {
+  char *p;
+  size_t len, cap;
+  int nomem;
+} sbuf;
+
+static void sb_add(sbuf *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void sb_add(sbuf *b, const char *fmt, ...) {
+  va_list ap;
+  int n;
+  if (b->nomem) return;
+  for (;;) {
+    size_t room = b->cap - b->len;
+    va_start(ap, fmt);
+    n = vsnprintf(b->p ? b->p + b->len : NULL, b->p ? room : 0, fmt, ap);
+    va_end(ap);
+    if (n < 0) {
+      b->nomem = 1;
+      return;
+    }
+    if (b->p && (size_t)n < room) {
+      b->len += (size_t)n;
+      return;
+    }
+    {
+      size_t cap = b->cap ? 2 * b->cap : 1024;
+      char *q;
+      while (cap - b->len <= (size_t)n) cap *= 2;
+      q = realloc(b->p, cap);
+      if (!q) {
+        b->nomem = 1;
+        return;
+      }
+      b->p = q;
+      b->cap = cap;
+    }
+  }
+}
+
+static int section_known_absent(const cli_config *c, const char *section) {
+  size_t i;
+  for (i = 0; i < c->nabsent; i++)
+    if (strcmp(c->absent_sections[i], section) == 0) return 1;
+  return 0;
+}
+
+/* A default whose text would not read back as the same given value: a non-finite number (the
+ * number getters reject NaN/inf), an empty value (rejected as "no value"), surrounding blanks
+ * (stripped by the INI reader) or an inline-comment " ;". */
+static int default_needs_marker(const char *v) {
+  size_t len = strlen(v);
+  char *end;
+  double d;
+  if (len == 0 || v[0] == ' ' || v[0] == '\t' || v[len - 1] == ' ' || v[len - 1] == '\t' || strstr(v, " ;") ||
+      strstr(v, "\t;"))
+    return 1;
+  d = strtod(v, &end);
+  return end != v && *end == '\0' && !isfinite(d);
+}
+
+static void effective_line(sbuf *b, const cli_config *c, const cli_read *r) {
+  if (r->given) {
+    sb_add(b, "%s = %s\n", r->key, r->value ? r->value : "");
+  } else if (r->varies) {
+    sb_add(b, "; %s not given: read with different built-in defaults (none recorded)\n", r->key);
+  } else if (!r->value) {
+    sb_add(b, "; %s not given: the command's built-in value (not known to the configuration reader)\n", r->key);
+  } else if (strchr(r->value, '\n') || strchr(r->value, '\r')) {
+    sb_add(b, "; %s not given: a built-in default of several lines (not recorded)\n", r->key);
+  } else if (r->presence || section_known_absent(c, r->section) || default_needs_marker(r->value)) {
+    sb_add(b, ";default %s = %s\n", r->key, r->value);
+  } else {
+    sb_add(b, "%s = %s\n", r->key, r->value);
+  }
+}
+
+char *cli_config_effective_ini(const cli_config *c, const char *command) {
+  sbuf b;
+  size_t i, j, k;
+  memset(&b, 0, sizeof b);
+  if (c->nomem) return NULL;
+  sb_add(&b,
+         "; the effective configuration of 'autobal %s': every key the command read, with the value it used\n"
+         "; (given in the file or with --set, else the built-in default); `autobal rerun` runs from this text.\n"
+         "; \";default KEY = VALUE\": KEY was not given, and the command tells a given KEY from an absent one,\n"
+         "; so it stays absent; VALUE is the built-in default that was used (a re-run uses this VALUE).\n",
+         command ? command : "?");
+  /* sections in the order of their first read; keys in the order read */
+  for (i = 0; i < c->nreads; i++) {
+    const char *sec = c->reads[i].section;
+    int seen = 0;
+    for (j = 0; j < i && !seen; j++) seen = strcmp(c->reads[j].section, sec) == 0;
+    if (seen) continue;
+    sb_add(&b, "[%s]\n", sec);
+    for (j = i; j < c->nreads; j++)
+      if (strcmp(c->reads[j].section, sec) == 0) effective_line(&b, c, &c->reads[j]);
+    /* given keys of this section that were not read (a section declared known as a whole) */
+    for (k = 0; k < c->n; k++) {
+      const cli_entry *e = &c->entries[k];
+      int read = 0;
+      if (e->is_default || strcmp(e->section, sec) != 0) continue;
+      for (j = 0; j < c->nreads && !read; j++) read = !strcmp(c->reads[j].section, sec) && !strcmp(c->reads[j].key, e->key);
+      if (!read) sb_add(&b, "%s = %s\n", e->key, e->value);
+    }
+  }
+  /* sections given but never read from (declared known as a whole) */
+  for (k = 0; k < c->n; k++) {
+    const char *sec = c->entries[k].section;
+    int seen = 0;
+    if (c->entries[k].is_default) continue;
+    for (j = 0; j < c->nreads && !seen; j++) seen = strcmp(c->reads[j].section, sec) == 0;
+    for (j = 0; j < k && !seen; j++) seen = !c->entries[j].is_default && strcmp(c->entries[j].section, sec) == 0;
+    if (seen) continue;
+    sb_add(&b, "[%s]\n", sec);
+    for (j = k; j < c->n; j++)
+      if (!c->entries[j].is_default && strcmp(c->entries[j].section, sec) == 0)
+        sb_add(&b, "%s = %s\n", c->entries[j].key, c->entries[j].value);
+  }
+  if (b.nomem || !b.p) {
+    free(b.p);
+    return NULL;
+  }
+  return b.p;
+}
+
+int cli_config_add_default(cli_ctx *ctx, const char *section, const char *key, const char *value) {
+  cli_config *c = ctx->cfg;
+  cli_entry *e;
+  if (find_entry(c, section, key))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "key '%s.%s' is given and recorded as a default (;default)", section, key);
+  if (add_entry(c, section, key, value, 1) != 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  e = find_entry(c, section, key);
+  if (e) e->is_default = 1;
+  return CLI_EXIT_OK;
+}
+
+int cli_config_set_given_text(cli_config *c, const char *ini) {
+  char *t = NULL;
+  if (ini && !(t = dupstr(ini))) return -1;
+  free(c->given_text);
+  c->given_text = t;
+  return 0;
+}
+
+char *cli_config_given_ini(const cli_config *c) {
+  if (c->given_text) return dupstr(c->given_text);
+  return cli_config_to_ini(c);
+}
+
+int cli_config_effective_stale(const cli_config *c) { return c->generation != c->archived; }
+void cli_config_effective_archived(cli_config *c) { c->archived = c->generation; }

@@ -54,8 +54,38 @@ void cli_config_free(cli_config *c);
 int cli_config_load(cli_ctx *ctx);
 /* The same from INI text in memory (len bytes; `name` stands for the file in messages). */
 int cli_config_load_text(cli_ctx *ctx, const char *name, const char *text, size_t len);
-/* The effective configuration (file + overrides) as INI text (malloc'ed; NULL: no memory). */
+/* The given configuration (file + overrides) as INI text (malloc'ed; NULL: no memory): the keys
+ * given, grouped by section in order of first appearance. */
 char *cli_config_to_ini(const cli_config *c);
+/* The effective configuration as INI text (malloc'ed; NULL: no memory): every key the command read
+ * through the getters below, in the order read, grouped by section in the order of the first read
+ * (then given keys of sections declared known as a whole), each with the value the command used:
+ *   KEY = VALUE            given (VALUE as given), or not given and the getter's default did not
+ *                          depend on it being given (the default, numbers in the shortest text
+ *                          that reads back bit for bit);
+ *   ;default KEY = VALUE   not given, and the command asked whether it was (the getter's `present`
+ *                          pointer), or its section was found absent (cli_section_present), or VALUE
+ *                          would not read back as a given value (NaN, empty): KEY must stay absent,
+ *                          VALUE is the default that was used.  For the INI reader a comment;
+ *                          `autobal rerun` gives it back through cli_config_add_default;
+ *   ; KEY not given: ...   a comment where no default is known to the getter (a list of
+ *                          cli_get_doubles, a NULL string default) or a key was read with
+ *                          different defaults: a re-run uses the built-in value.
+ * Preceded by a few ';' comment lines naming `command`. */
+char *cli_config_effective_ini(const cli_config *c, const char *command);
+/* Whether keys were read since cli_config_effective_archived() (the archive's copy is stale). */
+int cli_config_effective_stale(const cli_config *c);
+void cli_config_effective_archived(cli_config *c);
+/* `autobal rerun`: a key that was not given in the recorded run, with the default it used (a
+ * ";default" line): getters return VALUE instead of their built-in default and report the key as
+ * not given (*present = 0); cli_section_present ignores it; an unread one is an unknown key for
+ * cli_config_check_unused.  Returns a CLI_EXIT_* code (CLI_EXIT_INPUT if the key is also given). */
+int cli_config_add_default(cli_ctx *ctx, const char *section, const char *key, const char *value);
+/* `autobal rerun`: the text to record as the given configuration (root attribute input_config)
+ * instead of cli_config_to_ini (the recorded run's own input_config).  Returns 0, -1: no memory. */
+int cli_config_set_given_text(cli_config *c, const char *ini);
+/* cli_config_set_given_text's text if set, else cli_config_to_ini (malloc'ed; NULL: no memory). */
+char *cli_config_given_ini(const cli_config *c);
 /* Apply one `--set section.key=value`. */
 int cli_config_override(cli_ctx *ctx, const char *assignment);
 
@@ -73,10 +103,12 @@ int cli_fail(cli_ctx *ctx, int code, const char *fmt, ...)
 int cli_exit_code(int status);
 
 /* Getters.  Each declares the key as known to this command (for the unknown-key check and the
- * "did you mean" suggestion) and marks it used.  If the key is absent, *out = def and 0 is
- * returned (*present, when not NULL, is set to 0/1).  A malformed value (not a number, NaN,
- * infinity, empty, trailing junk) returns CLI_EXIT_INPUT with ctx->err naming section.key and the
- * file. */
+ * "did you mean" suggestion), marks it used and records the key with the value used for the
+ * effective configuration (cli_config_effective_ini).  If the key is absent, *out = def and 0 is
+ * returned (*present, when not NULL, is set to 0/1; pass NULL when the command does not care
+ * whether the key was given, so that its default can be recorded as a given key).  A malformed
+ * value (not a number, NaN, infinity, empty, trailing junk) returns CLI_EXIT_INPUT with ctx->err
+ * naming section.key and the file. */
 int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double def, double *out, int *present);
 int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, long *out, int *present);
 int cli_get_bool(cli_ctx *ctx, const char *section, const char *key, int def, int *out, int *present);
@@ -116,7 +148,10 @@ int cli_archive_solver_stats(struct autobal_archive *a, const char *group, const
                              const autobal_transient_stats *stats, const char *time_unit);
 /* The same statistics as one line of the human summary on stdout. */
 void cli_print_solver_stats(const autobal_transient *tr, const autobal_transient_stats *stats);
-/* The config file text itself is stored as /input attribute "config" for re-runs. */
+/* cli_archive_open records the root attributes command, input_config (the given configuration,
+ * cli_config_given_ini) and effective_config (cli_config_effective_ini: every key read, with
+ * defaults), which `autobal rerun` runs from; cli_archive_finish writes effective_config again if
+ * keys were read after the archive was opened. */
 
 /* ---- progress and signals ------------------------------------------------- */
 /* Install SIGINT/SIGTERM handlers that set a flag (the run stops cleanly at the next check). */

@@ -1,6 +1,6 @@
-/* cli_archive.c: opening and finishing an archive for a command (provenance, the effective
- * configuration for re-runs, the status attribute from the exit code), and the transient
- * driver's statistics shared by the transient commands. */
+/* cli_archive.c: opening and finishing an archive for a command (provenance, the given and the
+ * effective configuration for re-runs, the status attribute from the exit code), and the
+ * transient driver's statistics shared by the transient commands. */
 #define _POSIX_C_SOURCE 200809L
 #include <signal.h>
 #include <stdlib.h>
@@ -11,6 +11,18 @@
 
 #include "autobal/archive.h"
 #include "cli.h"
+
+/* Root attribute effective_config: every key the command read, with the value used (defaults
+ * included), so that `autobal rerun` does not depend on the built-in defaults. */
+static int write_effective_config(cli_ctx *ctx, autobal_archive *a) {
+  char *eff = cli_config_effective_ini(ctx->cfg, ctx->command);
+  int st;
+  if (!eff) return AUTOBAL_ENOMEM;
+  st = autobal_archive_attr_string(a, "/", "effective_config", eff);
+  free(eff);
+  if (st == AUTOBAL_SUCCESS) cli_config_effective_archived(ctx->cfg);
+  return st;
+}
 
 int cli_archive_open(cli_ctx *ctx, const char *title, autobal_archive **out) {
   autobal_error err;
@@ -34,13 +46,15 @@ int cli_archive_open(cli_ctx *ctx, const char *title, autobal_archive **out) {
   st = autobal_archive_provenance(*out, title, ctx->argc, (const char *const *)ctx->argv);
   if (st == AUTOBAL_SUCCESS) st = autobal_archive_attr_string(*out, "/", "command", ctx->command);
   if (st == AUTOBAL_SUCCESS) {
-    ini = cli_config_to_ini(ctx->cfg);
+    ini = cli_config_given_ini(ctx->cfg);
     if (!ini) st = AUTOBAL_ENOMEM;
     else st = autobal_archive_attr_string(*out, "/", "input_config", ini);
     free(ini);
   }
+  if (st == AUTOBAL_SUCCESS) st = write_effective_config(ctx, *out);
   if (st != AUTOBAL_SUCCESS) {
-    int code = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(*out));
+    int code = cli_fail(ctx, cli_exit_code(st), "%s",
+                        st == AUTOBAL_ENOMEM ? "out of memory recording the configuration" : autobal_archive_errmsg(*out));
     autobal_archive_discard(*out);
     *out = NULL;
     return code;
@@ -51,6 +65,12 @@ int cli_archive_open(cli_ctx *ctx, const char *title, autobal_archive **out) {
 int cli_archive_finish(cli_ctx *ctx, autobal_archive *a, int exit_code) {
   autobal_error err;
   if (!a) return exit_code;
+  if (cli_config_effective_stale(ctx->cfg)) { /* keys read after cli_archive_open */
+    int st = write_effective_config(ctx, a);
+    if (st != AUTOBAL_SUCCESS && exit_code == CLI_EXIT_OK)
+      exit_code = cli_fail(ctx, cli_exit_code(st), "%s",
+                           st == AUTOBAL_ENOMEM ? "out of memory recording the configuration" : autobal_archive_errmsg(a));
+  }
   if (exit_code == CLI_EXIT_INTERRUPTED) {
     int sig = cli_signal_number();
     autobal_archive_set_status(a, "incomplete", sig == SIGTERM ? "interrupted by SIGTERM" : "interrupted by SIGINT");

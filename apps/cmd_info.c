@@ -8,22 +8,16 @@
  * command, present and future, because it walks the file.  Headline results are attributes
  * and small datasets with well-known names (see is_headline_attr / headline_datasets).
  *
- * Reading.  The archive API validates the file (Conventions, damaged/truncated/foreign HDF5
- * files -> exit 4), lists groups, reads shapes and values.  It has no way (yet) to enumerate
- * the attributes of an object, to read an array attribute or to name the dimensions of a
- * dataset, so this file has a small read-only HDF5 shim for exactly that (h5_*; it opens the
- * same file a second time, read-only).  It should move into the archive module as
- * autobal_archive_list_attrs / _read_attr_array / _var_dims when those exist. */
+ * Reading.  Only through the archive API (archive.h): it validates the file (Conventions,
+ * damaged/truncated/foreign HDF5 files -> exit 4), lists groups and attributes
+ * (autobal_archive_list, _list_attrs), reads shapes, types, dimension names and values
+ * (_var_describe, _read_var, _read_attr_doubles, _read_attr_string). */
 #define _POSIX_C_SOURCE 200809L
-#define H5_USE_110_API
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <hdf5.h>
-#include <hdf5_hl.h>
 
 #include "autobal/archive.h"
 #include "cli.h"
@@ -33,7 +27,7 @@ int cli_cmd_info(cli_ctx *ctx); /* registered in commands.c */
 #define INFO_MAX_VALUES_JSON 64 /* datasets up to this many elements show their values in --json */
 #define INFO_MAX_VALUES_TEXT 8  /* ... and up to this many in the text summary */
 
-/* ---- the HDF5 shim: attributes and dimension names --------------------------------- */
+/* ---- attributes and dataset descriptions (archive.h) ------------------------------ */
 /* Copy src into dst (len bytes), truncated and NUL-terminated. */
 static void copy_name(char *dst, size_t len, const char *src) {
   size_t n = strlen(src);
@@ -57,6 +51,8 @@ typedef struct info_attrs {
   info_attr *a;
   size_t n, cap;
   int failed; /* out of memory or an unreadable attribute */
+  autobal_archive *arch; /* for the readers */
+  const char *obj;       /* the object whose attributes are read */
 } info_attrs;
 
 static void attrs_free(info_attrs *l) {
@@ -85,12 +81,6 @@ static const char *attrs_units(const info_attrs *l, const char *name) {
   return (u && u->kind == ATTR_STRING) ? u->s : NULL;
 }
 
-/* Attributes that belong to the file format, not to the user. */
-static int reserved_attr(const char *name) {
-  return !strcmp(name, "CLASS") || !strcmp(name, "NAME") || !strcmp(name, "DIMENSION_LIST") ||
-         !strcmp(name, "REFERENCE_LIST") || !strncmp(name, "_Netcdf", 7) || !strncmp(name, "_nc", 3);
-}
-
 /* A NAME_units attribute whose NAME is also present: shown together with NAME. */
 static int is_units_of_other(const info_attrs *l, const char *name) {
   size_t len = strlen(name);
@@ -101,98 +91,74 @@ static int is_units_of_other(const info_attrs *l, const char *name) {
   return attrs_find(l, base) != NULL;
 }
 
-static herr_t attr_cb(hid_t loc, const char *name, const H5A_info_t *ainfo, void *data) {
+/* autobal_archive_list_attrs callback (called outside the archive's iteration, so it may
+ * read): numbers of any shape as doubles, scalar strings; other types are listed only.  The
+ * format's own attributes (dimension scales, netCDF) are not listed by the archive. */
+static int attr_cb(const autobal_archive_attr_info *ai, void *data) {
   info_attrs *l = data;
   info_attr *at;
-  hid_t aid = -1, tid = -1, sid = -1;
-  hssize_t np;
-  (void)ainfo;
-  if (reserved_attr(name)) return 0;
   if (l->n == l->cap) {
     size_t cap = l->cap ? 2 * l->cap : 32;
     info_attr *p = realloc(l->a, cap * sizeof *p);
     if (!p) {
       l->failed = 1;
-      return -1;
+      return 1;
     }
     l->a = p;
     l->cap = cap;
   }
   at = &l->a[l->n];
   memset(at, 0, sizeof *at);
-  copy_name(at->name, sizeof at->name, name);
+  copy_name(at->name, sizeof at->name, ai->name);
   at->kind = ATTR_OTHER;
+  at->n = ai->count;
   l->n++;
-  aid = H5Aopen(loc, name, H5P_DEFAULT);
-  if (aid < 0) goto done;
-  tid = H5Aget_type(aid);
-  sid = H5Aget_space(aid);
-  if (tid < 0 || sid < 0) goto done;
-  np = H5Sget_simple_extent_npoints(sid);
-  if (np < 0) goto done;
-  at->n = (size_t)np;
-  switch (H5Tget_class(tid)) {
-    case H5T_INTEGER:
-    case H5T_FLOAT:
+  switch (ai->type_class) {
+    case AUTOBAL_ARCHIVE_CLASS_INTEGER:
+    case AUTOBAL_ARCHIVE_CLASS_FLOAT:
       if (at->n == 0) break;
       at->v = malloc(at->n * sizeof *at->v);
       if (!at->v) {
         l->failed = 1;
         break;
       }
-      if (H5Aread(aid, H5T_NATIVE_DOUBLE, at->v) < 0) {
+      if (autobal_archive_read_attr_doubles(l->arch, l->obj, ai->name, at->v, at->n, NULL) != AUTOBAL_SUCCESS) {
         free(at->v);
         at->v = NULL;
         break;
       }
       at->kind = ATTR_NUMBER;
-      at->is_int = H5Tget_class(tid) == H5T_INTEGER;
+      at->is_int = ai->type_class == AUTOBAL_ARCHIVE_CLASS_INTEGER;
       break;
-    case H5T_STRING:
+    case AUTOBAL_ARCHIVE_CLASS_STRING: {
+      size_t len = 0;
+      char probe[1];
       if (at->n != 1) break;
-      if (H5Tis_variable_str(tid) > 0) {
-        char *vs = NULL;
-        hid_t mt = H5Tcopy(H5T_C_S1);
-        if (mt >= 0 && H5Tset_size(mt, H5T_VARIABLE) >= 0 && H5Tset_cset(mt, H5Tget_cset(tid)) >= 0 &&
-            H5Aread(aid, mt, &vs) >= 0) {
-          at->s = strdup(vs ? vs : "");
-          if (vs) H5free_memory(vs);
-        }
-        if (mt >= 0) H5Tclose(mt);
+      if (autobal_archive_read_attr_string(l->arch, l->obj, ai->name, probe, sizeof probe, &len) >= 0 &&
+          (at->s = malloc(len + 1)) != NULL &&
+          autobal_archive_read_attr_string(l->arch, l->obj, ai->name, at->s, len + 1, NULL) == AUTOBAL_SUCCESS) {
+        at->kind = ATTR_STRING;
       } else {
-        size_t sz = H5Tget_size(tid);
-        hid_t mt = H5Tcopy(tid);
-        at->s = calloc(sz + 1, 1);
-        if (mt < 0 || !at->s || H5Aread(aid, mt, at->s) < 0) {
-          free(at->s);
-          at->s = NULL;
-        }
-        if (mt >= 0) H5Tclose(mt);
+        free(at->s);
+        at->s = NULL;
+        l->failed = 1;
       }
-      if (at->s) at->kind = ATTR_STRING;
-      else l->failed = 1;
       break;
+    }
     default:
       break;
   }
-done:
-  if (sid >= 0) H5Sclose(sid);
-  if (tid >= 0) H5Tclose(tid);
-  if (aid >= 0) H5Aclose(aid);
   return 0;
 }
 
 /* All (non-reserved) attributes of the group or dataset `path`, by name. */
-static int h5_read_attrs(hid_t file, const char *path, info_attrs *out) {
-  hid_t obj;
-  hsize_t idx = 0;
-  herr_t rc;
+static int read_attrs(autobal_archive *a, const char *path, info_attrs *out) {
+  int st;
   memset(out, 0, sizeof *out);
-  obj = H5Oopen(file, path, H5P_DEFAULT);
-  if (obj < 0) return -1;
-  rc = H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, &idx, attr_cb, out);
-  H5Oclose(obj);
-  return (rc < 0 || out->failed) ? -1 : 0;
+  out->arch = a;
+  out->obj = path;
+  st = autobal_archive_list_attrs(a, path, AUTOBAL_ARCHIVE_ORDER_NAME, attr_cb, out);
+  return (st != AUTOBAL_SUCCESS || out->failed) ? -1 : 0;
 }
 
 typedef struct dim_names {
@@ -200,57 +166,30 @@ typedef struct dim_names {
   int scale; /* the dataset is itself a dimension scale (a coordinate) */
 } dim_names;
 
-static herr_t scale_cb(hid_t did, unsigned dim, hid_t dsid, void *data) {
-  char *out = data, path[1024];
-  const char *base;
-  ssize_t len;
-  (void)did;
-  (void)dim;
-  len = H5Iget_name(dsid, path, sizeof path);
-  if (len <= 0) return 0;
-  base = strrchr(path, '/');
-  copy_name(out, AUTOBAL_ARCHIVE_NAME_MAX + 1, base ? base + 1 : path);
-  return 1; /* the first scale attached to this dimension names it */
-}
-
 /* Dimension names of dataset `path` (empty where no scale is attached) and its type as a
- * numpy-style name ("float64", "int32", "string", ...). */
-static void h5_dataset_meta(hid_t file, const char *path, int rank, dim_names *dn, char *dtype, size_t dtlen) {
-  hid_t did, tid;
+ * numpy-style name ("float64", "int32", "string", ...; "?" if it cannot be described). */
+static void dataset_meta(autobal_archive *a, const char *path, dim_names *dn, char *dtype, size_t dtlen) {
+  autobal_archive_var_info vi;
   int d;
   memset(dn, 0, sizeof *dn);
   snprintf(dtype, dtlen, "?");
-  did = H5Dopen2(file, path, H5P_DEFAULT);
-  if (did < 0) return;
-  dn->scale = H5DSis_scale(did) > 0;
-  for (d = 0; d < rank && d < AUTOBAL_ARCHIVE_MAX_RANK; d++) {
-    if (dn->scale && rank == 1) {
-      const char *base = strrchr(path, '/');
-      copy_name(dn->name[d], sizeof dn->name[d], base ? base + 1 : path);
-    } else {
-      (void)H5DSiterate_scales(did, (unsigned)d, NULL, scale_cb, dn->name[d]);
-    }
+  if (autobal_archive_var_describe(a, path, &vi) != AUTOBAL_SUCCESS) return;
+  dn->scale = vi.is_coordinate;
+  for (d = 0; d < vi.rank && d < AUTOBAL_ARCHIVE_MAX_RANK; d++) copy_name(dn->name[d], sizeof dn->name[d], vi.dim_names[d]);
+  switch (vi.type_class) {
+    case AUTOBAL_ARCHIVE_CLASS_FLOAT:
+      snprintf(dtype, dtlen, "float%zu", 8 * vi.size);
+      break;
+    case AUTOBAL_ARCHIVE_CLASS_INTEGER:
+      snprintf(dtype, dtlen, "%sint%zu", vi.is_unsigned ? "u" : "", 8 * vi.size);
+      break;
+    case AUTOBAL_ARCHIVE_CLASS_STRING:
+      snprintf(dtype, dtlen, "string");
+      break;
+    default:
+      snprintf(dtype, dtlen, "other");
+      break;
   }
-  tid = H5Dget_type(did);
-  if (tid >= 0) {
-    size_t sz = H5Tget_size(tid);
-    switch (H5Tget_class(tid)) {
-      case H5T_FLOAT:
-        snprintf(dtype, dtlen, "float%zu", 8 * sz);
-        break;
-      case H5T_INTEGER:
-        snprintf(dtype, dtlen, "%sint%zu", H5Tget_sign(tid) == H5T_SGN_NONE ? "u" : "", 8 * sz);
-        break;
-      case H5T_STRING:
-        snprintf(dtype, dtlen, "string");
-        break;
-      default:
-        snprintf(dtype, dtlen, "other");
-        break;
-    }
-    H5Tclose(tid);
-  }
-  H5Dclose(did);
 }
 
 /* ---- walking the archive ------------------------------------------------------------- */
@@ -286,7 +225,6 @@ static int list_cb(const char *name, int is_group, void *ctx) {
 typedef struct info_run {
   cli_ctx *ctx;
   autobal_archive *a;
-  hid_t file;
   cli_json j;
   int json;
   int pass; /* text: 0 headline pass, 1 full listing */
@@ -443,7 +381,7 @@ static int visit_group(info_run *r, const char *group) {
     return cli_fail(r->ctx, ml.failed ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "cannot list group '%s': %s", group,
                     ml.failed ? "out of memory" : autobal_archive_errmsg(r->a));
   }
-  if (h5_read_attrs(r->file, group, &al) != 0) {
+  if (read_attrs(r->a, group, &al) != 0) {
     attrs_free(&al);
     free(ml.m);
     return cli_fail(r->ctx, CLI_EXIT_IO, "cannot read the attributes of group '%s'", group);
@@ -512,7 +450,7 @@ static int visit_group(info_run *r, const char *group) {
     }
     has_units = autobal_archive_read_attr_string(r->a, path, "units", units, sizeof units, NULL) >= 0;
     has_lname = autobal_archive_read_attr_string(r->a, path, "long_name", lname, sizeof lname, NULL) >= 0;
-    h5_dataset_meta(r->file, path, rank, &dn, dtype, sizeof dtype);
+    dataset_meta(r->a, path, &dn, dtype, sizeof dtype);
     if (r->pass == 0) {
       int kind = dn.scale ? 0 : dataset_headline_kind(ml.m[i].name, count, rank);
       const char *base = strrchr(group, '/');
@@ -543,7 +481,7 @@ static int visit_group(info_run *r, const char *group) {
           cli_json_numbers(&r->j, "values", v, count);
       }
       /* further attributes of the dataset (parameters attached to a variable) */
-      if (h5_read_attrs(r->file, path, &dl) == 0) {
+      if (read_attrs(r->a, path, &dl) == 0) {
         int any = 0;
         for (k = 0; k < dl.n; k++) {
           const info_attr *at = &dl.a[k];
@@ -602,24 +540,29 @@ static const char *root_str(const info_attrs *root, const char *name) {
   return (at && at->kind == ATTR_STRING) ? at->s : NULL;
 }
 
-static size_t count_keys(const char *ini) {
+/* Keys of an INI text written by autobal: "key = value" lines, and with `defaults` also
+ * ";default key = value" lines (cli_config_effective_ini); other ';' lines are comments. */
+static size_t count_keys_of(const char *ini, int defaults) {
   size_t n = 0;
   const char *p = ini;
   while (p && *p) {
     const char *nl = strchr(p, '\n');
     size_t len = nl ? (size_t)(nl - p) : strlen(p);
-    if (len > 0 && p[0] != '[' && memchr(p, '=', len)) n++;
+    if (len > 0 && p[0] != '[' && memchr(p, '=', len) &&
+        (p[0] != ';' || (defaults && len > 9 && !strncmp(p, ";default ", 9))))
+      n++;
     p = nl ? nl + 1 : NULL;
   }
   return n;
 }
+static size_t count_keys(const char *ini) { return count_keys_of(ini, 0); }
 
 int cli_cmd_info(cli_ctx *ctx) {
   info_run r;
   info_attrs root;
   autobal_error err;
   const char *path = ctx->config_path; /* the archive argument (see main.c) */
-  const char *s, *cmd, *ini;
+  const char *s, *cmd, *ini, *eff;
   int rc = CLI_EXIT_OK, st;
   size_t i;
 
@@ -627,25 +570,19 @@ int cli_cmd_info(cli_ctx *ctx) {
   memset(&root, 0, sizeof root);
   r.ctx = ctx;
   r.json = ctx->json;
-  r.file = -1;
   if (!path) return cli_fail(ctx, CLI_EXIT_USAGE, "info: give an archive: autobal info FILE.h5 [--json]");
   if (ctx->output) return cli_fail(ctx, CLI_EXIT_USAGE, "info: -o is not used (the summary goes to stdout)");
   autobal_error_clear(&err);
   st = autobal_archive_open_read(path, &r.a, &err);
   if (st != AUTOBAL_SUCCESS)
     return cli_fail(ctx, st == AUTOBAL_ENOMEM ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "%s", err.message);
-  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* failures are reported, not printed by HDF5 */
-  r.file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (r.file < 0) {
-    rc = cli_fail(ctx, CLI_EXIT_IO, "cannot open '%s' with HDF5 a second time", path);
-    goto done;
-  }
-  if (h5_read_attrs(r.file, "/", &root) != 0) {
+  if (read_attrs(r.a, "/", &root) != 0) {
     rc = cli_fail(ctx, CLI_EXIT_IO, "'%s': cannot read the root attributes", path);
     goto done;
   }
   cmd = root_str(&root, "command");
   ini = root_str(&root, "input_config");
+  eff = root_str(&root, "effective_config");
 
   /* what was run */
   if (r.json) {
@@ -661,6 +598,7 @@ int cli_cmd_info(cli_ctx *ctx) {
     cli_json_string(&r.j, "command", cmd ? cmd : "");
     cli_json_string(&r.j, "status", root_str(&root, "status"));
     cli_json_int(&r.j, "input_config_keys", (long)count_keys(ini));
+    if (eff) cli_json_int(&r.j, "effective_config_keys", (long)count_keys_of(eff, 1));
   } else {
     printf("archive       %s\n", path);
     printf("command       autobal %s\n", cmd ? cmd : "(unknown: no root attribute 'command')");
@@ -675,7 +613,7 @@ int cli_cmd_info(cli_ctx *ctx) {
            root_str(&root, "gsl_version") ? root_str(&root, "gsl_version") : "?",
            root_str(&root, "hdf5_version") ? root_str(&root, "hdf5_version") : "?");
     if ((s = root_str(&root, "command_line"))) printf("command line  %s\n", s);
-    if (!ini) printf("configuration (not recorded: this archive cannot be re-run)\n");
+    if (!ini) printf("configuration (%s)\n", eff ? "the given one not recorded" : "not recorded: this archive cannot be re-run");
     else if (count_keys(ini) == 0) printf("configuration built-in defaults (no keys given)\n");
     else {
       const char *p = ini;
@@ -689,6 +627,10 @@ int cli_cmd_info(cli_ctx *ctx) {
         p = nl + 1;
       }
     }
+    if (eff)
+      printf("effective     %zu key(s) read by the command with the values used, defaults included "
+             "(root attribute effective_config; autobal rerun runs from it)\n",
+             count_keys_of(eff, 1));
     s = root_str(&root, "status");
     if (s && strcmp(s, "complete") != 0)
       printf("WARNING: the run did not complete; the data below are partial.\n");
@@ -713,7 +655,6 @@ int cli_cmd_info(cli_ctx *ctx) {
   if (r.json) cli_json_end(&r.j);
 done:
   attrs_free(&root);
-  if (r.file >= 0) H5Fclose(r.file);
   autobal_archive_close(r.a, NULL);
   fflush(stdout);
   return rc;

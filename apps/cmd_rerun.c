@@ -1,12 +1,18 @@
 /* cmd_rerun.c: `autobal rerun FILE.h5 -o NEW.h5 [--force] [--json] [-q]`: repeat the run
  * recorded in an archive.  Every archive holds, as root attributes, the command (`command`,
- * e.g. "rotor transient") and the effective configuration (`input_config`: the INI text of
- * the configuration file plus the --set overrides, written by cli_archive_open).  This
- * command reads both, rebuilds the configuration from that text and runs the command again,
- * writing NEW.h5.  Built-in defaults fill the keys that were not given, as in the original
- * run, so the data are reproduced bit for bit by the same version of autobal (the
- * provenance attributes `created` and `command_line` and the solver's wall time differ).
- * NEW.h5 records the same `command` and `input_config`, so it can be re-run in turn. */
+ * e.g. "rotor transient"), the configuration given (`input_config`: the INI text of the
+ * configuration file plus the --set overrides) and the effective configuration
+ * (`effective_config`: every key the command read with the value it used, built-in defaults
+ * included; see cli_config_effective_ini), both written by cli_archive_open.  This command
+ * reads the command and the effective configuration, rebuilds the configuration from it (keys
+ * recorded as ";default KEY = VALUE" stay "not given" but use the recorded VALUE) and runs the
+ * command again, writing NEW.h5.  So the run does not depend on the built-in defaults of this
+ * autobal, except for the few values the configuration reader cannot know (lists such as a
+ * plane's balls left out of the configuration: commented in effective_config).  Archives of
+ * earlier versions without effective_config are re-run from input_config with this version's
+ * defaults.  The data are reproduced bit for bit by the same version of autobal (the provenance
+ * attributes `created` and `command_line` and the solver's wall time differ).  NEW.h5 records
+ * the same `command`, `input_config` and `effective_config`, so it can be re-run in turn. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,11 +46,14 @@ static int read_root_string(autobal_archive *a, const char *name, char **out) {
   return AUTOBAL_SUCCESS;
 }
 
-/* Apply the INI text written by cli_config_to_ini ("[section]" lines and "key = value"
- * lines) to inner->cfg as section.key=value assignments.  The value is everything after the
- * first " = ", byte for byte (no comment stripping: the text was written by us).  Returns a
- * CLI_EXIT_* code; on failure the message is in outer->err. */
-static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const char *ini) {
+/* Apply the INI text written by cli_config_to_ini or cli_config_effective_ini ("[section]" lines,
+ * "key = value" lines, ";default key = value" lines, other ';' comment lines, blank lines) to
+ * inner->cfg: key = value as section.key=value assignments, ;default lines through
+ * cli_config_add_default.  The value is everything after the first " = ", byte for byte (no
+ * comment stripping: the text was written by us).  `attr` names the attribute in messages.
+ * Returns a CLI_EXIT_* code; on failure the message is in outer->err. */
+static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const char *attr, const char *ini) {
+  static const char dflt[] = ";default ";
   const char *p = ini;
   char section[256] = "";
   size_t lineno = 0;
@@ -54,34 +63,50 @@ static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const cha
     lineno++;
     if (len > 0) {
       char *line = malloc(len + 1), *assign;
-      const char *eq;
-      int rc;
+      const char *eq, *body;
+      int rc, is_default;
       if (!line) return cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
       memcpy(line, p, len);
       line[len] = '\0';
-      if (line[0] == '[' && line[len - 1] == ']' && len - 2 < sizeof section) {
+      is_default = strncmp(line, dflt, sizeof dflt - 1) == 0;
+      body = is_default ? line + sizeof dflt - 1 : line;
+      if (line[0] == ';' && !is_default) {
+        free(line); /* a comment */
+      } else if (!is_default && line[0] == '[' && line[len - 1] == ']' && len - 2 < sizeof section) {
         memcpy(section, line + 1, len - 2);
         section[len - 2] = '\0';
         free(line);
-      } else if ((eq = strstr(line, " = ")) != NULL && eq > line && section[0]) {
-        size_t klen = (size_t)(eq - line), vlen = strlen(eq + 3);
-        assign = malloc(strlen(section) + klen + vlen + 3);
-        if (!assign) {
-          free(line);
-          return cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
+      } else if ((eq = strstr(body, " = ")) != NULL && eq > body && section[0]) {
+        size_t klen = (size_t)(eq - body), vlen = strlen(eq + 3);
+        if (is_default) {
+          char *key = malloc(klen + 1);
+          if (!key) {
+            free(line);
+            return cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
+          }
+          memcpy(key, body, klen);
+          key[klen] = '\0';
+          rc = cli_config_add_default(inner, section, key, eq + 3);
+          free(key);
+        } else {
+          assign = malloc(strlen(section) + klen + vlen + 3);
+          if (!assign) {
+            free(line);
+            return cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
+          }
+          sprintf(assign, "%s.%.*s=%s", section, (int)klen, body, eq + 3);
+          rc = cli_config_override(inner, assign);
+          free(assign);
         }
-        sprintf(assign, "%s.%.*s=%s", section, (int)klen, line, eq + 3);
-        rc = cli_config_override(inner, assign);
-        free(assign);
         free(line);
         if (rc != CLI_EXIT_OK)
-          return cli_fail(outer, CLI_EXIT_IO, "'%s': root attribute input_config, line %zu: %s", file, lineno,
-                          inner->err);
+          return cli_fail(outer, CLI_EXIT_IO, "'%s': root attribute %s, line %zu: %s", file, attr, lineno, inner->err);
       } else {
         free(line);
         return cli_fail(outer, CLI_EXIT_IO,
-                        "'%s': root attribute input_config, line %zu is neither '[section]' nor 'key = value'",
-                        file, lineno);
+                        "'%s': root attribute %s, line %zu is neither '[section]' nor 'key = value' "
+                        "(nor ';default key = value')",
+                        file, attr, lineno);
       }
     }
     if (!nl) break;
@@ -94,7 +119,7 @@ int cli_cmd_rerun(cli_ctx *ctx) {
   const char *path = ctx->config_path; /* the archive argument (see main.c) */
   autobal_archive *a = NULL;
   autobal_error err;
-  char *command = NULL, *ini = NULL, *status = NULL, *version = NULL;
+  char *command = NULL, *ini = NULL, *eff = NULL, *status = NULL, *version = NULL;
   const cli_command *cmd = NULL;
   cli_ctx inner;
   struct stat si, so;
@@ -110,6 +135,7 @@ int cli_cmd_rerun(cli_ctx *ctx) {
     return cli_fail(ctx, st == AUTOBAL_ENOMEM ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "%s", err.message);
   st = read_root_string(a, "command", &command);
   if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "input_config", &ini);
+  if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "effective_config", &eff);
   if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "status", &status);
   if (st == AUTOBAL_SUCCESS) st = read_root_string(a, "autobal_version", &version);
   if (st != AUTOBAL_SUCCESS) {
@@ -119,9 +145,9 @@ int cli_cmd_rerun(cli_ctx *ctx) {
   }
   autobal_archive_close(a, NULL);
   a = NULL;
-  if (!command || !ini) {
-    rc = cli_fail(ctx, CLI_EXIT_IO, "'%s' cannot be re-run: it has no root attribute '%s'", path,
-                  command ? "input_config" : "command");
+  if (!command || (!ini && !eff)) {
+    rc = cli_fail(ctx, CLI_EXIT_IO, "'%s' cannot be re-run: it has no root attribute %s", path,
+                  command ? "'effective_config' (nor 'input_config')" : "'command'");
     goto done;
   }
   for (i = 0; i < cli_ncommands; i++)
@@ -152,7 +178,11 @@ int cli_cmd_rerun(cli_ctx *ctx) {
     rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
     goto done;
   }
-  rc = apply_ini(ctx, &inner, path, ini);
+  /* the effective configuration (every key); archives of earlier versions: the given one */
+  rc = apply_ini(ctx, &inner, path, eff ? "effective_config" : "input_config", eff ? eff : ini);
+  /* NEW.h5 records the recorded run's given configuration, not the effective one as "given" */
+  if (rc == CLI_EXIT_OK && ini && cli_config_set_given_text(inner.cfg, ini) != 0)
+    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if (rc == CLI_EXIT_OK) {
     rc = cmd->run(&inner);
     if (rc != CLI_EXIT_OK) cli_fail(ctx, rc, "%s", inner.err[0] ? inner.err : "re-run failed (no message)");
@@ -162,6 +192,7 @@ done:
   if (a) autobal_archive_close(a, NULL);
   free(command);
   free(ini);
+  free(eff);
   free(status);
   free(version);
   return rc;

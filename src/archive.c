@@ -147,6 +147,23 @@ static void h5_leave(const quiet_state *q) {
   (void)pthread_mutex_unlock(&h5_lock);
 }
 
+/* "MAJOR.MINOR.RELEASE" of the HDF5 library in use; caller holds h5_lock. */
+static void hdf5_version_locked(char *buf, size_t size) {
+  unsigned maj = 0, min = 0, rel = 0;
+  if (H5get_libversion(&maj, &min, &rel) < 0) snprintf(buf, size, "unknown");
+  else snprintf(buf, size, "%u.%u.%u", maj, min, rel);
+}
+
+/* Declared in autobal/version.h; here because it calls HDF5 (under h5_lock, like every
+ * HDF5 call of the library: a series writer may be running in another thread). */
+void autobal_hdf5_version(char *buf, unsigned long size) {
+  quiet_state q;
+  if (buf == NULL || size == 0) return;
+  h5_enter(&q);
+  hdf5_version_locked(buf, (size_t)size);
+  h5_leave(&q);
+}
+
 typedef struct {
   char outer[200]; /* the API function's description */
   char inner[280]; /* the most specific description */
@@ -257,12 +274,18 @@ static int check_name(autobal_error *err, const char *what, const char *name) {
   return AUTOBAL_SUCCESS;
 }
 
+/* Attribute names that belong to HDF5 dimension scales and netCDF: never written,
+ * not listed by autobal_archive_list_attrs. */
+static int reserved_attr_name(const char *name) {
+  return strcmp(name, "CLASS") == 0 || strcmp(name, "NAME") == 0 || strcmp(name, "DIMENSION_LIST") == 0 ||
+         strcmp(name, "REFERENCE_LIST") == 0 || strncmp(name, "_Netcdf", 7) == 0 || strncmp(name, "_nc", 3) == 0 ||
+         strcmp(name, "_NCProperties") == 0;
+}
+
 static int check_attr_name(autobal_error *err, const char *name) {
   int rc = check_name(err, "attribute name", name);
   if (rc != AUTOBAL_SUCCESS) return rc;
-  if (strcmp(name, "CLASS") == 0 || strcmp(name, "NAME") == 0 || strcmp(name, "DIMENSION_LIST") == 0 ||
-      strcmp(name, "REFERENCE_LIST") == 0 || strncmp(name, "_Netcdf", 7) == 0 ||
-      strncmp(name, "_nc", 3) == 0 || strcmp(name, "_NCProperties") == 0)
+  if (reserved_attr_name(name))
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "attribute name '%s' is reserved (HDF5 dimension scales / netCDF)", name);
   return AUTOBAL_SUCCESS;
@@ -414,6 +437,17 @@ static int put_attr_scalar(autobal_error *err, hid_t o, const char *where, const
   return rc;
 }
 
+/* Object creation properties of every group and dataset (and the root group): the
+ * creation order of attributes is tracked (autobal_archive_list_attrs), and attributes
+ * stay in the object header (compact storage) up to ATTR_MAX_COMPACT of them: dense
+ * storage (a fractal heap and a B-tree per object, as HDF5 does by default above 8
+ * attributes in the object headers that track creation order) costs ~1 KiB per group. */
+#define ATTR_MAX_COMPACT 1024u
+static herr_t set_attr_order(hid_t ocpl) {
+  if (H5Pset_attr_creation_order(ocpl, H5P_CRT_ORDER_TRACKED) < 0) return -1;
+  return H5Pset_attr_phase_change(ocpl, ATTR_MAX_COMPACT, 0);
+}
+
 /* Create all missing groups of a normalised path (link creation order tracked). */
 static int make_group(autobal_error *err, hid_t file, const char *path) {
   char buf[PATH_MAX_];
@@ -425,7 +459,8 @@ static int make_group(autobal_error *err, hid_t file, const char *path) {
   memcpy(buf, path, len + 1);
   gcpl = H5Pcreate(H5P_GROUP_CREATE);
   if (gcpl < 0) return h5fail(err, "cannot create group '%s'", path);
-  if (H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0) {
+  if (H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0 ||
+      set_attr_order(gcpl) < 0) {
     rc = h5fail(err, "cannot create group '%s'", path);
     (void)H5Pclose(gcpl);
     return rc;
@@ -464,6 +499,8 @@ static int make_group(autobal_error *err, hid_t file, const char *path) {
 static hid_t make_dcpl(int rank, const hsize_t *chunk, int chunked, unsigned level) {
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   if (dcpl < 0) return dcpl;
+  /* attributes listed in creation order (autobal_archive_list_attrs) */
+  if (set_attr_order(dcpl) < 0) goto fail;
   if (chunked && rank > 0) {
     if (H5Pset_chunk(dcpl, rank, chunk) < 0) goto fail;
     if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
@@ -641,7 +678,8 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
 
   h5_enter(&q);
   fcpl = H5Pcreate(H5P_FILE_CREATE);
-  if (fcpl < 0 || H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0) {
+  if (fcpl < 0 || H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0 ||
+      set_attr_order(fcpl) < 0) {
     rc = h5fail(err, "cannot create archive '%s'", path);
     goto done;
   }
@@ -769,7 +807,7 @@ int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, 
   if (gmtime_r(&now, &tmv) == NULL || strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tmv) == 0)
     snprintf(created, sizeof created, "unknown");
   h5_enter(&q);
-  autobal_hdf5_version(hdf5v, sizeof hdf5v); /* an HDF5 call: under the lock */
+  hdf5_version_locked(hdf5v, sizeof hdf5v);
   rc = write_root_string(a, "title", title);
   if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "autobal_version", autobal_version());
   if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "git_revision", autobal_git_revision());
@@ -1782,7 +1820,10 @@ static int read_attr_begin(autobal_archive *a, const char *obj, const char *name
   *o = H5Oopen(a->file, path, H5P_DEFAULT);
   if (*o < 0) return h5fail(&a->err, "cannot open '%s'", path);
   ex = H5Aexists(*o, name);
-  if (ex <= 0) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "'%s' has no attribute '%s'", path, name);
+  if (ex < 0) return h5fail(&a->err, "cannot look up attribute '%.200s' of '%s'", name, path);
+  if (ex == 0)
+    return autobal_error_set(&a->err, AUTOBAL_EFORMAT, "'%s' has no attribute '%.200s' (in '%s')", path, name,
+                             a->path);
   return AUTOBAL_SUCCESS;
 }
 
@@ -2016,5 +2057,300 @@ done:
   for (off = 0; rc == AUTOBAL_SUCCESS && off < c.len; off += strlen(c.buf + off + 1) + 2)
     rc = fn(c.buf + off + 1, c.buf[off] != '\0', ctx);
   free(c.buf);
+  return rc;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Reading: attributes listed and read as arrays, datasets described          */
+/* ------------------------------------------------------------------------ */
+
+/* Class, element size and signedness of an HDF5 type. */
+static void type_info(hid_t t, int *cls, size_t *size, int *is_unsigned) {
+  H5T_class_t c = H5Tget_class(t);
+  *is_unsigned = 0;
+  *size = 0;
+  switch (c) {
+    case H5T_FLOAT:
+      *cls = AUTOBAL_ARCHIVE_CLASS_FLOAT;
+      *size = H5Tget_size(t);
+      break;
+    case H5T_INTEGER:
+      *cls = AUTOBAL_ARCHIVE_CLASS_INTEGER;
+      *size = H5Tget_size(t);
+      *is_unsigned = H5Tget_sign(t) == H5T_SGN_NONE;
+      break;
+    case H5T_STRING:
+      *cls = AUTOBAL_ARCHIVE_CLASS_STRING;
+      *size = H5Tis_variable_str(t) > 0 ? 0 : H5Tget_size(t);
+      break;
+    default:
+      *cls = AUTOBAL_ARCHIVE_CLASS_OTHER;
+      *size = H5Tget_size(t);
+      break;
+  }
+}
+
+/* The attributes found by attr_list_cb: their infos, names in one buffer (name_off[i]
+ * is the offset of info[i]'s name; the pointers are set after the iteration). */
+typedef struct {
+  autobal_archive_attr_info *info;
+  size_t *name_off;
+  size_t n, cap;
+  char *names;
+  size_t len, ncap;
+  int nomem;
+  int bad;             /* an attribute could not be inspected (h5 error stack kept) */
+  char bad_name[128];  /* ... its name */
+} attr_list_ctx;
+
+static void attr_list_reset(attr_list_ctx *c) {
+  free(c->info);
+  free(c->name_off);
+  free(c->names);
+  memset(c, 0, sizeof *c);
+}
+
+static herr_t attr_list_cb(hid_t loc, const char *name, const H5A_info_t *ainfo, void *vctx) {
+  attr_list_ctx *c = (attr_list_ctx *)vctx;
+  autobal_archive_attr_info *in;
+  size_t nlen = strlen(name) + 1;
+  hid_t attr, ft = -1, sp = -1;
+  hssize_t np;
+  int nd;
+  (void)ainfo;
+  if (reserved_attr_name(name)) return 0;
+  if (c->n == c->cap) {
+    size_t cap = c->cap ? 2 * c->cap : 16;
+    autobal_archive_attr_info *pi = (autobal_archive_attr_info *)realloc(c->info, cap * sizeof *pi);
+    size_t *po;
+    if (pi == NULL) goto nomem;
+    c->info = pi;
+    po = (size_t *)realloc(c->name_off, cap * sizeof *po);
+    if (po == NULL) goto nomem;
+    c->name_off = po;
+    c->cap = cap;
+  }
+  if (c->ncap - c->len < nlen) {
+    size_t cap = c->ncap ? 2 * c->ncap : 1024;
+    char *p;
+    while (cap - c->len < nlen) cap *= 2;
+    p = (char *)realloc(c->names, cap);
+    if (p == NULL) goto nomem;
+    c->names = p;
+    c->ncap = cap;
+  }
+  in = &c->info[c->n];
+  memset(in, 0, sizeof *in);
+  attr = H5Aopen(loc, name, H5P_DEFAULT);
+  if (attr >= 0) {
+    ft = H5Aget_type(attr);
+    sp = H5Aget_space(attr);
+  }
+  np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+  nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+  if (attr < 0 || ft < 0 || sp < 0 || np < 0 || nd < 0) {
+    if (ft >= 0) (void)H5Tclose(ft);
+    if (sp >= 0) (void)H5Sclose(sp);
+    if (attr >= 0) (void)H5Aclose(attr);
+    c->bad = 1;
+    snprintf(c->bad_name, sizeof c->bad_name, "%s", name);
+    return -1; /* stop; the error stack tells why */
+  }
+  type_info(ft, &in->type_class, &in->size, &in->is_unsigned);
+  in->rank = nd;
+  in->count = (size_t)np;
+  (void)H5Tclose(ft);
+  (void)H5Sclose(sp);
+  (void)H5Aclose(attr);
+  memcpy(c->names + c->len, name, nlen);
+  c->name_off[c->n] = c->len;
+  c->len += nlen;
+  c->n++;
+  return 0;
+nomem:
+  c->nomem = 1;
+  return 1; /* stop */
+}
+
+/* Whether the object o tracks the creation order of its attributes. */
+static int attr_order_tracked(hid_t o) {
+  H5I_type_t t = H5Iget_type(o);
+  hid_t pl = t == H5I_GROUP ? H5Gget_create_plist(o) : t == H5I_DATASET ? H5Dget_create_plist(o) : -1;
+  unsigned flags = 0;
+  int yes;
+  if (pl < 0) return 0;
+  yes = H5Pget_attr_creation_order(pl, &flags) >= 0 && (flags & H5P_CRT_ORDER_TRACKED) != 0;
+  (void)H5Pclose(pl);
+  return yes;
+}
+
+int autobal_archive_list_attrs(autobal_archive *a, const char *obj, int order, autobal_archive_attr_fn fn,
+                               void *ctx) {
+  char path[PATH_MAX_];
+  quiet_state q;
+  attr_list_ctx c;
+  hid_t o = -1;
+  hsize_t idx = 0;
+  size_t i;
+  int rc;
+  if (a == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&a->err);
+  if (fn == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "list_attrs: callback is NULL");
+  if (order != AUTOBAL_ARCHIVE_ORDER_NAME && order != AUTOBAL_ARCHIVE_ORDER_CREATION)
+    return autobal_error_set(&a->err, AUTOBAL_EINVAL,
+                             "list_attrs: order = %d is not AUTOBAL_ARCHIVE_ORDER_NAME (%d) or _CREATION (%d)", order,
+                             AUTOBAL_ARCHIVE_ORDER_NAME, AUTOBAL_ARCHIVE_ORDER_CREATION);
+  if ((rc = norm_path(&a->err, "object", obj, path, sizeof path)) != AUTOBAL_SUCCESS) return rc;
+  memset(&c, 0, sizeof c);
+  h5_enter(&q);
+  if (a->file < 0 || !path_exists(a->file, path)) {
+    rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "no object '%s' in '%s'", path, a->path);
+    goto done;
+  }
+  o = H5Oopen(a->file, path, H5P_DEFAULT);
+  if (o < 0) {
+    rc = h5fail(&a->err, "cannot open '%s'", path);
+    goto done;
+  }
+  if (order == AUTOBAL_ARCHIVE_ORDER_CREATION && !attr_order_tracked(o)) order = AUTOBAL_ARCHIVE_ORDER_NAME;
+  if (H5Aiterate2(o, order == AUTOBAL_ARCHIVE_ORDER_CREATION ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME, H5_ITER_INC,
+                  &idx, attr_list_cb, &c) < 0) {
+    if (c.bad) rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", c.bad_name, path);
+    else rc = h5fail(&a->err, "cannot list the attributes of '%s'", path);
+  } else if (c.nomem) {
+    rc = autobal_error_set(&a->err, AUTOBAL_ENOMEM, "list_attrs: out of memory listing the attributes of '%s'",
+                           path);
+  }
+done:
+  if (o >= 0) (void)H5Oclose(o);
+  h5_leave(&q);
+  for (i = 0; rc == AUTOBAL_SUCCESS && i < c.n; i++) {
+    c.info[i].name = c.names + c.name_off[i];
+    rc = fn(&c.info[i], ctx);
+  }
+  attr_list_reset(&c);
+  return rc;
+}
+
+/* Read all elements of numeric attribute `name` of `obj` into buf (memory type mt:
+ * H5T_NATIVE_DOUBLE or H5T_NATIVE_INT64); integers_only for _int64s. */
+static int read_attr_array(autobal_archive *a, const char *obj, const char *name, hid_t mt, int integers_only,
+                           void *buf, size_t n, size_t *count) {
+  char path[PATH_MAX_];
+  quiet_state q;
+  hid_t o, attr = -1, ft = -1, sp = -1;
+  int rc;
+  if (count != NULL) *count = 0;
+  if (a == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&a->err);
+  if (buf == NULL && n > 0)
+    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_%s: buf is NULL with n = %zu",
+                             integers_only ? "int64s" : "doubles", n);
+  h5_enter(&q);
+  rc = read_attr_begin(a, obj, name, path, sizeof path, &o);
+  if (rc == AUTOBAL_SUCCESS) {
+    attr = H5Aopen(o, name, H5P_DEFAULT);
+    if (attr < 0) rc = h5fail(&a->err, "cannot open attribute '%s' of '%s'", name, path);
+  }
+  if (rc == AUTOBAL_SUCCESS) {
+    ft = H5Aget_type(attr);
+    sp = H5Aget_space(attr);
+    if (ft < 0 || sp < 0) rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", name, path);
+  }
+  if (rc == AUTOBAL_SUCCESS) {
+    H5T_class_t c = H5Tget_class(ft);
+    hssize_t np = H5Sget_simple_extent_npoints(sp);
+    if (np < 0) {
+      rc = h5fail(&a->err, "cannot get the size of attribute '%s' of '%s'", name, path);
+    } else if (c != H5T_INTEGER && (integers_only || c != H5T_FLOAT)) {
+      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is %s, not %s", name, path,
+                             c == H5T_FLOAT ? "floating point" : c == H5T_STRING ? "a string" : "not numeric",
+                             integers_only ? "an integer" : "numeric");
+    } else {
+      if (count != NULL) *count = (size_t)np;
+      if ((size_t)np > n && !(buf == NULL && n == 0))
+        rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "attribute '%s' of '%s' has %zu elements, the buffer holds %zu",
+                               name, path, (size_t)np, n);
+      else if (buf != NULL && np > 0 && H5Aread(attr, mt, buf) < 0)
+        rc = h5fail(&a->err, "cannot read attribute '%s' of '%s'", name, path);
+    }
+  }
+  if (ft >= 0) (void)H5Tclose(ft);
+  if (sp >= 0) (void)H5Sclose(sp);
+  if (attr >= 0) (void)H5Aclose(attr);
+  if (o >= 0) (void)H5Oclose(o);
+  h5_leave(&q);
+  return rc;
+}
+
+int autobal_archive_read_attr_doubles(autobal_archive *a, const char *obj, const char *name, double *buf, size_t n,
+                                      size_t *count) {
+  return read_attr_array(a, obj, name, H5T_NATIVE_DOUBLE, 0, buf, n, count);
+}
+
+int autobal_archive_read_attr_int64s(autobal_archive *a, const char *obj, const char *name, int64_t *buf, size_t n,
+                                     size_t *count) {
+  return read_attr_array(a, obj, name, H5T_NATIVE_INT64, 1, buf, n, count);
+}
+
+/* Copy a name into a buffer of AUTOBAL_ARCHIVE_NAME_MAX + 1 bytes (longer names cut). */
+static void copy_name(char *out, const char *name) {
+  size_t n = strlen(name);
+  if (n > AUTOBAL_ARCHIVE_NAME_MAX) n = AUTOBAL_ARCHIVE_NAME_MAX;
+  memcpy(out, name, n);
+  out[n] = '\0';
+}
+
+/* H5DSiterate_scales callback: the last path component of the first scale attached. */
+static herr_t first_scale_cb(hid_t did, unsigned dim, hid_t dsid, void *data) {
+  char *out = (char *)data, p[PATH_MAX_];
+  const char *base;
+  ssize_t len;
+  (void)did;
+  (void)dim;
+  len = H5Iget_name(dsid, p, sizeof p);
+  if (len <= 0 || (size_t)len >= sizeof p) return 0; /* anonymous: try the next one */
+  base = strrchr(p, '/');
+  base = base != NULL ? base + 1 : p;
+  copy_name(out, base);
+  return 1;
+}
+
+int autobal_archive_var_describe(autobal_archive *a, const char *p, autobal_archive_var_info *info) {
+  char path[PATH_MAX_];
+  quiet_state q;
+  hid_t ds, ft = -1;
+  int rc, d;
+  if (a == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&a->err);
+  if (info == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "var_describe: info is NULL");
+  memset(info, 0, sizeof *info);
+  h5_enter(&q);
+  rc = open_dataset(a, p, path, sizeof path, &ds);
+  if (rc == AUTOBAL_SUCCESS) rc = shape_of(a, ds, path, &info->rank, info->dims, &info->count);
+  if (rc == AUTOBAL_SUCCESS) {
+    ft = H5Dget_type(ds);
+    if (ft < 0) rc = h5fail(&a->err, "cannot get the type of '%s'", path);
+    else type_info(ft, &info->type_class, &info->size, &info->is_unsigned);
+  }
+  if (rc == AUTOBAL_SUCCESS) {
+    htri_t sc = H5DSis_scale(ds);
+    if (sc < 0) rc = h5fail(&a->err, "cannot tell whether '%s' is a dimension scale", path);
+    info->is_coordinate = sc > 0;
+  }
+  for (d = 0; rc == AUTOBAL_SUCCESS && d < info->rank; d++) {
+    if (info->is_coordinate && info->rank == 1) {
+      const char *base = strrchr(path, '/');
+      copy_name(info->dim_names[d], base != NULL ? base + 1 : path);
+    } else {
+      int ns = H5DSget_num_scales(ds, (unsigned)d);
+      if (ns > 0 && H5DSiterate_scales(ds, (unsigned)d, NULL, first_scale_cb, info->dim_names[d]) < 0)
+        rc = h5fail(&a->err, "cannot read the dimension scales of '%s'", path);
+    }
+  }
+  if (ft >= 0) (void)H5Tclose(ft);
+  if (ds >= 0) (void)H5Dclose(ds);
+  h5_leave(&q);
+  if (rc != AUTOBAL_SUCCESS) memset(info, 0, sizeof *info);
   return rc;
 }

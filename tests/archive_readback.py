@@ -5,7 +5,8 @@ Usage: /usr/bin/python3 archive_readback.py FILE
 
 Checks what a user of the archive relies on: named dimensions, coordinate values,
 units/long_name attributes read as str, parameters as NAME / NAME_units attributes,
-the streamed series (unlimited dimension), root provenance attributes.
+the streamed series (unlimited dimension), root provenance attributes, attributes listed in
+the order they were written (creation order tracked).
 Expected values are recomputed from the formulas that test_archive.c uses
 (sample_omega, sample_re, sample_flag and the series rows), not copied from output.
 Also opened through netCDF-C (engine="netcdf4") when the netCDF4 module exists.
@@ -124,6 +125,12 @@ def check_h5py(path):
         check("[h5py] small re contiguous", re_.chunks is None)
         check("[h5py] parameter mass", f["/pendulum"].attrs["mass"] == 0.5
               and f["/pendulum"].attrs["mass_units"] == "kg")
+        # attribute creation order is tracked: h5py lists them in the order test_archive.c's
+        # write_sample wrote them (not alphabetical: "model" after "n_pendulums")
+        check("[h5py] /pendulum attributes in creation order",
+              list(f["/pendulum"].attrs) == ["mass", "mass_units", "n_pendulums", "model", "pair", "pair_units"])
+        check("[h5py] /pendulum/map/re attributes: units before long_name (creation order)",
+              [k for k in f["/pendulum/map/re"].attrs if k in ("units", "long_name")] == ["units", "long_name"])
 
 
 def main():

@@ -677,6 +677,498 @@ static void test_series_writer(const char *base) {
 #define NROWS 20000
 #define NV 5
 
+/* ---------------------------------------------------------------------- */
+/* Reading side: attribute listing, array attributes, dataset descriptions */
+/* ---------------------------------------------------------------------- */
+
+#define AR_MAX 64
+typedef struct {
+  size_t n;
+  char name[AR_MAX][64];
+  autobal_archive_attr_info info[AR_MAX];
+  autobal_archive *a; /* when set, each callback reads the attribute (re-entrancy) */
+  const char *obj;
+  int reads_ok;
+} attr_rec;
+
+static int attr_rec_cb(const autobal_archive_attr_info *ai, void *vctx) {
+  attr_rec *r = vctx;
+  if (r->n < AR_MAX) {
+    snprintf(r->name[r->n], sizeof r->name[r->n], "%s", ai->name);
+    r->info[r->n] = *ai;
+    r->info[r->n].name = r->name[r->n];
+    r->n++;
+  }
+  if (r->a != NULL && ai->type_class != AUTOBAL_ARCHIVE_CLASS_OTHER && ai->count > 0) {
+    /* reading from inside the callback must work (no lock held, no HDF5 iteration active) */
+    char b[512];
+    double d[8];
+    size_t c = 0;
+    int st = ai->type_class == AUTOBAL_ARCHIVE_CLASS_STRING
+                 ? autobal_archive_read_attr_string(r->a, r->obj, ai->name, b, sizeof b, NULL)
+                 : autobal_archive_read_attr_doubles(r->a, r->obj, ai->name, NULL, 0, &c);
+    if (st < 0 || (ai->type_class != AUTOBAL_ARCHIVE_CLASS_STRING && c != ai->count)) r->reads_ok = 0;
+    (void)d;
+  }
+  return 0;
+}
+
+static int attr_stop_cb(const autobal_archive_attr_info *ai, void *vctx) {
+  int *calls = vctx;
+  (void)ai;
+  return ++*calls == 2 ? 77 : 0;
+}
+
+static int cmp_cstr(const void *x, const void *y) { return strcmp((const char *)x, (const char *)y); }
+
+static const autobal_archive_attr_info *attr_rec_find(const attr_rec *r, const char *name) {
+  size_t i;
+  for (i = 0; i < r->n; i++)
+    if (strcmp(r->name[i], name) == 0) return &r->info[i];
+  return NULL;
+}
+
+/* Attributes written by the library in a known creation order, listed in both orders
+ * (the name order recomputed here with qsort/strcmp), read as arrays; every error path. */
+static void test_attr_reading(const char *base) {
+  char path[1100], buf[64];
+  /* creation order: deliberately not alphabetical; 20 of them (more than HDF5's default
+   * 8 compact attributes) */
+  static const char *const names[] = {"zeta", "alpha", "Mid", "arr", "k", "k_units", "big", "b0", "_x", "y1",
+                                      "y10", "y2", "a", "omega", "omega_units", "count", "flag", "s", "z", "m"};
+  const size_t nn = sizeof names / sizeof names[0];
+  char sorted[20][64];
+  autobal_archive *a = NULL, *r = NULL;
+  autobal_error err;
+  static double bigv[20000];
+  double arr[5] = {1.5, -2.25, 0.0, 1e300, -0.0}, dv[8], om[4] = {1, 2, 3, 4}, m[4 * 3];
+  int64_t iv[8];
+  const long big_int = 9007199254740993L; /* 2^53 + 1: not a double */
+  size_t i, c = 0;
+  int rc, ok;
+  attr_rec rec;
+
+  snprintf(path, sizeof path, "%s.attrs.h5", base);
+  remove(path);
+  for (i = 0; i < 20000; i++) bigv[i] = (double)i * 0.5 - 7.0;
+  for (i = 0; i < 12; i++) m[i] = (double)i;
+  rc = autobal_archive_create(path, 1, &a, &err);
+  CHECK_STATUS("attrs: create", rc, AUTOBAL_SUCCESS);
+  if (rc != AUTOBAL_SUCCESS) return;
+  rc = autobal_archive_group(a, "/g");
+  for (i = 0; i < nn && rc == AUTOBAL_SUCCESS; i++) {
+    const char *n = names[i];
+    if (!strcmp(n, "alpha")) rc = autobal_archive_attr_int(a, "/g", n, -1234567890123L);
+    else if (!strcmp(n, "count")) rc = autobal_archive_attr_int(a, "/g", n, big_int);
+    else if (!strcmp(n, "arr")) rc = autobal_archive_attr_double_array(a, "/g", n, 5, arr, NULL);
+    else if (!strcmp(n, "big")) rc = autobal_archive_attr_double_array(a, "/g", n, 20000, bigv, NULL);
+    else if (!strcmp(n, "Mid") || !strcmp(n, "s") || strstr(n, "_units")) rc = autobal_archive_attr_string(a, "/g", n, "kg m^2");
+    else rc = autobal_archive_attr_double(a, "/g", n, (double)i + 0.25, NULL);
+  }
+  CHECK_STATUS("attrs: 20 attributes (one of 160 kB) written", rc, AUTOBAL_SUCCESS);
+  if (rc == AUTOBAL_SUCCESS) rc = autobal_archive_coord(a, "/g", "omega", 4, om, "rad/s", "speed");
+  if (rc == AUTOBAL_SUCCESS) rc = autobal_archive_dim(a, "/g", "comp", 3, NULL);
+  if (rc == AUTOBAL_SUCCESS) {
+    const char *dims[2] = {"omega", "comp"};
+    rc = autobal_archive_var(a, "/g", "m", 2, dims, m, "N", NULL);
+  }
+  if (rc == AUTOBAL_SUCCESS) rc = autobal_archive_attr_double(a, "/g/m", "scale", 2.0, "1");
+  CHECK_STATUS("attrs: coordinate, index dimension, variable", rc, AUTOBAL_SUCCESS);
+  /* a write handle lists too */
+  memset(&rec, 0, sizeof rec);
+  CHECK_STATUS("attrs: list on a write handle",
+               autobal_archive_list_attrs(a, "/g", AUTOBAL_ARCHIVE_ORDER_CREATION, attr_rec_cb, &rec), AUTOBAL_SUCCESS);
+  CHECK("attrs: write handle sees all 20", rec.n == nn);
+  rc = autobal_archive_close(a, &err);
+  CHECK_STATUS("attrs: close", rc, AUTOBAL_SUCCESS);
+
+  rc = autobal_archive_open_read(path, &r, &err);
+  CHECK_STATUS("attrs: open_read", rc, AUTOBAL_SUCCESS);
+  if (r == NULL) return;
+  /* creation order = the order written */
+  memset(&rec, 0, sizeof rec);
+  rc = autobal_archive_list_attrs(r, "/g", AUTOBAL_ARCHIVE_ORDER_CREATION, attr_rec_cb, &rec);
+  CHECK_STATUS("attrs: list in creation order", rc, AUTOBAL_SUCCESS);
+  ok = rec.n == nn;
+  for (i = 0; ok && i < nn; i++) ok = strcmp(rec.name[i], names[i]) == 0;
+  CHECK("attrs: creation order is the order of writing (20 names)", ok);
+  /* name order = strcmp order, computed independently */
+  for (i = 0; i < nn; i++) snprintf(sorted[i], sizeof sorted[i], "%s", names[i]);
+  qsort(sorted, nn, sizeof sorted[0], cmp_cstr);
+  memset(&rec, 0, sizeof rec);
+  rec.a = r;
+  rec.obj = "/g";
+  rec.reads_ok = 1;
+  rc = autobal_archive_list_attrs(r, "g", AUTOBAL_ARCHIVE_ORDER_NAME, attr_rec_cb, &rec);
+  CHECK_STATUS("attrs: list in name order (relative path)", rc, AUTOBAL_SUCCESS);
+  ok = rec.n == nn;
+  for (i = 0; ok && i < nn; i++) ok = strcmp(rec.name[i], sorted[i]) == 0;
+  CHECK("attrs: name order is strcmp order", ok);
+  CHECK("attrs: the callback may read the attributes it is given", rec.reads_ok);
+  {
+    const autobal_archive_attr_info *x;
+    x = attr_rec_find(&rec, "zeta");
+    CHECK("attrs: zeta float64 scalar", x && x->type_class == AUTOBAL_ARCHIVE_CLASS_FLOAT && x->rank == 0 &&
+                                            x->count == 1 && x->size == 8 && !x->is_unsigned);
+    x = attr_rec_find(&rec, "alpha");
+    CHECK("attrs: alpha int64 scalar", x && x->type_class == AUTOBAL_ARCHIVE_CLASS_INTEGER && x->rank == 0 &&
+                                           x->count == 1 && x->size == 8 && !x->is_unsigned);
+    x = attr_rec_find(&rec, "arr");
+    CHECK("attrs: arr float64 1-D of 5", x && x->type_class == AUTOBAL_ARCHIVE_CLASS_FLOAT && x->rank == 1 &&
+                                             x->count == 5 && x->size == 8);
+    x = attr_rec_find(&rec, "big");
+    CHECK("attrs: big 1-D of 20000", x && x->rank == 1 && x->count == 20000);
+    x = attr_rec_find(&rec, "Mid");
+    CHECK("attrs: Mid variable-length string scalar",
+          x && x->type_class == AUTOBAL_ARCHIVE_CLASS_STRING && x->rank == 0 && x->count == 1 && x->size == 0);
+  }
+  /* a coordinate's and a variable's attributes: the format's own (CLASS, NAME,
+   * REFERENCE_LIST, DIMENSION_LIST) are not listed */
+  memset(&rec, 0, sizeof rec);
+  rc = autobal_archive_list_attrs(r, "/g/omega", AUTOBAL_ARCHIVE_ORDER_CREATION, attr_rec_cb, &rec);
+  CHECK("attrs: coordinate lists units, long_name only",
+        rc == 0 && rec.n == 2 && !strcmp(rec.name[0], "units") && !strcmp(rec.name[1], "long_name"));
+  CHECK("attrs: (the coordinate does have CLASS and NAME)", autobal_archive_has(r, "/g/omega", "CLASS") &&
+                                                                autobal_archive_has(r, "/g/omega", "NAME"));
+  memset(&rec, 0, sizeof rec);
+  rc = autobal_archive_list_attrs(r, "/g/m", AUTOBAL_ARCHIVE_ORDER_CREATION, attr_rec_cb, &rec);
+  CHECK("attrs: variable lists units, long_name, scale, scale_units (no DIMENSION_LIST)",
+        rc == 0 && rec.n == 4 && !strcmp(rec.name[2], "scale") && !strcmp(rec.name[3], "scale_units") &&
+            autobal_archive_has(r, "/g/m", "DIMENSION_LIST"));
+  memset(&rec, 0, sizeof rec);
+  rc = autobal_archive_list_attrs(r, "/", AUTOBAL_ARCHIVE_ORDER_CREATION, attr_rec_cb, &rec);
+  CHECK("attrs: root in creation order starts with Conventions, status",
+        rc == 0 && rec.n >= 2 && !strcmp(rec.name[0], "Conventions") && !strcmp(rec.name[1], "status"));
+
+  /* arrays */
+  rc = autobal_archive_read_attr_doubles(r, "/g", "arr", dv, 8, &c);
+  CHECK_STATUS("attrs: read_attr_doubles arr", rc, AUTOBAL_SUCCESS);
+  CHECK("attrs: arr bit for bit, count 5", c == 5 && memcmp(dv, arr, sizeof arr) == 0);
+  {
+    double *bb = malloc(20000 * sizeof *bb);
+    c = 0;
+    rc = bb ? autobal_archive_read_attr_doubles(r, "/g", "big", bb, 20000, &c) : -99;
+    CHECK("attrs: big attribute (160 kB) read back exactly",
+          rc == AUTOBAL_SUCCESS && c == 20000 && memcmp(bb, bigv, 20000 * sizeof *bb) == 0);
+    free(bb);
+  }
+  rc = autobal_archive_read_attr_int64s(r, "/g", "count", iv, 1, &c);
+  CHECK("attrs: int64 2^53+1 exact through _int64s", rc == AUTOBAL_SUCCESS && c == 1 && iv[0] == big_int);
+  rc = autobal_archive_read_attr_doubles(r, "/g", "count", dv, 1, &c);
+  CHECK("attrs: ... and rounded to a double through _doubles",
+        rc == AUTOBAL_SUCCESS && dv[0] == (double)big_int && (int64_t)dv[0] != big_int);
+  rc = autobal_archive_read_attr_int64s(r, "/g", "alpha", iv, 8, &c);
+  CHECK("attrs: alpha = -1234567890123", rc == AUTOBAL_SUCCESS && c == 1 && iv[0] == -1234567890123LL);
+  rc = autobal_archive_read_attr_doubles(r, "/g", "zeta", dv, 1, NULL);
+  CHECK("attrs: scalar via _doubles (count NULL)", rc == AUTOBAL_SUCCESS && dv[0] == 0.25);
+  c = 0;
+  rc = autobal_archive_read_attr_doubles(r, "/g", "arr", NULL, 0, &c);
+  CHECK("attrs: size query (buf NULL, n 0)", rc == AUTOBAL_SUCCESS && c == 5);
+  /* errors */
+  c = 0;
+  rc = autobal_archive_read_attr_doubles(r, "/g", "arr", dv, 4, &c);
+  CHECK_STATUS("attrs: buffer too small", rc, AUTOBAL_EINVAL);
+  CHECK("attrs: ... count still reported", c == 5);
+  CHECK_MSG("attrs: ... message gives the size", autobal_archive_errmsg(r), "has 5 elements");
+  CHECK_STATUS("attrs: buf NULL with n > 0", autobal_archive_read_attr_doubles(r, "/g", "arr", NULL, 3, &c),
+               AUTOBAL_EINVAL);
+  CHECK_STATUS("attrs: missing attribute", autobal_archive_read_attr_doubles(r, "/g", "nosuch", dv, 8, &c),
+               AUTOBAL_EFORMAT);
+  CHECK_MSG("attrs: ... named", autobal_archive_errmsg(r), "nosuch");
+  CHECK_STATUS("attrs: missing attribute (_int64s)", autobal_archive_read_attr_int64s(r, "/g", "nosuch2", iv, 8, &c),
+               AUTOBAL_EFORMAT);
+  CHECK_MSG("attrs: ... named", autobal_archive_errmsg(r), "nosuch2");
+  CHECK_STATUS("attrs: string as doubles", autobal_archive_read_attr_doubles(r, "/g", "Mid", dv, 8, &c),
+               AUTOBAL_EFORMAT);
+  CHECK_MSG("attrs: ... names it and says string", autobal_archive_errmsg(r), "'Mid' of '/g' is a string");
+  CHECK_STATUS("attrs: float as int64s", autobal_archive_read_attr_int64s(r, "/g", "zeta", iv, 8, &c),
+               AUTOBAL_EFORMAT);
+  CHECK_MSG("attrs: ... says floating point", autobal_archive_errmsg(r), "floating point");
+  CHECK_STATUS("attrs: missing object", autobal_archive_read_attr_doubles(r, "/nope", "x", dv, 8, &c), AUTOBAL_EINVAL);
+  CHECK_STATUS("attrs: NULL name", autobal_archive_read_attr_doubles(r, "/g", NULL, dv, 8, &c), AUTOBAL_EINVAL);
+  CHECK_STATUS("attrs: missing string attribute", autobal_archive_read_attr_string(r, "/g", "nosuch3", buf, sizeof buf, NULL),
+               AUTOBAL_EFORMAT);
+  CHECK_MSG("attrs: ... named", autobal_archive_errmsg(r), "nosuch3");
+  CHECK_STATUS("attrs: NULL handle", autobal_archive_read_attr_doubles(NULL, "/g", "arr", dv, 8, &c), AUTOBAL_EINVAL);
+  memset(&rec, 0, sizeof rec);
+  CHECK_STATUS("attrs: list, bad order", autobal_archive_list_attrs(r, "/g", 2, attr_rec_cb, &rec), AUTOBAL_EINVAL);
+  CHECK_MSG("attrs: ... message", autobal_archive_errmsg(r), "order = 2");
+  CHECK_STATUS("attrs: list, NULL callback", autobal_archive_list_attrs(r, "/g", 0, NULL, NULL), AUTOBAL_EINVAL);
+  CHECK_STATUS("attrs: list, missing object", autobal_archive_list_attrs(r, "/g/nope", 0, attr_rec_cb, &rec),
+               AUTOBAL_EINVAL);
+  CHECK_MSG("attrs: ... named", autobal_archive_errmsg(r), "/g/nope");
+  CHECK_STATUS("attrs: list, bad path", autobal_archive_list_attrs(r, "/g/\x01", 0, attr_rec_cb, &rec), AUTOBAL_EINVAL);
+  CHECK_STATUS("attrs: list, NULL handle", autobal_archive_list_attrs(NULL, "/g", 0, attr_rec_cb, &rec), AUTOBAL_EINVAL);
+  CHECK("attrs: nothing passed to the callback on failure", rec.n == 0);
+  {
+    int calls = 0;
+    CHECK_STATUS("attrs: list stops with the callback's value",
+                 autobal_archive_list_attrs(r, "/g", AUTOBAL_ARCHIVE_ORDER_NAME, attr_stop_cb, &calls), 77);
+    CHECK("attrs: ... after 2 calls", calls == 2);
+  }
+
+  /* datasets described */
+  {
+    autobal_archive_var_info vi;
+    rc = autobal_archive_var_describe(r, "/g/m", &vi);
+    CHECK_STATUS("describe m", rc, AUTOBAL_SUCCESS);
+    CHECK("describe m: 4 x 3 float64 over (omega, comp), not a coordinate",
+          vi.rank == 2 && vi.dims[0] == 4 && vi.dims[1] == 3 && vi.count == 12 &&
+              vi.type_class == AUTOBAL_ARCHIVE_CLASS_FLOAT && vi.size == 8 && !vi.is_coordinate &&
+              !strcmp(vi.dim_names[0], "omega") && !strcmp(vi.dim_names[1], "comp"));
+    rc = autobal_archive_var_describe(r, "g/omega", &vi);
+    CHECK("describe omega: a coordinate, its own dimension",
+          rc == 0 && vi.is_coordinate && vi.rank == 1 && vi.dims[0] == 4 && !strcmp(vi.dim_names[0], "omega"));
+    rc = autobal_archive_var_describe(r, "/g/comp", &vi);
+    CHECK("describe comp: int32 index dimension",
+          rc == 0 && vi.is_coordinate && vi.type_class == AUTOBAL_ARCHIVE_CLASS_INTEGER && vi.size == 4 &&
+              !vi.is_unsigned && vi.count == 3);
+    CHECK_STATUS("describe a group", autobal_archive_var_describe(r, "/g", &vi), AUTOBAL_EINVAL);
+    CHECK("describe failure zeroes info", vi.rank == 0 && vi.count == 0 && vi.dim_names[0][0] == '\0');
+    CHECK_STATUS("describe missing", autobal_archive_var_describe(r, "/g/zz", &vi), AUTOBAL_EINVAL);
+    CHECK_MSG("describe missing: named", autobal_archive_errmsg(r), "/g/zz");
+    CHECK_STATUS("describe NULL info", autobal_archive_var_describe(r, "/g/m", NULL), AUTOBAL_EINVAL);
+  }
+  autobal_archive_close(r, NULL);
+  remove(path);
+}
+
+/* A file written with plain HDF5 (no creation-order tracking, other types): the reading
+ * side must cope and classify everything. */
+static void test_foreign_reading(const char *base) {
+  char path[1100], sbuf[64];
+  hid_t f, g, sp, at, t, ds;
+  hsize_t d23[2] = {2, 3}, d3 = 3, d6[5] = {1, 1, 1, 1, 2};
+  float f23[6] = {0.5f, -1.25f, 2.0f, 3.0f, 4.5f, -8.0f};
+  unsigned char u8 = 255;
+  short i16[3] = {-32768, 0, 32767};
+  uint64_t u64 = UINT64_C(18446744073709551615);
+  const char *vs[2] = {"one", "two"};
+  struct { int a; double b; } cmp = {1, 2.0};
+  unsigned short u16[3] = {1, 2, 65535};
+  double d6v[2] = {1, 2};
+  autobal_archive *r = NULL;
+  autobal_error err;
+  attr_rec rec;
+  double dv[8];
+  int64_t iv[8];
+  size_t c = 0, i;
+  int rc, ok;
+
+  snprintf(path, sizeof path, "%s.foreign.h5", base);
+  remove(path);
+  f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  CHECK("foreign: created with plain HDF5", f >= 0);
+  if (f < 0) return;
+  /* root: Conventions as a fixed-length string, to be accepted as an archive */
+  t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, 9);
+  sp = H5Screate(H5S_SCALAR);
+  at = H5Acreate2(f, "Conventions", t, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, t, "autobal-1");
+  H5Aclose(at);
+  H5Sclose(sp);
+  H5Tclose(t);
+  g = H5Gcreate2(f, "/x", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  /* written in non-alphabetical order: z_f32 (2x3 float32), u8, i16[3], fix (fixed string
+   * "abc" padded to 8 with spaces), vs[2], cmp (compound), null (H5S_NULL int), u64 */
+  sp = H5Screate_simple(2, d23, NULL);
+  at = H5Acreate2(g, "z_f32", H5T_IEEE_F32LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, H5T_NATIVE_FLOAT, f23);
+  H5Aclose(at);
+  H5Sclose(sp);
+  sp = H5Screate(H5S_SCALAR);
+  at = H5Acreate2(g, "u8", H5T_STD_U8LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, H5T_NATIVE_UCHAR, &u8);
+  H5Aclose(at);
+  at = H5Acreate2(g, "u64", H5T_STD_U64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, H5T_NATIVE_UINT64, &u64);
+  H5Aclose(at);
+  t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, 8);
+  H5Tset_strpad(t, H5T_STR_SPACEPAD);
+  at = H5Acreate2(g, "fix", t, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, t, "abc     ");
+  H5Aclose(at);
+  H5Tclose(t);
+  t = H5Tcreate(H5T_COMPOUND, sizeof cmp);
+  H5Tinsert(t, "a", 0, H5T_NATIVE_INT);
+  H5Tinsert(t, "b", sizeof(double), H5T_NATIVE_DOUBLE);
+  at = H5Acreate2(g, "cmp", t, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, t, &cmp);
+  H5Aclose(at);
+  H5Tclose(t);
+  H5Sclose(sp);
+  sp = H5Screate_simple(1, &d3, NULL);
+  at = H5Acreate2(g, "i16", H5T_STD_I16LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, H5T_NATIVE_SHORT, i16);
+  H5Aclose(at);
+  H5Sclose(sp);
+  sp = H5Screate_simple(1, d23, NULL); /* 2 strings */
+  t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, H5T_VARIABLE);
+  at = H5Acreate2(g, "vs", t, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(at, t, vs);
+  H5Aclose(at);
+  H5Tclose(t);
+  H5Sclose(sp);
+  sp = H5Screate(H5S_NULL);
+  at = H5Acreate2(g, "null", H5T_STD_I32LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Aclose(at);
+  H5Sclose(sp);
+  /* datasets: uint16 without scales, rank 5 */
+  sp = H5Screate_simple(1, &d3, NULL);
+  ds = H5Dcreate2(g, "u16", H5T_STD_U16LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(ds, H5T_NATIVE_USHORT, H5S_ALL, H5S_ALL, H5P_DEFAULT, u16);
+  H5Dclose(ds);
+  H5Sclose(sp);
+  sp = H5Screate_simple(5, d6, NULL);
+  ds = H5Dcreate2(g, "r5", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d6v);
+  H5Dclose(ds);
+  H5Sclose(sp);
+  H5Gclose(g);
+  H5Fclose(f);
+
+  rc = autobal_archive_open_read(path, &r, &err);
+  CHECK_STATUS("foreign: open_read", rc, AUTOBAL_SUCCESS);
+  if (r == NULL) return;
+  memset(&rec, 0, sizeof rec);
+  rc = autobal_archive_list_attrs(r, "/x", AUTOBAL_ARCHIVE_ORDER_CREATION, attr_rec_cb, &rec);
+  CHECK_STATUS("foreign: list (creation order not tracked)", rc, AUTOBAL_SUCCESS);
+  {
+    static const char *const want[8] = {"cmp", "fix", "i16", "null", "u64", "u8", "vs", "z_f32"};
+    ok = rec.n == 8;
+    for (i = 0; ok && i < 8; i++) ok = strcmp(rec.name[i], want[i]) == 0;
+    CHECK("foreign: creation order falls back to name order", ok);
+  }
+  {
+    const autobal_archive_attr_info *x;
+    x = attr_rec_find(&rec, "z_f32");
+    CHECK("foreign: z_f32 float, 4 bytes, rank 2, 6 elements",
+          x && x->type_class == AUTOBAL_ARCHIVE_CLASS_FLOAT && x->size == 4 && x->rank == 2 && x->count == 6);
+    x = attr_rec_find(&rec, "u8");
+    CHECK("foreign: u8 unsigned integer, 1 byte, scalar",
+          x && x->type_class == AUTOBAL_ARCHIVE_CLASS_INTEGER && x->size == 1 && x->is_unsigned && x->rank == 0);
+    x = attr_rec_find(&rec, "i16");
+    CHECK("foreign: i16 signed, 2 bytes, 3 elements",
+          x && x->type_class == AUTOBAL_ARCHIVE_CLASS_INTEGER && x->size == 2 && !x->is_unsigned && x->count == 3);
+    x = attr_rec_find(&rec, "fix");
+    CHECK("foreign: fix fixed-length string of 8", x && x->type_class == AUTOBAL_ARCHIVE_CLASS_STRING && x->size == 8);
+    x = attr_rec_find(&rec, "vs");
+    CHECK("foreign: vs 2 variable-length strings",
+          x && x->type_class == AUTOBAL_ARCHIVE_CLASS_STRING && x->size == 0 && x->count == 2 && x->rank == 1);
+    x = attr_rec_find(&rec, "cmp");
+    CHECK("foreign: cmp compound is OTHER", x && x->type_class == AUTOBAL_ARCHIVE_CLASS_OTHER && x->count == 1);
+    x = attr_rec_find(&rec, "null");
+    CHECK("foreign: null dataspace: 0 elements, rank 0", x && x->count == 0 && x->rank == 0);
+  }
+  rc = autobal_archive_read_attr_doubles(r, "/x", "z_f32", dv, 8, &c);
+  ok = rc == AUTOBAL_SUCCESS && c == 6;
+  for (i = 0; ok && i < 6; i++) ok = dv[i] == (double)f23[i];
+  CHECK("foreign: float32 2x3 read as doubles exactly, C order", ok);
+  rc = autobal_archive_read_attr_int64s(r, "/x", "i16", iv, 8, &c);
+  CHECK("foreign: int16 read as int64", rc == 0 && c == 3 && iv[0] == -32768 && iv[1] == 0 && iv[2] == 32767);
+  rc = autobal_archive_read_attr_int64s(r, "/x", "u8", iv, 1, &c);
+  CHECK("foreign: uint8 255", rc == 0 && iv[0] == 255);
+  rc = autobal_archive_read_attr_int64s(r, "/x", "u64", iv, 1, &c);
+  CHECK("foreign: uint64 max clipped to INT64_MAX (documented)", rc == 0 && iv[0] == INT64_MAX);
+  rc = autobal_archive_read_attr_doubles(r, "/x", "null", dv, 8, &c);
+  CHECK("foreign: null attribute: 0 elements", rc == 0 && c == 0);
+  CHECK_STATUS("foreign: compound as doubles", autobal_archive_read_attr_doubles(r, "/x", "cmp", dv, 8, &c),
+               AUTOBAL_EFORMAT);
+  CHECK_MSG("foreign: ... not numeric", autobal_archive_errmsg(r), "not numeric");
+  CHECK_STATUS("foreign: string array as doubles", autobal_archive_read_attr_doubles(r, "/x", "vs", dv, 8, &c),
+               AUTOBAL_EFORMAT);
+  rc = autobal_archive_read_attr_string(r, "/x", "fix", sbuf, sizeof sbuf, &c);
+  CHECK("foreign: fixed-length string read (space padding kept)", rc == 0 && strcmp(sbuf, "abc     ") == 0 && c == 8);
+  CHECK_STATUS("foreign: string array as string", autobal_archive_read_attr_string(r, "/x", "vs", sbuf, sizeof sbuf, NULL),
+               AUTOBAL_EFORMAT);
+  {
+    autobal_archive_var_info vi;
+    rc = autobal_archive_var_describe(r, "/x/u16", &vi);
+    CHECK("foreign: u16 dataset: unsigned 2 bytes, no scales, no dimension names",
+          rc == 0 && vi.type_class == AUTOBAL_ARCHIVE_CLASS_INTEGER && vi.size == 2 && vi.is_unsigned &&
+              !vi.is_coordinate && vi.rank == 1 && vi.dim_names[0][0] == '\0');
+    CHECK_STATUS("foreign: rank-5 dataset", autobal_archive_var_describe(r, "/x/r5", &vi), AUTOBAL_EUNSUPPORTED);
+  }
+  autobal_archive_close(r, NULL);
+  remove(path);
+}
+
+typedef struct {
+  autobal_archive_series *s;
+  volatile int stop;
+  int st;
+  size_t rows;
+} ver_writer;
+
+static void *ver_writer_main(void *arg) {
+  ver_writer *w = arg;
+  double row[4], tt;
+  size_t i;
+  for (i = 0; !w->stop && w->st == 0 && i < 2000000; i++) {
+    tt = (double)i;
+    row[0] = tt;
+    row[1] = -tt;
+    row[2] = tt * 0.5;
+    row[3] = 1.0;
+    w->st = autobal_archive_series_append(w->s, 1, &tt, row);
+    w->rows = i + 1;
+  }
+  return NULL;
+}
+
+/* autobal_hdf5_version: the value H5get_libversion gives, snprintf-like truncation, and
+ * calls from one thread while another streams a series (every HDF5 call of the library
+ * is under one lock; with a non-thread-safe HDF5 and without the lock this races). */
+static void test_hdf5_version(const char *base) {
+  char v[64], want[64], small[4], path[1100];
+  unsigned maj, min, rel;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  ver_writer w;
+  pthread_t th;
+  int i, same = 1;
+  static const char *const names[4] = {"a", "b", "c", "d"};
+  static const char *const units[4] = {"1", "1", "1", "1"};
+  H5get_libversion(&maj, &min, &rel);
+  snprintf(want, sizeof want, "%u.%u.%u", maj, min, rel);
+  autobal_hdf5_version(v, sizeof v);
+  CHECK("hdf5 version = H5get_libversion", strcmp(v, want) == 0);
+  memset(small, 'x', sizeof small);
+  autobal_hdf5_version(small, sizeof small);
+  CHECK("hdf5 version truncated like snprintf", strncmp(small, want, 3) == 0 && small[3] == '\0');
+  small[0] = 'q';
+  autobal_hdf5_version(small, 0);
+  autobal_hdf5_version(NULL, 10);
+  CHECK("hdf5 version: size 0 and NULL buf do nothing", small[0] == 'q');
+
+  snprintf(path, sizeof path, "%s.version.h5", base);
+  memset(&w, 0, sizeof w);
+  if (autobal_archive_create(path, 1, &a, &err) != AUTOBAL_SUCCESS) {
+    CHECK("hdf5 version: create archive", 0);
+    return;
+  }
+  if (autobal_archive_series_open(a, "/ts", "t", "s", NULL, 4, names, units, NULL, &w.s) != AUTOBAL_SUCCESS ||
+      pthread_create(&th, NULL, ver_writer_main, &w) != 0) {
+    CHECK("hdf5 version: series and thread", 0);
+    autobal_archive_discard(a);
+    return;
+  }
+  for (i = 0; i < 20000; i++) {
+    autobal_hdf5_version(v, sizeof v);
+    if (strcmp(v, want) != 0) same = 0;
+  }
+  w.stop = 1;
+  pthread_join(th, NULL);
+  CHECK("hdf5 version: 20000 calls during streaming all right", same);
+  CHECK_STATUS("hdf5 version: the streaming thread's appends", w.st, AUTOBAL_SUCCESS);
+  printf("     (%zu rows streamed meanwhile)\n", w.rows);
+  CHECK_STATUS("hdf5 version: archive closes", autobal_archive_close(a, &err), AUTOBAL_SUCCESS);
+  remove(path);
+}
+
 int main(int argc, char **argv) {
   char path[1024], tmp[1100], p2[1024], buf[256];
   autobal_archive *a = NULL, *r = NULL;
@@ -1091,7 +1583,7 @@ int main(int argc, char **argv) {
     CHECK_STATUS("array as double", autobal_archive_read_attr_double(r, "/", "arr", &dv), AUTOBAL_EFORMAT);
     CHECK_STATUS("double as string", autobal_archive_read_attr_string(r, "/pendulum", "mass", buf, sizeof buf, NULL),
                  AUTOBAL_EFORMAT);
-    CHECK_STATUS("missing attr", autobal_archive_read_attr_double(r, "/pendulum", "nosuch", &dv), AUTOBAL_EINVAL);
+    CHECK_STATUS("missing attr", autobal_archive_read_attr_double(r, "/pendulum", "nosuch", &dv), AUTOBAL_EFORMAT);
     CHECK_MSG("missing attr named", autobal_archive_errmsg(r), "nosuch");
     CHECK_STATUS("missing object", autobal_archive_read_attr_double(r, "/x/y", "mass", &dv), AUTOBAL_EINVAL);
     CHECK_STATUS("shape", autobal_archive_var_shape(r, "/pendulum/map/m2", &rank, dims, &count), AUTOBAL_SUCCESS);
@@ -1348,6 +1840,11 @@ int main(int argc, char **argv) {
 
   /* ---- the series writer thread ---------------------------------------------- */
   test_series_writer(path);
+
+  /* ---- attributes listed and read as arrays, datasets described, HDF5 version ---- */
+  test_attr_reading(path);
+  test_foreign_reading(path);
+  test_hdf5_version(path);
 
   /* ---- no printing, handler restored, no leaked HDF5 ids ------------------ */
   {

@@ -15,7 +15,9 @@
  *                          or dataset ("1" marks a dimensionless quantity)
  *
  * Every dataset carries `units` and `long_name` (variable-length UTF-8 strings, read
- * as str by h5py and xarray).  Datasets larger than 64 KiB are chunked and compressed
+ * as str by h5py and xarray).  Groups and datasets track the creation order of their
+ * members and attributes (h5py lists attributes in the order written; see
+ * autobal_archive_list_attrs) and keep up to 1024 attributes in the object header.  Datasets larger than 64 KiB are chunked and compressed
  * (shuffle + deflate level 4); smaller ones are contiguous.  Streamed time series use
  * an unlimited dimension and shuffle + deflate level 1 (see autobal_archive_series_open).
  * Only the standard HDF5 filters are used: every HDF5 reader (h5py, xarray, netCDF-4)
@@ -56,11 +58,18 @@
  * in every build (Debian 12's libhdf5 1.10.8 is built thread-safe, many others are not),
  * so every HDF5 call this module makes, in any thread and for any archive, holds one
  * process-wide lock (a statically initialised mutex inside archive.c; the only
- * process-wide object of the library; it holds no data).  A host program that calls
+ * process-wide object of the library; it holds no data).  So does the library's only
+ * other HDF5 call, autobal_hdf5_version() (autobal/version.h; defined in archive.c).  A host program that calls
  * HDF5 itself while series are open should, with a non-thread-safe HDF5, do so only
  * after autobal_archive_series_flush() of every open series (the writer is then idle
  * until the next full buffer).  Do not fork() while series are open (a child would
  * inherit the lock possibly held).  Close archives before the process exits.
+ *
+ * Reading.  autobal_archive_open_read, then _has, _list (members), _list_attrs
+ * (attributes with type class, rank and size), _read_attr_string, _read_attr_double,
+ * _read_attr_doubles / _int64s (arrays), _var_shape, _var_describe (type, dimension
+ * names), _read_var.  They work on files of other writers too (as long as the root
+ * attribute Conventions is "autobal-1"), also under the module's lock.
  *
  * Memory.  Handles are owned by the caller and freed by _close/_discard.  Input arrays
  * are only read during the call.  No allocation happens per appended row of a series
@@ -70,6 +79,7 @@
 #define AUTOBAL_ARCHIVE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "autobal/export.h"
 #include "autobal/status.h"
@@ -305,15 +315,19 @@ AUTOBAL_API int autobal_archive_open_read(const char *path, autobal_archive **ou
 AUTOBAL_API int autobal_archive_has(autobal_archive *a, const char *obj, const char *attr);
 
 /* Read string attribute `name` of `obj` into buf (size bytes, NUL-terminated).  If
- * len is not NULL it receives the full length of the value in bytes (without NUL).
- * Returns AUTOBAL_SUCCESS; AUTOBAL_WARNING if the value was truncated to fit;
- * AUTOBAL_EINVAL if obj/attribute does not exist, buf is NULL or size == 0;
- * AUTOBAL_EFORMAT if the attribute is not a scalar string. */
+ * len is not NULL it receives the full length of the value in bytes (without NUL), so
+ * a first call with a small buf tells the size to allocate.  Fixed-length and
+ * variable-length strings are read (a fixed-length value keeps its padding except
+ * NULs).  Returns AUTOBAL_SUCCESS; AUTOBAL_WARNING if the value was truncated to fit;
+ * AUTOBAL_EINVAL if obj does not exist, name is NULL, buf is NULL or size == 0;
+ * AUTOBAL_EFORMAT if the attribute does not exist or is not a scalar string (the
+ * message names object and attribute); AUTOBAL_EIO on an HDF5 read failure. */
 AUTOBAL_API int autobal_archive_read_attr_string(autobal_archive *a, const char *obj,
                                                  const char *name, char *buf, size_t size,
                                                  size_t *len);
 /* Read a numeric scalar (or 1-element) attribute as double (integers are converted).
- * AUTOBAL_EINVAL: missing; AUTOBAL_EFORMAT: not numeric or more than one element. */
+ * AUTOBAL_EINVAL: no object `obj`, NULL name/value; AUTOBAL_EFORMAT: no such attribute,
+ * not numeric or not exactly one element; AUTOBAL_EIO: HDF5 read failure. */
 AUTOBAL_API int autobal_archive_read_attr_double(autobal_archive *a, const char *obj,
                                                  const char *name, double *value);
 
@@ -336,6 +350,91 @@ AUTOBAL_API int autobal_archive_read_var(autobal_archive *a, const char *path, d
 typedef int (*autobal_archive_list_fn)(const char *name, int is_group, void *ctx);
 AUTOBAL_API int autobal_archive_list(autobal_archive *a, const char *group,
                                      autobal_archive_list_fn fn, void *ctx);
+
+/* Type classes of attributes and datasets as the reading functions see them. */
+typedef enum autobal_archive_class {
+  AUTOBAL_ARCHIVE_CLASS_FLOAT = 1,   /* IEEE floating point (read as double) */
+  AUTOBAL_ARCHIVE_CLASS_INTEGER = 2, /* signed or unsigned integer (read as int64 or double) */
+  AUTOBAL_ARCHIVE_CLASS_STRING = 3,  /* fixed- or variable-length string */
+  AUTOBAL_ARCHIVE_CLASS_OTHER = 4    /* compound, enum, reference, ...: not read by this API */
+} autobal_archive_class;
+
+/* Iteration orders of autobal_archive_list_attrs. */
+#define AUTOBAL_ARCHIVE_ORDER_NAME 0     /* byte-wise by name */
+#define AUTOBAL_ARCHIVE_ORDER_CREATION 1 /* order of creation (where the object tracks it) */
+
+/* What autobal_archive_list_attrs tells about one attribute, enough to choose a reader:
+ * FLOAT/INTEGER -> autobal_archive_read_attr_doubles (or _int64s for INTEGER; a
+ * 1-element one also autobal_archive_read_attr_double), STRING with count 1 ->
+ * autobal_archive_read_attr_string. */
+typedef struct autobal_archive_attr_info {
+  const char *name; /* the attribute's name; valid during the callback only */
+  int type_class;   /* an autobal_archive_class */
+  int rank;         /* 0 for a scalar (and for an empty attribute), else 1..32 */
+  size_t count;     /* number of elements: 1 for a scalar, 0 for an empty (null) attribute */
+  size_t size;      /* bytes per element in the file; 0 for a variable-length string */
+  int is_unsigned;  /* 1 for an unsigned integer type, else 0 */
+} autobal_archive_attr_info;
+
+typedef int (*autobal_archive_attr_fn)(const autobal_archive_attr_info *info, void *ctx);
+
+/* Call fn(info, ctx) for each attribute of the group or dataset `obj` ("/" the root),
+ * in `order`: AUTOBAL_ARCHIVE_ORDER_NAME, or AUTOBAL_ARCHIVE_ORDER_CREATION, which
+ * falls back to name order for objects that do not track the creation order of their
+ * attributes (files written by this library track it; files of other writers may
+ * not).  The attributes that belong to the file format and are rejected by the
+ * writers (CLASS, NAME, DIMENSION_LIST, REFERENCE_LIST, _Netcdf..., _nc...,
+ * _NCProperties) are not listed.  As for autobal_archive_list, the attributes are
+ * inspected first and fn is called afterwards, outside HDF5's iteration and outside the
+ * module's lock, so fn may call the reading functions of this module on the same handle
+ * (which then overwrite the handle's message).  A non-zero return from fn stops the
+ * iteration and is returned.  Works on read and write handles.
+ * AUTOBAL_EINVAL: no object `obj`, bad path, fn NULL, order not one of the two;
+ * AUTOBAL_ENOMEM; AUTOBAL_EIO: HDF5 failure (nothing was passed to fn then). */
+AUTOBAL_API int autobal_archive_list_attrs(autobal_archive *a, const char *obj, int order,
+                                           autobal_archive_attr_fn fn, void *ctx);
+
+/* Read all elements of the numeric attribute `name` of `obj` (any rank, C order):
+ *   _doubles  as double (integers are converted; beyond 2^53 they are rounded);
+ *   _int64s   as int64_t, for integer attributes only (unsigned values above INT64_MAX
+ *             are clipped to INT64_MAX by HDF5's conversion).
+ * buf holds n elements.  *count (may be NULL) receives the number of elements of the
+ * attribute, also when the call fails because n is too small; buf may be NULL when n
+ * is 0 (a size query: AUTOBAL_SUCCESS with *count set and nothing read, for a
+ * numeric attribute).  Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL: no object `obj`, NULL
+ * name, buf NULL with n > 0, or n smaller than the number of elements (nothing is
+ * read; the message gives the size needed); AUTOBAL_EFORMAT: no attribute `name`, or
+ * it is not numeric (_int64s: not an integer), the message naming object, attribute
+ * and its type; AUTOBAL_EIO: HDF5 read failure. */
+AUTOBAL_API int autobal_archive_read_attr_doubles(autobal_archive *a, const char *obj,
+                                                  const char *name, double *buf, size_t n,
+                                                  size_t *count);
+AUTOBAL_API int autobal_archive_read_attr_int64s(autobal_archive *a, const char *obj,
+                                                 const char *name, int64_t *buf, size_t n,
+                                                 size_t *count);
+
+/* Description of a dataset (autobal_archive_var_describe). */
+typedef struct autobal_archive_var_info {
+  int rank;                                /* 0..AUTOBAL_ARCHIVE_MAX_RANK */
+  size_t dims[AUTOBAL_ARCHIVE_MAX_RANK];   /* current extents (a series: its length) */
+  size_t count;                            /* number of elements */
+  int type_class;                          /* an autobal_archive_class */
+  size_t size;                             /* bytes per element; 0: variable-length string */
+  int is_unsigned;                         /* unsigned integer type */
+  int is_coordinate;                       /* the dataset is a dimension scale (a coordinate
+                                            * or index dimension made by _coord, _dim or
+                                            * _series_open) */
+  /* Name of each dimension: the name of the first dimension scale attached to it (its
+   * last path component); a coordinate of rank 1 is its own dimension; "" where none
+   * is attached. */
+  char dim_names[AUTOBAL_ARCHIVE_MAX_RANK][AUTOBAL_ARCHIVE_NAME_MAX + 1];
+} autobal_archive_var_info;
+
+/* Describe dataset `path`: shape, element type and dimension names, into *info.
+ * AUTOBAL_EINVAL: no such dataset, info NULL; AUTOBAL_EUNSUPPORTED: rank > 4;
+ * AUTOBAL_EIO: HDF5 failure.  On failure *info is zeroed. */
+AUTOBAL_API int autobal_archive_var_describe(autobal_archive *a, const char *path,
+                                             autobal_archive_var_info *info);
 
 AUTOBAL_END_DECLS
 

@@ -3,7 +3,7 @@
 
 usage: ensemble_check.py MODE ARGS...
   equal A.h5 B.h5            same data: every dataset and attribute equal bit for bit (NaN == NaN), except
-                             the root provenance (created, command_line, input_config) and the
+                             the root provenance (created, command_line, input_config, effective_config) and the
                              .../ensemble/execution group (threads, ranks, wall time)
   grid A.h5 MODEL            a complete grid: coordinates by the linspace formula, every member done,
                              counts and probability recomputed from the per-member data, consistency of
@@ -27,7 +27,7 @@ import numpy as np
 
 AUTOBAL_EVENT = 2
 AUTOBAL_EMAXSTEPS = -5
-SKIP_ROOT = {"created", "command_line", "input_config"}
+SKIP_ROOT = {"created", "command_line", "input_config", "effective_config"}  # the configurations hold threads etc.
 
 
 def fail(msg):

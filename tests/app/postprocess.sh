@@ -112,15 +112,80 @@ expect 2 "is the archive being re-run" "$AUTOBAL" rerun roots.h5 -o roots.h5 --f
 expect 2 "no --set" "$AUTOBAL" rerun roots.h5 -o x.h5 --set pendulum.R_w=2
 expect 4 "not an autobal archive" "$AUTOBAL" rerun foreign.h5 -o x.h5
 expect 4 "No such file" "$AUTOBAL" rerun missing.h5 -o x.h5
-cp roots.h5 noconfig.h5 && "$PY" -c "import h5py; h = h5py.File('noconfig.h5', 'r+'); del h.attrs['input_config']"
-expect 4 "no root attribute 'input_config'" "$AUTOBAL" rerun noconfig.h5 -o x.h5
+cp roots.h5 noconfig.h5 && "$PY" -c "import h5py; h = h5py.File('noconfig.h5', 'r+'); del h.attrs['input_config']; del h.attrs['effective_config']"
+expect 4 "no root attribute 'effective_config' (nor 'input_config')" "$AUTOBAL" rerun noconfig.h5 -o x.h5
 cp roots.h5 badcmd.h5 && "$PY" -c "import h5py; h = h5py.File('badcmd.h5', 'r+'); h.attrs['command'] = 'rotor levitate'"
 expect 4 "rotor levitate" "$AUTOBAL" rerun badcmd.h5 -o x.h5
-cp roots.h5 badcfg.h5 && "$PY" -c "import h5py; h = h5py.File('badcfg.h5', 'r+'); h.attrs['input_config'] = '[pendulum]\nR_w = 2\n[pendulum]\nR_q = 1\n'"
+cp roots.h5 badcfg.h5 && "$PY" -c "import h5py; h = h5py.File('badcfg.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\nR_w = 2\n[pendulum]\nR_q = 1\n'"
 expect 3 "R_q" "$AUTOBAL" rerun badcfg.h5 -o x.h5
+cp roots.h5 baddef.h5 && "$PY" -c "import h5py; h = h5py.File('baddef.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\n;default R_q = 1\n'"
+expect 3 "R_q" "$AUTOBAL" rerun baddef.h5 -o x.h5
+cp roots.h5 twice.h5 && "$PY" -c "import h5py; h = h5py.File('twice.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\nR_w = 2\n;default R_w = 3\n'"
+expect 4 "recorded as a default" "$AUTOBAL" rerun twice.h5 -o x.h5
+cp roots.h5 defnan.h5 && "$PY" -c "import h5py; h = h5py.File('defnan.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\n;default R_w = zz\n'"
+expect 3 "R_w = 'zz'" "$AUTOBAL" rerun defnan.h5 -o x.h5
 [ ! -e x.h5 ] && ok "no x.h5 left by the failed reruns" || bad "a failed rerun left x.h5"
-cp roots.h5 garbled.h5 && "$PY" -c "import h5py; h = h5py.File('garbled.h5', 'r+'); h.attrs['input_config'] = 'R_w: 2\n'"
+cp roots.h5 garbled.h5 && "$PY" -c "import h5py; h = h5py.File('garbled.h5', 'r+'); h.attrs['effective_config'] = 'R_w: 2\n'"
 expect 4 "neither" "$AUTOBAL" rerun garbled.h5 -o x.h5
+
+# ---- 4b. the effective configuration: every key read, defaults included ---------------------------
+# Each archive's effective_config holds the keys given and the defaults used; the model parameters
+# stored in the archive's groups equal its values bit for bit.
+py effective $(for a in $archives; do printf '%s.h5 ' "$a"; done)
+# A re-run takes the values from effective_config, not from the built-in defaults: change a
+# recorded default (as a later version with other defaults would), re-run, and the new archive
+# must hold the recorded value.  ";default" keys (the command tells given from absent) stay absent.
+expect 0 "" "$AUTOBAL" pendulum roots -o d_roots.h5 -q
+cp d_roots.h5 d_roots_edit.h5
+"$PY" - <<'PYEOF' && ok "edited ;default R_w = 3 -> 2.75 in a copy of d_roots.h5" || bad "edit d_roots_edit.h5"
+import h5py
+h = h5py.File("d_roots_edit.h5", "r+")
+e = h.attrs["effective_config"]
+assert ";default R_w = 3\n" in e and h.attrs["input_config"] == "", e
+h.attrs["effective_config"] = e.replace(";default R_w = 3\n", ";default R_w = 2.75\n")
+PYEOF
+expect 0 "" "$AUTOBAL" rerun d_roots_edit.h5 -o d_roots_re.h5 -q
+"$PY" - <<'PYEOF' && ok "re-run used the recorded default R_w = 2.75 (built-in 3), kept it absent, kept input_config" || bad "re-run of an edited ;default"
+import h5py
+a, b = h5py.File("d_roots_edit.h5", "r"), h5py.File("d_roots_re.h5", "r")
+assert float(b["pendulum"].attrs["R_w"]) == 2.75 and float(h5py.File("d_roots.h5")["pendulum"].attrs["R_w"]) == 3.0
+assert b.attrs["effective_config"] == a.attrs["effective_config"], (b.attrs["effective_config"], a.attrs["effective_config"])
+assert b.attrs["input_config"] == a.attrs["input_config"] == ""
+assert (b["pendulum/roots/root_real"][:] != a["pendulum/roots/root_real"][:]).any()
+PYEOF
+# a default the command does not ask about is recorded as a key: n_Rw = 200 -> 7
+expect 0 "" "$AUTOBAL" pendulum map --set map.n_Rm=5 -o d_map.h5 -q
+cp d_map.h5 d_map_edit.h5
+"$PY" - <<'PYEOF' && ok "edited n_Rw = 200 -> 7 in a copy of d_map.h5" || bad "edit d_map_edit.h5"
+import h5py
+h = h5py.File("d_map_edit.h5", "r+")
+e = h.attrs["effective_config"]
+assert "\nn_Rw = 200\n" in e and "n_Rw" not in h.attrs["input_config"], e
+h.attrs["effective_config"] = e.replace("\nn_Rw = 200\n", "\nn_Rw = 7\n")
+PYEOF
+expect 0 "" "$AUTOBAL" rerun d_map_edit.h5 -o d_map_re.h5 -q
+"$PY" -c "
+import h5py; b = h5py.File('d_map_re.h5', 'r')
+assert b['pendulum/map/verdict'].shape == (5, 7), b['pendulum/map/verdict'].shape
+assert 'n_Rw = 7' in b.attrs['effective_config'] and 'n_Rw' not in b.attrs['input_config']" \
+  && ok "re-run used the recorded n_Rw = 7 (built-in 200): verdict 5 x 7" || bad "re-run of an edited default key"
+# an archive of an earlier version (input_config only) is re-run with this version's defaults
+cp d_map.h5 d_map_old.h5 && "$PY" -c "import h5py; h = h5py.File('d_map_old.h5', 'r+'); del h.attrs['effective_config']"
+expect 0 "" "$AUTOBAL" rerun d_map_old.h5 -o d_map_old_re.h5 -q
+"$PY" -c "
+import h5py; a, b = h5py.File('d_map.h5', 'r'), h5py.File('d_map_old_re.h5', 'r')
+assert b.attrs['effective_config'] == a.attrs['effective_config']
+assert (b['pendulum/map/verdict'][:] == a['pendulum/map/verdict'][:]).all()" \
+  && ok "an archive without effective_config re-runs from input_config (same data, same effective_config)" \
+  || bad "re-run from input_config only"
+# the effective configuration is plain INI: as a configuration file it gives the same run
+"$PY" -c "import h5py; open('d_map_eff.ini', 'w').write(h5py.File('d_map.h5', 'r').attrs['effective_config'])"
+expect 0 "" "$AUTOBAL" pendulum map d_map_eff.ini -o d_map_file.h5 -q
+"$PY" -c "
+import h5py; a, b = h5py.File('d_map.h5', 'r'), h5py.File('d_map_file.h5', 'r')
+assert (b['pendulum/map/verdict'][:] == a['pendulum/map/verdict'][:]).all() and b['pendulum/map/verdict'].shape == (5, 200)
+assert b.attrs['effective_config'] == a.attrs['effective_config']" \
+  && ok "effective_config used as a CONFIG.ini file: same data, same effective_config" || bad "effective_config as a file"
 
 # ---- 5. autobal plot and the one-liner -----------------------------------------------------------
 declare -A kinds=([roots]=roots [roots_phys]=roots [critical]=critical_speeds [map]=stability_map

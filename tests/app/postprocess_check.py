@@ -8,6 +8,7 @@ would (xarray with engine="h5netcdf", group by group, and plain h5py), `autobal 
     postprocess_check.py info FILE.h5 INFO.txt INFO.json [FILE2.h5 INFO2.txt INFO2.json ...]
     postprocess_check.py same A.h5 B.h5 [A2.h5 B2.h5 ...]
     postprocess_check.py png FILE...
+    postprocess_check.py effective FILE.h5...
 
 Every check prints what it compared ("ok"/"FAIL") and the tolerance; the exit status is the
 number of failures (capped at 100).  Expected values come from the configuration files, the
@@ -670,6 +671,105 @@ def info_check(f, txtfile, jsonfile):
     h.close()
 
 
+# ---- the effective configuration (root attribute effective_config) ------------------------------
+def parse_effective(text):
+    """{(section, key): (value, kind)}, kind 'given' for "key = value", 'default' for ";default key =
+    value" (not given, the default used), 'unknown' for "; key not given: ..." (no value known);
+    also the keys in order.  Written here independently of the program's reader."""
+    out, order, sec = {}, [], None
+    for ln in text.splitlines():
+        if not ln:
+            continue
+        if ln.startswith("[") and ln.endswith("]"):
+            sec = ln[1:-1]
+            continue
+        if ln.startswith(";default "):
+            k, v = ln[len(";default "):].split(" = ", 1)
+            kind = "default"
+        elif ln.startswith("; ") and " not given: " in ln and sec is not None:
+            k, v, kind = ln[2:].split(" not given: ")[0], None, "unknown"
+        elif ln.startswith(";"):
+            continue
+        else:
+            k, v = ln.split(" = ", 1)
+            kind = "given"
+        if (sec, k) in out:
+            raise ValueError("key %s.%s twice" % (sec, k))
+        out[(sec, k)] = (v, kind)
+        order.append((sec, k))
+    return out, order
+
+
+def parse_given(text):
+    out, sec = {}, None
+    for ln in text.splitlines():
+        if ln.startswith("[") and ln.endswith("]"):
+            sec = ln[1:-1]
+        elif " = " in ln:
+            k, v = ln.split(" = ", 1)
+            out[(sec, k)] = v
+    return out
+
+
+HW_KEYS = {"rotor": ("M_k", "A_k", "m_p", "A_p", "C_p", "omega"),
+           "supports": ("l_L", "l_R", "c_Lx", "c_Ly", "c_Lz", "c_Rx", "c_Ry", "h_Lx", "h_Ly", "h_Lz", "h_Rx", "h_Ry")}
+
+
+def effective_check(f):
+    """Every key given is in effective_config with its text; the model's parameters recorded in the
+    archive's groups (written by the model code, not by the configuration reader) appear in
+    effective_config with bit-identical values, also those left at their built-in defaults."""
+    h = h5py.File(f, "r")
+    cmd = s(h.attrs["command"])
+    given = parse_given(s(h.attrs["input_config"]))
+    try:
+        eff, order = parse_effective(s(h.attrs["effective_config"]))
+    except (KeyError, ValueError) as e:
+        check("%s: effective_config present and well formed" % f, False, str(e))
+        h.close()
+        return
+    bad = [k for k, v in given.items() if eff.get(k) != (v, "given")]
+    check("%s (%s): the %d given keys are in effective_config as given" % (f, cmd, len(given)), not bad, str(bad[:3]))
+    nval = sum(1 for v in eff.values() if v[1] != "unknown")
+    check("%s: effective_config holds more keys (%d with values) than were given (%d)" % (f, nval, len(given)),
+          nval > len(given))
+    want = []  # (section, key, value in the archive)
+    if cmd.startswith("pendulum") and "pendulum" in h:
+        p = h["pendulum"]
+        if "pendulum/physical" in h:
+            ph = h["pendulum/physical"]
+            want += [("pendulum", k, ph.attrs[k]) for k in ("M", "e", "m", "l", "c", "H1", "H2", "omega")]
+        else:
+            want += [("pendulum", k, p.attrs[k]) for k in ("R_w", "R_m", "H", "h")]
+            if ("pendulum", "psi0") in given:
+                want.append(("pendulum", "psi0", p.attrs["psi0"]))
+            else:  # /pendulum k is recomputed from psi0 = asin(sqrt(k))/2: equal to rounding
+                v = eff.get(("pendulum", "k"))
+                close("%s: effective [pendulum] k = /pendulum k" % f, float(v[0]) if v and v[0] else np.nan,
+                      p.attrs["k"], rtol=1e-14, atol=1e-15)
+    elif cmd.startswith("rotor") and "rotor" in h:
+        r = h["rotor"]
+        want += [("rotor", k, r.attrs[k]) for k in HW_KEYS["rotor"]]
+        if s(r.attrs["input"]) == "hardware":
+            want += [("supports", k, r.attrs[k]) for k in HW_KEYS["supports"]]
+        for j in (1, 2):
+            if "rotor/plane%d" % j in h:
+                pg = h["rotor/plane%d" % j]
+                want += [("plane%d" % j, k, pg.attrs[k]) for k in ("d", "m0", "r0", "psi0")]
+    if cmd == "pendulum map":
+        m = h["pendulum/map"]
+        want += [("map", "n_Rm", m["R_m"].shape[0]), ("map", "n_Rw", m["R_w"].shape[0]),
+                 ("map", "Rm_min", m["R_m"][0]), ("map", "Rw_min", m["R_w"][0])]
+    bad = []
+    for sec, k, v in want:
+        e = eff.get((sec, k))
+        if e is None or e[0] is None or float(e[0]) != float(v):
+            bad.append("%s.%s: %r vs %r" % (sec, k, e, v))
+    check("%s: %d model/grid parameters of the archive equal effective_config bit for bit (given or default)"
+          % (f, len(want)), not bad and len(want) > 0, "; ".join(bad[:4]))
+    h.close()
+
+
 # ---- rerun: bit for bit ----------------------------------------------------------------------------
 VOLATILE = {("/", "created"), ("/", "command_line")}
 
@@ -748,6 +848,9 @@ def main(argv):
     elif mode == "same":
         for i in range(2, len(argv) - 1, 2):
             same(argv[i], argv[i + 1])
+    elif mode == "effective":
+        for f in argv[2:]:
+            effective_check(f)
     elif mode == "png":
         png(argv[2:])
     else:
