@@ -91,9 +91,10 @@
 
 #define HELP_RERUN                                                                                   \
   "Run again the command recorded in FILE.h5 (root attribute `command`) with the configuration\n"   \
-  "recorded there (`input_config`: the configuration file plus --set overrides; built-in defaults\n" \
-  "fill the rest, as in the original run) and write NEW.h5.  With the same version of autobal\n"    \
-  "every dataset is reproduced bit for bit (provenance such as `created` and wall times differ).\n" \
+  "recorded there (`effective_config`: every key the command read with the value it used, defaults\n" \
+  "included; `input_config` for archives of older versions) and write NEW.h5.  With the same\n"     \
+  "version of autobal every dataset is reproduced bit for bit (provenance such as `created` and\n"  \
+  "wall times differ).\n"                                                                          \
   "Options: -o NEW.h5 (required, not FILE.h5 itself), --force, --json, --quiet.  --set is refused.\n"
 
 #define HELP_PLOT                                                                                     \
