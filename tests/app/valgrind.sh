@@ -20,6 +20,11 @@ vg 0 "$AUTOBAL" rotor transient --set transient.t_end=0.5 --set transient.frame=
 vg 0 "$AUTOBAL" pendulum roots -o p.h5
 vg 0 "$AUTOBAL" pendulum critical --set critical.n_Rm=50 -o c.h5
 vg 0 "$AUTOBAL" pendulum map --set map.n_Rm=30 --set map.n_Rw=30 --set map.threads=1 -o m.h5
+vg 0 "$AUTOBAL" info p.h5
+vg 0 "$AUTOBAL" info r.h5 --json
+vg 0 "$AUTOBAL" rerun p.h5 -o p2.h5
+printf "not an archive\n" > junk.h5
+vg 4 "$AUTOBAL" info junk.h5
 vg 3 "$AUTOBAL" rotor transient --set plane1.ball_radius=-1,1
 vg 4 "$AUTOBAL" pendulum roots -o p.h5
 echo "$pass passed, $fail failed"
