@@ -569,6 +569,35 @@ int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *
   return CLI_EXIT_OK;
 }
 
+int cli_record_doubles_used(cli_ctx *ctx, const char *section, const char *key, const double *v, size_t n) {
+  cli_config *c = ctx->cfg;
+  cli_read *r = NULL;
+  char *text, num[40];
+  size_t i, len = 0, cap = 32 * n + 1;
+  for (i = 0; i < c->nreads; i++)
+    if (strcmp(c->reads[i].section, section) == 0 && strcmp(c->reads[i].key, key) == 0) r = &c->reads[i];
+  if (r && r->given) return 0; /* given: recorded as given */
+  if (n == 0) return 0;
+  if ((text = malloc(cap)) == NULL) {
+    c->nomem = 1;
+    return -1;
+  }
+  text[0] = '\0';
+  for (i = 0; i < n; i++) {
+    format_double(v[i], num, sizeof num);
+    len += (size_t)snprintf(text + len, cap - len, "%s%s", i ? ", " : "", num);
+  }
+  if (r && r->value == NULL && !r->varies) { /* the getter's "unknown default": now known */
+    c->generation++;
+    r->value = text;
+    r->presence = 1;
+    return 0;
+  }
+  record_read(c, section, key, text, 0, 1);
+  free(text);
+  return 0;
+}
+
 static int tolower_ascii(int ch) { return (ch >= 'A' && ch <= 'Z') ? ch - 'A' + 'a' : ch; }
 
 /* Levenshtein distance, case-insensitive, for "did you mean". */

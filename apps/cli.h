@@ -118,6 +118,11 @@ int cli_get_string(cli_ctx *ctx, const char *section, const char *key, const cha
 /* Comma-separated doubles; at most `cap` values; *n set to the count (0 if absent). */
 int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *out, size_t cap, size_t *n,
                     int *present);
+/* A list read with cli_get_doubles and not given: record the values the command used in their
+ * place (they appear as ";default KEY = v1, v2, ..." in the effective configuration, and
+ * `autobal rerun` hands them back through cli_get_doubles with *present = 0).  Nothing for a
+ * given list or n = 0.  Returns 0, or -1 when out of memory (also flagged for the archive). */
+int cli_record_doubles_used(cli_ctx *ctx, const char *section, const char *key, const double *v, size_t n);
 /* Declare a whole section as known (for sections whose keys are read elsewhere). */
 void cli_declare_section(cli_ctx *ctx, const char *section);
 /* After all getters: fail on any key or section in the file/overrides that the command does not

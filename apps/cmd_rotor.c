@@ -98,7 +98,8 @@ static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
     /* n = the number of balls: from ball_mass when given, else the current (default) count.  Each
      * other list has n values or one value for all; a list left out keeps the current values when
      * n is unchanged, else radius and damping are required and angles/rates default to 0. */
-    size_t n = pm ? nm : pl->n_balls, i;
+    /* a recorded default list (autobal rerun: not given, nm > 0) sets n like a given one */
+    size_t n = (pm || nm > 0) ? nm : pl->n_balls, i;
     struct {
       const char *name;
       double *v;
@@ -106,10 +107,11 @@ static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
       int present;
       double def;
     } lists[4];
-    lists[0].name = "ball_radius", lists[0].v = c->radius[j], lists[0].cnt = nr, lists[0].present = pr, lists[0].def = NAN;
-    lists[1].name = "ball_damping", lists[1].v = c->damping[j], lists[1].cnt = nh, lists[1].present = ph, lists[1].def = NAN;
-    lists[2].name = "ball_psi", lists[2].v = c->psi[j], lists[2].cnt = np, lists[2].present = pp, lists[2].def = 0.0;
-    lists[3].name = "ball_rate", lists[3].v = c->rate[j], lists[3].cnt = nv, lists[3].present = pv, lists[3].def = 0.0;
+    /* present: given, or a recorded default list (autobal rerun) */
+    lists[0].name = "ball_radius", lists[0].v = c->radius[j], lists[0].cnt = nr, lists[0].present = pr || nr > 0, lists[0].def = NAN;
+    lists[1].name = "ball_damping", lists[1].v = c->damping[j], lists[1].cnt = nh, lists[1].present = ph || nh > 0, lists[1].def = NAN;
+    lists[2].name = "ball_psi", lists[2].v = c->psi[j], lists[2].cnt = np, lists[2].present = pp || np > 0, lists[2].def = 0.0;
+    lists[3].name = "ball_rate", lists[3].v = c->rate[j], lists[3].cnt = nv, lists[3].present = pv || nv > 0, lists[3].def = 0.0;
     for (i = 0; i < 4; i++) {
       size_t k;
       if (!lists[i].present) {
@@ -134,6 +136,12 @@ static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
   pl->ball_damping = c->damping[j];
   pl->ball_psi = c->psi[j];
   pl->ball_rate = c->rate[j];
+  /* the lists used, for the effective configuration (the built-in ones when not given) */
+  cli_record_doubles_used(ctx, sec, "ball_mass", c->mass[j], pl->n_balls);
+  cli_record_doubles_used(ctx, sec, "ball_radius", c->radius[j], pl->n_balls);
+  cli_record_doubles_used(ctx, sec, "ball_damping", c->damping[j], pl->n_balls);
+  cli_record_doubles_used(ctx, sec, "ball_psi", c->psi[j], pl->n_balls);
+  cli_record_doubles_used(ctx, sec, "ball_rate", c->rate[j], pl->n_balls);
   return CLI_EXIT_OK;
 }
 

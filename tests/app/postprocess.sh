@@ -153,6 +153,35 @@ assert b.attrs["effective_config"] == a.attrs["effective_config"], (b.attrs["eff
 assert b.attrs["input_config"] == a.attrs["input_config"] == ""
 assert (b["pendulum/roots/root_real"][:] != a["pendulum/roots/root_real"][:]).any()
 PYEOF
+# the rotor's ball lists (not given) are recorded as the lists used: change ball_psi and the
+# number of balls in a copy, re-run, and the new archive has the recorded balls
+expect 0 "" "$AUTOBAL" rotor transient --set transient.t_end=0.05 -o d_rotor.h5 -q
+cp d_rotor.h5 d_rotor_edit.h5
+"$PY" - <<'PYEOF' && ok "edited the recorded ball lists of d_rotor.h5 (2 balls -> 3)" || bad "edit d_rotor_edit.h5"
+import h5py
+h = h5py.File("d_rotor_edit.h5", "r+")
+e = h.attrs["effective_config"]
+old = [";default ball_mass = 0.05, 0.05\n", ";default ball_radius = 0.1, 0.1\n",
+       ";default ball_damping = 0.1, 0.1\n", ";default ball_psi = 1, 2.5\n", ";default ball_rate = 0, 0\n"]
+new = [";default ball_mass = 0.05, 0.04, 0.03\n", ";default ball_radius = 0.1, 0.1, 0.1\n",
+       ";default ball_damping = 0.1, 0.1, 0.1\n", ";default ball_psi = 1, 2, 3\n", ";default ball_rate = 0, 0, 0\n"]
+for o, n in zip(old, new):
+    assert o in e, (o, e)
+    e = e.replace(o, n)
+h.attrs["effective_config"] = e
+PYEOF
+expect 0 "" "$AUTOBAL" rerun d_rotor_edit.h5 -o d_rotor_re.h5 -q
+"$PY" - <<'PYEOF' && ok "re-run used the recorded ball lists (3 balls, masses 0.05/0.04/0.03, psi 1/2/3)" || bad "re-run of edited ball lists"
+import h5py, numpy as np
+b = h5py.File("d_rotor_re.h5", "r")
+p = b["rotor/plane1"]
+names = {k: p[k][()] if k in p else p.attrs[k] for k in list(p.keys()) + list(p.attrs.keys())}
+m = np.asarray(p.attrs["ball_mass"], dtype=float).ravel()
+psi = np.asarray(p.attrs["ball_psi_initial"], dtype=float).ravel()
+assert list(m) == [0.05, 0.04, 0.03], (m, sorted(names))
+assert list(psi) == [1.0, 2.0, 3.0], (psi, sorted(names))
+assert b.attrs["input_config"] == h5py.File("d_rotor.h5", "r").attrs["input_config"]
+PYEOF
 # a default the command does not ask about is recorded as a key: n_Rw = 200 -> 7
 expect 0 "" "$AUTOBAL" pendulum map --set map.n_Rm=5 -o d_map.h5 -q
 cp d_map.h5 d_map_edit.h5
