@@ -1860,14 +1860,20 @@ int autobal_archive_read_attr_string(autobal_archive *a, const char *obj, const 
   return rc;
 }
 
-int autobal_archive_read_attr_double(autobal_archive *a, const char *obj, const char *name, double *value) {
+/* Read all elements of numeric attribute `name` of `obj` into buf (memory type mt:
+ * H5T_NATIVE_DOUBLE or H5T_NATIVE_INT64); integers_only for _int64s. */
+static int read_attr_array(autobal_archive *a, const char *obj, const char *name, hid_t mt, int integers_only,
+                           int scalar, void *buf, size_t n, size_t *count) {
   char path[PATH_MAX_];
   quiet_state q;
   hid_t o, attr = -1, ft = -1, sp = -1;
   int rc;
+  if (count != NULL) *count = 0;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
-  if (value == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_double: value is NULL");
+  if (buf == NULL && n > 0)
+    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_%s: buf is NULL with n = %zu",
+                             integers_only ? "int64s" : "doubles", n);
   h5_enter(&q);
   rc = read_attr_begin(a, obj, name, path, sizeof path, &o);
   if (rc == AUTOBAL_SUCCESS) {
@@ -1877,14 +1883,26 @@ int autobal_archive_read_attr_double(autobal_archive *a, const char *obj, const 
   if (rc == AUTOBAL_SUCCESS) {
     ft = H5Aget_type(attr);
     sp = H5Aget_space(attr);
-    if (ft < 0 || sp < 0) {
-      rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", name, path);
+    if (ft < 0 || sp < 0) rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", name, path);
+  }
+  if (rc == AUTOBAL_SUCCESS) {
+    H5T_class_t c = H5Tget_class(ft);
+    hssize_t np = H5Sget_simple_extent_npoints(sp);
+    if (np < 0) {
+      rc = h5fail(&a->err, "cannot get the size of attribute '%s' of '%s'", name, path);
+    } else if (scalar && ((c != H5T_INTEGER && c != H5T_FLOAT) || np != 1)) {
+      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is not a numeric scalar", name,
+                             path);
+    } else if (c != H5T_INTEGER && (integers_only || c != H5T_FLOAT)) {
+      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is %s, not %s", name, path,
+                             c == H5T_FLOAT ? "floating point" : c == H5T_STRING ? "a string" : "not numeric",
+                             integers_only ? "an integer" : "numeric");
     } else {
-      H5T_class_t c = H5Tget_class(ft);
-      if ((c != H5T_INTEGER && c != H5T_FLOAT) || H5Sget_simple_extent_npoints(sp) != 1)
-        rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is not a numeric scalar", name,
-                               path);
-      else if (H5Aread(attr, H5T_NATIVE_DOUBLE, value) < 0)
+      if (count != NULL) *count = (size_t)np;
+      if ((size_t)np > n && !(buf == NULL && n == 0))
+        rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "attribute '%s' of '%s' has %zu elements, the buffer holds %zu",
+                               name, path, (size_t)np, n);
+      else if (buf != NULL && np > 0 && H5Aread(attr, mt, buf) < 0)
         rc = h5fail(&a->err, "cannot read attribute '%s' of '%s'", name, path);
     }
   }
@@ -1894,6 +1912,15 @@ int autobal_archive_read_attr_double(autobal_archive *a, const char *obj, const 
   if (o >= 0) (void)H5Oclose(o);
   h5_leave(&q);
   return rc;
+}
+
+int autobal_archive_read_attr_double(autobal_archive *a, const char *obj, const char *name, double *value) {
+  if (a == NULL) return AUTOBAL_EINVAL;
+  if (value == NULL) {
+    autobal_error_clear(&a->err);
+    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_double: value is NULL");
+  }
+  return read_attr_array(a, obj, name, H5T_NATIVE_DOUBLE, 0, 1, value, 1, NULL);
 }
 
 /* Open a dataset for reading; *ds = -1 on failure. */
@@ -2232,65 +2259,14 @@ done:
   return rc;
 }
 
-/* Read all elements of numeric attribute `name` of `obj` into buf (memory type mt:
- * H5T_NATIVE_DOUBLE or H5T_NATIVE_INT64); integers_only for _int64s. */
-static int read_attr_array(autobal_archive *a, const char *obj, const char *name, hid_t mt, int integers_only,
-                           void *buf, size_t n, size_t *count) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  hid_t o, attr = -1, ft = -1, sp = -1;
-  int rc;
-  if (count != NULL) *count = 0;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (buf == NULL && n > 0)
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_%s: buf is NULL with n = %zu",
-                             integers_only ? "int64s" : "doubles", n);
-  h5_enter(&q);
-  rc = read_attr_begin(a, obj, name, path, sizeof path, &o);
-  if (rc == AUTOBAL_SUCCESS) {
-    attr = H5Aopen(o, name, H5P_DEFAULT);
-    if (attr < 0) rc = h5fail(&a->err, "cannot open attribute '%s' of '%s'", name, path);
-  }
-  if (rc == AUTOBAL_SUCCESS) {
-    ft = H5Aget_type(attr);
-    sp = H5Aget_space(attr);
-    if (ft < 0 || sp < 0) rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", name, path);
-  }
-  if (rc == AUTOBAL_SUCCESS) {
-    H5T_class_t c = H5Tget_class(ft);
-    hssize_t np = H5Sget_simple_extent_npoints(sp);
-    if (np < 0) {
-      rc = h5fail(&a->err, "cannot get the size of attribute '%s' of '%s'", name, path);
-    } else if (c != H5T_INTEGER && (integers_only || c != H5T_FLOAT)) {
-      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is %s, not %s", name, path,
-                             c == H5T_FLOAT ? "floating point" : c == H5T_STRING ? "a string" : "not numeric",
-                             integers_only ? "an integer" : "numeric");
-    } else {
-      if (count != NULL) *count = (size_t)np;
-      if ((size_t)np > n && !(buf == NULL && n == 0))
-        rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "attribute '%s' of '%s' has %zu elements, the buffer holds %zu",
-                               name, path, (size_t)np, n);
-      else if (buf != NULL && np > 0 && H5Aread(attr, mt, buf) < 0)
-        rc = h5fail(&a->err, "cannot read attribute '%s' of '%s'", name, path);
-    }
-  }
-  if (ft >= 0) (void)H5Tclose(ft);
-  if (sp >= 0) (void)H5Sclose(sp);
-  if (attr >= 0) (void)H5Aclose(attr);
-  if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
-  return rc;
-}
-
 int autobal_archive_read_attr_doubles(autobal_archive *a, const char *obj, const char *name, double *buf, size_t n,
                                       size_t *count) {
-  return read_attr_array(a, obj, name, H5T_NATIVE_DOUBLE, 0, buf, n, count);
+  return read_attr_array(a, obj, name, H5T_NATIVE_DOUBLE, 0, 0, buf, n, count);
 }
 
 int autobal_archive_read_attr_int64s(autobal_archive *a, const char *obj, const char *name, int64_t *buf, size_t n,
                                      size_t *count) {
-  return read_attr_array(a, obj, name, H5T_NATIVE_INT64, 1, buf, n, count);
+  return read_attr_array(a, obj, name, H5T_NATIVE_INT64, 1, 0, buf, n, count);
 }
 
 /* Copy a name into a buffer of AUTOBAL_ARCHIVE_NAME_MAX + 1 bytes (longer names cut). */
