@@ -11,6 +11,7 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "fastmath.h"
 #include "internal.h"
 
 #ifndef M_PI
@@ -28,6 +29,8 @@ struct autobal_rotor {
   double l_L, l_R;                        /* support positions for outputs (may be NAN) */
   double inv_M, inv_A;                    /* 1/M (1/kg), 1/A (1/(kg m^2)) */
   double g[AUTOBAL_ROTOR_MAX_PLANES];     /* 1/M + d_j^2/A (1/kg), one-plane closed form */
+  double cpsi0[AUTOBAL_ROTOR_MAX_PLANES]; /* cos psi_j0, sin psi_j0 of the unbalance */
+  double spsi0[AUTOBAL_ROTOR_MAX_PLANES];
   /* per ball (length N each, state order) */
   double *m, *r, *mr, *hr, *kappa, *psi_init, *rate_init, *h;
   /* workspace of the right-hand sides */
@@ -37,6 +40,24 @@ struct autobal_rotor {
 };
 
 /* ---- helpers ------------------------------------------------------------ */
+
+/* The balls' sines and cosines are computed by one vectorizable loop
+ * (fastmath.h), compiled twice, for AVX2 and for the baseline x86-64, and the
+ * best is picked when the library is loaded (GCC function multiversioning, as
+ * in pendulum.c).  No FMA in either: both clones give the same bits. */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8 && defined(__x86_64__) && \
+    defined(__linux__) && !defined(AUTOBAL_NO_CLONES)
+#define ROTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ROTOR_CLONES
+#endif
+
+/* sn[k] = sin x[k], cs[k] = cos x[k], k < n (x must not overlap sn, cs); libm
+ * for |x[k]| > AUTOBAL_SINCOS_MAX or non-finite x[k]. */
+ROTOR_CLONES static void ball_sincos(const double *restrict x, double *restrict sn,
+                                     double *restrict cs, size_t n) {
+  (void)autobal_sincos_array(x, sn, cs, n);
+}
 
 /* Wrap an angle to (-pi, pi]. */
 static double wrap_pi(double a) {
@@ -202,34 +223,48 @@ static int rhs_fail(autobal_rotor *R, double t, const char *which) {
 
 /* ---- right-hand sides ------------------------------------------------------ */
 
+/* Both right-hand sides make three passes over the balls: (1) sin and cos of
+ * every ball angle into the workspace (one vectorizable loop over all N balls,
+ * fastmath.h; libm above |angle| = 2^21 rad), (2) per plane, the sums of
+ * "Solving for the accelerations" (in ball order, so the result does not
+ * depend on the vector width), (3) after the 4x4 (or 2x2) solve, the ball
+ * accelerations from the stored sines and cosines (elementwise). */
+
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
   const size_t N = R->N;
-  const double omega = R->p.omega;
+  const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
+  const double *sn = R->sn, *cs = R->cs;
   plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES];
-  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2];
+  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw;
   size_t j, k;
 
+  autobal_sincos1(omega * t, &sw, &cw);
+  ball_sincos(phi, R->sn, R->cs, N);
   rotor_forces(&R->L, omega, q, qd, b);
   for (j = 0; j < R->n_planes; j++) {
-    const double phi0 = omega * t + R->p.plane[j].psi0;
-    const double w2s0 = omega * omega * R->s0[j];
-    /* the unbalance: phi_0' = omega, phi_0'' = 0 */
-    double Sss = 0.0, Ssc = 0.0, Scc = 0.0;
-    double Fu = -w2s0 * cos(phi0), Fv = -w2s0 * sin(phi0);
+    double Sss = 0.0, Ssc = 0.0, Scc = 0.0, Fu = 0.0, Fv = 0.0;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) {
-      const double s = sin(phi[k]), c = cos(phi[k]);
-      const double m = R->m[k], pd = phid[k], rel = pd - omega;
-      R->sn[k] = s;
-      R->cs[k] = c;
-      Sss += m * s * s;
-      Ssc += m * s * c;
-      Scc += m * c * c;
+      const double s = sn[k], c = cs[k], m = R->m[k], pd = phid[k];
+      const double ms = m * s, mc = m * c;
+      const double a = R->hr[k] * (pd - omega), bc = R->mr[k] * pd * pd;
+      Sss += ms * s;
+      Ssc += ms * c;
+      Scc += mc * c;
       /* F_u, F_v of "Solving for the accelerations" */
-      Fu += R->hr[k] * rel * s - R->mr[k] * pd * pd * c;
-      Fv += -R->hr[k] * rel * c - R->mr[k] * pd * pd * s;
+      Fu += a * s - bc * c;
+      Fv -= a * c + bc * s;
+    }
+    {
+      /* the unbalance at phi_0 = omega t + psi_j0: phi_0' = omega, phi_0'' = 0 (added last:
+       * the sums over the balls do not wait for sin, cos of omega t) */
+      const double c0 = cw * R->cpsi0[j] - sw * R->spsi0[j];
+      const double s0 = sw * R->cpsi0[j] + cw * R->spsi0[j];
+      const double w2s0 = w2 * R->s0[j];
+      Fu -= w2s0 * c0;
+      Fv -= w2s0 * s0;
     }
     /* s_u'' = -S_ss u_D'' + S_sc v_D'' + F_u, s_v'' = S_sc u_D'' - S_cc v_D'' + F_v */
     cp[j].Suu = -Sss + R->mtot[j];
@@ -244,14 +279,12 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
     dydt[k] = qd[k];
     dydt[4 + k] = qdd[k];
   }
+  for (k = 0; k < N; k++) dydt[8 + k] = phid[k];
   for (j = 0; j < R->n_planes; j++) {
     const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
-    for (k = k0; k < k1; k++) {
-      dydt[8 + k] = phid[k];
-      /* eq. (3.4) solved for phi_i'' */
-      dydt[8 + N + k] = (uDdd * R->sn[k] - vDdd * R->cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
-    }
+    for (k = k0; k < k1; k++) /* eq. (3.4) solved for phi_i'' */
+      dydt[8 + N + k] = (uDdd * sn[k] - vDdd * cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
   }
   if (R->p.axial) { /* eq. (2.12) */
     const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
@@ -266,15 +299,17 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   const size_t N = R->N;
   const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
-  const double cw = cos(omega * t), sw = sin(omega * t);
+  const double *sn = R->sn, *cs = R->cs;
   plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES];
-  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2];
+  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw;
   size_t j, k;
 
+  autobal_sincos1(omega * t, &sw, &cw);
+  ball_sincos(psi, R->sn, R->cs, N);
   rotor_forces(&R->L, omega, q, qd, b);
   for (j = 0; j < R->n_planes; j++) {
     /* rotor-axes quantities (3.10): s_xi, s_eta and their rates */
-    double sxi = R->s0[j] * cos(R->p.plane[j].psi0), seta = R->s0[j] * sin(R->p.plane[j].psi0);
+    double sxi = R->s0[j] * R->cpsi0[j], seta = R->s0[j] * R->spsi0[j];
     double sxid = 0.0, setad = 0.0;
     /* s_xi'' = Txx a_xi + Txe a_eta + Gxi, s_eta'' = Txe a_xi + Tee a_eta + Geta,
      * from s_xi'' = -sum m r (psi'' sin + psi'^2 cos), s_eta'' = sum m r (psi'' cos - psi'^2 sin)
@@ -282,19 +317,18 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
     double Txx = 0.0, Txe = 0.0, Tee = 0.0, Gxi = 0.0, Geta = 0.0;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) {
-      const double s = sin(psi[k]), c = cos(psi[k]);
-      const double m = R->m[k], mr = R->mr[k], hr = R->hr[k], pd = psid[k];
-      R->sn[k] = s;
-      R->cs[k] = c;
-      sxi += mr * c;
-      seta += mr * s;
-      sxid -= mr * pd * s;
-      setad += mr * pd * c;
-      Txx -= m * s * s;
-      Txe += m * s * c;
-      Tee -= m * c * c;
-      Gxi += hr * pd * s - mr * pd * pd * c;
-      Geta += -hr * pd * c - mr * pd * pd * s;
+      const double s = sn[k], c = cs[k], m = R->m[k], mr = R->mr[k], pd = psid[k];
+      const double ms = m * s, mc = m * c, mrs = mr * s, mrc = mr * c;
+      const double a = R->hr[k] * pd, bp = mr * pd * pd;
+      sxi += mrc;
+      seta += mrs;
+      sxid -= mrs * pd;
+      setad += mrc * pd;
+      Txx -= ms * s;
+      Txe += ms * c;
+      Tee -= mc * c;
+      Gxi += a * s - bp * c;
+      Geta -= a * c + bp * s;
     }
     {
       /* (3.11) differentiated twice:
@@ -318,16 +352,14 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
     dydt[k] = qd[k];
     dydt[4 + k] = qdd[k];
   }
+  for (k = 0; k < N; k++) dydt[8 + k] = psid[k];
   for (j = 0; j < R->n_planes; j++) {
     const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
     /* acceleration of D on the rotor axes (spec, after (3.13)) */
     const double axi = uDdd * cw + vDdd * sw, aeta = -uDdd * sw + vDdd * cw;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
-    for (k = k0; k < k1; k++) {
-      dydt[8 + k] = psid[k];
-      /* eq. (3.13) divided by m r^2 */
-      dydt[8 + N + k] = (axi * R->sn[k] - aeta * R->cs[k]) / R->r[k] - R->kappa[k] * psid[k];
-    }
+    for (k = k0; k < k1; k++) /* eq. (3.13) divided by m r^2 */
+      dydt[8 + N + k] = (axi * sn[k] - aeta * cs[k]) / R->r[k] - R->kappa[k] * psid[k];
   }
   if (R->p.axial) { /* eq. (2.12) */
     const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
@@ -722,6 +754,8 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->off[j] = k;
     R->cnt[j] = pl->n_balls;
     R->s0[j] = pl->m0 * pl->r0;
+    R->cpsi0[j] = cos(pl->psi0);
+    R->spsi0[j] = sin(pl->psi0);
     R->mtot[j] = 0.0;
     for (i = 0; i < pl->n_balls; i++, k++) {
       R->m[k] = pl->ball_mass[i];

@@ -35,6 +35,7 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "fastmath.h"
 #include "internal.h"
 
 #ifndef M_PI
@@ -1993,11 +1994,250 @@ static void test_errors(void) {
 #undef EXPECT_BAD
 }
 
+/* ---- the branch-free sin/cos of the ball loops (src/fastmath.h) ------------------- */
+
+/* Size of one unit in the last place of v (double), at least the smallest subnormal. */
+static double ulp_of(double v) {
+  int e;
+  double u;
+  if (v == 0.0 || !isfinite(v)) return DBL_TRUE_MIN;
+  (void)frexp(v, &e);
+  u = ldexp(1.0, e - DBL_MANT_DIG);
+  return u < DBL_TRUE_MIN ? DBL_TRUE_MIN : u;
+}
+
+/* |got - want| in units of ulp(want), want given in long double (x86-64: 64-bit
+ * significand, so want is ~2^-11 ulp of a double from the true value). */
+static double ulp_err(double got, long double want) {
+  return (double)fabsl((long double)got - want) / ulp_of((double)want);
+}
+
+typedef struct sincos_err {
+  double libm_s, libm_c; /* max ulp against libm's sin, cos */
+  double ref_s, ref_c;   /* max ulp against sinl, cosl */
+  double x_worst;        /* argument of the largest of the four */
+  size_t n, nbad;        /* arguments, fallbacks reported */
+  int bit_mismatch;      /* array vs scalar (autobal_sincos1) or odd symmetry broken */
+} sincos_err;
+
+/* Evaluate n arguments through autobal_sincos_array (in blocks of up to 64, odd
+ * lengths too) and accumulate the errors; also the scalar entry point (must give
+ * the same bits) and the symmetry sin(-x) = -sin(x), cos(-x) = cos(x) (bitwise: the
+ * reduction and the kernels are odd/even operation by operation). */
+static void sincos_accumulate(const double *x, size_t n, sincos_err *e) {
+  double s[64], c[64], xn[64], sm[64], cm[64];
+  size_t i0, i;
+  for (i0 = 0; i0 < n; i0 += 61) {
+    const size_t m = n - i0 < 61 ? n - i0 : 61;
+    e->nbad += autobal_sincos_array(x + i0, s, c, m);
+    for (i = 0; i < m; i++) xn[i] = -x[i0 + i];
+    (void)autobal_sincos_array(xn, sm, cm, m);
+    for (i = 0; i < m; i++) {
+      const double xi = x[i0 + i];
+      double s1, c1, es, ec, rs, rc;
+      autobal_sincos1(xi, &s1, &c1);
+      if (memcmp(&s1, &s[i], sizeof s1) != 0 || memcmp(&c1, &c[i], sizeof c1) != 0) e->bit_mismatch = 1;
+      if (!isnan(xi) && (sm[i] != -s[i] || cm[i] != c[i])) e->bit_mismatch = 1;
+      es = ulp_err(s[i], (long double)sin(xi));
+      ec = ulp_err(c[i], (long double)cos(xi));
+      rs = ulp_err(s[i], sinl((long double)xi));
+      rc = ulp_err(c[i], cosl((long double)xi));
+      if (fmax(fmax(es, ec), fmax(rs, rc)) > fmax(fmax(e->libm_s, e->libm_c), fmax(e->ref_s, e->ref_c)))
+        e->x_worst = xi;
+      e->libm_s = fmax(e->libm_s, es);
+      e->libm_c = fmax(e->libm_c, ec);
+      e->ref_s = fmax(e->ref_s, rs);
+      e->ref_c = fmax(e->ref_c, rc);
+    }
+    e->n += m;
+  }
+}
+
+static void sincos_report(const char *label, const sincos_err *e) {
+  char what[240];
+  printf("     %s: %zu arguments, worst at x = %.17g\n", label, e->n, e->x_worst);
+  /* fdlibm's kernels with an exact reduction: < 1 ulp from the true value; libm (glibc)
+   * is itself < 1 ulp, so the two may differ by up to 2 ulp */
+  snprintf(what, sizeof what, "   max error of sin, ulp against sinl (%d-bit long double)", LDBL_MANT_DIG);
+  if (LDBL_MANT_DIG >= 64) CHECK_CLOSE(what, e->ref_s, 0.0, 0, 1.0);
+  snprintf(what, sizeof what, "   max error of cos, ulp against cosl (%d-bit long double)", LDBL_MANT_DIG);
+  if (LDBL_MANT_DIG >= 64) CHECK_CLOSE(what, e->ref_c, 0.0, 0, 1.0);
+  CHECK_CLOSE("   max |sin - libm sin|, ulp", e->libm_s, 0.0, 0, 2.0);
+  CHECK_CLOSE("   max |cos - libm cos|, ulp", e->libm_c, 0.0, 0, 2.0);
+  CHECK("   array = scalar autobal_sincos1 bit for bit; sin odd, cos even bit for bit",
+        !e->bit_mismatch);
+}
+
+static void test_sincos_kernel(void) {
+  /* ranges of |x| (random signs); the last ones reach the fast path's bound 2^21 */
+  static const double lo[7] = {0.0, 0.78, 1.0, 10.0, 1e3, 1e5, 0x1p21 - 1024.0};
+  static const double hi[7] = {0.78, 1.0, 10.0, 1e3, 1e5, 0x1p21, 0x1p21};
+  /* the k with the closest approach of a double to k pi/2 in the binades 2^5 .. 2^21
+   * (continued fractions of 2^(52-e) pi/2; |x - k pi/2| >= 6.2e-19 at k = 29), and small k */
+  static const double khard[] = {1, 2, 3, 4, 5, 29, 58, 116, 232, 464, 928, 1856, 3712, 7424,
+                                 29327, 204551, 409102, 1081409, 1335088};
+  static double xs[4096];
+  const long double pio2 = 1.570796326794896619231321691639751442L;
+  sincos_err e;
+  size_t r, i, n;
+  printf("-- branch-free sin/cos (fastmath.h) against libm and long double\n");
+  memset(&e, 0, sizeof e);
+  for (r = 0; r < 7; r++) {
+    size_t rep;
+    for (rep = 0; rep < (r == 6 ? 4u : 20u); rep++) {
+      for (i = 0; i < 4096; i++) {
+        const double a = urand(lo[r], hi[r]);
+        xs[i] = (i & 1u) ? -a : a;
+      }
+      sincos_accumulate(xs, 4096, &e);
+    }
+  }
+  sincos_report("random arguments, |x| in [0, 2^21] (7 ranges)", &e);
+  CHECK_CLOSE("   fallbacks to libm reported", (double)e.nbad, 0.0, 0, 0);
+  /* next to multiples of pi/2: the nearest double to k pi/2 and 3 neighbours each side,
+   * for the hard k and for 1000 more k spread up to 2^21 2/pi */
+  memset(&e, 0, sizeof e);
+  n = 0;
+  for (i = 0; i < sizeof khard / sizeof khard[0] + 1000; i++) {
+    const double k = i < sizeof khard / sizeof khard[0] ? khard[i] : floor(urand(1.0, 1335088.0));
+    double x0 = (double)(k * pio2);
+    int j;
+    for (j = 0; j < 3; j++) x0 = nextafter(x0, 0.0);
+    for (j = 0; j < 7; j++, x0 = nextafter(x0, INFINITY)) xs[n++] = (i & 1u) ? -x0 : x0;
+    if (n + 7 > 4096) {
+      sincos_accumulate(xs, n, &e);
+      n = 0;
+    }
+  }
+  sincos_accumulate(xs, n, &e);
+  sincos_report("next to k pi/2 (sin or cos down to 6e-19)", &e);
+  /* signed zeros, subnormals: sin x = x exactly, cos x = 1 */
+  {
+    static const double z[6] = {0.0, -0.0, DBL_TRUE_MIN, -DBL_TRUE_MIN, 1e-310, -1e-300};
+    double s[6], c[6];
+    int ok = 1;
+    (void)autobal_sincos_array(z, s, c, 6);
+    for (i = 0; i < 6; i++) ok = ok && s[i] == z[i] && c[i] == 1.0;
+    CHECK("+-0, subnormals, 1e-300: sin x = x, cos x = 1", ok);
+    CHECK("sin(+0) = +0, sin(-0) = -0 (sign bits)", !signbit(s[0]) && signbit(s[1]));
+  }
+  /* the bound: 2^21 itself is on the fast path; above it, NaN and inf go to libm */
+  {
+    static double xb[11];
+    double s[11], c[11];
+    size_t nb;
+    int same = 1, nan_ok;
+    xb[0] = 0x1p21;
+    xb[1] = -0x1p21;
+    xb[2] = nextafter(0x1p21, INFINITY);
+    xb[3] = -nextafter(0x1p21, INFINITY);
+    xb[4] = 3.0e6;
+    xb[5] = 1.0e10;
+    xb[6] = -1.0e22;
+    xb[7] = DBL_MAX;
+    xb[8] = NAN;
+    xb[9] = INFINITY;
+    xb[10] = -INFINITY;
+    nb = autobal_sincos_array(xb, s, c, 11);
+    CHECK_CLOSE("above 2^21 and non-finite: elements sent to libm", (double)nb, 9.0, 0, 0);
+    CHECK("   +-2^21 (fast path) within 1 ulp of sinl, cosl",
+          ulp_err(s[0], sinl(0x1p21L)) <= 1.0 && ulp_err(c[0], cosl(0x1p21L)) <= 1.0 &&
+              s[1] == -s[0] && c[1] == c[0]);
+    for (i = 2; i < 8; i++) same = same && s[i] == sin(xb[i]) && c[i] == cos(xb[i]);
+    CHECK("   |x| > 2^21: libm's sin and cos exactly", same);
+    nan_ok = isnan(s[8]) && isnan(c[8]) && isnan(s[9]) && isnan(c[9]) && isnan(s[10]) && isnan(c[10]);
+    CHECK("   NaN and +-inf give NaN", nan_ok);
+    /* the same through the scalar entry point */
+    {
+      double s1, c1;
+      autobal_sincos1(xb[4], &s1, &c1);
+      same = s1 == sin(xb[4]) && c1 == cos(xb[4]);
+      autobal_sincos1(NAN, &s1, &c1);
+      CHECK("   autobal_sincos1: libm above 2^21, NaN for NaN", same && isnan(s1) && isnan(c1));
+    }
+  }
+  /* an independent identity: sin^2 + cos^2 = 1 (a few ulp of 1) */
+  {
+    double worst = 0.0, s, c;
+    for (i = 0; i < 20000; i++) {
+      autobal_sincos1(urand(-0x1p21, 0x1p21), &s, &c);
+      worst = fmax(worst, fabs(s * s + c * c - 1.0));
+    }
+    CHECK_CLOSE("max |sin^2 + cos^2 - 1| over |x| <= 2^21", worst, 0.0, 0, 4.5e-16);
+  }
+}
+
+/* The right-hand sides with ball angles (and omega t) near and beyond the fast
+ * path's bound 2^21 rad (and mixed), against the direct (4+N) LU solve, which
+ * uses libm: max |difference| / max |component| over q'' and over phi''. */
+static double rhs_vs_direct_at(autobal_rotor *R, double t, const double *y, int *ok) {
+  double f[MAXDIM], qdd[4], phidd[MAXDIM], sq = 0.0, sp = 0.0, dq = 0.0, dp = 0.0;
+  const size_t N = autobal_rotor_n_balls_total(R);
+  size_t k;
+  if (autobal_rotor_rhs(t, y, f, R) != 0 || direct_solve(R, t, y, qdd, phidd) != 0) {
+    *ok = 0;
+    return INFINITY;
+  }
+  for (k = 0; k < 4; k++) {
+    sq = fmax(sq, fabs(qdd[k]));
+    dq = fmax(dq, fabs(f[4 + k] - qdd[k]));
+  }
+  for (k = 0; k < N; k++) {
+    sp = fmax(sp, fabs(phidd[k]));
+    dp = fmax(dp, fabs(f[8 + N + k] - phidd[k]));
+    if (f[8 + k] != y[8 + N + k]) *ok = 0;
+  }
+  return N > 0 ? fmax(dq / sq, dp / sp) : dq / sq;
+}
+
+static void test_rhs_large_angles(void) {
+  autobal_rotor_params ps[2];
+  int c, s;
+  printf("-- right-hand side with ball angles near and beyond 2^21 rad (libm fallback)\n");
+  ps[0] = autobal_rotor_params_default();
+  ps[1] = two_plane_params();
+  for (c = 0; c < 2; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&ps[c], NULL);
+    const size_t N = R ? autobal_rotor_n_balls_total(R) : 0;
+    double y[MAXDIM], worst[4] = {0.0, 0.0, 0.0, 0.0};
+    int ok = 1, kind;
+    size_t k;
+    CHECK(c == 0 ? "default model" : "two planes", R != NULL);
+    if (R == NULL) continue;
+    for (kind = 0; kind < 4; kind++) {
+      for (s = 0; s < 10; s++) {
+        /* kind 0: all balls just below 2^21 (fast path), 1: all above (libm), 2: mixed,
+         * 3 (default model, psi0 = 0): also omega t above 2^21 (t = 4200 s, omega t =
+         * 2.1e6 rad exactly) */
+        const double t = kind == 3 && c == 0 ? 4200.0 : urand(0, 3);
+        random_state(R, y);
+        for (k = 0; k < N; k++) {
+          const int above = kind == 1 || ((kind == 2 || kind == 3) && (k + (size_t)s) % 2 == 1);
+          y[8 + k] += above ? 0x1p21 + 40.0 : 0x1p21 - 40.0;
+          if (kind == 1 && k == 0) y[8 + k] = -3.0e7 + y[8 + k]; /* far above, negative */
+        }
+        worst[kind] = fmax(worst[kind], rhs_vs_direct_at(R, t, y, &ok));
+      }
+    }
+    CHECK("   rhs and direct solve ran; angle rows are copies of the rates", ok);
+    CHECK_CLOSE("   balls at 2^21 - 40 rad (fast path): max relative |rhs - direct LU|", worst[0], 0.0, 0, 1e-10);
+    CHECK_CLOSE("   balls at 2^21 + 40 rad and -3e7 rad (libm): max relative |rhs - direct LU|", worst[1],
+                0.0, 0, 1e-10);
+    CHECK_CLOSE("   mixed below/above 2^21: max relative |rhs - direct LU|", worst[2], 0.0, 0, 1e-10);
+    if (c == 0)
+      CHECK_CLOSE("   mixed, and omega t = 2.1e6 rad > 2^21: max relative |rhs - direct LU|", worst[3],
+                  0.0, 0, 1e-10);
+    autobal_rotor_free(R);
+  }
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_defaults();
   test_natural_frequencies();
+  test_sincos_kernel();
   test_direct_solve();
+  test_rhs_large_angles();
   test_one_plane_closed_form();
   test_frames_instantaneous();
   test_frames_transient();
