@@ -33,4 +33,11 @@ int autobal_check_param(autobal_error *err, const char *name, double value, doub
 int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im);
 int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im);
 
+/* autobal_poly_hurwitz_err without its quick stage (src/poly.c): the full
+ * Routh test with one running error bound per entry, same arguments, checks,
+ * messages and results.  For tests (reference of the quick stage) and for
+ * the fall-back of autobal_pendulum_verdict after its own quick stage. */
+int autobal_poly_hurwitz_err_full(const double *c, const double *cerr, size_t len, int *verdict,
+                                  int *n_rhp, autobal_error *err);
+
 #endif

@@ -157,6 +157,101 @@ int main(void) {
     CHECK("... on most of them (robustly decided)", robust > 19000);
   }
 
+  printf("-- autobal_pendulum_verdict (scalar coefficients + quick Routh stage) vs the lanes path\n");
+  {
+    /* reference: autobal_pendulum_analyze, whose sign test runs on the lanes
+     * form of (6) (char_poly_k) through the map's two-stage kernel and the
+     * full test (the path autobal_pendulum_verdict took before); the verdict
+     * and the count of right-half-plane roots must agree everywhere, also at
+     * points within a few ulps of a stability boundary (where the quick
+     * stage declines and the full test decides) */
+    autobal_pendulum_workspace *ws = autobal_pendulum_workspace_alloc();
+    unsigned long long st = 0x2545F4914F6CDD1DULL;
+    int i, nbad = 0, bad_map = 0, nb = 0, nbm = 0, nstab = 0, nunst = 0, nmarg = 0;
+#define U01() (st ^= st << 13, st ^= st >> 7, st ^= st << 17, \
+               (double)(st >> 11) * (1.0 / 9007199254740992.0))
+    for (i = 0; i < 12000; i++) {
+      autobal_pendulum_params p;
+      autobal_pendulum_result r;
+      double Rw = i % 10 == 0 ? pow(10.0, 1.0 + 2.5 * U01()) : 6.0 * U01();
+      double Rm = 0.001 + 0.498 * U01(), H = i % 7 == 0 ? 0.0 : 0.5 * U01();
+      double h = i % 5 == 0 ? 0.0 : 0.5 * U01();
+      double k = i % 10 == 1 ? 0.0 : i % 20 == 3 ? 1.0 : U01();
+      int v = -9, nr = -9, s1, s2;
+      autobal_pendulum_params_from_k(Rw, Rm, H, h, k, &p, NULL);
+      s1 = autobal_pendulum_verdict(&p, &v, &nr, NULL);
+      s2 = autobal_pendulum_analyze(ws, &p, &r);
+      if (s1 != s2 || (s1 == 0 && (v != r.verdict || nr != r.n_rhp))) nbad++;
+      nstab += v == AUTOBAL_VERDICT_STABLE, nunst += v == AUTOBAL_VERDICT_UNSTABLE;
+      nmarg += v == AUTOBAL_VERDICT_MARGINAL;
+      if (i % 4 == 0) { /* and the one-point map (its own lanes kernel) */
+        autobal_pendulum_map_spec sp;
+        signed char vm = 9;
+        memset(&sp, 0, sizeof sp);
+        sp.R_m = &Rm, sp.n_Rm = 1, sp.R_w = &Rw, sp.n_Rw = 1, sp.H = H, sp.h = h, sp.k = &k,
+        sp.n_k = 1, sp.n_threads = 1;
+        if (H == 0.0 && h == 0.0) continue; /* the map's undamped criterion: another test */
+        if (autobal_pendulum_map(&sp, &vm, NULL, NULL) != 0 || vm != v) bad_map++;
+      }
+    }
+    printf("   (12000 random points: %d stable, %d unstable, %d marginal)\n", nstab, nunst, nmarg);
+    CHECK("12000 random points (k = 0, 1, H = 0, h = 0, R_w up to 3000): verdict, n_rhp == analyze",
+          nbad == 0);
+    nbad = 0;
+    CHECK("... all three verdicts occur", nstab > 1000 && nunst > 1000 && nmarg > 100);
+    CHECK("... 1-point maps (damped; the map's own lanes kernel) == verdict", bad_map == 0);
+    /* boundary points: along lines in R_w, the verdict changes are bracketed
+     * to adjacent doubles; the points and 3 ulps either side */
+    for (i = 0; i < 60; i++) {
+      double Rm = 0.01 + 0.48 * U01(), H = i % 6 == 0 ? 0.0 : 0.3 * U01(), h = 0.02 + 0.3 * U01();
+      double k = i % 5 == 0 ? 0.0 : U01(), prev = 0.05;
+      int j, vprev = -9;
+      for (j = 0; j <= 96; j++) {
+        double Rw = 0.05 + 6.0 * j / 96.0;
+        autobal_pendulum_params p;
+        int v;
+        autobal_pendulum_params_from_k(Rw, Rm, H, h, k, &p, NULL);
+        autobal_pendulum_verdict(&p, &v, NULL, NULL);
+        if (j > 0 && v != vprev) {
+          /* every change between prev and Rw (e.g. unstable -> marginal ->
+           * stable: both edges of the marginal band) */
+          double a = prev;
+          int va = vprev, guard;
+          for (guard = 0; va != v && guard < 4; guard++) {
+            double lo = a, hi = Rw, x;
+            int m, d, vh = v;
+            for (m = 0; m < 80 && nextafter(lo, hi) < hi; m++) {
+              double mid = 0.5 * (lo + hi);
+              int vm;
+              autobal_pendulum_params_from_k(mid, Rm, H, h, k, &p, NULL);
+              autobal_pendulum_verdict(&p, &vm, NULL, NULL);
+              if (vm == va) lo = mid;
+              else hi = mid, vh = vm;
+            }
+            for (x = lo, d = 0; d < 3; d++) x = nextafter(x, 0.0);
+            for (d = 0; d < 8; d++, x = nextafter(x, INFINITY)) {
+              autobal_pendulum_result r;
+              int vv, nr;
+              autobal_pendulum_params_from_k(x, Rm, H, h, k, &p, NULL);
+              autobal_pendulum_verdict(&p, &vv, &nr, NULL);
+              autobal_pendulum_analyze(ws, &p, &r);
+              nb++;
+              nbm += r.verdict == AUTOBAL_VERDICT_MARGINAL;
+              if (vv != r.verdict || nr != r.n_rhp) nbad++;
+            }
+            a = hi, va = vh; /* continue right of this change */
+          }
+        }
+        vprev = v, prev = Rw;
+      }
+    }
+#undef U01
+    printf("   (%d points at changes of the verdict, %d of them marginal)\n", nb, nbm);
+    CHECK("points within 3 ulps of stability boundaries: verdict, n_rhp == analyze", nbad == 0);
+    CHECK("... many boundary points, both edges of marginal bands", nb > 200 && nbm > 50 && nbm < nb - 50);
+    autobal_pendulum_workspace_free(ws);
+  }
+
   printf("-- errors\n");
   {
     double rm = 0.1, rw[5] = {1.0, 2.0, 3.0, 1e80, 4.0}, k = 0.5;
@@ -176,6 +271,48 @@ int main(void) {
     CHECK_STATUS("verdict: R_w = 1e80 is reported", autobal_pendulum_verdict(&p, &vv, NULL, &err),
                  AUTOBAL_EINVAL);
     CHECK_MSG("... naming the coefficient that is not finite", err.message, "not finite");
+  }
+  {
+    /* autobal_pendulum_verdict validates with one combined test and leaves
+     * the messages to autobal_pendulum_params_validate: every bad field is
+     * reported with the same status and message, the edges are accepted */
+    static const struct {
+      int field;
+      double value;
+      const char *name;
+    } cases[] = {{0, -1.0, "R_w"}, {0, NAN, "R_w"},      {0, INFINITY, "R_w"}, {1, 0.0, "R_m"},
+               {1, 0.5, "R_m"},  {1, NAN, "R_m"},      {1, -0.1, "R_m"},     {2, -1e-300, "H"},
+               {2, INFINITY, "H"}, {3, NAN, "h"},      {3, -1.0, "h"},       {4, -0.1, "psi0"},
+               {4, 1.5707963267948966, "psi0"}, {4, NAN, "psi0"}, {4, INFINITY, "psi0"}};
+    autobal_pendulum_params p0 = {1.0, 0.1, 0.05, 0.1, 0.3}, p;
+    autobal_error e1, e2;
+    size_t i;
+    int v, alike = 1, named = 1, st1, st2;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+      double *f[5];
+      p = p0;
+      f[0] = &p.R_w, f[1] = &p.R_m, f[2] = &p.H, f[3] = &p.h, f[4] = &p.psi0;
+      *f[cases[i].field] = cases[i].value;
+      st1 = autobal_pendulum_verdict(&p, &v, NULL, &e1);
+      st2 = autobal_pendulum_params_validate(&p, &e2);
+      if (st1 != AUTOBAL_EINVAL || st2 != AUTOBAL_EINVAL || strcmp(e1.message, e2.message) != 0)
+        alike = 0;
+      if (strstr(e1.message, cases[i].name) == NULL) named = 0;
+    }
+    CHECK("verdict: 15 bad fields (NaN, inf, out of range) -> EINVAL, validate's message", alike);
+    CHECK("... each message names the field", named);
+    CHECK_STATUS("verdict: NULL parameters", autobal_pendulum_verdict(NULL, &v, NULL, &e1),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("... message", e1.message, "NULL pointer");
+    CHECK_STATUS("verdict: NULL verdict", autobal_pendulum_verdict(&p0, NULL, NULL, &e1),
+                 AUTOBAL_EINVAL);
+    CHECK_MSG("... message", e1.message, "verdict: NULL output");
+    p = p0, p.R_w = 0.0, p.H = 0.0, p.psi0 = 0.0;
+    CHECK_STATUS("verdict: R_w = 0, H = 0, psi0 = 0 (edges) accepted",
+                 autobal_pendulum_verdict(&p, &v, NULL, &e1), AUTOBAL_SUCCESS);
+    p = p0, p.h = 0.0, p.R_m = 0.49999999999999994;
+    CHECK_STATUS("verdict: h = 0, R_m = 0.5 - 2^-54 accepted",
+                 autobal_pendulum_verdict(&p, &v, NULL, &e1), AUTOBAL_SUCCESS);
   }
   return check_summary();
 }

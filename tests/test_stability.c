@@ -564,6 +564,176 @@ static void test_hurwitz(void) {
   }
 }
 
+/* ---- the quick stage of the Routh test against the full test ------------ */
+/* The generated quick stage itself (src/routh_quick.inc), to count how often
+ * it decides and to check every decision directly. */
+#include <stdint.h>
+#define AUTOBAL_RQ_INLINE inline
+#include "routh_quick.inc"
+
+static int quick_n(size_t n, const double *c, const double *ce, double rtol, double eps0, int rel,
+                   int *ch) {
+  switch (n) {
+    case 3: return autobal_routh_quick_3(c, ce, NULL, rtol, eps0, rel, ch);
+    case 4: return autobal_routh_quick_4(c, ce, NULL, rtol, eps0, rel, ch);
+    case 5: return autobal_routh_quick_5(c, ce, NULL, rtol, eps0, rel, ch);
+    case 6: return autobal_routh_quick_6(c, ce, NULL, rtol, eps0, rel, ch);
+    case 7: return autobal_routh_quick_7(c, ce, NULL, rtol, eps0, rel, ch);
+    case 8: return autobal_routh_quick_8(c, ce, NULL, rtol, eps0, rel, ch);
+    case 9: return autobal_routh_quick_9(c, ce, NULL, rtol, eps0, rel, ch);
+    case 10: return autobal_routh_quick_10(c, ce, NULL, rtol, eps0, rel, ch);
+    case 11: return autobal_routh_quick_11(c, ce, NULL, rtol, eps0, rel, ch);
+    case 12: return autobal_routh_quick_12(c, ce, NULL, rtol, eps0, rel, ch);
+    default: return 0;
+  }
+}
+
+static double logrand(double lo, double hi) { return pow(10.0, lo + (hi - lo) * urand()); }
+
+/* A random test polynomial of degree n (1..12) in c[0..n], of one of seven
+ * kinds: 0 random roots (real parts in [-2, 1] s, so some unstable), 1 the
+ * same with one root or pair within 1e-17..1e-6 s of the imaginary axis, on
+ * either side, 2 random coefficients of mixed sizes with some zeros, 3 kind
+ * 0 scaled by 10^(-300..300) (overflow/underflow of the bounds), 4 a pair
+ * exactly on the axis or c[0] = 0 (marginal), 5 roots of very different
+ * sizes (10^-4..10^4), 6 every pair near the axis.  Root scale s =
+ * 10^(-3..3); leading coefficient of either sign.  Returns 0 when the
+ * coefficients overflowed (skip). */
+static int random_poly(size_t n, int kind, double *c) {
+  double rr[12], pr[6], pim[6], s = logrand(-3, 3), lead = (0.5 + urand()) * (urand() < 0.3 ? -1 : 1);
+  size_t np = (size_t)(urand() * (double)(n / 2 + 1)), nr, i, len;
+  if (np > n / 2) np = n / 2;
+  nr = n - 2 * np;
+  if (kind == 2) {
+    for (i = 0; i <= n; i++) c[i] = (urand() < 0.1 && i < n) ? 0.0 : (2 * urand() - 1) * logrand(-2, 2);
+    if (c[n] == 0.0) c[n] = lead;
+    return 1;
+  }
+  for (i = 0; i < nr; i++) rr[i] = (urand() * 3.0 - 2.0) * s * (kind == 5 ? logrand(-4, 4) : 1.0);
+  for (i = 0; i < np; i++) {
+    double sc = kind == 5 ? logrand(-4, 4) : 1.0;
+    pr[i] = (urand() * 3.0 - 2.0) * s * sc;
+    pim[i] = (urand() * 3.0 + 0.1) * s * sc;
+  }
+  if (kind == 1) {
+    double d = logrand(-17, -6) * (urand() < 0.5 ? -1 : 1);
+    if (np > 0) pr[0] = d * pim[0];
+    else rr[0] = d * s;
+  }
+  if (kind == 6) /* every pair near the axis: near-zero entries in early rows too */
+    for (i = 0; i < np; i++) pr[i] = logrand(-17, -6) * (urand() < 0.5 ? -1 : 1) * pim[i];
+  if (kind == 4) {
+    if (np > 0) pr[0] = 0.0;
+    else rr[0] = 0.0;
+  }
+  len = poly_from_roots(rr, nr, pr, pim, np, lead, c);
+  if (len != n + 1) return 0;
+  if (kind == 3) {
+    double f = logrand(-300, 300);
+    for (i = 0; i <= n; i++) c[i] *= f;
+  }
+  for (i = 0; i <= n; i++)
+    if (!isfinite(c[i])) return 0;
+  return 1;
+}
+
+static void test_hurwitz_quick(void) {
+  const int ntrial = 140000;
+  int t, mism_err = 0, mism_rtol = 0, wrong_quick = 0, wrong_rel = 0, n_quick = 0, n_decl = 0;
+  int n_marg = 0, n_cases = 0, n_near_quick = 0, n_near = 0, bad_input_pass = 0, n_elig = 0;
+  printf("-- Routh test: quick stage + full test == full test alone\n");
+  for (t = 0; t < ntrial; t++) {
+    size_t n = (size_t)(t % 12) + 1, i;
+    int kind = (t / 12) % 7, mode = (t / 84) % 4;
+    double c[13], ce[13], rtol = logrand(-16, -6), sc = 0.0, se = 0.0, eps0;
+    const double *cep = ce;
+    int v1, v2, r1 = -7, r2 = -7, s1, s2, ch, q;
+    autobal_error e1, e2;
+    if (!random_poly(n, kind, c)) continue;
+    n_cases++;
+    /* the bounds: none, relative, per-coefficient relative + absolute, zero */
+    for (i = 0; i <= n; i++) {
+      if (mode == 1) ce[i] = rtol * fabs(c[i]);
+      else if (mode == 2)
+        ce[i] = fabs(c[i]) * logrand(-16, -8) + (urand() < 0.2 ? logrand(-20, -5) : 0.0);
+      else ce[i] = 0.0;
+      if (!isfinite(ce[i])) ce[i] = 0.0;
+    }
+    if (mode == 0) cep = NULL;
+    /* public test (quick stage + full) vs the full test alone */
+    s1 = autobal_poly_hurwitz_err(c, cep, n + 1, &v1, &r1, &e1);
+    s2 = autobal_poly_hurwitz_err_full(c, cep, n + 1, &v2, &r2, &e2);
+    if (s1 != s2 || v1 != v2 || r1 != r2) mism_err++;
+    if (s2 == AUTOBAL_SUCCESS && v2 == AUTOBAL_VERDICT_MARGINAL) n_marg++;
+    if (mode == 1) { /* autobal_poly_hurwitz with rtol: the same as its bounds made explicit */
+      s1 = autobal_poly_hurwitz(c, n + 1, rtol, &v1, &r1, &e1);
+      if (s1 != s2 || v1 != v2 || r1 != r2) mism_rtol++;
+    }
+    if (n < 3 || s2 != AUTOBAL_SUCCESS) continue;
+    /* the quick stage directly: a pass must be the full test's decision; any
+     * eps0 > 0 is valid (the one of autobal_poly_hurwitz_err, and random) */
+    n_elig++;
+    for (i = 0; i <= n; i++) sc += fabs(c[i]), se += ce[i];
+    eps0 = DBL_EPSILON + se / sc;
+    q = quick_n(n, c, ce, 0.0, urand() < 0.8 ? eps0 : logrand(-16, -2), 0, &ch);
+    if (kind == 1 || kind == 6) n_near++;
+    if (q) {
+      int vq = ch == 0 ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
+      n_quick++;
+      if (kind == 1 || kind == 6) n_near_quick++;
+      if (vq != v2 || ch != r2) wrong_quick++;
+    } else n_decl++;
+    if (mode == 1 && quick_n(n, c, NULL, rtol, DBL_EPSILON + rtol, 1, &ch)) { /* rel mode */
+      int vq = ch == 0 ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
+      if (vq != v2 || ch != r2) wrong_rel++;
+    }
+  }
+  printf("   (%d polynomials; full test marginal on %d; quick stage decided %d, declined %d; "
+         "near the axis: %d of %d decided by it)\n",
+         n_cases, n_marg, n_quick, n_decl, n_near_quick, n_near);
+  CHECK("quick + full == full: status, verdict, n_rhp (hurwitz_err, bounds none/rel/mixed/0)",
+        mism_err == 0);
+  CHECK("autobal_poly_hurwitz (rtol, rel mode) == full test with cerr = rtol |c|", mism_rtol == 0);
+  CHECK("every quick decision (gen mode, any eps0) == the full test's verdict and count",
+        wrong_quick == 0);
+  CHECK("every quick decision (rel mode) == the full test's verdict and count", wrong_rel == 0);
+  CHECK("coverage: >= 1e5 polynomials", n_cases >= 100000);
+  CHECK("coverage: the quick stage decides > 40% of degrees 3..12, declines some",
+        n_quick > n_elig / 5 * 2 && n_decl > 1000);
+  CHECK("coverage: marginal cases occur", n_marg > 1000);
+  CHECK("coverage: near-axis cases both decided and declined",
+        n_near_quick > n_near / 10 && n_near_quick < n_near);
+  /* the quick stage declines bad input (the full test then reports it) */
+  {
+    double c[9] = {1, 8, 28, 56, 70, 56, 28, 8, 1}, ce[9] = {0}; /* (x+1)^8: stable */
+    int ch;
+    CHECK("quick: (x+1)^8 decided stable", quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch) && ch == 0);
+    c[3] = NAN;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    c[3] = INFINITY;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    c[3] = 56, ce[5] = -1e-300;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    ce[5] = NAN;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    ce[5] = INFINITY;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    ce[5] = 0.0, c[8] = 0.0;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    c[8] = 1.0, c[0] = 0.0;
+    bad_input_pass += quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch);
+    CHECK("quick: declines NaN, inf, negative/NaN/inf bound, zero c[n], zero c[0]",
+          bad_input_pass == 0);
+    {
+      int vf, rf;
+      c[0] = 1e-320; /* subnormal: the copies of c[0] carry the full test's own bound */
+      autobal_poly_hurwitz_err_full(c, ce, 9, &vf, &rf, NULL);
+      CHECK("quick: subnormal c[0]: decided as the full test",
+            quick_n(8, c, ce, 0.0, DBL_EPSILON, 0, &ch) && vf == AUTOBAL_VERDICT_STABLE && ch == rf);
+    }
+  }
+}
+
 static void test_sturm(void) {
   double c[AUTOBAL_POLY_MAXLEN], re[32], im[32];
   double r[3] = {1, 2, 3}, pr[1] = {0.5}, pim[1] = {1};
@@ -661,6 +831,7 @@ int main(void) {
   test_roots_methods();
   test_matching();
   test_hurwitz();
+  test_hurwitz_quick();
   test_sturm();
   test_brent();
   return check_summary();
