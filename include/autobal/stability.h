@@ -211,7 +211,10 @@ AUTOBAL_API int autobal_match_roots(size_t n, const double *a_re, const double *
  *             counted over the decided entries (a lower bound).
  * A tolerance rtol between 1e-14 and 1e-10 is sensible; AUTOBAL_EINVAL for
  * rtol < 0 or not finite, bad length, zero leading coefficient, NaN.
- * Cost O(len^2), no allocation. */
+ * Cost O(len^2), no allocation.  For degrees 3..12 a cheaper first stage
+ * (the same first-column values, one coarser bound per row) decides when
+ * every entry is far from zero, which gives the same verdict and count as
+ * the full test; otherwise the full test runs (about 27 ns at degree 8). */
 AUTOBAL_API int autobal_poly_hurwitz(const double *c, size_t len, double rtol, int *verdict,
                                      int *n_rhp, autobal_error *err);
 
