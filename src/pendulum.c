@@ -649,6 +649,22 @@ typedef struct {
   double A[9], Aa[9], B[9];
 } char_parts_s;
 
+/* |x(lambda)|^2 + |y(lambda)|^2 coefficients for x = x4 l^4 + x3 l^3 + x2 l^2 +
+ * x1 l + x0, y = y3 l^3 + y2 l^2 + y1 l (the products of char_parts_v, in
+ * its order) */
+static MAP_INLINE void abs2_coefs(double x4, double x3, double x2, double x1, double x0, double y3,
+                                  double y2, double y1, double *A) {
+  A[8] = x4 * x4;
+  A[7] = 2.0 * (x4 * x3);
+  A[6] = 2.0 * (x4 * x2) + (x3 * x3 + y3 * y3);
+  A[5] = 2.0 * (x4 * x1 + x3 * x2 + y3 * y2);
+  A[4] = 2.0 * (x4 * x0 + x3 * x1 + y3 * y1) + (x2 * x2 + y2 * y2);
+  A[3] = 2.0 * (x3 * x0 + x2 * x1 + y2 * y1);
+  A[2] = 2.0 * (x2 * x0) + (x1 * x1 + y1 * y1);
+  A[1] = 2.0 * (x1 * x0);
+  A[0] = x0 * x0;
+}
+
 /* the parts that do not depend on k */
 static MAP_INLINE void char_parts_scalar(double R_w, double R_m, double H, double h,
                                          char_parts_s *P) {
@@ -658,26 +674,11 @@ static MAP_INLINE void char_parts_scalar(double R_w, double R_m, double H, doubl
   const double x1 = h * (1.0 - W), y1 = R_w * (h * H + 4.0 * R_m * W);
   const double x0 = -R_m * W * W;
   const double xa2 = 1.0 + W + h * H + 6.0 * R_m * W, xa1 = h * (1.0 + W), xa0 = R_m * W * W;
-  const double x4 = 1.0 - R_m, x3 = H + h, a8 = x4 * x4, a7 = 2.0 * (x4 * x3);
-  double *A = P->A, *Aa = P->Aa, *B = P->B;
-  A[8] = a8;
-  A[7] = a7;
-  A[6] = 2.0 * (x4 * x2) + (x3 * x3 + y3 * y3);
-  A[5] = 2.0 * (x4 * x1 + x3 * x2 + y3 * y2);
-  A[4] = 2.0 * (x4 * x0 + x3 * x1 + y3 * y1) + (x2 * x2 + y2 * y2);
-  A[3] = 2.0 * (x3 * x0 + x2 * x1 + y2 * y1);
-  A[2] = 2.0 * (x2 * x0) + (x1 * x1 + y1 * y1);
-  A[1] = 2.0 * (x1 * x0);
-  A[0] = x0 * x0;
-  Aa[8] = a8;
-  Aa[7] = a7;
-  Aa[6] = 2.0 * (x4 * xa2) + (x3 * x3 + y3 * y3);
-  Aa[5] = 2.0 * (x4 * xa1 + x3 * xa2 + y3 * y2);
-  Aa[4] = 2.0 * (x4 * xa0 + x3 * xa1 + y3 * y1) + (xa2 * xa2 + y2 * y2);
-  Aa[3] = 2.0 * (x3 * xa0 + xa2 * xa1 + y2 * y1);
-  Aa[2] = 2.0 * (xa2 * xa0) + (xa1 * xa1 + y1 * y1);
-  Aa[1] = 2.0 * (xa1 * xa0);
-  Aa[0] = x0 * x0;
+  const double x4 = 1.0 - R_m, x3 = H + h;
+  double *B = P->B;
+  /* Aa[0] = xa0^2 = x0^2 bitwise (xa0 = -x0 exactly) */
+  abs2_coefs(x4, x3, x2, x1, x0, y3, y2, y1, P->A);
+  abs2_coefs(x4, x3, xa2, xa1, xa0, y3, y2, y1, P->Aa);
   B[8] = 1.0;
   B[6] = 4.0 * W;
   B[4] = 6.0 * W * W;
