@@ -221,6 +221,24 @@ static int rhs_fail(autobal_rotor *R, double t, const char *which) {
   return GSL_EBADFUNC;
 }
 
+/* The rows both right-hand sides share: q' = qd, q'' from the solve, the
+ * balls' angle rates (y[8 + N + k]) and the axial equation (2.12). */
+static void rhs_common_rows(const autobal_rotor *R, const double y[], const double qdd[4],
+                            double dydt[]) {
+  const size_t N = R->N;
+  size_t k;
+  for (k = 0; k < 4; k++) {
+    dydt[k] = y[4 + k];
+    dydt[4 + k] = qdd[k];
+  }
+  for (k = 0; k < N; k++) dydt[8 + k] = y[8 + N + k];
+  if (R->p.axial) { /* eq. (2.12) */
+    const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
+    dydt[8 + 2 * N] = zd;
+    dydt[9 + 2 * N] = -(R->L.h_z * zd + R->L.c_z * z) / R->L.M;
+  }
+}
+
 /* ---- right-hand sides ------------------------------------------------------ */
 
 /* Both right-hand sides make three passes over the balls: (1) sin and cos of
@@ -236,7 +254,7 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
-  plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES];
+  plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
   double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw;
   size_t j, k;
 
@@ -275,21 +293,12 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   }
   if (solve_accelerations(R, cp, b, qdd, uvdd) != 0) return rhs_fail(R, t, "fixed-frame");
 
-  for (k = 0; k < 4; k++) {
-    dydt[k] = qd[k];
-    dydt[4 + k] = qdd[k];
-  }
-  for (k = 0; k < N; k++) dydt[8 + k] = phid[k];
+  rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
     const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) /* eq. (3.4) solved for phi_i'' */
       dydt[8 + N + k] = (uDdd * sn[k] - vDdd * cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
-  }
-  if (R->p.axial) { /* eq. (2.12) */
-    const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
-    dydt[8 + 2 * N] = zd;
-    dydt[9 + 2 * N] = -(R->L.h_z * zd + R->L.c_z * z) / R->L.M;
   }
   return GSL_SUCCESS;
 }
@@ -300,7 +309,7 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
-  plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES];
+  plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
   double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw;
   size_t j, k;
 
@@ -348,11 +357,7 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   }
   if (solve_accelerations(R, cp, b, qdd, uvdd) != 0) return rhs_fail(R, t, "rotating-frame");
 
-  for (k = 0; k < 4; k++) {
-    dydt[k] = qd[k];
-    dydt[4 + k] = qdd[k];
-  }
-  for (k = 0; k < N; k++) dydt[8 + k] = psid[k];
+  rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
     const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
     /* acceleration of D on the rotor axes (spec, after (3.13)) */
@@ -360,11 +365,6 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) /* eq. (3.13) divided by m r^2 */
       dydt[8 + N + k] = (axi * sn[k] - aeta * cs[k]) / R->r[k] - R->kappa[k] * psid[k];
-  }
-  if (R->p.axial) { /* eq. (2.12) */
-    const double z = y[8 + 2 * N], zd = y[9 + 2 * N];
-    dydt[8 + 2 * N] = zd;
-    dydt[9 + 2 * N] = -(R->L.h_z * zd + R->L.c_z * z) / R->L.M;
   }
   return GSL_SUCCESS;
 }
