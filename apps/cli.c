@@ -15,6 +15,8 @@
 
 #include <ini.h>
 
+#include "units.h"
+
 /* ---- errors ------------------------------------------------------------------ */
 int cli_fail(cli_ctx *ctx, int code, const char *fmt, ...) {
   va_list ap;
@@ -88,6 +90,7 @@ struct cli_config {
   char *given_text;          /* cli_config_set_given_text: recorded instead of cli_config_to_ini */
   unsigned long generation;  /* counts the recorded reads */
   unsigned long archived;    /* generation when the effective configuration was last archived */
+  cli_units *units;          /* UDUNITS-2, loaded on the first value with a unit */
 };
 
 static char *dupstr(const char *s) {
@@ -123,6 +126,7 @@ void cli_config_free(cli_config *c) {
   free(c->reads);
   free(c->absent_sections);
   free(c->given_text);
+  cli_units_free(c->units);
   free(c);
 }
 
@@ -483,6 +487,41 @@ int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double de
   return CLI_EXIT_OK;
 }
 
+/* "NUMBER UNIT" -> *out in si_unit (units.h).  Returns 0, or CLI_EXIT_INPUT / CLI_EXIT_INTERNAL
+ * with the message in ctx->err prefixed by `what` (file:line: section.key = 'text'). */
+static int parse_quantity(cli_ctx *ctx, const char *text, const char *si_unit, const char *what, double *out) {
+  const char *unit;
+  char num[64], msg[512];
+  size_t n = cli_units_split(text, &unit);
+  int rc;
+  if (n == 0 || *unit == '\0') { /* no unit: a plain number in si_unit */
+    rc = parse_double(text, out);
+    if (rc != 0) return cli_fail(ctx, CLI_EXIT_INPUT, "%s %s", what, parse_double_problem(rc));
+    return CLI_EXIT_OK;
+  }
+  if (n >= sizeof num) return cli_fail(ctx, CLI_EXIT_INPUT, "%s is not a number", what);
+  memcpy(num, text, n);
+  num[n] = '\0';
+  if ((rc = parse_double(num, out)) != 0) return cli_fail(ctx, CLI_EXIT_INPUT, "%s %s", what, parse_double_problem(rc));
+  if (!ctx->cfg->units && (ctx->cfg->units = cli_units_new(msg, sizeof msg)) == NULL)
+    return cli_fail(ctx, CLI_EXIT_INTERNAL, "%s: %s", what, msg);
+  if (cli_units_convert(ctx->cfg->units, *out, unit, si_unit, out, msg, sizeof msg) != 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s", what, msg);
+  return CLI_EXIT_OK;
+}
+
+int cli_get_quantity(cli_ctx *ctx, const char *section, const char *key, const char *si_unit, double def, double *out,
+                     int *present) {
+  cli_entry *e;
+  char what[600];
+  if (!si_unit || strcmp(si_unit, "1") == 0) return cli_get_double(ctx, section, key, def, out, present);
+  e = lookup(ctx, section, key, present);
+  if (!e || e->is_default) return cli_get_double(ctx, section, key, def, out, present);
+  record(ctx, section, key, e, NULL, present);
+  snprintf(what, sizeof what, "%s: %s.%s = '%s'", where(ctx, e), section, key, e->value);
+  return parse_quantity(ctx, e->value, si_unit, what, out);
+}
+
 int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, long *out, int *present) {
   cli_entry *e = lookup(ctx, section, key, present);
   char *end;
@@ -543,6 +582,11 @@ int cli_get_string(cli_ctx *ctx, const char *section, const char *key, const cha
 
 int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *out, size_t cap, size_t *n,
                     int *present) {
+  return cli_get_quantities(ctx, section, key, NULL, out, cap, n, present);
+}
+
+int cli_get_quantities(cli_ctx *ctx, const char *section, const char *key, const char *si_unit, double *out,
+                       size_t cap, size_t *n, int *present) {
   cli_entry *e = lookup(ctx, section, key, present);
   char buf[4096];
   char *tok, *save = NULL;
@@ -556,10 +600,18 @@ int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *
   strcpy(buf, e->value);
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     double v;
-    int rc = parse_double(tok, &v);
-    if (rc != 0)
-      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: item %zu '%s' %s", where(ctx, e), section, key, count + 1, tok,
-                      parse_double_problem(rc));
+    while (*tok == ' ' || *tok == '\t') tok++;
+    if (si_unit && strcmp(si_unit, "1") != 0 && !e->is_default) {
+      char what[600];
+      int rc;
+      snprintf(what, sizeof what, "%s: %s.%s: item %zu '%s'", where(ctx, e), section, key, count + 1, tok);
+      if ((rc = parse_quantity(ctx, tok, si_unit, what, &v)) != CLI_EXIT_OK) return rc;
+    } else {
+      int rc = parse_double(tok, &v);
+      if (rc != 0)
+        return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: item %zu '%s' %s", where(ctx, e), section, key, count + 1,
+                        tok, parse_double_problem(rc));
+    }
     if (count == cap)
       return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: more than %zu values", where(ctx, e), section, key, cap);
     out[count++] = v;

@@ -110,6 +110,14 @@ int cli_exit_code(int status);
  * value (not a number, NaN, infinity, empty, trailing junk) returns CLI_EXIT_INPUT with ctx->err
  * naming section.key and the file. */
 int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double def, double *out, int *present);
+/* A physical quantity: like cli_get_double, but the value may carry a unit that UDUNITS-2 parses
+ * ("3000 rpm", "20 g", "200 g mm"; apps/units.h has the rules, docs/units.md the user's view); it
+ * is converted to `si_unit` (e.g. "rad/s", "kg", "kg m"), the unit the library expects and a
+ * plain number is read in.  A unit of another dimension, an unknown unit or an ambiguous speed
+ * unit is CLI_EXIT_INPUT with ctx->err naming section.key and the expected unit.  The effective
+ * configuration records the text as given, so a re-run converts it again. */
+int cli_get_quantity(cli_ctx *ctx, const char *section, const char *key, const char *si_unit, double def, double *out,
+                     int *present);
 int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, long *out, int *present);
 int cli_get_bool(cli_ctx *ctx, const char *section, const char *key, int def, int *out, int *present);
 /* A string; the returned pointer stays valid until the config is freed. */
@@ -118,6 +126,9 @@ int cli_get_string(cli_ctx *ctx, const char *section, const char *key, const cha
 /* Comma-separated doubles; at most `cap` values; *n set to the count (0 if absent). */
 int cli_get_doubles(cli_ctx *ctx, const char *section, const char *key, double *out, size_t cap, size_t *n,
                     int *present);
+/* The same for a list of quantities, each item "NUMBER [UNIT]" (cli_get_quantity). */
+int cli_get_quantities(cli_ctx *ctx, const char *section, const char *key, const char *si_unit, double *out,
+                       size_t cap, size_t *n, int *present);
 /* A list read with cli_get_doubles and not given: record the values the command used in their
  * place (they appear as ";default KEY = v1, v2, ..." in the effective configuration, and
  * `autobal rerun` hands them back through cli_get_doubles with *present = 0).  Nothing for a

@@ -233,19 +233,19 @@ static int read_transient(cli_ctx *ctx, ens_spec *s) {
   s->stepper = "rk8pd";
   s->frame_name = "fixed";
   s->stop_at_balance = 1;
-  if ((rc = cli_get_double(ctx, "transient", "t_end", s->t_end, &s->t_end, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "transient", "dt_out", 0.0, &s->dt_out, &has_dt))) return rc;
+  if ((rc = cli_get_quantity(ctx, "transient", "t_end", s->model == MODEL_PENDULUM ? "1" : "s", s->t_end, &s->t_end, NULL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "transient", "dt_out", s->model == MODEL_PENDULUM ? "1" : "s", 0.0, &s->dt_out, &has_dt))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "revs_out", s->revs_out, &s->revs_out, &has_revs))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "rtol", s->rtol, &s->rtol, NULL))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "atol", s->atol, &s->atol, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "transient", "h_max", s->h_max, &s->h_max, NULL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "transient", "h_max", s->model == MODEL_PENDULUM ? "1" : "s", s->h_max, &s->h_max, NULL))) return rc;
   if ((rc = cli_get_int(ctx, "transient", "max_steps", s->max_steps, &s->max_steps, NULL))) return rc;
   if ((rc = cli_get_string(ctx, "transient", "stepper", s->stepper, &s->stepper, NULL))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "balance_tol", s->balance_tol, &s->balance_tol, NULL))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "balance_revs", s->balance_revs, &s->balance_revs, &has_brevs))) return rc;
   if ((rc = cli_get_bool(ctx, "transient", "stop_at_balance", 1, &s->stop_at_balance, NULL))) return rc;
   if (rotor) {
-    if ((rc = cli_get_double(ctx, "transient", "balance_dwell", 0.0, &s->balance_dwell, &has_dwell))) return rc;
+    if ((rc = cli_get_quantity(ctx, "transient", "balance_dwell", s->model == MODEL_PENDULUM ? "1" : "s", 0.0, &s->balance_dwell, &has_dwell))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "frame", s->frame_name, &s->frame_name, NULL))) return rc;
     if (!strcmp(s->frame_name, "fixed")) s->frame = AUTOBAL_ROTOR_FIXED;
     else if (!strcmp(s->frame_name, "rotating")) s->frame = AUTOBAL_ROTOR_ROTATING;

@@ -18,6 +18,9 @@
 int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_pendulum_physical *phys,
                              int *physical) {
   static const char *const pkeys[] = {"M", "e", "m", "l", "c", "H1", "H2", "omega"};
+  /* SI units of the physical set (H1: viscous moment per unit relative rate of a pendulum; H2:
+   * viscous force per unit velocity of the shaft) */
+  static const char *const punits[] = {"kg", "m", "kg", "m", "N/m", "N m s", "N s/m", "rad/s"};
   double pv[8];
   int present[8], any_phys = 0, all_phys = 1, rc, i;
   int has_rw, has_rm, has_H, has_h, has_k, has_psi0;
@@ -25,7 +28,7 @@ int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_p
   autobal_error err;
   autobal_error_clear(&err);
   for (i = 0; i < 8; i++) {
-    if ((rc = cli_get_double(ctx, "pendulum", pkeys[i], 0.0, &pv[i], &present[i]))) return rc;
+    if ((rc = cli_get_quantity(ctx, "pendulum", pkeys[i], punits[i], 0.0, &pv[i], &present[i]))) return rc;
     any_phys |= present[i];
     all_phys &= present[i];
   }
@@ -34,7 +37,7 @@ int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_p
   if ((rc = cli_get_double(ctx, "pendulum", "H", DEF_H, &H, &has_H))) return rc;
   if ((rc = cli_get_double(ctx, "pendulum", "h", DEF_HP, &h, &has_h))) return rc;
   if ((rc = cli_get_double(ctx, "pendulum", "k", DEF_K, &k, &has_k))) return rc;
-  if ((rc = cli_get_double(ctx, "pendulum", "psi0", 0.0, &psi0, &has_psi0))) return rc;
+  if ((rc = cli_get_quantity(ctx, "pendulum", "psi0", "rad", 0.0, &psi0, &has_psi0))) return rc;
   *physical = any_phys;
   if (any_phys) {
     if (has_rw || has_rm || has_H || has_h || has_k || has_psi0)

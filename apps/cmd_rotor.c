@@ -33,6 +33,10 @@ typedef struct rotor_cfg {
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
   return cli_get_double(ctx, sec, key, *v, v, NULL);
 }
+/* A quantity in SI unit `unit`; the value may carry a unit (cli_get_quantity). */
+static int get_q(cli_ctx *ctx, const char *sec, const char *key, const char *unit, double *v) {
+  return cli_get_quantity(ctx, sec, key, unit, *v, v, NULL);
+}
 
 /* ---- the rotor model's configuration keys, shared by every rotor command ---------------- */
 /* One double of a parameter struct: its configuration section and key (= the field's name), its
@@ -76,7 +80,7 @@ static int read_keys(cli_ctx *ctx, const rotor_key *keys, size_t n, const char *
   size_t i;
   int rc;
   for (i = 0; i < n; i++)
-    if (!strcmp(keys[i].section, section) && (rc = get_d(ctx, section, keys[i].key, key_field(base, &keys[i]))))
+    if (!strcmp(keys[i].section, section) && (rc = get_q(ctx, section, keys[i].key, keys[i].unit, key_field(base, &keys[i]))))
       return rc;
   return CLI_EXIT_OK;
 }
@@ -85,15 +89,27 @@ static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
   autobal_rotor_plane *pl = &c->p.plane[j];
   size_t nm, nr, nh, np, nv;
   int rc, pm, pr, ph, pp, pv;
-  if ((rc = get_d(ctx, sec, "d", &pl->d))) return rc;
-  if ((rc = get_d(ctx, sec, "m0", &pl->m0))) return rc;
-  if ((rc = get_d(ctx, sec, "r0", &pl->r0))) return rc;
-  if ((rc = get_d(ctx, sec, "psi0", &pl->psi0))) return rc;
-  if ((rc = cli_get_doubles(ctx, sec, "ball_mass", c->mass[j], MAX_CFG_BALLS, &nm, &pm))) return rc;
-  if ((rc = cli_get_doubles(ctx, sec, "ball_radius", c->radius[j], MAX_CFG_BALLS, &nr, &pr))) return rc;
-  if ((rc = cli_get_doubles(ctx, sec, "ball_damping", c->damping[j], MAX_CFG_BALLS, &nh, &ph))) return rc;
-  if ((rc = cli_get_doubles(ctx, sec, "ball_psi", c->psi[j], MAX_CFG_BALLS, &np, &pp))) return rc;
-  if ((rc = cli_get_doubles(ctx, sec, "ball_rate", c->rate[j], MAX_CFG_BALLS, &nv, &pv))) return rc;
+  int has_m0, has_u;
+  double unbalance = NAN;
+  if ((rc = get_q(ctx, sec, "d", "m", &pl->d))) return rc;
+  if ((rc = cli_get_quantity(ctx, sec, "m0", "kg", pl->m0, &pl->m0, &has_m0))) return rc;
+  if ((rc = get_q(ctx, sec, "r0", "m", &pl->r0))) return rc;
+  /* unbalance = m0 r0 (e.g. "200 g mm"): m0 follows from it and r0 */
+  if ((rc = cli_get_quantity(ctx, sec, "unbalance", "kg m", NAN, &unbalance, &has_u))) return rc;
+  if (has_u) {
+    if (has_m0)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: give either m0 or unbalance (= m0 r0), not both", sec);
+    if (!(pl->r0 > 0.0))
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: unbalance needs r0 > 0 (m0 = unbalance / r0); r0 = %g m", sec,
+                      pl->r0);
+    pl->m0 = unbalance / pl->r0;
+  }
+  if ((rc = get_q(ctx, sec, "psi0", "rad", &pl->psi0))) return rc;
+  if ((rc = cli_get_quantities(ctx, sec, "ball_mass", "kg", c->mass[j], MAX_CFG_BALLS, &nm, &pm))) return rc;
+  if ((rc = cli_get_quantities(ctx, sec, "ball_radius", "m", c->radius[j], MAX_CFG_BALLS, &nr, &pr))) return rc;
+  if ((rc = cli_get_quantities(ctx, sec, "ball_damping", "kg/s", c->damping[j], MAX_CFG_BALLS, &nh, &ph))) return rc;
+  if ((rc = cli_get_quantities(ctx, sec, "ball_psi", "rad", c->psi[j], MAX_CFG_BALLS, &np, &pp))) return rc;
+  if ((rc = cli_get_quantities(ctx, sec, "ball_rate", "rad/s", c->rate[j], MAX_CFG_BALLS, &nv, &pv))) return rc;
   {
     /* n = the number of balls: from ball_mass when given, else the current (default) count.  Each
      * other list has n values or one value for all; a list left out keeps the current values when
@@ -164,7 +180,7 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   }
   /* [rotor] */
   if ((rc = read_keys(ctx, k_hw_keys, N_HW_KEYS, "rotor", hw))) return rc;
-  if ((rc = get_d(ctx, "rotor", "omega", &c->p.omega))) return rc;
+  if ((rc = get_q(ctx, "rotor", "omega", "rad/s", &c->p.omega))) return rc;
   if ((rc = cli_get_string(ctx, "rotor", "inertia", inertia, &inertia, NULL))) return rc;
   if ((rc = cli_get_bool(ctx, "rotor", "axial", 0, &axial, NULL))) return rc;
   if (!strcmp(inertia, "paper")) c->p.inertia = AUTOBAL_ROTOR_INERTIA_PAPER;
@@ -177,7 +193,8 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   if (cli_section_present(ctx, "lumped")) {
     for (i = 0; i < N_LUMPED_KEYS; i++) {
       int present;
-      if ((rc = cli_get_double(ctx, "lumped", k_lumped_keys[i].key, 0.0, key_field(lu, &k_lumped_keys[i]), &present)))
+      if ((rc = cli_get_quantity(ctx, "lumped", k_lumped_keys[i].key, k_lumped_keys[i].unit, 0.0,
+                                 key_field(lu, &k_lumped_keys[i]), &present)))
         return rc;
       if (!present)
         return cli_fail(ctx, CLI_EXIT_INPUT, "[lumped]: '%s' is missing (with a [lumped] section all of M, A, C, c_x, c_y, c_z, c_alpha, c_beta, c_xbeta, c_yalpha and the h_ analogues are required)", k_lumped_keys[i].key);
@@ -185,16 +202,16 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
     c->p.input = AUTOBAL_ROTOR_LUMPED;
   }
   /* [initial] */
-  if ((rc = get_d(ctx, "initial", "x", &c->p.q0[0]))) return rc;
-  if ((rc = get_d(ctx, "initial", "y", &c->p.q0[1]))) return rc;
-  if ((rc = get_d(ctx, "initial", "alpha", &c->p.q0[2]))) return rc;
-  if ((rc = get_d(ctx, "initial", "beta", &c->p.q0[3]))) return rc;
-  if ((rc = get_d(ctx, "initial", "x_rate", &c->p.qd0[0]))) return rc;
-  if ((rc = get_d(ctx, "initial", "y_rate", &c->p.qd0[1]))) return rc;
-  if ((rc = get_d(ctx, "initial", "alpha_rate", &c->p.qd0[2]))) return rc;
-  if ((rc = get_d(ctx, "initial", "beta_rate", &c->p.qd0[3]))) return rc;
-  if ((rc = get_d(ctx, "initial", "z", &c->p.z0))) return rc;
-  if ((rc = get_d(ctx, "initial", "z_rate", &c->p.zd0))) return rc;
+  if ((rc = get_q(ctx, "initial", "x", "m", &c->p.q0[0]))) return rc;
+  if ((rc = get_q(ctx, "initial", "y", "m", &c->p.q0[1]))) return rc;
+  if ((rc = get_q(ctx, "initial", "alpha", "rad", &c->p.q0[2]))) return rc;
+  if ((rc = get_q(ctx, "initial", "beta", "rad", &c->p.q0[3]))) return rc;
+  if ((rc = get_q(ctx, "initial", "x_rate", "m/s", &c->p.qd0[0]))) return rc;
+  if ((rc = get_q(ctx, "initial", "y_rate", "m/s", &c->p.qd0[1]))) return rc;
+  if ((rc = get_q(ctx, "initial", "alpha_rate", "rad/s", &c->p.qd0[2]))) return rc;
+  if ((rc = get_q(ctx, "initial", "beta_rate", "rad/s", &c->p.qd0[3]))) return rc;
+  if ((rc = get_q(ctx, "initial", "z", "m", &c->p.z0))) return rc;
+  if ((rc = get_q(ctx, "initial", "z_rate", "m/s", &c->p.zd0))) return rc;
   /* planes */
   if ((rc = read_plane(ctx, c, 0, "plane1"))) return rc;
   has_plane2 = cli_section_present(ctx, "plane2");
@@ -429,18 +446,18 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     double revs_out = 0.25;
     int has_dt = 0, has_revs = 0, has_brevs = 0, has_dwell = 0;
     double dwell = 0.0;
-    if ((rc = get_d(ctx, "transient", "t_end", &c->t_end))) return rc;
-    if ((rc = cli_get_double(ctx, "transient", "dt_out", 0.0, &c->dt_out, &has_dt))) return rc;
+    if ((rc = get_q(ctx, "transient", "t_end", "s", &c->t_end))) return rc;
+    if ((rc = cli_get_quantity(ctx, "transient", "dt_out", "s", 0.0, &c->dt_out, &has_dt))) return rc;
     if ((rc = cli_get_double(ctx, "transient", "revs_out", revs_out, &revs_out, &has_revs))) return rc;
     if ((rc = get_d(ctx, "transient", "rtol", &c->rtol))) return rc;
     if ((rc = get_d(ctx, "transient", "atol", &c->atol))) return rc;
-    if ((rc = get_d(ctx, "transient", "h_max", &c->h_max))) return rc;
+    if ((rc = get_q(ctx, "transient", "h_max", "s", &c->h_max))) return rc;
     if ((rc = cli_get_int(ctx, "transient", "max_steps", c->max_steps, &c->max_steps, NULL))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "stepper", c->stepper, &c->stepper, NULL))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "frame", c->frame_name, &c->frame_name, NULL))) return rc;
     if ((rc = get_d(ctx, "transient", "balance_tol", &c->balance_tol))) return rc;
     if ((rc = cli_get_double(ctx, "transient", "balance_revs", c->balance_revs, &c->balance_revs, &has_brevs))) return rc;
-    if ((rc = cli_get_double(ctx, "transient", "balance_dwell", 0.0, &dwell, &has_dwell))) return rc;
+    if ((rc = cli_get_quantity(ctx, "transient", "balance_dwell", "s", 0.0, &dwell, &has_dwell))) return rc;
     if ((rc = cli_get_bool(ctx, "transient", "stop_at_balance", 0, &c->stop_at_balance, NULL))) return rc;
     if (has_dt && has_revs) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: give dt_out or revs_out, not both");
     if (!(c->t_end > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end = %g s is out of range: allowed (0, inf)", c->t_end);

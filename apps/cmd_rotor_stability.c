@@ -226,8 +226,8 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = read_stab_cfg(ctx, c))) goto done;
   default_speed_range(&c->p, &clo, &chi);
   if ((rc = cli_get_bool(ctx, "stability", "critical_speeds", 1, &do_crit, NULL))) goto done;
-  if ((rc = cli_get_double(ctx, "stability", "omega_min", clo, &clo, &have_lo))) goto done;
-  if ((rc = cli_get_double(ctx, "stability", "omega_max", chi, &chi, &have_hi))) goto done;
+  if ((rc = cli_get_quantity(ctx, "stability", "omega_min", "rad/s", clo, &clo, &have_lo))) goto done;
+  if ((rc = cli_get_quantity(ctx, "stability", "omega_max", "rad/s", chi, &chi, &have_hi))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_omega", cn, &cn, NULL))) goto done;
   if ((rc = cli_get_double(ctx, "stability", "xtol_rel", xtol, &xtol, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
@@ -438,8 +438,9 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   if ((rc = read_param(ctx, "sweep", "param", "omega", &param))) goto done;
   lo = param_default_lo(c, param);
   hi = param_default_hi(c, param);
-  if ((rc = cli_get_double(ctx, "sweep", "min", lo, &lo, NULL))) goto done;
-  if ((rc = cli_get_double(ctx, "sweep", "max", hi, &hi, NULL))) goto done;
+  unit = autobal_rotor_stab_param_unit(param);
+  if ((rc = cli_get_quantity(ctx, "sweep", "min", unit, lo, &lo, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "sweep", "max", unit, hi, &hi, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "sweep", "n", n, &n, NULL))) goto done;
   if ((rc = cli_get_double(ctx, "sweep", "xtol_rel", xtol, &xtol, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
@@ -552,11 +553,11 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   hi1 = param_default_hi(c, p1);
   lo2 = param_default_lo(c, p2);
   hi2 = param_default_hi(c, p2);
-  if ((rc = cli_get_double(ctx, "map", "min1", lo1, &lo1, NULL))) goto done;
-  if ((rc = cli_get_double(ctx, "map", "max1", hi1, &hi1, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "min1", autobal_rotor_stab_param_unit(p1), lo1, &lo1, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "max1", autobal_rotor_stab_param_unit(p1), hi1, &hi1, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "n1", n1, &n1, NULL))) goto done;
-  if ((rc = cli_get_double(ctx, "map", "min2", lo2, &lo2, NULL))) goto done;
-  if ((rc = cli_get_double(ctx, "map", "max2", hi2, &hi2, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "min2", autobal_rotor_stab_param_unit(p2), lo2, &lo2, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "max2", autobal_rotor_stab_param_unit(p2), hi2, &hi2, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "n2", n2, &n2, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "threads", threads, &threads, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
@@ -653,8 +654,8 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     default_speed_range(&p, &l0, &h0);
     hi = h0;
   }
-  if ((rc = cli_get_double(ctx, "campbell", "omega_min", lo, &lo, NULL))) goto done;
-  if ((rc = cli_get_double(ctx, "campbell", "omega_max", hi, &hi, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "campbell", "omega_min", "rad/s", lo, &lo, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "campbell", "omega_max", "rad/s", hi, &hi, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "campbell", "n", n, &n, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "campbell", "n_resonance", nres, &nres, NULL))) goto done;
   if ((rc = cli_get_double(ctx, "campbell", "xtol_rel", xtol, &xtol, NULL))) goto done;
