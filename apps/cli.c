@@ -481,6 +481,12 @@ int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double de
   }
   record(ctx, section, key, e, NULL, present);
   rc = e->is_default ? (parse_default_double(e->value, out) ? -1 : 0) : parse_double(e->value, out);
+  if (rc == -1 && !e->is_default) {
+    const char *unit;
+    if (cli_units_split(e->value, &unit) > 0 && *unit != '\0')
+      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s': %s.%s is dimensionless (or counted): give a plain number, no unit",
+                      where(ctx, e), section, key, e->value, section, key);
+  }
   if (rc != 0)
     return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' %s", where(ctx, e), section, key, e->value,
                     parse_double_problem(rc));

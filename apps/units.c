@@ -26,7 +26,7 @@ static const char *const k_angle_names[] = {"rad",   "radian",     "radians",   
 
 cli_units *cli_units_new(char *err, size_t len) {
   cli_units *u = calloc(1, sizeof *u);
-  ut_unit *rev, *rps;
+  ut_unit *rev, *rps, *deg;
   if (!u) {
     snprintf(err, len, "out of memory");
     return NULL;
@@ -42,19 +42,23 @@ cli_units *cli_units_new(char *err, size_t len) {
     return NULL;
   }
   u->hertz = ut_parse(u->sys, "Hz", UT_ASCII);
-  /* "rev" and "rps" as people write them (UDUNITS spells out "revolution"). */
+  /* "rev", "rps" and "deg" as people write them (UDUNITS spells out "revolution" and "degree"). */
   rev = ut_parse(u->sys, "revolution", UT_ASCII);
   rps = ut_parse(u->sys, "revolution/s", UT_ASCII);
-  if (!u->hertz || !rev || !rps || ut_map_symbol_to_unit("rev", UT_UTF8, rev) != UT_SUCCESS ||
-      ut_map_symbol_to_unit("rps", UT_UTF8, rps) != UT_SUCCESS) {
-    snprintf(err, len, "the UDUNITS-2 unit database lacks hertz or revolution");
+  deg = ut_parse(u->sys, "degree", UT_ASCII);
+  if (!u->hertz || !rev || !rps || !deg || ut_map_symbol_to_unit("rev", UT_UTF8, rev) != UT_SUCCESS ||
+      ut_map_symbol_to_unit("rps", UT_UTF8, rps) != UT_SUCCESS ||
+      ut_map_symbol_to_unit("deg", UT_UTF8, deg) != UT_SUCCESS) {
+    snprintf(err, len, "the UDUNITS-2 unit database lacks hertz, revolution or degree");
     ut_free(rev);
     ut_free(rps);
+    ut_free(deg);
     cli_units_free(u);
     return NULL;
   }
   ut_free(rev);
   ut_free(rps);
+  ut_free(deg);
   return u;
 }
 

@@ -1,0 +1,142 @@
+#!/usr/bin/env bash
+# App test: values with units in configuration files (apps/units.c, docs/units.md).
+# 1. Conversions: a config written in engineering units (rpm, Hz, g, mm, N/mm, g mm, deg, ms)
+#    gives archives whose SI attributes equal the values converted with exact factors written
+#    here by hand (independent of UDUNITS: 1 rpm = 2 pi/60 rad/s, 1 Hz = 2 pi rad/s for a shaft,
+#    1 g mm = 1e-6 kg m, ...), and the same run written in SI gives identical datasets.
+# 2. The bad-input catalogue: unknown unit, wrong dimension, ambiguous speed unit, negative,
+#    NaN, m0 and unbalance together: exit 3 and a message naming the key.
+# 3. rerun of an archive whose configuration has units reproduces it bit for bit.
+set -u
+: "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+fail=0
+ok()  { echo "ok   $*"; }
+bad() { echo "FAIL $*"; fail=1; }
+
+cat > eng.ini <<'INI'
+; the default rotor, written as an engineer would
+[rotor]
+omega = 3000 rpm
+M_k = 6000 g
+A_k = 12 kg dm2
+[supports]
+l_L = 200 mm
+l_R = 15 cm
+c_Lx = 100 N/mm
+c_Rx = 150 kN/m
+h_Lx = 0.1 N s/mm
+[plane1]
+d = 100 mm
+r0 = 100 mm
+unbalance = 2000 g mm
+psi0 = 0 deg
+ball_mass = 50 g, 50 g
+ball_radius = 100 mm
+ball_damping = 100 g/s
+ball_psi = 57.29577951308232 deg, 2.5 rad
+[transient]
+t_end = 200 ms
+INI
+cat > si.ini <<'INI'
+[rotor]
+omega = 314.15926535897932
+M_k = 6
+A_k = 0.12
+[supports]
+l_L = 0.2
+l_R = 0.15
+c_Lx = 100000
+c_Rx = 150000
+h_Lx = 100
+[plane1]
+d = 0.1
+r0 = 0.1
+m0 = 0.02
+psi0 = 0
+ball_mass = 0.05, 0.05
+ball_radius = 0.1
+ball_damping = 0.1
+ball_psi = 1.0, 2.5
+[transient]
+t_end = 0.2
+INI
+"$AUTOBAL" rotor transient eng.ini -o eng.h5 -q || bad "engineering-unit run failed"
+"$AUTOBAL" rotor transient si.ini -o si.h5 -q || bad "SI run failed"
+"$AUTOBAL" rerun eng.h5 -o eng_rerun.h5 -q || bad "rerun of the engineering-unit archive failed"
+"$AUTOBAL" rotor transient --set "rotor.omega=50 Hz" --set "transient.t_end=0.05" -o hz.h5 -q || bad "50 Hz run failed"
+"$AUTOBAL" rotor transient --set "rotor.omega=50 rev/s" --set "transient.t_end=0.05" -o rev.h5 -q || bad "50 rev/s run failed"
+"$AUTOBAL" pendulum roots --set "pendulum.M=10 kg" --set "pendulum.e=1 mm" --set "pendulum.m=500 g" \
+  --set "pendulum.l=50 mm" --set "pendulum.c=1 kN/mm" --set "pendulum.H1=0.01 N m s" --set "pendulum.H2=10 N s/m" \
+  --set "pendulum.omega=6000 rpm" -o pend.h5 -q || bad "pendulum physical run failed"
+"$PY" - <<'PY' || fail=1
+import h5py, numpy as np, math, sys
+bad = 0
+def check(name, got, want, rel=1e-15):
+    global bad
+    ok = abs(got - want) <= rel * abs(want)
+    print(("ok  " if ok else "FAIL") + f" {name}: {got!r} vs {want!r} (rel {rel:g})")
+    bad += not ok
+e = h5py.File("eng.h5", "r"); s = h5py.File("si.h5", "r")
+r, p = e["rotor"].attrs, e["rotor/plane1"].attrs
+check("omega 3000 rpm", r["omega"], 3000 * 2 * math.pi / 60)
+check("M_k 6000 g", r["M_k"], 6.0)
+check("A_k 12 kg dm2", r["A_k"], 0.12)
+check("l_L 200 mm", r["l_L"], 0.2)
+check("l_R 15 cm", r["l_R"], 0.15)
+check("c_Lx 100 N/mm", r["c_Lx"], 1e5)
+check("c_Rx 150 kN/m", r["c_Rx"], 1.5e5)
+check("h_Lx 0.1 N s/mm", r["h_Lx"], 100.0)
+check("m0 from unbalance 2000 g mm / r0 100 mm", p["m0"], 2000e-6 / 0.1)
+check("ball_mass 50 g", p["ball_mass"][0], 0.05)
+check("ball_damping 100 g/s", p["ball_damping"][1], 0.1)
+check("ball_psi 57.29577951308232 deg", p["ball_psi_initial"][0], 1.0, 1e-15)
+check("t_end 200 ms", e["rotor/transient/time"][-1], 0.2, 1e-12)
+check("omega 50 Hz (revolutions per second)", h5py.File("hz.h5")["rotor"].attrs["omega"], 100 * math.pi)
+check("omega 50 rev/s", h5py.File("rev.h5")["rotor"].attrs["omega"], 100 * math.pi)
+q = h5py.File("pend.h5")["pendulum/physical"].attrs
+for k, want in [("M", 10), ("e", 1e-3), ("m", 0.5), ("l", 0.05), ("c", 1e6), ("H1", 0.01), ("H2", 10), ("omega", 200 * math.pi)]:
+    check(f"pendulum {k}", q[k], want)
+# the same model in SI: the time series agree to rounding (the unit conversions differ from
+# the SI literals by at most an ulp or two, e.g. 3000 rpm vs 314.15926535897932)
+for name in ("x", "y", "p1_s_rel"):
+    a, b = e["rotor/transient/" + name][()], s["rotor/transient/" + name][()]
+    scale = np.max(np.abs(b))
+    d = np.max(np.abs(a - b)) / scale
+    ok = a.shape == b.shape and d < 1e-8
+    print(("ok  " if ok else "FAIL") + f" {name}: engineering vs SI input, max diff / max = {d:.2e} (< 1e-8)")
+    bad += not ok
+# rerun: bit for bit
+def walk(g, out):
+    for k, v in g.items():
+        if isinstance(v, h5py.Dataset): out[v.name] = v[()]
+        else: walk(v, out)
+A = {}; B = {}; walk(e, A); walk(h5py.File("eng_rerun.h5"), B)
+same = A.keys() == B.keys() and all(np.array_equal(A[k], B[k]) for k in A)
+print(("ok  " if same else "FAIL") + f" rerun of the engineering-unit archive: {len(A)} datasets identical")
+bad += not same
+sys.exit(1 if bad else 0)
+PY
+
+# bad-input catalogue: exit 3 and the key named
+expect3() {
+  local needle=$1; shift
+  "$AUTOBAL" "$@" -q >out.txt 2>err.txt; local rc=$?
+  if [ "$rc" -eq 3 ] && grep -qF -- "$needle" err.txt; then ok "exit 3 '$needle': $*"
+  else bad "exit $rc (want 3, '$needle'): $*"; cat err.txt; fi
+}
+expect3 "rotor.omega = '3 kg'" rotor transient --set "rotor.omega=3 kg"
+expect3 "cannot be converted to rad/s" rotor transient --set "rotor.omega=3 kg"
+expect3 "unknown unit 'furlongz'" rotor transient --set "rotor.omega=3 furlongz"
+expect3 "ambiguous" rotor transient --set "rotor.omega=3000 1/min"
+expect3 "ambiguous" rotor stability --set "rotor.omega=50 1/s"
+expect3 "plane1.m0" rotor transient --set "plane1.m0=-5 g"
+expect3 "not a finite number" rotor transient --set "plane1.m0=nan g"
+expect3 "plane1.unbalance" rotor transient --set "plane1.unbalance=200 g"
+expect3 "give either m0 or unbalance" rotor transient --set "plane1.unbalance=200 g mm" --set "plane1.m0=1 g"
+expect3 "plane1.ball_mass: item 2" rotor transient --set "plane1.ball_mass=50 g, 5 s"
+expect3 "supports.c_Lx" rotor transient --set "supports.c_Lx=100 N"
+expect3 "pendulum.omega" pendulum roots --set "pendulum.M=10 kg" --set "pendulum.e=1 mm" --set "pendulum.m=500 g" \
+  --set "pendulum.l=50 mm" --set "pendulum.c=1 kN/mm" --set "pendulum.H1=0" --set "pendulum.H2=0" --set "pendulum.omega=100 m"
+expect3 "pendulum.R_m is dimensionless" pendulum roots --set "pendulum.R_m=0.1 kg"
+exit $fail
