@@ -787,6 +787,7 @@ static void json_push(cli_json *j, char open) {
 void cli_json_begin(cli_json *j, FILE *f) {
   j->f = f;
   j->depth = 0;
+  j->n_units = 0;
   j->first[0] = 1;
   json_push(j, '{');
 }
@@ -852,8 +853,31 @@ void cli_json_summary_begin(cli_json *j, const cli_ctx *ctx) {
   cli_json_begin(j, stdout);
   cli_json_string(j, "command", ctx->command);
 }
+void cli_json_unit(cli_json *j, const char *key, const char *unit) {
+  int i;
+  for (i = 0; i < j->n_units; i++)
+    if (strcmp(j->unit_key[i], key) == 0) return;
+  if (j->n_units < (int)(sizeof j->unit_key / sizeof j->unit_key[0])) {
+    j->unit_key[j->n_units] = key;
+    j->unit_val[j->n_units++] = unit;
+  }
+}
+void cli_json_quantity(cli_json *j, const char *key, double v, const char *unit) {
+  cli_json_number(j, key, v);
+  if (j->depth == 1) cli_json_unit(j, key, unit);
+}
+void cli_json_quantities(cli_json *j, const char *key, const double *v, size_t n, const char *unit) {
+  cli_json_numbers(j, key, v, n);
+  if (j->depth == 1) cli_json_unit(j, key, unit);
+}
 void cli_json_summary_end(cli_json *j, const cli_ctx *ctx) {
   if (ctx->output) cli_json_string(j, "output", ctx->output);
+  if (j->n_units > 0) {
+    int i;
+    cli_json_object(j, "units");
+    for (i = 0; i < j->n_units; i++) cli_json_string(j, j->unit_key[i], j->unit_val[i]);
+    cli_json_object_end(j);
+  }
   cli_json_end(j);
 }
 

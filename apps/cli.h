@@ -185,6 +185,10 @@ typedef struct cli_json {
   FILE *f;
   int depth;
   int first[16]; /* whether the next member at each depth is the first one */
+  /* units of top-level members (cli_json_unit), written as "units": {KEY: UNIT, ...} by
+   * cli_json_summary_end; keys and units must outlive the summary (string literals) */
+  const char *unit_key[64], *unit_val[64];
+  int n_units;
 } cli_json;
 void cli_json_begin(cli_json *j, FILE *f);      /* opens the top-level object */
 void cli_json_end(cli_json *j);                 /* closes it, newline */
@@ -198,6 +202,12 @@ void cli_json_int(cli_json *j, const char *key, long v);
 void cli_json_bool(cli_json *j, const char *key, int v);
 void cli_json_string(cli_json *j, const char *key, const char *s);
 void cli_json_numbers(cli_json *j, const char *key, const double *v, size_t n);
+/* Record the unit of a top-level member (a string UDUNITS-2 parses, "1" for a ratio); every
+ * summary lists them in its member "units". */
+void cli_json_unit(cli_json *j, const char *key, const char *unit);
+/* cli_json_number / cli_json_numbers with cli_json_unit. */
+void cli_json_quantity(cli_json *j, const char *key, double v, const char *unit);
+void cli_json_quantities(cli_json *j, const char *key, const double *v, size_t n, const char *unit);
 /* A command's summary: cli_json_begin and "command"; at the end "output" (when -o was given)
  * and cli_json_end. */
 void cli_json_summary_begin(cli_json *j, const cli_ctx *ctx);

@@ -12,6 +12,7 @@
 #include "autobal/rotor.h"
 #include "autobal/transient.h"
 #include "cli.h"
+#include "units.h"
 
 #define MAX_CFG_BALLS 4096
 #define TWO_PI 6.283185307179586476925286766559
@@ -28,6 +29,9 @@ typedef struct rotor_cfg {
   long max_steps;
   const char *stepper, *frame_name;
   int frame, stop_at_balance;
+  /* [balance] */
+  double grade; /* ISO 21940-11 grade to check, mm/s; NaN: none */
+  const char *grade_text;
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -431,6 +435,14 @@ const char *cli_rotor_message(const char *msg, char *buf, size_t len) {
 static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   int rc;
   if ((rc = read_rotor_model(ctx, c))) return rc;
+  /* [balance] grade = G2.5: the permissible residual unbalance of that grade is reported */
+  c->grade = NAN;
+  if ((rc = cli_get_string(ctx, "balance", "grade", NULL, &c->grade_text, NULL))) return rc;
+  if (c->grade_text && cli_parse_grade(c->grade_text, &c->grade) != 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[balance]: grade = '%s' is not a balance quality grade: write G followed by a positive number "
+                    "in mm/s (ISO 21940-11 grades: G0.4, G1, G2.5, G6.3, G16, G40, ...)",
+                    c->grade_text);
   /* [transient] */
   c->t_end = 20.0;
   c->dt_out = 0.0; /* 0: revs_out */
@@ -514,7 +526,23 @@ typedef struct run_ctx {
   double t_end;
   int first_sample_done;
   double s_rel_initial, amp_initial;
+  /* vibration in the last 10% of the run at the centre of mass (0) and the supports (1: left,
+   * 2: right; NaN positions with lumped input): per direction x, y the largest synchronous (1X)
+   * amplitude sqrt(u^2 + (u'/omega)^2) over the samples: the amplitude of the harmonic at the
+   * running speed through (u, u') at each sample, exact for a steady whirl whatever the
+   * sampling (a sampled maximum or RMS of 4 samples per revolution is not) */
+  double l_sup[3], omega_abs;
+  double amax[3][2];
+  unsigned long win_n;
 } run_ctx;
+
+/* Displacement and velocity at axial position p (eq. (3.3) kinematics: (x + p beta, y - p alpha)). */
+static void point_motion(const double y[], double p, double d[2], double v[2]) {
+  d[0] = y[0] + p * y[3];
+  d[1] = y[1] - p * y[2];
+  v[0] = y[4] + p * y[7];
+  v[1] = y[5] - p * y[6];
+}
 
 static size_t plane_base(size_t j) { return 3 + 7 * j; }
 
@@ -534,6 +562,18 @@ static int observer(double t, const double y[], void *user) {
   if (out[0] > r->max_amp) r->max_amp = out[0];
   if (t <= r->t_first_window && out[0] > r->amp_first) r->amp_first = out[0];
   if (t >= r->t_last_window_start && !(out[0] <= r->amp_last)) r->amp_last = out[0]; /* NaN until sampled */
+  if (t >= r->t_last_window_start) {
+    size_t k, q;
+    for (k = 0; k < 3; k++) {
+      double d[2], v[2];
+      point_motion(y, r->l_sup[k], d, v);
+      for (q = 0; q < 2; q++) {
+        double amp = hypot(d[q], v[q] / r->omega_abs);
+        if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
+      }
+    }
+    r->win_n++;
+  }
   if (r->series && !r->io_failed && autobal_archive_series_append(r->series, 1, &t, r->row) != AUTOBAL_SUCCESS)
     r->io_failed = 1;
   /* per-revolution maxima (of the sampled values) */
@@ -703,6 +743,103 @@ static int open_series(run_ctx *r, autobal_archive *a, const rotor_cfg *c) {
   return st;
 }
 
+/* ---- engineering quantities of the summary (docs/units.md) ------------------------------ */
+typedef struct engineering_summary {
+  double s_abs[AUTOBAL_ROTOR_MAX_PLANES]; /* |s_j| at the end, kg m */
+  double mass;                            /* rotor mass for the grade, kg (m_p, or M with lumped input) */
+  double grade;                           /* ISO 21940-11 grade reached at the end, mm/s */
+  double permissible;                     /* of [balance] grade: U_per in kg m (whole rotor); NaN: none */
+  int meets;                              /* every plane within U_per / n_planes */
+  int have_window;                        /* samples in the last 10% */
+  double pkpk[3], vrms[3];                /* centre of mass, left, right support: m, m/s (1X) */
+  double vrms_support;                    /* the largest support RMS velocity (G when no supports), m/s */
+} engineering_summary;
+
+/* The smallest ISO 21940-11 grade class that G (mm/s) is within; NaN above G4000. */
+static double grade_class(double G) {
+  static const double k[] = {0.4, 1, 2.5, 6.3, 16, 40, 100, 250, 630, 1600, 4000};
+  size_t i;
+  for (i = 0; i < sizeof k / sizeof k[0]; i++)
+    if (G <= k[i]) return k[i];
+  return NAN;
+}
+
+static void engineering_compute(engineering_summary *e, const autobal_rotor *rot, const rotor_cfg *c,
+                                const run_ctx *r, double t, const double *y) {
+  size_t j, k, q, np = r->n_planes;
+  double omega = fabs(c->p.omega), worst = 0.0;
+  memset(e, 0, sizeof *e);
+  e->mass = c->p.input == AUTOBAL_ROTOR_HARDWARE ? c->p.hw.m_p : c->p.lumped.M;
+  for (j = 0; j < np; j++) {
+    double s4[4];
+    e->s_abs[j] = autobal_rotor_plane_unbalance(rot, j, c->frame, t, y, s4) == AUTOBAL_SUCCESS ? hypot(s4[0], s4[1])
+                                                                                                : NAN;
+    if (!(e->s_abs[j] <= worst)) worst = e->s_abs[j];
+  }
+  /* the rotor's mass shared equally by the planes (ISO 21940-11's allocation for a rotor with
+   * its planes symmetric to the bearings): grade of the worst plane */
+  e->grade = cli_balance_grade(worst * (double)np, e->mass, omega);
+  e->permissible = isnan(c->grade) ? NAN : cli_permissible_unbalance(c->grade, e->mass, omega);
+  e->meets = !isnan(e->permissible) && worst * (double)np <= e->permissible;
+  e->have_window = r->win_n > 0;
+  e->vrms_support = NAN;
+  for (k = 0; k < 3; k++) {
+    e->pkpk[k] = e->vrms[k] = NAN;
+    if (!e->have_window || isnan(r->l_sup[k])) continue;
+    for (q = 0; q < 2; q++) { /* harmonic: peak-to-peak 2 A, RMS velocity omega A / sqrt(2) */
+      double pp = 2.0 * r->amax[k][q], v = omega * r->amax[k][q] / sqrt(2.0);
+      if (!(pp <= e->pkpk[k])) e->pkpk[k] = pp;
+      if (!(v <= e->vrms[k])) e->vrms[k] = v;
+    }
+    if (k > 0 && !(e->vrms[k] <= e->vrms_support)) e->vrms_support = e->vrms[k];
+  }
+  if (isnan(e->vrms_support)) e->vrms_support = e->vrms[0];
+}
+
+static int engineering_write(autobal_archive *a, const char *g, const engineering_summary *e, size_t np) {
+  int st = autobal_archive_attr_double_array(a, g, "residual_unbalance_abs_final", np, e->s_abs, "kg m");
+  if (!st) st = autobal_archive_attr_double(a, g, "balance_grade_final", e->grade, "mm/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "balance_grade_rotor_mass", e->mass, "kg");
+  if (!st && !isnan(e->permissible)) {
+    st = autobal_archive_attr_double(a, g, "permissible_unbalance", e->permissible, "kg m");
+    if (!st) st = autobal_archive_attr_int(a, g, "permissible_unbalance_met", e->meets);
+  }
+  if (!st) st = autobal_archive_attr_double(a, g, "displacement_pk_pk_G_last_10pct", e->pkpk[0], "m");
+  if (!st) st = autobal_archive_attr_double(a, g, "velocity_rms_G_last_10pct", e->vrms[0], "m/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "velocity_rms_left_support_last_10pct", e->vrms[1], "m/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "velocity_rms_right_support_last_10pct", e->vrms[2], "m/s");
+  return st;
+}
+
+static void engineering_json(cli_json *j, const engineering_summary *e, size_t np) {
+  cli_json_quantities(j, "residual_unbalance_abs_final", e->s_abs, np, "kg m");
+  cli_json_quantity(j, "balance_grade_final", e->grade, "mm/s");
+  cli_json_quantity(j, "balance_grade_rotor_mass", e->mass, "kg");
+  if (!isnan(e->permissible)) {
+    cli_json_quantity(j, "permissible_unbalance", e->permissible, "kg m");
+    cli_json_bool(j, "permissible_unbalance_met", e->meets);
+  }
+  cli_json_quantity(j, "displacement_pk_pk_G_last_10pct", e->pkpk[0], "m");
+  cli_json_quantity(j, "velocity_rms_supports_last_10pct", e->vrms_support, "m/s");
+}
+
+static void engineering_print(const engineering_summary *e, const rotor_cfg *c) {
+  double cls = grade_class(e->grade), rpm = cli_rpm(fabs(c->p.omega));
+  char cbuf[32] = "above G4000";
+  if (!isnan(cls)) snprintf(cbuf, sizeof cbuf, "within G%g", cls);
+  printf("  balance quality at the end: G %.3g mm/s, %s (ISO 21940-11: G = e omega, e = U/m with rotor mass %s = %g kg%s)\n",
+         e->grade, cbuf, c->p.input == AUTOBAL_ROTOR_HARDWARE ? "m_p" : "M", e->mass,
+         c->p.n_planes > 1 ? " shared equally by the planes" : "");
+  if (!isnan(e->permissible))
+    printf("  grade G%g permits %.4g g mm at %.1f rpm%s: %s\n", c->grade, e->permissible * 1e6, rpm,
+           c->p.n_planes > 1 ? " (half per plane)" : "", e->meets ? "MET" : "NOT met");
+  if (e->have_window)
+    printf("  vibration at the running speed (1X) in the last 10%% of the run: centre of mass %.4g um 0-peak, %.4g um "
+           "peak-to-peak (largest of x, y); velocity %.4g mm/s RMS %s\n",
+           e->pkpk[0] * 0.5e6, e->pkpk[0] * 1e6, e->vrms_support * 1e3,
+           isnan(e->vrms[1]) ? "at the centre of mass" : "at the supports (ISO 20816 measure: largest of left/right, x/y)");
+}
+
 int cli_cmd_rotor_transient(cli_ctx *ctx) {
   rotor_cfg *c = calloc(1, sizeof *c);
   autobal_rotor *rot = NULL;
@@ -715,7 +852,8 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   autobal_error err;
   run_ctx r;
   char msg[sizeof ctx->err];
-  double *y = NULL, t_reached = 0, *psi_bal = NULL, s_final = NAN, ttb = NAN;
+  double *y = NULL, t_reached = 0, *psi_bal[AUTOBAL_ROTOR_MAX_PLANES] = {NULL}, s_final = NAN, ttb = NAN;
+  engineering_summary eng;
   int rc = CLI_EXIT_OK, st, warn = 0, balanced = 0, ev = -1;
   size_t j;
 
@@ -759,6 +897,10 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   r.t_first_window = 0.1 * c->t_end;
   r.t_last_window_start = 0.9 * c->t_end;
   r.amp_last = NAN; /* stays NaN when the run stops (e.g. at balance) before the last 10% */
+  r.l_sup[0] = 0.0;
+  r.omega_abs = fabs(c->p.omega);
+  r.l_sup[1] = c->p.input == AUTOBAL_ROTOR_HARDWARE ? -c->p.hw.l_L : NAN;
+  r.l_sup[2] = c->p.input == AUTOBAL_ROTOR_HARDWARE ? c->p.hw.l_R : NAN;
   r.row = calloc(r.ncols, sizeof *r.row);
   r.rev_max_D = calloc(r.n_planes, sizeof *r.rev_max_D);
   r.rev_row = calloc(2 + r.n_planes, sizeof *r.rev_row);
@@ -808,6 +950,7 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   balanced = autobal_transient_event_result(tr, (size_t)ev, NULL, &hit) == 1;
   if (balanced) ttb = hit.t_start;
   s_final = autobal_rotor_balance_monitor(rot, c->frame, t_reached, y);
+  engineering_compute(&eng, rot, c, &r, t_reached, y);
   /* balanced angles (3.14) of each plane for comparison (when they exist); plane 1 is printed */
   for (j = 0; j < c->p.n_planes; j++) {
     size_t nbj = c->p.plane[j].n_balls;
@@ -822,10 +965,8 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
             rc == CLI_EXIT_OK)
           rc = cli_fail(ctx, CLI_EXIT_IO, "%s", autobal_archive_errmsg(a));
       }
-      if (j == 0) {
-        psi_bal = pb;
-        pb = NULL;
-      }
+      psi_bal[j] = pb;
+      pb = NULL;
     }
     free(pb);
   }
@@ -840,6 +981,7 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_first_10pct_max", r.amp_first, "m");
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_last_10pct_max", r.amp_last, "m");
     if (!st) st = autobal_archive_attr_double(a, g, "amplitude_max", r.max_amp, "m");
+    if (!st) st = engineering_write(a, g, &eng, r.n_planes);
     if (!st) st = cli_archive_solver_stats(a, "/rotor/transient/solver", tr, &stats, "s");
     rc = cli_archive_end(ctx, &a, st, rc);
   }
@@ -857,13 +999,20 @@ finish:
       cli_json_number(&jj, "residual_unbalance_final", s_final);
       cli_json_number(&jj, "amplitude_first_10pct_max", r.amp_first);
       cli_json_number(&jj, "amplitude_last_10pct_max", r.amp_last);
+      engineering_json(&jj, &eng, r.n_planes);
+      cli_json_unit(&jj, "time_to_balance", "s");
+      cli_json_unit(&jj, "t_reached", "s");
+      cli_json_unit(&jj, "residual_unbalance_initial", "1");
+      cli_json_unit(&jj, "residual_unbalance_final", "1");
+      cli_json_unit(&jj, "amplitude_first_10pct_max", "m");
+      cli_json_unit(&jj, "amplitude_last_10pct_max", "m");
+      cli_json_unit(&jj, "wall_time", "s");
       cli_json_int(&jj, "steps", (long)stats.steps);
       cli_json_int(&jj, "rhs_evaluations", (long)stats.rhs_evals);
       cli_json_number(&jj, "wall_time", stats.wall_seconds);
       cli_json_bool(&jj, "warning", warn);
       cli_json_summary_end(&jj, ctx);
     } else if (!ctx->quiet) {
-      size_t nb0 = c->p.plane[0].n_balls;
       printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
              c->p.omega, c->p.omega * 60.0 / (TWO_PI), r.n_planes, autobal_rotor_n_balls_total(rot), t_reached,
              t_reached / r.rev_period);
@@ -877,22 +1026,26 @@ finish:
       else
         printf("  NOT balanced: the residual unbalance did not stay below %.3g (relative) for %.0f revolutions\n",
                c->balance_tol, c->balance_revs);
-      if (nb0 > 0) {
-        size_t i;
-        printf("  plane 1 ball angles relative to the rotor at the end (rad, wrapped):");
-        for (i = 0; i < nb0 && i < 8; i++) {
-          size_t k = autobal_rotor_ball_index(rot, 0, i);
+      for (j = 0; j < r.n_planes; j++) {
+        size_t i, nbj = c->p.plane[j].n_balls;
+        printf("  plane %zu: residual unbalance %.4g g mm at the end (its unbalance m0 r0 = %.4g g mm)\n", j + 1,
+               eng.s_abs[j] * 1e6, c->p.plane[j].m0 * c->p.plane[j].r0 * 1e6);
+        if (nbj == 0) continue;
+        printf("  plane %zu ball angles relative to the rotor at the end (rad, wrapped):", j + 1);
+        for (i = 0; i < nbj && i < 8; i++) {
+          size_t k = autobal_rotor_ball_index(rot, j, i);
           double ang = c->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - c->p.omega * t_reached : y[8 + k];
           ang = remainder(ang, TWO_PI);
           printf(" %.5f", ang);
         }
-        printf("\n");
-        if (psi_bal) {
-          printf("  balanced configuration (3.14) of plane 1:");
-          for (i = 0; i < nb0 && i < 8; i++) printf(" %.5f", psi_bal[i]);
-          printf("\n");
+        printf("%s\n", nbj > 8 ? " ..." : "");
+        if (psi_bal[j]) {
+          printf("  balanced configuration (3.14) of plane %zu:", j + 1);
+          for (i = 0; i < nbj && i < 8; i++) printf(" %.5f", psi_bal[j][i]);
+          printf("%s\n", nbj > 8 ? " ..." : "");
         }
       }
+      engineering_print(&eng, c);
       cli_print_solver_stats(tr, &stats);
       if (ctx->output) printf("archive: %s\n", ctx->output);
     }
@@ -905,7 +1058,7 @@ done:
   free(r.rev_max_D);
   free(r.rev_row);
   free(y);
-  free(psi_bal);
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) free(psi_bal[j]);
   free(c);
   return rc;
 }

@@ -118,6 +118,55 @@ bad += not same
 sys.exit(1 if bad else 0)
 PY
 
+# 4. Engineering quantities of the transient summary against the closed-form steady unbalance
+#    response of the linear rotor (3.2) (balls of negligible mass): complex amplitudes from
+#    (K - w^2 M + i w H) Q = F solved here with NumPy; then the peak-to-peak displacement, the RMS
+#    velocity at the supports and the ISO 21940-11 grade G = (m0 r0 / m_p) w follow in closed form.
+"$AUTOBAL" rotor transient --set "rotor.omega=3000 rpm" --set "plane1.ball_mass=1e-9 g, 1e-9 g" \
+  --set "plane1.ball_damping=1e-9 kg/s" --set "plane1.ball_psi=0, 180 deg" \
+  --set "plane1.unbalance=200 g mm" --set "transient.t_end=5 s" --set "transient.balance_tol=1e-12" \
+  --set "balance.grade=G6.3" -o steady.h5 --json > steady.json || bad "steady-response run failed"
+"$PY" - <<'PY' || fail=1
+import h5py, json, numpy as np, math, sys
+bad = 0
+def check(name, got, want, rel):
+    global bad
+    ok = abs(got - want) <= rel * abs(want)
+    print(("ok  " if ok else "FAIL") + f" {name}: {got!r} vs closed form {want!r} (rel {rel:g})")
+    bad += not ok
+h = h5py.File("steady.h5", "r")
+L = h["rotor/lumped"].attrs; R = h["rotor"].attrs; P = h["rotor/plane1"].attrs; T = h["rotor/transient"].attrs
+w = R["omega"]; U = P["m0"] * P["r0"]; d = P["d"]
+M, A, C = L["M"], L["A"], L["C"]
+Mm = np.diag([M, M, A, A])
+K = np.array([[L["c_x"], 0, 0, -L["c_xbeta"]], [0, L["c_y"], L["c_yalpha"], 0],
+              [0, L["c_yalpha"], L["c_alpha"], 0], [-L["c_xbeta"], 0, 0, L["c_beta"]]])
+H = np.array([[L["h_x"], 0, 0, -L["h_xbeta"]], [0, L["h_y"], L["h_yalpha"], 0],
+              [0, L["h_yalpha"], L["h_alpha"], C * w], [-L["h_xbeta"], 0, -C * w, L["h_beta"]]])
+# s_u = U cos wt = Re(U e^{iwt}), s_v = U sin wt = Re(-i U e^{iwt}); forcing -s'' terms of (3.2)
+F = U * w**2 * np.array([1, -1j, d * 1j, d])
+Q = np.linalg.solve(K - w**2 * Mm + 1j * w * H, F)
+X, Y, Al, Be = Q
+def rms(z): return abs(1j * w * z) / math.sqrt(2)          # RMS of Re(i w z e^{iwt})
+vs = []
+for p in (-R["l_L"], R["l_R"]):
+    vs += [rms(X + p * Be), rms(Y - p * Al)]
+check("displacement peak-to-peak at G", T["displacement_pk_pk_G_last_10pct"], 2 * max(abs(X), abs(Y)), 1e-6)
+check("velocity RMS at G", T["velocity_rms_G_last_10pct"], max(rms(X), rms(Y)), 1e-6)
+check("velocity RMS at the left support", T["velocity_rms_left_support_last_10pct"], max(vs[0], vs[1]), 1e-6)
+check("velocity RMS at the right support", T["velocity_rms_right_support_last_10pct"], max(vs[2], vs[3]), 1e-6)
+check("residual unbalance |s| (g mm)", T["residual_unbalance_abs_final"][0] * 1e6, 200.0, 1e-9)
+check("balance grade G = U/m_p w (mm/s)", T["balance_grade_final"], U / R["m_p"] * w * 1e3, 1e-9)
+check("permissible unbalance of G6.3 (kg m)", T["permissible_unbalance"], 6.3e-3 / w * R["m_p"], 1e-12)
+met = T["permissible_unbalance_met"] == (U <= 6.3e-3 / w * R["m_p"])
+print(("ok  " if met else "FAIL") + " G6.3 met or not as the closed form says"); bad += not met
+j = json.load(open("steady.json"))
+ok = j["units"]["balance_grade_final"] == "mm/s" and j["units"]["velocity_rms_supports_last_10pct"] == "m/s" \
+     and abs(j["velocity_rms_supports_last_10pct"] - max(vs)) <= 1e-6 * max(vs)
+print(("ok  " if ok else "FAIL") + " --json carries the values and their units"); bad += not ok
+sys.exit(1 if bad else 0)
+PY
+
 # bad-input catalogue: exit 3 and the key named
 expect3() {
   local needle=$1; shift
@@ -138,5 +187,7 @@ expect3 "plane1.ball_mass: item 2" rotor transient --set "plane1.ball_mass=50 g,
 expect3 "supports.c_Lx" rotor transient --set "supports.c_Lx=100 N"
 expect3 "pendulum.omega" pendulum roots --set "pendulum.M=10 kg" --set "pendulum.e=1 mm" --set "pendulum.m=500 g" \
   --set "pendulum.l=50 mm" --set "pendulum.c=1 kN/mm" --set "pendulum.H1=0" --set "pendulum.H2=0" --set "pendulum.omega=100 m"
+expect3 "balance quality grade" rotor transient --set "balance.grade=X2.5"
+expect3 "balance quality grade" rotor transient --set "balance.grade=G-1"
 expect3 "pendulum.R_m is dimensionless" pendulum roots --set "pendulum.R_m=0.1 kg"
 exit $fail
