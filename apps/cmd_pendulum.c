@@ -7,11 +7,15 @@
 #include "autobal/archive.h"
 #include "autobal/pendulum.h"
 #include "cli.h"
+#include "units.h"
 
 /* Defaults of the built-in example (dimensionless). */
 #define DEF_RW 3.0
 #define DEF_RM 0.1
 #define DEF_H 0.1
+/* omega0 = sqrt(c / (M + 2m)) of the physical set (eq. (2)), rad/s. */
+static double pendulum_omega0(const autobal_pendulum_physical *phys) { return sqrt(phys->c / (phys->M + 2.0 * phys->m)); }
+
 #define DEF_HP 0.5
 #define DEF_K 0.5
 
@@ -101,14 +105,22 @@ int cli_write_pendulum_params(cli_ctx *ctx, autobal_archive *a, const autobal_pe
     if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H1", phys->H1, "N m s");
     if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H2", phys->H2, "N s/m");
     if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "omega", phys->omega, "rad/s");
+    if (!st)
+      st = autobal_archive_attr_double(a, "/pendulum/physical", "omega0", pendulum_omega0(phys), "rad/s");
   }
   if (st) return cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
   return CLI_EXIT_OK;
 }
 
-static void print_params(const autobal_pendulum_params *p) {
+static void print_params(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys, int physical) {
   printf("parameters (dimensionless): R_w = %.6g  R_m = %.6g  H = %.6g  h = %.6g  psi0 = %.6g rad  k = %.6g\n", p->R_w,
          p->R_m, p->H, p->h, p->psi0, autobal_pendulum_k(p));
+  if (physical) {
+    double w0 = pendulum_omega0(phys);
+    printf("physical: omega0 = sqrt(c/(M + 2m)) = %.6g rad/s (%.6g rpm); omega = R_w omega0 = %.6g rad/s (%.6g rpm); "
+           "unbalance M e = %.4g g mm\n",
+           w0, cli_rpm(w0), phys->omega, cli_rpm(phys->omega), phys->M * phys->e * 1e6);
+  }
 }
 
 static const char *cond_text(const autobal_pendulum_sufficient *c) {
@@ -194,7 +206,7 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_bool(&j, "cond9_predicts_stable", r.cond9.predicts_stable);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
-    print_params(&p);
+    print_params(&p, &phys, physical);
     printf("main motion (4): %s (Routh-Hurwitz on (6)); roots say %s; margin max Re(lambda) = %.6e\n",
            autobal_verdict_name(r.verdict), autobal_verdict_name(r.verdict_roots), r.max_real);
     printf("  %-3s %24s %24s   %24s %24s\n", "#", "root of (6): Re", "Im", "eigenvalue of (5): Re", "Im");
@@ -215,7 +227,8 @@ static const char *kind_name(int kind) {
   return kind > 0 ? "stability gained" : kind < 0 ? "stability lost" : "touch (no change)";
 }
 
-static void print_intervals(const autobal_pendulum_crit_set *s) {
+/* The stable intervals; with omega0 > 0 (physical input) also in rpm. */
+static void print_intervals(const autobal_pendulum_crit_set *s, double omega0) {
   size_t i;
   printf("  stable for R_w in:");
   if (s->n_stable == 0) printf(" (none)");
@@ -224,6 +237,14 @@ static void print_intervals(const autobal_pendulum_crit_set *s) {
     else printf(" (%.10g, %.10g)", s->stable_lo[i], s->stable_hi[i]);
   }
   printf("\n");
+  if (omega0 > 0 && s->n_stable > 0) {
+    printf("  stable speeds (rpm):");
+    for (i = 0; i < s->n_stable; i++) {
+      if (isinf(s->stable_hi[i])) printf(" (%.6g, inf)", cli_rpm(s->stable_lo[i] * omega0));
+      else printf(" (%.6g, %.6g)", cli_rpm(s->stable_lo[i] * omega0), cli_rpm(s->stable_hi[i] * omega0));
+    }
+    printf("\n");
+  }
 }
 
 static int write_crit_set(autobal_archive *a, const char *g, const char *prefix, const autobal_pendulum_crit_set *s) {
@@ -394,9 +415,15 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
   if (ctx->json) {
     cli_json j;
     cli_json_summary_begin(&j, ctx);
-    cli_json_number(&j, "R_m", p.R_m);
-    cli_json_number(&j, "k", k);
-    cli_json_numbers(&j, "undamped_critical_R_w", und.R_w, und.n);
+    cli_json_quantity(&j, "R_m", p.R_m, "1");
+    cli_json_quantity(&j, "k", k, "1");
+    cli_json_quantities(&j, "undamped_critical_R_w", und.R_w, und.n, "1");
+    if (physical) {
+      double w0 = pendulum_omega0(&phys), wc[AUTOBAL_PENDULUM_MAX_CRIT];
+      for (i = 0; i < und.n && i < AUTOBAL_PENDULUM_MAX_CRIT; i++) wc[i] = und.R_w[i] * w0;
+      cli_json_quantity(&j, "omega0", w0, "rad/s");
+      cli_json_quantities(&j, "undamped_critical_omega", wc, i, "rad/s");
+    }
     cli_json_array(&j, "undamped_kind");
     for (i = 0; i < und.n; i++) cli_json_int(&j, NULL, und.kind[i]);
     cli_json_array_end(&j);
@@ -414,10 +441,15 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     cli_json_number(&j, "R_w_at_R_m1", rw_rm1);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
-    print_params(&p);
+    double w0 = physical ? pendulum_omega0(&phys) : NAN;
+    print_params(&p, &phys, physical);
     printf("undamped critical speeds at R_m = %.6g, k = %.6g (exact, from the discriminant of (10)):\n", p.R_m, k);
-    for (i = 0; i < und.n; i++) printf("  R_w = %.12f   %s\n", und.R_w[i], kind_name(und.kind[i]));
-    print_intervals(&und);
+    for (i = 0; i < und.n; i++) {
+      printf("  R_w = %.12f   %s", und.R_w[i], kind_name(und.kind[i]));
+      if (physical) printf("   (omega = %.6g rad/s = %.6g rpm)", und.R_w[i] * w0, cli_rpm(und.R_w[i] * w0));
+      printf("\n");
+    }
+    print_intervals(&und, w0);
     printf("k = 0 (numerical): ");
     for (i = 0; i < k0set.n; i++) printf(" %.12f", k0set.R_w[i]);
     printf("\n  paper: (13) R_w1 = %.12f", rw1_13);
@@ -430,8 +462,12 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     printf("\nR_m^(1) = %.12f (curves (16) and (18) touch at R_w = %.12f)\n", rm1, rw_rm1);
     if (have_damped) {
       printf("damped critical speeds (H = %.6g, h = %.6g) on R_w in [%g, %g]:\n", p.H, p.h, rw_min, rw_max);
-      for (i = 0; i < damped.n; i++) printf("  R_w = %.12f   %s\n", damped.R_w[i], kind_name(damped.kind[i]));
-      print_intervals(&damped);
+      for (i = 0; i < damped.n; i++) {
+        printf("  R_w = %.12f   %s", damped.R_w[i], kind_name(damped.kind[i]));
+        if (physical) printf("   (omega = %.6g rad/s = %.6g rpm)", damped.R_w[i] * w0, cli_rpm(damped.R_w[i] * w0));
+        printf("\n");
+      }
+      print_intervals(&damped, w0);
       if (damped.truncated)
         printf("  (TRUNCATED: more critical speeds than the list holds; the results cover R_w in [%g, %.12f] only)\n",
                rw_min, damped.R_w[damped.n - 1]);
@@ -552,7 +588,7 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
-    print_params(&p);
+    print_params(&p, &phys, physical);
     printf("map %ld x %ld over R_m in [%g, %g], R_w in [%g, %g], %s\n", n_rm, n_rw, rm_min, rm_max, rw_min, rw_max,
            every ? "stable for every k in the set" : "one k");
     printf("stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);

@@ -12,6 +12,7 @@
 #include "autobal/rotor.h"
 #include "autobal/rotor_stability.h"
 #include "cli.h"
+#include "units.h"
 
 #define MAX_MEMBER_ANGLES 4096
 #define TWO_PI 6.283185307179586476925286766559
@@ -168,6 +169,13 @@ static void print_intervals(const char *what, const char *unit, const autobal_ro
     if (cr->stable_hi[i] == hi) printf(" (to the end of the range)");
   }
   printf("\n");
+  if (strcmp(unit, "rad/s") == 0 && (cr->n > 0 || cr->n_stable > 0)) { /* the same speeds in rpm */
+    printf("  in rpm: critical");
+    for (i = 0; i < cr->n; i++) printf(" %.6g", cli_rpm(cr->value[i]));
+    printf("; stable");
+    for (i = 0; i < cr->n_stable; i++) printf(" [%.6g, %.6g]", cli_rpm(cr->stable_lo[i]), cli_rpm(cr->stable_hi[i]));
+    printf("\n");
+  }
   if (cr->truncated)
     printf("  (TRUNCATED: more critical values than the list holds; the results cover [%g, %.10g] only)\n", lo,
            cr->value[cr->n - 1]);
@@ -183,14 +191,14 @@ static int crit_warning(const cli_ctx *ctx, int st, const char *what, const char
   return AUTOBAL_SUCCESS;
 }
 
-static void json_crit(cli_json *j, const autobal_rotor_crit *cr) {
+static void json_crit(cli_json *j, const autobal_rotor_crit *cr, const char *unit) {
   size_t i;
-  cli_json_numbers(j, "critical_values", cr->value, cr->n);
+  cli_json_quantities(j, "critical_values", cr->value, cr->n, unit);
   cli_json_array(j, "critical_kind");
   for (i = 0; i < cr->n; i++) cli_json_int(j, NULL, cr->kind[i]);
   cli_json_array_end(j);
-  cli_json_numbers(j, "stable_lo", cr->stable_lo, cr->n_stable);
-  cli_json_numbers(j, "stable_hi", cr->stable_hi, cr->n_stable);
+  cli_json_quantities(j, "stable_lo", cr->stable_lo, cr->n_stable, unit);
+  cli_json_quantities(j, "stable_hi", cr->stable_hi, cr->n_stable, unit);
   cli_json_bool(j, "truncated", cr->truncated);
 }
 
@@ -332,17 +340,17 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if (ctx->json) {
     cli_json j;
     cli_json_summary_begin(&j, ctx);
-    cli_json_number(&j, "omega", c->p.omega);
+    cli_json_quantity(&j, "omega", c->p.omega, "rad/s");
     cli_json_string(&j, "method", autobal_rotor_stab_method_name(r.method));
     cli_json_string(&j, "verdict", verdict_text(r.verdict));
-    cli_json_number(&j, "margin", r.margin);
-    cli_json_numbers(&j, "psi_balanced", r.psi, r.n_balls);
+    cli_json_quantity(&j, "margin", r.margin, "1/s");
+    cli_json_quantities(&j, "psi_balanced", r.psi, r.n_balls, "rad");
     cli_json_int(&j, "n_family", (long)r.n_family);
     if (r.n_poly) cli_json_string(&j, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
     cli_json_number(&j, "root_eig_mismatch", r.n_closed ? r.root_eig_mismatch : NAN);
     cli_json_number(&j, "full_mismatch", r.full_mismatch);
     cli_json_number(&j, "floquet_mismatch", r.floquet_mismatch);
-    if (do_crit) json_crit(&j, &cr);
+    if (do_crit) json_crit(&j, &cr, "rad/s");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor stability at omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %s supports\n", c->p.omega,
@@ -511,11 +519,11 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     cli_json_summary_begin(&j, ctx);
     cli_json_string(&j, "param", pname);
     cli_json_string(&j, "unit", unit);
-    cli_json_number(&j, "min", lo);
-    cli_json_number(&j, "max", hi);
+    cli_json_quantity(&j, "min", lo, unit);
+    cli_json_quantity(&j, "max", hi, unit);
     cli_json_int(&j, "n", n);
     cli_json_int(&j, "n_stable_points", (long)nstable);
-    json_crit(&j, &cr);
+    json_crit(&j, &cr, unit);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor sweep of %s over [%g, %g] %s, %ld points (omega = %.6g rad/s unless swept)\n", pname, lo, hi, unit, n,
@@ -613,7 +621,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
     cli_json_int(&j, "n_stable", (long)nstable);
-    cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
+    cli_json_quantity(&j, "stable_fraction", (double)nstable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
@@ -739,29 +747,33 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   if (ctx->json) {
     cli_json jj;
     cli_json_summary_begin(&jj, ctx);
-    cli_json_numbers(&jj, "natural_frequency_undamped", fu, 4);
-    cli_json_numbers(&jj, "natural_frequency_damped", fd, 4);
-    cli_json_numbers(&jj, "damping_ratio_at_rest", zd, 4);
-    cli_json_numbers(&jj, "crossing_omega", rr.cross, rr.n_cross);
+    cli_json_quantities(&jj, "natural_frequency_undamped", fu, 4, "rad/s");
+    cli_json_quantities(&jj, "natural_frequency_damped", fd, 4, "rad/s");
+    cli_json_quantities(&jj, "damping_ratio_at_rest", zd, 4, "1");
+    cli_json_quantities(&jj, "crossing_omega", rr.cross, rr.n_cross, "rad/s");
     cli_json_array(&jj, "crossing_whirl");
     for (i = 0; i < rr.n_cross; i++) cli_json_int(&jj, NULL, rr.cross_whirl[i]);
     cli_json_array_end(&jj);
-    cli_json_numbers(&jj, "peak_omega", rr.peak, rr.n_peak);
+    cli_json_quantities(&jj, "peak_omega", rr.peak, rr.n_peak, "rad/s");
     cli_json_bool(&jj, "truncated", rr.truncated);
     cli_json_summary_end(&jj, ctx);
   } else if (!ctx->quiet) {
     printf("rotor-housing (balls removed): natural frequencies at rest\n");
-    printf("  undamped: %.7g %.7g %.7g %.7g rad/s\n", fu[0], fu[1], fu[2], fu[3]);
-    printf("  damped:   %.7g %.7g %.7g %.7g rad/s (damping ratios %.4g %.4g %.4g %.4g)\n", fd[0], fd[1], fd[2], fd[3],
-           zd[0], zd[1], zd[2], zd[3]);
+    printf("  undamped: %.7g %.7g %.7g %.7g rad/s = %.5g %.5g %.5g %.5g Hz\n", fu[0], fu[1], fu[2], fu[3],
+           fu[0] / TWO_PI, fu[1] / TWO_PI, fu[2] / TWO_PI, fu[3] / TWO_PI);
+    printf("  damped:   %.7g %.7g %.7g %.7g rad/s = %.5g %.5g %.5g %.5g Hz (damping ratios %.4g %.4g %.4g %.4g)\n",
+           fd[0], fd[1], fd[2], fd[3], fd[0] / TWO_PI, fd[1] / TWO_PI, fd[2] / TWO_PI, fd[3] / TWO_PI, zd[0],
+           zd[1], zd[2], zd[3]);
     printf("Campbell diagram over omega in [%g, %g] rad/s (%ld points)\n", lo, hi, n);
     printf("  critical speeds (natural frequency = omega):");
     if (rr.n_cross == 0) printf(" none");
     for (i = 0; i < rr.n_cross; i++)
-      printf(" %.8g (%s)", rr.cross[i], rr.cross_whirl[i] > 0 ? "forward" : (rr.cross_whirl[i] < 0 ? "backward" : "?"));
+      printf(" %.8g rad/s = %.6g rpm (%s)", rr.cross[i], cli_rpm(rr.cross[i]),
+             rr.cross_whirl[i] > 0 ? "forward" : (rr.cross_whirl[i] < 0 ? "backward" : "?"));
     printf("\n  unbalance-response peaks (centre of mass):");
     if (rr.n_peak == 0) printf(" none");
-    for (i = 0; i < rr.n_peak; i++) printf(" %.8g rad/s (%.4g um)", rr.peak[i], rr.peak_amp[i] * 1e6);
+    for (i = 0; i < rr.n_peak; i++)
+      printf(" %.8g rad/s = %.6g rpm (%.4g um)", rr.peak[i], cli_rpm(rr.peak[i]), rr.peak_amp[i] * 1e6);
     printf("\n");
     if (rr.truncated)
       printf("  (TRUNCATED: more crossings or peaks than the lists hold; see the warning for the range covered)\n");
