@@ -1,5 +1,5 @@
 /* pendulum.c: the planar two-pendulum autobalancer, stability of the main
- * motion (spec: shared/spec/pendulum.md, equations (2)-(18)).
+ * motion (docs/pendulum.md, equations (2)-(18)).
  * Everything here is dimensionless (see include/autobal/pendulum.h). */
 #include "autobal/pendulum.h"
 #include "internal.h"
@@ -252,7 +252,7 @@ static MAP_INLINE void char_poly_from_parts_v(const mvec *Rw, double R_m, const 
   }
   /* The constant term is the difference of two terms of size R_m^2 W^4 and
    * cancels catastrophically for small k; its exact value k R_m^2 W^4 (the
-   * spec's "useful fact", checked in the tests against the arithmetic above)
+   * closed form in docs/pendulum.md, checked in the tests against the arithmetic above)
    * is used instead, so that the structural root lambda = 0 at k = 0 is
    * exact and small k keep the right sign. */
   coef[0] = k * R_m * R_m * W * W * W * W;

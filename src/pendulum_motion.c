@@ -1,6 +1,6 @@
 /* pendulum_motion.c: the explicit first-order form of the equations of
  * motion (1) of the two-pendulum autobalancer, its Jacobian and derived
- * quantities (spec: shared/spec/pendulum.md).  Dimensionless throughout
+ * quantities (docs/pendulum.md).  Dimensionless throughout
  * (time tau = omega0 t, lengths in units of l).  No allocation, O(1).
  *
  * Derivation of the explicit form.  Write the absolute acceleration of the

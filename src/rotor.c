@@ -1,4 +1,4 @@
-/* rotor.c: the rotor - massive housing - ball autobalancer model (spec rotor.md):
+/* rotor.c: the rotor - massive housing - ball autobalancer model (docs/rotor.md):
  * parameters and lumped coefficients (2.7)-(2.11), the right-hand sides in the
  * fixed frame (3.2)-(3.8) and with the balls in the rotating frame (3.9)-(3.13),
  * derived outputs, balanced configurations (3.14). */
@@ -360,7 +360,7 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
     const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
-    /* acceleration of D on the rotor axes (spec, after (3.13)) */
+    /* acceleration of D on the rotor axes (docs/rotor.md, after (3.13)) */
     const double axi = uDdd * cw + vDdd * sw, aeta = -uDdd * sw + vDdd * cw;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) /* eq. (3.13) divided by m r^2 */

@@ -1,4 +1,4 @@
-/* rotor_campbell.c: the rotor-housing without balls (spec rotor.md, (3.2) with s = the
+/* rotor_campbell.c: the rotor-housing without balls (docs/rotor.md, (3.2) with s = the
  * unbalance only): natural frequencies and damping ratios at a speed (gyroscopic
  * coupling C omega), the Campbell diagram, the steady unbalance response and the
  * resonance (unbalance-response critical) speeds. */

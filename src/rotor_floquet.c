@@ -1,8 +1,8 @@
 /* rotor_floquet.c: the analytic linearization of the full rotor-balls model about a
  * balanced motion (mixed frame: rotor coordinates fixed, ball angles relative), its
  * rotating-coordinate form, the Floquet monodromy matrix over one revolution, and a
- * central-difference Jacobian of the model's own right-hand side (spec rotor.md,
- * "Stability of the balanced motion" and "Anisotropic supports"). */
+ * central-difference Jacobian of the model's own right-hand side (docs/rotor.md,
+ * "Stability of a balanced motion" and "Anisotropic supports: Floquet multipliers"). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>

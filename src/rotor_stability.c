@@ -1,5 +1,5 @@
 /* rotor_stability.c: stability of the balanced motions of the rotor with ball
- * autobalancers (spec rotor.md, (3.14)-(3.16)): members of the family of balanced
+ * autobalancers (docs/rotor.md, (3.14)-(3.16)): members of the family of balanced
  * configurations, the closed linear system of the isotropic rotor, its degree-12
  * characteristic polynomial Delta and its real first-order matrix, the analysis
  * handle, margins and verdicts by four methods, sweeps, critical values and maps.
@@ -357,7 +357,7 @@ int autobal_rotor_char_poly(const autobal_rotor_closed *c, double coef[13], doub
   cp_mul(&K11, &K22, &t1);
   cp_mul(&K12, &K12, &t2);
   cp_axpby(1.0, 0.0, &t1, -1.0, 0.0, &t2, &D);
-  /* N = K22 - 2 d K12 + d^2 K11 (the spec's N; independent of m_a) */
+  /* N = K22 - 2 d K12 + d^2 K11 (N of docs/rotor.md; independent of m_a) */
   cp_axpby(1.0, 0.0, &K22, -2.0 * d, 0.0, &K12, &t1);
   cp_axpby(1.0, 0.0, &t1, d * d, 0.0, &K11, &N);
   /* F = (lambda^2 + kappa lambda) D - (m_b / 2) P^4 N */

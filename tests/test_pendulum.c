@@ -1,6 +1,6 @@
 /* test_pendulum.c: the two-pendulum autobalancer's stability analysis
  * (pendulum.h, src/pendulum.c).  Independent reasons for every expected
- * value: the spec's closed facts, the determinant of the (5) pencil computed
+ * value: the closed facts of docs/pendulum.md, the determinant of the (5) pencil computed
  * here by complex elimination, eigenvalues vs roots, GSL polynomial roots of
  * (10) for the verdicts on both sides of each critical speed, the symbolic
  * factorisation 4v^3 - 8v^2 + 6v - 1 = 0 (v = u^2) for R_m^(1), the next term

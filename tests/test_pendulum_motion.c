@@ -2,10 +2,10 @@
  * (src/pendulum_motion.c) driven by the transient engine.
  *
  * Independent checks:
- *  - the accelerations satisfy (1) exactly as printed in the spec (residuals);
+ *  - the accelerations satisfy (1) exactly as written in docs/pendulum.md (residuals);
  *  - (4) is an equilibrium, and so is psi = phi = pi - psi0;
  *  - analytic Jacobian = central differences of the rhs; at (4) it equals
- *    the first-order matrix of (5) built here from the spec's (5), and the
+ *    the first-order matrix of (5) built here from (5) of docs/pendulum.md, and the
  *    library's autobal_pendulum_first_order_matrix();
  *  - the nonlinear transient approaches the linear one (5) as O(amplitude^2);
  *  - with H = h = 0 the Jacobi integral (computed here from the point masses'

@@ -1,7 +1,7 @@
-/* test_rotor.c: the rotor - housing - ball autobalancer model (spec rotor.md).
+/* test_rotor.c: the rotor - housing - ball autobalancer model (docs/rotor.md).
  *
  * Every expected value has a reason independent of src/rotor.c:
- *  - the spec's stated numbers (lumped coefficients, natural frequencies at rest,
+ *  - the stated numbers of docs/rotor.md (lumped coefficients, natural frequencies at rest,
  *    balanced angles), not copied from the program;
  *  - a direct solve of the full (4+N)x(4+N) mass-matrix system assembled here from
  *    (3.2)/(3.5)-(3.8) and (3.4), with the support stiffness built from the potential

@@ -1,6 +1,6 @@
 /* test_rotor_stability.c: balanced motions of the rotor with ball autobalancers and their
- * stability (spec rotor.md (3.14)-(3.16), "Anisotropic supports"): members of the family,
- * the characteristic polynomial Delta against the spec's formulas evaluated directly, its
+ * stability (docs/rotor.md (3.14)-(3.16), "Anisotropic supports"): members of the family,
+ * the characteristic polynomial Delta against the formulas of docs/rotor.md evaluated directly, its
  * roots against three independent computations (closed first-order matrix, linearization
  * of the full model in rotating coordinates, Floquet multipliers), the linearization
  * against central differences of the model's own right-hand side, Routh-Hurwitz,

@@ -1,5 +1,5 @@
 /* autobal/pendulum.h: the planar two-pendulum autobalancer
- * (spec: shared/spec/pendulum.md; Filimonikhin 1996, equation numbers (1)-(18)).
+ * (docs/pendulum.md; Filimonikhin 1996, equation numbers (1)-(18)).
  *
  * EVERYTHING IN THIS MODULE IS DIMENSIONLESS (eqs. (2), (3)): time is
  * tau = omega0 t, lengths are in units of the rod length l, and the
@@ -133,7 +133,7 @@ AUTOBAL_API int autobal_pendulum_char_p1(const autobal_pendulum_params *p, doubl
 
 /* The matrices of the linearization (5), M q'' + C q' + K q = 0 with
  * q = (xi, eta, alpha, beta), each 4x4 row-major (rows: the four equations
- * of (5) in the spec's order).  Any output may be NULL.  Validates p. */
+ * of (5) in the order of docs/pendulum.md).  Any output may be NULL.  Validates p. */
 AUTOBAL_API int autobal_pendulum_linear_matrices(const autobal_pendulum_params *p, double Mm[16],
                                                  double C[16], double K[16], autobal_error *err);
 

@@ -1,5 +1,5 @@
 /* autobal/rotor.h: a rotor in a massive housing on visco-elastic supports with
- * one or two ball autobalancers (spec: rotor.md, equations (2.1)-(3.16)).
+ * one or two ball autobalancers (docs/rotor.md, equations (2.1)-(3.16)).
  *
  * Model.  An axisymmetric rotor (m_p, A_p, C_p) fixed in a housing (M_k, A_k)
  * on a left support in the plane z = -l_L and a right one in z = +l_R spins at
@@ -145,7 +145,7 @@ typedef struct autobal_rotor_params {
   double z0, zd0;             /* initial axial displacement (m) and rate (m/s) */
 } autobal_rotor_params;
 
-/* The spec's default example: M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,
+/* The default example (docs/rotor.md): M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,
  * C_p = 0.03; l_L = 0.20, l_R = 0.15; c_Lx = c_Ly = 1e5, c_Rx = c_Ry = 1.5e5,
  * c_Lz = 2e5; h_Lx = h_Ly = 100, h_Rx = h_Ry = 150, h_Lz = 200; one plane
  * d = 0.10 with m0 = 0.02 at r0 = 0.1, psi0 = 0, two balls of 0.05 kg on
@@ -263,7 +263,7 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
 /* Right-hand side of (3.2)+(3.4) ((3.5)-(3.8) for two planes) in the fixed
  * frame, GSL signature; params = an autobal_rotor*.  The implicit system is
  * reduced exactly to a 4x4 symmetric positive definite system in (x'', y'',
- * alpha'', beta'') (see rotor.md "Solving for the accelerations"); one plane:
+ * alpha'', beta'') (see docs/rotor.md, "The exact O(n) acceleration solve"); one plane:
  * solved in closed form through the 2x2 system in (u_D'', v_D''), two planes:
  * by a 4x4 L D L^T factorization; then phi'' from (3.4).  O(N), no allocation.  Units: t in s, y in
  * the state layout of autobal_rotor_dim (SI), dydt per second.

@@ -1,8 +1,8 @@
 /* autobal/rotor_stability.h: balanced ("main") motions of the rotor with ball
  * autobalancers, their stability, critical speeds, sweeps and maps, natural
  * frequencies, the Campbell diagram and the unbalance response
- * (spec rotor.md, "Balanced motions (3.14)", "Stability of the balanced motion
- * (3.14)-(3.16)", "Anisotropic supports").
+ * (docs/rotor.md, "Balanced motions (3.14)", "Stability of a balanced motion
+ * (3.15), (3.16)", "Anisotropic supports: Floquet multipliers").
  *
  * The balanced motion.  x = y = alpha = beta = 0, every ball at rest relative
  * to the rotor at angles psi~_i with sum_i m_i r_i e^{i psi~_i} = -m0 r0 e^{i psi0}
@@ -16,7 +16,7 @@
  *  POLY  (isotropic supports, one plane, common h_i/m_i = kappa): the rotor
  *    equations rotated with the shaft, W = (x + i y) e^{-i w t},
  *    Theta = (beta - i alpha) e^{-i w t}, p(f) = f'' + 2 i w f' - w^2 f,
- *    q(f) = f' + i w f (spec):
+ *    q(f) = f' + i w f (docs/rotor.md):
  *      M p(W) + h q(W) + c W - h_c q(Theta) - c_c Theta + p(sigma) = 0
  *      A p(Theta) + (h_t - i C w) q(Theta) + c_t Theta - h_c q(W) - c_c W + d p(sigma) = 0
  *    closed by the corrected complex (3.16) for sigma = s_xi + i s_eta,
@@ -29,7 +29,7 @@
  *      D = K11 K22 - K12^2,  N = K22 - 2 d K12 + d^2 K11,
  *      F = (lambda^2 + kappa lambda) D - (m_b / 2) P^4 N,
  *      Delta = F F* - (|Q| / 2)^2 P^4 Pb^4 N N*
- *    (the spec's D, N, F, Delta; in the FULL inertia model K11 += m_a P^2,
+ *    (D, N, F, Delta of docs/rotor.md; in the FULL inertia model K11 += m_a P^2,
  *    K12 += m_a d P^2, K22 += m_a d^2 P^2 with m_a = m0 + sum m_i, which leaves N
  *    unchanged).  It is built by complex polynomial arithmetic and solved with
  *    GSL (autobal_poly_roots) after the substitution lambda = w_s s, w_s =

@@ -1,6 +1,6 @@
 """Independent checks of `autobal pendulum ...` archives (run by tests/app/pendulum.sh).
 
-Everything expected here is recomputed from the spec's formulas with NumPy/SciPy, not
+Everything expected here is recomputed from the formulas of docs/pendulum.md with NumPy/SciPy, not
 taken from autobal: the characteristic polynomial (6) built with numpy polynomials, the
 undamped polynomial (10), the closed form (16), (18), and R_m^(1) as the point where
 (16) and (18) touch.  Usage: pendulum_check.py roots|critical|map FILE.h5

@@ -1,7 +1,7 @@
 """Checks of `autobal pendulum transient` archives with independent reasons.
 
 - the residual unbalance is recomputed from the geometry of the model section of
-  pendulum.md (rotor M e along +U, pendulum 1 at l(-sin psi, cos psi), pendulum 2 at
+  docs/pendulum.md (rotor M e along +U, pendulum 1 at l(-sin psi, cos psi), pendulum 2 at
   l(-sin phi, -cos phi)), in units of 2 m l;
 - balanced runs end at the main motion (4): psi = phi = psi0, xi = eta = 0;
 - with H = h = 0 the Jacobi integral of the rotating frame is conserved;

@@ -12,8 +12,8 @@ would (xarray with engine="h5netcdf", group by group, and plain h5py), `autobal 
 
 Every check prints what it compared ("ok"/"FAIL") and the tolerance; the exit status is the
 number of failures (capped at 100).  Expected values come from the configuration files, the
-spec's closed forms and identities between independently stored quantities, never from the
-program's own output.
+closed forms of docs/pendulum.md and docs/rotor.md and identities between independently
+stored quantities, never from the program's own output.
 """
 import configparser
 import json

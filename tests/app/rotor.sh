@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # App test: `autobal rotor transient` as a user runs it; archives checked by rotor_check.py with
-# formulas from the spec; interruption and bad input provoked.
+# formulas from docs/rotor.md; interruption and bad input provoked.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 here=$(cd "$(dirname "$0")" && pwd)

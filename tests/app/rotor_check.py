@@ -1,6 +1,6 @@
 """Independent checks of `autobal rotor transient` archives (run by tests/app/rotor.sh).
 
-Expected values come from the spec's formulas evaluated here, not from autobal:
+Expected values come from the formulas of docs/rotor.md evaluated here, not from autobal:
 the lumped coefficients (2.7)-(2.11) from the hardware attributes, the balanced angles
 (3.14) of two identical balls, the unbalance sums (3.1)/(3.10) from the stored ball angles.
 Usage: rotor_check.py balanced|heavy|partial FILE.h5

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # App test: `autobal rotor stability|sweep|map|campbell` as a user runs them; archives checked by
-# rotor_stability_check.py against NumPy/SciPy computations from the spec's formulas; bad input provoked.
+# rotor_stability_check.py against NumPy/SciPy computations from the formulas of docs/rotor.md; bad input provoked.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 here=$(cd "$(dirname "$0")" && pwd)

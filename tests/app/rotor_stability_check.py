@@ -1,7 +1,7 @@
 """Independent checks of `autobal rotor stability|sweep|map|campbell` archives
 (run by tests/app/rotor_stability.sh).
 
-Expected values are computed here with NumPy/SciPy from the spec's formulas, not taken
+Expected values are computed here with NumPy/SciPy from the formulas of docs/rotor.md, not taken
 from autobal:
   - the balanced angles of two identical balls (3.14): psi = psi0 + pi -/+ arccos(m0 r0 / (2 m r));
   - the degree-12 characteristic polynomial built from the spec's D, N, F, Delta with NumPy
