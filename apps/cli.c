@@ -61,6 +61,8 @@ typedef struct cli_entry {
   int is_default; /* 1: a ";default" line of a recorded effective configuration (rerun): the key
                    * counts as not given, and its value replaces the getter's built-in default */
   int used;
+  char *comment; /* the comment lines written above the key and after its value in the given
+                  * file ('\n'-separated, without the ';'), NULL: none */
 } cli_entry;
 
 /* One key read by a getter, for the effective configuration (cli_config_effective_ini). */
@@ -91,6 +93,7 @@ struct cli_config {
   unsigned long generation;  /* counts the recorded reads */
   unsigned long archived;    /* generation when the effective configuration was last archived */
   cli_units *units;          /* UDUNITS-2, loaded on the first value with a unit */
+  char *preamble;            /* comment lines before the first section of the given file */
 };
 
 static char *dupstr(const char *s) {
@@ -113,6 +116,7 @@ void cli_config_free(cli_config *c) {
     free(c->entries[i].section);
     free(c->entries[i].key);
     free(c->entries[i].value);
+    free(c->entries[i].comment);
   }
   for (i = 0; i < c->nknown; i++) free(c->known[i]);
   for (i = 0; i < c->nreads; i++) {
@@ -126,6 +130,7 @@ void cli_config_free(cli_config *c) {
   free(c->reads);
   free(c->absent_sections);
   free(c->given_text);
+  free(c->preamble);
   cli_units_free(c->units);
   free(c);
 }
@@ -168,6 +173,7 @@ static int add_entry(cli_config *c, const char *section, const char *key, const 
   e->from_set = from_set;
   e->is_default = 0;
   e->used = 0;
+  e->comment = NULL;
   if (!e->section || !e->key || !e->value) {
     free(e->section);
     free(e->key);
@@ -187,6 +193,8 @@ static int ini_handler_fn(void *user, const char *section, const char *name, con
  * things inih would get wrong silently are rejected: a NUL byte (inih's line reader stops at it
  * and drops the rest of the line) and a line longer than inih's INI_MAX_LINE - 1 bytes (inih
  * parses the remainder as a new line, so the error, if any, names the wrong line). */
+static int scan_comments(cli_config *c, const char *text);
+
 static int config_parse_text(cli_ctx *ctx, const char *name, const char *text, size_t len) {
   cli_config *c = ctx->cfg;
   size_t i, line = 1, col = 0;
@@ -215,8 +223,81 @@ static int config_parse_text(cli_ctx *ctx, const char *name, const char *text, s
     return cli_fail(ctx, CLI_EXIT_INPUT,
                     "config file '%s', line %d: cannot parse (expected '[section]', 'key = value' or a ';' comment)",
                     name, rc);
-  if (rc < 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "config file '%s': out of memory", name);
+  if (rc < 0 || scan_comments(c, text) != 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "config file '%s': out of memory", name);
   return CLI_EXIT_OK;
+}
+
+/* Append line (len bytes) to the '\n'-separated text *dst.  Returns 0, -1: no memory. */
+static int append_line(char **dst, const char *line, size_t len) {
+  size_t old = *dst ? strlen(*dst) + 1 : 0;
+  char *p = realloc(*dst, old + len + 1);
+  if (!p) return -1;
+  if (old) p[old - 1] = '\n';
+  memcpy(p + old, line, len);
+  p[old + len] = '\0';
+  *dst = p;
+  return 0;
+}
+
+int cli_config_add_comment(cli_config *c, const char *section, const char *key, const char *text) {
+  cli_entry *e;
+  if (!section) return append_line(&c->preamble, text, strlen(text));
+  e = find_entry(c, section, key);
+  if (!e) return 0;
+  return append_line(&e->comment, text, strlen(text));
+}
+
+/* The comments of INI text (already parsed by inih, so well formed): full-line comments (';' or
+ * '#') before the first section go to the preamble; the others, and an inline comment (';' after
+ * a blank, as inih strips it), to the next key.  Returns 0, -1: no memory. */
+static int scan_comments(cli_config *c, const char *text) {
+  char section[256] = "", *pending = NULL;
+  const char *p = text;
+  int rc = 0;
+  while (*p && rc == 0) {
+    const char *nl = strchr(p, '\n'), *end = nl ? nl : p + strlen(p), *q = p, *eq;
+    while (q < end && (*q == ' ' || *q == '\t')) q++;
+    while (end > q && (end[-1] == '\r' || end[-1] == ' ' || end[-1] == '\t')) end--;
+    if (q < end && (*q == ';' || *q == '#')) {
+      q++;
+      if (q < end && *q == ' ') q++;
+      rc = section[0] ? append_line(&pending, q, (size_t)(end - q)) : append_line(&c->preamble, q, (size_t)(end - q));
+    } else if (q < end && *q == '[') {
+      const char *close = memchr(q, ']', (size_t)(end - q));
+      size_t n = close ? (size_t)(close - q - 1) : 0;
+      if (close && n < sizeof section) {
+        memcpy(section, q + 1, n);
+        section[n] = '\0';
+      }
+    } else if (q < end && section[0] && ((eq = memchr(q, '=', (size_t)(end - q))) != NULL ||
+                                         (eq = memchr(q, ':', (size_t)(end - q))) != NULL)) {
+      char key[256];
+      const char *ke = eq, *v;
+      while (ke > q && (ke[-1] == ' ' || ke[-1] == '\t')) ke--;
+      for (v = eq + 1; v < end; v++)
+        if (*v == ';' && (v[-1] == ' ' || v[-1] == '\t')) {
+          const char *t = v + 1;
+          if (t < end && *t == ' ') t++;
+          rc = append_line(&pending, t, (size_t)(end - t));
+          break;
+        }
+      if (rc == 0 && pending && (size_t)(ke - q) < sizeof key) {
+        cli_entry *e;
+        memcpy(key, q, (size_t)(ke - q));
+        key[ke - q] = '\0';
+        if ((e = find_entry(c, section, key)) != NULL && !e->comment) {
+          e->comment = pending;
+          pending = NULL;
+        }
+      }
+      free(pending);
+      pending = NULL;
+    }
+    p = nl ? nl + 1 : end;
+    if (!nl) break;
+  }
+  free(pending);
+  return rc;
 }
 
 int cli_config_load_text(cli_ctx *ctx, const char *name, const char *text, size_t len) {
@@ -969,7 +1050,20 @@ static int default_needs_marker(const char *v) {
   return end != v && *end == '\0' && !isfinite(d);
 }
 
+/* The comment lines of the given file, each as ";# TEXT" (`autobal rerun` gives them back). */
+static void comment_lines(sbuf *b, const char *text) {
+  const char *p = text;
+  while (p && *p) {
+    const char *nl = strchr(p, '\n');
+    size_t n = nl ? (size_t)(nl - p) : strlen(p);
+    sb_add(b, ";# %.*s\n", (int)n, p);
+    p = nl ? nl + 1 : NULL;
+  }
+}
+
 static void effective_line(sbuf *b, const cli_config *c, const cli_read *r) {
+  const cli_entry *e = find_entry(c, r->section, r->key);
+  if (e && e->comment) comment_lines(b, e->comment);
   if (r->given) {
     sb_add(b, "%s = %s\n", r->key, r->value ? r->value : "");
   } else if (r->varies) {
@@ -996,6 +1090,10 @@ char *cli_config_effective_ini(const cli_config *c, const char *command) {
          "; \";default KEY = VALUE\": KEY was not given, and the command tells a given KEY from an absent one,\n"
          "; so it stays absent; VALUE is the built-in default that was used (a re-run uses this VALUE).\n",
          command ? command : "?");
+  if (c->preamble) {
+    sb_add(&b, "; the comments of the given configuration follow as \";# ...\" lines.\n");
+    comment_lines(&b, c->preamble);
+  }
   /* sections in the order of their first read; keys in the order read */
   for (i = 0; i < c->nreads; i++) {
     const char *sec = c->reads[i].section;
@@ -1011,7 +1109,10 @@ char *cli_config_effective_ini(const cli_config *c, const char *command) {
       int read = 0;
       if (e->is_default || strcmp(e->section, sec) != 0) continue;
       for (j = 0; j < c->nreads && !read; j++) read = !strcmp(c->reads[j].section, sec) && !strcmp(c->reads[j].key, e->key);
-      if (!read) sb_add(&b, "%s = %s\n", e->key, e->value);
+      if (!read) {
+        if (e->comment) comment_lines(&b, e->comment);
+        sb_add(&b, "%s = %s\n", e->key, e->value);
+      }
     }
   }
   /* sections given but never read from (declared known as a whole) */
@@ -1024,8 +1125,10 @@ char *cli_config_effective_ini(const cli_config *c, const char *command) {
     if (seen) continue;
     sb_add(&b, "[%s]\n", sec);
     for (j = k; j < c->n; j++)
-      if (!c->entries[j].is_default && strcmp(c->entries[j].section, sec) == 0)
+      if (!c->entries[j].is_default && strcmp(c->entries[j].section, sec) == 0) {
+        if (c->entries[j].comment) comment_lines(&b, c->entries[j].comment);
         sb_add(&b, "%s = %s\n", c->entries[j].key, c->entries[j].value);
+      }
   }
   if (b.nomem || !b.p) {
     free(b.p);

@@ -86,6 +86,11 @@ int cli_config_add_default(cli_ctx *ctx, const char *section, const char *key, c
 int cli_config_set_given_text(cli_config *c, const char *ini);
 /* cli_config_set_given_text's text if set, else cli_config_to_ini (malloc'ed; NULL: no memory). */
 char *cli_config_given_ini(const cli_config *c);
+/* A comment line of the given configuration (`autobal rerun` hands back the ";# " lines of a
+ * recorded effective configuration): section NULL: the preamble (before the first section);
+ * else a comment of the key section.key, which must have been added (ignored otherwise).  The
+ * effective configuration writes them as ";# TEXT" lines.  Returns 0, -1: no memory. */
+int cli_config_add_comment(cli_config *c, const char *section, const char *key, const char *text);
 /* Apply one `--set section.key=value`. */
 int cli_config_override(cli_ctx *ctx, const char *assignment);
 

@@ -55,9 +55,10 @@ static int read_root_string(autobal_archive *a, const char *name, char **out) {
 static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const char *attr, const char *ini) {
   static const char dflt[] = ";default ";
   const char *p = ini;
-  char section[256] = "";
-  size_t lineno = 0;
-  while (*p) {
+  char section[256] = "", *pending[64];
+  size_t lineno = 0, npending = 0, i;
+  int status = CLI_EXIT_OK;
+  while (*p && status == CLI_EXIT_OK) {
     const char *nl = strchr(p, '\n');
     size_t len = nl ? (size_t)(nl - p) : strlen(p);
     lineno++;
@@ -70,7 +71,13 @@ static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const cha
       line[len] = '\0';
       is_default = strncmp(line, dflt, sizeof dflt - 1) == 0;
       body = is_default ? line + sizeof dflt - 1 : line;
-      if (line[0] == ';' && !is_default) {
+      if (!strncmp(line, ";#", 2) && !section[0]) { /* a comment of the given file's preamble */
+        if (cli_config_add_comment(inner->cfg, NULL, NULL, line[2] == ' ' ? line + 3 : line + 2) != 0)
+          status = cli_fail(outer, CLI_EXIT_INTERNAL, "out of memory");
+        free(line);
+      } else if (!strncmp(line, ";#", 2) && npending < sizeof pending / sizeof pending[0]) {
+        pending[npending++] = line; /* a comment of the next key */
+      } else if (line[0] == ';' && !is_default) {
         free(line); /* a comment */
       } else if (!is_default && line[0] == '[' && line[len - 1] == ']' && len - 2 < sizeof section) {
         memcpy(section, line + 1, len - 2);
@@ -98,6 +105,18 @@ static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const cha
           rc = cli_config_override(inner, assign);
           free(assign);
         }
+        if (rc == CLI_EXIT_OK) { /* the key's comments */
+          char *key = malloc(klen + 1);
+          if (!key) rc = CLI_EXIT_INTERNAL;
+          else memcpy(key, body, klen), key[klen] = '\0';
+          for (i = 0; i < npending && rc == CLI_EXIT_OK; i++)
+            if (cli_config_add_comment(inner->cfg, section, key, pending[i][2] == ' ' ? pending[i] + 3 : pending[i] + 2))
+              rc = CLI_EXIT_INTERNAL;
+          free(key);
+          if (rc != CLI_EXIT_OK) snprintf(inner->err, sizeof inner->err, "out of memory");
+        }
+        for (i = 0; i < npending; i++) free(pending[i]);
+        npending = 0;
         free(line);
         if (rc != CLI_EXIT_OK)
           return cli_fail(outer, CLI_EXIT_IO, "'%s': root attribute %s, line %zu: %s", file, attr, lineno, inner->err);
@@ -112,7 +131,8 @@ static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const cha
     if (!nl) break;
     p = nl + 1;
   }
-  return CLI_EXIT_OK;
+  for (i = 0; i < npending; i++) free(pending[i]);
+  return status;
 }
 
 int cli_cmd_rerun(cli_ctx *ctx) {

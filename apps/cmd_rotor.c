@@ -653,8 +653,14 @@ static int write_rotor_params(autobal_archive *a, const autobal_rotor *rot, cons
   AD("/rotor/transient", "atol", c->atol, "1");
   AD("/rotor/transient", "h_max", c->h_max, "s");
   AD("/rotor/transient", "max_steps", (double)c->max_steps, "1");
-  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q", 4, p->q0, "m, m, rad, rad");
-  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q_rate", 4, p->qd0, "m/s, m/s, rad/s, rad/s");
+  /* components of different units: no single (CF) units attribute; they are named instead */
+  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q", 4, p->q0, NULL);
+  if (!st)
+    st = autobal_archive_attr_string(a, "/rotor/transient", "initial_q_components", "x (m), y (m), alpha (rad), beta (rad)");
+  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q_rate", 4, p->qd0, NULL);
+  if (!st)
+    st = autobal_archive_attr_string(a, "/rotor/transient", "initial_q_rate_components",
+                                     "x_rate (m/s), y_rate (m/s), alpha_rate (rad/s), beta_rate (rad/s)");
   AD("/rotor/transient", "balance_tol", c->balance_tol, "1");
   AD("/rotor/transient", "balance_revs", c->balance_revs, "1");
   if (!st) st = autobal_archive_attr_string(a, "/rotor/transient", "stepper", c->stepper);

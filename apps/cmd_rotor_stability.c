@@ -308,7 +308,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     }
     if (!st && r.n_poly > 0) {
       st = autobal_archive_coord(a, g, "power", AUTOBAL_ROTOR_POLY_LEN, power, "1", "power of lambda");
-      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "mixed SI powers: kg^4 m^4 s^(k-12) for power k", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers k of lambda (lambda in 1/s); Delta is in kg^4 m^4 s^-12, so the coefficient of lambda^k is in kg^4 m^4 s^(k-12)");
+      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "1", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers k of lambda (lambda in 1/s), each divided by its SI unit: Delta is in kg^4 m^4 s^-12, so the coefficient of lambda^k is this number times kg^4 m^4 s^(k-12)");
       if (!st) st = autobal_archive_attr_string(a, g, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
       if (!st) st = autobal_archive_attr_int(a, g, "hurwitz_n_rhp", r.hurwitz_n_rhp);
     }

@@ -785,6 +785,20 @@ static char *join_command_line(int argc, const char *const *argv) {
   return s;
 }
 
+/* Whether the blank- or comma-separated tokens of a Conventions attribute include `token`. */
+static int conventions_include(const char *conv, const char *token) {
+  size_t n = strlen(token);
+  const char *p = conv;
+  while (*p) {
+    size_t k;
+    while (*p == ' ' || *p == ',' || *p == '\t') p++;
+    k = strcspn(p, " ,\t");
+    if (k == n && strncmp(p, token, n) == 0) return 1;
+    p += k;
+  }
+  return 0;
+}
+
 int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, const char *const *argv) {
   quiet_state q;
   char hdf5v[32], created[32], *cmd;
@@ -817,6 +831,24 @@ int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, 
   if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "created", created);
   if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "status", "incomplete");
   if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "Conventions", AUTOBAL_ARCHIVE_CONVENTIONS);
+  if (rc == AUTOBAL_SUCCESS) { /* CF: history, source, references */
+    size_t n = strlen(created) + strlen(cmd) + 2;
+    char *hist = malloc(n), src[160];
+    if (hist == NULL) {
+      rc = autobal_error_set(&a->err, AUTOBAL_ENOMEM, "provenance: out of memory");
+    } else {
+      snprintf(hist, n, "%s %s", created, cmd);
+      rc = write_root_string(a, "history", hist);
+      free(hist);
+    }
+    snprintf(src, sizeof src, "autobal %s (%s)", autobal_version(), autobal_git_revision());
+    if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "source", src);
+    if (rc == AUTOBAL_SUCCESS)
+      rc = write_root_string(a, "references",
+                             "autobal model documentation: docs/rotor.md (rotor with ball autobalancers), "
+                             "docs/pendulum.md (two-pendulum autobalancer), docs/units.md (units) and the "
+                             "archive layout in README.md of the autobal repository");
+  }
   h5_leave(&q);
   free(cmd);
   return rc;
@@ -1770,9 +1802,9 @@ int autobal_archive_open_read(const char *path, autobal_archive **out, autobal_e
     rc = AUTOBAL_EFORMAT;
     goto done;
   }
-  if (strcmp(conv, AUTOBAL_ARCHIVE_CONVENTIONS) != 0)
-    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%.200s' has Conventions = '%.100s', not '%s'", path, conv,
-                           AUTOBAL_ARCHIVE_CONVENTIONS);
+  if (!conventions_include(conv, AUTOBAL_ARCHIVE_CONVENTION))
+    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%.200s' has Conventions = '%.100s', which does not include '%s'",
+                           path, conv, AUTOBAL_ARCHIVE_CONVENTION);
 done:
   free(conv);
   if (rc != AUTOBAL_SUCCESS && a->file >= 0) {

@@ -45,7 +45,7 @@ def expected_flag():
 def check_xarray(path, engine):
     tag = f"[{engine}] "
     ds = xr.open_dataset(path, engine=engine, group="/")
-    check(tag + "root Conventions", ds.attrs.get("Conventions") == "autobal-1")
+    check(tag + "root Conventions", ds.attrs.get("Conventions") == "CF-1.8 autobal-1")
     check(tag + "root status complete", ds.attrs.get("status") == "complete")
     check(tag + "root title is str", isinstance(ds.attrs.get("title"), str) and ds.attrs["title"] == "archive sample")
     ds.close()

@@ -1414,7 +1414,7 @@ int main(int argc, char **argv) {
     int nf, ok;
     char *created;
     CHECK("HDF5 opens the archive", f >= 0);
-    CHECK("Conventions", h5_attr_str_is(f, "/", "Conventions", "autobal-1"));
+    CHECK("Conventions", h5_attr_str_is(f, "/", "Conventions", "CF-1.8 autobal-1"));
     CHECK("status written by close", h5_attr_str_is(f, "/", "status", "incomplete"));
     CHECK("status_reason", h5_attr_str_is(f, "/", "status_reason", "interrupted by SIGINT"));
     CHECK("title", h5_attr_str_is(f, "/", "title", "a title"));

@@ -604,7 +604,7 @@ def open_archive(path):
         h = h5py.File(path, "r")
     except OSError as e:
         raise ArchiveError("'%s' is not a readable HDF5 file (%s)" % (path, e))
-    if s(h.attrs.get("Conventions", "")) != "autobal-1":
+    if "autobal-1" not in s(h.attrs.get("Conventions", "")).replace(",", " ").split():
         h.close()
         raise ArchiveError("'%s' is an HDF5 file but not an autobal archive (no Conventions = autobal-1)" % path)
     return h

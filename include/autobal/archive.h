@@ -5,7 +5,7 @@
  * dimensions, coordinates and units:
  *
  *   /                      root attributes (see autobal_archive_provenance):
- *                          Conventions = "autobal-1", status, title, versions, ...
+ *                          Conventions = "CF-1.8 autobal-1", status, title, history, source, versions, ...
  *   /<group>/...           groups created by autobal_archive_group()
  *   /<group>/<coord>       1-D coordinate = HDF5 dimension scale whose NAME is the
  *                          dimension name (= the dataset name); attributes units, long_name
@@ -69,7 +69,7 @@
  * (attributes with type class, rank and size), _read_attr_string, _read_attr_double,
  * _read_attr_doubles / _int64s (arrays), _var_shape, _var_describe (type, dimension
  * names), _read_var.  They work on files of other writers too (as long as the root
- * attribute Conventions is "autobal-1"), also under the module's lock.
+ * attribute Conventions includes "autobal-1"), also under the module's lock.
  *
  * Memory.  Handles are owned by the caller and freed by _close/_discard.  Input arrays
  * are only read during the call.  No allocation happens per appended row of a series
@@ -86,8 +86,14 @@
 
 AUTOBAL_BEGIN_DECLS
 
-/* Value of the root attribute `Conventions`. */
-#define AUTOBAL_ARCHIVE_CONVENTIONS "autobal-1"
+/* Value of the root attribute `Conventions`: netCDF-CF 1.8 (where CF has a word for it: units
+ * that UDUNITS-2 parses, long_name, coordinates as dimension scales, title, history, source,
+ * references) and autobal's own layout, version 1. */
+#define AUTOBAL_ARCHIVE_CONVENTIONS "CF-1.8 autobal-1"
+/* The token of `Conventions` that identifies an autobal archive: readers accept any Conventions
+ * whose blank- or comma-separated tokens include it (archives written before 0.2 have
+ * Conventions = "autobal-1" alone). */
+#define AUTOBAL_ARCHIVE_CONVENTION "autobal-1"
 /* Highest rank of a variable. */
 #define AUTOBAL_ARCHIVE_MAX_RANK 4
 /* Longest name (group component, dataset, attribute), in bytes. */
@@ -107,7 +113,7 @@ typedef struct autobal_archive_series autobal_archive_series; /* opaque streamin
 /* Create an archive that will be named `path`.  Data goes to the temporary file
  * "<path>.partial-<pid>" in the same directory (if that name is taken, "-2", "-3", ...
  * is appended), renamed to `path` by autobal_archive_close().  The new file has the
- * root attributes Conventions = "autobal-1" and status = "incomplete".
+ * root attributes Conventions = "CF-1.8 autobal-1" and status = "incomplete".
  * Returns
  *   AUTOBAL_SUCCESS  *out is the new handle;
  *   AUTOBAL_EINVAL   path NULL/empty, out NULL;
@@ -136,7 +142,10 @@ AUTOBAL_API int autobal_archive_status(const autobal_archive *a);
  *                    valid UTF-8 are replaced by '?')
  *   created          time of this call, ISO 8601 UTC, "YYYY-MM-DDThh:mm:ssZ"
  *   status           "incomplete" (until close)
- *   Conventions      "autobal-1"
+ *   Conventions      "CF-1.8 autobal-1" (AUTOBAL_ARCHIVE_CONVENTIONS)
+ *   history          "<created> <command_line>" (CF: how the data were made)
+ *   source           "autobal <version> (<git revision>)" (CF: the software that made the data)
+ *   references       where the models are documented (the repository's docs/ pages)
  * May be called again (attributes are replaced).  argc < 0, or argc > 0 with argv NULL
  * or an argv[i] NULL: AUTOBAL_EINVAL.  AUTOBAL_EIO on HDF5 failure. */
 AUTOBAL_API int autobal_archive_provenance(autobal_archive *a, const char *title, int argc,
@@ -303,7 +312,7 @@ AUTOBAL_API void autobal_archive_discard(autobal_archive *a);
 
 /* Open an existing archive read-only.  AUTOBAL_EIO if the file does not exist or
  * cannot be read; AUTOBAL_EFORMAT if it is not an HDF5 file (also a truncated or
- * damaged one) or its root attribute Conventions is missing or not "autobal-1".  The
+ * damaged one) or its root attribute Conventions is missing or does not include "autobal-1".  The
  * message names the path.  On failure *out is NULL.  Close with autobal_archive_close
  * (or _discard, which for a read handle only closes).  Write functions on a read handle
  * return AUTOBAL_EINVAL. */

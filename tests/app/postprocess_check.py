@@ -91,7 +91,7 @@ def read_ini(path):
 
 # ---- layout: the generic part, for every archive -------------------------------------------
 def generic_layout(f, h, command):
-    check("%s: root Conventions = autobal-1" % f, s(h.attrs.get("Conventions")) == "autobal-1")
+    check("%s: root Conventions = CF-1.8 autobal-1" % f, s(h.attrs.get("Conventions")) == "CF-1.8 autobal-1")
     check("%s: root command = '%s'" % (f, command), s(h.attrs.get("command")) == command, s(h.attrs.get("command")))
     check("%s: root status = complete" % f, s(h.attrs.get("status")) == "complete")
     for a in ("title", "command_line", "created", "autobal_version", "git_revision", "gsl_version", "hdf5_version",
@@ -100,7 +100,7 @@ def generic_layout(f, h, command):
     fails0 = FAILS
     root = xr.open_dataset(f, engine="h5netcdf")
     check("%s: xarray root attrs carry Conventions and command" % f,
-          root.attrs.get("Conventions") == "autobal-1" and root.attrs.get("command") == command)
+          root.attrs.get("Conventions") == "CF-1.8 autobal-1" and root.attrs.get("command") == command)
     root.close()
     nd = 0
     for g in groups_of(h):

@@ -22,7 +22,7 @@ def check(what, ok, detail=""):
 
 
 def common(f, status="complete"):
-    check("Conventions", f.attrs.get("Conventions") == "autobal-1")
+    check("Conventions", f.attrs.get("Conventions") == "CF-1.8 autobal-1")
     check("status " + status, f.attrs.get("status") == status, str(f.attrs.get("status")))
     r = f["rotor"].attrs
     lu = f["rotor/lumped"].attrs

@@ -96,7 +96,7 @@ def roots_of(c):
 
 
 def check_common(f):
-    check("Conventions", f.attrs.get("Conventions") == "autobal-1")
+    check("Conventions", f.attrs.get("Conventions") == "CF-1.8 autobal-1")
     check("status complete", f.attrs.get("status") == "complete", str(f.attrs.get("status")))
 
 

@@ -28,7 +28,7 @@ check_archive() {
   /usr/bin/python3 - "$1" <<'EOF' || fail "archive $1 does not read back in h5py as written"
 import sys, h5py, numpy as np
 with h5py.File(sys.argv[1], "r") as f:
-    assert f.attrs["Conventions"] == "autobal-1" and f.attrs["status"] == "complete", dict(f.attrs)
+    assert f.attrs["Conventions"] == "CF-1.8 autobal-1" and f.attrs["status"] == "complete", dict(f.attrs)
     assert np.array_equal(f["consumer/R_w"][...], [2.0, 3.0, 4.0]), f["consumer/R_w"][...]
     assert f["consumer/R_w"].attrs["units"] == "1"
     v = f["consumer/verdict"][...]
