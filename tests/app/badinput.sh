@@ -83,10 +83,10 @@ expect 0 "" -- "$A" pendulum roots -o roots.h5
 expect 3 "roots.h5" "NUL" "not a text file" -- "$A" pendulum roots roots.h5
 
 # ---- --set ---------------------------------------------------------------------------------
-expect 2 "section.key=value" "pendulum.R_w" -- "$A" pendulum roots --set pendulum.R_w
-expect 2 "section.key=value" -- "$A" pendulum roots --set R_w=3
-expect 2 "section.key=value" -- "$A" pendulum roots --set .R_w=3
-expect 2 "section.key=value" -- "$A" pendulum roots --set pendulum.=3
+expect 2 "SECTION.KEY=VALUE" "'=' is missing" "pendulum.R_w" -- "$A" pendulum roots --set pendulum.R_w
+expect 2 "SECTION.KEY=VALUE" "section is missing" -- "$A" pendulum roots --set R_w=3
+expect 2 "SECTION.KEY=VALUE" "section is missing" -- "$A" pendulum roots --set .R_w=3
+expect 2 "SECTION.KEY=VALUE" "key is missing" -- "$A" pendulum roots --set pendulum.=3
 expect 2 "needs a value" -- "$A" pendulum roots --set
 expect 3 "pendulum.R_w" "''" -- "$A" pendulum roots --set pendulum.R_w=
 expect 3 "'pendulum.R_w'" -- "$A" pendulum roots --set "pendulum. R_w=3"                       # did you mean
