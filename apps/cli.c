@@ -364,8 +364,18 @@ int cli_config_override(cli_ctx *ctx, const char *assignment) {
   const char *eq = strchr(assignment, '=');
   char section[128], key[128];
   size_t ls, lk;
-  if (!dot || !eq || dot > eq || dot == assignment || eq == dot + 1)
-    return cli_fail(ctx, CLI_EXIT_USAGE, "--set expects section.key=value, got '%s'", assignment);
+  const char *cmd = ctx->command ? ctx->command : "CMD";
+  if (!eq)
+    return cli_fail(ctx, CLI_EXIT_USAGE, "--set '%s': '=' is missing; expected --set SECTION.KEY=VALUE", assignment);
+  if (!dot || dot > eq || dot == assignment)
+    return cli_fail(ctx, CLI_EXIT_USAGE,
+                    "--set '%s': the section is missing; expected --set SECTION.KEY=VALUE, here --set SECTION.%s "
+                    "(the sections and their keys: 'autobal %s --help')",
+                    assignment, dot == assignment ? assignment + 1 : assignment, cmd);
+  if (eq == dot + 1)
+    return cli_fail(ctx, CLI_EXIT_USAGE,
+                    "--set '%s': the key is missing; expected --set SECTION.KEY=VALUE (the keys: 'autobal %s --help')",
+                    assignment, cmd);
   ls = (size_t)(dot - assignment);
   lk = (size_t)(eq - dot - 1);
   if (ls >= sizeof section || lk >= sizeof key)
@@ -761,41 +771,55 @@ static size_t edit_distance(const char *a, const char *b, int fold) {
   return row[lb];
 }
 
+/* The closeness of two names: the case-insensitive distance first, the exact one breaks ties. */
+static size_t name_distance(const char *a, const char *b) {
+  size_t f = edit_distance(a, b, 1), e = edit_distance(a, b, 0);
+  return f == (size_t)-1 || e == (size_t)-1 ? (size_t)-1 : 4 * f + e;
+}
+
+size_t cli_did_you_mean(const char *word, const char *const *cands, size_t n, size_t max_edits, char *buf,
+                        size_t len) {
+  size_t k, best = (size_t)-1, count = 0, pos = 0;
+  if (len) buf[0] = '\0';
+  for (k = 0; k < n; k++) {
+    size_t d = name_distance(word, cands[k]);
+    if (d < best && d <= 6 * max_edits && edit_distance(word, cands[k], 1) <= max_edits) best = d;
+  }
+  if (best == (size_t)-1) return 0;
+  /* every candidate at the best distance: "'a' or 'b'" */
+  for (k = 0; k < n; k++) {
+    size_t need = strlen(cands[k]) + (pos ? 6 : 2);
+    if (name_distance(word, cands[k]) != best) continue;
+    if (pos + need >= len) break; /* the list is full */
+    pos += (size_t)snprintf(buf + pos, len - pos, "%s'%s'", pos ? " or " : "", cands[k]);
+    count++;
+  }
+  return count;
+}
+
 int cli_config_check_unused(cli_ctx *ctx) {
   cli_config *c = ctx->cfg;
   size_t i, k;
   for (i = 0; i < c->n; i++) {
     cli_entry *e = &c->entries[i];
-    char full[256], sect_star[256];
-    const char *best = NULL;
-    size_t bestd = (size_t)-1;
+    char full[256], sect_star[256], list[512];
+    const char **keys;
+    size_t nkeys = 0;
     int section_known = 0;
     if (e->used) continue;
     snprintf(full, sizeof full, "%s.%s", e->section, e->key);
     snprintf(sect_star, sizeof sect_star, "%s.", e->section);
+    keys = calloc(c->nknown + 1, sizeof *keys);
+    if (!keys) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
     for (k = 0; k < c->nknown; k++) {
-      /* case-insensitive distance first, the exact one breaks ties */
-      size_t d = 4 * edit_distance(full, c->known[k], 1) + edit_distance(full, c->known[k], 0);
       if (strncmp(c->known[k], sect_star, strlen(sect_star)) == 0) section_known = 1;
-      if (strstr(c->known[k], ".*")) continue;
-      if (d < bestd) {
-        bestd = d;
-        best = c->known[k];
-      }
+      if (!strstr(c->known[k], ".*")) keys[nkeys++] = c->known[k];
     }
-    if (best && bestd <= 4 * 3 + 6) {
-      /* every candidate at the best distance: "did you mean 'a' or 'b'?" */
-      char list[512];
-      size_t pos = 0;
-      list[0] = '\0';
-      for (k = 0; k < c->nknown && pos < sizeof list - 80; k++) {
-        if (strstr(c->known[k], ".*")) continue;
-        if (4 * edit_distance(full, c->known[k], 1) + edit_distance(full, c->known[k], 0) != bestd) continue;
-        pos += (size_t)snprintf(list + pos, sizeof list - pos, "%s'%s'", pos ? " or " : "", c->known[k]);
-      }
+    nkeys = cli_did_you_mean(full, keys, nkeys, 3, list, sizeof list);
+    free(keys);
+    if (nkeys > 0)
       return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown %s '%s' for 'autobal %s'; did you mean %s?", where(ctx, e),
                       section_known ? "key" : "section/key", full, ctx->command, list);
-    }
     if (section_known)
       return cli_fail(ctx, CLI_EXIT_INPUT, "%s: unknown key '%s' for 'autobal %s' (see 'autobal %s --help' for the keys)",
                       where(ctx, e), full, ctx->command, ctx->command);

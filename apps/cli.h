@@ -91,8 +91,15 @@ char *cli_config_given_ini(const cli_config *c);
  * else a comment of the key section.key, which must have been added (ignored otherwise).  The
  * effective configuration writes them as ";# TEXT" lines.  Returns 0, -1: no memory. */
 int cli_config_add_comment(cli_config *c, const char *section, const char *key, const char *text);
-/* Apply one `--set section.key=value`. */
+/* Apply one `--set section.key=value` (CLI_EXIT_USAGE naming what is missing: '=', the section
+ * or the key). */
 int cli_config_override(cli_ctx *ctx, const char *assignment);
+/* "Did you mean": the names of cands[0..n-1] closest to `word` (case-insensitive edit distance
+ * first, the exact one breaking ties), at most `max_edits` case-insensitive edits away, written
+ * as "'a'" or "'a' or 'b'" into buf (len bytes; empty when none is close enough).  Returns the
+ * number of names written.  The unknown-key check (cli_config_check_unused) uses 3 edits. */
+size_t cli_did_you_mean(const char *word, const char *const *cands, size_t n, size_t max_edits, char *buf,
+                        size_t len);
 
 /* A subcommand: parses nothing itself; everything comes through ctx. Returns a CLI_EXIT_* code
  * and, on failure, leaves the message in ctx->err. */

@@ -1,21 +1,23 @@
 /* commands.c: the table of subcommands.  To add one: write apps/cmd_<name>.c with a
- * `int cli_cmd_<name>(cli_ctx *)` declared in cli.h and a help text, and add a row here. */
+ * `int cli_cmd_<name>(cli_ctx *)` declared in cli.h and a help text, and add a row here.  The
+ * summaries are one line each (`autobal --help`, `autobal MODEL --help`); equation numbers belong
+ * in the help texts (apps/help.h), which name the document they refer to. */
 #include "commands.h"
 #include "help.h"
 
 
 const cli_command cli_commands[] = {
-    {"pendulum roots", "characteristic roots (6) and eigenvalues of (5), stability verdict", HELP_PENDULUM_ROOTS,
+    {"pendulum roots", "characteristic roots and eigenvalues of the linearization, stability verdict", HELP_PENDULUM_ROOTS,
      cli_cmd_pendulum_roots},
-    {"pendulum critical", "critical speeds of the undamped balancer (10)-(18), curves vs R_m",
+    {"pendulum critical", "critical speeds of the undamped balancer (closed forms, series), curves vs R_m",
      HELP_PENDULUM_CRITICAL, cli_cmd_pendulum_critical},
     {"pendulum map", "stability map over (R_m, R_w) for one k or every unbalance", HELP_PENDULUM_MAP,
      cli_cmd_pendulum_map},
-    {"pendulum transient", "transient of the two-pendulum autobalancer (1): time series, time to balance",
+    {"pendulum transient", "transient of the two-pendulum autobalancer: time series, time to balance",
      HELP_PENDULUM_TRANSIENT, cli_cmd_pendulum_transient},
-    {"rotor transient", "transient of the rotor with ball autobalancers (3.2)/(3.4), 1 or 2 planes",
+    {"rotor transient", "transient of the rotor with ball autobalancers, 1 or 2 planes",
      HELP_ROTOR_TRANSIENT, cli_cmd_rotor_transient},
-    {"rotor stability", "balanced motion (3.14): stability (Delta, closed matrix, full model, Floquet), critical speeds",
+    {"rotor stability", "balanced motion: stability (Delta, closed matrix, full model, Floquet), critical speeds",
      HELP_ROTOR_STABILITY, cli_cmd_rotor_stability},
     {"rotor sweep", "stability margin along omega, ball damping/mass, support stiffness...; critical values",
      HELP_ROTOR_SWEEP, cli_cmd_rotor_sweep},

@@ -8,8 +8,8 @@
 
 typedef struct cli_command {
   const char *name;    /* "model action" */
-  const char *summary; /* one line for `autobal --help` */
-  const char *help;    /* the command's configuration keys, for `autobal CMD --help` */
+  const char *summary; /* one line for `autobal --help` and `autobal MODEL --help` */
+  const char *help;    /* the command's configuration keys, for `autobal CMD --help` (= `autobal help CMD`) */
   cli_command_fn run;
 } cli_command;
 

@@ -1,139 +1,196 @@
-/* help.h: configuration keys of each command, shown by `autobal CMD --help`. */
+/* help.h: the help texts: `autobal --help` (HELP_USAGE_*), `autobal MODEL --help` (HELP_MODEL_*)
+ * and the configuration keys of each command, shown by `autobal CMD --help`.
+ * Equation numbers refer to the model documentation in the repository: docs/pendulum.md for the
+ * pendulum commands, docs/rotor.md for the rotor commands; units are described in docs/units.md.
+ * Every text names the document it refers to, and none points outside the repository. */
 #ifndef AUTOBAL_APPS_HELP_H
 #define AUTOBAL_APPS_HELP_H
 
-#define HELP_PENDULUM_PARAMS                                                                      \
-  "[pendulum] the two-pendulum autobalancer (spec pendulum.md), dimensionless form (2)-(3):\n"    \
-  "  R_w   = 3.0    rotor speed omega/omega0, >= 0\n"                                             \
-  "  R_m   = 0.1    mass ratio m/(M + 2m), in (0, 0.5)\n"                                         \
-  "  H     = 0.1    external damping H2/(omega0 (M + 2m)), >= 0\n"                                \
-  "  h     = 0.5    pendulum damping H1/(m l^2 omega0), >= 0\n"                                   \
-  "  k     = 0.5    unbalance parameter sin^2(2 psi0), in [0, 1]   (or psi0 in rad, [0, pi/2))\n" \
-  "or the physical form (SI; all eight keys, converted by (2)-(3); not mixed with the above):\n"   \
-  "  M [kg]  e [m]  m [kg]  l [m]  c [N/m]  H1 [N m s]  H2 [N s/m]  omega [rad/s]\n"              \
+/* ---- autobal --help ------------------------------------------------------------------------- */
+#define HELP_USAGE_HEAD                                                                          \
+  "usage: autobal <model> <action> [CONFIG.ini] [options]\n"                                     \
+  "       autobal info|rerun|plot FILE.h5 [options]\n"                                           \
+  "       autobal help [<model> [<action>] | info|rerun|plot]\n"                                 \
+  "       autobal --help | --version\n"                                                          \
+  "\n"                                                                                           \
+  "Dynamics of rotors with passive automatic balancers.  Every command runs on built-in\n"       \
+  "defaults when no CONFIG is given; keys in CONFIG (INI) or --set override them.\n"             \
+  "\n"                                                                                           \
+  "commands:\n"
+#define HELP_USAGE_TAIL                                                                                    \
+  "\n"                                                                                                     \
+  "options:\n"                                                                                             \
+  "  -o, --output FILE.h5    write an HDF5 archive (written to a temporary name, renamed when done)\n"     \
+  "  -f, --force             overwrite FILE.h5 if it exists\n"                                             \
+  "  -s, --set SEC.KEY=VAL   override a configuration value (SECTION.KEY=VALUE; repeatable)\n"                       \
+  "      --json              machine-readable summary on stdout (instead of the text summary)\n"           \
+  "  -q, --quiet             no text summary\n"                                                            \
+  "      --no-progress       no progress bar (none is drawn unless stderr is a terminal)\n"                \
+  "  -h, --help              help; with a model: its actions; with a command: its configuration keys\n"    \
+  "      --version           versions of autobal, GSL and HDF5\n"                                          \
+  "\n"                                                                                                     \
+  "exit codes:\n"                                                                                          \
+  "  0 success   2 bad command line   3 bad configuration or parameter   4 file error\n"                   \
+  "  5 numerical failure (partial results written)   6 interrupted (partial results written)\n"            \
+  "  7 internal error\n"                                                                                   \
+  "\n"                                                                                                     \
+  "documentation (in the autobal source tree): docs/rotor.md (the rotor model and its equations),\n"       \
+  "docs/pendulum.md (the two-pendulum model and its equations), docs/units.md (units)\n"
+
+/* the "see also" line of every command */
+#define HELP_DOCS_PENDULUM "\ndocumentation: docs/pendulum.md (the model, its equations), docs/units.md (units)\n"
+#define HELP_DOCS_ROTOR "\ndocumentation: docs/rotor.md (the model, its equations), docs/units.md (units)\n"
+#define HELP_DOCS_ARCHIVE                                                                          \
+  "\ndocumentation: docs/rotor.md and docs/pendulum.md (what the archives hold), docs/units.md " \
+  "(units)\n"
+
+/* ---- autobal MODEL --help: the model in a few lines (then its actions and HELP_DOCS_*) -------- */
+#define HELP_MODEL_PENDULUM                                                                         \
+  "The planar two-pendulum autobalancer on a rigid rotor (mass M, eccentricity e) with an elastic\n" \
+  "shaft: stability of the main (balanced) motion, critical speeds, stability maps, transients.\n"    \
+  "Parameters in dimensionless form (R_w, R_m, H, h, k or psi0) or physical (SI) form.\n"
+#define HELP_MODEL_ROTOR                                                                            \
+  "A rigid rotor on elastic supports in a massive housing with one or two ball autobalancers:\n"    \
+  "transients, stability of the balanced motion, sweeps, maps, Campbell diagram, ensembles.\n"      \
+  "Parameters in SI units (or a lumped coefficient set).\n"
+
+/* ---- the pendulum commands ---------------------------------------------------------------------- */
+#define HELP_PENDULUM_PARAMS                                                                         \
+  "[pendulum] the two-pendulum autobalancer in dimensionless form, eqs. (2)-(3) in docs/pendulum.md:\n" \
+  "  R_w   = 3.0    rotor speed omega/omega0, >= 0\n"                                                \
+  "  R_m   = 0.1    mass ratio m/(M + 2m), in (0, 0.5)\n"                                            \
+  "  H     = 0.1    external damping H2/(omega0 (M + 2m)), >= 0\n"                                   \
+  "  h     = 0.5    pendulum damping H1/(m l^2 omega0), >= 0\n"                                      \
+  "  k     = 0.5    unbalance parameter sin^2(2 psi0), in [0, 1]   (or psi0 in rad, [0, pi/2))\n"    \
+  "or the physical form (SI; all eight keys, converted by eqs. (2)-(3) in docs/pendulum.md; not\n"   \
+  "mixed with the above):\n"                                                                         \
+  "  M [kg]  e [m]  m [kg]  l [m]  c [N/m]  H1 [N m s]  H2 [N s/m]  omega [rad/s]\n"                 \
   "  (requires M e < 2 m l)\n"
 
-#define HELP_PENDULUM_ROOTS                                                                   \
-  "Roots of the characteristic polynomial (6) (GSL complex polynomial solver), eigenvalues\n" \
-  "of the 8x8 first-order matrix of (5) (GSL), their agreement, the Routh-Hurwitz verdict,\n" \
-  "the stability margin (largest real part) and the sufficient conditions (7)-(9).\n\n"       \
-  HELP_PENDULUM_PARAMS                                                                        \
-  "\narchive: /pendulum (parameters as attributes), /pendulum/roots\n"
+#define HELP_PENDULUM_ROOTS                                                                              \
+  "Roots of the characteristic polynomial, eq. (6) in docs/pendulum.md (GSL complex polynomial\n"       \
+  "solver), eigenvalues of the 8x8 first-order matrix of the linearization, eq. (5) in\n"               \
+  "docs/pendulum.md (GSL), their agreement, the Routh-Hurwitz verdict, the stability margin (largest\n" \
+  "real part) and the sufficient conditions, eqs. (7)-(9) in docs/pendulum.md.\n\n"                     \
+  HELP_PENDULUM_PARAMS                                                                                   \
+  "\narchive: /pendulum (parameters as attributes), /pendulum/roots\n" HELP_DOCS_PENDULUM
 
-#define HELP_PENDULUM_CRITICAL                                                                  \
-  "Critical speeds of the undamped balancer (H = h = 0) at the given R_m and k, located\n"      \
-  "exactly from the discriminant of (10); the paper's closed forms and series (13)-(18) with\n" \
-  "their errors; R_m^(1); critical-speed curves R_wj(R_m) for k = 0 and k = 1 (figure 2,\n"     \
-  "regions A and B); and, when H or h > 0, the critical speeds of the damped system (6).\n\n"   \
-  HELP_PENDULUM_PARAMS                                                                          \
-  "\n[critical]\n"                                                                              \
-  "  Rm_min = 0.001   Rm_max = 0.499   n_Rm = 499   R_m grid of the curves\n"                   \
-  "  Rw_min = 0       Rw_max = 6       n_sweep = 3000   sweep of the damped search\n"           \
-  "\narchive: /pendulum/critical, /pendulum/critical/curves\n"
+#define HELP_PENDULUM_CRITICAL                                                                          \
+  "Critical speeds of the undamped balancer (H = h = 0) at the given R_m and k, located exactly from\n" \
+  "the discriminant of eq. (10) in docs/pendulum.md; the closed forms and series, eqs. (13)-(18) in\n"  \
+  "docs/pendulum.md, with their errors; R_m^(1); critical-speed curves R_wj(R_m) for k = 0 and k = 1\n" \
+  "(regions A and B: docs/pendulum.md); and, when H or h > 0, the critical speeds of the damped\n"      \
+  "system, eq. (6) in docs/pendulum.md.\n\n"                                                            \
+  HELP_PENDULUM_PARAMS                                                                                  \
+  "\n[critical]\n"                                                                                      \
+  "  Rm_min = 0.001   Rm_max = 0.499   n_Rm = 499   R_m grid of the curves\n"                           \
+  "  Rw_min = 0       Rw_max = 6       n_sweep = 3000   sweep of the damped search\n"                   \
+  "\narchive: /pendulum/critical, /pendulum/critical/curves\n" HELP_DOCS_PENDULUM
 
-#define HELP_PENDULUM_MAP                                                                      \
-  "Stability map of the main motion (4) over an (R_m, R_w) grid: for one k, or for every\n"    \
-  "unbalance (stable for all k of a set in [0, 1]).  Damped: Routh-Hurwitz sign test on (6);\n" \
-  "undamped (H = h = 0): all roots of (10) real and <= 0.  OpenMP-parallel.\n\n"               \
-  HELP_PENDULUM_PARAMS                                                                         \
-  "\n[map]\n"                                                                                  \
-  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     R_m axis\n"                                \
-  "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     R_w axis\n"                                \
-  "  every_unbalance = false   true: stable for all k in {j/(n_k-1)}, j = 0..n_k-1\n"          \
-  "  n_k = 65                  size of that k set (>= 2)\n"                                    \
-  "  max_real = false          also store the largest real part of the roots (slower)\n"       \
-  "  threads = 0               OpenMP threads (0: default)\n"                                  \
-  "\narchive: /pendulum/map (verdict[R_m][R_w]: 1 stable, 0 marginal, -1 unstable)\n"
+#define HELP_PENDULUM_MAP                                                                                \
+  "Stability map of the main motion, eq. (4) in docs/pendulum.md, over an (R_m, R_w) grid: for one k,\n" \
+  "or for every unbalance (stable for all k of a set in [0, 1]).  Damped: Routh-Hurwitz sign test on\n"  \
+  "eq. (6) in docs/pendulum.md; undamped (H = h = 0): all roots of eq. (10) in docs/pendulum.md real\n"  \
+  "and <= 0.  OpenMP-parallel.\n\n"                                                                      \
+  HELP_PENDULUM_PARAMS                                                                                   \
+  "\n[map]\n"                                                                                            \
+  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     R_m axis\n"                                          \
+  "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     R_w axis\n"                                          \
+  "  every_unbalance = false   true: stable for all k in {j/(n_k-1)}, j = 0..n_k-1\n"                    \
+  "  n_k = 65                  size of that k set (>= 2)\n"                                              \
+  "  max_real = false          also store the largest real part of the roots (slower)\n"                 \
+  "  threads = 0               OpenMP threads (0: default)\n"                                            \
+  "\narchive: /pendulum/map (verdict[R_m][R_w]: 1 stable, 0 marginal, -1 unstable)\n" HELP_DOCS_PENDULUM
 
-#define HELP_PENDULUM_TRANSIENT                                                                     \
-  "Transient of the two-pendulum autobalancer: the nonlinear equations (1) in dimensionless time\n" \
-  "tau = omega0 t, integrated with a GSL stepper and streamed to HDF5; derived quantities: shaft\n"  \
-  "amplitude, residual unbalance of rotor plus pendulums (units of 2 m l), pendulum angles relative\n" \
-  "to the balancing position, Jacobi integral; time to balance.\n\n" HELP_PENDULUM_PARAMS            \
-  "\n[initial]   xi eta (units of l)  psi phi (rad)  xi_rate eta_rate psi_rate phi_rate   (all 0)\n" \
-  "[transient] t_end = 300 (tau)   revs_out = 0.25 (or dt_out, tau)   stepper = rk8pd\n"           \
-  "            rtol = 1e-10   atol = 1e-12   h_max = 0   max_steps = 1e8\n"                         \
-  "            balance_tol = 1e-3 (units of 2 m l)   balance_revs = 20   stop_at_balance = false\n"   \
-  "\narchive: /pendulum (parameters), /pendulum/transient (series over 'tau'), /pendulum/transient/solver\n"
+#define HELP_PENDULUM_TRANSIENT                                                                          \
+  "Transient of the two-pendulum autobalancer: the nonlinear equations of motion, eq. (1) in\n"         \
+  "docs/pendulum.md, in dimensionless time tau = omega0 t, integrated with a GSL stepper and streamed\n" \
+  "to HDF5; derived quantities: shaft amplitude, residual unbalance of rotor plus pendulums (units of\n" \
+  "2 m l), pendulum angles relative to the balancing position, Jacobi integral; time to balance.\n\n"    \
+  HELP_PENDULUM_PARAMS                                                                                   \
+  "\n[initial]   xi eta (units of l)  psi phi (rad)  xi_rate eta_rate psi_rate phi_rate   (all 0)\n"     \
+  "[transient] t_end = 300 (tau)   revs_out = 0.25 (or dt_out, tau)   stepper = rk8pd\n"                 \
+  "            rtol = 1e-10   atol = 1e-12   h_max = 0   max_steps = 1e8\n"                               \
+  "            balance_tol = 1e-3 (units of 2 m l)   balance_revs = 20   stop_at_balance = false\n"      \
+  "\narchive: /pendulum (parameters), /pendulum/transient (series over 'tau'), /pendulum/transient/solver\n" \
+  HELP_DOCS_PENDULUM
 
+/* ---- the rotor commands ------------------------------------------------------------------------ */
 #define HELP_ROTOR_PARAMS                                                                          \
   "[rotor]     M_k = 6  A_k = 0.12  m_p = 4  A_p = 0.04  C_p = 0.03   (kg, kg m^2)\n"                 \
   "            omega = 500 (rad/s)   inertia = paper|full   axial = false\n"                           \
   "[supports]  l_L = 0.20  l_R = 0.15 (m)   c_Lx c_Ly c_Lz c_Rx c_Ry (N/m)   h_Lx h_Ly h_Lz h_Rx h_Ry (N s/m)\n" \
   "            defaults: c_Lx = c_Ly = 1e5, c_Rx = c_Ry = 1.5e5, c_Lz = 2e5, h_L. = 100, h_R. = 150, h_Lz = 200\n" \
-  "[lumped]    optional, replaces [supports]: M A C c_x c_y c_z c_alpha c_beta c_xbeta c_yalpha and h_ (all)\n" \
+  "[lumped]    optional, replaces [supports]: M A C c_x c_y c_z c_alpha c_beta c_xbeta c_yalpha and h_ (all),\n" \
+  "            the coefficients of eqs. (2.7)-(2.11) in docs/rotor.md\n"                               \
   "[initial]   x y (m)  alpha beta (rad)  x_rate y_rate (m/s)  alpha_rate beta_rate (rad/s)  z z_rate\n"      \
   "[plane1]    d = 0.10 (m)  m0 = 0.02 (kg)  r0 = 0.1 (m)  psi0 = 0 (rad, unbalance angle on the rotor)\n"   \
   "            ball_mass = 0.05, 0.05 (kg)  ball_radius = 0.1, 0.1 (m)  ball_damping = 0.1, 0.1 (kg/s)\n"    \
   "            ball_psi = 1.0, 2.5 (rad, initial angles relative to the rotor)  ball_rate = 0, 0 (rad/s)\n"   \
   "[plane2]    optional second balancer plane, same keys as [plane1]\n"
 
-#define HELP_ROTOR_TRANSIENT                                                                       \
-  "Transient of the rotor in a massive housing with ball autobalancers (spec rotor.md): the\n"     \
-  "fixed-frame equations (3.2)+(3.4) (or the balls in the rotating frame, (3.13)), integrated\n"   \
-  "with a GSL stepper, streamed to HDF5; summary: balanced or not, time to balance, residual\n"    \
-  "unbalance and vibration before/after.\n\n" HELP_ROTOR_PARAMS                                    \
-  "[transient] t_end = 20 (s)   revs_out = 0.25 (output every quarter revolution) or dt_out (s)\n" \
+#define HELP_ROTOR_TRANSIENT                                                                          \
+  "Transient of the rotor in a massive housing with ball autobalancers: the fixed-frame equations,\n" \
+  "eqs. (3.2) and (3.4) in docs/rotor.md (with frame = rotating: the balls in the rotating frame,\n"  \
+  "eq. (3.13) in docs/rotor.md), integrated with a GSL stepper, streamed to HDF5; summary: balanced\n" \
+  "or not, time to balance, residual unbalance and vibration before/after.\n\n" HELP_ROTOR_PARAMS     \
+  "[transient] t_end = 20 (s)   revs_out = 0.25 (output every quarter revolution) or dt_out (s)\n"    \
   "            stepper = rk8pd   rtol = 1e-8   atol = 1e-10   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
-  "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n"    \
-  "            stop_at_balance = false\n"                                                          \
-  "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'), /rotor/revolutions\n"
-
-#define HELP_INFO                                                                                   \
-  "A readable summary of any autobal archive: the command that wrote it, its status, provenance\n"   \
-  "and configuration; the headline results (verdicts, critical speeds, stable intervals, time to\n" \
-  "balance, residual unbalance); then every group with its attributes (parameters with units,\n"   \
-  "solver settings and statistics) and datasets (dimensions, shape, type, units, long_name).\n"    \
-  "--json prints the same as one JSON object (keys: file, root, command, status, headline[],\n"    \
-  "groups[] with attributes {name: {value, units}} and datasets[] {name, path, shape, dims,\n"     \
-  "dtype, coordinate, units, long_name, values (up to 64 elements)}).\n"                          \
-  "Exit 4 (with the reason) when FILE.h5 is missing, not HDF5, truncated or not an autobal archive.\n"
-
-#define HELP_RERUN                                                                                   \
-  "Run again the command recorded in FILE.h5 (root attribute `command`) with the configuration\n"   \
-  "recorded there (`effective_config`: every key the command read with the value it used, defaults\n" \
-  "included; `input_config` for archives of older versions) and write NEW.h5.  With the same\n"     \
-  "version of autobal every dataset is reproduced bit for bit (provenance such as `created` and\n"  \
-  "wall times differ).\n"                                                                          \
-  "Options: -o NEW.h5 (required, not FILE.h5 itself), --force, --json, --quiet.  --set is refused.\n"
-
-#define HELP_PLOT                                                                                     \
-  "Draw PNG pictures of an archive with matplotlib: runs `/usr/bin/python3 autobal_plot.py FILE.h5\n" \
-  "-o DIR` (tools/ in the source tree, share/autobal/tools when installed; override with\n"          \
-  "AUTOBAL_TOOLS_DIR and AUTOBAL_PYTHON).  The script reads only the archive and writes\n"             \
-  "DIR/<stem>_<kind>.png (stem = FILE without .h5) for each group it knows: critical-speed curves\n" \
-  "with regions A and B (figure 2), stability maps, roots, transients (displacement, residual\n"     \
-  "unbalance on a log scale, ball/pendulum angles, time to balance).  -o DIR defaults to the current\n" \
-  "directory; the names of the files written are printed.\n"
+  "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n" \
+  "            stop_at_balance = false\n"                                                             \
+  "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'), /rotor/revolutions\n" \
+  HELP_DOCS_ROTOR
 
 #define HELP_ROTOR_STAB_OPTS \
   "[stability] method = auto|poly|closed|full|floquet   tol = 1e-9   floquet_rtol = 1e-11   floquet_atol = 1e-13\n" \
   "            member1 = default|symmetric|free|given   member1_angles = (rad: balls 1..n-2 for free, all for given)\n" \
   "            member2, member2_angles (plane 2)\n"
+/* The parameters a sweep or a map varies (autobal_rotor_stab_param; the defaults of min and max
+ * are param_default_lo/hi in apps/cmd_rotor_stability.c). */
+#define HELP_ROTOR_STAB_AXES \
+  "parameters (unit; what it changes; default min .. max):\n" \
+  "  omega            rad/s  spin speed; 5% of the 1st natural frequency at rest .. 4x the larger of\n" \
+  "                          the 4th one and |rotor.omega|\n" \
+  "  ball_damping     kg/s   damping of every ball of every plane; 0 .. 10x plane1's first ball + 0.001\n" \
+  "  ball_mass        kg     mass of every ball of every plane; 0.1x .. 4x plane1's first ball\n" \
+  "  stiffness_scale  1      factor on every support stiffness; 0.25 .. 4\n" \
+  "  damping_scale    1      factor on every support viscosity; 0 .. 4\n" \
+  "  unbalance_mass   kg     unbalance mass m0 of every plane; 0 .. 4x plane1.m0 + 0.001\n"
 #define HELP_ROTOR_STABILITY \
-  "Stability of the balanced motion (3.14): the degree-12 polynomial Delta (GSL roots, Routh-Hurwitz), the closed\n" \
-  "12x12 (16x16) matrix, the full model in rotating coordinates, Floquet multipliers (any supports); critical\n" \
-  "speeds and the stable speed intervals.\n\n" HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
+  "Stability of the balanced motion, eq. (3.14) in docs/rotor.md: the degree-12 polynomial Delta (GSL roots,\n" \
+  "Routh-Hurwitz), the closed 12x12 (16x16) matrix, the full model in rotating coordinates, Floquet multipliers\n" \
+  "(any supports); critical speeds and the stable speed intervals (eqs. (3.14)-(3.16) in docs/rotor.md).\n\n" \
+  HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
   "            critical_speeds = true  omega_min, omega_max (rad/s; default 5% of the 1st natural frequency .. 4x)\n" \
   "            n_omega = 400  xtol_rel = 1e-8\n" \
-  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical\n"
+  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical\n" \
+  HELP_DOCS_ROTOR
 #define HELP_ROTOR_SWEEP \
-  "Stability margin along one parameter; every verdict change refined to xtol_rel; stable intervals.\n\n" \
+  "Stability margin of the balanced motion (eq. (3.14) in docs/rotor.md) along one parameter; every verdict\n" \
+  "change refined to xtol_rel; stable intervals.\n\n" \
   HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
-  "[sweep] param = omega|ball_damping|ball_mass|stiffness_scale|damping_scale|unbalance_mass  min  max  n = 1000\n" \
-  "        xtol_rel = 1e-8\n" \
-  "\narchive: /rotor/sweep (margin and verdict over the parameter, critical_value, stable_lo/hi)\n"
+  "[sweep] param = omega   min  max  n = 1000   xtol_rel = 1e-8\n" \
+  "        param: one of the parameters below; min, max in its unit\n\n" \
+  HELP_ROTOR_STAB_AXES \
+  "\narchive: /rotor/sweep (margin and verdict over the parameter, critical_value, stable_lo/hi)\n" \
+  HELP_DOCS_ROTOR
 #define HELP_ROTOR_MAP \
-  "Two-parameter stability map, OpenMP-parallel (results independent of the thread count).\n\n" \
+  "Two-parameter stability map of the balanced motion (eq. (3.14) in docs/rotor.md), OpenMP-parallel\n" \
+  "(results independent of the thread count).\n\n" \
   HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
-  "[map] param1 = omega  min1 max1 n1 = 120   param2 = ball_damping  min2 max2 n2 = 60   threads = 0\n" \
-  "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n"
+  "[map] param1 = omega         min1 max1  n1 = 120   (first axis)\n" \
+  "      param2 = ball_damping  min2 max2  n2 = 60    (second axis)\n" \
+  "      threads = 0 (OpenMP threads; 0: default)\n" \
+  "      param1, param2: two different parameters below; min, max in their units\n\n" \
+  HELP_ROTOR_STAB_AXES \
+  "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
+  HELP_DOCS_ROTOR
 #define HELP_ROTOR_CAMPBELL \
   "Rotor-housing without balls: natural frequencies at rest (undamped, damped), Campbell diagram (C omega\n" \
   "gyroscopic), steady unbalance response, critical speeds (frequency = omega) and response peaks.\n\n" \
   HELP_ROTOR_PARAMS \
   "[campbell] omega_min = 0  omega_max  n = 401  n_resonance = 4000  xtol_rel = 1e-10\n" \
-  "\narchive: /rotor/campbell\n"
+  "\narchive: /rotor/campbell\n" HELP_DOCS_ROTOR
 
 #define HELP_ENSEMBLE_KEYS \
   "[ensemble] mode = grid|random\n" \
@@ -160,7 +217,8 @@
   "            omega, ball_damping (every ball), m0 (plane 1), x, y (initial displacement)\n" \
   "default: grid psi_1 x psi_2, 16 x 16 over [-pi, pi)\n" \
   "\narchive: /rotor (model), /rotor/ensemble (variables over the parameter axes, or over 'member' when\n" \
-  "random; probability_balanced etc. as attributes), /rotor/ensemble/series/member_M, .../execution\n"
+  "random; probability_balanced etc. as attributes), /rotor/ensemble/series/member_M, .../execution\n" \
+  HELP_DOCS_ROTOR
 #define HELP_PENDULUM_ENSEMBLE \
   "Many transients of the two-pendulum autobalancer (as `pendulum transient`) over a grid or random\n" \
   "samples of initial conditions or parameters: per member balanced or not, time to balance, residual\n" \
@@ -172,6 +230,36 @@
   "parameters: xi, eta, psi, phi, xi_rate, eta_rate, psi_rate, phi_rate (initial state), R_w, R_m, H, h,\n" \
   "            psi0 or k\n" \
   "default: grid psi x phi, 16 x 16 over [-pi, pi)\n" \
-  "\narchive: /pendulum (parameters), /pendulum/ensemble (as for the rotor)\n"
+  "\narchive: /pendulum (parameters), /pendulum/ensemble (as for the rotor)\n" HELP_DOCS_PENDULUM
+
+/* ---- the commands on an archive ------------------------------------------------------------------ */
+#define HELP_INFO                                                                                   \
+  "A readable summary of any autobal archive: the command that wrote it, its status, provenance\n"   \
+  "and configuration; the headline results (verdicts, critical speeds, stable intervals, time to\n" \
+  "balance, residual unbalance); then every group with its attributes (parameters with units,\n"   \
+  "solver settings and statistics) and datasets (dimensions, shape, type, units, long_name).\n"    \
+  "--json prints the same as one JSON object (keys: file, root, command, status, headline[],\n"    \
+  "groups[] with attributes {name: {value, units}} and datasets[] {name, path, shape, dims,\n"     \
+  "dtype, coordinate, units, long_name, values (up to 64 elements)}).\n"                          \
+  "Exit 4 (with the reason) when FILE.h5 is missing, not HDF5, truncated or not an autobal archive.\n" \
+  HELP_DOCS_ARCHIVE
+
+#define HELP_RERUN                                                                                   \
+  "Run again the command recorded in FILE.h5 (root attribute `command`) with the configuration\n"   \
+  "recorded there (`effective_config`: every key the command read with the value it used, defaults\n" \
+  "included; `input_config` for archives of older versions) and write NEW.h5.  With the same\n"     \
+  "version of autobal every dataset is reproduced bit for bit (provenance such as `created` and\n"  \
+  "wall times differ).\n"                                                                          \
+  "Options: -o NEW.h5 (required, not FILE.h5 itself), --force, --json, --quiet.  --set is refused.\n" \
+  HELP_DOCS_ARCHIVE
+
+#define HELP_PLOT                                                                                     \
+  "Draw PNG pictures of an archive with matplotlib: runs `/usr/bin/python3 autobal_plot.py FILE.h5\n" \
+  "-o DIR` (tools/ in the source tree, share/autobal/tools when installed; override with\n"          \
+  "AUTOBAL_TOOLS_DIR and AUTOBAL_PYTHON).  The script reads only the archive and writes\n"             \
+  "DIR/<stem>_<kind>.png (stem = FILE without .h5) for each group it knows: critical-speed curves\n" \
+  "with regions A and B (docs/pendulum.md), stability maps, roots, transients (displacement,\n"      \
+  "residual unbalance on a log scale, ball/pendulum angles, time to balance).  -o DIR defaults to\n" \
+  "the current directory; the names of the files written are printed.\n" HELP_DOCS_ARCHIVE
 
 #endif

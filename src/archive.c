@@ -707,8 +707,11 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
       (void)close(fd);
       (void)unlink(a->tmp_path);
     }
-    rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.150s': %s%s(temporary file '%.150s'; %.150s)",
-                           path, why, why[0] ? " " : "", a->tmp_path, stack);
+    /* the OS reason says it all (a missing or read-only directory); HDF5's stack only without one */
+    if (why[0]) rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.300s': %s", path, why);
+    else
+      rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.150s' (temporary file '%.150s'; %.150s)",
+                             path, a->tmp_path, stack);
     goto done;
   }
   rc = write_root_string(a, "Conventions", AUTOBAL_ARCHIVE_CONVENTIONS);

@@ -15,10 +15,14 @@
 int autobal_error_set(autobal_error *err, int status, const char *fmt, ...) AUTOBAL_PRINTF(3, 4);
 
 /* Range check: value must be finite and inside the interval from lo to hi
- * (lo_open / hi_open: 1 for an open end).  On failure records
- * "parameter NAME = VALUE UNIT is out of range: allowed (lo, hi]" and
- * returns AUTOBAL_EINVAL; AUTOBAL_SUCCESS otherwise.  Use -INFINITY/INFINITY
- * for unbounded ends. */
+ * (lo_open / hi_open: 1 for an open end).  On failure records the bound that
+ * was broken, then the whole range, numbers in the shortest form that reads
+ * back exactly:
+ *   "parameter NAME = VALUE UNIT is too large: must be < hi UNIT (allowed range (lo, hi))"
+ *   "parameter NAME = VALUE UNIT is too small: must be >= lo UNIT (allowed range [lo, hi))"
+ *   "parameter NAME = nan UNIT is not a finite number (allowed range ...)"
+ * and returns AUTOBAL_EINVAL; AUTOBAL_SUCCESS otherwise.  Use -INFINITY/INFINITY
+ * for unbounded ends ("inf" in the message). */
 int autobal_check_param(autobal_error *err, const char *name, double value, double lo, int lo_open,
                         double hi, int hi_open, const char *unit);
 

@@ -3,6 +3,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *autobal_strerror(int status) {
@@ -46,20 +47,40 @@ int autobal_error_set(autobal_error *err, int status, const char *fmt, ...) {
   return status;
 }
 
+/* The shortest "%.*g" text of v that reads back as exactly v (at most 17 digits). */
+static void shortest_g(char *buf, size_t len, double v) {
+  int prec;
+  if (!isfinite(v)) {
+    snprintf(buf, len, isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
+    return;
+  }
+  for (prec = 1; prec < 17; prec++) {
+    snprintf(buf, len, "%.*g", prec, v);
+    if (strtod(buf, NULL) == v) return;
+  }
+  snprintf(buf, len, "%.17g", v);
+}
+
 int autobal_check_param(autobal_error *err, const char *name, double value, double lo, int lo_open,
                         double hi, int hi_open, const char *unit) {
-  int ok = isfinite(value);
-  if (ok) ok = lo_open ? value > lo : value >= lo;
-  if (ok) ok = hi_open ? value < hi : value <= hi;
-  if (ok) return AUTOBAL_SUCCESS;
+  int below = isfinite(value) && (lo_open ? !(value > lo) : !(value >= lo));
+  int above = isfinite(value) && (hi_open ? !(value < hi) : !(value <= hi));
+  if (isfinite(value) && !below && !above) return AUTOBAL_SUCCESS;
   {
-    char lo_s[32], hi_s[32];
-    if (isinf(lo)) snprintf(lo_s, sizeof lo_s, "-inf");
-    else snprintf(lo_s, sizeof lo_s, "%.6g", lo);
-    if (isinf(hi)) snprintf(hi_s, sizeof hi_s, "inf");
-    else snprintf(hi_s, sizeof hi_s, "%.6g", hi);
-    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter %s = %.16g%s%s is out of range: allowed %c%s, %s%c",
-                             name, value, unit && unit[0] ? " " : "", unit ? unit : "",
-                             lo_open ? '(' : '[', lo_s, hi_s, hi_open ? ')' : ']');
+    /* the broken bound first, then the whole range:
+     * "parameter R_m = 0.7 is too large: must be < 0.5 (allowed range (0, 0.5))" */
+    char v_s[32], lo_s[32], hi_s[32], why[96];
+    const char *sp = unit && unit[0] ? " " : "", *u = unit ? unit : "";
+    shortest_g(v_s, sizeof v_s, value);
+    shortest_g(lo_s, sizeof lo_s, lo);
+    shortest_g(hi_s, sizeof hi_s, hi);
+    if (below)
+      snprintf(why, sizeof why, "is too small: must be %s %s%s%s", lo_open ? ">" : ">=", lo_s, sp, u);
+    else if (above)
+      snprintf(why, sizeof why, "is too large: must be %s %s%s%s", hi_open ? "<" : "<=", hi_s, sp, u);
+    else
+      snprintf(why, sizeof why, "is not a finite number");
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter %s = %s%s%s %s (allowed range %c%s, %s%c)", name, v_s, sp,
+                             u, why, lo_open ? '(' : '[', lo_s, hi_s, hi_open ? ')' : ']');
   }
 }

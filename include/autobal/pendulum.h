@@ -78,7 +78,8 @@ typedef struct autobal_pendulum_physical {
 } autobal_pendulum_physical;
 
 /* Check every field of p (ranges above; finite).  The first bad field is
- * reported: "parameter R_m = 0.5 is out of range: allowed (0, 0.5)". */
+ * reported, e.g. "parameter R_m = 0.5 is too large: must be < 0.5 (allowed
+ * range (0, 0.5))". */
 AUTOBAL_API int autobal_pendulum_params_validate(const autobal_pendulum_params *p,
                                                  autobal_error *err);
 

@@ -83,10 +83,10 @@ expect 0 "" -- "$A" pendulum roots -o roots.h5
 expect 3 "roots.h5" "NUL" "not a text file" -- "$A" pendulum roots roots.h5
 
 # ---- --set ---------------------------------------------------------------------------------
-expect 2 "section.key=value" "pendulum.R_w" -- "$A" pendulum roots --set pendulum.R_w
-expect 2 "section.key=value" -- "$A" pendulum roots --set R_w=3
-expect 2 "section.key=value" -- "$A" pendulum roots --set .R_w=3
-expect 2 "section.key=value" -- "$A" pendulum roots --set pendulum.=3
+expect 2 "SECTION.KEY=VALUE" "'=' is missing" "pendulum.R_w" -- "$A" pendulum roots --set pendulum.R_w
+expect 2 "SECTION.KEY=VALUE" "section is missing" -- "$A" pendulum roots --set R_w=3
+expect 2 "SECTION.KEY=VALUE" "section is missing" -- "$A" pendulum roots --set .R_w=3
+expect 2 "SECTION.KEY=VALUE" "key is missing" -- "$A" pendulum roots --set pendulum.=3
 expect 2 "needs a value" -- "$A" pendulum roots --set
 expect 3 "pendulum.R_w" "''" -- "$A" pendulum roots --set pendulum.R_w=
 expect 3 "'pendulum.R_w'" -- "$A" pendulum roots --set "pendulum. R_w=3"                       # did you mean
@@ -117,7 +117,7 @@ expect 3 "no balls" -- "$A" rotor transient --set plane2.ball_radius=0.1
 
 # ---- zero or negative masses and inertias, every model section --------------------------------
 for kv in M_k=0 A_k=0 m_p=-4 A_p=0 C_p=-0.03; do
-  expect 3 "${kv%%=*}" "out of range" -- "$A" rotor transient --set "rotor.$kv"
+  expect 3 "${kv%%=*}" "is too small: must be >" -- "$A" rotor transient --set "rotor.$kv"
 done
 expect 3 "ball_mass[0]" "= 0 kg" "(0, inf)" -- "$A" rotor transient --set plane1.ball_mass=0,0.05
 expect 3 "ball_mass[1]" "(0, inf)" -- "$A" rotor transient --set plane1.ball_mass=0.05,-0.05
@@ -154,8 +154,8 @@ expect 3 "'omega' is missing" -- "$A" pendulum roots --set pendulum.M=10 --set p
 expect 3 "not both" -- "$A" pendulum roots $(phys) --set pendulum.R_m=0.1
 
 # ---- psi0 and k out of range (pendulum) ---------------------------------------------------------
-expect 3 "psi0 = 1.6" "[0, 1.5708)" -- "$A" pendulum roots --set pendulum.psi0=1.6
-expect 3 "psi0 = -0.1" "[0, 1.5708)" -- "$A" pendulum roots --set pendulum.psi0=-0.1
+expect 3 "psi0 = 1.6 rad is too large: must be < 1.5707963267948966 rad" "[0, 1.5707963267948966)" -- "$A" pendulum roots --set pendulum.psi0=1.6
+expect 3 "psi0 = -0.1 rad is too small: must be >= 0 rad" "[0, 1.5707963267948966)" -- "$A" pendulum roots --set pendulum.psi0=-0.1
 expect 3 "psi0" -- "$A" pendulum roots --set pendulum.psi0=1.5707963267948966                    # pi/2: open end
 expect 3 "k = -0.01" "[0, 1]" -- "$A" pendulum roots --set pendulum.k=-0.01
 expect 3 "k = 1.0000001" "[0, 1]" -- "$A" pendulum roots --set pendulum.k=1.0000001

@@ -63,7 +63,7 @@ expect 4 "--force" "$AUTOBAL" pendulum roots -o roots.h5
 expect 0 "" "$AUTOBAL" pendulum roots -o roots.h5 --force
 ls | grep -q partial && bad "temporary files left behind: $(ls | grep partial)" || ok "no temporary files left"
 expect 2 "unknown option" "$AUTOBAL" pendulum roots --frobnicate
-expect 2 "unknown command" "$AUTOBAL" pendulum rootz
+expect 2 "did you mean 'roots'" "$AUTOBAL" pendulum rootz
 expect 0 "" "$AUTOBAL" --help
 expect 0 "R_m" "$AUTOBAL" pendulum map --help
 
