@@ -250,6 +250,28 @@ int cli_config_add_comment(cli_config *c, const char *section, const char *key, 
 /* The comments of INI text (already parsed by inih, so well formed): full-line comments (';' or
  * '#') before the first section go to the preamble; the others, and an inline comment (';' after
  * a blank, as inih strips it), to the next key.  Returns 0, -1: no memory. */
+/* The comment lines cli_config_effective_ini writes itself (its header, ";default" lines, "KEY not
+ * given" notes): an effective configuration used as a configuration file does not take them
+ * for the user's comments. */
+static int generated_comment(const char *s, size_t n) {
+  static const char *const k[] = {"; the effective configuration of ", "; (given in the file or with --set",
+                                  "; \";default KEY = VALUE\"", "; so it stays absent;",
+                                  "; the comments of the given configuration follow", ";default "};
+  size_t i;
+  const char *ng;
+  for (i = 0; i < sizeof k / sizeof k[0]; i++)
+    if (n >= strlen(k[i]) && strncmp(s, k[i], strlen(k[i])) == 0) return 1;
+  /* "; KEY not given: ..." */
+  ng = n > 2 && s[0] == ';' && s[1] == ' ' ? strstr(s, " not given: ") : NULL;
+  if (ng && (size_t)(ng - s) < n) {
+    const char *t;
+    for (t = s + 2; t < ng; t++)
+      if (*t == ' ') return 0;
+    return 1;
+  }
+  return 0;
+}
+
 static int scan_comments(cli_config *c, const char *text) {
   char section[256] = "", *pending = NULL;
   const char *p = text;
@@ -259,7 +281,8 @@ static int scan_comments(cli_config *c, const char *text) {
     while (q < end && (*q == ' ' || *q == '\t')) q++;
     while (end > q && (end[-1] == '\r' || end[-1] == ' ' || end[-1] == '\t')) end--;
     if (q < end && (*q == ';' || *q == '#')) {
-      q++;
+      if (generated_comment(q, (size_t)(end - q))) goto next; /* ours, made again from the reads */
+      q += (q + 1 < end && q[0] == ';' && q[1] == '#') ? 2 : 1; /* ";#": a comment we recorded */
       if (q < end && *q == ' ') q++;
       rc = section[0] ? append_line(&pending, q, (size_t)(end - q)) : append_line(&c->preamble, q, (size_t)(end - q));
     } else if (q < end && *q == '[') {
@@ -293,6 +316,7 @@ static int scan_comments(cli_config *c, const char *text) {
       free(pending);
       pending = NULL;
     }
+  next:
     p = nl ? nl + 1 : end;
     if (!nl) break;
   }

@@ -27,7 +27,7 @@ import numpy as np
 
 AUTOBAL_EVENT = 2
 AUTOBAL_EMAXSTEPS = -5
-SKIP_ROOT = {"created", "command_line", "input_config", "effective_config"}  # the configurations hold threads etc.
+SKIP_ROOT = {"created", "command_line", "history", "input_config", "effective_config"}  # the configurations hold threads etc.
 
 
 def fail(msg):
