@@ -88,7 +88,7 @@ int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_p
 int cli_write_pendulum_params(cli_ctx *ctx, autobal_archive *a, const autobal_pendulum_params *p,
                               const autobal_pendulum_physical *phys, int physical) {
   int st = autobal_archive_group(a, "/pendulum");
-  if (!st) st = autobal_archive_attr_string(a, "/pendulum", "model", "planar two-pendulum autobalancer (spec pendulum.md)");
+  if (!st) st = autobal_archive_attr_string(a, "/pendulum", "model", "planar two-pendulum autobalancer (docs/pendulum.md)");
   if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_w", p->R_w, "1");
   if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_m", p->R_m, "1");
   if (!st) st = autobal_archive_attr_double(a, "/pendulum", "H", p->H, "1");
@@ -573,6 +573,21 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     if (!st) st = autobal_archive_attr_double_array(a, g, "k_values", spec.n_k, ks, "1");
     if (!st) st = autobal_archive_coord(a, g, "R_m", (size_t)n_rm, rm, "1", "mass ratio m/(M + 2m)");
     if (!st) st = autobal_archive_coord(a, g, "R_w", (size_t)n_rw, rw, "1", "rotor speed omega/omega0");
+    /* the design point of the configuration ([pendulum]), for marking on the map */
+    if (!st) st = autobal_archive_attr_double(a, g, "design_R_m", p.R_m, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "design_R_w", p.R_w, "1");
+    if (!st && physical) { /* the R_w axis in physical speed: omega = R_w omega0 */
+      double *om = malloc((size_t)n_rw * sizeof *om);
+      long q;
+      if (!om) {
+        st = AUTOBAL_ENOMEM;
+      } else {
+        for (q = 0; q < n_rw; q++) om[q] = rw[q] * pendulum_omega0(&phys);
+        st = autobal_archive_var(a, g, "omega", 1, (const char *const[]){"R_w"}, om, "rad/s",
+                                 "rotor speed omega = R_w omega0 of the configuration's physical set");
+        free(om);
+      }
+    }
     if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vi, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
     if (!st && maxre) st = autobal_archive_var(a, g, "max_real", 2, dims, maxre, "1", "largest real part of the roots of (6) (over k_values)");
     rc = cli_archive_end(ctx, &a, st, rc);

@@ -1,5 +1,5 @@
 /* cmd_pendulum_transient.c: `autobal pendulum transient`: the equations of motion (1) of the
- * two-pendulum autobalancer integrated in dimensionless time tau (spec pendulum.md), streamed to
+ * two-pendulum autobalancer integrated in dimensionless time tau (docs/pendulum.md), streamed to
  * HDF5, summarised for a person: balanced or not, time to balance, residual unbalance, final
  * pendulum angles relative to the main motion (4). */
 #define _POSIX_C_SOURCE 200809L
@@ -309,6 +309,22 @@ finish:
       cli_json_int(&jj, "steps", (long)stats.steps);
       cli_json_int(&jj, "rhs_evaluations", (long)stats.rhs_evals);
       cli_json_number(&jj, "wall_time", stats.wall_seconds);
+      cli_json_unit(&jj, "time_to_balance", "1");
+      cli_json_unit(&jj, "t_reached", "1");
+      cli_json_unit(&jj, "unbalance_initial", "1");
+      cli_json_unit(&jj, "unbalance_final", "1");
+      cli_json_unit(&jj, "amplitude_max", "1");
+      cli_json_unit(&jj, "amplitude_final", "1");
+      cli_json_unit(&jj, "alpha_final", "rad");
+      cli_json_unit(&jj, "beta_final", "rad");
+      cli_json_unit(&jj, "wall_time", "s");
+      if (c.physical) {
+        const double w0 = sqrt(c.phys.c / (c.phys.M + 2 * c.phys.m)), ml2 = 2.0 * c.phys.m * c.phys.l;
+        cli_json_quantity(&jj, "omega0", w0, "rad/s");
+        cli_json_quantity(&jj, "time_to_balance_s", ttb / w0, "s");
+        cli_json_quantity(&jj, "unbalance_final_abs", dfin.unbalance * ml2, "kg m");
+        cli_json_quantity(&jj, "amplitude_max_m", r.amp_max * c.phys.l, "m");
+      }
       cli_json_summary_end(&jj, ctx);
     } else if (!ctx->quiet) {
       printf("pendulum transient: R_w = %.6g  R_m = %.6g  H = %.6g  h = %.6g  psi0 = %.6g rad; tau in [0, %.6g] "
@@ -326,6 +342,15 @@ finish:
                c.balance_revs);
       else
         printf("  NOT balanced: |d| did not stay below %.3g for %.6g revolutions\n", c.balance_tol, c.balance_revs);
+      if (c.physical) { /* the same in physical units: t = tau / omega0, lengths in l, unbalance in 2 m l */
+        const double w0 = sqrt(c.phys.c / (c.phys.M + 2 * c.phys.m)), ml2 = 2.0 * c.phys.m * c.phys.l;
+        printf("  physical: omega0 = %.6g rad/s, t in [0, %.6g] s; residual unbalance %.4g g mm -> %.4g g mm; "
+               "shaft amplitude max %.4g um, %.4g um at the end",
+               w0, t_reached / w0, r.unb_initial * ml2 * 1e6, dfin.unbalance * ml2 * 1e6, r.amp_max * c.phys.l * 1e6,
+               dfin.amplitude * c.phys.l * 1e6);
+        if (balanced) printf("; balanced from t = %.6g s", ttb / w0);
+        printf("\n");
+      }
       cli_print_solver_stats(tr, &stats);
       if (ctx->output) printf("archive: %s\n", ctx->output);
     }

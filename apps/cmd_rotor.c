@@ -1,5 +1,5 @@
 /* cmd_rotor.c: `autobal rotor transient`: the rotor in a massive housing with one or two ball
- * autobalancers (spec rotor.md), integrated in time, streamed to HDF5, summarised for a person. */
+ * autobalancers (docs/rotor.md), integrated in time, streamed to HDF5, summarised for a person. */
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <math.h>
@@ -257,7 +257,7 @@ int cli_write_rotor_params(autobal_archive *a, const autobal_rotor_params *p, in
     L = p->lumped;
   }
   st = autobal_archive_group(a, g);
-  if (!st) st = autobal_archive_attr_string(a, g, "model", "rotor in a massive housing with ball autobalancers (spec rotor.md)");
+  if (!st) st = autobal_archive_attr_string(a, g, "model", "rotor in a massive housing with ball autobalancers (docs/rotor.md)");
   if (!st) st = autobal_archive_attr_string(a, g, "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
   if (!st) st = autobal_archive_attr_string(a, g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
   if (!st) st = autobal_archive_attr_double(a, g, "omega", p->omega, "rad/s");

@@ -1,5 +1,5 @@
 /* cmd_rotor_stability.c: `autobal rotor stability|sweep|map|campbell`: balanced motions of the
- * rotor with ball autobalancers, their stability (spec rotor.md (3.14)-(3.16), anisotropic
+ * rotor with ball autobalancers, their stability (docs/rotor.md (3.14)-(3.16), anisotropic
  * supports by Floquet), critical speeds, parameter sweeps, two-parameter maps, natural
  * frequencies, the Campbell diagram and the unbalance-response critical speeds. */
 #define _POSIX_C_SOURCE 200809L
