@@ -1006,6 +1006,33 @@ finish:
       cli_json_number(&jj, "amplitude_first_10pct_max", r.amp_first);
       cli_json_number(&jj, "amplitude_last_10pct_max", r.amp_last);
       engineering_json(&jj, &eng, r.n_planes);
+      /* every plane: residual unbalance, ball angles relative to the rotor at the end, the
+       * balanced configuration (3.14) when it exists */
+      cli_json_array(&jj, "planes");
+      for (j = 0; j < r.n_planes; j++) {
+        size_t i, nbj = c->p.plane[j].n_balls;
+        double s0j = c->p.plane[j].m0 * c->p.plane[j].r0;
+        cli_json_object(&jj, NULL);
+        cli_json_int(&jj, "plane", (long)j + 1);
+        cli_json_number(&jj, "residual_unbalance_abs", eng.s_abs[j]);
+        cli_json_number(&jj, "residual_unbalance_rel", s0j > 0 ? eng.s_abs[j] / s0j : NAN);
+        cli_json_array(&jj, "ball_psi_final");
+        for (i = 0; i < nbj; i++) {
+          size_t k = autobal_rotor_ball_index(rot, j, i);
+          double ang = c->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - c->p.omega * t_reached : y[8 + k];
+          cli_json_number(&jj, NULL, remainder(ang, TWO_PI));
+        }
+        cli_json_array_end(&jj);
+        if (psi_bal[j]) cli_json_numbers(&jj, "ball_psi_balanced", psi_bal[j], nbj);
+        cli_json_object(&jj, "units");
+        cli_json_string(&jj, "residual_unbalance_abs", "kg m");
+        cli_json_string(&jj, "residual_unbalance_rel", "1");
+        cli_json_string(&jj, "ball_psi_final", "rad");
+        cli_json_string(&jj, "ball_psi_balanced", "rad");
+        cli_json_object_end(&jj);
+        cli_json_object_end(&jj);
+      }
+      cli_json_array_end(&jj);
       cli_json_unit(&jj, "time_to_balance", "s");
       cli_json_unit(&jj, "t_reached", "s");
       cli_json_unit(&jj, "residual_unbalance_initial", "1");

@@ -167,6 +167,43 @@ print(("ok  " if ok else "FAIL") + " --json carries the values and their units")
 sys.exit(1 if bad else 0)
 PY
 
+# 5. Two planes: the text and --json summaries report every plane; the balanced configuration
+#    of each plane against the closed form psi = psi0 + pi -/+ arccos(m0 r0 / (2 m r)) (two equal
+#    balls), the final ball angles against it, and |s_j| against the archive's last p<j>_s_abs.
+"$AUTOBAL" rotor transient "$DATA/rotor_two_planes.ini" --set transient.t_end=5 -o two.h5 --json > two.json ||
+  bad "two-plane run failed"
+"$AUTOBAL" rotor transient "$DATA/rotor_two_planes.ini" --set transient.t_end=5 > two.txt || bad "two-plane text run failed"
+for j in 1 2; do
+  for needle in "plane $j: residual unbalance" "plane $j ball angles relative to the rotor" "balanced configuration (3.14) of plane $j"; do
+    grep -qF "$needle" two.txt && ok "text summary: '$needle'" || bad "text summary lacks '$needle'"
+  done
+done
+"$PY" - <<'PY' || fail=1
+import h5py, json, math, sys
+bad = 0
+j = json.load(open("two.json")); h = h5py.File("two.h5", "r")
+def wrap(a): return math.remainder(a, 2 * math.pi)
+for pl in j["planes"]:
+    k = pl["plane"]; P = h[f"rotor/plane{k}"].attrs
+    m, r = P["ball_mass"][0], P["ball_radius"][0]
+    c = math.acos(P["m0"] * P["r0"] / (2 * m * r))
+    want = sorted(wrap(P["psi0"] + math.pi + sgn * c) for sgn in (-1, 1))
+    got_bal = sorted(pl["ball_psi_balanced"]); got_fin = sorted(pl["ball_psi_final"])
+    e1 = max(abs(wrap(a - b)) for a, b in zip(got_bal, want))
+    e2 = max(abs(wrap(a - b)) for a, b in zip(got_fin, want))
+    s_last = h[f"rotor/transient/p{k}_s_abs"][-1]
+    e3 = abs(pl["residual_unbalance_abs"] - s_last)
+    for name, e, tol in (("balanced configuration vs closed form", e1, 1e-12), ("final angles vs closed form", e2, 1e-6),
+                         ("|s_j| vs the archive's last p<j>_s_abs", e3, 1e-15)):
+        ok = e <= tol
+        print(("ok  " if ok else "FAIL") + f" plane {k}: {name}: {e:.2e} (<= {tol:g})"); bad += not ok
+    ok = pl["units"]["residual_unbalance_abs"] == "kg m" and pl["units"]["ball_psi_final"] == "rad"
+    print(("ok  " if ok else "FAIL") + f" plane {k}: units in the JSON plane object"); bad += not ok
+ok = len(j["planes"]) == 2 and len(j["residual_unbalance_abs_final"]) == 2
+print(("ok  " if ok else "FAIL") + " --json reports both planes"); bad += not ok
+sys.exit(1 if bad else 0)
+PY
+
 # bad-input catalogue: exit 3 and the key named
 expect3() {
   local needle=$1; shift
