@@ -1538,14 +1538,14 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const ens_store *st, 
     cli_json_int(&jj, "n_computed_now", (long)computed);
     cli_json_int(&jj, "n_failed", (long)t->failed);
     cli_json_int(&jj, "n_balanced", (long)t->balanced);
-    cli_json_number(&jj, "probability_balanced", t->p);
-    cli_json_number(&jj, "probability_balanced_stderr", t->p_se);
-    cli_json_number(&jj, "time_to_balance_mean", t->ttb_mean);
-    cli_json_number(&jj, "time_to_balance_median", t->ttb_median);
+    cli_json_quantity(&jj, "probability_balanced", t->p, "1");
+    cli_json_quantity(&jj, "probability_balanced_stderr", t->p_se, "1");
+    cli_json_quantity(&jj, "time_to_balance_mean", t->ttb_mean, s->model == MODEL_PENDULUM ? "1" : "s");
+    cli_json_quantity(&jj, "time_to_balance_median", t->ttb_median, s->model == MODEL_PENDULUM ? "1" : "s");
     cli_json_bool(&jj, "complete", complete);
     cli_json_int(&jj, "mpi_ranks", mp->size);
     cli_json_int(&jj, "threads_per_rank", threads);
-    cli_json_number(&jj, "wall_time", wall);
+    cli_json_quantity(&jj, "wall_time", wall, "s");
     cli_json_summary_end(&jj, ctx);
     return;
   }

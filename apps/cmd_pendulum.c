@@ -194,13 +194,13 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_object_end(&j);
     cli_json_string(&j, "verdict", autobal_verdict_name(r.verdict));
     cli_json_string(&j, "verdict_roots", autobal_verdict_name(r.verdict_roots));
-    cli_json_number(&j, "max_real", r.max_real);
-    cli_json_number(&j, "root_eig_mismatch", r.mismatch);
-    cli_json_numbers(&j, "char_poly", r.coef, AUTOBAL_PENDULUM_NCOEF);
-    cli_json_numbers(&j, "root_real", r.root_re, AUTOBAL_PENDULUM_ORDER);
-    cli_json_numbers(&j, "root_imag", r.root_im, AUTOBAL_PENDULUM_ORDER);
-    cli_json_numbers(&j, "eig_real", r.eig_re, AUTOBAL_PENDULUM_ORDER);
-    cli_json_numbers(&j, "eig_imag", r.eig_im, AUTOBAL_PENDULUM_ORDER);
+    cli_json_quantity(&j, "max_real", r.max_real, "1");
+    cli_json_quantity(&j, "root_eig_mismatch", r.mismatch, "1");
+    cli_json_quantities(&j, "char_poly", r.coef, AUTOBAL_PENDULUM_NCOEF, "1");
+    cli_json_quantities(&j, "root_real", r.root_re, AUTOBAL_PENDULUM_ORDER, "1");
+    cli_json_quantities(&j, "root_imag", r.root_im, AUTOBAL_PENDULUM_ORDER, "1");
+    cli_json_quantities(&j, "eig_real", r.eig_re, AUTOBAL_PENDULUM_ORDER, "1");
+    cli_json_quantities(&j, "eig_imag", r.eig_im, AUTOBAL_PENDULUM_ORDER, "1");
     cli_json_bool(&j, "cond7_predicts_stable", r.cond7.predicts_stable);
     cli_json_bool(&j, "cond8_predicts_stable", r.cond8.predicts_stable);
     cli_json_bool(&j, "cond9_predicts_stable", r.cond9.predicts_stable);
@@ -427,18 +427,18 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     cli_json_array(&j, "undamped_kind");
     for (i = 0; i < und.n; i++) cli_json_int(&j, NULL, und.kind[i]);
     cli_json_array_end(&j);
-    cli_json_numbers(&j, "undamped_stable_lo", und.stable_lo, und.n_stable);
-    cli_json_numbers(&j, "undamped_stable_hi", und.stable_hi, und.n_stable);
+    cli_json_quantities(&j, "undamped_stable_lo", und.stable_lo, und.n_stable, "1");
+    cli_json_quantities(&j, "undamped_stable_hi", und.stable_hi, und.n_stable, "1");
     if (have_damped) {
-      cli_json_numbers(&j, "damped_critical_R_w", damped.R_w, damped.n);
-      cli_json_numbers(&j, "damped_stable_lo", damped.stable_lo, damped.n_stable);
-      cli_json_numbers(&j, "damped_stable_hi", damped.stable_hi, damped.n_stable);
+      cli_json_quantities(&j, "damped_critical_R_w", damped.R_w, damped.n, "1");
+      cli_json_quantities(&j, "damped_stable_lo", damped.stable_lo, damped.n_stable, "1");
+      cli_json_quantities(&j, "damped_stable_hi", damped.stable_hi, damped.n_stable, "1");
       cli_json_bool(&j, "damped_truncated", damped.truncated);
     }
-    cli_json_numbers(&j, "k0_critical_R_w", k0set.R_w, k0set.n);
-    cli_json_numbers(&j, "k1_critical_R_w", k1set.R_w, k1set.n);
-    cli_json_number(&j, "R_m1", rm1);
-    cli_json_number(&j, "R_w_at_R_m1", rw_rm1);
+    cli_json_quantities(&j, "k0_critical_R_w", k0set.R_w, k0set.n, "1");
+    cli_json_quantities(&j, "k1_critical_R_w", k1set.R_w, k1set.n, "1");
+    cli_json_quantity(&j, "R_m1", rm1, "1");
+    cli_json_quantity(&j, "R_w_at_R_m1", rw_rm1, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     double w0 = physical ? pendulum_omega0(&phys) : NAN;
@@ -600,7 +600,7 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     cli_json_int(&j, "n_Rm", n_rm);
     cli_json_int(&j, "n_Rw", n_rw);
     cli_json_int(&j, "n_stable", (long)nstable);
-    cli_json_number(&j, "stable_fraction", (double)nstable / (double)n);
+    cli_json_quantity(&j, "stable_fraction", (double)nstable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# App test: the archives follow netCDF-CF where CF has a word for it (docs/archive.md):
+# App test: the archives follow netCDF-CF where CF has a word for it (README, "The HDF5 archive"):
 # Conventions = "CF-1.8 autobal-1", the CF attributes title, history, source, references;
 # every units attribute (datasets, groups, root; also the *_units attributes of parameters) is
 # a string UDUNITS-2 parses (checked with units_parse_check, the parser of the configuration);
@@ -64,6 +64,27 @@ for f in ("com.h5", "com2.h5"):
             print(f"FAIL {f}: comment {c!r} not in effective_config", file=sys.stderr); bad += 1
 sys.exit(1 if bad else 0)
 PY
+# --json summaries: every command's has a units map; its units join the UDUNITS check below
+for cmd in "rotor transient --set transient.t_end=0.2" "rotor stability" "rotor sweep --set sweep.n=40" \
+           "rotor map --set map.n1=6 --set map.n2=5" "rotor campbell --set campbell.n=40" \
+           "rotor ensemble --set ensemble.n1=2 --set ensemble.n2=2 --set transient.t_end=0.5" \
+           "pendulum roots" "pendulum critical --set critical.n_Rm=20" "pendulum map --set map.n_Rm=8 --set map.n_Rw=8" \
+           "pendulum transient --set transient.t_end=20" \
+           "pendulum ensemble --set ensemble.n1=2 --set ensemble.n2=2 --set transient.t_end=20"; do
+  # shellcheck disable=SC2086
+  "$AUTOBAL" $cmd --json > j.json 2>err.txt || { echo "FAIL: $cmd --json"; cat err.txt; fail=1; continue; }
+  "$PY" -c "
+import json, sys
+j = json.load(open('j.json'))
+u = j.get('units')
+if not isinstance(u, dict) or not u:
+    print('FAIL: $cmd --json has no units map', file=sys.stderr); sys.exit(1)
+missing = [k for k in u if k not in j]
+if missing:
+    print('FAIL: $cmd --json: units for absent members', missing, file=sys.stderr); sys.exit(1)
+for v in u.values(): print(v)
+" >> units.txt && echo "ok   $cmd --json has a units map" || fail=1
+done
 sort -u units.txt > units_unique.txt
 echo "distinct unit strings: $(wc -l < units_unique.txt)"
 if "$UNITS_CHECK" < units_unique.txt; then echo "ok   every units attribute parses with UDUNITS-2"
