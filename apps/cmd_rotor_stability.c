@@ -372,9 +372,11 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       printf("  roots vs closed-matrix eigenvalues: %.3e (relative)\n", r.root_eig_mismatch);
     }
     if (r.n_full) printf("  full model (rotating coordinates) vs closed roots + family: %.3e (relative)\n", r.full_mismatch);
-    if (r.n_floquet)
-      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; vs exp(lambda T): %.3e\n", r.period, r.floquet_margin,
-             r.floquet_mismatch);
+    if (r.n_floquet) {
+      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; ", r.period, r.floquet_margin);
+      if (isnan(r.floquet_mismatch)) printf("vs exp(lambda T): not applicable (no constant-coefficient roots to compare)\n");
+      else printf("vs exp(lambda T): %.3e\n", r.floquet_mismatch);
+    }
     if (do_crit) print_intervals("speed (omega)", "rad/s", &cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
