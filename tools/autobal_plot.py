@@ -390,6 +390,263 @@ def plot_rotor_transient(h, outdir, stem, written):
 
 
 # ---- rotor stability (autobal rotor stability|sweep|map|campbell) --------------------------
+RPM_PER_RAD_S = 60.0 / (2.0 * np.pi)
+
+
+def rpm_axis(ax, unit, where="top"):
+    """A secondary x axis in rev/min when the axis is a speed in rad/s (nothing otherwise)."""
+    if unit != "rad/s":
+        return None
+    sec = ax.secondary_xaxis(where, functions=(lambda w: w * RPM_PER_RAD_S, lambda n: n / RPM_PER_RAD_S))
+    sec.set_xlabel("spin speed [rev/min]", fontsize=9)
+    sec.tick_params(labelsize=8)
+    return sec
+
+
+def hz_axis(ax, unit):
+    """A secondary y axis in Hz when the axis is a frequency in rad/s."""
+    if unit != "rad/s":
+        return None
+    sec = ax.secondary_yaxis("right", functions=(lambda w: w / (2.0 * np.pi), lambda f: f * 2.0 * np.pi))
+    sec.set_ylabel("natural frequency [Hz]", fontsize=9)
+    sec.tick_params(labelsize=8)
+    return sec
+
+
+def spread_labels(ax, xs, ys, texts, color="k", dx=6, min_gap=11.0, fontsize=8, colors=None, ha="left"):
+    """Write texts beside the points (xs, ys), pushed apart vertically (display units) so that no two
+    overlap; a thin leader line joins a label moved from its point."""
+    if not len(xs):
+        return
+    tr = ax.transData
+    pts = tr.transform(np.column_stack([xs, ys])) * 72.0 / ax.figure.dpi  # in points
+    order = np.argsort(pts[:, 1])
+    y = pts[order, 1].copy()
+    for i in range(1, len(y)):  # push up
+        y[i] = max(y[i], y[i - 1] + min_gap)
+    top = ax.bbox.y1 * 72.0 / ax.figure.dpi - 4
+    if len(y) and y[-1] > top:  # and back down if the top ran out of room
+        y[-1] = top
+        for i in range(len(y) - 2, -1, -1):
+            y[i] = min(y[i], y[i + 1] - min_gap)
+    for j, i in enumerate(order):
+        px, py = pts[i]
+        col = colors[i] if colors is not None else color
+        ax.annotate(texts[i], xy=(xs[i], ys[i]), xycoords="data",
+                    xytext=(dx if ha == "left" else -dx, y[j] - py), textcoords="offset points",
+                    fontsize=fontsize, color=col, ha=ha, va="center",
+                    bbox=dict(boxstyle="square,pad=0.1", fc="white", ec="none", alpha=0.75),
+                    arrowprops=dict(arrowstyle="-", color=col, lw=0.5, alpha=0.7) if abs(y[j] - py) > 2 else None)
+
+
+def track_modes(omega, freq, whirl=None):
+    """Follow each mode of a Campbell diagram through crossings.
+
+    freq[k, j] is the j-th natural frequency at spin speed omega[k], sorted by frequency at each
+    speed (as the archive stores it), so at a crossing two curves swap columns.  A mode is followed
+    from one speed to the next by predicting its frequency from its last two points (value and
+    slope) and choosing the assignment of the new points to the modes with the smallest total
+    prediction error; a change of whirl direction (whirl[k, j]: 1 forward, -1 backward, 0
+    undecided) costs as much as two typical frequency steps, so the whirl decides only between
+    nearly equal predictions.  Returns perm (n_omega x n_modes, int): mode m is column perm[k, m]
+    at speed k; freq[k, perm[k]] (np.take_along_axis(freq, perm, 1)) are the tracked curves."""
+    om = np.asarray(omega, dtype=float)
+    fr = np.asarray(freq, dtype=float)
+    nk, nm = fr.shape
+    wh = np.zeros(fr.shape, dtype=int) if whirl is None else np.asarray(whirl, dtype=int)
+    perm = np.zeros((nk, nm), dtype=int)
+    perm[0] = np.arange(nm)
+    if nk == 0 or nm == 0:
+        return perm
+    steps = np.abs(np.diff(fr, axis=0))
+    steps = steps[np.isfinite(steps) & (steps > 0)]
+    fin = fr[np.isfinite(fr)]
+    span = float(fin.max() - fin.min()) if fin.size else 1.0
+    typ = float(np.median(steps)) if steps.size else (span if span > 0 else 1.0)
+    w_whirl = 2.0 * typ
+    w_nan = 10.0 * max(span, typ)
+    last_w = np.where(np.abs(om[0]) > 0, wh[0], 0).astype(int)  # whirl is meaningless at rest
+    try:
+        from scipy.optimize import linear_sum_assignment
+    except ImportError:  # pragma: no cover
+        linear_sum_assignment = None
+    import itertools
+    for k in range(1, nk):
+        prev = fr[k - 1, perm[k - 1]]
+        pred = prev.copy()
+        if k >= 2 and om[k - 1] != om[k - 2]:
+            prev2 = fr[k - 2, perm[k - 2]]
+            slope = (prev - prev2) / (om[k - 1] - om[k - 2])
+            ok = np.isfinite(slope)
+            pred[ok] = prev[ok] + slope[ok] * (om[k] - om[k - 1])
+        new = fr[k]
+        cost = np.abs(pred[:, None] - new[None, :])
+        nan_p, nan_n = ~np.isfinite(pred)[:, None], ~np.isfinite(new)[None, :]
+        cost = np.where(nan_p & nan_n, 0.0, np.where(nan_p | nan_n, w_nan, cost))
+        wn = wh[k][None, :]
+        cost = cost + w_whirl * ((last_w[:, None] != 0) & (wn != 0) & (last_w[:, None] != wn))
+        if linear_sum_assignment is not None:
+            rows, cols = linear_sum_assignment(cost)
+            p = np.empty(nm, dtype=int)
+            p[rows] = cols
+        else:
+            best = min(itertools.permutations(range(nm)), key=lambda q: sum(cost[i, q[i]] for i in range(nm)))
+            p = np.array(best, dtype=int)
+        perm[k] = p
+        w_now = wh[k, p]
+        last_w = np.where((w_now != 0) & (om[k] != 0), w_now, last_w)
+    return perm
+
+
+WHIRL_NAMES = {1: "forward", -1: "backward", 0: "undecided"}
+
+
+def whirl_summary(w):
+    """'forward', 'backward', 'undecided' or 'forward → backward' for a tracked whirl series."""
+    seq = []
+    for v in np.asarray(w, dtype=int):
+        if v != 0 and (not seq or seq[-1] != v):
+            seq.append(int(v))
+    if not seq:
+        return "whirl undecided"
+    return " → ".join(WHIRL_NAMES[v] for v in seq) + " whirl"
+
+
+def order_crossings(om, f, order):
+    """Speeds where the curve f(om) meets the order line order * om (linear interpolation)."""
+    d = f - order * om
+    out = []
+    for k in range(len(om) - 1):
+        a, b = d[k], d[k + 1]
+        if np.isfinite(a) and np.isfinite(b) and ((a > 0 >= b) or (a < 0 <= b)) and b != a:
+            out.append(om[k] + (om[k + 1] - om[k]) * a / (a - b))
+    return out
+
+
+def plot_rotor_campbell(h, outdir, stem, written):
+    """Campbell diagram (modes tracked through crossings, whirl, order lines 1X and 2X, critical speeds)
+    and steady unbalance response."""
+    g = h["rotor/campbell"]
+    om = g["omega"][:]
+    fr = g["frequency"][:]
+    wh = g["whirl"][:] if "whirl" in g else np.zeros(fr.shape, int)
+    ou, fu = units(g["omega"]), units(g["frequency"])
+    perm = track_modes(om, fr, wh)
+    tf = np.take_along_axis(fr, perm, 1)
+    tw = np.take_along_axis(wh, perm, 1)
+    nm = tf.shape[1]
+    fig, ax = plt.subplots(2, 1, figsize=(14, 10), sharex=True, constrained_layout=True,
+                           gridspec_kw={"height_ratios": [3, 1.6]})
+    a0 = ax[0]
+    fin = tf[np.isfinite(tf)]
+    top = float(fin.max()) * 1.12 if fin.size else float(om.max())
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    styles = {1: "-", -1: (0, (6, 2)), 0: (0, (1.5, 1.5))}
+    ends_x, ends_y, ends_t, ends_c = [], [], [], []
+    for m in range(nm):
+        col = colors[m % len(colors)]
+        rest = tf[0, m]
+        wsum = whirl_summary(tw[1:, m] if len(om) > 1 else tw[:, m])
+        lab = "mode %d: %s, %s %s at ω = %s" % (m + 1, wsum, fmt(rest), fu, fmt(om[0], 3))
+        # the line style follows the whirl at each speed: solid forward, dashed backward, dotted undecided
+        code = tw[:, m].copy()
+        if len(code) > 1:
+            code[0] = code[1]
+        start = 0
+        for k in range(1, len(om) + 1):
+            if k == len(om) or code[k] != code[start]:
+                seg = slice(start, min(k + 1, len(om)))
+                a0.plot(om[seg], tf[seg, m], color=col, lw=1.8, ls=styles.get(int(code[start]), "-"),
+                        label=lab if start == 0 else None)
+                start = k
+        last = np.nonzero(np.isfinite(tf[:, m]))[0]
+        if last.size:
+            i = int(last[-1])
+            ends_x.append(om[i]), ends_y.append(tf[i, m]), ends_c.append(col)
+            ends_t.append("%d %s" % (m + 1, {1: "fw", -1: "bw"}.get(int(tw[i, m]), "")))
+    handles, _ = a0.get_legend_handles_labels()
+    from matplotlib.lines import Line2D
+    omax = float(om.max())
+    handles.append(a0.plot(om, om, color="k", lw=1.0, label="1X: frequency = ω (unbalance excitation)")[0])
+    cx2 = []
+    if 2.0 * om.min() < top:
+        handles.append(a0.plot(om, 2.0 * om, color="0.45", lw=0.9, ls=(0, (4, 3)),
+                               label="2X: frequency = 2ω")[0])
+        for m in range(nm):
+            for c in order_crossings(om, tf[:, m], 2.0):
+                cx2.append((c, 2.0 * c))
+        if cx2:
+            cx = np.array(cx2)
+            handles.append(a0.plot(cx[:, 0], cx[:, 1], "s", mfc="none", mec="0.35", ms=6,
+                                   label="2X crossings (from the curves): ω = %s %s"
+                                   % (", ".join(fmt(c, 4) for c in sorted(set(np.round(cx[:, 0], 9)))), ou))[0])
+    mx = []  # where two tracked modes cross each other
+    for m in range(nm):
+        for n in range(m + 1, nm):
+            d = tf[:, m] - tf[:, n]
+            for k in range(len(om) - 1):
+                a, b = d[k], d[k + 1]
+                scl = 1e-6 * max(abs(tf[k, m]), 1e-300)
+                if np.isfinite(a) and np.isfinite(b) and a * b < 0 and max(abs(a), abs(b)) > scl:
+                    c = om[k] + (om[k + 1] - om[k]) * a / (a - b)
+                    mx.append((c, np.interp(c, om[k:k + 2], tf[k:k + 2, m]), m + 1, n + 1))
+    if mx:
+        handles.append(a0.plot([c[0] for c in mx], [c[1] for c in mx], "X", color="k", ms=8, mfc="yellow",
+                               label="modes crossing each other: " + ", ".join(
+                                   "%d and %d at ω = %s %s" % (c[2], c[3], fmt(c[0]), ou) for c in mx))[0])
+    handles.append(Line2D([], [], color="0.3", lw=1.5, ls="-", label="line style: solid forward, dashed backward, "
+                          "dotted undecided whirl"))
+    if "crossing_omega" in g and g["crossing_omega"].size:
+        co = g["crossing_omega"][:]
+        cw = g["crossing_whirl"][:] if "crossing_whirl" in g else np.zeros(co.shape, int)
+        handles.append(a0.plot(co, co, "o", mfc="none", mec="tab:red", mew=1.6, ms=10,
+                               label="critical speeds (1X crossings, from the archive)")[0])
+    a0.set_xlim(float(om.min()), omax * 1.06)
+    a0.set_ylim(0, top)
+    if "crossing_omega" in g and g["crossing_omega"].size:
+        # one label per speed: a degenerate pair crosses the 1X line at the same speed twice
+        lx, lw = [], []
+        for c, w in zip(co, cw):
+            wt = {1: "fw", -1: "bw"}.get(int(w), "whirl ?")
+            if lx and abs(c - lx[-1]) <= 1e-9 * max(abs(c), 1.0):
+                lw[-1].append(wt)
+                continue
+            lx.append(c)
+            lw.append([wt])
+        lt = ["%s %s (%s)" % (fmt(c), ou, w[0] if len(w) == 1 else
+                              ("%d modes, %s" % (len(w), w[0]) if len(set(w)) == 1 else ", ".join(w)))
+              for c, w in zip(lx, lw)]
+        spread_labels(a0, np.array(lx), np.array(lx), lt, color="tab:red", dx=14)
+    spread_labels(a0, np.array(ends_x), np.array(ends_y), ends_t, colors=ends_c, dx=4)
+    a0.set_ylabel("natural frequency %s" % ubr(fu))
+    a0.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.07, 1.0), frameon=False)
+    a0.grid(True, alpha=0.3)
+    rpm_axis(a0, ou)
+    hz_axis(a0, fu)
+    scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
+    ag = np.where(np.isfinite(g["amp_G"][:]), g["amp_G"][:], np.nan)
+    ax[1].semilogy(om, scale * ag, color="tab:blue", lw=1.2, label="centre of mass")
+    if "amp_D" in g:
+        ad = g["amp_D"][:]
+        for j in range(ad.shape[1]):
+            ax[1].semilogy(om, scale * np.where(np.isfinite(ad[:, j]), ad[:, j], np.nan), lw=1.0,
+                           color=("tab:orange", "tab:green")[j % 2], label="at balancer plane %d" % (j + 1))
+    if np.isfinite(ag).any():
+        ax[1].set_ylim(bottom=1e-3 * scale * float(np.nanmax(ag)))
+    if "peak_omega" in g:
+        for i, pk in enumerate(g["peak_omega"][:]):
+            ax[1].axvline(pk, color="tab:red", ls=":", lw=1.0,
+                          label="response peaks: ω = %s %s" % (", ".join(fmt(p) for p in g["peak_omega"][:]), ou)
+                          if i == 0 else None)
+    ax[1].set_ylabel("unbalance response amplitude [%s]" % ulab)
+    ax[1].set_xlabel("spin speed ω %s" % ubr(ou))
+    ax[1].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.07, 1.0), frameon=False)
+    ax[1].grid(True, which="both", alpha=0.3)
+    fig.suptitle("Rotor-housing without balls: Campbell diagram (modes followed through crossings) and steady "
+                 "unbalance response%s" % status_note(h), fontsize=11)
+    save(fig, outdir, stem, "campbell", written)
+
+
 def param_label(name, ds):
     """Axis label for a swept rotor parameter from its coordinate dataset."""
     sym = {"omega": "spin speed ω"}.get(name, name)
@@ -473,63 +730,6 @@ def plot_rotor_map(h, outdir, stem, written):
         ax2.set_ylabel(ax.get_ylabel())
         ax2.set_title("stability margin (black line: margin = 0)", fontsize=11)
     save(fig, outdir, stem, "stability_map", written)
-
-
-def plot_rotor_campbell(h, outdir, stem, written):
-    """Campbell diagram (natural frequencies vs spin speed, whirl direction) and unbalance response."""
-    g = h["rotor/campbell"]
-    om = g["omega"][:]
-    fr = g["frequency"][:]
-    wh = g["whirl"][:]
-    fig, ax = plt.subplots(2, 1, figsize=(10, 9), sharex=True, constrained_layout=True,
-                           gridspec_kw={"height_ratios": [3, 2]})
-    from matplotlib.lines import Line2D
-    handles = []
-    for code, col, lab in ((1, "tab:blue", "forward whirl"), (-1, "tab:red", "backward whirl"),
-                           (0, "0.3", "whirl undecided")):
-        if np.any(wh == code):
-            handles.append(Line2D([], [], color=col, marker=".", ls="none", ms=8, label=lab))
-    for m in range(fr.shape[1]):
-        ax[0].plot(om, fr[:, m], color="0.6", lw=0.8, zorder=1)
-        for code, col in ((1, "tab:blue"), (-1, "tab:red"), (0, "0.3")):
-            sel = wh[:, m] == code
-            if sel.any():
-                ax[0].plot(om[sel], fr[sel, m], ".", ms=3, color=col, zorder=2)
-    top = float(np.nanmax(fr)) * 1.15 if np.isfinite(fr).any() else float(om.max())
-    handles += ax[0].plot(om, om, "k--", lw=1.0, label="frequency = ω (synchronous excitation by the unbalance)")
-    if "crossing_omega" in g:
-        co = g["crossing_omega"][:]
-        handles += ax[0].plot(co, co, "o", mfc="none", color="k", ms=9,
-                              label="critical speeds: crossings (fw forward, bw backward whirl)")
-        for i, (c, w) in enumerate(zip(co, g["crossing_whirl"][:])):
-            ax[0].annotate("%s (%s)" % (fmt(c), "fw" if w > 0 else "bw"), (c, c), textcoords="offset points",
-                           xytext=(10, -14) if i % 2 == 0 else (-62, 6), fontsize=8)
-    ax[0].set_ylim(0, top)
-    ax[0].set_ylabel("natural frequency %s" % ubr(units(g["frequency"])))
-    ax[0].legend(handles=handles, fontsize=8, loc="upper left")
-    ax[0].grid(True, alpha=0.3)
-    scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
-    ag = np.where(np.isfinite(g["amp_G"][:]), g["amp_G"][:], np.nan)
-    ax[1].semilogy(om, scale * ag, color="tab:blue", lw=1.2, label="centre of mass")
-    if "amp_D" in g:
-        ad = g["amp_D"][:]
-        for j in range(ad.shape[1]):
-            ax[1].semilogy(om, scale * np.where(np.isfinite(ad[:, j]), ad[:, j], np.nan), lw=1.0,
-                           color=("tab:orange", "tab:green")[j % 2], label="at balancer plane %d" % (j + 1))
-    if np.isfinite(ag).any():
-        ax[1].set_ylim(bottom=1e-3 * scale * float(np.nanmax(ag)))
-    if "peak_omega" in g:
-        for i, pk in enumerate(g["peak_omega"][:]):
-            ax[1].axvline(pk, color="tab:red", ls=":", lw=1.0,
-                          label="response peaks %s" % ", ".join(fmt(p) for p in g["peak_omega"][:]) if i == 0
-                          else None)
-    ax[1].set_ylabel("unbalance response amplitude [%s]" % ulab)
-    ax[1].set_xlabel("spin speed ω %s" % ubr(units(g["omega"])))
-    ax[1].legend(fontsize=8, loc="upper right")
-    ax[1].grid(True, which="both", alpha=0.3)
-    fig.suptitle("Rotor-housing without balls: Campbell diagram and steady unbalance response%s" % status_note(h),
-                 fontsize=11)
-    save(fig, outdir, stem, "campbell", written)
 
 
 def plot_rotor_stability(h, outdir, stem, written):
