@@ -105,6 +105,14 @@ def mark_time(axes, t, label, color="k"):
         ax.axvline(t, color=color, ls="--", lw=1.0, label=label if i == 0 else None)
 
 
+def positive(a):
+    """Values for a log axis: zeros and negatives (an exactly balanced or resting start) become NaN
+    (a gap in the line) instead of a 1e-300 spike that stretches the axis."""
+    a = np.array(a, dtype=float)
+    a[~(a > 0)] = np.nan
+    return a
+
+
 def break_wraps(t, a):
     """NaN where a wrapped angle jumps by more than pi, so that lines do not cross the plot."""
     a = np.array(a, dtype=float)
@@ -286,13 +294,13 @@ def plot_pendulum_transient(h, outdir, stem, written):
     ttb = param(g, "time_to_balance")
     tol = param(g, "balance_tol")
     fig, ax = plt.subplots(3, 1, figsize=(10, 9), sharex=True, constrained_layout=True)
-    ax[0].plot(t, g["amplitude"][:], lw=1.0, color="tab:blue")
-    ax[0].set_ylabel("shaft amplitude / l %s" % ubr(units(g["amplitude"])))
-    ax[1].semilogy(t, np.maximum(g["unbalance"][:], 1e-300), lw=1.0, color="tab:purple",
+    ax[0].semilogy(t, positive(g["amplitude"][:]), lw=1.0, color="tab:blue")
+    ax[0].set_ylabel("shaft amplitude / l %s (log scale)" % ubr(units(g["amplitude"])))
+    ax[1].semilogy(t, positive(g["unbalance"][:]), lw=1.0, color="tab:purple",
                    label="|d| of rotor plus pendulums")
     if tol is not None:
         ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
-    ax[1].set_ylabel("residual unbalance / (2 m l) %s" % ubr(units(g["unbalance"])))
+    ax[1].set_ylabel("residual unbalance / (2 m l) %s (log scale)" % ubr(units(g["unbalance"])))
     for name, lab, col in (("alpha", "pendulum 1: α = ψ - ψ0", "tab:green"),
                            ("beta", "pendulum 2: β = φ - ψ0", "tab:orange")):
         tt, a = break_wraps(t, g[name][:])
@@ -335,23 +343,24 @@ def plot_rotor_transient(h, outdir, stem, written):
     fig, ax = plt.subplots(3, 1, figsize=(10, 10), sharex=True, constrained_layout=True)
     # (a) displacement amplitudes, in micrometres (the archive stores m)
     scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
-    ax[0].plot(t, scale * g["amp_G"][:], lw=0.9, color="tab:blue", label="centre of mass |(x, y)|")
+    ax[0].semilogy(t, positive(scale * g["amp_G"][:]), lw=0.9, color="tab:blue", label="centre of mass |(x, y)|")
     for j in planes:
         name = "p%d_amp_D" % j
         if name in g:
-            ax[0].plot(t, scale * g[name][:], lw=0.9, color=("tab:orange", "tab:green", "tab:red")[(j - 1) % 3],
+            ax[0].semilogy(t, positive(scale * g[name][:]), lw=0.9, color=("tab:orange", "tab:green", "tab:red")[(j - 1) % 3],
                        alpha=0.8, label="at balancer plane %d" % j)
-    ax[0].set_ylabel("displacement amplitude [%s]" % ulab)
+    ax[0].set_ylabel("displacement amplitude [%s] (log scale)" % ulab)
     ax[0].legend(fontsize=8, loc="upper right")
     # (b) residual unbalance |s_j| / (m0 r0), log scale
     for j in planes:
         name = "p%d_s_rel" % j
         if name in g:
-            ax[1].semilogy(t, np.maximum(g[name][:], 1e-300), lw=0.9, color=("tab:purple", "tab:brown")[(j - 1) % 2],
+            ax[1].semilogy(t, positive(g[name][:]), lw=0.9, color=("tab:purple", "tab:brown")[(j - 1) % 2],
                            label="plane %d: |s| / (m0 r0)" % j)
     if tol is not None:
         ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
-    ax[1].set_ylabel("relative residual unbalance %s" % ubr(units(g["p1_s_rel"]) if "p1_s_rel" in g else "1"))
+    ax[1].set_ylabel("relative residual unbalance %s (log scale)"
+                     % ubr(units(g["p1_s_rel"]) if "p1_s_rel" in g else "1"))
     ax[1].legend(fontsize=8, loc="upper right")
     # (c) ball angles relative to the rotor (wrapped), with the balanced angles (3.14)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -653,9 +662,64 @@ def param_label(name, ds):
     return "%s %s" % (sym, ubr(units(ds)))
 
 
-def shade_intervals(ax, lo, hi, label, color="tab:green", alpha=0.18):
+NARROW = 0.02  # a stable interval narrower than this fraction of the axis is drawn widened and pointed at
+
+
+def shade_intervals(ax, lo, hi, label, xmin, xmax, color="tab:green", alpha=0.18, narrow_note=True):
+    """Shade the stable intervals [lo_i, hi_i] (archive values, not the sampled curve).  An interval
+    narrower than NARROW of the axis is drawn at least that wide in a stronger colour, outlined at its
+    true ends, and named in a note, so that a window of a few rad/s stays visible."""
+    span = float(xmax - xmin) if xmax > xmin else 1.0
+    narrow = []
     for i, (a, b) in enumerate(zip(lo, hi)):
+        b = min(b, xmax) if np.isfinite(b) else xmax
         ax.axvspan(a, b, color=color, alpha=alpha, lw=0, label=label if i == 0 else None)
+        if b - a < NARROW * span:
+            c, w = 0.5 * (a + b), 0.5 * NARROW * span
+            ax.axvspan(c - w, c + w, color=color, alpha=0.35, lw=0,
+                       label="narrow stable window (drawn %g%% of the axis wide)" % (100 * NARROW)
+                       if not narrow else None)
+            for e in (a, b):
+                ax.axvline(e, color="darkgreen", lw=0.8)
+            narrow.append((a, b))
+    if narrow_note and narrow:
+        for k, (a, b) in enumerate(narrow):
+            ax.annotate("stable window\n[%s, %s]\n(width %s)" % (fmt(a, 5), fmt(b, 5), fmt(b - a, 3)),
+                        xy=(0.5 * (a + b), 0.0), xycoords=("data", "axes fraction"),
+                        xytext=(28, 40 + 34 * k), textcoords="offset points", fontsize=8, color="darkgreen",
+                        arrowprops=dict(arrowstyle="->", color="darkgreen", lw=1.0),
+                        bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="darkgreen", lw=0.6, alpha=0.9))
+    return narrow
+
+
+def interval_strip(ax, lo, hi, xmin, xmax, y, height, label_stable=None, label_unstable=None):
+    """One horizontal strip: unstable over [xmin, xmax], stable on the archive's intervals (narrow ones
+    widened to NARROW of the axis, as in shade_intervals)."""
+    span = float(xmax - xmin) if xmax > xmin else 1.0
+    ax.barh([y], [xmax - xmin], left=[xmin], color=VERDICT_COLORS[-1], height=height, label=label_unstable)
+    for i, (a, b) in enumerate(zip(lo, hi)):
+        b = min(b, xmax) if np.isfinite(b) else xmax
+        if b - a < NARROW * span:
+            c = 0.5 * (a + b)
+            a, b = c - 0.5 * NARROW * span, c + 0.5 * NARROW * span
+        ax.barh([y], [b - a], left=[a], color=VERDICT_COLORS[1], height=height,
+                label=label_stable if i == 0 else None)
+
+
+def mark_critical(ax, cvs, kinds=None, color="tab:red"):
+    """Dashed lines at the critical values, each numbered at the top (labels staggered)."""
+    for i, cv in enumerate(cvs):
+        ax.axvline(cv, color=color, ls="--", lw=1.0)
+    order = np.argsort(cvs)
+    ax.figure.canvas.draw()
+    last, lev = -1e300, 0
+    for j in order:
+        px = ax.transData.transform((cvs[j], 0))[0]
+        lev = lev + 1 if px - last < 40 else 0
+        last = px
+        ax.annotate(fmt(cvs[j], 5), xy=(cvs[j], 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(2, -10 - 11 * lev), textcoords="offset points", fontsize=7.5, color=color,
+                    bbox=dict(boxstyle="square,pad=0.05", fc="white", ec="none", alpha=0.8))
 
 
 def intervals_text(lo, hi, unit):
@@ -664,38 +728,66 @@ def intervals_text(lo, hi, unit):
 
 
 def plot_rotor_sweep(h, outdir, stem, written):
-    """Stability margin along a swept parameter, stable intervals shaded, critical values marked."""
+    """Stability margin along a swept parameter; the archive's stable intervals shaded (narrow ones
+    widened and named), critical values marked; a strip of the intervals and of the sampled verdicts."""
     g = h["rotor/sweep"]
     pname = s(g.attrs.get("param", "omega"))
     x = g[pname][:]
     xu = units(g[pname])
     mg = g["margin"][:]
     v = g["verdict"][:]
-    fig, ax = plt.subplots(2, 1, figsize=(10, 7), sharex=True, constrained_layout=True,
-                           gridspec_kw={"height_ratios": [4, 1]})
+    xmin, xmax = float(np.nanmin(x)), float(np.nanmax(x))
+    fig, ax = plt.subplots(2, 1, figsize=(11, 7.5), sharex=True, constrained_layout=True,
+                           gridspec_kw={"height_ratios": [4, 1.1]})
     lo = g["stable_lo"][:] if "stable_lo" in g else np.array([])
     hi = g["stable_hi"][:] if "stable_hi" in g else np.array([])
-    shade_intervals(ax[0], lo, hi, "stable intervals")
-    ax[0].plot(x, mg, color="tab:blue", lw=1.4, label="stability margin (largest Re λ)")
+    narrow = shade_intervals(ax[0], lo, hi, "stable intervals (refined ends from the archive)", xmin, xmax)
+    ax[0].plot(x, mg, color="tab:blue", lw=1.4, label="stability margin (largest Re λ), sampled")
     ax[0].axhline(0.0, color="k", lw=0.8)
-    if "critical_value" in g:
-        cvs, kds = g["critical_value"][:], g["critical_kind"][:]
+    ax[0].set_xlim(xmin, xmax)
+    cvs = g["critical_value"][:] if "critical_value" in g else np.array([])
+    if cvs.size:
+        kds = g["critical_kind"][:]
         kindtxt = {1: "stable above", -1: "unstable above"}
-        lab = "critical values: " + ", ".join("%s (%s)" % (fmt(cv), kindtxt.get(int(kd), "edge"))
-                                               for cv, kd in zip(cvs, kds))
-        for i, cv in enumerate(cvs):
-            ax[0].axvline(cv, color="tab:red", ls="--", lw=1.0, label=lab if i == 0 else None)
+        ax[0].plot([], [], color="tab:red", ls="--", lw=1.0,
+                   label="critical values (%s)" % ", ".join("%s %s" % (fmt(cv), kindtxt.get(int(kd), "edge"))
+                                                            for cv, kd in zip(cvs, kds)))
+        mark_critical(ax[0], cvs)
     ax[0].set_ylabel("margin %s" % ubr(units(g["margin"])))
-    ax[0].legend(fontsize=8, loc="lower right")
+    ax[0].legend(fontsize=8, loc="lower right", framealpha=0.92)
     ax[0].grid(True, alpha=0.3)
-    verdict_image(ax[1], x, np.array([0.0, 1.0]), np.vstack([v, v]).T)
-    ax[1].set_yticks([])
-    ax[1].set_ylabel("verdict")
+    rpm_axis(ax[0], xu)
+    if narrow:  # a zoom on the first narrow window: the sampled curve there and the true interval
+        a, b = narrow[0]
+        w = max(b - a, 1e-12)
+        ins = ax[0].inset_axes([0.30, 0.55, 0.28, 0.38])
+        sel = (x >= a - 4 * w) & (x <= b + 4 * w)
+        ins.axvspan(a, b, color="tab:green", alpha=0.25, lw=0)
+        ins.plot(x[sel], mg[sel], ".-", color="tab:blue", lw=1.0, ms=4)
+        ins.axhline(0.0, color="k", lw=0.6)
+        for cv in cvs:
+            if a - 4 * w <= cv <= b + 4 * w:
+                ins.axvline(cv, color="tab:red", ls="--", lw=0.8)
+        ins.set_xlim(a - 4 * w, b + 4 * w)
+        if sel.any():
+            fin = mg[sel][np.isfinite(mg[sel])]
+            if fin.size:
+                pad = 0.1 * (fin.max() - fin.min() + 1e-12)
+                ins.set_ylim(fin.min() - pad, fin.max() + pad)
+        ins.tick_params(labelsize=7)
+        ins.set_title("zoom: stable window, %d sampled points in it" % int(np.sum((x >= a) & (x <= b))), fontsize=8)
+        ins.grid(True, alpha=0.3)
+    interval_strip(ax[1], lo, hi, xmin, xmax, 1.0, 0.8, "stable (archive intervals)", "unstable")
+    verdict_image(ax[1], x, np.array([-0.2, 0.2]), np.vstack([v, v]).T)
+    ax[1].set_ylim(-0.5, 1.5)
+    ax[1].set_yticks([0.0, 1.0])
+    ax[1].set_yticklabels(["sampled verdict", "stable intervals"], fontsize=8)
     handles = [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c])
                for c in sorted(set(np.unique(v).astype(int).tolist()) & set(VERDICT_COLORS))]
-    ax[1].legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.55), ncol=4,
+    ax[1].legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.6), ncol=4,
                  frameon=False)
     ax[1].set_xlabel(param_label(pname, g[pname]))
+    ax[1].set_xlim(xmin, xmax)
     fig.suptitle("Rotor with ball autobalancer: stability of the balanced motion (3.14) along %s\n%s%s"
                  % ("the spin speed ω" if pname == "omega" else pname, intervals_text(lo, hi, xu), status_note(h)),
                  fontsize=11)
@@ -717,6 +809,7 @@ def plot_rotor_map(h, outdir, stem, written):
     ax.legend(handles=handles, fontsize=9, loc="upper right", framealpha=0.9)
     ax.set_title("Rotor with ball autobalancer: stability of the balanced motion (3.14)%s" % status_note(h),
                  fontsize=11)
+    rpm_axis(ax, units(g[p1]))
     if has_m:
         ax2 = axes[0, 1]
         mg = g["margin"][:]
@@ -729,6 +822,7 @@ def plot_rotor_map(h, outdir, stem, written):
         ax2.set_xlabel(ax.get_xlabel())
         ax2.set_ylabel(ax.get_ylabel())
         ax2.set_title("stability margin (black line: margin = 0)", fontsize=11)
+        rpm_axis(ax2, units(g[p1]))
     save(fig, outdir, stem, "stability_map", written)
 
 
@@ -760,18 +854,27 @@ def plot_rotor_stability(h, outdir, stem, written):
         ax2 = axes[0, 1]
         lo, hi = c["stable_lo"][:], c["stable_hi"][:]
         wmin, wmax = param(c, "omega_min", 0.0), param(c, "omega_max", float(np.nanmax(hi)))
-        ax2.barh([0], [wmax - wmin], left=[wmin], color=VERDICT_COLORS[-1], height=0.5, label="unstable")
-        for i, (a, b) in enumerate(zip(lo, hi)):
-            ax2.barh([0], [b - a], left=[a], color=VERDICT_COLORS[1], height=0.5, label="stable" if i == 0 else None)
+        cu = units(c["stable_lo"])
+        interval_strip(ax2, lo, hi, wmin, wmax, 0.0, 0.5, "stable (narrow windows widened to %g%% of the axis)"
+                       % (100 * NARROW), "unstable")
+        span = wmax - wmin
+        for k, (a, b) in enumerate(zip(lo, hi)):
+            if np.isfinite(b) and b - a < NARROW * span:
+                ax2.annotate("[%s, %s]\nwidth %s %s" % (fmt(a, 5), fmt(b, 5), fmt(b - a, 3), cu),
+                             xy=(0.5 * (a + b), -0.25), xytext=(0.5 * (a + b), -0.75 + 0.0 * k), fontsize=8,
+                             color="darkgreen", ha="left", va="center",
+                             arrowprops=dict(arrowstyle="->", color="darkgreen", lw=1.0))
         if "critical_value" in c:
             cvs = c["critical_value"][:]
             ax2.plot(cvs, np.full(cvs.shape, 0.32), "v", color="tab:red", ms=7,
                      label="critical speeds: " + ", ".join(fmt(cv) for cv in cvs))
         ax2.axvline(om, color="k", lw=1.5, label="ω of this run")
+        ax2.set_xlim(wmin, wmax)
         ax2.set_ylim(-1, 1)
         ax2.set_yticks([])
-        ax2.set_xlabel("spin speed ω %s" % ubr(units(c["stable_lo"])))
+        ax2.set_xlabel("spin speed ω %s" % ubr(cu))
         ax2.legend(fontsize=8, loc="upper right")
+        rpm_axis(ax2, cu)
         ax2.set_title("stable speed intervals: %s" % intervals_text(lo, hi, units(c["stable_lo"])), fontsize=10)
     fig.suptitle("Rotor with ball autobalancer: stability of the balanced motion (3.14)%s" % status_note(h),
                  fontsize=11)
