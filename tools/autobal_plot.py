@@ -31,6 +31,7 @@ Exit codes: 0 done, 2 bad command line, 3 nothing this script can draw in the ar
 import argparse
 import os
 import sys
+import warnings
 
 import matplotlib
 
@@ -124,10 +125,12 @@ def break_wraps(t, a):
     return np.insert(t, idx, np.nan), np.insert(a, idx, np.nan)
 
 
-def pendulum_params_text(h):
+def pendulum_params_text(h, skip=()):
     p = h["pendulum"]
     parts = []
     for name, sym in (("R_w", "R_w"), ("R_m", "R_m"), ("H", "H"), ("h", "h"), ("k", "k")):
+        if name in skip:
+            continue
         v = param(p, name)
         if v is not None:
             parts.append("%s = %s" % (sym, fmt(v, 3)))
@@ -881,6 +884,242 @@ def plot_rotor_stability(h, outdir, stem, written):
     save(fig, outdir, stem, "stability", written)
 
 
+# ---- ensembles (autobal rotor ensemble | pendulum ensemble) ----------------------------------
+OUTCOME_CODES = [1, 0, -1, -2]
+OUTCOME_COLORS = {1: "#5cb85c", 0: "#e8787a", -1: "#444444", -2: "#ffffff"}
+OUTCOME_NAMES = {1: "balanced", 0: "not balanced", -1: "failed (solver status < 0)", -2: "not run yet"}
+
+
+def ensemble_outcome(g):
+    """Outcome per member from the archive's balanced, status and done: 1 balanced, 0 ran to its end
+    without balancing, -1 failed, -2 not computed (an interrupted or time-limited run)."""
+    bal = g["balanced"][()]
+    st = g["status"][()] if "status" in g else np.zeros(np.shape(bal), int)
+    done = g["done"][()] if "done" in g else np.ones(np.shape(bal), int)
+    out = np.where(bal == 1, 1, 0)
+    out = np.where(st < 0, -1, out)
+    return np.where(done == 0, -2, out).astype(int)
+
+
+def outcome_image(ax, x, y, code):
+    """Draw an outcome grid code[x, y] with a fixed colour per outcome; returns legend handles."""
+    cmap = ListedColormap([OUTCOME_COLORS[c] for c in sorted(OUTCOME_CODES)])
+    norm = BoundaryNorm([-2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
+    ax.pcolormesh(x, y, np.asarray(code).T, cmap=cmap, norm=norm, shading="nearest", edgecolors="face")
+    return outcome_handles(code)
+
+
+def outcome_handles(code):
+    present = set(np.unique(code).astype(int).tolist())
+    return [Patch(facecolor=OUTCOME_COLORS[c], edgecolor="k", lw=0.5, label=OUTCOME_NAMES[c])
+            for c in OUTCOME_CODES if c in present]
+
+
+def angle_ticks(axis_obj, vals, unit):
+    """Ticks at multiples of pi/2 on an axis of angles in rad spanning about a full turn."""
+    if unit != "rad" or not np.size(vals):
+        return
+    lo, hi = float(np.nanmin(vals)), float(np.nanmax(vals))
+    if hi - lo < 2.0:
+        return
+    names = {-4: "-2π", -3: "-3π/2", -2: "-π", -1: "-π/2", 0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π"}
+    ks = [k for k in names if lo - 0.3 <= k * np.pi / 2 <= hi + 0.3]
+    axis_obj.set_ticks([k * np.pi / 2 for k in ks])
+    axis_obj.set_ticklabels([names[k] for k in ks])
+
+
+def uword(u):
+    """' UNIT' for a value in running text; nothing for a dimensionless one."""
+    return "" if u in ("1", "") else " " + u
+
+
+def ens_label(g, name):
+    ds = g[name]
+    ln = s(ds.attrs.get("long_name", ""))
+    return "%s%s %s" % (name, (" (%s)" % ln) if ln and len(ln) <= 40 else "", ubr(units(ds)))
+
+
+def binomial_fraction(ok, n):
+    """Fraction and its binomial standard error sqrt(p (1 - p) / n) (NaN where n = 0)."""
+    n = np.asarray(n, dtype=float)
+    p = np.where(n > 0, np.asarray(ok, dtype=float) / np.maximum(n, 1), np.nan)
+    return p, np.where(n > 0, np.sqrt(p * (1 - p) / np.maximum(n, 1)), np.nan)
+
+
+def plot_ensemble(h, outdir, stem, written, model):
+    """Basin map (outcome over the grid or the random samples), time to balance over the same plane,
+    P(balance) along the first parameter with the archive's overall value and standard error, and the
+    distribution of the time to balance."""
+    g = h["%s/ensemble" % model]
+    params = [p.strip() for p in s(g.attrs.get("parameters", "")).split(",") if p.strip()]
+    random = s(g.attrs.get("mode", "grid")) == "random"
+    code = ensemble_outcome(g)
+    ttb = np.asarray(g["time_to_balance"][()], dtype=float) if "time_to_balance" in g else None
+    tu = units(g["time_to_balance"]) if ttb is not None else "?"
+    tname = "time to balance τ" if model == "pendulum" else "time to balance"
+    fig, ax = plt.subplots(2, 2, figsize=(13, 10.5), constrained_layout=True)
+    (a_map, a_ttb), (a_p, a_hist) = ax
+    # (a) outcome and (b) time to balance over the parameter plane
+    if not random and len(params) >= 2:
+        x, y = g[params[0]][:], g[params[1]][:]
+        c2, t2 = code, ttb
+        note = ""
+        if len(params) == 3:  # a third axis: the fraction balanced across it, and the mean time
+            frac, _ = binomial_fraction(np.sum(code == 1, axis=2), np.sum((code == 1) | (code == 0), axis=2))
+            im = a_map.pcolormesh(x, y, frac.T, cmap="RdYlGn", vmin=0, vmax=1, shading="nearest")
+            a_map.set_facecolor("0.85")
+            fig.colorbar(im, ax=a_map, label="fraction balanced over %s (grey: none ran)" % params[2])
+            handles = []
+            with warnings.catch_warnings():  # a column with no balanced member has no mean: NaN
+                warnings.simplefilter("ignore", RuntimeWarning)
+                t2 = np.nanmean(ttb, axis=2) if ttb is not None else None
+            note = " (mean over %s)" % params[2]
+        else:
+            handles = outcome_image(a_map, x, y, c2)
+        for a in (a_map, a_ttb):
+            a.set_xlabel(ens_label(g, params[0]))
+            a.set_ylabel(ens_label(g, params[1]))
+            angle_ticks(a.xaxis, x, units(g[params[0]]))
+            angle_ticks(a.yaxis, y, units(g[params[1]]))
+        if t2 is not None and np.isfinite(t2).any():
+            im = a_ttb.pcolormesh(x, y, np.asarray(t2).T, cmap="viridis", shading="nearest")
+            fig.colorbar(im, ax=a_ttb, label="%s %s%s" % (tname, ubr(tu), note))
+        a_ttb.set_facecolor("0.85")
+        a_ttb.set_title("%s of the balanced members (grey: not balanced)" % tname, fontsize=10)
+        a_map.set_title("basin map: outcome over the %d x %d grid%s" % (len(x), len(y), note), fontsize=10)
+    elif random and len(params) >= 2:
+        x, y = g[params[0]][()], g[params[1]][()]
+        for c in OUTCOME_CODES:
+            sel = code == c
+            if sel.any():
+                a_map.scatter(x[sel], y[sel], s=10, color=OUTCOME_COLORS[c], edgecolors="k", linewidths=0.2)
+        handles = outcome_handles(code)
+        bal = np.isfinite(ttb) if ttb is not None else np.zeros(code.shape, bool)
+        if bal.any():
+            sc = a_ttb.scatter(x[bal], y[bal], c=ttb[bal], s=10, cmap="viridis")
+            fig.colorbar(sc, ax=a_ttb, label="%s %s" % (tname, ubr(tu)))
+        a_ttb.scatter(x[~bal], y[~bal], s=6, color="0.7", label="not balanced")
+        for a in (a_map, a_ttb):
+            a.set_xlabel(ens_label(g, params[0]))
+            a.set_ylabel(ens_label(g, params[1]))
+            angle_ticks(a.xaxis, x, units(g[params[0]]))
+            angle_ticks(a.yaxis, y, units(g[params[1]]))
+        a_map.set_title("outcome of %d random members (seed %s)" % (code.size, s(g.attrs.get("seed", "?"))),
+                        fontsize=10)
+        a_ttb.set_title("%s of the balanced members (grey: not balanced)" % tname, fontsize=10)
+    else:  # one parameter: outcome strip and time to balance along it
+        x = g[params[0]][()]
+        if random:
+            for c in OUTCOME_CODES:
+                sel = code == c
+                if sel.any():
+                    a_map.plot(x[sel], np.full(sel.sum(), 0.0) + 0.3 * (np.arange(sel.sum()) % 5) / 5, "|",
+                               color=OUTCOME_COLORS[c] if c != -2 else "0.6", ms=14)
+            handles = outcome_handles(code)
+        else:
+            handles = outcome_image(a_map, x, np.array([0.0, 1.0]), np.column_stack([code, code]))
+        a_map.set_yticks([])
+        a_map.set_xlabel(ens_label(g, params[0]))
+        angle_ticks(a_map.xaxis, x, units(g[params[0]]))
+        a_map.set_title("outcome along %s (%d members)" % (params[0], code.size), fontsize=10)
+        if ttb is not None:
+            a_ttb.plot(x, ttb, ".", color="tab:blue", ms=5)
+        a_ttb.set_xlabel(ens_label(g, params[0]))
+        a_ttb.set_ylabel("%s %s" % (tname, ubr(tu)))
+        angle_ticks(a_ttb.xaxis, x, units(g[params[0]]))
+        a_ttb.grid(True, alpha=0.3)
+        a_ttb.set_xlim(a_map.get_xlim())
+        a_ttb.set_title("%s of the balanced members" % tname, fontsize=10)
+    if handles:
+        a_map.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4,
+                     frameon=False)
+    # (c) P(balance) along the first parameter, with the archive's overall value
+    ran = (code == 1) | (code == 0)  # members that ran without failure
+    p_all = param(g, "probability_balanced", np.nan)
+    p_se = param(g, "probability_balanced_stderr", np.nan)
+    if not random:
+        x1 = g[params[0]][:]
+        axes_other = tuple(range(1, code.ndim))
+        nb = np.sum(code == 1, axis=axes_other)
+        nr = np.sum(ran, axis=axes_other)
+        pp, se = binomial_fraction(nb, nr)
+        a_p.errorbar(x1, pp, yerr=se, fmt="o-", ms=3.5, lw=1.0, capsize=2, color="tab:green",
+                     label="fraction balanced at each %s%s ± binomial s.e." % (
+                         params[0], (" (over %s)" % ", ".join(params[1:])) if len(params) > 1 else ""))
+    else:
+        x1 = g[params[0]][()]
+        lo1, hi1 = param(g, "%s_min" % params[0], float(np.min(x1))), param(g, "%s_max" % params[0], float(np.max(x1)))
+        nbins = int(np.clip(np.sqrt(max(code.size, 1)) / 2, 4, 24))
+        edges = np.linspace(lo1, hi1, nbins + 1)
+        idx = np.clip(np.digitize(x1, edges) - 1, 0, nbins - 1)
+        nb = np.bincount(idx[code == 1], minlength=nbins)
+        nr = np.bincount(idx[ran], minlength=nbins)
+        pp, se = binomial_fraction(nb, nr)
+        cen = 0.5 * (edges[1:] + edges[:-1])
+        a_p.errorbar(cen, pp, yerr=se, xerr=0.5 * (edges[1] - edges[0]), fmt="o", ms=3.5, capsize=2,
+                     color="tab:green", label="fraction balanced in %d bins of %s ± binomial s.e." % (nbins, params[0]))
+        x1 = edges
+        a_p.set_xlim(edges[0], edges[-1])
+    if np.isfinite(p_all):
+        a_p.axhspan(p_all - (p_se if np.isfinite(p_se) else 0), p_all + (p_se if np.isfinite(p_se) else 0),
+                    color="k", alpha=0.12, lw=0)
+        a_p.axhline(p_all, color="k", lw=1.2, ls="--",
+                    label="P(balance) = %s ± %s (archive: %d of the %d members that ran without failure)"
+                    % (fmt(p_all, 4), fmt(p_se, 2), int(param(g, "n_balanced", 0) or 0),
+                       int((param(g, "n_done", 0) or 0) - (param(g, "n_failed", 0) or 0))))
+    a_p.set_ylim(-0.03, 1.12)
+    a_p.set_xlabel(ens_label(g, params[0]))
+    a_p.set_ylabel("P(balance) [–]")
+    angle_ticks(a_p.xaxis, x1, units(g[params[0]]))
+    a_p.grid(True, alpha=0.3)
+    a_p.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), frameon=False)
+    counts = ", ".join("%s %d" % (OUTCOME_NAMES[c].split(" (")[0], int(np.sum(code == c)))
+                       for c in OUTCOME_CODES if np.any(code == c))
+    a_p.set_title("probability of balancing along %s; %s" % (params[0], counts), fontsize=10)
+    # (d) distribution of the time to balance
+    if ttb is not None and np.isfinite(ttb).any():
+        tt = ttb[np.isfinite(ttb)]
+        a_hist.hist(tt, bins=int(np.clip(np.sqrt(tt.size) * 1.5, 8, 60)), color="tab:blue", alpha=0.8,
+                    edgecolor="white", lw=0.4)
+        for key, ls, lab in (("time_to_balance_mean", "--", "mean"), ("time_to_balance_median", ":", "median"),
+                             ("time_to_balance_max", "-.", "max")):
+            v = param(g, key)
+            if v is not None and np.isfinite(v):
+                a_hist.axvline(v, color="k", ls=ls, lw=1.2, label="%s %s%s" % (lab, fmt(v), uword(tu)))
+        t_end = param(g, "t_end")
+        a_hist.set_xlabel("%s %s" % (tname, ubr(tu)))
+        a_hist.set_ylabel("members")
+        a_hist.legend(fontsize=8, loc="upper right", framealpha=0.92)
+        a_hist.set_title("distribution of the %s (%d balanced members; run length t_end = %s%s)"
+                         % (tname, tt.size, fmt(t_end) if t_end is not None else "?", uword(tu)), fontsize=10)
+        a_hist.grid(True, alpha=0.3)
+    else:
+        a_hist.text(0.5, 0.5, "no member balanced: no time to balance", ha="center", va="center",
+                    transform=a_hist.transAxes)
+        a_hist.set_axis_off()
+    if model == "rotor":
+        om = param(h["rotor"], "omega", np.nan)
+        what = "Rotor with ball autobalancer" + ("" if "omega" in params else
+                                                 ", ω = %s %s" % (fmt(om), punit(h["rotor"], "omega")))
+    else:
+        fixed = pendulum_params_text(h, skip=params)
+        what = "Two-pendulum autobalancer" + (", " + fixed if fixed else "")
+    grid = "random, %d members" % code.size if random else " x ".join(
+        "%s[%d]" % (p, n) for p, n in zip(params, np.shape(code)))
+    fig.suptitle("%s: ensemble of transients over %s (%s)\nP(balance) = %s ± %s, tolerance %s%s"
+                 % (what, ", ".join(params), grid, fmt(p_all, 4), fmt(p_se, 2),
+                    fmt(param(g, "balance_tol", np.nan), 3), status_note(h)), fontsize=11)
+    save(fig, outdir, stem, "ensemble", written)
+
+
+def plot_rotor_ensemble(h, outdir, stem, written):
+    plot_ensemble(h, outdir, stem, written, "rotor")
+
+
+def plot_pendulum_ensemble(h, outdir, stem, written):
+    plot_ensemble(h, outdir, stem, written, "pendulum")
+
+
 PLOTTERS = [
     ("pendulum/critical/curves", plot_pendulum_critical),
     ("pendulum/map", plot_pendulum_map),
@@ -891,6 +1130,8 @@ PLOTTERS = [
     ("rotor/sweep", plot_rotor_sweep),
     ("rotor/map", plot_rotor_map),
     ("rotor/campbell", plot_rotor_campbell),
+    ("rotor/ensemble", plot_rotor_ensemble),
+    ("pendulum/ensemble", plot_pendulum_ensemble),
 ]
 
 
