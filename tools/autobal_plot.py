@@ -145,7 +145,13 @@ def plot_pendulum_critical(h, outdir, stem, written):
     c0 = g["R_w_k0"][:]
     c1 = g["R_w_k1"][:]
     u = units(g["R_w_k0"])
-    fig, ax = plt.subplots(figsize=(9, 7.5), constrained_layout=True)
+    pc = h["pendulum/critical"] if "pendulum/critical" in h else None
+    cases = pendulum_interval_cases(h, pc)
+    if cases:
+        fig, (ax, axs) = plt.subplots(1, 2, figsize=(13, 7.8), constrained_layout=True, sharey=True,
+                                      gridspec_kw={"width_ratios": [3, 1.25]})
+    else:
+        fig, ax = plt.subplots(figsize=(9, 7.5), constrained_layout=True)
     finite1 = c1[np.isfinite(c1)]
     top = max(4.0, 1.3 * float(finite1.max())) if finite1.size else 4.0
 
@@ -221,7 +227,77 @@ def plot_pendulum_critical(h, outdir, stem, written):
     ax.set_title("Two-pendulum autobalancer, undamped: critical speeds and the regions A, B\nstable for every unbalance (figure 2)%s" % status_note(h))
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.09), ncol=2, fontsize=8, frameon=False)
+    if cases:
+        pendulum_interval_strips(h, axs, cases, top)
     save(fig, outdir, stem, "critical_speeds", written)
+
+
+def pendulum_interval_cases(h, pc):
+    """The stable-interval sets of /pendulum/critical at this run's R_m: (prefix, label) pairs."""
+    if pc is None:
+        return []
+    p = h["pendulum"]
+    kk = param(p, "k", np.nan)
+    out = []
+    for pre, lab in (("undamped_k0", "k = 0\nundamped"), ("undamped", "k = %s\nundamped" % fmt(kk, 3)),
+                     ("undamped_k1", "k = 1\nundamped"),
+                     ("damped", "k = %s, damped\nH = %s\nh = %s" % (fmt(kk, 3), fmt(param(p, "H", np.nan), 3),
+                                                           fmt(param(p, "h", np.nan), 3)))):
+        if pre + "_stable_lo" in pc and pre + "_stable_hi" in pc:
+            out.append((pre, lab))
+    return out
+
+
+def pendulum_interval_strips(h, ax, cases, top):
+    """At this run's R_m: one column per case, unstable background, the archive's stable R_w intervals
+    (narrow ones widened to NARROW of the axis and outlined), critical speeds as numbered ticks; a
+    secondary axis in rev/min when the archive has the physical form (omega0 = omega / R_w)."""
+    pc = h["pendulum/critical"]
+    p = h["pendulum"]
+    narrow, crit = [], []
+    for i, (pre, lab) in enumerate(cases):
+        lo, hi = pc[pre + "_stable_lo"][:], pc[pre + "_stable_hi"][:]
+        ax.bar([i], [top], bottom=[0.0], width=0.6, color=VERDICT_COLORS[-1], label="unstable" if i == 0 else None)
+        for j, (a, b) in enumerate(zip(lo, hi)):
+            b = min(b, top) if np.isfinite(b) else top
+            if b - a < NARROW * top:
+                c = 0.5 * (a + b)
+                ax.bar([i], [NARROW * top], bottom=[c - 0.5 * NARROW * top], width=0.6, color=VERDICT_COLORS[1],
+                       edgecolor="darkgreen", lw=0.8)
+                narrow.append((i + 0.3, c, "%s–%s" % (fmt(a, 4), fmt(b, 4))))
+            else:
+                ax.bar([i], [b - a], bottom=[a], width=0.6, color=VERDICT_COLORS[1])
+        if pre + "_R_w" in pc:
+            cv = pc[pre + "_R_w"][:]
+            cv = cv[np.isfinite(cv) & (cv <= top)]
+            ax.plot(np.full(cv.shape, i), cv, "_", color="k", ms=26, mew=1.6)
+            crit.extend((i - 0.3, v, fmt(v, 4)) for v in cv)
+    ax.set_ylim(0.0, top)
+    rw = param(p, "R_w")
+    if rw is not None and np.isfinite(rw):
+        ax.axhline(rw, color="tab:purple", lw=1.2, ls="--", label="R_w of this run = %s" % fmt(rw, 4))
+    ax.set_xticks(range(len(cases)))
+    ax.set_xticklabels([lab for _, lab in cases], fontsize=7.5)
+    ax.set_xlim(-0.8, len(cases) - 0.2)
+    for i in range(len(cases)):  # labels of one column pushed apart
+        for lst, dx, ha, col in ((crit, -3, "right", "k"), (narrow, 3, "left", "darkgreen")):
+            sel = [e for e in lst if abs(e[0] - i) < 0.5]
+            if sel:
+                spread_labels(ax, np.array([e[0] for e in sel]), np.array([e[1] for e in sel]),
+                              [e[2] for e in sel], color=col, dx=abs(dx), ha=ha, fontsize=7, min_gap=9.0)
+    handles, _ = ax.get_legend_handles_labels()
+    from matplotlib.lines import Line2D
+    handles += [Patch(facecolor=VERDICT_COLORS[1], label="stable R_w (archive intervals; narrow ones widened)"),
+                Line2D([], [], color="k", lw=1.6, label="critical speeds")]
+    ax.set_title("stable speeds at R_m = %s (this run)" % fmt(param(p, "R_m", np.nan), 3), fontsize=10)
+    ax.legend(handles=handles, fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.13), frameon=False)
+    if "pendulum/physical" in h and rw:
+        om = param(h["pendulum/physical"], "omega")
+        if om is not None and punit(h["pendulum/physical"], "omega") == "rad/s" and rw > 0:
+            w0 = om / rw
+            sec = ax.secondary_yaxis("right", functions=(lambda r: r * w0 * RPM_PER_RAD_S,
+                                                         lambda n: n / (w0 * RPM_PER_RAD_S)))
+            sec.set_ylabel("rotor speed ω = R_w ω0 [rev/min] (ω0 = %s rad/s)" % fmt(w0, 4), fontsize=9)
 
 
 VERDICT_COLORS = {-2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
