@@ -963,7 +963,7 @@ def plot_rotor_stability(h, outdir, stem, written):
 # ---- ensembles (autobal rotor ensemble | pendulum ensemble) ----------------------------------
 OUTCOME_CODES = [1, 0, -1, -2]
 OUTCOME_COLORS = {1: "#5cb85c", 0: "#e8787a", -1: "#444444", -2: "#ffffff"}
-OUTCOME_NAMES = {1: "balanced", 0: "not balanced", -1: "failed (solver status < 0)", -2: "not run yet"}
+OUTCOME_NAMES = {1: "balanced", 0: "not balanced by t_end", -1: "failed (solver status < 0)", -2: "not run yet"}
 
 
 def ensemble_outcome(g):
@@ -1165,7 +1165,7 @@ def plot_ensemble(h, outdir, stem, written, model):
         t_end = param(g, "t_end")
         a_hist.set_xlabel("%s %s" % (tname, ubr(tu)))
         a_hist.set_ylabel("members")
-        a_hist.legend(fontsize=8, loc="upper right", framealpha=0.92)
+        a_hist.legend(fontsize=8, loc="best", framealpha=0.92)
         a_hist.set_title("distribution of the %s (%d balanced members; run length t_end = %s%s)"
                          % (tname, tt.size, fmt(t_end) if t_end is not None else "?", uword(tu)), fontsize=10)
         a_hist.grid(True, alpha=0.3)
