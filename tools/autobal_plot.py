@@ -860,7 +860,7 @@ def plot_rotor_sweep(h, outdir, stem, written):
     verdict_image(ax[1], x, np.array([-0.2, 0.2]), np.vstack([v, v]).T)
     ax[1].set_ylim(-0.5, 1.5)
     ax[1].set_yticks([0.0, 1.0])
-    ax[1].set_yticklabels(["sampled verdict", "stable intervals"], fontsize=8)
+    ax[1].set_yticklabels(["sampled verdict", "archive intervals\n(narrow: widened)"], fontsize=8)
     handles = [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c])
                for c in sorted(set(np.unique(v).astype(int).tolist()) & set(VERDICT_COLORS))]
     ax[1].legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.6), ncol=4,
