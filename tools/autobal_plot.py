@@ -9,20 +9,30 @@ Use Debian's interpreter, which has h5py, numpy and matplotlib:
 For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name without .h5):
 
     /pendulum/critical/curves   <stem>_critical_speeds.png  R_wj(R_m) for k = 0 and k = 1 (the
-                                paper's figure 2) with regions A and B shaded
+                                paper's figure 2) with regions A and B shaded;
+                                beside it the stable R_w intervals of /pendulum/critical at the run's R_m
     /pendulum/map               <stem>_stability_map.png    verdict over (R_m, R_w) [+ max_real]
     /pendulum/roots             <stem>_roots.png            roots of (6) and eigenvalues of (5)
-    /pendulum/transient         <stem>_transient.png        shaft amplitude, residual unbalance
-                                (log scale), pendulum angles; time to balance marked
-    /rotor/transient            <stem>_transient.png        displacement, residual unbalance (log
-                                scale), ball angles relative to the rotor; time to balance marked
+    /pendulum/transient         <stem>_transient.png        shaft amplitude and residual unbalance
+                                (log scales), pendulum angles; time to balance marked
+    /rotor/transient            <stem>_transient.png        displacement and residual unbalance (log
+                                scales), ball angles relative to the rotor; time to balance marked
     /rotor/stability            <stem>_stability.png        characteristic roots of the balanced motion
                                 and its stable speed intervals (autobal rotor stability)
     /rotor/sweep                <stem>_stability_sweep.png  margin along the swept parameter, stable
                                 intervals and critical values (autobal rotor sweep)
     /rotor/map                  <stem>_stability_map.png    verdict and margin over two parameters
     /rotor/campbell             <stem>_campbell.png         Campbell diagram (natural frequencies vs
-                                spin speed, whirl, critical speeds) and unbalance response
+                                spin speed, each mode followed through crossings by
+                                track_modes, whirl, 1X and 2X, critical speeds, rev/min and Hz
+                                axes) and unbalance response
+    /rotor/ensemble,            <stem>_ensemble.png         basin map (outcome over the grid or the
+    /pendulum/ensemble                                      random samples), time to balance over it,
+                                P(balance) along the first parameter, time-to-balance distribution
+
+Stable intervals are drawn from the archive's stable_lo/stable_hi (not from the sampled curves); one
+narrower than NARROW of the axis is drawn that wide, outlined and labelled with its ends.  Speeds
+in rad/s get a secondary axis in rev/min.
 
 The functions below can be imported (plot_archive(path, outdir) returns the written files).
 Exit codes: 0 done, 2 bad command line, 3 nothing this script can draw in the archive,
