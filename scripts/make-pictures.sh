@@ -41,9 +41,22 @@ pic rotor_transient_two_planes transient     "$A" rotor transient "$D/rotor_two_
 # The rotor stability commands (apps/cmd_rotor_stability.c), when this autobal has them:
 if "$A" rotor campbell --help >/dev/null 2>&1; then
   pic rotor_campbell         campbell        "$A" rotor campbell "$D/rotor_default.ini"
+  # supports with l_L c_L = l_R c_R (and the same for h): translation and tilt decouple, and the
+  # backward tilting mode crosses the translational pair (the picture follows it through)
+  pic rotor_campbell_crossing campbell       "$A" rotor campbell "$D/rotor_default.ini" --set supports.l_R=0.2 \
+      --set supports.c_Rx=1e5 --set supports.c_Ry=1e5 --set supports.h_Rx=100 --set supports.h_Ry=100
   pic rotor_stable_speeds    stability_sweep "$A" rotor sweep "$D/rotor_default.ini"
   pic rotor_stability        stability       "$A" rotor stability "$D/rotor_default.ini"
   pic rotor_stability_map    stability_map   "$A" rotor map "$D/rotor_default.ini"
 else
   echo "note: this autobal has no 'rotor campbell|sweep|stability|map': those pictures are not made" >&2
+fi
+# Ensembles (apps/cmd_ensemble.c), when this autobal has them:
+if "$A" rotor ensemble --help >/dev/null 2>&1; then
+  pic rotor_ensemble         ensemble        "$A" rotor ensemble "$D/rotor_default.ini" --set ensemble.n1=32 \
+      --set ensemble.n2=32 --set transient.t_end=30
+  pic pendulum_ensemble      ensemble        "$A" pendulum ensemble "$D/pendulum_default.ini" --set ensemble.param1=R_w \
+      --set ensemble.min1=1 --set ensemble.max1=4 --set ensemble.n1=61 --set ensemble.param2=psi --set ensemble.n2=24
+else
+  echo "note: this autobal has no 'rotor ensemble|pendulum ensemble': those pictures are not made" >&2
 fi

@@ -9,20 +9,30 @@ Use Debian's interpreter, which has h5py, numpy and matplotlib:
 For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name without .h5):
 
     /pendulum/critical/curves   <stem>_critical_speeds.png  R_wj(R_m) for k = 0 and k = 1 (the
-                                paper's figure 2) with regions A and B shaded
+                                paper's figure 2) with regions A and B shaded;
+                                beside it the stable R_w intervals of /pendulum/critical at the run's R_m
     /pendulum/map               <stem>_stability_map.png    verdict over (R_m, R_w) [+ max_real]
     /pendulum/roots             <stem>_roots.png            roots of (6) and eigenvalues of (5)
-    /pendulum/transient         <stem>_transient.png        shaft amplitude, residual unbalance
-                                (log scale), pendulum angles; time to balance marked
-    /rotor/transient            <stem>_transient.png        displacement, residual unbalance (log
-                                scale), ball angles relative to the rotor; time to balance marked
+    /pendulum/transient         <stem>_transient.png        shaft amplitude and residual unbalance
+                                (log scales), pendulum angles; time to balance marked
+    /rotor/transient            <stem>_transient.png        displacement and residual unbalance (log
+                                scales), ball angles relative to the rotor; time to balance marked
     /rotor/stability            <stem>_stability.png        characteristic roots of the balanced motion
                                 and its stable speed intervals (autobal rotor stability)
     /rotor/sweep                <stem>_stability_sweep.png  margin along the swept parameter, stable
                                 intervals and critical values (autobal rotor sweep)
     /rotor/map                  <stem>_stability_map.png    verdict and margin over two parameters
     /rotor/campbell             <stem>_campbell.png         Campbell diagram (natural frequencies vs
-                                spin speed, whirl, critical speeds) and unbalance response
+                                spin speed, each mode followed through crossings by
+                                track_modes, whirl, 1X and 2X, critical speeds, rev/min and Hz
+                                axes) and unbalance response
+    /rotor/ensemble,            <stem>_ensemble.png         basin map (outcome over the grid or the
+    /pendulum/ensemble                                      random samples), time to balance over it,
+                                P(balance) along the first parameter, time-to-balance distribution
+
+Stable intervals are drawn from the archive's stable_lo/stable_hi (not from the sampled curves); one
+narrower than NARROW of the axis is drawn that wide, outlined and labelled with its ends.  Speeds
+in rad/s get a secondary axis in rev/min.
 
 The functions below can be imported (plot_archive(path, outdir) returns the written files).
 Exit codes: 0 done, 2 bad command line, 3 nothing this script can draw in the archive,
@@ -31,6 +41,7 @@ Exit codes: 0 done, 2 bad command line, 3 nothing this script can draw in the ar
 import argparse
 import os
 import sys
+import warnings
 
 import matplotlib
 
@@ -105,6 +116,14 @@ def mark_time(axes, t, label, color="k"):
         ax.axvline(t, color=color, ls="--", lw=1.0, label=label if i == 0 else None)
 
 
+def positive(a):
+    """Values for a log axis: zeros and negatives (an exactly balanced or resting start) become NaN
+    (a gap in the line) instead of a 1e-300 spike that stretches the axis."""
+    a = np.array(a, dtype=float)
+    a[~(a > 0)] = np.nan
+    return a
+
+
 def break_wraps(t, a):
     """NaN where a wrapped angle jumps by more than pi, so that lines do not cross the plot."""
     a = np.array(a, dtype=float)
@@ -116,10 +135,12 @@ def break_wraps(t, a):
     return np.insert(t, idx, np.nan), np.insert(a, idx, np.nan)
 
 
-def pendulum_params_text(h):
+def pendulum_params_text(h, skip=()):
     p = h["pendulum"]
     parts = []
     for name, sym in (("R_w", "R_w"), ("R_m", "R_m"), ("H", "H"), ("h", "h"), ("k", "k")):
+        if name in skip:
+            continue
         v = param(p, name)
         if v is not None:
             parts.append("%s = %s" % (sym, fmt(v, 3)))
@@ -134,7 +155,13 @@ def plot_pendulum_critical(h, outdir, stem, written):
     c0 = g["R_w_k0"][:]
     c1 = g["R_w_k1"][:]
     u = units(g["R_w_k0"])
-    fig, ax = plt.subplots(figsize=(9, 7.5), constrained_layout=True)
+    pc = h["pendulum/critical"] if "pendulum/critical" in h else None
+    cases = pendulum_interval_cases(h, pc)
+    if cases:
+        fig, (ax, axs) = plt.subplots(1, 2, figsize=(13, 7.8), constrained_layout=True, sharey=True,
+                                      gridspec_kw={"width_ratios": [3, 1.25]})
+    else:
+        fig, ax = plt.subplots(figsize=(9, 7.5), constrained_layout=True)
     finite1 = c1[np.isfinite(c1)]
     top = max(4.0, 1.3 * float(finite1.max())) if finite1.size else 4.0
 
@@ -210,7 +237,77 @@ def plot_pendulum_critical(h, outdir, stem, written):
     ax.set_title("Two-pendulum autobalancer, undamped: critical speeds and the regions A, B\nstable for every unbalance (figure 2)%s" % status_note(h))
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.09), ncol=2, fontsize=8, frameon=False)
+    if cases:
+        pendulum_interval_strips(h, axs, cases, top)
     save(fig, outdir, stem, "critical_speeds", written)
+
+
+def pendulum_interval_cases(h, pc):
+    """The stable-interval sets of /pendulum/critical at this run's R_m: (prefix, label) pairs."""
+    if pc is None:
+        return []
+    p = h["pendulum"]
+    kk = param(p, "k", np.nan)
+    out = []
+    for pre, lab in (("undamped_k0", "k = 0\nundamped"), ("undamped", "k = %s\nundamped" % fmt(kk, 3)),
+                     ("undamped_k1", "k = 1\nundamped"),
+                     ("damped", "k = %s, damped\nH = %s\nh = %s" % (fmt(kk, 3), fmt(param(p, "H", np.nan), 3),
+                                                           fmt(param(p, "h", np.nan), 3)))):
+        if pre + "_stable_lo" in pc and pre + "_stable_hi" in pc:
+            out.append((pre, lab))
+    return out
+
+
+def pendulum_interval_strips(h, ax, cases, top):
+    """At this run's R_m: one column per case, unstable background, the archive's stable R_w intervals
+    (narrow ones widened to NARROW of the axis and outlined), critical speeds as numbered ticks; a
+    secondary axis in rev/min when the archive has the physical form (omega0 = omega / R_w)."""
+    pc = h["pendulum/critical"]
+    p = h["pendulum"]
+    narrow, crit = [], []
+    for i, (pre, lab) in enumerate(cases):
+        lo, hi = pc[pre + "_stable_lo"][:], pc[pre + "_stable_hi"][:]
+        ax.bar([i], [top], bottom=[0.0], width=0.6, color=VERDICT_COLORS[-1], label="unstable" if i == 0 else None)
+        for j, (a, b) in enumerate(zip(lo, hi)):
+            b = min(b, top) if np.isfinite(b) else top
+            if b - a < NARROW * top:
+                c = 0.5 * (a + b)
+                ax.bar([i], [NARROW * top], bottom=[c - 0.5 * NARROW * top], width=0.6, color=VERDICT_COLORS[1],
+                       edgecolor="darkgreen", lw=0.8)
+                narrow.append((i + 0.3, c, "%s–%s" % (fmt(a, 4), fmt(b, 4))))
+            else:
+                ax.bar([i], [b - a], bottom=[a], width=0.6, color=VERDICT_COLORS[1])
+        if pre + "_R_w" in pc:
+            cv = pc[pre + "_R_w"][:]
+            cv = cv[np.isfinite(cv) & (cv <= top)]
+            ax.plot(np.full(cv.shape, i), cv, "_", color="k", ms=26, mew=1.6)
+            crit.extend((i - 0.3, v, fmt(v, 4)) for v in cv)
+    ax.set_ylim(0.0, top)
+    rw = param(p, "R_w")
+    if rw is not None and np.isfinite(rw):
+        ax.axhline(rw, color="tab:purple", lw=1.2, ls="--", label="R_w of this run = %s" % fmt(rw, 4))
+    ax.set_xticks(range(len(cases)))
+    ax.set_xticklabels([lab for _, lab in cases], fontsize=7.5)
+    ax.set_xlim(-0.8, len(cases) - 0.2)
+    for i in range(len(cases)):  # labels of one column pushed apart
+        for lst, dx, ha, col in ((crit, -3, "right", "k"), (narrow, 3, "left", "darkgreen")):
+            sel = [e for e in lst if abs(e[0] - i) < 0.5]
+            if sel:
+                spread_labels(ax, np.array([e[0] for e in sel]), np.array([e[1] for e in sel]),
+                              [e[2] for e in sel], color=col, dx=abs(dx), ha=ha, fontsize=7, min_gap=9.0)
+    handles, _ = ax.get_legend_handles_labels()
+    from matplotlib.lines import Line2D
+    handles += [Patch(facecolor=VERDICT_COLORS[1], label="stable R_w (archive intervals; narrow ones widened)"),
+                Line2D([], [], color="k", lw=1.6, label="critical speeds")]
+    ax.set_title("stable speeds at R_m = %s (this run)" % fmt(param(p, "R_m", np.nan), 3), fontsize=10)
+    ax.legend(handles=handles, fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.13), frameon=False)
+    if "pendulum/physical" in h and rw:
+        om = param(h["pendulum/physical"], "omega")
+        if om is not None and punit(h["pendulum/physical"], "omega") == "rad/s" and rw > 0:
+            w0 = om / rw
+            sec = ax.secondary_yaxis("right", functions=(lambda r: r * w0 * RPM_PER_RAD_S,
+                                                         lambda n: n / (w0 * RPM_PER_RAD_S)))
+            sec.set_ylabel("rotor speed ω = R_w ω0 [rev/min] (ω0 = %s rad/s)" % fmt(w0, 4), fontsize=9)
 
 
 VERDICT_COLORS = {-2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
@@ -286,13 +383,13 @@ def plot_pendulum_transient(h, outdir, stem, written):
     ttb = param(g, "time_to_balance")
     tol = param(g, "balance_tol")
     fig, ax = plt.subplots(3, 1, figsize=(10, 9), sharex=True, constrained_layout=True)
-    ax[0].plot(t, g["amplitude"][:], lw=1.0, color="tab:blue")
-    ax[0].set_ylabel("shaft amplitude / l %s" % ubr(units(g["amplitude"])))
-    ax[1].semilogy(t, np.maximum(g["unbalance"][:], 1e-300), lw=1.0, color="tab:purple",
+    ax[0].semilogy(t, positive(g["amplitude"][:]), lw=1.0, color="tab:blue")
+    ax[0].set_ylabel("shaft amplitude / l %s (log scale)" % ubr(units(g["amplitude"])))
+    ax[1].semilogy(t, positive(g["unbalance"][:]), lw=1.0, color="tab:purple",
                    label="|d| of rotor plus pendulums")
     if tol is not None:
         ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
-    ax[1].set_ylabel("residual unbalance / (2 m l) %s" % ubr(units(g["unbalance"])))
+    ax[1].set_ylabel("residual unbalance / (2 m l) %s (log scale)" % ubr(units(g["unbalance"])))
     for name, lab, col in (("alpha", "pendulum 1: α = ψ - ψ0", "tab:green"),
                            ("beta", "pendulum 2: β = φ - ψ0", "tab:orange")):
         tt, a = break_wraps(t, g[name][:])
@@ -335,23 +432,24 @@ def plot_rotor_transient(h, outdir, stem, written):
     fig, ax = plt.subplots(3, 1, figsize=(10, 10), sharex=True, constrained_layout=True)
     # (a) displacement amplitudes, in micrometres (the archive stores m)
     scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
-    ax[0].plot(t, scale * g["amp_G"][:], lw=0.9, color="tab:blue", label="centre of mass |(x, y)|")
+    ax[0].semilogy(t, positive(scale * g["amp_G"][:]), lw=0.9, color="tab:blue", label="centre of mass |(x, y)|")
     for j in planes:
         name = "p%d_amp_D" % j
         if name in g:
-            ax[0].plot(t, scale * g[name][:], lw=0.9, color=("tab:orange", "tab:green", "tab:red")[(j - 1) % 3],
+            ax[0].semilogy(t, positive(scale * g[name][:]), lw=0.9, color=("tab:orange", "tab:green", "tab:red")[(j - 1) % 3],
                        alpha=0.8, label="at balancer plane %d" % j)
-    ax[0].set_ylabel("displacement amplitude [%s]" % ulab)
+    ax[0].set_ylabel("displacement amplitude [%s] (log scale)" % ulab)
     ax[0].legend(fontsize=8, loc="upper right")
     # (b) residual unbalance |s_j| / (m0 r0), log scale
     for j in planes:
         name = "p%d_s_rel" % j
         if name in g:
-            ax[1].semilogy(t, np.maximum(g[name][:], 1e-300), lw=0.9, color=("tab:purple", "tab:brown")[(j - 1) % 2],
+            ax[1].semilogy(t, positive(g[name][:]), lw=0.9, color=("tab:purple", "tab:brown")[(j - 1) % 2],
                            label="plane %d: |s| / (m0 r0)" % j)
     if tol is not None:
         ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
-    ax[1].set_ylabel("relative residual unbalance %s" % ubr(units(g["p1_s_rel"]) if "p1_s_rel" in g else "1"))
+    ax[1].set_ylabel("relative residual unbalance %s (log scale)"
+                     % ubr(units(g["p1_s_rel"]) if "p1_s_rel" in g else "1"))
     ax[1].legend(fontsize=8, loc="upper right")
     # (c) ball angles relative to the rotor (wrapped), with the balanced angles (3.14)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -390,15 +488,327 @@ def plot_rotor_transient(h, outdir, stem, written):
 
 
 # ---- rotor stability (autobal rotor stability|sweep|map|campbell) --------------------------
+RPM_PER_RAD_S = 60.0 / (2.0 * np.pi)
+
+
+def rpm_axis(ax, unit, where="top"):
+    """A secondary x axis in rev/min when the axis is a speed in rad/s (nothing otherwise)."""
+    if unit != "rad/s":
+        return None
+    sec = ax.secondary_xaxis(where, functions=(lambda w: w * RPM_PER_RAD_S, lambda n: n / RPM_PER_RAD_S))
+    sec.set_xlabel("spin speed [rev/min]", fontsize=9)
+    sec.tick_params(labelsize=8)
+    return sec
+
+
+def hz_axis(ax, unit):
+    """A secondary y axis in Hz when the axis is a frequency in rad/s."""
+    if unit != "rad/s":
+        return None
+    sec = ax.secondary_yaxis("right", functions=(lambda w: w / (2.0 * np.pi), lambda f: f * 2.0 * np.pi))
+    sec.set_ylabel("natural frequency [Hz]", fontsize=9)
+    sec.tick_params(labelsize=8)
+    return sec
+
+
+def spread_labels(ax, xs, ys, texts, color="k", dx=6, min_gap=11.0, fontsize=8, colors=None, ha="left"):
+    """Write texts beside the points (xs, ys), pushed apart vertically (display units) so that no two
+    overlap; a thin leader line joins a label moved from its point."""
+    if not len(xs):
+        return
+    tr = ax.transData
+    pts = tr.transform(np.column_stack([xs, ys])) * 72.0 / ax.figure.dpi  # in points
+    order = np.argsort(pts[:, 1])
+    y = pts[order, 1].copy()
+    for i in range(1, len(y)):  # push up
+        y[i] = max(y[i], y[i - 1] + min_gap)
+    top = ax.bbox.y1 * 72.0 / ax.figure.dpi - 4
+    if len(y) and y[-1] > top:  # and back down if the top ran out of room
+        y[-1] = top
+        for i in range(len(y) - 2, -1, -1):
+            y[i] = min(y[i], y[i + 1] - min_gap)
+    for j, i in enumerate(order):
+        px, py = pts[i]
+        col = colors[i] if colors is not None else color
+        ax.annotate(texts[i], xy=(xs[i], ys[i]), xycoords="data",
+                    xytext=(dx if ha == "left" else -dx, y[j] - py), textcoords="offset points",
+                    fontsize=fontsize, color=col, ha=ha, va="center",
+                    bbox=dict(boxstyle="square,pad=0.1", fc="white", ec="none", alpha=0.75),
+                    arrowprops=dict(arrowstyle="-", color=col, lw=0.5, alpha=0.7) if abs(y[j] - py) > 2 else None)
+
+
+def track_modes(omega, freq, whirl=None):
+    """Follow each mode of a Campbell diagram through crossings.
+
+    freq[k, j] is the j-th natural frequency at spin speed omega[k], sorted by frequency at each
+    speed (as the archive stores it), so at a crossing two curves swap columns.  A mode is followed
+    from one speed to the next by predicting its frequency from its last two points (value and
+    slope) and choosing the assignment of the new points to the modes with the smallest total
+    prediction error; a change of whirl direction (whirl[k, j]: 1 forward, -1 backward, 0
+    undecided) costs as much as two typical frequency steps, so the whirl decides only between
+    nearly equal predictions.  Returns perm (n_omega x n_modes, int): mode m is column perm[k, m]
+    at speed k; freq[k, perm[k]] (np.take_along_axis(freq, perm, 1)) are the tracked curves."""
+    om = np.asarray(omega, dtype=float)
+    fr = np.asarray(freq, dtype=float)
+    nk, nm = fr.shape
+    wh = np.zeros(fr.shape, dtype=int) if whirl is None else np.asarray(whirl, dtype=int)
+    perm = np.zeros((nk, nm), dtype=int)
+    perm[0] = np.arange(nm)
+    if nk == 0 or nm == 0:
+        return perm
+    steps = np.abs(np.diff(fr, axis=0))
+    steps = steps[np.isfinite(steps) & (steps > 0)]
+    fin = fr[np.isfinite(fr)]
+    span = float(fin.max() - fin.min()) if fin.size else 1.0
+    typ = float(np.median(steps)) if steps.size else (span if span > 0 else 1.0)
+    w_whirl = 2.0 * typ
+    w_nan = 10.0 * max(span, typ)
+    last_w = np.where(np.abs(om[0]) > 0, wh[0], 0).astype(int)  # whirl is meaningless at rest
+    try:
+        from scipy.optimize import linear_sum_assignment
+    except ImportError:  # pragma: no cover
+        linear_sum_assignment = None
+    import itertools
+    for k in range(1, nk):
+        prev = fr[k - 1, perm[k - 1]]
+        pred = prev.copy()
+        if k >= 2 and om[k - 1] != om[k - 2]:
+            prev2 = fr[k - 2, perm[k - 2]]
+            slope = (prev - prev2) / (om[k - 1] - om[k - 2])
+            ok = np.isfinite(slope)
+            pred[ok] = prev[ok] + slope[ok] * (om[k] - om[k - 1])
+        new = fr[k]
+        cost = np.abs(pred[:, None] - new[None, :])
+        nan_p, nan_n = ~np.isfinite(pred)[:, None], ~np.isfinite(new)[None, :]
+        cost = np.where(nan_p & nan_n, 0.0, np.where(nan_p | nan_n, w_nan, cost))
+        wn = wh[k][None, :]
+        cost = cost + w_whirl * ((last_w[:, None] != 0) & (wn != 0) & (last_w[:, None] != wn))
+        if linear_sum_assignment is not None:
+            rows, cols = linear_sum_assignment(cost)
+            p = np.empty(nm, dtype=int)
+            p[rows] = cols
+        else:
+            best = min(itertools.permutations(range(nm)), key=lambda q: sum(cost[i, q[i]] for i in range(nm)))
+            p = np.array(best, dtype=int)
+        perm[k] = p
+        w_now = wh[k, p]
+        last_w = np.where((w_now != 0) & (om[k] != 0), w_now, last_w)
+    return perm
+
+
+WHIRL_NAMES = {1: "forward", -1: "backward", 0: "undecided"}
+
+
+def whirl_summary(w):
+    """'forward', 'backward', 'undecided' or 'forward → backward' for a tracked whirl series."""
+    seq = []
+    for v in np.asarray(w, dtype=int):
+        if v != 0 and (not seq or seq[-1] != v):
+            seq.append(int(v))
+    if not seq:
+        return "whirl undecided"
+    return " → ".join(WHIRL_NAMES[v] for v in seq) + " whirl"
+
+
+def order_crossings(om, f, order):
+    """Speeds where the curve f(om) meets the order line order * om (linear interpolation)."""
+    d = f - order * om
+    out = []
+    for k in range(len(om) - 1):
+        a, b = d[k], d[k + 1]
+        if np.isfinite(a) and np.isfinite(b) and ((a > 0 >= b) or (a < 0 <= b)) and b != a:
+            out.append(om[k] + (om[k + 1] - om[k]) * a / (a - b))
+    return out
+
+
+def plot_rotor_campbell(h, outdir, stem, written):
+    """Campbell diagram (modes tracked through crossings, whirl, order lines 1X and 2X, critical speeds)
+    and steady unbalance response."""
+    g = h["rotor/campbell"]
+    om = g["omega"][:]
+    fr = g["frequency"][:]
+    wh = g["whirl"][:] if "whirl" in g else np.zeros(fr.shape, int)
+    ou, fu = units(g["omega"]), units(g["frequency"])
+    perm = track_modes(om, fr, wh)
+    tf = np.take_along_axis(fr, perm, 1)
+    tw = np.take_along_axis(wh, perm, 1)
+    nm = tf.shape[1]
+    fig, ax = plt.subplots(2, 1, figsize=(14, 10), sharex=True, constrained_layout=True,
+                           gridspec_kw={"height_ratios": [3, 1.6]})
+    a0 = ax[0]
+    fin = tf[np.isfinite(tf)]
+    top = float(fin.max()) * 1.12 if fin.size else float(om.max())
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    styles = {1: "-", -1: (0, (6, 2)), 0: (0, (1.5, 1.5))}
+    ends_x, ends_y, ends_t, ends_c = [], [], [], []
+    for m in range(nm):
+        col = colors[m % len(colors)]
+        rest = tf[0, m]
+        wsum = whirl_summary(tw[1:, m] if len(om) > 1 else tw[:, m])
+        lab = "mode %d: %s, %s %s at ω = %s" % (m + 1, wsum, fmt(rest), fu, fmt(om[0], 3))
+        # the line style follows the whirl at each speed: solid forward, dashed backward, dotted undecided
+        code = tw[:, m].copy()
+        if len(code) > 1:
+            code[0] = code[1]
+        start = 0
+        for k in range(1, len(om) + 1):
+            if k == len(om) or code[k] != code[start]:
+                seg = slice(start, min(k + 1, len(om)))
+                a0.plot(om[seg], tf[seg, m], color=col, lw=1.8, ls=styles.get(int(code[start]), "-"),
+                        label=lab if start == 0 else None)
+                start = k
+        last = np.nonzero(np.isfinite(tf[:, m]))[0]
+        if last.size:
+            i = int(last[-1])
+            ends_x.append(om[i]), ends_y.append(tf[i, m]), ends_c.append(col)
+            ends_t.append("%d %s" % (m + 1, {1: "fw", -1: "bw"}.get(int(tw[i, m]), "")))
+    handles, _ = a0.get_legend_handles_labels()
+    from matplotlib.lines import Line2D
+    omax = float(om.max())
+    handles.append(a0.plot(om, om, color="k", lw=1.0, label="1X: frequency = ω (unbalance excitation)")[0])
+    cx2 = []
+    if 2.0 * om.min() < top:
+        handles.append(a0.plot(om, 2.0 * om, color="0.45", lw=0.9, ls=(0, (4, 3)),
+                               label="2X: frequency = 2ω")[0])
+        for m in range(nm):
+            for c in order_crossings(om, tf[:, m], 2.0):
+                cx2.append((c, 2.0 * c))
+        if cx2:
+            cx = np.array(cx2)
+            handles.append(a0.plot(cx[:, 0], cx[:, 1], "s", mfc="none", mec="0.35", ms=6,
+                                   label="2X crossings (from the curves): ω = %s %s"
+                                   % (", ".join(fmt(c, 4) for c in sorted(set(np.round(cx[:, 0], 9)))), ou))[0])
+    mx = []  # where two tracked modes cross each other
+    for m in range(nm):
+        for n in range(m + 1, nm):
+            d = tf[:, m] - tf[:, n]
+            for k in range(len(om) - 1):
+                a, b = d[k], d[k + 1]
+                scl = 1e-6 * max(abs(tf[k, m]), 1e-300)
+                if np.isfinite(a) and np.isfinite(b) and a * b < 0 and max(abs(a), abs(b)) > scl:
+                    c = om[k] + (om[k + 1] - om[k]) * a / (a - b)
+                    mx.append((c, np.interp(c, om[k:k + 2], tf[k:k + 2, m]), m + 1, n + 1))
+    if mx:
+        handles.append(a0.plot([c[0] for c in mx], [c[1] for c in mx], "X", color="k", ms=8, mfc="yellow",
+                               label="modes crossing each other: " + ", ".join(
+                                   "%d and %d at ω = %s %s" % (c[2], c[3], fmt(c[0]), ou) for c in mx))[0])
+    handles.append(Line2D([], [], color="0.3", lw=1.5, ls="-", label="line style: solid forward, dashed backward, "
+                          "dotted undecided whirl"))
+    if "crossing_omega" in g and g["crossing_omega"].size:
+        co = g["crossing_omega"][:]
+        cw = g["crossing_whirl"][:] if "crossing_whirl" in g else np.zeros(co.shape, int)
+        handles.append(a0.plot(co, co, "o", mfc="none", mec="tab:red", mew=1.6, ms=10,
+                               label="critical speeds (1X crossings, from the archive)")[0])
+    a0.set_xlim(float(om.min()), omax * 1.06)
+    a0.set_ylim(0, top)
+    if "crossing_omega" in g and g["crossing_omega"].size:
+        # one label per speed: a degenerate pair crosses the 1X line at the same speed twice
+        lx, lw = [], []
+        for c, w in zip(co, cw):
+            wt = {1: "fw", -1: "bw"}.get(int(w), "whirl ?")
+            if lx and abs(c - lx[-1]) <= 1e-9 * max(abs(c), 1.0):
+                lw[-1].append(wt)
+                continue
+            lx.append(c)
+            lw.append([wt])
+        lt = ["%s %s (%s)" % (fmt(c), ou, w[0] if len(w) == 1 else
+                              ("%d modes, %s" % (len(w), w[0]) if len(set(w)) == 1 else ", ".join(w)))
+              for c, w in zip(lx, lw)]
+        spread_labels(a0, np.array(lx), np.array(lx), lt, color="tab:red", dx=14)
+    spread_labels(a0, np.array(ends_x), np.array(ends_y), ends_t, colors=ends_c, dx=4)
+    a0.set_ylabel("natural frequency %s" % ubr(fu))
+    a0.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.07, 1.0), frameon=False)
+    a0.grid(True, alpha=0.3)
+    rpm_axis(a0, ou)
+    hz_axis(a0, fu)
+    scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
+    ag = np.where(np.isfinite(g["amp_G"][:]), g["amp_G"][:], np.nan)
+    ax[1].semilogy(om, scale * ag, color="tab:blue", lw=1.2, label="centre of mass")
+    if "amp_D" in g:
+        ad = g["amp_D"][:]
+        for j in range(ad.shape[1]):
+            ax[1].semilogy(om, scale * np.where(np.isfinite(ad[:, j]), ad[:, j], np.nan), lw=1.0,
+                           color=("tab:orange", "tab:green")[j % 2], label="at balancer plane %d" % (j + 1))
+    if np.isfinite(ag).any():
+        ax[1].set_ylim(bottom=1e-3 * scale * float(np.nanmax(ag)))
+    if "peak_omega" in g:
+        for i, pk in enumerate(g["peak_omega"][:]):
+            ax[1].axvline(pk, color="tab:red", ls=":", lw=1.0,
+                          label="response peaks: ω = %s %s" % (", ".join(fmt(p) for p in g["peak_omega"][:]), ou)
+                          if i == 0 else None)
+    ax[1].set_ylabel("unbalance response amplitude [%s]" % ulab)
+    ax[1].set_xlabel("spin speed ω %s" % ubr(ou))
+    ax[1].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.07, 1.0), frameon=False)
+    ax[1].grid(True, which="both", alpha=0.3)
+    fig.suptitle("Rotor-housing without balls: Campbell diagram (modes followed through crossings) and steady "
+                 "unbalance response%s" % status_note(h), fontsize=11)
+    save(fig, outdir, stem, "campbell", written)
+
+
 def param_label(name, ds):
     """Axis label for a swept rotor parameter from its coordinate dataset."""
     sym = {"omega": "spin speed ω"}.get(name, name)
     return "%s %s" % (sym, ubr(units(ds)))
 
 
-def shade_intervals(ax, lo, hi, label, color="tab:green", alpha=0.18):
+NARROW = 0.02  # a stable interval narrower than this fraction of the axis is drawn widened and pointed at
+
+
+def shade_intervals(ax, lo, hi, label, xmin, xmax, color="tab:green", alpha=0.18, narrow_note=True):
+    """Shade the stable intervals [lo_i, hi_i] (archive values, not the sampled curve).  An interval
+    narrower than NARROW of the axis is drawn at least that wide in a stronger colour, outlined at its
+    true ends, and named in a note, so that a window of a few rad/s stays visible."""
+    span = float(xmax - xmin) if xmax > xmin else 1.0
+    narrow = []
     for i, (a, b) in enumerate(zip(lo, hi)):
+        b = min(b, xmax) if np.isfinite(b) else xmax
         ax.axvspan(a, b, color=color, alpha=alpha, lw=0, label=label if i == 0 else None)
+        if b - a < NARROW * span:
+            c, w = 0.5 * (a + b), 0.5 * NARROW * span
+            ax.axvspan(c - w, c + w, color=color, alpha=0.35, lw=0,
+                       label="narrow stable window (drawn %g%% of the axis wide)" % (100 * NARROW)
+                       if not narrow else None)
+            for e in (a, b):
+                ax.axvline(e, color="darkgreen", lw=0.8)
+            narrow.append((a, b))
+    if narrow_note and narrow:
+        for k, (a, b) in enumerate(narrow):
+            ax.annotate("stable window\n[%s, %s]\n(width %s)" % (fmt(a, 5), fmt(b, 5), fmt(b - a, 3)),
+                        xy=(0.5 * (a + b), 0.0), xycoords=("data", "axes fraction"),
+                        xytext=(28, 40 + 34 * k), textcoords="offset points", fontsize=8, color="darkgreen",
+                        arrowprops=dict(arrowstyle="->", color="darkgreen", lw=1.0),
+                        bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="darkgreen", lw=0.6, alpha=0.9))
+    return narrow
+
+
+def interval_strip(ax, lo, hi, xmin, xmax, y, height, label_stable=None, label_unstable=None):
+    """One horizontal strip: unstable over [xmin, xmax], stable on the archive's intervals (narrow ones
+    widened to NARROW of the axis, as in shade_intervals)."""
+    span = float(xmax - xmin) if xmax > xmin else 1.0
+    ax.barh([y], [xmax - xmin], left=[xmin], color=VERDICT_COLORS[-1], height=height, label=label_unstable)
+    for i, (a, b) in enumerate(zip(lo, hi)):
+        b = min(b, xmax) if np.isfinite(b) else xmax
+        if b - a < NARROW * span:
+            c = 0.5 * (a + b)
+            a, b = c - 0.5 * NARROW * span, c + 0.5 * NARROW * span
+        ax.barh([y], [b - a], left=[a], color=VERDICT_COLORS[1], height=height,
+                label=label_stable if i == 0 else None)
+
+
+def mark_critical(ax, cvs, kinds=None, color="tab:red"):
+    """Dashed lines at the critical values, each numbered at the top (labels staggered)."""
+    for i, cv in enumerate(cvs):
+        ax.axvline(cv, color=color, ls="--", lw=1.0)
+    order = np.argsort(cvs)
+    ax.figure.canvas.draw()
+    last, lev = -1e300, 0
+    for j in order:
+        px = ax.transData.transform((cvs[j], 0))[0]
+        lev = lev + 1 if px - last < 40 else 0
+        last = px
+        ax.annotate(fmt(cvs[j], 5), xy=(cvs[j], 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(2, -10 - 11 * lev), textcoords="offset points", fontsize=7.5, color=color,
+                    bbox=dict(boxstyle="square,pad=0.05", fc="white", ec="none", alpha=0.8))
 
 
 def intervals_text(lo, hi, unit):
@@ -407,38 +817,66 @@ def intervals_text(lo, hi, unit):
 
 
 def plot_rotor_sweep(h, outdir, stem, written):
-    """Stability margin along a swept parameter, stable intervals shaded, critical values marked."""
+    """Stability margin along a swept parameter; the archive's stable intervals shaded (narrow ones
+    widened and named), critical values marked; a strip of the intervals and of the sampled verdicts."""
     g = h["rotor/sweep"]
     pname = s(g.attrs.get("param", "omega"))
     x = g[pname][:]
     xu = units(g[pname])
     mg = g["margin"][:]
     v = g["verdict"][:]
-    fig, ax = plt.subplots(2, 1, figsize=(10, 7), sharex=True, constrained_layout=True,
-                           gridspec_kw={"height_ratios": [4, 1]})
+    xmin, xmax = float(np.nanmin(x)), float(np.nanmax(x))
+    fig, ax = plt.subplots(2, 1, figsize=(11, 7.5), sharex=True, constrained_layout=True,
+                           gridspec_kw={"height_ratios": [4, 1.1]})
     lo = g["stable_lo"][:] if "stable_lo" in g else np.array([])
     hi = g["stable_hi"][:] if "stable_hi" in g else np.array([])
-    shade_intervals(ax[0], lo, hi, "stable intervals")
-    ax[0].plot(x, mg, color="tab:blue", lw=1.4, label="stability margin (largest Re λ)")
+    narrow = shade_intervals(ax[0], lo, hi, "stable intervals (refined ends from the archive)", xmin, xmax)
+    ax[0].plot(x, mg, color="tab:blue", lw=1.4, label="stability margin (largest Re λ), sampled")
     ax[0].axhline(0.0, color="k", lw=0.8)
-    if "critical_value" in g:
-        cvs, kds = g["critical_value"][:], g["critical_kind"][:]
+    ax[0].set_xlim(xmin, xmax)
+    cvs = g["critical_value"][:] if "critical_value" in g else np.array([])
+    if cvs.size:
+        kds = g["critical_kind"][:]
         kindtxt = {1: "stable above", -1: "unstable above"}
-        lab = "critical values: " + ", ".join("%s (%s)" % (fmt(cv), kindtxt.get(int(kd), "edge"))
-                                               for cv, kd in zip(cvs, kds))
-        for i, cv in enumerate(cvs):
-            ax[0].axvline(cv, color="tab:red", ls="--", lw=1.0, label=lab if i == 0 else None)
+        ax[0].plot([], [], color="tab:red", ls="--", lw=1.0,
+                   label="critical values (%s)" % ", ".join("%s %s" % (fmt(cv), kindtxt.get(int(kd), "edge"))
+                                                            for cv, kd in zip(cvs, kds)))
+        mark_critical(ax[0], cvs)
     ax[0].set_ylabel("margin %s" % ubr(units(g["margin"])))
-    ax[0].legend(fontsize=8, loc="lower right")
+    ax[0].legend(fontsize=8, loc="lower right", framealpha=0.92)
     ax[0].grid(True, alpha=0.3)
-    verdict_image(ax[1], x, np.array([0.0, 1.0]), np.vstack([v, v]).T)
-    ax[1].set_yticks([])
-    ax[1].set_ylabel("verdict")
+    rpm_axis(ax[0], xu)
+    if narrow:  # a zoom on the first narrow window: the sampled curve there and the true interval
+        a, b = narrow[0]
+        w = max(b - a, 1e-12)
+        ins = ax[0].inset_axes([0.30, 0.55, 0.28, 0.38])
+        sel = (x >= a - 4 * w) & (x <= b + 4 * w)
+        ins.axvspan(a, b, color="tab:green", alpha=0.25, lw=0)
+        ins.plot(x[sel], mg[sel], ".-", color="tab:blue", lw=1.0, ms=4)
+        ins.axhline(0.0, color="k", lw=0.6)
+        for cv in cvs:
+            if a - 4 * w <= cv <= b + 4 * w:
+                ins.axvline(cv, color="tab:red", ls="--", lw=0.8)
+        ins.set_xlim(a - 4 * w, b + 4 * w)
+        if sel.any():
+            fin = mg[sel][np.isfinite(mg[sel])]
+            if fin.size:
+                pad = 0.1 * (fin.max() - fin.min() + 1e-12)
+                ins.set_ylim(fin.min() - pad, fin.max() + pad)
+        ins.tick_params(labelsize=7)
+        ins.set_title("zoom: stable window, %d sampled points in it" % int(np.sum((x >= a) & (x <= b))), fontsize=8)
+        ins.grid(True, alpha=0.3)
+    interval_strip(ax[1], lo, hi, xmin, xmax, 1.0, 0.8, "stable (archive intervals)", "unstable")
+    verdict_image(ax[1], x, np.array([-0.2, 0.2]), np.vstack([v, v]).T)
+    ax[1].set_ylim(-0.5, 1.5)
+    ax[1].set_yticks([0.0, 1.0])
+    ax[1].set_yticklabels(["sampled verdict", "archive intervals\n(narrow: widened)"], fontsize=8)
     handles = [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c])
                for c in sorted(set(np.unique(v).astype(int).tolist()) & set(VERDICT_COLORS))]
-    ax[1].legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.55), ncol=4,
+    ax[1].legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.6), ncol=4,
                  frameon=False)
     ax[1].set_xlabel(param_label(pname, g[pname]))
+    ax[1].set_xlim(xmin, xmax)
     fig.suptitle("Rotor with ball autobalancer: stability of the balanced motion (3.14) along %s\n%s%s"
                  % ("the spin speed ω" if pname == "omega" else pname, intervals_text(lo, hi, xu), status_note(h)),
                  fontsize=11)
@@ -460,6 +898,7 @@ def plot_rotor_map(h, outdir, stem, written):
     ax.legend(handles=handles, fontsize=9, loc="upper right", framealpha=0.9)
     ax.set_title("Rotor with ball autobalancer: stability of the balanced motion (3.14)%s" % status_note(h),
                  fontsize=11)
+    rpm_axis(ax, units(g[p1]))
     if has_m:
         ax2 = axes[0, 1]
         mg = g["margin"][:]
@@ -472,64 +911,8 @@ def plot_rotor_map(h, outdir, stem, written):
         ax2.set_xlabel(ax.get_xlabel())
         ax2.set_ylabel(ax.get_ylabel())
         ax2.set_title("stability margin (black line: margin = 0)", fontsize=11)
+        rpm_axis(ax2, units(g[p1]))
     save(fig, outdir, stem, "stability_map", written)
-
-
-def plot_rotor_campbell(h, outdir, stem, written):
-    """Campbell diagram (natural frequencies vs spin speed, whirl direction) and unbalance response."""
-    g = h["rotor/campbell"]
-    om = g["omega"][:]
-    fr = g["frequency"][:]
-    wh = g["whirl"][:]
-    fig, ax = plt.subplots(2, 1, figsize=(10, 9), sharex=True, constrained_layout=True,
-                           gridspec_kw={"height_ratios": [3, 2]})
-    from matplotlib.lines import Line2D
-    handles = []
-    for code, col, lab in ((1, "tab:blue", "forward whirl"), (-1, "tab:red", "backward whirl"),
-                           (0, "0.3", "whirl undecided")):
-        if np.any(wh == code):
-            handles.append(Line2D([], [], color=col, marker=".", ls="none", ms=8, label=lab))
-    for m in range(fr.shape[1]):
-        ax[0].plot(om, fr[:, m], color="0.6", lw=0.8, zorder=1)
-        for code, col in ((1, "tab:blue"), (-1, "tab:red"), (0, "0.3")):
-            sel = wh[:, m] == code
-            if sel.any():
-                ax[0].plot(om[sel], fr[sel, m], ".", ms=3, color=col, zorder=2)
-    top = float(np.nanmax(fr)) * 1.15 if np.isfinite(fr).any() else float(om.max())
-    handles += ax[0].plot(om, om, "k--", lw=1.0, label="frequency = ω (synchronous excitation by the unbalance)")
-    if "crossing_omega" in g:
-        co = g["crossing_omega"][:]
-        handles += ax[0].plot(co, co, "o", mfc="none", color="k", ms=9,
-                              label="critical speeds: crossings (fw forward, bw backward whirl)")
-        for i, (c, w) in enumerate(zip(co, g["crossing_whirl"][:])):
-            ax[0].annotate("%s (%s)" % (fmt(c), "fw" if w > 0 else "bw"), (c, c), textcoords="offset points",
-                           xytext=(10, -14) if i % 2 == 0 else (-62, 6), fontsize=8)
-    ax[0].set_ylim(0, top)
-    ax[0].set_ylabel("natural frequency %s" % ubr(units(g["frequency"])))
-    ax[0].legend(handles=handles, fontsize=8, loc="upper left")
-    ax[0].grid(True, alpha=0.3)
-    scale, ulab = (1e6, "µm") if units(g["amp_G"]) == "m" else (1.0, units(g["amp_G"]))
-    ag = np.where(np.isfinite(g["amp_G"][:]), g["amp_G"][:], np.nan)
-    ax[1].semilogy(om, scale * ag, color="tab:blue", lw=1.2, label="centre of mass")
-    if "amp_D" in g:
-        ad = g["amp_D"][:]
-        for j in range(ad.shape[1]):
-            ax[1].semilogy(om, scale * np.where(np.isfinite(ad[:, j]), ad[:, j], np.nan), lw=1.0,
-                           color=("tab:orange", "tab:green")[j % 2], label="at balancer plane %d" % (j + 1))
-    if np.isfinite(ag).any():
-        ax[1].set_ylim(bottom=1e-3 * scale * float(np.nanmax(ag)))
-    if "peak_omega" in g:
-        for i, pk in enumerate(g["peak_omega"][:]):
-            ax[1].axvline(pk, color="tab:red", ls=":", lw=1.0,
-                          label="response peaks %s" % ", ".join(fmt(p) for p in g["peak_omega"][:]) if i == 0
-                          else None)
-    ax[1].set_ylabel("unbalance response amplitude [%s]" % ulab)
-    ax[1].set_xlabel("spin speed ω %s" % ubr(units(g["omega"])))
-    ax[1].legend(fontsize=8, loc="upper right")
-    ax[1].grid(True, which="both", alpha=0.3)
-    fig.suptitle("Rotor-housing without balls: Campbell diagram and steady unbalance response%s" % status_note(h),
-                 fontsize=11)
-    save(fig, outdir, stem, "campbell", written)
 
 
 def plot_rotor_stability(h, outdir, stem, written):
@@ -560,22 +943,267 @@ def plot_rotor_stability(h, outdir, stem, written):
         ax2 = axes[0, 1]
         lo, hi = c["stable_lo"][:], c["stable_hi"][:]
         wmin, wmax = param(c, "omega_min", 0.0), param(c, "omega_max", float(np.nanmax(hi)))
-        ax2.barh([0], [wmax - wmin], left=[wmin], color=VERDICT_COLORS[-1], height=0.5, label="unstable")
-        for i, (a, b) in enumerate(zip(lo, hi)):
-            ax2.barh([0], [b - a], left=[a], color=VERDICT_COLORS[1], height=0.5, label="stable" if i == 0 else None)
+        cu = units(c["stable_lo"])
+        interval_strip(ax2, lo, hi, wmin, wmax, 0.0, 0.5, "stable (narrow windows widened to %g%% of the axis)"
+                       % (100 * NARROW), "unstable")
+        span = wmax - wmin
+        for k, (a, b) in enumerate(zip(lo, hi)):
+            if np.isfinite(b) and b - a < NARROW * span:
+                ax2.annotate("[%s, %s]\nwidth %s %s" % (fmt(a, 5), fmt(b, 5), fmt(b - a, 3), cu),
+                             xy=(0.5 * (a + b), -0.25), xytext=(0.5 * (a + b), -0.75 + 0.0 * k), fontsize=8,
+                             color="darkgreen", ha="left", va="center",
+                             arrowprops=dict(arrowstyle="->", color="darkgreen", lw=1.0))
         if "critical_value" in c:
             cvs = c["critical_value"][:]
             ax2.plot(cvs, np.full(cvs.shape, 0.32), "v", color="tab:red", ms=7,
                      label="critical speeds: " + ", ".join(fmt(cv) for cv in cvs))
         ax2.axvline(om, color="k", lw=1.5, label="ω of this run")
+        ax2.set_xlim(wmin, wmax)
         ax2.set_ylim(-1, 1)
         ax2.set_yticks([])
-        ax2.set_xlabel("spin speed ω %s" % ubr(units(c["stable_lo"])))
+        ax2.set_xlabel("spin speed ω %s" % ubr(cu))
         ax2.legend(fontsize=8, loc="upper right")
+        rpm_axis(ax2, cu)
         ax2.set_title("stable speed intervals: %s" % intervals_text(lo, hi, units(c["stable_lo"])), fontsize=10)
     fig.suptitle("Rotor with ball autobalancer: stability of the balanced motion (3.14)%s" % status_note(h),
                  fontsize=11)
     save(fig, outdir, stem, "stability", written)
+
+
+# ---- ensembles (autobal rotor ensemble | pendulum ensemble) ----------------------------------
+OUTCOME_CODES = [1, 0, -1, -2]
+OUTCOME_COLORS = {1: "#5cb85c", 0: "#e8787a", -1: "#444444", -2: "#ffffff"}
+OUTCOME_NAMES = {1: "balanced", 0: "not balanced by t_end", -1: "failed (solver status < 0)", -2: "not run yet"}
+
+
+def ensemble_outcome(g):
+    """Outcome per member from the archive's balanced, status and done: 1 balanced, 0 ran to its end
+    without balancing, -1 failed, -2 not computed (an interrupted or time-limited run)."""
+    bal = g["balanced"][()]
+    st = g["status"][()] if "status" in g else np.zeros(np.shape(bal), int)
+    done = g["done"][()] if "done" in g else np.ones(np.shape(bal), int)
+    out = np.where(bal == 1, 1, 0)
+    out = np.where(st < 0, -1, out)
+    return np.where(done == 0, -2, out).astype(int)
+
+
+def outcome_image(ax, x, y, code):
+    """Draw an outcome grid code[x, y] with a fixed colour per outcome; returns legend handles."""
+    cmap = ListedColormap([OUTCOME_COLORS[c] for c in sorted(OUTCOME_CODES)])
+    norm = BoundaryNorm([-2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
+    ax.pcolormesh(x, y, np.asarray(code).T, cmap=cmap, norm=norm, shading="nearest", edgecolors="face")
+    return outcome_handles(code)
+
+
+def outcome_handles(code):
+    present = set(np.unique(code).astype(int).tolist())
+    return [Patch(facecolor=OUTCOME_COLORS[c], edgecolor="k", lw=0.5, label=OUTCOME_NAMES[c])
+            for c in OUTCOME_CODES if c in present]
+
+
+def angle_ticks(axis_obj, vals, unit):
+    """Ticks at multiples of pi/2 on an axis of angles in rad spanning about a full turn."""
+    if unit != "rad" or not np.size(vals):
+        return
+    lo, hi = float(np.nanmin(vals)), float(np.nanmax(vals))
+    if hi - lo < 2.0:
+        return
+    names = {-4: "-2π", -3: "-3π/2", -2: "-π", -1: "-π/2", 0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π"}
+    ks = [k for k in names if lo - 0.3 <= k * np.pi / 2 <= hi + 0.3]
+    axis_obj.set_ticks([k * np.pi / 2 for k in ks])
+    axis_obj.set_ticklabels([names[k] for k in ks])
+
+
+def uword(u):
+    """' UNIT' for a value in running text; nothing for a dimensionless one."""
+    return "" if u in ("1", "") else " " + u
+
+
+def ens_label(g, name):
+    ds = g[name]
+    ln = s(ds.attrs.get("long_name", ""))
+    return "%s%s %s" % (name, (" (%s)" % ln) if ln and len(ln) <= 40 else "", ubr(units(ds)))
+
+
+def binomial_fraction(ok, n):
+    """Fraction and its binomial standard error sqrt(p (1 - p) / n) (NaN where n = 0)."""
+    n = np.asarray(n, dtype=float)
+    p = np.where(n > 0, np.asarray(ok, dtype=float) / np.maximum(n, 1), np.nan)
+    return p, np.where(n > 0, np.sqrt(p * (1 - p) / np.maximum(n, 1)), np.nan)
+
+
+def plot_ensemble(h, outdir, stem, written, model):
+    """Basin map (outcome over the grid or the random samples), time to balance over the same plane,
+    P(balance) along the first parameter with the archive's overall value and standard error, and the
+    distribution of the time to balance."""
+    g = h["%s/ensemble" % model]
+    params = [p.strip() for p in s(g.attrs.get("parameters", "")).split(",") if p.strip()]
+    random = s(g.attrs.get("mode", "grid")) == "random"
+    code = ensemble_outcome(g)
+    ttb = np.asarray(g["time_to_balance"][()], dtype=float) if "time_to_balance" in g else None
+    tu = units(g["time_to_balance"]) if ttb is not None else "?"
+    tname = "time to balance τ" if model == "pendulum" else "time to balance"
+    fig, ax = plt.subplots(2, 2, figsize=(13, 10.5), constrained_layout=True)
+    (a_map, a_ttb), (a_p, a_hist) = ax
+    # (a) outcome and (b) time to balance over the parameter plane
+    if not random and len(params) >= 2:
+        x, y = g[params[0]][:], g[params[1]][:]
+        c2, t2 = code, ttb
+        note = ""
+        if len(params) == 3:  # a third axis: the fraction balanced across it, and the mean time
+            frac, _ = binomial_fraction(np.sum(code == 1, axis=2), np.sum((code == 1) | (code == 0), axis=2))
+            im = a_map.pcolormesh(x, y, frac.T, cmap="RdYlGn", vmin=0, vmax=1, shading="nearest")
+            a_map.set_facecolor("0.85")
+            fig.colorbar(im, ax=a_map, label="fraction balanced over %s (grey: none ran)" % params[2])
+            handles = []
+            with warnings.catch_warnings():  # a column with no balanced member has no mean: NaN
+                warnings.simplefilter("ignore", RuntimeWarning)
+                t2 = np.nanmean(ttb, axis=2) if ttb is not None else None
+            note = " (mean over %s)" % params[2]
+        else:
+            handles = outcome_image(a_map, x, y, c2)
+        for a in (a_map, a_ttb):
+            a.set_xlabel(ens_label(g, params[0]))
+            a.set_ylabel(ens_label(g, params[1]))
+            angle_ticks(a.xaxis, x, units(g[params[0]]))
+            angle_ticks(a.yaxis, y, units(g[params[1]]))
+        if t2 is not None and np.isfinite(t2).any():
+            im = a_ttb.pcolormesh(x, y, np.asarray(t2).T, cmap="viridis", shading="nearest")
+            fig.colorbar(im, ax=a_ttb, label="%s %s%s" % (tname, ubr(tu), note))
+        a_ttb.set_facecolor("0.85")
+        a_ttb.set_title("%s of the balanced members (grey: not balanced)" % tname, fontsize=10)
+        a_map.set_title("basin map: outcome over the %d x %d grid%s" % (len(x), len(y), note), fontsize=10)
+    elif random and len(params) >= 2:
+        x, y = g[params[0]][()], g[params[1]][()]
+        for c in OUTCOME_CODES:
+            sel = code == c
+            if sel.any():
+                a_map.scatter(x[sel], y[sel], s=10, color=OUTCOME_COLORS[c], edgecolors="k", linewidths=0.2)
+        handles = outcome_handles(code)
+        bal = np.isfinite(ttb) if ttb is not None else np.zeros(code.shape, bool)
+        if bal.any():
+            sc = a_ttb.scatter(x[bal], y[bal], c=ttb[bal], s=10, cmap="viridis")
+            fig.colorbar(sc, ax=a_ttb, label="%s %s" % (tname, ubr(tu)))
+        a_ttb.scatter(x[~bal], y[~bal], s=6, color="0.7", label="not balanced")
+        for a in (a_map, a_ttb):
+            a.set_xlabel(ens_label(g, params[0]))
+            a.set_ylabel(ens_label(g, params[1]))
+            angle_ticks(a.xaxis, x, units(g[params[0]]))
+            angle_ticks(a.yaxis, y, units(g[params[1]]))
+        a_map.set_title("outcome of %d random members (seed %s)" % (code.size, s(g.attrs.get("seed", "?"))),
+                        fontsize=10)
+        a_ttb.set_title("%s of the balanced members (grey: not balanced)" % tname, fontsize=10)
+    else:  # one parameter: outcome strip and time to balance along it
+        x = g[params[0]][()]
+        if random:
+            for c in OUTCOME_CODES:
+                sel = code == c
+                if sel.any():
+                    a_map.plot(x[sel], np.full(sel.sum(), 0.0) + 0.3 * (np.arange(sel.sum()) % 5) / 5, "|",
+                               color=OUTCOME_COLORS[c] if c != -2 else "0.6", ms=14)
+            handles = outcome_handles(code)
+        else:
+            handles = outcome_image(a_map, x, np.array([0.0, 1.0]), np.column_stack([code, code]))
+        a_map.set_yticks([])
+        a_map.set_xlabel(ens_label(g, params[0]))
+        angle_ticks(a_map.xaxis, x, units(g[params[0]]))
+        a_map.set_title("outcome along %s (%d members)" % (params[0], code.size), fontsize=10)
+        if ttb is not None:
+            a_ttb.plot(x, ttb, ".", color="tab:blue", ms=5)
+        a_ttb.set_xlabel(ens_label(g, params[0]))
+        a_ttb.set_ylabel("%s %s" % (tname, ubr(tu)))
+        angle_ticks(a_ttb.xaxis, x, units(g[params[0]]))
+        a_ttb.grid(True, alpha=0.3)
+        a_ttb.set_xlim(a_map.get_xlim())
+        a_ttb.set_title("%s of the balanced members" % tname, fontsize=10)
+    if handles:
+        a_map.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4,
+                     frameon=False)
+    # (c) P(balance) along the first parameter, with the archive's overall value
+    ran = (code == 1) | (code == 0)  # members that ran without failure
+    p_all = param(g, "probability_balanced", np.nan)
+    p_se = param(g, "probability_balanced_stderr", np.nan)
+    if not random:
+        x1 = g[params[0]][:]
+        axes_other = tuple(range(1, code.ndim))
+        nb = np.sum(code == 1, axis=axes_other)
+        nr = np.sum(ran, axis=axes_other)
+        pp, se = binomial_fraction(nb, nr)
+        a_p.errorbar(x1, pp, yerr=se, fmt="o-", ms=3.5, lw=1.0, capsize=2, color="tab:green",
+                     label="fraction balanced at each %s%s ± binomial s.e." % (
+                         params[0], (" (over %s)" % ", ".join(params[1:])) if len(params) > 1 else ""))
+    else:
+        x1 = g[params[0]][()]
+        lo1, hi1 = param(g, "%s_min" % params[0], float(np.min(x1))), param(g, "%s_max" % params[0], float(np.max(x1)))
+        nbins = int(np.clip(np.sqrt(max(code.size, 1)) / 2, 4, 24))
+        edges = np.linspace(lo1, hi1, nbins + 1)
+        idx = np.clip(np.digitize(x1, edges) - 1, 0, nbins - 1)
+        nb = np.bincount(idx[code == 1], minlength=nbins)
+        nr = np.bincount(idx[ran], minlength=nbins)
+        pp, se = binomial_fraction(nb, nr)
+        cen = 0.5 * (edges[1:] + edges[:-1])
+        a_p.errorbar(cen, pp, yerr=se, xerr=0.5 * (edges[1] - edges[0]), fmt="o", ms=3.5, capsize=2,
+                     color="tab:green", label="fraction balanced in %d bins of %s ± binomial s.e." % (nbins, params[0]))
+        x1 = edges
+        a_p.set_xlim(edges[0], edges[-1])
+    if np.isfinite(p_all):
+        a_p.axhspan(p_all - (p_se if np.isfinite(p_se) else 0), p_all + (p_se if np.isfinite(p_se) else 0),
+                    color="k", alpha=0.12, lw=0)
+        a_p.axhline(p_all, color="k", lw=1.2, ls="--",
+                    label="P(balance) = %s ± %s (archive: %d of the %d members that ran without failure)"
+                    % (fmt(p_all, 4), fmt(p_se, 2), int(param(g, "n_balanced", 0) or 0),
+                       int((param(g, "n_done", 0) or 0) - (param(g, "n_failed", 0) or 0))))
+    a_p.set_ylim(-0.03, 1.12)
+    a_p.set_xlabel(ens_label(g, params[0]))
+    a_p.set_ylabel("P(balance) [–]")
+    angle_ticks(a_p.xaxis, x1, units(g[params[0]]))
+    a_p.grid(True, alpha=0.3)
+    a_p.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), frameon=False)
+    counts = ", ".join("%s %d" % (OUTCOME_NAMES[c].split(" (")[0], int(np.sum(code == c)))
+                       for c in OUTCOME_CODES if np.any(code == c))
+    a_p.set_title("probability of balancing along %s; %s" % (params[0], counts), fontsize=10)
+    # (d) distribution of the time to balance
+    if ttb is not None and np.isfinite(ttb).any():
+        tt = ttb[np.isfinite(ttb)]
+        a_hist.hist(tt, bins=int(np.clip(np.sqrt(tt.size) * 1.5, 8, 60)), color="tab:blue", alpha=0.8,
+                    edgecolor="white", lw=0.4)
+        for key, ls, lab in (("time_to_balance_mean", "--", "mean"), ("time_to_balance_median", ":", "median"),
+                             ("time_to_balance_max", "-.", "max")):
+            v = param(g, key)
+            if v is not None and np.isfinite(v):
+                a_hist.axvline(v, color="k", ls=ls, lw=1.2, label="%s %s%s" % (lab, fmt(v), uword(tu)))
+        t_end = param(g, "t_end")
+        a_hist.set_xlabel("%s %s" % (tname, ubr(tu)))
+        a_hist.set_ylabel("members")
+        a_hist.legend(fontsize=8, loc="best", framealpha=0.92)
+        a_hist.set_title("distribution of the %s (%d balanced members; run length t_end = %s%s)"
+                         % (tname, tt.size, fmt(t_end) if t_end is not None else "?", uword(tu)), fontsize=10)
+        a_hist.grid(True, alpha=0.3)
+    else:
+        a_hist.text(0.5, 0.5, "no member balanced: no time to balance", ha="center", va="center",
+                    transform=a_hist.transAxes)
+        a_hist.set_axis_off()
+    if model == "rotor":
+        om = param(h["rotor"], "omega", np.nan)
+        what = "Rotor with ball autobalancer" + ("" if "omega" in params else
+                                                 ", ω = %s %s" % (fmt(om), punit(h["rotor"], "omega")))
+    else:
+        fixed = pendulum_params_text(h, skip=params)
+        what = "Two-pendulum autobalancer" + (", " + fixed if fixed else "")
+    grid = "random, %d members" % code.size if random else " x ".join(
+        "%s[%d]" % (p, n) for p, n in zip(params, np.shape(code)))
+    fig.suptitle("%s: ensemble of transients over %s (%s)\nP(balance) = %s ± %s, tolerance %s%s"
+                 % (what, ", ".join(params), grid, fmt(p_all, 4), fmt(p_se, 2),
+                    fmt(param(g, "balance_tol", np.nan), 3), status_note(h)), fontsize=11)
+    save(fig, outdir, stem, "ensemble", written)
+
+
+def plot_rotor_ensemble(h, outdir, stem, written):
+    plot_ensemble(h, outdir, stem, written, "rotor")
+
+
+def plot_pendulum_ensemble(h, outdir, stem, written):
+    plot_ensemble(h, outdir, stem, written, "pendulum")
 
 
 PLOTTERS = [
@@ -588,6 +1216,8 @@ PLOTTERS = [
     ("rotor/sweep", plot_rotor_sweep),
     ("rotor/map", plot_rotor_map),
     ("rotor/campbell", plot_rotor_campbell),
+    ("rotor/ensemble", plot_rotor_ensemble),
+    ("pendulum/ensemble", plot_pendulum_ensemble),
 ]
 
 

@@ -3,7 +3,8 @@
 # opened with xarray (engine="h5netcdf", group by group) and h5py, and their names, units and
 # values checked (postprocess_check.py); `autobal info` (text and --json) is compared with what
 # h5py reads; `autobal rerun` must reproduce every dataset bit for bit; `autobal plot` and the
-# tools/autobal_plot.py one-liner must write readable PNG files.  Error paths: missing, truncated,
+# tools/autobal_plot.py one-liner must write readable PNG files, also for ensemble archives, and the
+# Campbell picture's mode tracking must follow known branches through a crossing.  Error paths: missing, truncated,
 # foreign and non-HDF5 files, bad command lines.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${TOOLS:?}" "${PY:=/usr/bin/python3}"
@@ -44,6 +45,10 @@ if "$AUTOBAL" rotor stability --help >/dev/null 2>&1; then
   expect 0 "" "$AUTOBAL" rotor sweep --set sweep.n=200 -o rsweep.h5
   expect 0 "" "$AUTOBAL" rotor map --set map.n1=40 --set map.n2=12 -o rmap.h5
   expect 0 "" "$AUTOBAL" rotor campbell --set campbell.n=300 -o rcampbell.h5
+  # a known crossing: supports placed so that translation and tilt decouple (l_L c_L = l_R c_R,
+  # l_L h_L = l_R h_R); the backward tilting mode then falls through the translational pair
+  expect 0 "" "$AUTOBAL" rotor campbell --set supports.l_R=0.2 --set supports.c_Rx=100000 --set supports.c_Ry=100000 \
+    --set supports.h_Rx=100 --set supports.h_Ry=100 --set campbell.n=300 -o rcampbell_x.h5
   stab="rstab rsweep rmap rcampbell"
 else
   echo "note: 'autobal rotor stability|sweep|map|campbell' are not registered: not covered"
@@ -226,6 +231,26 @@ for a in $archives; do
   pngs="$pngs png/${a}_${kinds[$a]}.png"
 done
 py png $pngs
+# the Campbell pictures follow each mode through crossings (track_modes in autobal_plot.py)
+if [ -n "$stab" ]; then
+  py tracking "$TOOLS" rcampbell.h5
+  py tracking "$TOOLS" rcampbell_x.h5 decoupled
+  expect 0 "png/rcampbell_x_campbell.png" "$AUTOBAL" plot rcampbell_x.h5 -o png
+fi
+# ensemble archives: a basin map, P(balance) and the time to balance, for grids and random samples
+if "$AUTOBAL" rotor ensemble --help >/dev/null 2>&1; then
+  expect 0 "" "$AUTOBAL" rotor ensemble --set ensemble.n1=6 --set ensemble.n2=6 --set transient.t_end=3 -o rens.h5 -q
+  expect 0 "" "$AUTOBAL" rotor ensemble --set ensemble.mode=random --set ensemble.samples=30 --set transient.t_end=3 -o rensr.h5 -q
+  expect 0 "" "$AUTOBAL" pendulum ensemble --set ensemble.param1=R_w --set ensemble.min1=1 --set ensemble.max1=4 \
+    --set ensemble.n1=12 --set ensemble.n2=6 -o pens.h5 -q
+  expect 0 "" "$AUTOBAL" pendulum ensemble --set ensemble.n1=4 --set ensemble.n2=4 --set ensemble.max_members=9 -o pens_part.h5 -q
+  for a in rens rensr pens pens_part; do
+    expect 0 "png/${a}_ensemble.png" "$AUTOBAL" plot "$a.h5" -o png
+  done
+  py ensemble_plot "$TOOLS" png rens.h5 rensr.h5 pens.h5 pens_part.h5
+else
+  echo "note: 'autobal rotor ensemble' is not registered: ensemble pictures not covered"
+fi
 expect 0 "one/x_critical_speeds.png" "$PY" "$TOOLS/autobal_plot.py" critical.h5 -o one --stem x
 [ -f one/x_critical_speeds.png ] && ok "one-liner wrote one/x_critical_speeds.png" || bad "one-liner"
 expect 4 "not an autobal archive" "$AUTOBAL" plot foreign.h5 -o png

@@ -8,6 +8,8 @@ would (xarray with engine="h5netcdf", group by group, and plain h5py), `autobal 
     postprocess_check.py info FILE.h5 INFO.txt INFO.json [FILE2.h5 INFO2.txt INFO2.json ...]
     postprocess_check.py same A.h5 B.h5 [A2.h5 B2.h5 ...]
     postprocess_check.py png FILE...
+    postprocess_check.py tracking TOOLS_DIR CAMPBELL.h5 [decoupled]
+    postprocess_check.py ensemble_plot TOOLS_DIR PNG_DIR ENSEMBLE.h5...
     postprocess_check.py effective FILE.h5...
 
 Every check prints what it compared ("ok"/"FAIL") and the tolerance; the exit status is the
@@ -836,6 +838,132 @@ def png(files):
               float(img[..., :3].std()) > 0.05)
 
 
+# ---- Campbell mode tracking (tools/autobal_plot.py track_modes) -----------------------------------
+def load_plot_module(tools):
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("autobal_plot", "%s/autobal_plot.py" % tools)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def branches_decoupled(h, om):
+    """Natural frequencies of the rotor-housing when translation and tilt are decoupled
+    (c_xbeta = c_yalpha = h_xbeta = h_yalpha = 0), from the spec's equations (3.2) without balls and the
+    archive's lumped coefficients, each branch continuous by construction: the translational pair
+    (M x'' + h_x x' + c_x x = 0, the same for y), and the forward and backward tilting modes from the
+    4 x 4 first-order form of A alpha'' + h_alpha alpha' + c_alpha alpha + C omega beta' = 0,
+    A beta'' + h_beta beta' + c_beta beta - C omega alpha' = 0 (larger root forward, smaller backward:
+    they split at omega = 0 and move apart)."""
+    L = h["rotor/lumped"].attrs
+    M, A, C = float(L["M"]), float(L["A"]), float(L["C"])
+    tx = math.sqrt(float(L["c_x"]) / M - (float(L["h_x"]) / (2 * M)) ** 2)
+    ty = math.sqrt(float(L["c_y"]) / M - (float(L["h_y"]) / (2 * M)) ** 2)
+    cf, cb = [], []
+    for w in om:
+        K = np.array([[float(L["c_alpha"]), 0.0], [0.0, float(L["c_beta"])]])
+        D = np.array([[float(L["h_alpha"]), C * w], [-C * w, float(L["h_beta"])]])
+        Minv = np.eye(2) / A
+        Z = np.block([[np.zeros((2, 2)), np.eye(2)], [-Minv @ K, -Minv @ D]])
+        im = np.sort(np.abs(np.linalg.eigvals(Z).imag))
+        cf.append(im[-1])
+        cb.append(im[-3] if abs(im[-2] - im[-1]) < 1e-9 * im[-1] else im[-2])
+    br = {"tilt forward": np.array(cf), "tilt backward": np.array(cb)}
+    if tx == ty:  # isotropic supports: one translational frequency, twice
+        br["translation"] = np.full(len(om), tx)
+        return br, ["translation", "translation", "tilt forward", "tilt backward"]
+    br["translation x"], br["translation y"] = np.full(len(om), tx), np.full(len(om), ty)
+    return br, ["translation x", "translation y", "tilt forward", "tilt backward"]
+
+
+def follows_branches(fr, om, branches, rtol):
+    """For each column of fr: the branch nearest at the second speed, and the largest relative
+    distance from it over all speeds."""
+    names = list(branches)
+    res = []
+    for m in range(fr.shape[1]):
+        k0 = 1 if len(om) > 1 else 0
+        b = min(names, key=lambda n: abs(branches[n][k0] - fr[k0, m]))
+        err = float(np.max(np.abs(fr[:, m] - branches[b]) / branches[b]))
+        res.append((b, err, err <= rtol))
+    return res
+
+
+def tracking_check(tools, f, crossing):
+    """track_modes on an archive: each tracked mode keeps one whirl direction (where decided, omega > 0)
+    and its frequency changes by no more than the largest step of any sorted column; with crossing =
+    'decoupled' the tracked curves must also follow the independently computed branches through the
+    crossing of the backward tilting mode with the translational pair, which the sorted columns do not."""
+    mod = load_plot_module(tools)
+    # a synthetic crossing first: a rising and a falling line stored sorted, no whirl information
+    w = np.linspace(0.0, 1000.0, 201)
+    up, down = 100.0 + 0.1 * w, 150.0 - 0.05 * w  # cross at w = 1000/3
+    perm = mod.track_modes(w, np.sort(np.column_stack([up, down]), axis=1))
+    tr = np.take_along_axis(np.sort(np.column_stack([up, down]), axis=1), perm, 1)
+    check("track_modes: two lines crossing at w = 333.3, stored sorted, no whirl: followed as lines "
+          "(max |diff| %.2g)" % float(np.max(np.abs(tr - np.column_stack([up, down])))),
+          bool(np.allclose(tr, np.column_stack([up, down]), rtol=0, atol=1e-12)))
+    with h5py.File(f, "r") as h:
+        g = h["rotor/campbell"]
+        om, fr, wh = g["omega"][:], g["frequency"][:], g["whirl"][:]
+        perm = mod.track_modes(om, fr, wh)
+        check("%s: track_modes returns a permutation of the modes at every speed" % f,
+              bool(np.all(np.sort(perm, axis=1) == np.arange(fr.shape[1]))))
+        tf = np.take_along_axis(fr, perm, 1)
+        tw = np.take_along_axis(wh, perm, 1)
+        ok = True
+        for m in range(tf.shape[1]):
+            w = tw[om > 0, m]
+            w = w[w != 0]
+            ok &= bool(w.size == 0 or np.all(w == w[0]))
+        check("%s: every tracked mode keeps one whirl direction for omega > 0" % f, ok)
+        step_sorted = float(np.nanmax(np.abs(np.diff(fr, axis=0))))
+        step_tracked = float(np.nanmax(np.abs(np.diff(tf, axis=0))))
+        check("%s: tracked frequencies continuous: largest step %.4g <= largest step of the sorted columns %.4g rad/s"
+              % (f, step_tracked, step_sorted), step_tracked <= step_sorted * (1 + 1e-12))
+        if crossing == "decoupled":
+            L = h["rotor/lumped"].attrs
+            check("%s: the supports decouple translation and tilt (c_xbeta = c_yalpha = h_xbeta = h_yalpha = 0)" % f,
+                  all(float(L[k]) == 0.0 for k in ("c_xbeta", "c_yalpha", "h_xbeta", "h_yalpha")))
+            br, want = branches_decoupled(h, om)
+            d = br["tilt backward"] - br[want[0]]
+            kx = np.nonzero(np.sign(d[1:]) != np.sign(d[:-1]))[0]
+            check("%s: independent branches: the backward tilting mode crosses the translational pair inside the "
+                  "range (at omega ~ %s rad/s)" % (f, ", ".join("%.1f" % om[k] for k in kx)), kx.size >= 1)
+            rtol = 1e-6
+            for m, (b, err, good) in enumerate(follows_branches(tf, om, br, rtol)):
+                check("%s: tracked mode %d follows the branch '%s' over the whole range (max rel. diff %.2g, tol %g)"
+                      % (f, m + 1, b, err, rtol), good)
+            got = [b for b, _, _ in follows_branches(tf, om, br, rtol)]
+            check("%s: the tracked modes are the branches %s" % (f, sorted(want)), sorted(got) == sorted(want))
+            bad = [m for m, (_, err, good) in enumerate(follows_branches(fr, om, br, rtol)) if not good]
+            check("%s: the sorted columns do not follow the branches (column(s) %s jump at the crossing): the "
+                  "check above can fail" % (f, [m + 1 for m in bad]), len(bad) >= 1)
+
+
+# ---- ensemble pictures ---------------------------------------------------------------------------
+def ensemble_plot_check(tools, f, outdir):
+    """The outcome the picture draws (ensemble_outcome) against the archive's counts, and the PNG."""
+    mod = load_plot_module(tools)
+    with h5py.File(f, "r") as h:
+        model = "rotor" if "rotor/ensemble" in h else "pendulum"
+        g = h["%s/ensemble" % model]
+        code = mod.ensemble_outcome(g)
+        a = g.attrs
+        check("%s: outcome map has the shape of the archive's balanced %s" % (f, g["balanced"].shape),
+              code.shape == g["balanced"].shape)
+        check("%s: balanced cells = n_balanced = %d" % (f, int(a["n_balanced"])), int(np.sum(code == 1)) == int(a["n_balanced"]))
+        check("%s: failed cells = n_failed = %d" % (f, int(a["n_failed"])), int(np.sum(code == -1)) == int(a["n_failed"]))
+        check("%s: not-run cells = n_members - n_done = %d" % (f, int(a["n_members"]) - int(a["n_done"])),
+              int(np.sum(code == -2)) == int(a["n_members"]) - int(a["n_done"]))
+        ran = int(np.sum((code == 1) | (code == 0)))
+        if ran:
+            close("%s: P(balance) of the drawn cells = probability_balanced" % f, np.sum(code == 1) / ran,
+                  float(a["probability_balanced"]), rtol=1e-12)
+    stem = f[:-3] if f.endswith(".h5") else f
+    png(["%s/%s_ensemble.png" % (outdir, stem.split("/")[-1])])
+
+
 def main(argv):
     mode = argv[1]
     if mode == "layout":
@@ -855,6 +983,11 @@ def main(argv):
             effective_check(f)
     elif mode == "png":
         png(argv[2:])
+    elif mode == "tracking":
+        tracking_check(argv[2], argv[3], argv[4] if len(argv) > 4 else "")
+    elif mode == "ensemble_plot":
+        for f in argv[4:]:
+            ensemble_plot_check(argv[2], f, argv[3])
     else:
         raise SystemExit("unknown mode %s" % mode)
     print("%d checks, %d failed" % (NCHECKS, FAILS))
