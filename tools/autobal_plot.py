@@ -50,6 +50,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 
 try:
     import h5py
@@ -345,6 +346,21 @@ def plot_pendulum_map(h, outdir, stem, written):
     ax.set_title("Stability of the main motion (4): %s\n%s%s" % (what, damp, status_note(h)), fontsize=11)
     ax.set_xlabel("mass ratio R_m = m/(M + 2m) %s" % ubr(units(g["R_m"])))
     ax.set_ylabel("rotor speed R_w = ω/ω0 %s" % ubr(units(g["R_w"])))
+    # the design point of the configuration (archives of earlier versions do not record it)
+    if "design_R_m" in g.attrs and "design_R_w" in g.attrs:
+        dm, dw = float(g.attrs["design_R_m"]), float(g.attrs["design_R_w"])
+        if rm.min() <= dm <= rm.max() and rw.min() <= dw <= rw.max():
+            for a_ in axes[0]:
+                a_.plot([dm], [dw], marker="*", ms=16, mfc="gold", mec="k", ls="none", zorder=5)
+            handles = handles + [Line2D([], [], marker="*", ms=12, mfc="gold", mec="k", ls="none",
+                                        label="design point (R_m %s, R_w %s)" % (fmt(dm, 3), fmt(dw, 3)))]
+    # physical speed on a secondary axis when the configuration gave the physical set
+    if "omega" in g and len(rw) > 1 and rw[-1] != rw[0]:
+        w0 = float(g["omega"][-1] / rw[-1]) if rw[-1] else float(g["omega"][0] / rw[0])
+        if np.isfinite(w0) and w0 > 0:
+            sec = ax.secondary_yaxis("right", functions=(lambda r: r * w0 * RPM_PER_RAD_S,
+                                                         lambda n: n / (w0 * RPM_PER_RAD_S)))
+            sec.set_ylabel("rotor speed [rev/min] (ω0 = %s rad/s)" % fmt(w0, 4), fontsize=9)
     ax.legend(handles=handles, loc="upper right", fontsize=9, framealpha=0.9)
     if has_mr:
         ax2 = axes[0, 1]

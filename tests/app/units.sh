@@ -69,6 +69,8 @@ INI
 "$AUTOBAL" pendulum roots --set "pendulum.M=10 kg" --set "pendulum.e=1 mm" --set "pendulum.m=500 g" \
   --set "pendulum.l=50 mm" --set "pendulum.c=1 kN/mm" --set "pendulum.H1=0.01 N m s" --set "pendulum.H2=10 N s/m" \
   --set "pendulum.omega=6000 rpm" -o pend.h5 -q || bad "pendulum physical run failed"
+"$AUTOBAL" pendulum map "$DATA/pendulum_physical.ini" --set map.n_Rm=5 --set map.n_Rw=7 -o pmap.h5 -q || bad "pendulum map (physical) failed"
+"$AUTOBAL" plot pmap.h5 -o pmap_png >/dev/null || bad "plot of the physical pendulum map failed"
 "$PY" - <<'PY' || fail=1
 import h5py, numpy as np, math, sys
 bad = 0
@@ -97,6 +99,14 @@ check("omega 50 rev/s", h5py.File("rev.h5")["rotor"].attrs["omega"], 100 * math.
 q = h5py.File("pend.h5")["pendulum/physical"].attrs
 for k, want in [("M", 10), ("e", 1e-3), ("m", 0.5), ("l", 0.05), ("c", 1e6), ("H1", 0.01), ("H2", 10), ("omega", 200 * math.pi)]:
     check(f"pendulum {k}", q[k], want)
+# pendulum map with the physical set: the design point and the speed axis in rad/s (eq. (2))
+g = h5py.File("pmap.h5")["pendulum/map"]; q = h5py.File("pmap.h5")["pendulum/physical"].attrs
+w0 = math.sqrt(q["c"] / (q["M"] + 2 * q["m"]))
+check("map design_R_w = omega/omega0", g.attrs["design_R_w"], q["omega"] / w0, 1e-14)
+check("map design_R_m = m/(M + 2m)", g.attrs["design_R_m"], q["m"] / (q["M"] + 2 * q["m"]), 1e-14)
+d = np.max(np.abs(g["omega"][()] - g["R_w"][()] * w0) / (g["R_w"][()] * w0))
+print(("ok  " if d < 1e-14 else "FAIL") + f" map omega(R_w) = R_w omega0: {d:.1e}"); bad += not d < 1e-14
+check("omega0 in /pendulum/physical", q["omega0"], w0, 1e-15)
 # the same model in SI: the time series agree to rounding (the unit conversions differ from
 # the SI literals by at most an ulp or two, e.g. 3000 rpm vs 314.15926535897932)
 for name in ("x", "y", "p1_s_rel"):
