@@ -999,12 +999,12 @@ finish:
       cli_json jj;
       cli_json_summary_begin(&jj, ctx);
       cli_json_bool(&jj, "balanced", balanced);
-      cli_json_number(&jj, "time_to_balance", ttb);
-      cli_json_number(&jj, "t_reached", t_reached);
-      cli_json_number(&jj, "residual_unbalance_initial", r.s_rel_initial);
-      cli_json_number(&jj, "residual_unbalance_final", s_final);
-      cli_json_number(&jj, "amplitude_first_10pct_max", r.amp_first);
-      cli_json_number(&jj, "amplitude_last_10pct_max", r.amp_last);
+      cli_json_quantity(&jj, "time_to_balance", ttb, "s");
+      cli_json_quantity(&jj, "t_reached", t_reached, "s");
+      cli_json_quantity(&jj, "residual_unbalance_initial", r.s_rel_initial, "1");
+      cli_json_quantity(&jj, "residual_unbalance_final", s_final, "1");
+      cli_json_quantity(&jj, "amplitude_first_10pct_max", r.amp_first, "m");
+      cli_json_quantity(&jj, "amplitude_last_10pct_max", r.amp_last, "m");
       engineering_json(&jj, &eng, r.n_planes);
       /* every plane: residual unbalance, ball angles relative to the rotor at the end, the
        * balanced configuration (3.14) when it exists */
@@ -1033,16 +1033,9 @@ finish:
         cli_json_object_end(&jj);
       }
       cli_json_array_end(&jj);
-      cli_json_unit(&jj, "time_to_balance", "s");
-      cli_json_unit(&jj, "t_reached", "s");
-      cli_json_unit(&jj, "residual_unbalance_initial", "1");
-      cli_json_unit(&jj, "residual_unbalance_final", "1");
-      cli_json_unit(&jj, "amplitude_first_10pct_max", "m");
-      cli_json_unit(&jj, "amplitude_last_10pct_max", "m");
-      cli_json_unit(&jj, "wall_time", "s");
       cli_json_int(&jj, "steps", (long)stats.steps);
       cli_json_int(&jj, "rhs_evaluations", (long)stats.rhs_evals);
-      cli_json_number(&jj, "wall_time", stats.wall_seconds);
+      cli_json_quantity(&jj, "wall_time", stats.wall_seconds, "s");
       cli_json_bool(&jj, "warning", warn);
       cli_json_summary_end(&jj, ctx);
     } else if (!ctx->quiet) {
