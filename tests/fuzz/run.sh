@@ -30,7 +30,7 @@ sed -e "s/@PROJECT_VERSION_MAJOR@/$vmaj/" -e "s/@PROJECT_VERSION_MINOR@/$vmin/" 
 hdf5_inc=$(pkg-config --cflags-only-I hdf5 2>/dev/null || echo -I/usr/include/hdf5/serial)
 hdf5_libs=$(pkg-config --libs hdf5 2>/dev/null || echo "-L/usr/lib/x86_64-linux-gnu/hdf5/serial -lhdf5")
 inc="-I$src/include -I$build/include -I$src/src -I$src/apps -I$here $hdf5_inc"
-libs="$(echo "$hdf5_libs" | sed "s/-lhdf5/-lhdf5_hl -lhdf5/") -lgsl -lgslcblas -linih -lm"
+libs="$(echo "$hdf5_libs" | sed "s/-lhdf5/-lhdf5_hl -lhdf5/") -lgsl -lgslcblas -linih -ludunits2 -lm"
 defs="-DAUTOBAL_BUILDING -DH5_USE_110_API -DAUTOBAL_GIT_REVISION=\"fuzz\""
 
 # build VARIANT CFLAGS LINKFLAGS: objects of the library, the apps' config code, the readers and
@@ -43,7 +43,7 @@ build_variant() {
     $CC -std=c11 $cflags $defs $inc -c "$f" -o "$out/obj/lib_$(basename "$f" .c).o"
     objs+=("$out/obj/lib_$(basename "$f" .c).o")
   done
-  for f in cli.c cli_archive.c cmd_pendulum.c; do
+  for f in cli.c units.c cli_archive.c cmd_pendulum.c; do
     $CC -std=c11 $cflags $inc -c "$src/apps/$f" -o "$out/obj/app_${f%.c}.o"
     objs+=("$out/obj/app_${f%.c}.o")
   done
