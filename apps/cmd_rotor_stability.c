@@ -70,6 +70,7 @@ static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
   c->opt = autobal_rotor_stab_options_default();
   if ((rc = cli_rotor_config_read(ctx, &c->p, &c->storage))) return rc;
   cli_declare_section(ctx, "transient"); /* the same config files as `rotor transient` */
+  cli_declare_section(ctx, "balance");   /* (its [balance] grade concerns transients) */
   c->method_name = "auto";
   if ((rc = cli_get_string(ctx, "stability", "method", c->method_name, &c->method_name, NULL))) return rc;
   if ((rc = cli_get_double(ctx, "stability", "tol", c->opt.tol, &c->opt.tol, NULL))) return rc;
@@ -659,6 +660,7 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   if ((rc = cli_rotor_config_read(ctx, &p, &storage))) return rc;
   cli_declare_section(ctx, "transient");
   cli_declare_section(ctx, "stability");
+  cli_declare_section(ctx, "balance");
   {
     double l0, h0;
     default_speed_range(&p, &l0, &h0);
