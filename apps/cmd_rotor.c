@@ -417,7 +417,7 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   /* [transient] */
   c->t_end = 20.0;
   c->dt_out = 0.0; /* 0: revs_out */
-  /* rtol bounds the fixed-frame ball angles (|phi| ~ omega t: 3800 rad at 600 revolutions), atol
+  /* rtol bounds the fixed-frame ball angles (|phi| ~ omega t: 3770 rad at 600 revolutions), atol
    * the rotor coordinates, which set the step count: 1e-8/1e-10 left 9e-4 (relative) in the default
    * example's |s| at 600 revolutions, 1e-10/1e-9 leaves 2e-5 with 11% fewer steps (README) */
   c->rtol = 1e-10;
