@@ -135,7 +135,7 @@
   "eq. (3.13) in docs/rotor.md), integrated with a GSL stepper, streamed to HDF5; summary: balanced\n" \
   "or not, time to balance, residual unbalance and vibration before/after.\n\n" HELP_ROTOR_PARAMS     \
   "[transient] t_end = 20 (s)   revs_out = 0.25 (output every quarter revolution) or dt_out (s)\n"    \
-  "            stepper = rk8pd   rtol = 1e-8   atol = 1e-10   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
+  "            stepper = rk8pd   rtol = 1e-10   atol = 1e-9   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
   "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n" \
   "            stop_at_balance = false\n"                                                             \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'), /rotor/revolutions\n" \
@@ -211,7 +211,7 @@
   "conditions or parameters: per member balanced or not, time to balance, residual unbalance, amplitude,\n" \
   "final ball angles, solver status; the basin-of-attraction map and the probability of balancing.\n\n" \
   HELP_ROTOR_PARAMS \
-  "[transient] as `rotor transient` (t_end = 20, rtol = 1e-8, ...), but stop_at_balance = true by default\n" \
+  "[transient] as `rotor transient` (t_end = 20, rtol = 1e-10, atol = 1e-9, ...), but stop_at_balance = true by default\n" \
   HELP_ENSEMBLE_KEYS \
   "parameters: psi_K, rate_K (initial angle/rate of ball K relative to the rotor; K = 1..N, plane 1 first),\n" \
   "            omega, ball_damping (every ball), m0 (plane 1), x, y (initial displacement)\n" \

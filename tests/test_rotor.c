@@ -505,7 +505,8 @@ static int load_rotor_ini(const char *path, autobal_rotor_params *p, ini_plane_a
     }
     if (strcmp(section, "transient") == 0 &&
         (strcmp(key, "t_end") == 0 || strcmp(key, "dt_out") == 0 || strcmp(key, "rtol") == 0 ||
-         strcmp(key, "atol") == 0 || strcmp(key, "balance_tol") == 0 || strcmp(key, "balance_dwell") == 0)) {
+         strcmp(key, "atol") == 0 || strcmp(key, "balance_tol") == 0 || strcmp(key, "balance_dwell") == 0 ||
+         strcmp(key, "revs_out") == 0 || strcmp(key, "balance_revs") == 0)) {
       const double v = strtod(val, &e);
       if (e == val || *e || !(v > 0.0)) goto bad_value;
       continue;

@@ -52,7 +52,7 @@ chk random rnd.h5 12345
 chk series rnd.h5 4
 
 # failures are results: members above some speed exceed max_steps
-run "$AUTOBAL" rotor ensemble --set ensemble.param1=omega --set ensemble.min1=200 --set ensemble.max1=800 --set ensemble.n1=4 --set ensemble.param2=none --set transient.t_end=1 --set transient.max_steps=900 -o fail.h5
+run "$AUTOBAL" rotor ensemble --set ensemble.param1=omega --set ensemble.min1=200 --set ensemble.max1=800 --set ensemble.n1=4 --set ensemble.param2=none --set transient.t_end=1 --set transient.max_steps=1100 -o fail.h5
 chk failures fail.h5
 grep -q "2 member(s) failed" err.txt && ok "failures reported on stderr" || bad "no failure warning"
 

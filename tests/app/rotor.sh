@@ -18,6 +18,17 @@ expect() {
 
 expect 0 "BALANCED" "$AUTOBAL" rotor transient -o default.h5
 "$PY" "$here/rotor_check.py" balanced default.h5 && ok "default example archive" || bad "default example archive"
+# data/rotor_default.ini is the built-in default: the same archive, bit for bit
+expect 0 "BALANCED" "$AUTOBAL" rotor transient "$DATA/rotor_default.ini" -o default_ini.h5
+"$PY" "$here/rotor_check.py" same default.h5 default_ini.h5 && ok "data/rotor_default.ini = the built-in default" \
+  || bad "data/rotor_default.ini differs from the built-in default"
+# the default tolerances: |s| at 600 revolutions within 1e-4 (relative) of a tight run (balls in the
+# rotating frame, rtol 1e-13) and of SciPy; the former defaults (rtol 1e-8, atol 1e-10) miss it
+expect 0 "" "$AUTOBAL" rotor transient --set transient.t_end=7.6 --set transient.frame=rotating \
+  --set transient.rtol=1e-13 --set transient.atol=1e-15 -o tight.h5
+expect 0 "" "$AUTOBAL" rotor transient --set transient.t_end=7.6 --set transient.rtol=1e-8 --set transient.atol=1e-10 -o old_tol.h5
+"$PY" "$here/rotor_check.py" accuracy tight.h5 default.h5 old_tol.h5 && ok "default tolerances: |s| at 600 revolutions to 1e-4" \
+  || bad "default tolerances: |s| at 600 revolutions"
 expect 0 "BALANCED" "$AUTOBAL" rotor transient --set transient.frame=rotating -o rot.h5
 "$PY" "$here/rotor_check.py" balanced rot.h5 && ok "rotating-frame archive" || bad "rotating-frame archive"
 if [ -f "$DATA/rotor_subcritical.ini" ]; then

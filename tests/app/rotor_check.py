@@ -4,7 +4,16 @@ Expected values come from the formulas of docs/rotor.md evaluated here, not from
 the lumped coefficients (2.7)-(2.11) from the hardware attributes, the balanced angles
 (3.14) of two identical balls, the unbalance sums (3.1)/(3.10) from the stored ball angles.
 Usage: rotor_check.py balanced|heavy|partial FILE.h5
+       rotor_check.py same A.h5 B.h5            every dataset and every non-provenance attribute
+                                                equal bit for bit
+       rotor_check.py accuracy TIGHT.h5 DEFAULT.h5 OLD.h5
+                                                |s| at 600 revolutions of the default example:
+                                                DEFAULT within 1e-4 (relative) of TIGHT and of an
+                                                independent SciPy DOP853 run, OLD (the former
+                                                default tolerances) not
 """
+import math
+import os
 import sys
 
 import h5py
@@ -117,8 +126,154 @@ def do_partial(path):
         check("time strictly increasing", np.all(np.diff(t) > 0))
 
 
+# root attributes that say when, how and from which text a run was made, not what it computed
+PROVENANCE = {"created", "command_line", "input_config", "effective_config"}
+
+
+def deref(f, v):
+    """An attribute holding object references (dimension scales), with each reference replaced by
+    the name of the object it points to."""
+    if isinstance(v, h5py.Reference):
+        return f[v].name
+    if isinstance(v, (np.ndarray, list, tuple, np.void)):
+        return [deref(f, x) for x in v]
+    return v.item() if isinstance(v, np.generic) else v
+
+
+def do_same(a_path, b_path):
+    """Two archives of the same computation: same groups, datasets (dtype, shape, every bit of
+    the values) and attributes, except the provenance attributes of the root and the solver's
+    wall time."""
+    with h5py.File(a_path, "r") as a, h5py.File(b_path, "r") as b:
+        def items(f):
+            out = {}
+            f.visititems(lambda n, o: out.__setitem__(n, o))
+            return out
+        ia, ib = items(a), items(b)
+        check("same groups and datasets", sorted(ia) == sorted(ib), str(sorted(set(ia) ^ set(ib))))
+        nd = nbad = 0
+        for name in sorted(set(ia) & set(ib)):
+            oa, ob = ia[name], ib[name]
+            if isinstance(oa, h5py.Dataset):
+                nd += 1
+                va, vb = oa[()], ob[()]
+                same = (oa.dtype == ob.dtype and oa.shape == ob.shape
+                        and np.asarray(va).tobytes() == np.asarray(vb).tobytes())
+                if not same:
+                    nbad += 1
+                    check("dataset %s bit for bit" % name, False)
+        check("%d datasets equal bit for bit" % nd, nd > 0 and nbad == 0, "%d differ" % nbad)
+        na = nbad = 0
+        for name, oa, ob in [("/", a, b)] + [(n, ia[n], ib[n]) for n in sorted(set(ia) & set(ib))]:
+            skip = PROVENANCE if name == "/" else ({"wall_time"} if name.endswith("solver") else set())
+            ka, kb = set(oa.attrs) - skip, set(ob.attrs) - skip
+            if ka != kb:
+                nbad += 1
+                check("attribute names of %s" % name, False, str(sorted(ka ^ kb)))
+            for k in sorted(ka & kb):
+                na += 1
+                va, vb = oa.attrs[k], ob.attrs[k]
+                if isinstance(va, (str, bytes)) or isinstance(vb, (str, bytes)):
+                    same = va == vb
+                elif k in ("DIMENSION_LIST", "REFERENCE_LIST"):  # dimension scales: compare the targets
+                    same = deref(a, va) == deref(b, vb)
+                else:
+                    same = np.asarray(va).dtype == np.asarray(vb).dtype and np.asarray(va).tobytes() == np.asarray(vb).tobytes()
+                if not same:
+                    nbad += 1
+                    check("attribute %s:%s" % (name, k), False, "%r vs %r" % (va, vb))
+        check("%d attributes equal (provenance and wall time left out)" % na, na > 0 and nbad == 0, "%d differ" % nbad)
+
+
+def s_at_revs(path, revs):
+    """|s| (p1_s_abs, kg m) of an archive at the output sample t = revs 2 pi / omega."""
+    with h5py.File(path, "r") as f:
+        g = f["rotor/transient"]
+        t = g["time"][()]
+        t1 = revs * 2 * math.pi / float(f["rotor"].attrs["omega"])
+        i = int(np.argmin(abs(t - t1)))
+        if not abs(t[i] - t1) <= 1e-12 * t1:
+            check("%s has a sample at %g revolutions" % (path, revs), False, "nearest t = %.17g s, want %.17g s" % (t[i], t1))
+            return math.nan, dict(g.attrs)
+        return float(g["p1_s_abs"][i]), dict(g.attrs)
+
+
+def scipy_s_at(path, t1):
+    """|s| at t1 of the default example by SciPy's DOP853 on the right-hand side of
+    bench/rotor_scipy.py (written from the spec's (3.2)-(3.4), independently of the C code), with
+    the ball angles integrated relative to the rotor (psi = phi - omega t) so that the tolerance
+    bounds them rather than omega t.  The archive's parameters must be that bench's."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench"))
+    import rotor_scipy as R
+    from scipy.integrate import solve_ivp
+    n = 2
+    with h5py.File(path, "r") as f:
+        r, p, tr = f["rotor"].attrs, f["rotor/plane1"].attrs, f["rotor/transient"].attrs
+        m, rad, h, psi = R.balls(n)
+        same = (all(float(r[k]) == v for k, v in R.HW.items()) and float(r["omega"]) == R.OMEGA
+                and r["inertia"] == "paper" and int(r["axial"]) == 0 and "plane2" not in f["rotor"]
+                and all(float(p[k]) == v for k, v in R.PLANE.items())
+                and np.array_equal(p["ball_mass"], m) and np.array_equal(p["ball_radius"], rad)
+                and np.array_equal(p["ball_damping"], h) and np.array_equal(p["ball_psi_initial"], psi)
+                and not np.any(p["ball_rate_initial"]) and not np.any(tr["initial_q"])
+                and not np.any(tr["initial_q_rate"]))
+    check("the archive's rotor is bench/rotor_scipy.py's (the spec's default example)", same)
+    w = R.OMEGA
+    fixed = R.make_rhs_plain(n)
+
+    def rhs(t, z):  # z = (q, q', psi, psi'), psi = phi - omega t
+        y = z.copy()
+        y[8:8 + n] += w * t
+        y[8 + n:] += w
+        d = fixed(t, y)
+        for k in range(8, 8 + n):
+            d[k] -= w
+        return d
+
+    z0 = R.initial_state(n)
+    z0[8:8 + n] = psi
+    z0[8 + n:] = 0.0
+    sol = solve_ivp(rhs, (0.0, t1), z0, method="DOP853", rtol=1e-12, atol=1e-15)
+    check("SciPy DOP853 (rtol 1e-12, atol 1e-15) reached %.6g s" % t1, sol.success and sol.t[-1] == t1, sol.message)
+    ps = sol.y[8:8 + n, -1]
+    s = complex(R.PLANE["m0"] * R.PLANE["r0"] * math.cos(R.PLANE["psi0"]),
+                R.PLANE["m0"] * R.PLANE["r0"] * math.sin(R.PLANE["psi0"]))
+    s += complex(np.sum(m * rad * np.cos(ps)), np.sum(m * rad * np.sin(ps)))  # (3.10)
+    return abs(s), sol.nfev
+
+
+def do_accuracy(tight, default, old, revs=600, bound=1e-4):
+    """|s| at 600 revolutions sits near a zero of the slowly decaying oscillation of s (about 0.1
+    of its envelope), so its relative error is a demanding measure of the ball-angle phase."""
+    st, at = s_at_revs(tight, revs)
+    sd, ad = s_at_revs(default, revs)
+    so, ao = s_at_revs(old, revs)
+    t1 = revs * 2 * math.pi / omega_of(default)
+    sp, nfev = scipy_s_at(default, t1)
+    e_ref = abs(st - sp) / sp
+    check("the two references agree: autobal (%s frame, rtol %g, atol %g) vs SciPy: |s| = %.10e vs %.10e kg m"
+          % (at["frame"], at["rtol"], at["atol"], st, sp), e_ref < 1e-6, "%.2e relative (bound 1e-6; SciPy %d rhs)" % (e_ref, nfev))
+    for what, ref in (("the tight autobal run", st), ("SciPy", sp)):
+        e = abs(sd - ref) / ref
+        check("default (%s frame, rtol %g, atol %g) |s| at %d revs = %.10e kg m vs %s"
+              % (ad["frame"], ad["rtol"], ad["atol"], revs, sd, what), e < bound, "%.2e relative (bound %g)" % (e, bound))
+    e = abs(so - st) / st
+    check("the bound can fail: rtol %g, atol %g gives |s| = %.10e kg m" % (ao["rtol"], ao["atol"], so), e > bound,
+          "%.2e relative (bound %g)" % (e, bound))
+
+
+def omega_of(path):
+    with h5py.File(path, "r") as f:
+        return float(f["rotor"].attrs["omega"])
+
+
 def main():
-    {"balanced": do_balanced, "heavy": do_heavy, "partial": do_partial}[sys.argv[1]](sys.argv[2])
+    if sys.argv[1] == "same":
+        do_same(sys.argv[2], sys.argv[3])
+    elif sys.argv[1] == "accuracy":
+        do_accuracy(*sys.argv[2:5])
+    else:
+        {"balanced": do_balanced, "heavy": do_heavy, "partial": do_partial}[sys.argv[1]](sys.argv[2])
     print("%s: %d failed" % (sys.argv[1], failures))
     sys.exit(1 if failures else 0)
 
