@@ -127,7 +127,7 @@ def do_partial(path):
 
 
 # root attributes that say when, how and from which text a run was made, not what it computed
-PROVENANCE = {"created", "command_line", "input_config", "effective_config"}
+PROVENANCE = {"created", "command_line", "history", "input_config", "effective_config"}
 
 
 def deref(f, v):
