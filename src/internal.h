@@ -26,7 +26,7 @@ int autobal_error_set(autobal_error *err, int status, const char *fmt, ...) AUTO
 int autobal_check_param(autobal_error *err, const char *name, double value, double lo, int lo_open,
                         double hi, int hi_open, const char *unit);
 
-/* The two root finders behind autobal_poly_roots (src/poly.c), for tests:
+/* The two root finders behind autobal_poly_roots (src/numerics/poly.c), for tests:
  * c has degree(w) + 1 finite coefficients with c[degree] != 0 (not checked);
  * the roots are NOT sorted.  Both return 0, or -1 when the method did not
  * settle (re/im then unspecified).
@@ -37,7 +37,7 @@ int autobal_check_param(autobal_error *err, const char *name, double value, doub
 int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im);
 int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im);
 
-/* autobal_poly_hurwitz_err without its quick stage (src/poly.c): the full
+/* autobal_poly_hurwitz_err without its quick stage (src/numerics/poly.c): the full
  * Routh test with one running error bound per entry, same arguments, checks,
  * messages and results.  For tests (reference of the quick stage) and for
  * the fall-back of autobal_pendulum_verdict after its own quick stage. */

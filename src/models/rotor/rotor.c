@@ -11,7 +11,7 @@
 
 #include <gsl/gsl_errno.h>
 
-#include "fastmath.h"
+#include "numerics/fastmath.h"
 #include "internal.h"
 
 #ifndef M_PI
