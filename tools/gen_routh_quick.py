@@ -5,8 +5,8 @@ stage of the Routh-Hurwitz sign test (issue 7), one function per degree.
     /usr/bin/python3 tools/gen_routh_quick.py > src/numerics/routh_quick.inc
 
 The output is committed; rerun this script after editing it.  Included by
-src/numerics/poly.c (autobal_poly_hurwitz, autobal_poly_hurwitz_err) and src/models/pendulum/pendulum.c
-(autobal_pendulum_verdict).  For degree n (3..12):
+src/numerics/poly.c (autobal_poly_hurwitz, autobal_poly_hurwitz_err) and
+src/analysis/pendulum_verdict.c (autobal_pendulum_verdict).  For degree n (3..12):
 
     static AUTOBAL_RQ_INLINE int autobal_routh_quick_<n>(
         const double *c, const double *ce, const double *mu0, double rtol,
