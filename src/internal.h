@@ -1,8 +1,13 @@
-/* internal.h: helpers shared by the library's source files (not installed). */
+/* internal.h: helpers shared by the library's source files (not installed).  Layer: core
+ * (docs/architecture.md): every file of src/ may include it, and it includes nothing of a
+ * higher layer.  Besides the error helpers of src/core/status.c it declares three test hooks of
+ * src/numerics/poly.c, kept here for the tests that include them by this name. */
 #ifndef AUTOBAL_INTERNAL_H
 #define AUTOBAL_INTERNAL_H
 
 #include <math.h>
+#include <stddef.h>
+
 #include "autobal/status.h"
 
 #if defined(__GNUC__)
@@ -32,8 +37,10 @@ int autobal_check_param(autobal_error *err, const char *name, double value, doub
  * settle (re/im then unspecified).
  * _aberth: exact zero roots split off, Aberth-Ehrlich iteration, real
  *   structure restored (real roots with Im = 0, exact conjugate pairs).
- * _qr: balanced companion matrix, Francis double-shift QR (LAPACK DLAHQR). */
-#include "autobal/stability.h"
+ * _qr: balanced companion matrix, Francis double-shift QR (LAPACK DLAHQR).
+ * (The workspace type of autobal/stability.h, declared again so that this core header does
+ * not include a numerics header; C11 allows the repeated typedef.) */
+typedef struct autobal_poly_workspace autobal_poly_workspace;
 int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im);
 int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im);
 

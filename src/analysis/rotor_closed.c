@@ -7,6 +7,7 @@
  * arithmetic), GSL (LU), core (internal.h).  Used by rotor_stab_handle.c and
  * rotor_stability.c through rotor_closed.h; it uses no other file of src/analysis/. */
 #include "autobal/rotor_stability.h"
+#include "autobal/stability.h"
 
 #include <float.h>
 #include <math.h>
