@@ -95,8 +95,9 @@ static MAP_INLINE int sign_test_poly_i(const double coef[9], const double cerr[9
   return AUTOBAL_SUCCESS;
 }
 
-MAP_CLONES int autobal_pendulum_sign_test_poly_(const double coef[9], const double cerr[9], double W,
-                                     int deflate, int *verdict, int *n_rhp, autobal_error *err) {
+MAP_CLONES int autobal_pendulum_sign_test_poly_(const double coef[9], const double cerr[9],
+                                                double W, int deflate, int *verdict, int *n_rhp,
+                                                autobal_error *err) {
   return sign_test_poly_i(coef, cerr, W, deflate, verdict, n_rhp, err);
 }
 
@@ -241,8 +242,9 @@ static MAP_INLINE int damped_verdict_parts(const char_parts_s *P, double R_w, do
   return damped_full_k(R_w, R_m, H, h, k, kc, verdict, n_rhp, err);
 }
 
-MAP_CLONES int autobal_pendulum_damped_verdict_k_(double R_w, double R_m, double H, double h, double k,
-                                       double kc, int *verdict, int *n_rhp, autobal_error *err) {
+MAP_CLONES int autobal_pendulum_damped_verdict_k_(double R_w, double R_m, double H, double h,
+                                                  double k, double kc, int *verdict, int *n_rhp,
+                                                  autobal_error *err) {
   char_parts_s P;
   char_parts_scalar(R_w, R_m, H, h, &P);
   return damped_verdict_parts(&P, R_w, R_m, H, h, k, kc, verdict, n_rhp, err);
@@ -286,7 +288,8 @@ int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict, int
 /* ---- (10) in long double -------------------------------------------------- */
 
 /* Coefficients c_j(W) of P(x) of (10) at a given W, long double. */
-void autobal_pendulum_undamped_coefs_ld_(long double Rm, long double W, long double k, long double c[5]) {
+void autobal_pendulum_undamped_coefs_ld_(long double Rm, long double W, long double k,
+                                         long double c[5]) {
   long double r2 = k * Rm * Rm;
   long double a0 = 2.0L * Rm * W * W * (W - 1.0L);                    /* (10) */
   long double a2 = (W - 1.0L) * (W - 1.0L) + 2.0L * Rm * W * (W + 6.0L); /* (10) */
@@ -317,7 +320,8 @@ static long double ipow_ld(long double x, int n) {
 
 /* Discriminant of the quartic c[0] + ... + c[4] x^4 and the sum of the
  * magnitudes of its terms (for the error bound). */
-void autobal_pendulum_quartic_disc_ld_(const long double c[5], long double *disc, long double *mag) {
+void autobal_pendulum_quartic_disc_ld_(const long double c[5], long double *disc,
+                                       long double *mag) {
   long double s = 0.0L, m = 0.0L;
   long double v[5];
   int t, j;
@@ -339,7 +343,8 @@ void autobal_pendulum_quartic_disc_ld_(const long double c[5], long double *disc
 /* 8ac - 3b^2 and 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 of the quartic
  * c[0] + ... + c[4] x^4 (a = c[4], ..., e = c[0]); *sure is cleared when
  * either is within its rounding bound of 0. */
-void autobal_pendulum_quartic_aux_ld_(const long double c[5], long double *P8, long double *D4, int *sure) {
+void autobal_pendulum_quartic_aux_ld_(const long double c[5], long double *P8, long double *D4,
+                                      int *sure) {
   long double a = c[4], b = c[3], cc = c[2], d = c[1], e = c[0];
   long double t[5], m8, m4 = 0.0L, s4 = 0.0L;
   int i;
@@ -550,7 +555,7 @@ int autobal_pendulum_analyze(autobal_pendulum_workspace *ws, const autobal_pendu
   r->zero_root_deflated = (k == 0.0);
   /* sign test on the coefficients */
   st = autobal_pendulum_sign_test_poly_(r->coef, cerr, p->R_w * p->R_w, k == 0.0, &r->verdict, &r->n_rhp,
-                      &ws->err);
+                                        &ws->err);
   if (st) return st;
   /* verdict from the roots (drop the root nearest 0 when deflated) */
   {

@@ -54,8 +54,8 @@ struct autobal_pendulum_workspace {
  * j of row t+1 depends on entries j+1 of rows t and t-1): not computed.
  * The lanes give the processor independent work (the divisions are the
  * critical path of one array) and vectorize. */
-static MAP_INLINE void autobal_pendulum_routh_lanes_(size_t n, const mvec *c, const mvec *ce, const mvec *s2p,
-                               mvec *col, mvec *colU) {
+static MAP_INLINE void autobal_pendulum_routh_lanes_(size_t n, const mvec *c, const mvec *ce,
+                                                     const mvec *s2p, mvec *col, mvec *colU) {
   /* per row t: b[.][j] the entries, F the bound of entry 0, G >= the
    * weighted sum of the bounds of entries j >= 1, N = the weighted sum of
    * |entries j >= 1| (entries j >= 1 are the ones that enter the next rows
@@ -120,12 +120,12 @@ static MAP_INLINE void autobal_pendulum_routh_lanes_(size_t n, const mvec *c, co
 }
 
 /* the two degrees used, with n a compile-time constant (full unrolling) */
-static MAP_INLINE void autobal_pendulum_routh_lanes7_(const mvec *c, const mvec *ce, const mvec *s2, mvec *col,
-                                    mvec *colU) {
+static MAP_INLINE void autobal_pendulum_routh_lanes7_(const mvec *c, const mvec *ce, const mvec *s2,
+                                                      mvec *col, mvec *colU) {
   autobal_pendulum_routh_lanes_(7, c, ce, s2, col, colU);
 }
-static MAP_INLINE void autobal_pendulum_routh_lanes8_(const mvec *c, const mvec *ce, const mvec *s2, mvec *col,
-                                    mvec *colU) {
+static MAP_INLINE void autobal_pendulum_routh_lanes8_(const mvec *c, const mvec *ce, const mvec *s2,
+                                                      mvec *col, mvec *colU) {
   autobal_pendulum_routh_lanes_(8, c, ce, s2, col, colU);
 }
 
@@ -147,14 +147,12 @@ extern const autobal_pendulum_disc_term_ autobal_pendulum_quartic_disc_[16];
 void autobal_pendulum_undamped_coefs_ld_(long double Rm, long double W, long double k,
                                          long double c[5]);
 /* Discriminant of the quartic c (and the magnitude of its terms). */
-void autobal_pendulum_quartic_disc_ld_(const long double c[5], long double *disc,
-                                       long double *mag);
+void autobal_pendulum_quartic_disc_ld_(const long double c[5], long double *disc, long double *mag);
 /* The auxiliary quantities P8, D4 of the quartic c (sure: their signs are certain). */
 void autobal_pendulum_quartic_aux_ld_(const long double c[5], long double *P8, long double *D4,
                                       int *sure);
 /* Verdict of the undamped system (10) at (Rm, W = R_w^2, k) in long double (sure may be NULL). */
-int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long double k,
-                                          int *sure);
+int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long double k, int *sure);
 /* Range checks of R_m in (0, 0.5) and k in [0, 1]. */
 int autobal_pendulum_check_rm_k_(double R_m, double k, autobal_error *err);
 

@@ -106,7 +106,7 @@ int autobal_rotor_member_angles(const autobal_rotor_plane *pl, const autobal_rot
   if (n == 0) return AUTOBAL_SUCCESS;
   for (i = 1; i < n; i++)
     if (!autobal_rotor_close_rel_(pl->ball_mass[i] * pl->ball_radius[i], pl->ball_mass[0] * pl->ball_radius[0],
-                   1e-12))
+                                  1e-12))
       identical = 0;
   if (kind == AUTOBAL_ROTOR_MEMBER_GIVEN) {
     double sx = s0 * cos(pl->psi0), sy = s0 * sin(pl->psi0), asum = s0;
@@ -423,8 +423,8 @@ static void cm_pc(cmat *m, double w, int r, int k, double re, double im) {
 }
 
 /* Closed matrix into a (dim x dim), using the LU workspace lu/perm (nr x nr, nr = dim/2). */
-int autobal_rotor_closed_matrix_ws_(const autobal_rotor_closed *c, double *a, size_t dim, gsl_matrix *lu,
-                                    gsl_permutation *perm, autobal_error *err) {
+int autobal_rotor_closed_matrix_ws_(const autobal_rotor_closed *c, double *a, size_t dim,
+                                    gsl_matrix *lu, gsl_permutation *perm, autobal_error *err) {
   cmat m;
   const autobal_rotor_lumped *L;
   const double w = c->omega;

@@ -231,7 +231,7 @@ autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
           int identical = 1;
           for (i = 1; i < pl->n_balls; i++)
             if (!autobal_rotor_close_rel_(pl->ball_mass[i] * pl->ball_radius[i],
-                           pl->ball_mass[0] * pl->ball_radius[0], 1e-12))
+                                          pl->ball_mass[0] * pl->ball_radius[0], 1e-12))
               identical = 0;
           if (!identical &&
               autobal_rotor_member_angles(&s->cur.plane[j], NULL, dst, pl->n_balls, NULL) ==

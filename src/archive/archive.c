@@ -245,7 +245,8 @@ static int check_text(autobal_error *err, const char *what, const char *s) {
 }
 
 /* Normalise a slash-separated path: "a//b/" -> "/a/b", "" or "/" -> "/". */
-int autobal_archive_norm_path_(autobal_error *err, const char *what, const char *in, char *out, size_t size) {
+int autobal_archive_norm_path_(autobal_error *err, const char *what, const char *in, char *out,
+                               size_t size) {
   size_t o = 0;
   const char *p = in;
   if (in == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "%s is NULL", what);
@@ -1175,7 +1176,7 @@ static int series_write_rows(autobal_archive_series *s, const double *buf, size_
     for (r = 0; r < nrows; r++) s->col[r] = buf[r * stride + k];
     if (H5Dset_extent(s->dsets[k], &newsize) < 0) {
       rc = autobal_archive_h5fail_(err, "series '%s': cannot extend column %zu to %llu rows", s->where, k,
-                  (unsigned long long)newsize);
+                                   (unsigned long long)newsize);
       break;
     }
     fs = H5Dget_space(s->dsets[k]);

@@ -86,8 +86,9 @@ typedef long long mmask;
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-static MAP_INLINE void autobal_pendulum_char_parts_v_(const mvec *Rw, double R_m, double H, double h, mvec A[9], mvec Aabs[9],
-                         mvec B[9], mvec p1_out[10]) {
+static MAP_INLINE void autobal_pendulum_char_parts_v_(const mvec *Rw, double R_m, double H,
+                                                      double h, mvec A[9], mvec Aabs[9], mvec B[9],
+                                                      mvec p1_out[10]) {
   mvec R_w = *Rw, W = R_w * R_w;
   mvec y3 = 2.0 * R_w * (1.0 - 2.0 * R_m);
   mvec x2 = 1.0 - W + h * H + 6.0 * R_m * W, y2 = R_w * (H + 2.0 * h);
@@ -136,9 +137,11 @@ static MAP_INLINE void autobal_pendulum_char_parts_v_(const mvec *Rw, double R_m
 /* (6) from its parts (autobal_pendulum_char_parts_v_) for given k (kc = cos^2(2 psi0) = 1 - k),
  * with absolute error bounds cerr (may be NULL):
  * AUTOBAL_PENDULUM_HURWITZ_RTOL relative plus rounding.  Lane-wise. */
-static MAP_INLINE void autobal_pendulum_char_poly_from_parts_v_(const mvec *Rw, double R_m, const mvec A[9], const mvec Aa[9],
-                                   const mvec B[9], const mvec *kp, const mvec *kcp,
-                                   mvec coef[9], mvec cerr[9]) {
+static MAP_INLINE void autobal_pendulum_char_poly_from_parts_v_(const mvec *Rw, double R_m,
+                                                                const mvec A[9], const mvec Aa[9],
+                                                                const mvec B[9], const mvec *kp,
+                                                                const mvec *kcp, mvec coef[9],
+                                                                mvec cerr[9]) {
   size_t j;
   mvec W = *Rw * *Rw, k = *kp, kc = *kcp;
   for (j = 0; j < 9; j++) {
@@ -161,8 +164,9 @@ typedef struct {
   mvec A[9], Aa[9], B[9];
 } autobal_pendulum_char_parts_t_;
 
-static MAP_INLINE void autobal_pendulum_char_parts_(double R_w, double R_m, double H, double h, autobal_pendulum_char_parts_t_ *P,
-                                  double p1_out[10]) {
+static MAP_INLINE void autobal_pendulum_char_parts_(double R_w, double R_m, double H, double h,
+                                                    autobal_pendulum_char_parts_t_ *P,
+                                                    double p1_out[10]) {
   mvec Rw = MV_BCAST(R_w), p1[10];
   size_t j;
   autobal_pendulum_char_parts_v_(&Rw, R_m, H, h, P->A, P->Aa, P->B, p1_out ? p1 : NULL);
@@ -170,9 +174,10 @@ static MAP_INLINE void autobal_pendulum_char_parts_(double R_w, double R_m, doub
     for (j = 0; j < 10; j++) p1_out[j] = MV_L(p1[j], 0);
 }
 
-static MAP_INLINE void autobal_pendulum_char_poly_from_parts_(double R_w, double R_m, const autobal_pendulum_char_parts_t_ *P,
-                                            double k, double kc, double coef[9],
-                                            double cerr[9]) {
+static MAP_INLINE void autobal_pendulum_char_poly_from_parts_(double R_w, double R_m,
+                                                              const autobal_pendulum_char_parts_t_ *P,
+                                                              double k, double kc, double coef[9],
+                                                              double cerr[9]) {
   mvec Rw = MV_BCAST(R_w), kv = MV_BCAST(k), kcv = MV_BCAST(kc), c[9], ce[9];
   size_t j;
   autobal_pendulum_char_poly_from_parts_v_(&Rw, R_m, P->A, P->Aa, P->B, &kv, &kcv, c, cerr ? ce : NULL);
@@ -183,8 +188,9 @@ static MAP_INLINE void autobal_pendulum_char_poly_from_parts_(double R_w, double
 }
 
 /* (6) for given k, see autobal_pendulum_char_poly_from_parts_ */
-static MAP_INLINE void autobal_pendulum_char_poly_k_(double R_w, double R_m, double H, double h, double k,
-                                   double kc, double coef[9], double cerr[9]) {
+static MAP_INLINE void autobal_pendulum_char_poly_k_(double R_w, double R_m, double H, double h,
+                                                     double k, double kc, double coef[9],
+                                                     double cerr[9]) {
   autobal_pendulum_char_parts_t_ P;
   autobal_pendulum_char_parts_(R_w, R_m, H, h, &P, NULL);
   autobal_pendulum_char_poly_from_parts_(R_w, R_m, &P, k, kc, coef, cerr);
