@@ -1,7 +1,8 @@
 /* internal.h: helpers shared by the library's source files (not installed).  Layer: core
  * (docs/architecture.md): every file of src/ may include it, and it includes nothing of a
  * higher layer.  Besides the error helpers of src/core/status.c it declares three test hooks of
- * src/numerics/poly.c, kept here for the tests that include them by this name. */
+ * the numerics (src/numerics/poly.c, sign_tests.c), kept here for the tests that include them
+ * by this name. */
 #ifndef AUTOBAL_INTERNAL_H
 #define AUTOBAL_INTERNAL_H
 
@@ -44,7 +45,7 @@ typedef struct autobal_poly_workspace autobal_poly_workspace;
 int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im);
 int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im);
 
-/* autobal_poly_hurwitz_err without its quick stage (src/numerics/poly.c): the full
+/* autobal_poly_hurwitz_err without its quick stage (src/numerics/sign_tests.c): the full
  * Routh test with one running error bound per entry, same arguments, checks,
  * messages and results.  For tests (reference of the quick stage) and for
  * the fall-back of autobal_pendulum_verdict after its own quick stage. */
