@@ -42,7 +42,7 @@ P = dict(Rw=3.0, Rm=0.1, H=0.05, h=0.1, psi0=0.5)
 def make_rhs(Rw, Rm, H, h, psi0):
     """Right-hand side of (1), explicit form, as a skilled SciPy user writes
     it: plain Python floats, closed-form 2x2 solve for the absolute
-    acceleration (A, B) of the shaft centre (see src/pendulum_motion.c)."""
+    acceleration (A, B) of the shaft centre (see src/models/pendulum/pendulum_motion.c)."""
     sin, cos = math.sin, math.cos
     s0 = sin(psi0)
     Rw2 = Rw * Rw

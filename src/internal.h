@@ -1,8 +1,14 @@
-/* internal.h: helpers shared by the library's source files (not installed). */
+/* internal.h: helpers shared by the library's source files (not installed).  Layer: core
+ * (docs/architecture.md): every file of src/ may include it, and it includes nothing of a
+ * higher layer.  Besides the error helpers of src/core/status.c it declares three test hooks of
+ * the numerics (src/numerics/poly.c, sign_tests.c), kept here for the tests that include them
+ * by this name. */
 #ifndef AUTOBAL_INTERNAL_H
 #define AUTOBAL_INTERNAL_H
 
 #include <math.h>
+#include <stddef.h>
+
 #include "autobal/status.h"
 
 #if defined(__GNUC__)
@@ -26,18 +32,20 @@ int autobal_error_set(autobal_error *err, int status, const char *fmt, ...) AUTO
 int autobal_check_param(autobal_error *err, const char *name, double value, double lo, int lo_open,
                         double hi, int hi_open, const char *unit);
 
-/* The two root finders behind autobal_poly_roots (src/poly.c), for tests:
+/* The two root finders behind autobal_poly_roots (src/numerics/poly.c), for tests:
  * c has degree(w) + 1 finite coefficients with c[degree] != 0 (not checked);
  * the roots are NOT sorted.  Both return 0, or -1 when the method did not
  * settle (re/im then unspecified).
  * _aberth: exact zero roots split off, Aberth-Ehrlich iteration, real
  *   structure restored (real roots with Im = 0, exact conjugate pairs).
- * _qr: balanced companion matrix, Francis double-shift QR (LAPACK DLAHQR). */
-#include "autobal/stability.h"
+ * _qr: balanced companion matrix, Francis double-shift QR (LAPACK DLAHQR).
+ * (The workspace type of autobal/stability.h, declared again so that this core header does
+ * not include a numerics header; C11 allows the repeated typedef.) */
+typedef struct autobal_poly_workspace autobal_poly_workspace;
 int autobal_poly_roots_aberth(autobal_poly_workspace *w, const double *c, double *re, double *im);
 int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re, double *im);
 
-/* autobal_poly_hurwitz_err without its quick stage (src/poly.c): the full
+/* autobal_poly_hurwitz_err without its quick stage (src/numerics/sign_tests.c): the full
  * Routh test with one running error bound per entry, same arguments, checks,
  * messages and results.  For tests (reference of the quick stage) and for
  * the fall-back of autobal_pendulum_verdict after its own quick stage. */

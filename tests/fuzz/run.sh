@@ -39,10 +39,15 @@ build_variant() {
   local variant=$1 cflags=$2 lflags=$3 out="$build/$1" f
   mkdir -p "$out/obj"
   local objs=()
-  for f in "$src"/src/*.c; do
-    $CC -std=c11 $cflags $defs $inc -c "$f" -o "$out/obj/lib_$(basename "$f" .c).o"
-    objs+=("$out/obj/lib_$(basename "$f" .c).o")
-  done
+  # every .c under src/ (the layer folders, docs/architecture.md); the object is named after the
+  # path below src/ (models/rotor/rotor.c -> lib_models_rotor_rotor.o)
+  local rel obj
+  while IFS= read -r f; do
+    rel=${f#"$src"/src/}
+    obj="$out/obj/lib_$(echo "${rel%.c}" | tr / _).o"
+    $CC -std=c11 $cflags $defs $inc -c "$f" -o "$obj"
+    objs+=("$obj")
+  done < <(find "$src/src" -name '*.c' | LC_ALL=C sort)
   for f in cli.c units.c cli_archive.c cmd_pendulum.c; do
     $CC -std=c11 $cflags $inc -c "$src/apps/$f" -o "$out/obj/app_${f%.c}.o"
     objs+=("$out/obj/app_${f%.c}.o")

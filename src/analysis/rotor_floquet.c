@@ -2,7 +2,12 @@
  * balanced motion (mixed frame: rotor coordinates fixed, ball angles relative), its
  * rotating-coordinate form, the Floquet monodromy matrix over one revolution, and a
  * central-difference Jacobian of the model's own right-hand side (docs/rotor.md,
- * "Stability of a balanced motion" and "Anisotropic supports: Floquet multipliers"). */
+ * "Stability of a balanced motion" and "Anisotropic supports: Floquet multipliers").
+ *
+ * May use: rotor_stab_handle.h (the handle's layout and its member of the family), the
+ * transient driver (the monodromy integration), the numerics (eigenvalues), the rotor model
+ * (its right-hand side for the model's own Jacobian), core (internal.h).  Used by
+ * rotor_stability.c through rotor_floquet.h; it never calls rotor_stability.c. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,8 +16,9 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "analysis/rotor_floquet.h"
+#include "analysis/rotor_stab_handle.h"
 #include "internal.h"
-#include "rotor_stab_internal.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

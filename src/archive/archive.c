@@ -3,12 +3,17 @@
  * Knows no physics: groups, datasets, dimension scales (netCDF-4 / h5netcdf
  * conventions: a coordinate is a dataset made a dimension scale whose NAME is the
  * dimension name, variables have the scales attached), units/long_name attributes,
- * provenance, atomic creation through a temporary file, and a small reading side.
+ * provenance, atomic creation through a temporary file.  This file is the writing side
+ * and what both sides share (declared in archive_internal.h); the reading side is
+ * archive_read.c.
+ *
+ * May use: HDF5, POSIX threads and files, core (internal.h, autobal/version.h).  No model, no
+ * analysis, no study: nothing of src/ but core.
  *
  * HDF5 error handling: every public entry point takes the process-wide HDF5 lock and
- * switches HDF5's automatic error printing off (h5_enter), and restores the caller's
- * handler and releases the lock on return (h5_leave).  A failing HDF5 call is
- * translated into AUTOBAL_EIO by h5fail(), which walks the HDF5 error stack
+ * switches HDF5's automatic error printing off (autobal_archive_h5_enter_), and restores the caller's
+ * handler and releases the lock on return (autobal_archive_h5_leave_).  A failing HDF5 call is
+ * translated into AUTOBAL_EIO by autobal_archive_h5fail_(), which walks the HDF5 error stack
  * immediately (before any other HDF5 API call clears it) and appends its text to the
  * message.  Every hid_t is closed on every path.
  *
@@ -21,10 +26,10 @@
  * the same series.  HDF5 is not thread-safe in every build (Debian 12's 1.10.8 is built
  * with --enable-threadsafe and has one error stack and automatic error handler per
  * thread; many builds have no locking at all), so every HDF5 call of this module, in
- * any thread and for any archive, is made holding h5_lock (below), and the writer
- * silences HDF5's error printing in its own thread too (h5_enter).  Lock
- * order: h5_lock may be held while taking an archive's mutex `m`, never the reverse,
- * and nobody waits for the writer while holding h5_lock.  Writer failures are kept in
+ * any thread and for any archive, is made holding autobal_archive_h5_lock_ (below), and the writer
+ * silences HDF5's error printing in its own thread too (autobal_archive_h5_enter_).  Lock
+ * order: autobal_archive_h5_lock_ may be held while taking an archive's mutex `m`, never the reverse,
+ * and nobody waits for the writer while holding autobal_archive_h5_lock_.  Writer failures are kept in
  * the series (werr, wfailed) and reported by the caller's next call on it. */
 #define _POSIX_C_SOURCE 200809L
 
@@ -47,9 +52,9 @@
 
 #include "autobal/archive.h"
 #include "autobal/version.h"
+#include "archive/archive_internal.h"
 #include "internal.h"
 
-#define PATH_MAX_ 2048          /* longest object path inside the file */
 #define CHUNK_TARGET (256u * 1024u) /* bytes per chunk of a compressed fixed-size dataset */
 #define DEFLATE_LEVEL 4u        /* fixed-size datasets (_var, _coord, _dim) */
 #define SERIES_DEFLATE_LEVEL 1u /* series: 1/3 less CPU than level 4, files ~5% larger */
@@ -61,107 +66,50 @@
  * Statically initialised; it holds no data, so it is not mutable global state in the
  * sense of the conventions.  Held only for the duration of HDF5 calls (never while
  * waiting for a writer). */
-static pthread_mutex_t h5_lock = PTHREAD_MUTEX_INITIALIZER;
+pthread_mutex_t autobal_archive_h5_lock_ = PTHREAD_MUTEX_INITIALIZER;
 
-struct autobal_archive_series {
-  autobal_archive *a;
-  autobal_archive_series *next; /* list of open series of the archive (caller's thread) */
-  size_t nvars;
-  size_t cap; /* rows each of the two buffers holds (= the chunk length) */
-  /* Caller's side. */
-  double *fill;     /* buffer being filled: cap rows of (t, v_0 .. v_nvars-1), row-major
-                     * (one contiguous store stream for the caller; the writer gathers
-                     * the columns) */
-  size_t nbuf;      /* rows in fill */
-  size_t limit;     /* fill is handed to the writer at this many rows (<= cap), so that
-                     * every write after a partial flush ends on a chunk boundary */
-  size_t nappended; /* rows appended: in the file + in flight + in fill */
-  int broken;       /* a write failed: refuse further appends */
-  /* The buffer handed to the writer and what it updates; owned by the writer while
-   * `pending`, by the caller otherwise. */
-  double *wbuf;          /* buffer in flight (when not pending: the free one) */
-  size_t wrows;          /* rows in wbuf */
-  size_t nwritten;       /* rows in the file */
-  autobal_error werr;    /* the writer's failure */
-  atomic_int wfailed;    /* set (release) by the writer after filling werr */
-  /* Guarded by a->m. */
-  int pending;                   /* wbuf is queued or being written */
-  autobal_archive_series *qnext; /* writer queue link */
-  hid_t *dsets;    /* nvars + 1: [0] the dimension coordinate, [1+j] variable j */
-  double *mem;     /* the two buffers */
-  double *col;     /* one column (cap doubles), gathered by whoever writes */
-  char where[PATH_MAX_ + 64]; /* "group/dim" for messages */
-};
-
-struct autobal_archive {
-  hid_t file;
-  int writable;
-  int overwrite;
-  char *path;     /* final name */
-  char *tmp_path; /* temporary name (write mode) */
-  char final_status[64];
-  char reason[256];
-  int has_reason;
-  autobal_archive_series *series;
-  autobal_error err;
-  /* Series writer (write handles). */
-  int sync_ok;          /* m, work, done initialised */
-  int writer;           /* 0 not started, 1 running, -1 could not start (writes in the caller) */
-  pthread_t thread;
-  pthread_mutex_t m;    /* guards stop, the queue and each series' pending/qnext */
-  pthread_cond_t work;  /* to the writer: a buffer was queued, or stop */
-  pthread_cond_t done;  /* to callers: a buffer was written */
-  int stop;
-  autobal_archive_series *qhead, *qtail;
-};
 
 /* ------------------------------------------------------------------------ */
 /* HDF5 error handling                                                        */
 /* ------------------------------------------------------------------------ */
 
-typedef struct {
-  H5E_auto2_t func;
-  void *data;
-  int saved;
-} quiet_state;
-
-static void quiet_begin(quiet_state *q) {
+static void quiet_begin(autobal_archive_quiet_ *q) {
   q->func = NULL;
   q->data = NULL;
   q->saved = H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data) >= 0;
   (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 }
 
-static void quiet_end(const quiet_state *q) {
+static void quiet_end(const autobal_archive_quiet_ *q) {
   if (q->saved) (void)H5Eset_auto2(H5E_DEFAULT, q->func, q->data);
 }
 
-/* Take the HDF5 lock and silence HDF5's error printing; h5_leave undoes both. */
-static void h5_enter(quiet_state *q) {
-  (void)pthread_mutex_lock(&h5_lock);
+/* Take the HDF5 lock and silence HDF5's error printing; autobal_archive_h5_leave_ undoes both. */
+void autobal_archive_h5_enter_(autobal_archive_quiet_ *q) {
+  (void)pthread_mutex_lock(&autobal_archive_h5_lock_);
   quiet_begin(q);
 }
 
-static void h5_leave(const quiet_state *q) {
+void autobal_archive_h5_leave_(const autobal_archive_quiet_ *q) {
   quiet_end(q);
-  (void)pthread_mutex_unlock(&h5_lock);
+  (void)pthread_mutex_unlock(&autobal_archive_h5_lock_);
 }
 
-/* "MAJOR.MINOR.RELEASE" of the HDF5 library in use; caller holds h5_lock. */
+/* "MAJOR.MINOR.RELEASE" of the HDF5 library in use; caller holds autobal_archive_h5_lock_. */
 static void hdf5_version_locked(char *buf, size_t size) {
   unsigned maj = 0, min = 0, rel = 0;
   if (H5get_libversion(&maj, &min, &rel) < 0) snprintf(buf, size, "unknown");
   else snprintf(buf, size, "%u.%u.%u", maj, min, rel);
 }
 
-/* Declared in autobal/version.h; here because it calls HDF5 (under h5_lock, like every
+/* Declared in autobal/version.h; here because it calls HDF5 (under autobal_archive_h5_lock_, like every
  * HDF5 call of the library: a series writer may be running in another thread). */
 void autobal_hdf5_version(char *buf, unsigned long size) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   if (buf == NULL || size == 0) return;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   hdf5_version_locked(buf, (size_t)size);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
 }
 
 typedef struct {
@@ -208,8 +156,7 @@ static void h5stack(char *buf, size_t size) {
 
 /* Record an HDF5 failure: "<context>: HDF5: ...".  Must be called right after the
  * failing HDF5 call.  Returns AUTOBAL_EIO. */
-static int h5fail(autobal_error *err, const char *fmt, ...) AUTOBAL_PRINTF(2, 3);
-static int h5fail(autobal_error *err, const char *fmt, ...) {
+int autobal_archive_h5fail_(autobal_error *err, const char *fmt, ...) {
   char ctx[AUTOBAL_ERRMSG_SIZE], stack[AUTOBAL_ERRMSG_SIZE];
   va_list ap;
   h5stack(stack, sizeof stack);
@@ -276,7 +223,7 @@ static int check_name(autobal_error *err, const char *what, const char *name) {
 
 /* Attribute names that belong to HDF5 dimension scales and netCDF: never written,
  * not listed by autobal_archive_list_attrs. */
-static int reserved_attr_name(const char *name) {
+int autobal_archive_reserved_attr_name_(const char *name) {
   return strcmp(name, "CLASS") == 0 || strcmp(name, "NAME") == 0 || strcmp(name, "DIMENSION_LIST") == 0 ||
          strcmp(name, "REFERENCE_LIST") == 0 || strncmp(name, "_Netcdf", 7) == 0 || strncmp(name, "_nc", 3) == 0 ||
          strcmp(name, "_NCProperties") == 0;
@@ -285,7 +232,7 @@ static int reserved_attr_name(const char *name) {
 static int check_attr_name(autobal_error *err, const char *name) {
   int rc = check_name(err, "attribute name", name);
   if (rc != AUTOBAL_SUCCESS) return rc;
-  if (reserved_attr_name(name))
+  if (autobal_archive_reserved_attr_name_(name))
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "attribute name '%s' is reserved (HDF5 dimension scales / netCDF)", name);
   return AUTOBAL_SUCCESS;
@@ -298,7 +245,8 @@ static int check_text(autobal_error *err, const char *what, const char *s) {
 }
 
 /* Normalise a slash-separated path: "a//b/" -> "/a/b", "" or "/" -> "/". */
-static int norm_path(autobal_error *err, const char *what, const char *in, char *out, size_t size) {
+int autobal_archive_norm_path_(autobal_error *err, const char *what, const char *in, char *out,
+                               size_t size) {
   size_t o = 0;
   const char *p = in;
   if (in == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "%s is NULL", what);
@@ -345,8 +293,8 @@ static int join_path(autobal_error *err, const char *group, const char *name, ch
 }
 
 /* 1 if every component of the normalised path exists (links), 0 otherwise. */
-static int path_exists(hid_t file, const char *path) {
-  char buf[PATH_MAX_];
+int autobal_archive_path_exists_(hid_t file, const char *path) {
+  char buf[AUTOBAL_ARCHIVE_PATH_MAX];
   size_t i, len = strlen(path);
   if (strcmp(path, "/") == 0) return 1;
   if (len >= sizeof buf) return 0;
@@ -366,10 +314,10 @@ static int path_exists(hid_t file, const char *path) {
 
 /* Type of the object at a normalised path: H5I_GROUP, H5I_DATASET, other, or
  * H5I_BADID if it does not exist. */
-static H5I_type_t path_type(hid_t file, const char *path) {
+H5I_type_t autobal_archive_path_type_(hid_t file, const char *path) {
   hid_t o;
   H5I_type_t t;
-  if (!path_exists(file, path)) return H5I_BADID;
+  if (!autobal_archive_path_exists_(file, path)) return H5I_BADID;
   o = H5Oopen(file, path, H5P_DEFAULT);
   if (o < 0) return H5I_BADID;
   t = H5Iget_type(o);
@@ -398,14 +346,14 @@ static int put_attr(autobal_error *err, hid_t o, const char *where, const char *
   htri_t ex;
   int rc = AUTOBAL_SUCCESS;
   ex = H5Aexists(o, name);
-  if (ex < 0) return h5fail(err, "cannot query attribute '%s' of '%s'", name, where);
+  if (ex < 0) return autobal_archive_h5fail_(err, "cannot query attribute '%s' of '%s'", name, where);
   if (ex > 0 && H5Adelete(o, name) < 0)
-    return h5fail(err, "cannot replace attribute '%s' of '%s'", name, where);
+    return autobal_archive_h5fail_(err, "cannot replace attribute '%s' of '%s'", name, where);
   attr = H5Acreate2(o, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT);
-  if (attr < 0) return h5fail(err, "cannot create attribute '%s' of '%s'", name, where);
-  if (H5Awrite(attr, mtype, buf) < 0) rc = h5fail(err, "cannot write attribute '%s' of '%s'", name, where);
+  if (attr < 0) return autobal_archive_h5fail_(err, "cannot create attribute '%s' of '%s'", name, where);
+  if (H5Awrite(attr, mtype, buf) < 0) rc = autobal_archive_h5fail_(err, "cannot write attribute '%s' of '%s'", name, where);
   if (H5Aclose(attr) < 0 && rc == AUTOBAL_SUCCESS)
-    rc = h5fail(err, "cannot close attribute '%s' of '%s'", name, where);
+    rc = autobal_archive_h5fail_(err, "cannot close attribute '%s' of '%s'", name, where);
   return rc;
 }
 
@@ -414,10 +362,10 @@ static int put_attr_string(autobal_error *err, hid_t o, const char *where, const
   hid_t t = -1, s = -1;
   int rc;
   t = utf8_vlen_type();
-  if (t < 0) return h5fail(err, "cannot make a string type for attribute '%s' of '%s'", name, where);
+  if (t < 0) return autobal_archive_h5fail_(err, "cannot make a string type for attribute '%s' of '%s'", name, where);
   s = H5Screate(H5S_SCALAR);
   if (s < 0) {
-    rc = h5fail(err, "cannot make a dataspace for attribute '%s' of '%s'", name, where);
+    rc = autobal_archive_h5fail_(err, "cannot make a dataspace for attribute '%s' of '%s'", name, where);
     (void)H5Tclose(t);
     return rc;
   }
@@ -431,7 +379,7 @@ static int put_attr_scalar(autobal_error *err, hid_t o, const char *where, const
                            hid_t ftype, hid_t mtype, const void *buf) {
   hid_t s = H5Screate(H5S_SCALAR);
   int rc;
-  if (s < 0) return h5fail(err, "cannot make a dataspace for attribute '%s' of '%s'", name, where);
+  if (s < 0) return autobal_archive_h5fail_(err, "cannot make a dataspace for attribute '%s' of '%s'", name, where);
   rc = put_attr(err, o, where, name, ftype, mtype, s, buf);
   (void)H5Sclose(s);
   return rc;
@@ -450,7 +398,7 @@ static herr_t set_attr_order(hid_t ocpl) {
 
 /* Create all missing groups of a normalised path (link creation order tracked). */
 static int make_group(autobal_error *err, hid_t file, const char *path) {
-  char buf[PATH_MAX_];
+  char buf[AUTOBAL_ARCHIVE_PATH_MAX];
   size_t i, len = strlen(path);
   hid_t gcpl;
   int rc = AUTOBAL_SUCCESS;
@@ -458,10 +406,10 @@ static int make_group(autobal_error *err, hid_t file, const char *path) {
   if (len >= sizeof buf) return autobal_error_set(err, AUTOBAL_EINVAL, "group path too long");
   memcpy(buf, path, len + 1);
   gcpl = H5Pcreate(H5P_GROUP_CREATE);
-  if (gcpl < 0) return h5fail(err, "cannot create group '%s'", path);
+  if (gcpl < 0) return autobal_archive_h5fail_(err, "cannot create group '%s'", path);
   if (H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0 ||
       set_attr_order(gcpl) < 0) {
-    rc = h5fail(err, "cannot create group '%s'", path);
+    rc = autobal_archive_h5fail_(err, "cannot create group '%s'", path);
     (void)H5Pclose(gcpl);
     return rc;
   }
@@ -472,11 +420,11 @@ static int make_group(autobal_error *err, hid_t file, const char *path) {
       buf[i] = '\0';
       ex = H5Lexists(file, buf, H5P_DEFAULT);
       if (ex < 0) {
-        rc = h5fail(err, "cannot look up group '%s'", buf);
+        rc = autobal_archive_h5fail_(err, "cannot look up group '%s'", buf);
       } else if (ex > 0) {
         hid_t o = H5Oopen(file, buf, H5P_DEFAULT);
         if (o < 0) {
-          rc = h5fail(err, "cannot open '%s'", buf);
+          rc = autobal_archive_h5fail_(err, "cannot open '%s'", buf);
         } else {
           if (H5Iget_type(o) != H5I_GROUP)
             rc = autobal_error_set(err, AUTOBAL_EINVAL, "'%s' exists and is not a group", buf);
@@ -484,8 +432,8 @@ static int make_group(autobal_error *err, hid_t file, const char *path) {
         }
       } else {
         hid_t g = H5Gcreate2(file, buf, H5P_DEFAULT, gcpl, H5P_DEFAULT);
-        if (g < 0) rc = h5fail(err, "cannot create group '%s'", buf);
-        else if (H5Gclose(g) < 0) rc = h5fail(err, "cannot close group '%s'", buf);
+        if (g < 0) rc = autobal_archive_h5fail_(err, "cannot create group '%s'", buf);
+        else if (H5Gclose(g) < 0) rc = autobal_archive_h5fail_(err, "cannot close group '%s'", buf);
       }
       buf[i] = save;
     }
@@ -545,7 +493,7 @@ static hid_t create_dataset(autobal_error *err, hid_t file, const char *path, hi
   for (i = 0; i < rank; i++) bytes *= dims[i];
   space = rank == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(rank, dims, maxdims);
   if (space < 0) {
-    (void)h5fail(err, "cannot make the dataspace of '%s'", path);
+    (void)autobal_archive_h5fail_(err, "cannot make the dataspace of '%s'", path);
     return -1;
   }
   if (chunk_req != NULL) {
@@ -557,12 +505,12 @@ static hid_t create_dataset(autobal_error *err, hid_t file, const char *path, hi
   }
   dcpl = make_dcpl(rank, chunk, chunked, level);
   if (dcpl < 0) {
-    (void)h5fail(err, "cannot set up the storage of '%s'", path);
+    (void)autobal_archive_h5fail_(err, "cannot set up the storage of '%s'", path);
     (void)H5Sclose(space);
     return -1;
   }
   ds = H5Dcreate2(file, path, ftype, space, H5P_DEFAULT, dcpl, dapl);
-  if (ds < 0) (void)h5fail(err, "cannot create dataset '%s'", path);
+  if (ds < 0) (void)autobal_archive_h5fail_(err, "cannot create dataset '%s'", path);
   (void)H5Pclose(dcpl);
   (void)H5Sclose(space);
   return ds;
@@ -591,14 +539,14 @@ static int writable(autobal_archive *a) {
   return AUTOBAL_SUCCESS;
 }
 
-static char *dup_str(const char *s) {
+char *autobal_archive_dup_str_(const char *s) {
   size_t n = strlen(s) + 1;
   char *d = (char *)malloc(n);
   if (d != NULL) memcpy(d, s, n);
   return d;
 }
 
-static void free_handle(autobal_archive *a) {
+void autobal_archive_free_handle_(autobal_archive *a) {
   if (a == NULL) return;
   if (a->sync_ok) {
     (void)pthread_cond_destroy(&a->done);
@@ -624,7 +572,7 @@ static int write_root_string(autobal_archive *a, const char *name, const char *v
 int autobal_archive_create(const char *path, int overwrite, autobal_archive **out, autobal_error *err) {
   autobal_archive *a = NULL;
   struct stat st;
-  quiet_state q;
+  autobal_archive_quiet_ q;
   hid_t fcpl = -1;
   size_t len;
   int rc = AUTOBAL_SUCCESS, k;
@@ -653,34 +601,34 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
   a->writable = 1;
   a->overwrite = overwrite != 0;
   snprintf(a->final_status, sizeof a->final_status, "complete");
-  a->path = dup_str(path);
+  a->path = autobal_archive_dup_str_(path);
   a->tmp_path = (char *)malloc(len + 64);
   if (a->path == NULL || a->tmp_path == NULL) {
-    free_handle(a);
+    autobal_archive_free_handle_(a);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory creating archive '%s'", path);
   }
   if (pthread_mutex_init(&a->m, NULL) != 0) {
-    free_handle(a);
+    autobal_archive_free_handle_(a);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "cannot create archive '%s': no mutex", path);
   }
   if (pthread_cond_init(&a->work, NULL) != 0) {
     (void)pthread_mutex_destroy(&a->m);
-    free_handle(a);
+    autobal_archive_free_handle_(a);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "cannot create archive '%s': no condition variable", path);
   }
   if (pthread_cond_init(&a->done, NULL) != 0) {
     (void)pthread_cond_destroy(&a->work);
     (void)pthread_mutex_destroy(&a->m);
-    free_handle(a);
+    autobal_archive_free_handle_(a);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "cannot create archive '%s': no condition variable", path);
   }
   a->sync_ok = 1;
 
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   fcpl = H5Pcreate(H5P_FILE_CREATE);
   if (fcpl < 0 || H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0 ||
       set_attr_order(fcpl) < 0) {
-    rc = h5fail(err, "cannot create archive '%s'", path);
+    rc = autobal_archive_h5fail_(err, "cannot create archive '%s'", path);
     goto done;
   }
   /* "<path>.partial-<pid>", or with "-2", "-3", ... if that name is taken. */
@@ -724,9 +672,9 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
   }
 done:
   if (fcpl >= 0) (void)H5Pclose(fcpl);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   if (rc != AUTOBAL_SUCCESS) {
-    free_handle(a);
+    autobal_archive_free_handle_(a);
     return rc;
   }
   autobal_error_clear(&a->err);
@@ -789,7 +737,7 @@ static char *join_command_line(int argc, const char *const *argv) {
 }
 
 /* Whether the blank- or comma-separated tokens of a Conventions attribute include `token`. */
-static int conventions_include(const char *conv, const char *token) {
+int autobal_archive_conventions_include_(const char *conv, const char *token) {
   size_t n = strlen(token);
   const char *p = conv;
   while (*p) {
@@ -803,7 +751,7 @@ static int conventions_include(const char *conv, const char *token) {
 }
 
 int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, const char *const *argv) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   char hdf5v[32], created[32], *cmd;
   time_t now;
   struct tm tmv;
@@ -823,7 +771,7 @@ int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, 
   now = time(NULL);
   if (gmtime_r(&now, &tmv) == NULL || strftime(created, sizeof created, "%Y-%m-%dT%H:%M:%SZ", &tmv) == 0)
     snprintf(created, sizeof created, "unknown");
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   hdf5_version_locked(hdf5v, sizeof hdf5v);
   rc = write_root_string(a, "title", title);
   if (rc == AUTOBAL_SUCCESS) rc = write_root_string(a, "autobal_version", autobal_version());
@@ -852,7 +800,7 @@ int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, 
                              "docs/pendulum.md (two-pendulum autobalancer), docs/units.md (units) and the "
                              "archive layout in README.md of the autobal repository");
   }
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   free(cmd);
   return rc;
 }
@@ -883,16 +831,16 @@ int autobal_archive_set_status(autobal_archive *a, const char *status, const cha
 /* ------------------------------------------------------------------------ */
 
 int autobal_archive_group(autobal_archive *a, const char *group) {
-  char g[PATH_MAX_];
-  quiet_state q;
+  char g[AUTOBAL_ARCHIVE_PATH_MAX];
+  autobal_archive_quiet_ q;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
   if ((rc = writable(a)) != AUTOBAL_SUCCESS) return rc;
-  if ((rc = norm_path(&a->err, "group", group, g, sizeof g)) != AUTOBAL_SUCCESS) return rc;
-  h5_enter(&q);
+  if ((rc = autobal_archive_norm_path_(&a->err, "group", group, g, sizeof g)) != AUTOBAL_SUCCESS) return rc;
+  autobal_archive_h5_enter_(&q);
   rc = make_group(&a->err, a->file, g);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
@@ -902,13 +850,13 @@ static int attr_begin(autobal_archive *a, const char *obj, const char *name, cha
   int rc;
   *o = -1;
   if ((rc = writable(a)) != AUTOBAL_SUCCESS) return rc;
-  if ((rc = norm_path(&a->err, "object", obj, path, size)) != AUTOBAL_SUCCESS) return rc;
+  if ((rc = autobal_archive_norm_path_(&a->err, "object", obj, path, size)) != AUTOBAL_SUCCESS) return rc;
   if ((rc = check_attr_name(&a->err, name)) != AUTOBAL_SUCCESS) return rc;
-  if (!path_exists(a->file, path))
+  if (!autobal_archive_path_exists_(a->file, path))
     return autobal_error_set(&a->err, AUTOBAL_EINVAL, "cannot set attribute '%s': no object '%s' in '%s'",
                              name, path, a->path);
   *o = H5Oopen(a->file, path, H5P_DEFAULT);
-  if (*o < 0) return h5fail(&a->err, "cannot open '%s' to set attribute '%s'", path, name);
+  if (*o < 0) return autobal_archive_h5fail_(&a->err, "cannot open '%s' to set attribute '%s'", path, name);
   return AUTOBAL_SUCCESS;
 }
 
@@ -922,57 +870,57 @@ static int put_units_attr(autobal_archive *a, hid_t o, const char *path, const c
 
 int autobal_archive_attr_double(autobal_archive *a, const char *obj, const char *name, double value,
                                 const char *units) {
-  char path[PATH_MAX_];
-  quiet_state q;
+  char path[AUTOBAL_ARCHIVE_PATH_MAX];
+  autobal_archive_quiet_ q;
   hid_t o;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
   if (units != NULL && (rc = check_text(&a->err, "units", units)) != AUTOBAL_SUCCESS) return rc;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = attr_begin(a, obj, name, path, sizeof path, &o);
   if (rc == AUTOBAL_SUCCESS) rc = put_attr_scalar(&a->err, o, path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
   if (rc == AUTOBAL_SUCCESS) rc = put_units_attr(a, o, path, name, units);
   if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
 int autobal_archive_attr_int(autobal_archive *a, const char *obj, const char *name, long value) {
-  char path[PATH_MAX_];
-  quiet_state q;
+  char path[AUTOBAL_ARCHIVE_PATH_MAX];
+  autobal_archive_quiet_ q;
   hid_t o;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = attr_begin(a, obj, name, path, sizeof path, &o);
   if (rc == AUTOBAL_SUCCESS) rc = put_attr_scalar(&a->err, o, path, name, H5T_STD_I64LE, H5T_NATIVE_LONG, &value);
   if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
 int autobal_archive_attr_string(autobal_archive *a, const char *obj, const char *name, const char *value) {
-  char path[PATH_MAX_];
-  quiet_state q;
+  char path[AUTOBAL_ARCHIVE_PATH_MAX];
+  autobal_archive_quiet_ q;
   hid_t o;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
   if ((rc = check_text(&a->err, "attribute value", value)) != AUTOBAL_SUCCESS) return rc;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = attr_begin(a, obj, name, path, sizeof path, &o);
   if (rc == AUTOBAL_SUCCESS) rc = put_attr_string(&a->err, o, path, name, value);
   if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
 int autobal_archive_attr_double_array(autobal_archive *a, const char *obj, const char *name, size_t n,
                                       const double *v, const char *units) {
-  char path[PATH_MAX_];
-  quiet_state q;
+  char path[AUTOBAL_ARCHIVE_PATH_MAX];
+  autobal_archive_quiet_ q;
   hid_t o, s;
   hsize_t dim = (hsize_t)n;
   int rc;
@@ -982,12 +930,12 @@ int autobal_archive_attr_double_array(autobal_archive *a, const char *obj, const
     return autobal_error_set(&a->err, AUTOBAL_EINVAL, "attribute '%s': array %s", name ? name : "(null)",
                              v == NULL ? "is NULL" : "is empty (n = 0)");
   if (units != NULL && (rc = check_text(&a->err, "units", units)) != AUTOBAL_SUCCESS) return rc;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = attr_begin(a, obj, name, path, sizeof path, &o);
   if (rc == AUTOBAL_SUCCESS) {
     s = H5Screate_simple(1, &dim, NULL);
     if (s < 0) {
-      rc = h5fail(&a->err, "cannot make a dataspace for attribute '%s' of '%s'", name, path);
+      rc = autobal_archive_h5fail_(&a->err, "cannot make a dataspace for attribute '%s' of '%s'", name, path);
     } else {
       rc = put_attr(&a->err, o, path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, s, v);
       (void)H5Sclose(s);
@@ -995,7 +943,7 @@ int autobal_archive_attr_double_array(autobal_archive *a, const char *obj, const
   }
   if (rc == AUTOBAL_SUCCESS) rc = put_units_attr(a, o, path, name, units);
   if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
@@ -1008,11 +956,11 @@ static int new_dataset_path(autobal_archive *a, const char *group, const char *n
                             size_t size) {
   int rc;
   if ((rc = writable(a)) != AUTOBAL_SUCCESS) return rc;
-  if ((rc = norm_path(&a->err, "group", group, g, size)) != AUTOBAL_SUCCESS) return rc;
+  if ((rc = autobal_archive_norm_path_(&a->err, "group", group, g, size)) != AUTOBAL_SUCCESS) return rc;
   if ((rc = check_name(&a->err, "dataset name", name)) != AUTOBAL_SUCCESS) return rc;
   if ((rc = join_path(&a->err, g, name, path, size)) != AUTOBAL_SUCCESS) return rc;
   if ((rc = make_group(&a->err, a->file, g)) != AUTOBAL_SUCCESS) return rc;
-  if (path_exists(a->file, path))
+  if (autobal_archive_path_exists_(a->file, path))
     return autobal_error_set(&a->err, AUTOBAL_EINVAL, "'%s' already exists in '%s'", path, a->path);
   return AUTOBAL_SUCCESS;
 }
@@ -1020,7 +968,7 @@ static int new_dataset_path(autobal_archive *a, const char *group, const char *n
 /* Write a 1-D dimension-scale dataset (double or int32 values). */
 static int write_scale(autobal_archive *a, const char *group, const char *name, size_t n, const void *values,
                        hid_t ftype, hid_t mtype, size_t elsize, const char *units, const char *long_name) {
-  char g[PATH_MAX_], path[PATH_MAX_];
+  char g[AUTOBAL_ARCHIVE_PATH_MAX], path[AUTOBAL_ARCHIVE_PATH_MAX];
   hsize_t dim = (hsize_t)n;
   hid_t ds;
   int rc;
@@ -1028,18 +976,18 @@ static int write_scale(autobal_archive *a, const char *group, const char *name, 
   ds = create_dataset(&a->err, a->file, path, ftype, 1, &dim, NULL, NULL, elsize, DEFLATE_LEVEL, H5P_DEFAULT);
   if (ds < 0) return AUTOBAL_EIO;
   if (H5Dwrite(ds, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0)
-    rc = h5fail(&a->err, "cannot write '%s'", path);
+    rc = autobal_archive_h5fail_(&a->err, "cannot write '%s'", path);
   if (rc == AUTOBAL_SUCCESS && H5DSset_scale(ds, name) < 0)
-    rc = h5fail(&a->err, "cannot make '%s' a dimension scale", path);
+    rc = autobal_archive_h5fail_(&a->err, "cannot make '%s' a dimension scale", path);
   if (rc == AUTOBAL_SUCCESS) rc = put_units_long_name(&a->err, ds, path, name, units, long_name);
-  if (H5Dclose(ds) < 0 && rc == AUTOBAL_SUCCESS) rc = h5fail(&a->err, "cannot close '%s'", path);
+  if (H5Dclose(ds) < 0 && rc == AUTOBAL_SUCCESS) rc = autobal_archive_h5fail_(&a->err, "cannot close '%s'", path);
   if (rc != AUTOBAL_SUCCESS) remove_link(a->file, path);
   return rc;
 }
 
 int autobal_archive_coord(autobal_archive *a, const char *group, const char *name, size_t n,
                           const double *values, const char *units, const char *long_name) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
@@ -1048,16 +996,16 @@ int autobal_archive_coord(autobal_archive *a, const char *group, const char *nam
                              values == NULL ? "NULL" : "empty (n = 0)");
   if ((rc = check_text(&a->err, "units", units)) != AUTOBAL_SUCCESS) return rc;
   if (long_name != NULL && (rc = check_text(&a->err, "long_name", long_name)) != AUTOBAL_SUCCESS) return rc;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = write_scale(a, group, name, n, values, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, sizeof(double), units,
                    long_name);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
 int autobal_archive_dim(autobal_archive *a, const char *group, const char *name, size_t n,
                         const char *long_name) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int32_t *idx;
   size_t i;
   int rc;
@@ -1070,25 +1018,25 @@ int autobal_archive_dim(autobal_archive *a, const char *group, const char *name,
   idx = (int32_t *)malloc(n * sizeof *idx);
   if (idx == NULL) return autobal_error_set(&a->err, AUTOBAL_ENOMEM, "dimension '%s': out of memory", name);
   for (i = 0; i < n; i++) idx[i] = (int32_t)i;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = write_scale(a, group, name, n, idx, H5T_STD_I32LE, H5T_NATIVE_INT32, sizeof(int32_t), "1", long_name);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   free(idx);
   return rc;
 }
 
-static int series_flush_all(autobal_archive *a, quiet_state *q);
+static int series_flush_all(autobal_archive *a, autobal_archive_quiet_ *q);
 
 /* Find dimension `dim` for a variable in normalised group g: absolute path, or the
  * nearest of g, its parents.  Returns the open scale dataset in *ds. */
 static int find_dim(autobal_archive *a, const char *g, const char *dim, char *found, size_t size, hid_t *ds) {
-  char scope[PATH_MAX_];
+  char scope[AUTOBAL_ARCHIVE_PATH_MAX];
   int rc;
   *ds = -1;
   if (dim == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "a dimension name is NULL");
   if (strchr(dim, '/') != NULL) {
-    if ((rc = norm_path(&a->err, "dimension", dim, found, size)) != AUTOBAL_SUCCESS) return rc;
-    if (path_type(a->file, found) != H5I_DATASET) found[0] = '\0';
+    if ((rc = autobal_archive_norm_path_(&a->err, "dimension", dim, found, size)) != AUTOBAL_SUCCESS) return rc;
+    if (autobal_archive_path_type_(a->file, found) != H5I_DATASET) found[0] = '\0';
   } else {
     if ((rc = check_name(&a->err, "dimension name", dim)) != AUTOBAL_SUCCESS) return rc;
     snprintf(scope, sizeof scope, "%s", g);
@@ -1096,7 +1044,7 @@ static int find_dim(autobal_archive *a, const char *g, const char *dim, char *fo
     for (;;) {
       char *slash;
       if (join_path(&a->err, scope, dim, found, size) == AUTOBAL_SUCCESS &&
-          path_type(a->file, found) == H5I_DATASET)
+          autobal_archive_path_type_(a->file, found) == H5I_DATASET)
         break;
       found[0] = '\0';
       if (strcmp(scope, "/") == 0) break;
@@ -1109,7 +1057,7 @@ static int find_dim(autobal_archive *a, const char *g, const char *dim, char *fo
     return autobal_error_set(&a->err, AUTOBAL_EINVAL, "unknown dimension '%s' for group '%s' (make it with "
                              "autobal_archive_coord or autobal_archive_dim first)", dim, g);
   *ds = H5Dopen2(a->file, found, H5P_DEFAULT);
-  if (*ds < 0) return h5fail(&a->err, "cannot open dimension '%s'", found);
+  if (*ds < 0) return autobal_archive_h5fail_(&a->err, "cannot open dimension '%s'", found);
   if (H5DSis_scale(*ds) <= 0) {
     (void)H5Dclose(*ds);
     *ds = -1;
@@ -1118,12 +1066,12 @@ static int find_dim(autobal_archive *a, const char *g, const char *dim, char *fo
   return AUTOBAL_SUCCESS;
 }
 
-/* Called holding the HDF5 lock (q from h5_enter); releases it for a while to wait for
+/* Called holding the HDF5 lock (q from autobal_archive_h5_enter_); releases it for a while to wait for
  * the series writer. */
-static int write_var(autobal_archive *a, quiet_state *q, const char *group, const char *name, int rank,
+static int write_var(autobal_archive *a, autobal_archive_quiet_ *q, const char *group, const char *name, int rank,
                      const char *const *dims, const void *data, hid_t ftype, hid_t mtype, size_t elsize,
                      const char *units, const char *long_name) {
-  char g[PATH_MAX_], path[PATH_MAX_], found[PATH_MAX_];
+  char g[AUTOBAL_ARCHIVE_PATH_MAX], path[AUTOBAL_ARCHIVE_PATH_MAX], found[AUTOBAL_ARCHIVE_PATH_MAX];
   hid_t scales[AUTOBAL_ARCHIVE_MAX_RANK] = {-1, -1, -1, -1};
   hsize_t shape[AUTOBAL_ARCHIVE_MAX_RANK];
   hid_t ds = -1;
@@ -1147,7 +1095,7 @@ static int write_var(autobal_archive *a, quiet_state *q, const char *group, cons
       hid_t sp = H5Dget_space(scales[i]);
       hsize_t cur = 0;
       if (sp < 0 || H5Sget_simple_extent_ndims(sp) != 1 || H5Sget_simple_extent_dims(sp, &cur, NULL) < 0)
-        rc = h5fail(&a->err, "cannot get the size of dimension '%s'", found);
+        rc = autobal_archive_h5fail_(&a->err, "cannot get the size of dimension '%s'", found);
       if (sp >= 0) (void)H5Sclose(sp);
       shape[i] = cur;
       if (rc == AUTOBAL_SUCCESS) {
@@ -1163,17 +1111,17 @@ static int write_var(autobal_archive *a, quiet_state *q, const char *group, cons
     if (ds < 0) rc = AUTOBAL_EIO;
   }
   if (rc == AUTOBAL_SUCCESS && count > 0 && H5Dwrite(ds, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    rc = h5fail(&a->err, "cannot write '%s'", path);
+    rc = autobal_archive_h5fail_(&a->err, "cannot write '%s'", path);
   for (i = 0; i < rank && rc == AUTOBAL_SUCCESS; i++) {
     if (H5DSattach_scale(ds, scales[i], (unsigned)i) < 0)
-      rc = h5fail(&a->err, "cannot attach dimension '%s' to '%s'", dims[i], path);
+      rc = autobal_archive_h5fail_(&a->err, "cannot attach dimension '%s' to '%s'", dims[i], path);
     else nattached = i + 1;
   }
   if (rc == AUTOBAL_SUCCESS) rc = put_units_long_name(&a->err, ds, path, name, units, long_name);
   /* After a failure, detach the scales so their REFERENCE_LIST does not point at the
    * dataset removed below. */
   for (i = 0; i < nattached && rc != AUTOBAL_SUCCESS; i++) (void)H5DSdetach_scale(ds, scales[i], (unsigned)i);
-  if (ds >= 0 && H5Dclose(ds) < 0 && rc == AUTOBAL_SUCCESS) rc = h5fail(&a->err, "cannot finish writing '%s'", path);
+  if (ds >= 0 && H5Dclose(ds) < 0 && rc == AUTOBAL_SUCCESS) rc = autobal_archive_h5fail_(&a->err, "cannot finish writing '%s'", path);
   for (i = 0; i < rank; i++)
     if (scales[i] >= 0) (void)H5Dclose(scales[i]);
   if (rc != AUTOBAL_SUCCESS && ds >= 0) remove_link(a->file, path);
@@ -1182,26 +1130,26 @@ static int write_var(autobal_archive *a, quiet_state *q, const char *group, cons
 
 int autobal_archive_var(autobal_archive *a, const char *group, const char *name, int rank,
                         const char *const *dims, const double *data, const char *units, const char *long_name) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = write_var(a, &q, group, name, rank, dims, data, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, sizeof(double), units,
                  long_name);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
 int autobal_archive_var_int(autobal_archive *a, const char *group, const char *name, int rank,
                             const char *const *dims, const int *data, const char *units, const char *long_name) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc;
   if (a == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&a->err);
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = write_var(a, &q, group, name, rank, dims, data, H5T_STD_I32LE, H5T_NATIVE_INT, sizeof(int), units, long_name);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
@@ -1227,16 +1175,16 @@ static int series_write_rows(autobal_archive_series *s, const double *buf, size_
     size_t r;
     for (r = 0; r < nrows; r++) s->col[r] = buf[r * stride + k];
     if (H5Dset_extent(s->dsets[k], &newsize) < 0) {
-      rc = h5fail(err, "series '%s': cannot extend column %zu to %llu rows", s->where, k,
-                  (unsigned long long)newsize);
+      rc = autobal_archive_h5fail_(err, "series '%s': cannot extend column %zu to %llu rows", s->where, k,
+                                   (unsigned long long)newsize);
       break;
     }
     fs = H5Dget_space(s->dsets[k]);
     ms = H5Screate_simple(1, &count, NULL);
     if (fs < 0 || ms < 0 || H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &count, NULL) < 0)
-      rc = h5fail(err, "series '%s': cannot select rows of column %zu", s->where, k);
+      rc = autobal_archive_h5fail_(err, "series '%s': cannot select rows of column %zu", s->where, k);
     else if (H5Dwrite(s->dsets[k], H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, s->col) < 0)
-      rc = h5fail(err, "series '%s': cannot write %zu rows of column %zu", s->where, nrows, k);
+      rc = autobal_archive_h5fail_(err, "series '%s': cannot write %zu rows of column %zu", s->where, nrows, k);
     if (ms >= 0) (void)H5Sclose(ms);
     if (fs >= 0) (void)H5Sclose(fs);
   }
@@ -1247,11 +1195,11 @@ static int series_write_rows(autobal_archive_series *s, const double *buf, size_
 /* Write the handed-off buffer wbuf (in the writer thread, or in the caller's thread when
  * there is no writer).  A failure is recorded in werr and flagged in wfailed. */
 static void series_write_job(autobal_archive_series *s) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = series_write_rows(s, s->wbuf, s->wrows, &s->werr);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   if (rc != AUTOBAL_SUCCESS) atomic_store_explicit(&s->wfailed, 1, memory_order_release);
 }
 
@@ -1292,7 +1240,7 @@ static int writer_start(autobal_archive *a) {
   return a->writer > 0;
 }
 
-/* Stop and join the writer (every series must be idle).  Never holding h5_lock. */
+/* Stop and join the writer (every series must be idle).  Never holding autobal_archive_h5_lock_. */
 static void writer_stop(autobal_archive *a) {
   if (a->writer <= 0) return;
   (void)pthread_mutex_lock(&a->m);
@@ -1304,7 +1252,7 @@ static void writer_stop(autobal_archive *a) {
 }
 
 /* Wait until the writer has finished the series' buffer in flight.  Never call it
- * holding h5_lock. */
+ * holding autobal_archive_h5_lock_. */
 static void series_idle(autobal_archive_series *s) {
   autobal_archive *a = s->a;
   if (a->writer <= 0) return;
@@ -1366,7 +1314,7 @@ static int series_handoff(autobal_archive_series *s) {
 }
 
 /* Write the rows of fill now.  The series must be idle and checked; called holding
- * h5_lock.  A failure breaks the series (message in the archive). */
+ * autobal_archive_h5_lock_.  A failure breaks the series (message in the archive). */
 static int series_write_fill(autobal_archive_series *s) {
   int rc = series_write_rows(s, s->fill, s->nbuf, &s->a->err);
   if (rc != AUTOBAL_SUCCESS) {
@@ -1378,15 +1326,15 @@ static int series_write_fill(autobal_archive_series *s) {
 }
 
 /* Everything appended to the archive's series goes to the file (before a variable is
- * made over a series dimension).  Called holding h5_lock (q from h5_enter), which is
+ * made over a series dimension).  Called holding autobal_archive_h5_lock_ (q from autobal_archive_h5_enter_), which is
  * released while waiting for the writer. */
-static int series_flush_all(autobal_archive *a, quiet_state *q) {
+static int series_flush_all(autobal_archive *a, autobal_archive_quiet_ *q) {
   autobal_archive_series *s;
   int rc;
   if (a->series == NULL) return AUTOBAL_SUCCESS;
-  h5_leave(q);
+  autobal_archive_h5_leave_(q);
   for (s = a->series; s != NULL; s = s->next) series_idle(s);
-  h5_enter(q);
+  autobal_archive_h5_enter_(q);
   for (s = a->series; s != NULL; s = s->next) {
     if ((rc = series_check(s)) != AUTOBAL_SUCCESS) return rc;
     if ((rc = series_write_fill(s)) != AUTOBAL_SUCCESS) return rc;
@@ -1395,7 +1343,7 @@ static int series_flush_all(autobal_archive *a, quiet_state *q) {
 }
 
 /* Close the datasets, unlink from the archive, free.  No flushing.  The series must be
- * idle; called holding h5_lock. */
+ * idle; called holding autobal_archive_h5_lock_. */
 static void series_free(autobal_archive_series *s) {
   autobal_archive_series **pp;
   size_t k;
@@ -1425,9 +1373,9 @@ static hid_t series_column(autobal_archive *a, const char *path, const char *nam
   int rc = AUTOBAL_SUCCESS;
   if (ds < 0) return -1;
   if (scale < 0) {
-    if (H5DSset_scale(ds, name) < 0) rc = h5fail(&a->err, "cannot make '%s' a dimension scale", path);
+    if (H5DSset_scale(ds, name) < 0) rc = autobal_archive_h5fail_(&a->err, "cannot make '%s' a dimension scale", path);
   } else if (H5DSattach_scale(ds, scale, 0) < 0) {
-    rc = h5fail(&a->err, "cannot attach the series dimension to '%s'", path);
+    rc = autobal_archive_h5fail_(&a->err, "cannot attach the series dimension to '%s'", path);
     scale = -1;
   }
   if (rc == AUTOBAL_SUCCESS) rc = put_units_long_name(&a->err, ds, path, name, units, long_name);
@@ -1443,9 +1391,9 @@ int autobal_archive_series_open(autobal_archive *a, const char *group, const cha
                                 const char *dim_long_name, size_t nvars, const char *const *names,
                                 const char *const *units, const char *const *long_names,
                                 autobal_archive_series **out) {
-  char g[PATH_MAX_], path[PATH_MAX_];
+  char g[AUTOBAL_ARCHIVE_PATH_MAX], path[AUTOBAL_ARCHIVE_PATH_MAX];
   autobal_archive_series *s = NULL;
-  quiet_state q;
+  autobal_archive_quiet_ q;
   hid_t dapl = -1;
   size_t j, k;
   int rc;
@@ -1457,7 +1405,7 @@ int autobal_archive_series_open(autobal_archive *a, const char *group, const cha
   if (nvars == 0 || names == NULL || units == NULL)
     return autobal_error_set(&a->err, AUTOBAL_EINVAL, "series_open: %s",
                              nvars == 0 ? "nvars = 0 (need at least one variable)" : "names or units is NULL");
-  if ((rc = norm_path(&a->err, "group", group, g, sizeof g)) != AUTOBAL_SUCCESS) return rc;
+  if ((rc = autobal_archive_norm_path_(&a->err, "group", group, g, sizeof g)) != AUTOBAL_SUCCESS) return rc;
   if ((rc = check_name(&a->err, "series dimension name", dim)) != AUTOBAL_SUCCESS) return rc;
   if ((rc = check_text(&a->err, "series dimension units", dim_units)) != AUTOBAL_SUCCESS) return rc;
   if (dim_long_name != NULL && (rc = check_text(&a->err, "long_name", dim_long_name)) != AUTOBAL_SUCCESS)
@@ -1503,17 +1451,17 @@ int autobal_archive_series_open(autobal_archive *a, const char *group, const cha
   s->next = a->series;
   a->series = s;
 
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   dapl = H5Pcreate(H5P_DATASET_ACCESS);
   if (dapl < 0 || H5Pset_chunk_cache(dapl, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0, H5D_CHUNK_CACHE_W0_DEFAULT) < 0)
-    rc = h5fail(&a->err, "series_open: cannot set up the dataset access properties");
+    rc = autobal_archive_h5fail_(&a->err, "series_open: cannot set up the dataset access properties");
   if (rc == AUTOBAL_SUCCESS) rc = make_group(&a->err, a->file, g);
   if (rc == AUTOBAL_SUCCESS) rc = join_path(&a->err, g, dim, path, sizeof path);
   if (rc == AUTOBAL_SUCCESS) snprintf(s->where, sizeof s->where, "%s", path);
   for (k = 0; k <= nvars && rc == AUTOBAL_SUCCESS; k++) {
     const char *nm = k == 0 ? dim : names[k - 1];
     rc = join_path(&a->err, g, nm, path, sizeof path);
-    if (rc == AUTOBAL_SUCCESS && path_exists(a->file, path))
+    if (rc == AUTOBAL_SUCCESS && autobal_archive_path_exists_(a->file, path))
       rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "'%s' already exists in '%s'", path, a->path);
   }
   k = 0; /* columns 0..k-1 were attempted */
@@ -1538,7 +1486,7 @@ int autobal_archive_series_open(autobal_archive *a, const char *group, const cha
       if (s->dsets[k] >= 0 && s->dsets[0] >= 0) (void)H5DSdetach_scale(s->dsets[k], s->dsets[0], 0);
     series_free(s);
     for (k = made; k-- > 0;) {
-      char p[PATH_MAX_];
+      char p[AUTOBAL_ARCHIVE_PATH_MAX];
       autobal_error scratch;
       if (join_path(&scratch, g, k == 0 ? dim : names[k - 1], p, sizeof p) == AUTOBAL_SUCCESS)
         remove_link(a->file, p);
@@ -1546,7 +1494,7 @@ int autobal_archive_series_open(autobal_archive *a, const char *group, const cha
   } else {
     *out = s;
   }
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
@@ -1586,33 +1534,33 @@ int autobal_archive_series_append(autobal_archive_series *s, size_t nrows, const
 }
 
 int autobal_archive_series_flush(autobal_archive_series *s) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc;
   if (s == NULL) return AUTOBAL_EINVAL;
   autobal_error_clear(&s->a->err);
   series_idle(s);
   if ((rc = series_check(s)) != AUTOBAL_SUCCESS) return rc;
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   rc = series_write_fill(s);
   if (rc == AUTOBAL_SUCCESS && H5Fflush(s->a->file, H5F_SCOPE_LOCAL) < 0)
-    rc = h5fail(&s->a->err, "series '%s': cannot flush '%s'", s->where, s->a->tmp_path);
-  h5_leave(&q);
+    rc = autobal_archive_h5fail_(&s->a->err, "series '%s': cannot flush '%s'", s->where, s->a->tmp_path);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
 size_t autobal_archive_series_length(const autobal_archive_series *s) { return s ? s->nappended : 0; }
 
 int autobal_archive_series_close(autobal_archive_series *s) {
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc;
   if (s == NULL) return AUTOBAL_SUCCESS;
   autobal_error_clear(&s->a->err);
   series_idle(s);
   rc = series_check(s);
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   if (rc == AUTOBAL_SUCCESS) rc = series_write_fill(s);
   series_free(s);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   return rc;
 }
 
@@ -1647,14 +1595,14 @@ static int publish(autobal_archive *a) {
 
 int autobal_archive_close(autobal_archive *a, autobal_error *err) {
   autobal_archive_series *s;
-  quiet_state q;
+  autobal_archive_quiet_ q;
   int rc = AUTOBAL_SUCCESS, r;
   if (a == NULL) return AUTOBAL_SUCCESS;
   autobal_error_clear(&a->err);
-  /* Let the writer finish what it has (not holding h5_lock), then stop it. */
+  /* Let the writer finish what it has (not holding autobal_archive_h5_lock_), then stop it. */
   for (s = a->series; s != NULL; s = s->next) series_idle(s);
   writer_stop(a);
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   while (a->series != NULL) {
     s = a->series;
     r = series_check(s);
@@ -1667,9 +1615,9 @@ int autobal_archive_close(autobal_archive *a, autobal_error *err) {
     if (rc == AUTOBAL_SUCCESS && a->has_reason) rc = write_root_string(a, "status_reason", a->reason);
   }
   if (a->file >= 0 && H5Fclose(a->file) < 0 && rc == AUTOBAL_SUCCESS)
-    rc = h5fail(&a->err, "cannot close '%s'", a->writable ? a->tmp_path : a->path);
+    rc = autobal_archive_h5fail_(&a->err, "cannot close '%s'", a->writable ? a->tmp_path : a->path);
   a->file = -1;
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   if (a->writable) {
     if (rc == AUTOBAL_SUCCESS) rc = publish(a);
     if (rc != AUTOBAL_SUCCESS && access(a->tmp_path, F_OK) == 0 && strstr(a->err.message, a->tmp_path) == NULL) {
@@ -1680,688 +1628,20 @@ int autobal_archive_close(autobal_archive *a, autobal_error *err) {
   }
   if (rc != AUTOBAL_SUCCESS) autobal_error_set(err, rc, "%s", a->err.message);
   else autobal_error_clear(err);
-  free_handle(a);
+  autobal_archive_free_handle_(a);
   return rc;
 }
 
 void autobal_archive_discard(autobal_archive *a) {
   autobal_archive_series *s;
-  quiet_state q;
+  autobal_archive_quiet_ q;
   if (a == NULL) return;
   for (s = a->series; s != NULL; s = s->next) series_idle(s);
   writer_stop(a);
-  h5_enter(&q);
+  autobal_archive_h5_enter_(&q);
   while (a->series != NULL) series_free(a->series);
   if (a->file >= 0) (void)H5Fclose(a->file);
-  h5_leave(&q);
+  autobal_archive_h5_leave_(&q);
   if (a->writable && a->tmp_path != NULL) (void)unlink(a->tmp_path);
-  free_handle(a);
-}
-
-/* ------------------------------------------------------------------------ */
-/* Reading                                                                     */
-/* ------------------------------------------------------------------------ */
-
-/* Read a scalar string attribute (vlen or fixed) into a malloc'ed string. */
-static int get_attr_string(autobal_error *err, hid_t o, const char *where, const char *name, char **value) {
-  hid_t attr = -1, ft = -1, mt = -1, sp = -1;
-  int rc = AUTOBAL_SUCCESS;
-  *value = NULL;
-  attr = H5Aopen(o, name, H5P_DEFAULT);
-  if (attr < 0) return h5fail(err, "cannot open attribute '%s' of '%s'", name, where);
-  ft = H5Aget_type(attr);
-  sp = H5Aget_space(attr);
-  if (ft < 0 || sp < 0) {
-    rc = h5fail(err, "cannot inspect attribute '%s' of '%s'", name, where);
-    goto done;
-  }
-  if (H5Tget_class(ft) != H5T_STRING || H5Sget_simple_extent_npoints(sp) != 1) {
-    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is not a string", name, where);
-    goto done;
-  }
-  mt = H5Tcopy(H5T_C_S1);
-  if (mt < 0 || H5Tset_cset(mt, H5Tget_cset(ft)) < 0) {
-    rc = h5fail(err, "cannot read attribute '%s' of '%s'", name, where);
-    goto done;
-  }
-  if (H5Tis_variable_str(ft) > 0) {
-    char *p = NULL;
-    if (H5Tset_size(mt, H5T_VARIABLE) < 0 || H5Aread(attr, mt, &p) < 0) {
-      rc = h5fail(err, "cannot read attribute '%s' of '%s'", name, where);
-      goto done;
-    }
-    *value = dup_str(p ? p : "");
-    if (p != NULL) (void)H5free_memory(p);
-  } else {
-    size_t sz = H5Tget_size(ft);
-    char *p = (char *)calloc(sz + 1, 1);
-    if (p == NULL) {
-      rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory reading attribute '%s'", name);
-      goto done;
-    }
-    if (H5Tset_size(mt, sz) < 0 || H5Tset_strpad(mt, H5Tget_strpad(ft)) < 0 || H5Aread(attr, mt, p) < 0) {
-      rc = h5fail(err, "cannot read attribute '%s' of '%s'", name, where);
-      free(p);
-      goto done;
-    }
-    p[sz] = '\0';
-    *value = p;
-  }
-  if (*value == NULL) rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory reading attribute '%s'", name);
-done:
-  if (mt >= 0) (void)H5Tclose(mt);
-  if (ft >= 0) (void)H5Tclose(ft);
-  if (sp >= 0) (void)H5Sclose(sp);
-  (void)H5Aclose(attr);
-  return rc;
-}
-
-int autobal_archive_open_read(const char *path, autobal_archive **out, autobal_error *err) {
-  autobal_archive *a;
-  struct stat st;
-  quiet_state q;
-  htri_t is;
-  char *conv = NULL;
-  int rc = AUTOBAL_SUCCESS;
-  if (out == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "archive_open_read: out is NULL");
-  *out = NULL;
-  if (path == NULL || path[0] == '\0')
-    return autobal_error_set(err, AUTOBAL_EINVAL, "archive path is NULL or empty");
-  if (stat(path, &st) != 0)
-    return autobal_error_set(err, AUTOBAL_EIO, "cannot open archive '%s': %s", path, strerror(errno));
-  if (S_ISDIR(st.st_mode))
-    return autobal_error_set(err, AUTOBAL_EIO, "cannot open archive '%s': is a directory", path);
-  if (access(path, R_OK) != 0)
-    return autobal_error_set(err, AUTOBAL_EIO, "cannot open archive '%s': %s", path, strerror(errno));
-  a = (autobal_archive *)calloc(1, sizeof *a);
-  if (a == NULL) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory opening '%s'", path);
-  a->file = -1;
-  a->path = dup_str(path);
-  if (a->path == NULL) {
-    free_handle(a);
-    return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory opening '%s'", path);
-  }
-  h5_enter(&q);
-  is = H5Fis_hdf5(path);
-  if (is <= 0) {
-    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%s' is not an HDF5 file (not an autobal archive)", path);
-    goto done;
-  }
-  a->file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (a->file < 0) {
-    (void)h5fail(err, "'%s' is a damaged or truncated HDF5 file", path);
-    if (err) err->status = AUTOBAL_EFORMAT;
-    rc = AUTOBAL_EFORMAT;
-    goto done;
-  }
-  if (H5Aexists(a->file, "Conventions") <= 0) {
-    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%s' is an HDF5 file but not an autobal archive "
-                           "(no root attribute Conventions)", path);
-    goto done;
-  }
-  rc = get_attr_string(err, a->file, "/", "Conventions", &conv);
-  if (rc != AUTOBAL_SUCCESS) {
-    if (err) err->status = AUTOBAL_EFORMAT;
-    rc = AUTOBAL_EFORMAT;
-    goto done;
-  }
-  if (!conventions_include(conv, AUTOBAL_ARCHIVE_CONVENTION))
-    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%.200s' has Conventions = '%.100s', which does not include '%s'",
-                           path, conv, AUTOBAL_ARCHIVE_CONVENTION);
-done:
-  free(conv);
-  if (rc != AUTOBAL_SUCCESS && a->file >= 0) {
-    (void)H5Fclose(a->file);
-    a->file = -1;
-  }
-  h5_leave(&q);
-  if (rc != AUTOBAL_SUCCESS) {
-    free_handle(a);
-    return rc;
-  }
-  autobal_error_clear(err);
-  *out = a;
-  return AUTOBAL_SUCCESS;
-}
-
-int autobal_archive_has(autobal_archive *a, const char *obj, const char *attr) {
-  char path[PATH_MAX_];
-  autobal_error scratch;
-  quiet_state q;
-  int yes = 0;
-  if (a == NULL || a->file < 0) return 0;
-  if (norm_path(&scratch, "object", obj, path, sizeof path) != AUTOBAL_SUCCESS) return 0;
-  h5_enter(&q);
-  yes = path_exists(a->file, path);
-  if (yes && attr != NULL) {
-    hid_t o = H5Oopen(a->file, path, H5P_DEFAULT);
-    yes = o >= 0 && H5Aexists(o, attr) > 0;
-    if (o >= 0) (void)H5Oclose(o);
-  }
-  h5_leave(&q);
-  return yes;
-}
-
-/* Open obj and check attribute exists. */
-static int read_attr_begin(autobal_archive *a, const char *obj, const char *name, char *path, size_t size,
-                           hid_t *o) {
-  int rc;
-  htri_t ex;
-  *o = -1;
-  if ((rc = norm_path(&a->err, "object", obj, path, size)) != AUTOBAL_SUCCESS) return rc;
-  if (name == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "attribute name is NULL");
-  if (!path_exists(a->file, path))
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "no object '%s' in '%s'", path, a->path);
-  *o = H5Oopen(a->file, path, H5P_DEFAULT);
-  if (*o < 0) return h5fail(&a->err, "cannot open '%s'", path);
-  ex = H5Aexists(*o, name);
-  if (ex < 0) return h5fail(&a->err, "cannot look up attribute '%.200s' of '%s'", name, path);
-  if (ex == 0)
-    return autobal_error_set(&a->err, AUTOBAL_EFORMAT, "'%s' has no attribute '%.200s' (in '%s')", path, name,
-                             a->path);
-  return AUTOBAL_SUCCESS;
-}
-
-int autobal_archive_read_attr_string(autobal_archive *a, const char *obj, const char *name, char *buf,
-                                     size_t size, size_t *len) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  char *v = NULL;
-  hid_t o;
-  int rc;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (buf == NULL || size == 0)
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_string: buf is NULL or size is 0");
-  buf[0] = '\0';
-  h5_enter(&q);
-  rc = read_attr_begin(a, obj, name, path, sizeof path, &o);
-  if (rc == AUTOBAL_SUCCESS) rc = get_attr_string(&a->err, o, path, name, &v);
-  if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
-  if (rc == AUTOBAL_SUCCESS) {
-    size_t n = strlen(v);
-    if (len != NULL) *len = n;
-    if (n >= size) {
-      memcpy(buf, v, size - 1);
-      buf[size - 1] = '\0';
-      rc = autobal_error_set(&a->err, AUTOBAL_WARNING, "attribute '%s' of '%s' truncated to %zu of %zu bytes",
-                             name, path, size - 1, n);
-    } else {
-      memcpy(buf, v, n + 1);
-    }
-  }
-  free(v);
-  return rc;
-}
-
-/* Read all elements of numeric attribute `name` of `obj` into buf (memory type mt:
- * H5T_NATIVE_DOUBLE or H5T_NATIVE_INT64); integers_only for _int64s. */
-static int read_attr_array(autobal_archive *a, const char *obj, const char *name, hid_t mt, int integers_only,
-                           int scalar, void *buf, size_t n, size_t *count) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  hid_t o, attr = -1, ft = -1, sp = -1;
-  int rc;
-  if (count != NULL) *count = 0;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (buf == NULL && n > 0)
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_%s: buf is NULL with n = %zu",
-                             integers_only ? "int64s" : "doubles", n);
-  h5_enter(&q);
-  rc = read_attr_begin(a, obj, name, path, sizeof path, &o);
-  if (rc == AUTOBAL_SUCCESS) {
-    attr = H5Aopen(o, name, H5P_DEFAULT);
-    if (attr < 0) rc = h5fail(&a->err, "cannot open attribute '%s' of '%s'", name, path);
-  }
-  if (rc == AUTOBAL_SUCCESS) {
-    ft = H5Aget_type(attr);
-    sp = H5Aget_space(attr);
-    if (ft < 0 || sp < 0) rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", name, path);
-  }
-  if (rc == AUTOBAL_SUCCESS) {
-    H5T_class_t c = H5Tget_class(ft);
-    hssize_t np = H5Sget_simple_extent_npoints(sp);
-    if (np < 0) {
-      rc = h5fail(&a->err, "cannot get the size of attribute '%s' of '%s'", name, path);
-    } else if (scalar && ((c != H5T_INTEGER && c != H5T_FLOAT) || np != 1)) {
-      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is not a numeric scalar", name,
-                             path);
-    } else if (c != H5T_INTEGER && (integers_only || c != H5T_FLOAT)) {
-      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "attribute '%s' of '%s' is %s, not %s", name, path,
-                             c == H5T_FLOAT ? "floating point" : c == H5T_STRING ? "a string" : "not numeric",
-                             integers_only ? "an integer" : "numeric");
-    } else {
-      if (count != NULL) *count = (size_t)np;
-      if ((size_t)np > n && !(buf == NULL && n == 0))
-        rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "attribute '%s' of '%s' has %zu elements, the buffer holds %zu",
-                               name, path, (size_t)np, n);
-      else if (buf != NULL && np > 0 && H5Aread(attr, mt, buf) < 0)
-        rc = h5fail(&a->err, "cannot read attribute '%s' of '%s'", name, path);
-    }
-  }
-  if (ft >= 0) (void)H5Tclose(ft);
-  if (sp >= 0) (void)H5Sclose(sp);
-  if (attr >= 0) (void)H5Aclose(attr);
-  if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
-  return rc;
-}
-
-int autobal_archive_read_attr_double(autobal_archive *a, const char *obj, const char *name, double *value) {
-  if (a == NULL) return AUTOBAL_EINVAL;
-  if (value == NULL) {
-    autobal_error_clear(&a->err);
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_attr_double: value is NULL");
-  }
-  return read_attr_array(a, obj, name, H5T_NATIVE_DOUBLE, 0, 1, value, 1, NULL);
-}
-
-/* Open a dataset for reading; *ds = -1 on failure. */
-static int open_dataset(autobal_archive *a, const char *p, char *path, size_t size, hid_t *ds) {
-  int rc;
-  *ds = -1;
-  if ((rc = norm_path(&a->err, "dataset", p, path, size)) != AUTOBAL_SUCCESS) return rc;
-  if (path_type(a->file, path) != H5I_DATASET)
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "no dataset '%s' in '%s'", path, a->path);
-  *ds = H5Dopen2(a->file, path, H5P_DEFAULT);
-  if (*ds < 0) return h5fail(&a->err, "cannot open dataset '%s'", path);
-  return AUTOBAL_SUCCESS;
-}
-
-/* Shape of an open dataset. */
-static int shape_of(autobal_archive *a, hid_t ds, const char *path, int *rank, size_t *dims, size_t *count) {
-  hsize_t d[H5S_MAX_RANK];
-  hid_t sp = H5Dget_space(ds);
-  int r, i, rc = AUTOBAL_SUCCESS;
-  size_t c = 1;
-  if (sp < 0) return h5fail(&a->err, "cannot get the shape of '%s'", path);
-  r = H5Sget_simple_extent_ndims(sp);
-  if (r < 0 || H5Sget_simple_extent_dims(sp, d, NULL) < 0) {
-    rc = h5fail(&a->err, "cannot get the shape of '%s'", path);
-  } else if (r > AUTOBAL_ARCHIVE_MAX_RANK) {
-    rc = autobal_error_set(&a->err, AUTOBAL_EUNSUPPORTED, "'%s' has rank %d > %d", path, r,
-                           AUTOBAL_ARCHIVE_MAX_RANK);
-  } else {
-    *rank = r;
-    for (i = 0; i < r; i++) {
-      if (dims != NULL) dims[i] = (size_t)d[i];
-      c *= (size_t)d[i];
-    }
-    if (count != NULL) *count = c;
-  }
-  (void)H5Sclose(sp);
-  return rc;
-}
-
-int autobal_archive_var_shape(autobal_archive *a, const char *p, int *rank, size_t *dims, size_t *count) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  hid_t ds;
-  int rc;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (rank == NULL || dims == NULL)
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL, "var_shape: rank or dims is NULL");
-  h5_enter(&q);
-  rc = open_dataset(a, p, path, sizeof path, &ds);
-  if (rc == AUTOBAL_SUCCESS) rc = shape_of(a, ds, path, rank, dims, count);
-  if (ds >= 0) (void)H5Dclose(ds);
-  h5_leave(&q);
-  return rc;
-}
-
-int autobal_archive_read_var(autobal_archive *a, const char *p, double *buf, size_t n) {
-  char path[PATH_MAX_];
-  size_t dims[AUTOBAL_ARCHIVE_MAX_RANK], count = 0;
-  quiet_state q;
-  hid_t ds, ft = -1;
-  int rc, rank = 0;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (buf == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_var: buf is NULL");
-  h5_enter(&q);
-  rc = open_dataset(a, p, path, sizeof path, &ds);
-  if (rc == AUTOBAL_SUCCESS) rc = shape_of(a, ds, path, &rank, dims, &count);
-  if (rc == AUTOBAL_SUCCESS && count > n)
-    rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "read_var: '%s' has %zu elements, buffer holds %zu", path,
-                           count, n);
-  if (rc == AUTOBAL_SUCCESS) {
-    H5T_class_t c;
-    ft = H5Dget_type(ds);
-    c = ft >= 0 ? H5Tget_class(ft) : H5T_NO_CLASS;
-    if (ft < 0) rc = h5fail(&a->err, "cannot get the type of '%s'", path);
-    else if (c != H5T_INTEGER && c != H5T_FLOAT)
-      rc = autobal_error_set(&a->err, AUTOBAL_EFORMAT, "dataset '%s' is not numeric", path);
-  }
-  if (rc == AUTOBAL_SUCCESS && count > 0 && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
-    rc = h5fail(&a->err, "cannot read '%s'", path);
-  if (ft >= 0) (void)H5Tclose(ft);
-  if (ds >= 0) (void)H5Dclose(ds);
-  h5_leave(&q);
-  return rc;
-}
-
-/* Members collected by list_cb: entries "<is_group byte><name>\0" one after another.
- * The caller's callback runs after the iteration, outside h5_lock, so that it may call
- * this module again. */
-typedef struct {
-  char *buf;
-  size_t len, cap;
-  int nomem;
-} list_ctx;
-
-static herr_t list_cb(hid_t g, const char *name, const H5L_info_t *info, void *vctx) {
-  list_ctx *c = (list_ctx *)vctx;
-  size_t n = strlen(name) + 2;
-  hid_t o;
-  int is_group = 0;
-  (void)info;
-  if (c->cap - c->len < n) {
-    size_t cap = c->cap ? 2 * c->cap : 1024;
-    char *p;
-    while (cap - c->len < n) cap *= 2;
-    p = (char *)realloc(c->buf, cap);
-    if (p == NULL) {
-      c->nomem = 1;
-      return 1; /* stop */
-    }
-    c->buf = p;
-    c->cap = cap;
-  }
-  o = H5Oopen(g, name, H5P_DEFAULT);
-  if (o >= 0) {
-    is_group = H5Iget_type(o) == H5I_GROUP;
-    (void)H5Oclose(o);
-  }
-  c->buf[c->len] = is_group ? '\1' : '\0';
-  memcpy(c->buf + c->len + 1, name, n - 1);
-  c->len += n;
-  return 0;
-}
-
-int autobal_archive_list(autobal_archive *a, const char *group, autobal_archive_list_fn fn, void *ctx) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  list_ctx c;
-  hid_t g = -1, gcpl = -1;
-  unsigned flags = 0;
-  hsize_t idx = 0;
-  size_t off;
-  int rc;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (fn == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "list: callback is NULL");
-  if ((rc = norm_path(&a->err, "group", group, path, sizeof path)) != AUTOBAL_SUCCESS) return rc;
-  memset(&c, 0, sizeof c);
-  h5_enter(&q);
-  if (path_type(a->file, path) != H5I_GROUP) {
-    rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "no group '%s' in '%s'", path, a->path);
-    goto done;
-  }
-  g = H5Gopen2(a->file, path, H5P_DEFAULT);
-  if (g < 0) {
-    rc = h5fail(&a->err, "cannot open group '%s'", path);
-    goto done;
-  }
-  gcpl = H5Gget_create_plist(g);
-  if (gcpl >= 0 && H5Pget_link_creation_order(gcpl, &flags) < 0) flags = 0;
-  if (H5Literate(g, (flags & H5P_CRT_ORDER_INDEXED) ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME, H5_ITER_INC, &idx,
-                 list_cb, &c) < 0)
-    rc = h5fail(&a->err, "cannot list group '%s'", path);
-  else if (c.nomem)
-    rc = autobal_error_set(&a->err, AUTOBAL_ENOMEM, "list: out of memory listing group '%s'", path);
-done:
-  if (gcpl >= 0) (void)H5Pclose(gcpl);
-  if (g >= 0) (void)H5Gclose(g);
-  h5_leave(&q);
-  for (off = 0; rc == AUTOBAL_SUCCESS && off < c.len; off += strlen(c.buf + off + 1) + 2)
-    rc = fn(c.buf + off + 1, c.buf[off] != '\0', ctx);
-  free(c.buf);
-  return rc;
-}
-
-/* ------------------------------------------------------------------------ */
-/* Reading: attributes listed and read as arrays, datasets described          */
-/* ------------------------------------------------------------------------ */
-
-/* Class, element size and signedness of an HDF5 type. */
-static void type_info(hid_t t, int *cls, size_t *size, int *is_unsigned) {
-  H5T_class_t c = H5Tget_class(t);
-  *is_unsigned = 0;
-  *size = 0;
-  switch (c) {
-    case H5T_FLOAT:
-      *cls = AUTOBAL_ARCHIVE_CLASS_FLOAT;
-      *size = H5Tget_size(t);
-      break;
-    case H5T_INTEGER:
-      *cls = AUTOBAL_ARCHIVE_CLASS_INTEGER;
-      *size = H5Tget_size(t);
-      *is_unsigned = H5Tget_sign(t) == H5T_SGN_NONE;
-      break;
-    case H5T_STRING:
-      *cls = AUTOBAL_ARCHIVE_CLASS_STRING;
-      *size = H5Tis_variable_str(t) > 0 ? 0 : H5Tget_size(t);
-      break;
-    default:
-      *cls = AUTOBAL_ARCHIVE_CLASS_OTHER;
-      *size = H5Tget_size(t);
-      break;
-  }
-}
-
-/* The attributes found by attr_list_cb: their infos, names in one buffer (name_off[i]
- * is the offset of info[i]'s name; the pointers are set after the iteration). */
-typedef struct {
-  autobal_archive_attr_info *info;
-  size_t *name_off;
-  size_t n, cap;
-  char *names;
-  size_t len, ncap;
-  int nomem;
-  int bad;             /* an attribute could not be inspected (h5 error stack kept) */
-  char bad_name[128];  /* ... its name */
-} attr_list_ctx;
-
-static void attr_list_reset(attr_list_ctx *c) {
-  free(c->info);
-  free(c->name_off);
-  free(c->names);
-  memset(c, 0, sizeof *c);
-}
-
-static herr_t attr_list_cb(hid_t loc, const char *name, const H5A_info_t *ainfo, void *vctx) {
-  attr_list_ctx *c = (attr_list_ctx *)vctx;
-  autobal_archive_attr_info *in;
-  size_t nlen = strlen(name) + 1;
-  hid_t attr, ft = -1, sp = -1;
-  hssize_t np;
-  int nd;
-  (void)ainfo;
-  if (reserved_attr_name(name)) return 0;
-  if (c->n == c->cap) {
-    size_t cap = c->cap ? 2 * c->cap : 16;
-    autobal_archive_attr_info *pi = (autobal_archive_attr_info *)realloc(c->info, cap * sizeof *pi);
-    size_t *po;
-    if (pi == NULL) goto nomem;
-    c->info = pi;
-    po = (size_t *)realloc(c->name_off, cap * sizeof *po);
-    if (po == NULL) goto nomem;
-    c->name_off = po;
-    c->cap = cap;
-  }
-  if (c->ncap - c->len < nlen) {
-    size_t cap = c->ncap ? 2 * c->ncap : 1024;
-    char *p;
-    while (cap - c->len < nlen) cap *= 2;
-    p = (char *)realloc(c->names, cap);
-    if (p == NULL) goto nomem;
-    c->names = p;
-    c->ncap = cap;
-  }
-  in = &c->info[c->n];
-  memset(in, 0, sizeof *in);
-  attr = H5Aopen(loc, name, H5P_DEFAULT);
-  if (attr >= 0) {
-    ft = H5Aget_type(attr);
-    sp = H5Aget_space(attr);
-  }
-  np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-  nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
-  if (attr < 0 || ft < 0 || sp < 0 || np < 0 || nd < 0) {
-    if (ft >= 0) (void)H5Tclose(ft);
-    if (sp >= 0) (void)H5Sclose(sp);
-    if (attr >= 0) (void)H5Aclose(attr);
-    c->bad = 1;
-    snprintf(c->bad_name, sizeof c->bad_name, "%s", name);
-    return -1; /* stop; the error stack tells why */
-  }
-  type_info(ft, &in->type_class, &in->size, &in->is_unsigned);
-  in->rank = nd;
-  in->count = (size_t)np;
-  (void)H5Tclose(ft);
-  (void)H5Sclose(sp);
-  (void)H5Aclose(attr);
-  memcpy(c->names + c->len, name, nlen);
-  c->name_off[c->n] = c->len;
-  c->len += nlen;
-  c->n++;
-  return 0;
-nomem:
-  c->nomem = 1;
-  return 1; /* stop */
-}
-
-/* Whether the object o tracks the creation order of its attributes. */
-static int attr_order_tracked(hid_t o) {
-  H5I_type_t t = H5Iget_type(o);
-  hid_t pl = t == H5I_GROUP ? H5Gget_create_plist(o) : t == H5I_DATASET ? H5Dget_create_plist(o) : -1;
-  unsigned flags = 0;
-  int yes;
-  if (pl < 0) return 0;
-  yes = H5Pget_attr_creation_order(pl, &flags) >= 0 && (flags & H5P_CRT_ORDER_TRACKED) != 0;
-  (void)H5Pclose(pl);
-  return yes;
-}
-
-int autobal_archive_list_attrs(autobal_archive *a, const char *obj, int order, autobal_archive_attr_fn fn,
-                               void *ctx) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  attr_list_ctx c;
-  hid_t o = -1;
-  hsize_t idx = 0;
-  size_t i;
-  int rc;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (fn == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "list_attrs: callback is NULL");
-  if (order != AUTOBAL_ARCHIVE_ORDER_NAME && order != AUTOBAL_ARCHIVE_ORDER_CREATION)
-    return autobal_error_set(&a->err, AUTOBAL_EINVAL,
-                             "list_attrs: order = %d is not AUTOBAL_ARCHIVE_ORDER_NAME (%d) or _CREATION (%d)", order,
-                             AUTOBAL_ARCHIVE_ORDER_NAME, AUTOBAL_ARCHIVE_ORDER_CREATION);
-  if ((rc = norm_path(&a->err, "object", obj, path, sizeof path)) != AUTOBAL_SUCCESS) return rc;
-  memset(&c, 0, sizeof c);
-  h5_enter(&q);
-  if (a->file < 0 || !path_exists(a->file, path)) {
-    rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "no object '%s' in '%s'", path, a->path);
-    goto done;
-  }
-  o = H5Oopen(a->file, path, H5P_DEFAULT);
-  if (o < 0) {
-    rc = h5fail(&a->err, "cannot open '%s'", path);
-    goto done;
-  }
-  if (order == AUTOBAL_ARCHIVE_ORDER_CREATION && !attr_order_tracked(o)) order = AUTOBAL_ARCHIVE_ORDER_NAME;
-  if (H5Aiterate2(o, order == AUTOBAL_ARCHIVE_ORDER_CREATION ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME, H5_ITER_INC,
-                  &idx, attr_list_cb, &c) < 0) {
-    if (c.bad) rc = h5fail(&a->err, "cannot inspect attribute '%s' of '%s'", c.bad_name, path);
-    else rc = h5fail(&a->err, "cannot list the attributes of '%s'", path);
-  } else if (c.nomem) {
-    rc = autobal_error_set(&a->err, AUTOBAL_ENOMEM, "list_attrs: out of memory listing the attributes of '%s'",
-                           path);
-  }
-done:
-  if (o >= 0) (void)H5Oclose(o);
-  h5_leave(&q);
-  for (i = 0; rc == AUTOBAL_SUCCESS && i < c.n; i++) {
-    c.info[i].name = c.names + c.name_off[i];
-    rc = fn(&c.info[i], ctx);
-  }
-  attr_list_reset(&c);
-  return rc;
-}
-
-int autobal_archive_read_attr_doubles(autobal_archive *a, const char *obj, const char *name, double *buf, size_t n,
-                                      size_t *count) {
-  return read_attr_array(a, obj, name, H5T_NATIVE_DOUBLE, 0, 0, buf, n, count);
-}
-
-int autobal_archive_read_attr_int64s(autobal_archive *a, const char *obj, const char *name, int64_t *buf, size_t n,
-                                     size_t *count) {
-  return read_attr_array(a, obj, name, H5T_NATIVE_INT64, 1, 0, buf, n, count);
-}
-
-/* Copy a name into a buffer of AUTOBAL_ARCHIVE_NAME_MAX + 1 bytes (longer names cut). */
-static void copy_name(char *out, const char *name) {
-  size_t n = strlen(name);
-  if (n > AUTOBAL_ARCHIVE_NAME_MAX) n = AUTOBAL_ARCHIVE_NAME_MAX;
-  memcpy(out, name, n);
-  out[n] = '\0';
-}
-
-/* H5DSiterate_scales callback: the last path component of the first scale attached. */
-static herr_t first_scale_cb(hid_t did, unsigned dim, hid_t dsid, void *data) {
-  char *out = (char *)data, p[PATH_MAX_];
-  const char *base;
-  ssize_t len;
-  (void)did;
-  (void)dim;
-  len = H5Iget_name(dsid, p, sizeof p);
-  if (len <= 0 || (size_t)len >= sizeof p) return 0; /* anonymous: try the next one */
-  base = strrchr(p, '/');
-  base = base != NULL ? base + 1 : p;
-  copy_name(out, base);
-  return 1;
-}
-
-int autobal_archive_var_describe(autobal_archive *a, const char *p, autobal_archive_var_info *info) {
-  char path[PATH_MAX_];
-  quiet_state q;
-  hid_t ds, ft = -1;
-  int rc, d;
-  if (a == NULL) return AUTOBAL_EINVAL;
-  autobal_error_clear(&a->err);
-  if (info == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "var_describe: info is NULL");
-  memset(info, 0, sizeof *info);
-  h5_enter(&q);
-  rc = open_dataset(a, p, path, sizeof path, &ds);
-  if (rc == AUTOBAL_SUCCESS) rc = shape_of(a, ds, path, &info->rank, info->dims, &info->count);
-  if (rc == AUTOBAL_SUCCESS) {
-    ft = H5Dget_type(ds);
-    if (ft < 0) rc = h5fail(&a->err, "cannot get the type of '%s'", path);
-    else type_info(ft, &info->type_class, &info->size, &info->is_unsigned);
-  }
-  if (rc == AUTOBAL_SUCCESS) {
-    htri_t sc = H5DSis_scale(ds);
-    if (sc < 0) rc = h5fail(&a->err, "cannot tell whether '%s' is a dimension scale", path);
-    info->is_coordinate = sc > 0;
-  }
-  for (d = 0; rc == AUTOBAL_SUCCESS && d < info->rank; d++) {
-    if (info->is_coordinate && info->rank == 1) {
-      const char *base = strrchr(path, '/');
-      copy_name(info->dim_names[d], base != NULL ? base + 1 : path);
-    } else {
-      int ns = H5DSget_num_scales(ds, (unsigned)d);
-      if (ns > 0 && H5DSiterate_scales(ds, (unsigned)d, NULL, first_scale_cb, info->dim_names[d]) < 0)
-        rc = h5fail(&a->err, "cannot read the dimension scales of '%s'", path);
-    }
-  }
-  if (ft >= 0) (void)H5Tclose(ft);
-  if (ds >= 0) (void)H5Dclose(ds);
-  h5_leave(&q);
-  if (rc != AUTOBAL_SUCCESS) memset(info, 0, sizeof *info);
-  return rc;
+  autobal_archive_free_handle_(a);
 }

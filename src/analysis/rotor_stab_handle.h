@@ -1,17 +1,21 @@
-/* rotor_stab_internal.h: private layout of the rotor stability handle, shared by
- * src/rotor_stability.c, src/rotor_floquet.c, and capacity-limited variants of the
- * critical-value searches (src/rotor_stability.c, src/rotor_campbell.c) for the tests of
- * their truncation path (not installed). */
-#ifndef AUTOBAL_ROTOR_STAB_INTERNAL_H
-#define AUTOBAL_ROTOR_STAB_INTERNAL_H
+/* rotor_stab_handle.h: private layout of the rotor stability handle and the internal
+ * functions of rotor_stab_handle.c (not installed).  Included by rotor_stab_handle.c,
+ * rotor_floquet.c and rotor_stability.c; includes rotor_closed.h only. */
+#ifndef AUTOBAL_ROTOR_STAB_HANDLE_H
+#define AUTOBAL_ROTOR_STAB_HANDLE_H
 
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
 #include <gsl/gsl_permutation.h>
 
+#include "analysis/rotor_closed.h"
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
 #include "autobal/transient.h"
+
+/* Largest number of balls for which the full linearization and Floquet analysis
+ * workspaces are allocated ((8 + 2N)^2 ODE states). */
+#define AUTOBAL_ROTOR_STAB_MAX_FULL_BALLS 64
 
 struct autobal_rotor_stab {
   autobal_rotor_params cur;        /* working parameters; ball arrays point into m, r, h, psi0i, rate0 */
@@ -54,27 +58,7 @@ struct autobal_rotor_stab {
 int autobal_rotor_stab_update_member_(autobal_rotor_stab *s);
 /* Family dimension (sum over planes of n_j - rank_j) at the current member (psi valid). */
 size_t autobal_rotor_stab_family_(const autobal_rotor_stab *s);
-/* Analytic mixed-frame linearization into s->Afull (see the header). */
-int autobal_rotor_stab_lin_(autobal_rotor_stab *s, double t, int rotating);
-/* Floquet multipliers into s->mu_re/mu_im (sorted by decreasing modulus); monodromy
- * (may be NULL) unscaled. */
-int autobal_rotor_stab_floquet_(autobal_rotor_stab *s, double *monodromy);
-/* Margin from Floquet multipliers excluding `family` multipliers closest to 1. */
-double autobal_rotor_stab_floquet_margin_(const autobal_rotor_stab *s, size_t family);
-/* Is the lumped set isotropic (relative 1e-12)? */
-int autobal_rotor_lumped_isotropic_(const autobal_rotor_lumped *L);
-
-/* autobal_rotor_stab_critical with the capacity of the list of critical values limited to
- * cap (1 <= cap <= AUTOBAL_ROTOR_MAX_CRIT; the public function uses AUTOBAL_ROTOR_MAX_CRIT),
- * so that the truncation path can be tested with few verdict changes.  AUTOBAL_EINVAL for
- * cap out of range (message on the handle); otherwise exactly the public function. */
-int autobal_rotor_stab_critical_cap_(autobal_rotor_stab *s, int param, double lo, double hi,
-                                     size_t n_grid, double xtol_rel, size_t cap,
-                                     autobal_rotor_crit *out);
-/* autobal_rotor_resonance_speeds with both lists limited to cap entries (1 <= cap <=
- * AUTOBAL_ROTOR_MAX_CRIT), for the same purpose. */
-int autobal_rotor_resonance_speeds_cap_(const autobal_rotor_params *p, double lo, double hi,
-                                        size_t n_grid, double xtol_rel, size_t cap,
-                                        autobal_rotor_resonances *out, autobal_error *err);
+/* Fill the closed system from the handle's current data and member angles (psi valid). */
+void autobal_rotor_stab_closed_from_handle_(const autobal_rotor_stab *s, autobal_rotor_closed *c);
 
 #endif

@@ -11,7 +11,7 @@
 
 #include <gsl/gsl_errno.h>
 
-#include "fastmath.h"
+#include "numerics/fastmath.h"
 #include "internal.h"
 
 #ifndef M_PI
@@ -44,7 +44,7 @@ struct autobal_rotor {
 /* The balls' sines and cosines are computed by one vectorizable loop
  * (fastmath.h), compiled twice, for AVX2 and for the baseline x86-64, and the
  * best is picked when the library is loaded (GCC function multiversioning, as
- * in pendulum.c).  No FMA in either: both clones give the same bits. */
+ * in src/analysis/pendulum_map.c).  No FMA in either: both clones give the same bits. */
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8 && defined(__x86_64__) && \
     defined(__linux__) && !defined(AUTOBAL_NO_CLONES)
 #define ROTOR_CLONES __attribute__((target_clones("avx2", "default")))

@@ -1,7 +1,11 @@
 /* rotor_campbell.c: the rotor-housing without balls (docs/rotor.md, (3.2) with s = the
  * unbalance only): natural frequencies and damping ratios at a speed (gyroscopic
  * coupling C omega), the Campbell diagram, the steady unbalance response and the
- * resonance (unbalance-response critical) speeds. */
+ * resonance (unbalance-response critical) speeds.
+ *
+ * May use: the rotor model (autobal/rotor.h: lumped coefficients), the numerics (bracketing),
+ * GSL (eigenvalues), core (internal.h), and rotor_stab_internal.h for the prototype of its
+ * test hook.  No other file of src/analysis/: the stability handle is not needed here. */
 #include <complex.h>
 #include <float.h>
 #include <math.h>
@@ -15,8 +19,8 @@
 
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
+#include "analysis/rotor_stab_internal.h"
 #include "internal.h"
-#include "rotor_stab_internal.h"
 
 typedef struct modes_ws {
   gsl_eigen_nonsymmv_workspace *w;

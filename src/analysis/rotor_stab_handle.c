@@ -1,0 +1,433 @@
+/* rotor_stab_handle.c: the rotor stability handle (autobal_rotor_stab, docs/rotor.md
+ * "Stability of a balanced motion"): options, allocation of every workspace, the parameters a
+ * sweep or a map varies, and the member of the family of balanced configurations at the
+ * current parameters (autobal_rotor_stab_update_member_), with its closed linear system.
+ *
+ * May use: rotor_closed.h (member angles, plane rank, isotropy), the rotor model
+ * (autobal/rotor.h), the numerics (autobal/stability.h workspaces), the transient driver
+ * (its workspace for the Floquet integration), core (internal.h).  Used by rotor_floquet.c
+ * and rotor_stability.c through rotor_stab_handle.h; it calls neither of them. */
+#include "autobal/rotor_stability.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/rotor_closed.h"
+#include "analysis/rotor_stab_handle.h"
+#include "internal.h"
+
+/* Fill the closed system from the handle's current data and member angles. */
+void autobal_rotor_stab_closed_from_handle_(const autobal_rotor_stab *s, autobal_rotor_closed *c) {
+  size_t j, i;
+  memset(c, 0, sizeof *c);
+  c->L = s->L;
+  c->omega = s->cur.omega;
+  c->n_planes = s->n_planes;
+  c->isotropic = autobal_rotor_lumped_isotropic_(&s->L);
+  c->closure_ok = 1;
+  for (j = 0; j < s->n_planes; j++) {
+    autobal_rotor_closed_plane *cp = &c->plane[j];
+    const size_t o = s->off[j], n = s->cnt[j];
+    double k0 = n > 0 ? s->h[o] / s->m[o] : 0.0;
+    cp->d = s->cur.plane[j].d;
+    cp->n_balls = n;
+    for (i = 0; i < n; i++) {
+      const double m = s->m[o + i], ph = 2.0 * s->psi[o + i];
+      cp->mass += m;
+      cp->Q_re += m * cos(ph);
+      cp->Q_im += m * sin(ph);
+      if (!autobal_rotor_close_rel_(s->h[o + i] / m, k0, 1e-12) && !(s->h[o + i] == 0.0 && k0 == 0.0))
+        c->closure_ok = 0;
+    }
+    cp->kappa = k0;
+    cp->m_add = s->cur.inertia == AUTOBAL_ROTOR_INERTIA_FULL ? cp->mass + s->cur.plane[j].m0 : 0.0;
+    cp->rank = autobal_rotor_plane_rank_(s->m + o, s->r + o, s->psi + o, n);
+    cp->family = n - cp->rank;
+    if (cp->rank < 2) c->closure_ok = 0;
+  }
+}
+
+/* ---- the handle ---------------------------------------------------------------------- */
+
+const char *autobal_rotor_stab_method_name(int method) {
+  switch (method) {
+    case AUTOBAL_ROTOR_STAB_AUTO: return "auto";
+    case AUTOBAL_ROTOR_STAB_POLY: return "poly";
+    case AUTOBAL_ROTOR_STAB_CLOSED: return "closed";
+    case AUTOBAL_ROTOR_STAB_FULL: return "full";
+    case AUTOBAL_ROTOR_STAB_FLOQUET: return "floquet";
+    default: return "unknown";
+  }
+}
+
+static const char *const param_names[] = {"omega", "ball_damping", "ball_mass",
+                                          "stiffness_scale", "damping_scale", "unbalance_mass"};
+static const char *const param_units[] = {"rad/s", "kg/s", "kg", "1", "1", "kg"};
+#define N_PARAMS 6
+
+const char *autobal_rotor_stab_param_name(int param) {
+  return param >= 0 && param < N_PARAMS ? param_names[param] : NULL;
+}
+const char *autobal_rotor_stab_param_unit(int param) {
+  return param >= 0 && param < N_PARAMS ? param_units[param] : NULL;
+}
+int autobal_rotor_stab_param_from_name(const char *name) {
+  int i;
+  if (name == NULL) return -1;
+  for (i = 0; i < N_PARAMS; i++)
+    if (!strcmp(name, param_names[i])) return i;
+  return -1;
+}
+
+autobal_rotor_stab_options autobal_rotor_stab_options_default(void) {
+  autobal_rotor_stab_options o;
+  memset(&o, 0, sizeof o);
+  o.method = AUTOBAL_ROTOR_STAB_AUTO;
+  o.tol = 1e-9;
+  o.floquet_rtol = 1e-11;
+  o.floquet_atol = 1e-13;
+  return o;
+}
+
+void autobal_rotor_stab_free(autobal_rotor_stab *s) {
+  if (s == NULL) return;
+  autobal_poly_workspace_free(s->pw);
+  autobal_eigen_workspace_free(s->ew_closed);
+  autobal_eigen_workspace_free(s->ew_full);
+  if (s->lu_closed) gsl_matrix_free(s->lu_closed);
+  if (s->perm_closed) gsl_permutation_free(s->perm_closed);
+  if (s->lu_full) gsl_matrix_free(s->lu_full);
+  if (s->perm_full) gsl_permutation_free(s->perm_full);
+  if (s->vec_full) gsl_vector_free(s->vec_full);
+  autobal_transient_free(s->tr);
+  free(s->store);
+  free(s);
+}
+
+const char *autobal_rotor_stab_errmsg(const autobal_rotor_stab *s) {
+  return s ? s->err.message : "rotor stability handle is NULL";
+}
+
+static int check_options(const autobal_rotor_stab_options *o, const autobal_rotor_params *p,
+                         autobal_error *err) {
+  int st;
+  size_t j;
+  if (o->method < AUTOBAL_ROTOR_STAB_AUTO || o->method > AUTOBAL_ROTOR_STAB_FLOQUET)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option method = %d is not valid: 0 auto, 1 poly, 2 closed, 3 full, 4 floquet",
+                             o->method);
+  if ((st = autobal_check_param(err, "tol", o->tol, 0.0, 1, 1e-2, 0, "")) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_check_param(err, "floquet_rtol", o->floquet_rtol, 0.0, 1, 1e-3, 0, "")) !=
+      AUTOBAL_SUCCESS)
+    return st;
+  if ((st = autobal_check_param(err, "floquet_atol", o->floquet_atol, 0.0, 1, 1e-3, 0, "")) !=
+      AUTOBAL_SUCCESS)
+    return st;
+  for (j = 0; j < p->n_planes; j++) {
+    const autobal_rotor_member *m = &o->member[j];
+    if (m->kind < AUTOBAL_ROTOR_MEMBER_DEFAULT || m->kind > AUTOBAL_ROTOR_MEMBER_GIVEN)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "option member[%zu].kind = %d is not valid (0 default, 1 symmetric, 2 "
+                               "free, 3 given)",
+                               j, m->kind);
+    if ((m->kind == AUTOBAL_ROTOR_MEMBER_FREE || m->kind == AUTOBAL_ROTOR_MEMBER_GIVEN)) {
+      size_t need = m->kind == AUTOBAL_ROTOR_MEMBER_GIVEN
+                        ? p->plane[j].n_balls
+                        : (p->plane[j].n_balls >= 2 ? p->plane[j].n_balls - 2 : 0);
+      if (m->n_angles != need || (need > 0 && m->angles == NULL))
+        return autobal_error_set(err, AUTOBAL_EINVAL,
+                                 "option member[%zu]: %zu angles given, the %s member of a plane "
+                                 "with %zu balls needs %zu",
+                                 j, m->n_angles,
+                                 m->kind == AUTOBAL_ROTOR_MEMBER_GIVEN ? "'given'" : "'free'",
+                                 p->plane[j].n_balls, need);
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
+                                             const autobal_rotor_stab_options *opt,
+                                             autobal_error *err) {
+  autobal_rotor_stab *s;
+  autobal_rotor_stab_options o = opt ? *opt : autobal_rotor_stab_options_default();
+  size_t j, i, N = 0, nmem = 0, nstore;
+  int st;
+  autobal_error e;
+  autobal_error_clear(&e);
+  st = autobal_rotor_params_check(p, &e);
+  if (st < 0) {
+    if (err) *err = e;
+    return NULL;
+  }
+  if ((st = check_options(&o, p, err)) != AUTOBAL_SUCCESS) return NULL;
+  for (j = 0; j < p->n_planes; j++) {
+    N += p->plane[j].n_balls;
+    nmem += p->plane[j].n_balls;
+  }
+  s = (autobal_rotor_stab *)calloc(1, sizeof *s);
+  if (s == NULL) {
+    autobal_error_set(err, AUTOBAL_ENOMEM, "rotor stability: out of memory");
+    return NULL;
+  }
+  s->N = N;
+  s->n_planes = p->n_planes;
+  s->ns = 8 + 2 * N;
+  s->nm = 4 + N;
+  s->opt = o;
+  s->cur = *p;
+  s->cur.axial = 0;
+  s->c_scale = 1.0;
+  s->h_scale = 1.0;
+  if (p->input == AUTOBAL_ROTOR_HARDWARE)
+    (void)autobal_rotor_lumped_from_hardware(&p->hw, &s->Lbase, NULL);
+  else
+    s->Lbase = p->lumped;
+  s->L = s->Lbase;
+  nstore = 8 * N + nmem + 1;
+  if (N <= AUTOBAL_ROTOR_STAB_MAX_FULL_BALLS)
+    nstore += 7 * s->ns * s->ns + 9 * s->ns + 2 * s->nm * s->nm;
+  s->store = (double *)calloc(nstore, sizeof(double));
+  if (s->store == NULL) goto nomem;
+  s->m = s->store;
+  s->r = s->m + N;
+  s->h = s->r + N;
+  s->psi_init = s->h + N;
+  s->rate_init = s->psi_init + N;
+  s->psi = s->rate_init + N;
+  s->member_store = s->psi + N;
+  s->m_save = s->member_store + nmem;
+  s->h_save = s->m_save + N;
+  {
+    double *q = s->h_save + N;
+    size_t o2 = 0;
+    for (j = 0; j < p->n_planes; j++) {
+      const autobal_rotor_plane *pl = &p->plane[j];
+      s->off[j] = o2;
+      s->cnt[j] = pl->n_balls;
+      for (i = 0; i < pl->n_balls; i++) {
+        s->m[o2 + i] = pl->ball_mass[i];
+        s->r[o2 + i] = pl->ball_radius[i];
+        s->h[o2 + i] = pl->ball_damping[i];
+        s->psi_init[o2 + i] = pl->ball_psi ? pl->ball_psi[i] : 0.0;
+        s->rate_init[o2 + i] = pl->ball_rate ? pl->ball_rate[i] : 0.0;
+      }
+      s->cur.plane[j].ball_mass = s->m + o2;
+      s->cur.plane[j].ball_radius = s->r + o2;
+      s->cur.plane[j].ball_damping = s->h + o2;
+      s->cur.plane[j].ball_psi = s->psi_init + o2;
+      s->cur.plane[j].ball_rate = s->rate_init + o2;
+      /* member angles: copied; DEFAULT with n >= 3 unequal balls becomes FREE with the first
+       * n - 2 angles of the default member at these parameters */
+      {
+        autobal_rotor_member *mb = &s->opt.member[j];
+        double *dst = s->member_store + o2;
+        if (mb->kind == AUTOBAL_ROTOR_MEMBER_FREE || mb->kind == AUTOBAL_ROTOR_MEMBER_GIVEN) {
+          for (i = 0; i < mb->n_angles; i++) dst[i] = mb->angles[i];
+          mb->angles = dst;
+        } else if (mb->kind == AUTOBAL_ROTOR_MEMBER_DEFAULT && pl->n_balls >= 3) {
+          int identical = 1;
+          for (i = 1; i < pl->n_balls; i++)
+            if (!autobal_rotor_close_rel_(pl->ball_mass[i] * pl->ball_radius[i],
+                                          pl->ball_mass[0] * pl->ball_radius[0], 1e-12))
+              identical = 0;
+          if (!identical &&
+              autobal_rotor_member_angles(&s->cur.plane[j], NULL, dst, pl->n_balls, NULL) ==
+                  AUTOBAL_SUCCESS) {
+            mb->kind = AUTOBAL_ROTOR_MEMBER_FREE;
+            mb->n_angles = pl->n_balls - 2;
+            mb->angles = dst;
+          } else {
+            mb->angles = NULL;
+            mb->n_angles = 0;
+          }
+        } else {
+          mb->angles = NULL;
+          mb->n_angles = 0;
+        }
+      }
+      o2 += pl->n_balls;
+    }
+    for (; j < AUTOBAL_ROTOR_MAX_PLANES; j++) memset(&s->opt.member[j], 0, sizeof s->opt.member[j]);
+    if (N <= AUTOBAL_ROTOR_STAB_MAX_FULL_BALLS) {
+      const size_t ns = s->ns, nm = s->nm;
+      s->Afull = q;
+      q += ns * ns;
+      s->Ascaled = q;
+      q += ns * ns;
+      s->phi = q;
+      q += 5 * ns * ns; /* phi and scratch for products */
+      s->sc = q;
+      q += ns;
+      s->full_re = q;
+      q += ns;
+      s->full_im = q;
+      q += ns;
+      s->mu_re = q;
+      q += ns;
+      s->mu_im = q;
+      q += ns;
+      s->tmp_re = q;
+      q += ns;
+      s->tmp_im = q;
+      q += ns;
+      q += 2 * ns;
+      s->Kt = q;
+      q += nm * nm;
+      s->Ct = q;
+    }
+  }
+  s->pw = autobal_poly_workspace_alloc(AUTOBAL_ROTOR_POLY_LEN - 1);
+  s->ew_closed = autobal_eigen_workspace_alloc(8 + 4 * s->n_planes);
+  s->lu_closed = gsl_matrix_alloc(4 + 2 * s->n_planes, 4 + 2 * s->n_planes);
+  s->perm_closed = gsl_permutation_alloc(4 + 2 * s->n_planes);
+  if (!s->pw || !s->ew_closed || !s->lu_closed || !s->perm_closed) goto nomem;
+  if (N <= AUTOBAL_ROTOR_STAB_MAX_FULL_BALLS) {
+    autobal_transient_options to = autobal_transient_options_default();
+    to.rtol = o.floquet_rtol;
+    to.atol = o.floquet_atol;
+    to.max_steps = 10000000UL;
+    s->ew_full = autobal_eigen_workspace_alloc(s->ns);
+    s->lu_full = gsl_matrix_alloc(s->nm, s->nm);
+    s->perm_full = gsl_permutation_alloc(s->nm);
+    s->vec_full = gsl_vector_alloc(s->nm);
+    s->tr = autobal_transient_alloc(s->ns * s->ns, &to, NULL);
+    if (!s->ew_full || !s->lu_full || !s->perm_full || !s->vec_full || !s->tr) goto nomem;
+  }
+  s->psi_status = AUTOBAL_EINVAL;
+  autobal_error_clear(&s->err);
+  if (err) *err = e; /* success or the warning of autobal_rotor_params_check */
+  return s;
+nomem:
+  autobal_rotor_stab_free(s);
+  autobal_error_set(err, AUTOBAL_ENOMEM, "rotor stability: out of memory");
+  return NULL;
+}
+
+const autobal_rotor_params *autobal_rotor_stab_params(const autobal_rotor_stab *s) {
+  return s ? &s->cur : NULL;
+}
+size_t autobal_rotor_stab_n_balls(const autobal_rotor_stab *s) { return s ? s->N : 0; }
+
+static void scale_lumped(autobal_rotor_stab *s) {
+  const autobal_rotor_lumped *B = &s->Lbase;
+  autobal_rotor_lumped *L = &s->L;
+  const double f = s->c_scale, g = s->h_scale;
+  L->c_x = f * B->c_x;
+  L->c_y = f * B->c_y;
+  L->c_z = f * B->c_z;
+  L->c_alpha = f * B->c_alpha;
+  L->c_beta = f * B->c_beta;
+  L->c_xbeta = f * B->c_xbeta;
+  L->c_yalpha = f * B->c_yalpha;
+  L->h_x = g * B->h_x;
+  L->h_y = g * B->h_y;
+  L->h_z = g * B->h_z;
+  L->h_alpha = g * B->h_alpha;
+  L->h_beta = g * B->h_beta;
+  L->h_xbeta = g * B->h_xbeta;
+  L->h_yalpha = g * B->h_yalpha;
+  /* keep the working parameters consistent (lumped input with the scaled set) */
+  s->cur.input = AUTOBAL_ROTOR_LUMPED;
+  s->cur.lumped = *L;
+}
+
+int autobal_rotor_stab_set(autobal_rotor_stab *s, int param, double value) {
+  int st;
+  size_t i, j;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  switch (param) {
+    case AUTOBAL_ROTOR_PARAM_OMEGA:
+      if ((st = autobal_check_param(&s->err, "omega", value, -INFINITY, 1, INFINITY, 1, "rad/s")))
+        return st;
+      s->cur.omega = value;
+      return AUTOBAL_SUCCESS;
+    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING:
+      if ((st = autobal_check_param(&s->err, "ball_damping", value, 0.0, 0, INFINITY, 1, "kg/s")))
+        return st;
+      for (i = 0; i < s->N; i++) s->h[i] = value;
+      return AUTOBAL_SUCCESS;
+    case AUTOBAL_ROTOR_PARAM_BALL_MASS:
+      if ((st = autobal_check_param(&s->err, "ball_mass", value, 0.0, 1, INFINITY, 1, "kg")))
+        return st;
+      for (i = 0; i < s->N; i++) s->m[i] = value;
+      return AUTOBAL_SUCCESS;
+    case AUTOBAL_ROTOR_PARAM_STIFFNESS_SCALE:
+      if ((st = autobal_check_param(&s->err, "stiffness_scale", value, 0.0, 1, INFINITY, 1, "")))
+        return st;
+      s->c_scale = value;
+      scale_lumped(s);
+      return AUTOBAL_SUCCESS;
+    case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE:
+      if ((st = autobal_check_param(&s->err, "damping_scale", value, 0.0, 0, INFINITY, 1, "")))
+        return st;
+      s->h_scale = value;
+      scale_lumped(s);
+      return AUTOBAL_SUCCESS;
+    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS:
+      if ((st = autobal_check_param(&s->err, "unbalance_mass", value, 0.0, 0, INFINITY, 1, "kg")))
+        return st;
+      for (j = 0; j < s->n_planes; j++) s->cur.plane[j].m0 = value;
+      return AUTOBAL_SUCCESS;
+    default:
+      return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                               "parameter id %d is not valid (0 omega .. 5 unbalance_mass)", param);
+  }
+}
+
+double autobal_rotor_stab_get(const autobal_rotor_stab *s, int param) {
+  if (s == NULL) return NAN;
+  switch (param) {
+    case AUTOBAL_ROTOR_PARAM_OMEGA: return s->cur.omega;
+    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return s->N ? s->h[0] : NAN;
+    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return s->N ? s->m[0] : NAN;
+    case AUTOBAL_ROTOR_PARAM_STIFFNESS_SCALE: return s->c_scale;
+    case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE: return s->h_scale;
+    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return s->cur.plane[0].m0;
+    default: return NAN;
+  }
+}
+
+int autobal_rotor_stab_update_member_(autobal_rotor_stab *s) {
+  size_t j;
+  int st = AUTOBAL_SUCCESS;
+  for (j = 0; j < s->n_planes && st == AUTOBAL_SUCCESS; j++) {
+    st = autobal_rotor_member_angles(&s->cur.plane[j], &s->opt.member[j], s->psi + s->off[j],
+                                     s->cnt[j], &s->err);
+    if (st != AUTOBAL_SUCCESS) {
+      char tmp[AUTOBAL_ERRMSG_SIZE];
+      snprintf(tmp, sizeof tmp, "%s", s->err.message);
+      autobal_error_set(&s->err, st, "plane %zu: %.480s", j + 1, tmp);
+    }
+  }
+  s->psi_status = st;
+  return st;
+}
+
+size_t autobal_rotor_stab_family_(const autobal_rotor_stab *s) {
+  size_t j, f = 0;
+  for (j = 0; j < s->n_planes; j++)
+    f += s->cnt[j] - autobal_rotor_plane_rank_(s->m + s->off[j], s->r + s->off[j], s->psi + s->off[j], s->cnt[j]);
+  return f;
+}
+
+int autobal_rotor_stab_balanced_angles(autobal_rotor_stab *s, double *psi, size_t n) {
+  int st;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (n != s->N || (n > 0 && psi == NULL))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "balanced angles: n = %zu, need N = %zu", n,
+                             s->N);
+  if ((st = autobal_rotor_stab_update_member_(s)) != AUTOBAL_SUCCESS) return st;
+  if (n) memcpy(psi, s->psi, n * sizeof *psi);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_stab_closed(autobal_rotor_stab *s, autobal_rotor_closed *c) {
+  int st;
+  if (s == NULL || c == NULL) return AUTOBAL_EINVAL;
+  if ((st = autobal_rotor_stab_update_member_(s)) != AUTOBAL_SUCCESS) return st;
+  autobal_rotor_stab_closed_from_handle_(s, c);
+  return AUTOBAL_SUCCESS;
+}
