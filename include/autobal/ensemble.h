@@ -253,8 +253,8 @@ typedef struct autobal_ensemble autobal_ensemble;
 /* Allocate an ensemble of `member` with settings s: validates every setting
  * (message naming it, its value and the allowed range), the parameter names
  * (member->describe, member->check, duplicates), the kept series and their
- * memory (at most 2^28 doubles in all), and allocates the result store
- * (n_members x summary length doubles).  member is copied (its model is
+ * memory (at most 2^28 doubles in all; the kept members are set up once
+ * here to know their output interval).  member is copied (its model is
  * borrowed: it must outlive the handle).  Returns NULL on failure with
  * AUTOBAL_EINVAL or AUTOBAL_ENOMEM in err (may be NULL). */
 AUTOBAL_API autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member,
@@ -316,7 +316,10 @@ typedef struct autobal_ensemble_parallel {
                               0: only which members are done (saves memory)             */
 } autobal_ensemble_parallel;
 /* Set the dealing (copied).  Must come before resume and run.  Returns
- * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (e or par NULL) or AUTOBAL_ENOMEM. */
+ * AUTOBAL_SUCCESS or AUTOBAL_EINVAL (e or par NULL; or `results` changed after
+ * members were done).  The result store (n_members x summary length doubles)
+ * is allocated when first needed, and only when results = 1 (the default
+ * without this call). */
 AUTOBAL_API int autobal_ensemble_set_parallel(autobal_ensemble *e,
                                               const autobal_ensemble_parallel *par);
 
@@ -328,6 +331,7 @@ AUTOBAL_API int autobal_ensemble_set_parallel(autobal_ensemble *e,
  * *n.  Returns AUTOBAL_SUCCESS (none: *n = 0), AUTOBAL_EIO or AUTOBAL_ENOMEM. */
 AUTOBAL_API int autobal_ensemble_journals(const char *output, char ***paths, size_t *n,
                                           autobal_error *err);
+/* Free a list from autobal_ensemble_journals (the n strings and the array; NULL is safe). */
 AUTOBAL_API void autobal_ensemble_journals_free(char **paths, size_t n);
 /* Remove every journal of output.  Returns AUTOBAL_SUCCESS or AUTOBAL_EIO
  * (the message names the file; the ones before it are removed). */
@@ -385,7 +389,9 @@ AUTOBAL_API int autobal_ensemble_series(const autobal_ensemble *e, size_t m, siz
                                         const double **t, const double **rows);
 
 /* The tally over the done members.  p = n_balanced / (n_done - n_failed),
- * p_stderr = sqrt(p (1 - p) / (n_done - n_failed)); NaN where undefined. */
+ * p_stderr = sqrt(p (1 - p) / (n_done - n_failed)); NaN where undefined.
+ * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL argument, or this process
+ * keeps no results: *t then has n_members and NaNs) or AUTOBAL_ENOMEM. */
 typedef struct autobal_ensemble_tally {
   size_t n_members, n_done, n_failed, n_ok, n_balanced;
   double p, p_stderr;                       /* probability of balancing, its standard error */

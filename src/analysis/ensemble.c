@@ -535,10 +535,8 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
 #else
   e->threads = 1;
 #endif
-  e->done = calloc(e->n_members, 1);
-  e->sum = malloc(e->n_members * e->nsum * sizeof *e->sum);
-  e->ser = calloc(e->n_keep ? e->n_keep : 1, sizeof *e->ser);
-  if (!e->done || !e->sum || !e->ser) goto nomem;
+  e->done = calloc(e->n_members, 1); /* the results themselves: store_ready(), when first needed */
+  if (!e->done) goto nomem;
   e->hash = settings_hash(e);
   autobal_error_clear(&e->err);
   return e;
@@ -588,19 +586,26 @@ int autobal_ensemble_set_cancel(autobal_ensemble *e, autobal_ensemble_cancel_fn 
   return AUTOBAL_SUCCESS;
 }
 
+/* The result store (summaries, kept series) of a process that keeps results, allocated when first
+ * needed (a process that keeps none never holds n_members x nsum doubles).  The summaries of
+ * members not done are never read. */
+static int store_ready(autobal_ensemble *e) {
+  if (!e->par.results || e->sum) return AUTOBAL_SUCCESS;
+  e->sum = calloc((e->n_members ? e->n_members : 1) * e->nsum, sizeof *e->sum);
+  e->ser = calloc(e->n_keep ? e->n_keep : 1, sizeof *e->ser);
+  if (!e->sum || !e->ser) {
+    store_free(e);
+    return autobal_error_set(&e->err, AUTOBAL_ENOMEM, "out of memory (results of %zu members)", e->n_members);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 int autobal_ensemble_set_parallel(autobal_ensemble *e, const autobal_ensemble_parallel *par) {
   if (!e || !par) return AUTOBAL_EINVAL;
+  if (e->n_done && !par->results != !e->par.results)
+    return autobal_error_set(&e->err, AUTOBAL_EINVAL, "ensemble: set_parallel must come before resume and run");
   e->par = *par;
   if (!par->results) store_free(e);
-  else if (!e->sum) {
-    e->sum = malloc(e->n_members * e->nsum * sizeof *e->sum);
-    e->ser = calloc(e->n_keep ? e->n_keep : 1, sizeof *e->ser);
-    if (!e->sum || !e->ser) {
-      store_free(e);
-      e->par.results = 0;
-      return autobal_error_set(&e->err, AUTOBAL_ENOMEM, "out of memory (ensemble results)");
-    }
-  }
   return AUTOBAL_SUCCESS;
 }
 
@@ -697,6 +702,7 @@ int autobal_ensemble_add_records(autobal_ensemble *e, const double *records, siz
   int nomem = 0;
   size_t used;
   if (!e || (n && !records)) return AUTOBAL_EINVAL;
+  if (store_ready(e) != AUTOBAL_SUCCESS) return AUTOBAL_ENOMEM;
   used = parse_records(e, records, n, &nomem);
   if (nomem) return autobal_error_set(&e->err, AUTOBAL_ENOMEM, "out of memory collecting the members' results");
   if (used != n) return autobal_error_set(&e->err, AUTOBAL_EFORMAT, "a member's result record is damaged (at double %zu of %zu)", used, n);
@@ -850,6 +856,7 @@ int autobal_ensemble_resume(autobal_ensemble *e, const char *output, int rank) {
   int st;
   if (!e || !output || rank < 0) return e ? autobal_error_set(&e->err, AUTOBAL_EINVAL, "ensemble resume: bad argument") : AUTOBAL_EINVAL;
   autobal_error_clear(&e->err);
+  if (store_ready(e) != AUTOBAL_SUCCESS) return AUTOBAL_ENOMEM;
   own = journal_path(output, rank);
   if (!own) return autobal_error_set(&e->err, AUTOBAL_ENOMEM, "out of memory");
   st = autobal_ensemble_journals(output, &paths, &n, &e->err);
@@ -1007,7 +1014,7 @@ int autobal_ensemble_run(autobal_ensemble *e) {
   memset(&R, 0, sizeof R);
   e->outbox.n = 0;
   e->computed = 0;
-  todo = malloc((e->n_members ? e->n_members : 1) * sizeof *todo);
+  todo = store_ready(e) == AUTOBAL_SUCCESS ? malloc((e->n_members ? e->n_members : 1) * sizeof *todo) : NULL;
   if (!todo) {
     st = autobal_error_set(&e->err, AUTOBAL_ENOMEM, "out of memory");
   } else {
@@ -1055,7 +1062,7 @@ int autobal_ensemble_get_tally(const autobal_ensemble *e, autobal_ensemble_tally
   memset(t, 0, sizeof *t);
   t->p = t->p_stderr = t->ttb_mean = t->ttb_median = t->ttb_max = NAN;
   t->n_members = e->n_members;
-  if (!e->sum) return AUTOBAL_EINVAL;
+  if (!e->sum) return e->par.results && !e->n_done ? AUTOBAL_SUCCESS : AUTOBAL_EINVAL; /* nothing done yet */
   ttb = malloc((e->n_members ? e->n_members : 1) * sizeof *ttb);
   if (!ttb) return AUTOBAL_ENOMEM;
   for (m = 0; m < e->n_members; m++) {
@@ -1101,7 +1108,8 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
   autobal_ensemble_tally t;
   if (!e || !a || !exec) return AUTOBAL_EINVAL;
   autobal_error_clear(&e->err);
-  if (!e->sum) return autobal_error_set(&e->err, AUTOBAL_EINVAL, "ensemble: this process keeps no results to write");
+  if (!e->par.results) return autobal_error_set(&e->err, AUTOBAL_EINVAL, "ensemble: this process keeps no results to write");
+  if ((st = store_ready(e)) != AUTOBAL_SUCCESS) return st;
   if ((st = autobal_ensemble_get_tally(e, &t)) != AUTOBAL_SUCCESS)
     return autobal_error_set(&e->err, st, "out of memory (tally)");
   s = &e->s;
