@@ -10,7 +10,9 @@
  *  - resume from a journal (also with its last record torn) vs an uninterrupted run, bit for bit;
  *    a journal of other settings refused;
  *  - two "processes" dealt by the `mine` hook and joined by the gather hook vs one;
- *  - the cancel hook; the archive read back; bad settings rejected with the parameter named. */
+ *  - the cancel hook; the archive read back; bad settings rejected with the parameter named;
+ *  - a third model defined here (y' = -lambda y): time to balance in closed form, a failing
+ *    right-hand side recorded as a member's status; journal errors. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
@@ -528,9 +530,162 @@ static void test_pendulum(void) {
   CHECK_STATUS("a NaN initial state rejected", autobal_ensemble_pendulum_member(&pp, y0, &mb, &err), AUTOBAL_EINVAL);
 }
 
+/* ---- a third model written here: y' = -lambda y, the engine knows nothing else ---------------------
+ * The residual |y| = exp(-lambda t) falls below tol at t* = ln(1/tol)/lambda: the time to balance in
+ * closed form.  The right-hand side refuses lambda > 5 (a failure the engine must record). */
+typedef struct decay_worker {
+  double lambda;
+} decay_worker;
+
+static int decay_describe(const void *model, const char *name, autobal_ensemble_param_info *info, autobal_error *err) {
+  (void)model;
+  if (strcmp(name, "lambda") != 0) {
+    if (err) err->status = AUTOBAL_EINVAL, snprintf(err->message, sizeof err->message, "'%s' is not lambda", name);
+    return AUTOBAL_EINVAL;
+  }
+  info->units = "1/s", info->long_name = "decay rate", info->periodic = 0;
+  return AUTOBAL_SUCCESS;
+}
+static void *decay_alloc(const void *model, const char *const *names, size_t n, autobal_error *err) {
+  (void)model, (void)names, (void)n, (void)err;
+  return calloc(1, sizeof(decay_worker));
+}
+static void decay_free(void *w) { free(w); }
+static int decay_rhs(double t, const double y[], double dydt[], void *params) {
+  const decay_worker *w = params;
+  (void)t;
+  if (w->lambda > 5) return 1;
+  dydt[0] = -w->lambda * y[0];
+  return 0;
+}
+static double decay_monitor(double t, const double y[], void *user) {
+  (void)t, (void)user;
+  return fabs(y[0]);
+}
+static int decay_setup(void *wp, const double *values, double y0[], autobal_ensemble_setup *su, autobal_error *err) {
+  decay_worker *w = wp;
+  (void)err;
+  w->lambda = values[0];
+  y0[0] = 1.0;
+  su->sys.rhs = decay_rhs, su->sys.jac = NULL, su->sys.dim = 1, su->sys.params = w;
+  su->speed = TWO_PI; /* one "revolution" per second */
+  su->monitor = decay_monitor, su->monitor_user = NULL;
+  su->residual_initial = 1.0;
+  return AUTOBAL_SUCCESS;
+}
+static int decay_observe(void *wp, double t, const double y[], double *amplitude, double *row) {
+  (void)wp, (void)t;
+  *amplitude = fabs(y[0]);
+  if (row) row[0] = y[0];
+  return 0;
+}
+static void decay_finish(void *wp, double t, const double y[], double *residual, double *amplitude, double *angles) {
+  (void)wp, (void)t, (void)angles;
+  *residual = *amplitude = fabs(y[0]);
+}
+static int decay_column(const void *model, size_t k, char *name, size_t size, const char **units) {
+  (void)model, (void)k;
+  snprintf(name, size, "y");
+  *units = "1";
+  return AUTOBAL_SUCCESS;
+}
+
+static void test_third_model(void) {
+  autobal_ensemble_member mb;
+  autobal_ensemble_settings s = autobal_ensemble_settings_default();
+  autobal_ensemble_tally t;
+  autobal_ensemble *e;
+  autobal_error err;
+  size_t m, keep = 2;
+  char out[512];
+  FILE *f;
+  int st;
+  printf("# a model defined by the caller: y' = -lambda y, lambda = 1..6\n");
+  memset(&mb, 0, sizeof mb);
+  mb.model_name = "decay";
+  mb.dim = 1, mb.n_angles = 0, mb.n_columns = 1;
+  mb.time_units = "s", mb.time_name = "time", mb.time_long_name = "time", mb.length_units = "1";
+  mb.describe = decay_describe, mb.worker_alloc = decay_alloc, mb.worker_free = decay_free, mb.setup = decay_setup;
+  mb.observe = decay_observe, mb.finish = decay_finish, mb.column_name = decay_column;
+  s.n_params = 1;
+  s.param[0].name = "lambda", s.param[0].min = 1, s.param[0].max = 6, s.param[0].n = 6;
+  s.endpoint = 1;
+  s.t_end = 10, s.balance_tol = 1e-3, s.balance_revs = 1, s.revs_out = 0.5;
+  s.transient.rtol = 1e-12, s.transient.atol = 1e-14;
+  s.series = &keep, s.n_series = 1;
+  s.threads = 2;
+  e = autobal_ensemble_alloc(&mb, &s, &err);
+  CHECK("alloc", e != NULL);
+  if (!e) {
+    printf("  %s\n", err.message);
+    return;
+  }
+  CHECK_STATUS("run", autobal_ensemble_run(e), AUTOBAL_SUCCESS);
+  for (m = 0; m < 5; m++) {
+    const double *r = autobal_ensemble_summary(e, m);
+    double lambda = 1.0 + (double)m;
+    CHECK("balanced and stopped at the end of the dwell", r[AUTOBAL_ENSEMBLE_BALANCED] == 1 &&
+                                                             r[AUTOBAL_ENSEMBLE_STATUS] == AUTOBAL_EVENT);
+    CHECK_CLOSE("time to balance = ln(1/tol)/lambda", r[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE], log(1e3) / lambda, 0, 1e-7);
+    CHECK_CLOSE("stopped at t* + 1 s", r[AUTOBAL_ENSEMBLE_T_REACHED], log(1e3) / lambda + 1.0, 0, 1e-7);
+    CHECK_CLOSE("final residual exp(-lambda t_reached)", r[AUTOBAL_ENSEMBLE_RESIDUAL_FINAL],
+                exp(-lambda * r[AUTOBAL_ENSEMBLE_T_REACHED]), 1e-8, 0);
+    CHECK("largest amplitude 1 (at t = 0)", r[AUTOBAL_ENSEMBLE_AMPLITUDE_MAX] == 1.0);
+  }
+  CHECK_STATUS("lambda = 6: the right-hand side's failure recorded", (int)autobal_ensemble_summary(e, 5)[AUTOBAL_ENSEMBLE_STATUS],
+               AUTOBAL_ERHS);
+  autobal_ensemble_get_tally(e, &t);
+  CHECK("tally: 1 failed, 5 of 5 balanced", t.n_failed == 1 && t.n_ok == 5 && t.n_balanced == 5 && t.p == 1.0);
+  CHECK_CLOSE("median time to balance (lambda = 3)", t.ttb_median, log(1e3) / 3.0, 0, 1e-7);
+  {
+    size_t nr, i;
+    const double *tt, *rows;
+    int ok = 1;
+    autobal_ensemble_series(e, 2, &nr, &tt, &rows);
+    for (i = 0; i < nr; i++) ok = ok && fabs(rows[i] - exp(-3.0 * tt[i])) <= 1e-10;
+    printf("  kept series of lambda = 3: %zu rows\n", nr);
+    CHECK("kept series: y = exp(-3 t) within 1e-10 at every row", nr >= 3 && ok && tt[1] == 0.5);
+  }
+  /* the archive of a model without angles */
+  snprintf(out, sizeof out, "%s/test_ensemble_decay.h5", AUTOBAL_TEST_TMP_DIR);
+  {
+    autobal_archive *a = NULL, *r = NULL;
+    autobal_ensemble_execution ex = {1, 2, 0.0, 0};
+    double v[6];
+    st = autobal_archive_create(out, 1, &a, &err);
+    if (st == AUTOBAL_SUCCESS) st = autobal_ensemble_write(e, a, NULL, NULL, &ex);
+    CHECK_STATUS("archive /decay/ensemble written", st, AUTOBAL_SUCCESS);
+    if (a) autobal_archive_close(a, NULL);
+    if (autobal_archive_open_read(out, &r, NULL) == AUTOBAL_SUCCESS) {
+      CHECK_STATUS("lambda axis read", autobal_archive_read_var(r, "/decay/ensemble/lambda", v, 6), AUTOBAL_SUCCESS);
+      CHECK("lambda axis 1..6", v[0] == 1 && v[5] == 6);
+      CHECK("no final_angle without angles", autobal_archive_has(r, "/decay/ensemble/final_angle", NULL) == 0);
+      autobal_archive_close(r, NULL);
+    }
+    remove(out);
+  }
+  /* journals: an unwritable place, a file that is not a journal */
+  CHECK_STATUS("journal in a missing directory", autobal_ensemble_journal_open(e, "/nonexistent-dir/x.h5", 0), AUTOBAL_EIO);
+  CHECK_MSG("journal in a missing directory", autobal_ensemble_errmsg(e), "/nonexistent-dir/x.h5.journal-0");
+  snprintf(out, sizeof out, "%s/test_ensemble_junk.h5.journal-3", AUTOBAL_TEST_TMP_DIR);
+  f = fopen(out, "wb");
+  if (f) {
+    fputs("this is not an autobal ensemble journal, but long enough for a header", f);
+    fclose(f);
+  }
+  snprintf(out, sizeof out, "%s/test_ensemble_junk.h5", AUTOBAL_TEST_TMP_DIR);
+  CHECK_STATUS("resume from a file that is not a journal", autobal_ensemble_resume(e, out, 0), AUTOBAL_EFORMAT);
+  CHECK_MSG("not a journal", autobal_ensemble_errmsg(e), "not an autobal ensemble journal");
+  CHECK_STATUS("journals removed", autobal_ensemble_journals_remove(out, NULL), AUTOBAL_SUCCESS);
+  autobal_ensemble_free(e);
+  mb.worker_alloc = NULL;
+  CHECK("a member without worker_alloc rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_rotor();
   test_pendulum();
+  test_third_model();
   return check_summary();
 }
