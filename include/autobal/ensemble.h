@@ -349,7 +349,9 @@ AUTOBAL_API int autobal_ensemble_resume(autobal_ensemble *e, const char *output,
 /* Open this process's journal <output>.journal-<rank>: appended to after its
  * valid records when resume read it, else created with a new header.  Every
  * member finished by run() is then appended and flushed; run() closes it.
- * Returns AUTOBAL_SUCCESS or AUTOBAL_EIO. */
+ * Returns AUTOBAL_SUCCESS, AUTOBAL_EIO (message naming the file; no journal
+ * is then open and run() keeps none) or AUTOBAL_ENOMEM.  Two handles must not
+ * write the journal of the same output and rank. */
 AUTOBAL_API int autobal_ensemble_journal_open(autobal_ensemble *e, const char *output, int rank);
 
 /* ---- running ----------------------------------------------------------------------------- */
