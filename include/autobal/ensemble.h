@@ -254,8 +254,9 @@ typedef struct autobal_ensemble autobal_ensemble;
  * (message naming it, its value and the allowed range), the parameter names
  * (member->describe, member->check, duplicates), the kept series and their
  * memory (at most 2^28 doubles in all; the kept members are set up once
- * here to know their output interval).  member is copied (its model is
- * borrowed: it must outlive the handle).  Returns NULL on failure with
+ * here to know their output interval).  member is copied (its model and
+ * strings are borrowed: they must outlive the handle); s is copied (names,
+ * stepper and series list too).  Returns NULL on failure with
  * AUTOBAL_EINVAL or AUTOBAL_ENOMEM in err (may be NULL). */
 AUTOBAL_API autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member,
                                                      const autobal_ensemble_settings *s,

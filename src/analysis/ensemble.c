@@ -45,6 +45,7 @@ struct autobal_ensemble {
   autobal_ensemble_member mb;
   autobal_ensemble_settings s;
   char names[AUTOBAL_ENSEMBLE_MAX_PARAMS][ENS_NAME];
+  char stepper[32];
   const char *namep[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   autobal_ensemble_param_info info[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   size_t stride[AUTOBAL_ENSEMBLE_MAX_PARAMS];
@@ -461,6 +462,8 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
   }
   e->mb = *member;
   e->s = *s;
+  snprintf(e->stepper, sizeof e->stepper, "%s", s->transient.stepper ? s->transient.stepper : "rk8pd");
+  e->s.transient.stepper = e->stepper; /* validated: a known name, shorter than this */
   e->s.series = NULL;
   e->s.n_series = 0;
   e->own_valid = -1;
