@@ -1,0 +1,579 @@
+/* ensemble_members.c: the ready-made ensemble members (include/autobal/ensemble.h): the rotor
+ * with ball autobalancers and the two-pendulum model, as autobal_ensemble_member callback
+ * tables.  What a member's parameter values change, its initial state, its residual unbalance,
+ * amplitude, final angles and series columns. */
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/ensemble.h"
+#include "internal.h"
+
+#define TWO_PI 6.283185307179586476925286766559
+#define PEND_NCOLS 15
+
+void autobal_ensemble_member_release(autobal_ensemble_member *member) {
+  if (!member) return;
+  if (member->destroy && member->model) member->destroy(member->model);
+  memset(member, 0, sizeof *member);
+}
+
+static uint64_t hash_doubles(uint64_t h, const double *v, size_t n) {
+  size_t i;
+  int b;
+  for (i = 0; i < n; i++) {
+    uint64_t u;
+    double x = v[i];
+    memcpy(&u, &x, sizeof u);
+    for (b = 0; b < 8; b++) {
+      h ^= (unsigned char)(u >> (8 * b));
+      h *= UINT64_C(0x100000001B3);
+    }
+  }
+  return h;
+}
+
+/* ================================ rotor ================================================ */
+enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y };
+
+typedef struct rotor_model {
+  autobal_rotor_params p; /* ball arrays point into storage */
+  double *storage;
+  int frame;
+  char frame_name[32];
+  size_t n_balls, dim, nout;
+  autobal_rotor *rot; /* the base handle: output names */
+} rotor_model;
+
+typedef struct rotor_worker {
+  const rotor_model *M;
+  size_t np;
+  int kind[AUTOBAL_ENSEMBLE_MAX_PARAMS];
+  size_t index[AUTOBAL_ENSEMBLE_MAX_PARAMS];
+  double *bpsi, *brate, *bdamp, *out;
+  autobal_rotor *rot; /* the current member's handle */
+  double omega;
+} rotor_worker;
+
+static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t *index, autobal_ensemble_param_info *info,
+                       autobal_error *err) {
+  autobal_ensemble_param_info dummy;
+  if (!info) info = &dummy;
+  memset(info, 0, sizeof *info);
+  *index = 0;
+  if (!strncmp(name, "psi_", 4) || !strncmp(name, "rate_", 5)) {
+    const char *num = name + (name[0] == 'p' ? 4 : 5);
+    char *end;
+    unsigned long k;
+    if (!(*num >= '1' && *num <= '9')) goto unknown;
+    errno = 0;
+    k = strtoul(num, &end, 10);
+    if (*end || errno) goto unknown;
+    if (k < 1 || k > M->n_balls)
+      return autobal_error_set(err, AUTOBAL_EINVAL, "%s: ball %lu does not exist (the model has %zu balls: 1..%zu, plane 1 first)",
+                               name, k, M->n_balls, M->n_balls);
+    *index = k - 1;
+    if (name[0] == 'p') {
+      *kind = R_PSI, info->periodic = 1, info->units = "rad", info->long_name = "initial angle of the ball relative to the rotor";
+    } else {
+      *kind = R_RATE, info->units = "rad/s", info->long_name = "initial angular rate of the ball relative to the rotor";
+    }
+    return AUTOBAL_SUCCESS;
+  }
+  if (!strcmp(name, "omega")) *kind = R_OMEGA, info->units = "rad/s", info->long_name = "spin speed omega";
+  else if (!strcmp(name, "ball_damping")) *kind = R_DAMPING, info->units = "kg/s", info->long_name = "damping h of every ball";
+  else if (!strcmp(name, "m0")) *kind = R_M0, info->units = "kg", info->long_name = "unbalance mass m0 of plane 1";
+  else if (!strcmp(name, "x")) *kind = R_X, info->units = "m", info->long_name = "initial displacement x of the centre of mass";
+  else if (!strcmp(name, "y")) *kind = R_Y, info->units = "m", info->long_name = "initial displacement y of the centre of mass";
+  else goto unknown;
+  return AUTOBAL_SUCCESS;
+unknown:
+  return autobal_error_set(err, AUTOBAL_EINVAL,
+                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, x, y",
+                           name, M->n_balls);
+}
+
+static int rotor_describe(const void *model, const char *name, autobal_ensemble_param_info *info, autobal_error *err) {
+  int kind;
+  size_t index;
+  if (!name) return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble parameter: NULL name");
+  return rotor_parse(model, name, &kind, &index, info, err);
+}
+
+static void rotor_worker_free(void *wp) {
+  rotor_worker *w = wp;
+  if (!w) return;
+  autobal_rotor_free(w->rot);
+  free(w->bpsi), free(w->brate), free(w->bdamp), free(w->out);
+  free(w);
+}
+
+static void *rotor_worker_alloc(const void *model, const char *const *names, size_t n, autobal_error *err) {
+  const rotor_model *M = model;
+  size_t nb = M->n_balls ? M->n_balls : 1, j;
+  rotor_worker *w;
+  if (n > AUTOBAL_ENSEMBLE_MAX_PARAMS) {
+    autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble: %zu parameters (at most %d)", n, AUTOBAL_ENSEMBLE_MAX_PARAMS);
+    return NULL;
+  }
+  w = calloc(1, sizeof *w);
+  if (!w) goto nomem;
+  w->M = M;
+  w->np = n;
+  for (j = 0; j < n; j++)
+    if (rotor_parse(M, names[j], &w->kind[j], &w->index[j], NULL, err) != AUTOBAL_SUCCESS) {
+      rotor_worker_free(w);
+      return NULL;
+    }
+  w->bpsi = calloc(nb, sizeof *w->bpsi);
+  w->brate = calloc(nb, sizeof *w->brate);
+  w->bdamp = calloc(nb, sizeof *w->bdamp);
+  w->out = calloc(M->nout ? M->nout : 1, sizeof *w->out);
+  if (!w->bpsi || !w->brate || !w->bdamp || !w->out) goto nomem;
+  return w;
+nomem:
+  rotor_worker_free(w);
+  autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble worker)");
+  return NULL;
+}
+
+static double rotor_monitor(double t, const double y[], void *user) {
+  const rotor_worker *w = user;
+  return autobal_rotor_balance_monitor(w->rot, w->M->frame, t, y);
+}
+
+static int rotor_setup(void *wp, const double *values, double y0[], autobal_ensemble_setup *su, autobal_error *err) {
+  rotor_worker *w = wp;
+  const rotor_model *M = w->M;
+  autobal_rotor_params p = M->p;
+  size_t pl, off = 0, j;
+  int st;
+  for (pl = 0; pl < p.n_planes; pl++) {
+    const autobal_rotor_plane *b = &M->p.plane[pl];
+    size_t i;
+    for (i = 0; i < b->n_balls; i++) {
+      w->bpsi[off + i] = b->ball_psi ? b->ball_psi[i] : 0.0;
+      w->brate[off + i] = b->ball_rate ? b->ball_rate[i] : 0.0;
+      w->bdamp[off + i] = b->ball_damping[i];
+    }
+    p.plane[pl].ball_psi = w->bpsi + off;
+    p.plane[pl].ball_rate = w->brate + off;
+    p.plane[pl].ball_damping = w->bdamp + off;
+    off += b->n_balls;
+  }
+  for (j = 0; j < w->np; j++) {
+    double v = values[j];
+    size_t i;
+    switch (w->kind[j]) {
+      case R_PSI: w->bpsi[w->index[j]] = v; break;
+      case R_RATE: w->brate[w->index[j]] = v; break;
+      case R_OMEGA: p.omega = v; break;
+      case R_DAMPING:
+        for (i = 0; i < M->n_balls; i++) w->bdamp[i] = v;
+        break;
+      case R_M0: p.plane[0].m0 = v; break;
+      case R_X: p.q0[0] = v; break;
+      case R_Y: p.q0[1] = v; break;
+      default: break;
+    }
+  }
+  autobal_rotor_free(w->rot);
+  w->rot = autobal_rotor_alloc(&p, err);
+  if (!w->rot) return err && err->status < 0 ? err->status : AUTOBAL_EINVAL;
+  w->omega = p.omega;
+  st = autobal_rotor_initial_state(w->rot, M->frame, 0.0, y0, M->dim);
+  if (st != AUTOBAL_SUCCESS) return st;
+  su->sys.rhs = M->frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating;
+  su->sys.jac = NULL;
+  su->sys.dim = M->dim;
+  su->sys.params = w->rot;
+  su->speed = p.omega;
+  su->monitor = rotor_monitor;
+  su->monitor_user = w;
+  su->residual_initial = autobal_rotor_balance_monitor(w->rot, M->frame, 0.0, y0);
+  return AUTOBAL_SUCCESS;
+}
+
+static int rotor_observe(void *wp, double t, const double y[], double *amplitude, double *row) {
+  rotor_worker *w = wp;
+  const rotor_model *M = w->M;
+  if (autobal_rotor_outputs(w->rot, M->frame, t, y, w->out, M->nout) != AUTOBAL_SUCCESS) return 1;
+  *amplitude = w->out[0];
+  if (row) {
+    memcpy(row, y, M->dim * sizeof *y);
+    memcpy(row + M->dim, w->out, M->nout * sizeof *w->out);
+  }
+  return 0;
+}
+
+static void rotor_finish(void *wp, double t, const double y[], double *residual, double *amplitude, double *angles) {
+  rotor_worker *w = wp;
+  const rotor_model *M = w->M;
+  size_t i;
+  *residual = autobal_rotor_balance_monitor(w->rot, M->frame, t, y);
+  *amplitude = autobal_rotor_outputs(w->rot, M->frame, t, y, w->out, M->nout) == AUTOBAL_SUCCESS ? w->out[0] : NAN;
+  for (i = 0; i < M->n_balls; i++) {
+    double a = M->frame == AUTOBAL_ROTOR_FIXED ? y[8 + i] - w->omega * t : y[8 + i];
+    angles[i] = remainder(a, TWO_PI);
+  }
+}
+
+static int rotor_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
+  static const char *const q[8] = {"x", "y", "alpha", "beta", "x_rate", "y_rate", "alpha_rate", "beta_rate"};
+  static const char *const qu[8] = {"m", "m", "rad", "rad", "m/s", "m/s", "rad/s", "rad/s"};
+  const rotor_model *M = model;
+  const int fixed = M->frame == AUTOBAL_ROTOR_FIXED;
+  size_t nb = M->n_balls;
+  if (k >= M->dim) return k < M->dim + M->nout ? autobal_rotor_output_name(M->rot, k - M->dim, name, size, units) : AUTOBAL_EINVAL;
+  if (k < 8) snprintf(name, size, "%s", q[k]), *units = qu[k];
+  else if (k < 8 + nb) snprintf(name, size, fixed ? "state_phi_%zu" : "state_psi_%zu", k - 8 + 1), *units = "rad";
+  else if (k < 8 + 2 * nb) snprintf(name, size, fixed ? "state_phi_rate_%zu" : "state_psi_rate_%zu", k - 8 - nb + 1), *units = "rad/s";
+  else if (k == 8 + 2 * nb) snprintf(name, size, "z"), *units = "m";
+  else snprintf(name, size, "z_rate"), *units = "m/s";
+  return AUTOBAL_SUCCESS;
+}
+
+static int rotor_write_attrs(const void *model, autobal_archive *a, const char *group) {
+  const rotor_model *M = model;
+  return autobal_archive_attr_string(a, group, "frame", M->frame_name);
+}
+
+static uint64_t rotor_hash(const void *model) {
+  const rotor_model *M = model;
+  const autobal_rotor_params *p = &M->p;
+  uint64_t h = UINT64_C(0xCBF29CE484222325);
+  double v[6];
+  size_t pl;
+  v[0] = p->input, v[1] = p->inertia, v[2] = p->omega, v[3] = p->axial, v[4] = (double)p->n_planes, v[5] = M->frame;
+  h = hash_doubles(h, v, 6);
+  h = hash_doubles(h, (const double *)&p->hw, sizeof p->hw / sizeof(double));
+  h = hash_doubles(h, (const double *)&p->lumped, sizeof p->lumped / sizeof(double));
+  h = hash_doubles(h, p->q0, 4);
+  h = hash_doubles(h, p->qd0, 4);
+  v[0] = p->z0, v[1] = p->zd0;
+  h = hash_doubles(h, v, 2);
+  for (pl = 0; pl < p->n_planes; pl++) {
+    const autobal_rotor_plane *b = &p->plane[pl];
+    size_t i;
+    v[0] = b->d, v[1] = b->m0, v[2] = b->r0, v[3] = b->psi0, v[4] = (double)b->n_balls;
+    h = hash_doubles(h, v, 5);
+    for (i = 0; i < b->n_balls; i++) {
+      v[0] = b->ball_mass[i], v[1] = b->ball_radius[i], v[2] = b->ball_damping[i];
+      v[3] = b->ball_psi ? b->ball_psi[i] : 0.0, v[4] = b->ball_rate ? b->ball_rate[i] : 0.0;
+      h = hash_doubles(h, v, 5);
+    }
+  }
+  return h;
+}
+
+static void rotor_destroy(void *model) {
+  rotor_model *M = model;
+  if (!M) return;
+  autobal_rotor_free(M->rot);
+  free(M->storage);
+  free(M);
+}
+
+int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, const char *frame_name, autobal_ensemble_member *out,
+                                  autobal_error *err) {
+  rotor_model *M;
+  size_t pl, nb = 0, off = 0;
+  autobal_error_clear(err);
+  if (out) memset(out, 0, sizeof *out);
+  if (!p || !out) return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: NULL argument");
+  if (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: frame = %d is not AUTOBAL_ROTOR_FIXED or AUTOBAL_ROTOR_ROTATING", frame);
+  if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
+                             AUTOBAL_ROTOR_MAX_PLANES);
+  for (pl = 0; pl < p->n_planes; pl++) {
+    const autobal_rotor_plane *b = &p->plane[pl];
+    if (b->n_balls > 4096)
+      return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: plane[%zu].n_balls = %zu is out of range: allowed [0, 4096]", pl,
+                               b->n_balls);
+    if (b->n_balls && (!b->ball_mass || !b->ball_radius || !b->ball_damping))
+      return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: plane[%zu] has balls but no mass, radius or damping array", pl);
+    nb += b->n_balls;
+  }
+  M = calloc(1, sizeof *M);
+  if (!M || !(M->storage = calloc(5 * (nb ? nb : 1), sizeof *M->storage))) {
+    free(M);
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble member)");
+  }
+  M->p = *p;
+  for (pl = 0; pl < p->n_planes; pl++) {
+    const autobal_rotor_plane *b = &p->plane[pl];
+    autobal_rotor_plane *c = &M->p.plane[pl];
+    size_t i, n = b->n_balls;
+    double *s = M->storage + 5 * off;
+    for (i = 0; i < n; i++) {
+      s[i] = b->ball_mass[i];
+      s[n + i] = b->ball_radius[i];
+      s[2 * n + i] = b->ball_damping[i];
+      s[3 * n + i] = b->ball_psi ? b->ball_psi[i] : 0.0;
+      s[4 * n + i] = b->ball_rate ? b->ball_rate[i] : 0.0;
+    }
+    c->ball_mass = n ? s : NULL;
+    c->ball_radius = n ? s + n : NULL;
+    c->ball_damping = n ? s + 2 * n : NULL;
+    c->ball_psi = n ? s + 3 * n : NULL;
+    c->ball_rate = n ? s + 4 * n : NULL;
+    off += n;
+  }
+  M->frame = frame;
+  snprintf(M->frame_name, sizeof M->frame_name, "%s", frame_name ? frame_name : (frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating"));
+  M->rot = autobal_rotor_alloc(&M->p, err);
+  if (!M->rot) {
+    int st = err && err->status < 0 ? err->status : AUTOBAL_EINVAL;
+    rotor_destroy(M);
+    return st;
+  }
+  M->n_balls = autobal_rotor_n_balls_total(M->rot);
+  M->dim = autobal_rotor_dim(M->rot);
+  M->nout = autobal_rotor_output_count(M->rot);
+  autobal_error_clear(err);
+  out->model_name = "rotor";
+  out->model = M;
+  out->dim = M->dim;
+  out->n_angles = M->n_balls;
+  out->n_columns = M->dim + M->nout;
+  out->time_units = "s";
+  out->time_name = "time";
+  out->time_long_name = "time";
+  out->length_units = "m";
+  out->angle_dim = "ball";
+  out->angle_dim_long_name = "ball (plane 1 first)";
+  out->angle_long_name = "ball angle relative to the rotor at the end, wrapped to (-pi, pi]";
+  out->describe = rotor_describe;
+  out->check = NULL;
+  out->worker_alloc = rotor_worker_alloc;
+  out->worker_free = rotor_worker_free;
+  out->setup = rotor_setup;
+  out->observe = rotor_observe;
+  out->finish = rotor_finish;
+  out->column_name = rotor_column_name;
+  out->write_attrs = rotor_write_attrs;
+  out->hash = rotor_hash;
+  out->destroy = rotor_destroy;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ================================ pendulum ============================================== */
+enum { P_STATE, P_RW, P_RM, P_H, P_HS, P_PSI0, P_K };
+
+typedef struct pend_model {
+  autobal_pendulum_params p;
+  double y0[8];
+} pend_model;
+
+typedef struct pend_worker {
+  const pend_model *M;
+  size_t np;
+  int kind[AUTOBAL_ENSEMBLE_MAX_PARAMS];
+  size_t index[AUTOBAL_ENSEMBLE_MAX_PARAMS];
+  autobal_pendulum_motion motion;
+} pend_worker;
+
+static int pend_parse(const char *name, int *kind, size_t *index, autobal_ensemble_param_info *info, autobal_error *err) {
+  static const char *const pstate[8] = {"xi", "eta", "psi", "phi", "xi_rate", "eta_rate", "psi_rate", "phi_rate"};
+  static const char *const pstate_u[8] = {"1", "1", "rad", "rad", "1", "1", "1", "1"};
+  static const char *const pstate_l[8] = {
+      "initial shaft displacement xi (units of l)", "initial shaft displacement eta (units of l)",
+      "initial angle psi of pendulum 1", "initial angle phi of pendulum 2", "initial d xi/d tau",
+      "initial d eta/d tau", "initial d psi/d tau", "initial d phi/d tau"};
+  autobal_ensemble_param_info dummy;
+  size_t i;
+  if (!info) info = &dummy;
+  memset(info, 0, sizeof *info);
+  *index = 0;
+  for (i = 0; i < 8; i++)
+    if (!strcmp(name, pstate[i])) {
+      *kind = P_STATE, *index = i, info->units = pstate_u[i], info->long_name = pstate_l[i];
+      info->periodic = (i == 2 || i == 3);
+      return AUTOBAL_SUCCESS;
+    }
+  if (!strcmp(name, "R_w")) *kind = P_RW, info->units = "1", info->long_name = "rotor speed omega/omega0";
+  else if (!strcmp(name, "R_m")) *kind = P_RM, info->units = "1", info->long_name = "mass ratio m/(M + 2m)";
+  else if (!strcmp(name, "H")) *kind = P_H, info->units = "1", info->long_name = "external damping H";
+  else if (!strcmp(name, "h")) *kind = P_HS, info->units = "1", info->long_name = "pendulum damping h";
+  else if (!strcmp(name, "psi0")) *kind = P_PSI0, info->units = "rad", info->long_name = "main-motion angle psi0", info->periodic = 1;
+  else if (!strcmp(name, "k")) *kind = P_K, info->units = "1", info->long_name = "unbalance parameter k = sin^2(2 psi0)";
+  else
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "'%s' is not a pendulum ensemble parameter: xi, eta, psi, phi, xi_rate, eta_rate, psi_rate, phi_rate, R_w, R_m, H, h, psi0, k",
+                             name);
+  return AUTOBAL_SUCCESS;
+}
+
+static int pend_describe(const void *model, const char *name, autobal_ensemble_param_info *info, autobal_error *err) {
+  int kind;
+  size_t index;
+  (void)model;
+  if (!name) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum ensemble parameter: NULL name");
+  return pend_parse(name, &kind, &index, info, err);
+}
+
+static int pend_check(const void *model, const char *const *names, size_t n, autobal_error *err) {
+  size_t i;
+  int k = 0, psi0 = 0;
+  (void)model;
+  for (i = 0; i < n; i++) {
+    if (!strcmp(names[i], "k")) k = 1;
+    if (!strcmp(names[i], "psi0")) psi0 = 1;
+  }
+  if (k && psi0) return autobal_error_set(err, AUTOBAL_EINVAL, "k and psi0 describe the same unbalance; vary one of them");
+  return AUTOBAL_SUCCESS;
+}
+
+static void pend_worker_free(void *w) { free(w); }
+
+static void *pend_worker_alloc(const void *model, const char *const *names, size_t n, autobal_error *err) {
+  pend_worker *w;
+  size_t j;
+  if (n > AUTOBAL_ENSEMBLE_MAX_PARAMS) {
+    autobal_error_set(err, AUTOBAL_EINVAL, "pendulum ensemble: %zu parameters (at most %d)", n, AUTOBAL_ENSEMBLE_MAX_PARAMS);
+    return NULL;
+  }
+  w = calloc(1, sizeof *w);
+  if (!w) {
+    autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (pendulum ensemble worker)");
+    return NULL;
+  }
+  w->M = model;
+  w->np = n;
+  for (j = 0; j < n; j++)
+    if (pend_parse(names[j], &w->kind[j], &w->index[j], NULL, err) != AUTOBAL_SUCCESS) {
+      free(w);
+      return NULL;
+    }
+  return w;
+}
+
+static int pend_setup(void *wp, const double *values, double y0[], autobal_ensemble_setup *su, autobal_error *err) {
+  pend_worker *w = wp;
+  autobal_pendulum_params p = w->M->p;
+  int k_given = 0, st;
+  double k = 0;
+  size_t j;
+  memcpy(y0, w->M->y0, sizeof w->M->y0);
+  for (j = 0; j < w->np; j++) {
+    double v = values[j];
+    switch (w->kind[j]) {
+      case P_STATE: y0[w->index[j]] = v; break;
+      case P_RW: p.R_w = v; break;
+      case P_RM: p.R_m = v; break;
+      case P_H: p.H = v; break;
+      case P_HS: p.h = v; break;
+      case P_PSI0: p.psi0 = v; break;
+      case P_K: k_given = 1, k = v; break;
+      default: break;
+    }
+  }
+  if (k_given && (st = autobal_pendulum_params_from_k(p.R_w, p.R_m, p.H, p.h, k, &p, err)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_pendulum_motion_init(&w->motion, &p, err)) != AUTOBAL_SUCCESS) return st;
+  su->sys.rhs = autobal_pendulum_motion_rhs;
+  su->sys.jac = autobal_pendulum_motion_jac;
+  su->sys.dim = AUTOBAL_PENDULUM_STATE_DIM;
+  su->sys.params = &w->motion;
+  su->speed = p.R_w;
+  su->monitor = autobal_pendulum_unbalance_scalar;
+  su->monitor_user = &w->motion.p;
+  su->residual_initial = autobal_pendulum_residual_unbalance(&w->motion.p, y0, NULL, NULL);
+  return AUTOBAL_SUCCESS;
+}
+
+static int pend_observe(void *wp, double t, const double y[], double *amplitude, double *row) {
+  pend_worker *w = wp;
+  autobal_pendulum_motion_derived d;
+  (void)t;
+  autobal_pendulum_motion_derive(&w->motion.p, y, &d);
+  *amplitude = d.amplitude;
+  if (row) {
+    memcpy(row, y, 8 * sizeof *y);
+    row[8] = d.amplitude, row[9] = d.unbalance, row[10] = d.unbalance_u, row[11] = d.unbalance_v;
+    row[12] = d.alpha, row[13] = d.beta, row[14] = d.jacobi;
+  }
+  return 0;
+}
+
+static void pend_finish(void *wp, double t, const double y[], double *residual, double *amplitude, double *angles) {
+  pend_worker *w = wp;
+  autobal_pendulum_motion_derived d;
+  (void)t;
+  autobal_pendulum_motion_derive(&w->motion.p, y, &d);
+  *residual = d.unbalance;
+  *amplitude = d.amplitude;
+  angles[0] = d.alpha;
+  angles[1] = d.beta;
+}
+
+static int pend_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
+  static const char *const n[PEND_NCOLS] = {"xi", "eta", "psi", "phi", "xi_rate", "eta_rate", "psi_rate", "phi_rate",
+                                            "amplitude", "unbalance", "unbalance_u", "unbalance_v", "alpha", "beta", "jacobi"};
+  static const char *const u[PEND_NCOLS] = {"1", "1", "rad", "rad", "1", "1", "rad", "rad", "1", "1", "1", "1", "rad", "rad", "1"};
+  (void)model;
+  if (k >= PEND_NCOLS) return AUTOBAL_EINVAL;
+  snprintf(name, size, "%s", n[k]);
+  *units = u[k];
+  return AUTOBAL_SUCCESS;
+}
+
+static int pend_write_attrs(const void *model, autobal_archive *a, const char *group) {
+  const pend_model *M = model;
+  return autobal_archive_attr_double_array(a, group, "initial_state", 8, M->y0, "1");
+}
+
+static uint64_t pend_hash(const void *model) {
+  const pend_model *M = model;
+  double v[5];
+  uint64_t h = UINT64_C(0xCBF29CE484222325);
+  v[0] = M->p.R_w, v[1] = M->p.R_m, v[2] = M->p.H, v[3] = M->p.h, v[4] = M->p.psi0;
+  h = hash_doubles(h, v, 5);
+  return hash_doubles(h, M->y0, 8);
+}
+
+static void pend_destroy(void *model) { free(model); }
+
+int autobal_ensemble_pendulum_member(const autobal_pendulum_params *p, const double y0[8], autobal_ensemble_member *out,
+                                     autobal_error *err) {
+  pend_model *M;
+  autobal_pendulum_motion mo;
+  int i, st;
+  autobal_error_clear(err);
+  if (out) memset(out, 0, sizeof *out);
+  if (!p || !y0 || !out) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum ensemble member: NULL argument");
+  if ((st = autobal_pendulum_motion_init(&mo, p, err)) != AUTOBAL_SUCCESS) return st;
+  for (i = 0; i < 8; i++)
+    if (!isfinite(y0[i])) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum ensemble member: initial state y0[%d] = %g is not finite", i, y0[i]);
+  M = calloc(1, sizeof *M);
+  if (!M) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (pendulum ensemble member)");
+  M->p = *p;
+  memcpy(M->y0, y0, sizeof M->y0);
+  out->model_name = "pendulum";
+  out->model = M;
+  out->dim = AUTOBAL_PENDULUM_STATE_DIM;
+  out->n_angles = 2;
+  out->n_columns = PEND_NCOLS;
+  out->time_units = "1";
+  out->time_name = "tau";
+  out->time_long_name = "dimensionless time tau";
+  out->length_units = "1";
+  out->angle_dim = "pendulum";
+  out->angle_dim_long_name = "pendulum (1: psi, 2: phi)";
+  out->angle_long_name = "pendulum angle minus psi0 at the end (alpha, beta), wrapped to (-pi, pi]";
+  out->describe = pend_describe;
+  out->check = pend_check;
+  out->worker_alloc = pend_worker_alloc;
+  out->worker_free = pend_worker_free;
+  out->setup = pend_setup;
+  out->observe = pend_observe;
+  out->finish = pend_finish;
+  out->column_name = pend_column_name;
+  out->write_attrs = pend_write_attrs;
+  out->hash = pend_hash;
+  out->destroy = pend_destroy;
+  return AUTOBAL_SUCCESS;
+}
