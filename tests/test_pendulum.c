@@ -1,5 +1,5 @@
 /* test_pendulum.c: the two-pendulum autobalancer's stability analysis
- * (pendulum.h, src/pendulum.c).  Independent reasons for every expected
+ * (pendulum.h, src/models/pendulum/, src/analysis/pendulum_*.c).  Independent reasons for every expected
  * value: the closed facts of docs/pendulum.md, the determinant of the (5) pencil computed
  * here by complex elimination, eigenvalues vs roots, GSL polynomial roots of
  * (10) for the verdicts on both sides of each critical speed, the symbolic
@@ -797,7 +797,7 @@ static void test_map(void) {
   CHECK_STATUS("map: NULL output", autobal_pendulum_map(&sp, NULL, NULL, &err), AUTOBAL_EINVAL);
 }
 
-/* Test hook in src/pendulum.c (not in the API): the damped search with the capacity of its
+/* Test hook in src/analysis/pendulum_critical.c (not in the API): the damped search with the capacity of its
  * list lowered to cap, to reach the truncation path with the few changes the model has. */
 int autobal_pendulum_critical_speeds_damped_cap_(autobal_pendulum_workspace *ws,
                                                  const autobal_pendulum_params *p, double rw_min,

@@ -1,5 +1,5 @@
 /* test_pendulum_fast.c: the fast paths of the pendulum stability maps
- * (src/pendulum.c: lanes of grid points or k values, the two-stage Routh
+ * (src/analysis/pendulum_map.c: lanes of grid points or k values, the two-stage Routh
  * kernel with its fall-back to the full test, the double-precision filter of
  * the undamped criterion with its long-double fall-back, k groups with early
  * exit, row tiles).  Independent reference for every map entry: the

@@ -1,5 +1,5 @@
 /* test_pendulum_motion.c: the explicit form of the equations of motion (1)
- * (src/pendulum_motion.c) driven by the transient engine.
+ * (src/models/pendulum/pendulum_motion.c) driven by the transient engine.
  *
  * Independent checks:
  *  - the accelerations satisfy (1) exactly as written in docs/pendulum.md (residuals);

@@ -1,6 +1,6 @@
 /* test_rotor.c: the rotor - housing - ball autobalancer model (docs/rotor.md).
  *
- * Every expected value has a reason independent of src/rotor.c:
+ * Every expected value has a reason independent of src/models/rotor/rotor.c:
  *  - the stated numbers of docs/rotor.md (lumped coefficients, natural frequencies at rest,
  *    balanced angles), not copied from the program;
  *  - a direct solve of the full (4+N)x(4+N) mass-matrix system assembled here from

@@ -1,4 +1,4 @@
-/* test_stability.c: the model-agnostic stability tools (stability.h, src/poly.c).
+/* test_stability.c: the model-agnostic stability tools (stability.h, src/numerics/).
  * Known answers: products and roots of polynomials built from known factors,
  * eigenvalues of block-triangular matrices, a brute-force assignment, the
  * Routh-Hurwitz count against roots, Sturm counts against roots, Brent on

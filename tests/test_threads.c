@@ -29,7 +29,7 @@
  * initialised and crash):
  *   gcc -std=c11 -fsanitize=thread -O1 -g -DAUTOBAL_BUILDING -DH5_USE_110_API -DAUTOBAL_NO_CLONES \
  *       -DAUTOBAL_GIT_REVISION='"tsan"' -Iinclude -I<build>/include -Isrc -Itests \
- *       -I/usr/include/hdf5/serial src/[a-z]*.c tests/test_threads.c -o test_threads_tsan \
+ *       -I/usr/include/hdf5/serial $(find src -name '*.c') tests/test_threads.c -o test_threads_tsan \
  *       -L/usr/lib/x86_64-linux-gnu/hdf5/serial -lhdf5_hl -lhdf5 -lgsl -lgslcblas -lm -lpthread
  * reported no race (2026-11-21).
  */

@@ -1,4 +1,4 @@
-/* test_transient.c: the model-agnostic gsl_odeiv2 driver (src/transient.c).
+/* test_transient.c: the model-agnostic gsl_odeiv2 driver (src/transient/transient.c).
  *
  * Known answers: the harmonic oscillator y'' = -y (y = cos t), exponential
  * decay y' = -y, a stiff linear equation y' = -L (y - cos t) - sin t with

@@ -459,10 +459,10 @@ AUTOBAL_API int autobal_pendulum_map(const autobal_pendulum_map_spec *spec, sign
 
 /* ======================================================================== */
 /* Equations of motion (1)                                                  */
-/* (reserved: transients, src/pendulum_motion.c, another module owner)      */
+/* (reserved: transients, src/models/pendulum/pendulum_motion.c, another module owner)      */
 /* ======================================================================== */
 
-/* The explicit first-order form of (1) (src/pendulum_motion.c).
+/* The explicit first-order form of (1) (src/models/pendulum/pendulum_motion.c).
  *
  * State: 8 doubles, dimensionless, in this order
  *     y = (xi, eta, psi, phi, xi', eta', psi', phi'),
