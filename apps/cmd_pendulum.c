@@ -6,6 +6,7 @@
 
 #include "autobal/archive.h"
 #include "autobal/pendulum.h"
+#include "autobal/study.h"
 #include "cli.h"
 #include "units.h"
 
@@ -87,27 +88,7 @@ int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_p
 /* Parameters as attributes of /pendulum (dimensionless, units "1"), plus the physical set. */
 int cli_write_pendulum_params(cli_ctx *ctx, autobal_archive *a, const autobal_pendulum_params *p,
                               const autobal_pendulum_physical *phys, int physical) {
-  int st = autobal_archive_group(a, "/pendulum");
-  if (!st) st = autobal_archive_attr_string(a, "/pendulum", "model", "planar two-pendulum autobalancer (docs/pendulum.md)");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_w", p->R_w, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_m", p->R_m, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "H", p->H, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "h", p->h, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "psi0", p->psi0, "rad");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "k", autobal_pendulum_k(p), "1");
-  if (!st && physical) {
-    st = autobal_archive_group(a, "/pendulum/physical");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "M", phys->M, "kg");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "e", phys->e, "m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "m", phys->m, "kg");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "l", phys->l, "m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "c", phys->c, "N/m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H1", phys->H1, "N m s");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H2", phys->H2, "N s/m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "omega", phys->omega, "rad/s");
-    if (!st)
-      st = autobal_archive_attr_double(a, "/pendulum/physical", "omega0", pendulum_omega0(phys), "rad/s");
-  }
+  int st = autobal_study_write_pendulum_params(a, p, physical ? phys : NULL);
   if (st) return cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
   return CLI_EXIT_OK;
 }

@@ -16,5 +16,6 @@
 #include "autobal/transient.h"
 #include "autobal/pendulum.h"
 #include "autobal/archive.h"
+#include "autobal/study.h"
 
 #endif

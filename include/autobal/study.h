@@ -1,0 +1,244 @@
+/* autobal/study.h: whole runs ("studies") as the command line runs them, for
+ * programs that embed the library.
+ *
+ * A study takes the model's parameter struct and an options struct (SI units,
+ * documented field by field), runs the analysis and returns its summary as a
+ * plain struct.  Given an open archive (autobal_archive_create), it also
+ * writes the same groups, datasets, dimension scales, units and attributes
+ * that the `autobal` program writes for the same inputs, so that
+ * `autobal info`, `autobal plot` and h5py/xarray readers work on the file.
+ * The program is a thin client of these calls: `autobal rotor transient`
+ * reads its configuration, fills the structs, calls
+ * autobal_study_rotor_transient() and prints the summary.
+ *
+ * Archive ownership.  The caller creates the archive, may write provenance
+ * (autobal_archive_provenance) and attributes of its own, and closes it
+ * (autobal_archive_close) after the study returned, whatever the study
+ * returned: what was written stays readable.  A study never closes, discards
+ * or sets the status of the archive; after a failure a caller usually calls
+ * autobal_archive_set_status(a, "incomplete", reason) before closing.  The
+ * study closes the streamed series it opened before it returns.  Passing a
+ * NULL archive runs the study without writing anything.
+ *
+ * Errors.  Every call returns an autobal status (status.h): AUTOBAL_SUCCESS,
+ * or a negative code with a message in err (may be NULL).  Messages about the
+ * model's parameters name the struct fields (e.g. "plane[0].ball_mass[1]"),
+ * messages about the options start with "options: " and name the option field.
+ * Nothing is printed, nothing aborts.  A host program should call
+ * gsl_set_error_handler_off() once.
+ *
+ * Threads.  Studies keep no global state; two threads may run two studies at
+ * once (with two archives; one archive handle is not shared between threads).
+ */
+#ifndef AUTOBAL_STUDY_H
+#define AUTOBAL_STUDY_H
+
+#include <stddef.h>
+
+#include "autobal/export.h"
+#include "autobal/status.h"
+#include "autobal/rotor.h"
+#include "autobal/pendulum.h"
+#include "autobal/transient.h"
+#include "autobal/archive.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* ---- progress and cancellation ----------------------------------------------- */
+
+/* Progress of a study: fraction done in [0, 1], non-decreasing, with `user`
+ * as given in the options.  Return non-zero to cancel: the study stops at the
+ * next check and returns AUTOBAL_ECANCELLED with what was computed so far
+ * written and summarised.  Called from the thread that runs the study. */
+typedef int (*autobal_study_progress_fn)(double fraction, void *user);
+
+/* ---- the rotor model's parameter fields --------------------------------------- */
+
+/* One double field of autobal_rotor_hardware or autobal_rotor_lumped: the
+ * `autobal` configuration section and key (the key is the field's name and the
+ * name of the archive attribute), its SI unit (a UDUNITS-2 string) and where it
+ * sits in its struct (offsetof).  The tables are static constant data owned by
+ * the library, in the order the archive writes them. */
+typedef struct autobal_rotor_field {
+  const char *section; /* "rotor" or "supports" (hardware), "lumped" (lumped) */
+  const char *name;    /* field name = configuration key = archive attribute, e.g. "c_Lx" */
+  const char *unit;    /* SI unit, e.g. "N/m" */
+  size_t offset;       /* byte offset of the double in its struct */
+} autobal_rotor_field;
+
+/* The 17 fields of autobal_rotor_hardware (M_k, A_k, m_p, A_p, C_p in
+ * [rotor]; l_L ... h_Ry in [supports]); *n (may be NULL) set to the count. */
+AUTOBAL_API const autobal_rotor_field *autobal_rotor_hardware_fields(size_t *n);
+/* The 17 fields of autobal_rotor_lumped ([lumped]); *n as above. */
+AUTOBAL_API const autobal_rotor_field *autobal_rotor_lumped_fields(size_t *n);
+/* The field `f` of the struct at `base` (an autobal_rotor_hardware for the
+ * hardware table, an autobal_rotor_lumped for the lumped table). */
+AUTOBAL_API double *autobal_rotor_field_ptr(void *base, const autobal_rotor_field *f);
+AUTOBAL_API double autobal_rotor_field_get(const void *base, const autobal_rotor_field *f);
+
+/* ---- shared archive writers ---------------------------------------------------- */
+
+/* Write the rotor model *p: group /rotor (attributes model, input, inertia,
+ * omega, axial and, for hardware input, the 17 hardware fields), /rotor/lumped
+ * (the 17 lumped coefficients the model uses: (2.7)-(2.11) from the hardware
+ * for hardware input) and /rotor/plane<j> (d, m0, r0, psi0, n_balls,
+ * ball_mass, ball_radius, ball_damping; with `initial` non-zero also
+ * ball_psi_initial and ball_rate_initial where the arrays are given).  Every
+ * attribute with its SI unit (attribute <name>_units).  Returns
+ * AUTOBAL_SUCCESS; AUTOBAL_EINVAL (bad hardware values: nothing written; or a
+ * bad archive name), AUTOBAL_EIO (HDF5; the message in autobal_archive_errmsg);
+ * what was written before a failure stays. */
+AUTOBAL_API int autobal_study_write_rotor_params(autobal_archive *a, const autobal_rotor_params *p, int initial);
+
+/* Write the pendulum parameters: /pendulum (model, R_w, R_m, H, h (units "1"),
+ * psi0 (rad), k (units "1")) and, when `phys` is not NULL, /pendulum/physical
+ * (M kg, e m, m kg, l m, c N/m, H1 N m s, H2 N s/m, omega rad/s and
+ * omega0 = sqrt(c/(M + 2m)) rad/s).  Returns an autobal status (the archive's
+ * message in autobal_archive_errmsg). */
+AUTOBAL_API int autobal_study_write_pendulum_params(autobal_archive *a, const autobal_pendulum_params *p,
+                                                    const autobal_pendulum_physical *phys);
+
+/* Write a transient driver's statistics as attributes of `group` (created):
+ * stepper, steps, rejected_steps, rhs_evaluations, jacobian_evaluations,
+ * wall_time (s), h_min_used and h_max_used (in `time_unit`: "s", or "1" for a
+ * dimensionless time), stop_reason, message (`message`; NULL: "").  `stepper`
+ * NULL: "rk8pd".  Returns an autobal status (the archive's message in
+ * autobal_archive_errmsg). */
+AUTOBAL_API int autobal_study_write_solver_stats(autobal_archive *a, const char *group, const char *stepper,
+                                                 const autobal_transient_stats *stats, const char *message,
+                                                 const char *time_unit);
+
+/* ---- ISO 21940-11 balance quality ---------------------------------------------- */
+
+/* Balance quality grade G = e omega in mm/s of a residual unbalance U (kg m)
+ * of a rotor of mass m (kg) at speed omega (rad/s): U/m omega 1e3. */
+AUTOBAL_API double autobal_balance_grade(double U, double m, double omega);
+/* Permissible residual unbalance U_per (kg m) of grade G (mm/s): G 1e-3 m/omega. */
+AUTOBAL_API double autobal_permissible_unbalance(double G, double m, double omega);
+/* The smallest ISO 21940-11 grade class (0.4, 1, 2.5, 6.3, ..., 4000 mm/s)
+ * that G (mm/s) is within; NaN above G4000 or for NaN. */
+AUTOBAL_API double autobal_balance_grade_class(double G);
+
+/* ---- rotor transient ---------------------------------------------------------- */
+
+/* Options of a rotor transient (`autobal rotor transient`, section [transient]
+ * and [balance] of its configuration). */
+typedef struct autobal_study_rotor_transient_options {
+  double t_end;         /* s, end of the run (starts at t = 0), > 0                  (default 20) */
+  double dt_out;        /* s, output interval of the time series, > 0, at most
+                           5e8 samples; 0: a quarter revolution 0.25 2 pi/|omega|     (default 0) */
+  double rtol, atol;    /* relative and absolute tolerance of the stepper
+                                                                     (default 1e-10, 1e-9) */
+  double h_max;         /* s, largest step, >= 0; 0: unlimited                        (default 0) */
+  unsigned long max_steps; /* accepted steps, >= 1                                  (default 1e8) */
+  const char *stepper;  /* GSL stepper name (autobal_transient_stepper_names()); NULL:
+                           "rk8pd"; the string is only read during the call            */
+  int frame;            /* AUTOBAL_ROTOR_FIXED or AUTOBAL_ROTOR_ROTATING: the frame of
+                           the integrated ball angles                           (default FIXED) */
+  double balance_tol;   /* the rotor counts as balanced when the largest relative
+                           residual unbalance |s_j|/(m_j0 r_j0) of the planes stays below
+                           this (autobal_rotor_balance_monitor), > 0             (default 0.01) */
+  double balance_revs;  /* ... for this many revolutions 2 pi/|omega|, >= 0       (default 50) */
+  int stop_at_balance;  /* non-zero: stop the run once balanced                     (default 0) */
+  double grade;         /* ISO 21940-11 grade (mm/s) to check the final residual
+                           unbalance against, > 0; NaN: none                    (default NaN) */
+  autobal_study_progress_fn progress; /* NULL: none                              (default NULL) */
+  void *progress_user;  /* passed to progress                                  (default NULL) */
+} autobal_study_rotor_transient_options;
+
+/* The defaults listed above. */
+AUTOBAL_API autobal_study_rotor_transient_options autobal_study_rotor_transient_options_default(void);
+
+/* Summary of a rotor transient.  Plain data, plus arrays owned by the summary
+ * and released by autobal_study_rotor_transient_summary_free().  Vibration
+ * figures refer to the synchronous (1X) response: per direction x, y the
+ * largest amplitude sqrt(u^2 + (u'/omega)^2) over the samples of the last 10%
+ * of the run (exact for a steady whirl at any sampling). */
+typedef struct autobal_study_rotor_transient_summary {
+  int balanced;                    /* 1: the balance criterion held (options.balance_*) */
+  double time_to_balance;          /* s, when |s|/(m0 r0) went below balance_tol for good; NaN: not balanced */
+  double t_reached;                /* s, the time of the final state (t_end unless stopped early) */
+  double revolution_period;        /* s, 2 pi/|omega| */
+  size_t n_planes;                 /* balancer planes (1 or 2) */
+  size_t n_balls[AUTOBAL_ROTOR_MAX_PLANES]; /* balls of each plane */
+  double residual_unbalance_initial; /* 1, largest |s_j|/(m_j0 r_j0) over the planes at t = 0 (plane 1's) */
+  double residual_unbalance_final;   /* 1, the balance monitor at t_reached */
+  double residual_unbalance_abs_final[AUTOBAL_ROTOR_MAX_PLANES]; /* kg m, |s_j| of each plane at the end */
+  double residual_unbalance_rel_final[AUTOBAL_ROTOR_MAX_PLANES]; /* 1, |s_j|/(m_j0 r_j0); NaN when m_j0 r_j0 = 0 */
+  double amplitude_first_10pct_max; /* m, largest sampled amplitude of the centre of mass for t <= 0.1 t_end */
+  double amplitude_last_10pct_max;  /* m, the same for t >= 0.9 t_end; NaN if not reached */
+  double amplitude_max;             /* m, over the whole run */
+  /* ISO 21940-11 (the rotor mass shared equally by the planes; the worst plane counts) */
+  double balance_grade_rotor_mass;  /* kg, m_p (hardware input) or M (lumped input) */
+  double balance_grade_final;       /* mm/s, grade of the final residual unbalance n_planes max_j |s_j| */
+  double balance_grade_class;       /* mm/s, smallest grade class it is within; NaN above G4000 */
+  double permissible_unbalance;     /* kg m, U_per of options.grade (whole rotor); NaN: no grade given */
+  int permissible_unbalance_met;    /* 1: n_planes max_j |s_j| <= U_per */
+  int have_vibration_window;        /* 1: samples in the last 10% exist (else the next three are NaN) */
+  double displacement_pk_pk[3];     /* m, 1X peak-to-peak (largest of x, y): [0] centre of mass,
+                                       [1] left support, [2] right support (NaN with lumped input) */
+  double velocity_rms[3];           /* m/s, 1X RMS velocity omega A/sqrt(2), same points */
+  double velocity_rms_supports;     /* m/s, largest of the supports' (the centre of mass's with lumped input) */
+  /* ball angles relative to the rotor, wrapped to [-pi, pi] (remainder by 2 pi), per plane;
+   * NULL for a plane without balls */
+  double *ball_psi_final[AUTOBAL_ROTOR_MAX_PLANES];     /* rad, at t_reached */
+  double *ball_psi_balanced[AUTOBAL_ROTOR_MAX_PLANES];  /* rad, the balanced configuration (3.14);
+                                                           NULL when none exists */
+  size_t dim;                       /* length of state_final */
+  double *state_final;              /* the state at t_reached in options.frame (rotor.h) */
+  autobal_transient_stats solver;   /* statistics of the driver */
+  char stepper[32];                 /* the stepper's name */
+  char solver_message[AUTOBAL_ERRMSG_SIZE]; /* the driver's last message ("" after success) */
+  int warning;                      /* 1: autobal_rotor_params_check warned (a plane cannot be balanced) */
+  char warning_message[AUTOBAL_ERRMSG_SIZE];  /* its message (struct field names) */
+} autobal_study_rotor_transient_summary;
+
+/* Check the inputs of a rotor transient without running it (and without
+ * touching an archive): the parameters (autobal_rotor_alloc), the initial
+ * state and the options.  Returns AUTOBAL_SUCCESS, AUTOBAL_WARNING (runnable;
+ * the warning of autobal_rotor_params_check in err) or a failure (AUTOBAL_EINVAL,
+ * AUTOBAL_ENOMEM) with the message in err.  A program that creates its archive
+ * only for valid inputs calls this first. */
+AUTOBAL_API int autobal_study_rotor_transient_check(const autobal_rotor_params *p,
+                                                    const autobal_study_rotor_transient_options *opt,
+                                                    autobal_error *err);
+
+/* Run a rotor transient from the initial state of *p (q0, qd0, the balls'
+ * ball_psi/ball_rate, z0, zd0) over [0, t_end] with the balance criterion as a
+ * dwell event.  opt NULL: defaults.  With an archive `a` (NULL: none) it writes
+ *   /rotor, /rotor/lumped, /rotor/plane<j>      autobal_study_write_rotor_params(initial = 1),
+ *                                               plus ball_psi_balanced (rad) where (3.14) has a solution
+ *   /rotor/transient                            options (t_end, dt_out, rtol, atol, h_max, max_steps,
+ *                                               initial_q, initial_q_rate, balance_tol, balance_revs,
+ *                                               stepper, frame), then the summary (time_to_balance,
+ *                                               balanced, t_reached, residual_unbalance_*,
+ *                                               amplitude_*, balance_grade_*, permissible_unbalance*,
+ *                                               displacement/velocity figures)
+ *   /rotor/transient/<var>(time)                the state and autobal_rotor_outputs every dt_out
+ *   /rotor/revolutions/<var>(revolution_end)    per-revolution maxima
+ *   /rotor/transient/solver                     autobal_study_write_solver_stats
+ * `summary` (may be NULL) is filled (zeroed first; release it with
+ * autobal_study_rotor_transient_summary_free even after a failure).
+ * Returns AUTOBAL_SUCCESS (also when the run stopped at balance);
+ * AUTOBAL_WARNING never (see summary->warning); a failure of the inputs
+ * (as autobal_study_rotor_transient_check: nothing written, summary zeroed);
+ * AUTOBAL_ECANCELLED (the progress callback asked to stop); a failure of the
+ * integration (AUTOBAL_ESTEP, AUTOBAL_EMAXSTEPS, AUTOBAL_ERHS,
+ * AUTOBAL_ENUMERIC: message from the driver); AUTOBAL_EIO or another archive
+ * status when writing failed (message from the archive; "writing the time
+ * series failed: ..." for the series).  After a cancellation or a failure of
+ * the integration the summary describes the run up to summary->t_reached and
+ * the archive holds the series and the summary attributes up to there. */
+AUTOBAL_API int autobal_study_rotor_transient(const autobal_rotor_params *p,
+                                              const autobal_study_rotor_transient_options *opt,
+                                              autobal_archive *a,
+                                              autobal_study_rotor_transient_summary *summary,
+                                              autobal_error *err);
+
+/* Release the arrays of a summary and set their pointers to NULL (NULL or a
+ * zeroed summary: nothing). */
+AUTOBAL_API void autobal_study_rotor_transient_summary_free(autobal_study_rotor_transient_summary *summary);
+
+AUTOBAL_END_DECLS
+
+#endif
