@@ -11,6 +11,7 @@
 #include "autobal/archive.h"
 #include "autobal/rotor.h"
 #include "autobal/rotor_stability.h"
+#include "autobal/study.h"
 #include "cli.h"
 #include "units.h"
 
@@ -210,31 +211,28 @@ static const char *verdict_text(int v) {
 /* A default speed range for critical speeds: from 5% of the lowest natural frequency at rest to
  * 4 times the larger of the highest one and |omega|. */
 static void default_speed_range(const autobal_rotor_params *p, double *lo, double *hi) {
-  double f[4] = {100, 100, 100, 100};
-  (void)autobal_rotor_modes(p, 0.0, 1, f, NULL, NULL, NULL, NULL);
-  *lo = 0.05 * (f[0] > 0 ? f[0] : 1.0);
-  *hi = 4.0 * fmax(f[3], fabs(p->omega));
-  if (!(*hi > *lo)) *hi = *lo + 1.0;
+  autobal_study_rotor_speed_range(p, lo, hi);
 }
 
-/* ---- rotor stability ------------------------------------------------------------------ */
+/* ---- rotor stability: the library's study (autobal_study_rotor_stability) -------------- */
 int cli_cmd_rotor_stability(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
-  autobal_rotor_stab *s = NULL;
-  autobal_rotor_stab_result r;
-  autobal_rotor_crit cr;
+  autobal_study_rotor_stability_options o = autobal_study_rotor_stability_options_default();
+  autobal_study_rotor_stability_summary sum;
+  const autobal_rotor_stab_result *r = &sum.result;
+  const autobal_rotor_crit *cr = &sum.critical;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  double clo = 0, chi = 0, xtol = 1e-8;
-  long cn = 400;
-  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = 1;
+  double clo = 0, chi = 0, xtol = o.xtol_rel;
+  long cn = (long)o.n_omega;
+  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds;
   size_t i;
-  memset(&cr, 0, sizeof cr);
+  memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
-  default_speed_range(&c->p, &clo, &chi);
-  if ((rc = cli_get_bool(ctx, "stability", "critical_speeds", 1, &do_crit, NULL))) goto done;
+  autobal_study_rotor_speed_range(&c->p, &clo, &chi);
+  if ((rc = cli_get_bool(ctx, "stability", "critical_speeds", do_crit, &do_crit, NULL))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "omega_min", "rad/s", clo, &clo, &have_lo))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "omega_max", "rad/s", chi, &chi, &have_hi))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_omega", cn, &cn, NULL))) goto done;
@@ -250,91 +248,24 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
                   clo, chi, cn, xtol);
     goto done;
   }
+  o.stab = c->opt;
+  o.critical_speeds = do_crit;
+  o.omega_min = clo;
+  o.omega_max = chi;
+  o.n_omega = (size_t)cn;
+  o.xtol_rel = xtol;
+  /* the analysis first, the archive afterwards: a failed analysis leaves no file */
   autobal_error_clear(&err);
-  s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
-  if (!s) {
-    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", cli_rotor_message(err.message, msg, sizeof msg));
-    goto done;
-  }
-  st = autobal_rotor_stab_analyze(s, &r);
+  st = autobal_study_rotor_stability(&c->p, &o, NULL, &sum, &err);
+  if (sum.critical_truncated && !ctx->json)
+    fprintf(stderr, "autobal: warning: critical speeds: %s\n", cli_rotor_message(sum.critical_message, msg, sizeof msg));
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s",
-        cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
-  }
-  if (do_crit) {
-    double lo = c->p.omega > 0 ? clo : -chi, hi = c->p.omega > 0 ? chi : -clo;
-    st = autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, (size_t)cn, xtol, &cr);
-    st = crit_warning(ctx, st, "critical speeds", autobal_rotor_stab_errmsg(s));
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "critical speeds: %s",
-          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
-      goto done;
-    }
-    /* the analysis above stays valid: critical() restores omega but overwrites the workspace */
-    st = autobal_rotor_stab_analyze(s, &r);
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s",
-          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
-      goto done;
-    }
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor stability", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/stability";
-    static const char *const droot[] = {"root"}, *const dpow[] = {"power"}, *const dfull[] = {"full_root"},
-                             *const dmu[] = {"multiplier"}, *const dball[] = {"ball"};
-    double power[AUTOBAL_ROTOR_POLY_LEN];
-    for (i = 0; i < AUTOBAL_ROTOR_POLY_LEN; i++) power[i] = (double)i;
-    st = write_model(a, c);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = write_options(a, g, c);
-    if (!st) st = autobal_archive_attr_string(a, g, "method", autobal_rotor_stab_method_name(r.method));
-    if (!st) st = autobal_archive_attr_string(a, g, "verdict", verdict_text(r.verdict));
-    if (!st) st = autobal_archive_attr_double(a, g, "margin", r.margin, "1/s");
-    if (!st) st = autobal_archive_attr_double(a, g, "period", r.period, "s");
-    if (!st) st = autobal_archive_attr_int(a, g, "isotropic", r.isotropic);
-    if (!st) st = autobal_archive_attr_int(a, g, "closure_ok", r.closure_ok);
-    if (!st) st = autobal_archive_attr_int(a, g, "n_family", (long)r.n_family);
-    if (!st) st = autobal_archive_dim(a, g, "ball", r.n_balls, "ball index in state order (plane 1 first)");
-    if (!st) st = autobal_archive_var(a, g, "psi_balanced", 1, dball, r.psi, "rad", "balanced ball angles (3.14) of the analysed member, relative to the rotor");
-    if (!st && r.n_closed > 0) {
-      st = autobal_archive_dim(a, g, "root", r.n_closed, "index of a characteristic root of the closed system");
-      if (!st) st = autobal_archive_var(a, g, "root_real", 1, droot, r.root_re, "1/s", r.n_poly ? "real part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "real part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
-      if (!st) st = autobal_archive_var(a, g, "root_imag", 1, droot, r.root_im, "1/s", r.n_poly ? "imaginary part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "imaginary part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
-      if (!st) st = autobal_archive_var(a, g, "eig_real", 1, droot, r.closed_eig_re, "1/s", "real part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
-      if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, droot, r.closed_eig_im, "1/s", "imaginary part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
-      if (!st) st = autobal_archive_attr_double(a, g, "closed_margin", r.closed_margin, "1/s");
-      if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.root_eig_mismatch, "1");
-    }
-    if (!st && r.n_poly > 0) {
-      st = autobal_archive_coord(a, g, "power", AUTOBAL_ROTOR_POLY_LEN, power, "1", "power of lambda");
-      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "1", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers k of lambda (lambda in 1/s), each divided by its SI unit: Delta is in kg^4 m^4 s^-12, so the coefficient of lambda^k is this number times kg^4 m^4 s^(k-12)");
-      if (!st) st = autobal_archive_attr_string(a, g, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
-      if (!st) st = autobal_archive_attr_int(a, g, "hurwitz_n_rhp", r.hurwitz_n_rhp);
-    }
-    if (!st && r.n_full > 0) {
-      st = autobal_archive_dim(a, g, "full_root", r.n_full, "index of an eigenvalue of the full model's linearization");
-      if (!st) st = autobal_archive_var(a, g, "full_real", 1, dfull, r.full_re, "1/s", "real part of the eigenvalues of the full model's linearization in rotating coordinates");
-      if (!st) st = autobal_archive_var(a, g, "full_imag", 1, dfull, r.full_im, "1/s", "imaginary part of the eigenvalues of the full model's linearization in rotating coordinates");
-      if (!st) st = autobal_archive_attr_double(a, g, "full_margin", r.full_margin, "1/s");
-      if (!st) st = autobal_archive_attr_double(a, g, "full_mismatch", r.full_mismatch, "1");
-    }
-    if (!st && r.n_floquet > 0) {
-      st = autobal_archive_dim(a, g, "multiplier", r.n_floquet, "index of a Floquet multiplier (by decreasing modulus)");
-      if (!st) st = autobal_archive_var(a, g, "floquet_real", 1, dmu, r.mu_re, "1", "real part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
-      if (!st) st = autobal_archive_var(a, g, "floquet_imag", 1, dmu, r.mu_im, "1", "imaginary part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
-      if (!st) st = autobal_archive_attr_double(a, g, "floquet_margin", r.floquet_margin, "1/s");
-      if (!st) st = autobal_archive_attr_double(a, g, "floquet_mismatch", r.floquet_mismatch, "1");
-    }
-    if (!st && do_crit) {
-      const char *gc = "/rotor/stability/critical";
-      st = autobal_archive_group(a, gc);
-      if (!st) st = autobal_archive_attr_double(a, gc, "omega_min", clo, "rad/s");
-      if (!st) st = autobal_archive_attr_double(a, gc, "omega_max", chi, "rad/s");
-      if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", cn);
-      if (!st) st = write_crit(a, gc, &cr, "rad/s");
-    }
+    st = autobal_study_rotor_stability_write(a, &c->p, &o, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -342,50 +273,52 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     cli_json j;
     cli_json_summary_begin(&j, ctx);
     cli_json_quantity(&j, "omega", c->p.omega, "rad/s");
-    cli_json_string(&j, "method", autobal_rotor_stab_method_name(r.method));
-    cli_json_string(&j, "verdict", verdict_text(r.verdict));
-    cli_json_quantity(&j, "margin", r.margin, "1/s");
-    cli_json_quantities(&j, "psi_balanced", r.psi, r.n_balls, "rad");
-    cli_json_int(&j, "n_family", (long)r.n_family);
-    if (r.n_poly) cli_json_string(&j, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
-    cli_json_number(&j, "root_eig_mismatch", r.n_closed ? r.root_eig_mismatch : NAN);
-    cli_json_number(&j, "full_mismatch", r.full_mismatch);
-    cli_json_number(&j, "floquet_mismatch", r.floquet_mismatch);
-    if (do_crit) json_crit(&j, &cr, "rad/s");
+    cli_json_string(&j, "method", autobal_rotor_stab_method_name(r->method));
+    cli_json_string(&j, "verdict", verdict_text(r->verdict));
+    cli_json_quantity(&j, "margin", r->margin, "1/s");
+    cli_json_quantities(&j, "psi_balanced", r->psi, r->n_balls, "rad");
+    cli_json_int(&j, "n_family", (long)r->n_family);
+    if (r->n_poly) cli_json_string(&j, "hurwitz_verdict", autobal_verdict_name(r->hurwitz_verdict));
+    cli_json_number(&j, "root_eig_mismatch", r->n_closed ? r->root_eig_mismatch : NAN);
+    cli_json_number(&j, "full_mismatch", r->full_mismatch);
+    cli_json_number(&j, "floquet_mismatch", r->floquet_mismatch);
+    if (do_crit) json_crit(&j, cr, "rad/s");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor stability at omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %s supports\n", c->p.omega,
-           c->p.omega * 60.0 / TWO_PI, c->p.n_planes, r.n_balls, r.isotropic ? "isotropic" : "anisotropic");
+           c->p.omega * 60.0 / TWO_PI, c->p.n_planes, r->n_balls, r->isotropic ? "isotropic" : "anisotropic");
     printf("  balanced configuration (3.14), member %s:", c->member_name[0]);
-    for (i = 0; i < r.n_balls && i < 16; i++) printf(" %.7f", r.psi[i]);
+    for (i = 0; i < r->n_balls && i < 16; i++) printf(" %.7f", r->psi[i]);
     printf(" rad\n");
-    if (r.n_family)
+    if (r->n_family)
       printf("  neutral family: %zu root(s) at 0 (Floquet multipliers 1) excluded: the verdict is the stability of the family\n",
-             r.n_family);
-    printf("  BALANCED MOTION: %s (method %s), margin max Re(lambda) = %.6e 1/s\n", verdict_text(r.verdict),
-           autobal_rotor_stab_method_name(r.method), r.margin);
-    if (r.n_poly)
-      printf("  Routh-Hurwitz on Delta: %s (%d root(s) with Re > 0)\n", autobal_verdict_name(r.hurwitz_verdict),
-             r.hurwitz_n_rhp);
-    if (r.n_closed) {
+             r->n_family);
+    printf("  BALANCED MOTION: %s (method %s), margin max Re(lambda) = %.6e 1/s\n", verdict_text(r->verdict),
+           autobal_rotor_stab_method_name(r->method), r->margin);
+    if (r->n_poly)
+      printf("  Routh-Hurwitz on Delta: %s (%d root(s) with Re > 0)\n", autobal_verdict_name(r->hurwitz_verdict),
+             r->hurwitz_n_rhp);
+    if (r->n_closed) {
       printf("  %-3s %22s %22s\n", "#", "root: Re (1/s)", "Im (1/s)");
-      for (i = 0; i < r.n_closed; i++) printf("  %-3zu %22.12e %22.12e\n", i, r.root_re[i], r.root_im[i]);
-      printf("  roots vs closed-matrix eigenvalues: %.3e (relative)\n", r.root_eig_mismatch);
+      for (i = 0; i < r->n_closed; i++) printf("  %-3zu %22.12e %22.12e\n", i, r->root_re[i], r->root_im[i]);
+      printf("  roots vs closed-matrix eigenvalues: %.3e (relative)\n", r->root_eig_mismatch);
     }
-    if (r.n_full) printf("  full model (rotating coordinates) vs closed roots + family: %.3e (relative)\n", r.full_mismatch);
-    if (r.n_floquet) {
-      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; ", r.period, r.floquet_margin);
-      if (isnan(r.floquet_mismatch)) printf("vs exp(lambda T): not applicable (no constant-coefficient roots to compare)\n");
-      else printf("vs exp(lambda T): %.3e\n", r.floquet_mismatch);
+    if (r->n_full) printf("  full model (rotating coordinates) vs closed roots + family: %.3e (relative)\n", r->full_mismatch);
+    if (r->n_floquet) {
+      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; ", r->period, r->floquet_margin);
+      if (isnan(r->floquet_mismatch)) printf("vs exp(lambda T): not applicable (no constant-coefficient roots to compare)\n");
+      else printf("vs exp(lambda T): %.3e\n", r->floquet_mismatch);
     }
-    if (do_crit) print_intervals("speed (omega)", "rad/s", &cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
+    if (do_crit) print_intervals("speed (omega)", "rad/s", cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  autobal_rotor_stab_free(s);
+  autobal_study_rotor_stability_summary_free(&sum);
   if (c) free(c->storage);
   free(c);
+  (void)have_lo;
+  (void)have_hi;
   return rc;
 }
 

@@ -38,6 +38,7 @@
 #include "autobal/export.h"
 #include "autobal/status.h"
 #include "autobal/rotor.h"
+#include "autobal/rotor_stability.h"
 #include "autobal/pendulum.h"
 #include "autobal/transient.h"
 #include "autobal/archive.h"
@@ -238,6 +239,78 @@ AUTOBAL_API int autobal_study_rotor_transient(const autobal_rotor_params *p,
 /* Release the arrays of a summary and set their pointers to NULL (NULL or a
  * zeroed summary: nothing). */
 AUTOBAL_API void autobal_study_rotor_transient_summary_free(autobal_study_rotor_transient_summary *summary);
+
+/* ---- rotor stability ------------------------------------------------------------ */
+
+/* Options of a rotor stability analysis (`autobal rotor stability`, section [stability]). */
+typedef struct autobal_study_rotor_stability_options {
+  autobal_rotor_stab_options stab; /* method, verdict tolerance, Floquet tolerances, the analysed
+                                      member of each plane (rotor_stability.h; the member angles
+                                      are only read during the call)
+                                                          (default autobal_rotor_stab_options_default()) */
+  int critical_speeds;  /* non-zero: also search the critical speeds                (default 1) */
+  double omega_min, omega_max; /* rad/s, the speed range of the search, 0 < omega_min < omega_max,
+                           on the side of omega's sign (a negative omega searches [-omega_max,
+                           -omega_min]); NaN: autobal_study_rotor_speed_range()   (default NaN, NaN) */
+  size_t n_omega;       /* grid points of the search, in [2, 1e7]                 (default 400) */
+  double xtol_rel;      /* relative accuracy of each critical speed, in (0, 0.1)  (default 1e-8) */
+} autobal_study_rotor_stability_options;
+
+/* The defaults listed above. */
+AUTOBAL_API autobal_study_rotor_stability_options autobal_study_rotor_stability_options_default(void);
+
+/* The default speed range of critical-speed searches: from 5% of the lowest natural frequency
+ * at rest (autobal_rotor_modes) to 4 times the larger of the highest one and |omega|, rad/s. */
+AUTOBAL_API void autobal_study_rotor_speed_range(const autobal_rotor_params *p, double *lo, double *hi);
+
+/* Summary of a rotor stability analysis.  `result`'s pointers (psi, full_re, full_im, mu_re,
+ * mu_im) point into arrays owned by the summary (autobal_study_rotor_stability_summary_free). */
+typedef struct autobal_study_rotor_stability_summary {
+  autobal_rotor_stab_result result; /* autobal_rotor_stab_analyze at p->omega */
+  int have_critical;                /* 1: `critical` holds the search (options.critical_speeds) */
+  autobal_rotor_crit critical;      /* critical speeds in rad/s (signed like omega) */
+  double omega_min, omega_max;      /* rad/s, the range searched (positive, as in the options) */
+  size_t n_omega;                   /* its grid points */
+  int warning;                      /* 1: the parameters drew a warning (warning_message) */
+  char warning_message[AUTOBAL_ERRMSG_SIZE];
+  int critical_truncated;           /* 1: more critical speeds than AUTOBAL_ROTOR_MAX_CRIT
+                                       (critical.truncated; critical_message says so) */
+  char critical_message[AUTOBAL_ERRMSG_SIZE];
+  double *storage_;                 /* the arrays behind result's pointers (private) */
+} autobal_study_rotor_stability_summary;
+
+/* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every
+ * applicable method (autobal_rotor_stab_analyze), and with options.critical_speeds the
+ * critical speeds in the range (autobal_rotor_stab_critical).  opt NULL: defaults.  With an
+ * archive (NULL: none) the result is written afterwards by
+ * autobal_study_rotor_stability_write.  `summary` (not NULL) is zeroed first; release it with
+ * autobal_study_rotor_stability_summary_free, also after a failure.
+ * Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (bad parameters or options, omega = 0, no balanced
+ * configuration: messages name the field, options as "options: ..."), AUTOBAL_ENOMEM,
+ * AUTOBAL_ENUMERIC or an integration status of the Floquet analysis; "critical speeds: ..."
+ * for a failure of the search; an archive status when writing failed.  Nothing is written to
+ * the archive unless the analysis succeeded. */
+AUTOBAL_API int autobal_study_rotor_stability(const autobal_rotor_params *p,
+                                              const autobal_study_rotor_stability_options *opt,
+                                              autobal_archive *a,
+                                              autobal_study_rotor_stability_summary *summary,
+                                              autobal_error *err);
+
+/* Write an analysis (summary of a successful autobal_study_rotor_stability with the same p and
+ * opt) into the archive: /rotor, /rotor/lumped, /rotor/plane<j> (autobal_study_write_rotor_params
+ * with initial = 0, plus the analysed member and member_angles), /rotor/stability (options,
+ * method, verdict, margin, period, isotropic, closure_ok, n_family, psi_balanced(ball), the
+ * roots root_real/root_imag/eig_real/eig_imag(root), char_poly(power), full_real/full_imag
+ * (full_root), floquet_real/floquet_imag(multiplier) where computed) and
+ * /rotor/stability/critical (omega_min, omega_max, n_omega, critical_value/critical_kind
+ * (critical), stable_lo/stable_hi(interval)).  Returns an autobal status (the archive's
+ * message in autobal_archive_errmsg). */
+AUTOBAL_API int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_params *p,
+                                                    const autobal_study_rotor_stability_options *opt,
+                                                    const autobal_study_rotor_stability_summary *summary);
+
+/* Release the arrays of a summary (NULL or zeroed: nothing); result's pointers become NULL. */
+AUTOBAL_API void autobal_study_rotor_stability_summary_free(autobal_study_rotor_stability_summary *summary);
 
 AUTOBAL_END_DECLS
 
