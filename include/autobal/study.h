@@ -312,6 +312,82 @@ AUTOBAL_API int autobal_study_rotor_stability_write(autobal_archive *a, const au
 /* Release the arrays of a summary (NULL or zeroed: nothing); result's pointers become NULL. */
 AUTOBAL_API void autobal_study_rotor_stability_summary_free(autobal_study_rotor_stability_summary *summary);
 
+/* ---- pendulum transient --------------------------------------------------------- */
+
+/* Options of a pendulum transient (`autobal pendulum transient`, sections [initial] and
+ * [transient]).  Times are dimensionless: tau = omega0 t, one revolution lasts 2 pi/R_w. */
+typedef struct autobal_study_pendulum_transient_options {
+  double y0[8];         /* initial state (xi, eta, psi, phi, xi', eta', psi', phi'): lengths in l,
+                           angles in rad, rates per unit tau; finite   (default 0: at rest, the
+                           pendulums opposite each other along V) */
+  double t_end;         /* end of the run in tau, > 0                             (default 300) */
+  double dt_out;        /* output interval in tau, > 0; 0: revs_out revolutions     (default 0) */
+  double revs_out;      /* output interval in revolutions when dt_out = 0 (needs R_w > 0), > 0
+                                                                                   (default 0.25) */
+  double rtol, atol;    /* tolerances of the stepper                  (default 1e-10, 1e-12) */
+  double h_max;         /* largest step in tau, >= 0; 0: unlimited                  (default 0) */
+  unsigned long max_steps; /* accepted steps, >= 1                                (default 1e8) */
+  const char *stepper;  /* GSL stepper name; NULL: "rk8pd" (only read during the call)          */
+  double balance_tol;   /* balanced: the residual unbalance |d| (units of 2 m l) stays below
+                           this, > 0                                               (default 1e-3) */
+  double balance_revs;  /* ... for this many revolutions, >= 0 (> 0 needs R_w > 0) (default 20) */
+  int stop_at_balance;  /* non-zero: stop once balanced                             (default 0) */
+  autobal_study_progress_fn progress; /* NULL: none                              (default NULL) */
+  void *progress_user;                                                       /* (default NULL) */
+} autobal_study_pendulum_transient_options;
+
+AUTOBAL_API autobal_study_pendulum_transient_options autobal_study_pendulum_transient_options_default(void);
+
+/* Summary of a pendulum transient (plain data, nothing to release); dimensionless like the
+ * model (lengths in l, unbalance in 2 m l, time in tau). */
+typedef struct autobal_study_pendulum_transient_summary {
+  int balanced;               /* 1: the balance criterion held */
+  double time_to_balance;     /* tau when |d| went below balance_tol for good; NaN: not balanced */
+  double t_reached;           /* tau of the final state */
+  double revolution_period;   /* 2 pi/R_w in tau (inf for R_w = 0) */
+  double dt_out, revs_out;    /* the output interval used, in tau and revolutions (NaN for R_w = 0) */
+  double final_state[8];      /* the state at t_reached */
+  double unbalance_initial, unbalance_final;   /* |d| at the first sample and at the end */
+  double amplitude_initial, amplitude_max, amplitude_final; /* shaft amplitude sqrt(xi^2 + eta^2) */
+  double alpha_final, beta_final; /* rad, pendulum angles minus psi0 at the end, wrapped */
+  int have_linear_verdict;    /* 1: linear_verdict holds autobal_pendulum_verdict of p */
+  int linear_verdict;         /* AUTOBAL_VERDICT_* of the main motion (4) by (6) */
+  autobal_transient_stats solver; /* statistics of the driver */
+  char stepper[32];               /* the stepper's name */
+  char solver_message[AUTOBAL_ERRMSG_SIZE]; /* the driver's last message */
+} autobal_study_pendulum_transient_summary;
+
+/* Check the inputs without running (parameters by autobal_pendulum_motion_init: message as the
+ * model's; the initial state: "initial state: ..."; the options: "options: ...").  Returns
+ * AUTOBAL_SUCCESS or a failure with the message in err. */
+AUTOBAL_API int autobal_study_pendulum_transient_check(const autobal_pendulum_params *p,
+                                                       const autobal_study_pendulum_transient_options *opt,
+                                                       autobal_error *err);
+
+/* Integrate the equations of motion (1) from options.y0 over [0, t_end] (tau) with the balance
+ * criterion as a dwell event.  opt NULL: defaults.  phys (NULL: none) are the physical
+ * parameters p came from (autobal_pendulum_params_from_physical): they are recorded in the
+ * archive with the time and length units.  With an archive (NULL: none) it writes
+ *   /pendulum (+ /pendulum/physical)       autobal_study_write_pendulum_params
+ *   /pendulum/transient                    options (t_end, dt_out, revs_out, rtol, atol, h_max,
+ *                                          balance_tol, balance_revs, stepper, initial_state,
+ *                                          state_order; time_unit (s) and length_unit (m) with
+ *                                          phys), then the summary (time_to_balance, balanced,
+ *                                          t_reached, final_state, unbalance_initial/final,
+ *                                          amplitude_max, alpha_final, beta_final, linear_verdict)
+ *   /pendulum/transient/<var>(tau)         the state, amplitude, unbalance (+ components), alpha,
+ *                                          beta, jacobi every dt_out
+ *   /pendulum/transient/solver             autobal_study_write_solver_stats (time unit "1")
+ * `summary` (may be NULL) is zeroed first.  Returns like autobal_study_rotor_transient:
+ * AUTOBAL_SUCCESS, an input failure (nothing written), AUTOBAL_ECANCELLED, a failure of the
+ * integration (summary and archive hold the run up to t_reached), or an archive status. */
+AUTOBAL_API int autobal_study_pendulum_transient(const autobal_pendulum_params *p,
+                                                 const autobal_pendulum_physical *phys,
+                                                 const autobal_study_pendulum_transient_options *opt,
+                                                 autobal_archive *a,
+                                                 autobal_study_pendulum_transient_summary *summary,
+                                                 autobal_error *err);
+
 AUTOBAL_END_DECLS
 
 #endif
