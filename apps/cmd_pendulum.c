@@ -114,51 +114,21 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
   autobal_pendulum_result r;
-  autobal_pendulum_workspace *ws = NULL;
   autobal_archive *a = NULL;
+  autobal_error err;
   int physical = 0, rc, st;
   size_t i;
 
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
   if ((rc = cli_config_check_unused(ctx))) return rc;
-  ws = autobal_pendulum_workspace_alloc();
-  if (!ws) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-  st = autobal_pendulum_analyze(ws, &p, &r);
-  if (st != AUTOBAL_SUCCESS) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
-    autobal_pendulum_workspace_free(ws);
-    return rc;
-  }
-  autobal_pendulum_workspace_free(ws);
-
+  /* the analysis first (autobal_study_pendulum_roots), the archive afterwards: a failed
+   * analysis leaves no file */
+  st = autobal_study_pendulum_roots(&p, physical ? &phys : NULL, NULL, &r, &err);
+  if (st != AUTOBAL_SUCCESS) return cli_fail(ctx, cli_exit_code(st), "%s", err.message);
   if ((rc = cli_archive_open(ctx, "autobal pendulum roots", &a))) return rc;
   if (a) {
-    static const char *const dim_root[] = {"root"};
-    static const char *const dim_power[] = {"power"};
-    double power[AUTOBAL_PENDULUM_NCOEF];
-    const char *g = "/pendulum/roots";
-    for (i = 0; i < AUTOBAL_PENDULUM_NCOEF; i++) power[i] = (double)i;
-    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
-    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_dim(a, g, "root", AUTOBAL_PENDULUM_ORDER, "index of a characteristic root");
-    if (!st) st = autobal_archive_coord(a, g, "power", AUTOBAL_PENDULUM_NCOEF, power, "1", "power of lambda");
-    if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dim_power, r.coef, "1", "coefficients of the characteristic polynomial (6), ascending powers of lambda");
-    if (!st) st = autobal_archive_var(a, g, "root_real", 1, dim_root, r.root_re, "1", "real part of the roots of (6) (dimensionless, per tau)");
-    if (!st) st = autobal_archive_var(a, g, "root_imag", 1, dim_root, r.root_im, "1", "imaginary part of the roots of (6)");
-    if (!st) st = autobal_archive_var(a, g, "eig_real", 1, dim_root, r.eig_re, "1", "real part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
-    if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, dim_root, r.eig_im, "1", "imaginary part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
-    if (!st) st = autobal_archive_attr_string(a, g, "verdict", autobal_verdict_name(r.verdict));
-    if (!st) st = autobal_archive_attr_string(a, g, "verdict_roots", autobal_verdict_name(r.verdict_roots));
-    if (!st) st = autobal_archive_attr_double(a, g, "max_real", r.max_real, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.mismatch, "1");
-    if (!st) st = autobal_archive_attr_int(a, g, "n_right_half_plane", r.n_rhp);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond7_applicable", r.cond7.applicable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond7_predicts_stable", r.cond7.predicts_stable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond8_applicable", r.cond8.applicable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond8_predicts_stable", r.cond8.predicts_stable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond9_applicable", r.cond9.applicable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond9_predicts_stable", r.cond9.predicts_stable);
-    rc = cli_archive_end(ctx, &a, st, rc);
+    st = autobal_study_pendulum_roots_write(a, &p, physical ? &phys : NULL, &r);
+    rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
     if (rc) return rc;
   }
 
