@@ -409,6 +409,63 @@ AUTOBAL_API int autobal_study_pendulum_roots_write(autobal_archive *a, const aut
                                                    const autobal_pendulum_physical *phys,
                                                    const autobal_pendulum_result *result);
 
+/* ---- pendulum critical speeds ------------------------------------------------------------ */
+
+/* Options of `autobal pendulum critical` (section [critical]). */
+typedef struct autobal_study_pendulum_critical_options {
+  double Rm_min, Rm_max; /* the R_m grid of the curves R_wj(R_m), 0 < Rm_min < Rm_max < 0.5
+                                                                        (default 0.001, 0.499) */
+  size_t n_Rm;           /* its points, in [2, 1e6]                               (default 499) */
+  double Rw_min, Rw_max; /* the R_w range of the damped search, 0 <= Rw_min < Rw_max <= 1e4
+                                                                               (default 0, 6) */
+  size_t n_sweep;        /* grid points of the damped search, in [2, 1e8]        (default 3000) */
+} autobal_study_pendulum_critical_options;
+
+AUTOBAL_API autobal_study_pendulum_critical_options autobal_study_pendulum_critical_options_default(void);
+
+/* Summary of the critical speeds (dimensionless R_w = omega/omega0).  The curve arrays are
+ * owned by the summary (autobal_study_pendulum_critical_summary_free). */
+typedef struct autobal_study_pendulum_critical_summary {
+  double k;                           /* the unbalance parameter k of p */
+  autobal_pendulum_crit_set undamped; /* H = h = 0 at p's R_m and k, from the discriminant of (10) */
+  int have_damped;                    /* 1: H > 0 or h > 0, `damped` holds the search on [Rw_min, Rw_max] */
+  autobal_pendulum_crit_set damped;   /* at p's H and h, from (6); may be truncated */
+  autobal_pendulum_crit_set undamped_k0, undamped_k1; /* the same at k = 0 and k = 1 */
+  double R_m1, R_w_at_R_m1;           /* R_m^(1), where (16) and (18) touch, and R_w there */
+  double eq13_R_w1_k0, eq14_R_w2_k0_small, eq14_R_w3_k0_small, eq14_R_w2_k0_large, eq14_R_w3_k0_large;
+  double eq16_R_w1_k1, eq16_u, eq17_R_w1_k1_series, eq18_R_w23_k1; /* the paper's formulas at p's
+                                                                        R_m (NaN where they do not apply) */
+  size_t n_Rm;                        /* points of the curves */
+  double *R_m;                        /* [n_Rm] the grid */
+  double *R_w_k0, *R_w_k1;            /* [n_Rm x 3] row-major: R_w1..3 at each R_m (NaN: none) */
+  double *curve_eq14_R_w2_k0, *curve_eq14_R_w3_k0; /* [n_Rm] series (14) along R_m */
+  double *curve_eq16_R_w1_k1, *curve_eq17_R_w1_k1, *curve_eq18_R_w23_k1; /* [n_Rm] (16), (17), (18) */
+  int damped_truncated_warning;       /* 1: the damped list was full (warning_message) */
+  char warning_message[AUTOBAL_ERRMSG_SIZE];
+} autobal_study_pendulum_critical_summary;
+
+/* Critical speeds of the pendulum balancer at p, the curves R_wj(R_m) for k = 0 and 1 (figure 2)
+ * and the paper's closed forms (13), (14), (16)-(18).  opt NULL: defaults.  phys (NULL: none)
+ * recorded in the archive.  With an archive (NULL: none), after a successful computation:
+ * /pendulum, /pendulum/critical (undamped_*, damped_*, undamped_k0_*, undamped_k1_* critical
+ * speeds, kinds and stable intervals with their dimensions; R_m1, R_w_at_R_m1, eq13..eq18
+ * attributes) and /pendulum/critical/curves (R_m, branch; R_w_k0, R_w_k1 (R_m, branch) and the
+ * formulas along R_m).  `summary` (not NULL) is zeroed first; free it also after a failure.
+ * Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (parameters: the model's message; options:
+ * "options: ..."), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC; an archive status when writing failed. */
+AUTOBAL_API int autobal_study_pendulum_critical(const autobal_pendulum_params *p,
+                                                const autobal_pendulum_physical *phys,
+                                                const autobal_study_pendulum_critical_options *opt,
+                                                autobal_archive *a,
+                                                autobal_study_pendulum_critical_summary *summary,
+                                                autobal_error *err);
+/* The archive part, for a summary computed before.  Returns an autobal status. */
+AUTOBAL_API int autobal_study_pendulum_critical_write(autobal_archive *a, const autobal_pendulum_params *p,
+                                                      const autobal_pendulum_physical *phys,
+                                                      const autobal_study_pendulum_critical_summary *summary);
+/* Release the curve arrays (NULL or zeroed: nothing). */
+AUTOBAL_API void autobal_study_pendulum_critical_summary_free(autobal_study_pendulum_critical_summary *summary);
+
 AUTOBAL_END_DECLS
 
 #endif
