@@ -328,34 +328,32 @@ done:
   return rc;
 }
 
-/* ---- pendulum map -------------------------------------------------------------------- */
+/* ---- pendulum map: the library's study (autobal_study_pendulum_map) ------------------- */
 int cli_cmd_pendulum_map(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
-  autobal_pendulum_map_spec spec;
+  autobal_study_pendulum_map_options o = autobal_study_pendulum_map_options_default();
+  autobal_study_pendulum_map_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
   int physical = 0, rc, st, every = 0, want_max = 0, k_given = 0;
   double rm_min, rm_max, rw_min, rw_max;
   long n_rm, n_rw, n_k, threads;
-  double *rm = NULL, *rw = NULL, *ks = NULL, *maxre = NULL;
-  signed char *v = NULL;
-  int *vi = NULL;
-  size_t i, n, nstable = 0;
-  double k;
+  size_t n;
 
+  memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rm_min", 0.005, &rm_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rm_max", 0.495, &rm_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_Rm", 200, &n_rm, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rw_min", 0.05, &rw_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rw_max", 5.0, &rw_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_Rw", 200, &n_rw, NULL))) return rc;
-  if ((rc = cli_get_bool(ctx, "map", "every_unbalance", 0, &every, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_k", 65, &n_k, &k_given))) return rc;
-  if ((rc = cli_get_bool(ctx, "map", "max_real", 0, &want_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "threads", 0, &threads, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rm_min", o.Rm_min, &rm_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rm_max", o.Rm_max, &rm_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_Rm", (long)o.n_Rm, &n_rm, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rw_min", o.Rw_min, &rw_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rw_max", o.Rw_max, &rw_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_Rw", (long)o.n_Rw, &n_rw, NULL))) return rc;
+  if ((rc = cli_get_bool(ctx, "map", "every_unbalance", o.every_unbalance, &every, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_k", (long)o.n_k, &n_k, &k_given))) return rc;
+  if ((rc = cli_get_bool(ctx, "map", "max_real", o.max_real, &want_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "threads", o.threads, &threads, NULL))) return rc;
   if ((rc = cli_config_check_unused(ctx))) return rc;
   if (!(rm_min > 0 && rm_min <= rm_max && rm_max < 0.5))
     return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 < Rm_min <= Rm_max < 0.5, got Rm_min = %g, Rm_max = %g", rm_min,
@@ -368,73 +366,28 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
   if (n_k < 2 || n_k > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k = %ld is out of range: allowed [2, 100000]", n_k);
   if (threads < 0 || threads > 1024) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: threads = %ld is out of range: allowed [0, 1024]", threads);
   if (k_given && !every) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k is used only with every_unbalance = true");
-  k = autobal_pendulum_k(&p);
+  o.Rm_min = rm_min;
+  o.Rm_max = rm_max;
+  o.n_Rm = (size_t)n_rm;
+  o.Rw_min = rw_min;
+  o.Rw_max = rw_max;
+  o.n_Rw = (size_t)n_rw;
+  o.every_unbalance = every;
+  o.n_k = (size_t)n_k;
+  o.max_real = want_max;
+  o.threads = (int)threads;
   n = (size_t)n_rm * (size_t)n_rw;
-  rm = malloc((size_t)n_rm * sizeof *rm);
-  rw = malloc((size_t)n_rw * sizeof *rw);
-  ks = malloc((size_t)(every ? n_k : 1) * sizeof *ks);
-  v = malloc(n);
-  vi = malloc(n * sizeof *vi);
-  if (want_max) maxre = malloc(n * sizeof *maxre);
-  if (!rm || !rw || !ks || !v || !vi || (want_max && !maxre)) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
-  for (i = 0; i < (size_t)n_rm; i++) rm[i] = n_rm == 1 ? rm_min : rm_min + (rm_max - rm_min) * (double)i / (double)(n_rm - 1);
-  for (i = 0; i < (size_t)n_rw; i++) rw[i] = n_rw == 1 ? rw_min : rw_min + (rw_max - rw_min) * (double)i / (double)(n_rw - 1);
-  if (every)
-    for (i = 0; i < (size_t)n_k; i++) ks[i] = (double)i / (double)(n_k - 1);
-  else
-    ks[0] = k;
-  memset(&spec, 0, sizeof spec);
-  spec.R_m = rm;
-  spec.n_Rm = (size_t)n_rm;
-  spec.R_w = rw;
-  spec.n_Rw = (size_t)n_rw;
-  spec.H = p.H;
-  spec.h = p.h;
-  spec.k = ks;
-  spec.n_k = every ? (size_t)n_k : 1;
-  spec.n_threads = (int)threads;
-  st = autobal_pendulum_map(&spec, v, maxre, &err);
+  /* the map first, the archive afterwards: a failed computation leaves no file */
+  st = autobal_study_pendulum_map(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
     goto done;
   }
-  for (i = 0; i < n; i++) {
-    vi[i] = v[i];
-    nstable += v[i] > 0;
-  }
   if ((rc = cli_archive_open(ctx, every ? "autobal pendulum map (every unbalance)" : "autobal pendulum map", &a)))
     goto done;
   if (a) {
-    const char *g = "/pendulum/map";
-    static const char *const dims[] = {"R_m", "R_w"};
-    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
-    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_attr_string(a, g, "criterion", (p.H > 0 || p.h > 0) ? "Routh-Hurwitz sign test on the characteristic polynomial (6)" : "undamped: all roots x = lambda^2 of (10) real and <= 0");
-    if (!st) st = autobal_archive_attr_int(a, g, "every_unbalance", every);
-    if (!st) st = autobal_archive_attr_double_array(a, g, "k_values", spec.n_k, ks, "1");
-    if (!st) st = autobal_archive_coord(a, g, "R_m", (size_t)n_rm, rm, "1", "mass ratio m/(M + 2m)");
-    if (!st) st = autobal_archive_coord(a, g, "R_w", (size_t)n_rw, rw, "1", "rotor speed omega/omega0");
-    /* the design point of the configuration ([pendulum]), for marking on the map */
-    if (!st) st = autobal_archive_attr_double(a, g, "design_R_m", p.R_m, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "design_R_w", p.R_w, "1");
-    if (!st && physical) { /* the R_w axis in physical speed: omega = R_w omega0 */
-      double *om = malloc((size_t)n_rw * sizeof *om);
-      long q;
-      if (!om) {
-        st = AUTOBAL_ENOMEM;
-      } else {
-        for (q = 0; q < n_rw; q++) om[q] = rw[q] * pendulum_omega0(&phys);
-        st = autobal_archive_var(a, g, "omega", 1, (const char *const[]){"R_w"}, om, "rad/s",
-                                 "rotor speed omega = R_w omega0 of the configuration's physical set");
-        free(om);
-      }
-    }
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vi, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
-    if (!st && maxre) st = autobal_archive_var(a, g, "max_real", 2, dims, maxre, "1", "largest real part of the roots of (6) (over k_values)");
-    rc = cli_archive_end(ctx, &a, st, rc);
+    st = autobal_study_pendulum_map_write(a, &p, physical ? &phys : NULL, &sum);
+    rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
     if (rc) goto done;
   }
   if (ctx->json) {
@@ -443,23 +396,18 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     cli_json_bool(&j, "every_unbalance", every);
     cli_json_int(&j, "n_Rm", n_rm);
     cli_json_int(&j, "n_Rw", n_rw);
-    cli_json_int(&j, "n_stable", (long)nstable);
-    cli_json_quantity(&j, "stable_fraction", (double)nstable / (double)n, "1");
+    cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
     printf("map %ld x %ld over R_m in [%g, %g], R_w in [%g, %g], %s\n", n_rm, n_rw, rm_min, rm_max, rw_min, rw_max,
            every ? "stable for every k in the set" : "one k");
-    printf("stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);
+    printf("stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;
 done:
-  free(rm);
-  free(rw);
-  free(ks);
-  free(v);
-  free(vi);
-  free(maxre);
+  autobal_study_pendulum_map_summary_free(&sum);
   return rc;
 }

@@ -466,6 +466,49 @@ AUTOBAL_API int autobal_study_pendulum_critical_write(autobal_archive *a, const 
 /* Release the curve arrays (NULL or zeroed: nothing). */
 AUTOBAL_API void autobal_study_pendulum_critical_summary_free(autobal_study_pendulum_critical_summary *summary);
 
+/* ---- pendulum stability map ------------------------------------------------------------- */
+
+/* Options of `autobal pendulum map` (section [map]). */
+typedef struct autobal_study_pendulum_map_options {
+  double Rm_min, Rm_max; /* R_m axis, 0 < Rm_min <= Rm_max < 0.5                (default 0.005, 0.495) */
+  size_t n_Rm;           /* its points, in [1, 1e5]                                   (default 200) */
+  double Rw_min, Rw_max; /* R_w axis, 0 <= Rw_min <= Rw_max <= 1e4                (default 0.05, 5) */
+  size_t n_Rw;           /* its points, in [1, 1e5]                                   (default 200) */
+  int every_unbalance;   /* non-zero: stable for every k of n_k values in [0, 1]; else p's k (default 0) */
+  size_t n_k;            /* k values with every_unbalance, in [2, 1e5]                 (default 65) */
+  int max_real;          /* non-zero: also the largest real part of the roots of (6)     (default 0) */
+  int threads;           /* OpenMP threads, in [0, 1024]; 0: the OpenMP default         (default 0) */
+} autobal_study_pendulum_map_options;
+
+AUTOBAL_API autobal_study_pendulum_map_options autobal_study_pendulum_map_options_default(void);
+
+/* A stability map over (R_m, R_w) at p's H and h (autobal_pendulum_map).  The arrays are owned
+ * by the summary (autobal_study_pendulum_map_summary_free). */
+typedef struct autobal_study_pendulum_map_summary {
+  size_t n_Rm, n_Rw, n_k;   /* axes and the number of k values */
+  int every_unbalance;      /* options.every_unbalance: the verdict holds for every k */
+  double *R_m, *R_w, *k;    /* [n_Rm], [n_Rw], [n_k] */
+  int *verdict;             /* [n_Rm x n_Rw] row-major: 1 stable, 0 marginal, -1 unstable */
+  double *max_real;         /* [n_Rm x n_Rw] with options.max_real, else NULL */
+  size_t n_stable;          /* points with verdict 1 */
+} autobal_study_pendulum_map_summary;
+
+/* Compute the map; opt NULL: defaults; phys (NULL: none) recorded in the archive with an omega
+ * axis.  With an archive (NULL: none), after a successful computation: /pendulum and
+ * /pendulum/map (criterion, every_unbalance, k_values, R_m and R_w coordinates, design_R_m,
+ * design_R_w, omega(R_w) with phys, verdict(R_m, R_w), max_real(R_m, R_w)).  `summary` (not
+ * NULL) is zeroed first; free it also after a failure.  Returns AUTOBAL_SUCCESS,
+ * AUTOBAL_EINVAL ("options: ..." or the model's message), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC or
+ * an archive status. */
+AUTOBAL_API int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys,
+                                           const autobal_study_pendulum_map_options *opt, autobal_archive *a,
+                                           autobal_study_pendulum_map_summary *summary, autobal_error *err);
+/* The archive part, for a summary computed before.  Returns an autobal status. */
+AUTOBAL_API int autobal_study_pendulum_map_write(autobal_archive *a, const autobal_pendulum_params *p,
+                                                 const autobal_pendulum_physical *phys,
+                                                 const autobal_study_pendulum_map_summary *summary);
+AUTOBAL_API void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_map_summary *summary);
+
 AUTOBAL_END_DECLS
 
 #endif
