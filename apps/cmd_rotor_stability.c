@@ -101,62 +101,6 @@ static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
   return CLI_EXIT_OK;
 }
 
-/* A linear grid [lo, hi] with n points. */
-static double *grid(double lo, double hi, size_t n) {
-  double *v = malloc((n ? n : 1) * sizeof *v);
-  size_t i;
-  if (!v) return NULL;
-  for (i = 0; i < n; i++) v[i] = n == 1 ? lo : (i + 1 == n ? hi : lo + (hi - lo) * (double)i / (double)(n - 1));
-  return v;
-}
-
-/* ---- archive: the model and the analysis options ----------------------------------- */
-
-/* The rotor model (cli_write_rotor_params) and the balanced configuration analysed in each plane
- * (the member of the family (3.14), with its given angles). */
-static int write_model(autobal_archive *a, const stab_cfg *c) {
-  char grp[64];
-  size_t j;
-  int st = cli_write_rotor_params(a, &c->p, 0);
-  for (j = 0; j < c->p.n_planes && !st; j++) {
-    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-    st = autobal_archive_attr_string(a, grp, "member", c->member_name[j]);
-    if (!st && c->opt.member[j].n_angles > 0)
-      st = autobal_archive_attr_double_array(a, grp, "member_angles", c->opt.member[j].n_angles,
-                                             c->opt.member[j].angles, "rad");
-  }
-  return st;
-}
-
-static int write_options(autobal_archive *a, const char *g, const stab_cfg *c) {
-  int st = autobal_archive_attr_string(a, g, "method_option", c->method_name);
-  if (!st) st = autobal_archive_attr_double(a, g, "tol", c->opt.tol, "1");
-  if (!st) st = autobal_archive_attr_double(a, g, "floquet_rtol", c->opt.floquet_rtol, "1");
-  if (!st) st = autobal_archive_attr_double(a, g, "floquet_atol", c->opt.floquet_atol, "1");
-  return st;
-}
-
-static int write_crit(autobal_archive *a, const char *g, const autobal_rotor_crit *cr, const char *unit) {
-  int st = autobal_archive_attr_int(a, g, "n_critical", (long)cr->n);
-  int kinds[AUTOBAL_ROTOR_MAX_CRIT];
-  size_t i;
-  static const char *const dc[] = {"critical"}, *const di[] = {"interval"};
-  if (!st) st = autobal_archive_attr_int(a, g, "n_stable_intervals", (long)cr->n_stable);
-  if (!st) st = autobal_archive_attr_int(a, g, "truncated", cr->truncated);
-  if (!st && cr->n > 0) {
-    for (i = 0; i < cr->n; i++) kinds[i] = cr->kind[i];
-    st = autobal_archive_dim(a, g, "critical", cr->n, "index of a critical value (verdict change)");
-    if (!st) st = autobal_archive_var(a, g, "critical_value", 1, dc, cr->value, unit, "critical value: the margin crosses 0 here (refined)");
-    if (!st) st = autobal_archive_var_int(a, g, "critical_kind", 1, dc, kinds, "1", "1: stable above, -1: unstable above, 0: a balanced configuration exists on one side only");
-  }
-  if (!st && cr->n_stable > 0) {
-    st = autobal_archive_dim(a, g, "interval", cr->n_stable, "index of a stable interval");
-    if (!st) st = autobal_archive_var(a, g, "stable_lo", 1, di, cr->stable_lo, unit, "lower end of a stable interval (the sweep's start when stable there)");
-    if (!st) st = autobal_archive_var(a, g, "stable_hi", 1, di, cr->stable_hi, unit, "upper end of a stable interval (the sweep's end when stable there)");
-  }
-  return st;
-}
-
 static void print_intervals(const char *what, const char *unit, const autobal_rotor_crit *cr, double lo, double hi) {
   size_t i;
   printf("  critical values of %s in [%g, %g] %s:", what, lo, hi, unit);
@@ -181,16 +125,6 @@ static void print_intervals(const char *what, const char *unit, const autobal_ro
   if (cr->truncated)
     printf("  (TRUNCATED: more critical values than the list holds; the results cover [%g, %.10g] only)\n", lo,
            cr->value[cr->n - 1]);
-}
-
-/* AUTOBAL_WARNING from a critical-value search (the list was truncated): a warning on stderr
- * (not with --json, whose summary carries "truncated"), and the run goes on: the data are valid
- * and the archive records the flag.  Other statuses are returned unchanged. */
-static int crit_warning(const cli_ctx *ctx, int st, const char *what, const char *message) {
-  char msg[sizeof ctx->err];
-  if (st != AUTOBAL_WARNING) return st;
-  if (!ctx->json) fprintf(stderr, "autobal: warning: %s: %s\n", what, cli_rotor_message(message, msg, sizeof msg));
-  return AUTOBAL_SUCCESS;
 }
 
 static void json_crit(cli_json *j, const autobal_rotor_crit *cr, const char *unit) {
@@ -337,46 +271,31 @@ static int read_param(cli_ctx *ctx, const char *sec, const char *key, const char
 }
 
 static double param_default_hi(const stab_cfg *c, int param) {
-  switch (param) {
-    case AUTOBAL_ROTOR_PARAM_OMEGA: {
-      double lo, hi;
-      default_speed_range(&c->p, &lo, &hi);
-      return hi;
-    }
-    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return 10.0 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_damping[0] : 0.1) + 1e-3;
-    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return 4.0 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_mass[0] : 0.05);
-    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return 4.0 * c->p.plane[0].m0 + 1e-3;
-    default: return 4.0;
-  }
+  double lo, hi;
+  autobal_study_rotor_param_range(&c->p, param, &lo, &hi);
+  return hi;
 }
 static double param_default_lo(const stab_cfg *c, int param) {
-  switch (param) {
-    case AUTOBAL_ROTOR_PARAM_OMEGA: {
-      double lo, hi;
-      default_speed_range(&c->p, &lo, &hi);
-      return lo;
-    }
-    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return 0.0;
-    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return 0.1 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_mass[0] : 0.05);
-    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return 0.0;
-    case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE: return 0.0;
-    default: return 0.25;
-  }
+  double lo, hi;
+  autobal_study_rotor_param_range(&c->p, param, &lo, &hi);
+  return lo;
 }
+
+static int sweep_progress(double fraction, void *user) { return cli_progress(user, "rotor sweep", fraction); }
 
 int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
-  autobal_rotor_stab *s = NULL;
-  autobal_rotor_crit cr;
+  autobal_study_rotor_sweep_options o = autobal_study_rotor_sweep_options_default();
+  autobal_study_rotor_sweep_summary sum;
+  const autobal_rotor_crit *cr = &sum.critical;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  double lo, hi, xtol = 1e-8, *vals = NULL, *mg = NULL;
-  int *vd = NULL, param = 0, rc = CLI_EXIT_OK, st;
-  long n = 1000;
-  size_t i, nstable = 0;
+  double lo, hi, xtol = o.xtol_rel;
+  int param = 0, rc = CLI_EXIT_OK, st;
+  long n = (long)o.n;
   const char *pname, *unit;
-  memset(&cr, 0, sizeof cr);
+  memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
   if ((rc = read_param(ctx, "sweep", "param", "omega", &param))) goto done;
@@ -399,54 +318,31 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: omega = 0: nothing to analyse");
     goto done;
   }
+  o.stab = c->opt;
+  o.param = param;
+  o.min = lo;
+  o.max = hi;
+  o.n = (size_t)n;
+  o.xtol_rel = xtol;
+  o.progress = sweep_progress;
+  o.progress_user = ctx;
+  /* the sweep first (autobal_study_rotor_sweep), the archive afterwards */
   autobal_error_clear(&err);
-  s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
-  vals = grid(lo, hi, (size_t)n);
-  mg = malloc((size_t)n * sizeof *mg);
-  vd = malloc((size_t)n * sizeof *vd);
-  if (!s || !vals || !mg || !vd) {
-    rc = cli_fail(ctx, s ? CLI_EXIT_INTERNAL : cli_exit_code(err.status), "%s",
-        s ? "out of memory" : cli_rotor_message(err.message, msg, sizeof msg));
-    goto done;
-  }
-  /* the sweep in chunks, for progress and interruption */
-  for (i = 0; i < (size_t)n; i += 64) {
-    size_t m = (size_t)n - i < 64 ? (size_t)n - i : 64;
-    st = autobal_rotor_stab_sweep(s, param, vals + i, m, mg + i, vd + i);
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s = %.9g %s: %s", pname, vals[i], unit,
-          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
-      goto done;
-    }
-    if (cli_progress(ctx, "rotor sweep", 0.5 * (double)(i + m) / (double)n)) {
-      rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted");
-      goto done;
-    }
-  }
-  st = autobal_rotor_stab_critical(s, param, lo, hi, (size_t)n, xtol, &cr);
+  st = autobal_study_rotor_sweep(&c->p, &o, NULL, &sum, &err);
   cli_progress_done(ctx);
-  st = crit_warning(ctx, st, "critical values", autobal_rotor_stab_errmsg(s));
-  if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "critical values: %s",
-        cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
+  if (sum.critical_truncated && !ctx->json)
+    fprintf(stderr, "autobal: warning: critical values: %s\n", cli_rotor_message(sum.critical_message, msg, sizeof msg));
+  if (st == AUTOBAL_ECANCELLED) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted");
     goto done;
   }
-  for (i = 0; i < (size_t)n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
+    goto done;
+  }
   if ((rc = cli_archive_open(ctx, "autobal rotor sweep", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/sweep";
-    const char *dims[1];
-    char lname[160];
-    dims[0] = pname;
-    snprintf(lname, sizeof lname, "swept parameter %s", pname);
-    st = write_model(a, c);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = write_options(a, g, c);
-    if (!st) st = autobal_archive_attr_string(a, g, "param", pname);
-    if (!st) st = autobal_archive_coord(a, g, pname, (size_t)n, vals, unit, lname);
-    if (!st) st = autobal_archive_var(a, g, "margin", 1, dims, mg, "1/s", "stability margin: largest real part of the characteristic roots (family roots excluded; Floquet: log max|mu| / T); NaN: no balanced configuration");
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 1, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
-    if (!st) st = write_crit(a, g, &cr, unit);
+    st = autobal_study_rotor_sweep_write(a, &c->p, &o, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -458,37 +354,37 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     cli_json_quantity(&j, "min", lo, unit);
     cli_json_quantity(&j, "max", hi, unit);
     cli_json_int(&j, "n", n);
-    cli_json_int(&j, "n_stable_points", (long)nstable);
-    json_crit(&j, &cr, unit);
+    cli_json_int(&j, "n_stable_points", (long)sum.n_stable);
+    json_crit(&j, cr, unit);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor sweep of %s over [%g, %g] %s, %ld points (omega = %.6g rad/s unless swept)\n", pname, lo, hi, unit, n,
            c->p.omega);
-    printf("  stable points: %zu of %ld; %zu evaluations for the refinement\n", nstable, n, cr.evaluations);
-    print_intervals(pname, unit, &cr, lo, hi);
+    printf("  stable points: %zu of %ld; %zu evaluations for the refinement\n", sum.n_stable, n, cr->evaluations);
+    print_intervals(pname, unit, cr, lo, hi);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  autobal_rotor_stab_free(s);
-  free(vals);
-  free(mg);
-  free(vd);
+  autobal_study_rotor_sweep_summary_free(&sum);
   if (c) free(c->storage);
   free(c);
   return rc;
 }
 
-/* ---- rotor map ---------------------------------------------------------------------------- */
+/* ---- rotor map: the library's study (autobal_study_rotor_map) ---------------------------- */
 int cli_cmd_rotor_map(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
+  autobal_study_rotor_map_options o = autobal_study_rotor_map_options_default();
+  autobal_study_rotor_map_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  double lo1, hi1, lo2, hi2, *v1 = NULL, *v2 = NULL, *mg = NULL;
-  int *vd = NULL, p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
-  long n1 = 120, n2 = 60, threads = 0;
-  size_t i, n, nstable = 0;
+  double lo1, hi1, lo2, hi2;
+  int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
+  long n1 = (long)o.n1, n2 = (long)o.n2, threads = o.threads;
+  size_t n;
+  memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
   if ((rc = read_param(ctx, "map", "param1", "omega", &p1))) goto done;
@@ -515,37 +411,20 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     goto done;
   }
   n = (size_t)n1 * (size_t)n2;
-  v1 = grid(lo1, hi1, (size_t)n1);
-  v2 = grid(lo2, hi2, (size_t)n2);
-  mg = malloc(n * sizeof *mg);
-  vd = malloc(n * sizeof *vd);
-  if (!v1 || !v2 || !mg || !vd) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
+  o.stab = c->opt;
+  o.param1 = p1, o.param2 = p2;
+  o.min1 = lo1, o.max1 = hi1, o.min2 = lo2, o.max2 = hi2;
+  o.n1 = (size_t)n1, o.n2 = (size_t)n2;
+  o.threads = (int)threads;
   autobal_error_clear(&err);
-  st = autobal_rotor_stab_map(&c->p, &c->opt, p1, v1, (size_t)n1, p2, v2, (size_t)n2, (int)threads, mg, vd, &err);
+  st = autobal_study_rotor_map(&c->p, &o, NULL, &sum, &err);
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
-  for (i = 0; i < n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
   if ((rc = cli_archive_open(ctx, "autobal rotor map", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/map";
-    const char *n1s = autobal_rotor_stab_param_name(p1), *n2s = autobal_rotor_stab_param_name(p2);
-    const char *dims[2];
-    dims[0] = n1s;
-    dims[1] = n2s;
-    st = write_model(a, c);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = write_options(a, g, c);
-    if (!st) st = autobal_archive_attr_string(a, g, "param1", n1s);
-    if (!st) st = autobal_archive_attr_string(a, g, "param2", n2s);
-    if (!st) st = autobal_archive_coord(a, g, n1s, (size_t)n1, v1, autobal_rotor_stab_param_unit(p1), "first parameter (rows)");
-    if (!st) st = autobal_archive_coord(a, g, n2s, (size_t)n2, v2, autobal_rotor_stab_param_unit(p2), "second parameter (columns)");
-    if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, mg, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
+    st = autobal_study_rotor_map_write(a, &c->p, &o, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -556,39 +435,39 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_string(&j, "param2", autobal_rotor_stab_param_name(p2));
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
-    cli_json_int(&j, "n_stable", (long)nstable);
-    cli_json_quantity(&j, "stable_fraction", (double)nstable / (double)n, "1");
+    cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
            hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
            autobal_rotor_stab_param_unit(p2));
-    printf("  stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);
+    printf("  stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
-  free(v1);
-  free(v2);
-  free(mg);
-  free(vd);
+  autobal_study_rotor_map_summary_free(&sum);
   if (c) free(c->storage);
   free(c);
   return rc;
 }
 
-/* ---- rotor campbell ------------------------------------------------------------------------- */
+/* ---- rotor campbell: the library's study (autobal_study_rotor_campbell) --------------------- */
 int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   autobal_rotor_params p;
   void *storage = NULL;
+  autobal_study_rotor_campbell_options o = autobal_study_rotor_campbell_options_default();
+  autobal_study_rotor_campbell_summary sum;
+  const autobal_rotor_resonances *rr = &sum.resonances;
+  const double *fu = sum.natural_frequency_undamped, *fd = sum.natural_frequency_damped, *zd = sum.damping_ratio_at_rest;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  autobal_rotor_resonances rr;
-  double lo = 0.0, hi = 0.0, xtol = 1e-10, *om = NULL, *fr = NULL, *ze = NULL, *ag = NULL, *ad = NULL;
-  double fu[4], fd[4], zd[4];
-  int *wh = NULL, rc, st;
-  long n = 401, nres = 4000;
-  size_t i, j, np;
+  double lo = 0.0, hi = 0.0, xtol = o.xtol_rel;
+  int rc, st;
+  long n = (long)o.n, nres = (long)o.n_resonance;
+  size_t i;
+  memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_rotor_config_read(ctx, &p, &storage))) return rc;
   cli_declare_section(ctx, "transient");
@@ -610,74 +489,21 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
                   "[campbell]: need 0 <= omega_min < omega_max, n in [2, 1e7], n_resonance in [3, 1e7], xtol_rel in (0, 0.1)");
     goto done;
   }
-  np = p.n_planes;
-  om = grid(lo, hi, (size_t)n);
-  fr = malloc(4 * (size_t)n * sizeof *fr);
-  ze = malloc(4 * (size_t)n * sizeof *ze);
-  wh = malloc(4 * (size_t)n * sizeof *wh);
-  ag = malloc((size_t)n * sizeof *ag);
-  ad = malloc(np * (size_t)n * sizeof *ad);
-  if (!om || !fr || !ze || !wh || !ag || !ad) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
-  if ((st = autobal_rotor_modes(&p, 0.0, 1, fu, NULL, NULL, NULL, &err)) ||
-      (st = autobal_rotor_modes(&p, 0.0, 0, fd, zd, NULL, NULL, &err)) ||
-      (st = autobal_rotor_campbell(&p, om, (size_t)n, fr, ze, wh, &err))) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
-    goto done;
-  }
-  for (i = 0; i < (size_t)n; i++) {
-    double d2[AUTOBAL_ROTOR_MAX_PLANES];
-    if (autobal_rotor_unbalance_response(&p, om[i], &ag[i], d2, NULL) != AUTOBAL_SUCCESS) {
-      ag[i] = INFINITY; /* an undamped resonance exactly on the grid */
-      for (j = 0; j < np; j++) d2[j] = INFINITY;
-    }
-    for (j = 0; j < np; j++) ad[i * np + j] = d2[j];
-  }
-  st = autobal_rotor_resonance_speeds(&p, lo, hi, (size_t)nres, xtol, &rr, &err);
-  st = crit_warning(ctx, st, "resonance speeds", err.message);
+  o.omega_min = lo;
+  o.omega_max = hi;
+  o.n = (size_t)n;
+  o.n_resonance = (size_t)nres;
+  o.xtol_rel = xtol;
+  st = autobal_study_rotor_campbell(&p, &o, NULL, &sum, &err);
+  if (sum.resonances_truncated && !ctx->json)
+    fprintf(stderr, "autobal: warning: resonance speeds: %s\n", cli_rotor_message(sum.resonance_message, msg, sizeof msg));
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor campbell", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/campbell";
-    static const char *const d2[] = {"omega", "mode"}, *const d1[] = {"omega"}, *const dp[] = {"omega", "plane"},
-                             *const dm[] = {"mode"}, *const dc[] = {"crossing"}, *const dk[] = {"peak"};
-    stab_cfg tmp;
-    memset(&tmp, 0, sizeof tmp);
-    tmp.p = p;
-    for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) tmp.member_name[j] = "default";
-    st = write_model(a, &tmp);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_attr_string(a, g, "description", "rotor-housing without balls (the unbalances drive the response; FULL inertia keeps their masses): natural frequencies, damping ratios and whirl vs omega (gyroscopic C omega), steady unbalance response");
-    if (!st) st = autobal_archive_coord(a, g, "omega", (size_t)n, om, "rad/s", "spin speed");
-    if (!st) st = autobal_archive_dim(a, g, "mode", 4, "mode index, by increasing frequency at each speed");
-    if (!st) st = autobal_archive_dim(a, g, "plane", np, "balancer plane index");
-    if (!st) st = autobal_archive_var(a, g, "frequency", 2, d2, fr, "rad/s", "damped natural frequency Im(lambda) in the fixed frame");
-    if (!st) st = autobal_archive_var(a, g, "damping_ratio", 2, d2, ze, "1", "-Re(lambda)/|lambda|");
-    if (!st) st = autobal_archive_var_int(a, g, "whirl", 2, d2, wh, "1", "1 forward, -1 backward, 0 undecided");
-    if (!st) st = autobal_archive_var(a, g, "amp_G", 1, d1, ag, "m", "steady unbalance response: major semi-axis of the orbit of the centre of mass");
-    if (!st) st = autobal_archive_var(a, g, "amp_D", 2, dp, ad, "m", "steady unbalance response at each balancer plane");
-    if (!st) st = autobal_archive_var(a, g, "natural_frequency_undamped", 1, dm, fu, "rad/s", "natural frequencies at rest without damping");
-    if (!st) st = autobal_archive_var(a, g, "natural_frequency_damped", 1, dm, fd, "rad/s", "damped natural frequencies at rest");
-    if (!st) st = autobal_archive_var(a, g, "damping_ratio_at_rest", 1, dm, zd, "1", "damping ratios at rest");
-    if (!st) st = autobal_archive_attr_int(a, g, "n_crossing", (long)rr.n_cross);
-    if (!st) st = autobal_archive_attr_int(a, g, "n_peak", (long)rr.n_peak);
-    if (!st) st = autobal_archive_attr_int(a, g, "truncated", rr.truncated);
-    if (!st && rr.n_cross > 0) {
-      st = autobal_archive_dim(a, g, "crossing", rr.n_cross, "index of a speed where a natural frequency equals omega");
-      if (!st) st = autobal_archive_var(a, g, "crossing_omega", 1, dc, rr.cross, "rad/s", "critical speed: natural frequency = omega");
-      if (!st) st = autobal_archive_var_int(a, g, "crossing_mode", 1, dc, rr.cross_mode, "1", "mode index");
-      if (!st) st = autobal_archive_var_int(a, g, "crossing_whirl", 1, dc, rr.cross_whirl, "1", "1 forward, -1 backward");
-    }
-    if (!st && rr.n_peak > 0) {
-      st = autobal_archive_dim(a, g, "peak", rr.n_peak, "index of a peak of the unbalance response");
-      if (!st) st = autobal_archive_var(a, g, "peak_omega", 1, dk, rr.peak, "rad/s", "unbalance-response critical speed (local maximum of amp_G)");
-      if (!st) st = autobal_archive_var(a, g, "peak_amp_G", 1, dk, rr.peak_amp, "m", "amp_G at the peak");
-    }
+    st = autobal_study_rotor_campbell_write(a, &p, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -687,12 +513,12 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     cli_json_quantities(&jj, "natural_frequency_undamped", fu, 4, "rad/s");
     cli_json_quantities(&jj, "natural_frequency_damped", fd, 4, "rad/s");
     cli_json_quantities(&jj, "damping_ratio_at_rest", zd, 4, "1");
-    cli_json_quantities(&jj, "crossing_omega", rr.cross, rr.n_cross, "rad/s");
+    cli_json_quantities(&jj, "crossing_omega", rr->cross, rr->n_cross, "rad/s");
     cli_json_array(&jj, "crossing_whirl");
-    for (i = 0; i < rr.n_cross; i++) cli_json_int(&jj, NULL, rr.cross_whirl[i]);
+    for (i = 0; i < rr->n_cross; i++) cli_json_int(&jj, NULL, rr->cross_whirl[i]);
     cli_json_array_end(&jj);
-    cli_json_quantities(&jj, "peak_omega", rr.peak, rr.n_peak, "rad/s");
-    cli_json_bool(&jj, "truncated", rr.truncated);
+    cli_json_quantities(&jj, "peak_omega", rr->peak, rr->n_peak, "rad/s");
+    cli_json_bool(&jj, "truncated", rr->truncated);
     cli_json_summary_end(&jj, ctx);
   } else if (!ctx->quiet) {
     printf("rotor-housing (balls removed): natural frequencies at rest\n");
@@ -703,28 +529,23 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
            zd[1], zd[2], zd[3]);
     printf("Campbell diagram over omega in [%g, %g] rad/s (%ld points)\n", lo, hi, n);
     printf("  critical speeds (natural frequency = omega):");
-    if (rr.n_cross == 0) printf(" none");
-    for (i = 0; i < rr.n_cross; i++)
-      printf(" %.8g rad/s = %.6g rpm (%s)", rr.cross[i], cli_rpm(rr.cross[i]),
-             rr.cross_whirl[i] > 0 ? "forward" : (rr.cross_whirl[i] < 0 ? "backward" : "?"));
+    if (rr->n_cross == 0) printf(" none");
+    for (i = 0; i < rr->n_cross; i++)
+      printf(" %.8g rad/s = %.6g rpm (%s)", rr->cross[i], cli_rpm(rr->cross[i]),
+             rr->cross_whirl[i] > 0 ? "forward" : (rr->cross_whirl[i] < 0 ? "backward" : "?"));
     printf("\n  unbalance-response peaks (centre of mass):");
-    if (rr.n_peak == 0) printf(" none");
-    for (i = 0; i < rr.n_peak; i++)
-      printf(" %.8g rad/s = %.6g rpm (%.4g um)", rr.peak[i], cli_rpm(rr.peak[i]), rr.peak_amp[i] * 1e6);
+    if (rr->n_peak == 0) printf(" none");
+    for (i = 0; i < rr->n_peak; i++)
+      printf(" %.8g rad/s = %.6g rpm (%.4g um)", rr->peak[i], cli_rpm(rr->peak[i]), rr->peak_amp[i] * 1e6);
     printf("\n");
-    if (rr.truncated)
+    if (rr->truncated)
       printf("  (TRUNCATED: more crossings or peaks than the lists hold; see the warning for the range covered)\n");
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  free(om);
-  free(fr);
-  free(ze);
-  free(wh);
-  free(ag);
-  free(ad);
+  autobal_study_rotor_campbell_summary_free(&sum);
   free(storage);
   return rc;
 }

@@ -509,6 +509,127 @@ AUTOBAL_API int autobal_study_pendulum_map_write(autobal_archive *a, const autob
                                                  const autobal_study_pendulum_map_summary *summary);
 AUTOBAL_API void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_map_summary *summary);
 
+/* ---- rotor sweep, map and Campbell diagram ------------------------------------------------ */
+
+/* The default range of a swept rotor parameter (AUTOBAL_ROTOR_PARAM_*, in its unit
+ * autobal_rotor_stab_param_unit): OMEGA: autobal_study_rotor_speed_range; BALL_DAMPING:
+ * [0, 10 h_1 + 1e-3]; BALL_MASS: [0.1 m_1, 4 m_1] (h_1, m_1: plane 1's first ball, 0.1 and
+ * 0.05 without balls); UNBALANCE_MASS: [0, 4 m0 + 1e-3]; DAMPING_SCALE: [0, 4]; else
+ * [0.25, 4]. */
+AUTOBAL_API void autobal_study_rotor_param_range(const autobal_rotor_params *p, int param, double *lo, double *hi);
+
+/* Options of `autobal rotor sweep` (section [sweep]; [stability] in stab). */
+typedef struct autobal_study_rotor_sweep_options {
+  autobal_rotor_stab_options stab; /* as in autobal_study_rotor_stability_options */
+  int param;            /* AUTOBAL_ROTOR_PARAM_* swept                          (default OMEGA) */
+  double min, max;      /* the range, min < max, in the parameter's unit; NaN:
+                           autobal_study_rotor_param_range                      (default NaN, NaN) */
+  size_t n;             /* grid points, in [2, 1e7]                              (default 1000) */
+  double xtol_rel;      /* relative accuracy of the critical values, in (0, 0.1)  (default 1e-8) */
+  autobal_study_progress_fn progress; /* fraction of the sweep; non-zero: cancel (default NULL) */
+  void *progress_user;
+} autobal_study_rotor_sweep_options;
+AUTOBAL_API autobal_study_rotor_sweep_options autobal_study_rotor_sweep_options_default(void);
+
+/* A sweep: margin and verdict on the grid and the critical values.  Arrays owned by the
+ * summary (autobal_study_rotor_sweep_summary_free). */
+typedef struct autobal_study_rotor_sweep_summary {
+  int param;                  /* the swept parameter */
+  double min, max;            /* the range used */
+  size_t n;                   /* grid points */
+  double *values;             /* [n] the grid */
+  double *margin;             /* [n] 1/s (NaN: no balanced configuration) */
+  int *verdict;               /* [n] 1 stable, 0 marginal, -1 unstable, -2 none */
+  size_t n_stable;            /* points with verdict 1 */
+  autobal_rotor_crit critical; /* critical values in the parameter's unit */
+  int critical_truncated;     /* 1: more critical values than the list holds (critical_message) */
+  char critical_message[AUTOBAL_ERRMSG_SIZE];
+} autobal_study_rotor_sweep_summary;
+
+/* Sweep options.param over its grid (autobal_rotor_stab_sweep, in chunks of 64 points with
+ * progress) and refine its critical values (autobal_rotor_stab_critical).  opt NULL: defaults.
+ * With an archive (NULL: none), after success: /rotor (as the stability study) and /rotor/sweep
+ * (options, param, the coordinate named after the parameter, margin, verdict, critical values).
+ * Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL ("options: ..."; the model's messages; "<param> =
+ * <value> <unit>: ..." for a failing point; "critical values: ..."), AUTOBAL_ECANCELLED (nothing
+ * written), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC, an archive status.  `summary` (not NULL) is zeroed
+ * first; free it also after a failure. */
+AUTOBAL_API int autobal_study_rotor_sweep(const autobal_rotor_params *p, const autobal_study_rotor_sweep_options *opt,
+                                          autobal_archive *a, autobal_study_rotor_sweep_summary *summary,
+                                          autobal_error *err);
+AUTOBAL_API int autobal_study_rotor_sweep_write(autobal_archive *a, const autobal_rotor_params *p,
+                                                const autobal_study_rotor_sweep_options *opt,
+                                                const autobal_study_rotor_sweep_summary *summary);
+AUTOBAL_API void autobal_study_rotor_sweep_summary_free(autobal_study_rotor_sweep_summary *summary);
+
+/* Options of `autobal rotor map` (section [map]). */
+typedef struct autobal_study_rotor_map_options {
+  autobal_rotor_stab_options stab;
+  int param1, param2;   /* two different AUTOBAL_ROTOR_PARAM_* (default OMEGA, BALL_DAMPING) */
+  double min1, max1, min2, max2; /* ranges, min <= max; NaN: autobal_study_rotor_param_range */
+  size_t n1, n2;        /* grid points, in [1, 1e5]                              (default 120, 60) */
+  int threads;          /* OpenMP threads, [0, 1024]; 0: the OpenMP default          (default 0) */
+} autobal_study_rotor_map_options;
+AUTOBAL_API autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void);
+
+typedef struct autobal_study_rotor_map_summary {
+  int param1, param2;
+  double min1, max1, min2, max2;
+  size_t n1, n2;
+  double *values1, *values2;  /* [n1], [n2] */
+  double *margin;             /* [n1 x n2] row-major, 1/s */
+  int *verdict;               /* [n1 x n2] */
+  size_t n_stable;
+} autobal_study_rotor_map_summary;
+
+/* Margin and verdict over a grid of two parameters (autobal_rotor_stab_map).  With an archive:
+ * /rotor and /rotor/map (options, param1, param2, the two coordinates, margin, verdict).
+ * Returns like autobal_study_rotor_sweep (no cancellation). */
+AUTOBAL_API int autobal_study_rotor_map(const autobal_rotor_params *p, const autobal_study_rotor_map_options *opt,
+                                        autobal_archive *a, autobal_study_rotor_map_summary *summary,
+                                        autobal_error *err);
+AUTOBAL_API int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params *p,
+                                              const autobal_study_rotor_map_options *opt,
+                                              const autobal_study_rotor_map_summary *summary);
+AUTOBAL_API void autobal_study_rotor_map_summary_free(autobal_study_rotor_map_summary *summary);
+
+/* Options of `autobal rotor campbell` (section [campbell]). */
+typedef struct autobal_study_rotor_campbell_options {
+  double omega_min, omega_max; /* rad/s, 0 <= omega_min < omega_max; NaN: 0 and the upper end of
+                                  autobal_study_rotor_speed_range             (default NaN, NaN) */
+  size_t n;                    /* speeds of the diagram, [2, 1e7]                    (default 401) */
+  size_t n_resonance;          /* grid of the resonance search, [3, 1e7]            (default 4000) */
+  double xtol_rel;             /* accuracy of the resonance speeds, (0, 0.1)       (default 1e-10) */
+} autobal_study_rotor_campbell_options;
+AUTOBAL_API autobal_study_rotor_campbell_options autobal_study_rotor_campbell_options_default(void);
+
+typedef struct autobal_study_rotor_campbell_summary {
+  double omega_min, omega_max;
+  size_t n, n_planes;
+  double *omega;                 /* [n] rad/s */
+  double *frequency;             /* [n x 4] rad/s, damped natural frequencies by increasing value */
+  double *damping_ratio;         /* [n x 4] */
+  int *whirl;                    /* [n x 4] 1 forward, -1 backward, 0 undecided */
+  double *amp_G;                 /* [n] m, unbalance response of the centre of mass (inf: an
+                                    undamped resonance on the grid) */
+  double *amp_D;                 /* [n x n_planes] m, at the balancer planes */
+  double natural_frequency_undamped[4], natural_frequency_damped[4], damping_ratio_at_rest[4];
+  autobal_rotor_resonances resonances; /* crossings and unbalance-response peaks */
+  int resonances_truncated;      /* 1: lists full (resonance_message says up to where) */
+  char resonance_message[AUTOBAL_ERRMSG_SIZE];
+} autobal_study_rotor_campbell_summary;
+
+/* The rotor-housing without balls: natural frequencies at rest, the Campbell diagram, the steady
+ * unbalance response and the critical speeds.  With an archive: /rotor and /rotor/campbell.
+ * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL ("options: ..." or the model's message),
+ * AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC, an archive status. */
+AUTOBAL_API int autobal_study_rotor_campbell(const autobal_rotor_params *p,
+                                             const autobal_study_rotor_campbell_options *opt, autobal_archive *a,
+                                             autobal_study_rotor_campbell_summary *summary, autobal_error *err);
+AUTOBAL_API int autobal_study_rotor_campbell_write(autobal_archive *a, const autobal_rotor_params *p,
+                                                   const autobal_study_rotor_campbell_summary *summary);
+AUTOBAL_API void autobal_study_rotor_campbell_summary_free(autobal_study_rotor_campbell_summary *summary);
+
 AUTOBAL_END_DECLS
 
 #endif
