@@ -475,7 +475,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   autobal_error_clear(&e);
   st = setup(p, o, &rot, &tr, &y, &e);
   if (st < 0) {
-    autobal_error_set(err, st, "%s", e.message);
+    rc = autobal_error_set(err, st, "%s", e.message);
     goto done;
   }
   if (st == AUTOBAL_WARNING) {
