@@ -572,14 +572,15 @@ typedef struct autobal_study_rotor_map_options {
 } autobal_study_rotor_map_options;
 AUTOBAL_API autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void);
 
+/* A map over two parameters.  Arrays owned by the summary (autobal_study_rotor_map_summary_free). */
 typedef struct autobal_study_rotor_map_summary {
-  int param1, param2;
-  double min1, max1, min2, max2;
-  size_t n1, n2;
-  double *values1, *values2;  /* [n1], [n2] */
-  double *margin;             /* [n1 x n2] row-major, 1/s */
-  int *verdict;               /* [n1 x n2] */
-  size_t n_stable;
+  int param1, param2;         /* the parameters of the rows and the columns */
+  double min1, max1, min2, max2; /* the ranges used, in the parameters' units */
+  size_t n1, n2;              /* grid points of each */
+  double *values1, *values2;  /* [n1], [n2] the grids */
+  double *margin;             /* [n1 x n2] row-major, 1/s (NaN: no balanced configuration) */
+  int *verdict;               /* [n1 x n2] 1 stable, 0 marginal, -1 unstable, -2 none */
+  size_t n_stable;            /* points with verdict 1 */
 } autobal_study_rotor_map_summary;
 
 /* Margin and verdict over a grid of two parameters (autobal_rotor_stab_map).  With an archive:
@@ -603,9 +604,11 @@ typedef struct autobal_study_rotor_campbell_options {
 } autobal_study_rotor_campbell_options;
 AUTOBAL_API autobal_study_rotor_campbell_options autobal_study_rotor_campbell_options_default(void);
 
+/* The Campbell diagram and the unbalance response.  Arrays owned by the summary
+ * (autobal_study_rotor_campbell_summary_free). */
 typedef struct autobal_study_rotor_campbell_summary {
-  double omega_min, omega_max;
-  size_t n, n_planes;
+  double omega_min, omega_max;   /* rad/s, the range used */
+  size_t n, n_planes;            /* speeds of the diagram; balancer planes of p */
   double *omega;                 /* [n] rad/s */
   double *frequency;             /* [n x 4] rad/s, damped natural frequencies by increasing value */
   double *damping_ratio;         /* [n x 4] */
@@ -613,7 +616,9 @@ typedef struct autobal_study_rotor_campbell_summary {
   double *amp_G;                 /* [n] m, unbalance response of the centre of mass (inf: an
                                     undamped resonance on the grid) */
   double *amp_D;                 /* [n x n_planes] m, at the balancer planes */
-  double natural_frequency_undamped[4], natural_frequency_damped[4], damping_ratio_at_rest[4];
+  double natural_frequency_undamped[4]; /* rad/s, at rest without damping */
+  double natural_frequency_damped[4];   /* rad/s, at rest */
+  double damping_ratio_at_rest[4];      /* 1 */
   autobal_rotor_resonances resonances; /* crossings and unbalance-response peaks */
   int resonances_truncated;      /* 1: lists full (resonance_message says up to where) */
   char resonance_message[AUTOBAL_ERRMSG_SIZE];
