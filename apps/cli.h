@@ -167,7 +167,8 @@ int cli_archive_finish(cli_ctx *ctx, struct autobal_archive *a, int exit_code);
  * failure and `exit_code` is still CLI_EXIT_OK, the archive's message becomes the failure
  * (cli_exit_code(st)); then cli_archive_finish.  *a is set to NULL.  Returns the exit code. */
 int cli_archive_end(cli_ctx *ctx, struct autobal_archive **a, int st, int exit_code);
-/* The transient driver's statistics (autobal_transient_get_stats) as attributes of `group`,
+/* The transient driver's statistics (autobal_transient_get_stats) as attributes of `group`
+ * (autobal_study_write_solver_stats with the driver's stepper and last message),
  * which is created: stepper, steps, rejected_steps, rhs_evaluations, jacobian_evaluations,
  * wall_time (s), h_min_used and h_max_used (in `time_unit`: "s", or "1" for a dimensionless
  * time), stop_reason and the driver's last message.  Returns an autobal status (the archive's
@@ -176,6 +177,8 @@ int cli_archive_solver_stats(struct autobal_archive *a, const char *group, const
                              const autobal_transient_stats *stats, const char *time_unit);
 /* The same statistics as one line of the human summary on stdout. */
 void cli_print_solver_stats(const autobal_transient *tr, const autobal_transient_stats *stats);
+/* The same line from the stepper's name (a study's summary). */
+void cli_print_solver_line(const char *stepper, const autobal_transient_stats *stats);
 /* cli_archive_open records the root attributes command, input_config (the given configuration,
  * cli_config_given_ini) and effective_config (cli_config_effective_ini: every key read, with
  * defaults), which `autobal rerun` runs from; cli_archive_finish writes effective_config again if
@@ -242,7 +245,7 @@ int cli_write_pendulum_params(cli_ctx *ctx, struct autobal_archive *a, const aut
  * (defaults: the spec's default example) into *p.  The ball arrays of *p point into *storage,
  * which the caller releases with free(*storage) after the last use of *p. */
 int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage);
-/* Write the rotor model *p (apps/cmd_rotor.c): /rotor (model, input, inertia, omega, axial and,
+/* Write the rotor model *p (autobal_study_write_rotor_params): /rotor (model, input, inertia, omega, axial and,
  * for hardware input, M_k, A_k, m_p, A_p, C_p and the [supports] keys), /rotor/lumped (the 17
  * lumped coefficients the model uses, (2.7)-(2.11) for hardware input) and /rotor/plane<j>
  * (d, m0, r0, psi0, n_balls, ball_mass, ball_radius, ball_damping; with `initial` also the balls'

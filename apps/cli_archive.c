@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "autobal/archive.h"
+#include "autobal/study.h"
 #include "cli.h"
 
 /* Root attribute effective_config: every key the command read, with the value used (defaults
@@ -100,22 +101,15 @@ int cli_archive_end(cli_ctx *ctx, autobal_archive **a, int st, int exit_code) {
 
 int cli_archive_solver_stats(autobal_archive *a, const char *group, const autobal_transient *tr,
                              const autobal_transient_stats *stats, const char *time_unit) {
-  int st = autobal_archive_group(a, group);
-  if (!st) st = autobal_archive_attr_string(a, group, "stepper", autobal_transient_get_options(tr).stepper);
-  if (!st) st = autobal_archive_attr_int(a, group, "steps", (long)stats->steps);
-  if (!st) st = autobal_archive_attr_int(a, group, "rejected_steps", (long)stats->rejected);
-  if (!st) st = autobal_archive_attr_int(a, group, "rhs_evaluations", (long)stats->rhs_evals);
-  if (!st) st = autobal_archive_attr_int(a, group, "jacobian_evaluations", (long)stats->jac_evals);
-  if (!st) st = autobal_archive_attr_double(a, group, "wall_time", stats->wall_seconds, "s");
-  if (!st) st = autobal_archive_attr_double(a, group, "h_min_used", stats->h_min_used, time_unit);
-  if (!st) st = autobal_archive_attr_double(a, group, "h_max_used", stats->h_max_used, time_unit);
-  if (!st) st = autobal_archive_attr_string(a, group, "stop_reason", autobal_transient_stop_name(stats->stop_reason));
-  if (!st) st = autobal_archive_attr_string(a, group, "message", autobal_transient_errmsg(tr));
-  return st;
+  return autobal_study_write_solver_stats(a, group, autobal_transient_get_options(tr).stepper, stats,
+                                          autobal_transient_errmsg(tr), time_unit);
 }
 
 void cli_print_solver_stats(const autobal_transient *tr, const autobal_transient_stats *stats) {
-  printf("  solver %s: %lu steps, %lu rejected, %lu rhs evaluations, %.3f s wall\n",
-         autobal_transient_get_options(tr).stepper, stats->steps, stats->rejected, stats->rhs_evals,
-         stats->wall_seconds);
+  cli_print_solver_line(autobal_transient_get_options(tr).stepper, stats);
+}
+
+void cli_print_solver_line(const char *stepper, const autobal_transient_stats *stats) {
+  printf("  solver %s: %lu steps, %lu rejected, %lu rhs evaluations, %.3f s wall\n", stepper, stats->steps,
+         stats->rejected, stats->rhs_evals, stats->wall_seconds);
 }

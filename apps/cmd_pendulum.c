@@ -6,6 +6,7 @@
 
 #include "autobal/archive.h"
 #include "autobal/pendulum.h"
+#include "autobal/study.h"
 #include "cli.h"
 #include "units.h"
 
@@ -87,27 +88,7 @@ int cli_read_pendulum_params(cli_ctx *ctx, autobal_pendulum_params *p, autobal_p
 /* Parameters as attributes of /pendulum (dimensionless, units "1"), plus the physical set. */
 int cli_write_pendulum_params(cli_ctx *ctx, autobal_archive *a, const autobal_pendulum_params *p,
                               const autobal_pendulum_physical *phys, int physical) {
-  int st = autobal_archive_group(a, "/pendulum");
-  if (!st) st = autobal_archive_attr_string(a, "/pendulum", "model", "planar two-pendulum autobalancer (docs/pendulum.md)");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_w", p->R_w, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "R_m", p->R_m, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "H", p->H, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "h", p->h, "1");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "psi0", p->psi0, "rad");
-  if (!st) st = autobal_archive_attr_double(a, "/pendulum", "k", autobal_pendulum_k(p), "1");
-  if (!st && physical) {
-    st = autobal_archive_group(a, "/pendulum/physical");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "M", phys->M, "kg");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "e", phys->e, "m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "m", phys->m, "kg");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "l", phys->l, "m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "c", phys->c, "N/m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H1", phys->H1, "N m s");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "H2", phys->H2, "N s/m");
-    if (!st) st = autobal_archive_attr_double(a, "/pendulum/physical", "omega", phys->omega, "rad/s");
-    if (!st)
-      st = autobal_archive_attr_double(a, "/pendulum/physical", "omega0", pendulum_omega0(phys), "rad/s");
-  }
+  int st = autobal_study_write_pendulum_params(a, p, physical ? phys : NULL);
   if (st) return cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
   return CLI_EXIT_OK;
 }
@@ -133,51 +114,21 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
   autobal_pendulum_result r;
-  autobal_pendulum_workspace *ws = NULL;
   autobal_archive *a = NULL;
+  autobal_error err;
   int physical = 0, rc, st;
   size_t i;
 
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
   if ((rc = cli_config_check_unused(ctx))) return rc;
-  ws = autobal_pendulum_workspace_alloc();
-  if (!ws) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-  st = autobal_pendulum_analyze(ws, &p, &r);
-  if (st != AUTOBAL_SUCCESS) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
-    autobal_pendulum_workspace_free(ws);
-    return rc;
-  }
-  autobal_pendulum_workspace_free(ws);
-
+  /* the analysis first (autobal_study_pendulum_roots), the archive afterwards: a failed
+   * analysis leaves no file */
+  st = autobal_study_pendulum_roots(&p, physical ? &phys : NULL, NULL, &r, &err);
+  if (st != AUTOBAL_SUCCESS) return cli_fail(ctx, cli_exit_code(st), "%s", err.message);
   if ((rc = cli_archive_open(ctx, "autobal pendulum roots", &a))) return rc;
   if (a) {
-    static const char *const dim_root[] = {"root"};
-    static const char *const dim_power[] = {"power"};
-    double power[AUTOBAL_PENDULUM_NCOEF];
-    const char *g = "/pendulum/roots";
-    for (i = 0; i < AUTOBAL_PENDULUM_NCOEF; i++) power[i] = (double)i;
-    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
-    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_dim(a, g, "root", AUTOBAL_PENDULUM_ORDER, "index of a characteristic root");
-    if (!st) st = autobal_archive_coord(a, g, "power", AUTOBAL_PENDULUM_NCOEF, power, "1", "power of lambda");
-    if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dim_power, r.coef, "1", "coefficients of the characteristic polynomial (6), ascending powers of lambda");
-    if (!st) st = autobal_archive_var(a, g, "root_real", 1, dim_root, r.root_re, "1", "real part of the roots of (6) (dimensionless, per tau)");
-    if (!st) st = autobal_archive_var(a, g, "root_imag", 1, dim_root, r.root_im, "1", "imaginary part of the roots of (6)");
-    if (!st) st = autobal_archive_var(a, g, "eig_real", 1, dim_root, r.eig_re, "1", "real part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
-    if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, dim_root, r.eig_im, "1", "imaginary part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
-    if (!st) st = autobal_archive_attr_string(a, g, "verdict", autobal_verdict_name(r.verdict));
-    if (!st) st = autobal_archive_attr_string(a, g, "verdict_roots", autobal_verdict_name(r.verdict_roots));
-    if (!st) st = autobal_archive_attr_double(a, g, "max_real", r.max_real, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.mismatch, "1");
-    if (!st) st = autobal_archive_attr_int(a, g, "n_right_half_plane", r.n_rhp);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond7_applicable", r.cond7.applicable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond7_predicts_stable", r.cond7.predicts_stable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond8_applicable", r.cond8.applicable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond8_predicts_stable", r.cond8.predicts_stable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond9_applicable", r.cond9.applicable);
-    if (!st) st = autobal_archive_attr_int(a, g, "cond9_predicts_stable", r.cond9.predicts_stable);
-    rc = cli_archive_end(ctx, &a, st, rc);
+    st = autobal_study_pendulum_roots_write(a, &p, physical ? &phys : NULL, &r);
+    rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
     if (rc) return rc;
   }
 
@@ -247,62 +198,30 @@ static void print_intervals(const autobal_pendulum_crit_set *s, double omega0) {
   }
 }
 
-static int write_crit_set(autobal_archive *a, const char *g, const char *prefix, const autobal_pendulum_crit_set *s) {
-  char dimc[64], dimi[64], name[96];
-  const char *dc[1], *di[1];
-  int st = 0, kinds[AUTOBAL_PENDULUM_MAX_CRIT];
-  size_t i;
-  snprintf(dimc, sizeof dimc, "%s_critical", prefix);
-  snprintf(dimi, sizeof dimi, "%s_interval", prefix);
-  dc[0] = dimc;
-  di[0] = dimi;
-  snprintf(name, sizeof name, "n_%s", dimc);
-  st = autobal_archive_attr_int(a, g, name, (long)s->n);
-  /* 1: the list was full (the damped search): the set covers R_w up to its last critical speed only */
-  snprintf(name, sizeof name, "%s_truncated", prefix);
-  if (!st) st = autobal_archive_attr_int(a, g, name, s->truncated);
-  if (!st && s->n > 0) {
-    for (i = 0; i < s->n; i++) kinds[i] = s->kind[i];
-    st = autobal_archive_dim(a, g, dimc, s->n, "index of a critical speed");
-    snprintf(name, sizeof name, "%s_R_w", prefix);
-    if (!st) st = autobal_archive_var(a, g, name, 1, dc, s->R_w, "1", "critical speed R_w = omega/omega0");
-    snprintf(name, sizeof name, "%s_kind", prefix);
-    if (!st) st = autobal_archive_var_int(a, g, name, 1, dc, kinds, "1", "1: stability gained above, -1: lost above, 0: touch (no change)");
-  }
-  if (!st && s->n_stable > 0) {
-    st = autobal_archive_dim(a, g, dimi, s->n_stable, "index of a stable speed interval");
-    snprintf(name, sizeof name, "%s_stable_lo", prefix);
-    if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_lo, "1", "lower end of a stable R_w interval");
-    snprintf(name, sizeof name, "%s_stable_hi", prefix);
-    if (!st) st = autobal_archive_var(a, g, name, 1, di, s->stable_hi, "1", "upper end of a stable R_w interval (inf: unbounded; for the damped search, Rw_max: stable to the end of the searched range)");
-  }
-  return st;
-}
-
 int cli_cmd_pendulum_critical(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
-  autobal_pendulum_workspace *ws = NULL;
-  autobal_pendulum_crit_set und, damped;
+  autobal_study_pendulum_critical_options o = autobal_study_pendulum_critical_options_default();
+  autobal_study_pendulum_critical_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
   int physical = 0, rc, st = 0, have_damped;
-  double rm_min, rm_max, rw_min, rw_max, k, rm1 = NAN, rw_rm1 = NAN;
+  double rm_min, rm_max, rw_min, rw_max, k, rm1, rw_rm1;
   long n_rm, n_sweep;
-  double *rm = NULL, *c0 = NULL, *c1 = NULL, *series = NULL;
-  size_t i, nrm;
+  size_t i;
   /* closed forms at the given R_m */
-  double rw1_13 = NAN, s2 = NAN, s3 = NAN, l2 = NAN, l3 = NAN, rw1_16 = NAN, u16 = NAN, rw1_17 = NAN, rw23_18 = NAN;
-  autobal_pendulum_crit_set k0set, k1set;
+  double rw1_13, s2, s3, l2, l3, rw1_16, u16, rw1_17, rw23_18;
+  autobal_pendulum_crit_set *und = &sum.undamped, *damped = &sum.damped, *k0 = &sum.undamped_k0, *k1 = &sum.undamped_k1;
 
+  memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
-  if ((rc = cli_get_double(ctx, "critical", "Rm_min", 0.001, &rm_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "critical", "Rm_max", 0.499, &rm_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "critical", "n_Rm", 499, &n_rm, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "critical", "Rw_min", 0.0, &rw_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "critical", "Rw_max", 6.0, &rw_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "critical", "n_sweep", 3000, &n_sweep, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rm_min", o.Rm_min, &rm_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rm_max", o.Rm_max, &rm_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "critical", "n_Rm", (long)o.n_Rm, &n_rm, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rw_min", o.Rw_min, &rw_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "critical", "Rw_max", o.Rw_max, &rw_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "critical", "n_sweep", (long)o.n_sweep, &n_sweep, NULL))) return rc;
   if ((rc = cli_config_check_unused(ctx))) return rc;
   if (!(rm_min > 0 && rm_min < rm_max && rm_max < 0.5))
     return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: need 0 < Rm_min < Rm_max < 0.5, got Rm_min = %g, Rm_max = %g",
@@ -314,101 +233,30 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
                     rw_min, rw_max);
   if (n_sweep < 2 || n_sweep > 100000000)
     return cli_fail(ctx, CLI_EXIT_INPUT, "[critical]: n_sweep = %ld is out of range: allowed [2, 1e8]", n_sweep);
-  k = autobal_pendulum_k(&p);
-  nrm = (size_t)n_rm;
-
-  ws = autobal_pendulum_workspace_alloc();
-  rm = malloc(nrm * sizeof *rm);
-  c0 = malloc(3 * nrm * sizeof *c0);
-  c1 = malloc(3 * nrm * sizeof *c1);
-  series = malloc(5 * nrm * sizeof *series);
-  if (!ws || !rm || !c0 || !c1 || !series) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
-  st = autobal_pendulum_critical_speeds(ws, p.R_m, k, &und);
-  have_damped = p.H > 0 || p.h > 0;
-  if (!st && have_damped) {
-    st = autobal_pendulum_critical_speeds_damped(ws, &p, rw_min, rw_max, (size_t)n_sweep, &damped);
-    if (st == AUTOBAL_WARNING) {
-      /* the list was full: the data are valid up to its last entry (archived with the flag) */
-      if (!ctx->json) fprintf(stderr, "autobal: warning: %s\n", autobal_pendulum_errmsg(ws));
-      st = AUTOBAL_SUCCESS;
-    }
-  }
-  if (!st) st = autobal_pendulum_critical_speeds(ws, p.R_m, 0.0, &k0set);
-  if (!st) st = autobal_pendulum_critical_speeds(ws, p.R_m, 1.0, &k1set);
+  o.Rm_min = rm_min;
+  o.Rm_max = rm_max;
+  o.n_Rm = (size_t)n_rm;
+  o.Rw_min = rw_min;
+  o.Rw_max = rw_max;
+  o.n_sweep = (size_t)n_sweep;
+  /* the computation first (autobal_study_pendulum_critical), the archive afterwards */
+  st = autobal_study_pendulum_critical(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
+  if (sum.damped_truncated_warning && !ctx->json) fprintf(stderr, "autobal: warning: %s\n", sum.warning_message);
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
-    goto done;
-  }
-  autobal_pendulum_rw1_k0(p.R_m, &rw1_13, NULL);
-  autobal_pendulum_rw23_k0_series_small(p.R_m, &s2, &s3, NULL);
-  if (p.R_m < 0.25) autobal_pendulum_rw23_k0_series_large(p.R_m, &l2, &l3, NULL);
-  autobal_pendulum_rw1_k1(p.R_m, &rw1_16, &u16, NULL);
-  autobal_pendulum_rw1_k1_series(p.R_m, &rw1_17, NULL);
-  if (p.R_m < 0.25) autobal_pendulum_rw23_k1(p.R_m, &rw23_18, NULL);
-  if ((st = autobal_pendulum_rm1(&rm1, &rw_rm1, &err))) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
     goto done;
   }
-  /* curves vs R_m for k = 0 and k = 1 */
-  for (i = 0; i < nrm; i++) rm[i] = rm_min + (rm_max - rm_min) * (double)i / (double)(nrm - 1);
-  st = autobal_pendulum_critical_curves(ws, 0.0, rm, nrm, 3, c0);
-  if (!st) st = autobal_pendulum_critical_curves(ws, 1.0, rm, nrm, 3, c1);
-  if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_pendulum_errmsg(ws));
-    goto done;
-  }
-  /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18) */
-  for (i = 0; i < nrm; i++) {
-    double a2 = NAN, a3 = NAN, b2 = NAN, b3 = NAN, f16 = NAN, f17 = NAN, f18 = NAN;
-    autobal_pendulum_rw23_k0_series_small(rm[i], &a2, &a3, NULL);
-    if (rm[i] < 0.25) autobal_pendulum_rw23_k0_series_large(rm[i], &b2, &b3, NULL);
-    autobal_pendulum_rw1_k1(rm[i], &f16, NULL, NULL);
-    autobal_pendulum_rw1_k1_series(rm[i], &f17, NULL);
-    if (rm[i] > rm1 && rm[i] < 0.25) autobal_pendulum_rw23_k1(rm[i], &f18, NULL);
-    series[0 * nrm + i] = rm[i] < 0.05 ? a2 : b2;
-    series[1 * nrm + i] = rm[i] < 0.05 ? a3 : b3;
-    series[2 * nrm + i] = f16;
-    series[3 * nrm + i] = f17;
-    series[4 * nrm + i] = f18;
-  }
-
+  k = sum.k;
+  have_damped = sum.have_damped;
+  rm1 = sum.R_m1, rw_rm1 = sum.R_w_at_R_m1;
+  rw1_13 = sum.eq13_R_w1_k0, s2 = sum.eq14_R_w2_k0_small, s3 = sum.eq14_R_w3_k0_small;
+  l2 = sum.eq14_R_w2_k0_large, l3 = sum.eq14_R_w3_k0_large;
+  rw1_16 = sum.eq16_R_w1_k1, u16 = sum.eq16_u, rw1_17 = sum.eq17_R_w1_k1_series, rw23_18 = sum.eq18_R_w23_k1;
+  (void)l2, (void)l3;
   if ((rc = cli_archive_open(ctx, "autobal pendulum critical", &a))) goto done;
   if (a) {
-    const char *g = "/pendulum/critical", *gc = "/pendulum/critical/curves";
-    static const char *const dims2[] = {"R_m", "branch"};
-    static const char *const dims1[] = {"R_m"};
-    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
-    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_attr_string(a, g, "description", "critical speeds of the undamped balancer (H = h = 0) at the R_m and k of /pendulum, from the discriminant of (10); damped_* at the given H, h from (6)");
-    if (!st) st = write_crit_set(a, g, "undamped", &und);
-    if (!st && have_damped) st = write_crit_set(a, g, "damped", &damped);
-    if (!st) st = write_crit_set(a, g, "undamped_k0", &k0set);
-    if (!st) st = write_crit_set(a, g, "undamped_k1", &k1set);
-    if (!st) st = autobal_archive_attr_double(a, g, "R_m1", rm1, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "R_w_at_R_m1", rw_rm1, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq13_R_w1_k0", rw1_13, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w2_k0_small", s2, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w3_k0_small", s3, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w2_k0_large", l2, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq14_R_w3_k0_large", l3, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq16_R_w1_k1", rw1_16, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq17_R_w1_k1_series", rw1_17, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "eq18_R_w23_k1", rw23_18, "1");
-    if (!st) st = autobal_archive_group(a, gc);
-    if (!st) st = autobal_archive_attr_string(a, gc, "description", "critical-speed curves R_wj(R_m) of the undamped balancer (figure 2): region A is R_w > R_w3(R_m, k=0); region B is R_w1(R_m, k=1) < R_w < R_w2(R_m, k=0); for R_m >= 0.25 the region stable for every unbalance is R_w > R_w1(R_m, k=1)");
-    if (!st) st = autobal_archive_coord(a, gc, "R_m", nrm, rm, "1", "mass ratio m/(M + 2m)");
-    if (!st) st = autobal_archive_dim(a, gc, "branch", 3, "critical speed index j-1 (R_w1, R_w2, R_w3)");
-    if (!st) st = autobal_archive_var(a, gc, "R_w_k0", 2, dims2, c0, "1", "critical speeds R_wj(R_m, k=0), NaN where the branch does not exist");
-    if (!st) st = autobal_archive_var(a, gc, "R_w_k1", 2, dims2, c1, "1", "critical speeds R_wj(R_m, k=1), NaN where the branch does not exist");
-    if (!st) st = autobal_archive_var(a, gc, "eq14_R_w2_k0", 1, dims1, series, "1", "series (14) for R_w2(R_m, 0) (first form below R_m = 0.05, second above)");
-    if (!st) st = autobal_archive_var(a, gc, "eq14_R_w3_k0", 1, dims1, series + nrm, "1", "series (14) for R_w3(R_m, 0)");
-    if (!st) st = autobal_archive_var(a, gc, "eq16_R_w1_k1", 1, dims1, series + 2 * nrm, "1", "closed form (16) for R_w1(R_m, 1)");
-    if (!st) st = autobal_archive_var(a, gc, "eq17_R_w1_k1", 1, dims1, series + 3 * nrm, "1", "series (17) for R_w1(R_m, 1)");
-    if (!st) st = autobal_archive_var(a, gc, "eq18_R_w23_k1", 1, dims1, series + 4 * nrm, "1", "closed form (18) for R_w2/3(R_m, 1), for R_m^(1) < R_m < 0.25");
-    rc = cli_archive_end(ctx, &a, st, rc);
+    st = autobal_study_pendulum_critical_write(a, &p, physical ? &phys : NULL, &sum);
+    rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
     if (rc) goto done;
   }
 
@@ -417,26 +265,26 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     cli_json_summary_begin(&j, ctx);
     cli_json_quantity(&j, "R_m", p.R_m, "1");
     cli_json_quantity(&j, "k", k, "1");
-    cli_json_quantities(&j, "undamped_critical_R_w", und.R_w, und.n, "1");
+    cli_json_quantities(&j, "undamped_critical_R_w", und->R_w, und->n, "1");
     if (physical) {
       double w0 = pendulum_omega0(&phys), wc[AUTOBAL_PENDULUM_MAX_CRIT];
-      for (i = 0; i < und.n && i < AUTOBAL_PENDULUM_MAX_CRIT; i++) wc[i] = und.R_w[i] * w0;
+      for (i = 0; i < und->n && i < AUTOBAL_PENDULUM_MAX_CRIT; i++) wc[i] = und->R_w[i] * w0;
       cli_json_quantity(&j, "omega0", w0, "rad/s");
       cli_json_quantities(&j, "undamped_critical_omega", wc, i, "rad/s");
     }
     cli_json_array(&j, "undamped_kind");
-    for (i = 0; i < und.n; i++) cli_json_int(&j, NULL, und.kind[i]);
+    for (i = 0; i < und->n; i++) cli_json_int(&j, NULL, und->kind[i]);
     cli_json_array_end(&j);
-    cli_json_quantities(&j, "undamped_stable_lo", und.stable_lo, und.n_stable, "1");
-    cli_json_quantities(&j, "undamped_stable_hi", und.stable_hi, und.n_stable, "1");
+    cli_json_quantities(&j, "undamped_stable_lo", und->stable_lo, und->n_stable, "1");
+    cli_json_quantities(&j, "undamped_stable_hi", und->stable_hi, und->n_stable, "1");
     if (have_damped) {
-      cli_json_quantities(&j, "damped_critical_R_w", damped.R_w, damped.n, "1");
-      cli_json_quantities(&j, "damped_stable_lo", damped.stable_lo, damped.n_stable, "1");
-      cli_json_quantities(&j, "damped_stable_hi", damped.stable_hi, damped.n_stable, "1");
-      cli_json_bool(&j, "damped_truncated", damped.truncated);
+      cli_json_quantities(&j, "damped_critical_R_w", damped->R_w, damped->n, "1");
+      cli_json_quantities(&j, "damped_stable_lo", damped->stable_lo, damped->n_stable, "1");
+      cli_json_quantities(&j, "damped_stable_hi", damped->stable_hi, damped->n_stable, "1");
+      cli_json_bool(&j, "damped_truncated", damped->truncated);
     }
-    cli_json_quantities(&j, "k0_critical_R_w", k0set.R_w, k0set.n, "1");
-    cli_json_quantities(&j, "k1_critical_R_w", k1set.R_w, k1set.n, "1");
+    cli_json_quantities(&j, "k0_critical_R_w", k0->R_w, k0->n, "1");
+    cli_json_quantities(&j, "k1_critical_R_w", k1->R_w, k1->n, "1");
     cli_json_quantity(&j, "R_m1", rm1, "1");
     cli_json_quantity(&j, "R_w_at_R_m1", rw_rm1, "1");
     cli_json_summary_end(&j, ctx);
@@ -444,74 +292,68 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
     double w0 = physical ? pendulum_omega0(&phys) : NAN;
     print_params(&p, &phys, physical);
     printf("undamped critical speeds at R_m = %.6g, k = %.6g (exact, from the discriminant of (10)):\n", p.R_m, k);
-    for (i = 0; i < und.n; i++) {
-      printf("  R_w = %.12f   %s", und.R_w[i], kind_name(und.kind[i]));
-      if (physical) printf("   (omega = %.6g rad/s = %.6g rpm)", und.R_w[i] * w0, cli_rpm(und.R_w[i] * w0));
+    for (i = 0; i < und->n; i++) {
+      printf("  R_w = %.12f   %s", und->R_w[i], kind_name(und->kind[i]));
+      if (physical) printf("   (omega = %.6g rad/s = %.6g rpm)", und->R_w[i] * w0, cli_rpm(und->R_w[i] * w0));
       printf("\n");
     }
-    print_intervals(&und, w0);
+    print_intervals(und, w0);
     printf("k = 0 (numerical): ");
-    for (i = 0; i < k0set.n; i++) printf(" %.12f", k0set.R_w[i]);
+    for (i = 0; i < k0->n; i++) printf(" %.12f", k0->R_w[i]);
     printf("\n  paper: (13) R_w1 = %.12f", rw1_13);
     if (p.R_m < 0.05) printf("; (14) R_w2 ~ %.12f, R_w3 ~ %.12f", s2, s3);
     else if (p.R_m < 0.25) printf("; (14) R_w2 ~ %.12f, R_w3 ~ %.12f", l2, l3);
     printf("\nk = 1 (numerical): ");
-    for (i = 0; i < k1set.n; i++) printf(" %.12f%s", k1set.R_w[i], k1set.kind[i] == 0 ? "(touch)" : "");
+    for (i = 0; i < k1->n; i++) printf(" %.12f%s", k1->R_w[i], k1->kind[i] == 0 ? "(touch)" : "");
     printf("\n  paper: (16) R_w1 = %.12f (u = %.10f), (17) R_w1 ~ %.12f", rw1_16, u16, rw1_17);
     if (p.R_m > rm1 && p.R_m < 0.25) printf(", (18) R_w2/3 = %.12f", rw23_18);
     printf("\nR_m^(1) = %.12f (curves (16) and (18) touch at R_w = %.12f)\n", rm1, rw_rm1);
     if (have_damped) {
       printf("damped critical speeds (H = %.6g, h = %.6g) on R_w in [%g, %g]:\n", p.H, p.h, rw_min, rw_max);
-      for (i = 0; i < damped.n; i++) {
-        printf("  R_w = %.12f   %s", damped.R_w[i], kind_name(damped.kind[i]));
-        if (physical) printf("   (omega = %.6g rad/s = %.6g rpm)", damped.R_w[i] * w0, cli_rpm(damped.R_w[i] * w0));
+      for (i = 0; i < damped->n; i++) {
+        printf("  R_w = %.12f   %s", damped->R_w[i], kind_name(damped->kind[i]));
+        if (physical) printf("   (omega = %.6g rad/s = %.6g rpm)", damped->R_w[i] * w0, cli_rpm(damped->R_w[i] * w0));
         printf("\n");
       }
-      print_intervals(&damped, w0);
-      if (damped.truncated)
+      print_intervals(damped, w0);
+      if (damped->truncated)
         printf("  (TRUNCATED: more critical speeds than the list holds; the results cover R_w in [%g, %.12f] only)\n",
-               rw_min, damped.R_w[damped.n - 1]);
+               rw_min, damped->R_w[damped->n - 1]);
     }
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;
 done:
-  autobal_pendulum_workspace_free(ws);
-  free(rm);
-  free(c0);
-  free(c1);
-  free(series);
+  autobal_study_pendulum_critical_summary_free(&sum);
   return rc;
 }
 
-/* ---- pendulum map -------------------------------------------------------------------- */
+/* ---- pendulum map: the library's study (autobal_study_pendulum_map) ------------------- */
 int cli_cmd_pendulum_map(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
-  autobal_pendulum_map_spec spec;
+  autobal_study_pendulum_map_options o = autobal_study_pendulum_map_options_default();
+  autobal_study_pendulum_map_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
   int physical = 0, rc, st, every = 0, want_max = 0, k_given = 0;
   double rm_min, rm_max, rw_min, rw_max;
   long n_rm, n_rw, n_k, threads;
-  double *rm = NULL, *rw = NULL, *ks = NULL, *maxre = NULL;
-  signed char *v = NULL;
-  int *vi = NULL;
-  size_t i, n, nstable = 0;
-  double k;
+  size_t n;
 
+  memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rm_min", 0.005, &rm_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rm_max", 0.495, &rm_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_Rm", 200, &n_rm, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rw_min", 0.05, &rw_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rw_max", 5.0, &rw_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_Rw", 200, &n_rw, NULL))) return rc;
-  if ((rc = cli_get_bool(ctx, "map", "every_unbalance", 0, &every, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_k", 65, &n_k, &k_given))) return rc;
-  if ((rc = cli_get_bool(ctx, "map", "max_real", 0, &want_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "threads", 0, &threads, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rm_min", o.Rm_min, &rm_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rm_max", o.Rm_max, &rm_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_Rm", (long)o.n_Rm, &n_rm, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rw_min", o.Rw_min, &rw_min, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "map", "Rw_max", o.Rw_max, &rw_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_Rw", (long)o.n_Rw, &n_rw, NULL))) return rc;
+  if ((rc = cli_get_bool(ctx, "map", "every_unbalance", o.every_unbalance, &every, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "n_k", (long)o.n_k, &n_k, &k_given))) return rc;
+  if ((rc = cli_get_bool(ctx, "map", "max_real", o.max_real, &want_max, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "map", "threads", o.threads, &threads, NULL))) return rc;
   if ((rc = cli_config_check_unused(ctx))) return rc;
   if (!(rm_min > 0 && rm_min <= rm_max && rm_max < 0.5))
     return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 < Rm_min <= Rm_max < 0.5, got Rm_min = %g, Rm_max = %g", rm_min,
@@ -524,73 +366,28 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
   if (n_k < 2 || n_k > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k = %ld is out of range: allowed [2, 100000]", n_k);
   if (threads < 0 || threads > 1024) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: threads = %ld is out of range: allowed [0, 1024]", threads);
   if (k_given && !every) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k is used only with every_unbalance = true");
-  k = autobal_pendulum_k(&p);
+  o.Rm_min = rm_min;
+  o.Rm_max = rm_max;
+  o.n_Rm = (size_t)n_rm;
+  o.Rw_min = rw_min;
+  o.Rw_max = rw_max;
+  o.n_Rw = (size_t)n_rw;
+  o.every_unbalance = every;
+  o.n_k = (size_t)n_k;
+  o.max_real = want_max;
+  o.threads = (int)threads;
   n = (size_t)n_rm * (size_t)n_rw;
-  rm = malloc((size_t)n_rm * sizeof *rm);
-  rw = malloc((size_t)n_rw * sizeof *rw);
-  ks = malloc((size_t)(every ? n_k : 1) * sizeof *ks);
-  v = malloc(n);
-  vi = malloc(n * sizeof *vi);
-  if (want_max) maxre = malloc(n * sizeof *maxre);
-  if (!rm || !rw || !ks || !v || !vi || (want_max && !maxre)) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
-  for (i = 0; i < (size_t)n_rm; i++) rm[i] = n_rm == 1 ? rm_min : rm_min + (rm_max - rm_min) * (double)i / (double)(n_rm - 1);
-  for (i = 0; i < (size_t)n_rw; i++) rw[i] = n_rw == 1 ? rw_min : rw_min + (rw_max - rw_min) * (double)i / (double)(n_rw - 1);
-  if (every)
-    for (i = 0; i < (size_t)n_k; i++) ks[i] = (double)i / (double)(n_k - 1);
-  else
-    ks[0] = k;
-  memset(&spec, 0, sizeof spec);
-  spec.R_m = rm;
-  spec.n_Rm = (size_t)n_rm;
-  spec.R_w = rw;
-  spec.n_Rw = (size_t)n_rw;
-  spec.H = p.H;
-  spec.h = p.h;
-  spec.k = ks;
-  spec.n_k = every ? (size_t)n_k : 1;
-  spec.n_threads = (int)threads;
-  st = autobal_pendulum_map(&spec, v, maxre, &err);
+  /* the map first, the archive afterwards: a failed computation leaves no file */
+  st = autobal_study_pendulum_map(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
     goto done;
   }
-  for (i = 0; i < n; i++) {
-    vi[i] = v[i];
-    nstable += v[i] > 0;
-  }
   if ((rc = cli_archive_open(ctx, every ? "autobal pendulum map (every unbalance)" : "autobal pendulum map", &a)))
     goto done;
   if (a) {
-    const char *g = "/pendulum/map";
-    static const char *const dims[] = {"R_m", "R_w"};
-    rc = cli_write_pendulum_params(ctx, a, &p, &phys, physical);
-    st = rc ? AUTOBAL_EIO : autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_attr_string(a, g, "criterion", (p.H > 0 || p.h > 0) ? "Routh-Hurwitz sign test on the characteristic polynomial (6)" : "undamped: all roots x = lambda^2 of (10) real and <= 0");
-    if (!st) st = autobal_archive_attr_int(a, g, "every_unbalance", every);
-    if (!st) st = autobal_archive_attr_double_array(a, g, "k_values", spec.n_k, ks, "1");
-    if (!st) st = autobal_archive_coord(a, g, "R_m", (size_t)n_rm, rm, "1", "mass ratio m/(M + 2m)");
-    if (!st) st = autobal_archive_coord(a, g, "R_w", (size_t)n_rw, rw, "1", "rotor speed omega/omega0");
-    /* the design point of the configuration ([pendulum]), for marking on the map */
-    if (!st) st = autobal_archive_attr_double(a, g, "design_R_m", p.R_m, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "design_R_w", p.R_w, "1");
-    if (!st && physical) { /* the R_w axis in physical speed: omega = R_w omega0 */
-      double *om = malloc((size_t)n_rw * sizeof *om);
-      long q;
-      if (!om) {
-        st = AUTOBAL_ENOMEM;
-      } else {
-        for (q = 0; q < n_rw; q++) om[q] = rw[q] * pendulum_omega0(&phys);
-        st = autobal_archive_var(a, g, "omega", 1, (const char *const[]){"R_w"}, om, "rad/s",
-                                 "rotor speed omega = R_w omega0 of the configuration's physical set");
-        free(om);
-      }
-    }
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vi, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
-    if (!st && maxre) st = autobal_archive_var(a, g, "max_real", 2, dims, maxre, "1", "largest real part of the roots of (6) (over k_values)");
-    rc = cli_archive_end(ctx, &a, st, rc);
+    st = autobal_study_pendulum_map_write(a, &p, physical ? &phys : NULL, &sum);
+    rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
     if (rc) goto done;
   }
   if (ctx->json) {
@@ -599,23 +396,18 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     cli_json_bool(&j, "every_unbalance", every);
     cli_json_int(&j, "n_Rm", n_rm);
     cli_json_int(&j, "n_Rw", n_rw);
-    cli_json_int(&j, "n_stable", (long)nstable);
-    cli_json_quantity(&j, "stable_fraction", (double)nstable / (double)n, "1");
+    cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
     printf("map %ld x %ld over R_m in [%g, %g], R_w in [%g, %g], %s\n", n_rm, n_rw, rm_min, rm_max, rw_min, rw_max,
            every ? "stable for every k in the set" : "one k");
-    printf("stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);
+    printf("stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;
 done:
-  free(rm);
-  free(rw);
-  free(ks);
-  free(v);
-  free(vi);
-  free(maxre);
+  autobal_study_pendulum_map_summary_free(&sum);
   return rc;
 }

@@ -1,5 +1,7 @@
 /* cmd_rotor.c: `autobal rotor transient`: the rotor in a massive housing with one or two ball
- * autobalancers (docs/rotor.md), integrated in time, streamed to HDF5, summarised for a person. */
+ * autobalancers (docs/rotor.md), integrated in time, streamed to HDF5, summarised for a person.
+ * The run and its archive layout are the library's (autobal_study_rotor_transient, src/studies/);
+ * this file reads the configuration into the structs and prints the summary. */
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <math.h>
@@ -10,6 +12,7 @@
 
 #include "autobal/archive.h"
 #include "autobal/rotor.h"
+#include "autobal/study.h"
 #include "autobal/transient.h"
 #include "cli.h"
 #include "units.h"
@@ -43,48 +46,18 @@ static int get_q(cli_ctx *ctx, const char *sec, const char *key, const char *uni
 }
 
 /* ---- the rotor model's configuration keys, shared by every rotor command ---------------- */
-/* One double of a parameter struct: its configuration section and key (= the field's name), its
- * SI unit and where it sits in the struct. */
-typedef struct rotor_key {
-  const char *section, *key, *unit;
-  size_t offset;
-} rotor_key;
-
-#define HW(sec, f, u) {sec, #f, u, offsetof(autobal_rotor_hardware, f)}
-/* autobal_rotor_hardware: the masses and inertias in [rotor], the supports in [supports] */
-static const rotor_key k_hw_keys[] = {
-    HW("rotor", M_k, "kg"),         HW("rotor", A_k, "kg m^2"),     HW("rotor", m_p, "kg"),
-    HW("rotor", A_p, "kg m^2"),     HW("rotor", C_p, "kg m^2"),     HW("supports", l_L, "m"),
-    HW("supports", l_R, "m"),       HW("supports", c_Lx, "N/m"),    HW("supports", c_Ly, "N/m"),
-    HW("supports", c_Lz, "N/m"),    HW("supports", c_Rx, "N/m"),    HW("supports", c_Ry, "N/m"),
-    HW("supports", h_Lx, "N s/m"),  HW("supports", h_Ly, "N s/m"),  HW("supports", h_Lz, "N s/m"),
-    HW("supports", h_Rx, "N s/m"),  HW("supports", h_Ry, "N s/m")};
-#undef HW
-#define LU(f, u) {"lumped", #f, u, offsetof(autobal_rotor_lumped, f)}
-/* autobal_rotor_lumped: [lumped] */
-static const rotor_key k_lumped_keys[] = {
-    LU(M, "kg"),         LU(A, "kg m^2"),     LU(C, "kg m^2"),      LU(c_x, "N/m"),      LU(c_y, "N/m"),
-    LU(c_z, "N/m"),      LU(c_alpha, "N m"),  LU(c_beta, "N m"),    LU(c_xbeta, "N"),    LU(c_yalpha, "N"),
-    LU(h_x, "N s/m"),    LU(h_y, "N s/m"),    LU(h_z, "N s/m"),     LU(h_alpha, "N m s"), LU(h_beta, "N m s"),
-    LU(h_xbeta, "N s"),  LU(h_yalpha, "N s")};
-#undef LU
-#define N_HW_KEYS (sizeof k_hw_keys / sizeof k_hw_keys[0])
-#define N_LUMPED_KEYS (sizeof k_lumped_keys / sizeof k_lumped_keys[0])
-
-static double *key_field(void *base, const rotor_key *k) {
-  return (double *)(void *)((char *)base + k->offset);
-}
-static double key_value(const void *base, const rotor_key *k) {
-  return *(const double *)(const void *)((const char *)base + k->offset);
-}
+/* The double fields of the parameter struct with their sections, keys (= field names) and SI
+ * units: the library's tables (autobal_rotor_hardware_fields, autobal_rotor_lumped_fields), the
+ * same the archive writer uses. */
 
 /* Read the keys of `section` from the table into the struct at base (the current values are the
  * defaults). */
-static int read_keys(cli_ctx *ctx, const rotor_key *keys, size_t n, const char *section, void *base) {
+static int read_keys(cli_ctx *ctx, const autobal_rotor_field *keys, size_t n, const char *section, void *base) {
   size_t i;
   int rc;
   for (i = 0; i < n; i++)
-    if (!strcmp(keys[i].section, section) && (rc = get_q(ctx, section, keys[i].key, keys[i].unit, key_field(base, &keys[i]))))
+    if (!strcmp(keys[i].section, section) &&
+        (rc = get_q(ctx, section, keys[i].name, keys[i].unit, autobal_rotor_field_ptr(base, &keys[i]))))
       return rc;
   return CLI_EXIT_OK;
 }
@@ -170,7 +143,8 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   autobal_rotor_lumped *lu = &c->p.lumped;
   const char *inertia = "paper";
   int rc, axial = 0, has_plane2;
-  size_t i;
+  size_t i, n_hw, n_lumped;
+  const autobal_rotor_field *k_hw_keys, *k_lumped_keys;
   autobal_rotor_params def = autobal_rotor_params_default();
 
   c->p = def;
@@ -182,8 +156,10 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
     c->psi[0][i] = def.plane[0].ball_psi ? def.plane[0].ball_psi[i] : 0.0;
     c->rate[0][i] = def.plane[0].ball_rate ? def.plane[0].ball_rate[i] : 0.0;
   }
+  k_hw_keys = autobal_rotor_hardware_fields(&n_hw);
+  k_lumped_keys = autobal_rotor_lumped_fields(&n_lumped);
   /* [rotor] */
-  if ((rc = read_keys(ctx, k_hw_keys, N_HW_KEYS, "rotor", hw))) return rc;
+  if ((rc = read_keys(ctx, k_hw_keys, n_hw, "rotor", hw))) return rc;
   if ((rc = get_q(ctx, "rotor", "omega", "rad/s", &c->p.omega))) return rc;
   if ((rc = cli_get_string(ctx, "rotor", "inertia", inertia, &inertia, NULL))) return rc;
   if ((rc = cli_get_bool(ctx, "rotor", "axial", 0, &axial, NULL))) return rc;
@@ -192,16 +168,16 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   else return cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: inertia = '%s' is not one of: paper, full", inertia);
   c->p.axial = axial;
   /* [supports] */
-  if ((rc = read_keys(ctx, k_hw_keys, N_HW_KEYS, "supports", hw))) return rc;
+  if ((rc = read_keys(ctx, k_hw_keys, n_hw, "supports", hw))) return rc;
   /* [lumped]: if present, the lumped coefficients are authoritative (all must be given) */
   if (cli_section_present(ctx, "lumped")) {
-    for (i = 0; i < N_LUMPED_KEYS; i++) {
+    for (i = 0; i < n_lumped; i++) {
       int present;
-      if ((rc = cli_get_quantity(ctx, "lumped", k_lumped_keys[i].key, k_lumped_keys[i].unit, 0.0,
-                                 key_field(lu, &k_lumped_keys[i]), &present)))
+      if ((rc = cli_get_quantity(ctx, "lumped", k_lumped_keys[i].name, k_lumped_keys[i].unit, 0.0,
+                                 autobal_rotor_field_ptr(lu, &k_lumped_keys[i]), &present)))
         return rc;
       if (!present)
-        return cli_fail(ctx, CLI_EXIT_INPUT, "[lumped]: '%s' is missing (with a [lumped] section all of M, A, C, c_x, c_y, c_z, c_alpha, c_beta, c_xbeta, c_yalpha and the h_ analogues are required)", k_lumped_keys[i].key);
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[lumped]: '%s' is missing (with a [lumped] section all of M, A, C, c_x, c_y, c_z, c_alpha, c_beta, c_xbeta, c_yalpha and the h_ analogues are required)", k_lumped_keys[i].name);
     }
     c->p.input = AUTOBAL_ROTOR_LUMPED;
   }
@@ -245,48 +221,7 @@ int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage)
 }
 
 int cli_write_rotor_params(autobal_archive *a, const autobal_rotor_params *p, int initial) {
-  autobal_rotor_lumped L;
-  const char *g = "/rotor", *gl = "/rotor/lumped";
-  char grp[64];
-  size_t i, j;
-  int st;
-  /* the coefficients the model uses (autobal_rotor_alloc does the same) */
-  if (p->input == AUTOBAL_ROTOR_HARDWARE) {
-    if ((st = autobal_rotor_lumped_from_hardware(&p->hw, &L, NULL))) return st;
-  } else {
-    L = p->lumped;
-  }
-  st = autobal_archive_group(a, g);
-  if (!st) st = autobal_archive_attr_string(a, g, "model", "rotor in a massive housing with ball autobalancers (docs/rotor.md)");
-  if (!st) st = autobal_archive_attr_string(a, g, "input", p->input == AUTOBAL_ROTOR_LUMPED ? "lumped" : "hardware");
-  if (!st) st = autobal_archive_attr_string(a, g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
-  if (!st) st = autobal_archive_attr_double(a, g, "omega", p->omega, "rad/s");
-  if (!st) st = autobal_archive_attr_int(a, g, "axial", p->axial);
-  for (i = 0; p->input == AUTOBAL_ROTOR_HARDWARE && i < N_HW_KEYS && !st; i++)
-    st = autobal_archive_attr_double(a, g, k_hw_keys[i].key, key_value(&p->hw, &k_hw_keys[i]), k_hw_keys[i].unit);
-  if (!st) st = autobal_archive_group(a, gl);
-  for (i = 0; i < N_LUMPED_KEYS && !st; i++)
-    st = autobal_archive_attr_double(a, gl, k_lumped_keys[i].key, key_value(&L, &k_lumped_keys[i]), k_lumped_keys[i].unit);
-  for (j = 0; j < p->n_planes && !st; j++) {
-    const autobal_rotor_plane *pl = &p->plane[j];
-    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-    st = autobal_archive_group(a, grp);
-    if (!st) st = autobal_archive_attr_double(a, grp, "d", pl->d, "m");
-    if (!st) st = autobal_archive_attr_double(a, grp, "m0", pl->m0, "kg");
-    if (!st) st = autobal_archive_attr_double(a, grp, "r0", pl->r0, "m");
-    if (!st) st = autobal_archive_attr_double(a, grp, "psi0", pl->psi0, "rad");
-    if (!st) st = autobal_archive_attr_int(a, grp, "n_balls", (long)pl->n_balls);
-    if (!st && pl->n_balls > 0) {
-      st = autobal_archive_attr_double_array(a, grp, "ball_mass", pl->n_balls, pl->ball_mass, "kg");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_radius", pl->n_balls, pl->ball_radius, "m");
-      if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_damping", pl->n_balls, pl->ball_damping, "kg/s");
-      if (!st && initial && pl->ball_psi)
-        st = autobal_archive_attr_double_array(a, grp, "ball_psi_initial", pl->n_balls, pl->ball_psi, "rad");
-      if (!st && initial && pl->ball_rate)
-        st = autobal_archive_attr_double_array(a, grp, "ball_rate_initial", pl->n_balls, pl->ball_rate, "rad/s");
-    }
-  }
-  return st;
+  return autobal_study_write_rotor_params(a, p, initial);
 }
 
 /* ---- messages of the model in the configuration's names ----------------------------------- */
@@ -340,9 +275,11 @@ static size_t translate_name(const char *s, msg_buf *out, size_t *field) {
   size_t n, v = 0, v2 = 0, k;
   *field = 0;
   if (!strncmp(s, "hw.", 3) && (n = ident_len(s + 3)) > 0) {
-    for (k = 0; k < N_HW_KEYS; k++)
-      if (strlen(k_hw_keys[k].key) == n && !strncmp(s + 3, k_hw_keys[k].key, n)) {
-        snprintf(tmp, sizeof tmp, "%s.%s", k_hw_keys[k].section, k_hw_keys[k].key);
+    size_t n_hw;
+    const autobal_rotor_field *k_hw_keys = autobal_rotor_hardware_fields(&n_hw);
+    for (k = 0; k < n_hw; k++)
+      if (strlen(k_hw_keys[k].name) == n && !strncmp(s + 3, k_hw_keys[k].name, n)) {
+        snprintf(tmp, sizeof tmp, "%s.%s", k_hw_keys[k].section, k_hw_keys[k].name);
         msg_puts(out, tmp);
         return *field = 3 + n;
       }
@@ -506,588 +443,190 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   return CLI_EXIT_OK;
 }
 
-/* ---- the run -------------------------------------------------------------------------- */
-typedef struct run_ctx {
-  cli_ctx *ctx;
-  autobal_rotor *rotor;
-  int frame;
-  size_t dim, nout, ncols;
-  double *row;         /* one sample: state + outputs */
-  autobal_archive_series *series;
-  autobal_archive_series *revs;
-  int io_failed;
-  /* per-revolution summary */
-  double rev_period, rev_t0, rev_max_G, rev_max_s;
-  unsigned long rev_index; /* revolutions completed */
-  double *rev_max_D;   /* per plane */
-  double *rev_row;
-  size_t n_planes;
-  /* summary */
-  size_t idx_amp_G, idx_s_rel0;
-  double amp_first, amp_last, t_first_window, t_last_window_start;
-  double max_amp;
-  double t_end;
-  int first_sample_done;
-  double s_rel_initial, amp_initial;
-  /* vibration in the last 10% of the run at the centre of mass (0) and the supports (1: left,
-   * 2: right; NaN positions with lumped input): per direction x, y the largest synchronous (1X)
-   * amplitude sqrt(u^2 + (u'/omega)^2) over the samples: the amplitude of the harmonic at the
-   * running speed through (u, u') at each sample, exact for a steady whirl whatever the
-   * sampling (a sampled maximum or RMS of 4 samples per revolution is not) */
-  double l_sup[3], omega_abs;
-  double amax[3][2];
-  unsigned long win_n;
-} run_ctx;
 
-/* Displacement and velocity at axial position p (eq. (3.3) kinematics: (x + p beta, y - p alpha)). */
-static void point_motion(const double y[], double p, double d[2], double v[2]) {
-  d[0] = y[0] + p * y[3];
-  d[1] = y[1] - p * y[2];
-  v[0] = y[4] + p * y[7];
-  v[1] = y[5] - p * y[6];
+/* ---- the run: the library's study (autobal_study_rotor_transient) ------------------------- */
+static autobal_study_rotor_transient_options study_options(const rotor_cfg *c) {
+  autobal_study_rotor_transient_options o = autobal_study_rotor_transient_options_default();
+  o.t_end = c->t_end;
+  o.dt_out = c->dt_out;
+  o.rtol = c->rtol;
+  o.atol = c->atol;
+  o.h_max = c->h_max;
+  o.max_steps = (unsigned long)c->max_steps;
+  o.stepper = c->stepper;
+  o.frame = c->frame;
+  o.balance_tol = c->balance_tol;
+  o.balance_revs = c->balance_revs;
+  o.stop_at_balance = c->stop_at_balance;
+  o.grade = c->grade;
+  return o;
 }
 
-static size_t plane_base(size_t j) { return 3 + 7 * j; }
+static int progress(double fraction, void *user) { return cli_progress(user, "rotor transient", fraction); }
 
-static int observer(double t, const double y[], void *user) {
-  run_ctx *r = user;
-  double *out = r->row + r->dim;
-  size_t j;
-  memcpy(r->row, y, r->dim * sizeof *y);
-  if (autobal_rotor_outputs(r->rotor, r->frame, t, y, out, r->nout) != AUTOBAL_SUCCESS) return 1;
-  if (!r->first_sample_done) {
-    r->first_sample_done = 1;
-    r->amp_initial = out[0];
-    r->s_rel_initial = out[plane_base(0) + 5];
-    r->rev_t0 = t;
-    r->rev_index = 0;
-  }
-  if (out[0] > r->max_amp) r->max_amp = out[0];
-  if (t <= r->t_first_window && out[0] > r->amp_first) r->amp_first = out[0];
-  if (t >= r->t_last_window_start && !(out[0] <= r->amp_last)) r->amp_last = out[0]; /* NaN until sampled */
-  if (t >= r->t_last_window_start) {
-    size_t k, q;
-    for (k = 0; k < 3; k++) {
-      double d[2], v[2];
-      point_motion(y, r->l_sup[k], d, v);
-      for (q = 0; q < 2; q++) {
-        double amp = hypot(d[q], v[q] / r->omega_abs);
-        if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
-      }
-    }
-    r->win_n++;
-  }
-  if (r->series && !r->io_failed && autobal_archive_series_append(r->series, 1, &t, r->row) != AUTOBAL_SUCCESS)
-    r->io_failed = 1;
-  /* per-revolution maxima (of the sampled values) */
-  if (out[0] > r->rev_max_G) r->rev_max_G = out[0];
-  for (j = 0; j < r->n_planes; j++) {
-    if (out[plane_base(j) + 6] > r->rev_max_D[j]) r->rev_max_D[j] = out[plane_base(j) + 6];
-    if (out[plane_base(j) + 5] > r->rev_max_s) r->rev_max_s = out[plane_base(j) + 5];
-  }
-  /* revolution k ends at rev_t0 + (k+1) period; a sample within 1e-9 period of it closes it */
-  if (t >= r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period) {
-    r->rev_row[0] = r->rev_max_G;
-    r->rev_row[1] = r->rev_max_s;
-    for (j = 0; j < r->n_planes; j++) r->rev_row[2 + j] = r->rev_max_D[j];
-    if (r->revs && !r->io_failed && autobal_archive_series_append(r->revs, 1, &t, r->rev_row) != AUTOBAL_SUCCESS)
-      r->io_failed = 1;
-    r->rev_max_G = r->rev_max_s = 0;
-    for (j = 0; j < r->n_planes; j++) r->rev_max_D[j] = 0;
-    r->rev_index++;
-  }
-  return 0;
-}
-
-static int progress(double fraction, void *user) {
-  run_ctx *r = user;
-  return cli_progress(r->ctx, "rotor transient", fraction);
-}
-
-static double monitor(double t, const double y[], void *user) {
-  run_ctx *r = user;
-  return autobal_rotor_balance_monitor(r->rotor, r->frame, t, y);
-}
-
-static const char *state_name(size_t k, size_t nb, int axial, int frame, char *buf, size_t len, const char **unit,
-                              const char **lname) {
-  static const char *const q[8] = {"x", "y", "alpha", "beta", "x_rate", "y_rate", "alpha_rate", "beta_rate"};
-  static const char *const qu[8] = {"m", "m", "rad", "rad", "m/s", "m/s", "rad/s", "rad/s"};
-  static const char *const ql[8] = {"displacement x of the centre of mass", "displacement y of the centre of mass",
-                                    "Resal angle alpha (about x)", "Resal angle beta (about y)", "dx/dt", "dy/dt",
-                                    "d alpha/dt", "d beta/dt"};
-  if (k < 8) {
-    *unit = qu[k];
-    *lname = ql[k];
-    return q[k];
-  }
-  if (k < 8 + nb) {
-    snprintf(buf, len, frame == AUTOBAL_ROTOR_FIXED ? "state_phi_%zu" : "state_psi_%zu", k - 8 + 1);
-    *unit = "rad";
-    *lname = frame == AUTOBAL_ROTOR_FIXED ? "integrated ball angle phi (absolute)" : "integrated ball angle psi (relative)";
+/* A message of the study in the configuration's names: its option messages ("options: ...")
+ * are about [transient], the others about the model (cli_rotor_message). */
+static const char *study_message(const char *msg, char *buf, size_t len) {
+  if (!strncmp(msg, "options: ", 9)) {
+    snprintf(buf, len, "[transient]: %s", msg + 9);
     return buf;
   }
-  if (k < 8 + 2 * nb) {
-    snprintf(buf, len, frame == AUTOBAL_ROTOR_FIXED ? "state_phi_rate_%zu" : "state_psi_rate_%zu", k - 8 - nb + 1);
-    *unit = "rad/s";
-    *lname = "integrated ball angular rate";
-    return buf;
-  }
-  (void)axial;
-  if (k == 8 + 2 * nb) {
-    *unit = "m";
-    *lname = "axial displacement z";
-    return "z";
-  }
-  *unit = "m/s";
-  *lname = "axial velocity dz/dt";
-  return "z_rate";
+  return cli_rotor_message(msg, buf, len);
 }
 
-static int write_rotor_params(autobal_archive *a, const autobal_rotor *rot, const rotor_cfg *c) {
-  const autobal_rotor_params *p = autobal_rotor_get_params(rot);
-  int st = cli_write_rotor_params(a, p, 1);
-#define AD(obj, name, v, u) \
-  if (!st) st = autobal_archive_attr_double(a, obj, name, v, u)
-  if (!st) st = autobal_archive_group(a, "/rotor/transient");
-  AD("/rotor/transient", "t_end", c->t_end, "s");
-  AD("/rotor/transient", "dt_out", c->dt_out, "s");
-  AD("/rotor/transient", "rtol", c->rtol, "1");
-  AD("/rotor/transient", "atol", c->atol, "1");
-  AD("/rotor/transient", "h_max", c->h_max, "s");
-  AD("/rotor/transient", "max_steps", (double)c->max_steps, "1");
-  /* components of different units: no single (CF) units attribute; they are named instead */
-  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q", 4, p->q0, NULL);
-  if (!st)
-    st = autobal_archive_attr_string(a, "/rotor/transient", "initial_q_components", "x (m), y (m), alpha (rad), beta (rad)");
-  if (!st) st = autobal_archive_attr_double_array(a, "/rotor/transient", "initial_q_rate", 4, p->qd0, NULL);
-  if (!st)
-    st = autobal_archive_attr_string(a, "/rotor/transient", "initial_q_rate_components",
-                                     "x_rate (m/s), y_rate (m/s), alpha_rate (rad/s), beta_rate (rad/s)");
-  AD("/rotor/transient", "balance_tol", c->balance_tol, "1");
-  AD("/rotor/transient", "balance_revs", c->balance_revs, "1");
-  if (!st) st = autobal_archive_attr_string(a, "/rotor/transient", "stepper", c->stepper);
-  if (!st) st = autobal_archive_attr_string(a, "/rotor/transient", "frame", c->frame_name);
-#undef AD
-  return st;
+static void engineering_json(cli_json *j, const autobal_study_rotor_transient_summary *s) {
+  cli_json_quantities(j, "residual_unbalance_abs_final", s->residual_unbalance_abs_final, s->n_planes, "kg m");
+  cli_json_quantity(j, "balance_grade_final", s->balance_grade_final, "mm/s");
+  cli_json_quantity(j, "balance_grade_rotor_mass", s->balance_grade_rotor_mass, "kg");
+  if (!isnan(s->permissible_unbalance)) {
+    cli_json_quantity(j, "permissible_unbalance", s->permissible_unbalance, "kg m");
+    cli_json_bool(j, "permissible_unbalance_met", s->permissible_unbalance_met);
+  }
+  cli_json_quantity(j, "displacement_pk_pk_G_last_10pct", s->displacement_pk_pk[0], "m");
+  cli_json_quantity(j, "velocity_rms_supports_last_10pct", s->velocity_rms_supports, "m/s");
 }
 
-/* A readable long_name for a derived output named by autobal_rotor_output_name. */
-static void output_long_name(const char *name, char *buf, size_t len) {
-  unsigned pl = 0, b = 0;
-  char rest[48] = "";
-  if (!strcmp(name, "amp_G")) snprintf(buf, len, "displacement amplitude of the centre of mass");
-  else if (!strcmp(name, "amp_L")) snprintf(buf, len, "displacement amplitude at the left support (z = -l_L)");
-  else if (!strcmp(name, "amp_R")) snprintf(buf, len, "displacement amplitude at the right support (z = +l_R)");
-  else if (sscanf(name, "p%u_b%u_%47s", &pl, &b, rest) == 3) {
-    const char *what = !strcmp(rest, "phi") ? "absolute angle phi (unwrapped)"
-                       : !strcmp(rest, "phi_w") ? "absolute angle phi wrapped to (-pi, pi]"
-                       : !strcmp(rest, "psi") ? "angle psi relative to the rotor (unwrapped)"
-                       : !strcmp(rest, "psi_w") ? "angle psi relative to the rotor wrapped to (-pi, pi]"
-                       : !strcmp(rest, "phi_rate") ? "absolute angular rate dphi/dt"
-                       : !strcmp(rest, "psi_rate") ? "angular rate relative to the rotor dpsi/dt" : rest;
-    snprintf(buf, len, "ball %u of plane %u: %s", b, pl, what);
-  } else if (sscanf(name, "p%u_%47s", &pl, rest) == 2) {
-    const char *what = !strcmp(rest, "s_u") ? "unbalance s_u of rotor plus balls along fixed x (3.1)"
-                       : !strcmp(rest, "s_v") ? "unbalance s_v of rotor plus balls along fixed y (3.1)"
-                       : !strcmp(rest, "s_xi") ? "unbalance s_xi along the rotor axis xi (3.10)"
-                       : !strcmp(rest, "s_eta") ? "unbalance s_eta along the rotor axis eta (3.10)"
-                       : !strcmp(rest, "s_abs") ? "residual unbalance |s|"
-                       : !strcmp(rest, "s_rel") ? "residual unbalance |s| relative to m0 r0"
-                       : !strcmp(rest, "amp_D") ? "displacement amplitude at the balancer plane" : rest;
-    snprintf(buf, len, "plane %u: %s", pl, what);
-  } else
-    snprintf(buf, len, "%s", name);
-}
-
-static int open_series(run_ctx *r, autobal_archive *a, const rotor_cfg *c) {
-  size_t n = r->ncols, k, nb = autobal_rotor_n_balls_total(r->rotor), j;
-  char (*names)[64] = calloc(n, sizeof *names);
-  char (*lnames)[96] = calloc(n, sizeof *lnames);
-  const char **np = calloc(n, sizeof *np), **up = calloc(n, sizeof *up), **lp = calloc(n, sizeof *lp);
-  const char *rn[2 + AUTOBAL_ROTOR_MAX_PLANES], *ru[2 + AUTOBAL_ROTOR_MAX_PLANES], *rl[2 + AUTOBAL_ROTOR_MAX_PLANES];
-  char rnb[AUTOBAL_ROTOR_MAX_PLANES][32];
-  int st = AUTOBAL_SUCCESS;
-  if (!names || !lnames || !np || !up || !lp) st = AUTOBAL_ENOMEM;
-  for (k = 0; !st && k < r->dim; k++) {
-    const char *nm = state_name(k, nb, c->p.axial, r->frame, names[k], sizeof names[k], &up[k], &lp[k]);
-    if (nm != names[k]) snprintf(names[k], sizeof names[k], "%s", nm);
-    np[k] = names[k];
-    if (k >= 8 && k < 8 + 2 * nb) { /* one long_name per ball */
-      snprintf(lnames[k], sizeof lnames[k], "%s of ball %zu (state order)", lp[k], (k - 8) % nb + 1);
-      lp[k] = lnames[k];
-    }
-  }
-  for (k = 0; !st && k < r->nout; k++) {
-    const char *unit = NULL;
-    st = autobal_rotor_output_name(r->rotor, k, names[r->dim + k], sizeof names[0], &unit);
-    np[r->dim + k] = names[r->dim + k];
-    up[r->dim + k] = unit;
-    output_long_name(names[r->dim + k], lnames[r->dim + k], sizeof lnames[0]);
-    lp[r->dim + k] = lnames[r->dim + k];
-  }
-  if (!st)
-    st = autobal_archive_series_open(a, "/rotor/transient", "time", "s", "time", n, np, up, lp, &r->series);
-  rn[0] = "max_amp_G";
-  ru[0] = "m";
-  rl[0] = "largest sampled displacement amplitude of the centre of mass during the revolution";
-  rn[1] = "max_s_rel";
-  ru[1] = "1";
-  rl[1] = "largest sampled relative residual unbalance |s|/s_ref over the planes during the revolution";
-  for (j = 0; j < r->n_planes; j++) {
-    snprintf(rnb[j], sizeof rnb[j], "p%zu_max_amp_D", j + 1);
-    rn[2 + j] = rnb[j];
-    ru[2 + j] = "m";
-    rl[2 + j] = "largest sampled displacement amplitude at the balancer plane during the revolution";
-  }
-  if (!st)
-    st = autobal_archive_series_open(a, "/rotor/revolutions", "revolution_end", "s",
-                                     "time at the end of each revolution 2 pi/omega", 2 + r->n_planes, rn, ru, rl,
-                                     &r->revs);
-  free(names);
-  free(lnames);
-  free(np);
-  free(up);
-  free(lp);
-  return st;
-}
-
-/* ---- engineering quantities of the summary (docs/units.md) ------------------------------ */
-typedef struct engineering_summary {
-  double s_abs[AUTOBAL_ROTOR_MAX_PLANES]; /* |s_j| at the end, kg m */
-  double mass;                            /* rotor mass for the grade, kg (m_p, or M with lumped input) */
-  double grade;                           /* ISO 21940-11 grade reached at the end, mm/s */
-  double permissible;                     /* of [balance] grade: U_per in kg m (whole rotor); NaN: none */
-  int meets;                              /* every plane within U_per / n_planes */
-  int have_window;                        /* samples in the last 10% */
-  double pkpk[3], vrms[3];                /* centre of mass, left, right support: m, m/s (1X) */
-  double vrms_support;                    /* the largest support RMS velocity (G when no supports), m/s */
-} engineering_summary;
-
-/* The smallest ISO 21940-11 grade class that G (mm/s) is within; NaN above G4000. */
-static double grade_class(double G) {
-  static const double k[] = {0.4, 1, 2.5, 6.3, 16, 40, 100, 250, 630, 1600, 4000};
-  size_t i;
-  for (i = 0; i < sizeof k / sizeof k[0]; i++)
-    if (G <= k[i]) return k[i];
-  return NAN;
-}
-
-static void engineering_compute(engineering_summary *e, const autobal_rotor *rot, const rotor_cfg *c,
-                                const run_ctx *r, double t, const double *y) {
-  size_t j, k, q, np = r->n_planes;
-  double omega = fabs(c->p.omega), worst = 0.0;
-  memset(e, 0, sizeof *e);
-  e->mass = c->p.input == AUTOBAL_ROTOR_HARDWARE ? c->p.hw.m_p : c->p.lumped.M;
-  for (j = 0; j < np; j++) {
-    double s4[4];
-    e->s_abs[j] = autobal_rotor_plane_unbalance(rot, j, c->frame, t, y, s4) == AUTOBAL_SUCCESS ? hypot(s4[0], s4[1])
-                                                                                                : NAN;
-    if (!(e->s_abs[j] <= worst)) worst = e->s_abs[j];
-  }
-  /* the rotor's mass shared equally by the planes (ISO 21940-11's allocation for a rotor with
-   * its planes symmetric to the bearings): grade of the worst plane */
-  e->grade = cli_balance_grade(worst * (double)np, e->mass, omega);
-  e->permissible = isnan(c->grade) ? NAN : cli_permissible_unbalance(c->grade, e->mass, omega);
-  e->meets = !isnan(e->permissible) && worst * (double)np <= e->permissible;
-  e->have_window = r->win_n > 0;
-  e->vrms_support = NAN;
-  for (k = 0; k < 3; k++) {
-    e->pkpk[k] = e->vrms[k] = NAN;
-    if (!e->have_window || isnan(r->l_sup[k])) continue;
-    for (q = 0; q < 2; q++) { /* harmonic: peak-to-peak 2 A, RMS velocity omega A / sqrt(2) */
-      double pp = 2.0 * r->amax[k][q], v = omega * r->amax[k][q] / sqrt(2.0);
-      if (!(pp <= e->pkpk[k])) e->pkpk[k] = pp;
-      if (!(v <= e->vrms[k])) e->vrms[k] = v;
-    }
-    if (k > 0 && !(e->vrms[k] <= e->vrms_support)) e->vrms_support = e->vrms[k];
-  }
-  if (isnan(e->vrms_support)) e->vrms_support = e->vrms[0];
-}
-
-static int engineering_write(autobal_archive *a, const char *g, const engineering_summary *e, size_t np) {
-  int st = autobal_archive_attr_double_array(a, g, "residual_unbalance_abs_final", np, e->s_abs, "kg m");
-  if (!st) st = autobal_archive_attr_double(a, g, "balance_grade_final", e->grade, "mm/s");
-  if (!st) st = autobal_archive_attr_double(a, g, "balance_grade_rotor_mass", e->mass, "kg");
-  if (!st && !isnan(e->permissible)) {
-    st = autobal_archive_attr_double(a, g, "permissible_unbalance", e->permissible, "kg m");
-    if (!st) st = autobal_archive_attr_int(a, g, "permissible_unbalance_met", e->meets);
-  }
-  if (!st) st = autobal_archive_attr_double(a, g, "displacement_pk_pk_G_last_10pct", e->pkpk[0], "m");
-  if (!st) st = autobal_archive_attr_double(a, g, "velocity_rms_G_last_10pct", e->vrms[0], "m/s");
-  if (!st) st = autobal_archive_attr_double(a, g, "velocity_rms_left_support_last_10pct", e->vrms[1], "m/s");
-  if (!st) st = autobal_archive_attr_double(a, g, "velocity_rms_right_support_last_10pct", e->vrms[2], "m/s");
-  return st;
-}
-
-static void engineering_json(cli_json *j, const engineering_summary *e, size_t np) {
-  cli_json_quantities(j, "residual_unbalance_abs_final", e->s_abs, np, "kg m");
-  cli_json_quantity(j, "balance_grade_final", e->grade, "mm/s");
-  cli_json_quantity(j, "balance_grade_rotor_mass", e->mass, "kg");
-  if (!isnan(e->permissible)) {
-    cli_json_quantity(j, "permissible_unbalance", e->permissible, "kg m");
-    cli_json_bool(j, "permissible_unbalance_met", e->meets);
-  }
-  cli_json_quantity(j, "displacement_pk_pk_G_last_10pct", e->pkpk[0], "m");
-  cli_json_quantity(j, "velocity_rms_supports_last_10pct", e->vrms_support, "m/s");
-}
-
-static void engineering_print(const engineering_summary *e, const rotor_cfg *c) {
-  double cls = grade_class(e->grade), rpm = cli_rpm(fabs(c->p.omega));
+static void engineering_print(const autobal_study_rotor_transient_summary *s, const rotor_cfg *c) {
+  double cls = s->balance_grade_class, rpm = cli_rpm(fabs(c->p.omega));
   char cbuf[32] = "above G4000";
   if (!isnan(cls)) snprintf(cbuf, sizeof cbuf, "within G%g", cls);
   printf("  balance quality at the end: G %.3g mm/s, %s (ISO 21940-11: G = e omega, e = U/m with rotor mass %s = %g kg%s)\n",
-         e->grade, cbuf, c->p.input == AUTOBAL_ROTOR_HARDWARE ? "m_p" : "M", e->mass,
+         s->balance_grade_final, cbuf, c->p.input == AUTOBAL_ROTOR_HARDWARE ? "m_p" : "M", s->balance_grade_rotor_mass,
          c->p.n_planes > 1 ? " shared equally by the planes" : "");
-  if (!isnan(e->permissible))
-    printf("  grade G%g permits %.4g g mm at %.1f rpm%s: %s\n", c->grade, e->permissible * 1e6, rpm,
-           c->p.n_planes > 1 ? " (half per plane)" : "", e->meets ? "MET" : "NOT met");
-  if (e->have_window)
+  if (!isnan(s->permissible_unbalance))
+    printf("  grade G%g permits %.4g g mm at %.1f rpm%s: %s\n", c->grade, s->permissible_unbalance * 1e6, rpm,
+           c->p.n_planes > 1 ? " (half per plane)" : "", s->permissible_unbalance_met ? "MET" : "NOT met");
+  if (s->have_vibration_window)
     printf("  vibration at the running speed (1X) in the last 10%% of the run: centre of mass %.4g um 0-peak, %.4g um "
            "peak-to-peak (largest of x, y); velocity %.4g mm/s RMS %s\n",
-           e->pkpk[0] * 0.5e6, e->pkpk[0] * 1e6, e->vrms_support * 1e3,
-           isnan(e->vrms[1]) ? "at the centre of mass" : "at the supports (ISO 20816 measure: largest of left/right, x/y)");
+           s->displacement_pk_pk[0] * 0.5e6, s->displacement_pk_pk[0] * 1e6, s->velocity_rms_supports * 1e3,
+           isnan(s->velocity_rms[1]) ? "at the centre of mass" : "at the supports (ISO 20816 measure: largest of left/right, x/y)");
+}
+
+static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rotor_transient_summary *s, int warn) {
+  cli_json jj;
+  size_t j;
+  cli_json_summary_begin(&jj, ctx);
+  cli_json_bool(&jj, "balanced", s->balanced);
+  cli_json_quantity(&jj, "time_to_balance", s->time_to_balance, "s");
+  cli_json_quantity(&jj, "t_reached", s->t_reached, "s");
+  cli_json_quantity(&jj, "residual_unbalance_initial", s->residual_unbalance_initial, "1");
+  cli_json_quantity(&jj, "residual_unbalance_final", s->residual_unbalance_final, "1");
+  cli_json_quantity(&jj, "amplitude_first_10pct_max", s->amplitude_first_10pct_max, "m");
+  cli_json_quantity(&jj, "amplitude_last_10pct_max", s->amplitude_last_10pct_max, "m");
+  engineering_json(&jj, s);
+  /* every plane: residual unbalance, ball angles relative to the rotor at the end, the
+   * balanced configuration (3.14) when it exists */
+  cli_json_array(&jj, "planes");
+  for (j = 0; j < s->n_planes; j++) {
+    size_t i, nbj = s->ball_psi_final[j] ? s->n_balls[j] : 0;
+    cli_json_object(&jj, NULL);
+    cli_json_int(&jj, "plane", (long)j + 1);
+    cli_json_number(&jj, "residual_unbalance_abs", s->residual_unbalance_abs_final[j]);
+    cli_json_number(&jj, "residual_unbalance_rel", s->residual_unbalance_rel_final[j]);
+    cli_json_array(&jj, "ball_psi_final");
+    for (i = 0; i < nbj; i++) cli_json_number(&jj, NULL, s->ball_psi_final[j][i]);
+    cli_json_array_end(&jj);
+    if (s->ball_psi_balanced[j]) cli_json_numbers(&jj, "ball_psi_balanced", s->ball_psi_balanced[j], s->n_balls[j]);
+    cli_json_object(&jj, "units");
+    cli_json_string(&jj, "residual_unbalance_abs", "kg m");
+    cli_json_string(&jj, "residual_unbalance_rel", "1");
+    cli_json_string(&jj, "ball_psi_final", "rad");
+    cli_json_string(&jj, "ball_psi_balanced", "rad");
+    cli_json_object_end(&jj);
+    cli_json_object_end(&jj);
+  }
+  cli_json_array_end(&jj);
+  cli_json_int(&jj, "steps", (long)s->solver.steps);
+  cli_json_int(&jj, "rhs_evaluations", (long)s->solver.rhs_evals);
+  cli_json_quantity(&jj, "wall_time", s->solver.wall_seconds, "s");
+  cli_json_bool(&jj, "warning", warn);
+  cli_json_summary_end(&jj, ctx);
+  (void)c;
+}
+
+static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rotor_transient_summary *s) {
+  double s0 = c->p.plane[0].m0 * c->p.plane[0].r0;
+  size_t j, nb = 0;
+  for (j = 0; j < s->n_planes; j++) nb += s->n_balls[j];
+  printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
+         c->p.omega, c->p.omega * 60.0 / (TWO_PI), s->n_planes, nb, s->t_reached, s->t_reached / s->revolution_period);
+  printf("  residual unbalance |s|/(m0 r0): %.4g at the start -> %.4g at the end%s\n", s->residual_unbalance_initial,
+         s->residual_unbalance_final, s0 > 0 ? "" : " (relative to the balls' capacity: no unbalance)");
+  printf("  vibration amplitude of the centre of mass: max %.4g um in the first 10%% of the run, %.4g um in the last 10%%\n",
+         s->amplitude_first_10pct_max * 1e6, s->amplitude_last_10pct_max * 1e6);
+  if (s->balanced)
+    printf("  BALANCED: residual unbalance below %.3g (relative) from t = %.6g s on (held for %.0f revolutions)\n",
+           c->balance_tol, s->time_to_balance, c->balance_revs);
+  else
+    printf("  NOT balanced: the residual unbalance did not stay below %.3g (relative) for %.0f revolutions\n",
+           c->balance_tol, c->balance_revs);
+  for (j = 0; j < s->n_planes; j++) {
+    size_t i, nbj = s->ball_psi_final[j] ? s->n_balls[j] : 0;
+    printf("  plane %zu: residual unbalance %.4g g mm at the end (its unbalance m0 r0 = %.4g g mm)\n", j + 1,
+           s->residual_unbalance_abs_final[j] * 1e6, c->p.plane[j].m0 * c->p.plane[j].r0 * 1e6);
+    if (nbj == 0) continue;
+    printf("  plane %zu ball angles relative to the rotor at the end (rad, wrapped):", j + 1);
+    for (i = 0; i < nbj && i < 8; i++) printf(" %.5f", s->ball_psi_final[j][i]);
+    printf("%s\n", nbj > 8 ? " ..." : "");
+    if (s->ball_psi_balanced[j]) {
+      printf("  balanced configuration (3.14) of plane %zu:", j + 1);
+      for (i = 0; i < nbj && i < 8; i++) printf(" %.5f", s->ball_psi_balanced[j][i]);
+      printf("%s\n", nbj > 8 ? " ..." : "");
+    }
+  }
+  engineering_print(s, c);
+  cli_print_solver_line(s->stepper, &s->solver);
+  if (ctx->output) printf("archive: %s\n", ctx->output);
 }
 
 int cli_cmd_rotor_transient(cli_ctx *ctx) {
   rotor_cfg *c = calloc(1, sizeof *c);
-  autobal_rotor *rot = NULL;
-  autobal_transient *tr = NULL;
-  autobal_transient_options opt;
-  autobal_transient_system sys;
-  autobal_transient_stats stats;
-  autobal_transient_event_hit hit;
+  autobal_study_rotor_transient_options opt;
+  autobal_study_rotor_transient_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
-  run_ctx r;
   char msg[sizeof ctx->err];
-  double *y = NULL, t_reached = 0, *psi_bal[AUTOBAL_ROTOR_MAX_PLANES] = {NULL}, s_final = NAN, ttb = NAN;
-  engineering_summary eng;
-  int rc = CLI_EXIT_OK, st, warn = 0, balanced = 0, ev = -1;
-  size_t j;
+  int rc = CLI_EXIT_OK, st, warn = 0;
 
-  memset(&r, 0, sizeof r);
+  memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_rotor_config(ctx, c))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
-  rot = autobal_rotor_alloc(&c->p, &err);
-  if (!rot) {
-    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", cli_rotor_message(err.message, msg, sizeof msg));
+  opt = study_options(c);
+  opt.progress = progress;
+  opt.progress_user = ctx;
+  /* the inputs are checked before the archive is created: bad input leaves no file */
+  st = autobal_study_rotor_transient_check(&c->p, &opt, &err);
+  if (st < 0) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", study_message(err.message, msg, sizeof msg));
     goto done;
   }
-  if (err.status == AUTOBAL_WARNING) {
+  if (st == AUTOBAL_WARNING) {
     warn = 1;
-    if (!ctx->json) fprintf(stderr, "autobal: warning: %s\n",
-        cli_rotor_message(err.message, msg, sizeof msg));
-  }
-  opt = autobal_transient_options_default();
-  opt.stepper = c->stepper;
-  opt.rtol = c->rtol;
-  opt.atol = c->atol;
-  opt.h_max = c->h_max;
-  opt.max_steps = (unsigned long)c->max_steps;
-  opt.dt_out = c->dt_out;
-  opt.event_tol = 1e-9 * c->t_end;
-  tr = autobal_transient_alloc(autobal_rotor_dim(rot), &opt, &err);
-  if (!tr) {
-    rc = cli_fail(ctx, cli_exit_code(err.status), "[transient]: %s", err.message);
-    goto done;
-  }
-  r.ctx = ctx;
-  r.rotor = rot;
-  r.frame = c->frame;
-  r.dim = autobal_rotor_dim(rot);
-  r.nout = autobal_rotor_output_count(rot);
-  r.ncols = r.dim + r.nout;
-  r.n_planes = autobal_rotor_n_planes(rot);
-  r.rev_period = TWO_PI / fabs(c->p.omega);
-  r.t_end = c->t_end;
-  r.t_first_window = 0.1 * c->t_end;
-  r.t_last_window_start = 0.9 * c->t_end;
-  r.amp_last = NAN; /* stays NaN when the run stops (e.g. at balance) before the last 10% */
-  r.l_sup[0] = 0.0;
-  r.omega_abs = fabs(c->p.omega);
-  r.l_sup[1] = c->p.input == AUTOBAL_ROTOR_HARDWARE ? -c->p.hw.l_L : NAN;
-  r.l_sup[2] = c->p.input == AUTOBAL_ROTOR_HARDWARE ? c->p.hw.l_R : NAN;
-  r.row = calloc(r.ncols, sizeof *r.row);
-  r.rev_max_D = calloc(r.n_planes, sizeof *r.rev_max_D);
-  r.rev_row = calloc(2 + r.n_planes, sizeof *r.rev_row);
-  y = calloc(r.dim, sizeof *y);
-  if (!r.row || !r.rev_max_D || !r.rev_row || !y) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
-  if ((st = autobal_rotor_initial_state(rot, c->frame, 0.0, y, r.dim))) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s",
-        cli_rotor_message(autobal_rotor_errmsg(rot), msg, sizeof msg));
-    goto done;
+    if (!ctx->json) fprintf(stderr, "autobal: warning: %s\n", cli_rotor_message(err.message, msg, sizeof msg));
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor transient", &a))) goto done;
-  if (a) {
-    st = write_rotor_params(a, rot, c);
-    if (!st) st = open_series(&r, a, c);
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s", autobal_archive_errmsg(a));
-      goto finish;
-    }
-  }
-  sys.rhs = c->frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating;
-  sys.jac = NULL;
-  sys.dim = r.dim;
-  sys.params = rot;
-  autobal_transient_set_observer(tr, observer, &r);
-  autobal_transient_set_progress(tr, progress, &r);
-  ev = autobal_transient_add_dwell_event(tr, monitor, &r, c->balance_tol, c->balance_revs * r.rev_period,
-                                         c->stop_at_balance);
-  if (ev < 0) {
-    rc = cli_fail(ctx, cli_exit_code(ev), "%s", autobal_transient_errmsg(tr));
-    goto finish;
-  }
-  st = autobal_transient_run(tr, &sys, 0.0, c->t_end, y, &t_reached);
+  st = autobal_study_rotor_transient(&c->p, &opt, a, &sum, &err);
   cli_progress_done(ctx);
-  autobal_transient_get_stats(tr, &stats);
-  if (st < 0) {
-    if (st == AUTOBAL_ECANCELLED)
-      rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted at t = %.6g s of %.6g s; the archive keeps everything computed so far (status incomplete)", t_reached, c->t_end);
-    else
-      rc = cli_fail(ctx, cli_exit_code(st), "%s (t reached %.9g s of %.6g s; partial results kept)",
-                    autobal_transient_errmsg(tr), t_reached, c->t_end);
-  }
-  if (r.io_failed && rc == CLI_EXIT_OK)
-    rc = cli_fail(ctx, CLI_EXIT_IO, "writing the time series failed: %s", autobal_archive_errmsg(a));
-  balanced = autobal_transient_event_result(tr, (size_t)ev, NULL, &hit) == 1;
-  if (balanced) ttb = hit.t_start;
-  s_final = autobal_rotor_balance_monitor(rot, c->frame, t_reached, y);
-  engineering_compute(&eng, rot, c, &r, t_reached, y);
-  /* balanced angles (3.14) of each plane for comparison (when they exist); plane 1 is printed */
-  for (j = 0; j < c->p.n_planes; j++) {
-    size_t nbj = c->p.plane[j].n_balls;
-    double *pb;
-    if (nbj == 0) continue;
-    pb = calloc(nbj, sizeof *pb);
-    if (pb && autobal_rotor_balanced_angles(rot, j, pb, nbj, NULL) == AUTOBAL_SUCCESS) {
-      if (a) {
-        char grp[64];
-        snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-        if (autobal_archive_attr_double_array(a, grp, "ball_psi_balanced", nbj, pb, "rad") != AUTOBAL_SUCCESS &&
-            rc == CLI_EXIT_OK)
-          rc = cli_fail(ctx, CLI_EXIT_IO, "%s", autobal_archive_errmsg(a));
-      }
-      psi_bal[j] = pb;
-      pb = NULL;
-    }
-    free(pb);
-  }
-
-  if (a) {
-    const char *g = "/rotor/transient";
-    st = autobal_archive_attr_double(a, g, "time_to_balance", ttb, "s");
-    if (!st) st = autobal_archive_attr_int(a, g, "balanced", balanced);
-    if (!st) st = autobal_archive_attr_double(a, g, "t_reached", t_reached, "s");
-    if (!st) st = autobal_archive_attr_double(a, g, "residual_unbalance_initial", r.s_rel_initial, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "residual_unbalance_final", s_final, "1");
-    if (!st) st = autobal_archive_attr_double(a, g, "amplitude_first_10pct_max", r.amp_first, "m");
-    if (!st) st = autobal_archive_attr_double(a, g, "amplitude_last_10pct_max", r.amp_last, "m");
-    if (!st) st = autobal_archive_attr_double(a, g, "amplitude_max", r.max_amp, "m");
-    if (!st) st = engineering_write(a, g, &eng, r.n_planes);
-    if (!st) st = cli_archive_solver_stats(a, "/rotor/transient/solver", tr, &stats, "s");
-    rc = cli_archive_end(ctx, &a, st, rc);
-  }
-finish:
+  if (st == AUTOBAL_ECANCELLED)
+    rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED,
+                  "interrupted at t = %.6g s of %.6g s; the archive keeps everything computed so far (status incomplete)",
+                  sum.t_reached, c->t_end);
+  else if (st < 0 && st == sum.solver.status) /* the integration failed */
+    rc = cli_fail(ctx, cli_exit_code(st), "%s (t reached %.9g s of %.6g s; partial results kept)", sum.solver_message,
+                  sum.t_reached, c->t_end);
+  else if (st < 0)
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", study_message(err.message, msg, sizeof msg));
   if (a) rc = cli_archive_end(ctx, &a, AUTOBAL_SUCCESS, rc);
-  if (rc == CLI_EXIT_OK || rc == CLI_EXIT_NUMERIC || rc == CLI_EXIT_INTERRUPTED) {
-    double s0 = c->p.plane[0].m0 * c->p.plane[0].r0;
-    if (ctx->json) {
-      cli_json jj;
-      cli_json_summary_begin(&jj, ctx);
-      cli_json_bool(&jj, "balanced", balanced);
-      cli_json_quantity(&jj, "time_to_balance", ttb, "s");
-      cli_json_quantity(&jj, "t_reached", t_reached, "s");
-      cli_json_quantity(&jj, "residual_unbalance_initial", r.s_rel_initial, "1");
-      cli_json_quantity(&jj, "residual_unbalance_final", s_final, "1");
-      cli_json_quantity(&jj, "amplitude_first_10pct_max", r.amp_first, "m");
-      cli_json_quantity(&jj, "amplitude_last_10pct_max", r.amp_last, "m");
-      engineering_json(&jj, &eng, r.n_planes);
-      /* every plane: residual unbalance, ball angles relative to the rotor at the end, the
-       * balanced configuration (3.14) when it exists */
-      cli_json_array(&jj, "planes");
-      for (j = 0; j < r.n_planes; j++) {
-        size_t i, nbj = c->p.plane[j].n_balls;
-        double s0j = c->p.plane[j].m0 * c->p.plane[j].r0;
-        cli_json_object(&jj, NULL);
-        cli_json_int(&jj, "plane", (long)j + 1);
-        cli_json_number(&jj, "residual_unbalance_abs", eng.s_abs[j]);
-        cli_json_number(&jj, "residual_unbalance_rel", s0j > 0 ? eng.s_abs[j] / s0j : NAN);
-        cli_json_array(&jj, "ball_psi_final");
-        for (i = 0; i < nbj; i++) {
-          size_t k = autobal_rotor_ball_index(rot, j, i);
-          double ang = c->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - c->p.omega * t_reached : y[8 + k];
-          cli_json_number(&jj, NULL, remainder(ang, TWO_PI));
-        }
-        cli_json_array_end(&jj);
-        if (psi_bal[j]) cli_json_numbers(&jj, "ball_psi_balanced", psi_bal[j], nbj);
-        cli_json_object(&jj, "units");
-        cli_json_string(&jj, "residual_unbalance_abs", "kg m");
-        cli_json_string(&jj, "residual_unbalance_rel", "1");
-        cli_json_string(&jj, "ball_psi_final", "rad");
-        cli_json_string(&jj, "ball_psi_balanced", "rad");
-        cli_json_object_end(&jj);
-        cli_json_object_end(&jj);
-      }
-      cli_json_array_end(&jj);
-      cli_json_int(&jj, "steps", (long)stats.steps);
-      cli_json_int(&jj, "rhs_evaluations", (long)stats.rhs_evals);
-      cli_json_quantity(&jj, "wall_time", stats.wall_seconds, "s");
-      cli_json_bool(&jj, "warning", warn);
-      cli_json_summary_end(&jj, ctx);
-    } else if (!ctx->quiet) {
-      printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
-             c->p.omega, c->p.omega * 60.0 / (TWO_PI), r.n_planes, autobal_rotor_n_balls_total(rot), t_reached,
-             t_reached / r.rev_period);
-      printf("  residual unbalance |s|/(m0 r0): %.4g at the start -> %.4g at the end%s\n", r.s_rel_initial, s_final,
-             s0 > 0 ? "" : " (relative to the balls' capacity: no unbalance)");
-      printf("  vibration amplitude of the centre of mass: max %.4g um in the first 10%% of the run, %.4g um in the last 10%%\n",
-             r.amp_first * 1e6, r.amp_last * 1e6);
-      if (balanced)
-        printf("  BALANCED: residual unbalance below %.3g (relative) from t = %.6g s on (held for %.0f revolutions)\n",
-               c->balance_tol, ttb, c->balance_revs);
-      else
-        printf("  NOT balanced: the residual unbalance did not stay below %.3g (relative) for %.0f revolutions\n",
-               c->balance_tol, c->balance_revs);
-      for (j = 0; j < r.n_planes; j++) {
-        size_t i, nbj = c->p.plane[j].n_balls;
-        printf("  plane %zu: residual unbalance %.4g g mm at the end (its unbalance m0 r0 = %.4g g mm)\n", j + 1,
-               eng.s_abs[j] * 1e6, c->p.plane[j].m0 * c->p.plane[j].r0 * 1e6);
-        if (nbj == 0) continue;
-        printf("  plane %zu ball angles relative to the rotor at the end (rad, wrapped):", j + 1);
-        for (i = 0; i < nbj && i < 8; i++) {
-          size_t k = autobal_rotor_ball_index(rot, j, i);
-          double ang = c->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - c->p.omega * t_reached : y[8 + k];
-          ang = remainder(ang, TWO_PI);
-          printf(" %.5f", ang);
-        }
-        printf("%s\n", nbj > 8 ? " ..." : "");
-        if (psi_bal[j]) {
-          printf("  balanced configuration (3.14) of plane %zu:", j + 1);
-          for (i = 0; i < nbj && i < 8; i++) printf(" %.5f", psi_bal[j][i]);
-          printf("%s\n", nbj > 8 ? " ..." : "");
-        }
-      }
-      engineering_print(&eng, c);
-      cli_print_solver_stats(tr, &stats);
-      if (ctx->output) printf("archive: %s\n", ctx->output);
-    }
+  if ((rc == CLI_EXIT_OK || rc == CLI_EXIT_NUMERIC || rc == CLI_EXIT_INTERRUPTED) && sum.n_planes > 0) {
+    if (ctx->json) print_json(ctx, c, &sum, warn);
+    else if (!ctx->quiet) print_text(ctx, c, &sum);
   }
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  autobal_transient_free(tr);
-  autobal_rotor_free(rot);
-  free(r.row);
-  free(r.rev_max_D);
-  free(r.rev_row);
-  free(y);
-  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) free(psi_bal[j]);
+  autobal_study_rotor_transient_summary_free(&sum);
   free(c);
   return rc;
 }

@@ -11,6 +11,7 @@
 #include "autobal/archive.h"
 #include "autobal/rotor.h"
 #include "autobal/rotor_stability.h"
+#include "autobal/study.h"
 #include "cli.h"
 #include "units.h"
 
@@ -100,62 +101,6 @@ static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
   return CLI_EXIT_OK;
 }
 
-/* A linear grid [lo, hi] with n points. */
-static double *grid(double lo, double hi, size_t n) {
-  double *v = malloc((n ? n : 1) * sizeof *v);
-  size_t i;
-  if (!v) return NULL;
-  for (i = 0; i < n; i++) v[i] = n == 1 ? lo : (i + 1 == n ? hi : lo + (hi - lo) * (double)i / (double)(n - 1));
-  return v;
-}
-
-/* ---- archive: the model and the analysis options ----------------------------------- */
-
-/* The rotor model (cli_write_rotor_params) and the balanced configuration analysed in each plane
- * (the member of the family (3.14), with its given angles). */
-static int write_model(autobal_archive *a, const stab_cfg *c) {
-  char grp[64];
-  size_t j;
-  int st = cli_write_rotor_params(a, &c->p, 0);
-  for (j = 0; j < c->p.n_planes && !st; j++) {
-    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
-    st = autobal_archive_attr_string(a, grp, "member", c->member_name[j]);
-    if (!st && c->opt.member[j].n_angles > 0)
-      st = autobal_archive_attr_double_array(a, grp, "member_angles", c->opt.member[j].n_angles,
-                                             c->opt.member[j].angles, "rad");
-  }
-  return st;
-}
-
-static int write_options(autobal_archive *a, const char *g, const stab_cfg *c) {
-  int st = autobal_archive_attr_string(a, g, "method_option", c->method_name);
-  if (!st) st = autobal_archive_attr_double(a, g, "tol", c->opt.tol, "1");
-  if (!st) st = autobal_archive_attr_double(a, g, "floquet_rtol", c->opt.floquet_rtol, "1");
-  if (!st) st = autobal_archive_attr_double(a, g, "floquet_atol", c->opt.floquet_atol, "1");
-  return st;
-}
-
-static int write_crit(autobal_archive *a, const char *g, const autobal_rotor_crit *cr, const char *unit) {
-  int st = autobal_archive_attr_int(a, g, "n_critical", (long)cr->n);
-  int kinds[AUTOBAL_ROTOR_MAX_CRIT];
-  size_t i;
-  static const char *const dc[] = {"critical"}, *const di[] = {"interval"};
-  if (!st) st = autobal_archive_attr_int(a, g, "n_stable_intervals", (long)cr->n_stable);
-  if (!st) st = autobal_archive_attr_int(a, g, "truncated", cr->truncated);
-  if (!st && cr->n > 0) {
-    for (i = 0; i < cr->n; i++) kinds[i] = cr->kind[i];
-    st = autobal_archive_dim(a, g, "critical", cr->n, "index of a critical value (verdict change)");
-    if (!st) st = autobal_archive_var(a, g, "critical_value", 1, dc, cr->value, unit, "critical value: the margin crosses 0 here (refined)");
-    if (!st) st = autobal_archive_var_int(a, g, "critical_kind", 1, dc, kinds, "1", "1: stable above, -1: unstable above, 0: a balanced configuration exists on one side only");
-  }
-  if (!st && cr->n_stable > 0) {
-    st = autobal_archive_dim(a, g, "interval", cr->n_stable, "index of a stable interval");
-    if (!st) st = autobal_archive_var(a, g, "stable_lo", 1, di, cr->stable_lo, unit, "lower end of a stable interval (the sweep's start when stable there)");
-    if (!st) st = autobal_archive_var(a, g, "stable_hi", 1, di, cr->stable_hi, unit, "upper end of a stable interval (the sweep's end when stable there)");
-  }
-  return st;
-}
-
 static void print_intervals(const char *what, const char *unit, const autobal_rotor_crit *cr, double lo, double hi) {
   size_t i;
   printf("  critical values of %s in [%g, %g] %s:", what, lo, hi, unit);
@@ -182,16 +127,6 @@ static void print_intervals(const char *what, const char *unit, const autobal_ro
            cr->value[cr->n - 1]);
 }
 
-/* AUTOBAL_WARNING from a critical-value search (the list was truncated): a warning on stderr
- * (not with --json, whose summary carries "truncated"), and the run goes on: the data are valid
- * and the archive records the flag.  Other statuses are returned unchanged. */
-static int crit_warning(const cli_ctx *ctx, int st, const char *what, const char *message) {
-  char msg[sizeof ctx->err];
-  if (st != AUTOBAL_WARNING) return st;
-  if (!ctx->json) fprintf(stderr, "autobal: warning: %s: %s\n", what, cli_rotor_message(message, msg, sizeof msg));
-  return AUTOBAL_SUCCESS;
-}
-
 static void json_crit(cli_json *j, const autobal_rotor_crit *cr, const char *unit) {
   size_t i;
   cli_json_quantities(j, "critical_values", cr->value, cr->n, unit);
@@ -210,31 +145,28 @@ static const char *verdict_text(int v) {
 /* A default speed range for critical speeds: from 5% of the lowest natural frequency at rest to
  * 4 times the larger of the highest one and |omega|. */
 static void default_speed_range(const autobal_rotor_params *p, double *lo, double *hi) {
-  double f[4] = {100, 100, 100, 100};
-  (void)autobal_rotor_modes(p, 0.0, 1, f, NULL, NULL, NULL, NULL);
-  *lo = 0.05 * (f[0] > 0 ? f[0] : 1.0);
-  *hi = 4.0 * fmax(f[3], fabs(p->omega));
-  if (!(*hi > *lo)) *hi = *lo + 1.0;
+  autobal_study_rotor_speed_range(p, lo, hi);
 }
 
-/* ---- rotor stability ------------------------------------------------------------------ */
+/* ---- rotor stability: the library's study (autobal_study_rotor_stability) -------------- */
 int cli_cmd_rotor_stability(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
-  autobal_rotor_stab *s = NULL;
-  autobal_rotor_stab_result r;
-  autobal_rotor_crit cr;
+  autobal_study_rotor_stability_options o = autobal_study_rotor_stability_options_default();
+  autobal_study_rotor_stability_summary sum;
+  const autobal_rotor_stab_result *r = &sum.result;
+  const autobal_rotor_crit *cr = &sum.critical;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  double clo = 0, chi = 0, xtol = 1e-8;
-  long cn = 400;
-  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = 1;
+  double clo = 0, chi = 0, xtol = o.xtol_rel;
+  long cn = (long)o.n_omega;
+  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds;
   size_t i;
-  memset(&cr, 0, sizeof cr);
+  memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
-  default_speed_range(&c->p, &clo, &chi);
-  if ((rc = cli_get_bool(ctx, "stability", "critical_speeds", 1, &do_crit, NULL))) goto done;
+  autobal_study_rotor_speed_range(&c->p, &clo, &chi);
+  if ((rc = cli_get_bool(ctx, "stability", "critical_speeds", do_crit, &do_crit, NULL))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "omega_min", "rad/s", clo, &clo, &have_lo))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "omega_max", "rad/s", chi, &chi, &have_hi))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_omega", cn, &cn, NULL))) goto done;
@@ -250,91 +182,24 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
                   clo, chi, cn, xtol);
     goto done;
   }
+  o.stab = c->opt;
+  o.critical_speeds = do_crit;
+  o.omega_min = clo;
+  o.omega_max = chi;
+  o.n_omega = (size_t)cn;
+  o.xtol_rel = xtol;
+  /* the analysis first, the archive afterwards: a failed analysis leaves no file */
   autobal_error_clear(&err);
-  s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
-  if (!s) {
-    rc = cli_fail(ctx, cli_exit_code(err.status), "%s", cli_rotor_message(err.message, msg, sizeof msg));
-    goto done;
-  }
-  st = autobal_rotor_stab_analyze(s, &r);
+  st = autobal_study_rotor_stability(&c->p, &o, NULL, &sum, &err);
+  if (sum.critical_truncated && !ctx->json)
+    fprintf(stderr, "autobal: warning: critical speeds: %s\n", cli_rotor_message(sum.critical_message, msg, sizeof msg));
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s",
-        cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
-  }
-  if (do_crit) {
-    double lo = c->p.omega > 0 ? clo : -chi, hi = c->p.omega > 0 ? chi : -clo;
-    st = autobal_rotor_stab_critical(s, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, (size_t)cn, xtol, &cr);
-    st = crit_warning(ctx, st, "critical speeds", autobal_rotor_stab_errmsg(s));
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "critical speeds: %s",
-          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
-      goto done;
-    }
-    /* the analysis above stays valid: critical() restores omega but overwrites the workspace */
-    st = autobal_rotor_stab_analyze(s, &r);
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s",
-          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
-      goto done;
-    }
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor stability", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/stability";
-    static const char *const droot[] = {"root"}, *const dpow[] = {"power"}, *const dfull[] = {"full_root"},
-                             *const dmu[] = {"multiplier"}, *const dball[] = {"ball"};
-    double power[AUTOBAL_ROTOR_POLY_LEN];
-    for (i = 0; i < AUTOBAL_ROTOR_POLY_LEN; i++) power[i] = (double)i;
-    st = write_model(a, c);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = write_options(a, g, c);
-    if (!st) st = autobal_archive_attr_string(a, g, "method", autobal_rotor_stab_method_name(r.method));
-    if (!st) st = autobal_archive_attr_string(a, g, "verdict", verdict_text(r.verdict));
-    if (!st) st = autobal_archive_attr_double(a, g, "margin", r.margin, "1/s");
-    if (!st) st = autobal_archive_attr_double(a, g, "period", r.period, "s");
-    if (!st) st = autobal_archive_attr_int(a, g, "isotropic", r.isotropic);
-    if (!st) st = autobal_archive_attr_int(a, g, "closure_ok", r.closure_ok);
-    if (!st) st = autobal_archive_attr_int(a, g, "n_family", (long)r.n_family);
-    if (!st) st = autobal_archive_dim(a, g, "ball", r.n_balls, "ball index in state order (plane 1 first)");
-    if (!st) st = autobal_archive_var(a, g, "psi_balanced", 1, dball, r.psi, "rad", "balanced ball angles (3.14) of the analysed member, relative to the rotor");
-    if (!st && r.n_closed > 0) {
-      st = autobal_archive_dim(a, g, "root", r.n_closed, "index of a characteristic root of the closed system");
-      if (!st) st = autobal_archive_var(a, g, "root_real", 1, droot, r.root_re, "1/s", r.n_poly ? "real part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "real part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
-      if (!st) st = autobal_archive_var(a, g, "root_imag", 1, droot, r.root_im, "1/s", r.n_poly ? "imaginary part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "imaginary part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
-      if (!st) st = autobal_archive_var(a, g, "eig_real", 1, droot, r.closed_eig_re, "1/s", "real part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
-      if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, droot, r.closed_eig_im, "1/s", "imaginary part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
-      if (!st) st = autobal_archive_attr_double(a, g, "closed_margin", r.closed_margin, "1/s");
-      if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r.root_eig_mismatch, "1");
-    }
-    if (!st && r.n_poly > 0) {
-      st = autobal_archive_coord(a, g, "power", AUTOBAL_ROTOR_POLY_LEN, power, "1", "power of lambda");
-      if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r.poly, "1", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers k of lambda (lambda in 1/s), each divided by its SI unit: Delta is in kg^4 m^4 s^-12, so the coefficient of lambda^k is this number times kg^4 m^4 s^(k-12)");
-      if (!st) st = autobal_archive_attr_string(a, g, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
-      if (!st) st = autobal_archive_attr_int(a, g, "hurwitz_n_rhp", r.hurwitz_n_rhp);
-    }
-    if (!st && r.n_full > 0) {
-      st = autobal_archive_dim(a, g, "full_root", r.n_full, "index of an eigenvalue of the full model's linearization");
-      if (!st) st = autobal_archive_var(a, g, "full_real", 1, dfull, r.full_re, "1/s", "real part of the eigenvalues of the full model's linearization in rotating coordinates");
-      if (!st) st = autobal_archive_var(a, g, "full_imag", 1, dfull, r.full_im, "1/s", "imaginary part of the eigenvalues of the full model's linearization in rotating coordinates");
-      if (!st) st = autobal_archive_attr_double(a, g, "full_margin", r.full_margin, "1/s");
-      if (!st) st = autobal_archive_attr_double(a, g, "full_mismatch", r.full_mismatch, "1");
-    }
-    if (!st && r.n_floquet > 0) {
-      st = autobal_archive_dim(a, g, "multiplier", r.n_floquet, "index of a Floquet multiplier (by decreasing modulus)");
-      if (!st) st = autobal_archive_var(a, g, "floquet_real", 1, dmu, r.mu_re, "1", "real part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
-      if (!st) st = autobal_archive_var(a, g, "floquet_imag", 1, dmu, r.mu_im, "1", "imaginary part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
-      if (!st) st = autobal_archive_attr_double(a, g, "floquet_margin", r.floquet_margin, "1/s");
-      if (!st) st = autobal_archive_attr_double(a, g, "floquet_mismatch", r.floquet_mismatch, "1");
-    }
-    if (!st && do_crit) {
-      const char *gc = "/rotor/stability/critical";
-      st = autobal_archive_group(a, gc);
-      if (!st) st = autobal_archive_attr_double(a, gc, "omega_min", clo, "rad/s");
-      if (!st) st = autobal_archive_attr_double(a, gc, "omega_max", chi, "rad/s");
-      if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", cn);
-      if (!st) st = write_crit(a, gc, &cr, "rad/s");
-    }
+    st = autobal_study_rotor_stability_write(a, &c->p, &o, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -342,50 +207,52 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     cli_json j;
     cli_json_summary_begin(&j, ctx);
     cli_json_quantity(&j, "omega", c->p.omega, "rad/s");
-    cli_json_string(&j, "method", autobal_rotor_stab_method_name(r.method));
-    cli_json_string(&j, "verdict", verdict_text(r.verdict));
-    cli_json_quantity(&j, "margin", r.margin, "1/s");
-    cli_json_quantities(&j, "psi_balanced", r.psi, r.n_balls, "rad");
-    cli_json_int(&j, "n_family", (long)r.n_family);
-    if (r.n_poly) cli_json_string(&j, "hurwitz_verdict", autobal_verdict_name(r.hurwitz_verdict));
-    cli_json_number(&j, "root_eig_mismatch", r.n_closed ? r.root_eig_mismatch : NAN);
-    cli_json_number(&j, "full_mismatch", r.full_mismatch);
-    cli_json_number(&j, "floquet_mismatch", r.floquet_mismatch);
-    if (do_crit) json_crit(&j, &cr, "rad/s");
+    cli_json_string(&j, "method", autobal_rotor_stab_method_name(r->method));
+    cli_json_string(&j, "verdict", verdict_text(r->verdict));
+    cli_json_quantity(&j, "margin", r->margin, "1/s");
+    cli_json_quantities(&j, "psi_balanced", r->psi, r->n_balls, "rad");
+    cli_json_int(&j, "n_family", (long)r->n_family);
+    if (r->n_poly) cli_json_string(&j, "hurwitz_verdict", autobal_verdict_name(r->hurwitz_verdict));
+    cli_json_number(&j, "root_eig_mismatch", r->n_closed ? r->root_eig_mismatch : NAN);
+    cli_json_number(&j, "full_mismatch", r->full_mismatch);
+    cli_json_number(&j, "floquet_mismatch", r->floquet_mismatch);
+    if (do_crit) json_crit(&j, cr, "rad/s");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor stability at omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %s supports\n", c->p.omega,
-           c->p.omega * 60.0 / TWO_PI, c->p.n_planes, r.n_balls, r.isotropic ? "isotropic" : "anisotropic");
+           c->p.omega * 60.0 / TWO_PI, c->p.n_planes, r->n_balls, r->isotropic ? "isotropic" : "anisotropic");
     printf("  balanced configuration (3.14), member %s:", c->member_name[0]);
-    for (i = 0; i < r.n_balls && i < 16; i++) printf(" %.7f", r.psi[i]);
+    for (i = 0; i < r->n_balls && i < 16; i++) printf(" %.7f", r->psi[i]);
     printf(" rad\n");
-    if (r.n_family)
+    if (r->n_family)
       printf("  neutral family: %zu root(s) at 0 (Floquet multipliers 1) excluded: the verdict is the stability of the family\n",
-             r.n_family);
-    printf("  BALANCED MOTION: %s (method %s), margin max Re(lambda) = %.6e 1/s\n", verdict_text(r.verdict),
-           autobal_rotor_stab_method_name(r.method), r.margin);
-    if (r.n_poly)
-      printf("  Routh-Hurwitz on Delta: %s (%d root(s) with Re > 0)\n", autobal_verdict_name(r.hurwitz_verdict),
-             r.hurwitz_n_rhp);
-    if (r.n_closed) {
+             r->n_family);
+    printf("  BALANCED MOTION: %s (method %s), margin max Re(lambda) = %.6e 1/s\n", verdict_text(r->verdict),
+           autobal_rotor_stab_method_name(r->method), r->margin);
+    if (r->n_poly)
+      printf("  Routh-Hurwitz on Delta: %s (%d root(s) with Re > 0)\n", autobal_verdict_name(r->hurwitz_verdict),
+             r->hurwitz_n_rhp);
+    if (r->n_closed) {
       printf("  %-3s %22s %22s\n", "#", "root: Re (1/s)", "Im (1/s)");
-      for (i = 0; i < r.n_closed; i++) printf("  %-3zu %22.12e %22.12e\n", i, r.root_re[i], r.root_im[i]);
-      printf("  roots vs closed-matrix eigenvalues: %.3e (relative)\n", r.root_eig_mismatch);
+      for (i = 0; i < r->n_closed; i++) printf("  %-3zu %22.12e %22.12e\n", i, r->root_re[i], r->root_im[i]);
+      printf("  roots vs closed-matrix eigenvalues: %.3e (relative)\n", r->root_eig_mismatch);
     }
-    if (r.n_full) printf("  full model (rotating coordinates) vs closed roots + family: %.3e (relative)\n", r.full_mismatch);
-    if (r.n_floquet) {
-      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; ", r.period, r.floquet_margin);
-      if (isnan(r.floquet_mismatch)) printf("vs exp(lambda T): not applicable (no constant-coefficient roots to compare)\n");
-      else printf("vs exp(lambda T): %.3e\n", r.floquet_mismatch);
+    if (r->n_full) printf("  full model (rotating coordinates) vs closed roots + family: %.3e (relative)\n", r->full_mismatch);
+    if (r->n_floquet) {
+      printf("  Floquet (T = %.6g s): margin log|mu|/T = %.6e 1/s; ", r->period, r->floquet_margin);
+      if (isnan(r->floquet_mismatch)) printf("vs exp(lambda T): not applicable (no constant-coefficient roots to compare)\n");
+      else printf("vs exp(lambda T): %.3e\n", r->floquet_mismatch);
     }
-    if (do_crit) print_intervals("speed (omega)", "rad/s", &cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
+    if (do_crit) print_intervals("speed (omega)", "rad/s", cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  autobal_rotor_stab_free(s);
+  autobal_study_rotor_stability_summary_free(&sum);
   if (c) free(c->storage);
   free(c);
+  (void)have_lo;
+  (void)have_hi;
   return rc;
 }
 
@@ -404,46 +271,31 @@ static int read_param(cli_ctx *ctx, const char *sec, const char *key, const char
 }
 
 static double param_default_hi(const stab_cfg *c, int param) {
-  switch (param) {
-    case AUTOBAL_ROTOR_PARAM_OMEGA: {
-      double lo, hi;
-      default_speed_range(&c->p, &lo, &hi);
-      return hi;
-    }
-    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return 10.0 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_damping[0] : 0.1) + 1e-3;
-    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return 4.0 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_mass[0] : 0.05);
-    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return 4.0 * c->p.plane[0].m0 + 1e-3;
-    default: return 4.0;
-  }
+  double lo, hi;
+  autobal_study_rotor_param_range(&c->p, param, &lo, &hi);
+  return hi;
 }
 static double param_default_lo(const stab_cfg *c, int param) {
-  switch (param) {
-    case AUTOBAL_ROTOR_PARAM_OMEGA: {
-      double lo, hi;
-      default_speed_range(&c->p, &lo, &hi);
-      return lo;
-    }
-    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING: return 0.0;
-    case AUTOBAL_ROTOR_PARAM_BALL_MASS: return 0.1 * (c->p.plane[0].n_balls ? c->p.plane[0].ball_mass[0] : 0.05);
-    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return 0.0;
-    case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE: return 0.0;
-    default: return 0.25;
-  }
+  double lo, hi;
+  autobal_study_rotor_param_range(&c->p, param, &lo, &hi);
+  return lo;
 }
+
+static int sweep_progress(double fraction, void *user) { return cli_progress(user, "rotor sweep", fraction); }
 
 int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
-  autobal_rotor_stab *s = NULL;
-  autobal_rotor_crit cr;
+  autobal_study_rotor_sweep_options o = autobal_study_rotor_sweep_options_default();
+  autobal_study_rotor_sweep_summary sum;
+  const autobal_rotor_crit *cr = &sum.critical;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  double lo, hi, xtol = 1e-8, *vals = NULL, *mg = NULL;
-  int *vd = NULL, param = 0, rc = CLI_EXIT_OK, st;
-  long n = 1000;
-  size_t i, nstable = 0;
+  double lo, hi, xtol = o.xtol_rel;
+  int param = 0, rc = CLI_EXIT_OK, st;
+  long n = (long)o.n;
   const char *pname, *unit;
-  memset(&cr, 0, sizeof cr);
+  memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
   if ((rc = read_param(ctx, "sweep", "param", "omega", &param))) goto done;
@@ -466,54 +318,31 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: omega = 0: nothing to analyse");
     goto done;
   }
+  o.stab = c->opt;
+  o.param = param;
+  o.min = lo;
+  o.max = hi;
+  o.n = (size_t)n;
+  o.xtol_rel = xtol;
+  o.progress = sweep_progress;
+  o.progress_user = ctx;
+  /* the sweep first (autobal_study_rotor_sweep), the archive afterwards */
   autobal_error_clear(&err);
-  s = autobal_rotor_stab_alloc(&c->p, &c->opt, &err);
-  vals = grid(lo, hi, (size_t)n);
-  mg = malloc((size_t)n * sizeof *mg);
-  vd = malloc((size_t)n * sizeof *vd);
-  if (!s || !vals || !mg || !vd) {
-    rc = cli_fail(ctx, s ? CLI_EXIT_INTERNAL : cli_exit_code(err.status), "%s",
-        s ? "out of memory" : cli_rotor_message(err.message, msg, sizeof msg));
-    goto done;
-  }
-  /* the sweep in chunks, for progress and interruption */
-  for (i = 0; i < (size_t)n; i += 64) {
-    size_t m = (size_t)n - i < 64 ? (size_t)n - i : 64;
-    st = autobal_rotor_stab_sweep(s, param, vals + i, m, mg + i, vd + i);
-    if (st) {
-      rc = cli_fail(ctx, cli_exit_code(st), "%s = %.9g %s: %s", pname, vals[i], unit,
-          cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
-      goto done;
-    }
-    if (cli_progress(ctx, "rotor sweep", 0.5 * (double)(i + m) / (double)n)) {
-      rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted");
-      goto done;
-    }
-  }
-  st = autobal_rotor_stab_critical(s, param, lo, hi, (size_t)n, xtol, &cr);
+  st = autobal_study_rotor_sweep(&c->p, &o, NULL, &sum, &err);
   cli_progress_done(ctx);
-  st = crit_warning(ctx, st, "critical values", autobal_rotor_stab_errmsg(s));
-  if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "critical values: %s",
-        cli_rotor_message(autobal_rotor_stab_errmsg(s), msg, sizeof msg));
+  if (sum.critical_truncated && !ctx->json)
+    fprintf(stderr, "autobal: warning: critical values: %s\n", cli_rotor_message(sum.critical_message, msg, sizeof msg));
+  if (st == AUTOBAL_ECANCELLED) {
+    rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted");
     goto done;
   }
-  for (i = 0; i < (size_t)n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
+    goto done;
+  }
   if ((rc = cli_archive_open(ctx, "autobal rotor sweep", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/sweep";
-    const char *dims[1];
-    char lname[160];
-    dims[0] = pname;
-    snprintf(lname, sizeof lname, "swept parameter %s", pname);
-    st = write_model(a, c);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = write_options(a, g, c);
-    if (!st) st = autobal_archive_attr_string(a, g, "param", pname);
-    if (!st) st = autobal_archive_coord(a, g, pname, (size_t)n, vals, unit, lname);
-    if (!st) st = autobal_archive_var(a, g, "margin", 1, dims, mg, "1/s", "stability margin: largest real part of the characteristic roots (family roots excluded; Floquet: log max|mu| / T); NaN: no balanced configuration");
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 1, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
-    if (!st) st = write_crit(a, g, &cr, unit);
+    st = autobal_study_rotor_sweep_write(a, &c->p, &o, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -525,37 +354,37 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
     cli_json_quantity(&j, "min", lo, unit);
     cli_json_quantity(&j, "max", hi, unit);
     cli_json_int(&j, "n", n);
-    cli_json_int(&j, "n_stable_points", (long)nstable);
-    json_crit(&j, &cr, unit);
+    cli_json_int(&j, "n_stable_points", (long)sum.n_stable);
+    json_crit(&j, cr, unit);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor sweep of %s over [%g, %g] %s, %ld points (omega = %.6g rad/s unless swept)\n", pname, lo, hi, unit, n,
            c->p.omega);
-    printf("  stable points: %zu of %ld; %zu evaluations for the refinement\n", nstable, n, cr.evaluations);
-    print_intervals(pname, unit, &cr, lo, hi);
+    printf("  stable points: %zu of %ld; %zu evaluations for the refinement\n", sum.n_stable, n, cr->evaluations);
+    print_intervals(pname, unit, cr, lo, hi);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  autobal_rotor_stab_free(s);
-  free(vals);
-  free(mg);
-  free(vd);
+  autobal_study_rotor_sweep_summary_free(&sum);
   if (c) free(c->storage);
   free(c);
   return rc;
 }
 
-/* ---- rotor map ---------------------------------------------------------------------------- */
+/* ---- rotor map: the library's study (autobal_study_rotor_map) ---------------------------- */
 int cli_cmd_rotor_map(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
+  autobal_study_rotor_map_options o = autobal_study_rotor_map_options_default();
+  autobal_study_rotor_map_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  double lo1, hi1, lo2, hi2, *v1 = NULL, *v2 = NULL, *mg = NULL;
-  int *vd = NULL, p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
-  long n1 = 120, n2 = 60, threads = 0;
-  size_t i, n, nstable = 0;
+  double lo1, hi1, lo2, hi2;
+  int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
+  long n1 = (long)o.n1, n2 = (long)o.n2, threads = o.threads;
+  size_t n;
+  memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
   if ((rc = read_param(ctx, "map", "param1", "omega", &p1))) goto done;
@@ -582,37 +411,20 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     goto done;
   }
   n = (size_t)n1 * (size_t)n2;
-  v1 = grid(lo1, hi1, (size_t)n1);
-  v2 = grid(lo2, hi2, (size_t)n2);
-  mg = malloc(n * sizeof *mg);
-  vd = malloc(n * sizeof *vd);
-  if (!v1 || !v2 || !mg || !vd) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
+  o.stab = c->opt;
+  o.param1 = p1, o.param2 = p2;
+  o.min1 = lo1, o.max1 = hi1, o.min2 = lo2, o.max2 = hi2;
+  o.n1 = (size_t)n1, o.n2 = (size_t)n2;
+  o.threads = (int)threads;
   autobal_error_clear(&err);
-  st = autobal_rotor_stab_map(&c->p, &c->opt, p1, v1, (size_t)n1, p2, v2, (size_t)n2, (int)threads, mg, vd, &err);
+  st = autobal_study_rotor_map(&c->p, &o, NULL, &sum, &err);
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
-  for (i = 0; i < n; i++) nstable += vd[i] == AUTOBAL_VERDICT_STABLE;
   if ((rc = cli_archive_open(ctx, "autobal rotor map", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/map";
-    const char *n1s = autobal_rotor_stab_param_name(p1), *n2s = autobal_rotor_stab_param_name(p2);
-    const char *dims[2];
-    dims[0] = n1s;
-    dims[1] = n2s;
-    st = write_model(a, c);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = write_options(a, g, c);
-    if (!st) st = autobal_archive_attr_string(a, g, "param1", n1s);
-    if (!st) st = autobal_archive_attr_string(a, g, "param2", n2s);
-    if (!st) st = autobal_archive_coord(a, g, n1s, (size_t)n1, v1, autobal_rotor_stab_param_unit(p1), "first parameter (rows)");
-    if (!st) st = autobal_archive_coord(a, g, n2s, (size_t)n2, v2, autobal_rotor_stab_param_unit(p2), "second parameter (columns)");
-    if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, mg, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, vd, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
+    st = autobal_study_rotor_map_write(a, &c->p, &o, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -623,39 +435,39 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_string(&j, "param2", autobal_rotor_stab_param_name(p2));
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
-    cli_json_int(&j, "n_stable", (long)nstable);
-    cli_json_quantity(&j, "stable_fraction", (double)nstable / (double)n, "1");
+    cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
            hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
            autobal_rotor_stab_param_unit(p2));
-    printf("  stable points: %zu of %zu (%.1f%%)\n", nstable, n, 100.0 * (double)nstable / (double)n);
+    printf("  stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
-  free(v1);
-  free(v2);
-  free(mg);
-  free(vd);
+  autobal_study_rotor_map_summary_free(&sum);
   if (c) free(c->storage);
   free(c);
   return rc;
 }
 
-/* ---- rotor campbell ------------------------------------------------------------------------- */
+/* ---- rotor campbell: the library's study (autobal_study_rotor_campbell) --------------------- */
 int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   autobal_rotor_params p;
   void *storage = NULL;
+  autobal_study_rotor_campbell_options o = autobal_study_rotor_campbell_options_default();
+  autobal_study_rotor_campbell_summary sum;
+  const autobal_rotor_resonances *rr = &sum.resonances;
+  const double *fu = sum.natural_frequency_undamped, *fd = sum.natural_frequency_damped, *zd = sum.damping_ratio_at_rest;
   autobal_archive *a = NULL;
   autobal_error err;
   char msg[sizeof ctx->err];
-  autobal_rotor_resonances rr;
-  double lo = 0.0, hi = 0.0, xtol = 1e-10, *om = NULL, *fr = NULL, *ze = NULL, *ag = NULL, *ad = NULL;
-  double fu[4], fd[4], zd[4];
-  int *wh = NULL, rc, st;
-  long n = 401, nres = 4000;
-  size_t i, j, np;
+  double lo = 0.0, hi = 0.0, xtol = o.xtol_rel;
+  int rc, st;
+  long n = (long)o.n, nres = (long)o.n_resonance;
+  size_t i;
+  memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_rotor_config_read(ctx, &p, &storage))) return rc;
   cli_declare_section(ctx, "transient");
@@ -677,74 +489,21 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
                   "[campbell]: need 0 <= omega_min < omega_max, n in [2, 1e7], n_resonance in [3, 1e7], xtol_rel in (0, 0.1)");
     goto done;
   }
-  np = p.n_planes;
-  om = grid(lo, hi, (size_t)n);
-  fr = malloc(4 * (size_t)n * sizeof *fr);
-  ze = malloc(4 * (size_t)n * sizeof *ze);
-  wh = malloc(4 * (size_t)n * sizeof *wh);
-  ag = malloc((size_t)n * sizeof *ag);
-  ad = malloc(np * (size_t)n * sizeof *ad);
-  if (!om || !fr || !ze || !wh || !ag || !ad) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
-    goto done;
-  }
-  if ((st = autobal_rotor_modes(&p, 0.0, 1, fu, NULL, NULL, NULL, &err)) ||
-      (st = autobal_rotor_modes(&p, 0.0, 0, fd, zd, NULL, NULL, &err)) ||
-      (st = autobal_rotor_campbell(&p, om, (size_t)n, fr, ze, wh, &err))) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
-    goto done;
-  }
-  for (i = 0; i < (size_t)n; i++) {
-    double d2[AUTOBAL_ROTOR_MAX_PLANES];
-    if (autobal_rotor_unbalance_response(&p, om[i], &ag[i], d2, NULL) != AUTOBAL_SUCCESS) {
-      ag[i] = INFINITY; /* an undamped resonance exactly on the grid */
-      for (j = 0; j < np; j++) d2[j] = INFINITY;
-    }
-    for (j = 0; j < np; j++) ad[i * np + j] = d2[j];
-  }
-  st = autobal_rotor_resonance_speeds(&p, lo, hi, (size_t)nres, xtol, &rr, &err);
-  st = crit_warning(ctx, st, "resonance speeds", err.message);
+  o.omega_min = lo;
+  o.omega_max = hi;
+  o.n = (size_t)n;
+  o.n_resonance = (size_t)nres;
+  o.xtol_rel = xtol;
+  st = autobal_study_rotor_campbell(&p, &o, NULL, &sum, &err);
+  if (sum.resonances_truncated && !ctx->json)
+    fprintf(stderr, "autobal: warning: resonance speeds: %s\n", cli_rotor_message(sum.resonance_message, msg, sizeof msg));
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
   if ((rc = cli_archive_open(ctx, "autobal rotor campbell", &a))) goto done;
   if (a) {
-    const char *g = "/rotor/campbell";
-    static const char *const d2[] = {"omega", "mode"}, *const d1[] = {"omega"}, *const dp[] = {"omega", "plane"},
-                             *const dm[] = {"mode"}, *const dc[] = {"crossing"}, *const dk[] = {"peak"};
-    stab_cfg tmp;
-    memset(&tmp, 0, sizeof tmp);
-    tmp.p = p;
-    for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) tmp.member_name[j] = "default";
-    st = write_model(a, &tmp);
-    if (!st) st = autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_attr_string(a, g, "description", "rotor-housing without balls (the unbalances drive the response; FULL inertia keeps their masses): natural frequencies, damping ratios and whirl vs omega (gyroscopic C omega), steady unbalance response");
-    if (!st) st = autobal_archive_coord(a, g, "omega", (size_t)n, om, "rad/s", "spin speed");
-    if (!st) st = autobal_archive_dim(a, g, "mode", 4, "mode index, by increasing frequency at each speed");
-    if (!st) st = autobal_archive_dim(a, g, "plane", np, "balancer plane index");
-    if (!st) st = autobal_archive_var(a, g, "frequency", 2, d2, fr, "rad/s", "damped natural frequency Im(lambda) in the fixed frame");
-    if (!st) st = autobal_archive_var(a, g, "damping_ratio", 2, d2, ze, "1", "-Re(lambda)/|lambda|");
-    if (!st) st = autobal_archive_var_int(a, g, "whirl", 2, d2, wh, "1", "1 forward, -1 backward, 0 undecided");
-    if (!st) st = autobal_archive_var(a, g, "amp_G", 1, d1, ag, "m", "steady unbalance response: major semi-axis of the orbit of the centre of mass");
-    if (!st) st = autobal_archive_var(a, g, "amp_D", 2, dp, ad, "m", "steady unbalance response at each balancer plane");
-    if (!st) st = autobal_archive_var(a, g, "natural_frequency_undamped", 1, dm, fu, "rad/s", "natural frequencies at rest without damping");
-    if (!st) st = autobal_archive_var(a, g, "natural_frequency_damped", 1, dm, fd, "rad/s", "damped natural frequencies at rest");
-    if (!st) st = autobal_archive_var(a, g, "damping_ratio_at_rest", 1, dm, zd, "1", "damping ratios at rest");
-    if (!st) st = autobal_archive_attr_int(a, g, "n_crossing", (long)rr.n_cross);
-    if (!st) st = autobal_archive_attr_int(a, g, "n_peak", (long)rr.n_peak);
-    if (!st) st = autobal_archive_attr_int(a, g, "truncated", rr.truncated);
-    if (!st && rr.n_cross > 0) {
-      st = autobal_archive_dim(a, g, "crossing", rr.n_cross, "index of a speed where a natural frequency equals omega");
-      if (!st) st = autobal_archive_var(a, g, "crossing_omega", 1, dc, rr.cross, "rad/s", "critical speed: natural frequency = omega");
-      if (!st) st = autobal_archive_var_int(a, g, "crossing_mode", 1, dc, rr.cross_mode, "1", "mode index");
-      if (!st) st = autobal_archive_var_int(a, g, "crossing_whirl", 1, dc, rr.cross_whirl, "1", "1 forward, -1 backward");
-    }
-    if (!st && rr.n_peak > 0) {
-      st = autobal_archive_dim(a, g, "peak", rr.n_peak, "index of a peak of the unbalance response");
-      if (!st) st = autobal_archive_var(a, g, "peak_omega", 1, dk, rr.peak, "rad/s", "unbalance-response critical speed (local maximum of amp_G)");
-      if (!st) st = autobal_archive_var(a, g, "peak_amp_G", 1, dk, rr.peak_amp, "m", "amp_G at the peak");
-    }
+    st = autobal_study_rotor_campbell_write(a, &p, &sum);
     rc = cli_archive_end(ctx, &a, st, rc);
     if (rc) goto done;
   }
@@ -754,12 +513,12 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
     cli_json_quantities(&jj, "natural_frequency_undamped", fu, 4, "rad/s");
     cli_json_quantities(&jj, "natural_frequency_damped", fd, 4, "rad/s");
     cli_json_quantities(&jj, "damping_ratio_at_rest", zd, 4, "1");
-    cli_json_quantities(&jj, "crossing_omega", rr.cross, rr.n_cross, "rad/s");
+    cli_json_quantities(&jj, "crossing_omega", rr->cross, rr->n_cross, "rad/s");
     cli_json_array(&jj, "crossing_whirl");
-    for (i = 0; i < rr.n_cross; i++) cli_json_int(&jj, NULL, rr.cross_whirl[i]);
+    for (i = 0; i < rr->n_cross; i++) cli_json_int(&jj, NULL, rr->cross_whirl[i]);
     cli_json_array_end(&jj);
-    cli_json_quantities(&jj, "peak_omega", rr.peak, rr.n_peak, "rad/s");
-    cli_json_bool(&jj, "truncated", rr.truncated);
+    cli_json_quantities(&jj, "peak_omega", rr->peak, rr->n_peak, "rad/s");
+    cli_json_bool(&jj, "truncated", rr->truncated);
     cli_json_summary_end(&jj, ctx);
   } else if (!ctx->quiet) {
     printf("rotor-housing (balls removed): natural frequencies at rest\n");
@@ -770,28 +529,23 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
            zd[1], zd[2], zd[3]);
     printf("Campbell diagram over omega in [%g, %g] rad/s (%ld points)\n", lo, hi, n);
     printf("  critical speeds (natural frequency = omega):");
-    if (rr.n_cross == 0) printf(" none");
-    for (i = 0; i < rr.n_cross; i++)
-      printf(" %.8g rad/s = %.6g rpm (%s)", rr.cross[i], cli_rpm(rr.cross[i]),
-             rr.cross_whirl[i] > 0 ? "forward" : (rr.cross_whirl[i] < 0 ? "backward" : "?"));
+    if (rr->n_cross == 0) printf(" none");
+    for (i = 0; i < rr->n_cross; i++)
+      printf(" %.8g rad/s = %.6g rpm (%s)", rr->cross[i], cli_rpm(rr->cross[i]),
+             rr->cross_whirl[i] > 0 ? "forward" : (rr->cross_whirl[i] < 0 ? "backward" : "?"));
     printf("\n  unbalance-response peaks (centre of mass):");
-    if (rr.n_peak == 0) printf(" none");
-    for (i = 0; i < rr.n_peak; i++)
-      printf(" %.8g rad/s = %.6g rpm (%.4g um)", rr.peak[i], cli_rpm(rr.peak[i]), rr.peak_amp[i] * 1e6);
+    if (rr->n_peak == 0) printf(" none");
+    for (i = 0; i < rr->n_peak; i++)
+      printf(" %.8g rad/s = %.6g rpm (%.4g um)", rr->peak[i], cli_rpm(rr->peak[i]), rr->peak_amp[i] * 1e6);
     printf("\n");
-    if (rr.truncated)
+    if (rr->truncated)
       printf("  (TRUNCATED: more crossings or peaks than the lists hold; see the warning for the range covered)\n");
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;
 done:
   if (a) rc = cli_archive_finish(ctx, a, rc);
-  free(om);
-  free(fr);
-  free(ze);
-  free(wh);
-  free(ag);
-  free(ad);
+  autobal_study_rotor_campbell_summary_free(&sum);
   free(storage);
   return rc;
 }

@@ -16,6 +16,7 @@
 #include "autobal/transient.h"
 #include "autobal/pendulum.h"
 #include "autobal/archive.h"
+#include "autobal/study.h"
 #include "autobal/ensemble.h"
 
 #endif

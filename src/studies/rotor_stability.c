@@ -1,0 +1,629 @@
+/* rotor_stability.c: the rotor stability study (`autobal rotor stability`): the balanced motion
+ * (3.14) analysed by every applicable method at the rotor's speed, the critical speeds in a
+ * range, and their archive layout (include/autobal/study.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/study.h"
+#include "internal.h"
+
+autobal_study_rotor_stability_options autobal_study_rotor_stability_options_default(void) {
+  autobal_study_rotor_stability_options o;
+  memset(&o, 0, sizeof o);
+  o.stab = autobal_rotor_stab_options_default();
+  o.critical_speeds = 1;
+  o.omega_min = NAN;
+  o.omega_max = NAN;
+  o.n_omega = 400;
+  o.xtol_rel = 1e-8;
+  return o;
+}
+
+void autobal_study_rotor_speed_range(const autobal_rotor_params *p, double *lo, double *hi) {
+  double f[4] = {100, 100, 100, 100};
+  (void)autobal_rotor_modes(p, 0.0, 1, f, NULL, NULL, NULL, NULL);
+  *lo = 0.05 * (f[0] > 0 ? f[0] : 1.0);
+  *hi = 4.0 * fmax(f[3], fabs(p->omega));
+  if (!(*hi > *lo)) *hi = *lo + 1.0;
+}
+
+void autobal_study_rotor_stability_summary_free(autobal_study_rotor_stability_summary *s) {
+  if (!s) return;
+  free(s->storage_);
+  s->storage_ = NULL;
+  s->result.psi = s->result.full_re = s->result.full_im = s->result.mu_re = s->result.mu_im = NULL;
+}
+
+/* Copy the arrays the result points to (into the handle) into the summary's own storage. */
+static int keep_arrays(autobal_study_rotor_stability_summary *s) {
+  autobal_rotor_stab_result *r = &s->result;
+  size_t n = r->n_balls + 2 * r->n_full + 2 * r->n_floquet, k = 0;
+  double *m = malloc((n ? n : 1) * sizeof *m);
+  if (!m) return AUTOBAL_ENOMEM;
+#define KEEP(ptr, len)                                        \
+  do {                                                        \
+    if ((len) > 0 && (ptr)) memcpy(m + k, (ptr), (len) * sizeof *m); \
+    (ptr) = (len) > 0 ? m + k : NULL;                         \
+    k += (len);                                               \
+  } while (0)
+  KEEP(r->psi, r->n_balls);
+  KEEP(r->full_re, r->n_full);
+  KEEP(r->full_im, r->n_full);
+  KEEP(r->mu_re, r->n_floquet);
+  KEEP(r->mu_im, r->n_floquet);
+#undef KEEP
+  s->storage_ = m;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_study_rotor_stability_options *opt,
+                                  autobal_archive *a, autobal_study_rotor_stability_summary *summary,
+                                  autobal_error *err) {
+  autobal_study_rotor_stability_options def = autobal_study_rotor_stability_options_default();
+  const autobal_study_rotor_stability_options *o = opt ? opt : &def;
+  autobal_study_rotor_stability_summary *s = summary;
+  autobal_rotor_stab *h = NULL;
+  autobal_error e;
+  int st;
+  autobal_error_clear(err);
+  if (!s) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
+  memset(s, 0, sizeof *s);
+  if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
+  if (!(p->omega != 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter omega = 0: the balanced motion of a rotor at rest has no stability to analyse");
+  s->omega_min = o->omega_min;
+  s->omega_max = o->omega_max;
+  s->n_omega = o->n_omega;
+  if (o->critical_speeds) {
+    double lo, hi;
+    if (isnan(s->omega_min) || isnan(s->omega_max)) {
+      autobal_study_rotor_speed_range(p, &lo, &hi);
+      if (isnan(s->omega_min)) s->omega_min = lo;
+      if (isnan(s->omega_max)) s->omega_max = hi;
+    }
+    if (!(s->omega_min > 0 && s->omega_min < s->omega_max && isfinite(s->omega_max)) || o->n_omega < 2 ||
+        o->n_omega > 10000000 || !(o->xtol_rel > 0 && o->xtol_rel < 0.1))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "options: need 0 < omega_min < omega_max (rad/s), n_omega in [2, 1e7], xtol_rel in "
+                               "(0, 0.1); got %g, %g, %zu, %g",
+                               s->omega_min, s->omega_max, o->n_omega, o->xtol_rel);
+  }
+  autobal_error_clear(&e);
+  h = autobal_rotor_stab_alloc(p, &o->stab, &e);
+  if (!h) return autobal_error_set(err, e.status ? e.status : AUTOBAL_EINVAL, "%s", e.message);
+  if (e.status == AUTOBAL_WARNING) {
+    s->warning = 1;
+    snprintf(s->warning_message, sizeof s->warning_message, "%s", e.message);
+  }
+  st = autobal_rotor_stab_analyze(h, &s->result);
+  if (st) {
+    autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+    goto fail;
+  }
+  if (o->critical_speeds) {
+    double lo = p->omega > 0 ? s->omega_min : -s->omega_max, hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+    st = autobal_rotor_stab_critical(h, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, o->n_omega, o->xtol_rel, &s->critical);
+    if (st == AUTOBAL_WARNING) { /* truncated list: the data are valid, the flag is recorded */
+      s->critical_truncated = 1;
+      snprintf(s->critical_message, sizeof s->critical_message, "%s", autobal_rotor_stab_errmsg(h));
+      st = AUTOBAL_SUCCESS;
+    }
+    if (st) {
+      autobal_error_set(err, st, "critical speeds: %s", autobal_rotor_stab_errmsg(h));
+      goto fail;
+    }
+    s->have_critical = 1;
+    /* the analysis above stays valid: critical() restores omega but overwrites the workspace */
+    st = autobal_rotor_stab_analyze(h, &s->result);
+    if (st) {
+      autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+      goto fail;
+    }
+  }
+  if ((st = keep_arrays(s))) {
+    autobal_error_set(err, st, "out of memory");
+    goto fail;
+  }
+  autobal_rotor_stab_free(h);
+  if (a && (st = autobal_study_rotor_stability_write(a, p, o, s)))
+    return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+  return AUTOBAL_SUCCESS;
+fail:
+  autobal_rotor_stab_free(h);
+  memset(&s->result, 0, sizeof s->result);
+  return st;
+}
+
+static const char *verdict_text(int v) {
+  return v == AUTOBAL_ROTOR_VERDICT_NONE ? "none (no balanced configuration)" : autobal_verdict_name(v);
+}
+
+static int write_crit(autobal_archive *a, const char *g, const autobal_rotor_crit *cr, const char *unit) {
+  int st = autobal_archive_attr_int(a, g, "n_critical", (long)cr->n);
+  int kinds[AUTOBAL_ROTOR_MAX_CRIT];
+  size_t i;
+  static const char *const dc[] = {"critical"}, *const di[] = {"interval"};
+  if (!st) st = autobal_archive_attr_int(a, g, "n_stable_intervals", (long)cr->n_stable);
+  if (!st) st = autobal_archive_attr_int(a, g, "truncated", cr->truncated);
+  if (!st && cr->n > 0) {
+    for (i = 0; i < cr->n; i++) kinds[i] = cr->kind[i];
+    st = autobal_archive_dim(a, g, "critical", cr->n, "index of a critical value (verdict change)");
+    if (!st) st = autobal_archive_var(a, g, "critical_value", 1, dc, cr->value, unit, "critical value: the margin crosses 0 here (refined)");
+    if (!st) st = autobal_archive_var_int(a, g, "critical_kind", 1, dc, kinds, "1", "1: stable above, -1: unstable above, 0: a balanced configuration exists on one side only");
+  }
+  if (!st && cr->n_stable > 0) {
+    st = autobal_archive_dim(a, g, "interval", cr->n_stable, "index of a stable interval");
+    if (!st) st = autobal_archive_var(a, g, "stable_lo", 1, di, cr->stable_lo, unit, "lower end of a stable interval (the sweep's start when stable there)");
+    if (!st) st = autobal_archive_var(a, g, "stable_hi", 1, di, cr->stable_hi, unit, "upper end of a stable interval (the sweep's end when stable there)");
+  }
+  return st;
+}
+
+/* The rotor model and the balanced configuration analysed in each plane (the member of the
+ * family (3.14), with its given angles). */
+static int write_model(autobal_archive *a, const autobal_rotor_params *p, const autobal_rotor_stab_options *so) {
+  static const char *const member_names[] = {"default", "symmetric", "free", "given"};
+  char grp[64];
+  size_t j;
+  int st = autobal_study_write_rotor_params(a, p, 0);
+  for (j = 0; j < p->n_planes && j < AUTOBAL_ROTOR_MAX_PLANES && !st; j++) {
+    const autobal_rotor_member *m = &so->member[j];
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_attr_string(a, grp, "member", m->kind >= 0 && m->kind <= 3 ? member_names[m->kind] : "?");
+    if (!st && m->n_angles > 0) st = autobal_archive_attr_double_array(a, grp, "member_angles", m->n_angles, m->angles, "rad");
+  }
+  return st;
+}
+
+static int write_options(autobal_archive *a, const char *g, const autobal_rotor_stab_options *so) {
+  static const char *const method_names[] = {"auto", "poly", "closed", "full", "floquet"};
+  int st;
+  if (so->method < 0 || so->method > 4) return AUTOBAL_EINVAL;
+  st = autobal_archive_attr_string(a, g, "method_option", method_names[so->method]);
+  if (!st) st = autobal_archive_attr_double(a, g, "tol", so->tol, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "floquet_rtol", so->floquet_rtol, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "floquet_atol", so->floquet_atol, "1");
+  return st;
+}
+
+int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_params *p,
+                                        const autobal_study_rotor_stability_options *opt,
+                                        const autobal_study_rotor_stability_summary *s) {
+  static const char *const droot[] = {"root"}, *const dpow[] = {"power"}, *const dfull[] = {"full_root"},
+                           *const dmu[] = {"multiplier"}, *const dball[] = {"ball"};
+  autobal_study_rotor_stability_options def = autobal_study_rotor_stability_options_default();
+  const autobal_study_rotor_stability_options *o = opt ? opt : &def;
+  const autobal_rotor_stab_result *r;
+  const char *g = "/rotor/stability";
+  double power[AUTOBAL_ROTOR_POLY_LEN];
+  size_t i;
+  int st;
+  if (!a || !p || !s) return AUTOBAL_EINVAL;
+  r = &s->result;
+  for (i = 0; i < AUTOBAL_ROTOR_POLY_LEN; i++) power[i] = (double)i;
+  st = write_model(a, p, &o->stab);
+  if (!st) st = autobal_archive_group(a, g);
+  if (!st) st = write_options(a, g, &o->stab);
+  if (!st) st = autobal_archive_attr_string(a, g, "method", autobal_rotor_stab_method_name(r->method));
+  if (!st) st = autobal_archive_attr_string(a, g, "verdict", verdict_text(r->verdict));
+  if (!st) st = autobal_archive_attr_double(a, g, "margin", r->margin, "1/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "period", r->period, "s");
+  if (!st) st = autobal_archive_attr_int(a, g, "isotropic", r->isotropic);
+  if (!st) st = autobal_archive_attr_int(a, g, "closure_ok", r->closure_ok);
+  if (!st) st = autobal_archive_attr_int(a, g, "n_family", (long)r->n_family);
+  if (!st) st = autobal_archive_dim(a, g, "ball", r->n_balls, "ball index in state order (plane 1 first)");
+  if (!st) st = autobal_archive_var(a, g, "psi_balanced", 1, dball, r->psi, "rad", "balanced ball angles (3.14) of the analysed member, relative to the rotor");
+  if (!st && r->n_closed > 0) {
+    st = autobal_archive_dim(a, g, "root", r->n_closed, "index of a characteristic root of the closed system");
+    if (!st) st = autobal_archive_var(a, g, "root_real", 1, droot, r->root_re, "1/s", r->n_poly ? "real part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "real part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
+    if (!st) st = autobal_archive_var(a, g, "root_imag", 1, droot, r->root_im, "1/s", r->n_poly ? "imaginary part of the characteristic roots lambda (rotating coordinates): roots of Delta (GSL polynomial solver)" : "imaginary part of the characteristic roots lambda (rotating coordinates): eigenvalues of the closed first-order matrix");
+    if (!st) st = autobal_archive_var(a, g, "eig_real", 1, droot, r->closed_eig_re, "1/s", "real part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
+    if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, droot, r->closed_eig_im, "1/s", "imaginary part of the eigenvalues of the closed first-order matrix (rotating coordinates), matched to the roots");
+    if (!st) st = autobal_archive_attr_double(a, g, "closed_margin", r->closed_margin, "1/s");
+    if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r->root_eig_mismatch, "1");
+  }
+  if (!st && r->n_poly > 0) {
+    st = autobal_archive_coord(a, g, "power", AUTOBAL_ROTOR_POLY_LEN, power, "1", "power of lambda");
+    if (!st) st = autobal_archive_var(a, g, "char_poly", 1, dpow, r->poly, "1", "coefficients of Delta = F F* - (|Q|/2)^2 P^4 Pb^4 N N*, ascending powers k of lambda (lambda in 1/s), each divided by its SI unit: Delta is in kg^4 m^4 s^-12, so the coefficient of lambda^k is this number times kg^4 m^4 s^(k-12)");
+    if (!st) st = autobal_archive_attr_string(a, g, "hurwitz_verdict", autobal_verdict_name(r->hurwitz_verdict));
+    if (!st) st = autobal_archive_attr_int(a, g, "hurwitz_n_rhp", r->hurwitz_n_rhp);
+  }
+  if (!st && r->n_full > 0) {
+    st = autobal_archive_dim(a, g, "full_root", r->n_full, "index of an eigenvalue of the full model's linearization");
+    if (!st) st = autobal_archive_var(a, g, "full_real", 1, dfull, r->full_re, "1/s", "real part of the eigenvalues of the full model's linearization in rotating coordinates");
+    if (!st) st = autobal_archive_var(a, g, "full_imag", 1, dfull, r->full_im, "1/s", "imaginary part of the eigenvalues of the full model's linearization in rotating coordinates");
+    if (!st) st = autobal_archive_attr_double(a, g, "full_margin", r->full_margin, "1/s");
+    if (!st) st = autobal_archive_attr_double(a, g, "full_mismatch", r->full_mismatch, "1");
+  }
+  if (!st && r->n_floquet > 0) {
+    st = autobal_archive_dim(a, g, "multiplier", r->n_floquet, "index of a Floquet multiplier (by decreasing modulus)");
+    if (!st) st = autobal_archive_var(a, g, "floquet_real", 1, dmu, r->mu_re, "1", "real part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
+    if (!st) st = autobal_archive_var(a, g, "floquet_imag", 1, dmu, r->mu_im, "1", "imaginary part of the Floquet multipliers mu (eigenvalues of the monodromy matrix over T = 2 pi/|omega|)");
+    if (!st) st = autobal_archive_attr_double(a, g, "floquet_margin", r->floquet_margin, "1/s");
+    if (!st) st = autobal_archive_attr_double(a, g, "floquet_mismatch", r->floquet_mismatch, "1");
+  }
+  if (!st && s->have_critical) {
+    const char *gc = "/rotor/stability/critical";
+    st = autobal_archive_group(a, gc);
+    if (!st) st = autobal_archive_attr_double(a, gc, "omega_min", s->omega_min, "rad/s");
+    if (!st) st = autobal_archive_attr_double(a, gc, "omega_max", s->omega_max, "rad/s");
+    if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", (long)s->n_omega);
+    if (!st) st = write_crit(a, gc, &s->critical, "rad/s");
+  }
+  return st;
+}
+
+/* ---- sweep, map, Campbell ------------------------------------------------------------------ */
+void autobal_study_rotor_param_range(const autobal_rotor_params *p, int param, double *lo, double *hi) {
+  const autobal_rotor_plane *pl = &p->plane[0];
+  double l0, h0;
+  switch (param) {
+    case AUTOBAL_ROTOR_PARAM_OMEGA:
+      autobal_study_rotor_speed_range(p, &l0, &h0);
+      *lo = l0, *hi = h0;
+      return;
+    case AUTOBAL_ROTOR_PARAM_BALL_DAMPING:
+      *lo = 0.0, *hi = 10.0 * (pl->n_balls ? pl->ball_damping[0] : 0.1) + 1e-3;
+      return;
+    case AUTOBAL_ROTOR_PARAM_BALL_MASS:
+      *lo = 0.1 * (pl->n_balls ? pl->ball_mass[0] : 0.05), *hi = 4.0 * (pl->n_balls ? pl->ball_mass[0] : 0.05);
+      return;
+    case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS:
+      *lo = 0.0, *hi = 4.0 * pl->m0 + 1e-3;
+      return;
+    case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE:
+      *lo = 0.0, *hi = 4.0;
+      return;
+    default:
+      *lo = 0.25, *hi = 4.0;
+      return;
+  }
+}
+
+/* A linear grid [lo, hi] with n points. */
+static double *grid(double lo, double hi, size_t n) {
+  double *v = malloc((n ? n : 1) * sizeof *v);
+  size_t i;
+  if (!v) return NULL;
+  for (i = 0; i < n; i++) v[i] = n == 1 ? lo : (i + 1 == n ? hi : lo + (hi - lo) * (double)i / (double)(n - 1));
+  return v;
+}
+
+autobal_study_rotor_sweep_options autobal_study_rotor_sweep_options_default(void) {
+  autobal_study_rotor_sweep_options o;
+  memset(&o, 0, sizeof o);
+  o.stab = autobal_rotor_stab_options_default();
+  o.param = AUTOBAL_ROTOR_PARAM_OMEGA;
+  o.min = o.max = NAN;
+  o.n = 1000;
+  o.xtol_rel = 1e-8;
+  return o;
+}
+
+void autobal_study_rotor_sweep_summary_free(autobal_study_rotor_sweep_summary *s) {
+  if (!s) return;
+  free(s->values);
+  free(s->margin);
+  free(s->verdict);
+  s->values = s->margin = NULL;
+  s->verdict = NULL;
+}
+
+int autobal_study_rotor_sweep(const autobal_rotor_params *p, const autobal_study_rotor_sweep_options *opt,
+                              autobal_archive *a, autobal_study_rotor_sweep_summary *summary, autobal_error *err) {
+  autobal_study_rotor_sweep_options def = autobal_study_rotor_sweep_options_default();
+  const autobal_study_rotor_sweep_options *o = opt ? opt : &def;
+  autobal_study_rotor_sweep_summary *s = summary;
+  autobal_rotor_stab *h;
+  autobal_error e;
+  const char *pname, *unit;
+  double lo, hi;
+  size_t i, n;
+  int st;
+  autobal_error_clear(err);
+  if (!s) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
+  memset(s, 0, sizeof *s);
+  if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
+  pname = autobal_rotor_stab_param_name(o->param);
+  unit = autobal_rotor_stab_param_unit(o->param);
+  if (!pname || !unit) return autobal_error_set(err, AUTOBAL_EINVAL, "options: param = %d is not a rotor parameter id", o->param);
+  autobal_study_rotor_param_range(p, o->param, &lo, &hi);
+  if (!isnan(o->min)) lo = o->min;
+  if (!isnan(o->max)) hi = o->max;
+  if (!(lo < hi) || o->n < 2 || o->n > 10000000 || !(o->xtol_rel > 0 && o->xtol_rel < 0.1))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: need min < max, n in [2, 1e7], xtol_rel in (0, 0.1); got %g, %g, %zu, %g", lo, hi,
+                             o->n, o->xtol_rel);
+  if (o->param != AUTOBAL_ROTOR_PARAM_OMEGA && !(p->omega != 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter omega = 0: nothing to analyse");
+  n = o->n;
+  s->param = o->param, s->min = lo, s->max = hi, s->n = n;
+  autobal_error_clear(&e);
+  h = autobal_rotor_stab_alloc(p, &o->stab, &e);
+  if (!h) return autobal_error_set(err, e.status ? e.status : AUTOBAL_EINVAL, "%s", e.message);
+  s->values = grid(lo, hi, n);
+  s->margin = malloc(n * sizeof *s->margin);
+  s->verdict = malloc(n * sizeof *s->verdict);
+  if (!s->values || !s->margin || !s->verdict) {
+    st = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+    goto done;
+  }
+  /* the sweep in chunks, for progress and cancellation */
+  for (i = 0; i < n; i += 64) {
+    size_t m = n - i < 64 ? n - i : 64;
+    st = autobal_rotor_stab_sweep(h, o->param, s->values + i, m, s->margin + i, s->verdict + i);
+    if (st) {
+      autobal_error_set(err, st, "%s = %.9g %s: %s", pname, s->values[i], unit, autobal_rotor_stab_errmsg(h));
+      goto done;
+    }
+    if (o->progress && o->progress(0.5 * (double)(i + m) / (double)n, o->progress_user)) {
+      st = autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback");
+      goto done;
+    }
+  }
+  st = autobal_rotor_stab_critical(h, o->param, lo, hi, n, o->xtol_rel, &s->critical);
+  if (st == AUTOBAL_WARNING) {
+    s->critical_truncated = 1;
+    snprintf(s->critical_message, sizeof s->critical_message, "%s", autobal_rotor_stab_errmsg(h));
+    st = AUTOBAL_SUCCESS;
+  }
+  if (st) {
+    autobal_error_set(err, st, "critical values: %s", autobal_rotor_stab_errmsg(h));
+    goto done;
+  }
+  for (i = 0; i < n; i++) s->n_stable += s->verdict[i] == AUTOBAL_VERDICT_STABLE;
+  if (a && (st = autobal_study_rotor_sweep_write(a, p, o, s))) autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+done:
+  autobal_rotor_stab_free(h);
+  return st;
+}
+
+int autobal_study_rotor_sweep_write(autobal_archive *a, const autobal_rotor_params *p,
+                                    const autobal_study_rotor_sweep_options *opt,
+                                    const autobal_study_rotor_sweep_summary *s) {
+  autobal_study_rotor_sweep_options def = autobal_study_rotor_sweep_options_default();
+  const autobal_study_rotor_sweep_options *o = opt ? opt : &def;
+  const char *g = "/rotor/sweep", *pname, *unit;
+  const char *dims[1];
+  char lname[160];
+  int st;
+  if (!a || !p || !s || !s->values) return AUTOBAL_EINVAL;
+  pname = autobal_rotor_stab_param_name(s->param);
+  unit = autobal_rotor_stab_param_unit(s->param);
+  if (!pname || !unit) return AUTOBAL_EINVAL;
+  dims[0] = pname;
+  snprintf(lname, sizeof lname, "swept parameter %s", pname);
+  st = write_model(a, p, &o->stab);
+  if (!st) st = autobal_archive_group(a, g);
+  if (!st) st = write_options(a, g, &o->stab);
+  if (!st) st = autobal_archive_attr_string(a, g, "param", pname);
+  if (!st) st = autobal_archive_coord(a, g, pname, s->n, s->values, unit, lname);
+  if (!st) st = autobal_archive_var(a, g, "margin", 1, dims, s->margin, "1/s", "stability margin: largest real part of the characteristic roots (family roots excluded; Floquet: log max|mu| / T); NaN: no balanced configuration");
+  if (!st) st = autobal_archive_var_int(a, g, "verdict", 1, dims, s->verdict, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
+  if (!st) st = write_crit(a, g, &s->critical, unit);
+  return st;
+}
+
+autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void) {
+  autobal_study_rotor_map_options o;
+  memset(&o, 0, sizeof o);
+  o.stab = autobal_rotor_stab_options_default();
+  o.param1 = AUTOBAL_ROTOR_PARAM_OMEGA;
+  o.param2 = AUTOBAL_ROTOR_PARAM_BALL_DAMPING;
+  o.min1 = o.max1 = o.min2 = o.max2 = NAN;
+  o.n1 = 120;
+  o.n2 = 60;
+  o.threads = 0;
+  return o;
+}
+
+void autobal_study_rotor_map_summary_free(autobal_study_rotor_map_summary *s) {
+  if (!s) return;
+  free(s->values1);
+  free(s->values2);
+  free(s->margin);
+  free(s->verdict);
+  s->values1 = s->values2 = s->margin = NULL;
+  s->verdict = NULL;
+}
+
+int autobal_study_rotor_map(const autobal_rotor_params *p, const autobal_study_rotor_map_options *opt,
+                            autobal_archive *a, autobal_study_rotor_map_summary *summary, autobal_error *err) {
+  autobal_study_rotor_map_options def = autobal_study_rotor_map_options_default();
+  const autobal_study_rotor_map_options *o = opt ? opt : &def;
+  autobal_study_rotor_map_summary *s = summary;
+  size_t i, n;
+  int st;
+  autobal_error_clear(err);
+  if (!s) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
+  memset(s, 0, sizeof *s);
+  if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
+  if (!autobal_rotor_stab_param_name(o->param1) || !autobal_rotor_stab_param_name(o->param2))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: param1 = %d or param2 = %d is not a rotor parameter id",
+                             o->param1, o->param2);
+  if (o->param1 == o->param2)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: param1 and param2 must differ (both %s)",
+                             autobal_rotor_stab_param_name(o->param1));
+  s->param1 = o->param1, s->param2 = o->param2;
+  autobal_study_rotor_param_range(p, o->param1, &s->min1, &s->max1);
+  autobal_study_rotor_param_range(p, o->param2, &s->min2, &s->max2);
+  if (!isnan(o->min1)) s->min1 = o->min1;
+  if (!isnan(o->max1)) s->max1 = o->max1;
+  if (!isnan(o->min2)) s->min2 = o->min2;
+  if (!isnan(o->max2)) s->max2 = o->max2;
+  if (!(s->min1 <= s->max1) || !(s->min2 <= s->max2) || o->n1 < 1 || o->n2 < 1 || o->n1 > 100000 || o->n2 > 100000 ||
+      o->threads < 0 || o->threads > 1024)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: need min1 <= max1, min2 <= max2, n1, n2 in [1, 100000], threads in [0, 1024]");
+  s->n1 = o->n1, s->n2 = o->n2;
+  n = s->n1 * s->n2;
+  s->values1 = grid(s->min1, s->max1, s->n1);
+  s->values2 = grid(s->min2, s->max2, s->n2);
+  s->margin = malloc(n * sizeof *s->margin);
+  s->verdict = malloc(n * sizeof *s->verdict);
+  if (!s->values1 || !s->values2 || !s->margin || !s->verdict)
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+  st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1, s->n1, o->param2, s->values2, s->n2, o->threads,
+                              s->margin, s->verdict, err);
+  if (st) return st;
+  for (i = 0; i < n; i++) s->n_stable += s->verdict[i] == AUTOBAL_VERDICT_STABLE;
+  if (a && (st = autobal_study_rotor_map_write(a, p, o, s)))
+    return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params *p,
+                                  const autobal_study_rotor_map_options *opt,
+                                  const autobal_study_rotor_map_summary *s) {
+  autobal_study_rotor_map_options def = autobal_study_rotor_map_options_default();
+  const autobal_study_rotor_map_options *o = opt ? opt : &def;
+  const char *g = "/rotor/map", *n1s, *n2s;
+  const char *dims[2];
+  int st;
+  if (!a || !p || !s || !s->values1) return AUTOBAL_EINVAL;
+  n1s = autobal_rotor_stab_param_name(s->param1);
+  n2s = autobal_rotor_stab_param_name(s->param2);
+  dims[0] = n1s;
+  dims[1] = n2s;
+  st = write_model(a, p, &o->stab);
+  if (!st) st = autobal_archive_group(a, g);
+  if (!st) st = write_options(a, g, &o->stab);
+  if (!st) st = autobal_archive_attr_string(a, g, "param1", n1s);
+  if (!st) st = autobal_archive_attr_string(a, g, "param2", n2s);
+  if (!st) st = autobal_archive_coord(a, g, n1s, s->n1, s->values1, autobal_rotor_stab_param_unit(s->param1), "first parameter (rows)");
+  if (!st) st = autobal_archive_coord(a, g, n2s, s->n2, s->values2, autobal_rotor_stab_param_unit(s->param2), "second parameter (columns)");
+  if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
+  if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
+  return st;
+}
+
+autobal_study_rotor_campbell_options autobal_study_rotor_campbell_options_default(void) {
+  autobal_study_rotor_campbell_options o;
+  o.omega_min = o.omega_max = NAN;
+  o.n = 401;
+  o.n_resonance = 4000;
+  o.xtol_rel = 1e-10;
+  return o;
+}
+
+void autobal_study_rotor_campbell_summary_free(autobal_study_rotor_campbell_summary *s) {
+  if (!s) return;
+  free(s->omega);
+  free(s->frequency);
+  free(s->damping_ratio);
+  free(s->whirl);
+  free(s->amp_G);
+  free(s->amp_D);
+  s->omega = s->frequency = s->damping_ratio = s->amp_G = s->amp_D = NULL;
+  s->whirl = NULL;
+}
+
+int autobal_study_rotor_campbell(const autobal_rotor_params *p, const autobal_study_rotor_campbell_options *opt,
+                                 autobal_archive *a, autobal_study_rotor_campbell_summary *summary,
+                                 autobal_error *err) {
+  autobal_study_rotor_campbell_options def = autobal_study_rotor_campbell_options_default();
+  const autobal_study_rotor_campbell_options *o = opt ? opt : &def;
+  autobal_study_rotor_campbell_summary *s = summary;
+  autobal_error e;
+  size_t i, j, n, np;
+  int st;
+  autobal_error_clear(err);
+  if (!s) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
+  memset(s, 0, sizeof *s);
+  if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
+  s->omega_min = isnan(o->omega_min) ? 0.0 : o->omega_min;
+  if (isnan(o->omega_max)) {
+    double l0, h0;
+    autobal_study_rotor_speed_range(p, &l0, &h0);
+    s->omega_max = h0;
+  } else {
+    s->omega_max = o->omega_max;
+  }
+  if (!(s->omega_min >= 0 && s->omega_min < s->omega_max) || o->n < 2 || o->n > 10000000 || o->n_resonance < 3 ||
+      o->n_resonance > 10000000 || !(o->xtol_rel > 0 && o->xtol_rel < 0.1))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: need 0 <= omega_min < omega_max, n in [2, 1e7], n_resonance in [3, 1e7], xtol_rel in (0, 0.1)");
+  n = o->n;
+  np = p->n_planes;
+  s->n = n, s->n_planes = np;
+  s->omega = grid(s->omega_min, s->omega_max, n);
+  s->frequency = malloc(4 * n * sizeof *s->frequency);
+  s->damping_ratio = malloc(4 * n * sizeof *s->damping_ratio);
+  s->whirl = malloc(4 * n * sizeof *s->whirl);
+  s->amp_G = malloc(n * sizeof *s->amp_G);
+  s->amp_D = malloc((np ? np : 1) * n * sizeof *s->amp_D);
+  if (!s->omega || !s->frequency || !s->damping_ratio || !s->whirl || !s->amp_G || !s->amp_D)
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+  if ((st = autobal_rotor_modes(p, 0.0, 1, s->natural_frequency_undamped, NULL, NULL, NULL, err)) ||
+      (st = autobal_rotor_modes(p, 0.0, 0, s->natural_frequency_damped, s->damping_ratio_at_rest, NULL, NULL, err)) ||
+      (st = autobal_rotor_campbell(p, s->omega, n, s->frequency, s->damping_ratio, s->whirl, err)))
+    return st;
+  for (i = 0; i < n; i++) {
+    double d2[AUTOBAL_ROTOR_MAX_PLANES];
+    if (autobal_rotor_unbalance_response(p, s->omega[i], &s->amp_G[i], d2, NULL) != AUTOBAL_SUCCESS) {
+      s->amp_G[i] = INFINITY; /* an undamped resonance exactly on the grid */
+      for (j = 0; j < np; j++) d2[j] = INFINITY;
+    }
+    for (j = 0; j < np; j++) s->amp_D[i * np + j] = d2[j];
+  }
+  autobal_error_clear(&e);
+  st = autobal_rotor_resonance_speeds(p, s->omega_min, s->omega_max, o->n_resonance, o->xtol_rel, &s->resonances, &e);
+  if (st == AUTOBAL_WARNING) {
+    s->resonances_truncated = 1;
+    snprintf(s->resonance_message, sizeof s->resonance_message, "%s", e.message);
+    st = AUTOBAL_SUCCESS;
+  }
+  if (st) return autobal_error_set(err, st, "%s", e.message);
+  if (a && (st = autobal_study_rotor_campbell_write(a, p, s)))
+    return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_study_rotor_campbell_write(autobal_archive *a, const autobal_rotor_params *p,
+                                       const autobal_study_rotor_campbell_summary *s) {
+  const char *g = "/rotor/campbell";
+  static const char *const d2[] = {"omega", "mode"}, *const d1[] = {"omega"}, *const dp[] = {"omega", "plane"},
+                           *const dm[] = {"mode"}, *const dc[] = {"crossing"}, *const dk[] = {"peak"};
+  autobal_rotor_stab_options so = autobal_rotor_stab_options_default(); /* every member "default" */
+  const autobal_rotor_resonances *rr;
+  size_t j;
+  int st;
+  if (!a || !p || !s || !s->omega) return AUTOBAL_EINVAL;
+  rr = &s->resonances;
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) {
+    so.member[j].kind = AUTOBAL_ROTOR_MEMBER_DEFAULT;
+    so.member[j].n_angles = 0;
+  }
+  st = write_model(a, p, &so);
+  if (!st) st = autobal_archive_group(a, g);
+  if (!st) st = autobal_archive_attr_string(a, g, "description", "rotor-housing without balls (the unbalances drive the response; FULL inertia keeps their masses): natural frequencies, damping ratios and whirl vs omega (gyroscopic C omega), steady unbalance response");
+  if (!st) st = autobal_archive_coord(a, g, "omega", s->n, s->omega, "rad/s", "spin speed");
+  if (!st) st = autobal_archive_dim(a, g, "mode", 4, "mode index, by increasing frequency at each speed");
+  if (!st) st = autobal_archive_dim(a, g, "plane", s->n_planes, "balancer plane index");
+  if (!st) st = autobal_archive_var(a, g, "frequency", 2, d2, s->frequency, "rad/s", "damped natural frequency Im(lambda) in the fixed frame");
+  if (!st) st = autobal_archive_var(a, g, "damping_ratio", 2, d2, s->damping_ratio, "1", "-Re(lambda)/|lambda|");
+  if (!st) st = autobal_archive_var_int(a, g, "whirl", 2, d2, s->whirl, "1", "1 forward, -1 backward, 0 undecided");
+  if (!st) st = autobal_archive_var(a, g, "amp_G", 1, d1, s->amp_G, "m", "steady unbalance response: major semi-axis of the orbit of the centre of mass");
+  if (!st) st = autobal_archive_var(a, g, "amp_D", 2, dp, s->amp_D, "m", "steady unbalance response at each balancer plane");
+  if (!st) st = autobal_archive_var(a, g, "natural_frequency_undamped", 1, dm, s->natural_frequency_undamped, "rad/s", "natural frequencies at rest without damping");
+  if (!st) st = autobal_archive_var(a, g, "natural_frequency_damped", 1, dm, s->natural_frequency_damped, "rad/s", "damped natural frequencies at rest");
+  if (!st) st = autobal_archive_var(a, g, "damping_ratio_at_rest", 1, dm, s->damping_ratio_at_rest, "1", "damping ratios at rest");
+  if (!st) st = autobal_archive_attr_int(a, g, "n_crossing", (long)rr->n_cross);
+  if (!st) st = autobal_archive_attr_int(a, g, "n_peak", (long)rr->n_peak);
+  if (!st) st = autobal_archive_attr_int(a, g, "truncated", rr->truncated);
+  if (!st && rr->n_cross > 0) {
+    st = autobal_archive_dim(a, g, "crossing", rr->n_cross, "index of a speed where a natural frequency equals omega");
+    if (!st) st = autobal_archive_var(a, g, "crossing_omega", 1, dc, rr->cross, "rad/s", "critical speed: natural frequency = omega");
+    if (!st) st = autobal_archive_var_int(a, g, "crossing_mode", 1, dc, rr->cross_mode, "1", "mode index");
+    if (!st) st = autobal_archive_var_int(a, g, "crossing_whirl", 1, dc, rr->cross_whirl, "1", "1 forward, -1 backward");
+  }
+  if (!st && rr->n_peak > 0) {
+    st = autobal_archive_dim(a, g, "peak", rr->n_peak, "index of a peak of the unbalance response");
+    if (!st) st = autobal_archive_var(a, g, "peak_omega", 1, dk, rr->peak, "rad/s", "unbalance-response critical speed (local maximum of amp_G)");
+    if (!st) st = autobal_archive_var(a, g, "peak_amp_G", 1, dk, rr->peak_amp, "m", "amp_G at the peak");
+  }
+  return st;
+}
