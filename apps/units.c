@@ -220,10 +220,6 @@ int cli_units_parses(cli_units *u, const char *unit_text) {
 /* ---- engineering quantities ---------------------------------------------------------- */
 double cli_rpm(double omega) { return omega * 60.0 / (2.0 * acos(-1.0)); }
 
-double cli_balance_grade(double U, double m, double omega) { return U / m * omega * 1e3; }
-
-double cli_permissible_unbalance(double G, double m, double omega) { return G * 1e-3 / omega * m; }
-
 int cli_parse_grade(const char *text, double *G) {
   const char *s = text, *rest;
   char *end;

@@ -49,13 +49,7 @@ size_t cli_units_split(const char *text, const char **unit);
 /* ---- engineering quantities of the summaries ------------------------------------------- */
 /* rad/s -> rpm and Hz (revolutions per minute / second). */
 double cli_rpm(double omega);
-/* ISO 21940-11 balance quality grade G in mm/s of a residual unbalance U (kg m) on a rotor of
- * mass m (kg) at speed omega (rad/s): G = e_per omega with the specific unbalance e_per = U / m,
- * in mm/s. */
-double cli_balance_grade(double U, double m, double omega);
-/* The permissible residual unbalance (kg m) of grade G (mm/s) for a rotor of mass m (kg) at
- * omega (rad/s): U_per = (G / omega) m. */
-double cli_permissible_unbalance(double G, double m, double omega);
+/* (The ISO 21940-11 grade and permissible unbalance are library functions: autobal/study.h.) */
 /* Read a grade "G2.5", "G 6.3", "2.5" or "2.5 mm/s" (a number in mm/s, optionally prefixed by
  * G): returns 0 and *G in mm/s, -1 when not a positive finite grade. */
 int cli_parse_grade(const char *text, double *G);
