@@ -19,6 +19,7 @@ echo "$out"
 # being skipped silently)
 for pat in 'exact energy truncated' 'rotating-frame ball equation' \
            'one_plane): Omega constant' 'two_planes): Omega constant' \
+           'one_plane): variable speed' 'two_planes): variable speed' \
            'one_plane): dE/dt' 'two_planes): dE/dt' \
            'one_plane, prescribed' 'one_plane, motor' 'two_planes, prescribed' 'two_planes, motor' \
            'check_values.json equals'; do

@@ -46,6 +46,8 @@ What is derived here, and how:
 Checks (each raises AssertionError when it fails):
  (a) Omega constant: the equations are exactly (3.2)/(3.4) [(3.5)-(3.8) for two planes] of
      docs/rotor.md, written out independently below with the lumped coefficients (2.9), (2.11);
+ (a') Omega variable: the derived equations are (3.2)/(3.4) with omega -> Omega(t) and the unbalance
+     carried at phi_0(t) + psi_0, plus exactly one term, C Omega' beta in the alpha equation;
  (b) the rotating-frame ball equation (psi = phi - phi_0) with the Euler terms follows
      identically from the fixed-frame one for a general phi_0(t);
  (c) the energy balance dE/dt = P_drive - D holds identically along the equations (symbolic:
@@ -287,15 +289,19 @@ def lumped():
     return c
 
 
-def paper_equations(model, omega):
-    """(3.2)/(3.6) and (3.4)/(3.8) of docs/rotor.md with phi_0 = omega t (omega constant)."""
+def paper_equations(model, omega, angle=None):
+    """(3.2)/(3.6) and (3.4)/(3.8) of docs/rotor.md, written by hand with the lumped coefficients.
+    Default: phi_0 = omega t (omega constant).  With angle = phi_0(t) and omega = phi_0'(t): the
+    same formulas with omega replaced by Omega(t) and the unbalance carried at phi_0(t) + psi_0
+    (the 'naive' substitution, used to exhibit what the variable speed adds)."""
     k = lumped()
-    D = sp.Derivative
+    if angle is None:
+        angle = omega * t
     rot_eq = [None] * 4
     su2 = []
     sv2 = []
     for p in model.planes:
-        ang0 = omega * t + p.psi0
+        ang0 = angle + p.psi0
         su = p.m0 * p.r0 * sp.cos(ang0) + sum(p.m[i] * p.r[i] * sp.cos(p.phi[i]) for i in range(len(p.m)))
         sv = p.m0 * p.r0 * sp.sin(ang0) + sum(p.m[i] * p.r[i] * sp.sin(p.phi[i]) for i in range(len(p.m)))
         su2.append(su.diff(t, 2))
@@ -315,7 +321,6 @@ def paper_equations(model, omega):
             ph = p.phi[i]
             ball_eq.append(p.m[i] * p.r[i] * (p.r[i] * ph.diff(t, 2) - uDdd * sp.sin(ph) + vDdd * sp.cos(ph))
                            + p.h[i] * p.r[i]**2 * (ph.diff(t) - omega))
-    del D
     return rot_eq, ball_eq
 
 
@@ -329,6 +334,17 @@ def check_constant_speed(model, eq_q, eq_b):
     for k, (a, b) in enumerate(zip(eq_b, ball_p)):
         diff = sp.simplify(sp.expand(a.subs(sub).doit() - b.doit()))
         assert diff == 0, 'constant speed: ball equation %d differs from (3.4): %s' % (k, diff)
+
+
+def check_variable_speed_extras(model, eq_q, eq_b):
+    """Derived equations minus (3.2)/(3.4) with omega -> Omega(t) and the unbalance at phi_0(t):
+    the only difference is C Omega' beta in the alpha equation.  Returns the differences."""
+    rot_p, ball_p = paper_equations(model, Om, angle=ph0)
+    extras = [sp.simplify(sp.expand(a - b.doit())) for a, b in zip(eq_q + eq_b, rot_p + ball_p)]
+    expected = [0, 0, C_ * Om.diff(t) * be, 0] + [0] * len(eq_b)
+    for k, (e, w) in enumerate(zip(extras, expected)):
+        assert sp.simplify(e - w) == 0, 'variable-speed extra term of equation %d: %s (expected %s)' % (k, e, w)
+    return extras
 
 
 # ----------------------------------------------------------------------------------------------
@@ -586,6 +602,9 @@ def main():
         eq_q, eq_b, eq_0 = model.equations()
         check_constant_speed(model, eq_q, eq_b)
         print('check (%s): Omega constant gives (3.2)/(3.4) [(3.5)-(3.8)] exactly: OK' % name)
+        extras = check_variable_speed_extras(model, eq_q, eq_b)
+        print('check (%s): variable speed = (3.2)/(3.4) with omega -> Omega(t), unbalance at phi_0(t), '
+              'plus only %s in the alpha equation: OK' % (name, extras[2]))
         check_energy_identity(model, eq_q, eq_b, eq_0)
         print('check (%s): dE/dt - (P - D) = sum of q\' times the equation residuals (motor and prescribed): OK'
               % name)
