@@ -55,7 +55,6 @@ Checks (each raises AssertionError when it fails):
 """
 import argparse
 import json
-import math
 import sys
 
 import sympy as sp
