@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# test_derive: the SymPy derivation of the variable-speed rotor equations (tools/derive/).
+# Runs tools/derive/derive_rotor.py with Debian's python3 (sympy); the script itself asserts
+#  (a) Omega constant -> exactly (3.2)/(3.4) and (3.5)-(3.8) of docs/rotor.md (one and two planes),
+#  (b) the rotating-frame ball equation with the Euler terms follows from the fixed-frame one,
+#  (c) dE/dt = P_drive - D identically along the equations and to 1e-12 at the check state,
+# and with --check-json (d) that tools/derive/check_values.json equals what it computes now;
+# then tools/derive/independent_check.py re-solves the equations as written in docs/device.md with
+# NumPy (no SymPy) and compares with the JSON (1e-10).
+# Usage: test_derive.sh <source dir> [python3]
+set -euo pipefail
+src=${1:?usage: test_derive.sh <source dir> [python3]}
+py=${2:-/usr/bin/python3}
+"$py" -c 'import sympy' 2>/dev/null || { echo "test_derive: $py has no sympy (bash scripts/deps.sh installs python3-sympy)"; exit 1; }
+out=$("$py" "$src/tools/derive/derive_rotor.py" --quiet --check-json "$src/tools/derive/check_values.json" 2>&1) || {
+  echo "$out"; echo "test_derive: FAILED"; exit 1; }
+echo "$out"
+# every check must have reported OK (the script raises on failure; this guards against a check
+# being skipped silently)
+for pat in 'exact energy truncated' 'rotating-frame ball equation' \
+           'one_plane): Omega constant' 'two_planes): Omega constant' \
+           'one_plane): variable speed' 'two_planes): variable speed' \
+           'one_plane): dE/dt' 'two_planes): dE/dt' \
+           'one_plane, prescribed' 'one_plane, motor' 'two_planes, prescribed' 'two_planes, motor' \
+           'check_values.json equals'; do
+  grep -F "$pat" <<<"$out" | grep -q ': OK' || { echo "test_derive: check '$pat' did not report OK"; exit 1; }
+done
+ind=$("$py" "$src/tools/derive/independent_check.py" "$src/tools/derive/check_values.json" 2>&1) || {
+  echo "$ind"; echo "test_derive: FAILED (independent NumPy check)"; exit 1; }
+echo "$ind"
+grep -q ': OK' <<<"$ind" || { echo "test_derive: independent check did not report OK"; exit 1; }
+echo "test_derive: all checks passed"
