@@ -154,105 +154,160 @@ static void test_constant(void) {
   autobal_rotor_free(B);
 }
 
-/* During a ramp: the two right-hand sides at the same motion (psi'' = phi'' - Omega'), and a
- * direct solve of the (4 + n) x (4 + n) mass-matrix system of (3.2), (3.4) with Omega(t). */
-static void test_instantaneous(void) {
-  autobal_rotor_params p = ramp_params(100.0, 500.0, 0.0, 2.0);
-  autobal_rotor *R;
-  double y[MAXDIM], yr[MAXDIM], df[MAXDIM], dr[MAXDIM], o[3], dmax = 0.0;
-  const double t = 0.7;
-  size_t k, dim, N;
-  printf("-- instantaneous: fixed vs rotating frame, and a direct solve, during a ramp\n");
-  p.inertia = AUTOBAL_ROTOR_INERTIA_PAPER;
-  R = autobal_rotor_alloc(&p, NULL);
-  CHECK("handle", R != NULL);
-  if (!R) return;
-  dim = autobal_rotor_dim(R);
-  N = autobal_rotor_n_balls_total(R);
+static const double tp_m1[2] = {0.04, 0.05}, tp_r1[2] = {0.1, 0.11}, tp_h1[2] = {0.1, 0.3};
+static const double tp_psi1[2] = {1.0, 2.5}, tp_rate1[2] = {0.0, 0.0};
+static const double tp_m2[3] = {0.02, 0.02, 0.03}, tp_r2[3] = {0.09, 0.09, 0.08}, tp_h2[3] = {0.2, 0.2, 0.1};
+static const double tp_psi2[3] = {-1.0, 0.4, 3.0}, tp_rate2[3] = {0.0, 0.0, 0.0};
+
+/* Two planes on anisotropic supports, with a table drive (run-up with a dip). */
+static const double tab_t[4] = {0.0, 0.3, 0.5, 0.8}, tab_w[4] = {150.0, 420.0, 260.0, 480.0};
+static autobal_rotor_params two_plane_table(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.hw.c_Ly = 0.8e5;
+  p.hw.c_Ry = 1.9e5;
+  p.hw.h_Ly = 60.0;
+  p.hw.h_Ry = 170.0;
+  p.n_planes = 2;
+  p.plane[0].n_balls = 2;
+  p.plane[0].ball_mass = tp_m1;
+  p.plane[0].ball_radius = tp_r1;
+  p.plane[0].ball_damping = tp_h1;
+  p.plane[0].ball_psi = tp_psi1;
+  p.plane[0].ball_rate = tp_rate1;
+  p.plane[1].d = -0.12;
+  p.plane[1].m0 = 0.01;
+  p.plane[1].r0 = 0.09;
+  p.plane[1].psi0 = 0.7;
+  p.plane[1].n_balls = 3;
+  p.plane[1].ball_mass = tp_m2;
+  p.plane[1].ball_radius = tp_r2;
+  p.plane[1].ball_damping = tp_h2;
+  p.plane[1].ball_psi = tp_psi2;
+  p.plane[1].ball_rate = tp_rate2;
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_TABLE;
+  p.drive.n_points = 4;
+  p.drive.table_t = tab_t;
+  p.drive.table_omega = tab_w;
+  return p;
+}
+
+/* A direct solve of the (4 + N) x (4 + N) mass-matrix system of (3.2)/(3.5)-(3.8) and (3.4) with
+ * Omega(t), Omega'(t), written term by term from the equations (paper inertia): acc[0..3] =
+ * (x'', y'', alpha'', beta''), acc[4 + k] = phi_k''. */
+static void direct_solve(const autobal_rotor *R, double t, const double *y, double *acc) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  const autobal_rotor_lumped *L = autobal_rotor_get_lumped(R);
+  const size_t N = autobal_rotor_n_balls_total(R), n = 4 + N;
+  double K[MAXDIM][MAXDIM + 1], o[3], W, Wd;
+  size_t i, j, c, r, k;
   autobal_rotor_drive_eval(R, t, o);
-  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, t, y, dim);
-  y[0] = 2e-4, y[1] = -1e-4, y[2] = 3e-3, y[3] = -1e-3, y[4] = 0.02, y[5] = 0.01, y[6] = -0.4, y[7] = 0.3;
-  y[8] += 0.3, y[9] -= 1.1, y[10] += 7.0, y[11] -= 3.0;
-  autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim);
-  CHECK("fixed rhs", autobal_rotor_rhs(t, y, df, R) == 0);
-  CHECK("rotating rhs", autobal_rotor_rhs_rotating(t, yr, dr, R) == 0);
-  for (k = 0; k < 8; k++) dmax = fmax(dmax, fabs(df[k] - dr[k]) / (fabs(df[k]) + 1e-3));
-  CHECK_CLOSE("rotor accelerations agree (rel)", dmax, 0.0, 0, 1e-10);
-  for (k = 0; k < N; k++) {
-    CHECK_CLOSE("psi_i' = phi_i' - Omega", dr[8 + k], df[8 + k] - o[0], 1e-13, 1e-10);
-    CHECK_CLOSE("psi_i'' = phi_i'' - Omega'", dr[8 + N + k], df[8 + N + k] - o[1], 1e-10, 1e-8);
+  W = o[0], Wd = o[1];
+  memset(K, 0, sizeof K);
+  K[0][0] = L->M, K[1][1] = L->M, K[2][2] = L->A, K[3][3] = L->A;
+  K[0][n] = -(L->h_x * y[4] + L->c_x * y[0] - L->h_xbeta * y[7] - L->c_xbeta * y[3]);
+  K[1][n] = -(L->h_y * y[5] + L->c_y * y[1] + L->h_yalpha * y[6] + L->c_yalpha * y[2]);
+  /* gyroscopic: d/dt (C Omega beta) in the alpha equation */
+  K[2][n] = -(L->h_alpha * y[6] + L->c_alpha * y[2] + L->C * W * y[7] + L->C * Wd * y[3] + L->h_yalpha * y[5] +
+              L->c_yalpha * y[1]);
+  K[3][n] = -(L->h_beta * y[7] + L->c_beta * y[3] - L->C * W * y[6] - L->h_xbeta * y[4] - L->c_xbeta * y[0]);
+  for (j = 0; j < p->n_planes; j++) {
+    const double d = p->plane[j].d, s0 = p->plane[j].m0 * p->plane[j].r0, p0 = o[2] + p->plane[j].psi0;
+    /* known parts of s_u'', s_v'': the unbalance (phi_0'' = Omega') and the balls' centripetal terms */
+    double su = -s0 * (W * W * cos(p0) + Wd * sin(p0)), sv = -s0 * (W * W * sin(p0) - Wd * cos(p0));
+    for (i = 0; i < p->plane[j].n_balls; i++) {
+      const double m = p->plane[j].ball_mass[i], rr = p->plane[j].ball_radius[i], h = p->plane[j].ball_damping[i];
+      const size_t kk = autobal_rotor_ball_index(R, j, i);
+      const double ph = y[8 + kk], phd = y[8 + N + kk], mr = m * rr;
+      su -= mr * phd * phd * cos(ph);
+      sv -= mr * phd * phd * sin(ph);
+      /* s_u'' has -m r phi'' sin phi, s_v'' has +m r phi'' cos phi; rows x, y, alpha (-d s_v''), beta (+d s_u'') */
+      K[0][4 + kk] += -mr * sin(ph);
+      K[1][4 + kk] += mr * cos(ph);
+      K[2][4 + kk] += -d * mr * cos(ph);
+      K[3][4 + kk] += -d * mr * sin(ph);
+      /* (3.4): m r [r phi'' - (x'' + d beta'') sin phi + (y'' - d alpha'') cos phi] + h r^2 (phi' - Omega) = 0 */
+      K[4 + kk][4 + kk] = mr * rr;
+      K[4 + kk][0] = -mr * sin(ph);
+      K[4 + kk][3] = -mr * d * sin(ph);
+      K[4 + kk][1] = mr * cos(ph);
+      K[4 + kk][2] = -mr * d * cos(ph);
+      K[4 + kk][n] = -h * rr * rr * (phd - W);
+    }
+    K[0][n] -= su;
+    K[1][n] -= sv;
+    K[2][n] += d * sv;
+    K[3][n] -= d * su;
   }
-  {
-    /* direct: unknowns (x'', y'', alpha'', beta'', phi_1'', phi_2''); the fixed-frame equations
-     * written out term by term, the unbalance at phi_0 + psi0 with phi_0'' = Omega' */
-    const autobal_rotor_lumped *L = autobal_rotor_get_lumped(R);
-    const double W = o[0], Wd = o[1], ph0 = o[2], d = p.plane[0].d, s0 = p.plane[0].m0 * p.plane[0].r0;
-    double Mx[6][7];
-    double su_known = -s0 * (W * W * cos(ph0) + Wd * sin(ph0)), sv_known = -s0 * (W * W * sin(ph0) - Wd * cos(ph0));
-    size_t i, j2, c;
-    memset(Mx, 0, sizeof Mx);
-    /* s_u'' = sum_i m_i r_i (-phi'' sin - phi'^2 cos) + su_known, s_v'' = sum m r (phi'' cos - phi'^2 sin) + sv_known */
-    for (i = 0; i < N; i++) {
-      const double m = p.plane[0].ball_mass[i], r = p.plane[0].ball_radius[i], ph = y[8 + i], phd = y[8 + N + i];
-      su_known -= m * r * phd * phd * cos(ph);
-      sv_known -= m * r * phd * phd * sin(ph);
+  for (c = 0; c < n; c++) { /* Gauss-Jordan with partial pivoting */
+    size_t piv = c;
+    for (r = c + 1; r < n; r++)
+      if (fabs(K[r][c]) > fabs(K[piv][c])) piv = r;
+    for (k = 0; k <= n; k++) {
+      double tmp = K[c][k];
+      K[c][k] = K[piv][k];
+      K[piv][k] = tmp;
     }
-    /* rows 0..3: rotor equations; coefficient of phi_i'' via s'' */
-    Mx[0][0] = L->M, Mx[1][1] = L->M, Mx[2][2] = L->A, Mx[3][3] = L->A;
-    Mx[0][6] = -(L->h_x * y[4] + L->c_x * y[0] - L->h_xbeta * y[7] - L->c_xbeta * y[3]) - su_known;
-    Mx[1][6] = -(L->h_y * y[5] + L->c_y * y[1] + L->h_yalpha * y[6] + L->c_yalpha * y[2]) - sv_known;
-    Mx[2][6] = -(L->h_alpha * y[6] + L->c_alpha * y[2] + L->C * W * y[7] + L->C * Wd * y[3] + L->h_yalpha * y[5] +
-                 L->c_yalpha * y[1]) + d * sv_known;
-    Mx[3][6] = -(L->h_beta * y[7] + L->c_beta * y[3] - L->C * W * y[6] - L->h_xbeta * y[4] - L->c_xbeta * y[0]) -
-               d * su_known;
-    for (i = 0; i < N; i++) {
-      const double m = p.plane[0].ball_mass[i], r = p.plane[0].ball_radius[i], ph = y[8 + i], phd = y[8 + N + i];
-      const double h = p.plane[0].ball_damping[i];
-      Mx[0][4 + i] += -m * r * sin(ph);
-      Mx[1][4 + i] += m * r * cos(ph);
-      Mx[2][4 + i] += -d * m * r * cos(ph);
-      Mx[3][4 + i] += -d * m * r * sin(ph);
-      /* (3.4): m r [r phi'' - (x'' + d beta'') sin + (y'' - d alpha'') cos] + h r^2 (phi' - Omega) = 0 */
-      Mx[4 + i][4 + i] = m * r * r;
-      Mx[4 + i][0] = -m * r * sin(ph);
-      Mx[4 + i][3] = -m * r * d * sin(ph);
-      Mx[4 + i][1] = m * r * cos(ph);
-      Mx[4 + i][2] = -m * r * d * cos(ph);
-      Mx[4 + i][6] = -h * r * r * (phd - W);
-    }
-    /* Gauss elimination with partial pivoting on the 6 x 6 system */
-    for (c = 0; c < 6; c++) {
-      size_t piv = c;
-      for (i = c + 1; i < 6; i++)
-        if (fabs(Mx[i][c]) > fabs(Mx[piv][c])) piv = i;
-      for (j2 = 0; j2 < 7; j2++) {
-        double tmp = Mx[c][j2];
-        Mx[c][j2] = Mx[piv][j2];
-        Mx[piv][j2] = tmp;
+    for (r = 0; r < n; r++)
+      if (r != c) {
+        double f = K[r][c] / K[c][c];
+        for (k = c; k <= n; k++) K[r][k] -= f * K[c][k];
       }
-      for (i = 0; i < 6; i++)
-        if (i != c) {
-          double f = Mx[i][c] / Mx[c][c];
-          for (j2 = c; j2 < 7; j2++) Mx[i][j2] -= f * Mx[c][j2];
-        }
-    }
-    dmax = 0.0;
-    for (k = 0; k < 4; k++) dmax = fmax(dmax, fabs(df[4 + k] - Mx[k][6] / Mx[k][k]) / (fabs(df[4 + k]) + 1e-6));
-    CHECK_CLOSE("rotor accelerations vs direct solve with Omega, Omega' (rel)", dmax, 0.0, 0, 1e-10);
-    for (k = 0; k < N; k++)
-      CHECK_CLOSE("phi_i'' vs direct solve", df[8 + N + k], Mx[4 + k][6] / Mx[4 + k][4 + k], 1e-10, 1e-8);
   }
-  autobal_rotor_free(R);
+  for (r = 0; r < n; r++) acc[r] = K[r][n] / K[r][r];
+}
+
+/* During a ramp (one plane) and a table (two planes, anisotropic): the two right-hand sides at
+ * the same motion (psi'' = phi'' - Omega'), and the direct solve. */
+static void test_instantaneous(void) {
+  autobal_rotor_params pp[2];
+  int c;
+  printf("-- instantaneous: fixed vs rotating frame, and a direct solve, during a ramp and a table\n");
+  pp[0] = ramp_params(100.0, 500.0, 0.0, 2.0);
+  pp[1] = two_plane_table();
+  for (c = 0; c < 2; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&pp[c], NULL);
+    double y[MAXDIM], yr[MAXDIM], df[MAXDIM], dr[MAXDIM], acc[MAXDIM], o[3], dmax = 0.0;
+    const double t = c == 0 ? 0.7 : 0.4;
+    size_t k, dim, N;
+    CHECK("handle", R != NULL);
+    if (!R) continue;
+    printf("   %s, t = %g s\n", c == 0 ? "one plane, ramp" : "two planes, anisotropic, table", t);
+    dim = autobal_rotor_dim(R);
+    N = autobal_rotor_n_balls_total(R);
+    autobal_rotor_drive_eval(R, t, o);
+    CHECK("   Omega' != 0 here", fabs(o[1]) > 100.0);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, t, y, dim);
+    y[0] = 2e-4, y[1] = -1e-4, y[2] = 3e-3, y[3] = -1e-3, y[4] = 0.02, y[5] = 0.01, y[6] = -0.4, y[7] = 0.3;
+    for (k = 0; k < N; k++) y[8 + k] += 0.3 * (double)k - 1.1, y[8 + N + k] += 7.0 - 4.0 * (double)k;
+    autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim);
+    CHECK("   fixed rhs", autobal_rotor_rhs(t, y, df, R) == 0);
+    CHECK("   rotating rhs", autobal_rotor_rhs_rotating(t, yr, dr, R) == 0);
+    for (k = 0; k < 8; k++) dmax = fmax(dmax, fabs(df[k] - dr[k]) / (fabs(df[k]) + 1e-3));
+    CHECK_CLOSE("   rotor accelerations, fixed vs rotating (rel)", dmax, 0.0, 0, 1e-10);
+    for (k = 0; k < N; k++) {
+      CHECK_CLOSE("   psi_i' = phi_i' - Omega", dr[8 + k], df[8 + k] - o[0], 1e-13, 1e-10);
+      CHECK_CLOSE("   psi_i'' = phi_i'' - Omega'", dr[8 + N + k], df[8 + N + k] - o[1], 1e-10, 1e-8);
+    }
+    direct_solve(R, t, y, acc);
+    dmax = 0.0;
+    for (k = 0; k < 4; k++) dmax = fmax(dmax, fabs(df[4 + k] - acc[k]) / (fabs(df[4 + k]) + 1e-6));
+    CHECK_CLOSE("   rotor accelerations vs direct solve with Omega, Omega' (rel)", dmax, 0.0, 0, 1e-10);
+    for (k = 0; k < N; k++)
+      CHECK_CLOSE("   phi_i'' vs direct solve", df[8 + N + k], acc[4 + k], 1e-10, 1e-8);
+    autobal_rotor_free(R);
+  }
 }
 
 /* A run-up transient: fixed frame vs rotating frame to the integration tolerance. */
 static void test_ramp_transient(void) {
-  autobal_rotor_params p[2];
+  autobal_rotor_params p[3];
   int c;
+  static const char *const name[3] = {"run-up 0 -> 500", "coast-down 400 -> 150", "two planes, table"};
   printf("-- ramp transient: fixed frame vs rotating frame (rtol 1e-10)\n");
   p[0] = ramp_params(0.0, 500.0, 0.1, 1.1);
   p[1] = ramp_params(400.0, 150.0, 0.2, 0.7); /* a coast-down through the second resonance */
-  for (c = 0; c < 2; c++) {
+  p[2] = two_plane_table();
+  for (c = 0; c < 3; c++) {
     autobal_rotor *R = autobal_rotor_alloc(&p[c], NULL);
     double y[MAXDIM], yr[MAXDIM], yc[MAXDIM], dq = 0.0, da = 0.0, amp = 0.0;
     const double T = 1.3;
@@ -263,17 +318,21 @@ static void test_ramp_transient(void) {
     N = autobal_rotor_n_balls_total(R);
     autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
     autobal_rotor_initial_state(R, AUTOBAL_ROTOR_ROTATING, 0.0, yr, dim);
-    st1 = integrate(autobal_rotor_rhs, R, 0.0, T, y, 1e-10, 1e-13);
-    st2 = integrate(autobal_rotor_rhs_rotating, R, 0.0, T, yr, 1e-10, 1e-13);
+    st1 = integrate(autobal_rotor_rhs, R, 0.0, T, y, c == 2 ? 1e-12 : 1e-10, c == 2 ? 1e-15 : 1e-13);
+    st2 = integrate(autobal_rotor_rhs_rotating, R, 0.0, T, yr, c == 2 ? 1e-12 : 1e-10, c == 2 ? 1e-15 : 1e-13);
     CHECK("both integrations succeeded", st1 == 0 && st2 == 0);
     autobal_rotor_convert_state(R, AUTOBAL_ROTOR_ROTATING, AUTOBAL_ROTOR_FIXED, T, yr, yc, dim);
     for (k = 0; k < 2; k++) amp = fmax(amp, fabs(y[k]));
     for (k = 0; k < 4; k++) dq = fmax(dq, fabs(y[k] - yc[k]));
     for (k = 0; k < N; k++) da = fmax(da, fabs(y[8 + k] - yc[8 + k]));
-    printf("     %s, t = %g s, |x|,|y| = %.3g m\n", c == 0 ? "run-up 0 -> 500" : "coast-down 400 -> 150", T, amp);
+    printf("     %s, t = %g s, |x|,|y| = %.3g m\n", name[c], T, amp);
     CHECK("   the rotor moved", amp > 1e-7);
-    /* rtol 1e-10 per step on a motion of amplitude amp over ~1e4 steps */
-    CHECK_CLOSE("   max |q_fixed - q_rotating| (m, rad), tol 1e-7 amp", dq, 0.0, 0, 1e-7 * amp);
+    /* rtol 1e-10 per step on a motion of amplitude amp over ~1e4 steps.  The two-plane table case
+     * is more sensitive (measured: 1.1e-8 m at rtol 1e-10, 2.5e-10 m at rtol 1e-12: the
+     * difference follows the tolerance, so it is integration error), hence rtol 1e-12 and
+     * 1e-6 amp there */
+    CHECK_CLOSE("   max |q_fixed - q_rotating| (m, rad), tol 1e-7 amp (two planes: 1e-6 amp)", dq, 0.0, 0,
+                (c == 2 ? 1e-6 : 1e-7) * amp);
     CHECK_CLOSE("   max |phi_fixed - phi_rotating| (rad)", da, 0.0, 0, 1e-6);
     autobal_rotor_free(R);
   }
