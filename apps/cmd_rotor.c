@@ -18,6 +18,7 @@
 #include "units.h"
 
 #define MAX_CFG_BALLS 4096
+#define MAX_CFG_DRIVE_POINTS 100000
 #define TWO_PI 6.283185307179586476925286766559
 
 typedef struct rotor_cfg {
@@ -35,6 +36,8 @@ typedef struct rotor_cfg {
   /* [balance] */
   double grade; /* ISO 21940-11 grade to check, mm/s; NaN: none */
   const char *grade_text;
+  /* [drive]: the table's points (p.drive points into them) */
+  double drive_t[MAX_CFG_DRIVE_POINTS], drive_w[MAX_CFG_DRIVE_POINTS];
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -369,9 +372,89 @@ const char *cli_rotor_message(const char *msg, char *buf, size_t len) {
   return buf;
 }
 
+/* [drive]: the prescribed spin speed (autobal_rotor_drive).  mode = constant (default: rotor.omega),
+ * ramp (omega_a, omega_b in rad/s or any speed unit; t_a < t_b in s), table (table_t in s, strictly
+ * increasing; table_omega, one speed per time, each item may carry a unit). */
+static int read_drive(cli_ctx *ctx, rotor_cfg *c) {
+  autobal_rotor_drive *d = &c->p.drive;
+  const char *mode = "constant";
+  static const char *const ramp_keys[4] = {"omega_a", "omega_b", "t_a", "t_b"};
+  static const char *const table_keys[2] = {"table_t", "table_omega"};
+  int rc, has_mode = 0, present[4] = {0, 0, 0, 0}, pt = 0, pw = 0;
+  size_t k, nt = 0, nw = 0;
+  if ((rc = cli_get_string(ctx, "drive", "mode", mode, &mode, &has_mode))) return rc;
+  memset(d, 0, sizeof *d);
+  if (!strcmp(mode, "constant")) d->mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
+  else if (!strcmp(mode, "ramp")) d->mode = AUTOBAL_ROTOR_DRIVE_RAMP;
+  else if (!strcmp(mode, "table")) d->mode = AUTOBAL_ROTOR_DRIVE_TABLE;
+  else return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = '%s' is not one of: constant, ramp, table", mode);
+  if (!cli_section_present(ctx, "drive")) return CLI_EXIT_OK;
+  if (d->mode != AUTOBAL_ROTOR_DRIVE_RAMP) {
+    for (k = 0; k < 4; k++) {
+      double v;
+      if ((rc = cli_get_quantity(ctx, "drive", ramp_keys[k], k < 2 ? "rad/s" : "s", 0.0, &v, &present[k]))) return rc;
+      if (present[k])
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: %s is a key of mode = ramp, but mode = %s", ramp_keys[k], mode);
+    }
+  }
+  if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE) {
+    for (k = 0; k < 2; k++) {
+      if ((rc = cli_get_quantities(ctx, "drive", table_keys[k], k ? "rad/s" : "s", c->drive_t, MAX_CFG_DRIVE_POINTS,
+                                   &nt, &pt)))
+        return rc;
+      if (pt)
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: %s is a key of mode = table, but mode = %s", table_keys[k], mode);
+    }
+  }
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+    double *v[4];
+    v[0] = &d->omega_a, v[1] = &d->omega_b, v[2] = &d->t_a, v[3] = &d->t_b;
+    for (k = 0; k < 4; k++) {
+      if ((rc = cli_get_quantity(ctx, "drive", ramp_keys[k], k < 2 ? "rad/s" : "s", NAN, v[k], &present[k]))) return rc;
+      if (!present[k])
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = ramp needs %s (%s)", ramp_keys[k], k < 2 ? "rad/s" : "s");
+    }
+    if (!(d->t_b > d->t_a))
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: t_b = %.17g s is out of range: allowed t_b > t_a = %.17g s", d->t_b,
+                      d->t_a);
+  } else if (d->mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
+    if ((rc = cli_get_quantities(ctx, "drive", "table_t", "s", c->drive_t, MAX_CFG_DRIVE_POINTS, &nt, &pt))) return rc;
+    if ((rc = cli_get_quantities(ctx, "drive", "table_omega", "rad/s", c->drive_w, MAX_CFG_DRIVE_POINTS, &nw, &pw)))
+      return rc;
+    if (!pt || nt == 0) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = table needs table_t (s, a list)");
+    if (!pw || nw == 0) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = table needs table_omega (rad/s, a list)");
+    if (nt != nw)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: table_t has %zu values but table_omega has %zu (one speed per time)",
+                      nt, nw);
+    for (k = 1; k < nt; k++)
+      if (!(c->drive_t[k] > c->drive_t[k - 1]))
+        return cli_fail(ctx, CLI_EXIT_INPUT,
+                        "[drive]: table_t is not strictly increasing: value %zu (%.17g s) <= value %zu (%.17g s)", k + 1,
+                        c->drive_t[k], k, c->drive_t[k - 1]);
+    d->n_points = nt;
+    d->table_t = c->drive_t;
+    d->table_omega = c->drive_w;
+  }
+  return CLI_EXIT_OK;
+}
+
+/* The speed the revolutions are counted at: rotor.omega, or the largest |speed| of the drive. */
+static double speed_ref(const rotor_cfg *c) {
+  const autobal_rotor_drive *d = &c->p.drive;
+  double m = 0.0;
+  size_t k;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return fmax(fabs(d->omega_a), fabs(d->omega_b));
+  if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE) return fabs(c->p.omega);
+  for (k = 0; k < d->n_points; k++) m = fmax(m, fabs(d->table_omega[k]));
+  return m;
+}
+
 static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   int rc;
+  double wref;
   if ((rc = read_rotor_model(ctx, c))) return rc;
+  if ((rc = read_drive(ctx, c))) return rc;
+  wref = speed_ref(c);
   /* [balance] grade = G2.5: the permissible residual unbalance of that grade is reported */
   c->grade = NAN;
   if ((rc = cli_get_string(ctx, "balance", "grade", NULL, &c->grade_text, NULL))) return rc;
@@ -415,15 +498,15 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if (!(c->t_end > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end = %g s is out of range: allowed (0, inf)", c->t_end);
     if (!has_dt) {
       if (!(revs_out > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: revs_out = %g is out of range: allowed (0, inf)", revs_out);
-      if (!(fabs(c->p.omega) > 0))
-        return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: revs_out needs omega != 0; give dt_out (s) instead");
-      c->dt_out = revs_out * TWO_PI / fabs(c->p.omega);
+      if (!(wref > 0))
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: revs_out needs omega != 0 (with a drive: a non-zero speed); give dt_out (s) instead");
+      c->dt_out = revs_out * TWO_PI / wref;
     }
     if (!(c->dt_out > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: dt_out = %g s is out of range: allowed (0, inf)", c->dt_out);
     if (c->t_end / c->dt_out > 5e8)
       return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end/dt_out = %.3g samples is too many (at most 5e8)", c->t_end / c->dt_out);
     if (!(c->balance_tol > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_tol = %g is out of range: allowed (0, inf)", c->balance_tol);
-    if (!(fabs(c->p.omega) > 0) && !has_dwell)
+    if (!(wref > 0) && !has_dwell)
       return cli_fail(ctx, CLI_EXIT_INPUT,
                       "[transient]: with rotor.omega = 0 there are no revolutions: give balance_dwell (s) instead of "
                       "balance_revs, and dt_out (s)");
@@ -431,8 +514,8 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
       return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: give balance_revs (revolutions) or balance_dwell (s), not both");
     if (has_dwell) {
       if (!(dwell >= 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_dwell = %g s is out of range: allowed [0, inf)", dwell);
-      if (!(fabs(c->p.omega) > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_dwell needs omega != 0");
-      c->balance_revs = dwell * fabs(c->p.omega) / TWO_PI;
+      if (!(wref > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_dwell needs omega != 0");
+      c->balance_revs = dwell * wref / TWO_PI;
     }
     if (!(c->balance_revs >= 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: balance_revs = %g is out of range: allowed [0, inf)", c->balance_revs);
     if (c->max_steps < 1) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: max_steps = %ld is out of range: allowed [1, inf)", c->max_steps);
@@ -486,8 +569,20 @@ static void engineering_json(cli_json *j, const autobal_study_rotor_transient_su
   cli_json_quantity(j, "velocity_rms_supports_last_10pct", s->velocity_rms_supports, "m/s");
 }
 
+/* The spin speed at time t (rad/s): rotor.omega, or the drive's Omega(t). */
+static double speed_at(const rotor_cfg *c, double t) {
+  double v[3] = {c->p.omega, 0.0, 0.0};
+  if (c->p.drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT) {
+    autobal_rotor *r = autobal_rotor_alloc(&c->p, NULL);
+    if (!r || autobal_rotor_drive_eval(r, t, v) != AUTOBAL_SUCCESS) v[0] = NAN;
+    autobal_rotor_free(r);
+  }
+  return v[0];
+}
+
 static void engineering_print(const autobal_study_rotor_transient_summary *s, const rotor_cfg *c) {
-  double cls = s->balance_grade_class, rpm = cli_rpm(fabs(c->p.omega));
+  double w_end = fabs(speed_at(c, s->t_reached));
+  double cls = s->balance_grade_class, rpm = cli_rpm(w_end > 0 ? w_end : speed_ref(c));
   char cbuf[32] = "above G4000";
   if (!isnan(cls)) snprintf(cbuf, sizeof cbuf, "within G%g", cls);
   printf("  balance quality at the end: G %.3g mm/s, %s (ISO 21940-11: G = e omega, e = U/m with rotor mass %s = %g kg%s)\n",
@@ -549,8 +644,21 @@ static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
   double s0 = c->p.plane[0].m0 * c->p.plane[0].r0;
   size_t j, nb = 0;
   for (j = 0; j < s->n_planes; j++) nb += s->n_balls[j];
-  printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
-         c->p.omega, c->p.omega * 60.0 / (TWO_PI), s->n_planes, nb, s->t_reached, s->t_reached / s->revolution_period);
+  const autobal_rotor_drive *d = &c->p.drive;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_CONSTANT)
+    printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
+           c->p.omega, c->p.omega * 60.0 / (TWO_PI), s->n_planes, nb, s->t_reached, s->t_reached / s->revolution_period);
+  else {
+    double w_end = speed_at(c, s->t_reached);
+    if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP)
+      printf("rotor transient: ramp drive %.6g -> %.6g rad/s (%.1f -> %.1f rpm) from t = %.6g s to %.6g s",
+             d->omega_a, d->omega_b, d->omega_a * 60.0 / TWO_PI, d->omega_b * 60.0 / TWO_PI, d->t_a, d->t_b);
+    else
+      printf("rotor transient: table drive of %zu points from t = %.6g s to %.6g s", d->n_points, d->table_t[0],
+             d->table_t[d->n_points - 1]);
+    printf(", %zu plane(s), %zu ball(s), %.6g s simulated, Omega = %.6g rad/s (%.1f rpm) at the end\n", s->n_planes, nb,
+           s->t_reached, w_end, w_end * 60.0 / TWO_PI);
+  }
   printf("  residual unbalance |s|/(m0 r0): %.4g at the start -> %.4g at the end%s\n", s->residual_unbalance_initial,
          s->residual_unbalance_final, s0 > 0 ? "" : " (relative to the balls' capacity: no unbalance)");
   printf("  vibration amplitude of the centre of mass: max %.4g um in the first 10%% of the run, %.4g um in the last 10%%\n",

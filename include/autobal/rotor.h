@@ -3,7 +3,7 @@
  *
  * Model.  An axisymmetric rotor (m_p, A_p, C_p) fixed in a housing (M_k, A_k)
  * on a left support in the plane z = -l_L and a right one in z = +l_R spins at
- * the constant speed omega.  Small motions of the common centre of mass O:
+ * the constant speed omega, or with a prescribed speed Omega(t) (autobal_rotor_drive).  Small motions of the common centre of mass O:
  * x, y, z and the Resal angles alpha (about x), beta (about y); a body point at
  * axial coordinate p moves by (x + p beta, y - p alpha).  In each balancer
  * plane z = d_j: a static unbalance m_j0 at radius r_j0 and angle psi_j0
@@ -22,7 +22,8 @@
  * with phi the ABSOLUTE ball angles in the fixed axes (unwrapped, they grow like
  * omega t).  The ROTATING-FRAME state (autobal_rotor_rhs_rotating) is the same
  * with phi_k replaced by psi_k = phi_k - omega t and phi_k' by psi_k' = phi_k' - omega
- * (rotor coordinates stay in the fixed frame).  Ball k of plane j has index
+ * (rotor coordinates stay in the fixed frame); with a drive, omega t is phi_0(t) and omega
+ * is Omega(t) here and below.  Ball k of plane j has index
  * k = autobal_rotor_ball_index(r, j, i): angle y[8 + k], rate y[8 + N + k].
  * The unbalance of plane j is at phi_j0 = omega t + psi_j0.
  *
@@ -131,6 +132,34 @@ typedef struct autobal_rotor_plane {
   const double *ball_rate;    /* rad/s, initial relative rate psi_ji'; NULL: all 0 */
 } autobal_rotor_plane;
 
+/* Spin speed profile (autobal_rotor_drive.mode). */
+typedef enum autobal_rotor_drive_mode {
+  AUTOBAL_ROTOR_DRIVE_CONSTANT = 0, /* Omega(t) = omega (autobal_rotor_params.omega); the default */
+  AUTOBAL_ROTOR_DRIVE_RAMP = 1,     /* omega_a for t <= t_a, linear to omega_b at t_b, omega_b after */
+  AUTOBAL_ROTOR_DRIVE_TABLE = 2     /* points (t_k, Omega_k), linear between, constant outside */
+} autobal_rotor_drive_mode;
+
+/* A prescribed (kinematic) drive: the rotor angle phi_0(t) = integral_0^t Omega, so that
+ * phi_0(0) = 0 (the unbalance of plane j sits at phi_0(t) + psi_j0).  Every constant omega of
+ * the constant-speed model becomes Omega(t): the ball resistance acts on r (phi' - Omega), the
+ * gyroscopic terms are C Omega alpha', C Omega beta', the unbalance gains the tangential
+ * acceleration Omega' and the alpha equation the term C Omega' beta (the derivative of
+ * C Omega beta, docs/rotor.md).  With a RAMP or TABLE drive autobal_rotor_params.omega is not
+ * used by the right-hand sides, the initial state or the outputs (the stability analyses,
+ * which need a constant speed, still read it).  Speeds may have either sign (the sense of
+ * rotation) and may be 0. */
+typedef struct autobal_rotor_drive {
+  int mode;                    /* autobal_rotor_drive_mode */
+  double omega_a, omega_b;     /* rad/s, RAMP: speeds before t_a and after t_b (finite) */
+  double t_a, t_b;             /* s, RAMP: start and end of the ramp (finite, t_a < t_b) */
+  size_t n_points;             /* TABLE: number of points, 1 .. AUTOBAL_ROTOR_DRIVE_MAX_POINTS */
+  const double *table_t;       /* s, TABLE: strictly increasing finite times (copied by alloc) */
+  const double *table_omega;   /* rad/s, TABLE: finite speeds (copied by alloc) */
+} autobal_rotor_drive;
+
+/* Largest number of points of a TABLE drive. */
+#define AUTOBAL_ROTOR_DRIVE_MAX_POINTS 10000000
+
 typedef struct autobal_rotor_params {
   int input;                  /* autobal_rotor_input */
   autobal_rotor_hardware hw;  /* used when input == AUTOBAL_ROTOR_HARDWARE */
@@ -143,6 +172,9 @@ typedef struct autobal_rotor_params {
   double q0[4];               /* initial x (m), y (m), alpha (rad), beta (rad); default 0 */
   double qd0[4];              /* initial rates, m/s and rad/s; default 0 */
   double z0, zd0;             /* initial axial displacement (m) and rate (m/s) */
+  /* Prescribed spin speed Omega(t) (docs/rotor.md, "Prescribed spin speed"); added in 0.2.0 at
+   * the end of the struct: a zeroed drive is AUTOBAL_ROTOR_DRIVE_CONSTANT, i.e. omega above. */
+  autobal_rotor_drive drive;
 } autobal_rotor_params;
 
 /* The default example (docs/rotor.md): M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,
@@ -239,21 +271,31 @@ AUTOBAL_API size_t autobal_rotor_n_balls_total(const autobal_rotor *r);
  * (size_t)-1 if out of range. */
 AUTOBAL_API size_t autobal_rotor_ball_index(const autobal_rotor *r, size_t plane, size_t i);
 AUTOBAL_API double autobal_rotor_omega(const autobal_rotor *r);
+/* The prescribed spin at time t (s): out[0] = Omega(t) (rad/s), out[1] = Omega'(t) (rad/s^2;
+ * the right derivative at a corner of a ramp or table), out[2] = phi_0(t) = integral_0^t Omega
+ * (rad; closed form, piecewise quadratic).  O(log n) for a table (binary search), O(1)
+ * otherwise, no allocation.  The constant drive gives (omega, 0, omega t).  Returns
+ * AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r or out, t not finite; out untouched). */
+AUTOBAL_API int autobal_rotor_drive_eval(const autobal_rotor *r, double t, double out[3]);
+/* Largest |Omega(t)| over all t (rad/s): |omega| for the constant drive, else the largest
+ * |speed| of the ramp or table.  NAN for a NULL handle. */
+AUTOBAL_API double autobal_rotor_drive_speed_max(const autobal_rotor *r);
 /* Change the spin speed (rad/s, finite).  Returns AUTOBAL_SUCCESS, or
  * AUTOBAL_EINVAL for a non-finite omega (message on the handle; omega is
  * unchanged) or a NULL handle (no message). */
 AUTOBAL_API int autobal_rotor_set_omega(autobal_rotor *r, double omega);
 
 /* Initial state at time t0 from the parameters (q0, qd0, ball_psi, ball_rate,
- * z0, zd0) in the given frame: phi = omega t0 + psi, phi' = omega + psi'.
+ * z0, zd0) in the given frame: phi = phi_0(t0) + psi, phi' = Omega(t0) + psi'
+ * (constant drive: omega t0 + psi, omega + psi').
  * y has dim entries (dim must equal autobal_rotor_dim).  Returns
  * AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r or y, a frame other than
  * AUTOBAL_ROTOR_FIXED/ROTATING, dim != autobal_rotor_dim, t0 not finite; y is
  * then untouched and no message is recorded on the handle). */
 AUTOBAL_API int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, double *y,
                                             size_t dim);
-/* Convert a state between frames at time t (psi = phi - omega t,
- * psi' = phi' - omega; other entries copied).  in and out may alias.
+/* Convert a state between frames at time t (psi = phi - phi_0(t),
+ * psi' = phi' - Omega(t); other entries copied).  in and out may alias.
  * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r, in or out, a frame other
  * than AUTOBAL_ROTOR_FIXED/ROTATING, dim != autobal_rotor_dim, t not finite;
  * out is then untouched and no message is recorded on the handle). */
@@ -318,7 +360,10 @@ AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int fra
  *     phi, phi_w   absolute angle, unwrapped and wrapped to (-pi, pi]   rad
  *     psi, psi_w   angle relative to the rotor, unwrapped and wrapped    rad
  *     phi_rate, psi_rate                                                 rad/s
- * With LUMPED input and non-finite hw.l_L / hw.l_R, amp_L / amp_R are NAN. */
+ *   then, only with a RAMP or TABLE drive (1 entry):
+ *     Omega        the prescribed spin speed Omega(t)                    rad/s
+ * With LUMPED input and non-finite hw.l_L / hw.l_R, amp_L / amp_R are NAN.  The constant
+ * drive keeps the layout of 0.1.0 (no Omega column). */
 AUTOBAL_API size_t autobal_rotor_output_count(const autobal_rotor *r);
 /* Fill out[0 .. n_out-1] (n_out must equal autobal_rotor_output_count) for
  * the state y (in the given frame) at time t.  Returns AUTOBAL_SUCCESS or

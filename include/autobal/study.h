@@ -123,7 +123,10 @@ AUTOBAL_API double autobal_balance_grade_class(double G);
 /* ---- rotor transient ---------------------------------------------------------- */
 
 /* Options of a rotor transient (`autobal rotor transient`, section [transient]
- * and [balance] of its configuration). */
+ * and [balance] of its configuration).  With a prescribed speed profile
+ * (autobal_rotor_params.drive a ramp or table), omega below is the largest |Omega|
+ * of the profile (autobal_rotor_drive_speed_max): it sets the default output
+ * interval and the revolutions counted by balance_revs and /rotor/revolutions. */
 typedef struct autobal_study_rotor_transient_options {
   double t_end;         /* s, end of the run (starts at t = 0), > 0                  (default 20) */
   double dt_out;        /* s, output interval of the time series, > 0, at most
@@ -154,12 +157,15 @@ AUTOBAL_API autobal_study_rotor_transient_options autobal_study_rotor_transient_
  * and released by autobal_study_rotor_transient_summary_free().  Vibration
  * figures refer to the synchronous (1X) response: per direction x, y the
  * largest amplitude sqrt(u^2 + (u'/omega)^2) over the samples of the last 10%
- * of the run (exact for a steady whirl at any sampling). */
+ * of the run (exact for a steady whirl at any sampling).  With a drive, omega is
+ * |Omega(t)| at each sample (the largest |Omega| where it is 0), and the balance
+ * grade and RMS velocity use |Omega(t_reached)| (the largest where that is 0);
+ * ball_psi_final is relative to phi_0(t_reached). */
 typedef struct autobal_study_rotor_transient_summary {
   int balanced;                    /* 1: the balance criterion held (options.balance_*) */
   double time_to_balance;          /* s, when |s|/(m0 r0) went below balance_tol for good; NaN: not balanced */
   double t_reached;                /* s, the time of the final state (t_end unless stopped early) */
-  double revolution_period;        /* s, 2 pi/|omega| */
+  double revolution_period;        /* s, 2 pi/|omega| (with a drive: at its largest |Omega|) */
   size_t n_planes;                 /* balancer planes (1 or 2) */
   size_t n_balls[AUTOBAL_ROTOR_MAX_PLANES]; /* balls of each plane */
   double residual_unbalance_initial; /* 1, largest |s_j|/(m_j0 r_j0) over the planes at t = 0 (plane 1's) */

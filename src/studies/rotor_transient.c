@@ -35,6 +35,19 @@ autobal_study_rotor_transient_options autobal_study_rotor_transient_options_defa
 }
 
 /* ---- inputs ----------------------------------------------------------------------------- */
+/* The speed that sets the sampling and the revolution counts: omega for the constant drive, the
+ * largest |speed| of a ramp or table (NaN for a table the model would reject). */
+static double speed_ref(const autobal_rotor_params *p) {
+  const autobal_rotor_drive *d = &p->drive;
+  double m = 0.0;
+  size_t k;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_CONSTANT) return p->omega;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return fmax(fabs(d->omega_a), fabs(d->omega_b));
+  if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE || !d->table_omega || d->n_points < 1) return NAN;
+  for (k = 0; k < d->n_points; k++) m = fabs(d->table_omega[k]) > m ? fabs(d->table_omega[k]) : m;
+  return m;
+}
+
 /* The output interval actually used (0: a quarter revolution). */
 static double dt_out_used(const autobal_study_rotor_transient_options *o, double omega) {
   return o->dt_out > 0 ? o->dt_out : 0.25 * TWO_PI / fabs(omega);
@@ -59,7 +72,7 @@ static int check_options(const autobal_study_rotor_transient_options *o, double 
   if (!(fabs(omega) > 0))
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "options: the transient counts revolutions 2 pi/|omega|: parameter omega = %g rad/s is "
-                             "out of range: allowed omega != 0",
+                             "out of range: allowed omega != 0 (with a drive: its largest |speed|)",
                              omega);
   if (!(o->dt_out >= 0 && isfinite(o->dt_out)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: dt_out = %g s is out of range: allowed (0, inf), or 0 for a quarter revolution", o->dt_out);
@@ -93,11 +106,13 @@ static int setup(const autobal_rotor_params *p, const autobal_study_rotor_transi
   int st;
   *rot_out = NULL, *tr_out = NULL, *y_out = NULL;
   if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
-  if ((st = check_options(o, p->omega, err))) return st;
+  /* a drive is checked first: its speeds set the sampling */
+  if (p->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT && (st = autobal_rotor_params_check(p, err)) < 0) return st;
+  if ((st = check_options(o, speed_ref(p), err))) return st;
   autobal_error_clear(&w);
   rot = autobal_rotor_alloc(p, &w);
   if (!rot) return autobal_error_set(err, w.status ? w.status : AUTOBAL_EINVAL, "%s", w.message);
-  to = driver_options(o, p->omega);
+  to = driver_options(o, speed_ref(p));
   autobal_error_clear(&e);
   tr = autobal_transient_alloc(autobal_rotor_dim(rot), &to, &e);
   if (!tr) {
@@ -164,6 +179,7 @@ typedef struct run_ctx {
    * running speed through (u, u') at each sample, exact for a steady whirl whatever the
    * sampling (a sampled maximum or RMS of 4 samples per revolution is not) */
   double l_sup[3], omega_abs;
+  int drive; /* a ramp or table: the 1X amplitude uses Omega(t) at the sample */
   double amax[3][2];
   unsigned long win_n;
 } run_ctx;
@@ -195,11 +211,13 @@ static int observer(double t, const double y[], void *user) {
   if (t >= r->t_last_window_start && !(out[0] <= r->amp_last)) r->amp_last = out[0]; /* NaN until sampled */
   if (t >= r->t_last_window_start) {
     size_t k, q;
+    double w1x = r->omega_abs, dv[3];
+    if (r->drive && autobal_rotor_drive_eval(r->rotor, t, dv) == AUTOBAL_SUCCESS && fabs(dv[0]) > 0) w1x = fabs(dv[0]);
     for (k = 0; k < 3; k++) {
       double d[2], v[2];
       point_motion(y, r->l_sup[k], d, v);
       for (q = 0; q < 2; q++) {
-        double amp = hypot(d[q], v[q] / r->omega_abs);
+        double amp = hypot(d[q], v[q] / w1x);
         if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
       }
     }
@@ -278,7 +296,7 @@ static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const auto
   int st = autobal_study_write_rotor_params(a, p, 1);
   if (!st) st = autobal_archive_group(a, g);
   if (!st) st = autobal_archive_attr_double(a, g, "t_end", o->t_end, "s");
-  if (!st) st = autobal_archive_attr_double(a, g, "dt_out", dt_out_used(o, p->omega), "s");
+  if (!st) st = autobal_archive_attr_double(a, g, "dt_out", dt_out_used(o, speed_ref(p)), "s");
   if (!st) st = autobal_archive_attr_double(a, g, "rtol", o->rtol, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "atol", o->atol, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "h_max", o->h_max, "s");
@@ -294,6 +312,20 @@ static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const auto
   if (!st) st = autobal_archive_attr_double(a, g, "balance_revs", o->balance_revs, "1");
   if (!st) st = autobal_archive_attr_string(a, g, "stepper", o->stepper ? o->stepper : "rk8pd");
   if (!st) st = autobal_archive_attr_string(a, g, "frame", o->frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating");
+  /* the prescribed speed (only when not constant: the constant drive keeps the 0.1.0 layout) */
+  if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+    st = autobal_archive_attr_string(a, g, "drive_mode", "ramp");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_omega_a", p->drive.omega_a, "rad/s");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_omega_b", p->drive.omega_b, "rad/s");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_t_a", p->drive.t_a, "s");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_t_b", p->drive.t_b, "s");
+  } else if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
+    st = autobal_archive_attr_string(a, g, "drive_mode", "table");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "drive_table_t", p->drive.n_points, p->drive.table_t, "s");
+    if (!st)
+      st = autobal_archive_attr_double_array(a, g, "drive_table_omega", p->drive.n_points, p->drive.table_omega,
+                                             "rad/s");
+  }
   return st;
 }
 
@@ -304,6 +336,7 @@ static void output_long_name(const char *name, char *buf, size_t len) {
   if (!strcmp(name, "amp_G")) snprintf(buf, len, "displacement amplitude of the centre of mass");
   else if (!strcmp(name, "amp_L")) snprintf(buf, len, "displacement amplitude at the left support (z = -l_L)");
   else if (!strcmp(name, "amp_R")) snprintf(buf, len, "displacement amplitude at the right support (z = +l_R)");
+  else if (!strcmp(name, "Omega")) snprintf(buf, len, "prescribed spin speed Omega(t) of the drive");
   else if (sscanf(name, "p%u_b%u_%47s", &pl, &b, rest) == 3) {
     const char *what = !strcmp(rest, "phi") ? "absolute angle phi (unwrapped)"
                        : !strcmp(rest, "phi_w") ? "absolute angle phi wrapped to (-pi, pi]"
@@ -381,7 +414,11 @@ static void engineering_compute(autobal_study_rotor_transient_summary *s, const 
                                 const autobal_rotor_params *p, const autobal_study_rotor_transient_options *o,
                                 const run_ctx *r, double t, const double *y) {
   size_t j, k, q, np = r->n_planes;
-  double omega = fabs(p->omega), worst = 0.0;
+  double omega = fabs(p->omega), worst = 0.0, dv[3];
+  if (r->drive) { /* the speed at the end of the run (the largest one if that is 0) */
+    omega = autobal_rotor_drive_eval(rot, t, dv) == AUTOBAL_SUCCESS ? fabs(dv[0]) : NAN;
+    if (!(omega > 0)) omega = autobal_rotor_drive_speed_max(rot);
+  }
   s->balance_grade_rotor_mass = p->input == AUTOBAL_ROTOR_HARDWARE ? p->hw.m_p : p->lumped.M;
   for (j = 0; j < np; j++) {
     double s4[4], s0 = p->plane[j].m0 * p->plane[j].r0;
@@ -491,12 +528,13 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   r.nout = autobal_rotor_output_count(rot);
   r.ncols = r.dim + r.nout;
   r.n_planes = autobal_rotor_n_planes(rot);
-  r.rev_period = TWO_PI / fabs(rp->omega);
+  r.drive = rp->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT;
+  r.rev_period = TWO_PI / fabs(speed_ref(rp));
   r.t_first_window = 0.1 * o->t_end;
   r.t_last_window_start = 0.9 * o->t_end;
   r.amp_last = NAN; /* stays NaN when the run stops (e.g. at balance) before the last 10% */
   r.l_sup[0] = 0.0;
-  r.omega_abs = fabs(rp->omega);
+  r.omega_abs = fabs(speed_ref(rp));
   r.l_sup[1] = rp->input == AUTOBAL_ROTOR_HARDWARE ? -rp->hw.l_L : NAN;
   r.l_sup[2] = rp->input == AUTOBAL_ROTOR_HARDWARE ? rp->hw.l_R : NAN;
   r.row = calloc(r.ncols, sizeof *r.row);
@@ -559,7 +597,9 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     }
     for (i = 0; i < nbj; i++) {
       size_t k = autobal_rotor_ball_index(rot, j, i);
-      double ang = o->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - rp->omega * t_reached : y[8 + k];
+      double dv[3], ang;
+      (void)autobal_rotor_drive_eval(rot, t_reached, dv); /* dv[2] = phi_0 (omega t for a constant speed) */
+      ang = o->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - dv[2] : y[8 + k];
       s->ball_psi_final[j][i] = remainder(ang, TWO_PI);
     }
     /* the balanced configuration (3.14), where it exists */

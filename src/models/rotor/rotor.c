@@ -35,6 +35,11 @@ struct autobal_rotor {
   double *m, *r, *mr, *hr, *kappa, *psi_init, *rate_init, *h;
   /* workspace of the right-hand sides */
   double *sn, *cs;
+  /* the drive as a table (RAMP: its two corners; CONSTANT: dn = 0): times dT, speeds dV,
+   * slopes dS (rad/s^2, dn - 1 of them), antiderivative dP = F(dT[k]) with F(t) = dV[0] t
+   * for t <= dT[0]; phi_0(t) = F(t) - dF0, dF0 = F(0) */
+  size_t dn;
+  double *dT, *dV, *dS, *dP, dF0;
   double *store;
   autobal_error err;
 };
@@ -57,6 +62,49 @@ struct autobal_rotor {
 ROTOR_CLONES static void ball_sincos(const double *restrict x, double *restrict sn,
                                      double *restrict cs, size_t n) {
   (void)autobal_sincos_array(x, sn, cs, n);
+}
+
+/* Antiderivative F(t) of the drive table and Omega, Omega' at t (dn >= 1): constant dV[0]
+ * before dT[0], linear between the points (the interval [dT[k], dT[k+1]) found by binary
+ * search), constant dV[dn-1] after the last. */
+static double drive_F(const autobal_rotor *R, double t, double *W, double *Wd) {
+  const size_t n = R->dn;
+  const double *T = R->dT, *V = R->dV;
+  size_t lo, hi;
+  double tau;
+  if (t < T[0]) {
+    *W = V[0];
+    *Wd = 0.0;
+    return V[0] * t;
+  }
+  if (t >= T[n - 1]) {
+    *W = V[n - 1];
+    *Wd = 0.0;
+    return R->dP[n - 1] + V[n - 1] * (t - T[n - 1]);
+  }
+  lo = 0; /* T[lo] <= t < T[hi] */
+  hi = n - 1;
+  while (hi - lo > 1) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (T[mid] <= t) lo = mid;
+    else hi = mid;
+  }
+  tau = t - T[lo];
+  *Wd = R->dS[lo];
+  *W = V[lo] + R->dS[lo] * tau;
+  return R->dP[lo] + tau * (V[lo] + 0.5 * R->dS[lo] * tau);
+}
+
+/* The prescribed spin at t: Omega, Omega' and phi_0 = integral_0^t Omega.  The constant drive
+ * is (omega, 0, omega t), computed exactly as the constant-speed model always did. */
+static void drive_eval(const autobal_rotor *R, double t, double *W, double *Wd, double *ph0) {
+  if (R->dn == 0) {
+    *W = R->p.omega;
+    *Wd = 0.0;
+    *ph0 = R->p.omega * t;
+    return;
+  }
+  *ph0 = drive_F(R, t, W, Wd) - R->dF0;
 }
 
 /* Wrap an angle to (-pi, pi]. */
@@ -106,8 +154,8 @@ static int ldl4_solve(double a[4][4], double b[4]) {
 
 /* Rotor part of (3.2) / (3.5)-(3.8) with everything but the mass terms moved
  * to the right: b = -(damping + gyroscopic + stiffness forces). */
-static void rotor_forces(const autobal_rotor_lumped *L, double omega, const double *q,
-                         const double *qd, double b[4]) {
+static void rotor_forces(const autobal_rotor_lumped *L, double omega, double omega_rate,
+                         const double *q, const double *qd, double b[4]) {
   const double x = q[0], yy = q[1], al = q[2], be = q[3];
   const double xd = qd[0], yd = qd[1], ald = qd[2], bed = qd[3];
   b[0] = -(L->h_x * xd + L->c_x * x - L->h_xbeta * bed - L->c_xbeta * be);
@@ -116,6 +164,10 @@ static void rotor_forces(const autobal_rotor_lumped *L, double omega, const doub
            L->c_yalpha * yy);
   b[3] = -(L->h_beta * bed + L->c_beta * be - L->C * omega * ald - L->h_xbeta * xd -
            L->c_xbeta * x);
+  /* a varying spin: d/dt (C Omega beta) = C Omega beta' + C Omega' beta in the alpha equation
+   * (the spin kinetic energy 1/2 C (Omega + alpha' beta)^2 of the Resal angles); skipped when
+   * Omega' = 0, so that a constant speed gives the constant-speed model's bits */
+  if (omega_rate != 0.0) b[2] -= L->C * omega_rate * be;
 }
 
 /* How the unbalance of one plane (fixed axes u, v) depends on the accelerations:
@@ -251,16 +303,17 @@ static void rhs_common_rows(const autobal_rotor *R, const double y[], const doub
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
   const size_t N = R->N;
-  const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
   plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
-  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw;
+  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, omega, omega_rate, phi0, w2;
   size_t j, k;
 
-  autobal_sincos1(omega * t, &sw, &cw);
+  drive_eval(R, t, &omega, &omega_rate, &phi0); /* Omega(t), Omega'(t), phi_0(t) */
+  w2 = omega * omega;
+  autobal_sincos1(phi0, &sw, &cw);
   ball_sincos(phi, R->sn, R->cs, N);
-  rotor_forces(&R->L, omega, q, qd, b);
+  rotor_forces(&R->L, omega, omega_rate, q, qd, b);
   for (j = 0; j < R->n_planes; j++) {
     double Sss = 0.0, Ssc = 0.0, Scc = 0.0, Fu = 0.0, Fv = 0.0;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
@@ -276,13 +329,19 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
       Fv -= a * c + bc * s;
     }
     {
-      /* the unbalance at phi_0 = omega t + psi_j0: phi_0' = omega, phi_0'' = 0 (added last:
-       * the sums over the balls do not wait for sin, cos of omega t) */
+      /* the unbalance at phi_0(t) + psi_j0: phi_0' = Omega, phi_0'' = Omega' (added last:
+       * the sums over the balls do not wait for sin, cos of phi_0):
+       * s_u'' = -m0 r0 (Omega^2 cos + Omega' sin), s_v'' = -m0 r0 (Omega^2 sin - Omega' cos) */
       const double c0 = cw * R->cpsi0[j] - sw * R->spsi0[j];
       const double s0 = sw * R->cpsi0[j] + cw * R->spsi0[j];
       const double w2s0 = w2 * R->s0[j];
       Fu -= w2s0 * c0;
       Fv -= w2s0 * s0;
+      if (omega_rate != 0.0) {
+        const double wds0 = omega_rate * R->s0[j];
+        Fu -= wds0 * s0;
+        Fv += wds0 * c0;
+      }
     }
     /* s_u'' = -S_ss u_D'' + S_sc v_D'' + F_u, s_v'' = S_sc u_D'' - S_cc v_D'' + F_v */
     cp[j].Suu = -Sss + R->mtot[j];
@@ -306,16 +365,17 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
 int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
   const size_t N = R->N;
-  const double omega = R->p.omega, w2 = omega * omega;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
   plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
-  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw;
+  double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, omega, omega_rate, phi0, w2;
   size_t j, k;
 
-  autobal_sincos1(omega * t, &sw, &cw);
+  drive_eval(R, t, &omega, &omega_rate, &phi0); /* Omega(t), Omega'(t), phi_0(t) */
+  w2 = omega * omega;
+  autobal_sincos1(phi0, &sw, &cw);
   ball_sincos(psi, R->sn, R->cs, N);
-  rotor_forces(&R->L, omega, q, qd, b);
+  rotor_forces(&R->L, omega, omega_rate, q, qd, b);
   for (j = 0; j < R->n_planes; j++) {
     /* rotor-axes quantities (3.10): s_xi, s_eta and their rates */
     double sxi = R->s0[j] * R->cpsi0[j], seta = R->s0[j] * R->spsi0[j];
@@ -343,8 +403,16 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
       /* (3.11) differentiated twice:
        * s_u'' = (s_xi'' - 2w s_eta' - w^2 s_xi) cos wt - (s_eta'' + 2w s_xi' - w^2 s_eta) sin wt
        * s_v'' = (s_xi'' - 2w s_eta' - w^2 s_xi) sin wt + (s_eta'' + 2w s_xi' - w^2 s_eta) cos wt */
-      const double cxi = Gxi - 2.0 * omega * setad - w2 * sxi;
-      const double ceta = Geta + 2.0 * omega * sxid - w2 * seta;
+      double cxi = Gxi - 2.0 * omega * setad - w2 * sxi;
+      double ceta = Geta + 2.0 * omega * sxid - w2 * seta;
+      if (omega_rate != 0.0) {
+        /* with phi_0'' = Omega' the rotation adds Omega' J (s_xi, s_eta) = Omega' (-s_eta, s_xi)
+         * to the bracket, and (3.13) adds -Omega' to every psi_i'', i.e. Omega' times the balls'
+         * sum m r (sin psi, -cos psi) to (s_xi'', s_eta''): together only the unbalance's
+         * tangential acceleration remains, Omega' m0 r0 (-sin psi0, cos psi0) */
+        cxi -= omega_rate * R->s0[j] * R->spsi0[j];
+        ceta += omega_rate * R->s0[j] * R->cpsi0[j];
+      }
       /* (a_xi, a_eta) = Rot^T (u_D'', v_D''): the fixed-axes coupling is Rot T Rot^T */
       const double t00 = cw * Txx - sw * Txe, t01 = cw * Txe - sw * Tee; /* Rot T, row 0 */
       const double t10 = sw * Txx + cw * Txe, t11 = sw * Txe + cw * Tee; /* Rot T, row 1 */
@@ -363,8 +431,10 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
     /* acceleration of D on the rotor axes (docs/rotor.md, after (3.13)) */
     const double axi = uDdd * cw + vDdd * sw, aeta = -uDdd * sw + vDdd * cw;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
-    for (k = k0; k < k1; k++) /* eq. (3.13) divided by m r^2 */
+    for (k = k0; k < k1; k++) /* eq. (3.13) divided by m r^2; psi'' = phi'' - Omega' */
       dydt[8 + N + k] = (axi * sn[k] - aeta * cs[k]) / R->r[k] - R->kappa[k] * psid[k];
+    if (omega_rate != 0.0)
+      for (k = k0; k < k1; k++) dydt[8 + N + k] -= omega_rate;
   }
   return GSL_SUCCESS;
 }
@@ -616,6 +686,41 @@ static int check_plane(const autobal_rotor_plane *pl, size_t j, autobal_error *e
   return AUTOBAL_SUCCESS;
 }
 
+static int check_drive(const autobal_rotor_drive *d, autobal_error *err) {
+  int st;
+  size_t k;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_CONSTANT) return AUTOBAL_SUCCESS;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+    if ((st = autobal_check_param(err, "drive.omega_a", d->omega_a, -INFINITY, 1, INFINITY, 1, "rad/s")) ||
+        (st = autobal_check_param(err, "drive.omega_b", d->omega_b, -INFINITY, 1, INFINITY, 1, "rad/s")) ||
+        (st = autobal_check_param(err, "drive.t_a", d->t_a, -INFINITY, 1, INFINITY, 1, "s")) ||
+        (st = autobal_check_param(err, "drive.t_b", d->t_b, d->t_a, 1, INFINITY, 1, "s")))
+      return st;
+    return AUTOBAL_SUCCESS;
+  }
+  if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter drive.mode = %d is not valid: use AUTOBAL_ROTOR_DRIVE_CONSTANT (0), "
+                             "AUTOBAL_ROTOR_DRIVE_RAMP (1) or AUTOBAL_ROTOR_DRIVE_TABLE (2)",
+                             d->mode);
+  if (d->n_points < 1 || d->n_points > AUTOBAL_ROTOR_DRIVE_MAX_POINTS)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter drive.n_points = %zu is out of range: allowed [1, %d]",
+                             d->n_points, AUTOBAL_ROTOR_DRIVE_MAX_POINTS);
+  if (d->table_t == NULL || d->table_omega == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "drive: n_points = %zu but table_t or table_omega is NULL",
+                             d->n_points);
+  for (k = 0; k < d->n_points; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "drive.table_omega[%zu]", k);
+    if ((st = autobal_check_param(err, name, d->table_omega[k], -INFINITY, 1, INFINITY, 1, "rad/s"))) return st;
+    snprintf(name, sizeof name, "drive.table_t[%zu]", k);
+    if ((st = autobal_check_param(err, name, d->table_t[k], k ? d->table_t[k - 1] : -INFINITY, 1, INFINITY, 1,
+                                  "s")))
+      return st; /* finite and strictly increasing */
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err) {
   autobal_rotor_lumped L;
   int st, warn = 0;
@@ -652,6 +757,7 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
   if ((st = autobal_check_param(err, "omega", p->omega, -INFINITY, 1, INFINITY, 1, "rad/s")) !=
       AUTOBAL_SUCCESS)
     return st;
+  if ((st = check_drive(&p->drive, err)) != AUTOBAL_SUCCESS) return st;
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
@@ -703,17 +809,19 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   autobal_rotor *R;
   autobal_error e;
   int st = autobal_rotor_params_check(p, &e);
-  size_t j, k, N = 0;
+  size_t j, k, N = 0, dn;
   if (err != NULL) *err = e;
   if (st < 0) return NULL;
   for (j = 0; j < p->n_planes; j++) N += p->plane[j].n_balls;
+  dn = p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE ? p->drive.n_points
+       : p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? 2u : 0u;
   R = (autobal_rotor *)calloc(1, sizeof *R);
   if (R == NULL) {
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
     return NULL;
   }
-  /* 10 arrays of N doubles (N may be 0: allocate at least one element) */
-  R->store = (double *)calloc(10 * N + 1, sizeof(double));
+  /* 10 arrays of N doubles and 4 of dn (N may be 0: allocate at least one element) */
+  R->store = (double *)calloc(10 * N + 4 * dn + 1, sizeof(double));
   if (R->store == NULL) {
     free(R);
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating arrays for %zu balls", N);
@@ -729,7 +837,37 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   R->rate_init = R->psi_init + N;
   R->sn = R->rate_init + N;
   R->cs = R->sn + N;
+  R->dn = dn;
+  R->dT = R->cs + N;
+  R->dV = R->dT + dn;
+  R->dS = R->dV + dn;
+  R->dP = R->dS + dn;
   R->p = *p;
+  if (dn > 0) {
+    double W, Wd;
+    if (p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+      R->dT[0] = p->drive.t_a;
+      R->dT[1] = p->drive.t_b;
+      R->dV[0] = p->drive.omega_a;
+      R->dV[1] = p->drive.omega_b;
+    } else {
+      memcpy(R->dT, p->drive.table_t, dn * sizeof(double));
+      memcpy(R->dV, p->drive.table_omega, dn * sizeof(double));
+    }
+    R->dP[0] = R->dV[0] * R->dT[0]; /* F(t) = dV[0] t before the first point */
+    for (k = 0; k + 1 < dn; k++) {
+      R->dS[k] = (R->dV[k + 1] - R->dV[k]) / (R->dT[k + 1] - R->dT[k]);
+      R->dP[k + 1] = R->dP[k] + 0.5 * (R->dV[k] + R->dV[k + 1]) * (R->dT[k + 1] - R->dT[k]);
+    }
+    R->dS[dn - 1] = 0.0;
+    R->dF0 = 0.0;
+    R->dF0 = drive_F(R, 0.0, &W, &Wd);
+    /* the handle's copy of the drive points into the handle (a RAMP keeps its four numbers) */
+    if (p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
+      R->p.drive.table_t = R->dT;
+      R->p.drive.table_omega = R->dV;
+    }
+  }
   if (p->input == AUTOBAL_ROTOR_HARDWARE) {
     (void)autobal_rotor_lumped_from_hardware(&p->hw, &R->L, NULL);
     R->l_L = p->hw.l_L;
@@ -812,6 +950,27 @@ size_t autobal_rotor_ball_index(const autobal_rotor *r, size_t plane, size_t i) 
 }
 double autobal_rotor_omega(const autobal_rotor *r) { return r ? r->p.omega : NAN; }
 
+int autobal_rotor_drive_eval(const autobal_rotor *r, double t, double out[3]) {
+  double W, Wd, ph;
+  if (r == NULL || out == NULL || !isfinite(t)) return AUTOBAL_EINVAL;
+  drive_eval(r, t, &W, &Wd, &ph);
+  out[0] = W;
+  out[1] = Wd;
+  out[2] = ph;
+  return AUTOBAL_SUCCESS;
+}
+
+double autobal_rotor_drive_speed_max(const autobal_rotor *r) {
+  double m;
+  size_t k;
+  if (r == NULL) return NAN;
+  if (r->dn == 0) return fabs(r->p.omega);
+  m = 0.0;
+  for (k = 0; k < r->dn; k++)
+    if (fabs(r->dV[k]) > m) m = fabs(r->dV[k]);
+  return m;
+}
+
 int autobal_rotor_set_omega(autobal_rotor *r, double omega) {
   int st;
   if (r == NULL) return AUTOBAL_EINVAL;
@@ -835,16 +994,18 @@ static int check_frame_dim(const autobal_rotor *r, int frame, size_t dim, autoba
 
 int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, double *y, size_t dim) {
   size_t k;
+  double W, Wd, ph0;
   int st = check_frame_dim(r, frame, dim, NULL);
   if (st != AUTOBAL_SUCCESS || y == NULL || !isfinite(t0)) return AUTOBAL_EINVAL;
   for (k = 0; k < 4; k++) {
     y[k] = r->p.q0[k];
     y[4 + k] = r->p.qd0[k];
   }
+  drive_eval(r, t0, &W, &Wd, &ph0);
   for (k = 0; k < r->N; k++) {
     if (frame == AUTOBAL_ROTOR_FIXED) {
-      y[8 + k] = r->p.omega * t0 + r->psi_init[k];
-      y[8 + r->N + k] = r->p.omega + r->rate_init[k];
+      y[8 + k] = ph0 + r->psi_init[k];
+      y[8 + r->N + k] = W + r->rate_init[k];
     } else {
       y[8 + k] = r->psi_init[k];
       y[8 + r->N + k] = r->rate_init[k];
@@ -860,7 +1021,7 @@ int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, do
 int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_frame, double t,
                                 const double *in, double *out, size_t dim) {
   size_t k;
-  double sgn;
+  double sgn, W, Wd, ph0;
   if (check_frame_dim(r, from_frame, dim, NULL) != AUTOBAL_SUCCESS ||
       check_frame_dim(r, to_frame, dim, NULL) != AUTOBAL_SUCCESS || in == NULL || out == NULL ||
       !isfinite(t))
@@ -868,9 +1029,10 @@ int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_f
   if (in != out) memmove(out, in, dim * sizeof(double));
   if (from_frame == to_frame) return AUTOBAL_SUCCESS;
   sgn = to_frame == AUTOBAL_ROTOR_ROTATING ? -1.0 : 1.0;
+  drive_eval(r, t, &W, &Wd, &ph0);
   for (k = 0; k < r->N; k++) {
-    out[8 + k] += sgn * r->p.omega * t;
-    out[8 + r->N + k] += sgn * r->p.omega;
+    out[8 + k] += sgn * ph0;
+    out[8 + r->N + k] += sgn * W;
   }
   return AUTOBAL_SUCCESS;
 }
@@ -880,12 +1042,13 @@ int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_f
 /* s_u, s_v, s_xi, s_eta of plane j; the state's ball angle + offset = absolute angle phi. */
 static void plane_unbalance(const autobal_rotor *r, size_t j, int frame, double t, const double *y,
                             double s[4]) {
-  const double wt = r->p.omega * t;
+  double W, Wd, wt, shift;
   const double psi0 = r->p.plane[j].psi0;
-  /* relative angle = state angle - shift; absolute = state angle + (wt - shift) */
-  const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
   double sxi = r->s0[j] * cos(psi0), seta = r->s0[j] * sin(psi0); /* eq. (3.10) */
   size_t k;
+  drive_eval(r, t, &W, &Wd, &wt); /* wt = phi_0(t) */
+  /* relative angle = state angle - shift; absolute = state angle + (wt - shift) */
+  shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
   for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) {
     const double psi = y[8 + k] - shift;
     sxi += r->mr[k] * cos(psi);
@@ -927,13 +1090,13 @@ double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t
 
 size_t autobal_rotor_output_count(const autobal_rotor *r) {
   if (r == NULL) return 0;
-  return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N;
+  return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N + (r->dn > 0 ? 1u : 0u);
 }
 
 int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                           size_t n_out) {
   size_t j, k;
-  double x, yy, al, be, wt;
+  double x, yy, al, be, wt, W, Wd;
   double *o;
   if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
@@ -943,7 +1106,7 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   yy = y[1];
   al = y[2];
   be = y[3];
-  wt = r->p.omega * t;
+  drive_eval(r, t, &W, &Wd, &wt); /* Omega(t), phi_0(t) */
   out[0] = hypot(x, yy);
   /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
   out[1] = hypot(x - r->l_L * be, yy + r->l_L * al);
@@ -968,12 +1131,12 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
       phi = ang;
       psi = ang - wt;
       phid = rate;
-      psid = rate - r->p.omega;
+      psid = rate - W;
     } else {
       psi = ang;
       phi = ang + wt;
       psid = rate;
-      phid = rate + r->p.omega;
+      phid = rate + W;
     }
     o[0] = phi;
     o[1] = wrap_pi(phi);
@@ -982,6 +1145,7 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
     o[4] = phid;
     o[5] = psid;
   }
+  if (r->dn > 0) o[0] = W;
   return AUTOBAL_SUCCESS;
 }
 
@@ -1002,6 +1166,9 @@ int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_
     size_t kk = k - N_GLOBAL_OUT;
     snprintf(buf, len, "p%zu_%s", kk / N_PLANE_OUT + 1, pname[kk % N_PLANE_OUT]);
     u = punit[kk % N_PLANE_OUT];
+  } else if (r->dn > 0 && k + 1 == autobal_rotor_output_count(r)) {
+    snprintf(buf, len, "Omega");
+    u = "rad/s";
   } else {
     size_t kk = k - N_GLOBAL_OUT - N_PLANE_OUT * r->n_planes;
     size_t ball = kk / N_BALL_OUT, j = 0;

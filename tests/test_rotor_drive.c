@@ -1,0 +1,391 @@
+/* test_rotor_drive.c: the prescribed spin speed Omega(t) of the rotor model (include/autobal/rotor.h,
+ * autobal_rotor_drive): closed forms of Omega, Omega', phi_0 for ramps and tables; the constant
+ * drive and a flat ramp give the constant-speed model; the fixed-frame and rotating-frame
+ * right-hand sides agree during a ramp (instantaneously: psi'' = phi'' - Omega', and over a
+ * transient); the Omega' terms against a direct (4+n) mass-matrix solve; the parameter checks. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/rotor.h"
+#include "autobal/transient.h"
+#include "check.h"
+
+#define MAXDIM 64
+
+static int integrate(int (*f)(double, const double *, double *, void *), autobal_rotor *r, double t0, double t1,
+                     double *y, double rtol, double atol) {
+  autobal_transient_options opt = autobal_transient_options_default();
+  autobal_transient_system sys;
+  autobal_transient *tr;
+  int st;
+  opt.stepper = "rk8pd";
+  opt.rtol = rtol;
+  opt.atol = atol;
+  opt.h_init = 1e-5;
+  opt.max_steps = 50000000ul;
+  sys.rhs = f;
+  sys.jac = NULL;
+  sys.dim = autobal_rotor_dim(r);
+  sys.params = r;
+  tr = autobal_transient_alloc(sys.dim, &opt, NULL);
+  if (tr == NULL) return -1;
+  st = autobal_transient_run(tr, &sys, t0, t1, y, NULL);
+  autobal_transient_free(tr);
+  return st;
+}
+
+static autobal_rotor_params ramp_params(double wa, double wb, double ta, double tb) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_RAMP;
+  p.drive.omega_a = wa;
+  p.drive.omega_b = wb;
+  p.drive.t_a = ta;
+  p.drive.t_b = tb;
+  return p;
+}
+
+static void test_closed_forms(void) {
+  autobal_rotor_params p = ramp_params(0.0, 500.0, 1.0, 11.0);
+  autobal_rotor *R;
+  double o[3];
+  printf("-- Omega, Omega', phi_0 of a ramp and a table (closed forms by hand)\n");
+  R = autobal_rotor_alloc(&p, NULL);
+  CHECK("ramp handle", R != NULL);
+  if (!R) return;
+  autobal_rotor_drive_eval(R, 0.5, o);
+  CHECK_CLOSE("ramp Omega(0.5) (before t_a)", o[0], 0.0, 0, 0);
+  CHECK_CLOSE("ramp phi_0(0.5)", o[2], 0.0, 0, 0);
+  autobal_rotor_drive_eval(R, 6.0, o);
+  CHECK_CLOSE("ramp Omega(6) = 50 (6 - 1)", o[0], 250.0, 1e-15, 0);
+  CHECK_CLOSE("ramp Omega'(6) = 500/10", o[1], 50.0, 1e-15, 0);
+  CHECK_CLOSE("ramp phi_0(6) = 25 (6 - 1)^2", o[2], 625.0, 1e-15, 0);
+  autobal_rotor_drive_eval(R, 20.0, o);
+  CHECK_CLOSE("ramp Omega(20) (after t_b)", o[0], 500.0, 0, 0);
+  CHECK_CLOSE("ramp Omega'(20)", o[1], 0.0, 0, 0);
+  CHECK_CLOSE("ramp phi_0(20) = 2500 + 500 * 9", o[2], 7000.0, 1e-15, 0);
+  CHECK_CLOSE("drive_speed_max", autobal_rotor_drive_speed_max(R), 500.0, 0, 0);
+  CHECK_STATUS("drive_eval(NaN t)", autobal_rotor_drive_eval(R, NAN, o), AUTOBAL_EINVAL);
+  CHECK_STATUS("drive_eval(NULL)", autobal_rotor_drive_eval(NULL, 0.0, o), AUTOBAL_EINVAL);
+  autobal_rotor_free(R);
+
+  {
+    /* a table with a point before t = 0: Omega = 200 + 100 t on [-1, 1], phi_0(0.5) = 100 + 12.5;
+     * a dip 300 -> 100 -> 250 later; phi_0 against a fine Simpson quadrature of Omega */
+    double tt[5] = {-1.0, 1.0, 2.0, 2.5, 4.0}, ww[5] = {100.0, 300.0, 300.0, 100.0, 250.0};
+    double q = 0.0, prev, h;
+    int k, n = 1000; /* h = 0.005: the corners 1, 2, 2.5, 4 are grid points */
+    autobal_rotor_params pt = autobal_rotor_params_default();
+    pt.drive.mode = AUTOBAL_ROTOR_DRIVE_TABLE;
+    pt.drive.n_points = 5;
+    pt.drive.table_t = tt;
+    pt.drive.table_omega = ww;
+    R = autobal_rotor_alloc(&pt, NULL);
+    CHECK("table handle", R != NULL);
+    if (!R) return;
+    tt[1] = 1e9; /* the handle owns a copy */
+    autobal_rotor_drive_eval(R, 0.5, o);
+    CHECK_CLOSE("table Omega(0.5) = 200 + 50", o[0], 250.0, 1e-15, 0);
+    CHECK_CLOSE("table phi_0(0.5) = 112.5 (integral from 0, not from the first point)", o[2], 112.5, 1e-15, 0);
+    autobal_rotor_drive_eval(R, 2.25, o);
+    CHECK_CLOSE("table Omega'(2.25) = -400", o[1], -400.0, 1e-15, 0);
+    autobal_rotor_drive_eval(R, -3.0, o);
+    CHECK_CLOSE("table Omega(-3) (before the first point)", o[0], 100.0, 0, 0);
+    /* Simpson on [0, 5] piece by piece (exact for the piecewise quadratic integrand) */
+    h = 5.0 / n;
+    prev = 0.0;
+    for (k = 0; k < n; k++) {
+      double a = k * h, fa[3];
+      autobal_rotor_drive_eval(R, a, fa);
+      prev = fa[0];
+      autobal_rotor_drive_eval(R, a + 0.5 * h, fa);
+      q += h / 6.0 * (prev + 4.0 * fa[0]);
+      autobal_rotor_drive_eval(R, a + h, fa);
+      q += h / 6.0 * fa[0];
+    }
+    autobal_rotor_drive_eval(R, 5.0, o);
+    CHECK_CLOSE("table phi_0(5) vs Simpson quadrature of Omega", o[2], q, 1e-12, 0);
+    CHECK_CLOSE("table phi_0(5) by hand: 250 + 300 + 100 + 262.5 + 250",
+                o[2], 0.5 * (200.0 + 300.0) * 1.0 + 300.0 + 0.5 * 0.5 * 400.0 + 1.5 * 175.0 + 250.0, 1e-14, 0);
+    CHECK("table Omega is an output channel (one more output)",
+          autobal_rotor_output_count(R) == 3 + 7 + 6 * 2 + 1);
+    {
+      double out[3 + 7 + 12 + 1], y[MAXDIM];
+      char name[32];
+      const char *unit = NULL;
+      autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 2.25, y, autobal_rotor_dim(R));
+      CHECK_CLOSE("initial phi_1 = phi_0(2.25) + psi_1 = 250 + 300 + 62.5 + 1", y[8], 613.5, 1e-14, 0);
+      autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 2.25, y, out, 23);
+      autobal_rotor_output_name(R, 22, name, sizeof name, &unit);
+      CHECK("last output is named Omega in rad/s", !strcmp(name, "Omega") && unit && !strcmp(unit, "rad/s"));
+      CHECK_CLOSE("output Omega(2.25)", out[22], 200.0, 1e-15, 0);
+      CHECK_CLOSE("output psi_rate of ball 1 (at rest relative to the rotor)", out[3 + 7 + 5], 0.0, 0, 1e-12);
+    }
+    autobal_rotor_free(R);
+  }
+}
+
+/* The constant drive is the constant-speed model; a flat ramp gives it to rounding. */
+static void test_constant(void) {
+  autobal_rotor_params p = autobal_rotor_params_default(), pf = ramp_params(500.0, 500.0, -1.0, 1.0);
+  autobal_rotor *A = autobal_rotor_alloc(&p, NULL), *B = autobal_rotor_alloc(&pf, NULL);
+  double y[MAXDIM], da[MAXDIM], db[MAXDIM], o[3], dmax = 0.0;
+  size_t k, dim;
+  printf("-- the constant drive, and a flat ramp (Omega' = 0) vs the constant-speed model\n");
+  CHECK("handles", A && B);
+  if (!A || !B) return;
+  dim = autobal_rotor_dim(A);
+  CHECK("constant drive: no Omega output", autobal_rotor_output_count(A) == 3 + 7 + 12);
+  autobal_rotor_drive_eval(A, 0.37, o);
+  CHECK("constant drive_eval is (omega, 0, omega t) exactly", o[0] == 500.0 && o[1] == 0.0 && o[2] == 500.0 * 0.37);
+  autobal_rotor_initial_state(A, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+  y[0] = 1e-4, y[3] = -2e-4, y[6] = 0.03, y[9] += 3.0, y[10] += 40.0, y[11] -= 25.0;
+  autobal_rotor_rhs(0.8, y, da, A);
+  autobal_rotor_rhs(0.8, y, db, B);
+  for (k = 0; k < dim; k++) dmax = fmax(dmax, fabs(da[k] - db[k]) / (1e-300 + fabs(da[k]) + 1.0));
+  CHECK_CLOSE("flat ramp vs constant, fixed-frame rhs (max rel diff)", dmax, 0.0, 0, 1e-12);
+  autobal_rotor_rhs_rotating(0.8, y, da, A);
+  autobal_rotor_rhs_rotating(0.8, y, db, B);
+  dmax = 0.0;
+  for (k = 0; k < dim; k++) dmax = fmax(dmax, fabs(da[k] - db[k]) / (fabs(da[k]) + 1.0));
+  CHECK_CLOSE("flat ramp vs constant, rotating-frame rhs (max rel diff)", dmax, 0.0, 0, 1e-12);
+  autobal_rotor_free(A);
+  autobal_rotor_free(B);
+}
+
+static const double tp_m1[2] = {0.04, 0.05}, tp_r1[2] = {0.1, 0.11}, tp_h1[2] = {0.1, 0.3};
+static const double tp_psi1[2] = {1.0, 2.5}, tp_rate1[2] = {0.0, 0.0};
+static const double tp_m2[3] = {0.02, 0.02, 0.03}, tp_r2[3] = {0.09, 0.09, 0.08}, tp_h2[3] = {0.2, 0.2, 0.1};
+static const double tp_psi2[3] = {-1.0, 0.4, 3.0}, tp_rate2[3] = {0.0, 0.0, 0.0};
+
+/* Two planes on anisotropic supports, with a table drive (run-up with a dip). */
+static const double tab_t[4] = {0.0, 0.3, 0.5, 0.8}, tab_w[4] = {150.0, 420.0, 260.0, 480.0};
+static autobal_rotor_params two_plane_table(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.hw.c_Ly = 0.8e5;
+  p.hw.c_Ry = 1.9e5;
+  p.hw.h_Ly = 60.0;
+  p.hw.h_Ry = 170.0;
+  p.n_planes = 2;
+  p.plane[0].n_balls = 2;
+  p.plane[0].ball_mass = tp_m1;
+  p.plane[0].ball_radius = tp_r1;
+  p.plane[0].ball_damping = tp_h1;
+  p.plane[0].ball_psi = tp_psi1;
+  p.plane[0].ball_rate = tp_rate1;
+  p.plane[1].d = -0.12;
+  p.plane[1].m0 = 0.01;
+  p.plane[1].r0 = 0.09;
+  p.plane[1].psi0 = 0.7;
+  p.plane[1].n_balls = 3;
+  p.plane[1].ball_mass = tp_m2;
+  p.plane[1].ball_radius = tp_r2;
+  p.plane[1].ball_damping = tp_h2;
+  p.plane[1].ball_psi = tp_psi2;
+  p.plane[1].ball_rate = tp_rate2;
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_TABLE;
+  p.drive.n_points = 4;
+  p.drive.table_t = tab_t;
+  p.drive.table_omega = tab_w;
+  return p;
+}
+
+/* A direct solve of the (4 + N) x (4 + N) mass-matrix system of (3.2)/(3.5)-(3.8) and (3.4) with
+ * Omega(t), Omega'(t), written term by term from the equations (paper inertia): acc[0..3] =
+ * (x'', y'', alpha'', beta''), acc[4 + k] = phi_k''. */
+static void direct_solve(const autobal_rotor *R, double t, const double *y, double *acc) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  const autobal_rotor_lumped *L = autobal_rotor_get_lumped(R);
+  const size_t N = autobal_rotor_n_balls_total(R), n = 4 + N;
+  double K[MAXDIM][MAXDIM + 1], o[3], W, Wd;
+  size_t i, j, c, r, k;
+  autobal_rotor_drive_eval(R, t, o);
+  W = o[0], Wd = o[1];
+  memset(K, 0, sizeof K);
+  K[0][0] = L->M, K[1][1] = L->M, K[2][2] = L->A, K[3][3] = L->A;
+  K[0][n] = -(L->h_x * y[4] + L->c_x * y[0] - L->h_xbeta * y[7] - L->c_xbeta * y[3]);
+  K[1][n] = -(L->h_y * y[5] + L->c_y * y[1] + L->h_yalpha * y[6] + L->c_yalpha * y[2]);
+  /* gyroscopic: d/dt (C Omega beta) in the alpha equation */
+  K[2][n] = -(L->h_alpha * y[6] + L->c_alpha * y[2] + L->C * W * y[7] + L->C * Wd * y[3] + L->h_yalpha * y[5] +
+              L->c_yalpha * y[1]);
+  K[3][n] = -(L->h_beta * y[7] + L->c_beta * y[3] - L->C * W * y[6] - L->h_xbeta * y[4] - L->c_xbeta * y[0]);
+  for (j = 0; j < p->n_planes; j++) {
+    const double d = p->plane[j].d, s0 = p->plane[j].m0 * p->plane[j].r0, p0 = o[2] + p->plane[j].psi0;
+    /* known parts of s_u'', s_v'': the unbalance (phi_0'' = Omega') and the balls' centripetal terms */
+    double su = -s0 * (W * W * cos(p0) + Wd * sin(p0)), sv = -s0 * (W * W * sin(p0) - Wd * cos(p0));
+    for (i = 0; i < p->plane[j].n_balls; i++) {
+      const double m = p->plane[j].ball_mass[i], rr = p->plane[j].ball_radius[i], h = p->plane[j].ball_damping[i];
+      const size_t kk = autobal_rotor_ball_index(R, j, i);
+      const double ph = y[8 + kk], phd = y[8 + N + kk], mr = m * rr;
+      su -= mr * phd * phd * cos(ph);
+      sv -= mr * phd * phd * sin(ph);
+      /* s_u'' has -m r phi'' sin phi, s_v'' has +m r phi'' cos phi; rows x, y, alpha (-d s_v''), beta (+d s_u'') */
+      K[0][4 + kk] += -mr * sin(ph);
+      K[1][4 + kk] += mr * cos(ph);
+      K[2][4 + kk] += -d * mr * cos(ph);
+      K[3][4 + kk] += -d * mr * sin(ph);
+      /* (3.4): m r [r phi'' - (x'' + d beta'') sin phi + (y'' - d alpha'') cos phi] + h r^2 (phi' - Omega) = 0 */
+      K[4 + kk][4 + kk] = mr * rr;
+      K[4 + kk][0] = -mr * sin(ph);
+      K[4 + kk][3] = -mr * d * sin(ph);
+      K[4 + kk][1] = mr * cos(ph);
+      K[4 + kk][2] = -mr * d * cos(ph);
+      K[4 + kk][n] = -h * rr * rr * (phd - W);
+    }
+    K[0][n] -= su;
+    K[1][n] -= sv;
+    K[2][n] += d * sv;
+    K[3][n] -= d * su;
+  }
+  for (c = 0; c < n; c++) { /* Gauss-Jordan with partial pivoting */
+    size_t piv = c;
+    for (r = c + 1; r < n; r++)
+      if (fabs(K[r][c]) > fabs(K[piv][c])) piv = r;
+    for (k = 0; k <= n; k++) {
+      double tmp = K[c][k];
+      K[c][k] = K[piv][k];
+      K[piv][k] = tmp;
+    }
+    for (r = 0; r < n; r++)
+      if (r != c) {
+        double f = K[r][c] / K[c][c];
+        for (k = c; k <= n; k++) K[r][k] -= f * K[c][k];
+      }
+  }
+  for (r = 0; r < n; r++) acc[r] = K[r][n] / K[r][r];
+}
+
+/* During a ramp (one plane) and a table (two planes, anisotropic): the two right-hand sides at
+ * the same motion (psi'' = phi'' - Omega'), and the direct solve. */
+static void test_instantaneous(void) {
+  autobal_rotor_params pp[2];
+  int c;
+  printf("-- instantaneous: fixed vs rotating frame, and a direct solve, during a ramp and a table\n");
+  pp[0] = ramp_params(100.0, 500.0, 0.0, 2.0);
+  pp[1] = two_plane_table();
+  for (c = 0; c < 2; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&pp[c], NULL);
+    double y[MAXDIM], yr[MAXDIM], df[MAXDIM], dr[MAXDIM], acc[MAXDIM], o[3], dmax = 0.0;
+    const double t = c == 0 ? 0.7 : 0.4;
+    size_t k, dim, N;
+    CHECK("handle", R != NULL);
+    if (!R) continue;
+    printf("   %s, t = %g s\n", c == 0 ? "one plane, ramp" : "two planes, anisotropic, table", t);
+    dim = autobal_rotor_dim(R);
+    N = autobal_rotor_n_balls_total(R);
+    autobal_rotor_drive_eval(R, t, o);
+    CHECK("   Omega' != 0 here", fabs(o[1]) > 100.0);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, t, y, dim);
+    y[0] = 2e-4, y[1] = -1e-4, y[2] = 3e-3, y[3] = -1e-3, y[4] = 0.02, y[5] = 0.01, y[6] = -0.4, y[7] = 0.3;
+    for (k = 0; k < N; k++) y[8 + k] += 0.3 * (double)k - 1.1, y[8 + N + k] += 7.0 - 4.0 * (double)k;
+    autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim);
+    CHECK("   fixed rhs", autobal_rotor_rhs(t, y, df, R) == 0);
+    CHECK("   rotating rhs", autobal_rotor_rhs_rotating(t, yr, dr, R) == 0);
+    for (k = 0; k < 8; k++) dmax = fmax(dmax, fabs(df[k] - dr[k]) / (fabs(df[k]) + 1e-3));
+    CHECK_CLOSE("   rotor accelerations, fixed vs rotating (rel)", dmax, 0.0, 0, 1e-10);
+    for (k = 0; k < N; k++) {
+      CHECK_CLOSE("   psi_i' = phi_i' - Omega", dr[8 + k], df[8 + k] - o[0], 1e-13, 1e-10);
+      CHECK_CLOSE("   psi_i'' = phi_i'' - Omega'", dr[8 + N + k], df[8 + N + k] - o[1], 1e-10, 1e-8);
+    }
+    direct_solve(R, t, y, acc);
+    dmax = 0.0;
+    for (k = 0; k < 4; k++) dmax = fmax(dmax, fabs(df[4 + k] - acc[k]) / (fabs(df[4 + k]) + 1e-6));
+    CHECK_CLOSE("   rotor accelerations vs direct solve with Omega, Omega' (rel)", dmax, 0.0, 0, 1e-10);
+    for (k = 0; k < N; k++)
+      CHECK_CLOSE("   phi_i'' vs direct solve", df[8 + N + k], acc[4 + k], 1e-10, 1e-8);
+    autobal_rotor_free(R);
+  }
+}
+
+/* A run-up transient: fixed frame vs rotating frame to the integration tolerance. */
+static void test_ramp_transient(void) {
+  autobal_rotor_params p[3];
+  int c;
+  static const char *const name[3] = {"run-up 0 -> 500", "coast-down 400 -> 150", "two planes, table"};
+  printf("-- ramp transient: fixed frame vs rotating frame (rtol 1e-10)\n");
+  p[0] = ramp_params(0.0, 500.0, 0.1, 1.1);
+  p[1] = ramp_params(400.0, 150.0, 0.2, 0.7); /* a coast-down through the second resonance */
+  p[2] = two_plane_table();
+  for (c = 0; c < 3; c++) {
+    autobal_rotor *R = autobal_rotor_alloc(&p[c], NULL);
+    double y[MAXDIM], yr[MAXDIM], yc[MAXDIM], dq = 0.0, da = 0.0, amp = 0.0;
+    const double T = 1.3;
+    size_t k, dim, N;
+    int st1, st2;
+    if (R == NULL) continue;
+    dim = autobal_rotor_dim(R);
+    N = autobal_rotor_n_balls_total(R);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_ROTATING, 0.0, yr, dim);
+    st1 = integrate(autobal_rotor_rhs, R, 0.0, T, y, c == 2 ? 1e-12 : 1e-10, c == 2 ? 1e-15 : 1e-13);
+    st2 = integrate(autobal_rotor_rhs_rotating, R, 0.0, T, yr, c == 2 ? 1e-12 : 1e-10, c == 2 ? 1e-15 : 1e-13);
+    CHECK("both integrations succeeded", st1 == 0 && st2 == 0);
+    autobal_rotor_convert_state(R, AUTOBAL_ROTOR_ROTATING, AUTOBAL_ROTOR_FIXED, T, yr, yc, dim);
+    for (k = 0; k < 2; k++) amp = fmax(amp, fabs(y[k]));
+    for (k = 0; k < 4; k++) dq = fmax(dq, fabs(y[k] - yc[k]));
+    for (k = 0; k < N; k++) da = fmax(da, fabs(y[8 + k] - yc[8 + k]));
+    printf("     %s, t = %g s, |x|,|y| = %.3g m\n", name[c], T, amp);
+    CHECK("   the rotor moved", amp > 1e-7);
+    /* rtol 1e-10 per step on a motion of amplitude amp over ~1e4 steps.  The two-plane table case
+     * is more sensitive (measured: 1.1e-8 m at rtol 1e-10, 2.5e-10 m at rtol 1e-12: the
+     * difference follows the tolerance, so it is integration error), hence rtol 1e-12 and
+     * 1e-6 amp there */
+    CHECK_CLOSE("   max |q_fixed - q_rotating| (m, rad), tol 1e-7 amp (two planes: 1e-6 amp)", dq, 0.0, 0,
+                (c == 2 ? 1e-6 : 1e-7) * amp);
+    CHECK_CLOSE("   max |phi_fixed - phi_rotating| (rad)", da, 0.0, 0, 1e-6);
+    autobal_rotor_free(R);
+  }
+}
+
+static void test_errors(void) {
+  autobal_error e;
+  autobal_rotor_params p;
+  double tt[3] = {0.0, 1.0, 1.0}, ww[3] = {0.0, 100.0, 200.0};
+  printf("-- bad drives are rejected, naming the parameter\n");
+  p = ramp_params(0.0, 500.0, 2.0, 2.0);
+  CHECK("t_b == t_a", autobal_rotor_alloc(&p, &e) == NULL);
+  CHECK_MSG("t_b == t_a", e.message, "drive.t_b");
+  p = ramp_params(0.0, 500.0, 2.0, 1.0);
+  CHECK_STATUS("t_b < t_a", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("t_b < t_a", e.message, "drive.t_b");
+  p = ramp_params(NAN, 500.0, 0.0, 1.0);
+  CHECK_STATUS("omega_a NaN", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("omega_a NaN", e.message, "drive.omega_a");
+  p = ramp_params(0.0, INFINITY, 0.0, 1.0);
+  CHECK_STATUS("omega_b inf", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("omega_b inf", e.message, "drive.omega_b");
+  p = ramp_params(0.0, 1.0, NAN, 1.0);
+  CHECK_STATUS("t_a NaN", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("t_a NaN", e.message, "drive.t_a");
+  p = autobal_rotor_params_default();
+  p.drive.mode = 7;
+  CHECK_STATUS("mode 7", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("mode 7", e.message, "drive.mode");
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_TABLE;
+  p.drive.n_points = 0;
+  CHECK_STATUS("table of 0 points", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("table of 0 points", e.message, "drive.n_points");
+  p.drive.n_points = 3;
+  CHECK_STATUS("table arrays NULL", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("table arrays NULL", e.message, "table_t");
+  p.drive.table_t = tt;
+  p.drive.table_omega = ww;
+  CHECK_STATUS("table times not strictly increasing", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("table times not strictly increasing", e.message, "drive.table_t[2]");
+  tt[2] = 2.0;
+  ww[1] = NAN;
+  CHECK_STATUS("table speed NaN", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("table speed NaN", e.message, "drive.table_omega[1]");
+  ww[1] = 100.0;
+  CHECK_STATUS("the repaired table", autobal_rotor_params_check(&p, &e), AUTOBAL_SUCCESS);
+}
+
+int main(void) {
+  test_closed_forms();
+  test_constant();
+  test_instantaneous();
+  test_ramp_transient();
+  test_errors();
+  return check_summary();
+}
