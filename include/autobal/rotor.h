@@ -255,8 +255,9 @@ AUTOBAL_API void autobal_rotor_free(autobal_rotor *r);
 AUTOBAL_API const char *autobal_rotor_errmsg(const autobal_rotor *r);
 
 /* Getters: a NULL handle gives NULL (pointers), 0 (counts) or NAN (omega).
- * The parameters held by the handle (owned by it; its plane arrays point into
- * the handle; valid until autobal_rotor_free; omega follows set_omega). */
+ * The parameters held by the handle (owned by it; its plane arrays and a TABLE
+ * drive's arrays point into the handle; valid until autobal_rotor_free; omega
+ * follows set_omega, which does not change a RAMP or TABLE drive). */
 AUTOBAL_API const autobal_rotor_params *autobal_rotor_get_params(const autobal_rotor *r);
 /* The lumped coefficients in use (computed from hw for HARDWARE input; owned
  * by the handle). */
