@@ -57,27 +57,7 @@ static double urand(double lo, double hi) { /* xorshift64*, deterministic */
 static double wrap(double a) { return atan2(sin(a), cos(a)); }
 
 /* integrate with the library's transient driver (rk8pd; tested on its own in test_transient) */
-static int integrate(int (*f)(double, const double *, double *, void *), autobal_rotor *r,
-                     double t0, double t1, double *y, double rtol, double atol) {
-  autobal_transient_options opt = autobal_transient_options_default();
-  autobal_transient_system sys;
-  autobal_transient *tr;
-  int st;
-  opt.stepper = "rk8pd";
-  opt.rtol = rtol;
-  opt.atol = atol;
-  opt.h_init = 1e-5;
-  opt.max_steps = 50000000ul;
-  sys.rhs = f;
-  sys.jac = NULL;
-  sys.dim = autobal_rotor_dim(r);
-  sys.params = r;
-  tr = autobal_transient_alloc(sys.dim, &opt, NULL);
-  if (tr == NULL) return -1;
-  st = autobal_transient_run(tr, &sys, t0, t1, y, NULL);
-  autobal_transient_free(tr);
-  return st;
-}
+#include "rotor_integrate.h"
 
 /* stiffness / damping of the supports from their potential energy
  * 1/2 c (displacement at the support)^2, a point at p moving by (x + p beta, y - p alpha) */

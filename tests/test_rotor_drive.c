@@ -14,27 +14,7 @@
 
 #define MAXDIM 64
 
-static int integrate(int (*f)(double, const double *, double *, void *), autobal_rotor *r, double t0, double t1,
-                     double *y, double rtol, double atol) {
-  autobal_transient_options opt = autobal_transient_options_default();
-  autobal_transient_system sys;
-  autobal_transient *tr;
-  int st;
-  opt.stepper = "rk8pd";
-  opt.rtol = rtol;
-  opt.atol = atol;
-  opt.h_init = 1e-5;
-  opt.max_steps = 50000000ul;
-  sys.rhs = f;
-  sys.jac = NULL;
-  sys.dim = autobal_rotor_dim(r);
-  sys.params = r;
-  tr = autobal_transient_alloc(sys.dim, &opt, NULL);
-  if (tr == NULL) return -1;
-  st = autobal_transient_run(tr, &sys, t0, t1, y, NULL);
-  autobal_transient_free(tr);
-  return st;
-}
+#include "rotor_integrate.h"
 
 static autobal_rotor_params ramp_params(double wa, double wb, double ta, double tb) {
   autobal_rotor_params p = autobal_rotor_params_default();
