@@ -585,27 +585,7 @@ static const char *parse_double_problem(int rc) {
 }
 
 int cli_get_double(cli_ctx *ctx, const char *section, const char *key, double def, double *out, int *present) {
-  cli_entry *e = lookup(ctx, section, key, present);
-  int rc;
-  if (!e) {
-    char text[40];
-    format_double(def, text, sizeof text);
-    record(ctx, section, key, NULL, text, present);
-    *out = def;
-    return CLI_EXIT_OK;
-  }
-  record(ctx, section, key, e, NULL, present);
-  rc = e->is_default ? (parse_default_double(e->value, out) ? -1 : 0) : parse_double(e->value, out);
-  if (rc == -1 && !e->is_default) {
-    const char *unit;
-    if (cli_units_split(e->value, &unit) > 0 && *unit != '\0')
-      return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s': %s.%s is dimensionless (or counted): give a plain number, no unit",
-                      where(ctx, e), section, key, e->value, section, key);
-  }
-  if (rc != 0)
-    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s = '%s' %s", where(ctx, e), section, key, e->value,
-                    parse_double_problem(rc));
-  return CLI_EXIT_OK;
+  return cli_get_quantity(ctx, section, key, "1", def, out, present);
 }
 
 /* "NUMBER UNIT" -> *out in si_unit (units.h).  Returns 0, or CLI_EXIT_INPUT / CLI_EXIT_INTERNAL
@@ -631,16 +611,36 @@ static int parse_quantity(cli_ctx *ctx, const char *text, const char *si_unit, c
   return CLI_EXIT_OK;
 }
 
+/* A given value of a key in si_unit: a quantity (parse_quantity), or for NULL or "1" a plain
+ * number, where a unit is an error that says the key is dimensionless. */
+static int parse_value(cli_ctx *ctx, const char *text, const char *si_unit, const char *what, double *out) {
+  const char *unit;
+  int rc;
+  if (si_unit && strcmp(si_unit, "1") != 0) return parse_quantity(ctx, text, si_unit, what, out);
+  if ((rc = parse_double(text, out)) == 0) return CLI_EXIT_OK;
+  if (rc == -1 && cli_units_split(text, &unit) > 0 && *unit != '\0')
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s is dimensionless (or a count): give a plain number, no unit", what);
+  return cli_fail(ctx, CLI_EXIT_INPUT, "%s %s", what, parse_double_problem(rc));
+}
+
 int cli_get_quantity(cli_ctx *ctx, const char *section, const char *key, const char *si_unit, double def, double *out,
                      int *present) {
-  cli_entry *e;
+  cli_entry *e = lookup(ctx, section, key, present);
   char what[600];
-  if (!si_unit || strcmp(si_unit, "1") == 0) return cli_get_double(ctx, section, key, def, out, present);
-  e = lookup(ctx, section, key, present);
-  if (!e || e->is_default) return cli_get_double(ctx, section, key, def, out, present);
+  if (!e) {
+    char text[40];
+    format_double(def, text, sizeof text);
+    record(ctx, section, key, NULL, text, present);
+    *out = def;
+    return CLI_EXIT_OK;
+  }
   record(ctx, section, key, e, NULL, present);
   snprintf(what, sizeof what, "%s: %s.%s = '%s'", where(ctx, e), section, key, e->value);
-  return parse_quantity(ctx, e->value, si_unit, what, out);
+  if (e->is_default) { /* a recorded default (rerun): SI, NaN allowed */
+    if (parse_default_double(e->value, out) != 0) return cli_fail(ctx, CLI_EXIT_INPUT, "%s is not a number", what);
+    return CLI_EXIT_OK;
+  }
+  return parse_value(ctx, e->value, si_unit, what, out);
 }
 
 int cli_get_int(cli_ctx *ctx, const char *section, const char *key, long def, long *out, int *present) {
@@ -722,17 +722,11 @@ int cli_get_quantities(cli_ctx *ctx, const char *section, const char *key, const
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     double v;
     while (*tok == ' ' || *tok == '\t') tok++;
-    if (si_unit && strcmp(si_unit, "1") != 0 && !e->is_default) {
-      char what[600];
-      int rc;
-      snprintf(what, sizeof what, "%s: %s.%s: item %zu '%s'", where(ctx, e), section, key, count + 1, tok);
-      if ((rc = parse_quantity(ctx, tok, si_unit, what, &v)) != CLI_EXIT_OK) return rc;
-    } else {
-      int rc = parse_double(tok, &v);
-      if (rc != 0)
-        return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: item %zu '%s' %s", where(ctx, e), section, key, count + 1,
-                        tok, parse_double_problem(rc));
-    }
+    char what[600];
+    int rc;
+    snprintf(what, sizeof what, "%s: %s.%s: item %zu '%s'", where(ctx, e), section, key, count + 1, tok);
+    /* a recorded default list (rerun) is SI */
+    if ((rc = parse_value(ctx, tok, e->is_default ? NULL : si_unit, what, &v)) != CLI_EXIT_OK) return rc;
     if (count == cap)
       return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: more than %zu values", where(ctx, e), section, key, cap);
     out[count++] = v;

@@ -236,5 +236,5 @@ expect3 "pendulum.omega" pendulum roots --set "pendulum.M=10 kg" --set "pendulum
   --set "pendulum.l=50 mm" --set "pendulum.c=1 kN/mm" --set "pendulum.H1=0" --set "pendulum.H2=0" --set "pendulum.omega=100 m"
 expect3 "balance quality grade" rotor transient --set "balance.grade=X2.5"
 expect3 "balance quality grade" rotor transient --set "balance.grade=G-1"
-expect3 "pendulum.R_m is dimensionless" pendulum roots --set "pendulum.R_m=0.1 kg"
+expect3 "pendulum.R_m = '0.1 kg' is dimensionless" pendulum roots --set "pendulum.R_m=0.1 kg"
 exit $fail
