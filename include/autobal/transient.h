@@ -32,7 +32,9 @@
  *    the start of that step with the same stepper and tolerances (an
  *    auxiliary stepper object, so the main integration is not disturbed).
  *    Events are terminal (the run stops at the event with the state there)
- *    or not (reported, the run continues).
+ *    or not (reported, the run continues), and may reset the state or the
+ *    system (hybrid systems: impacts, stick-slip; the integration restarts
+ *    at the event, see autobal_transient_event_reset_fn).
  *  - Dwell events ("time to balance"): fire the first time a monitored
  *    scalar s(t, y) has stayed below a threshold for a given duration.  The
  *    downward crossing of the threshold is located like an event (t_start),
@@ -170,6 +172,28 @@ typedef struct autobal_transient_event_hit {
 typedef int (*autobal_transient_event_handler_fn)(const autobal_transient_event_hit *hit,
                                                   const double y[], void *user);
 
+/* Event reset (hybrid systems: impacts, stick-slip switching): called for a
+ * located event after the handler, with the state at hit->t in y, which it
+ * may change (an impact reverses a velocity); it may also change what the
+ * system's right-hand side and event functions compute (a mode held in their
+ * params: a ball sticks).  Return
+ *   0                          nothing changed: the run goes on as without it;
+ *   AUTOBAL_TRANSIENT_RESET    y and/or the system changed: the driver drops
+ *                              the rest of the step, restarts the integration
+ *                              at (hit->t, y) (stepper history and the reused
+ *                              derivative discarded, the output grid kept),
+ *                              and re-evaluates every event function there;
+ *   anything else              stop the run there (AUTOBAL_EVENT, user_code).
+ * Events pending later in the same step are dropped (they are found again if
+ * they still happen), and an event function that is already past its crossing
+ * at the reset state is not reported: a reset should settle every switching
+ * condition that holds at hit->t (e.g. all balls that stop together).  More
+ * than 1000 resets in a row, each within event_tol of the previous one
+ * (chattering: a Zeno point), stop the run with AUTOBAL_ESTEP. */
+#define AUTOBAL_TRANSIENT_RESET 1
+typedef int (*autobal_transient_event_reset_fn)(const autobal_transient_event_hit *hit, double y[],
+                                                void *user);
+
 /* ---- statistics --------------------------------------------------------------- */
 
 typedef enum autobal_transient_stop {
@@ -203,6 +227,7 @@ typedef struct autobal_transient_stats {
   int user_code;             /* the non-zero value returned by the callback or the rhs that
                                 stopped the run (0 otherwise)                                */
   int event_index;           /* the event that stopped the run, else -1                      */
+  unsigned long resets;      /* restarts after an event reset (added in 0.3.0, at the end)   */
 } autobal_transient_stats;
 
 /* ---- the handle --------------------------------------------------------------- */
@@ -242,6 +267,10 @@ AUTOBAL_API void autobal_transient_set_progress(autobal_transient *tr,
 AUTOBAL_API void autobal_transient_set_event_handler(autobal_transient *tr,
                                                      autobal_transient_event_handler_fn fn,
                                                      void *user);
+
+/* The event reset (NULL removes it; see autobal_transient_event_reset_fn). */
+AUTOBAL_API void autobal_transient_set_event_reset(autobal_transient *tr,
+                                                   autobal_transient_event_reset_fn fn, void *user);
 
 /* Add an event g(t, y) = 0.  direction: +1 only rising crossings (g from < 0
  * to >= 0), -1 only falling ones, 0 both.  terminal: 1 to stop the run at

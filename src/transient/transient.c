@@ -165,6 +165,10 @@ struct autobal_transient {
   void *progress_user;
   autobal_transient_event_handler_fn handler;
   void *handler_user;
+  autobal_transient_event_reset_fn reset;
+  void *reset_user;
+  unsigned long reset_run; /* resets in a row, each within event_tol of the previous one */
+  double t_reset;          /* time of the last reset */
   /* failure record of the adapters */
   int fail_kind; /* 0 none, 1 rhs returned non-zero, 2 rhs non-finite, 3 jac non-zero,
                     4 jac non-finite */
@@ -434,6 +438,13 @@ void autobal_transient_set_event_handler(autobal_transient *tr,
   if (tr == NULL) return;
   tr->handler = fn;
   tr->handler_user = user;
+}
+
+void autobal_transient_set_event_reset(autobal_transient *tr, autobal_transient_event_reset_fn fn,
+                                       void *user) {
+  if (tr == NULL) return;
+  tr->reset = fn;
+  tr->reset_user = user;
 }
 
 static int event_push(autobal_transient *tr, const event_item *it) {
@@ -833,9 +844,63 @@ static int finish(autobal_transient *tr, int status, int reason, double t, doubl
   return status;
 }
 
+/* After an event reset at (t, y): check the state, count the reset (a run of
+ * more than 1000 within event_tol of each other is chattering), discard the
+ * stepper's history and re-evaluate every event function at the new state.
+ * Returns RESTARTED or a failure. */
+enum { RESTARTED = 1000 };
+static int reset_restart(autobal_transient *tr, double t, const double *y) {
+  size_t i;
+  int rc;
+  for (i = 0; i < tr->dim; i++)
+    if (!isfinite(y[i]))
+      return autobal_error_set(&tr->err, AUTOBAL_ENUMERIC,
+                               "the event reset at t = %.17g made state component %zu non-finite",
+                               t, i);
+  tr->stats.resets++;
+  if (tr->stats.resets > 1 && t - tr->t_reset <= tr->opt.event_tol) {
+    if (++tr->reset_run > 1000)
+      return autobal_error_set(&tr->err, AUTOBAL_ESTEP,
+                               "more than 1000 event resets in a row, each within event_tol = "
+                               "%.3g of the previous one, at t = %.17g (chattering: the events "
+                               "accumulate at a point)",
+                               tr->opt.event_tol, t);
+  } else {
+    tr->reset_run = 0;
+  }
+  tr->t_reset = t;
+  ctx_reset(&tr->main);
+  for (i = 0; i < tr->nev; i++) {
+    event_item *e = &tr->ev[i];
+    double g = 0.0;
+    e->pending = 0;
+    if (e->dwell && e->dwell_state == DWELL_FIRED) continue;
+    if ((rc = event_value(tr, e, t, y, &g)) != AUTOBAL_SUCCESS) return rc;
+    if (!e->dwell && g == 0.0) {
+      /* g is exactly 0 at the reset (a velocity set to 0, a position put on a wall): its
+       * sign just after the reset decides the next crossing (as CVODE's root finding does),
+       * else a function that leaves 0 and comes back within one step would be missed */
+      const double ts = t + fmax(tr->opt.event_tol, 4.0 * DBL_EPSILON * fabs(t));
+      if ((rc = aux_integrate(tr, t, y, ts, tr->y_work, 0.0)) != AUTOBAL_SUCCESS) return rc;
+      if ((rc = event_value(tr, e, ts, tr->y_work, &g)) != AUTOBAL_SUCCESS) return rc;
+    }
+    if (e->dwell) {
+      if (e->dwell_state == DWELL_ABOVE && g < 0.0) {
+        e->dwell_state = DWELL_BELOW;
+        e->t_enter = t;
+      } else if (e->dwell_state == DWELL_BELOW && g >= 0.0) {
+        e->dwell_state = DWELL_ABOVE;
+      }
+    }
+    e->g_prev = g;
+  }
+  return RESTARTED;
+}
+
 /* Process the events of the accepted step (t_prev, y_prev) -> (*t, y).
- * Returns AUTOBAL_SUCCESS (continue), AUTOBAL_EVENT (stop; y and *t hold the
- * event state) or a failure. */
+ * Returns AUTOBAL_SUCCESS (continue), RESTARTED (an event reset the state: y
+ * and *t hold it, the stepper starts afresh there), AUTOBAL_EVENT (stop; y and
+ * *t hold the event state) or a failure. */
 static int process_events(autobal_transient *tr, double t_prev, double *t, double *y,
                           double h_taken) {
   const double tn = *t;
@@ -884,7 +949,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
     event_item *e = &tr->ev[tr->order[i]];
     autobal_transient_event_hit hit;
     int stop;
-    const double *ys;
+    double *ys;
     if (e->t_hit >= tn) {
       ys = y;
     } else {
@@ -901,6 +966,23 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
     stop = e->terminal;
     if (tr->handler) {
       int uc = tr->handler(&hit, ys, tr->handler_user);
+      if (uc != 0) {
+        stop = 1;
+        tr->stats.user_code = uc;
+      }
+    }
+    if (!stop && tr->reset) {
+      /* ys is y or tr->y_evt: both writable */
+      int uc = tr->reset(&hit, ys, tr->reset_user);
+      if (uc == AUTOBAL_TRANSIENT_RESET) {
+        hit.terminal = 0;
+        e->count++;
+        if (e->count == 1) e->first = hit;
+        tr->stats.events++;
+        if (ys != y) memcpy(y, ys, tr->dim * sizeof(double));
+        *t = e->t_hit;
+        return reset_restart(tr, *t, y);
+      }
       if (uc != 0) {
         stop = 1;
         tr->stats.user_code = uc;
@@ -963,6 +1045,8 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
   }
   tr->sys = *sys;
   ctx_reset(&tr->main);
+  tr->reset_run = 0;
+  tr->t_reset = t0;
   span = t1 - t0;
   t = t0;
 
@@ -1070,7 +1154,9 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
                           tr->stats.event_index, t);
         return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_EVENT, t, t_reached, wall0);
       }
-      if (rc != AUTOBAL_SUCCESS) {
+      /* rc == RESTARTED: an event reset the state at t (<= the end of the step); the run goes
+       * on from there (the output below only if t reached t_out) */
+      if (rc != AUTOBAL_SUCCESS && rc != RESTARTED) {
         /* keep the last good state: the end of this accepted step */
         if (tr->fail_kind != 0) rc = rhs_failure(tr);
         return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
