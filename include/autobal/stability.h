@@ -42,6 +42,9 @@
 
 AUTOBAL_BEGIN_DECLS
 
+/* Largest degree of autobal_poly_workspace_alloc. */
+#define AUTOBAL_POLY_MAX_DEGREE 4096
+
 /* Largest number of coefficients accepted by the stack-based routines. */
 #define AUTOBAL_POLY_MAXLEN 33
 /* Largest n accepted by autobal_match_roots(). */
@@ -134,7 +137,7 @@ AUTOBAL_API void autobal_cpoly_real_part(const double *a, size_t len, double *ou
 
 /* Workspace for the roots of real polynomials of one fixed degree >= 1
  * (iterates, a companion matrix and GSL's gsl_poly_complex_workspace).
- * NULL if out of memory or degree 0 (or degree > 4096). */
+ * NULL if out of memory, degree 0 or degree > AUTOBAL_POLY_MAX_DEGREE. */
 typedef struct autobal_poly_workspace autobal_poly_workspace;
 AUTOBAL_API autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree);
 AUTOBAL_API void autobal_poly_workspace_free(autobal_poly_workspace *w); /* NULL is safe */
@@ -153,7 +156,13 @@ AUTOBAL_API size_t autobal_poly_workspace_degree(const autobal_poly_workspace *w
  * disks of the roots are pairwise disjoint; otherwise (clusters, multiple
  * roots) the eigenvalues of the balanced companion matrix by the Francis
  * double-shift QR (LAPACK DLAHQR), and GSL's gsl_poly_complex_solve if that
- * does not converge either.  About 2x faster than GSL alone for degree 8.
+ * does not converge either.  When neither settles (coefficients so badly
+ * scaled that c_i / c_n or the powers of the roots overflow, e.g. 1e200,
+ * 1, 1e-200), the same is done for z = x / 2^k with 2^k about the
+ * geometric mean of the roots' moduli and the coefficients normalised by
+ * a power of 2; a root whose modulus is beyond the double range, or roots
+ * spanning more than it, give AUTOBAL_ENUMERIC.  Every iteration is bounded.
+ * About 2x faster than GSL alone for degree 8.
  * Returns AUTOBAL_EINVAL (bad length, zero leading coefficient, NaN/inf)
  * or AUTOBAL_ENUMERIC (no method converged; message carries GSL's text). */
 AUTOBAL_API int autobal_poly_roots(autobal_poly_workspace *w, const double *c, size_t len,

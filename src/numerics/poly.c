@@ -7,6 +7,7 @@
 #include "internal.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -209,6 +210,7 @@ struct autobal_poly_workspace {
   double *h;                     /* degree x degree companion matrix */
   double *ab;                    /* Aberth: nrm[n], ca[n+1], starting-point tables */
   unsigned char *flag;           /* Aberth: done[n], used[n] */
+  double *cs;                    /* degree + 1 scaled coefficients */
 };
 
 /* ---- eigenvalues of a small upper Hessenberg matrix ------------------------
@@ -499,8 +501,11 @@ static int hessenberg_eigvals(int n, double *h, size_t ld, double *wr, double *w
  * Parlett-Reinsch balancing restricted to the non-zero entries.  Exact: only
  * exponents change. */
 static void balance_companion(double *m, size_t nc) {
-  int not_converged = 1;
-  while (not_converged) {
+  int not_converged = 1, pass = 0;
+  /* bounded: every entry is finite (checked by the caller), so each inner loop runs at most
+   * about 1100 times (the exponent range of a double); the passes are capped too (balancing
+   * only improves accuracy: an unfinished one still leaves a similar matrix) */
+  while (not_converged && pass++ < 1000) {
     size_t i, j;
     not_converged = 0;
     for (i = 0; i < nc; i++) {
@@ -523,12 +528,12 @@ static void balance_companion(double *m, size_t nc) {
       g = row_norm / 2.0;
       f = 1.0;
       s = col_norm + row_norm;
-      while (col_norm < g) {
+      while (col_norm < g && f < 0x1p500) {
         f *= 2.0;
         col_norm *= 4.0;
       }
       g = row_norm * 2.0;
-      while (col_norm > g) {
+      while (col_norm > g && f > 0x1p-500) {
         f /= 2.0;
         col_norm /= 4.0;
       }
@@ -747,7 +752,10 @@ int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re
   }
   memset(h, 0, n * n * sizeof *h);
   for (i = 1; i < n; i++) h[i * n + i - 1] = 1.0;
-  for (i = 0; i < n; i++) h[i * n + n - 1] = -c[i] / c[n];
+  for (i = 0; i < n; i++) {
+    h[i * n + n - 1] = -c[i] / c[n];
+    if (!isfinite(h[i * n + n - 1])) return -1; /* c[i] / c[n] overflows: scale first */
+  }
   balance_companion(h, n);
   if (hessenberg_eigvals((int)n, h, n, re, im) != 0) return -1;
   for (i = 0; i < n; i++)
@@ -757,7 +765,8 @@ int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re
 
 autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree) {
   autobal_poly_workspace *w;
-  if (degree < 1) return NULL;
+  /* the size check comes first: the counts below must not overflow */
+  if (degree < 1 || degree > AUTOBAL_POLY_MAX_DEGREE) return NULL;
   w = (autobal_poly_workspace *)calloc(1, sizeof *w);
   if (w == NULL) return NULL;
   w->degree = degree;
@@ -767,10 +776,12 @@ autobal_poly_workspace *autobal_poly_workspace_alloc(size_t degree) {
     w->w = gsl_poly_complex_workspace_alloc(degree + 1);
   }
   w->z = (double *)calloc(2 * degree, sizeof(double));
-  w->h = (degree <= 4096) ? (double *)malloc(degree * degree * sizeof(double)) : NULL;
-  w->ab = (degree <= 4096) ? (double *)malloc((2 * degree + 1 + 2 * (degree * (degree + 1) / 2 + degree)) * sizeof(double)) : NULL;
+  w->h = (double *)malloc(degree * degree * sizeof(double));
+  w->ab = (double *)malloc((2 * degree + 1 + 2 * (degree * (degree + 1) / 2 + degree)) * sizeof(double));
   w->flag = (unsigned char *)malloc(2 * degree);
-  if (w->w == NULL || w->z == NULL || w->h == NULL || w->ab == NULL || w->flag == NULL) {
+  w->cs = (double *)malloc((degree + 1) * sizeof(double));
+  if (w->w == NULL || w->z == NULL || w->h == NULL || w->ab == NULL || w->flag == NULL ||
+      w->cs == NULL) {
     autobal_poly_workspace_free(w);
     return NULL;
   }
@@ -798,6 +809,7 @@ void autobal_poly_workspace_free(autobal_poly_workspace *w) {
   if (w == NULL) return;
   if (w->w) gsl_poly_complex_workspace_free(w->w);
   free(w->z);
+  free(w->cs);
   free(w->h);
   free(w->ab);
   free(w->flag);
@@ -859,20 +871,72 @@ int autobal_poly_roots(autobal_poly_workspace *w, const double *c, size_t len, d
   if (c[len - 1] == 0.0)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "autobal_poly_roots: leading coefficient c[%zu] is zero", len - 1);
-  if (autobal_poly_roots_aberth(w, c, re, im) == 0 || autobal_poly_roots_qr(w, c, re, im) == 0) {
-    sort_pairs(w->degree, re, im);
-    return AUTOBAL_SUCCESS;
-  }
-  /* neither settled (not seen in practice): GSL's companion QR (EISPACK hqr) */
-  gs = gsl_poly_complex_solve(c, len, w->w, w->z);
-  if (gs != GSL_SUCCESS) {
-    for (i = 0; i < w->degree; i++) re[i] = im[i] = NAN;
-    return autobal_error_set(err, AUTOBAL_ENUMERIC, "autobal_poly_roots: gsl_poly_complex_solve: %s",
-                             gsl_strerror(gs));
-  }
-  for (i = 0; i < w->degree; i++) {
-    re[i] = w->z[2 * i];
-    im[i] = w->z[2 * i + 1];
+  {
+    /* 2^k about the geometric mean of the roots' moduli (|c_nz / c_n|^(1/(n - nz)), nz =
+     * number of zero roots) and the exponent range of the coefficients; with |k| n or the
+     * range near the double's exponent range the powers of the roots and the ratios c_i / c_n
+     * over- or underflow, and the scaled problem below is solved directly */
+    const size_t n = w->degree;
+    size_t nz = 0;
+    int k, emax = INT_MIN, emin = INT_MAX, r1, r2;
+    while (nz < n && c[nz] == 0.0) nz++;
+    k = nz < n ? (int)lround((double)(ilogb(c[nz]) - ilogb(c[n])) / (double)(n - nz)) : 0;
+    for (i = 0; i < len; i++)
+      if (c[i] != 0.0) {
+        if (ilogb(c[i]) < emin) emin = ilogb(c[i]);
+        if (ilogb(c[i]) > emax) emax = ilogb(c[i]);
+      }
+    if (abs(k) * (int)(n < 64 ? n : 64) < 900 && emax - emin < 1800 &&
+        (autobal_poly_roots_aberth(w, c, re, im) == 0 || autobal_poly_roots_qr(w, c, re, im) == 0)) {
+      sort_pairs(w->degree, re, im);
+      return AUTOBAL_SUCCESS;
+    }
+    /* Extreme scaling, or neither method settled: solve for z = x / 2^k with the
+     * coefficients c_j 2^(j k) normalised by a power of 2 (exact unless a negligible one
+     * underflows), then x = 2^k z. */
+    emax = INT_MIN;
+    for (i = 0; i < len; i++)
+      if (c[i] != 0.0 && ilogb(c[i]) + (int)i * k > emax) emax = ilogb(c[i]) + (int)i * k;
+    for (i = 0; i < len; i++) w->cs[i] = c[i] == 0.0 ? 0.0 : ldexp(c[i], (int)i * k - emax);
+    r1 = autobal_poly_roots_aberth(w, w->cs, re, im);
+    r2 = r1 == 0 ? 0 : autobal_poly_roots_qr(w, w->cs, re, im);
+    if (r2 != 0) {
+      /* last resort (not seen in practice): GSL's companion QR (EISPACK hqr) on the scaled
+       * coefficients, when their companion matrix is finite (GSL's balancing does not stop
+       * on infinite entries) */
+      for (i = 0; i < n; i++)
+        if (!isfinite(w->cs[i] / w->cs[n])) {
+          for (i = 0; i < n; i++) re[i] = im[i] = NAN;
+          return autobal_error_set(err, AUTOBAL_ENUMERIC,
+                                   "autobal_poly_roots: the roots of this degree-%zu polynomial "
+                                   "span more than the double range (coefficient ratio "
+                                   "c[%zu]/c[%zu] overflows even after scaling)",
+                                   n, i, n);
+        }
+      gs = gsl_poly_complex_solve(w->cs, len, w->w, w->z);
+      if (gs != GSL_SUCCESS) {
+        for (i = 0; i < n; i++) re[i] = im[i] = NAN;
+        return autobal_error_set(err, AUTOBAL_ENUMERIC,
+                                 "autobal_poly_roots: gsl_poly_complex_solve: %s",
+                                 gsl_strerror(gs));
+      }
+      for (i = 0; i < n; i++) {
+        re[i] = w->z[2 * i];
+        im[i] = w->z[2 * i + 1];
+      }
+    }
+    for (i = 0; i < n; i++) {
+      re[i] = ldexp(re[i], k);
+      im[i] = ldexp(im[i], k);
+      if (!isfinite(re[i]) || !isfinite(im[i])) {
+        size_t j;
+        for (j = 0; j < n; j++) re[j] = im[j] = NAN;
+        return autobal_error_set(err, AUTOBAL_ENUMERIC,
+                                 "autobal_poly_roots: a root of this degree-%zu polynomial has a "
+                                 "modulus beyond the double range (about 1.8e308)",
+                                 n);
+      }
+    }
   }
   sort_pairs(w->degree, re, im);
   return AUTOBAL_SUCCESS;
