@@ -957,8 +957,11 @@ void cli_json_string(cli_json *j, const char *key, const char *s) {
   fputc('"', j->f);
   for (p = (const unsigned char *)(s ? s : ""); *p; p++) {
     if (*p == '"' || *p == '\\') fprintf(j->f, "\\%c", *p);
-    else if (*p < 0x20) fprintf(j->f, "\\u%04x", *p);
-    else fputc(*p, j->f);
+    else if (*p < 0x20 || *p == 0x7f) fprintf(j->f, "\\u%04x", *p);
+    else if (*p == 0xc2 && p[1] >= 0x80 && p[1] <= 0x9f) { /* C1 controls (U+0080-U+009F) */
+      fprintf(j->f, "\\u%04x", p[1]);
+      p++;
+    } else fputc(*p, j->f);
   }
   fputc('"', j->f);
 }

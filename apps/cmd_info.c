@@ -15,6 +15,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +27,40 @@ int cli_cmd_info(cli_ctx *ctx); /* registered in commands.c */
 
 #define INFO_MAX_VALUES_JSON 64 /* datasets up to this many elements show their values in --json */
 #define INFO_MAX_VALUES_TEXT 8  /* ... and up to this many in the text summary */
+
+/* ---- text output ------------------------------------------------------------------- */
+/* printf for the text summary, with every control character that a crafted archive could
+ * carry to the terminal (bytes 0x00-0x1f except newline and tab, DEL, and the C1 controls
+ * U+0080-U+009F, encoded 0xC2 0x80-0x9F) shown as \xNN: strings of an archive never
+ * reach the terminal raw (--json escapes them its own way). */
+static void info_printf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static void info_printf(const char *fmt, ...) {
+  char small[512], *buf = small;
+  const unsigned char *p;
+  va_list ap;
+  int n;
+  va_start(ap, fmt);
+  n = vsnprintf(small, sizeof small, fmt, ap);
+  va_end(ap);
+  if (n < 0) return;
+  if ((size_t)n >= sizeof small) {
+    buf = malloc((size_t)n + 1);
+    if (!buf) return;
+    va_start(ap, fmt);
+    (void)vsnprintf(buf, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+  }
+  for (p = (const unsigned char *)buf; *p; p++) {
+    if ((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f)
+      fprintf(stdout, "\\x%02x", *p);
+    else if (*p == 0xc2 && p[1] >= 0x80 && p[1] <= 0x9f) {
+      fprintf(stdout, "\\xc2\\x%02x", p[1]);
+      p++;
+    } else
+      fputc(*p, stdout);
+  }
+  if (buf != small) free(buf);
+}
 
 /* ---- attributes and dataset descriptions (archive.h) ------------------------------ */
 /* Copy src into dst (len bytes), truncated and NUL-terminated. */
@@ -230,7 +265,25 @@ typedef struct info_run {
   int pass; /* text: 0 headline pass, 1 full listing */
   size_t nheadline;
   int failed;
+  /* the walk: groups already visited in this pass (their object ids: hard links to a group
+   * are listed once, a cycle of links ends) and the nesting depth */
+  uint64_t *seen;
+  size_t nseen, capseen;
+  int depth;
 } info_run;
+
+/* Deepest group nesting listed (autobal archives nest 4 deep; a crafted file could nest
+ * thousands). */
+#define INFO_MAX_DEPTH 32
+
+/* A member name the archive API refuses (control characters; autobal never writes one):
+ * such a member of a crafted file is named, escaped, and skipped. */
+static int bad_name(const char *name) {
+  const unsigned char *p;
+  for (p = (const unsigned char *)name; *p; p++)
+    if (*p < 0x20 || *p == 0x7f || (*p == 0xc2 && p[1] >= 0x80 && p[1] <= 0x9f)) return 1;
+  return 0;
+}
 
 static void join_path(char *out, size_t len, const char *group, const char *name) {
   if (!strcmp(group, "/")) snprintf(out, len, "/%s", name);
@@ -285,13 +338,13 @@ static void headline_attr(info_run *r, const char *path, const info_attrs *al, c
     if (u) cli_json_string(&r->j, "units", u);
     cli_json_object_end(&r->j);
   } else {
-    printf("  %-28s %-26s = ", path, at->name);
-    if (at->kind == ATTR_STRING) printf("%s", at->s);
+    info_printf("  %-28s %-26s = ", path, at->name);
+    if (at->kind == ATTR_STRING) info_printf("%s", at->s);
     else if (at->kind == ATTR_NUMBER && !strcmp(at->name, "balanced") && at->n == 1)
-      printf("%s", at->v[0] != 0 ? "yes" : "no");
+      info_printf("%s", at->v[0] != 0 ? "yes" : "no");
     else if (at->kind == ATTR_NUMBER) print_numbers(stdout, at->v, at->n, at->is_int, INFO_MAX_VALUES_TEXT);
-    if (u && strcmp(u, "1") != 0) printf(" %s", u);
-    printf("\n");
+    if (u && strcmp(u, "1") != 0) info_printf(" %s", u);
+    info_printf("\n");
   }
   r->nheadline++;
 }
@@ -327,11 +380,11 @@ static int headline_dataset(info_run *r, const char *group, const char *dpath, c
       if (units) cli_json_string(&r->j, "units", units);
       cli_json_object_end(&r->j);
     } else {
-      printf("  %-28s %-26s = ", group, name);
-      if (count == 0) printf("(none)");
+      info_printf("  %-28s %-26s = ", group, name);
+      if (count == 0) info_printf("(none)");
       print_numbers(stdout, v, count, 0, 16);
-      if (units && strcmp(units, "1") != 0) printf(" %s", units);
-      printf("\n");
+      if (units && strcmp(units, "1") != 0) info_printf(" %s", units);
+      info_printf("\n");
     }
   } else {
     size_t nst = 0, nmarg = 0, nun = 0, nother = 0;
@@ -354,10 +407,10 @@ static int headline_dataset(info_run *r, const char *group, const char *dpath, c
       cli_json_object_end(&r->j);
       cli_json_object_end(&r->j);
     } else {
-      printf("  %-28s %-26s = %zu points: %zu stable (%.1f%%), %zu marginal, %zu unstable", group, name, count, nst,
+      info_printf("  %-28s %-26s = %zu points: %zu stable (%.1f%%), %zu marginal, %zu unstable", group, name, count, nst,
              count ? 100.0 * (double)nst / (double)count : 0.0, nmarg, nun);
-      if (nother) printf(", %zu without a verdict", nother);
-      printf("\n");
+      if (nother) info_printf(", %zu without a verdict", nother);
+      info_printf("\n");
     }
     (void)rank;
   }
@@ -375,6 +428,30 @@ static int visit_group(info_run *r, const char *group) {
   char path[2048];
 
   memset(&ml, 0, sizeof ml);
+  {
+    uint64_t id = 0;
+    size_t k;
+    if (r->depth > INFO_MAX_DEPTH)
+      return cli_fail(r->ctx, CLI_EXIT_IO,
+                      "group '%s' is nested deeper than %d levels: not the layout of an autobal archive",
+                      group, INFO_MAX_DEPTH);
+    if (autobal_archive_object_id(r->a, group, &id) != AUTOBAL_SUCCESS)
+      return cli_fail(r->ctx, CLI_EXIT_IO, "cannot identify group '%s': %s", group, autobal_archive_errmsg(r->a));
+    for (k = 0; k < r->nseen; k++)
+      if (r->seen[k] == id) {
+        if (r->pass == 1 && !r->json)
+          info_printf("\n%s   (a hard link to a group listed above: not repeated)\n", group);
+        return CLI_EXIT_OK;
+      }
+    if (r->nseen == r->capseen) {
+      size_t cap = r->capseen ? 2 * r->capseen : 64;
+      uint64_t *p = realloc(r->seen, cap * sizeof *p);
+      if (!p) return cli_fail(r->ctx, CLI_EXIT_INTERNAL, "out of memory listing group '%s'", group);
+      r->seen = p;
+      r->capseen = cap;
+    }
+    r->seen[r->nseen++] = id;
+  }
   st = autobal_archive_list(r->a, group, list_cb, &ml);
   if (st != AUTOBAL_SUCCESS || ml.failed) {
     free(ml.m);
@@ -402,7 +479,7 @@ static int visit_group(info_run *r, const char *group) {
       cli_json_object(&r->j, "attributes");
     } else {
       const char *slash = strrchr(group, '/');
-      printf("\n%s%s\n", group, (slash && !strcmp(slash, "/solver")) ? "   (solver statistics)" : "");
+      info_printf("\n%s%s\n", group, (slash && !strcmp(slash, "/solver")) ? "   (solver statistics)" : "");
     }
     for (i = 0; i < al.n; i++) {
       const info_attr *at = &al.a[i];
@@ -415,17 +492,17 @@ static int visit_group(info_run *r, const char *group) {
         if (u) cli_json_string(&r->j, "units", u);
         cli_json_object_end(&r->j);
       } else {
-        if (!printed_attr_heading) printf("  attributes\n");
+        if (!printed_attr_heading) info_printf("  attributes\n");
         printed_attr_heading = 1;
-        printf("    %-26s = ", at->name);
+        info_printf("    %-26s = ", at->name);
         if (at->kind == ATTR_STRING) {
           const char *nl = strchr(at->s, '\n');
-          if (nl) printf("%.*s ...", (int)(nl - at->s), at->s);
-          else printf("%s", at->s);
+          if (nl) info_printf("%.*s ...", (int)(nl - at->s), at->s);
+          else info_printf("%s", at->s);
         } else if (at->kind == ATTR_NUMBER) print_numbers(stdout, at->v, at->n, at->is_int, INFO_MAX_VALUES_TEXT);
-        else printf("(%zu element(s) of a type not shown)", at->n);
-        if (u) printf("   [%s]", u);
-        printf("\n");
+        else info_printf("(%zu element(s) of a type not shown)", at->n);
+        if (u) info_printf("   [%s]", u);
+        info_printf("\n");
       }
     }
     if (r->json) {
@@ -442,10 +519,15 @@ static int visit_group(info_run *r, const char *group) {
     dim_names dn;
     int has_units, has_lname;
     if (ml.m[i].is_group) continue;
+    if (bad_name(ml.m[i].name)) {
+      if (r->pass == 1 && !r->json)
+        info_printf("    %s   (a name with control characters, not an autobal name: not listed)\n", ml.m[i].name);
+      continue;
+    }
     join_path(path, sizeof path, group, ml.m[i].name);
     st = autobal_archive_var_shape(r->a, path, &rank, dims, &count);
     if (st != AUTOBAL_SUCCESS) {
-      if (r->pass == 1 && !r->json) printf("  %s: %s\n", ml.m[i].name, autobal_archive_errmsg(r->a));
+      if (r->pass == 1 && !r->json) info_printf("  %s: %s\n", ml.m[i].name, autobal_archive_errmsg(r->a));
       continue;
     }
     has_units = autobal_archive_read_attr_string(r->a, path, "units", units, sizeof units, NULL) >= 0;
@@ -505,16 +587,16 @@ static int visit_group(info_run *r, const char *group) {
       for (d = 0; d < rank; d++)
         pos += (size_t)snprintf(shape + pos, sizeof shape - pos, "%s%s=%zu", d ? ", " : "",
                                 dn.name[d][0] ? dn.name[d] : "?", dims[d]);
-      if (!printed_ds_heading) printf("  datasets\n");
+      if (!printed_ds_heading) info_printf("  datasets\n");
       printed_ds_heading = 1;
-      printf("    %s(%s) %s [%s]%s  %s\n", ml.m[i].name, rank ? shape : "", dtype, has_units ? units : "NO UNITS",
+      info_printf("    %s(%s) %s [%s]%s  %s\n", ml.m[i].name, rank ? shape : "", dtype, has_units ? units : "NO UNITS",
              dn.scale ? " coordinate," : "", has_lname ? lname : "(no long_name)");
       if (count > 0 && count <= INFO_MAX_VALUES_TEXT && strcmp(dtype, "string") != 0 && !dn.scale) {
         double v[INFO_MAX_VALUES_TEXT];
         if (autobal_archive_read_var(r->a, path, v, count) == AUTOBAL_SUCCESS) {
-          printf("        = ");
+          info_printf("        = ");
           print_numbers(stdout, v, count, !strncmp(dtype, "int", 3), INFO_MAX_VALUES_TEXT);
-          printf("\n");
+          info_printf("\n");
         }
       }
     }
@@ -526,8 +608,16 @@ static int visit_group(info_run *r, const char *group) {
   /* subgroups */
   for (i = 0; i < ml.n && rc == CLI_EXIT_OK; i++) {
     if (!ml.m[i].is_group) continue;
+    if (bad_name(ml.m[i].name)) {
+      if (r->pass == 1 && !r->json)
+        info_printf("\n%s/%s   (a name with control characters, not an autobal name: not listed)\n",
+                    strcmp(group, "/") ? group : "", ml.m[i].name);
+      continue;
+    }
     join_path(path, sizeof path, group, ml.m[i].name);
+    r->depth++;
     rc = visit_group(r, path);
+    r->depth--;
   }
   attrs_free(&al);
   free(ml.m);
@@ -600,60 +690,63 @@ int cli_cmd_info(cli_ctx *ctx) {
     cli_json_int(&r.j, "input_config_keys", (long)count_keys(ini));
     if (eff) cli_json_int(&r.j, "effective_config_keys", (long)count_keys_of(eff, 1));
   } else {
-    printf("archive       %s\n", path);
-    printf("command       autobal %s\n", cmd ? cmd : "(unknown: no root attribute 'command')");
+    info_printf("archive       %s\n", path);
+    info_printf("command       autobal %s\n", cmd ? cmd : "(unknown: no root attribute 'command')");
     s = root_str(&root, "status");
-    printf("status        %s", s ? s : "(none)");
-    if ((s = root_str(&root, "status_reason"))) printf(" (%s)", s);
-    printf("\n");
-    if ((s = root_str(&root, "title"))) printf("title         %s\n", s);
-    printf("created       %s by autobal %s (git %s), GSL %s, HDF5 %s\n", root_str(&root, "created") ? root_str(&root, "created") : "?",
+    info_printf("status        %s", s ? s : "(none)");
+    if ((s = root_str(&root, "status_reason"))) info_printf(" (%s)", s);
+    info_printf("\n");
+    if ((s = root_str(&root, "title"))) info_printf("title         %s\n", s);
+    info_printf("created       %s by autobal %s (git %s), GSL %s, HDF5 %s\n", root_str(&root, "created") ? root_str(&root, "created") : "?",
            root_str(&root, "autobal_version") ? root_str(&root, "autobal_version") : "?",
            root_str(&root, "git_revision") ? root_str(&root, "git_revision") : "?",
            root_str(&root, "gsl_version") ? root_str(&root, "gsl_version") : "?",
            root_str(&root, "hdf5_version") ? root_str(&root, "hdf5_version") : "?");
-    if ((s = root_str(&root, "command_line"))) printf("command line  %s\n", s);
-    if (!ini) printf("configuration (%s)\n", eff ? "the given one not recorded" : "not recorded: this archive cannot be re-run");
-    else if (count_keys(ini) == 0) printf("configuration built-in defaults (no keys given)\n");
+    if ((s = root_str(&root, "command_line"))) info_printf("command line  %s\n", s);
+    if (!ini) info_printf("configuration (%s)\n", eff ? "the given one not recorded" : "not recorded: this archive cannot be re-run");
+    else if (count_keys(ini) == 0) info_printf("configuration built-in defaults (no keys given)\n");
     else {
       const char *p = ini;
-      printf("configuration %zu key(s), file plus --set overrides (autobal rerun repeats the run):\n",
+      info_printf("configuration %zu key(s), file plus --set overrides (autobal rerun repeats the run):\n",
              count_keys(ini));
       while (*p) {
         const char *nl = strchr(p, '\n');
         int len = nl ? (int)(nl - p) : (int)strlen(p);
-        printf("    %.*s\n", len, p);
+        info_printf("    %.*s\n", len, p);
         if (!nl) break;
         p = nl + 1;
       }
     }
     if (eff)
-      printf("effective     %zu key(s) read by the command with the values used, defaults included "
+      info_printf("effective     %zu key(s) read by the command with the values used, defaults included "
              "(root attribute effective_config; autobal rerun runs from it)\n",
              count_keys_of(eff, 1));
     s = root_str(&root, "status");
     if (s && strcmp(s, "complete") != 0)
-      printf("WARNING: the run did not complete; the data below are partial.\n");
-    printf("\nheadline results\n");
+      info_printf("WARNING: the run did not complete; the data below are partial.\n");
+    info_printf("\nheadline results\n");
   }
 
   /* headline results */
   if (r.json) cli_json_array(&r.j, "headline");
   r.pass = 0;
+  r.nseen = 0;
   rc = visit_group(&r, "/");
   if (r.json) cli_json_array_end(&r.j);
-  else if (rc == CLI_EXIT_OK && r.nheadline == 0) printf("  (none recognised)\n");
+  else if (rc == CLI_EXIT_OK && r.nheadline == 0) info_printf("  (none recognised)\n");
 
   /* everything */
   if (rc == CLI_EXIT_OK) {
     if (r.json) cli_json_array(&r.j, "groups");
-    else printf("\ngroups: attributes = value [units]; datasets(dimension=size) type [units] long_name\n");
+    else info_printf("\ngroups: attributes = value [units]; datasets(dimension=size) type [units] long_name\n");
     r.pass = 1;
+    r.nseen = 0;
     rc = visit_group(&r, "/");
     if (r.json) cli_json_array_end(&r.j);
   }
   if (r.json) cli_json_end(&r.j);
 done:
+  free(r.seen);
   attrs_free(&root);
   autobal_archive_close(r.a, NULL);
   fflush(stdout);

@@ -360,6 +360,12 @@ typedef int (*autobal_archive_list_fn)(const char *name, int is_group, void *ctx
 AUTOBAL_API int autobal_archive_list(autobal_archive *a, const char *group,
                                      autobal_archive_list_fn fn, void *ctx);
 
+/* A number identifying the group or dataset `obj` within the open archive (its address in
+ * the file): two paths give the same number exactly when they name the same object (hard
+ * links), so a reader that walks the groups can visit each object once, even in a file
+ * whose links form a cycle.  AUTOBAL_EINVAL: no such object, NULL arguments. */
+AUTOBAL_API int autobal_archive_object_id(autobal_archive *a, const char *obj, uint64_t *id);
+
 /* Type classes of attributes and datasets as the reading functions see them. */
 typedef enum autobal_archive_class {
   AUTOBAL_ARCHIVE_CLASS_FLOAT = 1,   /* IEEE floating point (read as double) */

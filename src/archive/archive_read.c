@@ -97,6 +97,11 @@ int autobal_archive_open_read(const char *path, autobal_archive **out, autobal_e
     return autobal_error_set(err, AUTOBAL_EIO, "cannot open archive '%s': %s", path, strerror(errno));
   if (S_ISDIR(st.st_mode))
     return autobal_error_set(err, AUTOBAL_EIO, "cannot open archive '%s': is a directory", path);
+  if (!S_ISREG(st.st_mode)) /* a FIFO would block the open forever */
+    return autobal_error_set(err, AUTOBAL_EIO,
+                             "cannot open archive '%s': not a regular file (a FIFO, device or "
+                             "socket); an archive is a regular HDF5 file",
+                             path);
   if (access(path, R_OK) != 0)
     return autobal_error_set(err, AUTOBAL_EIO, "cannot open archive '%s': %s", path, strerror(errno));
   a = (autobal_archive *)calloc(1, sizeof *a);
@@ -405,6 +410,26 @@ static herr_t list_cb(hid_t g, const char *name, const H5L_info_t *info, void *v
   memcpy(c->buf + c->len + 1, name, n - 1);
   c->len += n;
   return 0;
+}
+
+int autobal_archive_object_id(autobal_archive *a, const char *obj, uint64_t *id) {
+  char path[AUTOBAL_ARCHIVE_PATH_MAX];
+  autobal_archive_quiet_ q;
+  H5O_info_t oi;
+  int rc;
+  if (a == NULL) return AUTOBAL_EINVAL;
+  autobal_error_clear(&a->err);
+  if (id == NULL) return autobal_error_set(&a->err, AUTOBAL_EINVAL, "object_id: id is NULL");
+  if ((rc = autobal_archive_norm_path_(&a->err, "obj", obj, path, sizeof path)) != AUTOBAL_SUCCESS) return rc;
+  autobal_archive_h5_enter_(&q);
+  if (autobal_archive_path_type_(a->file, path) < 0)
+    rc = autobal_error_set(&a->err, AUTOBAL_EINVAL, "no object '%s' in '%s'", path, a->path);
+  else if (H5Oget_info_by_name2(a->file, path, &oi, H5O_INFO_BASIC, H5P_DEFAULT) < 0)
+    rc = autobal_archive_h5fail_(&a->err, "cannot identify object '%s'", path);
+  else
+    *id = (uint64_t)oi.addr;
+  autobal_archive_h5_leave_(&q);
+  return rc;
 }
 
 int autobal_archive_list(autobal_archive *a, const char *group, autobal_archive_list_fn fn, void *ctx) {

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# App test (issue 19, items 1 and 6): archives crafted to hang or to attack the terminal.  A real
+# archive is made by the program, then h5py adds to it: a hard-link cycle of groups, 300 nested
+# groups, attributes and names carrying terminal escape sequences (ESC, CSI as C1 U+009B, BEL).
+# `autobal info` must finish within seconds (timeout 30 s each; before the fix the cycle never
+# finished and 300 nested groups took 35 s), list every group once, refuse the nesting with a
+# named limit, and print no raw control character; info, rerun and plot must refuse a FIFO at
+# once instead of blocking on it.
+set -u
+: "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+fail=0; pass=0
+ok()  { echo "ok   $*"; pass=$((pass+1)); }
+bad() { echo "FAIL $*"; fail=$((fail+1)); }
+# expect CODE NEEDLE cmd...: exit code CODE within 30 s, NEEDLE in stdout or stderr
+expect() {
+  local code=$1 needle=$2; shift 2
+  timeout 30 "$@" >out.txt 2>err.txt; local rc=$?
+  if [ "$rc" -eq 124 ]; then bad "did not finish within 30 s: $*"; return; fi
+  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
+  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; head -c 2000 out.txt err.txt; return; fi
+  ok "exit $code${needle:+ and '$needle'}: $*"
+}
+# no byte 0x00-0x08, 0x0b-0x1f, 0x7f or the UTF-8 of U+0080-U+009F in the files given
+no_controls() {
+  if "$PY" - "$@" <<'EOF'
+import re, sys
+bad = re.compile(rb'[\x00-\x08\x0b-\x1f\x7f]|\xc2[\x80-\x9f]')
+sys.exit(1 if any(bad.search(open(f, 'rb').read()) for f in sys.argv[1:]) else 0)
+EOF
+  then ok "no raw control characters in $*"; else bad "raw control characters in $*"; fi
+}
+
+"$AUTOBAL" pendulum roots -o base.h5 >/dev/null 2>&1 || { echo "FAIL cannot make the base archive"; exit 1; }
+
+"$PY" - <<'EOF' || { echo "FAIL h5py could not craft the archives"; exit 1; }
+import shutil, h5py
+shutil.copy('base.h5', 'cycle.h5')
+with h5py.File('cycle.h5', 'a') as f:
+    a = f.create_group('a'); b = a.create_group('b')
+    b['back'] = a            # hard link: /a/b/back is /a, a cycle
+    f['alias'] = a           # a second name of /a
+shutil.copy('base.h5', 'deep.h5')
+with h5py.File('deep.h5', 'a') as f:
+    g = f
+    for i in range(300):
+        g = g.create_group('g%d' % i)
+shutil.copy('base.h5', 'escape.h5')
+with h5py.File('escape.h5', 'a') as f:
+    f.attrs['title'] = 'plain \x1b[2J\x1b[31mRED\x07 and \u009b31m C1'
+    g = f.create_group('evil\x1b[5mname')
+    g.attrs['note'] = '\x1b]0;owned\x07'
+    d = g.create_dataset('x', data=[1.0, 2.0])
+    d.attrs['units'] = 'm\x1b[0m'
+    d.attrs['long_name'] = 'bell\x07'
+EOF
+
+# 1. the cycle: finishes, /a listed once, the alias named as a repeat
+expect 0 "a hard link to a group listed above" "$AUTOBAL" info cycle.h5
+n=$(grep -c '^/a$' out.txt)
+[ "$n" -eq 1 ] && ok "/a listed once (found $n)" || bad "/a listed $n times"
+expect 0 "" "$AUTOBAL" info cycle.h5 --json
+"$PY" -c "import json; json.load(open('out.txt'))" && ok "--json of the cycle is valid JSON" || bad "--json of the cycle is not JSON"
+
+# 2. deep nesting: refused with the limit named, quickly
+expect 4 "deeper than 32 levels" "$AUTOBAL" info deep.h5
+
+# 3. escape sequences: shown as \xNN, never raw
+expect 0 '\x1b[2J' "$AUTOBAL" info escape.h5
+no_controls out.txt err.txt
+grep -qF '\xc2\x9b31m' out.txt && ok "C1 control shown as \\xc2\\x9b" || bad "C1 control not escaped"
+expect 0 "" "$AUTOBAL" info escape.h5 --json
+no_controls out.txt err.txt
+
+# 4. a FIFO is refused at once by every reader
+mkfifo pipe.h5
+expect 4 "not a regular file" "$AUTOBAL" info pipe.h5
+expect 4 "not a regular file" "$AUTOBAL" rerun pipe.h5 -o rerun.h5
+[ ! -e rerun.h5 ] && ok "rerun of a FIFO wrote nothing" || bad "rerun of a FIFO left rerun.h5"
+expect 4 "not a regular file" "$AUTOBAL" plot pipe.h5 -o plots
+
+echo "hostile_archive: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
