@@ -3,6 +3,7 @@
  * drive and a flat ramp give the constant-speed model; the fixed-frame and rotating-frame
  * right-hand sides agree during a ramp (instantaneously: psi'' = phi'' - Omega', and over a
  * transient); the Omega' terms against a direct (4+n) mass-matrix solve; the parameter checks. */
+#include <complex.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -679,6 +680,143 @@ static void test_motor_errors(void) {
   CHECK_STATUS("the repaired table", autobal_rotor_params_check(&p, &e), AUTOBAL_SUCCESS);
 }
 
+/* ---- the Sommerfeld effect -------------------------------------------------------------- */
+/* Closed form: the default rotor WITHOUT balls on isotropic supports (c_Lx = c_Ly, c_Rx = c_Ry, the
+ * same for h, so c_xbeta = c_yalpha, h_xbeta = h_yalpha) at a constant speed W.  With z = x + i y,
+ * th = beta - i alpha and the unbalance S = m0 r0 e^{i (W t + psi0)}, the x + i y and beta - i alpha
+ * combinations of (3.2) are
+ *   M z'' + h_x z' + c_x z - h_xbeta th' - c_xbeta th = -S''
+ *   A th'' + (h_beta - i C W) th' + c_beta th - h_xbeta z' - c_xbeta z = -d S''
+ * (C W (alpha' + i beta') = i C W th').  The steady response z = Z e^{iWt}, th = T e^{iWt}:
+ *   [ -M W^2 + i W h_x + c_x        -i W h_xbeta - c_xbeta            ] [Z]   [1]
+ *   [ -i W h_xbeta - c_xbeta        -(A - C) W^2 + i W h_beta + c_beta ] [T] = [d] W^2 m0 r0 e^{i psi0},
+ * a forward circular whirl.  The unbalance point D moves by U = Z + d T; the load torque of the
+ * phi_0 equation, m0 r0 (-u_D'' sin th0 + v_D'' cos th0) = m0 r0 Im((u_D'' + i v_D'') e^{-i th0}),
+ * is then the constant -m0 r0 W^2 Im(U e^{-i psi0}) (the gyroscopic reaction C (alpha' beta)' has
+ * zero mean).  Its product with W is the power the supports dissipate in the whirl. */
+static double whirl_torque(const autobal_rotor_params *p, double W) {
+  const autobal_rotor_lumped *L = &p->lumped;
+  const double d = p->plane[0].d, s0 = p->plane[0].m0 * p->plane[0].r0;
+  const double complex K11 = -L->M * W * W + I * W * L->h_x + L->c_x;
+  const double complex K12 = -I * W * L->h_xbeta - L->c_xbeta;
+  const double complex K22 = -(L->A - L->C) * W * W + I * W * L->h_beta + L->c_beta;
+  const double complex f = W * W * s0 * cexp(I * p->plane[0].psi0), det = K11 * K22 - K12 * K12;
+  const double complex Z = (K22 - K12 * d) * f / det, T = (K11 * d - K12) * f / det;
+  return -s0 * W * W * cimag((Z + d * T) * cexp(-I * p->plane[0].psi0));
+}
+
+/* the net torque L(W) - k_r W - T_u(W) of a linear motor */
+static double net_torque(const autobal_rotor_params *p, double W) {
+  return p->drive.L_0 * (1.0 - W / p->drive.omega_0) - p->drive.k_r * W - whirl_torque(p, W);
+}
+
+/* The roots of net_torque on (0, omega_0]: a scan with step 0.05 rad/s and bisection. */
+static size_t net_torque_roots(const autobal_rotor_params *p, double *root, size_t cap) {
+  size_t n = 0;
+  double a = 0.05, fa = net_torque(p, a);
+  while (a < p->drive.omega_0 && n < cap) {
+    const double b = a + 0.05, fb = net_torque(p, b);
+    if ((fa > 0) != (fb > 0)) {
+      double lo = a, hi = b;
+      int it;
+      for (it = 0; it < 100; it++) {
+        const double mid = 0.5 * (lo + hi);
+        if ((net_torque(p, mid) > 0) == (fa > 0)) lo = mid;
+        else hi = mid;
+      }
+      root[n++] = 0.5 * (lo + hi);
+    }
+    a = b, fa = fb;
+  }
+  return n;
+}
+
+static void test_sommerfeld(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_rotor *R;
+  double y[MAXDIM], roots[8], peak = 0.0, Wpeak = 0.0, W;
+  size_t n, k;
+  int c;
+  printf("-- the Sommerfeld effect: no balls, isotropic supports, a linear motor (J = C_p = 0.03 kg m^2, "
+         "omega_0 = 300 rad/s, m0 = 0.05 kg at 0.1 m)\n");
+  p.plane[0].n_balls = 0;
+  p.plane[0].m0 = 0.05;
+  (void)autobal_rotor_lumped_from_hardware(&p.hw, &p.lumped, NULL);
+  CHECK("isotropic supports (c_xbeta = c_yalpha, h_xbeta = h_yalpha, c_x = c_y, c_alpha = c_beta)",
+        p.lumped.c_xbeta == p.lumped.c_yalpha && p.lumped.h_xbeta == p.lumped.h_yalpha && p.lumped.c_x == p.lumped.c_y &&
+            p.lumped.c_alpha == p.lumped.c_beta && p.lumped.h_alpha == p.lumped.h_beta && p.lumped.h_x == p.lumped.h_y);
+  for (W = 100.0; W < 200.0; W += 0.01) /* the first resonance peak of the whirl torque */
+    if (whirl_torque(&p, W) > peak) peak = whirl_torque(&p, W), Wpeak = W;
+  printf("     first peak of the whirl torque: %.4g N m at %.2f rad/s\n", peak, Wpeak);
+  {
+    /* the closed form against a simulation at the constant speed 150 rad/s: after 3 s (the
+     * transient decays like exp(-h_x t / 2M) = exp(-37)) the supports dissipate T_u(150) * 150 */
+    autobal_rotor_params pc = p;
+    double Dsup, xl, yl, xr, yr;
+    const autobal_rotor_hardware *h = &pc.hw;
+    pc.omega = 150.0;
+    R = autobal_rotor_alloc(&pc, NULL);
+    CHECK("constant-speed handle without balls", R != NULL);
+    if (!R) return;
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+    CHECK("integration", integrate(autobal_rotor_rhs, R, 0.0, 3.0, y, 1e-12, 1e-15) == 0);
+    xl = y[4] - h->l_L * y[7], yl = y[5] + h->l_L * y[6], xr = y[4] + h->l_R * y[7], yr = y[5] - h->l_R * y[6];
+    Dsup = h->h_Lx * xl * xl + h->h_Ly * yl * yl + h->h_Rx * xr * xr + h->h_Ry * yr * yr;
+    CHECK_CLOSE("   dissipated power / Omega of the simulated steady whirl at 150 rad/s = closed-form torque", Dsup / 150.0,
+                whirl_torque(&p, 150.0), 1e-8, 0);
+    autobal_rotor_free(R);
+  }
+  for (c = 0; c < 2; c++) {
+    /* weak: L_0 = 0.6 N m cannot beat the first peak (L(Wpeak) < peak) although its free speed
+     * (L = k_r Omega) is near 300 rad/s; strong: L_0 = 10 N m passes both resonances */
+    const double L0 = c == 0 ? 0.6 : 10.0, T = c == 0 ? 40.0 : 25.0;
+    double ymax = 0.0, ymin = INFINITY, target, ph_a;
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+    p.drive.J = 0.03;
+    p.drive.L_0 = L0;
+    p.drive.omega_0 = 300.0;
+    p.drive.k_r = 1e-4;
+    p.drive.omega_start = 100.0;
+    n = net_torque_roots(&p, roots, 8);
+    printf("     L_0 = %g N m: L(Omega) - k_r Omega = T_u(Omega) at", L0);
+    for (k = 0; k < n; k++) printf(" %.6f", roots[k]);
+    printf(" rad/s\n");
+    R = autobal_rotor_alloc(&p, NULL);
+    CHECK("motor handle without balls", R != NULL);
+    if (!R) return;
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+    /* the mean speed over the last second, (phi_0(T) - phi_0(T - 1 s)) / 1 s, and the ripple of
+     * Omega sampled every ms over that second */
+    CHECK("integration", integrate(autobal_rotor_rhs, R, 0.0, T - 1.0, y, 1e-11, 1e-14) == 0);
+    ph_a = y[8];
+    for (k = 0; k < 1000; k++) {
+      const double t0 = T - 1.0 + 1e-3 * (double)k;
+      if (integrate(autobal_rotor_rhs, R, t0, t0 + 1e-3, y, 1e-11, 1e-14) != 0) break;
+      ymax = fmax(ymax, y[9]), ymin = fmin(ymin, y[9]);
+    }
+    CHECK("   the last second integrated", k == 1000);
+    W = (y[8] - ph_a) / 1.0;
+    if (c == 0) {
+      CHECK("   weak motor: three balance points (below the first resonance: stable; on its falling flank: "
+            "unstable; below the second resonance)", n == 3);
+      target = roots[0];
+      CHECK("   weak motor: the lowest balance point lies below the first resonance peak", target < Wpeak);
+    } else {
+      CHECK("   strong motor: a single balance point, above both resonances", n == 1 && roots[0] > 250.0);
+      target = roots[n - 1];
+    }
+    printf("     last second: Omega in [%.9f, %.9f] rad/s, mean %.9f rad/s\n", ymin, ymax, W);
+    /* the closed form averages out the ripple of Omega at 2 Omega (the gyroscopic reaction
+     * C (alpha' beta)', zero mean); what remains of it in the mean speed is of second order.
+     * Measured: |mean - root| = 1.9e-6 rad/s (weak; half ripple 3.7e-4) and 1.8e-4 rad/s (strong;
+     * half ripple 1.6e-2): the tolerance is a tenth of the half ripple */
+    CHECK_CLOSE(c == 0 ? "   weak motor captured: mean Omega = the lowest closed-form balance point (tol 0.1 x half ripple)"
+                       : "   strong motor passes: mean Omega = the closed-form balance point above the resonances (tol 0.1 x half ripple)",
+                W, target, 0, 0.05 * (ymax - ymin));
+    autobal_rotor_free(R);
+  }
+}
+
 int main(void) {
   test_closed_forms();
   test_constant();
@@ -690,5 +828,6 @@ int main(void) {
   test_motor_stiff_limit();
   test_motor_transient();
   test_motor_errors();
+  test_sommerfeld();
   return check_summary();
 }
