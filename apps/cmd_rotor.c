@@ -38,6 +38,8 @@ typedef struct rotor_cfg {
   const char *grade_text;
   /* [drive]: the table's points (p.drive points into them) */
   double drive_t[MAX_CFG_DRIVE_POINTS], drive_w[MAX_CFG_DRIVE_POINTS];
+  /* mode = motor: the torque table (p.drive.torque_L points into it; torque_omega into drive_w) */
+  double drive_L[MAX_CFG_DRIVE_POINTS];
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -372,9 +374,86 @@ const char *cli_rotor_message(const char *msg, char *buf, size_t len) {
   return buf;
 }
 
-/* [drive]: the prescribed spin speed (autobal_rotor_drive).  mode = constant (default: rotor.omega),
+/* [drive], mode = motor: J (kg m^2, >= C_p), k_r (N m s, >= 0), omega_start (rad/s, default 0),
+ * and the characteristic: L_0 (N m, > 0) and omega_0 (rad/s, > 0), or table_omega (speeds,
+ * strictly increasing) with table_torque (N m, one per speed, L(0) > 0). */
+static int read_motor(cli_ctx *ctx, rotor_cfg *c) {
+  autobal_rotor_drive *d = &c->p.drive;
+  const double C = c->p.input == AUTOBAL_ROTOR_HARDWARE ? c->p.hw.C_p : c->p.lumped.C;
+  int rc, hJ = 0, hL = 0, hw0 = 0, pw = 0, pl = 0;
+  size_t k, nw = 0, nl = 0;
+  if ((rc = cli_get_quantity(ctx, "drive", "J", "kg m^2", NAN, &d->J, &hJ))) return rc;
+  if ((rc = cli_get_quantity(ctx, "drive", "k_r", "N m s", 0.0, &d->k_r, NULL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "drive", "omega_start", "rad/s", 0.0, &d->omega_start, NULL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "drive", "L_0", "N m", NAN, &d->L_0, &hL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "drive", "omega_0", "rad/s", NAN, &d->omega_0, &hw0))) return rc;
+  if ((rc = cli_get_quantities(ctx, "drive", "table_omega", "rad/s", c->drive_w, MAX_CFG_DRIVE_POINTS, &nw, &pw)))
+    return rc;
+  if ((rc = cli_get_quantities(ctx, "drive", "table_torque", "N m", c->drive_L, MAX_CFG_DRIVE_POINTS, &nl, &pl)))
+    return rc;
+  if (!hJ)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[drive]: mode = motor needs J (kg m^2): the spin inertia of the rotor and the motor's rotor, "
+                    "allowed [C_p, inf) = [%.6g, inf) kg m^2", C);
+  if (!(d->J >= C) || !isfinite(d->J))
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[drive]: J = %.6g kg m^2 is out of range: allowed [C_p, inf) = [%.6g, inf) kg m^2 (the rotor's "
+                    "polar moment C_p plus the motor's rotor)", d->J, C);
+  if (!(d->k_r >= 0) || !isfinite(d->k_r))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: k_r = %.6g N m s is out of range: allowed [0, inf)", d->k_r);
+  if (!isfinite(d->omega_start))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: omega_start = %g rad/s is out of range: allowed finite", d->omega_start);
+  if (pw || pl) { /* a tabulated characteristic */
+    double L0;
+    if (hL || hw0)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[drive]: give the motor characteristic either as L_0 and omega_0 or as table_omega and "
+                      "table_torque, not both");
+    if (!pw || nw == 0) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: table_torque needs table_omega (rad/s, a list)");
+    if (!pl || nl == 0) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: table_omega needs table_torque (N m, a list)");
+    if (nw != nl)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[drive]: table_omega has %zu values but table_torque has %zu (one torque per speed)", nw, nl);
+    for (k = 0; k < nw; k++) {
+      if (!isfinite(c->drive_w[k]) || !isfinite(c->drive_L[k]))
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: table_omega/table_torque value %zu is not finite: allowed finite",
+                        k + 1);
+      if (k > 0 && !(c->drive_w[k] > c->drive_w[k - 1]))
+        return cli_fail(ctx, CLI_EXIT_INPUT,
+                        "[drive]: table_omega is not strictly increasing: value %zu (%.17g rad/s) <= value %zu (%.17g "
+                        "rad/s) (the torque table must be increasing in speed)",
+                        k + 1, c->drive_w[k], k, c->drive_w[k - 1]);
+    }
+    d->n_torque = nw;
+    d->torque_omega = c->drive_w;
+    d->torque_L = c->drive_L;
+    L0 = c->drive_L[0];
+    if (0.0 >= c->drive_w[nw - 1]) L0 = c->drive_L[nw - 1];
+    else
+      for (k = 0; k + 1 < nw; k++)
+        if (c->drive_w[k] <= 0.0 && 0.0 < c->drive_w[k + 1])
+          L0 = c->drive_L[k] + (c->drive_L[k + 1] - c->drive_L[k]) * ((0.0 - c->drive_w[k]) / (c->drive_w[k + 1] - c->drive_w[k]));
+    if (!(L0 > 0))
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[drive]: table_torque gives the starting torque L(0) = %.6g N m: allowed (0, inf) (the motor "
+                      "cannot start)", L0);
+    return CLI_EXIT_OK;
+  }
+  if (!hL) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = motor needs L_0 (N m, the starting torque, > 0) and omega_0 (rad/s, > 0), or table_omega and table_torque");
+  if (!hw0) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = motor needs omega_0 (rad/s, the no-load speed, > 0) with L_0");
+  if (!(d->L_0 > 0) || !isfinite(d->L_0))
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[drive]: L_0 = %.6g N m is out of range: allowed (0, inf) (the starting torque; L_0 <= 0: the motor "
+                    "cannot start)", d->L_0);
+  if (!(d->omega_0 > 0) || !isfinite(d->omega_0))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: omega_0 = %.6g rad/s is out of range: allowed (0, inf) (the no-load speed)",
+                    d->omega_0);
+  return CLI_EXIT_OK;
+}
+
+/* [drive]: the spin speed (autobal_rotor_drive).  mode = constant (default: rotor.omega),
  * ramp (omega_a, omega_b in rad/s or any speed unit; t_a < t_b in s), table (table_t in s, strictly
- * increasing; table_omega, one speed per time, each item may carry a unit). */
+ * increasing; table_omega, one speed per time, each item may carry a unit), motor (read_motor). */
 static int read_drive(cli_ctx *ctx, rotor_cfg *c) {
   autobal_rotor_drive *d = &c->p.drive;
   const char *mode = "constant";
@@ -387,7 +466,8 @@ static int read_drive(cli_ctx *ctx, rotor_cfg *c) {
   if (!strcmp(mode, "constant")) d->mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
   else if (!strcmp(mode, "ramp")) d->mode = AUTOBAL_ROTOR_DRIVE_RAMP;
   else if (!strcmp(mode, "table")) d->mode = AUTOBAL_ROTOR_DRIVE_TABLE;
-  else return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = '%s' is not one of: constant, ramp, table", mode);
+  else if (!strcmp(mode, "motor")) d->mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  else return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: mode = '%s' is not one of: constant, ramp, table, motor", mode);
   if (!cli_section_present(ctx, "drive")) return CLI_EXIT_OK;
   if (d->mode != AUTOBAL_ROTOR_DRIVE_RAMP) {
     for (k = 0; k < 4; k++) {
@@ -396,6 +476,24 @@ static int read_drive(cli_ctx *ctx, rotor_cfg *c) {
       if (present[k])
         return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: %s is a key of mode = ramp, but mode = %s", ramp_keys[k], mode);
     }
+  }
+  if (d->mode != AUTOBAL_ROTOR_DRIVE_MOTOR) {
+    static const char *const motor_keys[5] = {"J", "L_0", "omega_0", "k_r", "omega_start"};
+    static const char *const motor_units[5] = {"kg m^2", "N m", "rad/s", "N m s", "rad/s"};
+    for (k = 0; k < 5; k++) {
+      double v;
+      if ((rc = cli_get_quantity(ctx, "drive", motor_keys[k], motor_units[k], 0.0, &v, &present[0]))) return rc;
+      if (present[0])
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: %s is a key of mode = motor, but mode = %s", motor_keys[k], mode);
+    }
+    if ((rc = cli_get_quantities(ctx, "drive", "table_torque", "N m", c->drive_t, MAX_CFG_DRIVE_POINTS, &nt, &pt)))
+      return rc;
+    if (pt) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: table_torque is a key of mode = motor, but mode = %s", mode);
+  }
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_MOTOR) {
+    if ((rc = cli_get_quantities(ctx, "drive", "table_t", "s", c->drive_t, MAX_CFG_DRIVE_POINTS, &nt, &pt))) return rc;
+    if (pt) return cli_fail(ctx, CLI_EXIT_INPUT, "[drive]: table_t is a key of mode = table, but mode = motor");
+    return read_motor(ctx, c);
   }
   if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE) {
     for (k = 0; k < 2; k++) {
@@ -444,6 +542,11 @@ static double speed_ref(const rotor_cfg *c) {
   double m = 0.0;
   size_t k;
   if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return fmax(fabs(d->omega_a), fabs(d->omega_b));
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_MOTOR) { /* the no-load speed (a table: its largest speed) */
+    m = d->n_torque ? 0.0 : d->omega_0;
+    for (k = 0; k < d->n_torque; k++) m = fmax(m, fabs(d->torque_omega[k]));
+    return fmax(m, fabs(d->omega_start));
+  }
   if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE) return fabs(c->p.omega);
   for (k = 0; k < d->n_points; k++) m = fmax(m, fabs(d->table_omega[k]));
   return m;
@@ -569,19 +672,22 @@ static void engineering_json(cli_json *j, const autobal_study_rotor_transient_su
   cli_json_quantity(j, "velocity_rms_supports_last_10pct", s->velocity_rms_supports, "m/s");
 }
 
-/* The spin speed at time t (rad/s): rotor.omega, or the drive's Omega(t). */
-static double speed_at(const rotor_cfg *c, double t) {
-  double v[3] = {c->p.omega, 0.0, 0.0};
+/* The spin speed at the end of the run (rad/s): rotor.omega, the drive's Omega(t), or the motor's
+ * Omega in the final state. */
+static double speed_at(const rotor_cfg *c, const autobal_study_rotor_transient_summary *s) {
+  double v[2] = {c->p.omega, 0.0};
   if (c->p.drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT) {
     autobal_rotor *r = autobal_rotor_alloc(&c->p, NULL);
-    if (!r || autobal_rotor_drive_eval(r, t, v) != AUTOBAL_SUCCESS) v[0] = NAN;
+    if (!r || !s->state_final || s->dim != autobal_rotor_dim(r) ||
+        autobal_rotor_spin(r, s->t_reached, s->state_final, v) != AUTOBAL_SUCCESS)
+      v[0] = NAN;
     autobal_rotor_free(r);
   }
   return v[0];
 }
 
 static void engineering_print(const autobal_study_rotor_transient_summary *s, const rotor_cfg *c) {
-  double w_end = fabs(speed_at(c, s->t_reached));
+  double w_end = fabs(speed_at(c, s));
   double cls = s->balance_grade_class, rpm = cli_rpm(w_end > 0 ? w_end : speed_ref(c));
   char cbuf[32] = "above G4000";
   if (!isnan(cls)) snprintf(cbuf, sizeof cbuf, "within G%g", cls);
@@ -649,8 +755,15 @@ static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
     printf("rotor transient: omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %.6g s simulated (%.0f revolutions)\n",
            c->p.omega, c->p.omega * 60.0 / (TWO_PI), s->n_planes, nb, s->t_reached, s->t_reached / s->revolution_period);
   else {
-    double w_end = speed_at(c, s->t_reached);
-    if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP)
+    double w_end = speed_at(c, s);
+    if (d->mode == AUTOBAL_ROTOR_DRIVE_MOTOR && d->n_torque == 0)
+      printf("rotor transient: motor L = %.6g N m (1 - Omega/%.6g rad/s), J = %.6g kg m^2, k_r = %.6g N m s, from "
+             "Omega = %.6g rad/s", d->L_0, d->omega_0, d->J, d->k_r, d->omega_start);
+    else if (d->mode == AUTOBAL_ROTOR_DRIVE_MOTOR)
+      printf("rotor transient: motor with a torque table of %zu points (%.6g .. %.6g rad/s), J = %.6g kg m^2, k_r = "
+             "%.6g N m s, from Omega = %.6g rad/s", d->n_torque, d->torque_omega[0], d->torque_omega[d->n_torque - 1],
+             d->J, d->k_r, d->omega_start);
+    else if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP)
       printf("rotor transient: ramp drive %.6g -> %.6g rad/s (%.1f -> %.1f rpm) from t = %.6g s to %.6g s",
              d->omega_a, d->omega_b, d->omega_a * 60.0 / TWO_PI, d->omega_b * 60.0 / TWO_PI, d->t_a, d->t_b);
     else

@@ -138,10 +138,13 @@
   "            stepper = rk8pd   rtol = 1e-10   atol = 1e-9   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
   "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n" \
   "            stop_at_balance = false\n"                                                             \
-  "[drive]     prescribed spin speed Omega(t) (optional; default mode = constant: rotor.omega)\n"      \
+  "[drive]     spin speed: prescribed Omega(t), or a motor (optional; default mode = constant: rotor.omega)\n" \
   "            mode = ramp: omega_a, omega_b (rad/s, or e.g. rpm) before t_a and after t_b (s), linear between\n" \
   "            mode = table: table_t = t0, t1, ... (s, increasing)  table_omega = w0, w1, ... (rad/s each)\n" \
   "            linear between the points, constant outside; revolutions counted at the largest speed\n" \
+  "            mode = motor: J (kg m^2, >= C_p)  L_0 (N m, > 0)  omega_0 (rad/s, > 0): L = L_0 (1 - Omega/omega_0)\n" \
+  "            (or table_omega = speeds, increasing  table_torque = N m each)  k_r = 0 (N m s)  omega_start = 0\n" \
+  "            (rad/s); revolutions counted at omega_0 (table: its largest speed)\n" \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'; with a drive its\n"   \
   "attributes drive_* and the column Omega), /rotor/revolutions\n"                                 \
   HELP_DOCS_ROTOR

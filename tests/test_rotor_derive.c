@@ -7,7 +7,12 @@
  * drive from t = 0 with slope 50 rad/s^2 reaches exactly that at the time t* where
  * Omega(t*) = 300 and phi_0(t*) = integral_0^t* Omega = 0.3: with Omega(t) = omega_a + 50 t,
  * phi_0(t) = 300 t - 25 t^2 = 0.3.  Both frames, one and two planes; every parameter and state
- * value is read from the JSON, nothing is copied from the program's own output. */
+ * value is read from the JSON, nothing is copied from the program's own output.
+ *
+ * The MOTOR drive (phi_0, Omega in the state) at the JSON's "motor" block: Omega = 300 rad/s,
+ * L(Omega) = L_0 (1 - Omega/Omega_0), k_r, J: the accelerations including phi_0'' = Omega', and
+ * the total energy E and dE/dt = motor power - dissipation computed here from the documented
+ * energies (tests/rotor_energy.h) against the SymPy values. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +22,7 @@
 
 #include "autobal/rotor.h"
 #include "check.h"
+#include "rotor_energy.h"
 
 #define JSON_PATH AUTOBAL_TEST_DATA_DIR "/../tools/derive/check_values.json"
 
@@ -68,22 +74,16 @@ static size_t arr(const char *p, const char *key, double *v, size_t n) {
   return k;
 }
 
-static void run_case(const char *json, const char *which, size_t n_planes) {
-  const char *blk = after_key(json, which), *par = after_key(blk, "parameters"), *st = after_key(blk, "state");
-  const char *pre = after_key(blk, "prescribed"), *acc = after_key(pre, "accelerations"), *pl = after_key(blk, "planes");
+/* The parameters of a JSON case block (one or two planes of two balls); the ball arrays point
+ * into the caller's arrays.  Returns 0, or -1 (a check has failed). */
+static int load_params(const char *blk, size_t n_planes, autobal_rotor_params *pp, double m[2][2], double r[2][2],
+                       double h[2][2], double psi[2][2], double rate[2][2]) {
+  const char *par = after_key(blk, "parameters"), *pl = after_key(blk, "planes");
   autobal_rotor_params p = autobal_rotor_params_default();
-  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], y[8 + 8], dy[8 + 8], yr[8 + 8], dyr[8 + 8];
-  double Om, Omd, phi0, t, drv[3];
-  autobal_rotor *rot;
-  autobal_error err;
   const char *plane_at[2];
-  size_t j, i, N = 0;
-  char what[160];
-  static const char *const qdd[4] = {"x_dd", "y_dd", "alpha_dd", "beta_dd"};
-  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
-
-  CHECK("JSON blocks found", blk && par && st && pre && acc && pl);
-  if (!(blk && par && st && pre && acc && pl)) return;
+  size_t j;
+  CHECK("JSON parameter blocks found", par && pl);
+  if (!(par && pl)) return -1;
   p.input = AUTOBAL_ROTOR_HARDWARE;
   p.hw.M_k = num(par, "M_k"), p.hw.A_k = num(par, "A_k"), p.hw.m_p = num(par, "m_p");
   p.hw.A_p = num(par, "A_p"), p.hw.C_p = num(par, "C_p");
@@ -97,14 +97,33 @@ static void run_case(const char *json, const char *which, size_t n_planes) {
     const char *q = plane_at[j];
     autobal_rotor_plane *P = &p.plane[j];
     CHECK("plane block found", q != NULL);
-    if (!q) return;
+    if (!q) return -1;
     P->d = num(q, "d"), P->m0 = num(q, "m0"), P->r0 = num(q, "r0"), P->psi0 = num(q, "psi0");
     P->n_balls = arr(q, "m", m[j], 2);
     CHECK("two balls per plane", P->n_balls == 2 && arr(q, "r", r[j], 2) == 2 && arr(q, "h", h[j], 2) == 2 &&
                                      arr(q, "psi", psi[j], 2) == 2 && arr(q, "rate", rate[j], 2) == 2);
     P->ball_mass = m[j], P->ball_radius = r[j], P->ball_damping = h[j], P->ball_psi = psi[j], P->ball_rate = rate[j];
-    N += 2;
   }
+  *pp = p;
+  return 0;
+}
+
+static void run_case(const char *json, const char *which, size_t n_planes) {
+  const char *blk = after_key(json, which), *st = after_key(blk, "state");
+  const char *pre = after_key(blk, "prescribed"), *acc = after_key(pre, "accelerations");
+  autobal_rotor_params p;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], y[8 + 8], dy[8 + 8], yr[8 + 8], dyr[8 + 8];
+  double Om, Omd, phi0, t, drv[3];
+  autobal_rotor *rot;
+  autobal_error err;
+  size_t j, i, N = 2 * n_planes;
+  char what[160];
+  static const char *const qdd[4] = {"x_dd", "y_dd", "alpha_dd", "beta_dd"};
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+
+  CHECK("JSON blocks found", blk && st && pre && acc);
+  if (!(blk && st && pre && acc)) return;
+  if (load_params(blk, n_planes, &p, m, r, h, psi, rate) != 0) return;
   Om = num(pre, "Omega"), Omd = num(pre, "Omega_dot"), phi0 = num(st, "phi_0");
   /* the ramp through (Omega, Omega', phi_0) = (Om, Omd, phi0) at t* */
   t = (Om - sqrt(Om * Om - 2.0 * Omd * phi0)) / Omd;
@@ -162,6 +181,112 @@ static void run_case(const char *json, const char *which, size_t n_planes) {
   autobal_rotor_free(rot);
 }
 
+/* The MOTOR drive at the JSON's "motor" block: both frames, phi_0 and Omega in the state. */
+static void run_motor_case(const char *json, const char *which, size_t n_planes) {
+  const char *blk = after_key(json, which), *st = after_key(blk, "state");
+  const char *mot = after_key(blk, "motor"), *acc = after_key(mot, "accelerations");
+  autobal_rotor_params p;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], y[8 + 8 + 2], dy[8 + 8 + 2], yr[8 + 8 + 2], dyr[8 + 8 + 2];
+  double Om, phi0, t = 0.7, E, dE, P, D, L;
+  autobal_rotor *rot;
+  autobal_error err;
+  size_t j, i, N = 2 * n_planes, dim = 8 + 2 * N + 2;
+  char what[160];
+  static const char *const qdd[4] = {"x_dd", "y_dd", "alpha_dd", "beta_dd"};
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+
+  printf("-- %s, MOTOR drive vs SymPy\n", which);
+  CHECK("JSON motor blocks found", blk && st && mot && acc);
+  if (!(blk && st && mot && acc)) return;
+  if (load_params(blk, n_planes, &p, m, r, h, psi, rate) != 0) return;
+  Om = num(mot, "Omega"), phi0 = num(st, "phi_0");
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  p.drive.J = num(mot, "J");
+  p.drive.L_0 = num(mot, "L_0");
+  p.drive.omega_0 = num(mot, "Omega_0");
+  p.drive.k_r = num(mot, "k_r");
+  p.drive.omega_start = Om;
+  rot = autobal_rotor_alloc(&p, &err);
+  CHECK("rotor with a motor drive", rot != NULL);
+  if (!rot) {
+    printf("     %s\n", err.message);
+    return;
+  }
+  CHECK("dim = 8 + 2N + 2", autobal_rotor_dim(rot) == dim);
+  L = autobal_rotor_motor_torque(rot, Om);
+  CHECK_CLOSE("L(Omega) = L_0 (1 - Omega/Omega_0) vs the JSON's L", L, num(mot, "L"), 1e-15, 0);
+  for (i = 0; i < 4; i++) {
+    char k2[16];
+    y[i] = num(st, qn[i]);
+    snprintf(k2, sizeof k2, "%s_d", qn[i]);
+    y[4 + i] = num(st, k2);
+  }
+  y[dim - 2] = phi0;
+  y[dim - 1] = Om;
+  for (j = 0; j < n_planes; j++)
+    for (i = 0; i < 2; i++) {
+      size_t k = autobal_rotor_ball_index(rot, j, i);
+      y[8 + k] = phi0 + psi[j][i];
+      y[8 + N + k] = Om + rate[j][i];
+    }
+  /* the rotating-frame state by the library's conversion (the motor's phi_0, Omega from y) */
+  CHECK_STATUS("convert to the rotating frame", autobal_rotor_convert_state(rot, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim), AUTOBAL_SUCCESS);
+  CHECK_CLOSE("converted psi_1 = psi from the JSON", yr[8], psi[0][0], 1e-15, 1e-15);
+  CHECK_CLOSE("converted psi_1' = rate from the JSON", yr[8 + N], rate[0][0], 1e-15, 1e-13);
+  CHECK("fixed-frame rhs", autobal_rotor_rhs(t, y, dy, rot) == GSL_SUCCESS);
+  CHECK("rotating-frame rhs", autobal_rotor_rhs_rotating(t, yr, dyr, rot) == GSL_SUCCESS);
+  for (i = 0; i < 4; i++) {
+    double want = num(acc, qdd[i]);
+    snprintf(what, sizeof what, "%s motor: %s, fixed frame vs SymPy", which, qdd[i]);
+    CHECK_CLOSE(what, dy[4 + i], want, 1e-13, 1e-12);
+    snprintf(what, sizeof what, "%s motor: %s, rotating frame vs SymPy", which, qdd[i]);
+    CHECK_CLOSE(what, dyr[4 + i], want, 1e-13, 1e-12);
+  }
+  {
+    double want = num(acc, "phi_0_dd");
+    snprintf(what, sizeof what, "%s motor: phi_0'' = Omega', fixed frame vs SymPy", which);
+    CHECK_CLOSE(what, dy[dim - 1], want, 1e-13, 0);
+    snprintf(what, sizeof what, "%s motor: phi_0'' = Omega', rotating frame vs SymPy", which);
+    CHECK_CLOSE(what, dyr[dim - 1], want, 1e-13, 0);
+    CHECK("phi_0' = Omega (both frames)", dy[dim - 2] == Om && dyr[dim - 2] == Om);
+    for (j = 0; j < n_planes; j++)
+      for (i = 0; i < 2; i++) {
+        char key[32];
+        size_t k = autobal_rotor_ball_index(rot, j, i);
+        double wb;
+        snprintf(key, sizeof key, "phi_%zu%zu_dd", j + 1, i + 1);
+        wb = num(acc, key);
+        snprintf(what, sizeof what, "%s motor: %s, fixed frame vs SymPy", which, key);
+        CHECK_CLOSE(what, dy[8 + N + k], wb, 1e-13, 1e-11);
+        snprintf(what, sizeof what, "%s motor: psi'' = %s - Omega', rotating frame vs SymPy", which, key);
+        CHECK_CLOSE(what, dyr[8 + N + k], wb - want, 1e-13, 1e-11);
+      }
+  }
+  /* the energies of docs/device.md, coded in the test, against SymPy's; dE/dt along the C
+   * right-hand side as the central difference (E(y + e dy) - E(y - e dy)) / (2 e), e = 1e-6:
+   * truncation O(e^2) and rounding about 1e-16 E / e = 2e-7 W, hence the tolerance 1e-8 relative */
+  E = motor_energy(rot, y);
+  snprintf(what, sizeof what, "%s motor: total energy E = T + V vs SymPy", which);
+  CHECK_CLOSE(what, E, num(mot, "energy"), 1e-14, 0);
+  {
+    double yp[8 + 8 + 2], ym[8 + 8 + 2], e = 1e-6;
+    for (i = 0; i < dim; i++) {
+      yp[i] = y[i] + e * dy[i];
+      ym[i] = y[i] - e * dy[i];
+    }
+    dE = (motor_energy(rot, yp) - motor_energy(rot, ym)) / (2.0 * e);
+  }
+  P = L * Om;
+  D = motor_dissipation(rot, y);
+  snprintf(what, sizeof what, "%s motor: motor power L Omega vs SymPy", which);
+  CHECK_CLOSE(what, P, num(mot, "motor_power"), 1e-15, 0);
+  snprintf(what, sizeof what, "%s motor: dissipation (supports, balls, k_r Omega^2) vs SymPy", which);
+  CHECK_CLOSE(what, D, num(mot, "dissipation"), 1e-13, 0);
+  snprintf(what, sizeof what, "%s motor: dE/dt along the C rhs (central difference, e = 1e-6) = P - D", which);
+  CHECK_CLOSE(what, dE, P - D, 1e-8, 0);
+  autobal_rotor_free(rot);
+}
+
 int main(void) {
   char *json;
   gsl_set_error_handler_off();
@@ -170,6 +295,8 @@ int main(void) {
   if (!json) return 1;
   run_case(json, "one_plane", 1);
   run_case(json, "two_planes", 2);
+  run_motor_case(json, "one_plane", 1);
+  run_motor_case(json, "two_planes", 2);
   free(json);
   printf("%d checks, %d failed\n", check_count_, check_failures_);
   return check_failures_ ? 1 : 0;

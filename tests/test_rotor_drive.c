@@ -3,6 +3,7 @@
  * drive and a flat ramp give the constant-speed model; the fixed-frame and rotating-frame
  * right-hand sides agree during a ramp (instantaneously: psi'' = phi'' - Omega', and over a
  * transient); the Omega' terms against a direct (4+n) mass-matrix solve; the parameter checks. */
+#include <complex.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,7 @@
 #define MAXDIM 64
 
 #include "rotor_integrate.h"
+#include "rotor_energy.h"
 
 static autobal_rotor_params ramp_params(double wa, double wb, double ta, double tb) {
   autobal_rotor_params p = autobal_rotor_params_default();
@@ -361,11 +363,471 @@ static void test_errors(void) {
   CHECK_STATUS("the repaired table", autobal_rotor_params_check(&p, &e), AUTOBAL_SUCCESS);
 }
 
+/* ---- MOTOR drive ------------------------------------------------------------------------ */
+
+static autobal_rotor_params motor_params(double J, double L0, double w0, double kr, double wstart) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  p.drive.J = J;
+  p.drive.L_0 = L0;
+  p.drive.omega_0 = w0;
+  p.drive.k_r = kr;
+  p.drive.omega_start = wstart;
+  return p;
+}
+
+static void test_motor_basics(void) {
+  autobal_rotor_params p = motor_params(0.05, 4.0, 400.0, 1e-3, 20.0);
+  autobal_rotor *R;
+  double y[MAXDIM], yr[MAXDIM], yb[MAXDIM], o[3], sp[2], out[64];
+  double tw[3] = {-10.0, 100.0, 300.0}, tl[3] = {6.0, 4.0, -2.0};
+  size_t dim, n, k;
+  char name[64];
+  const char *unit;
+  printf("-- motor: layout, initial state, spin, characteristic (closed forms by hand)\n");
+  p.axial = 1;
+  p.z0 = 1e-5;
+  R = autobal_rotor_alloc(&p, NULL);
+  CHECK("motor handle", R != NULL);
+  if (!R) return;
+  dim = autobal_rotor_dim(R);
+  CHECK("dim = 8 + 2*2 + 2 (axial) + 2 (phi_0, Omega)", dim == 16);
+  CHECK_STATUS("drive_eval refuses a motor", autobal_rotor_drive_eval(R, 0.0, o), AUTOBAL_EINVAL);
+  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+  CHECK("initial phi_0 = 0, Omega = omega_start, z after the balls", y[14] == 0.0 && y[15] == 20.0 && y[12] == 1e-5);
+  CHECK_CLOSE("initial phi_1' = omega_start + 0", y[10], 20.0, 0, 0);
+  y[14] = 1.25, y[15] = 250.0; /* a later state: phi_0, Omega */
+  CHECK_STATUS("spin of the state", autobal_rotor_spin(R, 3.0, y, sp), AUTOBAL_SUCCESS);
+  CHECK("spin = (Omega, phi_0) of the state", sp[0] == 250.0 && sp[1] == 1.25);
+  CHECK_STATUS("spin with NULL y (motor)", autobal_rotor_spin(R, 3.0, NULL, sp), AUTOBAL_EINVAL);
+  autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, 3.0, y, yr, dim);
+  CHECK_CLOSE("rotating psi_1 = phi_1 - phi_0 of the state", yr[8], y[8] - 1.25, 1e-15, 0);
+  CHECK_CLOSE("rotating psi_1' = phi_1' - Omega of the state", yr[10], y[10] - 250.0, 0, 1e-12);
+  CHECK("phi_0, Omega, z unchanged", yr[14] == 1.25 && yr[15] == 250.0 && yr[12] == y[12]);
+  autobal_rotor_convert_state(R, AUTOBAL_ROTOR_ROTATING, AUTOBAL_ROTOR_FIXED, 3.0, yr, yb, dim);
+  CHECK_CLOSE("round trip phi_2", yb[9], y[9], 1e-15, 0);
+  CHECK_CLOSE("L(0) = L_0", autobal_rotor_motor_torque(R, 0.0), 4.0, 0, 0);
+  CHECK_CLOSE("L(100) = 4 (1 - 100/400) = 3", autobal_rotor_motor_torque(R, 100.0), 3.0, 1e-15, 0);
+  CHECK_CLOSE("L(600) = -2 (linear above omega_0)", autobal_rotor_motor_torque(R, 600.0), -2.0, 1e-15, 0);
+  CHECK_CLOSE("speed_max = omega_0", autobal_rotor_drive_speed_max(R), 400.0, 0, 0);
+  n = autobal_rotor_output_count(R);
+  CHECK("outputs: 3 + 7 + 12 + 3", n == 25);
+  autobal_rotor_outputs(R, AUTOBAL_ROTOR_FIXED, 3.0, y, out, n);
+  for (k = 0; k < 3; k++) {
+    static const char *const want[3] = {"Omega", "motor_torque", "motor_power"};
+    static const char *const wu[3] = {"rad/s", "N m", "W"};
+    autobal_rotor_output_name(R, n - 3 + k, name, sizeof name, &unit);
+    CHECK("motor output name and unit", !strcmp(name, want[k]) && !strcmp(unit, wu[k]));
+  }
+  CHECK_CLOSE("output Omega", out[n - 3], 250.0, 0, 0);
+  CHECK_CLOSE("output motor_torque = 4 (1 - 250/400)", out[n - 2], 1.5, 1e-15, 0);
+  CHECK_CLOSE("output motor_power = 1.5 * 250", out[n - 1], 375.0, 1e-15, 0);
+  autobal_rotor_output_name(R, n - 4, name, sizeof name, &unit);
+  CHECK("the last ball output precedes them", !strcmp(name, "p1_b2_psi_rate"));
+  autobal_rotor_free(R);
+
+  /* a table: constant outside, linear between */
+  p.axial = 0;
+  p.drive.n_torque = 3;
+  p.drive.torque_omega = tw;
+  p.drive.torque_L = tl;
+  R = autobal_rotor_alloc(&p, NULL);
+  CHECK("motor table handle", R != NULL);
+  if (!R) return;
+  tw[0] = 1e9; /* the handle holds a copy */
+  CHECK_CLOSE("table L(-50) = 6 (constant below)", autobal_rotor_motor_torque(R, -50.0), 6.0, 0, 0);
+  CHECK_CLOSE("table L(0) = 6 - 2 * 10/110", autobal_rotor_motor_torque(R, 0.0), 6.0 - 20.0 / 110.0, 1e-15, 0);
+  CHECK_CLOSE("table L(200) = 1", autobal_rotor_motor_torque(R, 200.0), 1.0, 1e-15, 0);
+  CHECK_CLOSE("table L(100) = 4 (a point)", autobal_rotor_motor_torque(R, 100.0), 4.0, 0, 0);
+  CHECK_CLOSE("table L(1000) = -2 (constant above)", autobal_rotor_motor_torque(R, 1000.0), -2.0, 0, 0);
+  CHECK_CLOSE("table speed_max = 300", autobal_rotor_drive_speed_max(R), 300.0, 0, 0);
+  autobal_rotor_free(R);
+  {
+    autobal_rotor_params q = ramp_params(0.0, 1.0, 0.0, 1.0);
+    R = autobal_rotor_alloc(&q, NULL);
+    CHECK("motor_torque of a ramp drive is NaN", R && isnan(autobal_rotor_motor_torque(R, 1.0)));
+    CHECK_STATUS("spin of a ramp without a state", autobal_rotor_spin(R, 0.5, NULL, sp), AUTOBAL_SUCCESS);
+    CHECK_CLOSE("spin of a ramp = Omega(0.5)", sp[0], 0.5, 1e-15, 0);
+    autobal_rotor_free(R);
+  }
+}
+
+/* The state with the work done on the system appended: W' = L(Omega) Omega - dissipation. */
+typedef struct work_ctx {
+  autobal_rotor *R;
+  int frame;
+} work_ctx;
+
+static int work_rhs(double t, const double y[], double dydt[], void *user) {
+  work_ctx *c = user;
+  const size_t dim = autobal_rotor_dim(c->R);
+  double yf[MAXDIM];
+  int st = (c->frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating)(t, y, dydt, c->R);
+  if (st) return st;
+  autobal_rotor_convert_state(c->R, c->frame, AUTOBAL_ROTOR_FIXED, t, y, yf, dim);
+  dydt[dim] = autobal_rotor_motor_torque(c->R, yf[dim - 1]) * yf[dim - 1] - motor_dissipation(c->R, yf);
+  return 0;
+}
+
+static int integrate_work(work_ctx *c, double T, double *y, double rtol, double atol) {
+  autobal_transient_options opt = autobal_transient_options_default();
+  autobal_transient_system sys;
+  autobal_transient *tr;
+  int st;
+  opt.stepper = "rk8pd";
+  opt.rtol = rtol;
+  opt.atol = atol;
+  opt.h_init = 1e-5;
+  opt.max_steps = 50000000ul;
+  sys.rhs = work_rhs;
+  sys.jac = NULL;
+  sys.dim = autobal_rotor_dim(c->R) + 1;
+  sys.params = c;
+  tr = autobal_transient_alloc(sys.dim, &opt, NULL);
+  if (tr == NULL) return -1;
+  st = autobal_transient_run(tr, &sys, 0.0, T, y, NULL);
+  autobal_transient_free(tr);
+  return st;
+}
+
+/* Power balance: E(T) - E(0) = integral_0^T (L Omega - all dissipation) dt along a run-up from
+ * rest through both resonances (157.5, 215.1 rad/s), E from docs/device.md coded in
+ * tests/rotor_energy.h (checked against SymPy's E in test_rotor_derive). */
+static void test_motor_power_balance(void) {
+  int c, fr;
+  printf("-- motor: power balance along a run-up (E(T) - E(0) = work of the motor - dissipation)\n");
+  for (c = 0; c < 2; c++) {
+    autobal_rotor_params p = motor_params(0.05, 14.0, 400.0, 2e-3, 0.0);
+    double tol_err[2];
+    if (c == 1) { /* two planes as data/rotor_two_planes.ini's second plane, unequal ball damping */
+      static const double m2[2] = {0.04, 0.04}, r2[2] = {0.09, 0.09}, h2[2] = {0.5, 0.3}, s2[2] = {-0.5, 2.0};
+      p.n_planes = 2;
+      p.plane[1].d = -0.12, p.plane[1].m0 = 0.015, p.plane[1].r0 = 0.09, p.plane[1].psi0 = 2.0;
+      p.plane[1].n_balls = 2, p.plane[1].ball_mass = m2, p.plane[1].ball_radius = r2;
+      p.plane[1].ball_damping = h2, p.plane[1].ball_psi = s2, p.plane[1].ball_rate = NULL;
+    }
+    p.q0[0] = 1e-4, p.qd0[3] = 0.05;
+    for (fr = 0; fr < 2; fr++) {
+      int it;
+      for (it = 0; it < 2; it++) { /* two tolerances: the imbalance must follow them */
+        work_ctx w;
+        double y[MAXDIM], yf[MAXDIM], E0, E1, Win;
+        const double T = 2.0, rtol = it == 0 ? 1e-9 : 1e-12;
+        size_t dim;
+        int st;
+        w.R = autobal_rotor_alloc(&p, NULL);
+        w.frame = fr;
+        if (!w.R) {
+          CHECK("motor handle", 0);
+          continue;
+        }
+        dim = autobal_rotor_dim(w.R);
+        autobal_rotor_initial_state(w.R, fr, 0.0, y, dim);
+        y[dim] = 0.0;
+        autobal_rotor_convert_state(w.R, fr, AUTOBAL_ROTOR_FIXED, 0.0, y, yf, dim);
+        E0 = motor_energy(w.R, yf);
+        st = integrate_work(&w, T, y, rtol, rtol * 1e-3);
+        CHECK("integration", st == 0);
+        autobal_rotor_convert_state(w.R, fr, AUTOBAL_ROTOR_FIXED, T, y, yf, dim);
+        E1 = motor_energy(w.R, yf);
+        Win = y[dim];
+        tol_err[it] = fabs(E1 - E0 - Win) / E1;
+        printf("     %s, %s frame, rtol %.0e: Omega(T) = %.4g rad/s, E(T) - E(0) = %.10g J, work - dissipation = %.10g J, "
+               "|difference|/E(T) = %.3g\n",
+               c ? "two planes" : "one plane", fr ? "rotating" : "fixed", rtol, yf[dim - 1], E1 - E0, Win, tol_err[it]);
+        if (it == 0) CHECK("   passed both resonances", yf[dim - 1] > 230.0);
+        autobal_rotor_free(w.R);
+      }
+      /* measured: 1.2e-12 .. 2.9e-12 at rtol 1e-9, 2e-16 .. 8e-15 at rtol 1e-12: rounding
+       * of E (a sum of terms up to 1e3 J) is about 1e-16 E per operation */
+      CHECK_CLOSE("   energy balance at rtol 1e-12 (relative to E(T))", tol_err[1], 0.0, 0, 1e-13);
+      CHECK("   the imbalance shrinks with the tolerance (integration error, not a model error)",
+            tol_err[1] < tol_err[0] || tol_err[0] < 1e-13);
+    }
+  }
+}
+
+/* J -> infinity: a motor with J = 1e12 kg m^2 started at omega whose torque balances k_r omega
+ * (L_0 (1 - omega/omega_0) = k_r omega) is the constant-speed model. */
+static void test_motor_stiff_limit(void) {
+  autobal_rotor_params pc = autobal_rotor_params_default();
+  autobal_rotor_params pm = motor_params(1e12, 1.0, 1000.0, 1e-3, 500.0); /* L(500) = 0.5 = 1e-3 * 500 */
+  autobal_rotor *Rc = autobal_rotor_alloc(&pc, NULL), *Rm = autobal_rotor_alloc(&pm, NULL);
+  double yc[MAXDIM], ym[MAXDIM], dq = 0.0, da = 0.0, amp = 0.0;
+  const double T = 0.5;
+  size_t k;
+  int fr;
+  printf("-- motor: J = 1e12 kg m^2 reproduces the constant speed 500 rad/s\n");
+  CHECK("handles", Rc && Rm);
+  if (!Rc || !Rm) {
+    autobal_rotor_free(Rc);
+    autobal_rotor_free(Rm);
+    return;
+  }
+  for (fr = 0; fr < 2; fr++) {
+    int (*f)(double, const double *, double *, void *) = fr ? autobal_rotor_rhs_rotating : autobal_rotor_rhs;
+    dq = da = amp = 0.0;
+    autobal_rotor_initial_state(Rc, fr, 0.0, yc, autobal_rotor_dim(Rc));
+    autobal_rotor_initial_state(Rm, fr, 0.0, ym, autobal_rotor_dim(Rm));
+    CHECK("both integrations", integrate(f, Rc, 0.0, T, yc, 1e-12, 1e-15) == 0 &&
+                                   integrate(f, Rm, 0.0, T, ym, 1e-12, 1e-15) == 0);
+    for (k = 0; k < 2; k++) amp = fmax(amp, fabs(yc[k]));
+    for (k = 0; k < 4; k++) dq = fmax(dq, fabs(yc[k] - ym[k]));
+    for (k = 8; k < 12; k++) da = fmax(da, fabs(yc[k] - ym[k]));
+    printf("     %s frame: |x|,|y| = %.3g m, Omega(T) - 500 = %.3g rad/s, phi_0(T) - 500 T = %.3g rad\n",
+           fr ? "rotating" : "fixed", amp, ym[13] - 500.0, ym[12] - 500.0 * T);
+    /* the motor's speed changes by at most |torque|/J * T ~ 1 N m / 1e12 * 0.5 s = 5e-13 rad/s;
+     * the rest is the integration error of two different systems at rtol 1e-12 (the fixed vs
+     * rotating comparison above: below 1e-9 amp) */
+    CHECK_CLOSE("   Omega(T) = 500", ym[13], 500.0, 0, 1e-11);
+    CHECK_CLOSE("   phi_0(T) = 500 T", ym[12], 500.0 * T, 0, 1e-10);
+    CHECK_CLOSE("   max |q_motor - q_constant| (m, rad), tol 1e-8 amp", dq, 0.0, 0, 1e-8 * amp);
+    CHECK_CLOSE("   max |ball angle/rate_motor - _constant|", da, 0.0, 0, 1e-7);
+  }
+  autobal_rotor_free(Rc);
+  autobal_rotor_free(Rm);
+}
+
+/* A run-up from rest: fixed frame vs rotating frame to the integration tolerance; a table
+ * characteristic through the same line gives the same run. */
+static void test_motor_transient(void) {
+  autobal_rotor_params p = motor_params(0.04, 12.0, 400.0, 1e-3, 0.0);
+  double tw[2] = {0.0, 400.0}, tl[2] = {12.0, 0.0};
+  autobal_rotor *R = autobal_rotor_alloc(&p, NULL), *Rt;
+  double y[MAXDIM], yr[MAXDIM], yc[MAXDIM], yt[MAXDIM], dq = 0.0, da = 0.0, amp = 0.0, dt = 0.0;
+  const double T = 1.2;
+  size_t k, dim;
+  printf("-- motor run-up: fixed frame vs rotating frame, linear vs table characteristic\n");
+  p.drive.n_torque = 2, p.drive.torque_omega = tw, p.drive.torque_L = tl;
+  Rt = autobal_rotor_alloc(&p, NULL);
+  CHECK("handles", R && Rt);
+  if (!R || !Rt) return;
+  dim = autobal_rotor_dim(R);
+  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+  autobal_rotor_initial_state(R, AUTOBAL_ROTOR_ROTATING, 0.0, yr, dim);
+  autobal_rotor_initial_state(Rt, AUTOBAL_ROTOR_FIXED, 0.0, yt, dim);
+  CHECK("integrations", integrate(autobal_rotor_rhs, R, 0.0, T, y, 1e-11, 1e-14) == 0 &&
+                            integrate(autobal_rotor_rhs_rotating, R, 0.0, T, yr, 1e-11, 1e-14) == 0 &&
+                            integrate(autobal_rotor_rhs, Rt, 0.0, T, yt, 1e-11, 1e-14) == 0);
+  autobal_rotor_convert_state(R, AUTOBAL_ROTOR_ROTATING, AUTOBAL_ROTOR_FIXED, T, yr, yc, dim);
+  for (k = 0; k < 2; k++) amp = fmax(amp, fabs(y[k]));
+  for (k = 0; k < 4; k++) dq = fmax(dq, fabs(y[k] - yc[k]));
+  for (k = 8; k < dim; k++) da = fmax(da, fabs(y[k] - yc[k]) / fmax(1.0, fabs(y[k])));
+  for (k = 0; k < dim; k++) dt = fmax(dt, fabs(y[k] - yt[k]) / fmax(1e-3, fabs(y[k])));
+  printf("     t = %g s: Omega = %.6g rad/s, phi_0 = %.6g rad, |x|,|y| = %.3g m\n", T, y[dim - 1], y[dim - 2], amp);
+  CHECK("   the motor ran up through both resonances", y[dim - 1] > 230.0);
+  CHECK_CLOSE("   max |q_fixed - q_rotating| (m, rad), tol 1e-7 amp", dq, 0.0, 0, 1e-7 * amp);
+  CHECK_CLOSE("   max relative |ball, phi_0, Omega: fixed - rotating|", da, 0.0, 0, 1e-9);
+  /* the table's interpolation Y0 + (Y1 - Y0) (W - X0)/(X1 - X0) and L_0 (1 - W/omega_0) round
+   * differently: the same run to the integration tolerance */
+  CHECK_CLOSE("   table through the line == linear characteristic (max relative state difference)", dt, 0.0, 0, 1e-8);
+  autobal_rotor_free(R);
+  autobal_rotor_free(Rt);
+}
+
+static void test_motor_errors(void) {
+  autobal_error e;
+  autobal_rotor_params p;
+  double tw[3] = {0.0, 100.0, 100.0}, tl[3] = {1.0, 1.0, 0.0};
+  printf("-- bad motors are rejected, naming the parameter\n");
+  p = motor_params(0.02, 1.0, 100.0, 0.0, 0.0); /* J < C_p = 0.03 */
+  CHECK("J < C_p", autobal_rotor_alloc(&p, &e) == NULL);
+  CHECK_MSG("J < C_p", e.message, "drive.J");
+  CHECK_MSG("J < C_p names C_p", e.message, "C_p");
+  p.drive.J = -1.0;
+  CHECK_STATUS("J < 0", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  p.drive.J = NAN;
+  CHECK_STATUS("J NaN", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("J NaN", e.message, "drive.J");
+  p.drive.J = 0.03;
+  CHECK_STATUS("J = C_p is allowed", autobal_rotor_params_check(&p, &e), AUTOBAL_SUCCESS);
+  p.drive.L_0 = 0.0;
+  CHECK_STATUS("L_0 = 0", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("L_0 = 0", e.message, "drive.L_0");
+  CHECK_MSG("L_0 = 0 says why", e.message, "cannot start");
+  p.drive.L_0 = 1.0;
+  p.drive.omega_0 = 0.0;
+  CHECK_STATUS("omega_0 = 0", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("omega_0 = 0", e.message, "drive.omega_0");
+  p.drive.omega_0 = 100.0;
+  p.drive.k_r = -1e-3;
+  CHECK_STATUS("k_r < 0", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("k_r < 0", e.message, "drive.k_r");
+  p.drive.k_r = 0.0;
+  p.drive.omega_start = INFINITY;
+  CHECK_STATUS("omega_start inf", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("omega_start inf", e.message, "drive.omega_start");
+  p.drive.omega_start = 0.0;
+  p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
+  CHECK_STATUS("FULL inertia with a motor", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("FULL inertia with a motor", e.message, "PAPER");
+  p.inertia = AUTOBAL_ROTOR_INERTIA_PAPER;
+  p.drive.n_torque = 3;
+  CHECK_STATUS("torque table NULL", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("torque table NULL", e.message, "torque_omega");
+  p.drive.torque_omega = tw, p.drive.torque_L = tl;
+  CHECK_STATUS("torque table speeds not increasing", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("torque table speeds not increasing", e.message, "drive.torque_omega[2]");
+  tw[2] = 200.0;
+  tl[1] = NAN;
+  CHECK_STATUS("torque NaN", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("torque NaN", e.message, "drive.torque_L[1]");
+  tl[1] = 1.0;
+  tl[0] = 0.0;
+  CHECK_STATUS("table L(0) = 0", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  CHECK_MSG("table L(0) = 0", e.message, "cannot start");
+  tw[0] = -100.0; /* L(0) = 0.5 between (-100, 0) and (100, 1) */
+  CHECK_STATUS("the repaired table", autobal_rotor_params_check(&p, &e), AUTOBAL_SUCCESS);
+}
+
+/* ---- the Sommerfeld effect -------------------------------------------------------------- */
+/* Closed form: the default rotor WITHOUT balls on isotropic supports (c_Lx = c_Ly, c_Rx = c_Ry, the
+ * same for h, so c_xbeta = c_yalpha, h_xbeta = h_yalpha) at a constant speed W.  With z = x + i y,
+ * th = beta - i alpha and the unbalance S = m0 r0 e^{i (W t + psi0)}, the x + i y and beta - i alpha
+ * combinations of (3.2) are
+ *   M z'' + h_x z' + c_x z - h_xbeta th' - c_xbeta th = -S''
+ *   A th'' + (h_beta - i C W) th' + c_beta th - h_xbeta z' - c_xbeta z = -d S''
+ * (C W (alpha' + i beta') = i C W th').  The steady response z = Z e^{iWt}, th = T e^{iWt}:
+ *   [ -M W^2 + i W h_x + c_x        -i W h_xbeta - c_xbeta            ] [Z]   [1]
+ *   [ -i W h_xbeta - c_xbeta        -(A - C) W^2 + i W h_beta + c_beta ] [T] = [d] W^2 m0 r0 e^{i psi0},
+ * a forward circular whirl.  The unbalance point D moves by U = Z + d T; the load torque of the
+ * phi_0 equation, m0 r0 (-u_D'' sin th0 + v_D'' cos th0) = m0 r0 Im((u_D'' + i v_D'') e^{-i th0}),
+ * is then the constant -m0 r0 W^2 Im(U e^{-i psi0}) (the gyroscopic reaction C (alpha' beta)' has
+ * zero mean).  Its product with W is the power the supports dissipate in the whirl. */
+static double whirl_torque(const autobal_rotor_params *p, double W) {
+  const autobal_rotor_lumped *L = &p->lumped;
+  const double d = p->plane[0].d, s0 = p->plane[0].m0 * p->plane[0].r0;
+  const double complex K11 = -L->M * W * W + I * W * L->h_x + L->c_x;
+  const double complex K12 = -I * W * L->h_xbeta - L->c_xbeta;
+  const double complex K22 = -(L->A - L->C) * W * W + I * W * L->h_beta + L->c_beta;
+  const double complex f = W * W * s0 * cexp(I * p->plane[0].psi0), det = K11 * K22 - K12 * K12;
+  const double complex Z = (K22 - K12 * d) * f / det, T = (K11 * d - K12) * f / det;
+  return -s0 * W * W * cimag((Z + d * T) * cexp(-I * p->plane[0].psi0));
+}
+
+/* the net torque L(W) - k_r W - T_u(W) of a linear motor */
+static double net_torque(const autobal_rotor_params *p, double W) {
+  return p->drive.L_0 * (1.0 - W / p->drive.omega_0) - p->drive.k_r * W - whirl_torque(p, W);
+}
+
+/* The roots of net_torque on (0, omega_0]: a scan with step 0.05 rad/s and bisection. */
+static size_t net_torque_roots(const autobal_rotor_params *p, double *root, size_t cap) {
+  size_t n = 0;
+  double a = 0.05, fa = net_torque(p, a);
+  while (a < p->drive.omega_0 && n < cap) {
+    const double b = a + 0.05, fb = net_torque(p, b);
+    if ((fa > 0) != (fb > 0)) {
+      double lo = a, hi = b;
+      int it;
+      for (it = 0; it < 100; it++) {
+        const double mid = 0.5 * (lo + hi);
+        if ((net_torque(p, mid) > 0) == (fa > 0)) lo = mid;
+        else hi = mid;
+      }
+      root[n++] = 0.5 * (lo + hi);
+    }
+    a = b, fa = fb;
+  }
+  return n;
+}
+
+static void test_sommerfeld(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_rotor *R;
+  double y[MAXDIM], roots[8], peak = 0.0, Wpeak = 0.0, W;
+  size_t n, k;
+  int c;
+  printf("-- the Sommerfeld effect: no balls, isotropic supports, a linear motor (J = C_p = 0.03 kg m^2, "
+         "omega_0 = 300 rad/s, m0 = 0.05 kg at 0.1 m)\n");
+  p.plane[0].n_balls = 0;
+  p.plane[0].m0 = 0.05;
+  (void)autobal_rotor_lumped_from_hardware(&p.hw, &p.lumped, NULL);
+  CHECK("isotropic supports (c_xbeta = c_yalpha, h_xbeta = h_yalpha, c_x = c_y, c_alpha = c_beta)",
+        p.lumped.c_xbeta == p.lumped.c_yalpha && p.lumped.h_xbeta == p.lumped.h_yalpha && p.lumped.c_x == p.lumped.c_y &&
+            p.lumped.c_alpha == p.lumped.c_beta && p.lumped.h_alpha == p.lumped.h_beta && p.lumped.h_x == p.lumped.h_y);
+  for (W = 100.0; W < 200.0; W += 0.01) /* the first resonance peak of the whirl torque */
+    if (whirl_torque(&p, W) > peak) peak = whirl_torque(&p, W), Wpeak = W;
+  printf("     first peak of the whirl torque: %.4g N m at %.2f rad/s\n", peak, Wpeak);
+  {
+    /* the closed form against a simulation at the constant speed 150 rad/s: after 3 s (the
+     * transient decays like exp(-h_x t / 2M) = exp(-37)) the supports dissipate T_u(150) * 150 */
+    autobal_rotor_params pc = p;
+    double Dsup, xl, yl, xr, yr;
+    const autobal_rotor_hardware *h = &pc.hw;
+    pc.omega = 150.0;
+    R = autobal_rotor_alloc(&pc, NULL);
+    CHECK("constant-speed handle without balls", R != NULL);
+    if (!R) return;
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+    CHECK("integration", integrate(autobal_rotor_rhs, R, 0.0, 3.0, y, 1e-12, 1e-15) == 0);
+    xl = y[4] - h->l_L * y[7], yl = y[5] + h->l_L * y[6], xr = y[4] + h->l_R * y[7], yr = y[5] - h->l_R * y[6];
+    Dsup = h->h_Lx * xl * xl + h->h_Ly * yl * yl + h->h_Rx * xr * xr + h->h_Ry * yr * yr;
+    CHECK_CLOSE("   dissipated power / Omega of the simulated steady whirl at 150 rad/s = closed-form torque", Dsup / 150.0,
+                whirl_torque(&p, 150.0), 1e-8, 0);
+    autobal_rotor_free(R);
+  }
+  for (c = 0; c < 2; c++) {
+    /* weak: L_0 = 0.6 N m cannot beat the first peak (L(Wpeak) < peak) although its free speed
+     * (L = k_r Omega) is near 300 rad/s; strong: L_0 = 10 N m passes both resonances */
+    const double L0 = c == 0 ? 0.6 : 10.0, T = c == 0 ? 40.0 : 25.0;
+    double ymax = 0.0, ymin = INFINITY, target, ph_a;
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+    p.drive.J = 0.03;
+    p.drive.L_0 = L0;
+    p.drive.omega_0 = 300.0;
+    p.drive.k_r = 1e-4;
+    p.drive.omega_start = 100.0;
+    n = net_torque_roots(&p, roots, 8);
+    printf("     L_0 = %g N m: L(Omega) - k_r Omega = T_u(Omega) at", L0);
+    for (k = 0; k < n; k++) printf(" %.6f", roots[k]);
+    printf(" rad/s\n");
+    R = autobal_rotor_alloc(&p, NULL);
+    CHECK("motor handle without balls", R != NULL);
+    if (!R) return;
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, autobal_rotor_dim(R));
+    /* the mean speed over the last second, (phi_0(T) - phi_0(T - 1 s)) / 1 s, and the ripple of
+     * Omega sampled every ms over that second */
+    CHECK("integration", integrate(autobal_rotor_rhs, R, 0.0, T - 1.0, y, 1e-11, 1e-14) == 0);
+    ph_a = y[8];
+    for (k = 0; k < 1000; k++) {
+      const double t0 = T - 1.0 + 1e-3 * (double)k;
+      if (integrate(autobal_rotor_rhs, R, t0, t0 + 1e-3, y, 1e-11, 1e-14) != 0) break;
+      ymax = fmax(ymax, y[9]), ymin = fmin(ymin, y[9]);
+    }
+    CHECK("   the last second integrated", k == 1000);
+    W = (y[8] - ph_a) / 1.0;
+    if (c == 0) {
+      CHECK("   weak motor: three balance points (below the first resonance: stable; on its falling flank: "
+            "unstable; below the second resonance)", n == 3);
+      target = roots[0];
+      CHECK("   weak motor: the lowest balance point lies below the first resonance peak", target < Wpeak);
+    } else {
+      CHECK("   strong motor: a single balance point, above both resonances", n == 1 && roots[0] > 250.0);
+      target = roots[n - 1];
+    }
+    printf("     last second: Omega in [%.9f, %.9f] rad/s, mean %.9f rad/s\n", ymin, ymax, W);
+    /* the closed form averages out the ripple of Omega at 2 Omega (the gyroscopic reaction
+     * C (alpha' beta)', zero mean); what remains of it in the mean speed is of second order.
+     * Measured: |mean - root| = 1.9e-6 rad/s (weak; half ripple 3.7e-4) and 1.8e-4 rad/s (strong;
+     * half ripple 1.6e-2): the tolerance is a tenth of the half ripple */
+    CHECK_CLOSE(c == 0 ? "   weak motor captured: mean Omega = the lowest closed-form balance point (tol 0.1 x half ripple)"
+                       : "   strong motor passes: mean Omega = the closed-form balance point above the resonances (tol 0.1 x half ripple)",
+                W, target, 0, 0.05 * (ymax - ymin));
+    autobal_rotor_free(R);
+  }
+}
+
 int main(void) {
   test_closed_forms();
   test_constant();
   test_instantaneous();
   test_ramp_transient();
   test_errors();
+  test_motor_basics();
+  test_motor_power_balance();
+  test_motor_stiff_limit();
+  test_motor_transient();
+  test_motor_errors();
+  test_sommerfeld();
   return check_summary();
 }

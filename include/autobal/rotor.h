@@ -17,7 +17,7 @@
  * plane 2's), the FIXED-FRAME state (autobal_rotor_rhs) is
  *
  *   y = (x, y, alpha, beta, x', y', alpha', beta',
- *        phi_1 .. phi_N, phi_1' .. phi_N' [, z, z'])           dimension 8 + 2N (+ 2)
+ *        phi_1 .. phi_N, phi_1' .. phi_N' [, z, z'] [, phi_0, Omega])   dimension 8 + 2N (+ 2) (+ 2)
  *
  * with phi the ABSOLUTE ball angles in the fixed axes (unwrapped, they grow like
  * omega t).  The ROTATING-FRAME state (autobal_rotor_rhs_rotating) is the same
@@ -25,6 +25,9 @@
  * (rotor coordinates stay in the fixed frame); with a drive, omega t is phi_0(t) and omega
  * is Omega(t) here and below.  Ball k of plane j has index
  * k = autobal_rotor_ball_index(r, j, i): angle y[8 + k], rate y[8 + N + k].
+ * The rotor angle phi_0 and the spin speed Omega are state variables only with a MOTOR drive
+ * (autobal_rotor_drive): then they are the last two entries, y[dim - 2] and y[dim - 1], in both
+ * frames (the rotor angle is absolute: phi_0 measured in the fixed axes).
  * The unbalance of plane j is at phi_j0 = omega t + psi_j0.
  *
  * Two models (autobal_rotor_params.inertia):
@@ -136,7 +139,8 @@ typedef struct autobal_rotor_plane {
 typedef enum autobal_rotor_drive_mode {
   AUTOBAL_ROTOR_DRIVE_CONSTANT = 0, /* Omega(t) = omega (autobal_rotor_params.omega); the default */
   AUTOBAL_ROTOR_DRIVE_RAMP = 1,     /* omega_a for t <= t_a, linear to omega_b at t_b, omega_b after */
-  AUTOBAL_ROTOR_DRIVE_TABLE = 2     /* points (t_k, Omega_k), linear between, constant outside */
+  AUTOBAL_ROTOR_DRIVE_TABLE = 2,    /* points (t_k, Omega_k), linear between, constant outside */
+  AUTOBAL_ROTOR_DRIVE_MOTOR = 3     /* a motor of limited power: phi_0 and Omega are state variables */
 } autobal_rotor_drive_mode;
 
 /* A prescribed (kinematic) drive: the rotor angle phi_0(t) = integral_0^t Omega, so that
@@ -155,6 +159,30 @@ typedef struct autobal_rotor_drive {
   size_t n_points;             /* TABLE: number of points, 1 .. AUTOBAL_ROTOR_DRIVE_MAX_POINTS */
   const double *table_t;       /* s, TABLE: strictly increasing finite times (copied by alloc) */
   const double *table_omega;   /* rad/s, TABLE: finite speeds (copied by alloc) */
+  /* MOTOR (added in 0.2.0 at the end of the struct; a zeroed block is unused by the other modes).
+   * The rotor angle phi_0 and the spin speed Omega = phi_0' become the LAST TWO entries of the
+   * state (after the balls and after (z, z') when axial = 1), with the equation of
+   * docs/device.md "(b) Motor" (derived in tools/derive/derive_rotor.py):
+   *   (J + sum_j m_j0 r_j0^2) Omega' + C (alpha'' beta + alpha' beta')
+   *     + sum_j m_j0 r_j0 (-u_jD'' sin th_j + v_jD'' cos th_j)
+   *   = L(Omega) - k_r Omega + sum_ji h_ji r_ji^2 (phi_ji' - Omega),     th_j = phi_0 + psi_j0,
+   * coupled to (3.2)/(3.4) with the unbalance's tangential acceleration m_j0 r_j0 Omega' and the
+   * term C Omega' beta of the alpha equation.  Only the PAPER inertia model (the derivation's
+   * truncation; FULL is refused with EINVAL).  Motor characteristic L(Omega): linear
+   * L_0 (1 - Omega/omega_0) when n_torque == 0 (extrapolated linearly above omega_0 and below 0),
+   * else the table (torque_omega[k], torque_L[k]), linear between the points and constant
+   * outside them. */
+  double J;                    /* kg m^2, MOTOR: spin inertia of the rotor and the motor's rotor, J >= C_p
+                                * (lumped C), finite */
+  double L_0;                  /* N m, MOTOR linear: starting torque L(0), > 0 (finite) */
+  double omega_0;              /* rad/s, MOTOR linear: no-load speed, L(omega_0) = 0, > 0 (finite) */
+  double k_r;                  /* N m s, MOTOR: resistance torque k_r Omega, >= 0 (finite) */
+  double omega_start;          /* rad/s, MOTOR: Omega at the initial time (finite; default 0) */
+  size_t n_torque;             /* MOTOR: 0 (linear characteristic) or the number of table points,
+                                * 1 .. AUTOBAL_ROTOR_DRIVE_MAX_POINTS */
+  const double *torque_omega;  /* rad/s, MOTOR table: strictly increasing finite speeds (copied) */
+  const double *torque_L;      /* N m, MOTOR table: finite torques (copied); L(0) > 0 (the motor
+                                * must be able to start) */
 } autobal_rotor_drive;
 
 /* Largest number of points of a TABLE drive. */
@@ -262,7 +290,7 @@ AUTOBAL_API const autobal_rotor_params *autobal_rotor_get_params(const autobal_r
 /* The lumped coefficients in use (computed from hw for HARDWARE input; owned
  * by the handle). */
 AUTOBAL_API const autobal_rotor_lumped *autobal_rotor_get_lumped(const autobal_rotor *r);
-/* State dimension 8 + 2N (+2 with axial motion). */
+/* State dimension 8 + 2N (+2 with axial motion) (+2 with a MOTOR drive: phi_0, Omega last). */
 AUTOBAL_API size_t autobal_rotor_dim(const autobal_rotor *r);
 AUTOBAL_API size_t autobal_rotor_n_planes(const autobal_rotor *r);
 /* Number of balls of plane j (0 for j out of range), and total N. */
@@ -278,8 +306,24 @@ AUTOBAL_API double autobal_rotor_omega(const autobal_rotor *r);
  * otherwise, no allocation.  The constant drive gives (omega, 0, omega t).  Returns
  * AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r or out, t not finite; out untouched). */
 AUTOBAL_API int autobal_rotor_drive_eval(const autobal_rotor *r, double t, double out[3]);
+/* A MOTOR drive has no prescribed Omega(t): autobal_rotor_drive_eval returns AUTOBAL_EINVAL
+ * for it (out untouched); use autobal_rotor_spin. */
+/* The spin of the state y at time t, for every drive: out[0] = Omega (rad/s), out[1] = phi_0
+ * (rad).  A prescribed drive (CONSTANT, RAMP, TABLE) gives autobal_rotor_drive_eval's Omega(t)
+ * and phi_0(t) (y is not read and may be NULL); a MOTOR drive reads the state's last two
+ * entries (y must hold autobal_rotor_dim values; the layout does not depend on the frame).
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r or out, t not finite, NULL y with a
+ * motor; out untouched). */
+AUTOBAL_API int autobal_rotor_spin(const autobal_rotor *r, double t, const double *y, double out[2]);
+/* The motor characteristic L(Omega) (N m) of a MOTOR drive at the speed Omega (rad/s), without
+ * the resistance k_r Omega.  NAN for a NULL handle, a drive that is not a motor, or a
+ * non-finite Omega. */
+AUTOBAL_API double autobal_rotor_motor_torque(const autobal_rotor *r, double Omega);
 /* Largest |Omega(t)| over all t (rad/s): |omega| for the constant drive, else the largest
- * |speed| of the ramp or table.  NAN for a NULL handle. */
+ * |speed| of the ramp or table.  MOTOR: the reference speed max(omega_0, |omega_start|)
+ * (linear) or max(largest |torque_omega[k]|, |omega_start|) (table): not a bound of the
+ * motion (the run-up usually stays below it), the speed the transient study samples at.
+ * NAN for a NULL handle. */
 AUTOBAL_API double autobal_rotor_drive_speed_max(const autobal_rotor *r);
 /* Change the spin speed (rad/s, finite).  Returns AUTOBAL_SUCCESS, or
  * AUTOBAL_EINVAL for a non-finite omega (message on the handle; omega is
@@ -288,7 +332,8 @@ AUTOBAL_API int autobal_rotor_set_omega(autobal_rotor *r, double omega);
 
 /* Initial state at time t0 from the parameters (q0, qd0, ball_psi, ball_rate,
  * z0, zd0) in the given frame: phi = phi_0(t0) + psi, phi' = Omega(t0) + psi'
- * (constant drive: omega t0 + psi, omega + psi').
+ * (constant drive: omega t0 + psi, omega + psi'; MOTOR: phi_0(t0) = 0 and Omega(t0) =
+ * drive.omega_start, written to the state's last two entries).
  * y has dim entries (dim must equal autobal_rotor_dim).  Returns
  * AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r or y, a frame other than
  * AUTOBAL_ROTOR_FIXED/ROTATING, dim != autobal_rotor_dim, t0 not finite; y is
@@ -296,7 +341,7 @@ AUTOBAL_API int autobal_rotor_set_omega(autobal_rotor *r, double omega);
 AUTOBAL_API int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, double *y,
                                             size_t dim);
 /* Convert a state between frames at time t (psi = phi - phi_0(t),
- * psi' = phi' - Omega(t); other entries copied).  in and out may alias.
+ * psi' = phi' - Omega(t), a MOTOR's phi_0 and Omega read from the state; other entries copied).  in and out may alias.
  * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r, in or out, a frame other
  * than AUTOBAL_ROTOR_FIXED/ROTATING, dim != autobal_rotor_dim, t not finite;
  * out is then untouched and no message is recorded on the handle). */
@@ -329,6 +374,12 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
  * the handle's workspace: one handle per thread (see Threads above). */
 AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor);
 
+/* MOTOR drive (both right-hand sides): the system is linear in Omega' as well; the 4x4 solve
+ * above is done for two right-hand sides (the terms without Omega' and those per unit Omega',
+ * one factorization), and the phi_0 equation then gives Omega' from a scalar Schur complement
+ * J + sum m_j0 r_j0^2 - g^T a^-1 g (g: the coupling column); a complement that is not
+ * positive (relative to J + sum m_j0 r_j0^2, 1e-13) fails like a singular mass matrix.  Still
+ * O(N), no allocation; the derivatives of phi_0 and Omega are the last two entries of dydt. */
 /* The same motion with the balls in the rotating frame (3.9)-(3.13): ball
  * angles psi, (3.13) for the balls with the acceleration of D projected on the
  * rotor axes; rotor equations (3.2) in the fixed frame.  An independent second
@@ -338,7 +389,7 @@ AUTOBAL_API int autobal_rotor_rhs_rotating(double t, const double y[], double dy
 /* ---- derived quantities ------------------------------------------------- */
 /* Unbalance of plane j at time t (3.1), (3.10): s[0] = s_u, s[1] = s_v (fixed
  * axes), s[2] = s_xi, s[3] = s_eta (rotor axes), all kg m, including the
- * unbalance itself.  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+ * unbalance itself (phi_0 from autobal_rotor_spin).  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
 AUTOBAL_API int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t plane, int frame,
                                               double t, const double *y, double s[4]);
 
@@ -363,6 +414,11 @@ AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int fra
  *     phi_rate, psi_rate                                                 rad/s
  *   then, only with a RAMP or TABLE drive (1 entry):
  *     Omega        the prescribed spin speed Omega(t)                    rad/s
+ *   or, only with a MOTOR drive (3 entries):
+ *     Omega        the spin speed (the state's Omega)                    rad/s
+ *     motor_torque the motor torque L(Omega) (without k_r Omega)         N m
+ *     motor_power  L(Omega) Omega                                        W
+ * Programs should find these columns by name (autobal_rotor_output_name).
  * With LUMPED input and non-finite hw.l_L / hw.l_R, amp_L / amp_R are NAN.  The constant
  * drive keeps the layout of 0.1.0 (no Omega column). */
 AUTOBAL_API size_t autobal_rotor_output_count(const autobal_rotor *r);

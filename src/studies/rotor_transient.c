@@ -36,13 +36,19 @@ autobal_study_rotor_transient_options autobal_study_rotor_transient_options_defa
 
 /* ---- inputs ----------------------------------------------------------------------------- */
 /* The speed that sets the sampling and the revolution counts: omega for the constant drive, the
- * largest |speed| of a ramp or table (NaN for a table the model would reject). */
+ * largest |speed| of a ramp or table (NaN for a table the model would reject); a motor: its
+ * no-load speed omega_0 (a torque table: its largest |speed|) or |omega_start| if larger. */
 static double speed_ref(const autobal_rotor_params *p) {
   const autobal_rotor_drive *d = &p->drive;
   double m = 0.0;
   size_t k;
   if (d->mode == AUTOBAL_ROTOR_DRIVE_CONSTANT) return p->omega;
   if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return fmax(fabs(d->omega_a), fabs(d->omega_b));
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_MOTOR) {
+    m = d->n_torque ? 0.0 : d->omega_0;
+    for (k = 0; k < d->n_torque && d->torque_omega; k++) m = fmax(m, fabs(d->torque_omega[k]));
+    return fmax(m, fabs(d->omega_start));
+  }
   if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE || !d->table_omega || d->n_points < 1) return NAN;
   for (k = 0; k < d->n_points; k++) m = fabs(d->table_omega[k]) > m ? fabs(d->table_omega[k]) : m;
   return m;
@@ -179,7 +185,8 @@ typedef struct run_ctx {
    * running speed through (u, u') at each sample, exact for a steady whirl whatever the
    * sampling (a sampled maximum or RMS of 4 samples per revolution is not) */
   double l_sup[3], omega_abs;
-  int drive; /* a ramp or table: the 1X amplitude uses Omega(t) at the sample */
+  int drive; /* a ramp, table or motor: the 1X amplitude uses Omega at the sample */
+  int motor; /* a motor: phi_0 and Omega are the state's last two entries */
   double amax[3][2];
   unsigned long win_n;
 } run_ctx;
@@ -212,7 +219,7 @@ static int observer(double t, const double y[], void *user) {
   if (t >= r->t_last_window_start) {
     size_t k, q;
     double w1x = r->omega_abs, dv[3];
-    if (r->drive && autobal_rotor_drive_eval(r->rotor, t, dv) == AUTOBAL_SUCCESS && fabs(dv[0]) > 0) w1x = fabs(dv[0]);
+    if (r->drive && autobal_rotor_spin(r->rotor, t, y, dv) == AUTOBAL_SUCCESS && fabs(dv[0]) > 0) w1x = fabs(dv[0]);
     for (k = 0; k < 3; k++) {
       double d[2], v[2];
       point_motion(y, r->l_sup[k], d, v);
@@ -319,6 +326,17 @@ static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const auto
     if (!st) st = autobal_archive_attr_double(a, g, "drive_omega_b", p->drive.omega_b, "rad/s");
     if (!st) st = autobal_archive_attr_double(a, g, "drive_t_a", p->drive.t_a, "s");
     if (!st) st = autobal_archive_attr_double(a, g, "drive_t_b", p->drive.t_b, "s");
+  } else if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR) {
+    st = autobal_archive_attr_string(a, g, "drive_mode", "motor");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_J", p->drive.J, "kg m^2");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_k_r", p->drive.k_r, "N m s");
+    if (!st) st = autobal_archive_attr_double(a, g, "drive_omega_start", p->drive.omega_start, "rad/s");
+    if (!st && p->drive.n_torque == 0) st = autobal_archive_attr_double(a, g, "drive_L_0", p->drive.L_0, "N m");
+    if (!st && p->drive.n_torque == 0) st = autobal_archive_attr_double(a, g, "drive_omega_0", p->drive.omega_0, "rad/s");
+    if (!st && p->drive.n_torque > 0)
+      st = autobal_archive_attr_double_array(a, g, "drive_torque_omega", p->drive.n_torque, p->drive.torque_omega, "rad/s");
+    if (!st && p->drive.n_torque > 0)
+      st = autobal_archive_attr_double_array(a, g, "drive_torque_L", p->drive.n_torque, p->drive.torque_L, "N m");
   } else if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
     st = autobal_archive_attr_string(a, g, "drive_mode", "table");
     if (!st) st = autobal_archive_attr_double_array(a, g, "drive_table_t", p->drive.n_points, p->drive.table_t, "s");
@@ -336,7 +354,9 @@ static void output_long_name(const char *name, char *buf, size_t len) {
   if (!strcmp(name, "amp_G")) snprintf(buf, len, "displacement amplitude of the centre of mass");
   else if (!strcmp(name, "amp_L")) snprintf(buf, len, "displacement amplitude at the left support (z = -l_L)");
   else if (!strcmp(name, "amp_R")) snprintf(buf, len, "displacement amplitude at the right support (z = +l_R)");
-  else if (!strcmp(name, "Omega")) snprintf(buf, len, "prescribed spin speed Omega(t) of the drive");
+  else if (!strcmp(name, "Omega")) snprintf(buf, len, "spin speed Omega of the drive (prescribed or the motor's)");
+  else if (!strcmp(name, "motor_torque")) snprintf(buf, len, "motor torque L(Omega) (without the resistance k_r Omega)");
+  else if (!strcmp(name, "motor_power")) snprintf(buf, len, "motor power L(Omega) Omega");
   else if (sscanf(name, "p%u_b%u_%47s", &pl, &b, rest) == 3) {
     const char *what = !strcmp(rest, "phi") ? "absolute angle phi (unwrapped)"
                        : !strcmp(rest, "phi_w") ? "absolute angle phi wrapped to (-pi, pi]"
@@ -369,6 +389,11 @@ static int open_series(run_ctx *r, autobal_archive *a) {
   if (!names || !lnames || !np || !up || !lp) st = AUTOBAL_ENOMEM;
   for (k = 0; !st && k < r->dim; k++) {
     const char *nm = state_name(k, nb, r->frame, names[k], sizeof names[k], &up[k], &lp[k]);
+    if (r->motor && k + 2 >= r->dim) { /* a motor's phi_0 and Omega: the state's last two entries */
+      nm = k + 2 == r->dim ? "state_phi_0" : "state_Omega";
+      up[k] = k + 2 == r->dim ? "rad" : "rad/s";
+      lp[k] = k + 2 == r->dim ? "integrated rotor angle phi_0 (motor)" : "integrated spin speed Omega (motor)";
+    }
     if (nm != names[k]) snprintf(names[k], sizeof names[k], "%s", nm);
     np[k] = names[k];
     if (k >= 8 && k < 8 + 2 * nb) { /* one long_name per ball */
@@ -416,7 +441,7 @@ static void engineering_compute(autobal_study_rotor_transient_summary *s, const 
   size_t j, k, q, np = r->n_planes;
   double omega = fabs(p->omega), worst = 0.0, dv[3];
   if (r->drive) { /* the speed at the end of the run (the largest one if that is 0) */
-    omega = autobal_rotor_drive_eval(rot, t, dv) == AUTOBAL_SUCCESS ? fabs(dv[0]) : NAN;
+    omega = autobal_rotor_spin(rot, t, y, dv) == AUTOBAL_SUCCESS ? fabs(dv[0]) : NAN;
     if (!(omega > 0)) omega = autobal_rotor_drive_speed_max(rot);
   }
   s->balance_grade_rotor_mass = p->input == AUTOBAL_ROTOR_HARDWARE ? p->hw.m_p : p->lumped.M;
@@ -529,6 +554,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   r.ncols = r.dim + r.nout;
   r.n_planes = autobal_rotor_n_planes(rot);
   r.drive = rp->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT;
+  r.motor = rp->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR;
   r.rev_period = TWO_PI / fabs(speed_ref(rp));
   r.t_first_window = 0.1 * o->t_end;
   r.t_last_window_start = 0.9 * o->t_end;
@@ -598,8 +624,8 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     for (i = 0; i < nbj; i++) {
       size_t k = autobal_rotor_ball_index(rot, j, i);
       double dv[3], ang;
-      (void)autobal_rotor_drive_eval(rot, t_reached, dv); /* dv[2] = phi_0 (omega t for a constant speed) */
-      ang = o->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - dv[2] : y[8 + k];
+      (void)autobal_rotor_spin(rot, t_reached, y, dv); /* dv[1] = phi_0 (omega t for a constant speed) */
+      ang = o->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - dv[1] : y[8 + k];
       s->ball_psi_final[j][i] = remainder(ang, TWO_PI);
     }
     /* the balanced configuration (3.14), where it exists */

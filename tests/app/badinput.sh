@@ -169,6 +169,16 @@ expect 3 "balls too heavy" -- "$A" rotor transient --set plane1.ball_mass=4,4
 expect 3 "M*e" -- "$A" pendulum roots $(phys e=0.003)                                           # M e = 2 m l exactly
 expect 0 "warning" "cannot cancel" -- "$A" rotor transient --set plane1.m0=0.5 --set transient.t_end=0.05
 
+# ---- a motor of limited power ([drive] mode = motor; the full catalogue is in motor.sh) ---------
+mot() { echo --set drive.mode=motor --set drive.J=$1 --set drive.L_0=$2 --set drive.omega_0=$3; }
+expect 3 "L_0 = 0 N m" "(0, inf)" "cannot start" -- "$A" rotor transient $(mot 0.05 0 300) -o motor_bad.h5
+expect 3 "J = -0.1 kg m^2" "[C_p, inf)" -- "$A" rotor transient $(mot -0.1 1 300) -o motor_bad.h5
+expect 3 "J = 0.02 kg m^2" "[C_p, inf) = [0.03, inf)" -- "$A" rotor transient $(mot 0.02 1 300) -o motor_bad.h5
+expect 3 "omega_0 = 0 rad/s" "(0, inf)" -- "$A" rotor transient $(mot 0.05 1 0) -o motor_bad.h5
+expect 3 "table_omega is not strictly increasing" -- "$A" rotor transient --set drive.mode=motor --set drive.J=0.05 \
+  --set drive.table_omega=0,300,200 --set drive.table_torque=1,1,0 -o motor_bad.h5
+[ -e motor_bad.h5 ] && bad "bad motor input left an archive" || ok "bad motor input left no archive"
+
 # ---- absurd tolerances and run lengths ----------------------------------------------------------
 expect 3 "rtol" "(0, 1]" -- "$A" rotor transient --set transient.rtol=0
 expect 3 "atol" "(0, inf)" -- "$A" pendulum transient --set transient.atol=-1e-12

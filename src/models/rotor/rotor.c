@@ -40,6 +40,11 @@ struct autobal_rotor {
    * for t <= dT[0]; phi_0(t) = F(t) - dF0, dF0 = F(0) */
   size_t dn;
   double *dT, *dV, *dS, *dP, dF0;
+  /* a MOTOR drive: phi_0 at y[im], Omega at y[im + 1]; the torque table (mn points: speeds mW,
+   * torques mL; mn = 0: linear characteristic); Jeff = J + sum_j m_j0 r_j0^2 (kg m^2) */
+  int motor;
+  size_t im, mn;
+  double *mW, *mL, Jeff;
   double *store;
   autobal_error err;
 };
@@ -107,6 +112,36 @@ static void drive_eval(const autobal_rotor *R, double t, double *W, double *Wd, 
   *ph0 = drive_F(R, t, W, Wd) - R->dF0;
 }
 
+/* Omega and phi_0 of the state: the prescribed drive at t, or a MOTOR's state entries. */
+static void spin_state(const autobal_rotor *R, double t, const double *y, double *W, double *ph0) {
+  double Wd;
+  if (R->motor) {
+    *ph0 = y[R->im];
+    *W = y[R->im + 1];
+    return;
+  }
+  drive_eval(R, t, W, &Wd, ph0);
+}
+
+/* The motor characteristic L(Omega) (N m): linear L_0 (1 - Omega/omega_0), or the table, linear
+ * between its points (binary search) and constant outside. */
+static double motor_L(const autobal_rotor *R, double W) {
+  const size_t n = R->mn;
+  const double *X = R->mW, *Y = R->mL;
+  size_t lo, hi;
+  if (n == 0) return R->p.drive.L_0 * (1.0 - W / R->p.drive.omega_0);
+  if (!(W > X[0])) return Y[0];
+  if (W >= X[n - 1]) return Y[n - 1];
+  lo = 0; /* X[lo] < W < X[hi] (or W == X[lo]) */
+  hi = n - 1;
+  while (hi - lo > 1) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (X[mid] <= W) lo = mid;
+    else hi = mid;
+  }
+  return Y[lo] + (Y[hi] - Y[lo]) * ((W - X[lo]) / (X[hi] - X[lo]));
+}
+
 /* Wrap an angle to (-pi, pi]. */
 static double wrap_pi(double a) {
   double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
@@ -121,8 +156,8 @@ static double wrap_pi(double a) {
  * pivots D_jj are those of the Cholesky factorization squared; returns 0, or -1
  * when a pivot is not positive relative to the diagonal entry a_jj (or NaN).
  * No square roots and one division per pivot (the solve multiplies by 1/D_jj). */
-static int ldl4_solve(double a[4][4], double b[4]) {
-  double dg[4], dinv[4], v[4];
+static int ldl4_factor(double a[4][4], double dinv[4]) {
+  double dg[4], v[4];
   int i, j, k;
   for (j = 0; j < 4; j++) {
     double s = a[j][j];
@@ -139,6 +174,12 @@ static int ldl4_solve(double a[4][4], double b[4]) {
       a[i][j] = t * dinv[j];
     }
   }
+  return 0;
+}
+
+/* The substitutions of ldl4_factor's factorization for one right-hand side b (overwritten). */
+static void ldl4_subst(double a[4][4], const double dinv[4], double b[4]) {
+  int i, k;
   for (i = 0; i < 4; i++) { /* L z = b */
     double s = b[i];
     for (k = 0; k < i; k++) s -= a[i][k] * b[k];
@@ -149,7 +190,6 @@ static int ldl4_solve(double a[4][4], double b[4]) {
     for (k = i + 1; k < 4; k++) s -= a[k][i] * b[k];
     b[i] = s;
   }
-  return 0;
 }
 
 /* Rotor part of (3.2) / (3.5)-(3.8) with everything but the mass terms moved
@@ -196,16 +236,38 @@ static void add_plane_mass(double a[4][4], double d, const plane_coupling *c) {
   a[3][3] += c->Suu * d * d;
 }
 
+/* One plane, closed form (see solve_accelerations): q'' and (u_D'', v_D'') for the right-hand
+ * side b, given S = I + g C through s11, s12, s22 and 1/det S. */
+static void one_plane_apply(const autobal_rotor *R, const plane_coupling *c, double s11, double s12,
+                            double s22, double idet, const double b[4], double qdd[4], double uv[2]) {
+  const double d = R->p.plane[0].d, iM = R->inv_M, iA = R->inv_A;
+  const double ru = b[0] * iM + d * b[3] * iA; /* U^T D^-1 b */
+  const double rv = b[1] * iM - d * b[2] * iA;
+  const double wu = (s22 * ru - s12 * rv) * idet;
+  const double wv = (s11 * rv - s12 * ru) * idet;
+  const double cu = c->Suu * wu + c->Suv * wv; /* (cu, cv) = C w; U C w = (cu, cv, -d cv, d cu) */
+  const double cv = c->Suv * wu + c->Svv * wv;
+  qdd[0] = (b[0] - cu) * iM;
+  qdd[1] = (b[1] - cv) * iM;
+  qdd[2] = (b[2] + d * cv) * iA;
+  qdd[3] = (b[3] - d * cu) * iA;
+  uv[0] = wu;
+  uv[1] = wv;
+}
+
 /* Solve the rotor equations (3.2) (one plane) or (3.5)-(3.8) (two planes) with
  * the planes' couplings substituted,
  *   a q'' = b - sum_j U_j (Fu_j, Fv_j),   a = D + sum_j U_j C_j U_j^T,  D = diag(M, M, A, A),
  * for q'' = (x'', y'', alpha'', beta''), and the accelerations of the planes'
  * centres uvdd[j] = (u_jD'', v_jD'') = U_j^T q'' (3.3).  b is overwritten.
+ * With b1 != NULL (a MOTOR drive) also a q1'' = b1 with the same matrix (b1 overwritten; its
+ * results in qdd1, uvdd1).
  * Returns 0, or -1 when a is not positive definite (one plane: see below; two
  * planes: a Cholesky pivot not positive relative to the diagonal entry) or a
  * result is not finite. */
 static int solve_accelerations(const autobal_rotor *R, const plane_coupling *cp, double b[4],
-                               double qdd[4], double uvdd[][2]) {
+                               double qdd[4], double uvdd[][2], double *b1, double *qdd1,
+                               double uvdd1[][2]) {
   size_t j;
   for (j = 0; j < R->n_planes; j++) { /* b -= Fu eu + Fv ev */
     const double d = R->p.plane[j].d;
@@ -224,45 +286,95 @@ static int solve_accelerations(const autobal_rotor *R, const plane_coupling *cp,
      * det S > 1e-13 (tr S)^2, i.e. lambda_min / lambda_max > about 1e-13: a test
      * invariant under rotations of the (u, v) axes, so both frames agree on it. */
     const plane_coupling *c = &cp[0];
-    const double d = R->p.plane[0].d, g = R->g[0], iM = R->inv_M, iA = R->inv_A;
-    const double ru = b[0] * iM + d * b[3] * iA; /* U^T D^-1 b */
-    const double rv = b[1] * iM - d * b[2] * iA;
+    const double g = R->g[0];
     const double s11 = 1.0 + g * c->Suu, s12 = g * c->Suv, s22 = 1.0 + g * c->Svv;
     const double det = s11 * s22 - s12 * s12, tr = s11 + s22;
-    double idet, wu, wv, cu, cv;
+    double idet;
     if (!(tr > 0.0) || !(det > 1e-13 * tr * tr)) return -1; /* also catches NaN */
     idet = 1.0 / det;
-    wu = (s22 * ru - s12 * rv) * idet;
-    wv = (s11 * rv - s12 * ru) * idet;
-    cu = c->Suu * wu + c->Suv * wv; /* (cu, cv) = C w; U C w = (cu, cv, -d cv, d cu) */
-    cv = c->Suv * wu + c->Svv * wv;
-    qdd[0] = (b[0] - cu) * iM;
-    qdd[1] = (b[1] - cv) * iM;
-    qdd[2] = (b[2] + d * cv) * iA;
-    qdd[3] = (b[3] - d * cu) * iA;
-    uvdd[0][0] = wu;
-    uvdd[0][1] = wv;
+    one_plane_apply(R, c, s11, s12, s22, idet, b, qdd, uvdd[0]);
+    if (b1) one_plane_apply(R, c, s11, s12, s22, idet, b1, qdd1, uvdd1[0]);
   } else {
     /* Two planes: the 4x4 system by a root-free Cholesky (L D L^T) solve. */
-    double a[4][4];
+    double a[4][4], dinv[4];
     memset(a, 0, sizeof a);
     a[0][0] = R->L.M;
     a[1][1] = R->L.M;
     a[2][2] = R->L.A;
     a[3][3] = R->L.A;
     for (j = 0; j < R->n_planes; j++) add_plane_mass(a, R->p.plane[j].d, &cp[j]);
-    if (ldl4_solve(a, b) != 0) return -1;
+    if (ldl4_factor(a, dinv) != 0) return -1;
+    ldl4_subst(a, dinv, b);
     for (j = 0; j < 4; j++) qdd[j] = b[j];
+    if (b1) {
+      ldl4_subst(a, dinv, b1);
+      for (j = 0; j < 4; j++) qdd1[j] = b1[j];
+    }
     for (j = 0; j < R->n_planes; j++) {
       const double d = R->p.plane[j].d;
       uvdd[j][0] = qdd[0] + d * qdd[3]; /* eq. (3.3) */
       uvdd[j][1] = qdd[1] - d * qdd[2];
+      if (b1) {
+        uvdd1[j][0] = qdd1[0] + d * qdd1[3];
+        uvdd1[j][1] = qdd1[1] - d * qdd1[2];
+      }
     }
   }
   if (!isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3])) return -1;
   for (j = 0; j < R->n_planes; j++)
     if (!isfinite(uvdd[j][0] + uvdd[j][1])) return -1;
   return 0;
+}
+
+/* MOTOR: the rotor right-hand side per unit Omega', b1 = -g with g the coupling of the phi_0
+ * equation, g . q'' = C beta alpha'' + sum_j m_j0 r_j0 (-u_jD'' sin th_j + v_jD'' cos th_j)
+ * (th_j = phi_0 + psi_j0; (sw, cw) = sin, cos phi_0): the term C Omega' beta of the alpha
+ * equation and the unbalance's tangential acceleration m_j0 r_j0 Omega' (-sin th, cos th) in
+ * s'' (docs/device.md, "Fixed-frame equations"); the same in both frames. */
+static void motor_b1(const autobal_rotor *R, double sw, double cw, double beta, double b1[4]) {
+  size_t j;
+  b1[0] = 0.0;
+  b1[1] = 0.0;
+  b1[2] = -R->L.C * beta;
+  b1[3] = 0.0;
+  for (j = 0; j < R->n_planes; j++) {
+    const double d = R->p.plane[j].d;
+    const double sth = R->s0[j] * (sw * R->cpsi0[j] + cw * R->spsi0[j]); /* m0 r0 sin th */
+    const double cth = R->s0[j] * (cw * R->cpsi0[j] - sw * R->spsi0[j]); /* m0 r0 cos th */
+    b1[0] += sth;
+    b1[1] -= cth;
+    b1[2] += d * cth;
+    b1[3] += d * sth;
+  }
+}
+
+/* MOTOR: Omega' from the phi_0 equation with q'' = q0'' + Omega' q1'' (q0'': the solve without
+ * the Omega' terms, q1'': per unit Omega'):
+ *   Jeff Omega' - b1 . q'' + C alpha' beta' = L(Omega) - k_r Omega + tb,
+ * tb = sum h r^2 (phi' - Omega) the balls' resistance torque on the rotor; then q'' and the
+ * planes' (u_D'', v_D'') completed.  Returns 0, or -1 when the Schur complement
+ * Jeff - b1 . q1'' is not positive (relative 1e-13) or a result is not finite. */
+static int motor_complete(const autobal_rotor *R, const double y[], double omega, double tb,
+                          const double b1[4], double qdd[4], const double qdd1[4], double uvdd[][2],
+                          double uvdd1[][2], double *omega_rate) {
+  const autobal_rotor_drive *dr = &R->p.drive;
+  const double den = R->Jeff - (b1[0] * qdd1[0] + b1[1] * qdd1[1] + b1[2] * qdd1[2] + b1[3] * qdd1[3]);
+  const double rhs = motor_L(R, omega) - dr->k_r * omega + tb - R->L.C * y[6] * y[7] +
+                     (b1[0] * qdd[0] + b1[1] * qdd[1] + b1[2] * qdd[2] + b1[3] * qdd[3]);
+  double wd;
+  size_t j;
+  if (!(den > 1e-13 * R->Jeff)) return -1;
+  wd = rhs / den;
+  if (!isfinite(wd)) return -1;
+  for (j = 0; j < 4; j++) qdd[j] += wd * qdd1[j];
+  for (j = 0; j < R->n_planes; j++) {
+    uvdd[j][0] += wd * uvdd1[j][0];
+    uvdd[j][1] += wd * uvdd1[j][1];
+  }
+  for (j = 0; j < R->n_planes; j++)
+    if (!isfinite(uvdd[j][0] + uvdd[j][1])) return -1;
+  *omega_rate = wd;
+  return isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3]) ? 0 : -1;
 }
 
 static int rhs_fail(autobal_rotor *R, double t, const char *which) {
@@ -307,9 +419,16 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   const double *sn = R->sn, *cs = R->cs;
   plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
   double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, omega, omega_rate, phi0, w2;
+  double b1[4], b1s[4], qdd1[4], uvdd1[AUTOBAL_ROTOR_MAX_PLANES][2], tb = 0.0;
   size_t j, k;
 
-  drive_eval(R, t, &omega, &omega_rate, &phi0); /* Omega(t), Omega'(t), phi_0(t) */
+  if (R->motor) { /* phi_0 and Omega from the state; the Omega' terms are solved for below */
+    phi0 = y[R->im];
+    omega = y[R->im + 1];
+    omega_rate = 0.0;
+  } else {
+    drive_eval(R, t, &omega, &omega_rate, &phi0); /* Omega(t), Omega'(t), phi_0(t) */
+  }
   w2 = omega * omega;
   autobal_sincos1(phi0, &sw, &cw);
   ball_sincos(phi, R->sn, R->cs, N);
@@ -350,7 +469,14 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
     cp[j].Fu = Fu;
     cp[j].Fv = Fv;
   }
-  if (solve_accelerations(R, cp, b, qdd, uvdd) != 0) return rhs_fail(R, t, "fixed-frame");
+  if (R->motor) {
+    motor_b1(R, sw, cw, q[3], b1);
+    memcpy(b1s, b1, sizeof b1);
+    for (k = 0; k < N; k++) tb += R->hr[k] * R->r[k] * (phid[k] - omega);
+  }
+  if (solve_accelerations(R, cp, b, qdd, uvdd, R->motor ? b1s : NULL, qdd1, uvdd1) != 0 ||
+      (R->motor && motor_complete(R, y, omega, tb, b1, qdd, qdd1, uvdd, uvdd1, &omega_rate) != 0))
+    return rhs_fail(R, t, "fixed-frame");
 
   rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
@@ -358,6 +484,10 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) /* eq. (3.4) solved for phi_i'' */
       dydt[8 + N + k] = (uDdd * sn[k] - vDdd * cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
+  }
+  if (R->motor) {
+    dydt[R->im] = omega;
+    dydt[R->im + 1] = omega_rate;
   }
   return GSL_SUCCESS;
 }
@@ -369,9 +499,16 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   const double *sn = R->sn, *cs = R->cs;
   plane_coupling cp[AUTOBAL_ROTOR_MAX_PLANES] = {{0.0, 0.0, 0.0, 0.0, 0.0}};
   double b[4], qdd[4], uvdd[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, omega, omega_rate, phi0, w2;
+  double b1[4], b1s[4], qdd1[4], uvdd1[AUTOBAL_ROTOR_MAX_PLANES][2], tb = 0.0;
   size_t j, k;
 
-  drive_eval(R, t, &omega, &omega_rate, &phi0); /* Omega(t), Omega'(t), phi_0(t) */
+  if (R->motor) { /* phi_0 and Omega from the state; the Omega' terms are solved for below */
+    phi0 = y[R->im];
+    omega = y[R->im + 1];
+    omega_rate = 0.0;
+  } else {
+    drive_eval(R, t, &omega, &omega_rate, &phi0); /* Omega(t), Omega'(t), phi_0(t) */
+  }
   w2 = omega * omega;
   autobal_sincos1(phi0, &sw, &cw);
   ball_sincos(psi, R->sn, R->cs, N);
@@ -423,7 +560,16 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
       cp[j].Fv = cxi * sw + ceta * cw;
     }
   }
-  if (solve_accelerations(R, cp, b, qdd, uvdd) != 0) return rhs_fail(R, t, "rotating-frame");
+  if (R->motor) {
+    /* the coupling per unit Omega' in fixed axes is the fixed frame's (see the Omega' terms
+     * above: only the unbalance's tangential acceleration and C Omega' beta remain) */
+    motor_b1(R, sw, cw, q[3], b1);
+    memcpy(b1s, b1, sizeof b1);
+    for (k = 0; k < N; k++) tb += R->hr[k] * R->r[k] * psid[k];
+  }
+  if (solve_accelerations(R, cp, b, qdd, uvdd, R->motor ? b1s : NULL, qdd1, uvdd1) != 0 ||
+      (R->motor && motor_complete(R, y, omega, tb, b1, qdd, qdd1, uvdd, uvdd1, &omega_rate) != 0))
+    return rhs_fail(R, t, "rotating-frame");
 
   rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
@@ -435,6 +581,10 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
       dydt[8 + N + k] = (axi * sn[k] - aeta * cs[k]) / R->r[k] - R->kappa[k] * psid[k];
     if (omega_rate != 0.0)
       for (k = k0; k < k1; k++) dydt[8 + N + k] -= omega_rate;
+  }
+  if (R->motor) {
+    dydt[R->im] = omega;
+    dydt[R->im + 1] = omega_rate;
   }
   return GSL_SUCCESS;
 }
@@ -686,10 +836,68 @@ static int check_plane(const autobal_rotor_plane *pl, size_t j, autobal_error *e
   return AUTOBAL_SUCCESS;
 }
 
-static int check_drive(const autobal_rotor_drive *d, autobal_error *err) {
+/* A MOTOR drive (C: the lumped polar moment C_p). */
+static int check_motor(const autobal_rotor_drive *d, double C, int inertia, autobal_error *err) {
+  int st;
+  size_t k;
+  if (inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "drive.mode = MOTOR needs the PAPER inertia model (inertia = 0): the motor "
+                             "equations are derived with the paper's truncation (2.2) only (docs/device.md)");
+  if (!isfinite(d->J) || !(d->J >= C))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "parameter drive.J = %.17g kg m^2 is out of range: allowed [C_p, inf) = "
+                             "[%.17g, inf) kg m^2 (the rotor's polar moment C_p plus the motor's rotor)",
+                             d->J, C);
+  if ((st = autobal_check_param(err, "drive.k_r", d->k_r, 0.0, 0, INFINITY, 1, "N m s")) ||
+      (st = autobal_check_param(err, "drive.omega_start", d->omega_start, -INFINITY, 1, INFINITY, 1, "rad/s")))
+    return st;
+  if (d->n_torque == 0) {
+    if (!(d->L_0 > 0.0) || !isfinite(d->L_0))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "parameter drive.L_0 = %.17g N m is out of range: allowed (0, inf) (the "
+                               "starting torque; L_0 <= 0: the motor cannot start)",
+                               d->L_0);
+    return autobal_check_param(err, "drive.omega_0", d->omega_0, 0.0, 1, INFINITY, 1, "rad/s");
+  }
+  if (d->n_torque > AUTOBAL_ROTOR_DRIVE_MAX_POINTS)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter drive.n_torque = %zu is out of range: allowed [0, %d]",
+                             d->n_torque, AUTOBAL_ROTOR_DRIVE_MAX_POINTS);
+  if (d->torque_omega == NULL || d->torque_L == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "drive: n_torque = %zu but torque_omega or torque_L is NULL",
+                             d->n_torque);
+  for (k = 0; k < d->n_torque; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "drive.torque_L[%zu]", k);
+    if ((st = autobal_check_param(err, name, d->torque_L[k], -INFINITY, 1, INFINITY, 1, "N m"))) return st;
+    snprintf(name, sizeof name, "drive.torque_omega[%zu]", k);
+    if ((st = autobal_check_param(err, name, d->torque_omega[k], k ? d->torque_omega[k - 1] : -INFINITY, 1,
+                                  INFINITY, 1, "rad/s")))
+      return st; /* finite and strictly increasing */
+  }
+  {
+    /* L(0) of the table (linear between the points, constant outside) */
+    const double *X = d->torque_omega, *Y = d->torque_L;
+    const size_t n = d->n_torque;
+    double L0 = Y[0];
+    if (0.0 >= X[n - 1]) L0 = Y[n - 1];
+    else if (0.0 > X[0])
+      for (k = 0; k + 1 < n; k++)
+        if (X[k] <= 0.0 && 0.0 < X[k + 1]) L0 = Y[k] + (Y[k + 1] - Y[k]) * ((0.0 - X[k]) / (X[k + 1] - X[k]));
+    if (!(L0 > 0.0))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "drive: the torque table gives L(0) = %.17g N m: allowed (0, inf) (the "
+                               "starting torque; L(0) <= 0: the motor cannot start)",
+                               L0);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+static int check_drive(const autobal_rotor_drive *d, double C, int inertia, autobal_error *err) {
   int st;
   size_t k;
   if (d->mode == AUTOBAL_ROTOR_DRIVE_CONSTANT) return AUTOBAL_SUCCESS;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_MOTOR) return check_motor(d, C, inertia, err);
   if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
     if ((st = autobal_check_param(err, "drive.omega_a", d->omega_a, -INFINITY, 1, INFINITY, 1, "rad/s")) ||
         (st = autobal_check_param(err, "drive.omega_b", d->omega_b, -INFINITY, 1, INFINITY, 1, "rad/s")) ||
@@ -701,7 +909,8 @@ static int check_drive(const autobal_rotor_drive *d, autobal_error *err) {
   if (d->mode != AUTOBAL_ROTOR_DRIVE_TABLE)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter drive.mode = %d is not valid: use AUTOBAL_ROTOR_DRIVE_CONSTANT (0), "
-                             "AUTOBAL_ROTOR_DRIVE_RAMP (1) or AUTOBAL_ROTOR_DRIVE_TABLE (2)",
+                             "AUTOBAL_ROTOR_DRIVE_RAMP (1), AUTOBAL_ROTOR_DRIVE_TABLE (2) or "
+                             "AUTOBAL_ROTOR_DRIVE_MOTOR (3)",
                              d->mode);
   if (d->n_points < 1 || d->n_points > AUTOBAL_ROTOR_DRIVE_MAX_POINTS)
     return autobal_error_set(err, AUTOBAL_EINVAL, "parameter drive.n_points = %zu is out of range: allowed [1, %d]",
@@ -757,7 +966,7 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
   if ((st = autobal_check_param(err, "omega", p->omega, -INFINITY, 1, INFINITY, 1, "rad/s")) !=
       AUTOBAL_SUCCESS)
     return st;
-  if ((st = check_drive(&p->drive, err)) != AUTOBAL_SUCCESS) return st;
+  if ((st = check_drive(&p->drive, L.C, p->inertia, err)) != AUTOBAL_SUCCESS) return st;
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
@@ -809,19 +1018,20 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   autobal_rotor *R;
   autobal_error e;
   int st = autobal_rotor_params_check(p, &e);
-  size_t j, k, N = 0, dn;
+  size_t j, k, N = 0, dn, mn;
   if (err != NULL) *err = e;
   if (st < 0) return NULL;
   for (j = 0; j < p->n_planes; j++) N += p->plane[j].n_balls;
   dn = p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE ? p->drive.n_points
        : p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? 2u : 0u;
+  mn = p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR ? p->drive.n_torque : 0u;
   R = (autobal_rotor *)calloc(1, sizeof *R);
   if (R == NULL) {
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
     return NULL;
   }
-  /* 10 arrays of N doubles and 4 of dn (N may be 0: allocate at least one element) */
-  R->store = (double *)calloc(10 * N + 4 * dn + 1, sizeof(double));
+  /* 10 arrays of N doubles, 4 of dn and 2 of mn (N may be 0: allocate at least one element) */
+  R->store = (double *)calloc(10 * N + 4 * dn + 2 * mn + 1, sizeof(double));
   if (R->store == NULL) {
     free(R);
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating arrays for %zu balls", N);
@@ -842,7 +1052,20 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   R->dV = R->dT + dn;
   R->dS = R->dV + dn;
   R->dP = R->dS + dn;
+  R->mn = mn;
+  R->mW = R->dP + dn;
+  R->mL = R->mW + mn;
   R->p = *p;
+  R->motor = p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR;
+  if (mn > 0) {
+    memcpy(R->mW, p->drive.torque_omega, mn * sizeof(double));
+    memcpy(R->mL, p->drive.torque_L, mn * sizeof(double));
+    R->p.drive.torque_omega = R->mW;
+    R->p.drive.torque_L = R->mL;
+  } else {
+    R->p.drive.torque_omega = NULL;
+    R->p.drive.torque_L = NULL;
+  }
   if (dn > 0) {
     double W, Wd;
     if (p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
@@ -883,7 +1106,10 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   for (j = 0; j < p->n_planes; j++) R->g[j] = R->inv_M + p->plane[j].d * p->plane[j].d * R->inv_A;
   R->n_planes = p->n_planes;
   R->N = N;
-  R->dim = 8 + 2 * N + (p->axial ? 2u : 0u);
+  R->dim = 8 + 2 * N + (p->axial ? 2u : 0u) + (R->motor ? 2u : 0u);
+  R->im = R->motor ? R->dim - 2 : 0;
+  R->Jeff = p->drive.J;
+  for (j = 0; j < p->n_planes; j++) R->Jeff += p->plane[j].m0 * p->plane[j].r0 * p->plane[j].r0;
   k = 0;
   for (j = 0; j < p->n_planes; j++) {
     const autobal_rotor_plane *pl = &p->plane[j];
@@ -952,7 +1178,7 @@ double autobal_rotor_omega(const autobal_rotor *r) { return r ? r->p.omega : NAN
 
 int autobal_rotor_drive_eval(const autobal_rotor *r, double t, double out[3]) {
   double W, Wd, ph;
-  if (r == NULL || out == NULL || !isfinite(t)) return AUTOBAL_EINVAL;
+  if (r == NULL || out == NULL || !isfinite(t) || r->motor) return AUTOBAL_EINVAL;
   drive_eval(r, t, &W, &Wd, &ph);
   out[0] = W;
   out[1] = Wd;
@@ -960,10 +1186,30 @@ int autobal_rotor_drive_eval(const autobal_rotor *r, double t, double out[3]) {
   return AUTOBAL_SUCCESS;
 }
 
+int autobal_rotor_spin(const autobal_rotor *r, double t, const double *y, double out[2]) {
+  double W, ph;
+  if (r == NULL || out == NULL || !isfinite(t) || (r->motor && y == NULL)) return AUTOBAL_EINVAL;
+  spin_state(r, t, y, &W, &ph);
+  out[0] = W;
+  out[1] = ph;
+  return AUTOBAL_SUCCESS;
+}
+
+double autobal_rotor_motor_torque(const autobal_rotor *r, double Omega) {
+  if (r == NULL || !r->motor || !isfinite(Omega)) return NAN;
+  return motor_L(r, Omega);
+}
+
 double autobal_rotor_drive_speed_max(const autobal_rotor *r) {
   double m;
   size_t k;
   if (r == NULL) return NAN;
+  if (r->motor) {
+    m = r->mn == 0 ? r->p.drive.omega_0 : 0.0;
+    for (k = 0; k < r->mn; k++)
+      if (fabs(r->mW[k]) > m) m = fabs(r->mW[k]);
+    return fmax(m, fabs(r->p.drive.omega_start));
+  }
   if (r->dn == 0) return fabs(r->p.omega);
   m = 0.0;
   for (k = 0; k < r->dn; k++)
@@ -1001,7 +1247,14 @@ int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, do
     y[k] = r->p.q0[k];
     y[4 + k] = r->p.qd0[k];
   }
-  drive_eval(r, t0, &W, &Wd, &ph0);
+  if (r->motor) { /* phi_0(t0) = 0, Omega(t0) = omega_start */
+    W = r->p.drive.omega_start;
+    ph0 = 0.0;
+    y[r->im] = ph0;
+    y[r->im + 1] = W;
+  } else {
+    drive_eval(r, t0, &W, &Wd, &ph0);
+  }
   for (k = 0; k < r->N; k++) {
     if (frame == AUTOBAL_ROTOR_FIXED) {
       y[8 + k] = ph0 + r->psi_init[k];
@@ -1021,7 +1274,7 @@ int autobal_rotor_initial_state(const autobal_rotor *r, int frame, double t0, do
 int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_frame, double t,
                                 const double *in, double *out, size_t dim) {
   size_t k;
-  double sgn, W, Wd, ph0;
+  double sgn, W, ph0;
   if (check_frame_dim(r, from_frame, dim, NULL) != AUTOBAL_SUCCESS ||
       check_frame_dim(r, to_frame, dim, NULL) != AUTOBAL_SUCCESS || in == NULL || out == NULL ||
       !isfinite(t))
@@ -1029,7 +1282,7 @@ int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_f
   if (in != out) memmove(out, in, dim * sizeof(double));
   if (from_frame == to_frame) return AUTOBAL_SUCCESS;
   sgn = to_frame == AUTOBAL_ROTOR_ROTATING ? -1.0 : 1.0;
-  drive_eval(r, t, &W, &Wd, &ph0);
+  spin_state(r, t, out, &W, &ph0); /* a motor's phi_0, Omega: copied unchanged to out */
   for (k = 0; k < r->N; k++) {
     out[8 + k] += sgn * ph0;
     out[8 + r->N + k] += sgn * W;
@@ -1042,11 +1295,11 @@ int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_f
 /* s_u, s_v, s_xi, s_eta of plane j; the state's ball angle + offset = absolute angle phi. */
 static void plane_unbalance(const autobal_rotor *r, size_t j, int frame, double t, const double *y,
                             double s[4]) {
-  double W, Wd, wt, shift;
+  double W, wt, shift;
   const double psi0 = r->p.plane[j].psi0;
   double sxi = r->s0[j] * cos(psi0), seta = r->s0[j] * sin(psi0); /* eq. (3.10) */
   size_t k;
-  drive_eval(r, t, &W, &Wd, &wt); /* wt = phi_0(t) */
+  spin_state(r, t, y, &W, &wt); /* wt = phi_0(t) */
   /* relative angle = state angle - shift; absolute = state angle + (wt - shift) */
   shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
   for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) {
@@ -1090,13 +1343,14 @@ double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t
 
 size_t autobal_rotor_output_count(const autobal_rotor *r) {
   if (r == NULL) return 0;
-  return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N + (r->dn > 0 ? 1u : 0u);
+  return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N + (r->dn > 0 ? 1u : 0u) +
+         (r->motor ? 3u : 0u);
 }
 
 int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                           size_t n_out) {
   size_t j, k;
-  double x, yy, al, be, wt, W, Wd;
+  double x, yy, al, be, wt, W;
   double *o;
   if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
@@ -1106,7 +1360,7 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   yy = y[1];
   al = y[2];
   be = y[3];
-  drive_eval(r, t, &W, &Wd, &wt); /* Omega(t), phi_0(t) */
+  spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
   out[0] = hypot(x, yy);
   /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
   out[1] = hypot(x - r->l_L * be, yy + r->l_L * al);
@@ -1146,6 +1400,11 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
     o[5] = psid;
   }
   if (r->dn > 0) o[0] = W;
+  if (r->motor) {
+    o[0] = W;
+    o[1] = motor_L(r, W);
+    o[2] = o[1] * W;
+  }
   return AUTOBAL_SUCCESS;
 }
 
@@ -1169,6 +1428,12 @@ int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_
   } else if (r->dn > 0 && k + 1 == autobal_rotor_output_count(r)) {
     snprintf(buf, len, "Omega");
     u = "rad/s";
+  } else if (r->motor && k + 3 >= autobal_rotor_output_count(r)) {
+    static const char *const mname[3] = {"Omega", "motor_torque", "motor_power"};
+    static const char *const munit[3] = {"rad/s", "N m", "W"};
+    const size_t km = k + 3 - autobal_rotor_output_count(r);
+    snprintf(buf, len, "%s", mname[km]);
+    u = munit[km];
   } else {
     size_t kk = k - N_GLOBAL_OUT - N_PLANE_OUT * r->n_planes;
     size_t ball = kk / N_BALL_OUT, j = 0;
