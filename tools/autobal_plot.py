@@ -594,7 +594,7 @@ def plot_rotor_runup(h, outdir, stem, written):
     else:
         baltxt = "no resonance passed"
     mode = s(tr.attrs.get("drive_mode", "drive"))
-    fig.suptitle("Run-up (%s drive, Ω from %s to %s %s over %s %s): %s%s"
+    fig.suptitle("Run-up (%s drive, Ω %s → %s %s, a run of %s %s): %s%s"
                  % (mode, fmt(w[0]), fmt(w[-1]), wu, fmt(t[-1] - t[0]), tu, baltxt, status_note(h)), fontsize=11)
     save(fig, outdir, stem, "runup", written)
 
