@@ -207,7 +207,10 @@ typedef struct autobal_study_rotor_transient_summary {
   /* run-up outputs (autobal_runup_analyze on the sampled series), for a drive other than constant
      (the series has an "Omega" column); have_runup = 0 and the pointers NULL otherwise.  The
      resonances are the Campbell crossings (natural frequency = Omega) of the rotor-housing
-     (autobal_rotor_resonance_speeds) in [0, (1 + capture_band) max |Omega|]. */
+     (autobal_rotor_resonance_speeds, 400 grid points) in [0, (1 + capture_band) max |Omega|].
+     The study keeps t, Omega, amp_G, the monitor and each ball's psi of every sample in memory
+     for it ((4 + balls) doubles per sample; AUTOBAL_ENOMEM if that fails, after the rest of the
+     archive was written). */
   int have_runup;
   autobal_runup_result runup;       /* scalar results: passages, captures, time to balance after the
                                        last passage (balance_tol), the envelope's maximum */

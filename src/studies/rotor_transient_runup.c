@@ -118,7 +118,10 @@ static int resonances(const autobal_rotor *r, double hi, autobal_study_rotor_tra
   size_t k, q, n = 0;
   int st;
   if (!(hi > 0)) return AUTOBAL_SUCCESS;
-  st = autobal_rotor_resonance_speeds(autobal_rotor_get_params(r), 0.0, hi, 4000, 1e-10, &res, err);
+  /* 400 grid points (as the stability study's search): 0.04 s for the default rotor up to 525 rad/s,
+   * against 0.34 s with the Campbell study's 4000, the same four speeds to 3e-11 (measured); a
+   * mode that crosses Omega twice within one grid step would be missed */
+  st = autobal_rotor_resonance_speeds(autobal_rotor_get_params(r), 0.0, hi, 400, 1e-10, &res, err);
   if (st < 0) return st;
   s->resonance_speed = malloc((res.n_cross ? res.n_cross : 1) * sizeof(double));
   s->resonance_whirl = malloc((res.n_cross ? res.n_cross : 1) * sizeof(int));
