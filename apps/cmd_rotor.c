@@ -40,6 +40,8 @@ typedef struct rotor_cfg {
   double drive_t[MAX_CFG_DRIVE_POINTS], drive_w[MAX_CFG_DRIVE_POINTS];
   /* mode = motor: the torque table (p.drive.torque_L points into it; torque_omega into drive_w) */
   double drive_L[MAX_CFG_DRIVE_POINTS];
+  /* [transient] run-up outputs (a drive other than constant) */
+  double capture_band, capture_time;
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -597,6 +599,10 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if ((rc = cli_get_double(ctx, "transient", "balance_revs", c->balance_revs, &c->balance_revs, &has_brevs))) return rc;
     if ((rc = cli_get_quantity(ctx, "transient", "balance_dwell", "s", 0.0, &dwell, &has_dwell))) return rc;
     if ((rc = cli_get_bool(ctx, "transient", "stop_at_balance", 0, &c->stop_at_balance, NULL))) return rc;
+    c->capture_band = 0.05; /* run-up outputs; checked by the study (autobal_study_rotor_transient_check) */
+    c->capture_time = 2.0;
+    if ((rc = get_d(ctx, "transient", "capture_band", &c->capture_band))) return rc;
+    if ((rc = get_q(ctx, "transient", "capture_time", "s", &c->capture_time))) return rc;
     if (has_dt && has_revs) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: give dt_out or revs_out, not both");
     if (!(c->t_end > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: t_end = %g s is out of range: allowed (0, inf)", c->t_end);
     if (!has_dt) {
@@ -645,6 +651,8 @@ static autobal_study_rotor_transient_options study_options(const rotor_cfg *c) {
   o.balance_revs = c->balance_revs;
   o.stop_at_balance = c->stop_at_balance;
   o.grade = c->grade;
+  o.capture_band = c->capture_band;
+  o.capture_time = c->capture_time;
   return o;
 }
 
@@ -704,6 +712,53 @@ static void engineering_print(const autobal_study_rotor_transient_summary *s, co
            isnan(s->velocity_rms[1]) ? "at the centre of mass" : "at the supports (ISO 20816 measure: largest of left/right, x/y)");
 }
 
+/* The run-up outputs of a drive (docs/device.md, "Run-up outputs"). */
+static void runup_print(const autobal_study_rotor_transient_summary *s, const rotor_cfg *c) {
+  const autobal_runup_result *r = &s->runup;
+  size_t k;
+  printf("  run-up: resonance speeds (Campbell crossings, rad/s):");
+  for (k = 0; k < s->n_resonances; k++)
+    printf(" %.6g (%.0f rpm, %s)", s->resonance_speed[k], s->resonance_speed[k] * 60.0 / TWO_PI,
+           s->resonance_whirl[k] > 0 ? "forward" : s->resonance_whirl[k] < 0 ? "backward" : "whirl undecided");
+  printf("%s\n", s->n_resonances ? "" : " none below the largest speed");
+  if (r->n_passages) {
+    printf("  run-up: %zu passage(s):", r->n_passages);
+    for (k = 0; k < r->n_passages && k < 8; k++)
+      printf(" %.6g rad/s %s at t = %.6g s%s", s->resonance_speed[s->passages[k].resonance],
+             s->passages[k].direction > 0 ? "up" : "down", s->passages[k].t, k + 1 < r->n_passages ? ";" : "");
+    printf("%s\n", r->n_passages > 8 ? " ..." : "");
+  }
+  if (!r->n_captures)
+    printf("  run-up: no capture (|Omega| never within %g%% of a resonance speed for %g s or longer)\n",
+           c->capture_band * 100.0, c->capture_time);
+  for (k = 0; k < r->n_captures && k < 8; k++)
+    printf("  run-up: CAPTURED within %g%% of %.6g rad/s from t = %.6g s to %.6g s%s\n", c->capture_band * 100.0,
+           s->resonance_speed[s->captures[k].resonance], s->captures[k].t_enter, s->captures[k].t_leave,
+           s->captures[k].at_end ? " (still at the end)" : "");
+  if (r->n_passages && !isnan(r->time_to_balance))
+    printf("  run-up: balanced (|s|/(m0 r0) < %g to the end) from t = %.6g s, %.6g s after the last passage\n",
+           c->balance_tol, r->time_to_balance, r->balance_delay);
+  else if (r->n_passages)
+    printf("  run-up: not balanced at the end (|s|/(m0 r0) >= %g after the last passage at t = %.6g s)\n",
+           c->balance_tol, r->t_last_passage);
+  printf("  run-up: largest amplitude of the centre of mass %.4g um at t = %.6g s, Omega = %.6g rad/s (%.0f rpm)\n",
+         r->envelope_max * 1e6, r->t_envelope_max, r->omega_envelope_max, r->omega_envelope_max * 60.0 / TWO_PI);
+}
+
+static void runup_json(cli_json *j, const autobal_study_rotor_transient_summary *s) {
+  size_t k;
+  cli_json_object(j, "runup");
+  cli_json_quantities(j, "resonance_speed", s->resonance_speed, s->n_resonances, "rad/s");
+  cli_json_array(j, "passage_time");
+  for (k = 0; k < s->runup.n_passages; k++) cli_json_number(j, NULL, s->passages[k].t);
+  cli_json_array_end(j);
+  cli_json_int(j, "n_captures", (long)s->runup.n_captures);
+  cli_json_quantity(j, "t_last_passage", s->runup.t_last_passage, "s");
+  cli_json_quantity(j, "time_to_balance_after_last_passage", s->runup.time_to_balance, "s");
+  cli_json_quantity(j, "envelope_max", s->runup.envelope_max, "m");
+  cli_json_object_end(j);
+}
+
 static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rotor_transient_summary *s, int warn) {
   cli_json jj;
   size_t j;
@@ -716,6 +771,7 @@ static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
   cli_json_quantity(&jj, "amplitude_first_10pct_max", s->amplitude_first_10pct_max, "m");
   cli_json_quantity(&jj, "amplitude_last_10pct_max", s->amplitude_last_10pct_max, "m");
   engineering_json(&jj, s);
+  if (s->have_runup) runup_json(&jj, s);
   /* every plane: residual unbalance, ball angles relative to the rotor at the end, the
    * balanced configuration (3.14) when it exists */
   cli_json_array(&jj, "planes");
@@ -797,6 +853,7 @@ static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
     }
   }
   engineering_print(s, c);
+  if (s->have_runup) runup_print(s, c);
   cli_print_solver_line(s->stepper, &s->solver);
   if (ctx->output) printf("archive: %s\n", ctx->output);
 }

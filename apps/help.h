@@ -138,6 +138,7 @@
   "            stepper = rk8pd   rtol = 1e-10   atol = 1e-9   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
   "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n" \
   "            stop_at_balance = false\n"                                                             \
+  "            capture_band = 0.05, capture_time = 2 (s): a capture near a resonance (run-up outputs, with a drive)\n" \
   "[drive]     spin speed: prescribed Omega(t), or a motor (optional; default mode = constant: rotor.omega)\n" \
   "            mode = ramp: omega_a, omega_b (rad/s, or e.g. rpm) before t_a and after t_b (s), linear between\n" \
   "            mode = table: table_t = t0, t1, ... (s, increasing)  table_omega = w0, w1, ... (rad/s each)\n" \

@@ -11,6 +11,7 @@
 #include <autobal/export.h>
 #include <autobal/pendulum.h>
 #include <autobal/rotor.h>
+#include <autobal/runup.h>
 #include <autobal/stability.h>
 #include <autobal/status.h>
 #include <autobal/transient.h>
@@ -87,5 +88,19 @@ int main(void) {
 
   /* archive: no HDF5 touched, only the NULL-handle contract */
   CHECK("archive: errmsg(NULL) is \"\"", strcmp(autobal_archive_errmsg(NULL), "") == 0);
+  /* run-up: Omega 0 -> 200 rad/s over 2 s passes 100 rad/s at t = 1 s (linear) */
+  {
+    const double rt[2] = {0.0, 2.0}, rw[2] = {0.0, 200.0}, wc = 100.0;
+    autobal_runup_series rs;
+    autobal_runup_buffers rb;
+    autobal_runup_passage pass[2];
+    autobal_runup_result rr;
+    memset(&rs, 0, sizeof rs);
+    memset(&rb, 0, sizeof rb);
+    rs.n = 2, rs.t = rt, rs.omega = rw;
+    rb.passages = pass, rb.passage_cap = 2;
+    CHECK_STATUS("runup: a two-sample ramp", autobal_runup_analyze(&rs, &wc, 1, NULL, &rb, &rr, &err), AUTOBAL_SUCCESS);
+    CHECK("runup: one passage up at t = 1 s", rr.n_passages == 1 && pass[0].direction == 1 && fabs(pass[0].t - 1.0) < 1e-15);
+  }
   return check_summary();
 }

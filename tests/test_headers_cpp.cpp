@@ -96,5 +96,23 @@ int main() {
   check("archive: empty path rejected", autobal_archive_create("", 0, &a, &err) == AUTOBAL_EINVAL && a == nullptr);
 
   std::printf("%d failed\n", failures);
+  // run-up: Omega 0 -> 200 rad/s over 2 s passes 100 rad/s at t = 1 s (runup.h)
+  {
+    const double rt[2] = {0.0, 2.0}, rw[2] = {0.0, 200.0}, wc = 100.0;
+    autobal_runup_series rs;
+    autobal_runup_buffers rb;
+    autobal_runup_passage pass[2];
+    autobal_runup_result rr;
+    std::memset(&rs, 0, sizeof rs);
+    std::memset(&rb, 0, sizeof rb);
+    rs.n = 2;
+    rs.t = rt;
+    rs.omega = rw;
+    rb.passages = pass;
+    rb.passage_cap = 2;
+    st = autobal_runup_analyze(&rs, &wc, 1, nullptr, &rb, &rr, &err);
+    check("runup: one passage up at t = 1 s",
+          st == AUTOBAL_SUCCESS && rr.n_passages == 1 && pass[0].direction == 1 && std::fabs(pass[0].t - 1.0) < 1e-15);
+  }
   return failures;
 }

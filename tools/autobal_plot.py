@@ -17,6 +17,10 @@ For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name wit
                                 (log scales), pendulum angles; time to balance marked
     /rotor/transient            <stem>_transient.png        displacement and residual unbalance (log
                                 scales), ball angles relative to the rotor; time to balance marked
+    /rotor/runup                <stem>_runup.png            run-up (a transient with a speed profile):
+                                amplitude envelope and |s|/(m0 r0) over the spin speed Omega with a
+                                rev/min axis, the resonance speeds (Campbell crossings) marked,
+                                captures shaded
     /rotor/stability            <stem>_stability.png        characteristic roots of the balanced motion
                                 and its stable speed intervals (autobal rotor stability)
     /rotor/sweep                <stem>_stability_sweep.png  margin along the swept parameter, stable
@@ -505,6 +509,94 @@ def plot_rotor_transient(h, outdir, stem, written):
 
 # ---- rotor stability (autobal rotor stability|sweep|map|campbell) --------------------------
 RPM_PER_RAD_S = 60.0 / (2.0 * np.pi)
+
+
+def plot_rotor_runup(h, outdir, stem, written):
+    """The run-up picture: envelope and residual unbalance over Omega (docs/device.md, "Run-up outputs")."""
+    g = h["rotor/runup"]
+    tr = h["rotor/transient"]
+    if "Omega" not in tr or "envelope" not in g:
+        raise NotImplementedError("rotor/runup: no Omega column or no envelope (a series shorter than the run?): "
+                                  "no run-up picture")
+    w = tr["Omega"][:]
+    wu = units(tr["Omega"])
+    t = tr["time"][:]
+    tu = units(tr["time"])
+    env = g["envelope"][:]
+    scale, ulab = (1e6, "µm") if units(g["envelope"]) == "m" else (1.0, units(g["envelope"]))
+    planes = rotor_planes(h)
+    tol = param(tr, "balance_tol")
+    res = g["resonance"][:] if "resonance" in g else np.zeros(0)
+    whirl = g["resonance_whirl"][:] if "resonance_whirl" in g else np.zeros(len(res), dtype=int)
+    fig, ax = plt.subplots(2, 1, figsize=(10, 7.5), sharex=True, constrained_layout=True)
+    ax[0].semilogy(w, positive(scale * tr["amp_G"][:]), lw=0.5, color="tab:blue", alpha=0.35,
+                   label="|(x, y)| of the centre of mass, sampled")
+    ax[0].semilogy(w, positive(scale * env), lw=1.2, color="tab:blue",
+                   label="envelope: largest over the last revolution")
+    for j in planes:
+        name = "p%d_s_rel" % j
+        if name in tr:
+            ax[1].semilogy(w, positive(tr[name][:]), lw=0.9, color=("tab:purple", "tab:brown")[(j - 1) % 2],
+                           label="plane %d: |s| / (m0 r0)" % j)
+    if tol is not None:
+        ax[1].axhline(tol, color="tab:gray", ls=":", label="balance tolerance %s" % fmt(tol, 3))
+    # the resonance speeds: forward whirl solid, backward dashed; labelled once on the top axis
+    for k, x in enumerate(res):
+        fw = whirl[k] > 0 if k < len(whirl) else True
+        for a in ax:
+            a.axvline(x, color="tab:red" if fw else "tab:gray", ls="-" if fw else "--", lw=0.9, alpha=0.8)
+    # the balanced end at the final speed would stretch the log axes over many decades: floors at
+    # 1e-4 of the largest amplitude and a tenth of the balance tolerance (values below sit on them)
+    emax = np.nanmax(positive(scale * env)) if np.any(env > 0) else np.nan
+    if np.isfinite(emax) and ax[0].get_ylim()[0] < 1e-4 * emax:
+        ax[0].set_ylim(1e-4 * emax, None)
+    if tol is not None and np.isfinite(tol) and ax[1].get_ylim()[0] < 0.1 * tol:
+        ax[1].set_ylim(0.1 * tol, None)
+    # one label per cluster of resonances closer than 3% of the axis (e.g. a forward-backward pair)
+    top = ax[0].get_ylim()[1]
+    span = max(np.nanmax(np.abs(w)), 1e-300)
+    clusters = []
+    for k, x in enumerate(res):
+        if clusters and x - clusters[-1][-1][0] < 0.03 * span:
+            clusters[-1].append((x, k))
+        else:
+            clusters.append([(x, k)])
+    for cl in clusters:
+        txt = ", ".join("%s%s" % (fmt(x), "" if whirl[k] > 0 else " (bw)") for x, k in cl)
+        ax[0].text(cl[-1][0], top, " %s %s" % (txt, wu), fontsize=7, va="top", ha="left", rotation=90,
+                   color="tab:red" if any(whirl[k] > 0 for _, k in cl) else "tab:gray")
+    # captures: the band of the resonance shaded
+    band = param(g, "capture_band")
+    if "capture_resonance" in g and band is not None:
+        for r in np.atleast_1d(g["capture_resonance"][:]):
+            for a in ax:
+                a.axvspan((1 - band) * res[r], (1 + band) * res[r], color="tab:orange", alpha=0.2)
+    handles, labels = ax[0].get_legend_handles_labels()
+    handles += [Line2D([], [], color="tab:red", lw=0.9), Line2D([], [], color="tab:gray", ls="--", lw=0.9)]
+    labels += ["resonance speed (Campbell crossing), forward whirl", "resonance speed, backward whirl"]
+    if "capture_resonance" in g:
+        handles.append(Patch(color="tab:orange", alpha=0.2))
+        labels.append("capture band (stayed %s %s or longer)" % (fmt(param(g, "capture_time")), punit(g, "capture_time")))
+    ax[0].legend(handles, labels, fontsize=8, loc="lower right")
+    ax[0].set_ylabel("displacement amplitude [%s] (log scale)" % ulab)
+    ax[1].set_ylabel("relative residual unbalance (log scale)")
+    ax[1].legend(fontsize=8, loc="lower left")
+    ax[1].set_xlabel("spin speed Ω %s" % ubr(wu))
+    rpm_axis(ax[0], wu)
+    for a in ax:
+        a.grid(True, alpha=0.3)
+    ttb = param(g, "time_to_balance_after_last_passage")
+    tlp = param(g, "t_last_passage")
+    if ttb is not None and np.isfinite(ttb):
+        baltxt = "balanced %s %s after the last passage" % (fmt(param(g, "balance_delay"), 3), tu)
+    elif tlp is not None and np.isfinite(tlp):
+        baltxt = "not balanced after the last passage"
+    else:
+        baltxt = "no resonance passed"
+    mode = s(tr.attrs.get("drive_mode", "drive"))
+    fig.suptitle("Run-up (%s drive, Ω %s → %s %s, a run of %s %s): %s%s"
+                 % (mode, fmt(w[0]), fmt(w[-1]), wu, fmt(t[-1] - t[0]), tu, baltxt, status_note(h)), fontsize=11)
+    save(fig, outdir, stem, "runup", written)
 
 
 def rpm_axis(ax, unit, where="top"):
@@ -1228,6 +1320,7 @@ PLOTTERS = [
     ("pendulum/roots", plot_pendulum_roots),
     ("pendulum/transient", plot_pendulum_transient),
     ("rotor/transient", plot_rotor_transient),
+    ("rotor/runup", plot_rotor_runup),
     ("rotor/stability", plot_rotor_stability),
     ("rotor/sweep", plot_rotor_sweep),
     ("rotor/map", plot_rotor_map),

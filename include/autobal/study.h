@@ -39,6 +39,7 @@
 #include "autobal/status.h"
 #include "autobal/rotor.h"
 #include "autobal/rotor_stability.h"
+#include "autobal/runup.h"
 #include "autobal/pendulum.h"
 #include "autobal/transient.h"
 #include "autobal/archive.h"
@@ -148,6 +149,11 @@ typedef struct autobal_study_rotor_transient_options {
                            unbalance against, > 0; NaN: none                    (default NaN) */
   autobal_study_progress_fn progress; /* NULL: none                              (default NULL) */
   void *progress_user;  /* passed to progress                                  (default NULL) */
+  /* run-up outputs (drives other than constant; autobal_runup_options, the tolerance of the time
+     to balance after the last resonance passage is balance_tol above) */
+  double capture_band;  /* 1, relative half-width of the band around each resonance speed, (0, 1)
+                                                                                 (default 0.05) */
+  double capture_time;  /* s, a stay in the band this long is a capture, (0, inf)    (default 2) */
 } autobal_study_rotor_transient_options;
 
 /* The defaults listed above. */
@@ -198,6 +204,21 @@ typedef struct autobal_study_rotor_transient_summary {
   char solver_message[AUTOBAL_ERRMSG_SIZE]; /* the driver's last message ("" after success) */
   int warning;                      /* 1: autobal_rotor_params_check warned (a plane cannot be balanced) */
   char warning_message[AUTOBAL_ERRMSG_SIZE];  /* its message (struct field names) */
+  /* run-up outputs (autobal_runup_analyze on the sampled series), for a drive other than constant
+     (the series has an "Omega" column); have_runup = 0 and the pointers NULL otherwise.  The
+     resonances are the Campbell crossings (natural frequency = Omega) of the rotor-housing
+     (autobal_rotor_resonance_speeds, 400 grid points) in [0, (1 + capture_band) max |Omega|].
+     The study keeps t, Omega, amp_G, the monitor and each ball's psi of every sample in memory
+     for it ((4 + balls) doubles per sample; AUTOBAL_ENOMEM if that fails, after the rest of the
+     archive was written). */
+  int have_runup;
+  autobal_runup_result runup;       /* scalar results: passages, captures, time to balance after the
+                                       last passage (balance_tol), the envelope's maximum */
+  size_t n_resonances;
+  double *resonance_speed;          /* [n_resonances] rad/s, increasing */
+  int *resonance_whirl;             /* [n_resonances] +1 forward, -1 backward, 0 undecided */
+  autobal_runup_passage *passages;  /* [runup.n_passages], in time order */
+  autobal_runup_capture *captures;  /* [runup.n_captures], by resonance, then time */
 } autobal_study_rotor_transient_summary;
 
 /* Check the inputs of a rotor transient without running it (and without
@@ -224,6 +245,11 @@ AUTOBAL_API int autobal_study_rotor_transient_check(const autobal_rotor_params *
  *   /rotor/transient/<var>(time)                the state and autobal_rotor_outputs every dt_out
  *   /rotor/revolutions/<var>(revolution_end)    per-revolution maxima
  *   /rotor/transient/solver                     autobal_study_write_solver_stats
+ *   /rotor/runup                                with a drive other than constant (an Omega column):
+ *                                               the resonances, passages, captures, time to balance
+ *                                               after the last passage, envelope(time),
+ *                                               ball_lag(time, ball), ball_lag_rate(time, ball)
+ *                                               (docs/device.md, "Run-up outputs")
  * `summary` (may be NULL) is filled (zeroed first; release it with
  * autobal_study_rotor_transient_summary_free even after a failure).
  * Returns AUTOBAL_SUCCESS (also when the run stopped at balance);

@@ -9,6 +9,7 @@
 
 #include "autobal/study.h"
 #include "internal.h"
+#include "studies/rotor_transient_runup.h"
 
 #define TWO_PI 6.283185307179586476925286766559
 
@@ -31,6 +32,8 @@ autobal_study_rotor_transient_options autobal_study_rotor_transient_options_defa
   o.grade = NAN;
   o.progress = NULL;
   o.progress_user = NULL;
+  o.capture_band = 0.05;
+  o.capture_time = 2.0;
   return o;
 }
 
@@ -95,6 +98,10 @@ static int check_options(const autobal_study_rotor_transient_options *o, double 
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "options: frame = %d is not one of AUTOBAL_ROTOR_FIXED (%d), AUTOBAL_ROTOR_ROTATING (%d)",
                              o->frame, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING);
+  if (!(o->capture_band > 0 && o->capture_band < 1))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: capture_band = %g is out of range: allowed (0, 1)", o->capture_band);
+  if (!(o->capture_time > 0 && isfinite(o->capture_time)))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: capture_time = %g s is out of range: allowed (0, inf)", o->capture_time);
   if (!isnan(o->grade) && !(o->grade > 0 && isfinite(o->grade)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: grade = %g mm/s is out of range: allowed (0, inf), or NaN for none", o->grade);
   return AUTOBAL_SUCCESS;
@@ -189,6 +196,7 @@ typedef struct run_ctx {
   int motor; /* a motor: phi_0 and Omega are the state's last two entries */
   double amax[3][2];
   unsigned long win_n;
+  study_runup *runup; /* run-up outputs: a drive with an Omega column (rotor_transient_runup.h) */
 } run_ctx;
 
 /* Displacement and velocity at axial position p (eq. (3.3) kinematics: (x + p beta, y - p alpha)). */
@@ -232,6 +240,7 @@ static int observer(double t, const double y[], void *user) {
   }
   if (r->series && !r->io_failed && autobal_archive_series_append(r->series, 1, &t, r->row) != AUTOBAL_SUCCESS)
     r->io_failed = 1;
+  study_runup_sample(r->runup, t, out);
   /* per-revolution maxima (of the sampled values) */
   if (out[0] > r->rev_max_G) r->rev_max_G = out[0];
   for (j = 0; j < r->n_planes; j++) {
@@ -512,6 +521,7 @@ void autobal_study_rotor_transient_summary_free(autobal_study_rotor_transient_su
   }
   free(s->state_final);
   s->state_final = NULL;
+  study_runup_summary_free(s);
 }
 
 int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_study_rotor_transient_options *opt,
@@ -568,6 +578,10 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   r.rev_row = calloc(2 + r.n_planes, sizeof *r.rev_row);
   if (!r.row || !r.rev_max_D || !r.rev_row) {
     rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+    goto done;
+  }
+  if ((st = study_runup_begin(rot, &r.runup, &e))) {
+    rc = autobal_error_set(err, st, "%s", e.message);
     goto done;
   }
   s->n_planes = r.n_planes;
@@ -651,6 +665,8 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     st = write_summary(a, s);
     if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
   }
+  st = study_runup_finish(r.runup, rot, o, a, autobal_archive_series_length(r.series), s, &e);
+  if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
 done:
   if (r.series || r.revs) {
     int s1 = autobal_archive_series_close(r.series), s2 = autobal_archive_series_close(r.revs);
@@ -662,6 +678,7 @@ done:
   free(r.row);
   free(r.rev_max_D);
   free(r.rev_row);
+  study_runup_free(r.runup);
   free(y);
   if (s == &local) autobal_study_rotor_transient_summary_free(&local);
   return rc;
