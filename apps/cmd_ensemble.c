@@ -313,6 +313,8 @@ static int read_spec(cli_ctx *ctx, ens_spec *s) {
   autobal_error_clear(&err);
   if (s->model == MODEL_ROTOR) {
     if ((rc = cli_rotor_config_read(ctx, &s->rp, &s->rstorage))) return rc;
+    /* [drive]: the prescribed speed of every member, as `rotor transient` reads it */
+    if ((rc = cli_rotor_drive_read(ctx, &s->rp, s->rstorage))) return rc;
     if ((rc = read_transient(ctx, s))) return rc;
     if (autobal_ensemble_rotor_member(&s->rp, strcmp(s->frame_name, "fixed") ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED,
                                       s->frame_name, &s->mb, &err) != AUTOBAL_SUCCESS) {
