@@ -24,7 +24,7 @@ usage: ensemble_check.py MODE ARGS...
                              each axis recomputed from `balanced`
   drive_member A.h5 T.h5 I J member (I, J) of a 2-axis grid with a drive (stop_at_balance off) has the final state
                              of the single `rotor transient` run T.h5: residual, final ball angles, max
-                             amplitude, t_reached, steps and rhs evaluations
+                             amplitude, t_reached and the accepted steps
   same_members A.h5 B.h5     two ensembles of different parameter names with the same members: equal results
 """
 import math
@@ -382,8 +382,9 @@ def drive_member(path, tpath, i, j):
         fail(f"t_reached {g['t_reached'][i, j]!r} vs the transient's last sample {tg['time'][last]!r}")
     pairs = [("residual_unbalance_final", float(tg.attrs["residual_unbalance_final"])),
              ("amplitude_max", float(tg.attrs["amplitude_max"])),
-             ("steps", float(tg["solver"].attrs["steps"])),
-             ("rhs_evaluations", float(tg["solver"].attrs["rhs_evaluations"]))]
+             ("steps", float(tg["solver"].attrs["steps"]))]
+    # rhs_evaluations are not compared: locating the crossings of balance_tol costs evaluations outside
+    # the steps, and the ensemble's dwell does not look before the end of the ramp (settle_time)
     for k, want in pairs:
         got = float(g[k][i, j])
         if not (got == want or abs(got - want) <= 1e-12 * abs(want)):
@@ -395,7 +396,7 @@ def drive_member(path, tpath, i, j):
         if abs(d) > 1e-9:
             fail(f"member ({i}, {j}) ball {b + 1} final angle {got!r} vs the transient's {want!r}")
     ok(f"member ({i}, {j}) with a ramp drive has the final state of the single `rotor transient` run "
-       f"(residual, {nb} ball angles to 1e-9 rad, max amplitude, t_reached, steps, rhs evaluations)")
+       f"(residual, {nb} ball angles to 1e-9 rad, max amplitude, t_reached, accepted steps)")
 
 
 def same_members(pa, pb):

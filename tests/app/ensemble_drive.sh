@@ -95,6 +95,38 @@ chk same_members rt.h5 rr3.h5
 run "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param3=omega_b --set ensemble.min3=180 --set ensemble.max3=180 --set ensemble.n3=1 -o wb.h5
 chk same_members pair.h5 wb.h5
 
+# a table drive (run up, plateau, a temporary speed reduction, up again): members equal single
+# transients; balanced counts only after the table's last time
+cat > table.ini <<'INI'
+[plane1]
+ball_mass = 0.05, 0.04
+ball_damping = 10
+[drive]
+mode = table
+table_t = 0, 5, 8, 10, 14
+table_omega = 150, 175, 175, 165, 175
+[transient]
+t_end = 20
+stop_at_balance = false
+INI
+{ cat table.ini; printf '[ensemble]\nparam1 = psi_1\nn1 = 2\nparam2 = psi_2\nmin2 = 2.5\nmax2 = 2.5\nn2 = 1\n'; } > table_ens.ini
+run "$AUTOBAL" rotor ensemble table_ens.ini -o tab.h5
+for i in 0 1; do
+  psi=$("$PY" -c "import h5py; print(repr(float(h5py.File('tab.h5')['rotor/ensemble/psi_1'][$i])))")
+  run "$AUTOBAL" rotor transient table.ini --set "plane1.ball_psi=$psi,2.5" -o tt$i.h5
+  chk drive_member tab.h5 tt$i.h5 "$i" 0
+done
+"$PY" - <<'PY' && ok "table drive recorded; time_to_balance after its last time" || bad "table drive record"
+import h5py, numpy as np
+g = h5py.File("tab.h5")["rotor/ensemble"]
+assert g.attrs["drive_mode"] == "table", g.attrs["drive_mode"]
+assert list(g.attrs["drive_table_t"]) == [0, 5, 8, 10, 14] and list(g.attrs["drive_table_omega"]) == [150, 175, 175, 165, 175]
+assert g.attrs["drive_table_t_units"] == "s" and g.attrs["drive_table_omega_units"] == "rad/s"
+ttb = g["time_to_balance"][()][g["balanced"][()] == 1]
+assert np.all(ttb >= 14.0), ttb
+print("table members balanced:", len(ttb), "time to balance", ttb)
+PY
+
 # bad input: named, exit 3, no archive left
 printf '[ensemble]\nparam1 = ramp_rate\nmin1 = 1\nmax1 = 2\nn1 = 2\n' > const.ini
 expect 3 "needs drive mode = ramp" "$AUTOBAL" rotor ensemble const.ini -o bad1.h5
