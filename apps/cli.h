@@ -245,6 +245,9 @@ int cli_write_pendulum_params(cli_ctx *ctx, struct autobal_archive *a, const aut
  * (defaults: the spec's default example) into *p.  The ball arrays of *p point into *storage,
  * which the caller releases with free(*storage) after the last use of *p. */
 int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage);
+/* Read [drive] (mode = constant|ramp|table and its keys, as `rotor transient` reads them) into
+ * p->drive; storage is cli_rotor_config_read's, where a table's points are kept. */
+int cli_rotor_drive_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage);
 /* Write the rotor model *p (autobal_study_write_rotor_params): /rotor (model, input, inertia, omega, axial and,
  * for hardware input, M_k, A_k, m_p, A_p, C_p and the [supports] keys), /rotor/lumped (the 17
  * lumped coefficients the model uses, (2.7)-(2.11) for hardware input) and /rotor/plane<j>

@@ -313,6 +313,8 @@ static int read_spec(cli_ctx *ctx, ens_spec *s) {
   autobal_error_clear(&err);
   if (s->model == MODEL_ROTOR) {
     if ((rc = cli_rotor_config_read(ctx, &s->rp, &s->rstorage))) return rc;
+    /* [drive]: the prescribed speed of every member, as `rotor transient` reads it */
+    if ((rc = cli_rotor_drive_read(ctx, &s->rp, s->rstorage))) return rc;
     if ((rc = read_transient(ctx, s))) return rc;
     if (autobal_ensemble_rotor_member(&s->rp, strcmp(s->frame_name, "fixed") ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED,
                                       s->frame_name, &s->mb, &err) != AUTOBAL_SUCCESS) {
@@ -513,6 +515,13 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensembl
   if (p->random) printf(", seed %llu", (unsigned long long)p->seed);
   printf("); %zu done (%zu now), %zu failed; %d rank(s) x %d thread(s), %.2f s wall\n", t->n_done, mp->computed, t->n_failed,
          mp->size, threads, wall);
+  if (s->model == MODEL_ROTOR && s->rp.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP)
+    printf("  drive: ramp %g -> %g rad/s from t = %g s to %g s (before a member's parameters change it); balanced counts "
+           "after the end of each member's ramp\n",
+           s->rp.drive.omega_a, s->rp.drive.omega_b, s->rp.drive.t_a, s->rp.drive.t_b);
+  else if (s->model == MODEL_ROTOR && s->rp.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE)
+    printf("  drive: table of %zu points from t = %g s to %g s; balanced counts after its last time\n", s->rp.drive.n_points,
+           s->rp.drive.table_t[0], s->rp.drive.table_t[s->rp.drive.n_points - 1]);
   if (t->n_ok)
     printf("  probability of balancing: %.4f +- %.4f (%zu of %zu members that ran without failure)\n", t->p, t->p_stderr,
            t->n_balanced, t->n_ok);

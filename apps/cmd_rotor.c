@@ -538,6 +538,15 @@ static int read_drive(cli_ctx *ctx, rotor_cfg *c) {
   return CLI_EXIT_OK;
 }
 
+/* [drive] for the other rotor commands (apps/cmd_ensemble.c): read_drive into the configuration
+ * that cli_rotor_config_read left in storage (a table's points stay there), copied to p->drive. */
+int cli_rotor_drive_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage) {
+  rotor_cfg *c = storage;
+  int rc = read_drive(ctx, c);
+  p->drive = c->p.drive;
+  return rc;
+}
+
 /* The speed the revolutions are counted at: rotor.omega, or the largest |speed| of the drive. */
 static double speed_ref(const rotor_cfg *c) {
   const autobal_rotor_drive *d = &c->p.drive;

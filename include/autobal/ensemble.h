@@ -109,6 +109,8 @@ typedef struct autobal_ensemble_param_info {
   const char *units;     /* UDUNITS string, e.g. "rad", "rad/s", "1"   */
   const char *long_name; /* description for the archive                */
   int periodic;          /* 1: an angle; natural range [-pi, pi), grid without endpoint */
+  int positive;          /* 1: only values > 0 are meaningful (a rate, a duration): alloc
+                            rejects a range with min <= 0 (added in 0.2.0)              */
 } autobal_ensemble_param_info;
 
 /* What the model hands the engine for one member (filled by `setup`). */
@@ -119,6 +121,13 @@ typedef struct autobal_ensemble_setup {
   autobal_transient_scalar_fn monitor; /* residual unbalance s(t, y), dimensionless, >= 0       */
   void *monitor_user;                /* its user pointer                                        */
   double residual_initial;           /* residual unbalance at t = 0                             */
+  double settle_time;                /* >= 0: the dwell of "balanced" counts only from this time
+                                        on (e.g. the end of a speed ramp: a member balanced while
+                                        the speed still changes is not yet balanced at its final
+                                        speed); 0: from the start.  Before it the engine sees
+                                        2 balance_tol where s < balance_tol, so a stretch below
+                                        balance_tol starts at settle_time at the earliest, and
+                                        the time to balance is >= settle_time (added in 0.2.0) */
 } autobal_ensemble_setup;
 
 /* A model.  `model` is read by every thread at once (it must not change
@@ -174,13 +183,29 @@ typedef struct autobal_ensemble_member {
  * struct is zeroed).  NULL and a zeroed member are safe. */
 AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member);
 
-/* The ready-made rotor member.  p is copied (with its ball arrays), so the
- * caller's p may be freed afterwards.  frame: AUTOBAL_ROTOR_FIXED or
- * AUTOBAL_ROTOR_ROTATING (the frame of the equations, named in the archive by
- * frame_name, e.g. "fixed").  Parameters: psi_K, rate_K (ball K = 1..n,
- * plane 1 first; rad, rad/s, relative to the rotor), omega (rad/s),
+/* The ready-made rotor member.  p is copied (with its ball arrays and a table
+ * drive's points), so the caller's p may be freed afterwards.  frame:
+ * AUTOBAL_ROTOR_FIXED or AUTOBAL_ROTOR_ROTATING (the frame of the equations,
+ * named in the archive by frame_name, e.g. "fixed").  Parameters: psi_K,
+ * rate_K (ball K = 1..n, plane 1 first; rad, rad/s, relative to the rotor),
+ * omega (rad/s; the constant speed: not with a ramp or table drive),
  * ball_damping (kg/s, every ball), m0 (kg, plane 1), x, y (m, initial
- * displacement).  Residual unbalance: autobal_rotor_balance_monitor; angles:
+ * displacement); with a RAMP drive (p->drive) also
+ *     ramp_rate (rad/s^2, > 0): the member's ramp keeps omega_a and t_a of
+ *               p->drive and ends at t_b = t_a + |omega_b - omega_a| / ramp_rate
+ *               (needs omega_b != omega_a);
+ *     ramp_time (s, > 0): t_b = t_a + ramp_time (not with ramp_rate);
+ *     omega_b (rad/s): the final speed (with ramp_rate, t_b follows from the
+ *               member's omega_b; without, t_b stays, so the rate changes).
+ * A member with a drive: its Omega(t) sets the equations; the revolutions of
+ * revs_out and balance_revs are those of its largest |speed| (as in `rotor
+ * transient`: max(|omega_a|, |omega_b|) for a ramp); its settle_time is the
+ * end of its ramp t_b (a table's last time), so "balanced" means balanced at
+ * the final speed; its final angles are relative to the rotor angle
+ * phi_0(t).  The ensemble group records the drive (attributes drive_mode,
+ * drive_omega_a, drive_omega_b, drive_t_a, drive_t_b or drive_table_t,
+ * drive_table_omega, as /rotor/transient; the values of p->drive, before a
+ * member's parameters change them).  Residual unbalance: autobal_rotor_balance_monitor; angles:
  * ball angles relative to the rotor; amplitude: output 0 of
  * autobal_rotor_outputs (m); series columns: the state, then the outputs.
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from

@@ -155,6 +155,10 @@ typedef struct ens_worker {
   double amp_max;
   ens_series *ser;
   autobal_error err;
+  /* the member's monitor, seen by the dwell event through gated_monitor */
+  autobal_transient_scalar_fn mon;
+  void *mon_user;
+  double settle, tol;
 } ens_worker;
 
 static void worker_free(ens_worker *w) {
@@ -204,6 +208,15 @@ static int worker_observer(double t, const double y[], void *user) {
   return 0;
 }
 
+/* The monitor the dwell event sees: before the member's settle_time s, or 2 balance_tol where s
+ * is below balance_tol (strictly above it, so that the event's root finder puts the start of a
+ * stretch below balance_tol at settle_time or later, never before), s from then on; NaN stays NaN. */
+static double gated_monitor(double t, const double y[], void *user) {
+  const ens_worker *w = user;
+  double v = w->mon(t, y, w->mon_user);
+  return t < w->settle && v < w->tol ? 2.0 * w->tol : v;
+}
+
 static int worker_progress(double fraction, void *user) {
   ens_worker *w = user;
   (void)fraction;
@@ -245,6 +258,7 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
   w->ser = NULL;
   st = member_setup(w, m, &su);
   if (st == AUTOBAL_SUCCESS) st = member_timing(s, su.speed, &dt_out, &dwell);
+  if (st == AUTOBAL_SUCCESS && !(su.settle_time >= 0 && isfinite(su.settle_time))) st = AUTOBAL_EINVAL;
   if (st != AUTOBAL_SUCCESS) {
     rec[AUTOBAL_ENSEMBLE_STATUS] = st < 0 ? st : AUTOBAL_EINVAL;
     return 1;
@@ -262,8 +276,12 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
   autobal_transient_set_progress(w->tr, worker_progress, w);
   autobal_transient_set_observer(w->tr, worker_observer, w);
   rec[AUTOBAL_ENSEMBLE_RESIDUAL_INITIAL] = su.residual_initial;
-  ev = autobal_transient_add_dwell_event(w->tr, su.monitor, su.monitor_user, s->balance_tol, dwell,
-                                         s->stop_at_balance);
+  w->mon = su.monitor, w->mon_user = su.monitor_user, w->settle = su.settle_time, w->tol = s->balance_tol;
+  if (su.settle_time > 0)
+    ev = autobal_transient_add_dwell_event(w->tr, gated_monitor, w, s->balance_tol, dwell, s->stop_at_balance);
+  else /* no gate: the member's monitor itself (the results of 0.1.0 bit for bit) */
+    ev = autobal_transient_add_dwell_event(w->tr, su.monitor, su.monitor_user, s->balance_tol, dwell,
+                                           s->stop_at_balance);
   if (ev < 0) {
     rec[AUTOBAL_ENSEMBLE_STATUS] = ev;
     w->ser = NULL;
@@ -474,6 +492,11 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
     e->s.param[j].name = e->names[j];
     if (s->random) e->s.param[j].n = 1;
     if ((st = member->describe(member->model, e->names[j], &e->info[j], err)) != AUTOBAL_SUCCESS) goto fail;
+    if (e->info[j].positive && !(s->param[j].min > 0)) {
+      autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: %s: min = %g %s is out of range: allowed (0, inf)", e->names[j],
+                        s->param[j].min, e->info[j].units ? e->info[j].units : "");
+      goto fail;
+    }
   }
   if (member->check && (st = member->check(member->model, e->namep, s->n_params, err)) != AUTOBAL_SUCCESS) goto fail;
   if (s->random) {
@@ -1243,6 +1266,36 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
       for (i = 0; i < nang; i++) ang[m * nang + i] = e->done[m] ? e->sum[m * e->nsum + AUTOBAL_ENSEMBLE_ANGLES + i] : NAN;
     dims[rank] = e->mb.angle_dim;
     if (!st) st = autobal_archive_var(a, g, "final_angle", rank + 1, dims, ang, "rad", e->mb.angle_long_name);
+  }
+  /* grid of two or more axes: the probability of balancing along each axis, over the others
+   * (e.g. over the initial ball angles at each ramp rate) */
+  if (!s->random && s->n_params >= 2 && !st) {
+    for (j = 0; j < s->n_params && !st; j++) {
+      size_t nj = s->param[j].n;
+      double *pb = calloc(2 * nj, sizeof *pb); /* balanced, then ran without failure */
+      char nm[ENS_NAME + 32], ln[ENS_NAME + 200];
+      const char *d1[1];
+      if (!pb) {
+        st = AUTOBAL_ENOMEM;
+        break;
+      }
+      for (m = 0; m < n; m++) {
+        const double *r = e->sum + m * e->nsum;
+        size_t k = (m / e->stride[j]) % nj;
+        if (!e->done[m] || !(r[AUTOBAL_ENSEMBLE_STATUS] >= 0)) continue;
+        pb[nj + k] += 1;
+        if (r[AUTOBAL_ENSEMBLE_BALANCED] == 1) pb[k] += 1;
+      }
+      for (i = 0; i < nj; i++) pb[i] = pb[nj + i] > 0 ? pb[i] / pb[nj + i] : NAN;
+      snprintf(nm, sizeof nm, "probability_balanced_by_%s", e->names[j]);
+      snprintf(ln, sizeof ln,
+               "fraction of the members at this %s that balanced, over the other axes (members done and without "
+               "failure; NaN: none)",
+               e->names[j]);
+      d1[0] = e->names[j];
+      st = autobal_archive_var(a, g, nm, 1, d1, pb, "1", ln);
+      free(pb);
+    }
   }
   free(dv), free(iv), free(ang);
   /* kept series */

@@ -37,11 +37,11 @@ static uint64_t hash_doubles(uint64_t h, const double *v, size_t n) {
 }
 
 /* ================================ rotor ================================================ */
-enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y };
+enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B };
 
 typedef struct rotor_model {
-  autobal_rotor_params p; /* ball arrays point into storage */
-  double *storage;
+  autobal_rotor_params p; /* ball arrays point into storage, a table drive's points into table */
+  double *storage, *table;
   int frame;
   char frame_name[32];
   size_t n_balls, dim, nout;
@@ -88,12 +88,50 @@ static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t
   else if (!strcmp(name, "m0")) *kind = R_M0, info->units = "kg", info->long_name = "unbalance mass m0 of plane 1";
   else if (!strcmp(name, "x")) *kind = R_X, info->units = "m", info->long_name = "initial displacement x of the centre of mass";
   else if (!strcmp(name, "y")) *kind = R_Y, info->units = "m", info->long_name = "initial displacement y of the centre of mass";
+  else if (!strcmp(name, "ramp_rate"))
+    *kind = R_RAMP_RATE, info->units = "rad/s^2", info->positive = 1,
+    info->long_name = "rate |omega_b - omega_a| / (t_b - t_a) of the speed ramp (t_b follows from it)";
+  else if (!strcmp(name, "ramp_time"))
+    *kind = R_RAMP_TIME, info->units = "s", info->positive = 1, info->long_name = "duration t_b - t_a of the speed ramp";
+  else if (!strcmp(name, "omega_b")) *kind = R_OMEGA_B, info->units = "rad/s", info->long_name = "final speed omega_b of the ramp";
   else goto unknown;
   return AUTOBAL_SUCCESS;
 unknown:
   return autobal_error_set(err, AUTOBAL_EINVAL,
-                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, x, y",
+                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, x, y; "
+                           "with a ramp drive also ramp_rate, ramp_time, omega_b",
                            name, M->n_balls);
+}
+
+/* The drive parameters need a ramp drive; omega (the constant speed) needs the constant drive;
+ * ramp_rate and ramp_time both set t_b. */
+static int rotor_check(const void *model, const char *const *names, size_t n, autobal_error *err) {
+  const rotor_model *M = model;
+  const int mode = M->p.drive.mode;
+  static const char *const mode_name[3] = {"constant", "ramp", "table"};
+  const char *mname = mode >= 0 && mode <= 2 ? mode_name[mode] : "unknown";
+  int has_rate = 0, has_time = 0, has_wb = 0;
+  size_t j;
+  for (j = 0; j < n; j++) {
+    int kind = -1;
+    size_t index = 0;
+    if (rotor_parse(M, names[j], &kind, &index, NULL, err) != AUTOBAL_SUCCESS) return AUTOBAL_EINVAL;
+    if ((kind == R_RAMP_RATE || kind == R_RAMP_TIME || kind == R_OMEGA_B) && mode != AUTOBAL_ROTOR_DRIVE_RAMP)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "%s varies the speed ramp, but the drive is %s: it needs drive mode = ramp", names[j], mname);
+    if (kind == R_OMEGA && mode != AUTOBAL_ROTOR_DRIVE_CONSTANT)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "omega is the constant speed, which a %s drive does not use: with a ramp vary omega_b, ramp_rate "
+                               "or ramp_time",
+                               mname);
+    has_rate |= kind == R_RAMP_RATE, has_time |= kind == R_RAMP_TIME, has_wb |= kind == R_OMEGA_B;
+  }
+  if (has_rate && has_time)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "ramp_rate and ramp_time both set the end t_b of the ramp; vary one of them");
+  if (has_rate && !has_wb && !(M->p.drive.omega_b != M->p.drive.omega_a))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "ramp_rate needs a ramp that changes the speed: omega_a = omega_b = %g rad/s", M->p.drive.omega_a);
+  return AUTOBAL_SUCCESS;
 }
 
 static int rotor_describe(const void *model, const char *name, autobal_ensemble_param_info *info, autobal_error *err) {
@@ -151,6 +189,7 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
   autobal_rotor_params p = M->p;
   size_t pl, off = 0, j;
   int st;
+  double rate = NAN;
   for (pl = 0; pl < p.n_planes; pl++) {
     const autobal_rotor_plane *b = &M->p.plane[pl];
     size_t i;
@@ -168,6 +207,9 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
     double v = values[j];
     size_t i;
     switch (w->kind[j]) {
+      case R_RAMP_RATE: rate = v; break;
+      case R_RAMP_TIME: p.drive.t_b = p.drive.t_a + v; break;
+      case R_OMEGA_B: p.drive.omega_b = v; break;
       case R_PSI: w->bpsi[w->index[j]] = v; break;
       case R_RATE: w->brate[w->index[j]] = v; break;
       case R_OMEGA: p.omega = v; break;
@@ -180,6 +222,8 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
       default: break;
     }
   }
+  /* a ramp of the given rate: from the member's omega_b (its parameter or the drive's) */
+  if (!isnan(rate)) p.drive.t_b = p.drive.t_a + fabs(p.drive.omega_b - p.drive.omega_a) / rate;
   autobal_rotor_free(w->rot);
   w->rot = autobal_rotor_alloc(&p, err);
   if (!w->rot) return err && err->status < 0 ? err->status : AUTOBAL_EINVAL;
@@ -190,7 +234,11 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
   su->sys.jac = NULL;
   su->sys.dim = M->dim;
   su->sys.params = w->rot;
-  su->speed = p.omega;
+  /* revolutions at the largest |speed| (|omega| for the constant drive), as `rotor transient` */
+  su->speed = p.drive.mode == AUTOBAL_ROTOR_DRIVE_CONSTANT ? p.omega : autobal_rotor_drive_speed_max(w->rot);
+  su->settle_time = 0.0;
+  if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) su->settle_time = fmax(0.0, p.drive.t_b);
+  else if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE) su->settle_time = fmax(0.0, p.drive.table_t[p.drive.n_points - 1]);
   su->monitor = rotor_monitor;
   su->monitor_user = w;
   su->residual_initial = autobal_rotor_balance_monitor(w->rot, M->frame, 0.0, y0);
@@ -213,10 +261,14 @@ static void rotor_finish(void *wp, double t, const double y[], double *residual,
   rotor_worker *w = wp;
   const rotor_model *M = w->M;
   size_t i;
+  double phi0 = w->omega * t, dv[3];
   *residual = autobal_rotor_balance_monitor(w->rot, M->frame, t, y);
   *amplitude = autobal_rotor_outputs(w->rot, M->frame, t, y, w->out, M->nout) == AUTOBAL_SUCCESS ? w->out[0] : NAN;
+  /* the rotor angle phi_0(t) of a ramp or table drive */
+  if (M->p.drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT)
+    phi0 = autobal_rotor_drive_eval(w->rot, t, dv) == AUTOBAL_SUCCESS ? dv[2] : NAN;
   for (i = 0; i < M->n_balls; i++) {
-    double a = M->frame == AUTOBAL_ROTOR_FIXED ? y[8 + i] - w->omega * t : y[8 + i];
+    double a = M->frame == AUTOBAL_ROTOR_FIXED ? y[8 + i] - phi0 : y[8 + i];
     angles[i] = remainder(a, TWO_PI);
   }
 }
@@ -238,7 +290,21 @@ static int rotor_column_name(const void *model, size_t k, char *name, size_t siz
 
 static int rotor_write_attrs(const void *model, autobal_archive *a, const char *group) {
   const rotor_model *M = model;
-  return autobal_archive_attr_string(a, group, "frame", M->frame_name);
+  const autobal_rotor_drive *d = &M->p.drive;
+  int st = autobal_archive_attr_string(a, group, "frame", M->frame_name);
+  /* the drive (the layout of /rotor/transient; none for the constant drive, as there) */
+  if (!st && d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+    st = autobal_archive_attr_string(a, group, "drive_mode", "ramp");
+    if (!st) st = autobal_archive_attr_double(a, group, "drive_omega_a", d->omega_a, "rad/s");
+    if (!st) st = autobal_archive_attr_double(a, group, "drive_omega_b", d->omega_b, "rad/s");
+    if (!st) st = autobal_archive_attr_double(a, group, "drive_t_a", d->t_a, "s");
+    if (!st) st = autobal_archive_attr_double(a, group, "drive_t_b", d->t_b, "s");
+  } else if (!st && d->mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
+    st = autobal_archive_attr_string(a, group, "drive_mode", "table");
+    if (!st) st = autobal_archive_attr_double_array(a, group, "drive_table_t", d->n_points, d->table_t, "s");
+    if (!st) st = autobal_archive_attr_double_array(a, group, "drive_table_omega", d->n_points, d->table_omega, "rad/s");
+  }
+  return st;
 }
 
 static uint64_t rotor_hash(const void *model) {
@@ -266,6 +332,15 @@ static uint64_t rotor_hash(const void *model) {
       h = hash_doubles(h, v, 5);
     }
   }
+  if (p->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT) { /* the constant drive: the hash of 0.1.0 */
+    const autobal_rotor_drive *d = &p->drive;
+    v[0] = d->mode, v[1] = d->omega_a, v[2] = d->omega_b, v[3] = d->t_a, v[4] = d->t_b, v[5] = (double)d->n_points;
+    h = hash_doubles(h, v, 6);
+    if (d->mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
+      h = hash_doubles(h, d->table_t, d->n_points);
+      h = hash_doubles(h, d->table_omega, d->n_points);
+    }
+  }
   return h;
 }
 
@@ -274,6 +349,7 @@ static void rotor_destroy(void *model) {
   if (!M) return;
   autobal_rotor_free(M->rot);
   free(M->storage);
+  free(M->table);
   free(M);
 }
 
@@ -323,6 +399,17 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
     c->ball_rate = n ? s + 4 * n : NULL;
     off += n;
   }
+  if (p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE && p->drive.table_t && p->drive.table_omega && p->drive.n_points > 0 &&
+      p->drive.n_points <= AUTOBAL_ROTOR_DRIVE_MAX_POINTS) {
+    size_t k, np = p->drive.n_points;
+    if (!(M->table = malloc(2 * np * sizeof *M->table))) {
+      rotor_destroy(M);
+      return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble member)");
+    }
+    for (k = 0; k < np; k++) M->table[k] = p->drive.table_t[k], M->table[np + k] = p->drive.table_omega[k];
+    M->p.drive.table_t = M->table;
+    M->p.drive.table_omega = M->table + np;
+  }
   M->frame = frame;
   snprintf(M->frame_name, sizeof M->frame_name, "%s", frame_name ? frame_name : (frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating"));
   M->rot = autobal_rotor_alloc(&M->p, err);
@@ -348,7 +435,7 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   out->angle_dim_long_name = "ball (plane 1 first)";
   out->angle_long_name = "ball angle relative to the rotor at the end, wrapped to (-pi, pi]";
   out->describe = rotor_describe;
-  out->check = NULL;
+  out->check = rotor_check;
   out->worker_alloc = rotor_worker_alloc;
   out->worker_free = rotor_worker_free;
   out->setup = rotor_setup;
