@@ -13,6 +13,12 @@
  *       CPU time (CLOCK_PROCESS_CPUTIME_ID around the run), the driver's
  *       statistics and the final state.
  *
+ *   bench_rotor runup STEPPER RTOL ATOL T1 REPEATS OMEGA_B T_B [fixed|rotating]
+ *       Run-up of the default rotor (two balls, rotor.md) with the prescribed
+ *       RAMP drive Omega(t) = OMEGA_B t / T_B for 0 <= t <= T_B, OMEGA_B after
+ *       (autobal_rotor_drive: omega_a = 0, t_a = 0), from rest (balls at rest
+ *       relative to the rotor at psi = 1.0, 2.5) to T1; same output as run.
+ *
  *   bench_rotor rhs NMAX SECONDS [REPS]
  *       Wall time of one right-hand-side call (fixed and rotating frame) for
  *       n = 2, 4, 8, ..., NMAX balls (ball_config(n)), each the best of REPS
@@ -23,10 +29,13 @@
  *       input).  Least-squares line cost = a + b n for each frame with R^2
  *       and the largest relative residual.  Prints one JSON object.
  *
- *   bench_rotor check NBALLS
+ *   bench_rotor check NBALLS [OMEGA_B T_B]
  *       The initial state and 4 pseudo-random states with the fixed-frame
  *       right-hand side at each (JSON), so that rotor_scipy.py can check its
- *       own independent right-hand side against the library's.
+ *       own independent right-hand side against the library's.  With OMEGA_B
+ *       and T_B: the run-up drive of `runup` (NBALLS must be 2), states at
+ *       t = 0 and t = 0.4 T_B .. 1.6 T_B (ball angles near phi_0(t), rates
+ *       near Omega(t)), so that runup_scipy.py can check its right-hand side.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -100,13 +109,15 @@ static int ball_config_make(ball_config *b, size_t n) {
 }
 
 /* The default rotor (n == 2 and use_default: exactly the spec's example;
- * otherwise ball_config(n) in its single plane).  NULL on failure (message
- * printed). */
-static autobal_rotor *make_rotor(size_t n, int use_default) {
+ * otherwise ball_config(n) in its single plane), spinning at the constant
+ * omega (drive NULL) or with the given prescribed drive.  NULL on failure
+ * (message printed). */
+static autobal_rotor *make_rotor_drive(size_t n, int use_default, const autobal_rotor_drive *drive) {
   autobal_rotor_params p = autobal_rotor_params_default();
   autobal_rotor *r;
   autobal_error err;
   ball_config b;
+  if (drive != NULL) p.drive = *drive;
   if (n == 2 && use_default) {
     r = autobal_rotor_alloc(&p, &err);
   } else {
@@ -125,6 +136,22 @@ static autobal_rotor *make_rotor(size_t n, int use_default) {
   }
   if (r == NULL) fprintf(stderr, "bench_rotor: %s\n", err.message);
   return r;
+}
+
+static autobal_rotor *make_rotor(size_t n, int use_default) {
+  return make_rotor_drive(n, use_default, NULL);
+}
+
+/* The run-up drive: Omega from 0 at t = 0 linearly to omega_b at t_b, omega_b after. */
+static autobal_rotor_drive runup_drive(double omega_b, double t_b) {
+  autobal_rotor_drive d;
+  memset(&d, 0, sizeof d);
+  d.mode = AUTOBAL_ROTOR_DRIVE_RAMP;
+  d.omega_a = 0.0;
+  d.omega_b = omega_b;
+  d.t_a = 0.0;
+  d.t_b = t_b;
+  return d;
 }
 
 /* Deterministic uniform numbers in [-1, 1) (64-bit LCG, top 53 bits). */
@@ -150,28 +177,19 @@ static void random_state(unsigned long long *seed, double omega, double t, size_
   for (k = 0; k < n; k++) y[8 + n + k] = omega + 50.0 * urand(seed);
 }
 
-static int mode_run(int argc, char **argv) {
-  autobal_transient_options o = autobal_transient_options_default();
+/* Transient of rotor n (make_rotor_drive(n, 1, drive)) from its initial state at t = 0 to t1,
+ * repeats times; prints the JSON of `run` / `runup`. */
+static int run_transient(size_t n, const autobal_rotor_drive *drive, autobal_transient_options o,
+                         double t1, int repeats, int frame) {
   autobal_transient_system sys;
   autobal_transient_stats st;
   autobal_transient *tr;
   autobal_rotor *rot;
   autobal_error err;
-  double *y, *times, *cpu, t1, c0;
-  size_t n, dim, i;
-  int repeats, r, frame = AUTOBAL_ROTOR_FIXED;
-  if (argc != 8 && argc != 9) return 2;
-  n = (size_t)strtoul(argv[2], NULL, 10);
-  o.stepper = argv[3];
-  o.rtol = atof(argv[4]);
-  o.atol = atof(argv[5]);
-  t1 = atof(argv[6]);
-  repeats = atoi(argv[7]);
-  if (argc == 9 && strcmp(argv[8], "rotating") == 0) frame = AUTOBAL_ROTOR_ROTATING;
-  else if (argc == 9 && strcmp(argv[8], "fixed") != 0) return 2;
-  if (repeats < 1) repeats = 1;
-  if (n < 1) return 2;
-  rot = make_rotor(n, 1);
+  double *y, *times, *cpu, c0;
+  size_t dim, i;
+  int r;
+  rot = make_rotor_drive(n, 1, drive);
   if (rot == NULL) return 1;
   dim = autobal_rotor_dim(rot);
   sys.rhs = frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating;
@@ -201,11 +219,16 @@ static int mode_run(int argc, char **argv) {
   qsort(times, (size_t)repeats, sizeof(double), cmp_double);
   qsort(cpu, (size_t)repeats, sizeof(double), cmp_double);
   printf("{\"n_balls\": %zu, \"frame\": \"%s\", \"dim\": %zu, \"stepper\": \"%s\", "
-         "\"rtol\": %.3g, \"atol\": %.3g, \"t1\": %.17g, \"repeats\": %d, "
-         "\"seconds\": %.9g, \"seconds_min\": %.9g, \"cpu_seconds_min\": %.9g, "
-         "\"steps\": %lu, \"rejected\": %lu, \"rhs_evals\": %lu, \"y\": [",
+         "\"rtol\": %.3g, \"atol\": %.3g, \"t1\": %.17g, \"repeats\": %d, ",
          n, frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating", dim, o.stepper, o.rtol, o.atol,
-         t1, repeats, times[repeats / 2], times[0], cpu[0], st.steps, st.rejected, st.rhs_evals);
+         t1, repeats);
+  if (drive != NULL)
+    printf("\"drive\": {\"mode\": \"ramp\", \"omega_a\": %.17g, \"omega_b\": %.17g, \"t_a\": %.17g, "
+           "\"t_b\": %.17g}, ",
+           drive->omega_a, drive->omega_b, drive->t_a, drive->t_b);
+  printf("\"seconds\": %.9g, \"seconds_min\": %.9g, \"cpu_seconds_min\": %.9g, "
+         "\"steps\": %lu, \"rejected\": %lu, \"rhs_evals\": %lu, \"y\": [",
+         times[repeats / 2], times[0], cpu[0], st.steps, st.rejected, st.rhs_evals);
   for (i = 0; i < dim; i++) printf("%.17g%s", y[i], i + 1 < dim ? ", " : "]}\n");
   free(times);
   free(cpu);
@@ -213,6 +236,52 @@ static int mode_run(int argc, char **argv) {
   autobal_transient_free(tr);
   autobal_rotor_free(rot);
   return 0;
+}
+
+/* "fixed" / "rotating" (NULL: fixed) into *frame; 0 on success. */
+static int parse_frame(const char *s, int *frame) {
+  if (s == NULL || strcmp(s, "fixed") == 0) *frame = AUTOBAL_ROTOR_FIXED;
+  else if (strcmp(s, "rotating") == 0) *frame = AUTOBAL_ROTOR_ROTATING;
+  else return -1;
+  return 0;
+}
+
+static int mode_run(int argc, char **argv) {
+  autobal_transient_options o = autobal_transient_options_default();
+  double t1;
+  size_t n;
+  int repeats, frame;
+  if (argc != 8 && argc != 9) return 2;
+  n = (size_t)strtoul(argv[2], NULL, 10);
+  o.stepper = argv[3];
+  o.rtol = atof(argv[4]);
+  o.atol = atof(argv[5]);
+  t1 = atof(argv[6]);
+  repeats = atoi(argv[7]);
+  if (parse_frame(argc == 9 ? argv[8] : NULL, &frame) != 0) return 2;
+  if (repeats < 1) repeats = 1;
+  if (n < 1) return 2;
+  return run_transient(n, NULL, o, t1, repeats, frame);
+}
+
+static int mode_runup(int argc, char **argv) {
+  autobal_transient_options o = autobal_transient_options_default();
+  autobal_rotor_drive d;
+  double t1, omega_b, t_b;
+  int repeats, frame;
+  if (argc != 9 && argc != 10) return 2;
+  o.stepper = argv[2];
+  o.rtol = atof(argv[3]);
+  o.atol = atof(argv[4]);
+  t1 = atof(argv[5]);
+  repeats = atoi(argv[6]);
+  omega_b = atof(argv[7]);
+  t_b = atof(argv[8]);
+  if (parse_frame(argc == 10 ? argv[9] : NULL, &frame) != 0) return 2;
+  if (repeats < 1) repeats = 1;
+  if (!(t_b > 0) || !isfinite(omega_b) || !(t1 > 0)) return 2;
+  d = runup_drive(omega_b, t_b);
+  return run_transient(2, &d, o, t1, repeats, frame);
 }
 
 /* Best-of-reps wall time [ns] of one call of rhs over the N_STATES states. */
@@ -335,13 +404,20 @@ static int mode_rhs(int argc, char **argv) {
 
 static int mode_check(int argc, char **argv) {
   autobal_rotor *rot;
+  autobal_rotor_drive d;
   size_t n, dim, s, i;
   unsigned long long seed = 777u;
-  double *y, *dydt;
-  if (argc != 3) return 2;
+  double *y, *dydt, t_b = 0.0;
+  int ramp = argc == 5;
+  if (argc != 3 && argc != 5) return 2;
   n = (size_t)strtoul(argv[2], NULL, 10);
   if (n < 1) return 2;
-  rot = make_rotor(n, 1);
+  if (ramp) {
+    t_b = atof(argv[4]);
+    if (n != 2 || !(t_b > 0) || !isfinite(atof(argv[3]))) return 2;
+    d = runup_drive(atof(argv[3]), t_b);
+  }
+  rot = make_rotor_drive(n, 1, ramp ? &d : NULL);
   if (rot == NULL) return 1;
   dim = autobal_rotor_dim(rot);
   y = malloc(dim * sizeof(double));
@@ -349,10 +425,16 @@ static int mode_check(int argc, char **argv) {
   if (y == NULL || dydt == NULL) return 1;
   printf("{\"n_balls\": %zu, \"dim\": %zu, \"states\": [", n, dim);
   for (s = 0; s < 5; s++) {
-    const double t = s == 0 ? 0.0 : 0.0371 * (double)s;
+    const double t = s == 0 ? 0.0 : ramp ? 0.4 * t_b * (double)s - 0.0123 : 0.0371 * (double)s;
     if (s == 0) {
       if (autobal_rotor_initial_state(rot, AUTOBAL_ROTOR_FIXED, 0.0, y, dim) != AUTOBAL_SUCCESS)
         return 1;
+    } else if (ramp) {
+      /* random_state with phi_0(t) for omega t and Omega(t) for omega */
+      double w[3];
+      if (autobal_rotor_drive_eval(rot, t, w) != AUTOBAL_SUCCESS) return 1;
+      random_state(&seed, w[0], 1.0, n, y);
+      for (i = 0; i < n; i++) y[8 + i] += w[2] - w[0];
     } else {
       random_state(&seed, autobal_rotor_omega(rot), t, n, y);
     }
@@ -375,13 +457,15 @@ int main(int argc, char **argv) {
   int rc = 2;
   gsl_set_error_handler_off();
   if (argc >= 2 && strcmp(argv[1], "run") == 0) rc = mode_run(argc, argv);
+  else if (argc >= 2 && strcmp(argv[1], "runup") == 0) rc = mode_runup(argc, argv);
   else if (argc >= 2 && strcmp(argv[1], "rhs") == 0) rc = mode_rhs(argc, argv);
   else if (argc >= 2 && strcmp(argv[1], "check") == 0) rc = mode_check(argc, argv);
   if (rc == 2)
     fprintf(stderr,
             "usage: %s run NBALLS STEPPER RTOL ATOL T1 REPEATS [fixed|rotating]\n"
+            "       %s runup STEPPER RTOL ATOL T1 REPEATS OMEGA_B T_B [fixed|rotating]\n"
             "       %s rhs NMAX SECONDS [REPS]\n"
-            "       %s check NBALLS\n",
-            argv[0], argv[0], argv[0]);
+            "       %s check NBALLS [OMEGA_B T_B]\n",
+            argv[0], argv[0], argv[0], argv[0]);
   return rc;
 }

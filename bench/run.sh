@@ -7,6 +7,10 @@
 #                                    (e.g. --t1 50 --tols 1e-8)
 #   bench/run.sh rotor [ARGS...]     only the rotor; ARGS go to rotor_scipy.py
 #                                    (e.g. --balls 8 --tols 1e-8, --only rhs)
+#   bench/run.sh runup [ARGS...]     run-up 0 -> 500 rad/s in 20 s (issue 15) and the constant-speed
+#                                    rotor in the same run; ARGS go to runup_scipy.py (e.g. --quick,
+#                                    --only runup); --before-commit REV also builds bench_rotor on the
+#                                    library of git revision REV and times its constant-speed runs beside
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -15,9 +19,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor) what=$1; shift ;;
-    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum or rotor; see --help)" >&2
+    all|pendulum|rotor|runup) what=$1; shift ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor or runup; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -29,11 +33,32 @@ fi
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
 case "$what" in
   pendulum) targets=(bench_pendulum) ;;
-  rotor) targets=(bench_rotor) ;;
+  rotor|runup) targets=(bench_rotor) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 py=/usr/bin/python3
+if [ "$what" = runup ]; then
+  args=()
+  while [ $# -gt 0 ]; do
+    if [ "$1" = --before-commit ]; then
+      [ $# -ge 2 ] || { echo "run.sh: --before-commit needs a git revision" >&2; exit 2; }
+      rev=$(git -C "$here/.." rev-parse --short "$2^{commit}")
+      old="$build-before-$rev"
+      if [ ! -x "$old/build/bench_rotor" ]; then
+        rm -rf "$old"; mkdir -p "$old/src"
+        git -C "$here/.." archive "$rev" | tar -x -C "$old/src"
+        cmake -S "$old/src/bench" -B "$old/build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+        cmake --build "$old/build" --target bench_rotor > /dev/null
+      fi
+      args+=(--before "$old/build/bench_rotor")
+      shift 2
+    else
+      args+=("$1"); shift
+    fi
+  done
+  exec "$py" "$here/runup_scipy.py" --bench "$build/bench_rotor" ${args[@]+"${args[@]}"}
+fi
 if [ "$what" = pendulum ] || [ "$what" = all ]; then
   "$py" "$here/pendulum_scipy.py" --bench "$build/bench_pendulum" "$@"
 fi
