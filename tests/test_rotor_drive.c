@@ -625,6 +625,132 @@ static void test_motor_transient(void) {
   autobal_rotor_free(Rt);
 }
 
+/* The motor system as one dense (5 + N) solve assembled from the equations of docs/device.md:
+ * unknowns (x'', y'', alpha'', beta'', Omega', phi_1'' .. phi_N''); the state in the fixed frame
+ * (phi_0, Omega last, after z, z' when axial). */
+static void direct_solve_motor(const autobal_rotor *R, const double *y, double *acc) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(R);
+  const autobal_rotor_lumped *L = autobal_rotor_get_lumped(R);
+  const size_t N = autobal_rotor_n_balls_total(R), n = 5 + N, dim = autobal_rotor_dim(R);
+  const double ph0 = y[dim - 2], W = y[dim - 1];
+  double K[MAXDIM][MAXDIM + 1], Jeff = p->drive.J;
+  size_t i, j, c, r, k;
+  memset(K, 0, sizeof K);
+  K[0][0] = L->M, K[1][1] = L->M, K[2][2] = L->A, K[3][3] = L->A;
+  K[0][n] = -(L->h_x * y[4] + L->c_x * y[0] - L->h_xbeta * y[7] - L->c_xbeta * y[3]);
+  K[1][n] = -(L->h_y * y[5] + L->c_y * y[1] + L->h_yalpha * y[6] + L->c_yalpha * y[2]);
+  K[2][n] = -(L->h_alpha * y[6] + L->c_alpha * y[2] + L->C * W * y[7] + L->h_yalpha * y[5] + L->c_yalpha * y[1]);
+  K[3][n] = -(L->h_beta * y[7] + L->c_beta * y[3] - L->C * W * y[6] - L->h_xbeta * y[4] - L->c_xbeta * y[0]);
+  K[2][4] = L->C * y[3]; /* C Omega' beta */
+  /* phi_0: Jeff Omega' + C (alpha'' beta + alpha' beta') + sum m0 r0 (-u_D'' sin th + v_D'' cos th) = L - k_r Omega + balls */
+  K[4][2] = L->C * y[3];
+  K[4][n] = autobal_rotor_motor_torque(R, W) - p->drive.k_r * W - L->C * y[6] * y[7];
+  for (j = 0; j < p->n_planes; j++) {
+    const double d = p->plane[j].d, s0 = p->plane[j].m0 * p->plane[j].r0, th = ph0 + p->plane[j].psi0;
+    double su = -s0 * W * W * cos(th), sv = -s0 * W * W * sin(th);
+    Jeff += s0 * p->plane[j].r0;
+    /* the unbalance's tangential acceleration: s_u'' has -s0 Omega' sin th, s_v'' has +s0 Omega' cos th */
+    K[0][4] += -s0 * sin(th);
+    K[1][4] += s0 * cos(th);
+    K[2][4] += -d * s0 * cos(th);
+    K[3][4] += -d * s0 * sin(th);
+    K[4][0] += -s0 * sin(th);
+    K[4][3] += -s0 * d * sin(th);
+    K[4][1] += s0 * cos(th);
+    K[4][2] += -s0 * d * cos(th);
+    for (i = 0; i < p->plane[j].n_balls; i++) {
+      const double m = p->plane[j].ball_mass[i], rr = p->plane[j].ball_radius[i], h = p->plane[j].ball_damping[i];
+      const size_t kk = autobal_rotor_ball_index(R, j, i);
+      const double ph = y[8 + kk], phd = y[8 + N + kk], mr = m * rr;
+      su -= mr * phd * phd * cos(ph);
+      sv -= mr * phd * phd * sin(ph);
+      K[0][5 + kk] += -mr * sin(ph);
+      K[1][5 + kk] += mr * cos(ph);
+      K[2][5 + kk] += -d * mr * cos(ph);
+      K[3][5 + kk] += -d * mr * sin(ph);
+      K[5 + kk][5 + kk] = mr * rr;
+      K[5 + kk][0] = -mr * sin(ph);
+      K[5 + kk][3] = -mr * d * sin(ph);
+      K[5 + kk][1] = mr * cos(ph);
+      K[5 + kk][2] = -mr * d * cos(ph);
+      K[5 + kk][n] = -h * rr * rr * (phd - W);
+      K[4][n] += h * rr * rr * (phd - W);
+    }
+    K[0][n] -= su;
+    K[1][n] -= sv;
+    K[2][n] += d * sv;
+    K[3][n] -= d * su;
+  }
+  K[4][4] += Jeff;
+  for (c = 0; c < n; c++) { /* Gauss-Jordan with partial pivoting */
+    size_t piv = c;
+    for (r = c + 1; r < n; r++)
+      if (fabs(K[r][c]) > fabs(K[piv][c])) piv = r;
+    for (k = 0; k <= n; k++) {
+      double tmp = K[c][k];
+      K[c][k] = K[piv][k];
+      K[piv][k] = tmp;
+    }
+    for (r = 0; r < n; r++)
+      if (r != c) {
+        double f = K[r][c] / K[c][c];
+        for (k = c; k <= n; k++) K[r][k] -= f * K[c][k];
+      }
+  }
+  for (r = 0; r < n; r++) acc[r] = K[r][n] / K[r][r];
+}
+
+/* Both right-hand sides against the dense (5 + N) solve: two planes (2 + 3 balls) on anisotropic
+ * supports with axial motion, a tabulated characteristic; and the default plane, linear. */
+static void test_motor_direct(void) {
+  double tw[3] = {-50.0, 150.0, 420.0}, tl[3] = {3.0, 5.0, -1.0};
+  int c;
+  printf("-- motor: both right-hand sides vs a dense (5 + N) solve of the documented equations\n");
+  for (c = 0; c < 2; c++) {
+    autobal_rotor_params p = c == 0 ? two_plane_table() : motor_params(0.05, 4.0, 400.0, 1e-3, 0.0);
+    autobal_rotor *R;
+    double y[MAXDIM], yr[MAXDIM], df[MAXDIM], dr[MAXDIM], acc[MAXDIM], dmax = 0.0;
+    size_t k, dim, N;
+    const double t = 0.37;
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+    p.drive.J = 0.045;
+    p.drive.k_r = 2e-3;
+    if (c == 0) {
+      p.drive.n_torque = 3, p.drive.torque_omega = tw, p.drive.torque_L = tl;
+      p.axial = 1, p.z0 = 1e-5, p.zd0 = -2e-3;
+    }
+    R = autobal_rotor_alloc(&p, NULL);
+    CHECK("handle", R != NULL);
+    if (!R) continue;
+    dim = autobal_rotor_dim(R);
+    N = autobal_rotor_n_balls_total(R);
+    autobal_rotor_initial_state(R, AUTOBAL_ROTOR_FIXED, 0.0, y, dim);
+    y[0] = 2e-4, y[1] = -1e-4, y[2] = 3e-3, y[3] = -1e-3, y[4] = 0.02, y[5] = 0.01, y[6] = -0.4, y[7] = 0.3;
+    y[dim - 2] = 2.2, y[dim - 1] = 230.0;
+    for (k = 0; k < N; k++) y[8 + k] = 2.2 + 0.3 * (double)k - 1.1, y[8 + N + k] = 230.0 + 7.0 - 4.0 * (double)k;
+    autobal_rotor_convert_state(R, AUTOBAL_ROTOR_FIXED, AUTOBAL_ROTOR_ROTATING, t, y, yr, dim);
+    CHECK("   fixed rhs", autobal_rotor_rhs(t, y, df, R) == 0);
+    CHECK("   rotating rhs", autobal_rotor_rhs_rotating(t, yr, dr, R) == 0);
+    direct_solve_motor(R, y, acc);
+    printf("   %s: Omega' = %.6g rad/s^2\n", c == 0 ? "two planes, anisotropic, axial, torque table" : "one plane, linear",
+           acc[4]);
+    for (k = 0; k < 4; k++) dmax = fmax(dmax, fabs(df[4 + k] - acc[k]) / (fabs(acc[k]) + 1e-6));
+    CHECK_CLOSE("   rotor accelerations, fixed rhs vs dense solve (rel)", dmax, 0.0, 0, 1e-12);
+    dmax = 0.0;
+    for (k = 0; k < 4; k++) dmax = fmax(dmax, fabs(dr[4 + k] - acc[k]) / (fabs(acc[k]) + 1e-6));
+    CHECK_CLOSE("   rotor accelerations, rotating rhs vs dense solve (rel)", dmax, 0.0, 0, 1e-12);
+    CHECK_CLOSE("   Omega', fixed rhs vs dense solve", df[dim - 1], acc[4], 1e-12, 1e-12);
+    CHECK_CLOSE("   Omega', rotating rhs vs dense solve", dr[dim - 1], acc[4], 1e-12, 1e-12);
+    CHECK("   phi_0' = Omega", df[dim - 2] == 230.0 && dr[dim - 2] == 230.0);
+    for (k = 0; k < N; k++) {
+      CHECK_CLOSE("   phi_i'' vs dense solve", df[8 + N + k], acc[5 + k], 1e-12, 1e-9);
+      CHECK_CLOSE("   psi_i'' = phi_i'' - Omega' vs dense solve", dr[8 + N + k], acc[5 + k] - acc[4], 1e-12, 1e-9);
+    }
+    if (c == 0) CHECK("   axial rows untouched by the motor", df[8 + 2 * N] == -2e-3 && dr[8 + 2 * N] == -2e-3);
+    autobal_rotor_free(R);
+  }
+}
+
 static void test_motor_errors(void) {
   autobal_error e;
   autobal_rotor_params p;
@@ -824,6 +950,7 @@ int main(void) {
   test_ramp_transient();
   test_errors();
   test_motor_basics();
+  test_motor_direct();
   test_motor_power_balance();
   test_motor_stiff_limit();
   test_motor_transient();

@@ -64,6 +64,25 @@ printf '\n[drive]\nmode = motor\nJ = 0.05\nL_0 = 10\nomega_0 = 400\nk_r = 1e-3\n
 expect 0 "" "$AUTOBAL" rotor transient two.ini --set transient.t_end=1 -o two.h5
 check "SciPy of the motor equations, two planes == the archive" scipy two.h5
 
+# every unit string of the motor archives parses with UDUNITS-2 (the configuration's parser)
+if [ -n "${UNITS_CHECK:-}" ]; then
+  "$PY" - motor.h5 table.h5 > units.txt <<'PY'
+import sys, h5py
+seen = set()
+def visit(name, obj):
+    for k, v in obj.attrs.items():
+        if k == "units" or k.endswith("_units"):
+            seen.add(v.decode() if isinstance(v, bytes) else str(v))
+for f in sys.argv[1:]:
+    h = h5py.File(f, "r")
+    visit("/", h)
+    h.visititems(visit)
+print("\n".join(sorted(u for u in seen if u not in ("1",))))
+PY
+  grep -qx "N m s" units.txt && grep -qx "kg m^2" units.txt && "$UNITS_CHECK" < units.txt >/dev/null \
+    && ok "the motor archives' $(wc -l < units.txt) unit strings parse (UDUNITS-2)" || bad "unit strings: $(tr '\n' ';' < units.txt)"
+fi
+
 # the rerun reproduces motor runs bit for bit
 expect 0 "" "$AUTOBAL" rerun motor.h5 -o motor_rerun.h5 -q
 same "rerun of the linear motor run, bit for bit" motor.h5 motor_rerun.h5
