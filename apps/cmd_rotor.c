@@ -765,6 +765,13 @@ static void runup_json(cli_json *j, const autobal_study_rotor_transient_summary 
   cli_json_quantity(j, "t_last_passage", s->runup.t_last_passage, "s");
   cli_json_quantity(j, "time_to_balance_after_last_passage", s->runup.time_to_balance, "s");
   cli_json_quantity(j, "envelope_max", s->runup.envelope_max, "m");
+  cli_json_object(j, "units");
+  cli_json_string(j, "resonance_speed", "rad/s");
+  cli_json_string(j, "passage_time", "s");
+  cli_json_string(j, "t_last_passage", "s");
+  cli_json_string(j, "time_to_balance_after_last_passage", "s");
+  cli_json_string(j, "envelope_max", "m");
+  cli_json_object_end(j);
   cli_json_object_end(j);
 }
 

@@ -501,9 +501,13 @@ def plot_rotor_transient(h, outdir, stem, written):
     for a in ax:
         a.grid(True, alpha=0.3)
     baltxt = ("balanced after %s %s" % (fmt(ttb), tu)) if int(param(g, "balanced", 0) or 0) else "not balanced"
-    fig.suptitle("Rotor with ball autobalancer: ω = %s %s, %d plane(s), %d ball(s); %s%s"
-                 % (fmt(omega), punit(h["rotor"], "omega"), len(planes), nballs, baltxt, status_note(h)),
-                 fontsize=11)
+    if "Omega" in g:  # a speed profile: the rotor's constant omega is not used by the run
+        wtxt = "Ω %s → %s %s (%s drive)" % (fmt(g["Omega"][0]), fmt(g["Omega"][-1]), units(g["Omega"]),
+                                             s(g.attrs.get("drive_mode", "speed")))
+    else:
+        wtxt = "ω = %s %s" % (fmt(omega), punit(h["rotor"], "omega"))
+    fig.suptitle("Rotor with ball autobalancer: %s, %d plane(s), %d ball(s); %s%s"
+                 % (wtxt, len(planes), nballs, baltxt, status_note(h)), fontsize=11)
     save(fig, outdir, stem, "transient", written)
 
 

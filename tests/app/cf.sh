@@ -12,6 +12,7 @@ fail=0
 run() { "$@" -q >out.txt 2>err.txt || { echo "FAIL: $*"; cat err.txt; fail=1; }; }
 run "$AUTOBAL" rotor transient --set transient.t_end=0.2 -o rt.h5
 run "$AUTOBAL" rotor transient "$DATA/rotor_two_planes.ini" --set transient.t_end=0.2 -o rt2.h5
+run "$AUTOBAL" rotor transient "$DATA/runup.ini" --set transient.t_end=12 -o rru.h5
 run "$AUTOBAL" rotor stability -o rs.h5
 run "$AUTOBAL" rotor sweep --set sweep.n=40 -o rsw.h5
 run "$AUTOBAL" rotor map --set map.n1=6 --set map.n2=5 -o rm.h5

@@ -37,6 +37,14 @@ INI
 expect 0 "run-up: 4 passage(s)" "$AUTOBAL" rotor transient ramp.ini -o ramp.h5
 grep -F "run-up:" out.txt
 check "(a) ramp: resonances, passages, envelope, lag, time to balance" ramp.h5 capture 0
+# the --json summary carries the same passages as the archive
+expect 0 "" "$AUTOBAL" rotor transient ramp.ini --json -o ramp_json.h5
+if "$PY" -c "
+import json, h5py, numpy as np
+d = json.load(open('out.txt'))['runup']
+g = h5py.File('ramp_json.h5', 'r')['rotor/runup']
+assert np.array_equal(d['passage_time'], g['passage_time'][:]) and len(d['resonance_speed']) == 4
+assert d['units']['passage_time'] == 's'"; then ok "--json: runup.passage_time = the archive's"; else bad "--json runup"; fi
 # (b) a table with a dwell at 160 rad/s (within 5% of the first two resonances) for 5 s, then up
 # to 300 rad/s and a fast coast-down to 120 rad/s: passages up and down, two captures
 cat > dwell.ini <<'INI'
