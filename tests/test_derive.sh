@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# test_derive: the SymPy derivation of the variable-speed rotor equations (tools/derive/).
+# test_derive: the SymPy derivation of the variable-speed rotor equations and of the device physics
+# (gravity, normal force, rolling resistance, stiction, rolling inertia, contact; tools/derive/).
 # Runs tools/derive/derive_rotor.py with Debian's python3 (sympy); the script itself asserts
 #  (a) Omega constant -> exactly (3.2)/(3.4) and (3.5)-(3.8) of docs/rotor.md (one and two planes),
 #  (b) the rotating-frame ball equation with the Euler terms follows from the fixed-frame one,
 #  (c) dE/dt = P_drive - D identically along the equations and to 1e-12 at the check state,
+#  (e) the device checks of tools/derive/derive_device.py (each line listed below must end in ': OK'),
 # and with --check-json (d) that tools/derive/check_values.json equals what it computes now;
 # then tools/derive/independent_check.py re-solves the equations as written in docs/device.md with
-# NumPy (no SymPy) and compares with the JSON (1e-10).
+# NumPy (no SymPy) and compares with the JSON (1e-10), and the device values (gravity accelerations,
+# drive torque, normal forces, static offset, impact law) from a mass-matrix assembly of docs/device.md,
+# and integrates the gravity-loaded balanced state with SciPy against the first-order closed form.
 # Usage: test_derive.sh <source dir> [python3]
 set -euo pipefail
 src=${1:?usage: test_derive.sh <source dir> [python3]}
@@ -22,11 +26,24 @@ for pat in 'exact energy truncated' 'rotating-frame ball equation' \
            'one_plane): variable speed' 'two_planes): variable speed' \
            'one_plane): dE/dt' 'two_planes): dE/dt' \
            'one_plane, prescribed' 'one_plane, motor' 'two_planes, prescribed' 'two_planes, motor' \
-           'check_values.json equals'; do
+           'check_values.json equals' \
+           'height of a small mass' 'N = -(residual of the radial coordinate' 'rotating frame: N = m' \
+           'planes1): gravity adds' 'planes2): gravity adds' \
+           'planes1): energy identity with gravity' 'planes2): energy identity with gravity' \
+           'planes1): static offset' 'planes2): static offset' \
+           'planes1): gravity check values' 'planes2): gravity check values' \
+           'planes1): rolling resistance' 'planes2): rolling resistance' \
+           'planes1): stuck ball' 'planes2): stuck ball' \
+           'planes1): rolling inertia adds' 'planes2): rolling inertia adds' \
+           'planes1): impact: restitution' 'planes2): impact: restitution' \
+           'resting contact: the pair as one body' 'rolling ball on the outer race' \
+           'first-order 1X response'; do
   grep -F "$pat" <<<"$out" | grep -q ': OK' || { echo "test_derive: check '$pat' did not report OK"; exit 1; }
 done
 ind=$("$py" "$src/tools/derive/independent_check.py" "$src/tools/derive/check_values.json" 2>&1) || {
   echo "$ind"; echo "test_derive: FAILED (independent NumPy check)"; exit 1; }
 echo "$ind"
-grep -q ': OK' <<<"$ind" || { echo "test_derive: independent check did not report OK"; exit 1; }
+for pat in 'independent check: NumPy' 'independent check (device)'; do
+  grep -F "$pat" <<<"$ind" | grep -q ': OK' || { echo "test_derive: independent check '$pat' did not report OK"; exit 1; }
+done
 echo "test_derive: all checks passed"

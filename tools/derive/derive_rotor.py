@@ -619,6 +619,10 @@ def main():
             print('rotating-frame ball equation:')
             print(sp.pretty(info['rotating_ball_equation'], use_unicode=False, wrap_line=False))
             print()
+    # device physics (docs/device.md sections 2-4): gravity, normal force, resistance, stiction,
+    # rolling inertia, contact; new keys of the JSON, the keys above are unchanged
+    import derive_device
+    results.update(derive_device.run(sys.modules[__name__]))
     results['generator'] = 'tools/derive/derive_rotor.py (sympy %s)' % sp.__version__
     if args.write_json:
         with open(args.write_json, 'w') as f:
