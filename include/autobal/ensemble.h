@@ -440,8 +440,10 @@ typedef struct autobal_ensemble_execution {
 /* Write the ensemble (the writer process, results kept) into archive a:
  * first write_model(user, a) (the model's own parameter group, e.g. /rotor;
  * NULL: none), then /<model>/ensemble: the settings and tally as attributes,
- * the parameter axes (grid: coordinates; random: a member dimension and one
- * variable per parameter), the summaries (status, balanced, done,
+ * the parameter axes (grid: coordinates, with two axes or more each with the
+ * attribute probability_balanced: at each point of the axis, balanced /
+ * members done without failure, over the other axes; random: a member
+ * dimension and one variable per parameter), the summaries (status, balanced, done,
  * time_to_balance, residual_unbalance_initial/final, amplitude_max/final,
  * t_reached, steps, rhs_evaluations, final_angle), the kept series under
  * series/member_<m>, and execution/.  Members not done are NaN (0 for the
