@@ -38,7 +38,8 @@
  * revolutions of the member's speed); a dwell event on the model's residual
  * unbalance: "balanced" when it stayed below balance_tol for balance_dwell
  * (or balance_revs revolutions), the time to balance being the start of
- * that stretch; the run stops there when stop_at_balance is set.  A member
+ * that stretch (not before the member's settle_time, e.g. the end of its
+ * speed ramp); the run stops there when stop_at_balance is set.  A member
  * whose set-up or run fails is a result (its status < 0), not a failure of
  * the ensemble.
  *
