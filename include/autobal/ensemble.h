@@ -210,7 +210,8 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * ball angles relative to the rotor; amplitude: output 0 of
  * autobal_rotor_outputs (m); series columns: the state, then the outputs.
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from
- * autobal_rotor_alloc; bad frame) or AUTOBAL_ENOMEM; on failure *out is zeroed.
+ * autobal_rotor_alloc; bad frame; a drive mode other than constant, ramp or
+ * table) or AUTOBAL_ENOMEM; on failure *out is zeroed.
  * Release with autobal_ensemble_member_release. */
 AUTOBAL_API int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame,
                                               const char *frame_name,
