@@ -535,6 +535,7 @@ static void test_pendulum(void) {
  * closed form.  The right-hand side refuses lambda > 5 (a failure the engine must record). */
 typedef struct decay_worker {
   double lambda;
+  double settle; /* settle_time of every member: *(double *)model, 0 without a model */
 } decay_worker;
 
 static int decay_describe(const void *model, const char *name, autobal_ensemble_param_info *info, autobal_error *err) {
@@ -544,11 +545,14 @@ static int decay_describe(const void *model, const char *name, autobal_ensemble_
     return AUTOBAL_EINVAL;
   }
   info->units = "1/s", info->long_name = "decay rate", info->periodic = 0;
+  info->positive = model != NULL; /* the settle test's lambda must be > 0 */
   return AUTOBAL_SUCCESS;
 }
 static void *decay_alloc(const void *model, const char *const *names, size_t n, autobal_error *err) {
-  (void)model, (void)names, (void)n, (void)err;
-  return calloc(1, sizeof(decay_worker));
+  decay_worker *w = calloc(1, sizeof(decay_worker));
+  (void)names, (void)n, (void)err;
+  if (w) w->settle = model ? *(const double *)model : 0.0;
+  return w;
 }
 static void decay_free(void *w) { free(w); }
 static int decay_rhs(double t, const double y[], double dydt[], void *params) {
@@ -571,6 +575,7 @@ static int decay_setup(void *wp, const double *values, double y0[], autobal_ense
   su->speed = TWO_PI; /* one "revolution" per second */
   su->monitor = decay_monitor, su->monitor_user = NULL;
   su->residual_initial = 1.0;
+  su->settle_time = w->settle;
   return AUTOBAL_SUCCESS;
 }
 static int decay_observe(void *wp, double t, const double y[], double *amplitude, double *row) {
@@ -682,10 +687,55 @@ static void test_third_model(void) {
   CHECK("a member without worker_alloc rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
 }
 
+/* settle_time (a member whose speed still changes is not yet balanced): the dwell counts from
+ * settle_time = 2 s on, so the time to balance is max(ln(1/tol)/lambda, 2) in closed form, and the
+ * stop comes a dwell (1 s) later; a positive-only parameter refuses min <= 0 with its name. */
+static void test_settle(void) {
+  autobal_ensemble_member mb;
+  autobal_ensemble_settings s = autobal_ensemble_settings_default();
+  autobal_ensemble *e;
+  autobal_error err;
+  double settle = 2.0;
+  size_t m;
+  printf("# settle_time = 2 s: y' = -lambda y, lambda = 1..5\n");
+  memset(&mb, 0, sizeof mb);
+  mb.model_name = "decay";
+  mb.model = &settle;
+  mb.dim = 1, mb.n_angles = 0, mb.n_columns = 1;
+  mb.time_units = "s", mb.time_name = "time", mb.time_long_name = "time", mb.length_units = "1";
+  mb.describe = decay_describe, mb.worker_alloc = decay_alloc, mb.worker_free = decay_free, mb.setup = decay_setup;
+  mb.observe = decay_observe, mb.finish = decay_finish, mb.column_name = decay_column;
+  s.n_params = 1;
+  s.param[0].name = "lambda", s.param[0].min = 1, s.param[0].max = 5, s.param[0].n = 5;
+  s.endpoint = 1;
+  s.t_end = 10, s.balance_tol = 1e-3, s.balance_revs = 1, s.revs_out = 0.5;
+  s.transient.rtol = 1e-12, s.transient.atol = 1e-14;
+  s.threads = 1;
+  e = autobal_ensemble_alloc(&mb, &s, &err);
+  CHECK("alloc", e != NULL);
+  if (!e) return;
+  CHECK_STATUS("run", autobal_ensemble_run(e), AUTOBAL_SUCCESS);
+  for (m = 0; m < 5; m++) {
+    const double *r = autobal_ensemble_summary(e, m);
+    double lambda = 1.0 + (double)m, want = fmax(log(1e3) / lambda, 2.0);
+    CHECK("balanced and stopped", r[AUTOBAL_ENSEMBLE_BALANCED] == 1 && r[AUTOBAL_ENSEMBLE_STATUS] == AUTOBAL_EVENT);
+    CHECK_CLOSE("time to balance = max(ln(1/tol)/lambda, settle_time)", r[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE], want, 0, 1e-7);
+    CHECK("time to balance never before settle_time", r[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] >= 2.0);
+    CHECK_CLOSE("stopped a dwell (1 s) later", r[AUTOBAL_ENSEMBLE_T_REACHED], want + 1.0, 0, 1e-7);
+  }
+  autobal_ensemble_free(e);
+  s.param[0].min = 0;
+  CHECK("a positive-only parameter with min = 0 rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+  CHECK_MSG("the parameter and the range named", err.message, "lambda: min = 0 1/s is out of range: allowed (0, inf)");
+  s.param[0].min = -1;
+  CHECK("min = -1 rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_rotor();
   test_pendulum();
   test_third_model();
+  test_settle();
   return check_summary();
 }

@@ -38,7 +38,8 @@
  * revolutions of the member's speed); a dwell event on the model's residual
  * unbalance: "balanced" when it stayed below balance_tol for balance_dwell
  * (or balance_revs revolutions), the time to balance being the start of
- * that stretch; the run stops there when stop_at_balance is set.  A member
+ * that stretch (not before the member's settle_time, e.g. the end of its
+ * speed ramp); the run stops there when stop_at_balance is set.  A member
  * whose set-up or run fails is a result (its status < 0), not a failure of
  * the ensemble.
  *
@@ -209,7 +210,8 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * ball angles relative to the rotor; amplitude: output 0 of
  * autobal_rotor_outputs (m); series columns: the state, then the outputs.
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from
- * autobal_rotor_alloc; bad frame) or AUTOBAL_ENOMEM; on failure *out is zeroed.
+ * autobal_rotor_alloc; bad frame; a drive mode other than constant, ramp or
+ * table) or AUTOBAL_ENOMEM; on failure *out is zeroed.
  * Release with autobal_ensemble_member_release. */
 AUTOBAL_API int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame,
                                               const char *frame_name,
@@ -440,8 +442,10 @@ typedef struct autobal_ensemble_execution {
 /* Write the ensemble (the writer process, results kept) into archive a:
  * first write_model(user, a) (the model's own parameter group, e.g. /rotor;
  * NULL: none), then /<model>/ensemble: the settings and tally as attributes,
- * the parameter axes (grid: coordinates; random: a member dimension and one
- * variable per parameter), the summaries (status, balanced, done,
+ * the parameter axes (grid: coordinates, with two axes or more each with the
+ * attribute probability_balanced: at each point of the axis, balanced /
+ * members done without failure, over the other axes; random: a member
+ * dimension and one variable per parameter), the summaries (status, balanced, done,
  * time_to_balance, residual_unbalance_initial/final, amplitude_max/final,
  * t_reached, steps, rhs_evaluations, final_angle), the kept series under
  * series/member_<m>, and execution/.  Members not done are NaN (0 for the

@@ -1268,13 +1268,14 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
     if (!st) st = autobal_archive_var(a, g, "final_angle", rank + 1, dims, ang, "rad", e->mb.angle_long_name);
   }
   /* grid of two or more axes: the probability of balancing along each axis, over the others
-   * (e.g. over the initial ball angles at each ramp rate) */
+   * (e.g. over the initial ball angles at each ramp rate), as attributes of the axis' coordinate
+   * (attributes, not variables: the datasets of an archive of 0.1.0 stay exactly those a rerun
+   * writes) */
   if (!s->random && s->n_params >= 2 && !st) {
     for (j = 0; j < s->n_params && !st; j++) {
       size_t nj = s->param[j].n;
       double *pb = calloc(2 * nj, sizeof *pb); /* balanced, then ran without failure */
-      char nm[ENS_NAME + 32], ln[ENS_NAME + 200];
-      const char *d1[1];
+      char obj[ENS_NAME + 80];
       if (!pb) {
         st = AUTOBAL_ENOMEM;
         break;
@@ -1287,13 +1288,12 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
         if (r[AUTOBAL_ENSEMBLE_BALANCED] == 1) pb[k] += 1;
       }
       for (i = 0; i < nj; i++) pb[i] = pb[nj + i] > 0 ? pb[i] / pb[nj + i] : NAN;
-      snprintf(nm, sizeof nm, "probability_balanced_by_%s", e->names[j]);
-      snprintf(ln, sizeof ln,
-               "fraction of the members at this %s that balanced, over the other axes (members done and without "
-               "failure; NaN: none)",
-               e->names[j]);
-      d1[0] = e->names[j];
-      st = autobal_archive_var(a, g, nm, 1, d1, pb, "1", ln);
+      snprintf(obj, sizeof obj, "%s/%s", g, e->names[j]);
+      st = autobal_archive_attr_double_array(a, obj, "probability_balanced", nj, pb, "1");
+      if (!st)
+        st = autobal_archive_attr_string(a, obj, "probability_balanced_definition",
+                                         "at each point of this axis: balanced / members done without failure, over the "
+                                         "other axes (NaN: none)");
       free(pb);
     }
   }

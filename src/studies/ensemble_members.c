@@ -362,6 +362,13 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   if (!p || !out) return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: NULL argument");
   if (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING)
     return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: frame = %d is not AUTOBAL_ROTOR_FIXED or AUTOBAL_ROTOR_ROTATING", frame);
+  /* the prescribed speeds only: the settle time, the sampling speed and the rotor angle of the
+   * final ball angles are those of a kinematic drive */
+  if (p->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT && p->drive.mode != AUTOBAL_ROTOR_DRIVE_RAMP &&
+      p->drive.mode != AUTOBAL_ROTOR_DRIVE_TABLE)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "rotor ensemble member: drive mode %d is not one the ensemble supports (constant, ramp, table)",
+                             p->drive.mode);
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
                              AUTOBAL_ROTOR_MAX_PLANES);

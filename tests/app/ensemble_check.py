@@ -21,7 +21,7 @@ usage: ensemble_check.py MODE ARGS...
   drive_grid A.h5            rotor grid with a ramp drive (docs: include/autobal/ensemble.h): the drive recorded,
                              each member's ramp end t_b rebuilt from its ramp_rate / ramp_time / omega_b,
                              time_to_balance >= t_b (the dwell counts after the ramp), the probability along
-                             each axis recomputed from `balanced`
+                             each axis (attribute probability_balanced of its coordinate) recomputed
   drive_member A.h5 T.h5 I J member (I, J) of a 2-axis grid with a drive (stop_at_balance off) has the final state
                              of the single `rotor transient` run T.h5: residual, final ball angles, max
                              amplitude, t_reached and the accepted steps
@@ -361,10 +361,10 @@ def drive_grid(path):
     for j, nm in enumerate(names):
         other = tuple(k for k in range(len(names)) if k != j)
         want = (bal == 1).sum(axis=other) / good.sum(axis=other)
-        got = g["probability_balanced_by_" + nm][()]
+        got = np.asarray(g[nm].attrs["probability_balanced"])
         if got.shape != want.shape or np.max(np.abs(got - want)) > 1e-15:
-            fail(f"probability_balanced_by_{nm} = {got}, recomputed {want}")
-        if g["probability_balanced_by_" + nm].attrs["units"] != "1":
+            fail(f"{nm}@probability_balanced = {got}, recomputed {want}")
+        if g[nm].attrs["probability_balanced_units"] != "1":
             fail("probability units")
     ok(f"{path}: ramp drive recorded; {n_checked} balanced members all balanced after their ramp end t_b; "
        f"probability along {names} recomputed")
