@@ -83,6 +83,7 @@ struct cli_config {
   size_t nknown, capknown;
   const char *path;
   int dup_error; /* set by the ini handler on a duplicated key */
+  int too_many;  /* set by the ini handler past CLI_CONFIG_MAX_KEYS keys */
   char dup_what[256];
   cli_read *reads; /* every key read, in the order of the first read */
   size_t nreads, capreads;
@@ -135,6 +136,9 @@ void cli_config_free(cli_config *c) {
   free(c);
 }
 
+/* Most keys (given, defaults declared, --set) one configuration may hold. */
+#define CLI_CONFIG_MAX_KEYS 4096
+
 static cli_entry *find_entry(const cli_config *c, const char *section, const char *key) {
   size_t i;
   for (i = 0; i < c->n; i++)
@@ -158,6 +162,10 @@ static int add_entry(cli_config *c, const char *section, const char *key, const 
     e->from_set = from_set;
     e->is_default = 0;
     return 0;
+  }
+  if (c->n >= CLI_CONFIG_MAX_KEYS) {
+    c->too_many = 1; /* bounded: the key lookups are linear, a huge file must not make them crawl */
+    return -2;
   }
   if (c->n == c->cap) {
     size_t cap = c->cap ? 2 * c->cap : 32;
@@ -186,6 +194,7 @@ static int add_entry(cli_config *c, const char *section, const char *key, const 
 
 static int ini_handler_fn(void *user, const char *section, const char *name, const char *value) {
   cli_config *c = user;
+  if (c->too_many || c->dup_error) return 0; /* inih goes on to the end: skip the rest cheaply */
   return add_entry(c, section, name, value, 0) == 0 && !c->dup_error;
 }
 
@@ -215,6 +224,11 @@ static int config_parse_text(cli_ctx *ctx, const char *name, const char *text, s
     }
   }
   rc = ini_parse_string(text, ini_handler_fn, c);
+  if (c->too_many)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "config file '%s': more than %d keys (the limit CLI_CONFIG_MAX_KEYS; a configuration of "
+                    "autobal has at most a few hundred)",
+                    name, CLI_CONFIG_MAX_KEYS);
   if (c->dup_error)
     return cli_fail(ctx, CLI_EXIT_INPUT,
                     "config file '%s': key '%s' is given more than once (or continued on an indented line)", name,
@@ -388,6 +402,7 @@ int cli_config_override(cli_ctx *ctx, const char *assignment) {
   const char *eq = strchr(assignment, '=');
   char section[128], key[128];
   size_t ls, lk;
+  int rc;
   const char *cmd = ctx->command ? ctx->command : "CMD";
   if (!eq)
     return cli_fail(ctx, CLI_EXIT_USAGE, "--set '%s': '=' is missing; expected --set SECTION.KEY=VALUE", assignment);
@@ -408,7 +423,10 @@ int cli_config_override(cli_ctx *ctx, const char *assignment) {
   section[ls] = '\0';
   memcpy(key, dot + 1, lk);
   key[lk] = '\0';
-  if (add_entry(ctx->cfg, section, key, eq + 1, 1) != 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  if ((rc = add_entry(ctx->cfg, section, key, eq + 1, 1)) != 0)
+    return rc == -2 ? cli_fail(ctx, CLI_EXIT_INPUT, "too many keys: more than %d in all (the limit CLI_CONFIG_MAX_KEYS)",
+                               CLI_CONFIG_MAX_KEYS)
+                    : cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   return CLI_EXIT_OK;
 }
 
@@ -1182,12 +1200,20 @@ char *cli_config_effective_ini(const cli_config *c, const char *command) {
   return b.p;
 }
 
+int cli_config_has_key(const cli_config *c, const char *section, const char *key) {
+  return c && find_entry(c, section, key) != NULL;
+}
+
 int cli_config_add_default(cli_ctx *ctx, const char *section, const char *key, const char *value) {
   cli_config *c = ctx->cfg;
   cli_entry *e;
+  int rc;
   if (find_entry(c, section, key))
     return cli_fail(ctx, CLI_EXIT_INPUT, "key '%s.%s' is given and recorded as a default (;default)", section, key);
-  if (add_entry(c, section, key, value, 1) != 0) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  if ((rc = add_entry(c, section, key, value, 1)) != 0)
+    return rc == -2 ? cli_fail(ctx, CLI_EXIT_INPUT, "more than %d keys in all (the limit CLI_CONFIG_MAX_KEYS)",
+                               CLI_CONFIG_MAX_KEYS)
+                    : cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   e = find_entry(c, section, key);
   if (e) e->is_default = 1;
   return CLI_EXIT_OK;

@@ -46,6 +46,9 @@ typedef struct cli_ctx {
   char err[1024];           /* the message printed on failure */
 } cli_ctx;
 
+/* 1 if the configuration holds section.key (given, --set or a recorded default), else 0. */
+int cli_config_has_key(const cli_config *c, const char *section, const char *key);
+
 cli_config *cli_config_new(const char *path);
 void cli_config_free(cli_config *c);
 /* Read ctx->config_path (if any) into ctx->cfg: a duplicated key, an unparsable line, a NUL byte

@@ -85,6 +85,16 @@ static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const cha
         free(line);
       } else if ((eq = strstr(body, " = ")) != NULL && eq > body && section[0]) {
         size_t klen = (size_t)(eq - body), vlen = strlen(eq + 3);
+        char kbuf[256];
+        snprintf(kbuf, sizeof kbuf, "%.*s", (int)(klen < sizeof kbuf ? klen : sizeof kbuf - 1), body);
+        if (cli_config_has_key(inner->cfg, section, kbuf)) {
+          free(line);
+          for (i = 0; i < npending; i++) free(pending[i]);
+          return cli_fail(outer, CLI_EXIT_IO,
+                          "'%s': root attribute %s, line %zu: key '%s.%s' is recorded more than once (a damaged "
+                          "or edited archive: autobal records every key once)",
+                          file, attr, lineno, section, kbuf);
+        }
         if (is_default) {
           char *key = malloc(klen + 1);
           if (!key) {

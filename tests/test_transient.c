@@ -214,6 +214,15 @@ static void test_options(void) {
   o.rtol = 0.0;
   CHECK_STATUS("rtol = 0", autobal_transient_options_validate(&o, &err), AUTOBAL_EINVAL);
   CHECK_MSG("rtol = 0 message", err.message, "rtol");
+  o.rtol = 1e-300;
+  o.atol = 1e-300;
+  CHECK_STATUS("rtol = atol = 1e-300 (below double rounding)", autobal_transient_options_validate(&o, &err),
+               AUTOBAL_EINVAL);
+  CHECK_MSG("rtol = 1e-300 message names rtol", err.message, "rtol");
+  CHECK_MSG("rtol = 1e-300 message gives the bound", err.message, "8.88");
+  o.rtol = 4.0 * DBL_EPSILON;
+  CHECK_STATUS("rtol = 4 DBL_EPSILON is accepted", autobal_transient_options_validate(&o, &err), AUTOBAL_SUCCESS);
+  o = autobal_transient_options_default();
   o.rtol = NAN;
   CHECK_STATUS("rtol = NaN", autobal_transient_options_validate(&o, &err), AUTOBAL_EINVAL);
   o = autobal_transient_options_default();

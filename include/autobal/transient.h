@@ -102,9 +102,14 @@ typedef struct autobal_transient_system {
 
 /* ---- options ---------------------------------------------------------------- */
 
+/* Smallest relative tolerance: 4 DBL_EPSILON (about 8.9e-16); a smaller one cannot be met in
+ * double arithmetic. */
+#define AUTOBAL_TRANSIENT_RTOL_MIN 8.8817841970012523e-16
+
 typedef struct autobal_transient_options {
   const char *stepper;    /* GSL stepper name (list above); NULL means "rk8pd"          */
-  double rtol;            /* relative tolerance, in (0, 1]             (default 1e-10)  */
+  double rtol;            /* relative tolerance, in [AUTOBAL_TRANSIENT_RTOL_MIN, 1]
+                                                                       (default 1e-10)  */
   double atol;            /* absolute tolerance, > 0 and finite        (default 1e-12)  */
   double h_init;          /* first trial step, >= 0; 0: automatic      (default 0)      */
   double h_max;           /* largest step, >= 0; 0: unlimited          (default 0)      */

@@ -74,8 +74,11 @@ int autobal_transient_options_validate(const autobal_transient_options *opt, aut
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "option stepper = \"%s\" is not a known GSL stepper: valid names are %s",
                              opt->stepper, k_stepper_names);
-  /* rtol > 1 would switch the error control off */
-  if ((rc = autobal_check_param(err, "rtol", opt->rtol, 0.0, 1, 1.0, 0, "")) != 0) return rc;
+  /* rtol > 1 would switch the error control off; below 4 DBL_EPSILON (8.9e-16) the rounding of
+   * double arithmetic alone exceeds the requested relative error, and the step size shrinks
+   * until max_steps (rtol = atol = 1e-300 used to crawl) */
+  if ((rc = autobal_check_param(err, "rtol", opt->rtol, AUTOBAL_TRANSIENT_RTOL_MIN, 0, 1.0, 0, "")) != 0)
+    return rc;
   if ((rc = autobal_check_param(err, "atol", opt->atol, 0.0, 1, INFINITY, 1, "")) != 0) return rc;
   if ((rc = autobal_check_param(err, "h_init", opt->h_init, 0.0, 0, INFINITY, 1, "")) != 0)
     return rc;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# App test (issue 19, items 1 and 6): archives crafted to hang or to attack the terminal.  A real
+# App test (issue 19, items 1, 6, 7, 8): archives and configurations crafted to hang or to attack
+# the terminal.  A real
 # archive is made by the program, then h5py adds to it: a hard-link cycle of groups, 300 nested
 # groups, attributes and names carrying terminal escape sequences (ESC, CSI as C1 U+009B, BEL).
 # `autobal info` must finish within seconds (timeout 30 s each; before the fix the cycle never
@@ -78,6 +79,30 @@ expect 4 "not a regular file" "$AUTOBAL" info pipe.h5
 expect 4 "not a regular file" "$AUTOBAL" rerun pipe.h5 -o rerun.h5
 [ ! -e rerun.h5 ] && ok "rerun of a FIFO wrote nothing" || bad "rerun of a FIFO left rerun.h5"
 expect 4 "not a regular file" "$AUTOBAL" plot pipe.h5 -o plots
+
+# 5. huge configurations (issue 19 item 7): 118,878 keys in 0.9 MB used to take 52 s before the
+#    error; now refused at the named limit at once
+"$PY" -c "open('big.ini','w').write('[r]\n' + ''.join('%x=1\n' % i for i in range(118878)))"
+start=$(date +%s%N)
+expect 3 "more than 4096 keys" "$AUTOBAL" rotor transient big.ini -o big.h5
+took=$(( ($(date +%s%N) - start) / 1000000 ))
+[ "$took" -lt 5000 ] && ok "refused in $took ms" || bad "refusing took $took ms"
+"$AUTOBAL" rotor transient --set transient.t_end=0.05 -o r0.h5 -q >/dev/null 2>&1 || bad "cannot make r0.h5"
+"$PY" - <<'EOF2' || bad "h5py could not craft the rerun archives"
+import h5py, shutil
+shutil.copy('r0.h5', 'r_big.h5'); shutil.copy('r0.h5', 'r_dup.h5')
+with h5py.File('r_big.h5', 'a') as f:
+    f.attrs['effective_config'] = f.attrs['effective_config'] + '\n[x]\n' + ''.join('%x = 1\n' % i for i in range(200000))
+with h5py.File('r_dup.h5', 'a') as f:
+    e = f.attrs['effective_config']
+    assert 't_end = 0.05' in e
+    f.attrs['effective_config'] = e.replace('t_end = 0.05', 't_end = 0.05\nt_end = 0.3', 1)
+EOF2
+expect 4 "more than 4096 in all" "$AUTOBAL" rerun r_big.h5 -o rb.h5
+[ ! -e rb.h5 ] && ok "nothing written" || bad "rb.h5 written"
+# 6. a key recorded twice in effective_config (issue 19 item 8) is a damaged archive, not a run
+expect 4 "recorded more than once" "$AUTOBAL" rerun r_dup.h5 -o rd.h5
+[ ! -e rd.h5 ] && ok "nothing written" || bad "rd.h5 written"
 
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
