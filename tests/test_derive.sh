@@ -9,7 +9,8 @@
 # and with --check-json (d) that tools/derive/check_values.json equals what it computes now;
 # then tools/derive/independent_check.py re-solves the equations as written in docs/device.md with
 # NumPy (no SymPy) and compares with the JSON (1e-10), and the device values (gravity accelerations,
-# drive torque, normal forces, static offset, impact law) from a mass-matrix assembly of docs/device.md,
+# drive torque, normal forces, rolling inertia, rolling resistance, stuck ball, static offset, impact
+# law) from a mass-matrix assembly of docs/device.md,
 # and integrates the gravity-loaded balanced state with SciPy against the first-order closed form.
 # Usage: test_derive.sh <source dir> [python3]
 set -euo pipefail

@@ -203,6 +203,14 @@ typedef struct autobal_rotor_params {
   /* Prescribed spin speed Omega(t) (docs/rotor.md, "Prescribed spin speed"); added in 0.2.0 at
    * the end of the struct: a zeroed drive is AUTOBAL_ROTOR_DRIVE_CONSTANT, i.e. omega above. */
   autobal_rotor_drive drive;
+  /* Gravity (docs/device.md section 2), added at the end of the struct: zeroed = off.  The weight
+   * component g_s = g sin(shaft_angle) acts along -y of the fixed axes on rotor, housing, balls and
+   * unbalance (the axial component is not modelled).  Used by the right-hand sides (transients)
+   * with the prescribed drives (the unbalance's weight is carried by the drive); the balanced
+   * states, the linear analyses and the closed forms ignore it.  Not in the CLI's config yet. */
+  int gravity;                /* 0 off (default), 1 on */
+  double shaft_angle;         /* rad, angle of the shaft to the vertical, [0, pi] (pi/2: horizontal) */
+  double g;                   /* m/s^2, gravitational acceleration, > 0 (default 9.80665) */
 } autobal_rotor_params;
 
 /* The default example (docs/rotor.md): M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,

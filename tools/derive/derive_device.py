@@ -20,8 +20,6 @@ energies, planes, Lagrange residuals and numeric conventions and adds:
     resting contact (two balls as one body) with its contact force.
 Every check raises AssertionError when it fails; the printed lines end in ': OK'.
 """
-import math
-
 import sympy as sp
 
 G_STD = 9.80665             # m/s^2
@@ -48,13 +46,10 @@ def small_masses(p):
 
 
 def cached_equations(mdl):
+    """Model.equations() once per model (the residuals are expanded: the costly part)."""
     if getattr(mdl, '_eqs', None) is None:
-        mdl._eqs = dr_equations(mdl)
+        mdl._eqs = type(mdl).equations(mdl)
     return mdl._eqs
-
-
-def dr_equations(mdl):
-    return type(mdl).equations(mdl)
 
 
 def make_model(dr, planes, gravity=False, rho=None, stuck=()):
@@ -620,17 +615,16 @@ def resting_contact(dr, planes, gval):
     _say('check: resting contact: the pair as one body (phi_2 = phi_1 + gap) gives the rotor equations and '
          'pair equation = ball 1 + ball 2 equations with the constraint imposed: OK')
     lam = impose(fb[1])
-    for two in (False,):
-        c = Case(dr, one, two, False, extra={g_s: gval})
-        par, pdata = params_for(dr, one, two)
-        gv = 2 * sp.asin(2 * F(RHO) / (2 * par[p.r[0]]))
-        c.s[gap] = gv
-        # ball 2 rides with ball 1: rate of ball 1 is its check-state rate
-        acc = c.solve(oq, ob, o0)
-        out = {'gap_angle': gv, 'accelerations': acc, 'lambda': c.value(lam.subs(gap, gv)),
-               'g_s': gval, 'note': 'one_plane parameters and state, prescribed speed, gravity on; ball 12 at '
-                                    'phi_11 + gap_angle with the same rate as ball 11; lambda = generalized contact '
-                                    'force on phi_12 (N m), compressive if > 0'}
+    c = Case(dr, one, False, False, extra={g_s: gval})      # one plane, prescribed speed
+    par, _ = params_for(dr, one, False)
+    gv = 2 * sp.asin(2 * F(RHO) / (2 * par[p.r[0]]))
+    c.s[gap] = gv
+    # ball 2 rides with ball 1: rate of ball 1 is its check-state rate
+    acc = c.solve(oq, ob, o0)
+    out = {'gap_angle': gv, 'accelerations': acc, 'lambda': c.value(lam.subs(gap, gv)),
+           'g_s': gval, 'note': 'one_plane parameters and state, prescribed speed, gravity on; ball 12 at '
+                                'phi_11 + gap_angle with the same rate as ball 11; lambda = generalized contact '
+                                'force on phi_12 (N m), compressive if > 0'}
     return out
 
 

@@ -159,6 +159,7 @@ def main():
     perturbation_check(data, bad)
     if not bad:
         print('independent check (device): NumPy mass-matrix solve of docs/device.md with gravity, normal forces, '
+              'rolling inertia, rolling resistance, a stuck ball as an extra unbalance (holding force, N), '
               'static offset, impact law (mass matrix, restitution, energy loss, drive work, pair-only limit) equal '
               '%s, largest relative difference %.2e (tolerance 1e-10); gravity 1X response: SciPy vs '
               'the closed form (1X coefficients within 2 eps^2, mean shift O(eps^2): scales by 1/4 with g/2): OK' % (path, worst_dev))
@@ -220,10 +221,13 @@ def mass_matrix_T(k, planes, q, ph0, motor, J, W):
     return Mm, b
 
 
-def device_accelerations(case, motor, g_s, W=None, dW=None, state=None, ball_angles=None, ball_rates=None):
+def device_accelerations(case, motor, g_s, W=None, dW=None, state=None, ball_angles=None, ball_rates=None,
+                         rho=None, f_roll=0.0):
     """Accelerations with gravity: (M v)' form.  Unknowns as mass_matrix_T's velocities.  The forces:
     supports, gyroscopic C Omega, ball viscosity, weights; the velocity-quadratic terms of T written
-    out (the centripetal parts of s'' and the ball-rotor coupling), as in docs/device.md."""
+    out (the centripetal parts of s'' and the ball-rotor coupling), as in docs/device.md.  Options:
+    rho: every ball a rolling solid sphere of that radius (T_rot = 1/5 m ((r + rho) Omega - r phi')^2);
+    f_roll: rolling resistance f N sgn(psi') (N from the accelerations: the matrix loses symmetry)."""
     k = lumped(case['parameters'])
     st = state or case['state']
     q = np.array([st['x'], st['y'], st['alpha'], st['beta']])
@@ -291,6 +295,37 @@ def device_accelerations(case, motor, g_s, W=None, dW=None, state=None, ball_ang
         mo = case['motor']
         L = mo['L_0'] * (1 - W / mo['Omega_0'])
         f[4] = L - mo['k_r'] * W + visc - k['C'] * ad * bd - torque_const
+    j = 0
+    res_torque = 0.0               # + sum r f N sgn on the phi_0 row's right-hand side, as a row
+    res_row = np.zeros(len(Mm))
+    for pl in planes:
+        d = pl['d']
+        for i, (m, r) in enumerate(zip(pl['m'], pl['r'])):
+            c = n0 + j
+            ang, w = phis[pl['_first'] + i], rates[pl['_first'] + i]
+            if rho is not None:     # Hessian of T_rot; prescribed: its Omega' part to the right
+                Mm[c, c] += 0.4 * m * r * r
+                if motor:
+                    Mm[4, 4] += 0.4 * m * (r + rho)**2
+                    Mm[4, c] -= 0.4 * m * r * (r + rho)
+                    Mm[c, 4] -= 0.4 * m * r * (r + rho)
+                else:
+                    f[c] += 0.4 * m * r * (r + rho) * dW
+            if f_roll:
+                kk = r * f_roll * (1.0 if w > W else -1.0)
+                # + kk N on the ball row's left, N = m (r w^2 - u_D'' cos - (v_D'' + g_s) sin)
+                row = np.zeros(len(Mm))
+                row[0], row[3] = -kk * m * math.cos(ang), -kk * m * d * math.cos(ang)
+                row[1], row[2] = -kk * m * math.sin(ang), kk * m * d * math.sin(ang)
+                const = kk * m * (r * w * w - g_s * math.sin(ang))
+                Mm[c] += row
+                f[c] -= const
+                res_row += row
+                res_torque += const
+            j += 1
+    if f_roll and motor:            # the reaction on the rotor: - sum kk N on the phi_0 row's left
+        Mm[4] -= res_row
+        f[4] += res_torque
     acc = np.linalg.solve(Mm, f)
     torque = None
     if not motor:
@@ -367,9 +402,63 @@ def device_checks(data, bad):
                     bad.append('static offset %s: %g vs 0' % (n, v))
             else:
                 worst = max(worst, compare(bad, 'gravity/%s/static_offset/%s' % (key, n), v, so[n], 1e-10))
+        for motor in (False, True):
+            mode = 'motor' if motor else 'prescribed'
+            names = ['x_dd', 'y_dd', 'alpha_dd', 'beta_dd'] + (['phi_0_dd'] if motor else []) + \
+                [n + '_dd' for n in ball_names(case)]
+            # rolling inertia (no gravity)
+            acc, _, _, _ = device_accelerations(case, motor, 0.0, rho=data['rolling_inertia']['rho'])
+            ref = data['rolling_inertia'][key][mode]['accelerations']
+            for n, v in zip(names, acc):
+                worst = max(worst, compare(bad, 'rolling_inertia/%s/%s/%s' % (key, mode, n), v, ref[n], 1e-10))
+            # rolling resistance (gravity on)
+            rr = data['rolling_resistance']
+            acc, _, N, _ = device_accelerations(case, motor, rr['g_s'], f_roll=rr['f'])
+            ref = rr[key][mode]
+            for n, v in zip(names, acc):
+                worst = max(worst, compare(bad, 'rolling_resistance/%s/%s/%s' % (key, mode, n), v,
+                                           ref['accelerations'][n], 1e-10))
+            for n, v in zip(ball_names(case), N):
+                worst = max(worst, compare(bad, 'rolling_resistance/%s/%s/N/%s' % (key, mode, n), v, ref['N'][n], 1e-10))
+            worst = max(worst, stuck_check(data, case, key, motor, bad))
         # impact law from the mass matrix
         for ikey, blk in data['impact'][key].items():
             worst = max(worst, impact_check(case, ikey, blk, bad))
+    return worst
+
+
+def stuck_check(data, case, key, motor, bad):
+    """Ball 1 of plane 1 stuck: a mass fixed to the rotor, i.e. an extra unbalance (m_11 at r_11,
+    psi_11) in a plane of its own at the same d; then the holding force and N of docs/device.md."""
+    sh = data['stiction_holding']
+    gs = sh['g_s']
+    c2 = dict(case)
+    p1 = dict(case['planes'][0])
+    m, r, ps = p1['m'][0], p1['r'][0], p1['psi'][0]
+    for fld in ('m', 'r', 'h', 'psi', 'rate'):
+        p1[fld] = p1[fld][1:]
+    pseudo = dict(d=p1['d'], m0=m, r0=r, psi0=ps, m=[], r=[], h=[], psi=[], rate=[])
+    c2['planes'] = [p1] + list(case['planes'][1:]) + [pseudo]
+    mode = 'motor' if motor else 'prescribed'
+    acc, _, _, _ = device_accelerations(c2, motor, gs)
+    free = [n for n in ball_names(case) if n != 'phi_11']
+    names = ['x_dd', 'y_dd', 'alpha_dd', 'beta_dd'] + (['phi_0_dd'] if motor else []) + [n + '_dd' for n in free]
+    ref = sh[key][mode]
+    worst = 0.0
+    if set(names) != set(ref['accelerations']):
+        bad.append('stiction_holding/%s/%s: names' % (key, mode))
+        return worst
+    for n, v in zip(names, acc):
+        worst = max(worst, compare(bad, 'stiction_holding/%s/%s/%s' % (key, mode, n), v, ref['accelerations'][n], 1e-10))
+    W = case['motor']['Omega'] if motor else case['prescribed']['Omega']
+    dW = acc[4] if motor else case['prescribed']['Omega_dot']
+    ang = case['state']['phi_0'] + ps
+    d = p1['d']
+    uDdd, vDdd = acc[0] + d * acc[3], acc[1] - d * acc[2]
+    H = m * (r * dW - uDdd * math.sin(ang) + (vDdd + gs) * math.cos(ang))
+    N = m * (r * W * W - uDdd * math.cos(ang) - (vDdd + gs) * math.sin(ang))
+    worst = max(worst, compare(bad, 'stiction_holding/%s/%s/H' % (key, mode), H, ref['H'], 1e-10))
+    worst = max(worst, compare(bad, 'stiction_holding/%s/%s/N' % (key, mode), N, ref['N'], 1e-10))
     return worst
 
 

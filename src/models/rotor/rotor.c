@@ -46,6 +46,9 @@ struct autobal_rotor {
   size_t im, mn;
   double *mW, *mL, Jeff;
   double *store;
+  /* gravity (docs/device.md section 2): g_s = g sin(theta) (m/s^2), the weights g_s W on y (N)
+   * and g_s sum_j d_j m_j on alpha (N m), W = M + all small masses; all 0 when off */
+  double gs, gW, gD;
   autobal_error err;
 };
 
@@ -433,6 +436,7 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_sincos1(phi0, &sw, &cw);
   ball_sincos(phi, R->sn, R->cs, N);
   rotor_forces(&R->L, omega, omega_rate, q, qd, b);
+  if (R->gs != 0.0) b[1] -= R->gW, b[2] += R->gD; /* the weights (docs/device.md section 2) */
   for (j = 0; j < R->n_planes; j++) {
     double Sss = 0.0, Ssc = 0.0, Scc = 0.0, Fu = 0.0, Fv = 0.0;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
@@ -462,6 +466,8 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
         Fv += wds0 * c0;
       }
     }
+    /* gravity: the balls' phi'' gain -g_s cos(phi)/r (v_D'' -> v_D'' + g_s in (3.4)) */
+    if (R->gs != 0.0) Fu += R->gs * Ssc, Fv -= R->gs * Scc;
     /* s_u'' = -S_ss u_D'' + S_sc v_D'' + F_u, s_v'' = S_sc u_D'' - S_cc v_D'' + F_v */
     cp[j].Suu = -Sss + R->mtot[j];
     cp[j].Suv = Ssc;
@@ -480,7 +486,8 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
 
   rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
-    const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
+    /* eq. (3.3); gravity acts on the balls as an upward acceleration g_s of D */
+    const double uDdd = uvdd[j][0], vDdd = R->gs != 0.0 ? uvdd[j][1] + R->gs : uvdd[j][1];
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) /* eq. (3.4) solved for phi_i'' */
       dydt[8 + N + k] = (uDdd * sn[k] - vDdd * cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
@@ -513,6 +520,7 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
   autobal_sincos1(phi0, &sw, &cw);
   ball_sincos(psi, R->sn, R->cs, N);
   rotor_forces(&R->L, omega, omega_rate, q, qd, b);
+  if (R->gs != 0.0) b[1] -= R->gW, b[2] += R->gD; /* the weights (docs/device.md section 2) */
   for (j = 0; j < R->n_planes; j++) {
     /* rotor-axes quantities (3.10): s_xi, s_eta and their rates */
     double sxi = R->s0[j] * R->cpsi0[j], seta = R->s0[j] * R->spsi0[j];
@@ -535,6 +543,12 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
       Tee -= mc * c;
       Gxi += a * s - bp * c;
       Geta -= a * c + bp * s;
+    }
+    if (R->gs != 0.0) {
+      /* gravity: (a_xi, a_eta) -> (a_xi - g_xi, a_eta - g_eta) in (3.13), g on the rotor axes
+       * (g_xi, g_eta) = -g_s (sin phi_0, cos phi_0) */
+      Gxi += R->gs * (Txx * sw + Txe * cw);
+      Geta += R->gs * (Txe * sw + Tee * cw);
     }
     {
       /* (3.11) differentiated twice:
@@ -573,7 +587,8 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
 
   rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
-    const double uDdd = uvdd[j][0], vDdd = uvdd[j][1]; /* eq. (3.3) */
+    /* eq. (3.3); gravity acts on the balls as an upward acceleration g_s of D */
+    const double uDdd = uvdd[j][0], vDdd = R->gs != 0.0 ? uvdd[j][1] + R->gs : uvdd[j][1];
     /* acceleration of D on the rotor axes (docs/rotor.md, after (3.13)) */
     const double axi = uDdd * cw + vDdd * sw, aeta = -uDdd * sw + vDdd * cw;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
@@ -621,6 +636,7 @@ autobal_rotor_params autobal_rotor_params_default(void) {
   (void)autobal_rotor_lumped_from_hardware(&p.hw, &p.lumped, NULL);
   p.inertia = AUTOBAL_ROTOR_INERTIA_PAPER;
   p.omega = 500.0;
+  p.g = 9.80665; /* gravity off (p.gravity = 0) */
   p.axial = 0;
   p.n_planes = 1;
   p.plane[0].d = 0.10;
@@ -967,6 +983,17 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
       AUTOBAL_SUCCESS)
     return st;
   if ((st = check_drive(&p->drive, L.C, p->inertia, err)) != AUTOBAL_SUCCESS) return st;
+  if (p->gravity != 0 && p->gravity != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter gravity = %d is not valid: use 0 or 1",
+                             p->gravity);
+  if (p->gravity &&
+      ((st = autobal_check_param(err, "shaft_angle", p->shaft_angle, 0.0, 0, M_PI, 0, "rad")) != AUTOBAL_SUCCESS ||
+       (st = autobal_check_param(err, "g", p->g, 0.0, 1, INFINITY, 1, "m/s^2")) != AUTOBAL_SUCCESS))
+    return st;
+  if (p->gravity && p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "gravity with drive.mode = MOTOR is not implemented yet (the weight torque of "
+                             "the unbalance on phi_0): use a prescribed speed, or gravity = 0");
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
@@ -1143,6 +1170,19 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->p.plane[j].ball_rate = R->rate_init + R->off[j];
   }
   for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) memset(&R->p.plane[j], 0, sizeof R->p.plane[j]);
+  R->gs = R->gW = R->gD = 0.0;
+  if (p->gravity) { /* docs/device.md section 2: g_s (M + sum m) on y, -g_s sum d m on alpha */
+    double W = R->L.M, D = 0.0;
+    R->gs = p->g * sin(p->shaft_angle);
+    for (j = 0; j < p->n_planes; j++) {
+      double mj = p->plane[j].m0;
+      for (k = R->off[j]; k < R->off[j] + R->cnt[j]; k++) mj += R->m[k];
+      W += mj;
+      D += p->plane[j].d * mj;
+    }
+    R->gW = R->gs * W;
+    R->gD = R->gs * D;
+  }
   R->err = e;
   return R;
 }
