@@ -71,6 +71,8 @@ int cli_cmd_plot(cli_ctx *ctx) {
   int st, status = 0, k = 0;
 
   if (!path) return cli_fail(ctx, CLI_EXIT_USAGE, "plot: give an archive: autobal plot FILE.h5 [-o DIR]");
+  if (ctx->output && !ctx->output[0])
+    return cli_fail(ctx, CLI_EXIT_USAGE, "plot: -o needs a directory name (it is empty)");
   /* the same checks and messages as `autobal info` before starting Python */
   autobal_error_clear(&err);
   st = autobal_archive_open_read(path, &a, &err);

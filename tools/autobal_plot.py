@@ -1378,10 +1378,21 @@ def main(argv=None):
     ap.add_argument("-q", "--quiet", action="store_true", help="do not list the files written")
     args = ap.parse_args(argv)
     notes = []
+    if args.outdir == "":
+        sys.stderr.write("autobal_plot.py: error: -o needs a directory name (it is empty)\n")
+        return 2
+    if os.path.exists(args.outdir) and not os.path.isdir(args.outdir):
+        sys.stderr.write("autobal_plot.py: error: -o '%s' exists and is not a directory (the pictures go into a "
+                         "directory)\n" % args.outdir)
+        return 4
     try:
         written = plot_archive(args.archive, args.outdir, args.stem, notes)
     except ArchiveError as e:
         sys.stderr.write("autobal_plot.py: error: %s\n" % e)
+        return 4
+    except OSError as e:  # the output directory cannot be created or written
+        sys.stderr.write("autobal_plot.py: error: cannot write the pictures into '%s': %s\n"
+                         % (args.outdir, e.strerror or e))
         return 4
     for n in notes:
         sys.stderr.write("autobal_plot.py: note: %s\n" % n)

@@ -104,5 +104,11 @@ expect 4 "more than 4096 in all" "$AUTOBAL" rerun r_big.h5 -o rb.h5
 expect 4 "recorded more than once" "$AUTOBAL" rerun r_dup.h5 -o rd.h5
 [ ! -e rd.h5 ] && ok "nothing written" || bad "rd.h5 written"
 
+# 7. plot -o naming a file or nothing (issue 19 item 5): a message and exit 4 / 2, no traceback
+touch not_a_dir
+expect 4 "is not a directory" "$AUTOBAL" plot base.h5 -o not_a_dir
+! grep -q Traceback err.txt && ok "no Python traceback" || bad "a Python traceback"
+expect 2 "needs a directory name" "$AUTOBAL" plot base.h5 -o ""
+
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
