@@ -34,8 +34,9 @@
  *       right-hand side at each (JSON), so that rotor_scipy.py can check its
  *       own independent right-hand side against the library's.  With OMEGA_B
  *       and T_B: the run-up drive of `runup` (NBALLS must be 2), states at
- *       t = 0 and t = 0.4 T_B .. 1.6 T_B (ball angles near phi_0(t), rates
- *       near Omega(t)), so that runup_scipy.py can check its right-hand side.
+ *       t = 0 and t = 0.4 k T_B - 0.0123, k = 1 .. 4 (during and after the
+ *       ramp; ball angles phi_0(t) + U(-pi, pi), rates Omega(t) + U(-50, 50)),
+ *       so that runup_scipy.py can check its right-hand side.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>

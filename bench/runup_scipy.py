@@ -512,17 +512,22 @@ def main():
         e, _ = err_of(yend, ref, scale)
         used = e > 10.0 * floor
         if used:
-            pts.append((e, ts_))
+            pts.append((e, ts_, nfev))
         print(f"{tol:>10.1e}{nfev:>11d}{e:>12.2e}{ts_ * 1e3:>12.1f}"
               + ("" if used else "   (below 10x the references' difference: not used)"))
     pts.sort()
     le = np.log([p[0] for p in pts])
     lt = np.log([p[1] for p in pts])
+    ln = np.log([p[2] for p in pts])
+    per_eval = float(np.median([p[1] / p[2] for p in pts])) if pts else math.nan
     print()
     print("matched error: SciPy DOP853 time interpolated (log-log) at autobal's error; "
           f"{load()}")
+    print("(also the DOP853 evaluations interpolated the same way, their ratio to autobal's, and "
+          "the time ratio recomputed as evaluations x the median time per evaluation over the "
+          f"grid, {per_eval * 1e6:.2f} us, which smooths SciPy's timing noise)")
     print(f"{'autobal tol':>12}{'evals':>8}{'autobal err':>13}{'autobal [ms]':>14}{'DOP853 [ms]':>13}"
-          f"{'ratio':>8}")
+          f"{'ratio':>8}{'DOP853 evals':>14}{'evals ratio':>13}{'ratio (evals)':>15}")
     matched = []
     for tol in mtols:
         if tol not in crun:
@@ -534,8 +539,10 @@ def main():
             print(f"{tol:>12.0e}{ev:>8d}{e:>13.2e}{tc * 1e3:>14.3f}   outside the DOP853 error range")
             continue
         tsp = math.exp(float(np.interp(math.log(e), le, lt)))
+        nsp = math.exp(float(np.interp(math.log(e), le, ln)))
         matched.append(tsp / tc)
-        print(f"{tol:>12.0e}{ev:>8d}{e:>13.2e}{tc * 1e3:>14.3f}{tsp * 1e3:>13.1f}{tsp / tc:>7.0f}x")
+        print(f"{tol:>12.0e}{ev:>8d}{e:>13.2e}{tc * 1e3:>14.3f}{tsp * 1e3:>13.1f}{tsp / tc:>7.0f}x"
+              f"{nsp:>14.0f}{nsp / ev:>13.2f}{nsp * per_eval / tc:>14.0f}x")
     if matched:
         m = min(matched)
         print(f"smallest time ratio SciPy DOP853 / autobal at matched error: {m:.0f}x "
