@@ -126,7 +126,7 @@ expect 3 "R_q" "$AUTOBAL" rerun badcfg.h5 -o x.h5
 cp roots.h5 baddef.h5 && "$PY" -c "import h5py; h = h5py.File('baddef.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\n;default R_q = 1\n'"
 expect 3 "R_q" "$AUTOBAL" rerun baddef.h5 -o x.h5
 cp roots.h5 twice.h5 && "$PY" -c "import h5py; h = h5py.File('twice.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\nR_w = 2\n;default R_w = 3\n'"
-expect 4 "recorded as a default" "$AUTOBAL" rerun twice.h5 -o x.h5
+expect 4 "recorded more than once" "$AUTOBAL" rerun twice.h5 -o x.h5
 cp roots.h5 defnan.h5 && "$PY" -c "import h5py; h = h5py.File('defnan.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\n;default R_w = zz\n'"
 expect 3 "R_w = 'zz'" "$AUTOBAL" rerun defnan.h5 -o x.h5
 [ ! -e x.h5 ] && ok "no x.h5 left by the failed reruns" || bad "a failed rerun left x.h5"
