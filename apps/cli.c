@@ -735,7 +735,8 @@ int cli_get_quantities(cli_ctx *ctx, const char *section, const char *key, const
   record(ctx, section, key, e, NULL, present);
   if (!e) return CLI_EXIT_OK;
   if (strlen(e->value) >= sizeof buf)
-    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: list too long", where(ctx, e), section, key);
+    return cli_fail(ctx, CLI_EXIT_INPUT, "%s: %s.%s: list too long (%zu characters; at most %zu)", where(ctx, e),
+                    section, key, strlen(e->value), sizeof buf - 1);
   strcpy(buf, e->value);
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     double v;

@@ -581,7 +581,13 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
   if (path == NULL || path[0] == '\0')
     return autobal_error_set(err, AUTOBAL_EINVAL, "archive path is NULL or empty");
   len = strlen(path);
-  if (len > 4000) return autobal_error_set(err, AUTOBAL_EINVAL, "archive path is too long");
+  /* the temporary "<path>.partial-<pid>" (at most 19 more bytes) must fit in PATH_MAX = 4096
+   * bytes with its NUL */
+  if (len > 4076)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "archive path is too long (%zu bytes; at most 4076, so that the temporary "
+                             "'<path>.partial-<pid>' fits in PATH_MAX = 4096)",
+                             len);
   if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode) && stat(path, &st) != 0)
     return autobal_error_set(err, AUTOBAL_EIO, "archive path '%s' is a dangling symbolic link", path);
   if (stat(path, &st) == 0) {

@@ -110,5 +110,15 @@ expect 4 "is not a directory" "$AUTOBAL" plot base.h5 -o not_a_dir
 ! grep -q Traceback err.txt && ok "no Python traceback" || bad "a Python traceback"
 expect 2 "needs a directory name" "$AUTOBAL" plot base.h5 -o ""
 
+# 8. long output paths (issue 19 item 5): 4021 bytes are written, 4216 refused with the limit named
+d="$SCRATCH/lp"; for i in $(seq 1 19); do d="$d/$(printf 'd%.0s' $(seq 1 200))"; done
+d="$d/$(printf 'e%.0s' $(seq 1 150))"; mkdir -p "$d"
+longf="${d}/$(printf 'f%.0s' $(seq 1 40)).h5"
+while [ ${#longf} -lt 4021 ]; do longf="${d}/x${longf#${d}/}"; done
+expect 0 "" "$AUTOBAL" pendulum roots -o "$longf" -q
+[ -f "$longf" ] && ok "a ${#longf}-byte output path is written" || bad "the ${#longf}-byte path was not written"
+expect 3 "at most 4076" "$AUTOBAL" pendulum roots -o "$d/$(printf 'g%.0s' $(seq 1 200))/$(printf 'h%.0s' $(seq 1 200)).h5"
+rm -rf "$SCRATCH/lp"
+
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
