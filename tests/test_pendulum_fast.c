@@ -267,10 +267,13 @@ int main(void) {
     CHECK_MSG("... as a failed grid point", err.message, "grid point");
     s.n_k = 0, s.k = NULL;
     CHECK_STATUS("map, 65 k: the same", autobal_pendulum_map(&s, v, NULL, &err), AUTOBAL_EINVAL);
-    autobal_pendulum_params_from_k(1e80, 0.1, 0.05, 0.1, 0.5, &p, NULL);
-    CHECK_STATUS("verdict: R_w = 1e80 is reported", autobal_pendulum_verdict(&p, &vv, NULL, &err),
-                 AUTOBAL_EINVAL);
-    CHECK_MSG("... naming the coefficient that is not finite", err.message, "not finite");
+    CHECK_STATUS("params: R_w = 1e80 is refused (the coefficients of (6) would overflow)",
+                 autobal_pendulum_params_from_k(1e80, 0.1, 0.05, 0.1, 0.5, &p, &err), AUTOBAL_EINVAL);
+    CHECK_MSG("... naming R_w", err.message, "R_w");
+    CHECK_MSG("... and the bound", err.message, "1e+06");
+    autobal_pendulum_params_from_k(1e6, 0.1, 0.05, 0.1, 0.5, &p, NULL);
+    CHECK_STATUS("verdict: R_w = 1e6 (the bound) is computed", autobal_pendulum_verdict(&p, &vv, NULL, &err),
+                 AUTOBAL_SUCCESS);
   }
   {
     /* autobal_pendulum_verdict validates with one combined test and leaves

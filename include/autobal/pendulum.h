@@ -58,10 +58,10 @@ AUTOBAL_BEGIN_DECLS
 
 /* Dimensionless parameters (all fields dimensionless, psi0 in radians). */
 typedef struct autobal_pendulum_params {
-  double R_w;  /* rotor speed omega/omega0, in [0, inf)                        */
+  double R_w;  /* rotor speed omega/omega0, in [0, AUTOBAL_PENDULUM_MAX_RATIO]  */
   double R_m;  /* mass ratio m/(M + 2m), in (0, 1/2)                           */
-  double H;    /* external damping H2/(omega0 M_sigma), in [0, inf)            */
-  double h;    /* pendulum damping H1/(m l^2 omega0), in [0, inf)              */
+  double H;    /* external damping H2/(omega0 M_sigma), in [0, MAX_RATIO]     */
+  double h;    /* pendulum damping H1/(m l^2 omega0), in [0, MAX_RATIO]       */
   double psi0; /* main-motion angle (4), rad, in [0, pi/2) (sin psi0 = Me/2ml) */
 } autobal_pendulum_params;
 
@@ -107,6 +107,10 @@ AUTOBAL_API int autobal_pendulum_params_from_physical(const autobal_pendulum_phy
 /* Linearization (5) and characteristic polynomial (6)                      */
 /* ======================================================================== */
 
+/* Upper bound of R_w, H and h (1e6): the coefficients of (6) hold their powers up to the
+ * eighth, which must stay finite (a rotor at a million times its natural frequency is far
+ * outside the model anyway). */
+#define AUTOBAL_PENDULUM_MAX_RATIO 1e6
 #define AUTOBAL_PENDULUM_ORDER 8 /* degree of (6) = size of the first-order system */
 #define AUTOBAL_PENDULUM_NCOEF 9 /* coefficients of (6)                           */
 

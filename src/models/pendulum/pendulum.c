@@ -27,14 +27,16 @@ int autobal_pendulum_params_validate(const autobal_pendulum_params *p, autobal_e
   int st;
   if (p == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum parameters: NULL pointer");
   /* fast path: exactly the conditions checked below */
-  if (isfinite(p->R_w) && p->R_w >= 0.0 && isfinite(p->R_m) && p->R_m > 0.0 && p->R_m < 0.5 &&
-      isfinite(p->H) && p->H >= 0.0 && isfinite(p->h) && p->h >= 0.0 && isfinite(p->psi0) &&
-      p->psi0 >= 0.0 && p->psi0 < PEND_PI / 2)
+  if (p->R_w >= 0.0 && p->R_w <= AUTOBAL_PENDULUM_MAX_RATIO && isfinite(p->R_m) && p->R_m > 0.0 && p->R_m < 0.5 &&
+      p->H >= 0.0 && p->H <= AUTOBAL_PENDULUM_MAX_RATIO && p->h >= 0.0 && p->h <= AUTOBAL_PENDULUM_MAX_RATIO &&
+      isfinite(p->psi0) && p->psi0 >= 0.0 && p->psi0 < PEND_PI / 2)
     return AUTOBAL_SUCCESS;
-  if ((st = autobal_check_param(err, "R_w", p->R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  /* bounded above: the coefficients of (6) hold powers of R_w, H and h up to the eighth, which
+   * overflow a double from about 1e38 (R_w = 1e300 used to fail inside the root finder) */
+  if ((st = autobal_check_param(err, "R_w", p->R_w, 0.0, 0, AUTOBAL_PENDULUM_MAX_RATIO, 0, "")) != 0) return st;
   if ((st = autobal_check_param(err, "R_m", p->R_m, 0.0, 1, 0.5, 1, "")) != 0) return st;
-  if ((st = autobal_check_param(err, "H", p->H, 0.0, 0, INFINITY, 1, "")) != 0) return st;
-  if ((st = autobal_check_param(err, "h", p->h, 0.0, 0, INFINITY, 1, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "H", p->H, 0.0, 0, AUTOBAL_PENDULUM_MAX_RATIO, 0, "")) != 0) return st;
+  if ((st = autobal_check_param(err, "h", p->h, 0.0, 0, AUTOBAL_PENDULUM_MAX_RATIO, 0, "")) != 0) return st;
   if ((st = autobal_check_param(err, "psi0", p->psi0, 0.0, 0, PEND_PI / 2, 1, "rad")) != 0)
     return st;
   return AUTOBAL_SUCCESS;
