@@ -137,9 +137,9 @@ expect 3 "lumped.C" "[0, inf)" -- "$A" rotor transient $(lumped C=-1)
 expect 3 "positive semidefinite" "c_xbeta" -- "$A" rotor transient $(lumped c_xbeta=1e5)          # impossible coupling
 # pendulum, dimensionless and physical
 expect 3 "R_m" "(0, 0.5)" -- "$A" pendulum roots --set pendulum.R_m=0
-expect 3 "R_w" "[0, inf)" -- "$A" pendulum roots --set pendulum.R_w=-1
-expect 3 "H" "[0, inf)" -- "$A" pendulum roots --set pendulum.H=-0.1
-expect 3 "h" "[0, inf)" -- "$A" pendulum roots --set pendulum.h=-0.5
+expect 3 "R_w" "[0, 1e+06]" -- "$A" pendulum roots --set pendulum.R_w=-1
+expect 3 "H" "[0, 1e+06]" -- "$A" pendulum roots --set pendulum.H=-0.1
+expect 3 "h" "[0, 1e+06]" -- "$A" pendulum roots --set pendulum.h=-0.5
 phys() { local o=() kv; for kv in M=10 e=0.002 m=0.1 l=0.15 c=1e5 H1=0.002 H2=50 omega=300 "$@"; do o+=(--set "pendulum.$kv"); done; echo "${o[@]}"; }
 expect 0 "R_w" -- "$A" pendulum roots $(phys)                                                  # the valid physical set
 expect 3 "parameter c = 0" "(0, inf)" -- "$A" pendulum roots $(phys c=0)                         # zero stiffness
