@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "autobal/ensemble.h"
+#include "autobal/study.h"
 #include "internal.h"
 
 #define TWO_PI 6.283185307179586476925286766559
@@ -273,6 +274,39 @@ static void rotor_finish(void *wp, double t, const double y[], double *residual,
   }
 }
 
+/* The residual unbalance in engineering units, as `rotor transient` reports it
+ * (src/studies/rotor_transient.c, engineering_compute): the worst plane's |s_j| and the ISO
+ * 21940-11 grade of n_planes times it with the rotor mass, at the speed at the end. */
+static const autobal_ensemble_quantity rotor_quantities[2] = {
+    {"residual_unbalance_abs_final", "kg m",
+     "residual unbalance |s_j| at the end of the run, the largest over the balancer planes (one plane: |s|)"},
+    {"balance_grade_final", "mm/s",
+     "ISO 21940-11 balance quality grade at the end: G = e Omega, e = n_planes max_j |s_j| / m with m the rotor mass "
+     "(m_p; M with lumped input) and Omega the speed at the end of the run"}};
+
+static void rotor_finish_quantities(void *wp, double t, const double y[], double *q) {
+  rotor_worker *w = wp;
+  const rotor_model *M = w->M;
+  const size_t np = M->p.n_planes;
+  size_t j;
+  double worst = 0.0, omega = fabs(w->omega), dv[3], m;
+  for (j = 0; j < np; j++) {
+    double s4[4], u = autobal_rotor_plane_unbalance(w->rot, j, M->frame, t, y, s4) == AUTOBAL_SUCCESS ? hypot(s4[0], s4[1]) : NAN;
+    if (isnan(u)) {
+      worst = NAN;
+      break;
+    }
+    if (u > worst) worst = u;
+  }
+  if (M->p.drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT) { /* the speed at the end (the largest if that is 0) */
+    omega = autobal_rotor_spin(w->rot, t, y, dv) == AUTOBAL_SUCCESS ? fabs(dv[0]) : NAN;
+    if (!(omega > 0)) omega = autobal_rotor_drive_speed_max(w->rot);
+  }
+  m = M->p.input == AUTOBAL_ROTOR_HARDWARE ? M->p.hw.m_p : M->p.lumped.M;
+  q[0] = worst;
+  q[1] = autobal_balance_grade(worst * (double)np, m, omega);
+}
+
 static int rotor_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
   static const char *const q[8] = {"x", "y", "alpha", "beta", "x_rate", "y_rate", "alpha_rate", "beta_rate"};
   static const char *const qu[8] = {"m", "m", "rad", "rad", "m/s", "m/s", "rad/s", "rad/s"};
@@ -452,6 +486,9 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   out->write_attrs = rotor_write_attrs;
   out->hash = rotor_hash;
   out->destroy = rotor_destroy;
+  out->n_quantities = 2;
+  out->quantity = rotor_quantities;
+  out->finish_quantities = rotor_finish_quantities;
   return AUTOBAL_SUCCESS;
 }
 
