@@ -5,7 +5,9 @@
  *
  * What stays here: the [ensemble] and [transient] keys and their messages; the --resume/--force
  * rules for journals and an existing archive; the journal's identity (an FNV-1a hash of the sorted
- * configuration without the run-control keys threads/resume/max_members/time_limit); SIGINT as the
+ * configuration without the run-control keys threads/resume/max_members/time_limit and the
+ * statistics keys target_grade/target_unbalance/write_unbalance, which change no member's result,
+ * so that a resume may change them); SIGINT as the
  * engine's cancel hook; the progress bar; and the MPI layer.
  *
  * MPI (build option AUTOBAL_MPI, code under AUTOBAL_HAVE_MPI), through the engine's
@@ -306,7 +308,8 @@ static int config_hash(const cli_ctx *ctx, const ens_spec *s, uint64_t *out) {
     eq = strstr(p, " = ");
     if (!strcmp(sec, "[ensemble]") && eq &&
         (!strncmp(p, "threads ", 8) || !strncmp(p, "resume ", 7) || !strncmp(p, "max_members ", 12) ||
-         !strncmp(p, "time_limit ", 11)))
+         !strncmp(p, "time_limit ", 11) || !strncmp(p, "target_grade ", 13) || !strncmp(p, "target_unbalance ", 17) ||
+         !strncmp(p, "write_unbalance ", 16)))
       continue;
     if (n == cap) {
       char **nlines = realloc(lines, (cap = cap ? 2 * cap : 64) * sizeof *lines);

@@ -52,6 +52,26 @@ chk unbalance ramp.h5
 run "$AUTOBAL" rotor ensemble --set ensemble.n1=3 --set ensemble.n2=3 --set transient.t_end=1 -o plain.h5
 chk nodatasets plain.h5
 
+# the targets change no member: a resume may change them (the journal's identity leaves them out),
+# and the result equals a run in one go with the new targets
+run "$AUTOBAL" rotor ensemble --set ensemble.n1=3 --set ensemble.n2=3 --set transient.t_end=1 --set ensemble.max_members=4 \
+    --set ensemble.target_grade=G100 -o part.h5
+run "$AUTOBAL" rotor ensemble --set ensemble.n1=3 --set ensemble.n2=3 --set transient.t_end=1 --set ensemble.resume=true \
+    --set ensemble.target_grade=G630 --set ensemble.write_unbalance=true -o part.h5
+run "$AUTOBAL" rotor ensemble --set ensemble.n1=3 --set ensemble.n2=3 --set transient.t_end=1 \
+    --set ensemble.target_grade=G630 --set ensemble.write_unbalance=true -o whole.h5
+"$PY" - <<'PY' && ok "resume with another target = one run with it" || bad "resume with another target differs"
+import h5py, numpy as np, sys
+a, b = h5py.File("part.h5")["rotor/ensemble"], h5py.File("whole.h5")["rotor/ensemble"]
+sa, sb = dict(a["statistics/balance_grade_final"].attrs), dict(b["statistics/balance_grade_final"].attrs)
+same = np.array_equal(a["balance_grade_final"][()], b["balance_grade_final"][()]) and sa == sb and sa["target"] == 630
+print(sa["target"], sa["n_within_target"], sb["n_within_target"])
+sys.exit(0 if same else 1)
+PY
+
+# the pendulum ensemble has no residual unbalance in g mm: the keys are refused
+expect 3 "target_grade" "$AUTOBAL" pendulum ensemble --set ensemble.target_grade=G6.3 -o bad.h5
+
 # bad targets: exit 3, the key named, nothing written
 expect 3 "target_grade" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=0 -o bad.h5
 expect 3 "target_grade" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=-6.3 -o bad.h5
