@@ -343,7 +343,8 @@ AUTOBAL_API void autobal_ensemble_free(autobal_ensemble *e);
 /* Last error message ("" after success; never NULL; e may be NULL). */
 AUTOBAL_API const char *autobal_ensemble_errmsg(const autobal_ensemble *e);
 
-/* Number of members; summary length (AUTOBAL_ENSEMBLE_ANGLES + n_angles);
+/* Number of members; summary length (AUTOBAL_ENSEMBLE_ANGLES + n_angles
+ * + n_quantities);
  * 0 for NULL. */
 AUTOBAL_API size_t autobal_ensemble_n_members(const autobal_ensemble *e);
 AUTOBAL_API size_t autobal_ensemble_summary_length(const autobal_ensemble *e);

@@ -544,6 +544,7 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
     e->s.target[j].quantity = e->tname[j];
     e->tq[j] = (size_t)autobal_ensemble_quantity_find(e, e->tname[j]);
   }
+  for (j = s->n_targets; j < AUTOBAL_ENSEMBLE_MAX_TARGETS; j++) e->s.target[j].quantity = NULL; /* not kept */
   if (s->random) {
     e->n_members = s->samples;
     for (j = 0; j < s->n_params; j++) e->stride[j] = 1;
