@@ -215,7 +215,8 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * named in the archive by frame_name, e.g. "fixed").  Parameters: psi_K,
  * rate_K (ball K = 1..n, plane 1 first; rad, rad/s, relative to the rotor),
  * omega (rad/s; the constant speed: not with a ramp or table drive),
- * ball_damping (kg/s, every ball), m0 (kg, plane 1), x, y (m, initial
+ * ball_damping (kg/s, every ball), m0 (kg, plane 1), psi0 (rad, the angle of
+ * plane 1's unbalance on the rotor; added in 0.2.0), x, y (m, initial
  * displacement); with a RAMP drive (p->drive) also
  *     ramp_rate (rad/s^2, > 0): the member's ramp keeps omega_a and t_a of
  *               p->drive and ends at t_b = t_a + |omega_b - omega_a| / ramp_rate

@@ -38,7 +38,7 @@ static uint64_t hash_doubles(uint64_t h, const double *v, size_t n) {
 }
 
 /* ================================ rotor ================================================ */
-enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B };
+enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B, R_PSI0 };
 
 typedef struct rotor_model {
   autobal_rotor_params p; /* ball arrays point into storage, a table drive's points into table */
@@ -87,6 +87,8 @@ static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t
   if (!strcmp(name, "omega")) *kind = R_OMEGA, info->units = "rad/s", info->long_name = "spin speed omega";
   else if (!strcmp(name, "ball_damping")) *kind = R_DAMPING, info->units = "kg/s", info->long_name = "damping h of every ball";
   else if (!strcmp(name, "m0")) *kind = R_M0, info->units = "kg", info->long_name = "unbalance mass m0 of plane 1";
+  else if (!strcmp(name, "psi0"))
+    *kind = R_PSI0, info->units = "rad", info->periodic = 1, info->long_name = "angle psi0 of the unbalance of plane 1 on the rotor";
   else if (!strcmp(name, "x")) *kind = R_X, info->units = "m", info->long_name = "initial displacement x of the centre of mass";
   else if (!strcmp(name, "y")) *kind = R_Y, info->units = "m", info->long_name = "initial displacement y of the centre of mass";
   else if (!strcmp(name, "ramp_rate"))
@@ -99,7 +101,7 @@ static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t
   return AUTOBAL_SUCCESS;
 unknown:
   return autobal_error_set(err, AUTOBAL_EINVAL,
-                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, x, y; "
+                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, psi0, x, y; "
                            "with a ramp drive also ramp_rate, ramp_time, omega_b",
                            name, M->n_balls);
 }
@@ -218,6 +220,7 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
         for (i = 0; i < M->n_balls; i++) w->bdamp[i] = v;
         break;
       case R_M0: p.plane[0].m0 = v; break;
+      case R_PSI0: p.plane[0].psi0 = v; break;
       case R_X: p.q0[0] = v; break;
       case R_Y: p.q0[1] = v; break;
       default: break;

@@ -3,8 +3,8 @@
 # target_unbalance, write_unbalance; apps/cmd_ensemble.c, src/studies/ensemble*.c), checked by
 # ensemble_stats_check.py against computations in Python: U from the archived final angles, the
 # grade from U and the speed at the end, quantiles vs numpy.quantile, P(target) vs a count, the
-# Wilson interval vs its closed form; one plane, two planes, a random omega, a ramp with a varied
-# final speed; the per-member datasets only on request; bad targets (exit 3 naming the key).
+# Wilson interval vs its closed form; one plane, two planes, a random omega, a random unbalance
+# angle psi0, a ramp with a varied final speed; the per-member datasets only on request; bad targets (exit 3 naming the key).
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
 here=$(cd "$(dirname "$0")" && pwd)
@@ -33,6 +33,11 @@ run "$AUTOBAL" rotor ensemble --set ensemble.mode=random --set ensemble.samples=
     $T --set "ensemble.target_unbalance=50 g mm" -o r1b.h5
 want=$("$PY" -c "import h5py; s=h5py.File('r1.h5')['rotor/ensemble/statistics']; u=s['residual_unbalance_abs_final'].attrs; g=s['balance_grade_final'].attrs; print('median %.4g,' % (u['median']*1e6)); print('median %.4g,' % g['median']); print('= %.4f: %d of %d' % (g['probability_within_target'], g['n_within_target'], g['n_evaluated']))")
 while IFS= read -r w; do grep -qF -- "$w" out.txt && ok "console shows '$w'" || { bad "console lacks '$w'"; cat out.txt; }; done <<< "$want"
+
+# the unbalance's angle varied too (psi0 of plane 1): U with each member's psi0
+run "$AUTOBAL" rotor ensemble --set ensemble.mode=random --set ensemble.samples=24 --set ensemble.seed=3 \
+    --set ensemble.param3=psi0 --set transient.t_end=6 --set transient.stop_at_balance=false $T -o psi0.h5
+chk unbalance psi0.h5
 
 # two planes: the worst plane's |s_j|, the grade of 2 U, target_unbalance shared by the planes
 run "$AUTOBAL" rotor ensemble "$DATA/rotor_two_planes.ini" --set ensemble.param1=psi_1 --set ensemble.param2=psi_3 \

@@ -40,14 +40,16 @@ def wilson(k, n):
     return max(0.0, c - h), min(1.0, c + h)
 
 
-def plane_unbalance(f, ang):
-    """|s_j| of each plane from the final angles (members x balls, plane 1 first)."""
+def plane_unbalance(f, ang, psi0_1=None):
+    """|s_j| of each plane from the final angles (members x balls, plane 1 first); psi0_1: plane 1's
+    unbalance angle of each member when the ensemble varies it."""
     out, off = [], 0
     j = 1
     while f"rotor/plane{j}" in f:
         a = f[f"rotor/plane{j}"].attrs
         nb = int(a["n_balls"])
-        s = a["m0"] * a["r0"] * np.exp(1j * a["psi0"]) + np.zeros(ang.shape[0], complex)
+        psi0 = psi0_1 if (j == 1 and psi0_1 is not None) else a["psi0"]
+        s = a["m0"] * a["r0"] * np.exp(1j * psi0) + np.zeros(ang.shape[0], complex)
         for i in range(nb):
             s = s + a["ball_mass"][i] * a["ball_radius"][i] * np.exp(1j * ang[:, off + i])
         out.append(np.abs(s))
@@ -56,18 +58,25 @@ def plane_unbalance(f, ang):
     return np.array(out)
 
 
+def member_values(g, name, shape):
+    """Parameter `name` of every member (None when the ensemble does not vary it)."""
+    if name not in g.attrs["parameters"].split(", "):
+        return None
+    v = g[name][()]
+    if g.attrs["mode"] == "random":
+        return v.reshape(shape)
+    axis = g.attrs["parameters"].split(", ").index(name)  # grid axes in row-major order
+    sh = [1] * len(shape)
+    sh[axis] = len(v)
+    return np.broadcast_to(v.reshape(sh), shape)
+
+
 def speed_end(g, f, shape):
     """Each member's speed at the end: its own parameter, else the drive's or the rotor's."""
-    params = g.attrs["parameters"].split(", ")  # grid axes in row-major order
     for name in ("omega", "omega_b"):
-        if name in g:
-            v = g[name][()]
-            if g.attrs["mode"] == "random":
-                return np.abs(v).reshape(shape)
-            axis = params.index(name)
-            sh = [1] * len(shape)
-            sh[axis] = len(v)
-            return np.broadcast_to(np.abs(v).reshape(sh), shape)
+        v = member_values(g, name, shape)
+        if v is not None:
+            return np.abs(v)
     if "drive_mode" in g.attrs:
         assert g.attrs["drive_mode"] == "ramp"
         return np.full(shape, abs(g.attrs["drive_omega_b"]))
@@ -80,7 +89,8 @@ def unbalance(path, jpath=None):
     status = g["status"][()]
     shape = status.shape
     ang = g["final_angle"][()].reshape(-1, g["final_angle"].shape[-1])
-    sj = plane_unbalance(f, ang)
+    psi0 = member_values(g, "psi0", shape)
+    sj = plane_unbalance(f, ang, None if psi0 is None else np.ravel(psi0))
     npl = sj.shape[0]
     U_py = sj.max(axis=0).reshape(shape)
     U = g["residual_unbalance_abs_final"][()]
