@@ -74,6 +74,15 @@ print(sa["target"], sa["n_within_target"], sb["n_within_target"])
 sys.exit(0 if same else 1)
 PY
 
+# autobal rerun repeats the targets and the per-member datasets (effective_config)
+run "$AUTOBAL" rerun whole.h5 -o whole2.h5
+"$PY" - <<'PY' && ok "rerun: same per-member grades and statistics" || bad "rerun differs"
+import h5py, numpy as np, sys
+a, b = h5py.File("whole.h5")["rotor/ensemble"], h5py.File("whole2.h5")["rotor/ensemble"]
+sys.exit(0 if np.array_equal(a["balance_grade_final"][()], b["balance_grade_final"][()])
+         and dict(a["statistics/balance_grade_final"].attrs) == dict(b["statistics/balance_grade_final"].attrs) else 1)
+PY
+
 # the pendulum ensemble has no residual unbalance in g mm: the keys are refused
 expect 3 "target_grade" "$AUTOBAL" pendulum ensemble --set ensemble.target_grade=G6.3 -o bad.h5
 
