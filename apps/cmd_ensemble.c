@@ -5,7 +5,9 @@
  *
  * What stays here: the [ensemble] and [transient] keys and their messages; the --resume/--force
  * rules for journals and an existing archive; the journal's identity (an FNV-1a hash of the sorted
- * configuration without the run-control keys threads/resume/max_members/time_limit); SIGINT as the
+ * configuration without the run-control keys threads/resume/max_members/time_limit and the
+ * statistics keys target_grade/target_unbalance/write_unbalance, which change no member's result,
+ * so that a resume may change them); SIGINT as the
  * engine's cancel hook; the progress bar; and the MPI layer.
  *
  * MPI (build option AUTOBAL_MPI, code under AUTOBAL_HAVE_MPI), through the engine's
@@ -34,8 +36,10 @@
 #include "autobal/ensemble.h"
 #include "autobal/pendulum.h"
 #include "autobal/rotor.h"
+#include "autobal/study.h"
 #include "autobal/transient.h"
 #include "cli.h"
+#include "units.h"
 
 #define PI 3.1415926535897932384626433832795
 #define NP AUTOBAL_ENSEMBLE_MAX_PARAMS
@@ -57,6 +61,10 @@ typedef struct ens_spec {
   int physical;
   double y0[8];
   autobal_ensemble_member mb;
+  /* rotor: the residual unbalance's targets ([ensemble] target_grade, target_unbalance) */
+  double target_grade;      /* mm/s; NaN: none */
+  double target_unbalance;  /* kg m, the whole rotor's permissible residual unbalance; NaN: none */
+  const char *target_grade_text;
 } ens_spec;
 
 /* ---- configuration ------------------------------------------------------------------------- */
@@ -117,6 +125,38 @@ static int read_transient(cli_ctx *ctx, ens_spec *s) {
     autobal_error_clear(&err);
     if (autobal_transient_options_validate(&t->transient, &err) != AUTOBAL_SUCCESS)
       return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: %s", err.message);
+  }
+  return CLI_EXIT_OK;
+}
+
+/* [ensemble] target_grade = G6.3 (P(G <= 6.3 mm/s) at the end), target_unbalance = 50 g mm (the
+ * whole rotor's permissible residual unbalance: with two planes each plane's |s_j| against half of
+ * it, as `rotor transient` checks [balance] grade), write_unbalance = true (the per-member
+ * datasets; off by default so that a configuration of 0.1.0 writes its datasets of 0.1.0). */
+static int read_unbalance_targets(cli_ctx *ctx, ens_spec *s) {
+  autobal_ensemble_settings *t = &s->set;
+  int rc, has_u = 0;
+  s->target_grade = s->target_unbalance = NAN;
+  s->target_grade_text = NULL;
+  if ((rc = cli_get_string(ctx, "ensemble", "target_grade", NULL, &s->target_grade_text, NULL))) return rc;
+  if (s->target_grade_text && cli_parse_grade(s->target_grade_text, &s->target_grade) != 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[ensemble]: target_grade = '%s' is not a balance quality grade: write G followed by a positive number "
+                    "in mm/s, or the number with mm/s (ISO 21940-11 grades: G0.4, G1, G2.5, G6.3, G16, G40, ...); allowed (0, inf) mm/s",
+                    s->target_grade_text);
+  if ((rc = cli_get_quantity(ctx, "ensemble", "target_unbalance", "kg m", NAN, &s->target_unbalance, &has_u))) return rc;
+  if (has_u && !(s->target_unbalance > 0 && isfinite(s->target_unbalance)))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[ensemble]: target_unbalance = %g g mm is out of range: allowed (0, inf) (e.g. 50 g mm)",
+                    s->target_unbalance * 1e6);
+  if ((rc = cli_get_bool(ctx, "ensemble", "write_unbalance", 0, &t->write_quantities, NULL))) return rc;
+  t->n_targets = 0;
+  if (!isnan(s->target_grade)) {
+    t->target[t->n_targets].quantity = "balance_grade_final";
+    t->target[t->n_targets++].limit = s->target_grade;
+  }
+  if (has_u) {
+    t->target[t->n_targets].quantity = "residual_unbalance_abs_final";
+    t->target[t->n_targets++].limit = s->target_unbalance / (double)s->rp.n_planes;
   }
   return CLI_EXIT_OK;
 }
@@ -234,6 +274,7 @@ static int read_ensemble(cli_ctx *ctx, ens_spec *s) {
   if ((rc = cli_get_double(ctx, "ensemble", "time_limit", 0.0, &t->time_limit, NULL))) return rc;
   if (!(t->time_limit >= 0 && isfinite(t->time_limit)))
     return cli_fail(ctx, CLI_EXIT_INPUT, "[ensemble]: time_limit = %g s is out of range: allowed [0, inf) (0: none)", t->time_limit);
+  if (s->model == MODEL_ROTOR) return read_unbalance_targets(ctx, s);
   return CLI_EXIT_OK;
 }
 
@@ -267,7 +308,8 @@ static int config_hash(const cli_ctx *ctx, const ens_spec *s, uint64_t *out) {
     eq = strstr(p, " = ");
     if (!strcmp(sec, "[ensemble]") && eq &&
         (!strncmp(p, "threads ", 8) || !strncmp(p, "resume ", 7) || !strncmp(p, "max_members ", 12) ||
-         !strncmp(p, "time_limit ", 11)))
+         !strncmp(p, "time_limit ", 11) || !strncmp(p, "target_grade ", 13) || !strncmp(p, "target_unbalance ", 17) ||
+         !strncmp(p, "write_unbalance ", 16)))
       continue;
     if (n == cap) {
       char **nlines = realloc(lines, (cap = cap ? 2 * cap : 64) * sizeof *lines);
@@ -479,6 +521,70 @@ static int write_model(void *user, autobal_archive *a) {
 }
 
 /* ---- summary on stdout ------------------------------------------------------------------------ */
+/* The residual unbalance's distribution and targets (rotor), for the JSON summary. */
+static void json_unbalance(cli_json *jj, const ens_spec *s, const autobal_ensemble *e) {
+  size_t k, i;
+  double qp[AUTOBAL_ENSEMBLE_N_QUANTILES];
+  for (i = 0; i < AUTOBAL_ENSEMBLE_N_QUANTILES; i++) qp[i] = autobal_ensemble_quantile_probability(i);
+  cli_json_numbers(jj, "quantile_probabilities", qp, AUTOBAL_ENSEMBLE_N_QUANTILES);
+  for (k = 0; k < autobal_ensemble_n_quantities(e); k++) {
+    const autobal_ensemble_quantity *q = autobal_ensemble_quantity_get(e, k);
+    autobal_ensemble_stats sx;
+    if (autobal_ensemble_get_stats(e, k, &sx) != AUTOBAL_SUCCESS) continue;
+    cli_json_object(jj, q->name);
+    cli_json_string(jj, "units", q->units);
+    cli_json_int(jj, "n", (long)sx.n);
+    cli_json_numbers(jj, "quantiles", sx.quantile, AUTOBAL_ENSEMBLE_N_QUANTILES);
+    cli_json_number(jj, "mean", sx.mean);
+    for (i = 0; i < s->set.n_targets; i++) {
+      autobal_ensemble_target_result tr;
+      double ci[2];
+      if (autobal_ensemble_get_target(e, i, &tr) != AUTOBAL_SUCCESS || tr.quantity != k) continue;
+      cli_json_number(jj, "target", tr.limit);
+      cli_json_int(jj, "n_within_target", (long)tr.n_within);
+      cli_json_int(jj, "n_evaluated", (long)tr.n);
+      cli_json_number(jj, "probability_within_target", tr.p);
+      ci[0] = tr.wilson_low, ci[1] = tr.wilson_high;
+      cli_json_numbers(jj, "probability_within_target_wilson95", ci, 2);
+    }
+    cli_json_object_end(jj);
+  }
+}
+
+/* The same on the console: g mm and mm/s. */
+static void print_unbalance(const ens_spec *s, const autobal_ensemble *e) {
+  static const char *const ql[AUTOBAL_ENSEMBLE_N_QUANTILES] = {"min", "5%", "25%", "median", "75%", "95%", "max"};
+  const int two = s->rp.n_planes > 1, hw = s->rp.input == AUTOBAL_ROTOR_HARDWARE;
+  const double mass = hw ? s->rp.hw.m_p : s->rp.lumped.M;
+  const char *grid_note = s->set.random ? "" : "; a grid: the fraction of its points, the interval as for random draws";
+  char nplanes[24];
+  size_t k, i;
+  snprintf(nplanes, sizeof nplanes, "%zu", s->rp.n_planes);
+  for (k = 0; k < autobal_ensemble_n_quantities(e) && k < 2; k++) {
+    autobal_ensemble_stats sx;
+    const double f = k == 0 ? 1e6 : 1.0; /* kg m -> g mm; the grade is in mm/s */
+    if (autobal_ensemble_get_stats(e, k, &sx) != AUTOBAL_SUCCESS || !sx.n) continue;
+    if (k == 0)
+      printf("  residual unbalance at the end, g mm (%s; %zu members without failure):\n    ",
+             two ? "the worst plane's |s_j|" : "|s|", sx.n);
+    else
+      printf("  balance grade at the end, mm/s (ISO 21940-11 G = e Omega, e = %s%sU/%s, %s = %g kg, Omega at the end):\n    ",
+             two ? nplanes : "", two ? " " : "", hw ? "m_p" : "M", hw ? "m_p" : "M", mass);
+    for (i = 0; i < AUTOBAL_ENSEMBLE_N_QUANTILES; i++) printf("%s %.4g, ", ql[i], sx.quantile[i] * f);
+    printf("mean %.4g%s\n", sx.mean * f, sx.n_nan ? " (some values not finite, left out)" : "");
+  }
+  for (i = 0; i < s->set.n_targets; i++) {
+    autobal_ensemble_target_result tr;
+    if (autobal_ensemble_get_target(e, i, &tr) != AUTOBAL_SUCCESS || !tr.n) continue;
+    if (tr.quantity == 1)
+      printf("  P(G <= %g mm/s) = %.4f: %zu of %zu members; Wilson 95%% interval [%.4f, %.4f]%s\n", tr.limit, tr.p, tr.n_within,
+             tr.n, tr.wilson_low, tr.wilson_high, grid_note);
+    else
+      printf("  P(U <= %.4g g mm%s) = %.4f: %zu of %zu members; Wilson 95%% interval [%.4f, %.4f]%s\n", s->target_unbalance * 1e6,
+             two ? ", each plane within half of it" : "", tr.p, tr.n_within, tr.n, tr.wilson_low, tr.wilson_high, grid_note);
+  }
+}
+
 static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensemble *e, const autobal_ensemble_tally *t,
                           const ens_mpi *mp, int threads, double wall, int complete) {
   const autobal_ensemble_settings *p = &s->set;
@@ -498,6 +604,12 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensembl
     cli_json_int(&jj, "n_balanced", (long)t->n_balanced);
     cli_json_quantity(&jj, "probability_balanced", t->p, "1");
     cli_json_quantity(&jj, "probability_balanced_stderr", t->p_stderr, "1");
+    {
+      double ci[2] = {NAN, NAN};
+      if (t->n_ok) autobal_ensemble_wilson_interval(t->n_balanced, t->n_ok, 1.959963984540054, &ci[0], &ci[1]);
+      cli_json_quantities(&jj, "probability_balanced_wilson95", ci, 2, "1");
+    }
+    if (s->model == MODEL_ROTOR) json_unbalance(&jj, s, e);
     cli_json_quantity(&jj, "time_to_balance_mean", t->ttb_mean, s->model == MODEL_PENDULUM ? "1" : "s");
     cli_json_quantity(&jj, "time_to_balance_median", t->ttb_median, s->model == MODEL_PENDULUM ? "1" : "s");
     cli_json_bool(&jj, "complete", complete);
@@ -522,11 +634,16 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensembl
   else if (s->model == MODEL_ROTOR && s->rp.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE)
     printf("  drive: table of %zu points from t = %g s to %g s; balanced counts after its last time\n", s->rp.drive.n_points,
            s->rp.drive.table_t[0], s->rp.drive.table_t[s->rp.drive.n_points - 1]);
-  if (t->n_ok)
-    printf("  probability of balancing: %.4f +- %.4f (%zu of %zu members that ran without failure)\n", t->p, t->p_stderr,
-           t->n_balanced, t->n_ok);
+  if (t->n_ok) {
+    double lo, hi;
+    autobal_ensemble_wilson_interval(t->n_balanced, t->n_ok, 1.959963984540054, &lo, &hi);
+    printf("  probability of balancing: %.4f +- %.4f (%zu of %zu members that ran without failure); Wilson 95%% "
+           "interval [%.4f, %.4f]\n",
+           t->p, t->p_stderr, t->n_balanced, t->n_ok, lo, hi);
+  }
   if (t->n_balanced)
     printf("  time to balance %s: mean %.4g, median %.4g, max %.4g\n", tu, t->ttb_mean, t->ttb_median, t->ttb_max);
+  if (s->model == MODEL_ROTOR) print_unbalance(s, e);
   if (!p->random && p->n_params == 2 && p->param[0].n <= 48 && p->param[1].n <= 96) {
     size_t i1, i2;
     printf("  basin of attraction (rows %s %g..%g, columns %s %g..%g; # balanced, . not, x failed, ? not run):\n",

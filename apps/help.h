@@ -222,15 +222,20 @@
   HELP_ROTOR_PARAMS \
   "[transient] as `rotor transient` (t_end = 20, rtol = 1e-10, atol = 1e-9, ...), but stop_at_balance = true by default\n" \
   HELP_ENSEMBLE_KEYS \
+  "[ensemble] target_grade = G6.3 (or 6.3 mm/s)  target_unbalance = 50 g mm   (P(grade at the end <= target),\n" \
+  "           P(residual unbalance <= target; two planes: each plane within half), Wilson 95% intervals)\n" \
+  "           write_unbalance = false (true: per-member residual_unbalance_abs_final, balance_grade_final)\n" \
   "[drive]    as `rotor transient` (mode = constant|ramp|table); with a ramp or table a member is balanced only\n" \
   "           when the dwell below balance_tol lies after the end of its ramp (t_b; a table's last time)\n" \
   "parameters: psi_K, rate_K (initial angle/rate of ball K relative to the rotor; K = 1..N, plane 1 first),\n" \
-  "            omega (constant drive only), ball_damping (every ball), m0 (plane 1), x, y (initial displacement);\n" \
+  "            omega (constant drive only), ball_damping (every ball), m0, psi0 (plane 1's unbalance mass and\n" \
+  "            angle), x, y (initial displacement);\n" \
   "            with [drive] mode = ramp: ramp_rate (rad/s^2 > 0: t_b = t_a + |omega_b - omega_a| / ramp_rate),\n" \
   "            ramp_time (s > 0: t_b = t_a + ramp_time), omega_b (rad/s, the final speed)\n" \
   "default: grid psi_1 x psi_2, 16 x 16 over [-pi, pi)\n" \
   "\narchive: /rotor (model), /rotor/ensemble (variables over the parameter axes, or over 'member' when\n" \
-  "random; probability_balanced etc. as attributes), /rotor/ensemble/series/member_M, .../execution\n" \
+  "random; probability_balanced etc. as attributes), /rotor/ensemble/statistics/<quantity> (quantiles, mean,\n" \
+  "targets of the residual unbalance and grade at the end), /rotor/ensemble/series/member_M, .../execution\n" \
   HELP_DOCS_ROTOR
 #define HELP_PENDULUM_ENSEMBLE \
   "Many transients of the two-pendulum autobalancer (as `pendulum transient`) over a grid or random\n" \

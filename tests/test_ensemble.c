@@ -12,7 +12,10 @@
  *  - two "processes" dealt by the `mine` hook and joined by the gather hook vs one;
  *  - the cancel hook; the archive read back; bad settings rejected with the parameter named;
  *  - a third model defined here (y' = -lambda y): time to balance in closed form, a failing
- *    right-hand side recorded as a member's status; journal errors. */
+ *    right-hand side recorded as a member's status; journal errors;
+ *  - statistics: the Wilson interval against Newcombe's (1998) published values and its closed
+ *    forms at k = 0, k = n; type-7 quantiles by hand; a member quantity's quantiles, mean and
+ *    target over a grid whose values are known (a failed member left out); bad targets. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
@@ -731,11 +734,137 @@ static void test_settle(void) {
   CHECK("min = -1 rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
 }
 
+/* ---- statistics of member quantities --------------------------------------------------------------- */
+/* The decay model's quantity: its own rate lambda, so the distribution over the grid is known. */
+static void decay_quantities(void *wp, double t, const double y[], double *q) {
+  const decay_worker *w = wp;
+  (void)t, (void)y;
+  q[0] = w->lambda;
+}
+
+static void test_stats(void) {
+  static const autobal_ensemble_quantity rate = {"rate", "1/s", "the member's decay rate"};
+  static const double x5[5] = {1, 2, 4, 8, 16};
+  const double z = 1.959963984540054, z2 = z * z;
+  /* Newcombe (1998), Statist. Med. 17:857-872, Table I, method 3 (Wilson score), to 4 decimals */
+  static const struct { size_t k, n; double lo, hi; } newcombe[4] = {
+      {81, 263, 0.2553, 0.3662}, {15, 148, 0.0624, 0.1605}, {0, 20, 0.0, 0.1611}, {1, 29, 0.0061, 0.1718}};
+  autobal_ensemble_member mb;
+  autobal_ensemble_settings s = autobal_ensemble_settings_default();
+  autobal_ensemble *e;
+  autobal_ensemble_stats st;
+  autobal_ensemble_target_result tr;
+  autobal_error err;
+  double lo, hi;
+  size_t i;
+  printf("# statistics: Wilson interval, type-7 quantiles, a member quantity's distribution and target\n");
+  for (i = 0; i < 4; i++) {
+    CHECK_STATUS("wilson", autobal_ensemble_wilson_interval(newcombe[i].k, newcombe[i].n, z, &lo, &hi), AUTOBAL_SUCCESS);
+    printf("  %zu of %zu: [%.6f, %.6f] (Newcombe 1998: [%.4f, %.4f])\n", newcombe[i].k, newcombe[i].n, lo, hi, newcombe[i].lo,
+           newcombe[i].hi);
+    CHECK_CLOSE("Wilson low vs Newcombe 1998", lo, newcombe[i].lo, 0, 5e-5);
+    CHECK_CLOSE("Wilson high vs Newcombe 1998", hi, newcombe[i].hi, 0, 5e-5);
+  }
+  /* k = 0 and k = n in closed form: [0, z^2/(n + z^2)] and [n/(n + z^2), 1] */
+  autobal_ensemble_wilson_interval(0, 40, z, &lo, &hi);
+  CHECK("k = 0: low = 0", lo == 0.0);
+  CHECK_CLOSE("k = 0: high = z^2/(n + z^2)", hi, z2 / (40 + z2), 1e-14, 0);
+  autobal_ensemble_wilson_interval(40, 40, z, &lo, &hi);
+  CHECK_CLOSE("k = n: low = n/(n + z^2)", lo, 40 / (40 + z2), 1e-14, 0);
+  CHECK("k = n: high = 1", hi == 1.0);
+  /* z = 2, 8 of 10, by hand: (0.8 + 0.2 -+ 2 sqrt(0.016 + 0.01)) / 1.4 */
+  autobal_ensemble_wilson_interval(8, 10, 2.0, &lo, &hi);
+  CHECK_CLOSE("z = 2, 8/10: low (1 - 2 sqrt(0.026))/1.4", lo, (1 - 2 * sqrt(0.026)) / 1.4, 1e-14, 0);
+  CHECK_CLOSE("z = 2, 8/10: high (1 + 2 sqrt(0.026))/1.4", hi, (1 + 2 * sqrt(0.026)) / 1.4, 1e-14, 0);
+  CHECK_STATUS("wilson k > n", autobal_ensemble_wilson_interval(3, 2, z, &lo, &hi), AUTOBAL_EINVAL);
+  CHECK("k > n: NaN", isnan(lo) && isnan(hi));
+  CHECK_STATUS("wilson n = 0", autobal_ensemble_wilson_interval(0, 0, z, &lo, &hi), AUTOBAL_EINVAL);
+  CHECK_STATUS("wilson z = 0", autobal_ensemble_wilson_interval(1, 2, 0.0, &lo, &hi), AUTOBAL_EINVAL);
+  /* type 7 by hand on 1, 2, 4, 8, 16: h = 4 p */
+  CHECK("Q(0) = min", autobal_ensemble_quantile_sorted(x5, 5, 0.0) == 1.0);
+  CHECK_CLOSE("Q(0.05): h = 0.2, 1 + 0.2 (2 - 1)", autobal_ensemble_quantile_sorted(x5, 5, 0.05), 1.2, 1e-15, 0);
+  CHECK("Q(0.25): h = 1, x[1]", autobal_ensemble_quantile_sorted(x5, 5, 0.25) == 2.0);
+  CHECK("Q(0.5): x[2]", autobal_ensemble_quantile_sorted(x5, 5, 0.5) == 4.0);
+  CHECK_CLOSE("Q(0.95): h = 3.8, 8 + 0.8 (16 - 8)", autobal_ensemble_quantile_sorted(x5, 5, 0.95), 14.4, 1e-15, 0);
+  CHECK("Q(1) = max", autobal_ensemble_quantile_sorted(x5, 5, 1.0) == 16.0);
+  CHECK("one value: every quantile is it", autobal_ensemble_quantile_sorted(x5 + 3, 1, 0.05) == 8.0 &&
+                                              autobal_ensemble_quantile_sorted(x5 + 3, 1, 1.0) == 8.0);
+  CHECK("p outside [0, 1] or n = 0: NaN", isnan(autobal_ensemble_quantile_sorted(x5, 5, 1.5)) &&
+                                             isnan(autobal_ensemble_quantile_sorted(x5, 0, 0.5)));
+  CHECK("quantile probabilities 0, .05, .25, .5, .75, .95, 1",
+        autobal_ensemble_quantile_probability(0) == 0 && autobal_ensemble_quantile_probability(1) == 0.05 &&
+            autobal_ensemble_quantile_probability(3) == 0.5 && autobal_ensemble_quantile_probability(6) == 1 &&
+            isnan(autobal_ensemble_quantile_probability(7)));
+
+  /* lambda = 1..6 on a grid: the member lambda = 6 fails (decay_rhs), the others' quantity is
+   * lambda: the statistics are those of 1, 2, 3, 4, 5 (h = 4 p), the target rate <= 2.5 holds for
+   * 2 of 5 */
+  memset(&mb, 0, sizeof mb);
+  mb.model_name = "decay";
+  mb.dim = 1, mb.n_angles = 0, mb.n_columns = 1;
+  mb.time_units = "s", mb.time_name = "time", mb.time_long_name = "time", mb.length_units = "1";
+  mb.describe = decay_describe, mb.worker_alloc = decay_alloc, mb.worker_free = decay_free, mb.setup = decay_setup;
+  mb.observe = decay_observe, mb.finish = decay_finish, mb.column_name = decay_column;
+  mb.n_quantities = 1, mb.quantity = &rate, mb.finish_quantities = decay_quantities;
+  s.n_params = 1;
+  s.param[0].name = "lambda", s.param[0].min = 1, s.param[0].max = 6, s.param[0].n = 6;
+  s.endpoint = 1;
+  s.t_end = 2, s.balance_tol = 1e-3, s.balance_revs = 1, s.revs_out = 0.5;
+  s.threads = 1;
+  s.n_targets = 1;
+  s.target[0].quantity = "rate", s.target[0].limit = 2.5;
+  e = autobal_ensemble_alloc(&mb, &s, &err);
+  CHECK("alloc with a quantity and a target", e != NULL);
+  if (!e) {
+    printf("  %s\n", err.message);
+    return;
+  }
+  CHECK("summary length: the angles (none), then the quantity", autobal_ensemble_summary_length(e) == AUTOBAL_ENSEMBLE_ANGLES + 1 &&
+                                                                    autobal_ensemble_quantity_index(e, 0) == AUTOBAL_ENSEMBLE_ANGLES &&
+                                                                    autobal_ensemble_quantity_index(e, 1) == (size_t)-1);
+  CHECK("quantity found by name", autobal_ensemble_quantity_find(e, "rate") == 0 && autobal_ensemble_quantity_find(e, "x") == -1);
+  CHECK_STATUS("run", autobal_ensemble_run(e), AUTOBAL_SUCCESS);
+  CHECK("member lambda = 6 failed", autobal_ensemble_summary(e, 5)[AUTOBAL_ENSEMBLE_STATUS] < 0);
+  CHECK("each member's quantity is its lambda", autobal_ensemble_summary(e, 2)[AUTOBAL_ENSEMBLE_ANGLES] == 3.0);
+  CHECK_STATUS("stats", autobal_ensemble_get_stats(e, 0, &st), AUTOBAL_SUCCESS);
+  printf("  rate: n %zu, quantiles %g %g %g %g %g %g %g, mean %g\n", st.n, st.quantile[0], st.quantile[1], st.quantile[2],
+         st.quantile[3], st.quantile[4], st.quantile[5], st.quantile[6], st.mean);
+  CHECK("the failed member is left out: n = 5", st.n == 5 && st.n_nan == 0);
+  CHECK("min 1, q25 2, median 3, q75 4, max 5", st.quantile[0] == 1 && st.quantile[2] == 2 && st.quantile[3] == 3 &&
+                                                    st.quantile[4] == 4 && st.quantile[6] == 5);
+  CHECK_CLOSE("q05 = 1 + 0.2", st.quantile[1], 1.2, 1e-15, 0);
+  CHECK_CLOSE("q95 = 4 + 0.8", st.quantile[5], 4.8, 1e-15, 0);
+  CHECK_CLOSE("mean 3", st.mean, 3.0, 1e-15, 0);
+  CHECK_STATUS("target", autobal_ensemble_get_target(e, 0, &tr), AUTOBAL_SUCCESS);
+  CHECK("target: 2 of 5 (1 and 2 <= 2.5)", tr.n == 5 && tr.n_within == 2 && tr.p == 0.4 && tr.quantity == 0 && tr.limit == 2.5);
+  CHECK("target interval around p", tr.wilson_low < 0.4 && tr.wilson_high > 0.4);
+  CHECK_STATUS("bad quantity", autobal_ensemble_get_stats(e, 1, &st), AUTOBAL_EINVAL);
+  CHECK_STATUS("bad target", autobal_ensemble_get_target(e, 1, &tr), AUTOBAL_EINVAL);
+  autobal_ensemble_free(e);
+  /* bad targets */
+  s.target[0].quantity = "speed";
+  CHECK("a target on an unknown quantity rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+  CHECK_MSG("the name and the member's quantities named", err.message, "'speed' is not a quantity of the decay member (rate)");
+  s.target[0].quantity = "rate", s.target[0].limit = NAN;
+  CHECK("a NaN limit rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+  CHECK_MSG("the limit named", err.message, "the limit of rate = nan is not finite");
+  s.target[0].limit = 1, s.n_targets = 2, s.target[1].quantity = "rate", s.target[1].limit = 2;
+  CHECK("two targets on one quantity rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+  CHECK_MSG("the duplicate named", err.message, "target 2: rate already has a target");
+  s.n_targets = 5;
+  CHECK("five targets rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+  CHECK_MSG("the count named", err.message, "n_targets = 5 is out of range: allowed [0, 4]");
+  s.n_targets = 0;
+  mb.finish_quantities = NULL;
+  CHECK("a quantity without finish_quantities rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_rotor();
   test_pendulum();
   test_third_model();
   test_settle();
+  test_stats();
   return check_summary();
 }

@@ -87,7 +87,16 @@ AUTOBAL_BEGIN_DECLS
 /* Most members whose full time series are kept. */
 #define AUTOBAL_ENSEMBLE_MAX_SERIES 1024
 
-/* A member's summary: doubles at these indices, then n_angles final angles. */
+/* Member quantities (autobal_ensemble_member.n_quantities) and targets on them. */
+#define AUTOBAL_ENSEMBLE_MAX_QUANTITIES 8
+#define AUTOBAL_ENSEMBLE_MAX_TARGETS 4
+/* Quantiles of a quantity's statistics: at p = 0, 0.05, 0.25, 0.5, 0.75, 0.95, 1
+ * (autobal_ensemble_quantile_probability). */
+#define AUTOBAL_ENSEMBLE_N_QUANTILES 7
+
+/* A member's summary: doubles at these indices, then n_angles final angles, then the member's
+ * n_quantities quantities (quantity k at AUTOBAL_ENSEMBLE_ANGLES + n_angles + k, see
+ * autobal_ensemble_quantity_index; added in 0.2.0: the layout before them is unchanged). */
 enum autobal_ensemble_summary_index {
   AUTOBAL_ENSEMBLE_STATUS = 0,          /* autobal status of the run: 0 reached t_end, 2 (AUTOBAL_EVENT)
                                            stopped at balance, < 0 failure (set-up or run)          */
@@ -113,6 +122,13 @@ typedef struct autobal_ensemble_param_info {
   int positive;          /* 1: only values > 0 are meaningful (a rate, a duration): alloc
                             rejects a range with min <= 0 (added in 0.2.0)              */
 } autobal_ensemble_param_info;
+
+/* A quantity the member computes at the end of each run (static strings). */
+typedef struct autobal_ensemble_quantity {
+  const char *name;      /* archive variable name, e.g. "balance_grade_final"             */
+  const char *units;     /* UDUNITS string, e.g. "kg m", "mm/s"                          */
+  const char *long_name; /* description for the archive                                  */
+} autobal_ensemble_quantity;
 
 /* What the model hands the engine for one member (filled by `setup`). */
 typedef struct autobal_ensemble_setup {
@@ -178,6 +194,15 @@ typedef struct autobal_ensemble_member {
   uint64_t (*hash)(const void *model);
   /* Optional: free `model` (the ready-made members set it). */
   void (*destroy)(void *model);
+  /* Optional (added in 0.2.0; a zeroed tail: none): n_quantities (0 .. 8) more numbers per
+   * member, described by quantity[k] (borrowed, like the strings above) and filled by
+   * finish_quantities(worker, t, y, q) right after `finish`, with the same final state (q has
+   * n_quantities doubles; NaN where undefined).  They end each summary (after the angles), enter
+   * the statistics (autobal_ensemble_get_stats) and the targets, and are written as per-member
+   * variables when settings.write_quantities is set. */
+  size_t n_quantities;
+  const autobal_ensemble_quantity *quantity;
+  void (*finish_quantities)(void *worker, double t, const double y[], double *q);
 } autobal_ensemble_member;
 
 /* Release a member made by autobal_ensemble_*_member (calls destroy; the
@@ -190,7 +215,8 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * named in the archive by frame_name, e.g. "fixed").  Parameters: psi_K,
  * rate_K (ball K = 1..n, plane 1 first; rad, rad/s, relative to the rotor),
  * omega (rad/s; the constant speed: not with a ramp or table drive),
- * ball_damping (kg/s, every ball), m0 (kg, plane 1), x, y (m, initial
+ * ball_damping (kg/s, every ball), m0 (kg, plane 1), psi0 (rad, the angle of
+ * plane 1's unbalance on the rotor; added in 0.2.0), x, y (m, initial
  * displacement); with a RAMP drive (p->drive) also
  *     ramp_rate (rad/s^2, > 0): the member's ramp keeps omega_a and t_a of
  *               p->drive and ends at t_b = t_a + |omega_b - omega_a| / ramp_rate
@@ -209,6 +235,17 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * member's parameters change them).  Residual unbalance: autobal_rotor_balance_monitor; angles:
  * ball angles relative to the rotor; amplitude: output 0 of
  * autobal_rotor_outputs (m); series columns: the state, then the outputs.
+ * Quantities (n_quantities = 2), from the final state, as `rotor transient`
+ * reports them (autobal_study_rotor_transient_summary):
+ *   0 residual_unbalance_abs_final (kg m): U = max_j |s_j|, the residual
+ *     unbalance of the worst plane (autobal_rotor_plane_unbalance; one plane:
+ *     |s|);
+ *   1 balance_grade_final (mm/s): the ISO 21940-11 grade
+ *     G = e Omega = n_planes U / m Omega 1e3 (autobal_balance_grade), with m
+ *     the rotor mass (hw.m_p; lumped.M with lumped input) shared equally by the
+ *     planes (the worst plane counts) and Omega the member's speed at the end
+ *     (|omega| of the constant drive, |Omega(t_reached)| of a ramp or table, the
+ *     largest |Omega| where that is 0).
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from
  * autobal_rotor_alloc; bad frame; a drive mode other than constant, ramp or
  * table) or AUTOBAL_ENOMEM; on failure *out is zeroed.
@@ -238,6 +275,12 @@ typedef struct autobal_ensemble_param {
   size_t n;         /* grid points, 1 .. 100000 (grid mode; ignored in random mode)     */
 } autobal_ensemble_param;
 
+/* A target: P(quantity <= limit) over the members (added in 0.2.0). */
+typedef struct autobal_ensemble_target {
+  const char *quantity;  /* a member quantity's name (copied by alloc); one target each      */
+  double limit;          /* finite, in the quantity's units                                  */
+} autobal_ensemble_target;
+
 typedef struct autobal_ensemble_settings {
   int random;              /* 0: grid, 1: random samples                                  */
   size_t n_params;         /* 1 .. AUTOBAL_ENSEMBLE_MAX_PARAMS                            */
@@ -265,12 +308,20 @@ typedef struct autobal_ensemble_settings {
   double time_limit;       /* start no member after this many seconds of run (0: none)    */
   uint64_t identity;       /* mixed into the journal's hash: e.g. a hash of the caller's
                               configuration, so that a journal of another one is refused */
+  /* statistics of the member's quantities (added in 0.2.0).  They do not change a member's
+     result, so they are not in the journal's hash: a resume may change them. */
+  size_t n_targets;        /* 0 .. AUTOBAL_ENSEMBLE_MAX_TARGETS                             */
+  autobal_ensemble_target target[AUTOBAL_ENSEMBLE_MAX_TARGETS];
+  int write_quantities;    /* 1: autobal_ensemble_write writes each quantity as a per-member
+                              variable (0, the default: statistics only, as attributes; the
+                              datasets stay those of 0.1.0)                                 */
 } autobal_ensemble_settings;
 
 /* Settings with the defaults: grid, no parameters, endpoint 0, samples 256,
  * seed 1, t_end 20, revs_out 0.25 (use_revs_out 1), dt_out 0, the transient
  * defaults with rtol 1e-10, atol 1e-9, balance_tol 0.01, balance_revs 50,
- * stop_at_balance 1, threads 0, no series, no limits, identity 0. */
+ * stop_at_balance 1, threads 0, no series, no limits, identity 0, no targets,
+ * write_quantities 0. */
 AUTOBAL_API autobal_ensemble_settings autobal_ensemble_settings_default(void);
 
 /* ---- the handle ------------------------------------------------------------------------ */
@@ -293,7 +344,8 @@ AUTOBAL_API void autobal_ensemble_free(autobal_ensemble *e);
 /* Last error message ("" after success; never NULL; e may be NULL). */
 AUTOBAL_API const char *autobal_ensemble_errmsg(const autobal_ensemble *e);
 
-/* Number of members; summary length (AUTOBAL_ENSEMBLE_ANGLES + n_angles);
+/* Number of members; summary length (AUTOBAL_ENSEMBLE_ANGLES + n_angles
+ * + n_quantities);
  * 0 for NULL. */
 AUTOBAL_API size_t autobal_ensemble_n_members(const autobal_ensemble *e);
 AUTOBAL_API size_t autobal_ensemble_summary_length(const autobal_ensemble *e);
@@ -429,7 +481,70 @@ typedef struct autobal_ensemble_tally {
 } autobal_ensemble_tally;
 AUTOBAL_API int autobal_ensemble_get_tally(const autobal_ensemble *e, autobal_ensemble_tally *t);
 
+/* ---- statistics of the member quantities (added in 0.2.0) ------------------------------------- */
+
+/* Number of member quantities (0 for NULL); the summary index of quantity k
+ * (AUTOBAL_ENSEMBLE_ANGLES + n_angles + k; (size_t)-1 for a bad k or NULL);
+ * its description (NULL for a bad k); the k of a name (-1: none). */
+AUTOBAL_API size_t autobal_ensemble_n_quantities(const autobal_ensemble *e);
+AUTOBAL_API size_t autobal_ensemble_quantity_index(const autobal_ensemble *e, size_t k);
+AUTOBAL_API const autobal_ensemble_quantity *autobal_ensemble_quantity_get(const autobal_ensemble *e, size_t k);
+AUTOBAL_API long autobal_ensemble_quantity_find(const autobal_ensemble *e, const char *name);
+
+/* The probability p_i of quantile i: 0, 0.05, 0.25, 0.5, 0.75, 0.95, 1 (NaN for
+ * i >= AUTOBAL_ENSEMBLE_N_QUANTILES). */
+AUTOBAL_API double autobal_ensemble_quantile_probability(size_t i);
+
+/* Quantile of probability p in [0, 1] of n >= 1 values x sorted ascending, by
+ * linear interpolation between order statistics (Hyndman and Fan 1996,
+ * definition 7; R's default, numpy.quantile's "linear"):
+ *     h = (n - 1) p,  Q(p) = x[floor h] + (h - floor h) (x[floor h + 1] - x[floor h]),
+ * so Q(0) = min, Q(1) = max.  NaN for n = 0, x NULL or p outside [0, 1]. */
+AUTOBAL_API double autobal_ensemble_quantile_sorted(const double *x, size_t n, double p);
+
+/* Wilson score interval (Wilson 1927) of a proportion: k successes in n
+ * trials, p = k/n, z the normal quantile (1.959963984540054 for 95 %):
+ *     (p + z^2/(2n) -+ z sqrt(p (1 - p)/n + z^2/(4 n^2))) / (1 + z^2/n),
+ * clipped to [0, 1].  It stays inside [0, 1] and is not empty at k = 0 or
+ * k = n, unlike p -+ z sqrt(p (1 - p)/n).  Returns AUTOBAL_SUCCESS, or
+ * AUTOBAL_EINVAL (k > n, n = 0, z not > 0 and finite, low or high NULL; both
+ * NaN then where not NULL). */
+AUTOBAL_API int autobal_ensemble_wilson_interval(size_t k, size_t n, double z, double *low, double *high);
+
+/* Statistics of quantity k over the members done without failure (status >= 0;
+ * a member that did not balance counts with its value at the end of its run).
+ * Values that are not finite are counted apart (n_nan) and left out. */
+typedef struct autobal_ensemble_stats {
+  size_t n;       /* finite values in the statistics                                       */
+  size_t n_nan;   /* members done without failure whose value is not finite                */
+  double quantile[AUTOBAL_ENSEMBLE_N_QUANTILES]; /* at autobal_ensemble_quantile_probability(i)
+                                      by autobal_ensemble_quantile_sorted: [0] min .. [6] max */
+  double mean;    /* arithmetic mean                                                        */
+} autobal_ensemble_stats;
+/* Returns AUTOBAL_SUCCESS (NaNs when n = 0), AUTOBAL_EINVAL (bad k, NULL, or this
+ * process keeps no results) or AUTOBAL_ENOMEM. */
+AUTOBAL_API int autobal_ensemble_get_stats(const autobal_ensemble *e, size_t k, autobal_ensemble_stats *st);
+
+/* Target i of the settings over the members done without failure: n_within of
+ * the n have quantity <= limit (a value that is not finite is not within),
+ * p = n_within / n, and its Wilson 95 % interval (z = 1.959963984540054).
+ * Random members are independent draws: [low, high] is a 95 % confidence
+ * interval of the probability over the sampled box (uniform in each
+ * parameter).  On a grid the members are not random: p is the fraction of the
+ * grid points (a quadrature of that probability, whose error depends on how
+ * the region within the target meets the grid), and the interval is only the
+ * one n independent draws would give, not a confidence interval. */
+typedef struct autobal_ensemble_target_result {
+  size_t quantity;         /* its index k                                                */
+  double limit;            /* the settings' limit (the quantity's units)                 */
+  size_t n, n_within;
+  double p, wilson_low, wilson_high; /* NaN when n = 0                                    */
+} autobal_ensemble_target_result;
+/* Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (bad i, NULL, no results kept). */
+AUTOBAL_API int autobal_ensemble_get_target(const autobal_ensemble *e, size_t i, autobal_ensemble_target_result *r);
+
 /* ---- the archive ---------------------------------------------------------------------------- */
+
 
 /* How the run went (the only part of the archive that depends on it). */
 typedef struct autobal_ensemble_execution {
@@ -448,7 +563,15 @@ typedef struct autobal_ensemble_execution {
  * dimension and one variable per parameter), the summaries (status, balanced, done,
  * time_to_balance, residual_unbalance_initial/final, amplitude_max/final,
  * t_reached, steps, rhs_evaluations, final_angle), the kept series under
- * series/member_<m>, and execution/.  Members not done are NaN (0 for the
+ * series/member_<m>, and execution/.  Added in 0.2.0: the attributes
+ * probability_balanced_wilson_low/high (autobal_ensemble_wilson_interval);
+ * with member quantities, a group statistics/<quantity> each (attributes
+ * long_name, units, n, n_not_finite, min, q05, q25, median, q75, q95, max,
+ * mean, quantile_definition; with a target on it also target, n_evaluated,
+ * n_within_target, probability_within_target, its _wilson_low/_wilson_high and
+ * probability_definition), and, only when settings.write_quantities is set,
+ * each quantity as a per-member variable (so that a configuration of 0.1.0
+ * writes exactly its datasets of 0.1.0: tests/app/rerun_old.sh).  Members not done are NaN (0 for the
  * integer variables, done = 0).  Returns AUTOBAL_SUCCESS, write_model's
  * status, or the archive's (message in e); what was written stays. */
 AUTOBAL_API int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a,

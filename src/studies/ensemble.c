@@ -46,6 +46,9 @@ struct autobal_ensemble {
   autobal_ensemble_settings s;
   char names[AUTOBAL_ENSEMBLE_MAX_PARAMS][ENS_NAME];
   char stepper[32];
+  char tname[AUTOBAL_ENSEMBLE_MAX_TARGETS][ENS_NAME]; /* the targets' quantity names */
+  size_t tq[AUTOBAL_ENSEMBLE_MAX_TARGETS];            /* ... and their indices        */
+  size_t qoff;                                        /* summary index of quantity 0  */
   const char *namep[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   autobal_ensemble_param_info info[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   size_t stride[AUTOBAL_ENSEMBLE_MAX_PARAMS];
@@ -300,6 +303,7 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
     rec[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] = hit.t_start;
   }
   e->mb.finish(w->mw, t_reached, w->y, &res1, &amp1, rec + AUTOBAL_ENSEMBLE_ANGLES);
+  if (e->mb.n_quantities) e->mb.finish_quantities(w->mw, t_reached, w->y, rec + e->qoff);
   rec[AUTOBAL_ENSEMBLE_RESIDUAL_FINAL] = res1;
   rec[AUTOBAL_ENSEMBLE_AMPLITUDE_FINAL] = amp1;
   if (amp1 > w->amp_max) w->amp_max = amp1;
@@ -410,6 +414,42 @@ static int check_settings(const autobal_ensemble_member *mb, const autobal_ensem
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "ensemble: member dim = %zu, n_columns = %zu, n_angles = %zu: need dim >= 1, n_columns >= 1, n_angles <= 64 (with angle_dim)",
                              mb->dim, mb->n_columns, mb->n_angles);
+  if (mb->n_quantities > AUTOBAL_ENSEMBLE_MAX_QUANTITIES || (mb->n_quantities && (!mb->quantity || !mb->finish_quantities)))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "ensemble: member n_quantities = %zu: allowed [0, %d], with a quantity table and finish_quantities",
+                             mb->n_quantities, AUTOBAL_ENSEMBLE_MAX_QUANTITIES);
+  for (j = 0; j < mb->n_quantities; j++) {
+    const autobal_ensemble_quantity *q = &mb->quantity[j];
+    if (!q->name || !q->name[0] || strlen(q->name) >= ENS_NAME || !q->units)
+      return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: member quantity %zu has no name (or one of %d characters or more) or no units",
+                               j, ENS_NAME);
+  }
+  if (s->n_targets > AUTOBAL_ENSEMBLE_MAX_TARGETS)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: n_targets = %zu is out of range: allowed [0, %d]", s->n_targets,
+                             AUTOBAL_ENSEMBLE_MAX_TARGETS);
+  for (j = 0; j < s->n_targets; j++) {
+    size_t k, i;
+    const char *qn = s->target[j].quantity;
+    for (k = 0; k < mb->n_quantities && !(qn && !strcmp(qn, mb->quantity[k].name)); k++) {
+    }
+    if (k == mb->n_quantities) {
+      char list[256] = "";
+      for (i = 0; i < mb->n_quantities; i++) {
+        size_t l = strlen(list);
+        snprintf(list + l, sizeof list - l, "%s%s", i ? ", " : "", mb->quantity[i].name);
+      }
+      return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: target %zu: '%s' is not a quantity of the %s member (%s)", j + 1,
+                               qn ? qn : "(null)", mb->model_name ? mb->model_name : "", list[0] ? list : "it has none");
+    }
+    for (i = 0; i < j; i++)
+      if (!strcmp(s->target[i].quantity, qn))
+        return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: target %zu: %s already has a target (target %zu)", j + 1, qn, i + 1);
+    if (!isfinite(s->target[j].limit))
+      return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: target %zu: the limit of %s = %g is not finite", j + 1, qn,
+                               s->target[j].limit);
+  }
+  if (s->write_quantities != 0 && s->write_quantities != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: write_quantities = %d: allowed 0 or 1", s->write_quantities);
   if (s->random != 0 && s->random != 1)
     return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: random = %d: allowed 0 (grid) or 1", s->random);
   if (s->n_params < 1 || s->n_params > AUTOBAL_ENSEMBLE_MAX_PARAMS)
@@ -499,6 +539,12 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
     }
   }
   if (member->check && (st = member->check(member->model, e->namep, s->n_params, err)) != AUTOBAL_SUCCESS) goto fail;
+  for (j = 0; j < s->n_targets; j++) { /* validated by check_settings */
+    snprintf(e->tname[j], ENS_NAME, "%s", s->target[j].quantity);
+    e->s.target[j].quantity = e->tname[j];
+    e->tq[j] = (size_t)autobal_ensemble_quantity_find(e, e->tname[j]);
+  }
+  for (j = s->n_targets; j < AUTOBAL_ENSEMBLE_MAX_TARGETS; j++) e->s.target[j].quantity = NULL; /* not kept */
   if (s->random) {
     e->n_members = s->samples;
     for (j = 0; j < s->n_params; j++) e->stride[j] = 1;
@@ -514,7 +560,8 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
     }
     e->n_members = t;
   }
-  e->nsum = AUTOBAL_ENSEMBLE_ANGLES + member->n_angles;
+  e->qoff = AUTOBAL_ENSEMBLE_ANGLES + member->n_angles;
+  e->nsum = e->qoff + member->n_quantities;
   e->ncols = member->n_columns;
   e->keep = calloc(s->n_series ? s->n_series : 1, sizeof *e->keep);
   e->keep_cap = calloc(s->n_series ? s->n_series : 1, sizeof *e->keep_cap);
@@ -1120,7 +1167,174 @@ int autobal_ensemble_get_tally(const autobal_ensemble *e, autobal_ensemble_tally
   return AUTOBAL_SUCCESS;
 }
 
+/* ---- statistics of the member quantities ------------------------------------------------------- */
+#define WILSON_Z95 1.959963984540054 /* the 0.975 quantile of the standard normal distribution */
+
+static const double quantile_p[AUTOBAL_ENSEMBLE_N_QUANTILES] = {0.0, 0.05, 0.25, 0.5, 0.75, 0.95, 1.0};
+
+size_t autobal_ensemble_n_quantities(const autobal_ensemble *e) { return e ? e->mb.n_quantities : 0; }
+
+size_t autobal_ensemble_quantity_index(const autobal_ensemble *e, size_t k) {
+  return e && k < e->mb.n_quantities ? e->qoff + k : (size_t)-1;
+}
+
+const autobal_ensemble_quantity *autobal_ensemble_quantity_get(const autobal_ensemble *e, size_t k) {
+  return e && k < e->mb.n_quantities ? &e->mb.quantity[k] : NULL;
+}
+
+long autobal_ensemble_quantity_find(const autobal_ensemble *e, const char *name) {
+  size_t k;
+  if (!e || !name) return -1;
+  for (k = 0; k < e->mb.n_quantities; k++)
+    if (!strcmp(e->mb.quantity[k].name, name)) return (long)k;
+  return -1;
+}
+
+double autobal_ensemble_quantile_probability(size_t i) { return i < AUTOBAL_ENSEMBLE_N_QUANTILES ? quantile_p[i] : NAN; }
+
+double autobal_ensemble_quantile_sorted(const double *x, size_t n, double p) {
+  double h, f;
+  size_t lo;
+  if (!x || n == 0 || !(p >= 0.0 && p <= 1.0)) return NAN;
+  h = (double)(n - 1) * p;
+  f = floor(h);
+  lo = (size_t)f;
+  if (lo >= n - 1) return x[n - 1];
+  return x[lo] + (h - f) * (x[lo + 1] - x[lo]);
+}
+
+int autobal_ensemble_wilson_interval(size_t k, size_t n, double z, double *low, double *high) {
+  double nn, p, z2, den, centre, half;
+  if (low) *low = NAN;
+  if (high) *high = NAN;
+  if (!low || !high || n == 0 || k > n || !(z > 0 && isfinite(z))) return AUTOBAL_EINVAL;
+  nn = (double)n, p = (double)k / nn, z2 = z * z;
+  den = 1.0 + z2 / nn;
+  centre = (p + z2 / (2.0 * nn)) / den;
+  half = z * sqrt(p * (1.0 - p) / nn + z2 / (4.0 * nn * nn)) / den;
+  *low = fmax(0.0, centre - half);
+  *high = fmin(1.0, centre + half);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_ensemble_get_stats(const autobal_ensemble *e, size_t k, autobal_ensemble_stats *st) {
+  size_t m, i, n = 0;
+  double *v, sum = 0.0;
+  if (!st) return AUTOBAL_EINVAL;
+  memset(st, 0, sizeof *st);
+  for (i = 0; i < AUTOBAL_ENSEMBLE_N_QUANTILES; i++) st->quantile[i] = NAN;
+  st->mean = NAN;
+  if (!e || k >= e->mb.n_quantities || !e->par.results) return AUTOBAL_EINVAL;
+  if (!e->sum) return AUTOBAL_SUCCESS; /* nothing done yet */
+  v = malloc((e->n_members ? e->n_members : 1) * sizeof *v);
+  if (!v) return AUTOBAL_ENOMEM;
+  for (m = 0; m < e->n_members; m++) {
+    const double *r = e->sum + m * e->nsum;
+    double x;
+    if (!e->done[m] || !(r[AUTOBAL_ENSEMBLE_STATUS] >= 0)) continue;
+    x = r[e->qoff + k];
+    if (!isfinite(x)) {
+      st->n_nan++;
+      continue;
+    }
+    v[n++] = x;
+    sum += x;
+  }
+  st->n = n;
+  if (n) {
+    qsort(v, n, sizeof *v, cmp_double);
+    for (i = 0; i < AUTOBAL_ENSEMBLE_N_QUANTILES; i++) st->quantile[i] = autobal_ensemble_quantile_sorted(v, n, quantile_p[i]);
+    st->mean = sum / (double)n;
+  }
+  free(v);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_ensemble_get_target(const autobal_ensemble *e, size_t i, autobal_ensemble_target_result *r) {
+  size_t m, k;
+  double lim;
+  if (!r) return AUTOBAL_EINVAL;
+  memset(r, 0, sizeof *r);
+  r->limit = r->p = r->wilson_low = r->wilson_high = NAN;
+  if (!e || i >= e->s.n_targets || !e->par.results) return AUTOBAL_EINVAL;
+  k = e->tq[i], lim = e->s.target[i].limit;
+  r->quantity = k, r->limit = lim;
+  if (e->sum)
+    for (m = 0; m < e->n_members; m++) {
+      const double *rr = e->sum + m * e->nsum;
+      if (!e->done[m] || !(rr[AUTOBAL_ENSEMBLE_STATUS] >= 0)) continue;
+      r->n++;
+      if (rr[e->qoff + k] <= lim) r->n_within++; /* NaN: not within */
+    }
+  if (r->n) {
+    r->p = (double)r->n_within / (double)r->n;
+    autobal_ensemble_wilson_interval(r->n_within, r->n, WILSON_Z95, &r->wilson_low, &r->wilson_high);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 /* ---- the archive ------------------------------------------------------------------------------------ */
+#define WILSON_RANDOM                                                                                                  \
+  "Wilson score interval at 95 % (z = 1.959964) of k of n: the members are independent draws, so it is a 95 % "     \
+  "confidence interval of the probability over the sampled box"
+#define WILSON_GRID                                                                                                    \
+  "Wilson score interval at 95 % (z = 1.959964) of k of n, as n independent draws would give it; the members are a " \
+  "grid, not random: the probability is the fraction of the grid points, and this is no confidence interval"
+
+/* statistics/<quantity>: the distribution of each member quantity over the members that ran
+ * without failure, and its target (attributes of groups: no datasets beyond those of 0.1.0). */
+static int write_statistics(autobal_ensemble *e, autobal_archive *a, const char *g) {
+  static const char *const qname[AUTOBAL_ENSEMBLE_N_QUANTILES] = {"min", "q05", "q25", "median", "q75", "q95", "max"};
+  char gs[ENS_NAME + 96];
+  size_t k, i;
+  int st = AUTOBAL_SUCCESS;
+  if (!e->mb.n_quantities) return AUTOBAL_SUCCESS;
+  snprintf(gs, sizeof gs, "%s/statistics", g);
+  st = autobal_archive_group(a, gs);
+  if (!st)
+    st = autobal_archive_attr_string(a, gs, "description",
+                                     "distribution over the members that ran without failure (status >= 0, balanced or "
+                                     "not) of each member quantity at the end of its run; one group per quantity");
+  for (k = 0; k < e->mb.n_quantities && !st; k++) {
+    const autobal_ensemble_quantity *q = &e->mb.quantity[k];
+    autobal_ensemble_stats sx;
+    char gq[2 * ENS_NAME + 112];
+    const char *u = q->units;
+    if ((st = autobal_ensemble_get_stats(e, k, &sx)) != AUTOBAL_SUCCESS) return st;
+    snprintf(gq, sizeof gq, "%s/%s", gs, q->name);
+    st = autobal_archive_group(a, gq);
+    if (!st) st = autobal_archive_attr_string(a, gq, "long_name", q->long_name ? q->long_name : q->name);
+    if (!st) st = autobal_archive_attr_string(a, gq, "units", u);
+    if (!st) st = autobal_archive_attr_int(a, gq, "n", (long)sx.n);
+    if (!st) st = autobal_archive_attr_int(a, gq, "n_not_finite", (long)sx.n_nan);
+    for (i = 0; i < AUTOBAL_ENSEMBLE_N_QUANTILES && !st; i++) st = autobal_archive_attr_double(a, gq, qname[i], sx.quantile[i], u);
+    if (!st) st = autobal_archive_attr_double(a, gq, "mean", sx.mean, u);
+    if (!st)
+      st = autobal_archive_attr_string(a, gq, "quantile_definition",
+                                       "q05 .. q95: quantiles at p = 0.05, 0.25, 0.5, 0.75, 0.95 of the n finite values "
+                                       "sorted x[0] <= .. <= x[n-1]: linear interpolation between order statistics, "
+                                       "h = (n - 1) p, x[floor h] + (h - floor h) (x[floor h + 1] - x[floor h]) "
+                                       "(Hyndman and Fan 1996 type 7; numpy.quantile's default)");
+    for (i = 0; i < e->s.n_targets && !st; i++) {
+      autobal_ensemble_target_result tr;
+      if (e->tq[i] != k) continue;
+      if ((st = autobal_ensemble_get_target(e, i, &tr)) != AUTOBAL_SUCCESS) return st;
+      st = autobal_archive_attr_double(a, gq, "target", tr.limit, u);
+      if (!st) st = autobal_archive_attr_int(a, gq, "n_evaluated", (long)tr.n);
+      if (!st) st = autobal_archive_attr_int(a, gq, "n_within_target", (long)tr.n_within);
+      if (!st) st = autobal_archive_attr_double(a, gq, "probability_within_target", tr.p, "1");
+      if (!st) st = autobal_archive_attr_double(a, gq, "probability_within_target_wilson_low", tr.wilson_low, "1");
+      if (!st) st = autobal_archive_attr_double(a, gq, "probability_within_target_wilson_high", tr.wilson_high, "1");
+      if (!st)
+        st = autobal_archive_attr_string(a, gq, "probability_definition",
+                                         "n_within_target / n_evaluated: members that ran without failure whose value is "
+                                         "<= target (a value that is not finite is not within)");
+      if (!st) st = autobal_archive_attr_string(a, gq, "probability_interval_definition", e->s.random ? WILSON_RANDOM : WILSON_GRID);
+    }
+  }
+  return st;
+}
+
 int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_model)(void *user, autobal_archive *a),
                            void *user, const autobal_ensemble_execution *exec) {
   char g[64], buf[256];
@@ -1197,6 +1411,13 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
   AD("time_to_balance_median", t.ttb_median, tu);
   AD("time_to_balance_max", t.ttb_max, tu);
   AS("probability_definition", "n_balanced / (n_done - n_failed): members that ran without failure; stderr sqrt(p (1 - p) / n)");
+  if (!st) { /* added in 0.2.0 (attributes: the datasets of 0.1.0 stay) */
+    double lo = NAN, hi = NAN;
+    if (t.n_ok) autobal_ensemble_wilson_interval(t.n_balanced, t.n_ok, WILSON_Z95, &lo, &hi);
+    AD("probability_balanced_wilson_low", lo, "1");
+    AD("probability_balanced_wilson_high", hi, "1");
+    AS("probability_interval_definition", s->random ? WILSON_RANDOM : WILSON_GRID);
+  }
   /* axes */
   if (s->random) {
     if (!st) st = autobal_archive_dim(a, g, "member", n, "ensemble member");
@@ -1260,6 +1481,13 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
       st = autobal_archive_var(a, g, dvars[i].name, rank, dims, dv, u3[dvars[i].unit], dvars[i].lname);
     }
   }
+  /* the member quantities per member: only when asked for (a configuration of 0.1.0 writes the
+   * datasets it wrote then; tests/app/rerun_old.sh) */
+  for (i = 0; i < e->mb.n_quantities && s->write_quantities && !st; i++) {
+    const autobal_ensemble_quantity *q = &e->mb.quantity[i];
+    for (m = 0; m < n; m++) dv[m] = e->done[m] ? e->sum[m * e->nsum + e->qoff + i] : NAN;
+    st = autobal_archive_var(a, g, q->name, rank, dims, dv, q->units, q->long_name);
+  }
   if (nang && !st) {
     st = autobal_archive_dim(a, g, e->mb.angle_dim, nang, e->mb.angle_dim_long_name);
     for (m = 0; m < n; m++)
@@ -1298,6 +1526,7 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
     }
   }
   free(dv), free(iv), free(ang);
+  if (!st) st = write_statistics(e, a, g);
   /* kept series */
   if (e->n_keep && !st) {
     char(*names)[64] = calloc(e->ncols, sizeof *names);

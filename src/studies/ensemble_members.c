@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "autobal/ensemble.h"
+#include "autobal/study.h"
 #include "internal.h"
 
 #define TWO_PI 6.283185307179586476925286766559
@@ -37,7 +38,7 @@ static uint64_t hash_doubles(uint64_t h, const double *v, size_t n) {
 }
 
 /* ================================ rotor ================================================ */
-enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B };
+enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B, R_PSI0 };
 
 typedef struct rotor_model {
   autobal_rotor_params p; /* ball arrays point into storage, a table drive's points into table */
@@ -86,6 +87,8 @@ static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t
   if (!strcmp(name, "omega")) *kind = R_OMEGA, info->units = "rad/s", info->long_name = "spin speed omega";
   else if (!strcmp(name, "ball_damping")) *kind = R_DAMPING, info->units = "kg/s", info->long_name = "damping h of every ball";
   else if (!strcmp(name, "m0")) *kind = R_M0, info->units = "kg", info->long_name = "unbalance mass m0 of plane 1";
+  else if (!strcmp(name, "psi0"))
+    *kind = R_PSI0, info->units = "rad", info->periodic = 1, info->long_name = "angle psi0 of the unbalance of plane 1 on the rotor";
   else if (!strcmp(name, "x")) *kind = R_X, info->units = "m", info->long_name = "initial displacement x of the centre of mass";
   else if (!strcmp(name, "y")) *kind = R_Y, info->units = "m", info->long_name = "initial displacement y of the centre of mass";
   else if (!strcmp(name, "ramp_rate"))
@@ -98,7 +101,7 @@ static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t
   return AUTOBAL_SUCCESS;
 unknown:
   return autobal_error_set(err, AUTOBAL_EINVAL,
-                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, x, y; "
+                           "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, psi0, x, y; "
                            "with a ramp drive also ramp_rate, ramp_time, omega_b",
                            name, M->n_balls);
 }
@@ -217,6 +220,7 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
         for (i = 0; i < M->n_balls; i++) w->bdamp[i] = v;
         break;
       case R_M0: p.plane[0].m0 = v; break;
+      case R_PSI0: p.plane[0].psi0 = v; break;
       case R_X: p.q0[0] = v; break;
       case R_Y: p.q0[1] = v; break;
       default: break;
@@ -271,6 +275,39 @@ static void rotor_finish(void *wp, double t, const double y[], double *residual,
     double a = M->frame == AUTOBAL_ROTOR_FIXED ? y[8 + i] - phi0 : y[8 + i];
     angles[i] = remainder(a, TWO_PI);
   }
+}
+
+/* The residual unbalance in engineering units, as `rotor transient` reports it
+ * (src/studies/rotor_transient.c, engineering_compute): the worst plane's |s_j| and the ISO
+ * 21940-11 grade of n_planes times it with the rotor mass, at the speed at the end. */
+static const autobal_ensemble_quantity rotor_quantities[2] = {
+    {"residual_unbalance_abs_final", "kg m",
+     "residual unbalance |s_j| at the end of the run, the largest over the balancer planes (one plane: |s|)"},
+    {"balance_grade_final", "mm/s",
+     "ISO 21940-11 balance quality grade at the end: G = e Omega, e = n_planes max_j |s_j| / m with m the rotor mass "
+     "(m_p; M with lumped input) and Omega the speed at the end of the run"}};
+
+static void rotor_finish_quantities(void *wp, double t, const double y[], double *q) {
+  rotor_worker *w = wp;
+  const rotor_model *M = w->M;
+  const size_t np = M->p.n_planes;
+  size_t j;
+  double worst = 0.0, omega = fabs(w->omega), dv[3], m;
+  for (j = 0; j < np; j++) {
+    double s4[4], u = autobal_rotor_plane_unbalance(w->rot, j, M->frame, t, y, s4) == AUTOBAL_SUCCESS ? hypot(s4[0], s4[1]) : NAN;
+    if (isnan(u)) {
+      worst = NAN;
+      break;
+    }
+    if (u > worst) worst = u;
+  }
+  if (M->p.drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT) { /* the speed at the end (the largest if that is 0) */
+    omega = autobal_rotor_spin(w->rot, t, y, dv) == AUTOBAL_SUCCESS ? fabs(dv[0]) : NAN;
+    if (!(omega > 0)) omega = autobal_rotor_drive_speed_max(w->rot);
+  }
+  m = M->p.input == AUTOBAL_ROTOR_HARDWARE ? M->p.hw.m_p : M->p.lumped.M;
+  q[0] = worst;
+  q[1] = autobal_balance_grade(worst * (double)np, m, omega);
 }
 
 static int rotor_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
@@ -452,6 +489,9 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   out->write_attrs = rotor_write_attrs;
   out->hash = rotor_hash;
   out->destroy = rotor_destroy;
+  out->n_quantities = 2;
+  out->quantity = rotor_quantities;
+  out->finish_quantities = rotor_finish_quantities;
   return AUTOBAL_SUCCESS;
 }
 
