@@ -670,7 +670,7 @@ static int file_exists(const char *p) {
 }
 
 /* Before the run (rank 0): journals and the --resume/--force rules. */
-static int prepare_output(cli_ctx *ctx, const ens_spec *s) {
+static int prepare_output(cli_ctx *ctx, const ens_spec *s, const autobal_ensemble *e) {
   char **paths = NULL;
   size_t n = 0;
   int rc = CLI_EXIT_OK;
@@ -691,16 +691,34 @@ static int prepare_output(cli_ctx *ctx, const ens_spec *s) {
       rc = cli_fail(ctx, CLI_EXIT_IO, "%s", err.message);
   } else if (file_exists(ctx->output) && !ctx->force) {
     /* an incomplete archive of the interrupted run is replaced; a complete one is kept */
+    /* ... if it is this command's, with these settings: another command's archive or another
+     * configuration's is never replaced without --force */
     autobal_archive *r = NULL;
-    char status[64] = "";
+    char status[64] = "", command[128] = "", hash[64] = "", want[32];
+    snprintf(want, sizeof want, "%016llx", (unsigned long long)autobal_ensemble_hash(e));
     if (autobal_archive_open_read(ctx->output, &r, NULL) == AUTOBAL_SUCCESS) {
       autobal_archive_read_attr_string(r, "/", "status", status, sizeof status, NULL);
+      autobal_archive_read_attr_string(r, "/", "command", command, sizeof command, NULL);
+      if (autobal_archive_read_attr_string(r, "/rotor/ensemble", "settings_hash", hash, sizeof hash, NULL) < 0)
+        autobal_archive_read_attr_string(r, "/pendulum/ensemble", "settings_hash", hash, sizeof hash, NULL);
       autobal_archive_close(r, NULL);
     }
-    if (!strcmp(status, "incomplete")) ctx->force = 1;
-    else
+    if (strcmp(status, "incomplete") != 0)
       rc = cli_fail(ctx, CLI_EXIT_IO, "'%s' exists and is %s; nothing to resume (use --force to compute it again)",
                     ctx->output, status[0] ? "complete" : "not an incomplete autobal archive");
+    else if (strcmp(command, ctx->command) != 0)
+      rc = cli_fail(ctx, CLI_EXIT_IO,
+                    "'%s' is an incomplete archive of 'autobal %s', not of 'autobal %s': not replaced (choose "
+                    "another -o, or --force to replace it)",
+                    ctx->output, command[0] ? command : "(unknown)", ctx->command);
+    else if (strcmp(hash, want) != 0)
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "'%s' is an incomplete ensemble of a different configuration (settings_hash %s, this "
+                    "configuration %s): not resumed, not replaced (the configuration of the interrupted run, or "
+                    "--force to start over)",
+                    ctx->output, hash[0] ? hash : "not recorded", want);
+    else
+      ctx->force = 1;
   }
   autobal_ensemble_journals_free(paths, n);
   return rc;
@@ -746,7 +764,7 @@ static int ensemble_main(cli_ctx *ctx, int model, ens_mpi *mp) {
   threads = autobal_ensemble_threads(e);
   /* rank 0: journals, --resume/--force, the archive */
   if (mp->rank == 0) {
-    rc = prepare_output(ctx, s);
+    rc = prepare_output(ctx, s, e);
     if (rc == CLI_EXIT_OK && ctx->output && !ctx->force && file_exists(ctx->output))
       rc = cli_fail(ctx, CLI_EXIT_IO, "output file '%s' exists; use --force to overwrite it", ctx->output);
   }

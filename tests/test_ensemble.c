@@ -682,9 +682,21 @@ static void test_third_model(void) {
     fclose(f);
   }
   snprintf(out, sizeof out, "%s/test_ensemble_junk.h5", AUTOBAL_TEST_TMP_DIR);
-  CHECK_STATUS("resume from a file that is not a journal", autobal_ensemble_resume(e, out, 0), AUTOBAL_EFORMAT);
-  CHECK_MSG("not a journal", autobal_ensemble_errmsg(e), "not an autobal ensemble journal");
-  CHECK_STATUS("journals removed", autobal_ensemble_journals_remove(out, NULL), AUTOBAL_SUCCESS);
+  /* a file merely named like a journal is not one (no "ABENSJ01" header): it is not read, not
+   * truncated by journal_open and not removed (issue 19: --force used to delete any such file) */
+  CHECK_STATUS("resume ignores a file that is not a journal", autobal_ensemble_resume(e, out, 0), AUTOBAL_SUCCESS);
+  CHECK_STATUS("journal_open refuses to overwrite it", autobal_ensemble_journal_open(e, out, 3), AUTOBAL_EIO);
+  CHECK_MSG("... saying why", autobal_ensemble_errmsg(e), "not an ensemble journal");
+  CHECK_STATUS("journals_remove", autobal_ensemble_journals_remove(out, NULL), AUTOBAL_SUCCESS);
+  {
+    char junk[1024];
+    FILE *g;
+    snprintf(junk, sizeof junk, "%s/test_ensemble_junk.h5.journal-3", AUTOBAL_TEST_TMP_DIR);
+    g = fopen(junk, "rb");
+    CHECK("... which leaves the file alone", g != NULL);
+    if (g) fclose(g);
+    remove(junk);
+  }
   autobal_ensemble_free(e);
   mb.worker_alloc = NULL;
   CHECK("a member without worker_alloc rejected", autobal_ensemble_alloc(&mb, &s, &err) == NULL && err.status == AUTOBAL_EINVAL);

@@ -413,6 +413,8 @@ AUTOBAL_API int autobal_ensemble_journals(const char *output, char ***paths, siz
                                           autobal_error *err);
 /* Free a list from autobal_ensemble_journals (the n strings and the array; NULL is safe). */
 AUTOBAL_API void autobal_ensemble_journals_free(char **paths, size_t n);
+/* Only regular files that begin with the journal header's magic "ABENSJ01" are listed (and so
+ * read or removed): a file merely named like a journal is never touched. */
 /* Remove every journal of output.  Returns AUTOBAL_SUCCESS or AUTOBAL_EIO
  * (the message names the file; the ones before it are removed). */
 AUTOBAL_API int autobal_ensemble_journals_remove(const char *output, autobal_error *err);

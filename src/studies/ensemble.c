@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <time.h>
 #include <unistd.h>
@@ -794,6 +795,24 @@ static void journal_header(const autobal_ensemble *e, unsigned char hdr[JOURNAL_
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
+/* A regular file whose first 8 bytes are the journal magic (or a prefix of it: a journal torn
+ * while its header was written): only such files are listed, read or removed as journals (a
+ * file merely named like one, e.g. the configuration, is left alone). */
+static int is_journal_file(const char *path) {
+  struct stat st;
+  char magic[8];
+  FILE *f;
+  int ok;
+  size_t got;
+  if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+  if (!(f = fopen(path, "rb"))) return 0;
+  /* a journal torn while its header was written (a prefix of the magic, or empty) counts too */
+  got = fread(magic, 1, sizeof magic, f);
+  ok = memcmp(magic, journal_magic, got) == 0;
+  fclose(f);
+  return ok;
+}
+
 void autobal_ensemble_journals_free(char **paths, size_t n) {
   size_t i;
   for (i = 0; i < n; i++) free(paths[i]);
@@ -847,6 +866,10 @@ int autobal_ensemble_journals(const char *output, char ***paths, size_t *n, auto
       break;
     }
     sprintf((*paths)[*n], "%s%s", dir, de->d_name);
+    if (!is_journal_file((*paths)[*n])) { /* named like one, but not a journal: never touched */
+      free((*paths)[*n]);
+      continue;
+    }
     (*n)++;
   }
   closedir(d);
@@ -954,6 +977,13 @@ int autobal_ensemble_journal_open(autobal_ensemble *e, const char *output, int r
   if (e->own_valid > 0 && e->own_rank == rank) {
     if (truncate(path, (off_t)e->own_valid) != 0 || !(e->journal = fopen(path, "ab")))
       st = autobal_error_set(&e->err, AUTOBAL_EIO, "cannot append to the journal '%s': %s", path, strerror(errno));
+  } else if (access(path, F_OK) == 0 && !is_journal_file(path)) {
+    /* a file of this name that is not a journal (a configuration, another program's data):
+     * never truncated */
+    st = autobal_error_set(&e->err, AUTOBAL_EIO,
+                           "'%s' exists and is not an ensemble journal: not overwritten (move it, or choose "
+                           "another output name)",
+                           path);
   } else {
     unsigned char hdr[JOURNAL_HEADER];
     journal_header(e, hdr);
@@ -1366,6 +1396,9 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
 #define AD(name, v, u) do { if (!st) st = autobal_archive_attr_double(a, g, name, v, u); } while (0)
 #define AI(name, v) do { if (!st) st = autobal_archive_attr_int(a, g, name, (long)(v)); } while (0)
   AS("mode", s->random ? "random" : "grid");
+  /* the identity of the settings (what a resume must match; autobal_ensemble_hash) */
+  snprintf(buf, sizeof buf, "%016llx", (unsigned long long)e->hash);
+  AS("settings_hash", buf);
   buf[0] = '\0';
   for (j = 0; j < s->n_params; j++) {
     size_t l = strlen(buf);

@@ -93,7 +93,9 @@ def equal(pa, pb):
         if set(oa.attrs) != set(ob.attrs):
             fail(f"attributes of {name} differ: {sorted(set(oa.attrs) ^ set(ob.attrs))}")
         for k in oa.attrs:
-            if k in ("DIMENSION_LIST", "REFERENCE_LIST"):
+            # settings_hash: the hash of the configuration text (what a resume must match), which
+            # differs between a run and its rerun like effective_config
+            if k in ("DIMENSION_LIST", "REFERENCE_LIST", "settings_hash"):
                 continue
             if not same(oa.attrs[k], ob.attrs[k]):
                 fail(f"attribute {name}@{k} differs: {oa.attrs[k]!r} vs {ob.attrs[k]!r}")

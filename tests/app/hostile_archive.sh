@@ -120,5 +120,20 @@ expect 0 "" "$AUTOBAL" pendulum roots -o "$longf" -q
 expect 3 "at most 4076" "$AUTOBAL" pendulum roots -o "$d/$(printf 'g%.0s' $(seq 1 200))/$(printf 'h%.0s' $(seq 1 200)).h5"
 rm -rf "$SCRATCH/lp"
 
+# 9. ensemble resume and --force never destroy another file (issue 19 item 4)
+printf '[ensemble]\nparam1 = psi_1\nn1 = 2\nparam2 = psi_2\nn2 = 2\n[transient]\nt_end = 0.3\n' >ens.ini
+"$AUTOBAL" rotor transient --set transient.t_end=0.2 -o other.h5 -q >/dev/null 2>&1
+"$PY" -c "import h5py; h = h5py.File('other.h5', 'a'); h.attrs['status'] = 'incomplete'"
+before=$(md5sum <other.h5)
+expect 4 "not of 'autobal rotor ensemble'" "$AUTOBAL" rotor ensemble ens.ini --set ensemble.resume=true -o other.h5 -q
+[ "$(md5sum <other.h5)" = "$before" ] && ok "another command's incomplete archive is untouched" || bad "other.h5 changed"
+cp ens.ini Y.h5.journal-0
+expect 4 "is not an ensemble journal" "$AUTOBAL" rotor ensemble ens.ini -o Y.h5 --force -q
+cmp -s ens.ini Y.h5.journal-0 && ok "a file named like a journal is neither removed nor truncated" || bad "Y.h5.journal-0 destroyed"
+expect 0 "" "$AUTOBAL" rotor ensemble ens.ini -o Z.h5 -q --set ensemble.max_members=2
+expect 3 "different configuration" "$AUTOBAL" rotor ensemble ens.ini -o Z.h5 -q --set ensemble.resume=true --set transient.t_end=0.4
+expect 0 "" "$AUTOBAL" rotor ensemble ens.ini -o Z.h5 -q --set ensemble.resume=true
+"$PY" -c "import h5py, sys; sys.exit(h5py.File('Z.h5', 'r').attrs['status'] != 'complete')" && ok "the same settings resume to complete" || bad "resume did not complete"
+
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
