@@ -2,7 +2,7 @@
 # Build the fuzz targets with clang's libFuzzer + AddressSanitizer + UndefinedBehaviorSanitizer
 # and run them.  See tests/fuzz/README.md.
 #
-#   tests/fuzz/run.sh [SECONDS] [config|cli|all]   fuzz each target for SECONDS (default 60)
+#   tests/fuzz/run.sh [SECONDS] [config|cli|numeric|all]   fuzz each target for SECONDS (default 60)
 #   tests/fuzz/run.sh build                        only build
 #   tests/fuzz/run.sh coverage                     line coverage of the corpus (llvm-cov)
 #
@@ -57,11 +57,12 @@ build_variant() {
     objs+=("$out/obj/${f%.c}.o")
   done
   $CC -std=c11 $cflags $inc -c "$here/main_renamed.c" -o "$out/obj/app_main.o"
-  for f in fuzz_config fuzz_cli; do
+  for f in fuzz_config fuzz_cli fuzz_numeric; do
     $CC -std=c11 $cflags $inc -c "$here/$f.c" -o "$out/obj/$f.o"
   done
   $CC $lflags "$out/obj/fuzz_config.o" "${objs[@]}" $libs -o "$out/fuzz_config"
   $CC $lflags "$out/obj/fuzz_cli.o" "$out/obj/app_main.o" "${objs[@]}" $libs -o "$out/fuzz_cli"
+  $CC $lflags "$out/obj/fuzz_numeric.o" "${objs[@]}" $libs -o "$out/fuzz_numeric"
 }
 
 san="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
@@ -84,26 +85,28 @@ if [ "$mode" = coverage ]; then
 fi
 
 build_variant fuzz "-g -O1 -fsanitize=fuzzer-no-link $san" "-fsanitize=fuzzer $san"
-echo "built $build/fuzz/fuzz_config and $build/fuzz/fuzz_cli"
+echo "built $build/fuzz/fuzz_config, $build/fuzz/fuzz_cli and $build/fuzz/fuzz_numeric"
 [ "$mode" = build ] && exit 0
 
 run_target() {
   local t=$1 secs=$2 extra=""
   mkdir -p "$build/corpus-$t" "$build/findings-$t" "$build/tmp"
   [ "$t" = cli ] && extra="-close_fd_mask=3"
+  [ -f "$here/$t.dict" ] && extra="$extra -dict=$here/$t.dict"
   echo "fuzzing $t for $secs s (log: $build/fuzz_$t.log)"
   ( cd "$build/findings-$t" &&
     TMPDIR="$build/tmp" ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/fuzz/fuzz_$t" -max_total_time="$secs" -max_len=4096 -timeout=20 -rss_limit_mb=2048 \
-      -print_final_stats=1 -dict="$here/$t.dict" $extra ${FUZZ_FLAGS:-} \
-      "$build/corpus-$t" "$here/corpus/$t" ) 2>&1 | tee "$build/fuzz_$t.log" | grep -E "^#[0-9]+ +(INITED|DONE|pulse)|stat::|ERROR|SUMMARY|==[0-9]+==|Test unit written|fuzz_(config|cli):" || true
+      -print_final_stats=1 $extra ${FUZZ_FLAGS:-} \
+      "$build/corpus-$t" "$here/corpus/$t" ) 2>&1 | tee "$build/fuzz_$t.log" | grep -E "^#[0-9]+ +(INITED|DONE|pulse)|stat::|ERROR|SUMMARY|==[0-9]+==|Test unit written|fuzz_(config|cli|numeric):" || true
   if ls "$build/findings-$t" | grep -q .; then echo "FINDINGS in $build/findings-$t:"; ls "$build/findings-$t"; return 1; fi
 }
 status=0
 case "$which" in
   config) run_target config "$mode" || status=1 ;;
   cli) run_target cli "$mode" || status=1 ;;
-  all) run_target config "$mode" || status=1; run_target cli "$mode" || status=1 ;;
-  *) echo "unknown target '$which' (config, cli, all)"; exit 2 ;;
+  numeric) run_target numeric "$mode" || status=1 ;;
+  all) run_target config "$mode" || status=1; run_target cli "$mode" || status=1; run_target numeric "$mode" || status=1 ;;
+  *) echo "unknown target '$which' (config, cli, numeric, all)"; exit 2 ;;
 esac
 exit $status
