@@ -468,9 +468,11 @@ AUTOBAL_API double autobal_rotor_friction_switch(autobal_rotor *r, int frame, si
                                                  const double *y);
 /* Apply the switching rules (see autobal_rotor_friction) at (t, y), EXACT law: every slipping ball
  * with sgn(mode) psi' <= 0 (it has reached 0; with initial = 1 the modes are first set from the
- * sign of psi', and psi' = 0 counts as reached) is made stuck with psi' = 0 in y; then, as long as
+ * sign of psi', and psi' = 0 counts as reached) is made stuck with psi' = 0 in y (fixed frame:
+ * phi' = Omega); then, as long as
  * some stuck ball has |H| > mu N, the one with the largest excess (|H| - mu N) / N slips on
- * opposite to its H.  n_stick / n_slip (may be NULL) receive how many balls went from slipping to
+ * opposite to its H (a ball that had reached 0 gets its rate back: it slips on, reversed).
+ * n_stick / n_slip (may be NULL) receive how many balls went from slipping to
  * stuck and from stuck (at entry) to slipping; the balls that reached psi' = 0 but could not
  * stick are counted in n_reverse (may be NULL).  Returns 1 when a mode or y changed, 0 when
  * nothing changed, or a negative status (AUTOBAL_EINVAL: bad arguments or law not EXACT; AUTOBAL_ENUMERIC: the solve failed or
@@ -511,6 +513,11 @@ AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int fra
  *     Omega        the spin speed (the state's Omega)                    rad/s
  *     motor_torque the motor torque L(Omega) (without k_r Omega)         N m
  *     motor_power  L(Omega) Omega                                        W
+ *   then, only with friction (law not NONE; added in 0.3.0), N entries and N entries:
+ *     p<j>_b<i>_stuck   1 when the ball is stuck (EXACT law), else 0       1
+ *     p<j>_b<i>_N       its normal force N (autobal_rotor_normal_forces)   N
+ *   (all stuck flags first, then all normal forces, in state order; computing N writes the
+ *   handle's workspace, as the right-hand sides do).
  * Programs should find these columns by name (autobal_rotor_output_name).
  * With LUMPED input and non-finite hw.l_L / hw.l_R, amp_L / amp_R are NAN.  The constant
  * drive keeps the layout of 0.1.0 (no Omega column). */

@@ -10,6 +10,7 @@
 #include "autobal/study.h"
 #include "internal.h"
 #include "studies/rotor_transient_runup.h"
+#include "studies/rotor_friction.h"
 
 #define TWO_PI 6.283185307179586476925286766559
 
@@ -522,6 +523,7 @@ void autobal_study_rotor_transient_summary_free(autobal_study_rotor_transient_su
   free(s->state_final);
   s->state_final = NULL;
   study_runup_summary_free(s);
+  study_friction_summary_free(s);
 }
 
 int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_study_rotor_transient_options *opt,
@@ -537,6 +539,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   autobal_transient_event_hit hit;
   autobal_error e;
   run_ctx r;
+  study_friction *fric = NULL;
   double *y = NULL, t_reached = 0.0;
   int st, rc = AUTOBAL_SUCCESS, ev;
   size_t j;
@@ -589,6 +592,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   s->time_to_balance = NAN;
   if (a) {
     st = write_inputs(a, rot, o);
+    if (!st) st = study_friction_write_inputs(a, rot, "/rotor/transient");
     if (!st) st = open_series(&r, a);
     if (st) {
       rc = autobal_error_set(err, st, "%s", st == AUTOBAL_ENOMEM ? "out of memory" : autobal_archive_errmsg(a));
@@ -607,11 +611,19 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     rc = autobal_error_set(err, ev, "%s", autobal_transient_errmsg(tr));
     goto done;
   }
+  if ((st = study_friction_begin(rot, o->frame, tr, 0.0, y, &fric, &e))) { /* EXACT law: stick-slip events */
+    rc = autobal_error_set(err, st, "%s", e.message);
+    goto done;
+  }
   st = autobal_transient_run(tr, &sys, 0.0, o->t_end, y, &t_reached);
   autobal_transient_get_stats(tr, &s->solver);
   snprintf(s->stepper, sizeof s->stepper, "%s", autobal_transient_get_options(tr).stepper);
   snprintf(s->solver_message, sizeof s->solver_message, "%s", autobal_transient_errmsg(tr));
   if (st < 0) rc = autobal_error_set(err, st, "%s", autobal_transient_errmsg(tr));
+  if (st < 0 && st == AUTOBAL_ERHS && autobal_rotor_friction_on(rot)) /* e.g. a ball leaving its track */
+    rc = autobal_error_set(err, st, "%s (%s)", autobal_transient_errmsg(tr), autobal_rotor_errmsg(rot));
+  st = study_friction_finish(fric, t_reached, s, &e);
+  if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
   if (r.io_failed && rc == AUTOBAL_SUCCESS)
     rc = autobal_error_set(err, AUTOBAL_EIO, "writing the time series failed: %s", autobal_archive_errmsg(a));
 
@@ -663,6 +675,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
 
   if (a) {
     st = write_summary(a, s);
+    if (!st) st = study_friction_write_summary(a, s, "/rotor/transient");
     if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
   }
   st = study_runup_finish(r.runup, rot, o, a, autobal_archive_series_length(r.series), s, &e);
@@ -679,6 +692,7 @@ done:
   free(r.rev_max_D);
   free(r.rev_row);
   study_runup_free(r.runup);
+  study_friction_free(fric);
   free(y);
   if (s == &local) autobal_study_rotor_transient_summary_free(&local);
   return rc;

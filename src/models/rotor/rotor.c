@@ -54,7 +54,7 @@ struct autobal_rotor {
    * the cache of autobal_rotor_friction_switch: (t, frame, y copy) -> N, H */
   int law;
   double inv_ueps, gu, gv, Wtot, Dm;
-  double *f, *mu, *fs, *cN, *cH, *ycache, cache_t;
+  double *f, *mu, *fws, *cN, *cH, *pd0, *ycache, cache_t;
   int *mode, *mode0, cache_ok, cache_frame;
   double *store;
   autobal_error err;
@@ -423,12 +423,12 @@ static void rhs_common_rows(const autobal_rotor *R, const double y[], const doub
  * depend on the vector width), (3) after the 4x4 (or 2x2) solve, the ball
  * accelerations from the stored sines and cosines (elementwise). */
 
-static int fric_eval(autobal_rotor *R, int frame, double t, const double y[], double dydt[], double *Nout,
-                     double *Hout, int check_N);
+static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
+                     double dydt[], double *Nout, double *Hout, int check_N);
 
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
-  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE) return fric_eval(R, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL, 1);
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE) return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL, 1);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -510,7 +510,7 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
 int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
   if (R->law != AUTOBAL_ROTOR_FRICTION_NONE)
-    return fric_eval(R, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL, 1);
+    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL, 1);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -665,6 +665,14 @@ static int lu4_solve(double a[4][4], double x[][4], int nb) {
   return 0;
 }
 
+static int fric_fail(autobal_error *errp, double t, const char *which) {
+  autobal_error_set(errp, AUTOBAL_ENUMERIC,
+                    "%s right-hand side failed at t = %.17g s: the effective mass matrix is singular or the "
+                    "state is not finite",
+                    which, t);
+  return GSL_EBADFUNC;
+}
+
 /* One plane: q'' for the right-hand side b through the 2x2 S = I + g C (see solve_accelerations). */
 static void fric_one_plane_apply(const autobal_rotor *R, const fric_plane *c, const double S[4], double idet,
                                  const double b[4], double qdd[4]) {
@@ -678,15 +686,17 @@ static void fric_one_plane_apply(const autobal_rotor *R, const fric_plane *c, co
   qdd[3] = (b[3] - d * cu) * iA;
 }
 
-/* The whole friction evaluation at (t, y) in `frame`: accelerations into dydt (may be NULL), the
+/* The whole friction evaluation at (t, y) in `frame`, with the workspace ws (3 N doubles: sin, cos,
+ * f sgn; the handle's R->fws) and the error record errp:
+ * accelerations into dydt (may be NULL), the
  * normal forces into Nout and the holding forces of the stuck balls into Hout (NAN for slipping
  * balls; both may be NULL).  check_N: fail when a ball has N <= 0.  Returns 0, or GSL_EBADFUNC
  * with the message on the handle. */
-static int fric_eval(autobal_rotor *R, int frame, double t, const double y[], double dydt[], double *Nout,
-                     double *Hout, int check_N) {
+static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
+                     double dydt[], double *Nout, double *Hout, int check_N) {
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *ang = y + 8, *rate = y + 8 + N;
-  double *sn = R->sn, *cs = R->cs, *fs = R->fs;
+  double *sn = ws, *cs = ws + N, *fs = ws + 2 * N;
   const int exact = R->law == AUTOBAL_ROTOR_FRICTION_EXACT, reg = R->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED;
   const double gu = R->gu, gv = R->gv;
   fric_plane cp[AUTOBAL_ROTOR_MAX_PLANES];
@@ -814,7 +824,7 @@ static int fric_eval(autobal_rotor *R, int frame, double t, const double y[], do
     S[3] = 1.0 + g * c->Cvv;
     det = S[0] * S[3] - S[1] * S[2];
     nrm = fabs(S[0]) + fabs(S[1]) + fabs(S[2]) + fabs(S[3]);
-    if (!(det > 1e-13 * nrm * nrm)) return rhs_fail(R, t, which);
+    if (!(det > 1e-13 * nrm * nrm)) return fric_fail(errp, t, which);
     idet = 1.0 / det;
     fric_one_plane_apply(R, c, S, idet, b, qdd);
     if (R->motor) fric_one_plane_apply(R, c, S, idet, b1, qdd1);
@@ -836,7 +846,7 @@ static int fric_eval(autobal_rotor *R, int frame, double t, const double y[], do
     }
     memcpy(x[0], b, sizeof b);
     if (R->motor) memcpy(x[1], b1, sizeof b1);
-    if (lu4_solve(a, x, R->motor ? 2 : 1) != 0) return rhs_fail(R, t, which);
+    if (lu4_solve(a, x, R->motor ? 2 : 1) != 0) return fric_fail(errp, t, which);
     memcpy(qdd, x[0], sizeof qdd);
     if (R->motor) memcpy(qdd1, x[1], sizeof qdd1);
   }
@@ -852,11 +862,11 @@ static int fric_eval(autobal_rotor *R, int frame, double t, const double y[], do
     den = Jeff + G[0] * qdd1[0] + G[1] * qdd1[1] + G[2] * qdd1[2] + G[3] * qdd1[3];
     num = rhsm + motor_L(R, W) - R->p.drive.k_r * W - R->L.C * qd[2] * qd[3] -
           (G[0] * qdd[0] + G[1] * qdd[1] + G[2] * qdd[2] + G[3] * qdd[3]);
-    if (!(den > 1e-13 * Jeff)) return rhs_fail(R, t, which);
+    if (!(den > 1e-13 * Jeff)) return fric_fail(errp, t, which);
     Wd = num / den;
     for (j = 0; j < 4; j++) qdd[j] += Wd * qdd1[j];
   }
-  if (!isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3] + Wd)) return rhs_fail(R, t, which);
+  if (!isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3] + Wd)) return fric_fail(errp, t, which);
   for (j = 0; j < R->n_planes; j++) {
     const double d = R->p.plane[j].d;
     uv[j][0] = qdd[0] + d * qdd[3]; /* eq. (3.3) */
@@ -875,7 +885,7 @@ static int fric_eval(autobal_rotor *R, int frame, double t, const double y[], do
       if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) : NAN;
       if (check_N && !(Nk > 0.0)) {
         size_t jj = j, ii = k - k0;
-        autobal_error_set(&R->err, AUTOBAL_ENUMERIC,
+        autobal_error_set(errp, AUTOBAL_ENUMERIC,
                           "%s right-hand side failed at t = %.17g s: ball %zu of plane %zu (p%zu_b%zu) would leave "
                           "its track: normal force N = %.17g N (must be > 0)",
                           which, t, ii + 1, jj + 1, jj + 1, ii + 1, Nk);
@@ -934,7 +944,7 @@ static int forces_common(autobal_rotor *r, int frame, double t, const double *y,
   if (r == NULL || y == NULL || (N == NULL && H == NULL) || n != r->N || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
     return AUTOBAL_EINVAL;
-  return fric_eval(r, frame, t, y, NULL, N, H, 0) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
+  return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
 }
 
 int autobal_rotor_normal_forces(autobal_rotor *r, int frame, double t, const double *y, double *N, size_t n) {
@@ -951,7 +961,7 @@ static int fric_cache(autobal_rotor *r, int frame, double t, const double *y) {
       memcmp(r->ycache, y, r->dim * sizeof(double)) == 0)
     return 0;
   r->cache_ok = 0;
-  if (fric_eval(r, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return -1;
+  if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return -1;
   memcpy(r->ycache, y, r->dim * sizeof(double));
   r->cache_t = t;
   r->cache_frame = frame;
@@ -992,6 +1002,7 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   memcpy(r->mode0, r->mode, r->N * sizeof(int));
   for (k = 0; k < r->N; k++) {
     const double pd = ball_psid(r, frame, t, y, k);
+    r->pd0[k] = y[8 + r->N + k]; /* restored for a ball that reaches 0 but slips on */
     if (initial) r->mode[k] = pd > 0.0 ? 1 : pd < 0.0 ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
     else if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK && (double)r->mode[k] * pd <= 0.0)
       r->mode[k] = AUTOBAL_ROTOR_BALL_STUCK; /* psi' has reached 0 */
@@ -1003,7 +1014,7 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   for (it = 0; it <= r->N; it++) {
     size_t worst = r->N;
     double excess = 0.0;
-    if (fric_eval(r, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
+    if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
     for (k = 0; k < r->N; k++) {
       if (!(r->cN[k] > 0.0)) {
         size_t j = 0;
@@ -1023,6 +1034,7 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
     }
     if (worst == r->N) break;
     r->mode[worst] = r->cH[worst] > 0.0 ? AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE : AUTOBAL_ROTOR_BALL_SLIP_POSITIVE;
+    y[8 + r->N + worst] = r->pd0[worst]; /* its rate as it was (psi' = 0 if it was stuck at entry) */
   }
   for (k = 0; k < r->N; k++) {
     const int was = r->mode0[k] == AUTOBAL_ROTOR_BALL_STUCK, is = r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
@@ -1519,9 +1531,9 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
     return NULL;
   }
-  /* 15 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
+  /* 18 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
    * least one element) */
-  R->store = (double *)calloc(15 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
+  R->store = (double *)calloc(18 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
   R->mode = (int *)calloc(2 * N + 1, sizeof(int));
   if (R->store == NULL || R->mode == NULL) {
     free(R->store);
@@ -1550,10 +1562,11 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   R->mL = R->mW + mn;
   R->f = R->mL + mn;
   R->mu = R->f + N;
-  R->fs = R->mu + N;
-  R->cN = R->fs + N;
+  R->cN = R->mu + N;
   R->cH = R->cN + N;
-  R->ycache = R->cH + N;
+  R->fws = R->cH + N; /* 3 N: the friction path's sin, cos, f sgn */
+  R->pd0 = R->fws + 3 * N;
+  R->ycache = R->pd0 + N;
   R->mode0 = R->mode + N;
   R->p = *p;
   R->motor = p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR;
@@ -1869,10 +1882,15 @@ double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t
 #define N_PLANE_OUT 7u
 #define N_BALL_OUT 6u
 
-size_t autobal_rotor_output_count(const autobal_rotor *r) {
-  if (r == NULL) return 0;
+/* The outputs without the friction columns (the layout of 0.2.0). */
+static size_t output_count_base(const autobal_rotor *r) {
   return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N + (r->dn > 0 ? 1u : 0u) +
          (r->motor ? 3u : 0u);
+}
+
+size_t autobal_rotor_output_count(const autobal_rotor *r) {
+  if (r == NULL) return 0;
+  return output_count_base(r) + (r->law != AUTOBAL_ROTOR_FRICTION_NONE ? 2u * r->N : 0u);
 }
 
 int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
@@ -1905,6 +1923,16 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
     o[4] = hypot(s[2], s[3]);
     o[5] = o[4] / r->sref[j];
     o[6] = hypot(x + d * be, yy - d * al);
+  }
+  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) {
+    /* the stuck flags of all balls, then their normal forces; the solve's workspace is the
+     * ball columns of out, written after it */
+    double *fo = out + output_count_base(r);
+    if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0) !=
+        GSL_SUCCESS)
+      for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
+    for (k = 0; k < r->N; k++)
+      fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
   }
   for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
@@ -1946,6 +1974,15 @@ int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_
   static const char *const bunit[N_BALL_OUT] = {"rad", "rad", "rad", "rad", "rad/s", "rad/s"};
   const char *u;
   if (r == NULL || buf == NULL || len == 0 || k >= autobal_rotor_output_count(r)) return AUTOBAL_EINVAL;
+  if (k >= output_count_base(r)) { /* friction: stuck flags, then normal forces */
+    size_t ball = k - output_count_base(r), j = 0;
+    const int isN = ball >= r->N;
+    if (isN) ball -= r->N;
+    while (j + 1 < r->n_planes && ball >= r->off[j + 1]) j++;
+    snprintf(buf, len, "p%zu_b%zu_%s", j + 1, ball - r->off[j] + 1, isN ? "N" : "stuck");
+    if (unit) *unit = isN ? "N" : "1";
+    return AUTOBAL_SUCCESS;
+  }
   if (k < N_GLOBAL_OUT) {
     snprintf(buf, len, "%s", gname[k]);
     u = "m";
@@ -1953,13 +1990,13 @@ int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_
     size_t kk = k - N_GLOBAL_OUT;
     snprintf(buf, len, "p%zu_%s", kk / N_PLANE_OUT + 1, pname[kk % N_PLANE_OUT]);
     u = punit[kk % N_PLANE_OUT];
-  } else if (r->dn > 0 && k + 1 == autobal_rotor_output_count(r)) {
+  } else if (r->dn > 0 && k + 1 == output_count_base(r)) {
     snprintf(buf, len, "Omega");
     u = "rad/s";
-  } else if (r->motor && k + 3 >= autobal_rotor_output_count(r)) {
+  } else if (r->motor && k + 3 >= output_count_base(r)) {
     static const char *const mname[3] = {"Omega", "motor_torque", "motor_power"};
     static const char *const munit[3] = {"rad/s", "N m", "W"};
-    const size_t km = k + 3 - autobal_rotor_output_count(r);
+    const size_t km = k + 3 - output_count_base(r);
     snprintf(buf, len, "%s", mname[km]);
     u = munit[km];
   } else {
