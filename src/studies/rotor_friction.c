@@ -92,7 +92,7 @@ int study_friction_begin(autobal_rotor *rot, int frame, autobal_transient *tr, d
   rc = autobal_rotor_friction_settle(rot, frame, t0, y, 1, NULL, NULL, NULL);
   if (rc < 0) {
     study_friction_free(f);
-    return autobal_error_set(err, rc, "friction: the initial state: %s", autobal_rotor_errmsg(rot));
+    return autobal_error_set(err, rc, "the initial state: %s", autobal_rotor_errmsg(rot));
   }
   note_modes(f, t0);
   for (k = 0; k < N; k++) {

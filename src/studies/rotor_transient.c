@@ -373,7 +373,9 @@ static void output_long_name(const char *name, char *buf, size_t len) {
                        : !strcmp(rest, "psi") ? "angle psi relative to the rotor (unwrapped)"
                        : !strcmp(rest, "psi_w") ? "angle psi relative to the rotor wrapped to (-pi, pi]"
                        : !strcmp(rest, "phi_rate") ? "absolute angular rate dphi/dt"
-                       : !strcmp(rest, "psi_rate") ? "angular rate relative to the rotor dpsi/dt" : rest;
+                       : !strcmp(rest, "psi_rate") ? "angular rate relative to the rotor dpsi/dt"
+                       : !strcmp(rest, "stuck") ? "stuck on its track (1) or slipping (0) (friction)"
+                       : !strcmp(rest, "N") ? "normal force of the track on the ball (friction)" : rest;
     snprintf(buf, len, "ball %u of plane %u: %s", b, pl, what);
   } else if (sscanf(name, "p%u_%47s", &pl, rest) == 2) {
     const char *what = !strcmp(rest, "s_u") ? "unbalance s_u of rotor plus balls along fixed x (3.1)"
@@ -619,9 +621,10 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   autobal_transient_get_stats(tr, &s->solver);
   snprintf(s->stepper, sizeof s->stepper, "%s", autobal_transient_get_options(tr).stepper);
   snprintf(s->solver_message, sizeof s->solver_message, "%s", autobal_transient_errmsg(tr));
-  if (st < 0) rc = autobal_error_set(err, st, "%s", autobal_transient_errmsg(tr));
-  if (st < 0 && st == AUTOBAL_ERHS && autobal_rotor_friction_on(rot)) /* e.g. a ball leaving its track */
-    rc = autobal_error_set(err, st, "%s (%s)", autobal_transient_errmsg(tr), autobal_rotor_errmsg(rot));
+  if (st == AUTOBAL_ERHS && autobal_rotor_friction_on(rot)) /* with the reason, e.g. a ball leaving its track */
+    snprintf(s->solver_message, sizeof s->solver_message, "%s: %s", autobal_transient_errmsg(tr),
+             autobal_rotor_errmsg(rot));
+  if (st < 0) rc = autobal_error_set(err, st, "%s", s->solver_message);
   st = study_friction_finish(fric, t_reached, s, &e);
   if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
   if (r.io_failed && rc == AUTOBAL_SUCCESS)

@@ -1413,18 +1413,22 @@ static int check_friction(const autobal_rotor_params *p, size_t j, autobal_error
     const double f = fr->ball_f[j] ? fr->ball_f[j][i] : 0.0;
     if (fr->ball_f[j]) {
       snprintf(name, sizeof name, "plane[%zu].ball_f[%zu]", j, i);
-      if ((st = autobal_check_param(err, name, f, 0.0, 0, INFINITY, 1, "1"))) return st;
+      if ((st = autobal_check_param(err, name, f, 0.0, 0, INFINITY, 1, ""))) return st;
     }
     if (fr->ball_mu[j]) {
       const double mu = fr->ball_mu[j][i];
       snprintf(name, sizeof name, "plane[%zu].ball_mu[%zu]", j, i);
-      if (isfinite(mu) && mu < f)
+      if (isfinite(mu) && mu < f) {
+        char fb[40];
+        snprintf(fb, sizeof fb, "%.15g", f); /* the shortest of %.15g / %.17g that reads back */
+        if (strtod(fb, NULL) != f) snprintf(fb, sizeof fb, "%.17g", f);
         return autobal_error_set(err, AUTOBAL_EINVAL,
-                                 "parameter %s = %.17g is too small: the static coefficient must be >= the "
-                                 "rolling-resistance coefficient plane[%zu].ball_f[%zu] = %.17g (allowed range "
-                                 "[%.17g, inf))",
-                                 name, mu, j, i, f, f);
-      if ((st = autobal_check_param(err, name, mu, f, 0, INFINITY, 1, "1"))) return st;
+                                 "parameter %s = %.15g is too small: the static coefficient must be >= the "
+                                 "rolling-resistance coefficient plane[%zu].ball_f[%zu] = %s (allowed range "
+                                 "[%s, inf))",
+                                 name, mu, j, i, fb, fb);
+      }
+      if ((st = autobal_check_param(err, name, mu, f, 0, INFINITY, 1, ""))) return st;
     }
   }
   return AUTOBAL_SUCCESS;
