@@ -10,6 +10,8 @@
  *  (d) a single stuck ball balanced by an equal unbalance opposite (D stays at rest, so
  *      H = m r Omega' and N = m r Omega^2 exactly) on a coast-down ramp Omega = Omega_a - a t:
  *      it breaks free when mu N = |H|, i.e. at Omega^2 = a / mu, t* = (Omega_a - sqrt(a/mu)) / a;
+ *  (d') the critical vibration level: a stuck ball on the rotor's steady whirl (closed-form linear
+ *      response to the constant unbalance) holds with mu 2 % above |H|/N and breaks free below;
  *  (e) the regularized law f N tanh(psi'/u_eps) converges to the exact switching result as
  *      u_eps -> 0 (a lagging ball slowed by rolling resistance until it sticks, mu = f): the error
  *      of the final angle and the observed rate;
@@ -17,6 +19,7 @@
  *      integral of L Omega - k_r Omega^2 - supports - ball viscosity - sum r f N |psi'|,
  *      integrated alongside as an extra state entry (energies coded in tests/rotor_energy.h);
  *  and the parameter checks (f > mu, negative, NaN, u_eps <= 0). */
+#include <complex.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -175,6 +178,138 @@ static void test_break_free(void) {
             s.friction_slips == 1 && s.friction_sticks == 0 && !s.ball_stuck_final[0][0]);
       autobal_study_rotor_transient_summary_free(&s);
     }
+  }
+}
+
+/* ---- (d') the critical vibration level of a steady whirl ------------------------------------
+ * One ball stuck at psi = 1 with the unbalance m0 r0 at psi0 = 0, constant speed 250 rad/s: a
+ * constant unbalance S = m0 r0 + m r e^{i psi}, so the rotor's steady response is the solution of
+ * the linear equations (3.2) with the forcing s_u'' + i s_v'' = -Omega^2 S e^{i Omega t}, coded here
+ * from docs/rotor.md with the lumped coefficients: q = Re(Q e^{i Omega t}),
+ *   (-Omega^2 D + i Omega C + K) Q = -F,  F = (Fu, Fv, -d Fv, d Fu),  Fu = -Omega^2 S, Fv = i Omega^2 S
+ * (complex 4x4, Gaussian elimination).  The holding ratio |H|/N of the stuck ball along that whirl
+ * (D's acceleration -Omega^2 (Q_x + d Q_beta, Q_y - d Q_alpha) e^{i Omega t}) is the critical mu:
+ * started on the whirl, the ball stays with mu 2 % above its largest value and breaks free at
+ * once with mu 2 % below its smallest. */
+static void cplx_solve4(double complex a[4][4], double complex b[4]) {
+  int i, j, k;
+  for (k = 0; k < 4; k++) {
+    int piv = k;
+    for (i = k + 1; i < 4; i++)
+      if (cabs(a[i][k]) > cabs(a[piv][k])) piv = i;
+    for (j = 0; j < 4; j++) {
+      double complex t = a[k][j];
+      a[k][j] = a[piv][j];
+      a[piv][j] = t;
+    }
+    {
+      double complex t = b[k];
+      b[k] = b[piv];
+      b[piv] = t;
+    }
+    for (i = k + 1; i < 4; i++) {
+      double complex l = a[i][k] / a[k][k];
+      for (j = k; j < 4; j++) a[i][j] -= l * a[k][j];
+      b[i] -= l * b[k];
+    }
+  }
+  for (i = 3; i >= 0; i--) {
+    for (j = i + 1; j < 4; j++) b[i] -= a[i][j] * b[j];
+    b[i] /= a[i][i];
+  }
+}
+
+static void test_whirl(void) {
+  static const double m1[1] = {0.05}, r1[1] = {0.1}, h1[1] = {0.1}, psi1[1] = {1.0}, rate1[1] = {0.0};
+  autobal_rotor_params p = autobal_rotor_params_default();
+  const double W = 250.0, d = 0.10, m = 0.05, r = 0.1, psi = 1.0;
+  double complex a[4][4], Q[4], S, Fu, Fv;
+  const autobal_rotor_lumped *L;
+  autobal_rotor *rot;
+  double rmin = 1e300, rmax = 0.0, H0 = 0.0, N0 = 0.0, y[12], Hc[1], Nc[1];
+  int k, c;
+  printf("-- (d') a stuck ball on a steady whirl: the critical mu = |H|/N of the closed-form response\n");
+  p.omega = W;
+  p.plane[0].n_balls = 1;
+  p.plane[0].ball_mass = m1;
+  p.plane[0].ball_radius = r1;
+  p.plane[0].ball_damping = h1;
+  p.plane[0].ball_psi = psi1;
+  p.plane[0].ball_rate = rate1;
+  rot = autobal_rotor_alloc(&p, NULL);
+  L = autobal_rotor_get_lumped(rot);
+  memset(a, 0, sizeof a);
+  /* -Omega^2 D + i Omega C + K, rows x, y, alpha, beta (3.2) */
+  a[0][0] = -W * W * L->M + I * W * L->h_x + L->c_x;
+  a[0][3] = -I * W * L->h_xbeta - L->c_xbeta;
+  a[1][1] = -W * W * L->M + I * W * L->h_y + L->c_y;
+  a[1][2] = I * W * L->h_yalpha + L->c_yalpha;
+  a[2][1] = I * W * L->h_yalpha + L->c_yalpha;
+  a[2][2] = -W * W * L->A + I * W * L->h_alpha + L->c_alpha;
+  a[2][3] = I * W * L->C * W;
+  a[3][0] = -I * W * L->h_xbeta - L->c_xbeta;
+  a[3][2] = -I * W * L->C * W;
+  a[3][3] = -W * W * L->A + I * W * L->h_beta + L->c_beta;
+  S = 0.02 * 0.1 + m * r * cexp(I * psi);
+  Fu = -W * W * S;
+  Fv = I * W * W * S;
+  Q[0] = -Fu;
+  Q[1] = -Fv;
+  Q[2] = d * Fv;
+  Q[3] = -d * Fu;
+  cplx_solve4(a, Q);
+  for (k = 0; k < 64; k++) { /* |H|/N over one revolution */
+    const double t = k * (2.0 * M_PI / W) / 64.0;
+    const double complex e = cexp(I * W * t);
+    const double ud = creal(-W * W * (Q[0] + d * Q[3]) * e), vd = creal(-W * W * (Q[1] - d * Q[2]) * e);
+    const double ph = W * t + psi;
+    const double H = m * (-ud * sin(ph) + vd * cos(ph)), N = m * (r * W * W - ud * cos(ph) - vd * sin(ph));
+    if (k == 0) H0 = H, N0 = N;
+    if (fabs(H) / N < rmin) rmin = fabs(H) / N;
+    if (fabs(H) / N > rmax) rmax = fabs(H) / N;
+  }
+  printf("     closed-form whirl: |x| = %.4g um; |H|/N from %.6g to %.6g over a revolution\n", cabs(Q[0]) * 1e6, rmin,
+         rmax);
+  /* the initial state on the whirl; the library's H and N there (the constrained solve) */
+  for (k = 0; k < 4; k++) {
+    p.q0[k] = creal(Q[k]);
+    p.qd0[k] = creal(I * W * Q[k]);
+  }
+  autobal_rotor_free(rot);
+  p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT;
+  for (c = 0; c < 2; c++) {
+    double mu1[1], f1[1];
+    autobal_study_rotor_transient_summary s;
+    mu1[0] = c == 0 ? 1.02 * rmax : 0.98 * rmin;
+    f1[0] = 0.5 * mu1[0];
+    p.friction.ball_f[0] = f1;
+    p.friction.ball_mu[0] = mu1;
+    rot = autobal_rotor_alloc(&p, NULL);
+    autobal_rotor_initial_state(rot, AUTOBAL_ROTOR_ROTATING, 0.0, y, 10);
+    autobal_rotor_ball_mode_set(rot, 0, AUTOBAL_ROTOR_BALL_STUCK);
+    autobal_rotor_holding_forces(rot, AUTOBAL_ROTOR_ROTATING, 0.0, y, Hc, 1);
+    autobal_rotor_normal_forces(rot, AUTOBAL_ROTOR_ROTATING, 0.0, y, Nc, 1);
+    if (c == 0) {
+      CHECK_CLOSE("the library's H at the whirl state = the closed form", Hc[0], H0, 1e-12, 0);
+      CHECK_CLOSE("the library's N at the whirl state = the closed form", Nc[0], N0, 1e-12, 0);
+    }
+    CHECK_STATUS("settle at t = 0", autobal_rotor_friction_settle(rot, AUTOBAL_ROTOR_ROTATING, 0.0, y, 1, NULL, NULL, NULL) >= 0, 1);
+    if (c == 0) {
+      CHECK("mu = 1.02 max |H|/N: the ball stays stuck at t = 0", autobal_rotor_ball_mode_get(rot, 0) == AUTOBAL_ROTOR_BALL_STUCK);
+      CHECK_STATUS("0.3 s on the whirl", run_study(&p, AUTOBAL_ROTOR_ROTATING, 0.3, 1e-11, 1e-13, &s), AUTOBAL_SUCCESS);
+      printf("     mu = %.6g: slips %lu, time stuck %.9g s, final psi %.17g\n", mu1[0], s.friction_slips,
+             s.ball_time_stuck[0][0], s.state_final[8]);
+      CHECK("... and for 0.3 s (no slip, psi unchanged)", s.friction_slips == 0 && s.ball_time_stuck[0][0] == 0.3 &&
+                                                            s.state_final[8] == psi);
+    } else {
+      CHECK("mu = 0.98 min |H|/N: the ball breaks free at t = 0", autobal_rotor_ball_mode_get(rot, 0) != AUTOBAL_ROTOR_BALL_STUCK);
+      CHECK_STATUS("0.3 s from the whirl", run_study(&p, AUTOBAL_ROTOR_ROTATING, 0.3, 1e-11, 1e-13, &s), AUTOBAL_SUCCESS);
+      printf("     mu = %.6g: time stuck %.9g s, psi moved by %.4g rad\n", mu1[0], s.ball_time_stuck[0][0],
+             s.state_final[8] - psi);
+      CHECK("... and moves (> 1e-3 rad in 0.3 s)", fabs(s.state_final[8] - psi) > 1e-3);
+    }
+    autobal_study_rotor_transient_summary_free(&s);
+    autobal_rotor_free(rot);
   }
 }
 
@@ -399,6 +534,7 @@ int main(void) {
   test_zero_friction();
   test_stays_put();
   test_break_free();
+  test_whirl();
   test_regularized_convergence();
   test_energy();
   return check_summary();
