@@ -42,6 +42,13 @@ expect 0 '"friction_sticks":4' "$AUTOBAL" rotor transient exact.ini --json -q -o
 expect 0 "" "$AUTOBAL" rerun exact.h5 -o exact_rerun.h5 -q
 if "$PY" "$here/drive_check.py" same exact.h5 exact_rerun.h5; then ok "rerun of the exact-law run, bit for bit"; else bad "rerun differs"; fi
 
+# two planes (data/rotor_two_planes.ini), per-ball mu: fixed and rotating frames switch alike
+cat "$DATA/rotor_two_planes.ini" > two.ini
+printf '\n[friction]\nlaw = exact\n[plane1]\nball_f = 0.005\nball_mu = 0.01, 0.02\n[plane2]\nball_f = 0.003\n' >> two.ini
+expect 0 "friction (exact): 3 stick(s), 1 slip(s)" "$AUTOBAL" rotor transient two.ini --set transient.t_end=1 -o two.h5
+expect 0 "" "$AUTOBAL" rotor transient two.ini --set transient.t_end=1 --set transient.frame=rotating -o two_rot.h5
+check "two planes: fixed frame == rotating frame (switches, motion, N, stuck times)" frames two.h5 two_rot.h5
+
 # the regularized law: no modes (stuck columns 0), its attributes
 cat > reg.ini <<'INI'
 [rotor]

@@ -9,6 +9,8 @@
                     stuck time within the number of switches times dt_out; the counts are attributes
   regularized A.h5  law = regularized: the attributes (u_eps in rad/s), stuck flags all 0, N > 0
   none A.h5         no friction: no _stuck or _N column and no friction attribute (the old layout)
+  frames F.h5 R.h5  the same exact-law run in both frames: equal stuck flags and switch counts, motion,
+                    N and stuck times within the integration tolerance
 """
 import sys
 
@@ -103,5 +105,28 @@ def none(path):
         fail("a friction attribute without friction")
 
 
+def frames(pf, pr):
+    """The same exact-law run in the fixed and the rotating frame: the switching happens at the
+    same times (equal stuck flags at every sample), the motion agrees to the integration tolerance."""
+    a, b = h5py.File(pf, "r")["/rotor/transient"], h5py.File(pr, "r")["/rotor/transient"]
+    if len(a["time"]) != len(b["time"]):
+        fail("sample counts differ")
+    amp = np.max(np.abs(a["x"][:]))
+    eq = max(np.max(np.abs(a[k][:] - b[k][:])) for k in ("x", "y")) / amp
+    names = [k[:-4] for k in a.keys() if k.endswith("_psi") and "_b" in k]
+    ep = max(np.max(np.abs(a[n + "_psi"][:] - b[n + "_psi"][:])) for n in names)
+    en = max(np.max(np.abs(a[n + "_N"][:] / b[n + "_N"][:] - 1)) for n in names)
+    flags = all(np.array_equal(a[n + "_stuck"][:], b[n + "_stuck"][:]) for n in names)
+    same_counts = all(a.attrs[k] == b.attrs[k] for k in ("friction_sticks", "friction_slips", "friction_reversals"))
+    dts = max(np.max(np.abs(a.attrs[k] - b.attrs[k])) for k in a.attrs.keys() if k.endswith("_ball_time_stuck"))
+    print("fixed vs rotating: %d balls, |dx|/max|x| %.3g, psi %.3g rad, N %.3g relative, time stuck %.3g s"
+          % (len(names), eq, ep, en, dts))
+    if not (flags and same_counts and eq < 1e-6 and ep < 1e-6 and en < 1e-6 and dts < 1e-8):
+        fail("frames disagree")
+
+
 if __name__ == "__main__":
-    {"exact": exact, "regularized": regularized, "none": none}[sys.argv[1]](sys.argv[2])
+    if sys.argv[1] == "frames":
+        frames(sys.argv[2], sys.argv[3])
+    else:
+        {"exact": exact, "regularized": regularized, "none": none}[sys.argv[1]](sys.argv[2])
