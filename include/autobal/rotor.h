@@ -420,6 +420,11 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
  * with status AUTOBAL_ENUMERIC, and dydt has not been written.  rotor must be a
  * valid handle (not checked: no NULL test in the hot path).  Every call writes
  * the handle's workspace: one handle per thread (see Threads above). */
+/* With a friction law other than NONE (autobal_rotor_friction) both right-hand sides take the
+ * friction path: the normal forces enter the accelerations, the reduced 4x4 system is no longer
+ * symmetric (one plane: 2x2 closed form, two planes: LU with partial pivoting; still O(N), no
+ * allocation), stuck balls are masses fixed to the rotor, and a ball with N <= 0 also fails with
+ * GSL_EBADFUNC (the message names the ball and t; dydt not written). */
 AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor);
 
 /* MOTOR drive (both right-hand sides): the system is linear in Omega' as well; the 4x4 solve

@@ -872,41 +872,50 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     uv[j][0] = qdd[0] + d * qdd[3]; /* eq. (3.3) */
     uv[j][1] = qdd[1] - d * qdd[2];
   }
-  if (dydt) rhs_common_rows(R, y, qdd, dydt);
+  /* the normal and holding forces (and the check N > 0) before anything is written to dydt */
+  if (check_N || Nout || Hout)
+    for (j = 0; j < R->n_planes; j++) {
+      const double au = uv[j][0] + gu, av = uv[j][1] + gv;
+      const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+      for (k = k0; k < k1; k++) {
+        const double s = sn[k], cc = cs[k], m = R->m[k], r = R->r[k];
+        const int stuck = exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
+        const double pd = stuck ? W : (frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W);
+        const double Nk = m * (r * pd * pd - au * cc - av * s);
+        if (Nout) Nout[k] = Nk;
+        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) : NAN;
+        if (check_N && !(Nk > 0.0)) {
+          const size_t ii = k - k0;
+          autobal_error_set(errp, AUTOBAL_ENUMERIC,
+                            "%s right-hand side failed at t = %.17g s: ball %zu of plane %zu (p%zu_b%zu) would "
+                            "leave its track: normal force N = %.17g N (must be > 0)",
+                            which, t, ii + 1, j + 1, j + 1, ii + 1, Nk);
+          return GSL_EBADFUNC;
+        }
+      }
+    }
+  if (!dydt) return GSL_SUCCESS;
+  rhs_common_rows(R, y, qdd, dydt);
   for (j = 0; j < R->n_planes; j++) {
     const double au = uv[j][0] + gu, av = uv[j][1] + gv;
     const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
     for (k = k0; k < k1; k++) {
-      const double s = sn[k], cc = cs[k], m = R->m[k], r = R->r[k];
-      const int stuck = exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
-      const double pd = stuck ? W : (frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W);
-      const double Nk = m * (r * pd * pd - au * cc - av * s);
-      if (Nout) Nout[k] = Nk;
-      if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) : NAN;
-      if (check_N && !(Nk > 0.0)) {
-        size_t jj = j, ii = k - k0;
-        autobal_error_set(errp, AUTOBAL_ENUMERIC,
-                          "%s right-hand side failed at t = %.17g s: ball %zu of plane %zu (p%zu_b%zu) would leave "
-                          "its track: normal force N = %.17g N (must be > 0)",
-                          which, t, ii + 1, jj + 1, jj + 1, ii + 1, Nk);
-        return GSL_EBADFUNC;
+      const double s = sn[k], cc = cs[k], r = R->r[k];
+      double acc;
+      if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
+        dydt[8 + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
+        acc = frame == AUTOBAL_ROTOR_FIXED ? Wd : 0.0;
+      } else {
+        const double pd = frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W;
+        const double psid = frame == AUTOBAL_ROTOR_FIXED ? rate[k] - W : rate[k];
+        const double fk = fs[k];
+        acc = ((s + fk * cc) * au + (fk * s - cc) * av) / r - R->kappa[k] * psid - fk * pd * pd;
+        if (frame == AUTOBAL_ROTOR_ROTATING) acc -= Wd;
       }
-      if (dydt) {
-        double acc;
-        if (stuck) {
-          dydt[8 + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
-          acc = frame == AUTOBAL_ROTOR_FIXED ? Wd : 0.0;
-        } else {
-          const double psid = frame == AUTOBAL_ROTOR_FIXED ? rate[k] - W : rate[k];
-          const double fk = fs[k];
-          acc = ((s + fk * cc) * au + (fk * s - cc) * av) / r - R->kappa[k] * psid - fk * pd * pd;
-          if (frame == AUTOBAL_ROTOR_ROTATING) acc -= Wd;
-        }
-        dydt[8 + N + k] = acc;
-      }
+      dydt[8 + N + k] = acc;
     }
   }
-  if (dydt && R->motor) {
+  if (R->motor) {
     dydt[R->im] = W;
     dydt[R->im + 1] = Wd;
   }
