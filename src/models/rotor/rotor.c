@@ -1775,7 +1775,10 @@ int autobal_rotor_set_omega(autobal_rotor *r, double omega) {
   int st;
   if (r == NULL) return AUTOBAL_EINVAL;
   st = autobal_check_param(&r->err, "omega", omega, -INFINITY, 1, INFINITY, 1, "rad/s");
-  if (st == AUTOBAL_SUCCESS) r->p.omega = omega;
+  if (st == AUTOBAL_SUCCESS) {
+    r->p.omega = omega;
+    r->cache_ok = 0; /* the friction forces cached for autobal_rotor_friction_switch */
+  }
   return st;
 }
 
