@@ -42,6 +42,9 @@ typedef struct rotor_cfg {
   double drive_L[MAX_CFG_DRIVE_POINTS];
   /* [transient] run-up outputs (a drive other than constant) */
   double capture_band, capture_time;
+  /* [friction] and the planes' ball_f, ball_mu (p.friction points into them) */
+  double fric_f[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS], fric_mu[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS];
+  const char *friction_law;
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -563,11 +566,65 @@ static double speed_ref(const rotor_cfg *c) {
   return m;
 }
 
+/* [friction] law = none | exact | regularized, u_eps (rad/s, regularized only); per plane the
+ * lists ball_f (rolling-resistance coefficients, default 0) and ball_mu (static coefficients,
+ * default: = ball_f), n values or one for all.  The ranges (f >= 0, mu >= f, u_eps > 0) are the
+ * library's checks (autobal_rotor_params_check), named in the configuration's terms. */
+static int read_friction(cli_ctx *ctx, rotor_cfg *c) {
+  autobal_rotor_friction *fr = &c->p.friction;
+  size_t j;
+  int rc, has_u = 0;
+  memset(fr, 0, sizeof *fr);
+  c->friction_law = "none";
+  if (cli_section_present(ctx, "friction")) {
+    double u_eps = NAN;
+    if ((rc = cli_get_string(ctx, "friction", "law", c->friction_law, &c->friction_law, NULL))) return rc;
+    if ((rc = cli_get_quantity(ctx, "friction", "u_eps", "rad/s", NAN, &u_eps, &has_u))) return rc;
+    if (!strcmp(c->friction_law, "none")) fr->law = AUTOBAL_ROTOR_FRICTION_NONE;
+    else if (!strcmp(c->friction_law, "exact")) fr->law = AUTOBAL_ROTOR_FRICTION_EXACT;
+    else if (!strcmp(c->friction_law, "regularized")) fr->law = AUTOBAL_ROTOR_FRICTION_REGULARIZED;
+    else
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[friction]: law = '%s' is not one of: none, exact, regularized",
+                      c->friction_law);
+    if (fr->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED && !has_u)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[friction]: law = regularized needs u_eps (rad/s, > 0: the speed of f N tanh(psi'/u_eps))");
+    if (fr->law != AUTOBAL_ROTOR_FRICTION_REGULARIZED && has_u)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[friction]: u_eps is a key of law = regularized, but law = %s",
+                      c->friction_law);
+    fr->u_eps = u_eps;
+  }
+  for (j = 0; j < c->p.n_planes; j++) {
+    const char *sec = j ? "plane2" : "plane1";
+    const size_t n = c->p.plane[j].n_balls;
+    size_t nf, nm, k;
+    int pf, pm;
+    if ((rc = cli_get_quantities(ctx, sec, "ball_f", "1", c->fric_f[j], MAX_CFG_BALLS, &nf, &pf))) return rc;
+    if ((rc = cli_get_quantities(ctx, sec, "ball_mu", "1", c->fric_mu[j], MAX_CFG_BALLS, &nm, &pm))) return rc;
+    if ((nf || nm) && fr->law == AUTOBAL_ROTOR_FRICTION_NONE)
+      return cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[%s]: %s is given but there is no friction law: set [friction] law = exact or regularized", sec,
+                      nf ? "ball_f" : "ball_mu");
+    if ((nf && nf != 1 && nf != n) || (nm && nm != 1 && nm != n))
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s has %zu values but there are %zu balls (one value for all, or one per ball)",
+                      sec, (nf && nf != 1 && nf != n) ? "ball_f" : "ball_mu", (nf && nf != 1 && nf != n) ? nf : nm, n);
+    if (fr->law == AUTOBAL_ROTOR_FRICTION_NONE || n == 0) continue;
+    for (k = 0; k < n; k++) {
+      c->fric_f[j][k] = nf == 0 ? 0.0 : c->fric_f[j][nf == 1 ? 0 : k];
+      c->fric_mu[j][k] = nm == 0 ? c->fric_f[j][k] : c->fric_mu[j][nm == 1 ? 0 : k];
+    }
+    fr->ball_f[j] = c->fric_f[j];
+    fr->ball_mu[j] = c->fric_mu[j];
+  }
+  return CLI_EXIT_OK;
+}
+
 static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   int rc;
   double wref;
   if ((rc = read_rotor_model(ctx, c))) return rc;
   if ((rc = read_drive(ctx, c))) return rc;
+  if ((rc = read_friction(ctx, c))) return rc;
   wref = speed_ref(c);
   /* [balance] grade = G2.5: the permissible residual unbalance of that grade is reported */
   c->grade = NAN;
@@ -801,15 +858,27 @@ static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
     for (i = 0; i < nbj; i++) cli_json_number(&jj, NULL, s->ball_psi_final[j][i]);
     cli_json_array_end(&jj);
     if (s->ball_psi_balanced[j]) cli_json_numbers(&jj, "ball_psi_balanced", s->ball_psi_balanced[j], s->n_balls[j]);
+    if (s->have_friction && s->ball_time_stuck[j]) {
+      cli_json_numbers(&jj, "ball_time_stuck", s->ball_time_stuck[j], s->n_balls[j]);
+      cli_json_array(&jj, "ball_stuck_final");
+      for (i = 0; i < s->n_balls[j]; i++) cli_json_bool(&jj, NULL, s->ball_stuck_final[j][i]);
+      cli_json_array_end(&jj);
+    }
     cli_json_object(&jj, "units");
     cli_json_string(&jj, "residual_unbalance_abs", "kg m");
     cli_json_string(&jj, "residual_unbalance_rel", "1");
     cli_json_string(&jj, "ball_psi_final", "rad");
     cli_json_string(&jj, "ball_psi_balanced", "rad");
+    if (s->have_friction) cli_json_string(&jj, "ball_time_stuck", "s");
     cli_json_object_end(&jj);
     cli_json_object_end(&jj);
   }
   cli_json_array_end(&jj);
+  if (s->have_friction) {
+    cli_json_int(&jj, "friction_sticks", (long)s->friction_sticks);
+    cli_json_int(&jj, "friction_slips", (long)s->friction_slips);
+    cli_json_int(&jj, "friction_reversals", (long)s->friction_reversals);
+  }
   cli_json_int(&jj, "steps", (long)s->solver.steps);
   cli_json_int(&jj, "rhs_evaluations", (long)s->solver.rhs_evals);
   cli_json_quantity(&jj, "wall_time", s->solver.wall_seconds, "s");
@@ -866,6 +935,17 @@ static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
       printf("  balanced configuration (3.14) of plane %zu:", j + 1);
       for (i = 0; i < nbj && i < 8; i++) printf(" %.5f", s->ball_psi_balanced[j][i]);
       printf("%s\n", nbj > 8 ? " ..." : "");
+    }
+  }
+  if (s->have_friction) {
+    printf("  friction (exact): %lu stick(s), %lu slip(s) from stuck, %lu reversal(s) at psi' = 0\n", s->friction_sticks,
+           s->friction_slips, s->friction_reversals);
+    for (j = 0; j < s->n_planes; j++) {
+      size_t i, nbj = s->ball_time_stuck[j] ? s->n_balls[j] : 0;
+      if (nbj == 0) continue;
+      printf("  plane %zu time stuck (s):", j + 1);
+      for (i = 0; i < nbj && i < 8; i++) printf(" %.6g%s", s->ball_time_stuck[j][i], s->ball_stuck_final[j][i] ? "*" : "");
+      printf("%s   (* stuck at the end)\n", nbj > 8 ? " ..." : "");
     }
   }
   engineering_print(s, c);

@@ -146,8 +146,14 @@
   "            mode = motor: J (kg m^2, >= C_p)  L_0 (N m, > 0)  omega_0 (rad/s, > 0): L = L_0 (1 - Omega/omega_0)\n" \
   "            (or table_omega = speeds, increasing  table_torque = N m each)  k_r = 0 (N m s)  omega_start = 0\n" \
   "            (rad/s); revolutions counted at omega_0 (table: its largest speed)\n" \
+  "[friction]  rolling resistance f N and stiction mu N of the balls (docs/device.md section 3; optional)\n" \
+  "            law = none|exact|regularized  (exact: stick and slip switched at events; regularized:\n" \
+  "            f N tanh(psi'/u_eps), no stiction)  u_eps (rad/s, > 0; regularized only)\n" \
+  "            per plane in [plane1]/[plane2]: ball_f = 0 (>= 0, one value or one per ball)\n" \
+  "            ball_mu = ball_f (>= ball_f, the static coefficient)\n" \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'; with a drive its\n"   \
-  "attributes drive_* and the column Omega), /rotor/revolutions\n"                                 \
+  "attributes drive_* and the column Omega; with friction the columns p<j>_b<i>_stuck, p<j>_b<i>_N\n" \
+  "and the attributes friction_*, p<j>_ball_time_stuck), /rotor/revolutions\n"                   \
   HELP_DOCS_ROTOR
 
 #define HELP_ROTOR_STAB_OPTS \

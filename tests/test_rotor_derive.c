@@ -23,6 +23,7 @@
 #include "autobal/rotor.h"
 #include "check.h"
 #include "rotor_energy.h"
+#include "models/rotor/rotor_internal.h"
 
 #define JSON_PATH AUTOBAL_TEST_DATA_DIR "/../tools/derive/check_values.json"
 
@@ -287,6 +288,182 @@ static void run_motor_case(const char *json, const char *which, size_t n_planes)
   autobal_rotor_free(rot);
 }
 
+/* ---- friction (docs/device.md section 3; keys normal_force, rolling_resistance,
+ * stiction_holding).  The friction right-hand sides (law EXACT) at the check state:
+ *  NORMAL_*: f = 0 for every ball: the normal forces N_i, without and with gravity (the JSON's
+ *    gravity case; gravity enters the friction terms through the test hook of
+ *    models/rotor/rotor_internal.h, since the model has no gravity parameter yet);
+ *  ROLLING: f = 0.02 for every ball, modes = signs of the check-state relative rates, gravity on:
+ *    the accelerations (the 4x4 system is no longer symmetric) and N;
+ *  STUCK: ball 11 stuck at its check-state psi (psi' = 0), the other balls frictionless, gravity
+ *    on: the constrained accelerations, H_11 and N_11.
+ * Prescribed drive (the ramp through the check state, as run_case) and MOTOR (as
+ * run_motor_case), both frames. */
+enum { F_NORMAL_NOGRAV, F_NORMAL_GRAV, F_ROLLING, F_STUCK };
+
+static void run_friction_case(const char *json, size_t n_planes, int motor, int kind) {
+  const char *which = n_planes == 1 ? "one_plane" : "two_planes";
+  const char *pk = n_planes == 1 ? "planes1" : "planes2";
+  const char *blk = after_key(json, which), *st = after_key(blk, "state");
+  const char *drv_blk = after_key(blk, motor ? "motor" : "prescribed");
+  const char *sec = NULL, *cas = NULL, *acc = NULL, *nblk = NULL;
+  static const char *const kind_name[4] = {"normal force (no gravity)", "normal force (gravity)",
+                                           "rolling resistance", "stuck ball 11"};
+  static const char *const qdd[4] = {"x_dd", "y_dd", "alpha_dd", "beta_dd"};
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+  autobal_rotor_params p;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], fb[2][2];
+  double y[20], dy[20], yr[20], dyr[20], Nf[4], Nr[4], Hf[4], Hr[4];
+  double Om, Omd = 0.0, phi0, t = 0.7, gs = 0.0, f = 0.0, drv[3];
+  size_t j, i, N = 2 * n_planes, dim = 8 + 2 * N + (motor ? 2u : 0u);
+  autobal_rotor *rot;
+  autobal_error err;
+  char what[200];
+  const char *tag = motor ? "motor" : "prescribed";
+
+  printf("-- %s, %s, %s: friction right-hand sides vs SymPy\n", which, tag, kind_name[kind]);
+  if (kind == F_NORMAL_NOGRAV || kind == F_NORMAL_GRAV) {
+    sec = after_key(json, "normal_force");
+    cas = after_key(after_key(after_key(sec, pk), kind == F_NORMAL_GRAV ? "gravity" : "no_gravity"), tag);
+    nblk = cas;
+  } else {
+    sec = after_key(json, kind == F_ROLLING ? "rolling_resistance" : "stiction_holding");
+    cas = after_key(after_key(sec, pk), tag);
+    acc = after_key(cas, "accelerations");
+    nblk = after_key(cas, "N");
+  }
+  CHECK("JSON friction blocks found", blk && st && drv_blk && sec && cas && nblk);
+  if (!(blk && st && drv_blk && sec && cas && nblk)) return;
+  if (kind != F_NORMAL_NOGRAV) gs = num(sec, kind == F_NORMAL_GRAV ? "g_s" : "g_s");
+  if (kind == F_NORMAL_GRAV) gs = num(after_key(json, "normal_force"), "g_s");
+  if (kind == F_ROLLING) f = num(sec, "f");
+  if (load_params(blk, n_planes, &p, m, r, h, psi, rate) != 0) return;
+  for (j = 0; j < 2; j++)
+    for (i = 0; i < 2; i++) fb[j][i] = f;
+  p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT;
+  for (j = 0; j < n_planes; j++) {
+    p.friction.ball_f[j] = fb[j];
+    p.friction.ball_mu[j] = NULL;
+  }
+  Om = num(drv_blk, "Omega"), phi0 = num(st, "phi_0");
+  if (motor) {
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+    p.drive.J = num(drv_blk, "J");
+    p.drive.L_0 = num(drv_blk, "L_0");
+    p.drive.omega_0 = num(drv_blk, "Omega_0");
+    p.drive.k_r = num(drv_blk, "k_r");
+    p.drive.omega_start = Om;
+  } else {
+    Omd = num(drv_blk, "Omega_dot");
+    t = (Om - sqrt(Om * Om - 2.0 * Omd * phi0)) / Omd;
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_RAMP;
+    p.drive.t_a = 0.0, p.drive.t_b = 10.0;
+    p.drive.omega_a = Om - Omd * t, p.drive.omega_b = p.drive.omega_a + Omd * 10.0;
+  }
+  p.omega = Om;
+  rot = autobal_rotor_alloc(&p, &err);
+  CHECK("rotor with friction", rot != NULL);
+  if (!rot) {
+    printf("     %s\n", err.message);
+    return;
+  }
+  CHECK("gravity inputs set", autobal_rotor_friction_gravity_hook(rot, 0.0, gs) == AUTOBAL_SUCCESS);
+  if (motor) {
+    drv[0] = Om;
+    drv[2] = phi0;
+  } else {
+    CHECK("drive evaluated", autobal_rotor_drive_eval(rot, t, drv) == AUTOBAL_SUCCESS);
+  }
+  for (i = 0; i < 4; i++) {
+    char k2[16];
+    y[i] = num(st, qn[i]);
+    snprintf(k2, sizeof k2, "%s_d", qn[i]);
+    y[4 + i] = num(st, k2);
+  }
+  if (motor) {
+    y[dim - 2] = phi0;
+    y[dim - 1] = Om;
+  }
+  memcpy(yr, y, sizeof y);
+  for (j = 0; j < n_planes; j++)
+    for (i = 0; i < 2; i++) {
+      size_t k = autobal_rotor_ball_index(rot, j, i);
+      double rt = (kind == F_STUCK && k == 0) ? 0.0 : rate[j][i];
+      y[8 + k] = drv[2] + psi[j][i];
+      y[8 + N + k] = drv[0] + rt;
+      yr[8 + k] = psi[j][i];
+      yr[8 + N + k] = rt;
+    }
+  if (kind == F_STUCK)
+    CHECK_STATUS("ball 11 set stuck", autobal_rotor_ball_mode_set(rot, 0, AUTOBAL_ROTOR_BALL_STUCK), AUTOBAL_SUCCESS);
+  if (kind == F_ROLLING)
+    CHECK("modes = signs of the rates", autobal_rotor_ball_mode_get(rot, 0) == 1 &&
+                                            autobal_rotor_ball_mode_get(rot, 1) == -1);
+  CHECK("fixed-frame rhs", autobal_rotor_rhs(t, y, dy, rot) == GSL_SUCCESS);
+  CHECK("rotating-frame rhs", autobal_rotor_rhs_rotating(t, yr, dyr, rot) == GSL_SUCCESS);
+  CHECK_STATUS("normal forces, fixed frame", autobal_rotor_normal_forces(rot, AUTOBAL_ROTOR_FIXED, t, y, Nf, N), AUTOBAL_SUCCESS);
+  CHECK_STATUS("normal forces, rotating frame", autobal_rotor_normal_forces(rot, AUTOBAL_ROTOR_ROTATING, t, yr, Nr, N), AUTOBAL_SUCCESS);
+  CHECK_STATUS("holding forces, fixed frame", autobal_rotor_holding_forces(rot, AUTOBAL_ROTOR_FIXED, t, y, Hf, N), AUTOBAL_SUCCESS);
+  CHECK_STATUS("holding forces, rotating frame", autobal_rotor_holding_forces(rot, AUTOBAL_ROTOR_ROTATING, t, yr, Hr, N), AUTOBAL_SUCCESS);
+  if (acc) {
+    for (i = 0; i < 4; i++) {
+      double want = num(acc, qdd[i]);
+      snprintf(what, sizeof what, "%s %s %s: %s, fixed frame", which, tag, kind_name[kind], qdd[i]);
+      CHECK_CLOSE(what, dy[4 + i], want, 1e-12, 1e-12);
+      snprintf(what, sizeof what, "%s %s %s: %s, rotating frame", which, tag, kind_name[kind], qdd[i]);
+      CHECK_CLOSE(what, dyr[4 + i], want, 1e-12, 1e-12);
+    }
+    if (motor) {
+      Omd = num(acc, "phi_0_dd");
+      snprintf(what, sizeof what, "%s %s %s: phi_0'' = Omega', both frames", which, tag, kind_name[kind]);
+      CHECK_CLOSE(what, dy[dim - 1], Omd, 1e-12, 0);
+      CHECK_CLOSE(what, dyr[dim - 1], Omd, 1e-12, 0);
+    }
+  }
+  for (j = 0; j < n_planes; j++)
+    for (i = 0; i < 2; i++) {
+      char key[32];
+      size_t k = autobal_rotor_ball_index(rot, j, i);
+      snprintf(key, sizeof key, "phi_%zu%zu", j + 1, i + 1);
+      if (kind != F_STUCK) {
+        snprintf(what, sizeof what, "%s %s %s: N of %s, fixed frame", which, tag, kind_name[kind], key);
+        CHECK_CLOSE(what, Nf[k], num(nblk, key), 1e-12, 0);
+        snprintf(what, sizeof what, "%s %s %s: N of %s, rotating frame", which, tag, kind_name[kind], key);
+        CHECK_CLOSE(what, Nr[k], num(nblk, key), 1e-12, 0);
+        CHECK("no holding force for a slipping ball", isnan(Hf[k]) && isnan(Hr[k]));
+      }
+      if (acc && !(kind == F_STUCK && k == 0)) {
+        double want;
+        snprintf(key, sizeof key, "phi_%zu%zu_dd", j + 1, i + 1);
+        want = num(acc, key);
+        snprintf(what, sizeof what, "%s %s %s: %s, fixed frame", which, tag, kind_name[kind], key);
+        CHECK_CLOSE(what, dy[8 + N + k], want, 1e-12, 1e-10);
+        snprintf(what, sizeof what, "%s %s %s: psi'' = %s - Omega', rotating frame", which, tag, kind_name[kind], key);
+        CHECK_CLOSE(what, dyr[8 + N + k], want - Omd, 1e-12, 1e-10);
+      }
+    }
+  if (kind == F_STUCK) {
+    snprintf(what, sizeof what, "%s %s: holding force H_11, fixed frame", which, tag);
+    CHECK_CLOSE(what, Hf[0], num(cas, "H"), 1e-12, 0);
+    snprintf(what, sizeof what, "%s %s: holding force H_11, rotating frame", which, tag);
+    CHECK_CLOSE(what, Hr[0], num(cas, "H"), 1e-12, 0);
+    snprintf(what, sizeof what, "%s %s: N_11 of the stuck ball, fixed frame", which, tag);
+    CHECK_CLOSE(what, Nf[0], num(cas, "N"), 1e-12, 0);
+    snprintf(what, sizeof what, "%s %s: N_11 of the stuck ball, rotating frame", which, tag);
+    CHECK_CLOSE(what, Nr[0], num(cas, "N"), 1e-12, 0);
+    CHECK("stuck ball: psi'' = 0 (rotating), phi'' = Omega' and phi' = Omega (fixed)",
+          dyr[8 + N] == 0.0 && dyr[8] == 0.0 && dy[8 + N] == (motor ? dy[dim - 1] : drv[1]) && dy[8] == drv[0]);
+    CHECK("the other balls have no holding force", isnan(Hf[1]) && isnan(Hr[1]));
+    /* the switching function |H| - mu N: mu = ratio (from the JSON) is the stick limit */
+    {
+      double ratio = num(cas, "ratio");
+      snprintf(what, sizeof what, "%s %s: |H|/N = the JSON's ratio", which, tag);
+      CHECK_CLOSE(what, fabs(Hf[0]) / Nf[0], ratio, 1e-12, 0);
+    }
+  }
+  autobal_rotor_free(rot);
+}
+
 int main(void) {
   char *json;
   gsl_set_error_handler_off();
@@ -297,6 +474,13 @@ int main(void) {
   run_case(json, "two_planes", 2);
   run_motor_case(json, "one_plane", 1);
   run_motor_case(json, "two_planes", 2);
+  {
+    int kind, motor;
+    size_t np;
+    for (np = 1; np <= 2; np++)
+      for (motor = 0; motor <= 1; motor++)
+        for (kind = F_NORMAL_NOGRAV; kind <= F_STUCK; kind++) run_friction_case(json, np, motor, kind);
+  }
   free(json);
   printf("%d checks, %d failed\n", check_count_, check_failures_);
   return check_failures_ ? 1 : 0;

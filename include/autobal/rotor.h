@@ -185,6 +185,51 @@ typedef struct autobal_rotor_drive {
                                 * must be able to start) */
 } autobal_rotor_drive;
 
+/* Friction law of the balls (autobal_rotor_friction.law). */
+typedef enum autobal_rotor_friction_law {
+  AUTOBAL_ROTOR_FRICTION_NONE = 0,       /* frictionless balls: the right-hand sides of 0.2.0, bit for bit */
+  AUTOBAL_ROTOR_FRICTION_EXACT = 1,      /* rolling resistance f N sgn(psi') and stiction mu N, switched at
+                                          * events: every ball is in a MODE (autobal_rotor_ball_mode) */
+  AUTOBAL_ROTOR_FRICTION_REGULARIZED = 2 /* rolling resistance f N tanh(psi'/u_eps), no modes, no stiction
+                                          * beyond it (mu is not used) */
+} autobal_rotor_friction_law;
+
+/* Mode of a ball under the EXACT law. */
+typedef enum autobal_rotor_ball_mode {
+  AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE = -1, /* slipping, the rolling resistance acts as for psi' < 0 */
+  AUTOBAL_ROTOR_BALL_STUCK = 0,          /* stuck: a mass fixed to the rotor at its psi (psi' = 0) */
+  AUTOBAL_ROTOR_BALL_SLIP_POSITIVE = 1   /* slipping, as for psi' > 0 */
+} autobal_rotor_ball_mode;
+
+/* Rolling resistance and stiction (docs/device.md section 3).  The normal force of the track on
+ * ball i (inwards, N) is
+ *   N_i = m_i [r_i phi_i'^2 - u_D'' cos phi_i - v_D'' sin phi_i]
+ * (D's accelerations included: with friction the accelerations are solved with it).  A slipping
+ * ball meets the tangential force f_i N_i against its relative motion: its equation (3.4) gains
+ * + r_i f_i N_i sgn(psi_i') on the left (REGULARIZED: tanh(psi_i'/u_eps) instead of sgn; EXACT:
+ * the sign of its mode), a MOTOR the reaction torque + r_i f_i N_i sgn(psi_i') on phi_0 (a
+ * prescribed drive's torque takes it).  A STUCK ball (EXACT) is a mass fixed to the rotor at
+ * phi_0 + psi_i: its own equation is dropped (psi_i'' = 0, psi_i' = 0: in the fixed frame
+ * phi_i' = Omega and phi_i'' = Omega' whatever the state holds for phi_i'), it enters the rotor
+ * equations like an unbalance, and with a MOTOR its m_i r_i^2 joins the spin inertia.  It stays
+ * stuck while its holding force (the tangential force of the track on it)
+ *   H_i = m_i [r_i Omega' - u_D'' sin phi_i + v_D'' cos phi_i]
+ * satisfies |H_i| <= mu_i N_i.  The switching rules (autobal_rotor_friction_settle): a slipping
+ * ball whose psi' reaches 0 sticks if then |H_i| <= mu_i N_i, else it slips on opposite to H_i; a
+ * stuck ball with |H_i| > mu_i N_i slips opposite to H_i.  With friction on, a ball with
+ * N_i <= 0 (it would leave its track) makes the right-hand sides fail.  Gravity is not in the
+ * model yet (docs/device.md section 2): the forces above are written for g = 0.  The ball
+ * arrays are copied by autobal_rotor_alloc; NULL means all 0. */
+typedef struct autobal_rotor_friction {
+  int law;                                        /* autobal_rotor_friction_law (0: NONE) */
+  double u_eps;                                   /* rad/s, REGULARIZED: the speed of tanh(psi'/u_eps), > 0
+                                                   * (finite); not read by the other laws */
+  const double *ball_f[AUTOBAL_ROTOR_MAX_PLANES];  /* 1, rolling-resistance coefficient f_ji >= 0 of
+                                                   * plane j's balls (n_balls entries; NULL: all 0) */
+  const double *ball_mu[AUTOBAL_ROTOR_MAX_PLANES]; /* 1, static coefficient mu_ji >= f_ji (NULL: all
+                                                   * equal to f) */
+} autobal_rotor_friction;
+
 /* Largest number of points of a TABLE drive. */
 #define AUTOBAL_ROTOR_DRIVE_MAX_POINTS 10000000
 
@@ -211,6 +256,9 @@ typedef struct autobal_rotor_params {
   int gravity;                /* 0 off (default), 1 on */
   double shaft_angle;         /* rad, angle of the shaft to the vertical, [0, pi] (pi/2: horizontal) */
   double g;                   /* m/s^2, gravitational acceleration, > 0 (default 9.80665) */
+  /* Rolling resistance and stiction of the balls (docs/device.md section 3); added in 0.3.0 at
+   * the end of the struct: a zeroed block is AUTOBAL_ROTOR_FRICTION_NONE (the model above). */
+  autobal_rotor_friction friction;
 } autobal_rotor_params;
 
 /* The default example (docs/rotor.md): M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,
@@ -380,6 +428,11 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
  * with status AUTOBAL_ENUMERIC, and dydt has not been written.  rotor must be a
  * valid handle (not checked: no NULL test in the hot path).  Every call writes
  * the handle's workspace: one handle per thread (see Threads above). */
+/* With a friction law other than NONE (autobal_rotor_friction) both right-hand sides take the
+ * friction path: the normal forces enter the accelerations, the reduced 4x4 system is no longer
+ * symmetric (one plane: 2x2 closed form, two planes: LU with partial pivoting; still O(N), no
+ * allocation), stuck balls are masses fixed to the rotor, and a ball with N <= 0 also fails with
+ * GSL_EBADFUNC (the message names the ball and t; dydt not written). */
 AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor);
 
 /* MOTOR drive (both right-hand sides): the system is linear in Omega' as well; the 4x4 solve
@@ -393,6 +446,53 @@ AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], voi
  * rotor axes; rotor equations (3.2) in the fixed frame.  An independent second
  * implementation (the same GSL return codes and failure behaviour). */
 AUTOBAL_API int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor);
+
+/* ---- friction (EXACT law): modes, forces, switching ----------------------- */
+/* 1 when the handle's friction law is not NONE (the friction right-hand sides are in use). */
+AUTOBAL_API int autobal_rotor_friction_on(const autobal_rotor *r);
+/* Mode of ball k (state order, autobal_rotor_ball_index) under the EXACT law; after
+ * autobal_rotor_alloc every ball slips in the sense of its initial rate (+1 for a rate of 0) until
+ * autobal_rotor_friction_settle (with initial = 1) decides.  Other laws: the sign of psi' is not
+ * held, the mode is reported as AUTOBAL_ROTOR_BALL_SLIP_POSITIVE.  get: the mode, or -2 for a NULL
+ * handle or k out of range.  set: AUTOBAL_SUCCESS or AUTOBAL_EINVAL (bad k or mode, law not
+ * EXACT).  Setting STUCK does not change the state: the caller sets psi_k' = 0 (the right-hand
+ * sides treat a stuck ball as psi_k' = 0 anyway). */
+AUTOBAL_API int autobal_rotor_ball_mode_get(const autobal_rotor *r, size_t k);
+AUTOBAL_API int autobal_rotor_ball_mode_set(autobal_rotor *r, size_t k, int mode);
+/* The normal forces N[k] (N) of all balls at the state y (frame) and time t, with the
+ * accelerations of the current modes (stuck balls: phi' = Omega), n = total number of balls.
+ * Works for every law (NONE: no friction terms in the accelerations).  Writes the handle's
+ * workspace (one thread per handle).  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (bad arguments) or
+ * AUTOBAL_ENUMERIC (the acceleration solve failed; message on the handle).  A non-positive N is
+ * returned as it is (no error here). */
+AUTOBAL_API int autobal_rotor_normal_forces(autobal_rotor *r, int frame, double t, const double *y,
+                                            double *N, size_t n);
+/* The holding forces H[k] (N) of the stuck balls (EXACT law), NAN for slipping balls (and for
+ * every ball under the other laws); otherwise as autobal_rotor_normal_forces. */
+AUTOBAL_API int autobal_rotor_holding_forces(autobal_rotor *r, int frame, double t, const double *y,
+                                             double *H, size_t n);
+/* The switching function of ball k (EXACT law), a transient-engine event function: slipping,
+ * sgn(mode) psi_k' (> 0 while it slips, it falls through 0 when the ball stops); stuck,
+ * |H_k| - mu_k N_k (<= 0 while it holds, it rises through 0 when the ball breaks free).  The
+ * forces of all balls are computed once per (t, y) and cached on the handle (a copy of y is
+ * compared), so calling it for every ball costs one solve when a ball is stuck.  NAN for bad
+ * arguments or a failed solve. */
+AUTOBAL_API double autobal_rotor_friction_switch(autobal_rotor *r, int frame, size_t k, double t,
+                                                 const double *y);
+/* Apply the switching rules (see autobal_rotor_friction) at (t, y), EXACT law: every slipping ball
+ * with sgn(mode) psi' <= 0 (it has reached 0; with initial = 1 the modes are first set from the
+ * sign of psi', and psi' = 0 counts as reached) is made stuck with psi' = 0 in y (fixed frame:
+ * phi' = Omega); then, as long as
+ * some stuck ball has |H| > mu N, the one with the largest excess (|H| - mu N) / N slips on
+ * opposite to its H (a ball that had reached 0 gets its rate back: it slips on, reversed).
+ * n_stick / n_slip (may be NULL) receive how many balls went from slipping to
+ * stuck and from stuck (at entry) to slipping; the balls that reached psi' = 0 but could not
+ * stick are counted in n_reverse (may be NULL).  Returns 1 when a mode or y changed, 0 when
+ * nothing changed, or a negative status (AUTOBAL_EINVAL: bad arguments or law not EXACT; AUTOBAL_ENUMERIC: the solve failed or
+ * a ball has N <= 0, message on the handle). */
+AUTOBAL_API int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double *y,
+                                              int initial, size_t *n_stick, size_t *n_slip,
+                                              size_t *n_reverse);
 
 /* ---- derived quantities ------------------------------------------------- */
 /* Unbalance of plane j at time t (3.1), (3.10): s[0] = s_u, s[1] = s_v (fixed
@@ -426,6 +526,11 @@ AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int fra
  *     Omega        the spin speed (the state's Omega)                    rad/s
  *     motor_torque the motor torque L(Omega) (without k_r Omega)         N m
  *     motor_power  L(Omega) Omega                                        W
+ *   then, only with friction (law not NONE; added in 0.3.0), N entries and N entries:
+ *     p<j>_b<i>_stuck   1 when the ball is stuck (EXACT law), else 0       1
+ *     p<j>_b<i>_N       its normal force N (autobal_rotor_normal_forces)   N
+ *   (all stuck flags first, then all normal forces, in state order; computing N writes the
+ *   handle's workspace, as the right-hand sides do).
  * Programs should find these columns by name (autobal_rotor_output_name).
  * With LUMPED input and non-finite hw.l_L / hw.l_R, amp_L / amp_R are NAN.  The constant
  * drive keeps the layout of 0.1.0 (no Omega column). */

@@ -219,6 +219,15 @@ typedef struct autobal_study_rotor_transient_summary {
   int *resonance_whirl;             /* [n_resonances] +1 forward, -1 backward, 0 undecided */
   autobal_runup_passage *passages;  /* [runup.n_passages], in time order */
   autobal_runup_capture *captures;  /* [runup.n_captures], by resonance, then time */
+  /* friction (added in 0.3.0): with the EXACT law (autobal_rotor_friction) have_friction = 1 and
+     the stick-slip switches counted over the run (the settling of the initial state not
+     counted); 0 and NULL otherwise */
+  int have_friction;
+  unsigned long friction_sticks;    /* a slipping ball stuck (its psi' reached 0 with |H| <= mu N) */
+  unsigned long friction_slips;     /* a stuck ball broke free (|H| > mu N) */
+  unsigned long friction_reversals; /* psi' reached 0 but |H| > mu N: the ball slipped on, reversed */
+  double *ball_time_stuck[AUTOBAL_ROTOR_MAX_PLANES];  /* s, time each ball spent stuck, per plane */
+  int *ball_stuck_final[AUTOBAL_ROTOR_MAX_PLANES];    /* 1: the ball is stuck at t_reached */
 } autobal_study_rotor_transient_summary;
 
 /* Check the inputs of a rotor transient without running it (and without

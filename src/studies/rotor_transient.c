@@ -10,6 +10,7 @@
 #include "autobal/study.h"
 #include "internal.h"
 #include "studies/rotor_transient_runup.h"
+#include "studies/rotor_friction.h"
 
 #define TWO_PI 6.283185307179586476925286766559
 
@@ -372,7 +373,9 @@ static void output_long_name(const char *name, char *buf, size_t len) {
                        : !strcmp(rest, "psi") ? "angle psi relative to the rotor (unwrapped)"
                        : !strcmp(rest, "psi_w") ? "angle psi relative to the rotor wrapped to (-pi, pi]"
                        : !strcmp(rest, "phi_rate") ? "absolute angular rate dphi/dt"
-                       : !strcmp(rest, "psi_rate") ? "angular rate relative to the rotor dpsi/dt" : rest;
+                       : !strcmp(rest, "psi_rate") ? "angular rate relative to the rotor dpsi/dt"
+                       : !strcmp(rest, "stuck") ? "stuck on its track (1) or slipping (0) (friction)"
+                       : !strcmp(rest, "N") ? "normal force of the track on the ball (friction)" : rest;
     snprintf(buf, len, "ball %u of plane %u: %s", b, pl, what);
   } else if (sscanf(name, "p%u_%47s", &pl, rest) == 2) {
     const char *what = !strcmp(rest, "s_u") ? "unbalance s_u of rotor plus balls along fixed x (3.1)"
@@ -522,6 +525,7 @@ void autobal_study_rotor_transient_summary_free(autobal_study_rotor_transient_su
   free(s->state_final);
   s->state_final = NULL;
   study_runup_summary_free(s);
+  study_friction_summary_free(s);
 }
 
 int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_study_rotor_transient_options *opt,
@@ -537,6 +541,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   autobal_transient_event_hit hit;
   autobal_error e;
   run_ctx r;
+  study_friction *fric = NULL;
   double *y = NULL, t_reached = 0.0;
   int st, rc = AUTOBAL_SUCCESS, ev;
   size_t j;
@@ -589,6 +594,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   s->time_to_balance = NAN;
   if (a) {
     st = write_inputs(a, rot, o);
+    if (!st) st = study_friction_write_inputs(a, rot, "/rotor/transient");
     if (!st) st = open_series(&r, a);
     if (st) {
       rc = autobal_error_set(err, st, "%s", st == AUTOBAL_ENOMEM ? "out of memory" : autobal_archive_errmsg(a));
@@ -607,11 +613,20 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     rc = autobal_error_set(err, ev, "%s", autobal_transient_errmsg(tr));
     goto done;
   }
+  if ((st = study_friction_begin(rot, o->frame, tr, 0.0, y, &fric, &e))) { /* EXACT law: stick-slip events */
+    rc = autobal_error_set(err, st, "%s", e.message);
+    goto done;
+  }
   st = autobal_transient_run(tr, &sys, 0.0, o->t_end, y, &t_reached);
   autobal_transient_get_stats(tr, &s->solver);
   snprintf(s->stepper, sizeof s->stepper, "%s", autobal_transient_get_options(tr).stepper);
   snprintf(s->solver_message, sizeof s->solver_message, "%s", autobal_transient_errmsg(tr));
-  if (st < 0) rc = autobal_error_set(err, st, "%s", autobal_transient_errmsg(tr));
+  if (st == AUTOBAL_ERHS && autobal_rotor_friction_on(rot)) /* with the reason, e.g. a ball leaving its track */
+    snprintf(s->solver_message, sizeof s->solver_message, "%s: %s", autobal_transient_errmsg(tr),
+             autobal_rotor_errmsg(rot));
+  if (st < 0) rc = autobal_error_set(err, st, "%s", s->solver_message);
+  st = study_friction_finish(fric, t_reached, s, &e);
+  if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
   if (r.io_failed && rc == AUTOBAL_SUCCESS)
     rc = autobal_error_set(err, AUTOBAL_EIO, "writing the time series failed: %s", autobal_archive_errmsg(a));
 
@@ -663,6 +678,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
 
   if (a) {
     st = write_summary(a, s);
+    if (!st) st = study_friction_write_summary(a, s, "/rotor/transient");
     if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
   }
   st = study_runup_finish(r.runup, rot, o, a, autobal_archive_series_length(r.series), s, &e);
@@ -679,6 +695,7 @@ done:
   free(r.rev_max_D);
   free(r.rev_row);
   study_runup_free(r.runup);
+  study_friction_free(fric);
   free(y);
   if (s == &local) autobal_study_rotor_transient_summary_free(&local);
   return rc;

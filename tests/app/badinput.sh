@@ -98,6 +98,11 @@ expect 3 "plane1.ball_mass" "item 2" "outside the range" -- "$A" rotor transient
 expect 3 "pendulum.H" "not a finite number" -- "$A" pendulum roots --set pendulum.H=-nan
 expect 3 "pendulum.H" "not a finite number" -- "$A" pendulum roots --set pendulum.H=infinity
 expect 3 "plane1.d" "not a finite number" -- "$A" rotor transient --set plane1.d=nan               # plane with d = NaN
+# ball friction (docs/device.md section 3): f > mu, a negative f, u_eps <= 0, a NaN mu
+expect 3 "plane1.ball_mu (ball 2)" "allowed range [0.05, inf)" -- "$A" rotor transient --set friction.law=exact --set plane1.ball_f=0.05 --set plane1.ball_mu=0.1,0.01
+expect 3 "plane1.ball_f (ball 1)" "allowed range [0, inf)" -- "$A" rotor transient --set friction.law=exact --set plane1.ball_f=-1e-3
+expect 3 "friction.u_eps" "allowed range (0, inf)" -- "$A" rotor transient --set friction.law=regularized --set friction.u_eps=-0.5
+expect 3 "plane1.ball_mu" "not a finite number" -- "$A" rotor transient --set friction.law=exact --set plane1.ball_mu=nan
 expect 3 "plane1.ball_psi" "item 2" -- "$A" rotor transient --set plane1.ball_psi=1,nan
 expect 3 "transient.max_steps" "not an integer" -- "$A" rotor transient --set transient.max_steps=1e3
 expect 3 "transient.max_steps" "not an integer" -- "$A" rotor transient --set transient.max_steps=99999999999999999999

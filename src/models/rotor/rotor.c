@@ -13,6 +13,7 @@
 
 #include "numerics/fastmath.h"
 #include "internal.h"
+#include "models/rotor/rotor_internal.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -45,6 +46,16 @@ struct autobal_rotor {
   int motor;
   size_t im, mn;
   double *mW, *mL, Jeff;
+  /* friction (docs/device.md section 3): the law, per ball f, mu, the workspace fs (f times the
+   * sign or tanh of the current call) and the EXACT law's modes (mode0: a copy at the entry of
+   * autobal_rotor_friction_settle); gravity inputs gu, gv (m/s^2: the in-plane gravity enters
+   * every ball equation as the acceleration (gu, gv) of D, fixed axes; 0 until gravity is
+   * implemented), Wtot = M + all small masses, Dm = sum_j d_j m_j (for the weights' rows);
+   * the cache of autobal_rotor_friction_switch: (t, frame, y copy) -> N, H */
+  int law;
+  double inv_ueps, gu, gv, Wtot, Dm;
+  double *f, *mu, *fws, *cN, *cH, *pd0, *ycache, cache_t;
+  int *mode, *mode0, cache_ok, cache_frame;
   double *store;
   /* gravity (docs/device.md section 2): g_s = g sin(theta) (m/s^2), the weights g_s W on y (N)
    * and g_s sum_j d_j m_j on alpha (N m), W = M + all small masses; all 0 when off */
@@ -415,8 +426,12 @@ static void rhs_common_rows(const autobal_rotor *R, const double y[], const doub
  * depend on the vector width), (3) after the 4x4 (or 2x2) solve, the ball
  * accelerations from the stored sines and cosines (elementwise). */
 
+static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
+                     double dydt[], double *Nout, double *Hout, int check_N);
+
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE) return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL, 1);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -501,6 +516,8 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
 
 int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE)
+    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL, 1);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -602,6 +619,459 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
     dydt[R->im + 1] = omega_rate;
   }
   return GSL_SUCCESS;
+}
+
+/* ---- friction (docs/device.md section 3) ----------------------------------------------------- */
+
+/* The friction path of both right-hand sides (and of the force functions): the balls' equations
+ * written in the fixed axes for both frames (rotating frame: the ball's absolute sin, cos from
+ * those of psi and phi_0; phi' = psi' + Omega).  A slipping ball, fs = f sgn(psi') (EXACT: the
+ * sign of its mode; REGULARIZED: f tanh(psi'/u_eps)), with (au, av) = (u_D'' + gu, v_D'' + gv):
+ *   m r [r phi'' - au sin + av cos] + h r^2 psi' + r fs N = 0,  N = m [r phi'^2 - au cos - av sin],
+ *   phi'' = (Au au + Av av) / r - kappa psi' - fs phi'^2,  Au = sin + fs cos,  Av = fs sin - cos,
+ * so its s'' depends on (u_D'', v_D'') through the NON-symmetric 2x2 C = [[-m s Au, -m s Av],
+ * [m c Au, m c Av]] (f = 0: the matrix of plane_coupling).  A stuck ball (EXACT) is an unbalance:
+ * phi' = Omega, phi'' = Omega'.  The rotor rows a q'' = b - U F, a = D + sum U C U^T, are solved
+ * exactly (one plane: the 2x2 closed form with the non-symmetric S = I + g C; two planes: 4x4 LU
+ * with partial pivoting); a MOTOR adds the Omega' column b1 and the phi_0 row G . q'' + Jeff' Omega'
+ * = RHS with G != -b1 (the reaction torques r fs N contain D's accelerations). */
+typedef struct fric_plane {
+  double Cuu, Cuv, Cvu, Cvv; /* kg */
+  double Fu, Fv;             /* N */
+  double Pu, Pv;             /* motor row: coefficients of u_D'', v_D'' (kg m) */
+} fric_plane;
+
+/* 4x4 LU with partial pivoting of a (overwritten), solving for nb right-hand sides x[0..nb-1]
+ * (overwritten).  -1 when a pivot is below 1e-13 times the largest diagonal entry of a. */
+static int lu4_solve(double a[4][4], double x[][4], int nb) {
+  double scale = 0.0;
+  int i, j, k, c;
+  for (i = 0; i < 4; i++)
+    if (fabs(a[i][i]) > scale) scale = fabs(a[i][i]);
+  for (k = 0; k < 4; k++) {
+    int piv = k;
+    for (i = k + 1; i < 4; i++)
+      if (fabs(a[i][k]) > fabs(a[piv][k])) piv = i;
+    if (!(fabs(a[piv][k]) > 1e-13 * scale)) return -1;
+    if (piv != k) {
+      for (j = 0; j < 4; j++) {
+        double t = a[k][j];
+        a[k][j] = a[piv][j];
+        a[piv][j] = t;
+      }
+      for (c = 0; c < nb; c++) {
+        double t = x[c][k];
+        x[c][k] = x[c][piv];
+        x[c][piv] = t;
+      }
+    }
+    for (i = k + 1; i < 4; i++) {
+      const double l = a[i][k] / a[k][k];
+      for (j = k + 1; j < 4; j++) a[i][j] -= l * a[k][j];
+      for (c = 0; c < nb; c++) x[c][i] -= l * x[c][k];
+    }
+  }
+  for (c = 0; c < nb; c++)
+    for (i = 3; i >= 0; i--) {
+      double sum = x[c][i];
+      for (j = i + 1; j < 4; j++) sum -= a[i][j] * x[c][j];
+      x[c][i] = sum / a[i][i];
+    }
+  return 0;
+}
+
+static int fric_fail(autobal_error *errp, double t, const char *which) {
+  autobal_error_set(errp, AUTOBAL_ENUMERIC,
+                    "%s right-hand side failed at t = %.17g s: the effective mass matrix is singular or the "
+                    "state is not finite",
+                    which, t);
+  return GSL_EBADFUNC;
+}
+
+/* One plane: q'' for the right-hand side b through the 2x2 S = I + g C (see solve_accelerations). */
+static void fric_one_plane_apply(const autobal_rotor *R, const fric_plane *c, const double S[4], double idet,
+                                 const double b[4], double qdd[4]) {
+  const double d = R->p.plane[0].d, iM = R->inv_M, iA = R->inv_A;
+  const double ru = b[0] * iM + d * b[3] * iA, rv = b[1] * iM - d * b[2] * iA;
+  const double wu = (S[3] * ru - S[1] * rv) * idet, wv = (S[0] * rv - S[2] * ru) * idet;
+  const double cu = c->Cuu * wu + c->Cuv * wv, cv = c->Cvu * wu + c->Cvv * wv;
+  qdd[0] = (b[0] - cu) * iM;
+  qdd[1] = (b[1] - cv) * iM;
+  qdd[2] = (b[2] + d * cv) * iA;
+  qdd[3] = (b[3] - d * cu) * iA;
+}
+
+/* The whole friction evaluation at (t, y) in `frame`, with the workspace ws (3 N doubles: sin, cos,
+ * f sgn; the handle's R->fws) and the error record errp:
+ * accelerations into dydt (may be NULL), the
+ * normal forces into Nout and the holding forces of the stuck balls into Hout (NAN for slipping
+ * balls; both may be NULL).  check_N: fail when a ball has N <= 0.  Returns 0, or GSL_EBADFUNC
+ * with the message on the handle. */
+static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
+                     double dydt[], double *Nout, double *Hout, int check_N) {
+  const size_t N = R->N;
+  const double *q = y, *qd = y + 4, *ang = y + 8, *rate = y + 8 + N;
+  double *sn = ws, *cs = ws + N, *fs = ws + 2 * N;
+  const int exact = R->law == AUTOBAL_ROTOR_FRICTION_EXACT, reg = R->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED;
+  const double gu = R->gu, gv = R->gv;
+  fric_plane cp[AUTOBAL_ROTOR_MAX_PLANES];
+  double b[4], b1[4], qdd[4], qdd1[4], uv[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, W, Wd = 0.0, phi0;
+  double Jeff = R->Jeff, rhsm = 0.0;
+  size_t j, k;
+  const char *which = frame == AUTOBAL_ROTOR_FIXED ? "fixed-frame (friction)" : "rotating-frame (friction)";
+
+  if (R->motor) {
+    phi0 = y[R->im];
+    W = y[R->im + 1];
+  } else {
+    drive_eval(R, t, &W, &Wd, &phi0);
+  }
+  autobal_sincos1(phi0, &sw, &cw);
+  ball_sincos(ang, sn, cs, N);
+  if (frame == AUTOBAL_ROTOR_ROTATING)
+    for (k = 0; k < N; k++) { /* phi = psi + phi_0 */
+      const double s = sn[k], c = cs[k];
+      sn[k] = s * cw + c * sw;
+      cs[k] = c * cw - s * sw;
+    }
+  rotor_forces(&R->L, W, R->motor ? 0.0 : Wd, q, qd, b);
+  if (gu != 0.0 || gv != 0.0) { /* the weights (docs/device.md section 2, for a field (-gu, -gv)) */
+    b[0] -= gu * R->Wtot;
+    b[1] -= gv * R->Wtot;
+    b[2] += gv * R->Dm;
+    b[3] -= gu * R->Dm;
+  }
+  for (j = 0; j < R->n_planes; j++) {
+    fric_plane *c = &cp[j];
+    const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+    const double cth = cw * R->cpsi0[j] - sw * R->spsi0[j], sth = sw * R->cpsi0[j] + cw * R->spsi0[j];
+    c->Cuu = R->mtot[j];
+    c->Cuv = 0.0;
+    c->Cvu = 0.0;
+    c->Cvv = R->mtot[j];
+    /* the unbalance (as in the frictionless right-hand sides) */
+    c->Fu = -W * W * R->s0[j] * cth;
+    c->Fv = -W * W * R->s0[j] * sth;
+    if (!R->motor) {
+      c->Fu -= Wd * R->s0[j] * sth;
+      c->Fv += Wd * R->s0[j] * cth;
+    }
+    c->Pu = -R->s0[j] * sth;
+    c->Pv = R->s0[j] * cth;
+    rhsm -= R->s0[j] * (-gu * sth + gv * cth);
+    for (k = k0; k < k1; k++) {
+      const double s = sn[k], cc = cs[k], m = R->m[k], mr = R->mr[k], r = R->r[k];
+      if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) { /* a mass fixed to the rotor */
+        fs[k] = 0.0;
+        c->Fu -= W * W * mr * cc;
+        c->Fv -= W * W * mr * s;
+        if (!R->motor) {
+          c->Fu -= Wd * mr * s;
+          c->Fv += Wd * mr * cc;
+        }
+        c->Pu -= mr * s;
+        c->Pv += mr * cc;
+        Jeff += mr * r;
+        rhsm -= mr * (-gu * s + gv * cc);
+      } else {
+        const double pd = frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W; /* phi' */
+        const double psid = frame == AUTOBAL_ROTOR_FIXED ? rate[k] - W : rate[k];
+        double fk = 0.0, Au, Av, e;
+        if (exact) fk = R->f[k] * (double)R->mode[k];
+        else if (reg) fk = R->f[k] * tanh(psid * R->inv_ueps);
+        fs[k] = fk;
+        Au = s + fk * cc;
+        Av = fk * s - cc;
+        e = (Au * gu + Av * gv) / r - R->kappa[k] * psid - fk * pd * pd;
+        c->Cuu -= m * s * Au;
+        c->Cuv -= m * s * Av;
+        c->Cvu += m * cc * Au;
+        c->Cvv += m * cc * Av;
+        c->Fu -= mr * (s * e + pd * pd * cc);
+        c->Fv += mr * (cc * e - pd * pd * s);
+        if (R->motor) {
+          rhsm += R->hr[k] * r * psid + r * fk * m * (r * pd * pd - gu * cc - gv * s);
+          c->Pu += r * fk * m * cc;
+          c->Pv += r * fk * m * s;
+        }
+      }
+    }
+    {
+      const double d = R->p.plane[j].d;
+      b[0] -= c->Fu;
+      b[1] -= c->Fv;
+      b[2] += d * c->Fv;
+      b[3] -= d * c->Fu;
+    }
+  }
+  if (R->motor) {
+    /* the rows per unit Omega' (motor_b1): -C beta e_alpha and the tangential accelerations
+     * m r Omega' (-sin, cos) of the unbalance and the stuck balls (the slipping balls' reaction
+     * terms Pu, Pv belong to the phi_0 row only) */
+    b1[0] = 0.0;
+    b1[1] = 0.0;
+    b1[2] = -R->L.C * q[3];
+    b1[3] = 0.0;
+    for (j = 0; j < R->n_planes; j++) {
+      const double d = R->p.plane[j].d;
+      const double cth = cw * R->cpsi0[j] - sw * R->spsi0[j], sth = sw * R->cpsi0[j] + cw * R->spsi0[j];
+      double Su = R->s0[j] * sth, Sv = R->s0[j] * cth; /* sum m r sin, sum m r cos */
+      const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+      if (exact)
+        for (k = k0; k < k1; k++)
+          if (R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
+            Su += R->mr[k] * sn[k];
+            Sv += R->mr[k] * cs[k];
+          }
+      b1[0] += Su;
+      b1[1] -= Sv;
+      b1[2] += d * Sv;
+      b1[3] += d * Su;
+    }
+  }
+  if (R->n_planes == 1) {
+    const fric_plane *c = &cp[0];
+    const double g = R->g[0];
+    double S[4], det, nrm, idet;
+    S[0] = 1.0 + g * c->Cuu;
+    S[1] = g * c->Cuv;
+    S[2] = g * c->Cvu;
+    S[3] = 1.0 + g * c->Cvv;
+    det = S[0] * S[3] - S[1] * S[2];
+    nrm = fabs(S[0]) + fabs(S[1]) + fabs(S[2]) + fabs(S[3]);
+    if (!(det > 1e-13 * nrm * nrm)) return fric_fail(errp, t, which);
+    idet = 1.0 / det;
+    fric_one_plane_apply(R, c, S, idet, b, qdd);
+    if (R->motor) fric_one_plane_apply(R, c, S, idet, b1, qdd1);
+  } else {
+    double a[4][4], x[2][4];
+    memset(a, 0, sizeof a);
+    a[0][0] = R->L.M;
+    a[1][1] = R->L.M;
+    a[2][2] = R->L.A;
+    a[3][3] = R->L.A;
+    for (j = 0; j < R->n_planes; j++) {
+      const double d = R->p.plane[j].d;
+      const double eu[4] = {1.0, 0.0, 0.0, d}, ev[4] = {0.0, 1.0, -d, 0.0};
+      const fric_plane *c = &cp[j];
+      int m, n;
+      for (m = 0; m < 4; m++)
+        for (n = 0; n < 4; n++)
+          a[m][n] += eu[m] * (c->Cuu * eu[n] + c->Cuv * ev[n]) + ev[m] * (c->Cvu * eu[n] + c->Cvv * ev[n]);
+    }
+    memcpy(x[0], b, sizeof b);
+    if (R->motor) memcpy(x[1], b1, sizeof b1);
+    if (lu4_solve(a, x, R->motor ? 2 : 1) != 0) return fric_fail(errp, t, which);
+    memcpy(qdd, x[0], sizeof qdd);
+    if (R->motor) memcpy(qdd1, x[1], sizeof qdd1);
+  }
+  if (R->motor) { /* the phi_0 row: Jeff' Omega' + G . q'' = rhsm + L - k_r Omega - C alpha' beta' */
+    double G[4] = {0.0, 0.0, R->L.C * q[3], 0.0}, den, num;
+    for (j = 0; j < R->n_planes; j++) {
+      const double d = R->p.plane[j].d;
+      G[0] += cp[j].Pu;
+      G[1] += cp[j].Pv;
+      G[2] -= d * cp[j].Pv;
+      G[3] += d * cp[j].Pu;
+    }
+    den = Jeff + G[0] * qdd1[0] + G[1] * qdd1[1] + G[2] * qdd1[2] + G[3] * qdd1[3];
+    num = rhsm + motor_L(R, W) - R->p.drive.k_r * W - R->L.C * qd[2] * qd[3] -
+          (G[0] * qdd[0] + G[1] * qdd[1] + G[2] * qdd[2] + G[3] * qdd[3]);
+    if (!(den > 1e-13 * Jeff)) return fric_fail(errp, t, which);
+    Wd = num / den;
+    for (j = 0; j < 4; j++) qdd[j] += Wd * qdd1[j];
+  }
+  if (!isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3] + Wd)) return fric_fail(errp, t, which);
+  for (j = 0; j < R->n_planes; j++) {
+    const double d = R->p.plane[j].d;
+    uv[j][0] = qdd[0] + d * qdd[3]; /* eq. (3.3) */
+    uv[j][1] = qdd[1] - d * qdd[2];
+  }
+  /* the normal and holding forces (and the check N > 0) before anything is written to dydt */
+  if (check_N || Nout || Hout)
+    for (j = 0; j < R->n_planes; j++) {
+      const double au = uv[j][0] + gu, av = uv[j][1] + gv;
+      const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+      for (k = k0; k < k1; k++) {
+        const double s = sn[k], cc = cs[k], m = R->m[k], r = R->r[k];
+        const int stuck = exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
+        const double pd = stuck ? W : (frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W);
+        const double Nk = m * (r * pd * pd - au * cc - av * s);
+        if (Nout) Nout[k] = Nk;
+        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) : NAN;
+        if (check_N && !(Nk > 0.0)) {
+          const size_t ii = k - k0;
+          autobal_error_set(errp, AUTOBAL_ENUMERIC,
+                            "%s right-hand side failed at t = %.17g s: ball %zu of plane %zu (p%zu_b%zu) would "
+                            "leave its track: normal force N = %.17g N (must be > 0)",
+                            which, t, ii + 1, j + 1, j + 1, ii + 1, Nk);
+          return GSL_EBADFUNC;
+        }
+      }
+    }
+  if (!dydt) return GSL_SUCCESS;
+  rhs_common_rows(R, y, qdd, dydt);
+  for (j = 0; j < R->n_planes; j++) {
+    const double au = uv[j][0] + gu, av = uv[j][1] + gv;
+    const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+    for (k = k0; k < k1; k++) {
+      const double s = sn[k], cc = cs[k], r = R->r[k];
+      double acc;
+      if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
+        dydt[8 + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
+        acc = frame == AUTOBAL_ROTOR_FIXED ? Wd : 0.0;
+      } else {
+        const double pd = frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W;
+        const double psid = frame == AUTOBAL_ROTOR_FIXED ? rate[k] - W : rate[k];
+        const double fk = fs[k];
+        acc = ((s + fk * cc) * au + (fk * s - cc) * av) / r - R->kappa[k] * psid - fk * pd * pd;
+        if (frame == AUTOBAL_ROTOR_ROTATING) acc -= Wd;
+      }
+      dydt[8 + N + k] = acc;
+    }
+  }
+  if (R->motor) {
+    dydt[R->im] = W;
+    dydt[R->im + 1] = Wd;
+  }
+  return GSL_SUCCESS;
+}
+
+int autobal_rotor_friction_gravity_hook(autobal_rotor *r, double gu, double gv) {
+  if (r == NULL || !isfinite(gu) || !isfinite(gv)) return AUTOBAL_EINVAL;
+  r->gu = gu;
+  r->gv = gv;
+  r->cache_ok = 0;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_friction_on(const autobal_rotor *r) {
+  return r != NULL && r->law != AUTOBAL_ROTOR_FRICTION_NONE;
+}
+
+int autobal_rotor_ball_mode_get(const autobal_rotor *r, size_t k) {
+  if (r == NULL || k >= r->N) return -2;
+  return r->law == AUTOBAL_ROTOR_FRICTION_EXACT ? r->mode[k] : AUTOBAL_ROTOR_BALL_SLIP_POSITIVE;
+}
+
+int autobal_rotor_ball_mode_set(autobal_rotor *r, size_t k, int mode) {
+  if (r == NULL || k >= r->N || r->law != AUTOBAL_ROTOR_FRICTION_EXACT ||
+      (mode != AUTOBAL_ROTOR_BALL_STUCK && mode != AUTOBAL_ROTOR_BALL_SLIP_POSITIVE &&
+       mode != AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE))
+    return AUTOBAL_EINVAL;
+  r->mode[k] = mode;
+  r->cache_ok = 0;
+  return AUTOBAL_SUCCESS;
+}
+
+static int forces_common(autobal_rotor *r, int frame, double t, const double *y, double *N, double *H, size_t n) {
+  if (r == NULL || y == NULL || (N == NULL && H == NULL) || n != r->N || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
+    return AUTOBAL_EINVAL;
+  return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
+}
+
+int autobal_rotor_normal_forces(autobal_rotor *r, int frame, double t, const double *y, double *N, size_t n) {
+  return forces_common(r, frame, t, y, N, NULL, n);
+}
+
+int autobal_rotor_holding_forces(autobal_rotor *r, int frame, double t, const double *y, double *H, size_t n) {
+  return forces_common(r, frame, t, y, NULL, H, n);
+}
+
+/* N and H of every ball into the cache, unless it holds them for (t, frame, y) already. */
+static int fric_cache(autobal_rotor *r, int frame, double t, const double *y) {
+  if (r->cache_ok && r->cache_t == t && r->cache_frame == frame &&
+      memcmp(r->ycache, y, r->dim * sizeof(double)) == 0)
+    return 0;
+  r->cache_ok = 0;
+  if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return -1;
+  memcpy(r->ycache, y, r->dim * sizeof(double));
+  r->cache_t = t;
+  r->cache_frame = frame;
+  r->cache_ok = 1;
+  return 0;
+}
+
+/* psi' of ball k of the state (stuck: 0). */
+static double ball_psid(const autobal_rotor *r, int frame, double t, const double *y, size_t k) {
+  double W, ph;
+  if (frame == AUTOBAL_ROTOR_ROTATING) return y[8 + r->N + k];
+  spin_state(r, t, y, &W, &ph);
+  return y[8 + r->N + k] - W;
+}
+
+double autobal_rotor_friction_switch(autobal_rotor *r, int frame, size_t k, double t, const double *y) {
+  if (r == NULL || y == NULL || k >= r->N || r->law != AUTOBAL_ROTOR_FRICTION_EXACT || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
+    return NAN;
+  if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK) return (double)r->mode[k] * ball_psid(r, frame, t, y, k);
+  if (fric_cache(r, frame, t, y) != 0) return NAN;
+  return fabs(r->cH[k]) - r->mu[k] * r->cN[k];
+}
+
+int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double *y, int initial, size_t *n_stick,
+                                  size_t *n_slip, size_t *n_reverse) {
+  size_t k, it, ns = 0, nl = 0, nr = 0;
+  int changed = 0;
+  double W, ph;
+  if (n_stick) *n_stick = 0;
+  if (n_slip) *n_slip = 0;
+  if (n_reverse) *n_reverse = 0;
+  if (r == NULL || y == NULL || r->law != AUTOBAL_ROTOR_FRICTION_EXACT || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
+    return AUTOBAL_EINVAL;
+  r->cache_ok = 0;
+  spin_state(r, t, y, &W, &ph);
+  memcpy(r->mode0, r->mode, r->N * sizeof(int));
+  for (k = 0; k < r->N; k++) {
+    const double pd = ball_psid(r, frame, t, y, k);
+    r->pd0[k] = y[8 + r->N + k]; /* restored for a ball that reaches 0 but slips on */
+    if (initial) r->mode[k] = pd > 0.0 ? 1 : pd < 0.0 ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
+    else if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK && (double)r->mode[k] * pd <= 0.0)
+      r->mode[k] = AUTOBAL_ROTOR_BALL_STUCK; /* psi' has reached 0 */
+    if (r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK && pd != 0.0) {
+      y[8 + r->N + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
+      changed = 1;
+    }
+  }
+  for (it = 0; it <= r->N; it++) {
+    size_t worst = r->N;
+    double excess = 0.0;
+    if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
+    for (k = 0; k < r->N; k++) {
+      if (!(r->cN[k] > 0.0)) {
+        size_t j = 0;
+        while (j + 1 < r->n_planes && k >= r->off[j + 1]) j++;
+        return autobal_error_set(&r->err, AUTOBAL_ENUMERIC,
+                                 "friction: ball %zu of plane %zu (p%zu_b%zu) would leave its track at t = %.17g "
+                                 "s: normal force N = %.17g N (must be > 0)",
+                                 k - r->off[j] + 1, j + 1, j + 1, k - r->off[j] + 1, t, r->cN[k]);
+      }
+      if (r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
+        const double ex = (fabs(r->cH[k]) - r->mu[k] * r->cN[k]) / r->cN[k];
+        if (ex > excess) {
+          excess = ex;
+          worst = k;
+        }
+      }
+    }
+    if (worst == r->N) break;
+    r->mode[worst] = r->cH[worst] > 0.0 ? AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE : AUTOBAL_ROTOR_BALL_SLIP_POSITIVE;
+    y[8 + r->N + worst] = r->pd0[worst]; /* its rate as it was (psi' = 0 if it was stuck at entry) */
+  }
+  for (k = 0; k < r->N; k++) {
+    const int was = r->mode0[k] == AUTOBAL_ROTOR_BALL_STUCK, is = r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
+    if (r->mode[k] != r->mode0[k]) changed = 1;
+    if (!was && is) ns++;
+    else if (was && !is) nl++;
+    else if (!was && !is && !initial && (double)r->mode0[k] * ball_psid(r, frame, t, y, k) <= 0.0) nr++;
+  }
+  r->cache_ok = 0;
+  if (n_stick) *n_stick = ns;
+  if (n_slip) *n_slip = nl;
+  if (n_reverse) *n_reverse = nr;
+  return changed;
 }
 
 /* ---- parameters ----------------------------------------------------------- */
@@ -946,6 +1416,49 @@ static int check_drive(const autobal_rotor_drive *d, double C, int inertia, auto
   return AUTOBAL_SUCCESS;
 }
 
+/* The friction block for plane j (the law and u_eps with j == 0). */
+static int check_friction(const autobal_rotor_params *p, size_t j, autobal_error *err) {
+  const autobal_rotor_friction *fr = &p->friction;
+  const autobal_rotor_plane *pl = &p->plane[j];
+  char name[64];
+  size_t i;
+  int st;
+  if (j == 0) {
+    if (fr->law != AUTOBAL_ROTOR_FRICTION_NONE && fr->law != AUTOBAL_ROTOR_FRICTION_EXACT &&
+        fr->law != AUTOBAL_ROTOR_FRICTION_REGULARIZED)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "parameter friction.law = %d is not valid: use AUTOBAL_ROTOR_FRICTION_NONE (0), "
+                               "AUTOBAL_ROTOR_FRICTION_EXACT (1) or AUTOBAL_ROTOR_FRICTION_REGULARIZED (2)",
+                               fr->law);
+    if (fr->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED &&
+        (st = autobal_check_param(err, "friction.u_eps", fr->u_eps, 0.0, 1, INFINITY, 1, "rad/s")))
+      return st;
+  }
+  for (i = 0; i < pl->n_balls; i++) {
+    const double f = fr->ball_f[j] ? fr->ball_f[j][i] : 0.0;
+    if (fr->ball_f[j]) {
+      snprintf(name, sizeof name, "plane[%zu].ball_f[%zu]", j, i);
+      if ((st = autobal_check_param(err, name, f, 0.0, 0, INFINITY, 1, ""))) return st;
+    }
+    if (fr->ball_mu[j]) {
+      const double mu = fr->ball_mu[j][i];
+      snprintf(name, sizeof name, "plane[%zu].ball_mu[%zu]", j, i);
+      if (isfinite(mu) && mu < f) {
+        char fb[40];
+        snprintf(fb, sizeof fb, "%.15g", f); /* the shortest of %.15g / %.17g that reads back */
+        if (strtod(fb, NULL) != f) snprintf(fb, sizeof fb, "%.17g", f);
+        return autobal_error_set(err, AUTOBAL_EINVAL,
+                                 "parameter %s = %.15g is too small: the static coefficient must be >= the "
+                                 "rolling-resistance coefficient plane[%zu].ball_f[%zu] = %s (allowed range "
+                                 "[%s, inf))",
+                                 name, mu, j, i, fb, fb);
+      }
+      if ((st = autobal_check_param(err, name, mu, f, 0, INFINITY, 1, ""))) return st;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err) {
   autobal_rotor_lumped L;
   int st, warn = 0;
@@ -1021,6 +1534,7 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
     if ((st = check_plane(&p->plane[j], j, err, &warn, warnmsg, sizeof warnmsg, &msum)) !=
         AUTOBAL_SUCCESS)
       return st;
+    if ((st = check_friction(p, j, err)) != AUTOBAL_SUCCESS) return st;
     ntot += p->plane[j].n_balls;
     heavy += msum * (1.0 / L.M + p->plane[j].d * p->plane[j].d / L.A);
   }
@@ -1057,9 +1571,13 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
     return NULL;
   }
-  /* 10 arrays of N doubles, 4 of dn and 2 of mn (N may be 0: allocate at least one element) */
-  R->store = (double *)calloc(10 * N + 4 * dn + 2 * mn + 1, sizeof(double));
-  if (R->store == NULL) {
+  /* 18 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
+   * least one element) */
+  R->store = (double *)calloc(18 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
+  R->mode = (int *)calloc(2 * N + 1, sizeof(int));
+  if (R->store == NULL || R->mode == NULL) {
+    free(R->store);
+    free(R->mode);
     free(R);
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating arrays for %zu balls", N);
     return NULL;
@@ -1082,6 +1600,14 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   R->mn = mn;
   R->mW = R->dP + dn;
   R->mL = R->mW + mn;
+  R->f = R->mL + mn;
+  R->mu = R->f + N;
+  R->cN = R->mu + N;
+  R->cH = R->cN + N;
+  R->fws = R->cH + N; /* 3 N: the friction path's sin, cos, f sgn */
+  R->pd0 = R->fws + 3 * N;
+  R->ycache = R->pd0 + N;
+  R->mode0 = R->mode + N;
   R->p = *p;
   R->motor = p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR;
   if (mn > 0) {
@@ -1183,6 +1709,34 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->gW = R->gs * W;
     R->gD = R->gs * D;
   }
+  /* friction: per-ball coefficients (mu defaults to f), initial modes from the initial rates */
+  R->law = p->friction.law;
+  R->inv_ueps = R->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED ? 1.0 / p->friction.u_eps : 0.0;
+  R->gu = 0.0;
+  R->gv = 0.0;
+  R->Wtot = R->L.M;
+  R->Dm = 0.0;
+  for (j = 0; j < p->n_planes; j++) {
+    const autobal_rotor_plane *pl = &p->plane[j];
+    double mj = pl->m0;
+    size_t i;
+    for (i = 0; i < pl->n_balls; i++) {
+      k = R->off[j] + i;
+      R->f[k] = p->friction.ball_f[j] ? p->friction.ball_f[j][i] : 0.0;
+      R->mu[k] = p->friction.ball_mu[j] ? p->friction.ball_mu[j][i] : R->f[k];
+      R->mode[k] = R->rate_init[k] < 0.0 ? AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE : AUTOBAL_ROTOR_BALL_SLIP_POSITIVE;
+      mj += pl->ball_mass[i];
+    }
+    R->Wtot += mj;
+    R->Dm += pl->d * mj;
+    R->p.friction.ball_f[j] = R->f + R->off[j];
+    R->p.friction.ball_mu[j] = R->mu + R->off[j];
+  }
+  for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) {
+    R->p.friction.ball_f[j] = NULL;
+    R->p.friction.ball_mu[j] = NULL;
+  }
+  R->gv = R->gs; /* the friction right-hand sides take gravity as the acceleration (0, g_s) of D */
   R->err = e;
   return R;
 }
@@ -1190,6 +1744,7 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
 void autobal_rotor_free(autobal_rotor *r) {
   if (r == NULL) return;
   free(r->store);
+  free(r->mode);
   free(r);
 }
 
@@ -1261,7 +1816,10 @@ int autobal_rotor_set_omega(autobal_rotor *r, double omega) {
   int st;
   if (r == NULL) return AUTOBAL_EINVAL;
   st = autobal_check_param(&r->err, "omega", omega, -INFINITY, 1, INFINITY, 1, "rad/s");
-  if (st == AUTOBAL_SUCCESS) r->p.omega = omega;
+  if (st == AUTOBAL_SUCCESS) {
+    r->p.omega = omega;
+    r->cache_ok = 0; /* the friction forces cached for autobal_rotor_friction_switch */
+  }
   return st;
 }
 
@@ -1381,10 +1939,15 @@ double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t
 #define N_PLANE_OUT 7u
 #define N_BALL_OUT 6u
 
-size_t autobal_rotor_output_count(const autobal_rotor *r) {
-  if (r == NULL) return 0;
+/* The outputs without the friction columns (the layout of 0.2.0). */
+static size_t output_count_base(const autobal_rotor *r) {
   return N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * r->N + (r->dn > 0 ? 1u : 0u) +
          (r->motor ? 3u : 0u);
+}
+
+size_t autobal_rotor_output_count(const autobal_rotor *r) {
+  if (r == NULL) return 0;
+  return output_count_base(r) + (r->law != AUTOBAL_ROTOR_FRICTION_NONE ? 2u * r->N : 0u);
 }
 
 int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
@@ -1417,6 +1980,16 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
     o[4] = hypot(s[2], s[3]);
     o[5] = o[4] / r->sref[j];
     o[6] = hypot(x + d * be, yy - d * al);
+  }
+  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) {
+    /* the stuck flags of all balls, then their normal forces; the solve's workspace is the
+     * ball columns of out, written after it */
+    double *fo = out + output_count_base(r);
+    if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0) !=
+        GSL_SUCCESS)
+      for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
+    for (k = 0; k < r->N; k++)
+      fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
   }
   for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
@@ -1458,6 +2031,15 @@ int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_
   static const char *const bunit[N_BALL_OUT] = {"rad", "rad", "rad", "rad", "rad/s", "rad/s"};
   const char *u;
   if (r == NULL || buf == NULL || len == 0 || k >= autobal_rotor_output_count(r)) return AUTOBAL_EINVAL;
+  if (k >= output_count_base(r)) { /* friction: stuck flags, then normal forces */
+    size_t ball = k - output_count_base(r), j = 0;
+    const int isN = ball >= r->N;
+    if (isN) ball -= r->N;
+    while (j + 1 < r->n_planes && ball >= r->off[j + 1]) j++;
+    snprintf(buf, len, "p%zu_b%zu_%s", j + 1, ball - r->off[j] + 1, isN ? "N" : "stuck");
+    if (unit) *unit = isN ? "N" : "1";
+    return AUTOBAL_SUCCESS;
+  }
   if (k < N_GLOBAL_OUT) {
     snprintf(buf, len, "%s", gname[k]);
     u = "m";
@@ -1465,13 +2047,13 @@ int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_
     size_t kk = k - N_GLOBAL_OUT;
     snprintf(buf, len, "p%zu_%s", kk / N_PLANE_OUT + 1, pname[kk % N_PLANE_OUT]);
     u = punit[kk % N_PLANE_OUT];
-  } else if (r->dn > 0 && k + 1 == autobal_rotor_output_count(r)) {
+  } else if (r->dn > 0 && k + 1 == output_count_base(r)) {
     snprintf(buf, len, "Omega");
     u = "rad/s";
-  } else if (r->motor && k + 3 >= autobal_rotor_output_count(r)) {
+  } else if (r->motor && k + 3 >= output_count_base(r)) {
     static const char *const mname[3] = {"Omega", "motor_torque", "motor_power"};
     static const char *const munit[3] = {"rad/s", "N m", "W"};
-    const size_t km = k + 3 - autobal_rotor_output_count(r);
+    const size_t km = k + 3 - output_count_base(r);
     snprintf(buf, len, "%s", mname[km]);
     u = munit[km];
   } else {

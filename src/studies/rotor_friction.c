@@ -1,0 +1,198 @@
+/* rotor_friction.c: stick-slip switching of the rotor transient study (rotor_friction.h). */
+#include "studies/rotor_friction.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+typedef struct ball_event {
+  struct study_friction *f;
+  size_t k;
+} ball_event;
+
+struct study_friction {
+  autobal_rotor *rot;
+  int frame;
+  size_t N, first; /* balls; the index of the first ball's event */
+  ball_event *ev;
+  int *stuck;       /* the mode at the last switch: 1 stuck */
+  double *since;    /* s, when the current stuck interval began */
+  double *time_stuck;
+  unsigned long sticks, slips, reversals;
+  int failed;
+  char message[AUTOBAL_ERRMSG_SIZE];
+};
+
+static double ball_switch(double t, const double y[], void *user) {
+  const ball_event *e = (const ball_event *)user;
+  return autobal_rotor_friction_switch(e->f->rot, e->f->frame, e->k, t, y);
+}
+
+static void note_modes(study_friction *f, double t) {
+  size_t k;
+  for (k = 0; k < f->N; k++) {
+    const int is = autobal_rotor_ball_mode_get(f->rot, k) == AUTOBAL_ROTOR_BALL_STUCK;
+    if (is && !f->stuck[k]) f->since[k] = t;
+    if (!is && f->stuck[k]) f->time_stuck[k] += t - f->since[k];
+    f->stuck[k] = is;
+  }
+}
+
+static int ball_reset(const autobal_transient_event_hit *hit, double y[], void *user) {
+  study_friction *f = (study_friction *)user;
+  size_t ns, nl, nr;
+  int rc;
+  if (hit->index < f->first || hit->index >= f->first + f->N) return 0; /* not a friction event */
+  rc = autobal_rotor_friction_settle(f->rot, f->frame, hit->t, y, 0, &ns, &nl, &nr);
+  if (rc < 0) {
+    f->failed = rc;
+    snprintf(f->message, sizeof f->message, "%s", autobal_rotor_errmsg(f->rot));
+    return 2; /* stop the run here */
+  }
+  f->sticks += ns;
+  f->slips += nl;
+  f->reversals += nr;
+  note_modes(f, hit->t);
+  return rc == 1 ? AUTOBAL_TRANSIENT_RESET : 0;
+}
+
+void study_friction_free(study_friction *f) {
+  if (f == NULL) return;
+  free(f->ev);
+  free(f->stuck);
+  free(f->since);
+  free(f->time_stuck);
+  free(f);
+}
+
+int study_friction_begin(autobal_rotor *rot, int frame, autobal_transient *tr, double t0, double *y,
+                         study_friction **out, autobal_error *err) {
+  study_friction *f;
+  size_t k, N = autobal_rotor_n_balls_total(rot);
+  int rc;
+  *out = NULL;
+  if (autobal_rotor_get_params(rot)->friction.law != AUTOBAL_ROTOR_FRICTION_EXACT) return AUTOBAL_SUCCESS;
+  f = (study_friction *)calloc(1, sizeof *f);
+  if (f) {
+    f->ev = (ball_event *)calloc(N + 1, sizeof *f->ev);
+    f->stuck = (int *)calloc(N + 1, sizeof *f->stuck);
+    f->since = (double *)calloc(N + 1, sizeof *f->since);
+    f->time_stuck = (double *)calloc(N + 1, sizeof *f->time_stuck);
+  }
+  if (!f || !f->ev || !f->stuck || !f->since || !f->time_stuck) {
+    study_friction_free(f);
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+  }
+  f->rot = rot;
+  f->frame = frame;
+  f->N = N;
+  rc = autobal_rotor_friction_settle(rot, frame, t0, y, 1, NULL, NULL, NULL);
+  if (rc < 0) {
+    study_friction_free(f);
+    return autobal_error_set(err, rc, "the initial state: %s", autobal_rotor_errmsg(rot));
+  }
+  note_modes(f, t0);
+  for (k = 0; k < N; k++) {
+    int idx;
+    f->ev[k].f = f;
+    f->ev[k].k = k;
+    idx = autobal_transient_add_event(tr, ball_switch, &f->ev[k], 0, 0);
+    if (idx < 0) {
+      study_friction_free(f);
+      return autobal_error_set(err, idx, "%s", autobal_transient_errmsg(tr));
+    }
+    if (k == 0) f->first = (size_t)idx;
+  }
+  autobal_transient_set_event_reset(tr, ball_reset, f);
+  *out = f;
+  return AUTOBAL_SUCCESS;
+}
+
+int study_friction_finish(study_friction *f, double t_end, autobal_study_rotor_transient_summary *s,
+                          autobal_error *err) {
+  size_t j, np, k;
+  if (f == NULL) return AUTOBAL_SUCCESS;
+  for (k = 0; k < f->N; k++)
+    if (f->stuck[k]) f->time_stuck[k] += t_end - f->since[k];
+  s->have_friction = 1;
+  s->friction_sticks = f->sticks;
+  s->friction_slips = f->slips;
+  s->friction_reversals = f->reversals;
+  np = autobal_rotor_n_planes(f->rot);
+  for (j = 0; j < np; j++) {
+    size_t i, n = autobal_rotor_n_balls(f->rot, j);
+    if (n == 0) continue;
+    s->ball_time_stuck[j] = (double *)malloc(n * sizeof(double));
+    s->ball_stuck_final[j] = (int *)malloc(n * sizeof(int));
+    if (!s->ball_time_stuck[j] || !s->ball_stuck_final[j]) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+    for (i = 0; i < n; i++) {
+      k = autobal_rotor_ball_index(f->rot, j, i);
+      s->ball_time_stuck[j][i] = f->time_stuck[k];
+      s->ball_stuck_final[j][i] = autobal_rotor_ball_mode_get(f->rot, k) == AUTOBAL_ROTOR_BALL_STUCK;
+    }
+  }
+  if (f->failed) return autobal_error_set(err, f->failed, "%s", f->message);
+  return AUTOBAL_SUCCESS;
+}
+
+void study_friction_summary_free(autobal_study_rotor_transient_summary *s) {
+  size_t j;
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) {
+    free(s->ball_time_stuck[j]);
+    free(s->ball_stuck_final[j]);
+    s->ball_time_stuck[j] = NULL;
+    s->ball_stuck_final[j] = NULL;
+  }
+}
+
+static const char *law_name(int law) {
+  return law == AUTOBAL_ROTOR_FRICTION_EXACT ? "exact" : law == AUTOBAL_ROTOR_FRICTION_REGULARIZED ? "regularized" : "none";
+}
+
+int study_friction_write_inputs(autobal_archive *a, const autobal_rotor *rot, const char *group) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(rot);
+  size_t j;
+  int st;
+  if (p->friction.law == AUTOBAL_ROTOR_FRICTION_NONE) return 0;
+  st = autobal_archive_attr_string(a, group, "friction", law_name(p->friction.law));
+  if (!st && p->friction.law == AUTOBAL_ROTOR_FRICTION_REGULARIZED)
+    st = autobal_archive_attr_double(a, group, "friction_u_eps", p->friction.u_eps, "rad/s");
+  for (j = 0; j < p->n_planes && !st; j++) {
+    char grp[32];
+    const size_t n = p->plane[j].n_balls;
+    if (n == 0) continue;
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_attr_double_array(a, grp, "ball_f", n, p->friction.ball_f[j], "1");
+    if (!st) st = autobal_archive_attr_double_array(a, grp, "ball_mu", n, p->friction.ball_mu[j], "1");
+  }
+  return st;
+}
+
+int study_friction_write_summary(autobal_archive *a, const autobal_study_rotor_transient_summary *s,
+                                 const char *group) {
+  size_t j;
+  int st;
+  if (!s->have_friction) return 0;
+  st = autobal_archive_attr_double(a, group, "friction_sticks", (double)s->friction_sticks, "1");
+  if (!st) st = autobal_archive_attr_double(a, group, "friction_slips", (double)s->friction_slips, "1");
+  if (!st) st = autobal_archive_attr_double(a, group, "friction_reversals", (double)s->friction_reversals, "1");
+  for (j = 0; j < s->n_planes && !st; j++) {
+    char name[48];
+    double *flags;
+    size_t i, n = s->n_balls[j];
+    if (n == 0 || !s->ball_time_stuck[j] || !s->ball_stuck_final[j]) continue;
+    snprintf(name, sizeof name, "p%zu_ball_time_stuck", j + 1);
+    st = autobal_archive_attr_double_array(a, group, name, n, s->ball_time_stuck[j], "s");
+    if (st) break;
+    flags = (double *)malloc(n * sizeof *flags);
+    if (!flags) return AUTOBAL_ENOMEM;
+    for (i = 0; i < n; i++) flags[i] = s->ball_stuck_final[j][i];
+    snprintf(name, sizeof name, "p%zu_ball_stuck_final", j + 1);
+    st = autobal_archive_attr_double_array(a, group, name, n, flags, "1");
+    free(flags);
+  }
+  return st;
+}
