@@ -425,7 +425,8 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
  * effective mass matrix is not positive definite or the accelerations come out
  * non-finite (e.g. from a non-finite state).
  * Then the handle's message (autobal_rotor_errmsg) says at which t, recorded
- * with status AUTOBAL_ENUMERIC, and dydt has not been written.  rotor must be a
+ * with status AUTOBAL_ENUMERIC, and dydt is unspecified (the rows of the rotor
+ * may have been written before a ball's acceleration overflowed).  rotor must be a
  * valid handle (not checked: no NULL test in the hot path).  Every call writes
  * the handle's workspace: one handle per thread (see Threads above). */
 /* With a friction law other than NONE (autobal_rotor_friction) both right-hand sides take the

@@ -4,6 +4,7 @@
  * derived outputs, balanced configurations (3.14). */
 #include "autobal/rotor.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -391,6 +392,16 @@ static int motor_complete(const autobal_rotor *R, const double y[], double omega
   return isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3]) ? 0 : -1;
 }
 
+/* The balls' accelerations of a right-hand side finite?  They are written after the rotor's
+ * (which the solves check): a huge but finite state (|phi'| near 1e304) can still overflow
+ * h/m (phi' - Omega).  Branch-free (vectorizable). */
+static int ball_rows_finite(const double *dydt, size_t N) {
+  int ok = 1;
+  size_t k;
+  for (k = 0; k < N; k++) ok &= fabs(dydt[8 + N + k]) <= DBL_MAX;
+  return ok;
+}
+
 static int rhs_fail(autobal_rotor *R, double t, const char *which) {
   autobal_error_set(&R->err, AUTOBAL_ENUMERIC,
                     "%s right-hand side failed at t = %.17g s: the effective mass matrix is not "
@@ -507,6 +518,7 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
     for (k = k0; k < k1; k++) /* eq. (3.4) solved for phi_i'' */
       dydt[8 + N + k] = (uDdd * sn[k] - vDdd * cs[k]) / R->r[k] - R->kappa[k] * (phid[k] - omega);
   }
+  if (!ball_rows_finite(dydt, N)) return rhs_fail(R, t, "fixed-frame");
   if (R->motor) {
     dydt[R->im] = omega;
     dydt[R->im + 1] = omega_rate;
@@ -614,6 +626,7 @@ int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *
     if (omega_rate != 0.0)
       for (k = k0; k < k1; k++) dydt[8 + N + k] -= omega_rate;
   }
+  if (!ball_rows_finite(dydt, N)) return rhs_fail(R, t, "rotating-frame");
   if (R->motor) {
     dydt[R->im] = omega;
     dydt[R->im + 1] = omega_rate;
@@ -930,6 +943,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
       dydt[8 + N + k] = acc;
     }
   }
+  if (!ball_rows_finite(dydt, N)) return fric_fail(errp, t, which);
   if (R->motor) {
     dydt[R->im] = W;
     dydt[R->im + 1] = Wd;
