@@ -362,9 +362,12 @@ static int motor_complete(const autobal_rotor *R, const double y[], double omega
                           double uvdd1[][2], double *omega_rate) {
   const autobal_rotor_drive *dr = &R->p.drive;
   const double den = R->Jeff - (b1[0] * qdd1[0] + b1[1] * qdd1[1] + b1[2] * qdd1[2] + b1[3] * qdd1[3]);
-  const double rhs = motor_L(R, omega) - dr->k_r * omega + tb - R->L.C * y[6] * y[7] +
-                     (b1[0] * qdd[0] + b1[1] * qdd[1] + b1[2] * qdd[2] + b1[3] * qdd[3]);
+  double rhs = motor_L(R, omega) - dr->k_r * omega + tb - R->L.C * y[6] * y[7] +
+               (b1[0] * qdd[0] + b1[1] * qdd[1] + b1[2] * qdd[2] + b1[3] * qdd[3]);
   double wd;
+  /* gravity (docs/device.md section 2): the unbalance's weight torque g_s sum_j m_j0 r_j0 cos th_j
+   * on the left of the phi_0 equation; b1[1] = -sum_j m_j0 r_j0 cos th_j (motor_b1) */
+  if (R->gs != 0.0) rhs += R->gs * b1[1];
   size_t j;
   if (!(den > 1e-13 * R->Jeff)) return -1;
   wd = rhs / den;
@@ -990,10 +993,6 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
       ((st = autobal_check_param(err, "shaft_angle", p->shaft_angle, 0.0, 0, M_PI, 0, "rad")) != AUTOBAL_SUCCESS ||
        (st = autobal_check_param(err, "g", p->g, 0.0, 1, INFINITY, 1, "m/s^2")) != AUTOBAL_SUCCESS))
     return st;
-  if (p->gravity && p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR)
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "gravity with drive.mode = MOTOR is not implemented yet (the weight torque of "
-                             "the unbalance on phi_0): use a prescribed speed, or gravity = 0");
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
