@@ -219,6 +219,12 @@ typedef struct autobal_study_rotor_transient_summary {
   int *resonance_whirl;             /* [n_resonances] +1 forward, -1 backward, 0 undecided */
   autobal_runup_passage *passages;  /* [runup.n_passages], in time order */
   autobal_runup_capture *captures;  /* [runup.n_captures], by resonance, then time */
+  /* gravity (docs/device.md section 2; p.gravity = 1, else the offset is 0 and the ratios NaN): the
+     static offset q_s (autobal_rotor_static_offset: m, m, rad, rad) and per plane
+     g sin(theta) / (r Omega^2) at |Omega(t_reached)| (autobal_rotor_gravity_ratio; < 1: the balls
+     are carried round) */
+  double static_offset[4];
+  double gravity_ratio_final[AUTOBAL_ROTOR_MAX_PLANES];
 } autobal_study_rotor_transient_summary;
 
 /* Check the inputs of a rotor transient without running it (and without
