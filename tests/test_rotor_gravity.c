@@ -16,7 +16,8 @@
  *     the bits of gravity off; the power balance E(T) - E(0) = work of the motor - dissipation along
  *     a run-up from rest on a horizontal shaft (E with the weights' potential energy V_g);
  *  6. the static offset (autobal_rotor_static_offset) against the JSON's closed form and against
- *     the rest state of a transient at omega = 0 without unbalance. */
+ *     the rest state of a transient at omega = 0 (unbalance and balls at the bottom), where the
+ *     output amplitudes (measured from the static offset) vanish. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -571,6 +572,16 @@ static void static_offset_case(const char *json) {
              qs[2], y[1] * 1e3);
       CHECK_CLOSE("rest at the static offset: y(0.5 s) = y_s", y[1], qs[1], 1e-9, 1e-15);
       CHECK_CLOSE("rest at the static offset: alpha(0.5 s) = alpha_s", y[2], qs[2], 1e-9, 1e-15);
+      {
+        /* the amplitudes are measured from the static offset: at rest there they are 0 */
+        double out[64];
+        const size_t no = autobal_rotor_output_count(rot);
+        CHECK("outputs", no <= 64 && autobal_rotor_outputs(rot, AUTOBAL_ROTOR_FIXED, 0.5, y, out, no) == AUTOBAL_SUCCESS);
+        printf("     amp_G, amp_L, amp_R at rest on the static offset: %.3g, %.3g, %.3g m (|y| = %.3g m)\n", out[0], out[1],
+               out[2], fabs(y[1]));
+        CHECK("amp_G, amp_L, amp_R about the static offset: below 1e-12 m at rest there",
+              out[0] < 1e-12 && out[1] < 1e-12 && out[2] < 1e-12);
+      }
       autobal_rotor_free(rot);
     }
   }

@@ -409,7 +409,8 @@ AUTOBAL_API int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t pla
 AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t,
                                                  const double *y);
 
-/* Number of derived outputs per sample and their layout:
+/* Number of derived outputs per sample and their layout (with gravity, x, y, alpha, beta in the
+ * amplitudes below are measured from the static offset, autobal_rotor_static_offset):
  *   0 amp_G  |(x, y)|                                  m   at the centre of mass
  *   1 amp_L  |(x - l_L beta, y + l_L alpha)|           m   at the left support  (p = -l_L)
  *   2 amp_R  |(x + l_R beta, y - l_R alpha)|           m   at the right support (p = +l_R)

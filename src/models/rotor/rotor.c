@@ -49,6 +49,7 @@ struct autobal_rotor {
   /* gravity (docs/device.md section 2): g_s = g sin(theta) (m/s^2), the weights g_s W on y (N)
    * and g_s sum_j d_j m_j on alpha (N m), W = M + all small masses; all 0 when off */
   double gs, gW, gD;
+  double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
   autobal_error err;
 };
 
@@ -1170,6 +1171,7 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   }
   for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) memset(&R->p.plane[j], 0, sizeof R->p.plane[j]);
   R->gs = R->gW = R->gD = 0.0;
+  (void)autobal_rotor_static_offset(p, R->qs); /* zeros without gravity */
   if (p->gravity) { /* docs/device.md section 2: g_s (M + sum m) on y, -g_s sum d m on alpha */
     double W = R->L.M, D = 0.0;
     R->gs = p->g * sin(p->shaft_angle);
@@ -1395,10 +1397,10 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
       n_out != autobal_rotor_output_count(r))
     return AUTOBAL_EINVAL;
-  x = y[0];
-  yy = y[1];
-  al = y[2];
-  be = y[3];
+  x = y[0] - r->qs[0]; /* the amplitudes are about the static offset under gravity (qs = 0 without) */
+  yy = y[1] - r->qs[1];
+  al = y[2] - r->qs[2];
+  be = y[3] - r->qs[3];
   spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
   out[0] = hypot(x, yy);
   /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
