@@ -12,7 +12,7 @@
 # a motor drive runs with gravity; rotor stability/sweep/map/campbell refuse gravity (exit 3); an
 # ensemble runs with it; bad gravity input exits 3 naming the key and the range, leaving no file.
 set -u
-: "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+: "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}" "${DATA:?}"
 here=$(cd "$(dirname "$0")" && pwd)
 export TOOLS="${TOOLS:-$here/../../tools}"
 rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
@@ -52,6 +52,12 @@ check "SciPy DOP853 of the equations with gravity (docs/device.md) == the archiv
 check "balls near the bottom at 1 rad/s: phi = -pi/2 + asin(h r Omega/(m g))" bottom horiz.h5 2.9
 check "static offset: /rotor attributes = closed form = the rotor's mean position in the dwell" offset horiz.h5 2 3
 check "gravity_ratio_final = g/(r Omega^2) < 1, the balls circulate at the end" ratio horiz.h5
+
+# the README's washing-machine example (data/washer_gravity.ini) runs, balances, and its static
+# offset is the closed form
+expect 0 "static offset y_s = -17.7206 mm, alpha_s = 2.48435 mrad" "$AUTOBAL" rotor transient "$DATA/washer_gravity.ini" -o washer.h5
+grep -qF "BALANCED" out.txt && ok "washer example balances" || bad "washer example: not balanced"
+check "washer example: static offset attributes = closed form" offset washer.h5 1 0
 
 # JSON summary
 expect 0 '"static_offset_y"' "$AUTOBAL" rotor transient horiz.ini --json --set transient.t_end=0.2
