@@ -311,6 +311,23 @@ static void bad_input(void) {
   r = autobal_rotor_alloc(&p, &err);
   CHECK("g = nan rejected", r == NULL);
   autobal_rotor_free(r);
+  { /* supports that cannot carry the weight (c_y = c_yalpha = 0): no static equilibrium */
+    autobal_rotor_params q = autobal_rotor_params_default();
+    q.input = AUTOBAL_ROTOR_LUMPED;
+    q.lumped.c_y = 0.0, q.lumped.c_yalpha = 0.0, q.lumped.h_yalpha = 0.0;
+    r = autobal_rotor_alloc(&q, &err);
+    CHECK("c_y = 0 without gravity: allowed", r != NULL);
+    autobal_rotor_free(r);
+    q.gravity = 1, q.shaft_angle = M_PI / 2, q.g = 9.81;
+    r = autobal_rotor_alloc(&q, &err);
+    CHECK("c_y = 0 with a horizontal shaft: rejected, 'carry the weight'",
+          r == NULL && strstr(err.message, "carry the weight") != NULL);
+    autobal_rotor_free(r);
+    q.shaft_angle = 0.0;
+    r = autobal_rotor_alloc(&q, &err);
+    CHECK("c_y = 0 with a vertical shaft: allowed (no weight in the plane)", r != NULL);
+    autobal_rotor_free(r);
+  }
   p.gravity = 0; /* off: the other fields are not looked at */
   r = autobal_rotor_alloc(&p, &err);
   CHECK("gravity off ignores g and shaft_angle", r != NULL);

@@ -994,6 +994,11 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
       ((st = autobal_check_param(err, "shaft_angle", p->shaft_angle, 0.0, 0, M_PI, 0, "rad")) != AUTOBAL_SUCCESS ||
        (st = autobal_check_param(err, "g", p->g, 0.0, 1, INFINITY, 1, "m/s^2")) != AUTOBAL_SUCCESS))
     return st;
+  if (p->gravity && sin(p->shaft_angle) != 0.0 && !(L.c_y * L.c_alpha - L.c_yalpha * L.c_yalpha > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "gravity = 1 needs supports that carry the weight: c_y c_alpha - c_yalpha^2 = %g "
+                             "N^2 must be > 0 (else there is no static equilibrium)",
+                             L.c_y * L.c_alpha - L.c_yalpha * L.c_yalpha);
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
@@ -1171,7 +1176,6 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   }
   for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) memset(&R->p.plane[j], 0, sizeof R->p.plane[j]);
   R->gs = R->gW = R->gD = 0.0;
-  (void)autobal_rotor_static_offset(p, R->qs); /* zeros without gravity */
   if (p->gravity) { /* docs/device.md section 2: g_s (M + sum m) on y, -g_s sum d m on alpha */
     double W = R->L.M, D = 0.0;
     R->gs = p->g * sin(p->shaft_angle);
@@ -1183,6 +1187,11 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     }
     R->gW = R->gs * W;
     R->gD = R->gs * D;
+    { /* the static offset K q_s = -(0, gW, -gD, 0) (as autobal_rotor_static_offset; calloc: 0 when off) */
+      const double det = R->L.c_y * R->L.c_alpha - R->L.c_yalpha * R->L.c_yalpha;
+      R->qs[1] = -(R->gW * R->L.c_alpha + R->L.c_yalpha * R->gD) / det;
+      R->qs[2] = (R->L.c_y * R->gD + R->L.c_yalpha * R->gW) / det;
+    }
   }
   R->err = e;
   return R;
