@@ -8,7 +8,8 @@
 # cos(phi) = h r Omega / (m g) (phi = -pi/2: the lowest point); the static offset in /rotor equals
 # the closed form of docs/device.md and the rotor's mean position during the dwell; the ratio
 # g sin(theta) / (r Omega^2) of /rotor/planeN is the formula and the balls circulate at the end.
-# A vertical shaft gives the bits of gravity off; `autobal rerun` reproduces the run bit for bit;
+# The rotating frame agrees with the fixed one (2e-12). A vertical shaft gives the bits of gravity
+# off; `autobal rerun` reproduces the run bit for bit;
 # a motor drive runs with gravity; rotor stability/sweep/map/campbell refuse gravity (exit 3); an
 # ensemble runs with it; bad gravity input exits 3 naming the key and the range, leaving no file.
 set -u
@@ -52,6 +53,8 @@ check "SciPy DOP853 of the equations with gravity (docs/device.md) == the archiv
 check "balls near the bottom at 1 rad/s: phi = -pi/2 + asin(h r Omega/(m g))" bottom horiz.h5 2.9
 check "static offset: /rotor attributes = closed form = the rotor's mean position in the dwell" offset horiz.h5 2 3
 check "gravity_ratio_final = g/(r Omega^2) < 1, the balls circulate at the end" ratio horiz.h5
+expect 0 "" "$AUTOBAL" rotor transient horiz.ini --set transient.frame=rotating -o horiz_rot.h5 -q
+check "rotating frame == fixed frame with gravity" frames horiz.h5 horiz_rot.h5
 
 # the README's washing-machine example (data/washer_gravity.ini) runs, balances, and its static
 # offset is the closed form

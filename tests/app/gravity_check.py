@@ -15,6 +15,7 @@ it shares nothing with src/models/rotor/), integrated with SciPy's DOP853.
                         (the dwell at low speed) against it; T1 < T0: the attributes only
   ratio A.h5            /rotor/planeN gravity_ratio_final = g sin(theta) / (r_min Omega_end^2); < 1 and
                         the balls carried round at the end (more than 10 turns in the last second)
+  frames A.h5 B.h5      the fixed-frame run A and the rotating-frame run B agree (1e-7)
   same A.h5 B.h5        every series dataset equal bit for bit
 """
 import math
@@ -202,6 +203,22 @@ def ratio(path):
     return ok
 
 
+def frames(a, b):
+    """The fixed-frame and the rotating-frame run of the same configuration: rotor coordinates and the
+    balls' angles relative to the rotor (outputs p<j>_b<i>_psi) agree to the integration tolerance."""
+    fa, fb = h5py.File(a, 'r'), h5py.File(b, 'r')
+    ga, gb = fa['/rotor/transient'], fb['/rotor/transient']
+    names = ['x', 'y', 'alpha', 'beta'] + [n for n in ga if n.endswith('_psi') and n.startswith('p')]
+    worst = 0.0
+    for n in names:
+        va, vb = ga[n][()], gb[n][()]
+        scale = max(np.max(np.abs(va)), 1e-12) if n in ('x', 'y', 'alpha', 'beta') else 1.0
+        worst = max(worst, np.max(np.abs(va - vb)) / scale)
+    print('fixed vs rotating frame: %s largest difference %.2e (relative to the largest |q|; rad for psi)'
+          % (', '.join(names), worst))
+    return worst < 1e-7 and fb['/rotor/transient'].attrs['frame'] == 'rotating'
+
+
 def same(a, b):
     fa, fb = h5py.File(a, 'r'), h5py.File(b, 'r')
     ga, gb = fa['/rotor/transient'], fb['/rotor/transient']
@@ -221,6 +238,8 @@ if __name__ == '__main__':
         r = offset(sys.argv[2], float(sys.argv[3]), float(sys.argv[4]))
     elif cmd == 'ratio':
         r = ratio(sys.argv[2])
+    elif cmd == 'frames':
+        r = frames(sys.argv[2], sys.argv[3])
     elif cmd == 'same':
         r = same(sys.argv[2], sys.argv[3])
     else:
