@@ -326,6 +326,14 @@ static void bad_input(void) {
     q.shaft_angle = 0.0;
     r = autobal_rotor_alloc(&q, &err);
     CHECK("c_y = 0 with a vertical shaft: allowed (no weight in the plane)", r != NULL);
+    if (r) {
+      double y0[16], out[64];
+      const size_t no = autobal_rotor_output_count(r);
+      autobal_rotor_initial_state(r, AUTOBAL_ROTOR_FIXED, 0.0, y0, autobal_rotor_dim(r));
+      CHECK("   its amplitudes are finite (no static offset to subtract)",
+            no <= 64 && autobal_rotor_outputs(r, AUTOBAL_ROTOR_FIXED, 0.0, y0, out, no) == AUTOBAL_SUCCESS &&
+                out[0] == 0.0 && out[1] == 0.0 && out[2] == 0.0);
+    }
     autobal_rotor_free(r);
   }
   p.gravity = 0; /* off: the other fields are not looked at */

@@ -469,7 +469,7 @@ AUTOBAL_API double autobal_rotor_time_to_balance(const double *t, const double *
 /* Gravity (docs/device.md section 2, "Static offset"): the static equilibrium of the linear part
  * under the weights, K q_s = -g_s (0, W, -D_m, 0) with W = M + all small masses (kg) and
  * D_m = sum_j d_j m_j (kg m): q_s = (x_s, y_s, alpha_s, beta_s) in m, m, rad, rad, x_s = beta_s = 0.
- * All zeros when p->gravity is 0.  Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL arguments, the
+ * All zeros when p->gravity is 0 or g sin(shaft_angle) = 0.  Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL arguments, the
  * lumped coefficients of hardware input cannot be formed, or c_y c_alpha - c_yalpha^2 <= 0). */
 AUTOBAL_API int autobal_rotor_static_offset(const autobal_rotor_params *p, double q_s[4]);
 

@@ -366,10 +366,10 @@ static int motor_complete(const autobal_rotor *R, const double y[], double omega
   double rhs = motor_L(R, omega) - dr->k_r * omega + tb - R->L.C * y[6] * y[7] +
                (b1[0] * qdd[0] + b1[1] * qdd[1] + b1[2] * qdd[2] + b1[3] * qdd[3]);
   double wd;
+  size_t j;
   /* gravity (docs/device.md section 2): the unbalance's weight torque g_s sum_j m_j0 r_j0 cos th_j
    * on the left of the phi_0 equation; b1[1] = -sum_j m_j0 r_j0 cos th_j (motor_b1) */
   if (R->gs != 0.0) rhs += R->gs * b1[1];
-  size_t j;
   if (!(den > 1e-13 * R->Jeff)) return -1;
   wd = rhs / den;
   if (!isfinite(wd)) return -1;
@@ -1187,7 +1187,8 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     }
     R->gW = R->gs * W;
     R->gD = R->gs * D;
-    { /* the static offset K q_s = -(0, gW, -gD, 0) (as autobal_rotor_static_offset; calloc: 0 when off) */
+    if (R->gs != 0.0) { /* the static offset K q_s = -(0, gW, -gD, 0) (as autobal_rotor_static_offset;
+                           calloc: 0 without weight in the plane; det > 0 checked by the parameters) */
       const double det = R->L.c_y * R->L.c_alpha - R->L.c_yalpha * R->L.c_yalpha;
       R->qs[1] = -(R->gW * R->L.c_alpha + R->L.c_yalpha * R->gD) / det;
       R->qs[2] = (R->L.c_y * R->gD + R->L.c_yalpha * R->gW) / det;

@@ -21,6 +21,7 @@ int autobal_rotor_static_offset(const autobal_rotor_params *p, double q_s[4]) {
   }
   if (p->n_planes > AUTOBAL_ROTOR_MAX_PLANES) return AUTOBAL_EINVAL;
   gs = p->g * sin(p->shaft_angle); /* the weight component in the plane of the motion, along -y */
+  if (gs == 0.0) return AUTOBAL_SUCCESS; /* a vertical shaft: no weight in the plane */
   W = L.M;
   for (j = 0; j < p->n_planes; j++) { /* m_j = m_j0 + the balls' masses */
     double mj = p->plane[j].m0;
