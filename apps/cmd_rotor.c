@@ -148,6 +148,38 @@ static int read_plane(cli_ctx *ctx, rotor_cfg *c, size_t j, const char *sec) {
   return CLI_EXIT_OK;
 }
 
+/* [rotor] gravity = true|false (default false), shaft_angle (angle of the shaft to the vertical:
+ * 0 vertical, 90 deg horizontal, allowed [0, 180] deg; required with gravity = true), g (m/s^2,
+ * default 9.80665, > 0): docs/device.md section 2.  shaft_angle and g are read (and recorded) only
+ * with gravity = true or when given, so that the effective configuration of a run without gravity
+ * is unchanged; given without gravity = true they are refused. */
+static int read_gravity(cli_ctx *ctx, autobal_rotor_params *p) {
+  int rc, on = 0, has_sa = 0, has_g = 0;
+  const double half_turn = TWO_PI / 2.0;
+  if ((rc = cli_get_bool(ctx, "rotor", "gravity", 0, &on, NULL))) return rc;
+  p->gravity = on;
+  if (!on && !cli_config_has_key(ctx->cfg, "rotor", "shaft_angle") && !cli_config_has_key(ctx->cfg, "rotor", "g"))
+    return CLI_EXIT_OK;
+  if ((rc = cli_get_quantity(ctx, "rotor", "shaft_angle", "rad", half_turn / 2.0, &p->shaft_angle, &has_sa))) return rc;
+  if ((rc = cli_get_quantity(ctx, "rotor", "g", "m/s^2", 9.80665, &p->g, &has_g))) return rc;
+  if (!on)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: %s is a key of gravity = true, but gravity = false",
+                    has_sa ? "shaft_angle" : "g");
+  if (!has_sa && !cli_config_has_key(ctx->cfg, "rotor", "shaft_angle"))
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[rotor]: gravity = true needs shaft_angle, the angle of the shaft to the vertical: allowed "
+                    "[0, 180] deg (0: vertical shaft, 90 deg: horizontal)");
+  /* 180 deg may convert to pi plus an ulp: the closed end of the range */
+  if (p->shaft_angle > half_turn && p->shaft_angle <= half_turn * (1.0 + 4e-16)) p->shaft_angle = half_turn;
+  if (!(p->shaft_angle >= 0.0 && p->shaft_angle <= half_turn))
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[rotor]: shaft_angle = %.6g deg is out of range: allowed [0, 180] deg (0: vertical shaft, 90 "
+                    "deg: horizontal)", p->shaft_angle * 360.0 / TWO_PI);
+  if (!(p->g > 0.0) || !isfinite(p->g))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: g = %.6g m/s^2 is out of range: allowed (0, inf)", p->g);
+  return CLI_EXIT_OK;
+}
+
 static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   autobal_rotor_hardware *hw = &c->p.hw;
   autobal_rotor_lumped *lu = &c->p.lumped;
@@ -177,6 +209,7 @@ static int read_rotor_model(cli_ctx *ctx, rotor_cfg *c) {
   else if (!strcmp(inertia, "full")) c->p.inertia = AUTOBAL_ROTOR_INERTIA_FULL;
   else return cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: inertia = '%s' is not one of: paper, full", inertia);
   c->p.axial = axial;
+  if ((rc = read_gravity(ctx, &c->p))) return rc;
   /* [supports] */
   if ((rc = read_keys(ctx, k_hw_keys, n_hw, "supports", hw))) return rc;
   /* [lumped]: if present, the lumped coefficients are authoritative (all must be given) */
@@ -778,6 +811,23 @@ static void engineering_print(const autobal_study_rotor_transient_summary *s, co
            isnan(s->velocity_rms[1]) ? "at the centre of mass" : "at the supports (ISO 20816 measure: largest of left/right, x/y)");
 }
 
+/* Gravity (docs/device.md section 2): the static offset and, per plane, g sin(theta) / (r Omega^2)
+ * at the final speed. */
+static void gravity_print(const autobal_study_rotor_transient_summary *s, const rotor_cfg *c) {
+  size_t j;
+  printf("  gravity: shaft at %.6g deg to the vertical, g = %.6g m/s^2 (%.6g m/s^2 in the plane of the motion); "
+         "static offset y_s = %.6g mm, alpha_s = %.6g mrad\n",
+         c->p.shaft_angle * 360.0 / TWO_PI, c->p.g, c->p.g * sin(c->p.shaft_angle), s->static_offset[1] * 1e3,
+         s->static_offset[2] * 1e3);
+  for (j = 0; j < s->n_planes; j++) {
+    const double q = s->gravity_ratio_final[j];
+    if (isnan(q)) continue;
+    printf("  gravity, plane %zu: g sin(theta) / (r Omega^2) = %.4g at the final speed: %s\n", j + 1, q,
+           q < 1.0 ? "carried round (centrifugal acceleration above the weight)"
+                   : "NOT carried round (the balls lie at the bottom of the track)");
+  }
+}
+
 /* The run-up outputs of a drive (docs/device.md, "Run-up outputs"). */
 static void runup_print(const autobal_study_rotor_transient_summary *s, const rotor_cfg *c) {
   const autobal_runup_result *r = &s->runup;
@@ -845,6 +895,11 @@ static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
   cli_json_quantity(&jj, "amplitude_last_10pct_max", s->amplitude_last_10pct_max, "m");
   engineering_json(&jj, s);
   if (s->have_runup) runup_json(&jj, s);
+  if (c->p.gravity) {
+    cli_json_quantity(&jj, "static_offset_y", s->static_offset[1], "m");
+    cli_json_quantity(&jj, "static_offset_alpha", s->static_offset[2], "rad");
+    cli_json_quantities(&jj, "gravity_ratio_final", s->gravity_ratio_final, s->n_planes, "1");
+  }
   /* every plane: residual unbalance, ball angles relative to the rotor at the end, the
    * balanced configuration (3.14) when it exists */
   cli_json_array(&jj, "planes");
@@ -949,6 +1004,7 @@ static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
     }
   }
   engineering_print(s, c);
+  if (c->p.gravity) gravity_print(s, c);
   if (s->have_runup) runup_print(s, c);
   cli_print_solver_line(s->stepper, &s->solver);
   if (ctx->output) printf("archive: %s\n", ctx->output);

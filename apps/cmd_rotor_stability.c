@@ -61,6 +61,16 @@ static int parse_member(cli_ctx *ctx, stab_cfg *c, size_t j) {
   return CLI_EXIT_OK;
 }
 
+/* gravity = true is refused: these analyses linearize about the weightless balanced state (the
+ * library's balanced states and linear analyses ignore gravity, docs/device.md section 2). */
+static int refuse_gravity(cli_ctx *ctx, const autobal_rotor_params *p) {
+  if (!p->gravity) return CLI_EXIT_OK;
+  return cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[rotor]: gravity = true is not supported by `autobal %s`: it analyses the weightless balanced "
+                  "state (gravity's static offset and 1X ball oscillation are not part of it); run `autobal rotor "
+                  "transient` for gravity, or set gravity = false", ctx->command ? ctx->command : "rotor stability");
+}
+
 /* Read the rotor model and [stability]; validates by allocating a handle once. */
 static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
   int rc;
@@ -70,6 +80,7 @@ static int read_stab_cfg(cli_ctx *ctx, stab_cfg *c) {
   char msg[sizeof ctx->err];
   c->opt = autobal_rotor_stab_options_default();
   if ((rc = cli_rotor_config_read(ctx, &c->p, &c->storage))) return rc;
+  if ((rc = refuse_gravity(ctx, &c->p))) return rc;
   cli_declare_section(ctx, "transient"); /* the same config files as `rotor transient` */
   cli_declare_section(ctx, "balance");   /* (its [balance] grade concerns transients) */
   c->method_name = "auto";
@@ -470,6 +481,10 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_rotor_config_read(ctx, &p, &storage))) return rc;
+  if ((rc = refuse_gravity(ctx, &p))) {
+    free(storage);
+    return rc;
+  }
   cli_declare_section(ctx, "transient");
   cli_declare_section(ctx, "stability");
   cli_declare_section(ctx, "balance");

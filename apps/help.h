@@ -119,6 +119,8 @@
 #define HELP_ROTOR_PARAMS                                                                          \
   "[rotor]     M_k = 6  A_k = 0.12  m_p = 4  A_p = 0.04  C_p = 0.03   (kg, kg m^2)\n"                 \
   "            omega = 500 (rad/s)   inertia = paper|full   axial = false\n"                           \
+  "            gravity = false   shaft_angle (with gravity: 0 vertical .. 90 deg horizontal .. 180 deg)\n" \
+  "            g = 9.80665 (m/s^2)   (transients only: rotor stability/sweep/map/campbell refuse gravity)\n" \
   "[supports]  l_L = 0.20  l_R = 0.15 (m)   c_Lx c_Ly c_Lz c_Rx c_Ry (N/m)   h_Lx h_Ly h_Lz h_Rx h_Ry (N s/m)\n" \
   "            defaults: c_Lx = c_Ly = 1e5, c_Rx = c_Ry = 1.5e5, c_Lz = 2e5, h_L. = 100, h_R. = 150, h_Lz = 200\n" \
   "[lumped]    optional, replaces [supports]: M A C c_x c_y c_z c_alpha c_beta c_xbeta c_yalpha and h_ (all),\n" \

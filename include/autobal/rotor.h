@@ -251,8 +251,10 @@ typedef struct autobal_rotor_params {
   /* Gravity (docs/device.md section 2), added at the end of the struct: zeroed = off.  The weight
    * component g_s = g sin(shaft_angle) acts along -y of the fixed axes on rotor, housing, balls and
    * unbalance (the axial component is not modelled).  Used by the right-hand sides (transients)
-   * with the prescribed drives (the unbalance's weight is carried by the drive); the balanced
-   * states, the linear analyses and the closed forms ignore it.  Not in the CLI's config yet. */
+   * with every drive: a prescribed speed carries the unbalance's weight, a MOTOR feels its torque
+   * g_s sum_j m_j0 r_j0 cos(phi_0 + psi_j0) on phi_0.  The balanced states, the linear analyses
+   * and the closed forms ignore it (the CLI refuses gravity for them).  CLI: [rotor] gravity,
+   * shaft_angle, g. */
   int gravity;                /* 0 off (default), 1 on */
   double shaft_angle;         /* rad, angle of the shaft to the vertical, [0, pi] (pi/2: horizontal) */
   double g;                   /* m/s^2, gravitational acceleration, > 0 (default 9.80665) */
@@ -508,7 +510,8 @@ AUTOBAL_API int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t pla
 AUTOBAL_API double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t,
                                                  const double *y);
 
-/* Number of derived outputs per sample and their layout:
+/* Number of derived outputs per sample and their layout (with gravity, x, y, alpha, beta in the
+ * amplitudes below are measured from the static offset, autobal_rotor_static_offset):
  *   0 amp_G  |(x, y)|                                  m   at the centre of mass
  *   1 amp_L  |(x - l_L beta, y + l_L alpha)|           m   at the left support  (p = -l_L)
  *   2 amp_R  |(x + l_R beta, y - l_R alpha)|           m   at the right support (p = +l_R)
@@ -568,6 +571,20 @@ AUTOBAL_API int autobal_rotor_balanced_angles(const autobal_rotor *r, size_t pla
  * or the last sample is not below threshold (NaN samples count as not below). */
 AUTOBAL_API double autobal_rotor_time_to_balance(const double *t, const double *monitor, size_t n,
                                                  double threshold);
+
+/* Gravity (docs/device.md section 2, "Static offset"): the static equilibrium of the linear part
+ * under the weights, K q_s = -g_s (0, W, -D_m, 0) with W = M + all small masses (kg) and
+ * D_m = sum_j d_j m_j (kg m): q_s = (x_s, y_s, alpha_s, beta_s) in m, m, rad, rad, x_s = beta_s = 0.
+ * All zeros when p->gravity is 0 or g sin(shaft_angle) = 0.  Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL arguments, the
+ * lumped coefficients of hardware input cannot be formed, or c_y c_alpha - c_yalpha^2 <= 0). */
+AUTOBAL_API int autobal_rotor_static_offset(const autobal_rotor_params *p, double q_s[4]);
+
+/* Gravity: g sin(shaft_angle) / (r Omega^2) (1) for the balls of `plane` at the speed omega (rad/s),
+ * r the smallest ball track radius of the plane (the ball least easily carried round): below 1 the
+ * centrifugal acceleration of a ball riding with the rotor exceeds the weight component at the top
+ * of the track ("carried round"), above 1 the balls lie at the bottom.  NaN when p is NULL, gravity
+ * is off, the plane does not exist or has no balls; 0 on a vertical shaft, +inf at omega = 0 otherwise. */
+AUTOBAL_API double autobal_rotor_gravity_ratio(const autobal_rotor_params *p, size_t plane, double omega);
 
 AUTOBAL_END_DECLS
 

@@ -228,6 +228,12 @@ typedef struct autobal_study_rotor_transient_summary {
   unsigned long friction_reversals; /* psi' reached 0 but |H| > mu N: the ball slipped on, reversed */
   double *ball_time_stuck[AUTOBAL_ROTOR_MAX_PLANES];  /* s, time each ball spent stuck, per plane */
   int *ball_stuck_final[AUTOBAL_ROTOR_MAX_PLANES];    /* 1: the ball is stuck at t_reached */
+  /* gravity (docs/device.md section 2; p.gravity = 1, else the offset is 0 and the ratios NaN): the
+     static offset q_s (autobal_rotor_static_offset: m, m, rad, rad) and per plane
+     g sin(theta) / (r Omega^2) at |Omega(t_reached)| (autobal_rotor_gravity_ratio; < 1: the balls
+     are carried round) */
+  double static_offset[4];
+  double gravity_ratio_final[AUTOBAL_ROTOR_MAX_PLANES];
 } autobal_study_rotor_transient_summary;
 
 /* Check the inputs of a rotor transient without running it (and without

@@ -196,6 +196,7 @@ typedef struct run_ctx {
   int drive; /* a ramp, table or motor: the 1X amplitude uses Omega at the sample */
   int motor; /* a motor: phi_0 and Omega are the state's last two entries */
   double amax[3][2];
+  double qs[4]; /* the static offset under gravity (0 without): the 1X amplitudes are about it */
   unsigned long win_n;
   study_runup *runup; /* run-up outputs: a drive with an Omega column (rotor_transient_runup.h) */
 } run_ctx;
@@ -229,9 +230,11 @@ static int observer(double t, const double y[], void *user) {
     size_t k, q;
     double w1x = r->omega_abs, dv[3];
     if (r->drive && autobal_rotor_spin(r->rotor, t, y, dv) == AUTOBAL_SUCCESS && fabs(dv[0]) > 0) w1x = fabs(dv[0]);
+    double yq[8];
+    for (k = 0; k < 8; k++) yq[k] = k < 4 ? y[k] - r->qs[k] : y[k];
     for (k = 0; k < 3; k++) {
       double d[2], v[2];
-      point_motion(y, r->l_sup[k], d, v);
+      point_motion(yq, r->l_sup[k], d, v);
       for (q = 0; q < 2; q++) {
         double amp = hypot(d[q], v[q] / w1x);
         if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
@@ -574,6 +577,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   r.t_first_window = 0.1 * o->t_end;
   r.t_last_window_start = 0.9 * o->t_end;
   r.amp_last = NAN; /* stays NaN when the run stops (e.g. at balance) before the last 10% */
+  (void)autobal_rotor_static_offset(rp, r.qs);
   r.l_sup[0] = 0.0;
   r.omega_abs = fabs(speed_ref(rp));
   r.l_sup[1] = rp->input == AUTOBAL_ROTOR_HARDWARE ? -rp->hw.l_L : NAN;
@@ -640,10 +644,22 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   s->amplitude_last_10pct_max = r.amp_last;
   s->amplitude_max = r.max_amp;
   engineering_compute(s, rot, rp, o, &r, t_reached, y);
+  (void)autobal_rotor_static_offset(rp, s->static_offset); /* zeros without gravity */
   for (j = 0; j < r.n_planes; j++) {
     size_t i, nbj = rp->plane[j].n_balls;
-    double *pb;
+    double *pb, dw[3];
     s->n_balls[j] = nbj;
+    s->gravity_ratio_final[j] = NAN;
+    if (rp->gravity) { /* g sin(theta) / (r Omega^2) at the final speed (docs/device.md section 2) */
+      s->gravity_ratio_final[j] = autobal_rotor_gravity_ratio(
+          rp, j, autobal_rotor_spin(rot, t_reached, y, dw) == AUTOBAL_SUCCESS ? fabs(dw[0]) : NAN);
+      if (a) {
+        char grp[64];
+        snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+        st = autobal_archive_attr_double(a, grp, "gravity_ratio_final", s->gravity_ratio_final[j], "1");
+        if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+      }
+    }
     if (nbj == 0) continue;
     s->ball_psi_final[j] = malloc(nbj * sizeof(double));
     if (!s->ball_psi_final[j]) {

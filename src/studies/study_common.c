@@ -61,6 +61,16 @@ int autobal_study_write_rotor_params(autobal_archive *a, const autobal_rotor_par
   if (!st) st = autobal_archive_attr_string(a, g, "inertia", p->inertia == AUTOBAL_ROTOR_INERTIA_FULL ? "full" : "paper");
   if (!st) st = autobal_archive_attr_double(a, g, "omega", p->omega, "rad/s");
   if (!st) st = autobal_archive_attr_int(a, g, "axial", p->axial);
+  if (!st && p->gravity) { /* docs/device.md section 2; absent when off (the layout before gravity) */
+    double qs[4];
+    st = autobal_archive_attr_int(a, g, "gravity", 1);
+    if (!st) st = autobal_archive_attr_double(a, g, "shaft_angle", p->shaft_angle, "rad");
+    if (!st) st = autobal_archive_attr_double(a, g, "g", p->g, "m/s^2");
+    if (!st) st = autobal_archive_attr_double(a, g, "g_in_plane", p->g * sin(p->shaft_angle), "m/s^2");
+    if (!st) st = autobal_rotor_static_offset(p, qs);
+    if (!st) st = autobal_archive_attr_double(a, g, "static_offset_y", qs[1], "m");
+    if (!st) st = autobal_archive_attr_double(a, g, "static_offset_alpha", qs[2], "rad");
+  }
   for (i = 0; p->input == AUTOBAL_ROTOR_HARDWARE && i < N_HW && !st; i++)
     st = autobal_archive_attr_double(a, g, k_hw_fields[i].name, autobal_rotor_field_get(&p->hw, &k_hw_fields[i]),
                                      k_hw_fields[i].unit);

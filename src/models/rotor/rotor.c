@@ -61,6 +61,7 @@ struct autobal_rotor {
   /* gravity (docs/device.md section 2): g_s = g sin(theta) (m/s^2), the weights g_s W on y (N)
    * and g_s sum_j d_j m_j on alpha (N m), W = M + all small masses; all 0 when off */
   double gs, gW, gD;
+  double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
   autobal_error err;
 };
 
@@ -374,10 +375,13 @@ static int motor_complete(const autobal_rotor *R, const double y[], double omega
                           double uvdd1[][2], double *omega_rate) {
   const autobal_rotor_drive *dr = &R->p.drive;
   const double den = R->Jeff - (b1[0] * qdd1[0] + b1[1] * qdd1[1] + b1[2] * qdd1[2] + b1[3] * qdd1[3]);
-  const double rhs = motor_L(R, omega) - dr->k_r * omega + tb - R->L.C * y[6] * y[7] +
-                     (b1[0] * qdd[0] + b1[1] * qdd[1] + b1[2] * qdd[2] + b1[3] * qdd[3]);
+  double rhs = motor_L(R, omega) - dr->k_r * omega + tb - R->L.C * y[6] * y[7] +
+               (b1[0] * qdd[0] + b1[1] * qdd[1] + b1[2] * qdd[2] + b1[3] * qdd[3]);
   double wd;
   size_t j;
+  /* gravity (docs/device.md section 2): the unbalance's weight torque g_s sum_j m_j0 r_j0 cos th_j
+   * on the left of the phi_0 equation; b1[1] = -sum_j m_j0 r_j0 cos th_j (motor_b1) */
+  if (R->gs != 0.0) rhs += R->gs * b1[1];
   if (!(den > 1e-13 * R->Jeff)) return -1;
   wd = rhs / den;
   if (!isfinite(wd)) return -1;
@@ -1517,10 +1521,11 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
       ((st = autobal_check_param(err, "shaft_angle", p->shaft_angle, 0.0, 0, M_PI, 0, "rad")) != AUTOBAL_SUCCESS ||
        (st = autobal_check_param(err, "g", p->g, 0.0, 1, INFINITY, 1, "m/s^2")) != AUTOBAL_SUCCESS))
     return st;
-  if (p->gravity && p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR)
+  if (p->gravity && sin(p->shaft_angle) != 0.0 && !(L.c_y * L.c_alpha - L.c_yalpha * L.c_yalpha > 0.0))
     return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "gravity with drive.mode = MOTOR is not implemented yet (the weight torque of "
-                             "the unbalance on phi_0): use a prescribed speed, or gravity = 0");
+                             "gravity = 1 needs supports that carry the weight: c_y c_alpha - c_yalpha^2 = %g "
+                             "N^2 must be > 0 (else there is no static equilibrium)",
+                             L.c_y * L.c_alpha - L.c_yalpha * L.c_yalpha);
   if (p->n_planes < 1 || p->n_planes > AUTOBAL_ROTOR_MAX_PLANES)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "parameter n_planes = %zu is out of range: allowed [1, %d]", p->n_planes,
@@ -1722,6 +1727,12 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     }
     R->gW = R->gs * W;
     R->gD = R->gs * D;
+    if (R->gs != 0.0) { /* the static offset K q_s = -(0, gW, -gD, 0) (as autobal_rotor_static_offset;
+                           calloc: 0 without weight in the plane; det > 0 checked by the parameters) */
+      const double det = R->L.c_y * R->L.c_alpha - R->L.c_yalpha * R->L.c_yalpha;
+      R->qs[1] = -(R->gW * R->L.c_alpha + R->L.c_yalpha * R->gD) / det;
+      R->qs[2] = (R->L.c_y * R->gD + R->L.c_yalpha * R->gW) / det;
+    }
   }
   /* friction: per-ball coefficients (mu defaults to f), initial modes from the initial rates */
   R->law = p->friction.law;
@@ -1973,10 +1984,10 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
       n_out != autobal_rotor_output_count(r))
     return AUTOBAL_EINVAL;
-  x = y[0];
-  yy = y[1];
-  al = y[2];
-  be = y[3];
+  x = y[0] - r->qs[0]; /* the amplitudes are about the static offset under gravity (qs = 0 without) */
+  yy = y[1] - r->qs[1];
+  al = y[2] - r->qs[2];
+  be = y[3] - r->qs[3];
   spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
   out[0] = hypot(x, yy);
   /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
