@@ -185,11 +185,13 @@ void cli_print_solver_line(const char *stepper, const autobal_transient_stats *s
  * keys were read after the archive was opened. */
 
 /* ---- progress and signals ------------------------------------------------- */
-/* Install SIGINT/SIGTERM handlers that set a flag (the run stops cleanly at the next check). */
+/* Install SIGINT/SIGTERM/SIGHUP handlers that set a flag (the run stops cleanly at the next check). */
 void cli_signals_install(void);
-/* Non-zero once SIGINT/SIGTERM arrived; the signal number via cli_signal_number(). */
+/* Non-zero once SIGINT/SIGTERM/SIGHUP arrived; the signal number via cli_signal_number(). */
 int cli_interrupted(void);
 int cli_signal_number(void);
+/* "interrupted by SIGINT" (or SIGTERM, SIGHUP): the archive's status_reason after a signal. */
+const char *cli_signal_reason(void);
 /* Draw/update a progress bar on stderr (only if ctx->progress); fraction in [0,1]. Returns
  * non-zero when the run should stop (a signal arrived). Finish with cli_progress_done. */
 int cli_progress(cli_ctx *ctx, const char *label, double fraction);
