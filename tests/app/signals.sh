@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # App test: SIGINT, SIGTERM and SIGHUP stop every long-running command (README, "Exit codes"):
-# rotor stability|sweep|map|campbell, pendulum map|critical, info and rerun get each signal after a
+# rotor stability|sweep|map|campbell, pendulum map|critical, info, rerun and plot get each signal after a
 # short delay while they run a job far longer than the test (grids of millions of points); each
 # must exit 6 within a few seconds, and the archive (-o) must be readable, status "incomplete",
 # status_reason "interrupted by SIG...", with the partial data present and consistent
@@ -120,6 +120,11 @@ done
 for sig in INT TERM HUP; do
   interrupt $sig rerun_$sig "$A" rerun pmap_INT.h5 -q -o rerun_$sig.h5
   chk "rerun_$sig.h5: partial pendulum map" pmap rerun_$sig.h5 SIG$sig 3000 2000
+done
+
+# plot (a Python child, seconds for a map): the signal is passed on to it
+for sig in INT TERM HUP; do
+  interrupt $sig plot_$sig "$A" plot map_INT.h5 -q -o plots_$sig
 done
 
 # SIGHUP to the transients and an ensemble (SIGINT/SIGTERM: rotor.sh, badinput.sh, ensemble.sh)
