@@ -7,7 +7,7 @@
  *     final check that rejects unknown sections/keys with a "did you mean";
  *   - common options (-o, --force, --json, --set, --quiet, --no-progress);
  *   - exit codes (CLI_EXIT_*), error reporting, a progress bar on a terminal,
- *     SIGINT/SIGTERM turned into a cancellation flag;
+ *     SIGINT/SIGTERM/SIGHUP turned into a cancellation flag;
  *   - a tiny JSON writer for `--json` summaries on stdout.
  */
 #ifndef AUTOBAL_APPS_CLI_H

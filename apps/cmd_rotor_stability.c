@@ -329,7 +329,18 @@ static double param_default_lo(const stab_cfg *c, int param) {
   return lo;
 }
 
-static int sweep_progress(double fraction, void *user) { return cli_progress(user, "rotor sweep", fraction); }
+/* The progress bar of the sweep, drawn when the fraction changed (the critical-value search
+ * calls with the same fraction before every margin evaluation, to poll the signal flag). */
+typedef struct sweep_bar {
+  cli_ctx *ctx;
+  double last;
+} sweep_bar;
+static int sweep_progress(double fraction, void *user) {
+  sweep_bar *b = (sweep_bar *)user;
+  if (fraction == b->last) return cli_interrupted();
+  b->last = fraction;
+  return cli_progress(b->ctx, "rotor sweep", fraction);
+}
 
 typedef struct sweep_partial {
   const autobal_rotor_params *p;
@@ -345,6 +356,7 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
   autobal_study_rotor_sweep_options o = autobal_study_rotor_sweep_options_default();
   autobal_study_rotor_sweep_summary sum;
+  sweep_bar bar;
   const autobal_rotor_crit *cr = &sum.critical;
   autobal_archive *a = NULL;
   autobal_error err;
@@ -382,8 +394,10 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   o.max = hi;
   o.n = (size_t)n;
   o.xtol_rel = xtol;
+  bar.ctx = ctx;
+  bar.last = -1.0;
   o.progress = sweep_progress;
-  o.progress_user = ctx;
+  o.progress_user = &bar;
   /* the sweep first (autobal_study_rotor_sweep), the archive afterwards */
   autobal_error_clear(&err);
   st = autobal_study_rotor_sweep(&c->p, &o, NULL, &sum, &err);

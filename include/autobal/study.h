@@ -530,7 +530,7 @@ typedef struct autobal_study_pendulum_map_options {
   int max_real;          /* non-zero: also the largest real part of the roots of (6)     (default 0) */
   int threads;           /* OpenMP threads, in [0, 1024]; 0: the OpenMP default         (default 0) */
   autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
-                            rows (about 0.1 s of work); non-zero: cancel         (default NULL) */
+                            rows (0.25 to 1 s of work); non-zero: cancel         (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
 } autobal_study_pendulum_map_options;
 
@@ -636,7 +636,7 @@ typedef struct autobal_study_rotor_map_options {
   size_t n1, n2;        /* grid points, in [1, 1e5]                              (default 120, 60) */
   int threads;          /* OpenMP threads, [0, 1024]; 0: the OpenMP default          (default 0) */
   autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
-                           rows (about 0.1 s of work); non-zero: cancel           (default NULL) */
+                           rows (0.25 to 1 s of work); non-zero: cancel           (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
 } autobal_study_rotor_map_options;
 AUTOBAL_API autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void);

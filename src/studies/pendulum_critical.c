@@ -149,8 +149,9 @@ int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const auto
     s->n_Rm_done += r;
   }
   autobal_pendulum_workspace_free(ws);
-  /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18) */
-  for (i = 0; i < nrm; i++) {
+  /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18)
+   * (at the points of the curves computed: all unless cancelled) */
+  for (i = 0; i < s->n_Rm_done; i++) {
     double rm = s->R_m[i], a2 = NAN, a3 = NAN, b2 = NAN, b3 = NAN, f16 = NAN, f17 = NAN, f18 = NAN;
     autobal_pendulum_rw23_k0_series_small(rm, &a2, &a3, NULL);
     if (rm < 0.25) autobal_pendulum_rw23_k0_series_large(rm, &b2, &b3, NULL);

@@ -103,7 +103,7 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
   spec.n_k = s->n_k;
   spec.n_threads = o->threads;
   {
-    /* in blocks of rows, about 0.05-0.2 s each (every point is independent: the blocks change
+    /* in blocks of rows, about 0.25-1 s each (every point is independent: the blocks change
      * nothing), with progress and cancellation after each */
     size_t rows = 1;
     int cancelled = 0;
@@ -119,8 +119,8 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
       }
       s->n_Rm_done += r;
       dt = now_seconds() - t0;
-      if (dt < 0.05 && rows < ((size_t)1 << 20)) rows *= 2;
-      else if (dt > 0.2 && rows > 1) rows /= 2;
+      if (dt < 0.25 && rows < ((size_t)1 << 20)) rows *= 2;
+      else if (dt > 1.0 && rows > 1) rows /= 2;
       if (o->progress && o->progress((double)s->n_Rm_done / (double)s->n_Rm, o->progress_user)) cancelled = 1;
     }
     n = s->n_Rm_done * s->n_Rw;

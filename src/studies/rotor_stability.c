@@ -32,11 +32,12 @@ static double now_seconds(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The next block of rows: twice as many after a block shorter than 0.05 s, half as many after
- * one longer than 0.2 s (at least 1), so that a cancellation is noticed within about 0.2 s. */
+/* The next block of rows: twice as many after a block shorter than 0.25 s, half as many after
+ * one longer than 1 s (at least 1), so that a cancellation is noticed within about a second and
+ * the blocks' ends (the threads wait for the slowest) cost little. */
 static size_t next_block(size_t rows, double seconds) {
-  if (seconds < 0.05 && rows < ((size_t)1 << 20)) return 2 * rows;
-  if (seconds > 0.2 && rows > 1) return rows / 2;
+  if (seconds < 0.25 && rows < ((size_t)1 << 20)) return 2 * rows;
+  if (seconds > 1.0 && rows > 1) return rows / 2;
   return rows;
 }
 
