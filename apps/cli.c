@@ -860,7 +860,10 @@ void cli_signals_install(void) {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
-  sigaction(SIGHUP, &sa, NULL); /* the terminal closed: stop and keep what was computed */
+  { /* the terminal closed: stop and keep what was computed; unless SIGHUP is ignored (nohup) */
+    struct sigaction old;
+    if (sigaction(SIGHUP, NULL, &old) == 0 && old.sa_handler != SIG_IGN) sigaction(SIGHUP, &sa, NULL);
+  }
 }
 
 const char *cli_signal_reason(void) {

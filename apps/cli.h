@@ -185,7 +185,8 @@ void cli_print_solver_line(const char *stepper, const autobal_transient_stats *s
  * keys were read after the archive was opened. */
 
 /* ---- progress and signals ------------------------------------------------- */
-/* Install SIGINT/SIGTERM/SIGHUP handlers that set a flag (the run stops cleanly at the next check). */
+/* Install SIGINT/SIGTERM/SIGHUP handlers that set a flag (the run stops cleanly at the next check);
+ * a SIGHUP ignored by the parent (nohup) stays ignored. */
 void cli_signals_install(void);
 /* Non-zero once SIGINT/SIGTERM/SIGHUP arrived; the signal number via cli_signal_number(). */
 int cli_interrupted(void);

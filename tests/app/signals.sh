@@ -122,6 +122,17 @@ for sig in INT TERM HUP; do
   chk "rerun_$sig.h5: partial pendulum map" pmap rerun_$sig.h5 SIG$sig 3000 2000
 done
 
+# SIGHUP ignored by the parent (nohup) stays ignored: the run goes on, SIGTERM then stops it
+( trap '' HUP; exec "$A" rotor map "$R" --set map.n1=4000 --set map.n2=2000 -q -o nohup.h5 ) >nohup.out 2>nohup.err &
+pid=$!; sleep "$DELAY"; kill -HUP $pid; sleep 0.5
+if kill -0 $pid 2>/dev/null; then
+  ok "nohup: an ignored SIGHUP does not stop the run"
+  kill -TERM $pid; wait $pid; rc=$?
+  [ $rc -eq 6 ] && grep -q "interrupted by SIGTERM" nohup.err && ok "nohup: SIGTERM stops it (exit 6)" || { bad "nohup: SIGTERM gave exit $rc"; cat nohup.err; }
+else
+  wait $pid; bad "nohup: an ignored SIGHUP stopped the run (exit $?)"; cat nohup.err
+fi
+
 # plot (a Python child, seconds for a map): the signal is passed on to it
 for sig in INT TERM HUP; do
   interrupt $sig plot_$sig "$A" plot map_INT.h5 -q -o plots_$sig
