@@ -214,11 +214,41 @@ static void pendulum(void) {
         cp.have_damped && !cp.damped_cancelled && nd > 0 && nd < co.n_Rm && !s.bad_fraction);
   CHECK("pendulum critical: curve points done bitwise as the complete run",
         same_doubles(cp.R_w_k0, cf.R_w_k0, 3 * nd) && same_doubles(cp.R_w_k1, cf.R_w_k1, 3 * nd));
+  /* cancelled at the first poll of the curves: no curve point, the archive still says partial */
+  s.calls = 0, s.last = 0.0, s.stop_at = (int)co.n_sweep;
+  CHECK_STATUS("pendulum critical: cancelled at the first point of the curves",
+               autobal_study_pendulum_critical(&pp, NULL, &co, NULL, &cp, &err), AUTOBAL_ECANCELLED);
+  CHECK("pendulum critical: cancelled = 1, damped search done, n_Rm_done = 0",
+        cp.cancelled && cp.have_damped && !cp.damped_cancelled && cp.n_Rm_done == 0);
+  {
+    char path[1024];
+    autobal_archive *a = NULL;
+    double v = 0.0;
+    snprintf(path, sizeof path, "%s/test_cancel_pcrit.h5", AUTOBAL_TEST_TMP_DIR);
+    CHECK_STATUS("archive created", autobal_archive_create(path, 1, &a, &err), AUTOBAL_SUCCESS);
+    if (a) {
+      CHECK_STATUS("the partial summary written",
+                   autobal_study_pendulum_critical_write(a, &pp, NULL, &cp), AUTOBAL_SUCCESS);
+      CHECK_STATUS("closed", autobal_archive_close(a, &err), AUTOBAL_SUCCESS);
+    }
+    a = NULL;
+    CHECK_STATUS("reopened", autobal_archive_open_read(path, &a, &err), AUTOBAL_SUCCESS);
+    if (a) {
+      CHECK("partial = 1 on /pendulum/critical",
+            autobal_archive_read_attr_double(a, "/pendulum/critical", "partial", &v) == AUTOBAL_SUCCESS && v == 1.0);
+      CHECK("done = 0", autobal_archive_read_attr_double(a, "/pendulum/critical", "done", &v) == AUTOBAL_SUCCESS &&
+                            v == 0.0);
+      CHECK("no curves group, the damped set written",
+            !autobal_archive_has(a, "/pendulum/critical/curves", NULL) &&
+                autobal_archive_has(a, "/pendulum/critical/damped_R_w", NULL));
+      autobal_archive_close(a, NULL);
+    }
+  }
   s.calls = 0, s.last = 0.0, s.stop_at = 10;
   CHECK_STATUS("pendulum critical: cancelled in the damped search",
                autobal_study_pendulum_critical(&pp, NULL, &co, NULL, &cp, &err), AUTOBAL_ECANCELLED);
   CHECK("pendulum critical: damped_cancelled, no damped set, no curve point",
-        cp.damped_cancelled && !cp.have_damped && cp.n_Rm_done == 0);
+        cp.damped_cancelled && cp.cancelled && !cp.have_damped && cp.n_Rm_done == 0);
   autobal_study_pendulum_critical_summary_free(&cf);
   autobal_study_pendulum_critical_summary_free(&cp);
   ws = autobal_pendulum_workspace_alloc();

@@ -489,6 +489,7 @@ typedef struct autobal_study_pendulum_critical_summary {
   size_t n_Rm_done;                   /* points of the curves computed: n_Rm, or fewer after a
                                          cancellation */
   int damped_cancelled;               /* 1: the damped search was cancelled (have_damped = 0) */
+  int cancelled;                      /* 1: cancelled (in the damped search or in the curves) */
 } autobal_study_pendulum_critical_summary;
 
 /* Critical speeds of the pendulum balancer at p, the curves R_wj(R_m) for k = 0 and 1 (figure 2)

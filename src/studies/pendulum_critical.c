@@ -149,6 +149,7 @@ int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const auto
     s->n_Rm_done += r;
   }
   autobal_pendulum_workspace_free(ws);
+  s->cancelled = cancelled;
   /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18)
    * (at the points of the curves computed: all unless cancelled) */
   for (i = 0; i < s->n_Rm_done; i++) {
@@ -213,8 +214,8 @@ int autobal_study_pendulum_critical_write(autobal_archive *a, const autobal_pend
   size_t nrm;
   int st, partial;
   if (!a || !p || !s || !s->R_m) return AUTOBAL_EINVAL;
-  /* n_Rm_done = 0 without damped_cancelled: a summary built by hand (complete) */
-  partial = s->damped_cancelled || (s->n_Rm_done > 0 && s->n_Rm_done < s->n_Rm);
+  /* not cancelled: complete (also a summary built by hand, n_Rm_done = 0) */
+  partial = s->cancelled || s->damped_cancelled;
   nrm = partial ? s->n_Rm_done : s->n_Rm;
   st = autobal_study_write_pendulum_params(a, p, phys);
   if (!st) st = autobal_archive_group(a, g);
@@ -223,8 +224,7 @@ int autobal_study_pendulum_critical_write(autobal_archive *a, const autobal_pend
     snprintf(what, sizeof what, "interrupted: %s; the first %zu of %zu points of the curves (done, requested)",
              s->damped_cancelled ? "the damped search did not finish (no damped_*)" : "the critical speeds at R_m are complete",
              nrm, s->n_Rm);
-    st = autobal_archive_group(a, g);
-    if (!st) st = autobal_archive_attr_int(a, g, "partial", 1);
+    st = autobal_archive_attr_int(a, g, "partial", 1);
     if (!st) st = autobal_archive_attr_int(a, g, "done", (long)nrm);
     if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)s->n_Rm);
     if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
