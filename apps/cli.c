@@ -879,6 +879,18 @@ void cli_signals_install(void) {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
+  { /* the terminal closed: stop and keep what was computed; unless SIGHUP is ignored (nohup) */
+    struct sigaction old;
+    if (sigaction(SIGHUP, NULL, &old) == 0 && old.sa_handler != SIG_IGN) sigaction(SIGHUP, &sa, NULL);
+  }
+}
+
+const char *cli_signal_reason(void) {
+  switch ((int)g_signal) {
+    case SIGTERM: return "interrupted by SIGTERM";
+    case SIGHUP: return "interrupted by SIGHUP";
+    default: return "interrupted by SIGINT";
+  }
 }
 
 int cli_interrupted(void) { return g_signal != 0; }

@@ -7,7 +7,7 @@
  *     final check that rejects unknown sections/keys with a "did you mean";
  *   - common options (-o, --force, --json, --set, --quiet, --no-progress);
  *   - exit codes (CLI_EXIT_*), error reporting, a progress bar on a terminal,
- *     SIGINT/SIGTERM turned into a cancellation flag;
+ *     SIGINT/SIGTERM/SIGHUP turned into a cancellation flag;
  *   - a tiny JSON writer for `--json` summaries on stdout.
  */
 #ifndef AUTOBAL_APPS_CLI_H
@@ -188,11 +188,14 @@ void cli_print_solver_line(const char *stepper, const autobal_transient_stats *s
  * keys were read after the archive was opened. */
 
 /* ---- progress and signals ------------------------------------------------- */
-/* Install SIGINT/SIGTERM handlers that set a flag (the run stops cleanly at the next check). */
+/* Install SIGINT/SIGTERM/SIGHUP handlers that set a flag (the run stops cleanly at the next check);
+ * a SIGHUP ignored by the parent (nohup) stays ignored. */
 void cli_signals_install(void);
-/* Non-zero once SIGINT/SIGTERM arrived; the signal number via cli_signal_number(). */
+/* Non-zero once SIGINT/SIGTERM/SIGHUP arrived; the signal number via cli_signal_number(). */
 int cli_interrupted(void);
 int cli_signal_number(void);
+/* "interrupted by SIGINT" (or SIGTERM, SIGHUP): the archive's status_reason after a signal. */
+const char *cli_signal_reason(void);
 /* Draw/update a progress bar on stderr (only if ctx->progress); fraction in [0,1]. Returns
  * non-zero when the run should stop (a signal arrived). Finish with cli_progress_done. */
 int cli_progress(cli_ctx *ctx, const char *label, double fraction);

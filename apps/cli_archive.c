@@ -73,8 +73,7 @@ int cli_archive_finish(cli_ctx *ctx, autobal_archive *a, int exit_code) {
                            st == AUTOBAL_ENOMEM ? "out of memory recording the configuration" : autobal_archive_errmsg(a));
   }
   if (exit_code == CLI_EXIT_INTERRUPTED) {
-    int sig = cli_signal_number();
-    autobal_archive_set_status(a, "incomplete", sig == SIGTERM ? "interrupted by SIGTERM" : "interrupted by SIGINT");
+    autobal_archive_set_status(a, "incomplete", cli_signal_reason());
   } else if (exit_code != CLI_EXIT_OK) {
     autobal_archive_set_status(a, "incomplete", ctx->err[0] ? ctx->err : "failed");
   }

@@ -428,6 +428,8 @@ static int visit_group(info_run *r, const char *group) {
   char path[2048];
 
   memset(&ml, 0, sizeof ml);
+  if (cli_interrupted()) /* SIGINT, SIGTERM, SIGHUP: stop listing */
+    return cli_fail(r->ctx, CLI_EXIT_INTERRUPTED, "%s: the listing stopped before group '%s'", cli_signal_reason(), group);
   {
     uint64_t id = 0;
     size_t k;
@@ -514,6 +516,10 @@ static int visit_group(info_run *r, const char *group) {
   /* datasets */
   for (i = 0; i < ml.n && rc == CLI_EXIT_OK; i++) {
     int rank = 0, d;
+    if (cli_interrupted()) {
+      rc = cli_fail(r->ctx, CLI_EXIT_INTERRUPTED, "%s: the listing stopped in group '%s'", cli_signal_reason(), group);
+      break;
+    }
     size_t dims[AUTOBAL_ARCHIVE_MAX_RANK], count = 0;
     char units[128] = "", lname[1024] = "", dtype[32];
     dim_names dn;
@@ -664,6 +670,8 @@ int cli_cmd_info(cli_ctx *ctx) {
   if (ctx->output) return cli_fail(ctx, CLI_EXIT_USAGE, "info: -o is not used (the summary goes to stdout)");
   autobal_error_clear(&err);
   st = autobal_archive_open_read(path, &r.a, &err);
+  if (st != AUTOBAL_SUCCESS && cli_interrupted()) /* e.g. a read interrupted by the signal */
+    return cli_fail(ctx, CLI_EXIT_INTERRUPTED, "%s while opening '%s'", cli_signal_reason(), path);
   if (st != AUTOBAL_SUCCESS)
     return cli_fail(ctx, st == AUTOBAL_ENOMEM ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "%s", err.message);
   if (read_attrs(r.a, "/", &root) != 0) {

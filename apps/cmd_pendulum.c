@@ -198,6 +198,46 @@ static void print_intervals(const autobal_pendulum_crit_set *s, double omega0) {
   }
 }
 
+/* ---- interruption (SIGINT, SIGTERM, SIGHUP) ------------------------------------------ */
+
+/* The studies' progress callback: stop once a signal arrived. */
+static int stop_requested(double fraction, void *user) {
+  (void)fraction;
+  (void)user;
+  return cli_interrupted();
+}
+
+/* After a study returned AUTOBAL_ECANCELLED: exit code 6 with `what`; with -o the archive is
+ * created, `write` puts the partial results in it and cli_archive_finish marks it incomplete,
+ * naming the signal.  Returns the exit code. */
+static int finish_interrupted(cli_ctx *ctx, const char *title, const char *what,
+                              int (*write)(autobal_archive *a, const void *data), const void *data) {
+  autobal_archive *a = NULL;
+  int rc, st;
+  if ((rc = cli_archive_open(ctx, title, &a))) return rc;
+  rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "%s: %s; %s", cli_signal_reason(), what,
+                a ? "the archive keeps what was computed (status incomplete)" : "nothing written (no -o)");
+  if (!a) return rc;
+  st = write(a, data);
+  if (st)
+    fprintf(stderr, "autobal: error: writing the partial results failed: %s\n", autobal_archive_errmsg(a));
+  return cli_archive_finish(ctx, a, rc);
+}
+
+typedef struct pend_partial {
+  const autobal_pendulum_params *p;
+  const autobal_pendulum_physical *phys;
+  const void *sum;
+} pend_partial;
+static int write_critical(autobal_archive *a, const void *data) {
+  const pend_partial *pp = (const pend_partial *)data;
+  return autobal_study_pendulum_critical_write(a, pp->p, pp->phys, pp->sum);
+}
+static int write_map(autobal_archive *a, const void *data) {
+  const pend_partial *pp = (const pend_partial *)data;
+  return autobal_study_pendulum_map_write(a, pp->p, pp->phys, pp->sum);
+}
+
 int cli_cmd_pendulum_critical(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
@@ -239,9 +279,16 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
   o.Rw_min = rw_min;
   o.Rw_max = rw_max;
   o.n_sweep = (size_t)n_sweep;
+  o.progress = stop_requested;
   /* the computation first (autobal_study_pendulum_critical), the archive afterwards */
   st = autobal_study_pendulum_critical(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
   if (sum.damped_truncated_warning && !ctx->json) fprintf(stderr, "autobal: warning: %s\n", sum.warning_message);
+  if (st == AUTOBAL_ECANCELLED) {
+    pend_partial pp;
+    pp.p = &p, pp.phys = physical ? &phys : NULL, pp.sum = &sum;
+    rc = finish_interrupted(ctx, "autobal pendulum critical", err.message, write_critical, &pp);
+    goto done;
+  }
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
     goto done;
@@ -377,8 +424,16 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
   o.max_real = want_max;
   o.threads = (int)threads;
   n = (size_t)n_rm * (size_t)n_rw;
+  o.progress = stop_requested;
   /* the map first, the archive afterwards: a failed computation leaves no file */
   st = autobal_study_pendulum_map(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
+  if (st == AUTOBAL_ECANCELLED) {
+    pend_partial pp;
+    pp.p = &p, pp.phys = physical ? &phys : NULL, pp.sum = &sum;
+    rc = finish_interrupted(ctx, every ? "autobal pendulum map (every unbalance)" : "autobal pendulum map", err.message,
+                            write_map, &pp);
+    goto done;
+  }
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
     goto done;

@@ -101,6 +101,7 @@ int cli_cmd_plot(cli_ctx *ctx) {
   }
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) return cli_fail(ctx, CLI_EXIT_INTERNAL, "plot: waitpid failed: %s", strerror(errno));
+    if (cli_interrupted()) kill(pid, SIGTERM); /* SIGINT/SIGTERM/SIGHUP sent to autobal alone: stop the child */
   }
   if (WIFEXITED(status)) {
     int code = WEXITSTATUS(status);
@@ -114,7 +115,7 @@ int cli_cmd_plot(cli_ctx *ctx) {
                     "plot: %s failed (exit %d; needs /usr/bin/python3 with h5py, numpy and matplotlib)", script,
                     code);
   }
-  if (WIFSIGNALED(status) && cli_interrupted()) return cli_fail(ctx, CLI_EXIT_INTERRUPTED, "plot: interrupted");
+  if (WIFSIGNALED(status) && cli_interrupted()) return cli_fail(ctx, CLI_EXIT_INTERRUPTED, "plot: %s", cli_signal_reason());
   return cli_fail(ctx, CLI_EXIT_INTERNAL, "plot: %s was killed by signal %d", script,
                   WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }

@@ -62,6 +62,11 @@ static int apply_ini(cli_ctx *outer, cli_ctx *inner, const char *file, const cha
     const char *nl = strchr(p, '\n');
     size_t len = nl ? (size_t)(nl - p) : strlen(p);
     lineno++;
+    if (cli_interrupted()) { /* SIGINT, SIGTERM, SIGHUP: nothing written yet */
+      status = cli_fail(outer, CLI_EXIT_INTERRUPTED, "%s while reading the configuration of '%s' (line %zu of %s); "
+                        "nothing written", cli_signal_reason(), file, lineno, attr);
+      break;
+    }
     if (len > 0) {
       char *line = malloc(len + 1), *assign;
       const char *eq, *body;
@@ -161,6 +166,8 @@ int cli_cmd_rerun(cli_ctx *ctx) {
     return cli_fail(ctx, CLI_EXIT_USAGE, "rerun: give the new archive with -o NEW.h5 (FILE.h5 is never modified)");
   autobal_error_clear(&err);
   st = autobal_archive_open_read(path, &a, &err);
+  if (st != AUTOBAL_SUCCESS && cli_interrupted()) /* e.g. a read interrupted by the signal */
+    return cli_fail(ctx, CLI_EXIT_INTERRUPTED, "%s while opening '%s'; nothing written", cli_signal_reason(), path);
   if (st != AUTOBAL_SUCCESS)
     return cli_fail(ctx, st == AUTOBAL_ENOMEM ? CLI_EXIT_INTERNAL : CLI_EXIT_IO, "%s", err.message);
   st = read_root_string(a, "command", &command);
@@ -213,6 +220,8 @@ int cli_cmd_rerun(cli_ctx *ctx) {
   /* NEW.h5 records the recorded run's given configuration, not the effective one as "given" */
   if (rc == CLI_EXIT_OK && ini && cli_config_set_given_text(inner.cfg, ini) != 0)
     rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
+  if (rc == CLI_EXIT_OK && cli_interrupted())
+    rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "%s before the run started; nothing written", cli_signal_reason());
   if (rc == CLI_EXIT_OK) {
     rc = cmd->run(&inner);
     if (rc != CLI_EXIT_OK) cli_fail(ctx, rc, "%s", inner.err[0] ? inner.err : "re-run failed (no message)");

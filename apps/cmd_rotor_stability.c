@@ -18,6 +18,34 @@
 #define MAX_MEMBER_ANGLES 4096
 #define TWO_PI 6.283185307179586476925286766559
 
+/* ---- interruption (SIGINT, SIGTERM, SIGHUP) ------------------------------------------ */
+
+/* The studies' progress callback of the commands without a progress bar: stop once a signal
+ * arrived. */
+static int stop_requested(double fraction, void *user) {
+  (void)fraction;
+  (void)user;
+  return cli_interrupted();
+}
+
+/* After a study returned AUTOBAL_ECANCELLED: exit code 6 with `what` (the study's message);
+ * with -o the archive is created and `write` (0: nothing to write) puts the partial results in
+ * it; cli_archive_finish marks it incomplete, naming the signal.  Returns the exit code. */
+typedef int (*partial_writer)(autobal_archive *a, const void *data);
+static int finish_interrupted(cli_ctx *ctx, const char *title, const char *what, partial_writer write,
+                              const void *data) {
+  autobal_archive *a = NULL;
+  int rc, st;
+  if ((rc = cli_archive_open(ctx, title, &a))) return rc;
+  rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "%s: %s; %s", cli_signal_reason(), what,
+                a ? "the archive keeps what was computed (status incomplete)" : "nothing written (no -o)");
+  if (!a) return rc;
+  st = write ? write(a, data) : AUTOBAL_SUCCESS;
+  if (st)
+    fprintf(stderr, "autobal: error: writing the partial results failed: %s\n", autobal_archive_errmsg(a));
+  return cli_archive_finish(ctx, a, rc);
+}
+
 /* ---- configuration shared by the commands --------------------------------------- */
 
 typedef struct stab_cfg {
@@ -160,6 +188,16 @@ static void default_speed_range(const autobal_rotor_params *p, double *lo, doubl
 }
 
 /* ---- rotor stability: the library's study (autobal_study_rotor_stability) -------------- */
+typedef struct stab_partial {
+  const autobal_rotor_params *p;
+  const autobal_study_rotor_stability_options *o;
+  const autobal_study_rotor_stability_summary *sum;
+} stab_partial;
+static int write_stability(autobal_archive *a, const void *data) {
+  const stab_partial *sp = (const stab_partial *)data;
+  return autobal_study_rotor_stability_write(a, sp->p, sp->o, sp->sum);
+}
+
 int cli_cmd_rotor_stability(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
   autobal_study_rotor_stability_options o = autobal_study_rotor_stability_options_default();
@@ -199,11 +237,21 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   o.omega_max = chi;
   o.n_omega = (size_t)cn;
   o.xtol_rel = xtol;
+  o.progress = stop_requested;
   /* the analysis first, the archive afterwards: a failed analysis leaves no file */
   autobal_error_clear(&err);
   st = autobal_study_rotor_stability(&c->p, &o, NULL, &sum, &err);
   if (sum.critical_truncated && !ctx->json)
     fprintf(stderr, "autobal: warning: critical speeds: %s\n", cli_rotor_message(sum.critical_message, msg, sizeof msg));
+  if (st == AUTOBAL_ECANCELLED) {
+    stab_partial sp;
+    sp.p = &c->p, sp.o = &o, sp.sum = &sum;
+    rc = finish_interrupted(ctx, "autobal rotor stability",
+                            sum.critical_cancelled ? "the analysis at omega is complete, the critical-speed search was not"
+                                                   : err.message,
+                            sum.critical_cancelled ? write_stability : NULL, &sp);
+    goto done;
+  }
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
@@ -292,12 +340,34 @@ static double param_default_lo(const stab_cfg *c, int param) {
   return lo;
 }
 
-static int sweep_progress(double fraction, void *user) { return cli_progress(user, "rotor sweep", fraction); }
+/* The progress bar of the sweep, drawn when the fraction changed (the critical-value search
+ * calls with the same fraction before every margin evaluation, to poll the signal flag). */
+typedef struct sweep_bar {
+  cli_ctx *ctx;
+  double last;
+} sweep_bar;
+static int sweep_progress(double fraction, void *user) {
+  sweep_bar *b = (sweep_bar *)user;
+  if (fraction == b->last) return cli_interrupted();
+  b->last = fraction;
+  return cli_progress(b->ctx, "rotor sweep", fraction);
+}
+
+typedef struct sweep_partial {
+  const autobal_rotor_params *p;
+  const autobal_study_rotor_sweep_options *o;
+  const autobal_study_rotor_sweep_summary *sum;
+} sweep_partial;
+static int write_sweep(autobal_archive *a, const void *data) {
+  const sweep_partial *sp = (const sweep_partial *)data;
+  return autobal_study_rotor_sweep_write(a, sp->p, sp->o, sp->sum);
+}
 
 int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
   autobal_study_rotor_sweep_options o = autobal_study_rotor_sweep_options_default();
   autobal_study_rotor_sweep_summary sum;
+  sweep_bar bar;
   const autobal_rotor_crit *cr = &sum.critical;
   autobal_archive *a = NULL;
   autobal_error err;
@@ -335,8 +405,10 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   o.max = hi;
   o.n = (size_t)n;
   o.xtol_rel = xtol;
+  bar.ctx = ctx;
+  bar.last = -1.0;
   o.progress = sweep_progress;
-  o.progress_user = ctx;
+  o.progress_user = &bar;
   /* the sweep first (autobal_study_rotor_sweep), the archive afterwards */
   autobal_error_clear(&err);
   st = autobal_study_rotor_sweep(&c->p, &o, NULL, &sum, &err);
@@ -344,7 +416,9 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   if (sum.critical_truncated && !ctx->json)
     fprintf(stderr, "autobal: warning: critical values: %s\n", cli_rotor_message(sum.critical_message, msg, sizeof msg));
   if (st == AUTOBAL_ECANCELLED) {
-    rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "interrupted");
+    sweep_partial sp;
+    sp.p = &c->p, sp.o = &o, sp.sum = &sum;
+    rc = finish_interrupted(ctx, "autobal rotor sweep", err.message, sum.values ? write_sweep : NULL, &sp);
     goto done;
   }
   if (st) {
@@ -384,6 +458,16 @@ done:
 }
 
 /* ---- rotor map: the library's study (autobal_study_rotor_map) ---------------------------- */
+typedef struct map_partial {
+  const autobal_rotor_params *p;
+  const autobal_study_rotor_map_options *o;
+  const autobal_study_rotor_map_summary *sum;
+} map_partial;
+static int write_map(autobal_archive *a, const void *data) {
+  const map_partial *mp = (const map_partial *)data;
+  return autobal_study_rotor_map_write(a, mp->p, mp->o, mp->sum);
+}
+
 int cli_cmd_rotor_map(cli_ctx *ctx) {
   stab_cfg *c = calloc(1, sizeof *c);
   autobal_study_rotor_map_options o = autobal_study_rotor_map_options_default();
@@ -427,8 +511,15 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   o.min1 = lo1, o.max1 = hi1, o.min2 = lo2, o.max2 = hi2;
   o.n1 = (size_t)n1, o.n2 = (size_t)n2;
   o.threads = (int)threads;
+  o.progress = stop_requested;
   autobal_error_clear(&err);
   st = autobal_study_rotor_map(&c->p, &o, NULL, &sum, &err);
+  if (st == AUTOBAL_ECANCELLED) {
+    map_partial mp;
+    mp.p = &c->p, mp.o = &o, mp.sum = &sum;
+    rc = finish_interrupted(ctx, "autobal rotor map", err.message, write_map, &mp);
+    goto done;
+  }
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
@@ -464,6 +555,15 @@ done:
 }
 
 /* ---- rotor campbell: the library's study (autobal_study_rotor_campbell) --------------------- */
+typedef struct campbell_partial {
+  const autobal_rotor_params *p;
+  const autobal_study_rotor_campbell_summary *sum;
+} campbell_partial;
+static int write_campbell(autobal_archive *a, const void *data) {
+  const campbell_partial *cp = (const campbell_partial *)data;
+  return autobal_study_rotor_campbell_write(a, cp->p, cp->sum);
+}
+
 int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   autobal_rotor_params p;
   void *storage = NULL;
@@ -509,9 +609,16 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   o.n = (size_t)n;
   o.n_resonance = (size_t)nres;
   o.xtol_rel = xtol;
+  o.progress = stop_requested;
   st = autobal_study_rotor_campbell(&p, &o, NULL, &sum, &err);
   if (sum.resonances_truncated && !ctx->json)
     fprintf(stderr, "autobal: warning: resonance speeds: %s\n", cli_rotor_message(sum.resonance_message, msg, sizeof msg));
+  if (st == AUTOBAL_ECANCELLED) {
+    campbell_partial cp;
+    cp.p = &p, cp.sum = &sum;
+    rc = finish_interrupted(ctx, "autobal rotor campbell", err.message, sum.n_done > 0 ? write_campbell : NULL, &cp);
+    goto done;
+  }
   if (st) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;

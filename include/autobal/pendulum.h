@@ -160,6 +160,16 @@ AUTOBAL_API autobal_pendulum_workspace *autobal_pendulum_workspace_alloc(void); 
 AUTOBAL_API void autobal_pendulum_workspace_free(autobal_pendulum_workspace *ws); /* NULL safe */
 /* Last error message of ws ("" after success; never NULL; ws may be NULL). */
 AUTOBAL_API const char *autobal_pendulum_errmsg(const autobal_pendulum_workspace *ws);
+/* A cancellation hook: return non-zero to stop (called often: read a flag). */
+typedef int (*autobal_pendulum_cancel_fn)(void *user);
+/* Install (fn NULL: remove) the workspace's cancellation hook, polled with `user` by
+ * autobal_pendulum_critical_curves (before each R_m point) and
+ * autobal_pendulum_critical_speeds_damped (before each grid point of the scan; a refinement is
+ * bounded): they then return AUTOBAL_ECANCELLED ("cancelled by the caller" as the workspace's
+ * message).  critical_curves: the rows before the stop are filled; critical_speeds_damped: *out
+ * is zeroed (the changes found so far are dropped).  No effect on a NULL workspace. */
+AUTOBAL_API void autobal_pendulum_workspace_set_cancel(autobal_pendulum_workspace *ws, autobal_pendulum_cancel_fn fn,
+                                                       void *user);
 /* Last status of ws (AUTOBAL_SUCCESS after success). */
 AUTOBAL_API int autobal_pendulum_status(const autobal_pendulum_workspace *ws);
 

@@ -252,6 +252,18 @@ AUTOBAL_API void autobal_rotor_stab_free(autobal_rotor_stab *s); /* NULL is safe
  * AUTOBAL_EINVAL without recording any message (there is nowhere to record it). */
 AUTOBAL_API const char *autobal_rotor_stab_errmsg(const autobal_rotor_stab *s);
 
+/* A cancellation hook: return non-zero to stop (it may be called often, e.g. read a
+ * sig_atomic_t flag; called from the thread that uses the handle). */
+typedef int (*autobal_rotor_stab_cancel_fn)(void *user);
+/* Install (fn NULL: remove) the handle's cancellation hook.  autobal_rotor_stab_sweep and
+ * autobal_rotor_stab_critical poll it before every margin evaluation (grid points and the
+ * evaluations of a refinement) and return AUTOBAL_ECANCELLED ("cancelled by the caller" on
+ * the handle) when it returns non-zero; what they computed before stays as after a failure
+ * (sweep: the entries before the stop are valid; critical: the changes found before it), and
+ * the working parameters are restored.  No effect on a NULL handle. */
+AUTOBAL_API void autobal_rotor_stab_set_cancel(autobal_rotor_stab *s, autobal_rotor_stab_cancel_fn fn,
+                                               void *user);
+
 /* Change one parameter of the handle's working copy (see autobal_rotor_stab_param);
  * the base values given at alloc are kept for the scale factors.  AUTOBAL_EINVAL for
  * an unknown id or a value out of range (message on the handle; the handle is
@@ -510,6 +522,14 @@ typedef struct autobal_rotor_resonances {
 AUTOBAL_API int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, double hi,
                                                size_t n_grid, double xtol_rel,
                                                autobal_rotor_resonances *out, autobal_error *err);
+/* The same, polling `cancel` (NULL: never) with `user` before every grid point (a refinement
+ * between two grid points is bounded: at most 200 Brent or 300 golden-section steps): when it returns non-zero the search stops and returns
+ * AUTOBAL_ECANCELLED ("cancelled by the caller" in err); *out then holds the crossings and
+ * peaks found before the stop, as after a failure. */
+AUTOBAL_API int autobal_rotor_resonance_speeds_cancellable(const autobal_rotor_params *p, double lo, double hi,
+                                                           size_t n_grid, double xtol_rel,
+                                                           autobal_rotor_stab_cancel_fn cancel, void *user,
+                                                           autobal_rotor_resonances *out, autobal_error *err);
 
 /* ---- the full model's own Jacobian (for cross-checks) ---------------------------- */
 

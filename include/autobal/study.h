@@ -301,6 +301,9 @@ typedef struct autobal_study_rotor_stability_options {
                            -omega_min]); NaN: autobal_study_rotor_speed_range()   (default NaN, NaN) */
   size_t n_omega;       /* grid points of the search, in [2, 1e7]                 (default 400) */
   double xtol_rel;      /* relative accuracy of each critical speed, in (0, 0.1)  (default 1e-8) */
+  autobal_study_progress_fn progress; /* fraction of the critical-speed search; non-zero: cancel
+                           (polled before every margin evaluation)             (default NULL) */
+  void *progress_user;                                                       /* (default NULL) */
 } autobal_study_rotor_stability_options;
 
 /* The defaults listed above. */
@@ -324,6 +327,8 @@ typedef struct autobal_study_rotor_stability_summary {
                                        (critical.truncated; critical_message says so) */
   char critical_message[AUTOBAL_ERRMSG_SIZE];
   double *storage_;                 /* the arrays behind result's pointers (private) */
+  int critical_cancelled;           /* 1: the critical-speed search was cancelled (have_critical = 0;
+                                       the analysis at omega in `result` is complete) */
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every
@@ -336,7 +341,10 @@ typedef struct autobal_study_rotor_stability_summary {
  * configuration: messages name the field, options as "options: ..."), AUTOBAL_ENOMEM,
  * AUTOBAL_ENUMERIC or an integration status of the Floquet analysis; "critical speeds: ..."
  * for a failure of the search; an archive status when writing failed.  Nothing is written to
- * the archive unless the analysis succeeded. */
+ * the archive unless the analysis succeeded.  AUTOBAL_ECANCELLED when options.progress asked to
+ * stop during the critical-speed search: the analysis at omega is complete in `result`,
+ * critical_cancelled = 1, have_critical = 0, and with an archive the result is written (with
+ * the attributes partial = 1 and partial_what on /rotor/stability, no critical group). */
 AUTOBAL_API int autobal_study_rotor_stability(const autobal_rotor_params *p,
                                               const autobal_study_rotor_stability_options *opt,
                                               autobal_archive *a,
@@ -466,6 +474,10 @@ typedef struct autobal_study_pendulum_critical_options {
   double Rw_min, Rw_max; /* the R_w range of the damped search, 0 <= Rw_min < Rw_max <= 1e4
                                                                                (default 0, 6) */
   size_t n_sweep;        /* grid points of the damped search, in [2, 1e8]        (default 3000) */
+  autobal_study_progress_fn progress; /* fraction done, polled at every R_m point of the curves
+                            and every grid point of the damped search; non-zero: cancel
+                                                                               (default NULL) */
+  void *progress_user;                                                       /* (default NULL) */
 } autobal_study_pendulum_critical_options;
 
 AUTOBAL_API autobal_study_pendulum_critical_options autobal_study_pendulum_critical_options_default(void);
@@ -489,6 +501,10 @@ typedef struct autobal_study_pendulum_critical_summary {
   double *curve_eq16_R_w1_k1, *curve_eq17_R_w1_k1, *curve_eq18_R_w23_k1; /* [n_Rm] (16), (17), (18) */
   int damped_truncated_warning;       /* 1: the damped list was full (warning_message) */
   char warning_message[AUTOBAL_ERRMSG_SIZE];
+  size_t n_Rm_done;                   /* points of the curves computed: n_Rm, or fewer after a
+                                         cancellation */
+  int damped_cancelled;               /* 1: the damped search was cancelled (have_damped = 0) */
+  int cancelled;                      /* 1: cancelled (in the damped search or in the curves) */
 } autobal_study_pendulum_critical_summary;
 
 /* Critical speeds of the pendulum balancer at p, the curves R_wj(R_m) for k = 0 and 1 (figure 2)
@@ -499,7 +515,11 @@ typedef struct autobal_study_pendulum_critical_summary {
  * attributes) and /pendulum/critical/curves (R_m, branch; R_w_k0, R_w_k1 (R_m, branch) and the
  * formulas along R_m).  `summary` (not NULL) is zeroed first; free it also after a failure.
  * Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (parameters: the model's message; options:
- * "options: ..."), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC; an archive status when writing failed. */
+ * "options: ..."), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC; an archive status when writing failed;
+ * AUTOBAL_ECANCELLED (options.progress asked to stop): the critical speeds at p (undamped;
+ * damped unless damped_cancelled) and the first n_Rm_done points of the curves are valid and,
+ * with an archive, written (curves of length n_Rm_done; partial = 1, done = n_Rm_done,
+ * requested = n_Rm, partial_what on /pendulum/critical). */
 AUTOBAL_API int autobal_study_pendulum_critical(const autobal_pendulum_params *p,
                                                 const autobal_pendulum_physical *phys,
                                                 const autobal_study_pendulum_critical_options *opt,
@@ -525,6 +545,9 @@ typedef struct autobal_study_pendulum_map_options {
   size_t n_k;            /* k values with every_unbalance, in [2, 1e5]                 (default 65) */
   int max_real;          /* non-zero: also the largest real part of the roots of (6)     (default 0) */
   int threads;           /* OpenMP threads, in [0, 1024]; 0: the OpenMP default         (default 0) */
+  autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
+                            rows (0.25 to 1 s of work); non-zero: cancel         (default NULL) */
+  void *progress_user;                                                       /* (default NULL) */
 } autobal_study_pendulum_map_options;
 
 AUTOBAL_API autobal_study_pendulum_map_options autobal_study_pendulum_map_options_default(void);
@@ -538,6 +561,7 @@ typedef struct autobal_study_pendulum_map_summary {
   int *verdict;             /* [n_Rm x n_Rw] row-major: 1 stable, 0 marginal, -1 unstable */
   double *max_real;         /* [n_Rm x n_Rw] with options.max_real, else NULL */
   size_t n_stable;          /* points with verdict 1 */
+  size_t n_Rm_done;         /* rows (R_m) computed: n_Rm, or fewer after a cancellation */
 } autobal_study_pendulum_map_summary;
 
 /* Compute the map; opt NULL: defaults; phys (NULL: none) recorded in the archive with an omega
@@ -546,7 +570,10 @@ typedef struct autobal_study_pendulum_map_summary {
  * design_R_w, omega(R_w) with phys, verdict(R_m, R_w), max_real(R_m, R_w)).  `summary` (not
  * NULL) is zeroed first; free it also after a failure.  Returns AUTOBAL_SUCCESS,
  * AUTOBAL_EINVAL ("options: ..." or the model's message), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC or
- * an archive status. */
+ * an archive status, or AUTOBAL_ECANCELLED (options.progress asked to stop; the rows are
+ * computed in blocks, the results do not depend on them): the first n_Rm_done rows are valid
+ * and, with an archive, written (R_m, verdict, max_real with n_Rm_done rows; partial = 1,
+ * done = n_Rm_done, requested = n_Rm, partial_what on /pendulum/map). */
 AUTOBAL_API int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys,
                                            const autobal_study_pendulum_map_options *opt, autobal_archive *a,
                                            autobal_study_pendulum_map_summary *summary, autobal_error *err);
@@ -591,6 +618,10 @@ typedef struct autobal_study_rotor_sweep_summary {
   autobal_rotor_crit critical; /* critical values in the parameter's unit */
   int critical_truncated;     /* 1: more critical values than the list holds (critical_message) */
   char critical_message[AUTOBAL_ERRMSG_SIZE];
+  size_t n_done;              /* grid points computed: n, or fewer after a cancellation (the
+                                 first n_done entries of values/margin/verdict are valid) */
+  int cancelled;              /* 1: cancelled; the critical values were not searched (or not to
+                                 the end) and critical is zeroed */
 } autobal_study_rotor_sweep_summary;
 
 /* Sweep options.param over its grid (autobal_rotor_stab_sweep, in chunks of 64 points with
@@ -598,8 +629,12 @@ typedef struct autobal_study_rotor_sweep_summary {
  * With an archive (NULL: none), after success: /rotor (as the stability study) and /rotor/sweep
  * (options, param, the coordinate named after the parameter, margin, verdict, critical values).
  * Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL ("options: ..."; the model's messages; "<param> =
- * <value> <unit>: ..." for a failing point; "critical values: ..."), AUTOBAL_ECANCELLED (nothing
- * written), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC, an archive status.  `summary` (not NULL) is zeroed
+ * <value> <unit>: ..." for a failing point; "critical values: ..."), AUTOBAL_ECANCELLED (the
+ * progress callback asked to stop, polled after every chunk and before every margin evaluation
+ * of the critical search: the summary holds the first n_done points, cancelled = 1, and with an
+ * archive they are written: the coordinate, margin and verdict of length n_done, the
+ * attributes partial = 1, done = n_done, requested = n, partial_what, and no critical values),
+ * AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC, an archive status.  `summary` (not NULL) is zeroed
  * first; free it also after a failure. */
 AUTOBAL_API int autobal_study_rotor_sweep(const autobal_rotor_params *p, const autobal_study_rotor_sweep_options *opt,
                                           autobal_archive *a, autobal_study_rotor_sweep_summary *summary,
@@ -616,6 +651,9 @@ typedef struct autobal_study_rotor_map_options {
   double min1, max1, min2, max2; /* ranges, min <= max; NaN: autobal_study_rotor_param_range */
   size_t n1, n2;        /* grid points, in [1, 1e5]                              (default 120, 60) */
   int threads;          /* OpenMP threads, [0, 1024]; 0: the OpenMP default          (default 0) */
+  autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
+                           rows (0.25 to 1 s of work); non-zero: cancel           (default NULL) */
+  void *progress_user;                                                       /* (default NULL) */
 } autobal_study_rotor_map_options;
 AUTOBAL_API autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void);
 
@@ -628,11 +666,16 @@ typedef struct autobal_study_rotor_map_summary {
   double *margin;             /* [n1 x n2] row-major, 1/s (NaN: no balanced configuration) */
   int *verdict;               /* [n1 x n2] 1 stable, 0 marginal, -1 unstable, -2 none */
   size_t n_stable;            /* points with verdict 1 */
+  size_t n1_done;             /* rows (values1) computed: n1, or fewer after a cancellation */
 } autobal_study_rotor_map_summary;
 
 /* Margin and verdict over a grid of two parameters (autobal_rotor_stab_map).  With an archive:
  * /rotor and /rotor/map (options, param1, param2, the two coordinates, margin, verdict).
- * Returns like autobal_study_rotor_sweep (no cancellation). */
+ * The rows are computed in blocks (the results do not depend on the blocks or the threads).
+ * Returns like autobal_study_rotor_sweep; after a cancellation the first n1_done rows are
+ * valid and written (the first coordinate, margin and verdict with n1_done rows; partial = 1,
+ * done = n1_done, requested = n1, partial_what on /rotor/map; the progress callback is first
+ * called after the first block, so n1_done >= 1). */
 AUTOBAL_API int autobal_study_rotor_map(const autobal_rotor_params *p, const autobal_study_rotor_map_options *opt,
                                         autobal_archive *a, autobal_study_rotor_map_summary *summary,
                                         autobal_error *err);
@@ -648,6 +691,10 @@ typedef struct autobal_study_rotor_campbell_options {
   size_t n;                    /* speeds of the diagram, [2, 1e7]                    (default 401) */
   size_t n_resonance;          /* grid of the resonance search, [3, 1e7]            (default 4000) */
   double xtol_rel;             /* accuracy of the resonance speeds, (0, 0.1)       (default 1e-10) */
+  autobal_study_progress_fn progress; /* fraction done, after each block of speeds and polled at
+                                  every grid point of the resonance search; non-zero: cancel
+                                                                                (default NULL) */
+  void *progress_user;                                                       /* (default NULL) */
 } autobal_study_rotor_campbell_options;
 AUTOBAL_API autobal_study_rotor_campbell_options autobal_study_rotor_campbell_options_default(void);
 
@@ -669,12 +716,20 @@ typedef struct autobal_study_rotor_campbell_summary {
   autobal_rotor_resonances resonances; /* crossings and unbalance-response peaks */
   int resonances_truncated;      /* 1: lists full (resonance_message says up to where) */
   char resonance_message[AUTOBAL_ERRMSG_SIZE];
+  size_t n_done;                 /* speeds of the diagram computed (rows of frequency ... amp_D):
+                                    n, or fewer after a cancellation */
+  int have_resonances;           /* 1: the resonance search ran to its end (else resonances is
+                                    zeroed) */
 } autobal_study_rotor_campbell_summary;
 
 /* The rotor-housing without balls: natural frequencies at rest, the Campbell diagram, the steady
  * unbalance response and the critical speeds.  With an archive: /rotor and /rotor/campbell.
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL ("options: ..." or the model's message),
- * AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC, an archive status. */
+ * AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC, an archive status, or AUTOBAL_ECANCELLED (options.progress
+ * asked to stop): the first n_done speeds are valid, have_resonances says whether the
+ * resonance search finished, and with an archive they are written (the omega axis and the
+ * arrays with n_done rows; partial = 1, done = n_done, requested = n, partial_what on
+ * /rotor/campbell; no crossings or peaks unless have_resonances). */
 AUTOBAL_API int autobal_study_rotor_campbell(const autobal_rotor_params *p,
                                              const autobal_study_rotor_campbell_options *opt, autobal_archive *a,
                                              autobal_study_rotor_campbell_summary *summary, autobal_error *err);

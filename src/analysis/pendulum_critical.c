@@ -700,6 +700,7 @@ int autobal_pendulum_critical_curves(autobal_pendulum_workspace *ws, double k, c
   }
   for (i = 0; i < n_Rm; i++) {
     autobal_pendulum_crit_set s;
+    if (autobal_pendulum_cancelled_(ws)) return AUTOBAL_ECANCELLED;
     if ((st = autobal_pendulum_critical_speeds(ws, R_m[i], k, &s)) != 0) return st;
     for (j = 0; j < n_curve; j++) rw[i * n_curve + j] = autobal_pendulum_crit_get(&s, j);
   }
@@ -779,6 +780,7 @@ int autobal_pendulum_critical_speeds_damped_cap_(autobal_pendulum_workspace *ws,
     double a = rw_min + (rw_max - rw_min) * (double)(i - 1) / (double)(n_sweep - 1);
     double b = i + 1 == n_sweep ? rw_max : rw_min + (rw_max - rw_min) * (double)i / (double)(n_sweep - 1);
     int cur;
+    if (autobal_pendulum_cancelled_(ws)) return AUTOBAL_ECANCELLED;
     if ((st = damped_stable_pred(b, &ctx, &cur)) != 0) return st;
     if (cur != prev && nc >= cap) {
       /* one change more than the list holds: stop before refining it */

@@ -52,6 +52,19 @@ void autobal_pendulum_workspace_free(autobal_pendulum_workspace *ws) {
   free(ws);
 }
 
+void autobal_pendulum_workspace_set_cancel(autobal_pendulum_workspace *ws, autobal_pendulum_cancel_fn fn,
+                                           void *user) {
+  if (ws == NULL) return;
+  ws->cancel = fn;
+  ws->cancel_user = user;
+}
+
+int autobal_pendulum_cancelled_(autobal_pendulum_workspace *ws) {
+  if (ws->cancel == NULL || !ws->cancel(ws->cancel_user)) return 0;
+  autobal_error_set(&ws->err, AUTOBAL_ECANCELLED, "cancelled by the caller");
+  return 1;
+}
+
 const char *autobal_pendulum_errmsg(const autobal_pendulum_workspace *ws) {
   return ws ? ws->err.message : "";
 }

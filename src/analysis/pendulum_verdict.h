@@ -17,7 +17,13 @@ struct autobal_pendulum_workspace {
   autobal_poly_workspace *pw[PEND_MAXDEG + 1]; /* roots of degree d = 1..12 */
   autobal_eigen_workspace *ew;
   autobal_error err;
+  autobal_pendulum_cancel_fn cancel; /* autobal_pendulum_workspace_set_cancel (NULL: none) */
+  void *cancel_user;
 };
+
+/* Non-zero (status AUTOBAL_ECANCELLED and "cancelled by the caller" in ws->err) when the
+ * workspace's cancel hook asks to stop. */
+int autobal_pendulum_cancelled_(autobal_pendulum_workspace *ws);
 
 #define MAP_MAXW 5 /* width of the Routh array for degree <= 8 */
 /* full unrolling of the short fixed loops of the Routh kernel (GCC >= 8) */

@@ -347,8 +347,9 @@ static double amp_at(res_ctx *c, double x) {
  * dropped (a peak found at step k lies around grid point k - 1), lo at the earliest;
  * *by_peak = 1 if the dropped entry was a peak, 0 if a crossing. */
 static int resonance_scan(const autobal_rotor_params *p, double lo, double hi, size_t n_grid,
-                          double xtol_rel, size_t cap, autobal_rotor_resonances *out,
-                          double *x_complete, int *by_peak, autobal_error *err) {
+                          double xtol_rel, size_t cap, autobal_rotor_stab_cancel_fn cancel, void *user,
+                          autobal_rotor_resonances *out, double *x_complete, int *by_peak,
+                          autobal_error *err) {
   modes_ws m;
   res_ctx rc;
   double fprev[4] = {0, 0, 0, 0}, aprev2 = NAN, aprev = NAN, xprev = lo, xprev2 = lo;
@@ -363,6 +364,10 @@ static int resonance_scan(const autobal_rotor_params *p, double lo, double hi, s
     const double x = k + 1 == n_grid ? hi : lo + (hi - lo) * (double)k / (double)(n_grid - 1);
     double f[4], a;
     int w4[4];
+    if (cancel && cancel(user)) {
+      st = autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the caller");
+      break;
+    }
     if ((st = modes_eval(&m, x, 0, f, NULL, NULL, w4, err)) != AUTOBAL_SUCCESS) break;
     a = amp_at(&rc, x);
     if (k > 0) {
@@ -437,8 +442,8 @@ static int resonance_scan(const autobal_rotor_params *p, double lo, double hi, s
 }
 
 static int resonances_checked(const autobal_rotor_params *p, double lo, double hi, size_t n_grid,
-                              double xtol_rel, size_t cap, autobal_rotor_resonances *out,
-                              autobal_error *err) {
+                              double xtol_rel, size_t cap, autobal_rotor_stab_cancel_fn cancel,
+                              void *user, autobal_rotor_resonances *out, autobal_error *err) {
   double xc = hi;
   int st, by_peak = 0;
   if (out == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: NULL output");
@@ -454,7 +459,7 @@ static int resonances_checked(const autobal_rotor_params *p, double lo, double h
   if (cap < 1 || cap > AUTOBAL_ROTOR_MAX_CRIT)
     return autobal_error_set(err, AUTOBAL_EINVAL, "resonances: capacity %zu out of range [1, %d]",
                              cap, AUTOBAL_ROTOR_MAX_CRIT);
-  st = resonance_scan(p, lo, hi, n_grid, xtol_rel, cap, out, &xc, &by_peak, err);
+  st = resonance_scan(p, lo, hi, n_grid, xtol_rel, cap, cancel, user, out, &xc, &by_peak, err);
   if (st == AUTOBAL_SUCCESS && out->truncated)
     st = autobal_error_set(err, AUTOBAL_WARNING,
                            "resonances: more than %zu %s in [%.9g, %.9g] rad/s (the capacity of "
@@ -470,11 +475,18 @@ static int resonances_checked(const autobal_rotor_params *p, double lo, double h
 int autobal_rotor_resonance_speeds(const autobal_rotor_params *p, double lo, double hi,
                                    size_t n_grid, double xtol_rel, autobal_rotor_resonances *out,
                                    autobal_error *err) {
-  return resonances_checked(p, lo, hi, n_grid, xtol_rel, AUTOBAL_ROTOR_MAX_CRIT, out, err);
+  return resonances_checked(p, lo, hi, n_grid, xtol_rel, AUTOBAL_ROTOR_MAX_CRIT, NULL, NULL, out, err);
+}
+
+int autobal_rotor_resonance_speeds_cancellable(const autobal_rotor_params *p, double lo, double hi,
+                                               size_t n_grid, double xtol_rel,
+                                               autobal_rotor_stab_cancel_fn cancel, void *user,
+                                               autobal_rotor_resonances *out, autobal_error *err) {
+  return resonances_checked(p, lo, hi, n_grid, xtol_rel, AUTOBAL_ROTOR_MAX_CRIT, cancel, user, out, err);
 }
 
 int autobal_rotor_resonance_speeds_cap_(const autobal_rotor_params *p, double lo, double hi,
                                         size_t n_grid, double xtol_rel, size_t cap,
                                         autobal_rotor_resonances *out, autobal_error *err) {
-  return resonances_checked(p, lo, hi, n_grid, xtol_rel, cap, out, err);
+  return resonances_checked(p, lo, hi, n_grid, xtol_rel, cap, NULL, NULL, out, err);
 }

@@ -106,6 +106,18 @@ void autobal_rotor_stab_free(autobal_rotor_stab *s) {
   free(s);
 }
 
+void autobal_rotor_stab_set_cancel(autobal_rotor_stab *s, autobal_rotor_stab_cancel_fn fn, void *user) {
+  if (s == NULL) return;
+  s->cancel = fn;
+  s->cancel_user = user;
+}
+
+int autobal_rotor_stab_cancelled_(autobal_rotor_stab *s) {
+  if (s->cancel == NULL || !s->cancel(s->cancel_user)) return 0;
+  autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "cancelled by the caller");
+  return 1;
+}
+
 const char *autobal_rotor_stab_errmsg(const autobal_rotor_stab *s) {
   return s ? s->err.message : "rotor stability handle is NULL";
 }

@@ -52,8 +52,13 @@ struct autobal_rotor_stab {
   autobal_transient *tr;           /* dimension ns^2 */
   double closed_mat[AUTOBAL_ROTOR_CLOSED_MAX * AUTOBAL_ROTOR_CLOSED_MAX];
   autobal_error err;
+  autobal_rotor_stab_cancel_fn cancel; /* autobal_rotor_stab_set_cancel (NULL: none) */
+  void *cancel_user;
 };
 
+/* Non-zero (message "cancelled by the caller" on the handle, status AUTOBAL_ECANCELLED) when
+ * the cancel hook of autobal_rotor_stab_set_cancel asks to stop. */
+int autobal_rotor_stab_cancelled_(autobal_rotor_stab *s);
 /* Balanced angles of the current member into s->psi (status also in s->psi_status). */
 int autobal_rotor_stab_update_member_(autobal_rotor_stab *s);
 /* Family dimension (sum over planes of n_j - rank_j) at the current member (psi valid). */

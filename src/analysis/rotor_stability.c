@@ -364,6 +364,10 @@ int autobal_rotor_stab_sweep(autobal_rotor_stab *s, int param, const double *val
     return autobal_error_set(&s->err, AUTOBAL_EINVAL, "sweep: parameter id %d is not valid", param);
   stab_save(s, &sv);
   for (k = 0; k < n; k++) {
+    if (autobal_rotor_stab_cancelled_(s)) {
+      st = AUTOBAL_ECANCELLED;
+      break;
+    }
     if ((st = autobal_rotor_stab_set(s, param, values[k])) != AUTOBAL_SUCCESS) break;
     if ((st = autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_AUTO, &margin[k], &verdict[k])) !=
         AUTOBAL_SUCCESS)
@@ -384,6 +388,7 @@ static int crit_margin(double x, void *ctx, double *fx) {
   crit_ctx *c = (crit_ctx *)ctx;
   int v, st;
   c->evals++;
+  if (autobal_rotor_stab_cancelled_(c->s)) return AUTOBAL_ECANCELLED;
   if ((st = autobal_rotor_stab_set(c->s, c->param, x)) != AUTOBAL_SUCCESS) return st;
   st = autobal_rotor_stab_margin(c->s, AUTOBAL_ROTOR_STAB_AUTO, fx, &v);
   if (st == AUTOBAL_SUCCESS && v == AUTOBAL_ROTOR_VERDICT_NONE) return AUTOBAL_EINVAL;
@@ -395,6 +400,7 @@ static int crit_exists(double x, void *ctx, int *value) {
   double mg;
   int v, st;
   c->evals++;
+  if (autobal_rotor_stab_cancelled_(c->s)) return AUTOBAL_ECANCELLED;
   if ((st = autobal_rotor_stab_set(c->s, c->param, x)) != AUTOBAL_SUCCESS) return st;
   st = autobal_rotor_stab_margin(c->s, AUTOBAL_ROTOR_STAB_AUTO, &mg, &v);
   *value = v != AUTOBAL_ROTOR_VERDICT_NONE;
@@ -421,6 +427,10 @@ static int critical_scan(autobal_rotor_stab *s, int param, double lo, double hi,
     double mg;
     int v, side;
     cc.evals++;
+    if (autobal_rotor_stab_cancelled_(s)) {
+      st = AUTOBAL_ECANCELLED;
+      break;
+    }
     if ((st = autobal_rotor_stab_set(s, param, x)) != AUTOBAL_SUCCESS) break;
     if ((st = autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_AUTO, &mg, &v)) != AUTOBAL_SUCCESS)
       break;

@@ -12,6 +12,7 @@
 
 autobal_study_pendulum_critical_options autobal_study_pendulum_critical_options_default(void) {
   autobal_study_pendulum_critical_options o;
+  memset(&o, 0, sizeof o);
   o.Rm_min = 0.001;
   o.Rm_max = 0.499;
   o.n_Rm = 499;
@@ -28,6 +29,18 @@ void autobal_study_pendulum_critical_summary_free(autobal_study_pendulum_critica
   s->curve_eq14_R_w2_k0 = s->curve_eq14_R_w3_k0 = s->curve_eq16_R_w1_k1 = s->curve_eq17_R_w1_k1 = s->curve_eq18_R_w23_k1 = NULL;
 }
 
+/* The workspace's cancel hook calling the study's progress callback (fraction: the damped
+ * search is the first half, the curves the second). */
+typedef struct progress_hook {
+  const autobal_study_pendulum_critical_options *o;
+  double fraction;
+} progress_hook;
+
+static int progress_cancel(void *user) {
+  progress_hook *h = (progress_hook *)user;
+  return h->o->progress && h->o->progress(h->fraction, h->o->progress_user) != 0;
+}
+
 int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys,
                                     const autobal_study_pendulum_critical_options *opt, autobal_archive *a,
                                     autobal_study_pendulum_critical_summary *summary, autobal_error *err) {
@@ -38,7 +51,8 @@ int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const auto
   autobal_error e;
   double *block, rm1;
   size_t i, nrm;
-  int st;
+  int st, cancelled = 0;
+  progress_hook ph;
   autobal_error_clear(err);
   if (!s) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
   memset(s, 0, sizeof *s);
@@ -71,10 +85,19 @@ int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const auto
   s->curve_eq16_R_w1_k1 = block + 9 * nrm;
   s->curve_eq17_R_w1_k1 = block + 10 * nrm;
   s->curve_eq18_R_w23_k1 = block + 11 * nrm;
+  ph.o = o;
+  ph.fraction = 0.0;
+  if (o->progress) autobal_pendulum_workspace_set_cancel(ws, progress_cancel, &ph);
   st = autobal_pendulum_critical_speeds(ws, p->R_m, s->k, &s->undamped);
   s->have_damped = p->H > 0 || p->h > 0;
   if (!st && s->have_damped) {
     st = autobal_pendulum_critical_speeds_damped(ws, p, o->Rw_min, o->Rw_max, o->n_sweep, &s->damped);
+    if (st == AUTOBAL_ECANCELLED) {
+      s->have_damped = 0;
+      s->damped_cancelled = 1;
+      cancelled = 1;
+      st = AUTOBAL_SUCCESS;
+    }
     if (st == AUTOBAL_WARNING) {
       /* the list was full: the data are valid up to its last entry (archived with the flag) */
       s->damped_truncated_warning = 1;
@@ -106,18 +129,30 @@ int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const auto
     return st;
   }
   rm1 = s->R_m1;
-  /* curves vs R_m for k = 0 and k = 1 */
+  /* curves vs R_m for k = 0 and k = 1, a block of R_m points at a time (each point is
+   * independent), with progress; none after a cancellation of the damped search */
   for (i = 0; i < nrm; i++) s->R_m[i] = o->Rm_min + (o->Rm_max - o->Rm_min) * (double)i / (double)(nrm - 1);
-  st = autobal_pendulum_critical_curves(ws, 0.0, s->R_m, nrm, 3, s->R_w_k0);
-  if (!st) st = autobal_pendulum_critical_curves(ws, 1.0, s->R_m, nrm, 3, s->R_w_k1);
-  if (st) {
-    autobal_error_set(err, st, "%s", autobal_pendulum_errmsg(ws));
-    autobal_pendulum_workspace_free(ws);
-    return st;
+  while (!cancelled && s->n_Rm_done < nrm) {
+    size_t i0 = s->n_Rm_done, r = nrm - i0 < 16 ? nrm - i0 : 16;
+    ph.fraction = 0.5 + 0.5 * (double)i0 / (double)nrm;
+    st = autobal_pendulum_critical_curves(ws, 0.0, s->R_m + i0, r, 3, s->R_w_k0 + 3 * i0);
+    if (!st) st = autobal_pendulum_critical_curves(ws, 1.0, s->R_m + i0, r, 3, s->R_w_k1 + 3 * i0);
+    if (st == AUTOBAL_ECANCELLED) {
+      cancelled = 1;
+      break; /* the block in progress is dropped */
+    }
+    if (st) {
+      autobal_error_set(err, st, "%s", autobal_pendulum_errmsg(ws));
+      autobal_pendulum_workspace_free(ws);
+      return st;
+    }
+    s->n_Rm_done += r;
   }
   autobal_pendulum_workspace_free(ws);
-  /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18) */
-  for (i = 0; i < nrm; i++) {
+  s->cancelled = cancelled;
+  /* the paper's formulas along the grid: (14) small, (14) large (R_w2, R_w3), (16), (17), (18)
+   * (at the points of the curves computed: all unless cancelled) */
+  for (i = 0; i < s->n_Rm_done; i++) {
     double rm = s->R_m[i], a2 = NAN, a3 = NAN, b2 = NAN, b3 = NAN, f16 = NAN, f17 = NAN, f18 = NAN;
     autobal_pendulum_rw23_k0_series_small(rm, &a2, &a3, NULL);
     if (rm < 0.25) autobal_pendulum_rw23_k0_series_large(rm, &b2, &b3, NULL);
@@ -132,6 +167,9 @@ int autobal_study_pendulum_critical(const autobal_pendulum_params *p, const auto
   }
   if (a && (st = autobal_study_pendulum_critical_write(a, p, phys, s)))
     return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+  if (cancelled)
+    return autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback %s",
+                             s->damped_cancelled ? "during the damped search" : "during the curves");
   return AUTOBAL_SUCCESS;
 }
 
@@ -174,11 +212,23 @@ int autobal_study_pendulum_critical_write(autobal_archive *a, const autobal_pend
   static const char *const dims2[] = {"R_m", "branch"};
   static const char *const dims1[] = {"R_m"};
   size_t nrm;
-  int st;
+  int st, partial;
   if (!a || !p || !s || !s->R_m) return AUTOBAL_EINVAL;
-  nrm = s->n_Rm;
+  /* not cancelled: complete (also a summary built by hand, n_Rm_done = 0) */
+  partial = s->cancelled || s->damped_cancelled;
+  nrm = partial ? s->n_Rm_done : s->n_Rm;
   st = autobal_study_write_pendulum_params(a, p, phys);
   if (!st) st = autobal_archive_group(a, g);
+  if (!st && partial) {
+    char what[300];
+    snprintf(what, sizeof what, "interrupted: %s; the first %zu of %zu points of the curves (done, requested)",
+             s->damped_cancelled ? "the damped search did not finish (no damped_*)" : "the critical speeds at R_m are complete",
+             nrm, s->n_Rm);
+    st = autobal_archive_attr_int(a, g, "partial", 1);
+    if (!st) st = autobal_archive_attr_int(a, g, "done", (long)nrm);
+    if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)s->n_Rm);
+    if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
+  }
   if (!st) st = autobal_archive_attr_string(a, g, "description", "critical speeds of the undamped balancer (H = h = 0) at the R_m and k of /pendulum, from the discriminant of (10); damped_* at the given H, h from (6)");
   if (!st) st = write_crit_set(a, g, "undamped", &s->undamped);
   if (!st && s->have_damped) st = write_crit_set(a, g, "damped", &s->damped);
@@ -194,6 +244,7 @@ int autobal_study_pendulum_critical_write(autobal_archive *a, const autobal_pend
   if (!st) st = autobal_archive_attr_double(a, g, "eq16_R_w1_k1", s->eq16_R_w1_k1, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "eq17_R_w1_k1_series", s->eq17_R_w1_k1_series, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "eq18_R_w23_k1", s->eq18_R_w23_k1, "1");
+  if (!st && nrm == 0) return st; /* interrupted before the curves */
   if (!st) st = autobal_archive_group(a, gc);
   if (!st) st = autobal_archive_attr_string(a, gc, "description", "critical-speed curves R_wj(R_m) of the undamped balancer (figure 2): region A is R_w > R_w3(R_m, k=0); region B is R_w1(R_m, k=1) < R_w < R_w2(R_m, k=0); for R_m >= 0.25 the region stable for every unbalance is R_w > R_w1(R_m, k=1)");
   if (!st) st = autobal_archive_coord(a, gc, "R_m", nrm, s->R_m, "1", "mass ratio m/(M + 2m)");

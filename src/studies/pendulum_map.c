@@ -1,12 +1,21 @@
 /* pendulum_map.c: the pendulum stability-map study (`autobal pendulum map`): the verdict of the
  * main motion over a grid of (R_m, R_w), for one unbalance or every one, and its archive layout
  * (include/autobal/study.h). */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "autobal/study.h"
 #include "internal.h"
+
+static double now_seconds(void) {
+  struct timespec ts;
+  if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return 0.0;
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 autobal_study_pendulum_map_options autobal_study_pendulum_map_options_default(void) {
   autobal_study_pendulum_map_options o;
@@ -93,18 +102,39 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
   spec.k = s->k;
   spec.n_k = s->n_k;
   spec.n_threads = o->threads;
-  st = autobal_pendulum_map(&spec, v, s->max_real, err);
-  if (st) {
+  {
+    /* in blocks of rows, about 0.25-1 s each (every point is independent: the blocks change
+     * nothing), with progress and cancellation after each */
+    size_t rows = 1;
+    int cancelled = 0;
+    while (s->n_Rm_done < s->n_Rm && !cancelled) {
+      size_t r = s->n_Rm - s->n_Rm_done < rows ? s->n_Rm - s->n_Rm_done : rows, off = s->n_Rm_done * s->n_Rw;
+      double t0 = now_seconds(), dt;
+      spec.R_m = s->R_m + s->n_Rm_done;
+      spec.n_Rm = r;
+      st = autobal_pendulum_map(&spec, v + off, s->max_real ? s->max_real + off : NULL, err);
+      if (st) {
+        free(v);
+        return st;
+      }
+      s->n_Rm_done += r;
+      dt = now_seconds() - t0;
+      if (dt < 0.25 && rows < ((size_t)1 << 20)) rows *= 2;
+      else if (dt > 1.0 && rows > 1) rows /= 2;
+      if (o->progress && o->progress((double)s->n_Rm_done / (double)s->n_Rm, o->progress_user)) cancelled = 1;
+    }
+    n = s->n_Rm_done * s->n_Rw;
+    for (i = 0; i < n; i++) {
+      s->verdict[i] = v[i];
+      s->n_stable += v[i] > 0;
+    }
     free(v);
-    return st;
+    if (a && (st = autobal_study_pendulum_map_write(a, p, phys, s)))
+      return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+    if (s->n_Rm_done < s->n_Rm)
+      return autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback after %zu of %zu rows",
+                               s->n_Rm_done, s->n_Rm);
   }
-  for (i = 0; i < n; i++) {
-    s->verdict[i] = v[i];
-    s->n_stable += v[i] > 0;
-  }
-  free(v);
-  if (a && (st = autobal_study_pendulum_map_write(a, p, phys, s)))
-    return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
   return AUTOBAL_SUCCESS;
 }
 
@@ -115,14 +145,24 @@ int autobal_study_pendulum_map_write(autobal_archive *a, const autobal_pendulum_
   static const char *const dims[] = {"R_m", "R_w"};
   static const char *const dim_rw[] = {"R_w"};
   int st, every;
+  size_t nr;
   if (!a || !p || !s || !s->R_m) return AUTOBAL_EINVAL;
   every = s->every_unbalance;
+  nr = s->n_Rm_done > 0 && s->n_Rm_done < s->n_Rm ? s->n_Rm_done : s->n_Rm; /* 0: a summary built by hand */
   st = autobal_study_write_pendulum_params(a, p, phys);
   if (!st) st = autobal_archive_group(a, g);
   if (!st) st = autobal_archive_attr_string(a, g, "criterion", (p->H > 0 || p->h > 0) ? "Routh-Hurwitz sign test on the characteristic polynomial (6)" : "undamped: all roots x = lambda^2 of (10) real and <= 0");
   if (!st) st = autobal_archive_attr_int(a, g, "every_unbalance", every);
   if (!st) st = autobal_archive_attr_double_array(a, g, "k_values", s->n_k, s->k, "1");
-  if (!st) st = autobal_archive_coord(a, g, "R_m", s->n_Rm, s->R_m, "1", "mass ratio m/(M + 2m)");
+  if (!st && nr < s->n_Rm) {
+    char what[200];
+    snprintf(what, sizeof what, "interrupted: the first %zu of %zu rows (R_m values; done, requested)", nr, s->n_Rm);
+    st = autobal_archive_attr_int(a, g, "partial", 1);
+    if (!st) st = autobal_archive_attr_int(a, g, "done", (long)nr);
+    if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)s->n_Rm);
+    if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
+  }
+  if (!st) st = autobal_archive_coord(a, g, "R_m", nr, s->R_m, "1", "mass ratio m/(M + 2m)");
   if (!st) st = autobal_archive_coord(a, g, "R_w", s->n_Rw, s->R_w, "1", "rotor speed omega/omega0");
   /* the design point of the configuration ([pendulum]), for marking on the map */
   if (!st) st = autobal_archive_attr_double(a, g, "design_R_m", p->R_m, "1");

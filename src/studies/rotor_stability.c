@@ -1,13 +1,56 @@
 /* rotor_stability.c: the rotor stability study (`autobal rotor stability`): the balanced motion
  * (3.14) analysed by every applicable method at the rotor's speed, the critical speeds in a
  * range, and their archive layout (include/autobal/study.h). */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "autobal/study.h"
 #include "internal.h"
+
+/* ---- cancellation and partial results (shared by the studies of this file) ---------------- */
+
+/* The handle's cancel hook (autobal_rotor_stab_set_cancel) calling a study's progress callback
+ * with a fixed fraction. */
+typedef struct progress_hook {
+  autobal_study_progress_fn fn;
+  void *user;
+  double fraction;
+} progress_hook;
+
+static int progress_cancel(void *user) {
+  progress_hook *h = (progress_hook *)user;
+  return h->fn && h->fn(h->fraction, h->user) != 0;
+}
+
+static double now_seconds(void) {
+  struct timespec ts;
+  if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return 0.0;
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The next block of rows: twice as many after a block shorter than 0.25 s, half as many after
+ * one longer than 1 s (at least 1), so that a cancellation is noticed within about a second and
+ * the blocks' ends (the threads wait for the slowest) cost little. */
+static size_t next_block(size_t rows, double seconds) {
+  if (seconds < 0.25 && rows < ((size_t)1 << 20)) return 2 * rows;
+  if (seconds > 1.0 && rows > 1) return rows / 2;
+  return rows;
+}
+
+/* The attributes of a group holding partial results: partial = 1, done and requested (counts
+ * of the unit named in `what`; not written for requested = 0), partial_what (a sentence). */
+static int write_partial(autobal_archive *a, const char *g, size_t done, size_t requested, const char *what) {
+  int st = autobal_archive_attr_int(a, g, "partial", 1);
+  if (requested == 0) return st ? st : autobal_archive_attr_string(a, g, "partial_what", what);
+  if (!st) st = autobal_archive_attr_int(a, g, "done", (long)done);
+  if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)requested);
+  if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
+  return st;
+}
 
 autobal_study_rotor_stability_options autobal_study_rotor_stability_options_default(void) {
   autobal_study_rotor_stability_options o;
@@ -105,7 +148,28 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
   }
   if (o->critical_speeds) {
     double lo = p->omega > 0 ? s->omega_min : -s->omega_max, hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+    progress_hook ph;
+    ph.fn = o->progress;
+    ph.user = o->progress_user;
+    ph.fraction = 0.5;
+    if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, &ph);
     st = autobal_rotor_stab_critical(h, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, o->n_omega, o->xtol_rel, &s->critical);
+    autobal_rotor_stab_set_cancel(h, NULL, NULL);
+    if (st == AUTOBAL_ECANCELLED) {
+      /* the analysis at omega stays; the search is dropped (it covered an unknown part of the range) */
+      s->critical_cancelled = 1;
+      memset(&s->critical, 0, sizeof s->critical);
+      st = autobal_rotor_stab_analyze(h, &s->result);
+      if (!st && !(st = keep_arrays(s))) {
+        autobal_rotor_stab_free(h);
+        if (a && (st = autobal_study_rotor_stability_write(a, p, o, s)))
+          return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+        return autobal_error_set(err, AUTOBAL_ECANCELLED, "critical speeds: cancelled by the caller");
+      }
+      if (st == AUTOBAL_ENOMEM) autobal_error_set(err, st, "out of memory");
+      else autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+      goto fail;
+    }
     if (st == AUTOBAL_WARNING) { /* truncated list: the data are valid, the flag is recorded */
       s->critical_truncated = 1;
       snprintf(s->critical_message, sizeof s->critical_message, "%s", autobal_rotor_stab_errmsg(h));
@@ -245,6 +309,9 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = autobal_archive_attr_double(a, g, "floquet_margin", r->floquet_margin, "1/s");
     if (!st) st = autobal_archive_attr_double(a, g, "floquet_mismatch", r->floquet_mismatch, "1");
   }
+  if (!st && s->critical_cancelled)
+    st = write_partial(a, g, 0, 0, "interrupted during the critical-speed search: the analysis at omega is complete, "
+                                   "the critical speeds were not found (no /rotor/stability/critical)");
   if (!st && s->have_critical) {
     const char *gc = "/rotor/stability/critical";
     st = autobal_archive_group(a, gc);
@@ -359,12 +426,22 @@ int autobal_study_rotor_sweep(const autobal_rotor_params *p, const autobal_study
       autobal_error_set(err, st, "%s = %.9g %s: %s", pname, s->values[i], unit, autobal_rotor_stab_errmsg(h));
       goto done;
     }
+    s->n_done = i + m;
     if (o->progress && o->progress(0.5 * (double)(i + m) / (double)n, o->progress_user)) {
-      st = autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback");
-      goto done;
+      st = AUTOBAL_ECANCELLED;
+      goto cancelled;
     }
   }
-  st = autobal_rotor_stab_critical(h, o->param, lo, hi, n, o->xtol_rel, &s->critical);
+  {
+    progress_hook ph;
+    ph.fn = o->progress;
+    ph.user = o->progress_user;
+    ph.fraction = 0.5;
+    if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, &ph);
+    st = autobal_rotor_stab_critical(h, o->param, lo, hi, n, o->xtol_rel, &s->critical);
+    autobal_rotor_stab_set_cancel(h, NULL, NULL);
+    if (st == AUTOBAL_ECANCELLED) goto cancelled;
+  }
   if (st == AUTOBAL_WARNING) {
     s->critical_truncated = 1;
     snprintf(s->critical_message, sizeof s->critical_message, "%s", autobal_rotor_stab_errmsg(h));
@@ -379,6 +456,17 @@ int autobal_study_rotor_sweep(const autobal_rotor_params *p, const autobal_study
 done:
   autobal_rotor_stab_free(h);
   return st;
+cancelled: /* the points done stay; the critical values (a partial search) are dropped */
+  s->cancelled = 1;
+  memset(&s->critical, 0, sizeof s->critical);
+  s->critical.param = o->param;
+  s->critical_truncated = 0;
+  s->critical_message[0] = '\0';
+  for (i = 0; i < s->n_done; i++) s->n_stable += s->verdict[i] == AUTOBAL_VERDICT_STABLE;
+  autobal_rotor_stab_free(h);
+  if (a && (st = autobal_study_rotor_sweep_write(a, p, o, s))) return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+  return autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback after %zu of %zu points%s", s->n_done, n,
+                           s->n_done == n ? " (during the search for critical values)" : "");
 }
 
 int autobal_study_rotor_sweep_write(autobal_archive *a, const autobal_rotor_params *p,
@@ -388,9 +476,11 @@ int autobal_study_rotor_sweep_write(autobal_archive *a, const autobal_rotor_para
   const autobal_study_rotor_sweep_options *o = opt ? opt : &def;
   const char *g = "/rotor/sweep", *pname, *unit;
   const char *dims[1];
-  char lname[160];
+  char lname[160], what[256];
+  size_t nw;
   int st;
   if (!a || !p || !s || !s->values) return AUTOBAL_EINVAL;
+  nw = s->cancelled ? s->n_done : s->n;
   pname = autobal_rotor_stab_param_name(s->param);
   unit = autobal_rotor_stab_param_unit(s->param);
   if (!pname || !unit) return AUTOBAL_EINVAL;
@@ -400,10 +490,16 @@ int autobal_study_rotor_sweep_write(autobal_archive *a, const autobal_rotor_para
   if (!st) st = autobal_archive_group(a, g);
   if (!st) st = write_options(a, g, &o->stab);
   if (!st) st = autobal_archive_attr_string(a, g, "param", pname);
-  if (!st) st = autobal_archive_coord(a, g, pname, s->n, s->values, unit, lname);
+  if (!st && s->cancelled) {
+    snprintf(what, sizeof what, "interrupted: the first %zu of %zu points of %s (done, requested); the critical values "
+             "were not searched", s->n_done, s->n, pname);
+    st = write_partial(a, g, s->n_done, s->n, what);
+  }
+  if (nw == 0) return st;
+  if (!st) st = autobal_archive_coord(a, g, pname, nw, s->values, unit, lname);
   if (!st) st = autobal_archive_var(a, g, "margin", 1, dims, s->margin, "1/s", "stability margin: largest real part of the characteristic roots (family roots excluded; Floquet: log max|mu| / T); NaN: no balanced configuration");
   if (!st) st = autobal_archive_var_int(a, g, "verdict", 1, dims, s->verdict, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
-  if (!st) st = write_crit(a, g, &s->critical, unit);
+  if (!st && !s->cancelled) st = write_crit(a, g, &s->critical, unit);
   return st;
 }
 
@@ -466,12 +562,27 @@ int autobal_study_rotor_map(const autobal_rotor_params *p, const autobal_study_r
   s->verdict = malloc(n * sizeof *s->verdict);
   if (!s->values1 || !s->values2 || !s->margin || !s->verdict)
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
-  st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1, s->n1, o->param2, s->values2, s->n2, o->threads,
-                              s->margin, s->verdict, err);
-  if (st) return st;
-  for (i = 0; i < n; i++) s->n_stable += s->verdict[i] == AUTOBAL_VERDICT_STABLE;
-  if (a && (st = autobal_study_rotor_map_write(a, p, o, s)))
-    return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+  {
+    /* in blocks of rows (each point is independent: the blocks change nothing) */
+    size_t rows = 1;
+    int cancelled = 0;
+    while (s->n1_done < s->n1 && !cancelled) {
+      size_t r = s->n1 - s->n1_done < rows ? s->n1 - s->n1_done : rows, off = s->n1_done * s->n2;
+      double t0 = now_seconds();
+      st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2, s->values2, s->n2,
+                                  o->threads, s->margin + off, s->verdict + off, err);
+      if (st) return st;
+      s->n1_done += r;
+      rows = next_block(rows, now_seconds() - t0);
+      if (o->progress && o->progress((double)s->n1_done / (double)s->n1, o->progress_user)) cancelled = 1;
+    }
+    for (i = 0; i < s->n1_done * s->n2; i++) s->n_stable += s->verdict[i] == AUTOBAL_VERDICT_STABLE;
+    if (a && (st = autobal_study_rotor_map_write(a, p, o, s)))
+      return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+    if (cancelled && s->n1_done < s->n1)
+      return autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback after %zu of %zu rows",
+                               s->n1_done, s->n1);
+  }
   return AUTOBAL_SUCCESS;
 }
 
@@ -482,8 +593,11 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
   const autobal_study_rotor_map_options *o = opt ? opt : &def;
   const char *g = "/rotor/map", *n1s, *n2s;
   const char *dims[2];
+  char what[256];
+  size_t nr;
   int st;
   if (!a || !p || !s || !s->values1) return AUTOBAL_EINVAL;
+  nr = s->n1_done > 0 && s->n1_done < s->n1 ? s->n1_done : s->n1; /* n1_done = 0: a summary built by hand */
   n1s = autobal_rotor_stab_param_name(s->param1);
   n2s = autobal_rotor_stab_param_name(s->param2);
   dims[0] = n1s;
@@ -493,7 +607,11 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
   if (!st) st = write_options(a, g, &o->stab);
   if (!st) st = autobal_archive_attr_string(a, g, "param1", n1s);
   if (!st) st = autobal_archive_attr_string(a, g, "param2", n2s);
-  if (!st) st = autobal_archive_coord(a, g, n1s, s->n1, s->values1, autobal_rotor_stab_param_unit(s->param1), "first parameter (rows)");
+  if (!st && nr < s->n1) {
+    snprintf(what, sizeof what, "interrupted: the first %zu of %zu rows (%s values; done, requested)", nr, s->n1, n1s);
+    st = write_partial(a, g, nr, s->n1, what);
+  }
+  if (!st) st = autobal_archive_coord(a, g, n1s, nr, s->values1, autobal_rotor_stab_param_unit(s->param1), "first parameter (rows)");
   if (!st) st = autobal_archive_coord(a, g, n2s, s->n2, s->values2, autobal_rotor_stab_param_unit(s->param2), "second parameter (columns)");
   if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
   if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
@@ -502,6 +620,7 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
 
 autobal_study_rotor_campbell_options autobal_study_rotor_campbell_options_default(void) {
   autobal_study_rotor_campbell_options o;
+  memset(&o, 0, sizeof o);
   o.omega_min = o.omega_max = NAN;
   o.n = 401;
   o.n_resonance = 4000;
@@ -558,19 +677,50 @@ int autobal_study_rotor_campbell(const autobal_rotor_params *p, const autobal_st
   if (!s->omega || !s->frequency || !s->damping_ratio || !s->whirl || !s->amp_G || !s->amp_D)
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
   if ((st = autobal_rotor_modes(p, 0.0, 1, s->natural_frequency_undamped, NULL, NULL, NULL, err)) ||
-      (st = autobal_rotor_modes(p, 0.0, 0, s->natural_frequency_damped, s->damping_ratio_at_rest, NULL, NULL, err)) ||
-      (st = autobal_rotor_campbell(p, s->omega, n, s->frequency, s->damping_ratio, s->whirl, err)))
+      (st = autobal_rotor_modes(p, 0.0, 0, s->natural_frequency_damped, s->damping_ratio_at_rest, NULL, NULL, err)))
     return st;
-  for (i = 0; i < n; i++) {
-    double d2[AUTOBAL_ROTOR_MAX_PLANES];
-    if (autobal_rotor_unbalance_response(p, s->omega[i], &s->amp_G[i], d2, NULL) != AUTOBAL_SUCCESS) {
-      s->amp_G[i] = INFINITY; /* an undamped resonance exactly on the grid */
-      for (j = 0; j < np; j++) d2[j] = INFINITY;
+  {
+    /* the diagram and the response in blocks of speeds (for progress and cancellation) */
+    size_t rows = 1;
+    while (s->n_done < n) {
+      size_t r = n - s->n_done < rows ? n - s->n_done : rows, i0 = s->n_done;
+      double t0 = now_seconds();
+      if ((st = autobal_rotor_campbell(p, s->omega + i0, r, s->frequency + 4 * i0, s->damping_ratio + 4 * i0,
+                                       s->whirl + 4 * i0, err)))
+        return st;
+      for (i = i0; i < i0 + r; i++) {
+        double d2[AUTOBAL_ROTOR_MAX_PLANES];
+        if (autobal_rotor_unbalance_response(p, s->omega[i], &s->amp_G[i], d2, NULL) != AUTOBAL_SUCCESS) {
+          s->amp_G[i] = INFINITY; /* an undamped resonance exactly on the grid */
+          for (j = 0; j < np; j++) d2[j] = INFINITY;
+        }
+        for (j = 0; j < np; j++) s->amp_D[i * np + j] = d2[j];
+      }
+      s->n_done += r;
+      rows = next_block(rows, now_seconds() - t0);
+      if (o->progress && o->progress(0.5 * (double)s->n_done / (double)n, o->progress_user)) {
+        st = AUTOBAL_ECANCELLED;
+        break;
+      }
     }
-    for (j = 0; j < np; j++) s->amp_D[i * np + j] = d2[j];
   }
   autobal_error_clear(&e);
-  st = autobal_rotor_resonance_speeds(p, s->omega_min, s->omega_max, o->n_resonance, o->xtol_rel, &s->resonances, &e);
+  if (st != AUTOBAL_ECANCELLED) {
+    progress_hook ph;
+    ph.fn = o->progress;
+    ph.user = o->progress_user;
+    ph.fraction = 0.5;
+    st = autobal_rotor_resonance_speeds_cancellable(p, s->omega_min, s->omega_max, o->n_resonance, o->xtol_rel,
+                                                    o->progress ? progress_cancel : NULL, &ph, &s->resonances, &e);
+  }
+  if (st == AUTOBAL_ECANCELLED) {
+    memset(&s->resonances, 0, sizeof s->resonances);
+    if (a && (st = autobal_study_rotor_campbell_write(a, p, s)))
+      return autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
+    return autobal_error_set(err, AUTOBAL_ECANCELLED, "cancelled by the progress callback after %zu of %zu speeds%s",
+                             s->n_done, n, s->n_done == n ? " (during the resonance search)" : "");
+  }
+  s->have_resonances = 1;
   if (st == AUTOBAL_WARNING) {
     s->resonances_truncated = 1;
     snprintf(s->resonance_message, sizeof s->resonance_message, "%s", e.message);
@@ -589,10 +739,14 @@ int autobal_study_rotor_campbell_write(autobal_archive *a, const autobal_rotor_p
                            *const dm[] = {"mode"}, *const dc[] = {"crossing"}, *const dk[] = {"peak"};
   autobal_rotor_stab_options so = autobal_rotor_stab_options_default(); /* every member "default" */
   const autobal_rotor_resonances *rr;
-  size_t j;
-  int st;
+  size_t j, nw;
+  int st, partial;
+  char what[256];
   if (!a || !p || !s || !s->omega) return AUTOBAL_EINVAL;
   rr = &s->resonances;
+  /* n_done = 0 and have_resonances = 0: a summary built by hand (complete) */
+  partial = (s->n_done > 0 && s->n_done < s->n) || (s->n_done == s->n && !s->have_resonances);
+  nw = s->n_done > 0 && s->n_done < s->n ? s->n_done : s->n;
   for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) {
     so.member[j].kind = AUTOBAL_ROTOR_MEMBER_DEFAULT;
     so.member[j].n_angles = 0;
@@ -600,7 +754,16 @@ int autobal_study_rotor_campbell_write(autobal_archive *a, const autobal_rotor_p
   st = write_model(a, p, &so);
   if (!st) st = autobal_archive_group(a, g);
   if (!st) st = autobal_archive_attr_string(a, g, "description", "rotor-housing without balls (the unbalances drive the response; FULL inertia keeps their masses): natural frequencies, damping ratios and whirl vs omega (gyroscopic C omega), steady unbalance response");
-  if (!st) st = autobal_archive_coord(a, g, "omega", s->n, s->omega, "rad/s", "spin speed");
+  if (!st && partial) {
+    if (nw < s->n)
+      snprintf(what, sizeof what, "interrupted: the first %zu of %zu speeds of the diagram (done, requested); the "
+               "resonance search did not run (no n_crossing, n_peak)", nw, s->n);
+    else
+      snprintf(what, sizeof what, "interrupted during the resonance search: the diagram is complete (%zu speeds), the "
+               "crossings and peaks were not found (no n_crossing, n_peak)", nw);
+    st = write_partial(a, g, nw, s->n, what);
+  }
+  if (!st) st = autobal_archive_coord(a, g, "omega", nw, s->omega, "rad/s", "spin speed");
   if (!st) st = autobal_archive_dim(a, g, "mode", 4, "mode index, by increasing frequency at each speed");
   if (!st) st = autobal_archive_dim(a, g, "plane", s->n_planes, "balancer plane index");
   if (!st) st = autobal_archive_var(a, g, "frequency", 2, d2, s->frequency, "rad/s", "damped natural frequency Im(lambda) in the fixed frame");
@@ -611,6 +774,7 @@ int autobal_study_rotor_campbell_write(autobal_archive *a, const autobal_rotor_p
   if (!st) st = autobal_archive_var(a, g, "natural_frequency_undamped", 1, dm, s->natural_frequency_undamped, "rad/s", "natural frequencies at rest without damping");
   if (!st) st = autobal_archive_var(a, g, "natural_frequency_damped", 1, dm, s->natural_frequency_damped, "rad/s", "damped natural frequencies at rest");
   if (!st) st = autobal_archive_var(a, g, "damping_ratio_at_rest", 1, dm, s->damping_ratio_at_rest, "1", "damping ratios at rest");
+  if (partial) return st;
   if (!st) st = autobal_archive_attr_int(a, g, "n_crossing", (long)rr->n_cross);
   if (!st) st = autobal_archive_attr_int(a, g, "n_peak", (long)rr->n_peak);
   if (!st) st = autobal_archive_attr_int(a, g, "truncated", rr->truncated);
