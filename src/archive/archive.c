@@ -647,25 +647,37 @@ int autobal_archive_create(const char *path, int overwrite, autobal_archive **ou
     rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%s': temporary names all taken", path);
     goto done;
   }
-  a->file = H5Fcreate(a->tmp_path, H5F_ACC_EXCL, fcpl, H5P_DEFAULT);
+  /* Claim the temporary name with a plain open() and write a block into it first: a missing or
+   * read-only directory, or a full disk, is then reported with the OS's reason and leaves no
+   * file (HDF5 failing to write a new file's superblock left a 0-byte file, said "File exists"
+   * and could not close its library at exit). */
+  {
+    char blk[4096];
+    ssize_t w;
+    int fd = open(a->tmp_path, O_WRONLY | O_CREAT | O_EXCL, 0666), e;
+    if (fd < 0) {
+      rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.300s': %s", path, strerror(errno));
+      goto done;
+    }
+    memset(blk, 0, sizeof blk);
+    w = write(fd, blk, sizeof blk);
+    e = errno;
+    if (w == (ssize_t)sizeof blk && fsync(fd) != 0) w = -1, e = errno;
+    (void)close(fd);
+    if (w != (ssize_t)sizeof blk) {
+      (void)unlink(a->tmp_path);
+      rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.300s': %s", path,
+                             strerror(w < 0 ? e : ENOSPC));
+      goto done;
+    }
+  }
+  a->file = H5Fcreate(a->tmp_path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
   if (a->file < 0) {
     char stack[AUTOBAL_ERRMSG_SIZE];
-    const char *why = "";
-    int fd;
     h5stack(stack, sizeof stack);
-    /* The OS reason, from a plain open() of the same name. */
-    fd = open(a->tmp_path, O_WRONLY | O_CREAT | O_EXCL, 0666);
-    if (fd < 0) {
-      why = strerror(errno);
-    } else {
-      (void)close(fd);
-      (void)unlink(a->tmp_path);
-    }
-    /* the OS reason says it all (a missing or read-only directory); HDF5's stack only without one */
-    if (why[0]) rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.300s': %s", path, why);
-    else
-      rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.150s' (temporary file '%.150s'; %.150s)",
-                             path, a->tmp_path, stack);
+    (void)unlink(a->tmp_path);
+    rc = autobal_error_set(err, AUTOBAL_EIO, "cannot create archive '%.150s' (temporary file '%.150s'; %.150s)",
+                           path, a->tmp_path, stack);
     goto done;
   }
   rc = write_root_string(a, "Conventions", AUTOBAL_ARCHIVE_CONVENTIONS);

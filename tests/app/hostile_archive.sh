@@ -135,5 +135,19 @@ expect 3 "different configuration" "$AUTOBAL" rotor ensemble ens.ini -o Z.h5 -q 
 expect 0 "" "$AUTOBAL" rotor ensemble ens.ini -o Z.h5 -q --set ensemble.resume=true
 "$PY" -c "import h5py, sys; sys.exit(h5py.File('Z.h5', 'r').attrs['status'] != 'complete')" && ok "the same settings resume to complete" || bad "resume did not complete"
 
+# 10. a full disk at creation (issue 19 item 5): the OS's reason, exit 4, no file left (it said
+#     "File exists" and left a 0-byte .partial file).  Needs a small tmpfs (root); skipped
+#     with a note where mounting is not allowed.
+mkdir -p full
+if mount -t tmpfs -o size=64k tmpfs full 2>/dev/null; then
+  dd if=/dev/zero of=full/fill bs=1k count=64 2>/dev/null
+  expect 4 "No space left on device" "$AUTOBAL" pendulum roots -o full/x.h5
+  n=$(ls full | grep -c '^x\.h5' || true)
+  [ "$n" -eq 0 ] && ok "nothing left on the full disk" || bad "left $(ls full)"
+  umount full
+else
+  echo "note: cannot mount a tmpfs here (not root?): the full-disk case is not run"
+fi
+
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
