@@ -82,6 +82,20 @@ done:
   return rc;
 }
 
+/* "<name>.partial-<pid>[-<k>]": the temporary file of autobal_archive_create.  One that cannot be
+ * read is what a killed run (SIGKILL, power loss) leaves: HDF5 had not written its metadata. */
+static int is_partial_name(const char *path) {
+  const char *p = strstr(path, ".partial-"), *q;
+  if (!p) return 0;
+  for (q = p + 9; *q && ((*q >= '0' && *q <= '9') || *q == '-'); q++) {
+  }
+  return *q == '\0' && q > p + 9;
+}
+#define PARTIAL_MSG                                                                                      \
+  "'%s' is the temporary file of a run that did not finish (killed before it could close its "          \
+  "archive): HDF5 had not written the file's metadata, so it cannot be read; repeat the run (an "       \
+  "interrupted run, SIGINT/SIGTERM/SIGHUP, closes an archive marked incomplete instead)"
+
 int autobal_archive_open_read(const char *path, autobal_archive **out, autobal_error *err) {
   autobal_archive *a;
   struct stat st;
@@ -119,6 +133,10 @@ int autobal_archive_open_read(const char *path, autobal_archive **out, autobal_e
     goto done;
   }
   a->file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (a->file < 0 && is_partial_name(path)) {
+    rc = autobal_error_set(err, AUTOBAL_EFORMAT, PARTIAL_MSG, path);
+    goto done;
+  }
   if (a->file < 0) {
     (void)autobal_archive_h5fail_(err, "'%s' is a damaged or truncated HDF5 file", path);
     if (err) err->status = AUTOBAL_EFORMAT;
@@ -126,8 +144,11 @@ int autobal_archive_open_read(const char *path, autobal_archive **out, autobal_e
     goto done;
   }
   if (H5Aexists(a->file, "Conventions") <= 0) {
-    rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%s' is an HDF5 file but not an autobal archive "
-                           "(no root attribute Conventions)", path);
+    if (is_partial_name(path))
+      rc = autobal_error_set(err, AUTOBAL_EFORMAT, PARTIAL_MSG, path);
+    else
+      rc = autobal_error_set(err, AUTOBAL_EFORMAT, "'%s' is an HDF5 file but not an autobal archive "
+                             "(no root attribute Conventions)", path);
     goto done;
   }
   rc = get_attr_string(err, a->file, "/", "Conventions", &conv);

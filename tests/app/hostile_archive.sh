@@ -149,5 +149,20 @@ else
   echo "note: cannot mount a tmpfs here (not root?): the full-disk case is not run"
 fi
 
+# 11. the file a SIGKILLed run leaves (issue 19 item 5): named as such, not "not an autobal archive"
+mkdir -p killed
+"$AUTOBAL" rotor transient --set transient.t_end=20000 --set transient.dt_out=0.0001 -o killed/k.h5 -q &
+kpid=$!
+for i in $(seq 1 100); do ls killed/k.h5.partial-* >/dev/null 2>&1 && break; sleep 0.1; done
+sleep 1
+kill -9 $kpid 2>/dev/null; wait $kpid 2>/dev/null
+part=$(ls killed/k.h5.partial-* 2>/dev/null | head -1)
+if [ -n "$part" ]; then
+  expect 4 "did not finish" "$AUTOBAL" info "$part"
+else
+  bad "the killed run left no temporary file"
+fi
+rm -rf killed
+
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
