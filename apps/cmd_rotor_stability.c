@@ -22,6 +22,24 @@
 
 /* The studies' progress callback of the commands without a progress bar: stop once a signal
  * arrived. */
+/* Range checks of the [sweep]/[map]/[campbell] keys: each names the broken key, its value and
+ * the allowed range (exit 3). */
+static int need_int(cli_ctx *ctx, const char *sec, const char *key, long v, long lo, long hi) {
+  if (v < lo) return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s = %ld is too small: must be >= %ld (allowed range [%ld, %ld])", sec, key, v, lo, lo, hi);
+  if (v > hi) return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s = %ld is too large: must be <= %ld (allowed range [%ld, %ld])", sec, key, v, hi, lo, hi);
+  return CLI_EXIT_OK;
+}
+static int need_order(cli_ctx *ctx, const char *sec, const char *klo, double lo, const char *khi, double hi,
+                      const char *unit, int strict) {
+  if (strict ? lo < hi : lo <= hi) return CLI_EXIT_OK;
+  return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s = %g %s must be %s %s = %g %s", sec, khi, hi, unit ? unit : "",
+                  strict ? "larger than" : "at least", klo, lo, unit ? unit : "");
+}
+static int need_xtol(cli_ctx *ctx, const char *sec, double x) {
+  if (x > 0 && x < 0.1) return CLI_EXIT_OK;
+  return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: xtol_rel = %g is out of range: allowed (0, 0.1)", sec, x);
+}
+
 static int stop_requested(double fraction, void *user) {
   (void)fraction;
   (void)user;
@@ -390,11 +408,9 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   if ((rc = cli_config_check_unused(ctx))) goto done;
   pname = autobal_rotor_stab_param_name(param);
   unit = autobal_rotor_stab_param_unit(param);
-  if (!(lo < hi) || n < 2 || n > 10000000 || !(xtol > 0 && xtol < 0.1)) {
-    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[sweep]: need min < max, n in [2, 1e7], xtol_rel in (0, 0.1); got %g, %g, %ld, %g",
-                  lo, hi, n, xtol);
+  if ((rc = need_order(ctx, "sweep", "min", lo, "max", hi, unit, 1)) || (rc = need_int(ctx, "sweep", "n", n, 2, 10000000)) ||
+      (rc = need_xtol(ctx, "sweep", xtol)))
     goto done;
-  }
   if (param != AUTOBAL_ROTOR_PARAM_OMEGA && !(c->p.omega != 0.0)) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: omega = 0: nothing to analyse");
     goto done;
@@ -500,11 +516,11 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[map]: param1 and param2 must differ (both %s)", autobal_rotor_stab_param_name(p1));
     goto done;
   }
-  if (!(lo1 <= hi1) || !(lo2 <= hi2) || n1 < 1 || n2 < 1 || n1 > 100000 || n2 > 100000 || threads < 0 || threads > 1024) {
-    rc = cli_fail(ctx, CLI_EXIT_INPUT,
-                  "[map]: need min1 <= max1, min2 <= max2, n1, n2 in [1, 100000], threads in [0, 1024]");
+  if ((rc = need_order(ctx, "map", "min1", lo1, "max1", hi1, autobal_rotor_stab_param_unit(p1), 0)) ||
+      (rc = need_order(ctx, "map", "min2", lo2, "max2", hi2, autobal_rotor_stab_param_unit(p2), 0)) ||
+      (rc = need_int(ctx, "map", "n1", n1, 1, 100000)) || (rc = need_int(ctx, "map", "n2", n2, 1, 100000)) ||
+      (rc = need_int(ctx, "map", "threads", threads, 0, 1024)))
     goto done;
-  }
   n = (size_t)n1 * (size_t)n2;
   o.stab = c->opt;
   o.param1 = p1, o.param2 = p2;
@@ -599,11 +615,14 @@ int cli_cmd_rotor_campbell(cli_ctx *ctx) {
   if ((rc = cli_get_int(ctx, "campbell", "n_resonance", nres, &nres, NULL))) goto done;
   if ((rc = cli_get_double(ctx, "campbell", "xtol_rel", xtol, &xtol, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
-  if (!(lo >= 0 && lo < hi) || n < 2 || n > 10000000 || nres < 3 || nres > 10000000 || !(xtol > 0 && xtol < 0.1)) {
-    rc = cli_fail(ctx, CLI_EXIT_INPUT,
-                  "[campbell]: need 0 <= omega_min < omega_max, n in [2, 1e7], n_resonance in [3, 1e7], xtol_rel in (0, 0.1)");
+  if (!(lo >= 0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[campbell]: omega_min = %g rad/s is too small: must be >= 0", lo);
     goto done;
   }
+  if ((rc = need_order(ctx, "campbell", "omega_min", lo, "omega_max", hi, "rad/s", 1)) ||
+      (rc = need_int(ctx, "campbell", "n", n, 2, 10000000)) ||
+      (rc = need_int(ctx, "campbell", "n_resonance", nres, 3, 10000000)) || (rc = need_xtol(ctx, "campbell", xtol)))
+    goto done;
   o.omega_min = lo;
   o.omega_max = hi;
   o.n = (size_t)n;
