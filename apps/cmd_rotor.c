@@ -709,6 +709,11 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
       if (!(wref > 0))
         return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: revs_out needs omega != 0 (with a drive: a non-zero speed); give dt_out (s) instead");
       c->dt_out = revs_out * TWO_PI / wref;
+      if (!(c->t_end / c->dt_out <= 5e8)) /* e.g. omega = 1e308: name the speed, not only t_end/dt_out */
+        return cli_fail(ctx, CLI_EXIT_INPUT,
+                        "[transient]: revs_out = %g at %g rad/s gives dt_out = %.3g s, %.3g samples in t_end = %g s: too "
+                        "many (at most 5e8); give dt_out, or a smaller speed or t_end",
+                        revs_out, wref, c->dt_out, c->t_end / c->dt_out, c->t_end);
     }
     if (!(c->dt_out > 0)) return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: dt_out = %g s is out of range: allowed (0, inf)", c->dt_out);
     if (c->t_end / c->dt_out > 5e8)

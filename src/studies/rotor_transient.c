@@ -86,9 +86,18 @@ static int check_options(const autobal_study_rotor_transient_options *o, double 
                              omega);
   if (!(o->dt_out >= 0 && isfinite(o->dt_out)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: dt_out = %g s is out of range: allowed (0, inf), or 0 for a quarter revolution", o->dt_out);
-  if (o->t_end / dt_out_used(o, omega) > 5e8)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: t_end/dt_out = %.3g samples is too many (at most 5e8)",
-                             o->t_end / dt_out_used(o, omega));
+  if (!(o->t_end / dt_out_used(o, omega) <= 5e8)) {
+    if (o->dt_out > 0)
+      return autobal_error_set(err, AUTOBAL_EINVAL, "options: t_end/dt_out = %.3g samples is too many (at most 5e8)",
+                               o->t_end / dt_out_used(o, omega));
+    /* the output interval follows from the speed: name it (omega = 1e308 used to end as "the
+     * right-hand side returned 9") */
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: %.3g samples is too many (at most 5e8): the output interval is a quarter "
+                             "revolution, 2 pi/(4 |omega|) = %.3g s at omega = %g rad/s (with a drive: its largest "
+                             "|speed|); give dt_out, or a smaller omega or t_end",
+                             o->t_end / dt_out_used(o, omega), dt_out_used(o, omega), omega);
+  }
   if (!(o->balance_tol > 0))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: balance_tol = %g is out of range: allowed (0, inf)", o->balance_tol);
   if (!(o->balance_revs >= 0 && isfinite(o->balance_revs)))
