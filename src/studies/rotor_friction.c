@@ -161,7 +161,7 @@ int study_friction_write_inputs(autobal_archive *a, const autobal_rotor *rot, co
   if (!st && p->friction.law == AUTOBAL_ROTOR_FRICTION_REGULARIZED)
     st = autobal_archive_attr_double(a, group, "friction_u_eps", p->friction.u_eps, "rad/s");
   for (j = 0; j < p->n_planes && !st; j++) {
-    char grp[32];
+    char grp[48];
     const size_t n = p->plane[j].n_balls;
     if (n == 0) continue;
     snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
