@@ -164,5 +164,12 @@ else
 fi
 rm -rf killed
 
+# 12. messages that name the parameter (issue 19 item 5)
+expect 3 "at 1e+308 rad/s gives dt_out" "$AUTOBAL" rotor transient --set rotor.omega=1e308 -o om.h5
+expect 3 "parameter R_w = 1e+300 is too large" "$AUTOBAL" pendulum roots --set pendulum.R_w=1e300 -o rw.h5
+longlist=$("$PY" -c "print(', '.join(['1.0'] * 1100))")
+expect 3 "list too long (5498 characters; at most 4095)" "$AUTOBAL" rotor transient --set "drive.mode=table" --set "drive.table_t=$longlist" -o ll.h5
+[ ! -e om.h5 ] && [ ! -e rw.h5 ] && [ ! -e ll.h5 ] && ok "nothing written" || bad "a file was written"
+
 echo "hostile_archive: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
