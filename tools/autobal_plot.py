@@ -1362,7 +1362,7 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
     runs = [(h, ensemble_unbalance(h))]
     if compare is not None:
         runs.append((compare, ensemble_unbalance(compare)))
-    fig, (a_cdf, a_hist) = plt.subplots(1, 2, figsize=(13, 5.2), constrained_layout=True)
+    fig, (a_cdf, a_hist) = plt.subplots(1, 2, figsize=(13, 5.8), constrained_layout=True)
     colors = ["tab:red", "tab:blue"]
     allu = np.concatenate([r[1][0] for r in runs])
     if allu.size == 0 or not np.all(allu > 0):
@@ -1408,12 +1408,12 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
     a_cdf.set_xlabel("residual unbalance U at the end (g mm, the worst plane)")
     a_cdf.set_ylabel("fraction of members with U below")
     a_cdf.grid(True, which="both", alpha=0.3)
-    a_cdf.legend(fontsize=8, loc="center right")
+    a_cdf.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1)
     a_hist.set_xscale("log")
     a_hist.set_xlabel("balance quality grade G at the end (mm/s, ISO 21940-11); dashed: the target")
     a_hist.set_ylabel("members")
     a_hist.grid(True, which="both", alpha=0.3)
-    a_hist.legend(fontsize=8, loc="center right")
+    a_hist.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     a_hist.set_title("grade distribution", fontsize=9)
     g = h["rotor/ensemble"]
     params = s(g.attrs.get("parameters", ""))
