@@ -254,6 +254,10 @@ int cli_rotor_config_read(cli_ctx *ctx, autobal_rotor_params *p, void **storage)
 /* Read [drive] (mode = constant|ramp|table and its keys, as `rotor transient` reads them) into
  * p->drive; storage is cli_rotor_config_read's, where a table's points are kept. */
 int cli_rotor_drive_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage);
+/* Read [friction] (law = none|exact|regularized, u_eps) and the planes' ball_f, ball_mu, as `rotor
+ * transient` reads them, into p->friction; storage is cli_rotor_config_read's, where the lists are
+ * kept. */
+int cli_rotor_friction_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage);
 /* Write the rotor model *p (autobal_study_write_rotor_params): /rotor (model, input, inertia, omega, axial and,
  * for hardware input, M_k, A_k, m_p, A_p, C_p and the [supports] keys), /rotor/lumped (the 17
  * lumped coefficients the model uses, (2.7)-(2.11) for hardware input) and /rotor/plane<j>

@@ -583,6 +583,17 @@ int cli_rotor_drive_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage) {
   return rc;
 }
 
+/* [friction] and the planes' ball_f, ball_mu for the other rotor commands (apps/cmd_ensemble.c):
+ * read_friction into the configuration that cli_rotor_config_read left in storage (the lists stay
+ * there), copied to p->friction. */
+static int read_friction(cli_ctx *ctx, rotor_cfg *c);
+int cli_rotor_friction_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage) {
+  rotor_cfg *c = storage;
+  int rc = read_friction(ctx, c);
+  p->friction = c->p.friction;
+  return rc;
+}
+
 /* The speed the revolutions are counted at: rotor.omega, or the largest |speed| of the drive. */
 static double speed_ref(const rotor_cfg *c) {
   const autobal_rotor_drive *d = &c->p.drive;

@@ -235,11 +235,14 @@
   "           write_unbalance = false (true: per-member residual_unbalance_abs_final, balance_grade_final)\n" \
   "[drive]    as `rotor transient` (mode = constant|ramp|table); with a ramp or table a member is balanced only\n" \
   "           when the dwell below balance_tol lies after the end of its ramp (t_b; a table's last time)\n" \
+  "[friction] as `rotor transient` (law, u_eps; [plane1]/[plane2] ball_f, ball_mu); law = exact adds per member\n" \
+  "           balls_stuck_final, time_stuck_max (s), friction_switches (write_unbalance = true: datasets)\n" \
   "parameters: psi_K, rate_K (initial angle/rate of ball K relative to the rotor; K = 1..N, plane 1 first),\n" \
   "            omega (constant drive only), ball_damping (every ball), m0, psi0 (plane 1's unbalance mass and\n" \
   "            angle), x, y (initial displacement);\n" \
   "            with [drive] mode = ramp: ramp_rate (rad/s^2 > 0: t_b = t_a + |omega_b - omega_a| / ramp_rate),\n" \
-  "            ramp_time (s > 0: t_b = t_a + ramp_time), omega_b (rad/s, the final speed)\n" \
+  "            ramp_time (s > 0: t_b = t_a + ramp_time), omega_b (rad/s, the final speed);\n" \
+  "            with a friction law: ball_f, ball_mu (every ball)\n" \
   "default: grid psi_1 x psi_2, 16 x 16 over [-pi, pi)\n" \
   "\narchive: /rotor (model), /rotor/ensemble (variables over the parameter axes, or over 'member' when\n" \
   "random; probability_balanced etc. as attributes), /rotor/ensemble/statistics/<quantity> (quantiles, mean,\n" \

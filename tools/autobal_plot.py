@@ -33,6 +33,12 @@ For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name wit
     /rotor/ensemble,            <stem>_ensemble.png         basin map (outcome over the grid or the
     /pendulum/ensemble                                      random samples), time to balance over it,
                                 P(balance) along the first parameter, time-to-balance distribution
+    /rotor/ensemble/residual_   <stem>_unbalance.png        (with ensemble.write_unbalance = true) the
+      unbalance_abs_final                                   distribution of the residual unbalance at the
+                                end: empirical CDF in g mm (log axis) with the ISO 21940-11 grade
+                                lines, histogram of the grade with the target and P(G <= target)
+                                with its Wilson interval; --compare B.h5 draws a second ensemble's
+                                distribution beside it (e.g. the same ensemble without friction)
 
 Stable intervals are drawn from the archive's stable_lo/stable_hi (not from the sampled curves); one
 narrower than NARROW of the axis is drawn that wide, outlined and labelled with its ends.  Speeds
@@ -1318,6 +1324,104 @@ def plot_pendulum_ensemble(h, outdir, stem, written):
     plot_ensemble(h, outdir, stem, written, "pendulum")
 
 
+GRADES = (0.4, 1.0, 2.5, 6.3, 16.0, 40.0, 100.0, 250.0, 630.0, 1600.0)
+
+
+def ensemble_unbalance(h):
+    """Per-member residual unbalance (g mm) and grade (mm/s) of the members that ran without failure,
+    the grade statistics' attributes and a label of the run."""
+    g = h["rotor/ensemble"]
+    u = np.asarray(g["residual_unbalance_abs_final"][()], dtype=float).ravel()
+    gr = np.asarray(g["balance_grade_final"][()], dtype=float).ravel()
+    st = np.asarray(g["status"][()]).ravel()
+    done = np.asarray(g["done"][()]).ravel() if "done" in g else np.ones_like(st)
+    ok = (st >= 0) & (done == 1) & np.isfinite(u) & np.isfinite(gr)
+    if unit_factor_ok(g["residual_unbalance_abs_final"]) is None:
+        raise NotImplementedError("residual_unbalance_abs_final: units '%s', not kg m"
+                                  % units(g["residual_unbalance_abs_final"]))
+    stats = dict(g["statistics/balance_grade_final"].attrs) if "statistics/balance_grade_final" in g else {}
+    law = s(g.attrs.get("friction", "none"))
+    if law == "exact" and "ball_f" in h["rotor/plane1"].attrs:
+        pa = h["rotor/plane1"].attrs
+        label = "stiction: f = %s, μ = %s" % (fmt(np.max(pa["ball_f"]), 3), fmt(np.max(pa["ball_mu"]), 3))
+    elif law != "none":
+        label = "friction: %s law" % law
+    else:
+        label = "no friction"
+    return u[ok] * 1e6, gr[ok], stats, label, int(np.sum(~ok))
+
+
+def unit_factor_ok(ds):
+    return 1.0 if units(ds) == "kg m" else None
+
+
+def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
+    """Distribution of the residual unbalance at the end over the ensemble's members: empirical CDF
+    in g mm on a log axis with the permissible unbalance of the ISO 21940-11 grades (U = G m / Omega,
+    from the members' own U/G ratio), and the grades' histogram with the target and P(G <= target)."""
+    runs = [(h, ensemble_unbalance(h))]
+    if compare is not None:
+        runs.append((compare, ensemble_unbalance(compare)))
+    fig, (a_cdf, a_hist) = plt.subplots(1, 2, figsize=(13, 5.8), constrained_layout=True)
+    colors = ["tab:red", "tab:blue"]
+    allu = np.concatenate([r[1][0] for r in runs])
+    if allu.size == 0 or not np.all(allu > 0):
+        raise NotImplementedError("no positive residual unbalance to draw on a log axis")
+    ratio = None
+    for (hh, (u, gr, stats, label, nbad)), c in zip(runs, colors):
+        if u.size == 0:
+            continue
+        x = np.sort(u)
+        a_cdf.step(x, np.arange(1, x.size + 1) / x.size, where="post", color=c, lw=1.8,
+                   label="%s (%d members%s): median %s g mm, G %s"
+                   % (label, u.size, ", %d failed" % nbad if nbad else "", fmt(np.median(u), 3),
+                      fmt(np.median(gr), 3)))
+        r = u / gr  # g mm per mm/s: m / (n_planes Omega), the same for all members at one final speed
+        if ratio is None and np.all(gr > 0):
+            ratio = np.median(r)
+            spread = np.max(np.abs(r / ratio - 1))
+        lg = np.log10(gr[gr > 0])
+        bins = np.linspace(np.floor(np.log10(np.min(allu / np.median(r)))), np.ceil(np.max(lg)) + 0.01, 41) \
+            if lg.size else 10
+        a_hist.hist(gr[gr > 0], bins=10 ** np.asarray(bins), color=c, alpha=0.55, label=label)
+        if "target" in stats and stats.get("n_evaluated", 0):
+            a_hist.axvline(stats["target"], color="k", lw=1.2, ls="--")
+            a_hist.text(0.02, 0.96 - 0.07 * colors.index(c), "%s: P(G ≤ %s mm/s) = %s (%d of %d), Wilson 95%% [%s, %s]"
+                        % (label, fmt(stats["target"], 3), fmt(stats["probability_within_target"], 3),
+                           stats["n_within_target"], stats["n_evaluated"],
+                           fmt(stats["probability_within_target_wilson_low"], 3),
+                           fmt(stats["probability_within_target_wilson_high"], 3)),
+                        transform=a_hist.transAxes, fontsize=8, color=c, va="top")
+    a_cdf.set_xscale("log")
+    lo, hi = np.min(allu) / 2, np.max(allu) * 2
+    if ratio is not None:
+        for G in GRADES:
+            U = G * ratio
+            if lo <= U <= hi:
+                a_cdf.axvline(U, color="0.5", lw=0.8, ls=":")
+                a_cdf.text(U, 0.02, " G%s" % fmt(G, 3), rotation=90, fontsize=8, color="0.3", va="bottom")
+        note = "" if spread < 1e-6 else " (U/G varies by %s between members: lines at the median)" % fmt(spread, 2)
+        a_cdf.set_title("residual unbalance at the end: empirical CDF; dotted: permissible U of the grades%s" % note,
+                        fontsize=9)
+    a_cdf.set_xlim(lo, hi)
+    a_cdf.set_ylim(0, 1.02)
+    a_cdf.set_xlabel("residual unbalance U at the end (g mm, the worst plane)")
+    a_cdf.set_ylabel("fraction of members with U below")
+    a_cdf.grid(True, which="both", alpha=0.3)
+    a_cdf.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1)
+    a_hist.set_xscale("log")
+    a_hist.set_xlabel("balance quality grade G at the end (mm/s, ISO 21940-11); dashed: the target")
+    a_hist.set_ylabel("members")
+    a_hist.grid(True, which="both", alpha=0.3)
+    a_hist.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+    a_hist.set_title("grade distribution", fontsize=9)
+    g = h["rotor/ensemble"]
+    params = s(g.attrs.get("parameters", ""))
+    fig.suptitle("Rotor ensemble: residual unbalance over %s (%s, %d members)%s"
+                 % (params, s(g.attrs.get("mode", "?")), int(param(g, "n_members", 0)), status_note(h)), fontsize=11)
+    save(fig, outdir, stem, "unbalance", written)
+
+
 PLOTTERS = [
     ("pendulum/critical/curves", plot_pendulum_critical),
     ("pendulum/map", plot_pendulum_map),
@@ -1330,6 +1434,7 @@ PLOTTERS = [
     ("rotor/map", plot_rotor_map),
     ("rotor/campbell", plot_rotor_campbell),
     ("rotor/ensemble", plot_rotor_ensemble),
+    ("rotor/ensemble/residual_unbalance_abs_final", plot_rotor_unbalance),
     ("pendulum/ensemble", plot_pendulum_ensemble),
 ]
 
@@ -1353,8 +1458,9 @@ def open_archive(path):
     return h
 
 
-def plot_archive(path, outdir=".", stem=None, notes=None):
-    """Draw every picture this script knows for the archive; returns the list of PNG paths."""
+def plot_archive(path, outdir=".", stem=None, notes=None, compare=None):
+    """Draw every picture this script knows for the archive; returns the list of PNG paths.  compare: a
+    second rotor ensemble archive whose residual unbalance is drawn beside this one's."""
     if stem is None:
         stem = os.path.splitext(os.path.basename(path))[0]
     os.makedirs(outdir, exist_ok=True)
@@ -1363,7 +1469,14 @@ def plot_archive(path, outdir=".", stem=None, notes=None):
         for group, fn in PLOTTERS:
             if group in h:
                 try:
-                    fn(h, outdir, stem, written)
+                    if fn is plot_rotor_unbalance and compare is not None:
+                        with open_archive(compare) as hc:
+                            if "rotor/ensemble/residual_unbalance_abs_final" not in hc:
+                                raise ArchiveError("--compare '%s': no /rotor/ensemble/residual_unbalance_abs_final "
+                                                   "(run it with ensemble.write_unbalance = true)" % compare)
+                            fn(h, outdir, stem, written, compare=hc)
+                    else:
+                        fn(h, outdir, stem, written)
                 except NotImplementedError as e:
                     if notes is not None:
                         notes.append(str(e))
@@ -1376,6 +1489,8 @@ def main(argv=None):
     ap.add_argument("-o", "--outdir", default=".", help="directory for the PNG files (created; default: .)")
     ap.add_argument("--stem", default=None, help="file name prefix (default: archive name without .h5)")
     ap.add_argument("-q", "--quiet", action="store_true", help="do not list the files written")
+    ap.add_argument("--compare", default=None, metavar="B.h5",
+                    help="a second rotor ensemble (write_unbalance = true) drawn beside the first in <stem>_unbalance.png")
     args = ap.parse_args(argv)
     notes = []
     if args.outdir == "":
@@ -1386,7 +1501,7 @@ def main(argv=None):
                          "directory)\n" % args.outdir)
         return 4
     try:
-        written = plot_archive(args.archive, args.outdir, args.stem, notes)
+        written = plot_archive(args.archive, args.outdir, args.stem, notes, args.compare)
     except ArchiveError as e:
         sys.stderr.write("autobal_plot.py: error: %s\n" % e)
         return 4

@@ -203,6 +203,18 @@ typedef struct autobal_ensemble_member {
   size_t n_quantities;
   const autobal_ensemble_quantity *quantity;
   void (*finish_quantities)(void *worker, double t, const double y[], double *q);
+  /* Optional (added in 0.3.0; a zeroed tail: none): the member's own events.  prepare(worker,
+   * tr, y0, err) is called for each member after `setup`, once the engine has cleared the
+   * driver's events, removed its event reset and added its dwell event, right before the run:
+   * it may add events and an event reset to tr (the worker's driver: one per thread, so the
+   * reset's user data must belong to the worker, never to the shared model) and change y0 (dim
+   * doubles, the state at t = 0).  A failure is recorded as the member's status.
+   * complete(worker, t_reached, run_status, err), after the run and before `finish`, returns
+   * the member's status: run_status, or a negative status for a failure of the member's own
+   * machinery (e.g. an event reset that stopped the run).  The rotor member uses them for the
+   * stick-slip switching of the exact friction law. */
+  int (*prepare)(void *worker, autobal_transient *tr, double y0[], autobal_error *err);
+  int (*complete)(void *worker, double t_reached, int run_status, autobal_error *err);
 } autobal_ensemble_member;
 
 /* Release a member made by autobal_ensemble_*_member (calls destroy; the
@@ -246,6 +258,19 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  *     planes (the worst plane counts) and Omega the member's speed at the end
  *     (|omega| of the constant drive, |Omega(t_reached)| of a ramp or table, the
  *     largest |Omega| where that is 0).
+ * Friction (added in 0.3.0; p->friction, its ball_f/ball_mu arrays copied):
+ * every member runs the friction law of p; with the EXACT law each member
+ * gets the stick-slip events and event reset of `rotor transient` on its
+ * worker's driver (prepare/complete), so a member equals the single
+ * autobal_study_rotor_transient run of its parameters, and three more
+ * quantities (n_quantities = 5): 2 balls_stuck_final (balls stuck at the end),
+ * 3 time_stuck_max (s, the longest total time one ball was stuck), 4
+ * friction_switches (sticks + slips + reversals).  A ball leaving its track
+ * during a switch fails the member (status AUTOBAL_ENUMERIC).  Parameters
+ * ball_f and ball_mu (1, every ball; need a friction law) vary the
+ * coefficients; f > mu fails the member (autobal_rotor_alloc).  The ensemble
+ * group records the law (attribute friction; friction_u_eps for the
+ * regularized law) and /rotor/plane<j> ball_f, ball_mu, as /rotor/transient.
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from
  * autobal_rotor_alloc; bad frame; a drive mode other than constant, ramp or
  * table) or AUTOBAL_ENOMEM; on failure *out is zeroed.

@@ -291,9 +291,16 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
     w->ser = NULL;
     return 1;
   }
+  autobal_transient_set_event_reset(w->tr, NULL, NULL); /* a previous member's */
+  if (e->mb.prepare && (st = e->mb.prepare(w->mw, w->tr, w->y, &w->err)) != AUTOBAL_SUCCESS) {
+    rec[AUTOBAL_ENSEMBLE_STATUS] = st < 0 ? st : AUTOBAL_EINVAL;
+    w->ser = NULL;
+    return 1;
+  }
   st = autobal_transient_run(w->tr, &su.sys, 0.0, s->t_end, w->y, &t_reached);
   w->ser = NULL;
   if (st == AUTOBAL_ECANCELLED) return 0;
+  if (e->mb.complete) st = e->mb.complete(w->mw, t_reached, st, &w->err);
   autobal_transient_get_stats(w->tr, &stats);
   rec[AUTOBAL_ENSEMBLE_STATUS] = st;
   rec[AUTOBAL_ENSEMBLE_T_REACHED] = t_reached;

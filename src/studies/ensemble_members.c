@@ -12,6 +12,7 @@
 #include "autobal/ensemble.h"
 #include "autobal/study.h"
 #include "internal.h"
+#include "studies/rotor_friction.h"
 
 #define TWO_PI 6.283185307179586476925286766559
 #define PEND_NCOLS 15
@@ -38,7 +39,7 @@ static uint64_t hash_doubles(uint64_t h, const double *v, size_t n) {
 }
 
 /* ================================ rotor ================================================ */
-enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B, R_PSI0 };
+enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B, R_PSI0, R_BALL_F, R_BALL_MU };
 
 typedef struct rotor_model {
   autobal_rotor_params p; /* ball arrays point into storage, a table drive's points into table */
@@ -54,9 +55,13 @@ typedef struct rotor_worker {
   size_t np;
   int kind[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   size_t index[AUTOBAL_ENSEMBLE_MAX_PARAMS];
-  double *bpsi, *brate, *bdamp, *out;
+  double *bpsi, *brate, *bdamp, *bf, *bmu, *out;
   autobal_rotor *rot; /* the current member's handle */
   double omega;
+  /* the exact friction law: the member's stick-slip switching (events and reset on the worker's
+   * driver, user data here) and what it found at the end */
+  study_friction *fric;
+  double balls_stuck_final, time_stuck_max, switches;
 } rotor_worker;
 
 static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t *index, autobal_ensemble_param_info *info,
@@ -97,12 +102,16 @@ static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t
   else if (!strcmp(name, "ramp_time"))
     *kind = R_RAMP_TIME, info->units = "s", info->positive = 1, info->long_name = "duration t_b - t_a of the speed ramp";
   else if (!strcmp(name, "omega_b")) *kind = R_OMEGA_B, info->units = "rad/s", info->long_name = "final speed omega_b of the ramp";
+  else if (!strcmp(name, "ball_f"))
+    *kind = R_BALL_F, info->units = "1", info->long_name = "rolling-resistance coefficient f of every ball (friction)";
+  else if (!strcmp(name, "ball_mu"))
+    *kind = R_BALL_MU, info->units = "1", info->long_name = "static friction coefficient mu of every ball (friction)";
   else goto unknown;
   return AUTOBAL_SUCCESS;
 unknown:
   return autobal_error_set(err, AUTOBAL_EINVAL,
                            "'%s' is not a rotor ensemble parameter: psi_K, rate_K (ball K = 1..%zu), omega, ball_damping, m0, psi0, x, y; "
-                           "with a ramp drive also ramp_rate, ramp_time, omega_b",
+                           "with a ramp drive also ramp_rate, ramp_time, omega_b; with a friction law also ball_f, ball_mu",
                            name, M->n_balls);
 }
 
@@ -127,6 +136,11 @@ static int rotor_check(const void *model, const char *const *names, size_t n, au
                                "omega is the constant speed, which a %s drive does not use: with a ramp vary omega_b, ramp_rate "
                                "or ramp_time",
                                mname);
+    if ((kind == R_BALL_F || kind == R_BALL_MU) && M->p.friction.law == AUTOBAL_ROTOR_FRICTION_NONE)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "%s varies the friction of the balls, but there is no friction law: it needs friction law = exact or "
+                               "regularized",
+                               names[j]);
     has_rate |= kind == R_RAMP_RATE, has_time |= kind == R_RAMP_TIME, has_wb |= kind == R_OMEGA_B;
   }
   if (has_rate && has_time)
@@ -147,8 +161,9 @@ static int rotor_describe(const void *model, const char *name, autobal_ensemble_
 static void rotor_worker_free(void *wp) {
   rotor_worker *w = wp;
   if (!w) return;
+  study_friction_free(w->fric);
   autobal_rotor_free(w->rot);
-  free(w->bpsi), free(w->brate), free(w->bdamp), free(w->out);
+  free(w->bpsi), free(w->brate), free(w->bdamp), free(w->bf), free(w->bmu), free(w->out);
   free(w);
 }
 
@@ -172,8 +187,10 @@ static void *rotor_worker_alloc(const void *model, const char *const *names, siz
   w->bpsi = calloc(nb, sizeof *w->bpsi);
   w->brate = calloc(nb, sizeof *w->brate);
   w->bdamp = calloc(nb, sizeof *w->bdamp);
+  w->bf = calloc(nb, sizeof *w->bf);
+  w->bmu = calloc(nb, sizeof *w->bmu);
   w->out = calloc(M->nout ? M->nout : 1, sizeof *w->out);
-  if (!w->bpsi || !w->brate || !w->bdamp || !w->out) goto nomem;
+  if (!w->bpsi || !w->brate || !w->bdamp || !w->bf || !w->bmu || !w->out) goto nomem;
   return w;
 nomem:
   rotor_worker_free(w);
@@ -200,10 +217,18 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
       w->bpsi[off + i] = b->ball_psi ? b->ball_psi[i] : 0.0;
       w->brate[off + i] = b->ball_rate ? b->ball_rate[i] : 0.0;
       w->bdamp[off + i] = b->ball_damping[i];
+      if (p.friction.law != AUTOBAL_ROTOR_FRICTION_NONE) {
+        w->bf[off + i] = M->p.friction.ball_f[pl][i];
+        w->bmu[off + i] = M->p.friction.ball_mu[pl][i];
+      }
     }
     p.plane[pl].ball_psi = w->bpsi + off;
     p.plane[pl].ball_rate = w->brate + off;
     p.plane[pl].ball_damping = w->bdamp + off;
+    if (p.friction.law != AUTOBAL_ROTOR_FRICTION_NONE && b->n_balls) {
+      p.friction.ball_f[pl] = w->bf + off;
+      p.friction.ball_mu[pl] = w->bmu + off;
+    }
     off += b->n_balls;
   }
   for (j = 0; j < w->np; j++) {
@@ -219,6 +244,12 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
       case R_DAMPING:
         for (i = 0; i < M->n_balls; i++) w->bdamp[i] = v;
         break;
+      case R_BALL_F:
+        for (i = 0; i < M->n_balls; i++) w->bf[i] = v;
+        break;
+      case R_BALL_MU:
+        for (i = 0; i < M->n_balls; i++) w->bmu[i] = v;
+        break;
       case R_M0: p.plane[0].m0 = v; break;
       case R_PSI0: p.plane[0].psi0 = v; break;
       case R_X: p.q0[0] = v; break;
@@ -228,6 +259,9 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
   }
   /* a ramp of the given rate: from the member's omega_b (its parameter or the drive's) */
   if (!isnan(rate)) p.drive.t_b = p.drive.t_a + fabs(p.drive.omega_b - p.drive.omega_a) / rate;
+  study_friction_free(w->fric); /* it points to the previous member's handle */
+  w->fric = NULL;
+  w->balls_stuck_final = w->time_stuck_max = w->switches = NAN;
   autobal_rotor_free(w->rot);
   w->rot = autobal_rotor_alloc(&p, err);
   if (!w->rot) return err && err->status < 0 ? err->status : AUTOBAL_EINVAL;
@@ -247,6 +281,40 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
   su->monitor_user = w;
   su->residual_initial = autobal_rotor_balance_monitor(w->rot, M->frame, 0.0, y0);
   return AUTOBAL_SUCCESS;
+}
+
+/* The exact friction law: the stick-slip events and the reset of `rotor transient`
+ * (src/studies/rotor_friction.c) on this worker's driver, settled at t = 0 as there. */
+static int rotor_prepare(void *wp, autobal_transient *tr, double y0[], autobal_error *err) {
+  rotor_worker *w = wp;
+  return study_friction_begin(w->rot, w->M->frame, tr, 0.0, y0, &w->fric, err);
+}
+
+/* After the run: the friction results (final stuck flags, time stuck, switches); a ball that left
+ * its track during the switching (the reset stopped the run) fails the member. */
+static int rotor_complete(void *wp, double t_reached, int run_status, autobal_error *err) {
+  rotor_worker *w = wp;
+  autobal_study_rotor_transient_summary *s;
+  size_t j, i;
+  int st;
+  if (!w->fric) return run_status;
+  s = calloc(1, sizeof *s);
+  if (!s) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble friction)");
+  s->n_planes = w->M->p.n_planes;
+  st = study_friction_finish(w->fric, t_reached, s, err);
+  if (s->have_friction) {
+    w->balls_stuck_final = 0.0, w->time_stuck_max = 0.0;
+    for (j = 0; j < s->n_planes; j++)
+      for (i = 0; i < w->M->p.plane[j].n_balls && s->ball_stuck_final[j] && s->ball_time_stuck[j]; i++) {
+        w->balls_stuck_final += s->ball_stuck_final[j][i] ? 1.0 : 0.0;
+        w->time_stuck_max = fmax(w->time_stuck_max, s->ball_time_stuck[j][i]);
+      }
+    w->switches = (double)(s->friction_sticks + s->friction_slips + s->friction_reversals);
+  }
+  study_friction_summary_free(s);
+  free(s);
+  if (st != AUTOBAL_SUCCESS) return st;
+  return run_status;
 }
 
 static int rotor_observe(void *wp, double t, const double y[], double *amplitude, double *row) {
@@ -280,12 +348,16 @@ static void rotor_finish(void *wp, double t, const double y[], double *residual,
 /* The residual unbalance in engineering units, as `rotor transient` reports it
  * (src/studies/rotor_transient.c, engineering_compute): the worst plane's |s_j| and the ISO
  * 21940-11 grade of n_planes times it with the rotor mass, at the speed at the end. */
-static const autobal_ensemble_quantity rotor_quantities[2] = {
+static const autobal_ensemble_quantity rotor_quantities[5] = {
     {"residual_unbalance_abs_final", "kg m",
      "residual unbalance |s_j| at the end of the run, the largest over the balancer planes (one plane: |s|)"},
     {"balance_grade_final", "mm/s",
      "ISO 21940-11 balance quality grade at the end: G = e Omega, e = n_planes max_j |s_j| / m with m the rotor mass "
-     "(m_p; M with lumped input) and Omega the speed at the end of the run"}};
+     "(m_p; M with lumped input) and Omega the speed at the end of the run"},
+    /* the exact friction law only */
+    {"balls_stuck_final", "1", "number of balls stuck on their track at the end of the run (exact friction law)"},
+    {"time_stuck_max", "s", "the longest total time one ball spent stuck during the run (exact friction law)"},
+    {"friction_switches", "1", "stick-slip switches during the run: sticks, slips from stuck and reversals at psi' = 0 (exact friction law)"}};
 
 static void rotor_finish_quantities(void *wp, double t, const double y[], double *q) {
   rotor_worker *w = wp;
@@ -308,6 +380,7 @@ static void rotor_finish_quantities(void *wp, double t, const double y[], double
   m = M->p.input == AUTOBAL_ROTOR_HARDWARE ? M->p.hw.m_p : M->p.lumped.M;
   q[0] = worst;
   q[1] = autobal_balance_grade(worst * (double)np, m, omega);
+  if (M->p.friction.law == AUTOBAL_ROTOR_FRICTION_EXACT) q[2] = w->balls_stuck_final, q[3] = w->time_stuck_max, q[4] = w->switches;
 }
 
 static int rotor_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
@@ -341,6 +414,9 @@ static int rotor_write_attrs(const void *model, autobal_archive *a, const char *
     if (!st) st = autobal_archive_attr_double_array(a, group, "drive_table_t", d->n_points, d->table_t, "s");
     if (!st) st = autobal_archive_attr_double_array(a, group, "drive_table_omega", d->n_points, d->table_omega, "rad/s");
   }
+  /* the friction law (the layout of /rotor/transient: the law on the group, ball_f and ball_mu on
+   * /rotor/plane<j>; nothing without friction) */
+  if (!st) st = study_friction_write_inputs(a, M->rot, group);
   return st;
 }
 
@@ -376,6 +452,18 @@ static uint64_t rotor_hash(const void *model) {
     if (d->mode == AUTOBAL_ROTOR_DRIVE_TABLE) {
       h = hash_doubles(h, d->table_t, d->n_points);
       h = hash_doubles(h, d->table_omega, d->n_points);
+    }
+  }
+  if (p->gravity) { /* absent when off: the hashes before gravity */
+    v[0] = 1.0, v[1] = p->shaft_angle, v[2] = p->g;
+    h = hash_doubles(h, v, 3);
+  }
+  if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) { /* absent when off: the hashes before friction */
+    v[0] = (double)p->friction.law, v[1] = p->friction.u_eps;
+    h = hash_doubles(h, v, 2);
+    for (pl = 0; pl < p->n_planes; pl++) {
+      h = hash_doubles(h, p->friction.ball_f[pl], p->plane[pl].n_balls);
+      h = hash_doubles(h, p->friction.ball_mu[pl], p->plane[pl].n_balls);
     }
   }
   return h;
@@ -418,8 +506,12 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
       return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: plane[%zu] has balls but no mass, radius or damping array", pl);
     nb += b->n_balls;
   }
+  if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE)
+    for (pl = 0; pl < p->n_planes; pl++)
+      if (p->plane[pl].n_balls && (!p->friction.ball_f[pl] || !p->friction.ball_mu[pl]))
+        return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: plane[%zu] has a friction law but no ball_f or ball_mu array", pl);
   M = calloc(1, sizeof *M);
-  if (!M || !(M->storage = calloc(5 * (nb ? nb : 1), sizeof *M->storage))) {
+  if (!M || !(M->storage = calloc(7 * (nb ? nb : 1), sizeof *M->storage))) {
     free(M);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble member)");
   }
@@ -428,13 +520,18 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
     const autobal_rotor_plane *b = &p->plane[pl];
     autobal_rotor_plane *c = &M->p.plane[pl];
     size_t i, n = b->n_balls;
-    double *s = M->storage + 5 * off;
+    double *s = M->storage + 7 * off;
     for (i = 0; i < n; i++) {
       s[i] = b->ball_mass[i];
       s[n + i] = b->ball_radius[i];
       s[2 * n + i] = b->ball_damping[i];
       s[3 * n + i] = b->ball_psi ? b->ball_psi[i] : 0.0;
       s[4 * n + i] = b->ball_rate ? b->ball_rate[i] : 0.0;
+      if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) s[5 * n + i] = p->friction.ball_f[pl][i], s[6 * n + i] = p->friction.ball_mu[pl][i];
+    }
+    if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) {
+      M->p.friction.ball_f[pl] = n ? s + 5 * n : NULL;
+      M->p.friction.ball_mu[pl] = n ? s + 6 * n : NULL;
     }
     c->ball_mass = n ? s : NULL;
     c->ball_radius = n ? s + n : NULL;
@@ -489,9 +586,11 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   out->write_attrs = rotor_write_attrs;
   out->hash = rotor_hash;
   out->destroy = rotor_destroy;
-  out->n_quantities = 2;
+  out->n_quantities = M->p.friction.law == AUTOBAL_ROTOR_FRICTION_EXACT ? 5 : 2;
   out->quantity = rotor_quantities;
   out->finish_quantities = rotor_finish_quantities;
+  out->prepare = rotor_prepare;
+  out->complete = rotor_complete;
   return AUTOBAL_SUCCESS;
 }
 
