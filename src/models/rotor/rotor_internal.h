@@ -1,8 +1,8 @@
 /* rotor_internal.h: private to the library and its tests (not installed).
  *
- * The gravity inputs of the friction terms (docs/device.md sections 2-3).  Gravity is not part of
- * the rotor model yet (issue 16 item 1); the friction right-hand sides (autobal_rotor_friction)
- * are nevertheless written for an in-plane gravity field (-gu, -gv) (m/s^2, fixed axes; the
+ * The gravity inputs of the friction terms (docs/device.md sections 2-3).  With
+ * autobal_rotor_params.gravity on, alloc sets gu = 0, gv = g sin(shaft_angle); the friction
+ * right-hand sides (autobal_rotor_friction) are written for any in-plane gravity field (-gu, -gv) (m/s^2, fixed axes; the
  * shaft at theta to the vertical gives gu = 0, gv = g sin theta), which enters as an
  * acceleration (gu, gv) of D in every ball equation, the normal and the holding forces, the
  * weights W = M + sum m and sum d_j m_j in the rotor rows and the unbalance's and stuck balls'
