@@ -1066,7 +1066,9 @@ int cli_cmd_rotor_transient(cli_ctx *ctx) {
   else if (st < 0)
     rc = cli_fail(ctx, cli_exit_code(st), "%s", study_message(err.message, msg, sizeof msg));
   if (a) rc = cli_archive_end(ctx, &a, AUTOBAL_SUCCESS, rc);
-  if ((rc == CLI_EXIT_OK || rc == CLI_EXIT_NUMERIC || rc == CLI_EXIT_INTERRUPTED) && sum.n_planes > 0) {
+  /* the summary only of a run that started (not after a failure of its set-up) */
+  if ((rc == CLI_EXIT_OK || rc == CLI_EXIT_NUMERIC || rc == CLI_EXIT_INTERRUPTED) && sum.n_planes > 0 &&
+      (st >= 0 || st == AUTOBAL_ECANCELLED || st == sum.solver.status)) {
     if (ctx->json) print_json(ctx, c, &sum, warn);
     else if (!ctx->quiet) print_text(ctx, c, &sum);
   }

@@ -155,6 +155,37 @@ static int setup(const autobal_rotor_params *p, const autobal_study_rotor_transi
     autobal_rotor_free(rot);
     return st;
   }
+  if (autobal_rotor_friction_on(rot)) {
+    /* with friction a ball needs a positive normal force from the start (it cannot leave its
+     * track): refuse such an initial state here, before an archive is created (a check, exit 3),
+     * rather than as a failure of the run */
+    const size_t nb = autobal_rotor_n_balls_total(rot);
+    double *N = calloc(nb ? nb : 1, sizeof *N);
+    size_t k, j, i;
+    int bad = -1;
+    st = N ? autobal_rotor_normal_forces(rot, o->frame, 0.0, y, N, nb) : AUTOBAL_ENOMEM;
+    for (k = 0; st == AUTOBAL_SUCCESS && k < nb && bad < 0; k++)
+      if (!(N[k] > 0)) bad = (int)k;
+    if (st != AUTOBAL_SUCCESS || bad >= 0) {
+      if (st == AUTOBAL_ENOMEM) autobal_error_set(err, st, "out of memory");
+      else if (st != AUTOBAL_SUCCESS) autobal_error_set(err, st, "%s", autobal_rotor_errmsg(rot));
+      else {
+        for (j = 0, i = (size_t)bad; j < autobal_rotor_n_planes(rot) && i >= autobal_rotor_n_balls(rot, j); j++)
+          i -= autobal_rotor_n_balls(rot, j);
+        st = autobal_error_set(err, AUTOBAL_EINVAL,
+                               "initial state: ball %zu of plane %zu (p%zu_b%zu) would leave its track at t = 0: "
+                               "normal force N = %.6g N (must be > 0 with friction: the speed, or the balls' "
+                               "positions against gravity, cannot hold it on the track)",
+                               i + 1, j + 1, j + 1, i + 1, N[bad]);
+      }
+      free(N);
+      free(y);
+      autobal_transient_free(tr);
+      autobal_rotor_free(rot);
+      return st;
+    }
+    free(N);
+  }
   *rot_out = rot, *tr_out = tr, *y_out = y;
   if (w.status == AUTOBAL_WARNING) return autobal_error_set(err, AUTOBAL_WARNING, "%s", w.message);
   autobal_error_clear(err);
