@@ -89,6 +89,7 @@ static void rotor_sweep(void) {
         same_doubles(part.margin, full.margin, part.n_done) && same_doubles(part.values, full.values, part.n_done));
   CHECK("rotor sweep: no critical values after the cancellation", part.critical.n == 0 && part.critical.n_stable == 0);
   /* cancelled in the critical search (the second half): all points, no critical values */
+  autobal_study_rotor_sweep_summary_free(&part); /* the summary is reused below */
   s.calls = 0, s.last = 0.0, s.stop_at = (int)((o.n + 63) / 64) + 1;
   CHECK_STATUS("rotor sweep: cancelled in the critical search", autobal_study_rotor_sweep(&p, &o, NULL, &part, &err),
                AUTOBAL_ECANCELLED);
@@ -215,6 +216,7 @@ static void pendulum(void) {
   CHECK("pendulum critical: curve points done bitwise as the complete run",
         same_doubles(cp.R_w_k0, cf.R_w_k0, 3 * nd) && same_doubles(cp.R_w_k1, cf.R_w_k1, 3 * nd));
   /* cancelled at the first poll of the curves: no curve point, the archive still says partial */
+  autobal_study_pendulum_critical_summary_free(&cp); /* the summary is reused below */
   s.calls = 0, s.last = 0.0, s.stop_at = (int)co.n_sweep;
   CHECK_STATUS("pendulum critical: cancelled at the first point of the curves",
                autobal_study_pendulum_critical(&pp, NULL, &co, NULL, &cp, &err), AUTOBAL_ECANCELLED);
@@ -244,6 +246,7 @@ static void pendulum(void) {
       autobal_archive_close(a, NULL);
     }
   }
+  autobal_study_pendulum_critical_summary_free(&cp); /* reused below */
   s.calls = 0, s.last = 0.0, s.stop_at = 10;
   CHECK_STATUS("pendulum critical: cancelled in the damped search",
                autobal_study_pendulum_critical(&pp, NULL, &co, NULL, &cp, &err), AUTOBAL_ECANCELLED);
