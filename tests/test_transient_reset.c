@@ -299,10 +299,75 @@ static void test_chatter(void) {
   autobal_transient_free(tr);
 }
 
+/* ---- AUTOBAL_TRANSIENT_RHS_REJECT: a trial state outside the domain shortens the step ------ */
+typedef struct {
+  int code;       /* what to return outside the domain */
+  double t_limit; /* the domain also ends at t > t_limit */
+  unsigned long rejects;
+} dom_ctx;
+static int dom_rhs(double t, const double y[], double f[], void *p) {
+  dom_ctx *d = (dom_ctx *)p;
+  if (fabs(y[0]) > 1.0 + 1e-9 || t > d->t_limit) {
+    d->rejects++;
+    return d->code;
+  }
+  f[0] = y[1];
+  f[1] = -y[0];
+  return 0;
+}
+
+static void test_reject(void) {
+  autobal_transient_options o = autobal_transient_options_default();
+  autobal_transient *tr;
+  dom_ctx d = {AUTOBAL_TRANSIENT_RHS_REJECT, 1e300, 0};
+  autobal_transient_system sys = {dom_rhs, NULL, 2, &d};
+  /* x = cos(t - 0.3): it rises to 1 at t = 0.3, so a long trial step's stages overshoot */
+  const double x0 = cos(0.3), v0 = sin(0.3);
+  double y[2] = {x0, v0}, te = 0.0;
+  int rc;
+  o.h_init = 2.0; /* a first step long enough for the stages to leave |x| <= 1 */
+  tr = autobal_transient_alloc(2, &o, NULL);
+  rc = autobal_transient_run(tr, &sys, 0.0, 10.0, y, &te);
+  printf("domain |x| <= 1: %lu rejected trial states\n", d.rejects);
+  CHECK_STATUS("rejected trial states: the run shortens its steps and succeeds", rc, AUTOBAL_SUCCESS);
+  CHECK("... and some trial state was rejected", d.rejects > 0);
+  CHECK_CLOSE("x(10) = cos(10 - 0.3)", y[0], cos(9.7), 0.0, 1e-8);
+  /* the same with an ordinary failure code: fatal, as before */
+  d.code = 1, d.rejects = 0;
+  y[0] = x0, y[1] = v0;
+  rc = autobal_transient_run(tr, &sys, 0.0, 10.0, y, &te);
+  CHECK_STATUS("an ordinary failure code at a trial state stops the run", rc, AUTOBAL_ERHS);
+  /* a domain that ends in time: no step can pass it */
+  d.code = AUTOBAL_TRANSIENT_RHS_REJECT, d.t_limit = 0.5, d.rejects = 0;
+  y[0] = 1.0, y[1] = 0.0;
+  rc = autobal_transient_run(tr, &sys, 0.0, 10.0, y, &te);
+  CHECK_STATUS("a domain ending at t = 0.5: ERHS", rc, AUTOBAL_ERHS);
+  CHECK_MSG("... saying the right-hand side rejected the state", autobal_transient_errmsg(tr), "rejected");
+  CHECK("... stopped at t <= 0.5", te <= 0.5 && te > 0.49);
+  /* a rejected initial state */
+  d.t_limit = -1.0;
+  y[0] = 1.0, y[1] = 0.0;
+  rc = autobal_transient_run(tr, &sys, 0.0, 10.0, y, &te);
+  CHECK_STATUS("a rejected initial state: ERHS", rc, AUTOBAL_ERHS);
+  autobal_transient_free(tr);
+  /* the automatic first step probes a state outside the domain: it is shortened */
+  o.h_init = 0.0;
+  o.rtol = 1e-3, o.atol = 1e-3;
+  tr = autobal_transient_alloc(2, &o, NULL);
+  d.t_limit = 1e300, d.rejects = 0;
+  y[0] = x0, y[1] = v0;
+  rc = autobal_transient_run(tr, &sys, 0.0, 3.0, y, &te);
+  printf("loose tolerances: %lu rejected trial states\n", d.rejects);
+  CHECK_STATUS("loose tolerances, automatic first step: succeeds", rc, AUTOBAL_SUCCESS);
+  CHECK_CLOSE("x(3) = cos(2.7) to the tolerance", y[0], cos(2.7), 0.0, 1e-2);
+  autobal_transient_free(tr);
+}
+
 int main(void) {
   test_bouncing_ball(0.8);
   test_bouncing_ball(1.0);
   test_stick_slip();
   test_chatter();
+  test_reject();
   return check_summary();
 }

@@ -81,8 +81,14 @@ AUTOBAL_BEGIN_DECLS
 /* ---- the system ----------------------------------------------------------- */
 
 /* Right-hand side dydt = f(t, y): returns 0, or non-zero to report a failure
- * (the run then stops with AUTOBAL_ERHS).  Same signature as GSL's
- * gsl_odeiv2_system.function. */
+ * (the run then stops with AUTOBAL_ERHS), or AUTOBAL_TRANSIENT_RHS_REJECT: the
+ * state is outside the system's domain (e.g. a ball would leave its track),
+ * which at a trial stage of a step means the step was too long: the step is
+ * retried with half the size (GSL's rule for failures other than
+ * GSL_EBADFUNC); at a state the integration has reached, or when no step
+ * down to the smallest avoids it, the run stops with AUTOBAL_ERHS.  Same
+ * signature as GSL's gsl_odeiv2_system.function. */
+#define AUTOBAL_TRANSIENT_RHS_REJECT (-1000)
 typedef int (*autobal_transient_rhs_fn)(double t, const double y[], double dydt[], void *params);
 
 /* Jacobian: dfdy[i*dim + j] = d f_i / d y_j (row-major), dfdt[i] = d f_i / d t.

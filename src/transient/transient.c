@@ -179,6 +179,8 @@ struct autobal_transient {
   double fail_t;
   size_t fail_index;
   int in_aux;
+  double reject_t;              /* time of the last AUTOBAL_TRANSIENT_RHS_REJECT */
+  unsigned long n_reject_calls; /* such returns in this run */
   autobal_transient_stats stats;
   autobal_error err;
 };
@@ -194,6 +196,14 @@ static int rhs_adapter(double t, const double y[], double dydt[], void *params) 
   int rc;
   tr->stats.rhs_evals++;
   rc = tr->sys.rhs(t, y, dydt, tr->sys.params);
+  if (rc == AUTOBAL_TRANSIENT_RHS_REJECT) {
+    /* the state is outside the system's domain: a trial stage of too long a step (the step is
+     * retried shorter, as GSL does for a failure other than GSL_EBADFUNC); remembered so that
+     * a rejection at an accepted state, or one that no shorter step avoids, is reported */
+    tr->reject_t = t;
+    tr->n_reject_calls++;
+    return GSL_FAILURE;
+  }
   if (rc != 0) {
     if (tr->fail_kind == 0) {
       tr->fail_kind = 1;
@@ -600,7 +610,13 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
   unsigned long rej = 0;
   memcpy(c->y0, y, n * sizeof(double));
   if (use_in && !c->have_dydt) {
-    if (rhs_checked(tr, t0, y, c->dydt_in) != GSL_SUCCESS) return rhs_failure(tr);
+    int rc0 = rhs_checked(tr, t0, y, c->dydt_in);
+    if (rc0 == GSL_FAILURE && tr->fail_kind == 0) /* a rejected accepted state: no shorter step helps */
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                               "the right-hand side rejected the state at t = %.17g (outside its "
+                               "domain), the state the integration has reached",
+                               t0);
+    if (rc0 != GSL_SUCCESS) return rhs_failure(tr);
     c->have_dydt = 1;
   }
   for (;;) {
@@ -636,6 +652,11 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
         continue;
       }
       *rejected += rej;
+      if (tr->n_reject_calls > 0 && tr->reject_t >= t0)
+        return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                                 "the right-hand side rejected the state (outside its domain) at t = "
+                                 "%.17g in every step from t = %.17g, down to the step %.6g",
+                                 tr->reject_t, t0, h_old);
       return autobal_error_set(&tr->err, AUTOBAL_ESTEP,
                                "GSL stepper failed (%s) at t = %.17g with step %.6g, which can "
                                "not be reduced further",
@@ -787,7 +808,14 @@ static int initial_step(autobal_transient *tr, double t0, const double *y0, doub
   *h_out = 0.0;
   unsigned int p;
   size_t i;
-  if (rhs_checked(tr, t0, y0, f0) != GSL_SUCCESS) return rhs_failure(tr);
+  int rc, tries = 0;
+  rc = rhs_checked(tr, t0, y0, f0);
+  if (rc == GSL_FAILURE && tr->fail_kind == 0)
+    return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                             "the right-hand side rejected the initial state at t = %.17g (outside its "
+                             "domain)",
+                             t0);
+  if (rc != GSL_SUCCESS) return rhs_failure(tr);
   tr->main.have_dydt = 1;
   for (i = 0; i < n; i++) {
     const double sc = atol + rtol * fabs(y0[i]);
@@ -796,8 +824,22 @@ static int initial_step(autobal_transient *tr, double t0, const double *y0, doub
   }
   h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
   h0 = fmin(h0, span);
-  for (i = 0; i < n; i++) y1[i] = y0[i] + h0 * f0[i];
-  if (rhs_checked(tr, t0 + h0, y1, f1) != GSL_SUCCESS) return rhs_failure(tr);
+  /* the Euler probe may leave the system's domain (AUTOBAL_TRANSIENT_RHS_REJECT): shorten it */
+  for (;;) {
+    for (i = 0; i < n; i++) y1[i] = y0[i] + h0 * f0[i];
+    rc = rhs_checked(tr, t0 + h0, y1, f1);
+    if (rc == GSL_FAILURE && tr->fail_kind == 0 && ++tries <= 40 && t0 + 0.1 * h0 != t0) {
+      h0 *= 0.1;
+      continue;
+    }
+    break;
+  }
+  if (rc == GSL_FAILURE && tr->fail_kind == 0)
+    return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                             "the right-hand side rejected every probe of the first step from t = %.17g "
+                             "(outside its domain), down to %.6g",
+                             t0, h0);
+  if (rc != GSL_SUCCESS) return rhs_failure(tr);
   for (i = 0; i < n; i++) {
     const double sc = atol + rtol * fabs(y0[i]);
     d2 = fmax(d2, fabs(f1[i] - f0[i]) / sc);
@@ -1021,6 +1063,8 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
   tr->stats.t_end = t0;
   tr->stats.h_min_used = INFINITY;
   tr->fail_kind = 0;
+  tr->n_reject_calls = 0;
+  tr->reject_t = -INFINITY;
   if (t_reached) *t_reached = t0;
   if (sys == NULL || sys->rhs == NULL) {
     autobal_error_set(&tr->err, AUTOBAL_EINVAL, "system or its right-hand side is NULL");
