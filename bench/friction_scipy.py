@@ -154,8 +154,11 @@ def make_model(drive, f=F, mu=MU):
 
         return rhs
 
-    def settle(t, y, modes, initial):
-        """Apply the switching rules in place; returns (sticks, slips, reversals)."""
+    def settle(t, y, modes, initial, fired=-1):
+        """Apply the switching rules in place; returns (sticks, slips, reversals).  fired: the
+        ball whose event was located (solve_ivp's root may lie a rounding error before the
+        crossing; the library's lies on the far side): it switches even if its switching
+        function is still a rounding error short of 0, as on the far side."""
         W = drive(t)[0]
         reached, saved = [False, False], [0.0, 0.0]
         n_stick = n_slip = n_rev = 0
@@ -167,7 +170,7 @@ def make_model(drive, f=F, mu=MU):
                 if modes[i] == 0:
                     reached[i] = True
                     was_stuck[i] = False
-            elif modes[i] != 0 and modes[i] * rel <= 0.0:
+            elif modes[i] != 0 and (modes[i] * rel <= 0.0 or i == fired):
                 modes[i] = 0
                 reached[i] = True
                 saved[i] = y[10 + i]
@@ -180,6 +183,8 @@ def make_model(drive, f=F, mu=MU):
                     if N[i] <= 0.0:
                         raise RuntimeError(f"ball {i} would leave its track at t = {t}")
                     ex = (abs(H[i]) - mu * N[i]) / N[i]
+                    if i == fired and was_stuck[i]:
+                        ex = max(ex, 1e-300)  # located crossing: on its far side
                     if ex > best:
                         best, bi = ex, i
             if bi < 0:
@@ -240,7 +245,7 @@ def hybrid_run(drive, model, y0, t1, rtol, atol, keep=False):
         k = int(np.argmin([ts[0] if len(ts) else math.inf for ts in sol.t_events]))
         t = min(te)
         y = sol.y_events[k][0].tolist()
-        a, b, c = settle(t, y, modes, False)
+        a, b, c = settle(t, y, modes, False, k)
         sw[0] += a
         sw[1] += b
         sw[2] += c
