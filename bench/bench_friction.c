@@ -12,8 +12,9 @@
  * final state only.  LAW: none (frictionless, autobal_rotor_rhs of 0.2.0) or exact (F, MU per
  * ball).
  *
- *   bench_friction run LAW F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED
- *       One member, REPEATS times; JSON: best process CPU time, best wall time, the driver's
+ *   bench_friction run LAW F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL]
+ *       One member, REPEATS times (EVENT_TOL: the driver's event_tol in s, default the
+ *       driver's default 1e-10; the tight references use a smaller one); JSON: best process CPU time, best wall time, the driver's
  *       statistics (steps, rhs evaluations, events, resets), the switches (sticks, slips,
  *       reversals; the initial settling not counted), the final modes and state.
  *   bench_friction ensemble LAW F MU RTOL ATOL T1 MEMBERS THREADS OMEGA_A OMEGA_B T_B
@@ -59,6 +60,7 @@ static double urand(unsigned long long *s) {
 typedef struct problem {
   int law;
   double f, mu, rtol, atol, t1, omega_a, omega_b, t_b;
+  double event_tol; /* 0: the driver's default */
 } problem;
 
 /* The rotor of member `seed` (0: the default angles). */
@@ -147,6 +149,7 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
   o.rtol = pb->rtol;
   o.atol = pb->atol;
   o.stepper = "rk8pd";
+  if (pb->event_tol > 0.0) o.event_tol = pb->event_tol;
   c0 = cpu_seconds();
   w0 = now_seconds();
   m.rot = make_rotor(pb, seed, msg, nmsg);
@@ -218,7 +221,8 @@ static int mode_run(int argc, char **argv) {
   int repeats, r;
   unsigned long long seed;
   size_t i;
-  if (argc != 13 || parse_problem(argv + 2, &pb) != 0) return 2;
+  if ((argc != 13 && argc != 14) || parse_problem(argv + 2, &pb) != 0) return 2;
+  pb.event_tol = argc == 14 ? atof(argv[13]) : 0.0;
   repeats = atoi(argv[8]);
   pb.omega_a = atof(argv[9]);
   pb.omega_b = atof(argv[10]);
@@ -240,11 +244,11 @@ static int mode_run(int argc, char **argv) {
     }
   }
   printf("{\"law\": \"%s\", \"f\": %.6g, \"mu\": %.6g, \"rtol\": %.3g, \"atol\": %.3g, \"t1\": %.17g, "
-         "\"seed\": %llu, \"repeats\": %d, \"cpu_seconds_min\": %.9g, \"seconds_min\": %.9g, "
+         "\"seed\": %llu, \"event_tol\": %.3g, \"repeats\": %d, \"cpu_seconds_min\": %.9g, \"seconds_min\": %.9g, "
          "\"steps\": %lu, \"rejected\": %lu, \"rhs_evals\": %lu, \"events\": %lu, \"event_steps\": %lu, "
          "\"resets\": %lu, \"sticks\": %lu, \"slips\": %lu, \"reversals\": %lu, \"modes\": [%d, %d], "
          "\"y\": [",
-         argv[2], pb.f, pb.mu, pb.rtol, pb.atol, pb.t1, seed, repeats, best.cpu, best.wall,
+         argv[2], pb.f, pb.mu, pb.rtol, pb.atol, pb.t1, seed, pb.event_tol, repeats, best.cpu, best.wall,
          best.st.steps, best.st.rejected, best.st.rhs_evals, best.st.events, best.st.event_steps,
          best.st.resets, best.sticks, best.slips, best.reversals, best.modes[0], best.modes[1]);
   for (i = 0; i < best.dim; i++) printf("%.17g%s", best.y[i], i + 1 < best.dim ? ", " : "]}\n");
@@ -298,6 +302,7 @@ static int mode_ensemble(int argc, char **argv) {
   int nth, i;
   double w0, c0, wall, cpu;
   if (argc != 13 || parse_problem(argv + 2, &pb) != 0) return 2;
+  pb.event_tol = 0.0;
   memset(&p, 0, sizeof p);
   p.members = strtoul(argv[8], NULL, 10);
   nth = atoi(argv[9]);
@@ -337,6 +342,7 @@ static int mode_check(int argc, char **argv) {
   int s, first = 1;
   static const int pat[6][2] = {{1, 1}, {-1, 1}, {1, -1}, {0, 1}, {-1, 0}, {0, 0}};
   if (argc != 7) return 2;
+  memset(&pb, 0, sizeof pb);
   pb.law = AUTOBAL_ROTOR_FRICTION_EXACT;
   pb.f = atof(argv[2]);
   pb.mu = atof(argv[3]);
@@ -392,7 +398,7 @@ int main(int argc, char **argv) {
   else if (argc >= 2 && strcmp(argv[1], "check") == 0) rc = mode_check(argc, argv);
   if (rc == 2)
     fprintf(stderr,
-            "usage: %s run none|exact F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED\n"
+            "usage: %s run none|exact F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL]\n"
             "       %s ensemble none|exact F MU RTOL ATOL T1 MEMBERS THREADS OMEGA_A OMEGA_B T_B\n"
             "       %s check F MU OMEGA_A OMEGA_B T_B\n",
             argv[0], argv[0], argv[0]);
