@@ -12,9 +12,12 @@
  * final state only.  LAW: none (frictionless, autobal_rotor_rhs of 0.2.0) or exact (F, MU per
  * ball).
  *
- *   bench_friction run LAW F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL]
- *       One member, REPEATS times (EVENT_TOL: the driver's event_tol in s, default the
- *       driver's default 1e-10; the tight references use a smaller one); JSON: best process CPU time, best wall time, the driver's
+ *   bench_friction run LAW F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL [H_INIT]]
+ *       One member, REPEATS times (EVENT_TOL: the driver's event_tol in s, 0 or absent: the
+ *       driver's default 1e-10; the tight references use a smaller one.  H_INIT: the first
+ *       trial step in s, 0 or absent: automatic; with friction and rtol >= 1e-8 the automatic
+ *       first step of this problem reaches a stage state with N < 0 and the run fails, 1e-4 s
+ *       avoids it); JSON: best process CPU time, best wall time, the driver's
  *       statistics (steps, rhs evaluations, events, resets), the switches (sticks, slips,
  *       reversals; the initial settling not counted), the final modes and state.
  *   bench_friction ensemble LAW F MU RTOL ATOL T1 MEMBERS THREADS OMEGA_A OMEGA_B T_B
@@ -61,6 +64,7 @@ typedef struct problem {
   int law;
   double f, mu, rtol, atol, t1, omega_a, omega_b, t_b;
   double event_tol; /* 0: the driver's default */
+  double h_init;    /* 0: automatic */
 } problem;
 
 /* The rotor of member `seed` (0: the default angles). */
@@ -150,6 +154,7 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
   o.atol = pb->atol;
   o.stepper = "rk8pd";
   if (pb->event_tol > 0.0) o.event_tol = pb->event_tol;
+  if (pb->h_init > 0.0) o.h_init = pb->h_init;
   c0 = cpu_seconds();
   w0 = now_seconds();
   m.rot = make_rotor(pb, seed, msg, nmsg);
@@ -221,8 +226,9 @@ static int mode_run(int argc, char **argv) {
   int repeats, r;
   unsigned long long seed;
   size_t i;
-  if ((argc != 13 && argc != 14) || parse_problem(argv + 2, &pb) != 0) return 2;
-  pb.event_tol = argc == 14 ? atof(argv[13]) : 0.0;
+  if (argc < 13 || argc > 15 || parse_problem(argv + 2, &pb) != 0) return 2;
+  pb.event_tol = argc >= 14 ? atof(argv[13]) : 0.0;
+  pb.h_init = argc == 15 ? atof(argv[14]) : 0.0;
   repeats = atoi(argv[8]);
   pb.omega_a = atof(argv[9]);
   pb.omega_b = atof(argv[10]);
@@ -244,11 +250,11 @@ static int mode_run(int argc, char **argv) {
     }
   }
   printf("{\"law\": \"%s\", \"f\": %.6g, \"mu\": %.6g, \"rtol\": %.3g, \"atol\": %.3g, \"t1\": %.17g, "
-         "\"seed\": %llu, \"event_tol\": %.3g, \"repeats\": %d, \"cpu_seconds_min\": %.9g, \"seconds_min\": %.9g, "
+         "\"seed\": %llu, \"event_tol\": %.3g, \"h_init\": %.3g, \"repeats\": %d, \"cpu_seconds_min\": %.9g, \"seconds_min\": %.9g, "
          "\"steps\": %lu, \"rejected\": %lu, \"rhs_evals\": %lu, \"events\": %lu, \"event_steps\": %lu, "
          "\"resets\": %lu, \"sticks\": %lu, \"slips\": %lu, \"reversals\": %lu, \"modes\": [%d, %d], "
          "\"y\": [",
-         argv[2], pb.f, pb.mu, pb.rtol, pb.atol, pb.t1, seed, pb.event_tol, repeats, best.cpu, best.wall,
+         argv[2], pb.f, pb.mu, pb.rtol, pb.atol, pb.t1, seed, pb.event_tol, pb.h_init, repeats, best.cpu, best.wall,
          best.st.steps, best.st.rejected, best.st.rhs_evals, best.st.events, best.st.event_steps,
          best.st.resets, best.sticks, best.slips, best.reversals, best.modes[0], best.modes[1]);
   for (i = 0; i < best.dim; i++) printf("%.17g%s", best.y[i], i + 1 < best.dim ? ", " : "]}\n");
@@ -303,6 +309,7 @@ static int mode_ensemble(int argc, char **argv) {
   double w0, c0, wall, cpu;
   if (argc != 13 || parse_problem(argv + 2, &pb) != 0) return 2;
   pb.event_tol = 0.0;
+  pb.h_init = 0.0;
   memset(&p, 0, sizeof p);
   p.members = strtoul(argv[8], NULL, 10);
   nth = atoi(argv[9]);
@@ -398,7 +405,7 @@ int main(int argc, char **argv) {
   else if (argc >= 2 && strcmp(argv[1], "check") == 0) rc = mode_check(argc, argv);
   if (rc == 2)
     fprintf(stderr,
-            "usage: %s run none|exact F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL]\n"
+            "usage: %s run none|exact F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL [H_INIT]]\n"
             "       %s ensemble none|exact F MU RTOL ATOL T1 MEMBERS THREADS OMEGA_A OMEGA_B T_B\n"
             "       %s check F MU OMEGA_A OMEGA_B T_B\n",
             argv[0], argv[0], argv[0]);
