@@ -12,7 +12,7 @@ resonance; it starts at 50 rad/s because with friction a ball needs N > 0: at Om
 none), t in [0, 20] s, the rotor at rest at the origin, the balls at rest relative to the rotor
 (psi = 1.0, 2.5 for the single member; uniform in [-pi, pi) for the ensemble members); fixed
 frame; final state only.  In this run-up the balls start stuck, break free near the resonance,
-stick again and slip (the switch counts are printed).
+and slip up to 153 rad/s, then slip to the end (the switch counts are printed).
 
 SciPy's right-hand side is written from docs/device.md section 3 ("Equations as coded"),
 independently of the C code: a slipping ball with sigma = its mode (+1/-1) has
