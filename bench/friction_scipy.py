@@ -7,11 +7,10 @@ matched error, and the constant-speed / run-up benches of the library before fri
 
 Problem: the spec's default example (rotor.md; rotor_scipy.py lists the values: two balls of
 0.05 kg on r = 0.1 m, h = 0.1 kg/s, unbalance 0.02 kg at 0.1 m), f = 0.01, mu = 0.02 for both
-balls, the prescribed RAMP drive Omega = 50 + 450 t / 20 rad/s (a run-up through the rotor's
-resonance; it starts at 50 rad/s because with friction a ball needs N > 0: at Omega = 0 it has
-none), t in [0, 20] s, the rotor at rest at the origin, the balls at rest relative to the rotor
+balls, the prescribed RAMP drive Omega = 50 + 450 t / 20 rad/s (a run-up; it starts at 50
+rad/s because with friction a ball needs N > 0: at Omega = 0 it has none), t in [0, 20] s, the rotor at rest at the origin, the balls at rest relative to the rotor
 (psi = 1.0, 2.5 for the single member; uniform in [-pi, pi) for the ensemble members); fixed
-frame; final state only.  In this run-up the balls start stuck, break free near the resonance,
+frame; final state only.  In this run-up the balls start stuck, break free at 136 rad/s, stick
 and slip up to 153 rad/s, then slip to the end (the switch counts are printed).
 
 SciPy's right-hand side is written from docs/device.md section 3 ("Equations as coded"),
