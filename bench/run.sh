@@ -11,6 +11,11 @@
 #                                    rotor in the same run; ARGS go to runup_scipy.py (e.g. --quick,
 #                                    --only runup); --before-commit REV also builds bench_rotor on the
 #                                    library of git revision REV and times its constant-speed runs beside
+#   bench/run.sh friction [ARGS...]  stiction (issue 16): friction vs frictionless per member and as a
+#                                    256-member ensemble on 2 threads, SciPy with events at matched error,
+#                                    and the constant-speed / run-up benches of the library before the
+#                                    friction merge (found with git log; --before-commit REV to choose,
+#                                    --no-before to skip); ARGS go to friction_scipy.py (e.g. --quick)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -19,9 +24,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup) what=$1; shift ;;
-    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor or runup; see --help)" >&2
+    all|pendulum|rotor|runup|friction) what=$1; shift ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup or friction; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -34,10 +39,45 @@ cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
 case "$what" in
   pendulum) targets=(bench_pendulum) ;;
   rotor|runup) targets=(bench_rotor) ;;
+  friction) targets=(bench_rotor bench_friction) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 py=/usr/bin/python3
+# bench_rotor of the library at git revision $1 (built once, in $build-before-REV); prints its path
+build_before() {
+  local rev old
+  rev=$(git -C "$here/.." rev-parse --short "$1^{commit}")
+  old="$build-before-$rev"
+  if [ ! -x "$old/build/bench_rotor" ]; then
+    rm -rf "$old"; mkdir -p "$old/src"
+    git -C "$here/.." archive "$rev" | tar -x -C "$old/src"
+    cmake -S "$old/src/bench" -B "$old/build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+    cmake --build "$old/build" --target bench_rotor > /dev/null
+  fi
+  echo "$old/build/bench_rotor"
+}
+if [ "$what" = friction ]; then
+  # the library before friction: the first parent of the merge of branch 'friction'
+  merge=$(git -C "$here/.." log --merges --first-parent --format=%H --grep="^Merge branch 'friction'" -1)
+  rev=${merge:+$merge^1}
+  args=()
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --before-commit) [ $# -ge 2 ] || { echo "run.sh: --before-commit needs a git revision" >&2; exit 2; }
+                       rev=$2; shift 2 ;;
+      --no-before) rev=; shift ;;
+      *) args+=("$1"); shift ;;
+    esac
+  done
+  if [ -n "$rev" ]; then
+    echo "library before friction: $(git -C "$here/.." log -1 --format='%h %s' "$rev^{commit}" | cut -c1-100)"
+    args+=(--before "$(build_before "$rev")")
+  fi
+  cd "$here"
+  exec "$py" "$here/friction_scipy.py" --bench-friction "$build/bench_friction" \
+    --bench-rotor "$build/bench_rotor" ${args[@]+"${args[@]}"}
+fi
 if [ "$what" = runup ]; then
   args=()
   while [ $# -gt 0 ]; do
