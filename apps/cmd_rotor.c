@@ -45,6 +45,8 @@ typedef struct rotor_cfg {
   /* [friction] and the planes' ball_f, ball_mu (p.friction points into them) */
   double fric_f[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS], fric_mu[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS];
   const char *friction_law;
+  /* the planes' ball_rho (rolling inertia; p.rolling points into it) */
+  double rho[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS];
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -641,6 +643,16 @@ static int read_friction(cli_ctx *ctx, rotor_cfg *c) {
     if ((nf && nf != 1 && nf != n) || (nm && nm != 1 && nm != n))
       return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s has %zu values but there are %zu balls (one value for all, or one per ball)",
                       sec, (nf && nf != 1 && nf != n) ? "ball_f" : "ball_mu", (nf && nf != 1 && nf != n) ? nf : nm, n);
+    { /* ball_rho (m): rolling inertia (docs/device.md section 3), on when given in some plane */
+      size_t nr;
+      int pr;
+      if ((rc = cli_get_quantities(ctx, sec, "ball_rho", "m", c->rho[j], MAX_CFG_BALLS, &nr, &pr))) return rc;
+      if (nr && nr != 1 && nr != n)
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: ball_rho has %zu values but there are %zu balls (one value for all, or one per ball)",
+                        sec, nr, n);
+      for (k = 0; nr == 1 && k < n; k++) c->rho[j][k] = c->rho[j][0];
+      if (nr) c->p.rolling.on = 1, c->p.rolling.ball_rho[j] = c->rho[j];
+    }
     if (fr->law == AUTOBAL_ROTOR_FRICTION_NONE || n == 0) continue;
     for (k = 0; k < n; k++) {
       c->fric_f[j][k] = nf == 0 ? 0.0 : c->fric_f[j][nf == 1 ? 0 : k];

@@ -153,6 +153,8 @@
   "            f N tanh(psi'/u_eps), no stiction)  u_eps (rad/s, > 0; regularized only)\n" \
   "            per plane in [plane1]/[plane2]: ball_f = 0 (>= 0, one value or one per ball)\n" \
   "            ball_mu = ball_f (>= ball_f, the static coefficient)\n" \
+  "            ball_rho (m, >= 0; [plane1]/[plane2], one value or one per ball): the balls roll, solid\n" \
+  "            spheres of that radius (relative inertia 7/5, docs/device.md section 3)\n" \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'; with a drive its\n"   \
   "attributes drive_* and the column Omega; with friction the columns p<j>_b<i>_stuck, p<j>_b<i>_N\n" \
   "and the attributes friction_*, p<j>_ball_time_stuck), /rotor/revolutions\n"                   \

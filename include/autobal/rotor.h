@@ -230,6 +230,25 @@ typedef struct autobal_rotor_friction {
                                                    * equal to f) */
 } autobal_rotor_friction;
 
+/* Rolling inertia (docs/device.md section 3, "Rolling inertia").  With on = 1 every ball is a solid
+ * sphere of radius rho_ji (m) whose centre runs on the track radius r_ji and which rolls without
+ * sliding on the inside of the outer race (contact at r_ji + rho_ji).  It adds the rotational
+ * kinetic energy T_rot = 1/5 m ((r + rho) Omega - r phi')^2: the ball equation (3.4) becomes
+ *   7/5 m r^2 phi'' - 2/5 m r (r + rho) Omega' + h r^2 (phi' - Omega) = m r (u_D'' sin - v_D'' cos)
+ * (rotating frame: 7/5 m r^2 psi'' + m r^2 (1 - 2 rho/(5 r)) Omega' + h r^2 psi' = ...), so the
+ * relative inertia is 7/5 of the point mass's for every rho >= 0 (rho -> 0 is NOT the point mass:
+ * that is on = 0); a MOTOR's phi_0 equation gains 2/5 m (r + rho) ((r + rho) Omega' - r phi''), a
+ * stuck ball (friction EXACT) adds 2/5 m rho^2 to the spin inertia and -2/5 m rho Omega' to its
+ * holding force.  The normal force keeps the point-mass formula (autobal_rotor_friction).  The
+ * right-hand sides then take the friction path (a general 4x4 solve; with the law NONE f = 0, no
+ * events).  The balanced states and the linear analyses (stability) do not include it: the
+ * equilibria are the same, their stability is not (the CLI refuses rolling there). */
+typedef struct autobal_rotor_rolling {
+  int on;                                          /* 0 off (default), 1 on */
+  const double *ball_rho[AUTOBAL_ROTOR_MAX_PLANES]; /* m, ball radius rho_ji >= 0 of plane j's balls
+                                                    * (n_balls entries, copied; NULL: all 0) */
+} autobal_rotor_rolling;
+
 /* Largest number of points of a TABLE drive. */
 #define AUTOBAL_ROTOR_DRIVE_MAX_POINTS 10000000
 
@@ -261,6 +280,9 @@ typedef struct autobal_rotor_params {
   /* Rolling resistance and stiction of the balls (docs/device.md section 3); added in 0.3.0 at
    * the end of the struct: a zeroed block is AUTOBAL_ROTOR_FRICTION_NONE (the model above). */
   autobal_rotor_friction friction;
+  /* Rolling inertia of the balls (docs/device.md section 3, "Rolling inertia"); added in 0.3.0 at
+   * the end of the struct: a zeroed block is off (point masses, the model above bit for bit). */
+  autobal_rotor_rolling rolling;
 } autobal_rotor_params;
 
 /* The default example (docs/rotor.md): M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,

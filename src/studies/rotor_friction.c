@@ -155,8 +155,14 @@ static const char *law_name(int law) {
 int study_friction_write_inputs(autobal_archive *a, const autobal_rotor *rot, const char *group) {
   const autobal_rotor_params *p = autobal_rotor_get_params(rot);
   size_t j;
-  int st;
-  if (p->friction.law == AUTOBAL_ROTOR_FRICTION_NONE) return 0;
+  int st = 0;
+  for (j = 0; j < p->n_planes && p->rolling.on && !st; j++) { /* rolling inertia: the balls' radii */
+    char grp[32];
+    if (p->plane[j].n_balls == 0) continue;
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_attr_double_array(a, grp, "ball_rho", p->plane[j].n_balls, p->rolling.ball_rho[j], "m");
+  }
+  if (st || p->friction.law == AUTOBAL_ROTOR_FRICTION_NONE) return st;
   st = autobal_archive_attr_string(a, group, "friction", law_name(p->friction.law));
   if (!st && p->friction.law == AUTOBAL_ROTOR_FRICTION_REGULARIZED)
     st = autobal_archive_attr_double(a, group, "friction_u_eps", p->friction.u_eps, "rad/s");

@@ -61,6 +61,11 @@ struct autobal_rotor {
   /* gravity (docs/device.md section 2): g_s = g sin(theta) (m/s^2), the weights g_s W on y (N)
    * and g_s sum_j d_j m_j on alpha (N m), W = M + all small masses; all 0 when off */
   double gs, gW, gD;
+  /* rolling inertia (docs/device.md section 3): on, per ball rho (m), rk = 5/7 (the inverse relative
+   * inertia) and re = 2/5 (1 + rho/r) (the Omega' coefficient of the ball equation over m r^2);
+   * rk = 1, re = 0 when off */
+  int rolling;
+  double *rho, *rk, *re;
   double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
   autobal_error err;
 };
@@ -446,7 +451,9 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
 
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
-  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE) return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL, 1);
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE || R->rolling)
+    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL,
+                     R->law != AUTOBAL_ROTOR_FRICTION_NONE);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -532,8 +539,9 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
 
 int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
-  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE)
-    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL, 1);
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE || R->rolling)
+    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL,
+                     R->law != AUTOBAL_ROTOR_FRICTION_NONE);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -777,7 +785,8 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     c->Pv = R->s0[j] * cth;
     rhsm -= R->s0[j] * (-gu * sth + gv * cth);
     for (k = k0; k < k1; k++) {
-      const double s = sn[k], cc = cs[k], m = R->m[k], mr = R->mr[k], r = R->r[k];
+      const double s = sn[k], cc = cs[k], mr = R->mr[k], r = R->r[k];
+      double m = R->m[k];
       if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) { /* a mass fixed to the rotor */
         fs[k] = 0.0;
         c->Fu -= W * W * mr * cc;
@@ -789,6 +798,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         c->Pu -= mr * s;
         c->Pv += mr * cc;
         Jeff += mr * r;
+        if (R->rolling) Jeff += 0.4 * m * R->rho[k] * R->rho[k]; /* the rolling ball's own spin */
         rhsm -= mr * (-gu * s + gv * cc);
       } else {
         const double pd = frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W; /* phi' */
@@ -800,6 +810,21 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         Au = s + fk * cc;
         Av = fk * s - cc;
         e = (Au * gu + Av * gv) / r - R->kappa[k] * psid - fk * pd * pd;
+        if (R->rolling) {
+          /* rolling inertia: phi'' = rk (... + re Omega'), the prescribed Omega' known here, a
+           * MOTOR's through b1 and the phi_0 row below (docs/device.md "Rolling inertia") */
+          const double rk = R->rk[k], ke = rk * R->re[k];
+          if (R->motor) {
+            /* phi_0 row: + 2/5 m (r + rho) ((r + rho) Omega' - r phi''), 2/5 m (r + rho) r = re m r^2 */
+            const double rr = r + R->rho[k];
+            Jeff += 0.4 * m * rr * rr - ke * R->re[k] * mr * r;
+            rhsm += ke * mr * r * e;
+            c->Pu -= ke * mr * Au;
+            c->Pv -= ke * mr * Av;
+          }
+          e = rk * (R->motor ? e : e + R->re[k] * Wd);
+          m *= rk; /* the coupling of D's accelerations: rk m */
+        }
         c->Cuu -= m * s * Au;
         c->Cuv -= m * s * Av;
         c->Cvu += m * cc * Au;
@@ -807,6 +832,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         c->Fu -= mr * (s * e + pd * pd * cc);
         c->Fv += mr * (cc * e - pd * pd * s);
         if (R->motor) {
+          m = R->m[k];
           rhsm += R->hr[k] * r * psid + r * fk * m * (r * pd * pd - gu * cc - gv * s);
           c->Pu += r * fk * m * cc;
           c->Pv += r * fk * m * s;
@@ -839,6 +865,13 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
           if (R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
             Su += R->mr[k] * sn[k];
             Sv += R->mr[k] * cs[k];
+          }
+      if (R->rolling) /* a slipping rolling ball's phi'' has rk re Omega' */
+        for (k = k0; k < k1; k++)
+          if (!(exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK)) {
+            const double kem = R->rk[k] * R->re[k] * R->mr[k];
+            Su += kem * sn[k];
+            Sv += kem * cs[k];
           }
       b1[0] += Su;
       b1[1] -= Sv;
@@ -915,7 +948,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         const double pd = stuck ? W : (frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W);
         const double Nk = m * (r * pd * pd - au * cc - av * s);
         if (Nout) Nout[k] = Nk;
-        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) : NAN;
+        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) - (R->rolling ? 0.4 * m * R->rho[k] * Wd : 0.0) : NAN;
         if (check_N && !(Nk > 0.0)) {
           const size_t ii = k - k0;
           autobal_error_set(errp, AUTOBAL_ENUMERIC,
@@ -942,6 +975,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         const double psid = frame == AUTOBAL_ROTOR_FIXED ? rate[k] - W : rate[k];
         const double fk = fs[k];
         acc = ((s + fk * cc) * au + (fk * s - cc) * av) / r - R->kappa[k] * psid - fk * pd * pd;
+        if (R->rolling) acc = R->rk[k] * (acc + R->re[k] * Wd);
         if (frame == AUTOBAL_ROTOR_ROTATING) acc -= Wd;
       }
       dydt[8 + N + k] = acc;
@@ -1477,6 +1511,23 @@ static int check_friction(const autobal_rotor_params *p, size_t j, autobal_error
   return AUTOBAL_SUCCESS;
 }
 
+/* The rolling block for plane j (the switch with j == 0). */
+static int check_rolling(const autobal_rotor_params *p, size_t j, autobal_error *err) {
+  const autobal_rotor_rolling *ro = &p->rolling;
+  char name[64];
+  size_t i;
+  int st;
+  if (j == 0 && ro->on != 0 && ro->on != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter rolling.on = %d is not valid: use 0 (off) or 1 (on)",
+                             ro->on);
+  if (!ro->on || !ro->ball_rho[j]) return AUTOBAL_SUCCESS;
+  for (i = 0; i < p->plane[j].n_balls; i++) {
+    snprintf(name, sizeof name, "plane[%zu].ball_rho[%zu]", j, i);
+    if ((st = autobal_check_param(err, name, ro->ball_rho[j][i], 0.0, 0, INFINITY, 1, "m"))) return st;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err) {
   autobal_rotor_lumped L;
   int st, warn = 0;
@@ -1554,6 +1605,7 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
         AUTOBAL_SUCCESS)
       return st;
     if ((st = check_friction(p, j, err)) != AUTOBAL_SUCCESS) return st;
+    if ((st = check_rolling(p, j, err)) != AUTOBAL_SUCCESS) return st;
     ntot += p->plane[j].n_balls;
     heavy += msum * (1.0 / L.M + p->plane[j].d * p->plane[j].d / L.A);
   }
@@ -1590,9 +1642,9 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
     return NULL;
   }
-  /* 18 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
+  /* 21 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
    * least one element) */
-  R->store = (double *)calloc(18 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
+  R->store = (double *)calloc(21 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
   R->mode = (int *)calloc(2 * N + 1, sizeof(int));
   if (R->store == NULL || R->mode == NULL) {
     free(R->store);
@@ -1626,6 +1678,9 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   R->fws = R->cH + N; /* 3 N: the friction path's sin, cos, f sgn */
   R->pd0 = R->fws + 3 * N;
   R->ycache = R->pd0 + N;
+  R->rho = R->ycache + (8 + 2 * N + 4);
+  R->rk = R->rho + N;
+  R->re = R->rk + N;
   R->mode0 = R->mode + N;
   R->p = *p;
   R->motor = p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR;
@@ -1762,6 +1817,19 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->p.friction.ball_mu[j] = NULL;
   }
   R->gv = R->gs; /* the friction right-hand sides take gravity as the acceleration (0, g_s) of D */
+  /* rolling inertia: rho copied, rk = 5/7, re = 2/5 (1 + rho/r) */
+  R->rolling = p->rolling.on != 0;
+  for (j = 0; j < p->n_planes; j++) {
+    size_t i;
+    for (i = 0; i < p->plane[j].n_balls; i++) {
+      k = R->off[j] + i;
+      R->rho[k] = (R->rolling && p->rolling.ball_rho[j]) ? p->rolling.ball_rho[j][i] : 0.0;
+      R->rk[k] = R->rolling ? 5.0 / 7.0 : 1.0;
+      R->re[k] = R->rolling ? 0.4 * (1.0 + R->rho[k] / R->r[k]) : 0.0;
+    }
+    R->p.rolling.ball_rho[j] = R->rolling ? R->rho + R->off[j] : NULL;
+  }
+  for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) R->p.rolling.ball_rho[j] = NULL;
   R->err = e;
   return R;
 }
