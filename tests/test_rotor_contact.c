@@ -22,6 +22,10 @@
 #include "autobal/study.h"
 #include "check.h"
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 #define JSON_PATH AUTOBAL_TEST_DATA_DIR "/../tools/derive/check_values.json"
 
 static char *slurp(const char *path) {
@@ -332,6 +336,92 @@ static void validation(void) {
   }
 }
 
+
+/* A study run of the default rotor (one plane, two balls) with the given changes; returns the status. */
+static int run_study(autobal_rotor_params *p, int frame, double t_end, autobal_study_rotor_transient_summary *s) {
+  autobal_study_rotor_transient_options o = autobal_study_rotor_transient_options_default();
+  autobal_error e;
+  int st;
+  o.t_end = t_end;
+  o.frame = frame;
+  o.rtol = 1e-11;
+  o.atol = 1e-13;
+  st = autobal_study_rotor_transient(p, &o, NULL, s, &e);
+  if (st < 0) printf("     study failed: %s\n", e.message);
+  return st;
+}
+
+/* delta -> 0 with e = 1: two equal balls exchange their velocities at an impact (the generalized law
+ * with a prescribed speed: J is an eigenvector of the rotor coupling) and the rotor's jump is
+ * O(gamma m/M): the run converges to the frictionless one, where the point balls pass through each
+ * other (the same motion with the labels exchanged).  The rotor's x, y and the residual unbalance at
+ * the end, 1 s of the default rotor with ball 1 at psi = 1.0 moving at 5 rad/s towards ball 2 at 1.3
+ * (17 impacts: the balls circle relative to each other). */
+static void delta_limit(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_study_rotor_transient_summary s0, s;
+  double psi[2] = {1.0, 1.3}, rate[2] = {5.0, 0.0}, dia[2], diff[3];
+  const double deltas[3] = {1e-6, 1e-7, 1e-8};
+  size_t n;
+  char what[200];
+  printf("-- delta -> 0 (e = 1) against the frictionless transient\n");
+  p.plane[0].ball_psi = psi;
+  p.plane[0].ball_rate = rate;
+  memset(&s0, 0, sizeof s0);
+  if (run_study(&p, AUTOBAL_ROTOR_FIXED, 1.0, &s0) != AUTOBAL_SUCCESS) {
+    CHECK("frictionless run", 0);
+    return;
+  }
+  for (n = 0; n < 3; n++) {
+    memset(&s, 0, sizeof s);
+    dia[0] = dia[1] = deltas[n];
+    p.contact.on = 1, p.contact.restitution = 1.0, p.contact.ball_diameter[0] = dia;
+    CHECK_STATUS("run with contact", run_study(&p, AUTOBAL_ROTOR_FIXED, 1.0, &s), AUTOBAL_SUCCESS);
+    CHECK("impacts happened", s.have_contact && s.contact_impacts > 0);
+    diff[n] = fabs(s.residual_unbalance_abs_final[0] - s0.residual_unbalance_abs_final[0]) / s0.residual_unbalance_abs_final[0];
+    printf("     delta = %g m: %lu impacts, residual unbalance %.12g vs %.12g kg m (relative difference %.3e)\n", deltas[n],
+           s.contact_impacts, s.residual_unbalance_abs_final[0], s0.residual_unbalance_abs_final[0], diff[n]);
+    autobal_study_rotor_transient_summary_free(&s);
+  }
+  /* the jumps are O(gamma) = O(delta): first order expected */
+  snprintf(what, sizeof what, "converges at order 1: differences %.3e, %.3e, %.3e, orders %.4f, %.4f in [0.9, 1.1]", diff[0],
+           diff[1], diff[2], log10(diff[0] / diff[1]), log10(diff[1] / diff[2]));
+  CHECK(what, fabs(log10(diff[0] / diff[1]) - 1.0) < 0.1 && fabs(log10(diff[1] / diff[2]) - 1.0) < 0.1);
+  autobal_study_rotor_transient_summary_free(&s0);
+}
+
+/* Resting contact: the unbalance m0 r0 = 0.00996 kg m needs the two balls (m r = 0.005 kg m) 0.1795 rad
+ * apart (3.14), less than the gap angle 0.2305 rad of 23 mm balls: the balls are pressed together
+ * towards the balanced position.  With e = 0.5 they bounce, join in resting contact (a cluster) and
+ * stay there: the run must not fail (no chattering), the pair touches at the end at exactly the gap
+ * angle, and the summary reports the balanced angles out of reach.  Both frames. */
+static void resting_contact(int frame) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_study_rotor_transient_summary s;
+  double psi[2] = {2.5, 3.5}, dia[2] = {0.023, 0.023}, sep, gam = autobal_rotor_gap_angle(0.023, 0.023, 0.1);
+  char what[200];
+  printf("-- resting contact (%s frame)\n", frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating");
+  p.plane[0].m0 = 0.0996;
+  p.plane[0].ball_psi = psi;
+  p.contact.on = 1, p.contact.restitution = 0.5, p.contact.ball_diameter[0] = dia;
+  memset(&s, 0, sizeof s);
+  CHECK_STATUS("5 s run with contact: no failure", run_study(&p, frame, 5.0, &s), AUTOBAL_SUCCESS);
+  printf("     %lu impacts, %lu joins, %lu releases, %lu touching at the end; resets %lu\n", s.contact_impacts,
+         s.contact_joins, s.contact_releases, s.contacts_final, s.solver.resets);
+  CHECK("impacts and at least one join", s.contact_impacts > 0 && s.contact_joins > 0);
+  CHECK("the pair touches at the end (one cluster)", s.contacts_final == 1);
+  CHECK("out of reach reported", s.have_contact && s.contact_reachable[0] == 0);
+  CHECK_CLOSE("capacity 2 m r cos(gamma/2)", s.contact_capacity[0], 0.01 * cos(0.5 * gam), 1e-14, 0);
+  if (s.ball_psi_final[0]) {
+    sep = s.ball_psi_final[0][1] - s.ball_psi_final[0][0];
+    sep -= 2.0 * M_PI * floor(sep / (2.0 * M_PI));
+    if (sep > M_PI) sep = 2.0 * M_PI - sep;
+    snprintf(what, sizeof what, "final separation %.12f rad = the gap angle", sep);
+    CHECK_CLOSE(what, sep, gam, 0, 1e-8);
+  }
+  autobal_study_rotor_transient_summary_free(&s);
+}
+
 int main(void) {
   char *json;
   size_t np;
@@ -345,6 +435,9 @@ int main(void) {
       for (e1 = 0; e1 <= 1; e1++) impact_case(json, np, motor, e1);
   free(json);
   validation();
+  delta_limit();
+  resting_contact(AUTOBAL_ROTOR_FIXED);
+  resting_contact(AUTOBAL_ROTOR_ROTATING);
   printf("%d checks, %d failed\n", check_count_, check_failures_);
   return check_failures_ ? 1 : 0;
 }
