@@ -670,7 +670,8 @@ AUTOBAL_API int autobal_rotor_contact_impact(autobal_rotor *r, int frame, size_t
                                              double *G, double *Lambda, double *u);
 /* The event reset of contact: clusters whose contact force is <= 0 are released; every free pair
  * with gap <= 1e-9 rad that closes (u < 0) is an impact (restitution e; plastic, and a cluster,
- * when e |u| < v_rest), repeated until no touching pair closes (chains).  Gaps of the pairs that
+ * when e |u| < v_rest), repeated until no touching pair closes (chains); a pair so joined that is not
+ * pressed (lambda <= 0) is released at once.  Gaps of the pairs that
  * touch are set to 0 exactly (the ball ahead moved by the tiny remaining gap or overlap).  Counts
  * added to the optional outputs.  Returns 1 when y or a cluster changed, 0 when nothing did, or a
  * negative status. */

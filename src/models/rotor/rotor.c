@@ -1461,6 +1461,17 @@ int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *
     ni += cnt;
     changed = 1;
   }
+  /* a pair joined by a plastic impact that is not pressed (lambda <= 0) separates at once: else its
+   * event (lambda falling through 0) would start at or below 0 and never fire */
+  if (nj > 0) {
+    if (contact_solve(r, frame, t, y, NULL) != 0) return AUTOBAL_ENUMERIC;
+    for (p = 0; p < r->np; p++)
+      if (r->pact[p] && !(r->plam[p] > 0.0)) {
+        r->pact[p] = 0;
+        close_gap(r, p, y);
+        nr++;
+      }
+  }
   r->ccache_ok = 0;
   if (n_impacts) *n_impacts += ni;
   if (n_joins) *n_joins += nj;
