@@ -20,7 +20,9 @@
 
 #include "autobal/rotor.h"
 #include "autobal/study.h"
+#include "autobal/transient.h"
 #include "check.h"
+#include "rotor_energy.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -422,6 +424,100 @@ static void resting_contact(int frame) {
   autobal_study_rotor_transient_summary_free(&s);
 }
 
+
+/* Energy along a run with impacts (MOTOR drive, fixed frame, the library's events and reset as the
+ * study uses them): the state is extended by W = integral of (L Omega - D) (motor power minus all
+ * dissipation, tests/rotor_energy.h); the reset wrapper records the energy jump of every reset.
+ * Between events E changes only by L Omega - D, so E(end) - E(0) - W - sum of the jumps = 0 (to the
+ * integration tolerance); each jump is <= 0, and 0 (to rounding) at e = 1. */
+typedef struct erun {
+  autobal_rotor *rot;
+  size_t dim, n_resets, n_imp;
+  double jumps, worst_jump_e1, largest_jump;
+} erun;
+static int erun_rhs(double t, const double y[], double dydt[], void *par) {
+  erun *E = (erun *)par;
+  int st = autobal_rotor_rhs(t, y, dydt, E->rot);
+  const double W = y[E->dim - 1];
+  dydt[E->dim] = autobal_rotor_motor_torque(E->rot, W) * W - motor_dissipation(E->rot, y);
+  return st;
+}
+typedef struct erun_ev {
+  erun *E;
+  size_t p;
+} erun_ev;
+static double erun_gap(double t, const double y[], void *u) {
+  const erun_ev *ev = (const erun_ev *)u;
+  return autobal_rotor_contact_switch(ev->E->rot, AUTOBAL_ROTOR_FIXED, ev->p, t, y);
+}
+static int erun_reset(const autobal_transient_event_hit *hit, double y[], void *u) {
+  erun *E = (erun *)u;
+  const double e0 = motor_energy(E->rot, y);
+  int rc = autobal_rotor_contact_settle(E->rot, AUTOBAL_ROTOR_FIXED, hit->t, y, &E->n_imp, NULL, NULL);
+  const double d = motor_energy(E->rot, y) - e0;
+  if (rc < 0) return 2;
+  E->n_resets++;
+  E->jumps += d;
+  if (d > E->largest_jump) E->largest_jump = d;
+  return rc == 1 ? AUTOBAL_TRANSIENT_RESET : 0;
+}
+static void energy_run(double e) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  double psi[2] = {1.0, 1.3}, rate[2] = {20.0, -20.0}, dia[2] = {0.023, 0.023}, y[16], E0, E1;
+  autobal_transient_options o = autobal_transient_options_default();
+  autobal_transient_system sys;
+  autobal_transient *tr;
+  erun E;
+  erun_ev ev[2];
+  size_t k;
+  char what[200];
+  printf("-- energy along a motor run with impacts, e = %g\n", e);
+  p.plane[0].ball_psi = psi, p.plane[0].ball_rate = rate;
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  p.drive.J = p.hw.C_p + 0.01, p.drive.L_0 = 5.0, p.drive.omega_0 = 600.0, p.drive.k_r = 1e-3;
+  p.drive.omega_start = 300.0;
+  p.contact.on = 1, p.contact.restitution = e, p.contact.ball_diameter[0] = dia;
+  memset(&E, 0, sizeof E);
+  E.rot = autobal_rotor_alloc(&p, NULL);
+  CHECK("motor rotor with contact", E.rot != NULL);
+  if (!E.rot) return;
+  E.dim = autobal_rotor_dim(E.rot);
+  CHECK("initial state", autobal_rotor_initial_state(E.rot, AUTOBAL_ROTOR_FIXED, 0.0, y, E.dim) == AUTOBAL_SUCCESS);
+  y[E.dim] = 0.0;
+  E0 = motor_energy(E.rot, y);
+  o.rtol = 1e-12, o.atol = 1e-14, o.stepper = "rk8pd";
+  sys.rhs = erun_rhs, sys.jac = NULL, sys.dim = E.dim + 1, sys.params = &E;
+  tr = autobal_transient_alloc(sys.dim, &o, NULL);
+  CHECK("engine", tr != NULL);
+  if (!tr) {
+    autobal_rotor_free(E.rot);
+    return;
+  }
+  for (k = 0; k < autobal_rotor_contact_n_pairs(E.rot) && k < 2; k++) {
+    ev[k].E = &E, ev[k].p = k;
+    autobal_transient_add_event(tr, erun_gap, &ev[k], -1, 0);
+  }
+  autobal_transient_set_event_reset(tr, erun_reset, &E);
+  CHECK_STATUS("1 s run", autobal_transient_run(tr, &sys, 0.0, 1.0, y, NULL), AUTOBAL_SUCCESS);
+  E1 = motor_energy(E.rot, y);
+  printf("     %zu resets, %zu impacts; E(1 s) - E(0) = %.12g J, work integral %.12g J, impact jumps %.6e J\n", E.n_resets,
+         E.n_imp, E1 - E0, y[E.dim], E.jumps);
+  CHECK("impacts happened", E.n_imp > 0);
+  snprintf(what, sizeof what, "e = %g: E(end) - E(0) = integral (L Omega - D) + the impact jumps", e);
+  CHECK_CLOSE(what, E1 - E0, y[E.dim] + E.jumps, 0, 1e-8);
+  snprintf(what, sizeof what, "e = %g: no reset adds energy (largest jump %.3e J)", e, E.largest_jump);
+  CHECK(what, E.largest_jump <= 1e-12 * fabs(E0));
+  if (e == 1.0) {
+    /* rounding of E and the gap closed at the reset (|g| <= 1e-9 rad moves T by ~ m r phi' |v_D'| g) */
+    snprintf(what, sizeof what, "e = 1: the impacts change the energy by %.3e J (within 1e-12 E = %.4g J per impact)", E.jumps, E0);
+    CHECK(what, fabs(E.jumps) <= 1e-12 * fabs(E0) * (double)E.n_imp);
+  } else {
+    CHECK("e < 1: the impacts dissipate", E.jumps < 0.0);
+  }
+  autobal_transient_free(tr);
+  autobal_rotor_free(E.rot);
+}
+
 int main(void) {
   char *json;
   size_t np;
@@ -436,6 +532,8 @@ int main(void) {
   free(json);
   validation();
   delta_limit();
+  energy_run(1.0);
+  energy_run(0.5);
   resting_contact(AUTOBAL_ROTOR_FIXED);
   resting_contact(AUTOBAL_ROTOR_ROTATING);
   printf("%d checks, %d failed\n", check_count_, check_failures_);
