@@ -714,6 +714,69 @@ static void run_rolling_limit(const char *json) {
   }
 }
 
+
+/* A stuck rolling ball (friction EXACT, MOTOR, one plane): ball 11 stuck at its check-state psi with
+ * rolling inertia rho: its spin adds 2/5 m rho^2 to the spin inertia, which the energy balance
+ * d(E + T_rot)/dt = L Omega - D - r f N |psi'| of the slipping ball checks (T_rot of the stuck ball
+ * = 1/5 m rho^2 Omega^2), and its holding force is the documented
+ * H = m [r Omega' - u_D'' sin phi + v_D'' cos phi] - 2/5 m rho Omega', evaluated here from the
+ * right-hand side's accelerations. */
+static void run_rolling_stuck(const char *json) {
+  const char *blk = after_key(json, "one_plane"), *st = after_key(blk, "state"), *mot = after_key(blk, "motor");
+  const char *sec = after_key(json, "rolling_inertia");
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+  autobal_rotor_params p;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], rhob[2], fb[2] = {0.02, 0.02}, mub[2] = {0.5, 0.5};
+  double y[14], dy[14], yp[14], ym[14], Nf[2], Hf[2], rho, Om, phi0, e = 1e-6, dE, P, D, Dfr, Hwant, uDdd, vDdd;
+  size_t i, dim = 14;
+  autobal_rotor *rot;
+  char what[200];
+  printf("-- one_plane, motor, rolling inertia with ball 11 stuck\n");
+  if (!(blk && st && mot && sec) || load_params(blk, 1, &p, m, r, h, psi, rate) != 0) {
+    CHECK("JSON blocks found", 0);
+    return;
+  }
+  rho = num(sec, "rho");
+  rhob[0] = rhob[1] = rho;
+  p.rolling.on = 1, p.rolling.ball_rho[0] = rhob;
+  p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT, p.friction.ball_f[0] = fb, p.friction.ball_mu[0] = mub;
+  Om = num(mot, "Omega"), phi0 = num(st, "phi_0");
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  p.drive.J = num(mot, "J"), p.drive.L_0 = num(mot, "L_0"), p.drive.omega_0 = num(mot, "Omega_0");
+  p.drive.k_r = num(mot, "k_r"), p.drive.omega_start = Om;
+  rate[0][0] = 0.0;
+  rot = autobal_rotor_alloc(&p, NULL);
+  CHECK("rotor", rot != NULL);
+  if (!rot) return;
+  for (i = 0; i < 4; i++) {
+    char k2[16];
+    y[i] = num(st, qn[i]);
+    snprintf(k2, sizeof k2, "%s_d", qn[i]);
+    y[4 + i] = num(st, k2);
+  }
+  y[8] = phi0 + psi[0][0], y[9] = phi0 + psi[0][1], y[10] = Om, y[11] = Om + rate[0][1], y[12] = phi0, y[13] = Om;
+  CHECK_STATUS("ball 11 set stuck", autobal_rotor_ball_mode_set(rot, 0, AUTOBAL_ROTOR_BALL_STUCK), AUTOBAL_SUCCESS);
+  CHECK("rhs", autobal_rotor_rhs(0.7, y, dy, rot) == GSL_SUCCESS);
+  CHECK_STATUS("normal forces", autobal_rotor_normal_forces(rot, AUTOBAL_ROTOR_FIXED, 0.7, y, Nf, 2), AUTOBAL_SUCCESS);
+  CHECK_STATUS("holding forces", autobal_rotor_holding_forces(rot, AUTOBAL_ROTOR_FIXED, 0.7, y, Hf, 2), AUTOBAL_SUCCESS);
+  for (i = 0; i < dim; i++) {
+    yp[i] = y[i] + e * dy[i];
+    ym[i] = y[i] - e * dy[i];
+  }
+  dE = (motor_energy(rot, yp) + rolling_T(rot, yp, rho) - motor_energy(rot, ym) - rolling_T(rot, ym, rho)) / (2.0 * e);
+  P = autobal_rotor_motor_torque(rot, Om) * Om;
+  D = motor_dissipation(rot, y);
+  Dfr = r[0][1] * fb[1] * Nf[1] * fabs(rate[0][1]);
+  snprintf(what, sizeof what, "stuck rolling ball: d(E + T_rot)/dt = L Omega - D - r f N |psi'| (%.6f W of friction)", Dfr);
+  CHECK_CLOSE(what, dE, P - D - Dfr, 1e-8, 0);
+  uDdd = dy[4] + p.plane[0].d * dy[7];
+  vDdd = dy[5] - p.plane[0].d * dy[6];
+  Hwant = m[0][0] * (r[0][0] * dy[13] - uDdd * sin(y[8]) + vDdd * cos(y[8])) - 0.4 * m[0][0] * rho * dy[13];
+  CHECK_CLOSE("stuck rolling ball: H = m [r Omega' - u_D'' sin + v_D'' cos] - 2/5 m rho Omega'", Hf[0], Hwant, 1e-12, 1e-14);
+  CHECK("stuck: phi' = Omega, phi'' = Omega'", dy[8] == Om && dy[10] == dy[13]);
+  autobal_rotor_free(rot);
+}
+
 int main(void) {
   char *json;
   gsl_set_error_handler_off();
@@ -736,6 +799,7 @@ int main(void) {
         run_rolling_case(json, np, motor, 0.02);
       }
     run_rolling_limit(json);
+    run_rolling_stuck(json);
   }
   free(json);
   printf("%d checks, %d failed\n", check_count_, check_failures_);
