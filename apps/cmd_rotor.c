@@ -45,6 +45,10 @@ typedef struct rotor_cfg {
   /* [friction] and the planes' ball_f, ball_mu (p.friction points into them) */
   double fric_f[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS], fric_mu[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS];
   const char *friction_law;
+  /* the planes' ball_rho (rolling inertia; p.rolling points into it) */
+  double rho[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS];
+  /* the planes' ball_diameter (contact; p.contact points into it) */
+  double diam[AUTOBAL_ROTOR_MAX_PLANES][MAX_CFG_BALLS];
 } rotor_cfg;
 
 static int get_d(cli_ctx *ctx, const char *sec, const char *key, double *v) {
@@ -652,6 +656,23 @@ static int read_friction(cli_ctx *ctx, rotor_cfg *c) {
     if ((nf && nf != 1 && nf != n) || (nm && nm != 1 && nm != n))
       return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s has %zu values but there are %zu balls (one value for all, or one per ball)",
                       sec, (nf && nf != 1 && nf != n) ? "ball_f" : "ball_mu", (nf && nf != 1 && nf != n) ? nf : nm, n);
+    { /* ball_rho (m): rolling inertia (docs/device.md section 3), on when given in some plane */
+      size_t nr;
+      int pr;
+      if ((rc = cli_get_quantities(ctx, sec, "ball_rho", "m", c->rho[j], MAX_CFG_BALLS, &nr, &pr))) return rc;
+      if (nr && nr != 1 && nr != n)
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: ball_rho has %zu values but there are %zu balls (one value for all, or one per ball)",
+                        sec, nr, n);
+      for (k = 0; nr == 1 && k < n; k++) c->rho[j][k] = c->rho[j][0];
+      if (nr) c->p.rolling.on = 1, c->p.rolling.ball_rho[j] = c->rho[j];
+      /* ball_diameter (m): contact (docs/device.md section 4), on when given in some plane */
+      if ((rc = cli_get_quantities(ctx, sec, "ball_diameter", "m", c->diam[j], MAX_CFG_BALLS, &nr, &pr))) return rc;
+      if (nr && nr != 1 && nr != n)
+        return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: ball_diameter has %zu values but there are %zu balls (one value for all, or one per ball)",
+                        sec, nr, n);
+      for (k = 0; nr == 1 && k < n; k++) c->diam[j][k] = c->diam[j][0];
+      if (nr) c->p.contact.on = 1, c->p.contact.ball_diameter[j] = c->diam[j];
+    }
     if (fr->law == AUTOBAL_ROTOR_FRICTION_NONE || n == 0) continue;
     for (k = 0; k < n; k++) {
       c->fric_f[j][k] = nf == 0 ? 0.0 : c->fric_f[j][nf == 1 ? 0 : k];
@@ -664,11 +685,18 @@ static int read_friction(cli_ctx *ctx, rotor_cfg *c) {
 }
 
 static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
-  int rc;
+  int rc, pe = 0, pv = 0;
   double wref;
   if ((rc = read_rotor_model(ctx, c))) return rc;
   if ((rc = read_drive(ctx, c))) return rc;
   if ((rc = read_friction(ctx, c))) return rc;
+  /* [contact] restitution (1, [0, 1]; default 1), v_rest (rad/s; default 1e-3): with ball_diameter */
+  c->p.contact.restitution = 1.0;
+  if ((rc = cli_get_double(ctx, "contact", "restitution", 1.0, &c->p.contact.restitution, &pe))) return rc;
+  if ((rc = cli_get_quantity(ctx, "contact", "v_rest", "rad/s", 0.0, &c->p.contact.v_rest, &pv))) return rc;
+  if ((pe || pv) && !c->p.contact.on)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[contact]: %s is given but no ball has a size: set [plane1] ball_diameter",
+                    pe ? "restitution" : "v_rest");
   wref = speed_ref(c);
   /* [balance] grade = G2.5: the permissible residual unbalance of that grade is reported */
   c->grade = NAN;
@@ -911,6 +939,16 @@ static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
   cli_json_quantity(&jj, "amplitude_last_10pct_max", s->amplitude_last_10pct_max, "m");
   engineering_json(&jj, s);
   if (s->have_runup) runup_json(&jj, s);
+  if (s->have_contact) {
+    cli_json_int(&jj, "contact_impacts", (long)s->contact_impacts);
+    cli_json_int(&jj, "contact_joins", (long)s->contact_joins);
+    cli_json_int(&jj, "contact_releases", (long)s->contact_releases);
+    cli_json_int(&jj, "contacts_final", (long)s->contacts_final);
+    cli_json_quantities(&jj, "contact_capacity", s->contact_capacity, s->n_planes, "kg m");
+    cli_json_array(&jj, "contact_reachable");
+    for (j = 0; j < s->n_planes; j++) cli_json_bool(&jj, NULL, s->contact_reachable[j]);
+    cli_json_array_end(&jj);
+  }
   if (c->p.gravity) {
     cli_json_quantity(&jj, "static_offset_y", s->static_offset[1], "m");
     cli_json_quantity(&jj, "static_offset_alpha", s->static_offset[2], "rad");
@@ -1007,6 +1045,15 @@ static void print_text(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
       for (i = 0; i < nbj && i < 8; i++) printf(" %.5f", s->ball_psi_balanced[j][i]);
       printf("%s\n", nbj > 8 ? " ..." : "");
     }
+  }
+  if (s->have_contact) {
+    printf("  contact: %lu impact(s), %lu pair(s) joined in resting contact, %lu released, %lu touching at the end\n",
+           s->contact_impacts, s->contact_joins, s->contact_releases, s->contacts_final);
+    for (j = 0; j < s->n_planes; j++)
+      if (!s->contact_reachable[j])
+        printf("  plane %zu: the balanced angles are out of reach with these ball sizes: unbalance %.4g g mm > the "
+               "largest resultant of the packed balls %.4g g mm\n",
+               j + 1, c->p.plane[j].m0 * c->p.plane[j].r0 * 1e6, s->contact_capacity[j] * 1e6);
   }
   if (s->have_friction) {
     printf("  friction (exact): %lu stick(s), %lu slip(s) from stuck, %lu reversal(s) at psi' = 0\n", s->friction_sticks,

@@ -464,6 +464,319 @@ static void run_friction_case(const char *json, size_t n_planes, int motor, int 
   autobal_rotor_free(rot);
 }
 
+
+/* ---- rolling inertia (docs/device.md section 3, "Rolling inertia"; key rolling_inertia: every
+ * ball a solid sphere of radius rho, no gravity, no friction).  The accelerations at the check
+ * state, prescribed drive and MOTOR, both frames; with the MOTOR the total energy E + T_rot
+ * (T_rot = 1/5 m ((r + rho) Omega - r phi')^2, written here from the documented formula) against
+ * SymPy's and dE/dt along the C right-hand side against the JSON's dE/dt; with friction too
+ * (f = 0.02, law EXACT, modes = the signs of the rates) dE/dt = L Omega - D - sum r f N |psi'|. */
+static double rolling_T(const autobal_rotor *rot, const double *y, double rho) {
+  const autobal_rotor_params *p = autobal_rotor_get_params(rot);
+  const size_t N = autobal_rotor_n_balls_total(rot), dim = autobal_rotor_dim(rot);
+  const double W = y[dim - 1];
+  double T = 0.0;
+  size_t j, i;
+  for (j = 0; j < p->n_planes; j++)
+    for (i = 0; i < p->plane[j].n_balls; i++) {
+      const size_t k = autobal_rotor_ball_index(rot, j, i);
+      const double m = p->plane[j].ball_mass[i], r = p->plane[j].ball_radius[i];
+      const double w = (r + rho) * W - r * y[8 + N + k];
+      T += 0.2 * m * w * w;
+    }
+  return T;
+}
+
+static void run_rolling_case(const char *json, size_t n_planes, int motor, double f) {
+  const char *which = n_planes == 1 ? "one_plane" : "two_planes";
+  const char *pk = n_planes == 1 ? "planes1" : "planes2";
+  const char *tag = motor ? "motor" : "prescribed";
+  const char *blk = after_key(json, which), *st = after_key(blk, "state");
+  const char *drv_blk = after_key(blk, tag);
+  const char *sec = after_key(json, "rolling_inertia");
+  const char *cas = after_key(after_key(sec, pk), tag), *acc = after_key(cas, "accelerations");
+  static const char *const qdd[4] = {"x_dd", "y_dd", "alpha_dd", "beta_dd"};
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+  autobal_rotor_params p;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], rhob[2][2], fb[2][2];
+  double y[20], dy[20], yr[20], dyr[20], Om, Omd = 0.0, phi0, t = 0.7, drv[3], rho;
+  size_t j, i, N = 2 * n_planes, dim = 8 + 2 * N + (motor ? 2u : 0u);
+  autobal_rotor *rot;
+  autobal_error err;
+  char what[200];
+
+  printf("-- %s, %s, rolling inertia%s vs SymPy\n", which, tag, f > 0.0 ? " with rolling resistance" : "");
+  CHECK("JSON rolling blocks found", blk && st && drv_blk && sec && cas && acc);
+  if (!(blk && st && drv_blk && sec && cas && acc)) return;
+  rho = num(sec, "rho");
+  if (load_params(blk, n_planes, &p, m, r, h, psi, rate) != 0) return;
+  for (j = 0; j < 2; j++)
+    for (i = 0; i < 2; i++) rhob[j][i] = rho, fb[j][i] = f;
+  p.rolling.on = 1;
+  for (j = 0; j < n_planes; j++) p.rolling.ball_rho[j] = rhob[j];
+  if (f > 0.0) {
+    p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT;
+    for (j = 0; j < n_planes; j++) p.friction.ball_f[j] = fb[j];
+  }
+  Om = num(drv_blk, "Omega"), phi0 = num(st, "phi_0");
+  if (motor) {
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+    p.drive.J = num(drv_blk, "J");
+    p.drive.L_0 = num(drv_blk, "L_0");
+    p.drive.omega_0 = num(drv_blk, "Omega_0");
+    p.drive.k_r = num(drv_blk, "k_r");
+    p.drive.omega_start = Om;
+  } else {
+    Omd = num(drv_blk, "Omega_dot");
+    t = (Om - sqrt(Om * Om - 2.0 * Omd * phi0)) / Omd;
+    p.drive.mode = AUTOBAL_ROTOR_DRIVE_RAMP;
+    p.drive.t_a = 0.0, p.drive.t_b = 10.0;
+    p.drive.omega_a = Om - Omd * t, p.drive.omega_b = p.drive.omega_a + Omd * 10.0;
+  }
+  p.omega = Om;
+  rot = autobal_rotor_alloc(&p, &err);
+  CHECK("rotor with rolling balls", rot != NULL);
+  if (!rot) {
+    printf("     %s\n", err.message);
+    return;
+  }
+  if (motor) {
+    drv[0] = Om;
+    drv[2] = phi0;
+  } else {
+    CHECK("drive evaluated", autobal_rotor_drive_eval(rot, t, drv) == AUTOBAL_SUCCESS);
+  }
+  for (i = 0; i < 4; i++) {
+    char k2[16];
+    y[i] = num(st, qn[i]);
+    snprintf(k2, sizeof k2, "%s_d", qn[i]);
+    y[4 + i] = num(st, k2);
+  }
+  if (motor) {
+    y[dim - 2] = phi0;
+    y[dim - 1] = Om;
+  }
+  memcpy(yr, y, sizeof y);
+  for (j = 0; j < n_planes; j++)
+    for (i = 0; i < 2; i++) {
+      size_t k = autobal_rotor_ball_index(rot, j, i);
+      y[8 + k] = drv[2] + psi[j][i];
+      y[8 + N + k] = drv[0] + rate[j][i];
+      yr[8 + k] = psi[j][i];
+      yr[8 + N + k] = rate[j][i];
+    }
+  CHECK("fixed-frame rhs", autobal_rotor_rhs(t, y, dy, rot) == GSL_SUCCESS);
+  CHECK("rotating-frame rhs", autobal_rotor_rhs_rotating(t, yr, dyr, rot) == GSL_SUCCESS);
+  if (f == 0.0) {
+    for (i = 0; i < 4; i++) {
+      double want = num(acc, qdd[i]);
+      snprintf(what, sizeof what, "%s %s rolling: %s, fixed frame", which, tag, qdd[i]);
+      CHECK_CLOSE(what, dy[4 + i], want, 1e-12, 1e-12);
+      snprintf(what, sizeof what, "%s %s rolling: %s, rotating frame", which, tag, qdd[i]);
+      CHECK_CLOSE(what, dyr[4 + i], want, 1e-12, 1e-12);
+    }
+    if (motor) {
+      Omd = num(acc, "phi_0_dd");
+      snprintf(what, sizeof what, "%s %s rolling: phi_0'' = Omega', fixed and rotating frame", which, tag);
+      CHECK_CLOSE(what, dy[dim - 1], Omd, 1e-12, 0);
+      CHECK_CLOSE(what, dyr[dim - 1], Omd, 1e-12, 0);
+    }
+    for (j = 0; j < n_planes; j++)
+      for (i = 0; i < 2; i++) {
+        char key[32];
+        size_t k = autobal_rotor_ball_index(rot, j, i);
+        double want;
+        snprintf(key, sizeof key, "phi_%zu%zu_dd", j + 1, i + 1);
+        want = num(acc, key);
+        snprintf(what, sizeof what, "%s %s rolling: %s, fixed frame", which, tag, key);
+        CHECK_CLOSE(what, dy[8 + N + k], want, 1e-12, 1e-10);
+        snprintf(what, sizeof what, "%s %s rolling: psi'' = %s - Omega', rotating frame", which, tag, key);
+        CHECK_CLOSE(what, dyr[8 + N + k], want - Omd, 1e-12, 1e-10);
+      }
+  } else {
+    for (i = 0; i < dim; i++) {
+      snprintf(what, sizeof what, "%s %s rolling + friction: row %zu, rotating frame = fixed frame", which, tag, i);
+      if (i >= 8 + N && i < 8 + 2 * N) CHECK_CLOSE(what, dyr[i], dy[i] - (motor ? dy[dim - 1] : drv[1]), 1e-12, 1e-9);
+      else if (i >= 8 && i < 8 + N) CHECK_CLOSE(what, dyr[i] + (motor ? y[dim - 1] : drv[0]), dy[i], 1e-13, 0);
+      else CHECK_CLOSE(what, dyr[i], dy[i], 1e-12, 1e-12);
+    }
+  }
+  if (motor) {
+    double E, dE, yp[20], ym[20], e = 1e-6, P, D, Nf[4], Dfr = 0.0;
+    E = motor_energy(rot, y) + rolling_T(rot, y, rho);
+    if (f == 0.0) {
+      snprintf(what, sizeof what, "%s motor rolling: E + T_rot vs SymPy", which);
+      CHECK_CLOSE(what, E, num(cas, "energy"), 1e-14, 0);
+    }
+    for (i = 0; i < dim; i++) {
+      yp[i] = y[i] + e * dy[i];
+      ym[i] = y[i] - e * dy[i];
+    }
+    dE = (motor_energy(rot, yp) + rolling_T(rot, yp, rho) - motor_energy(rot, ym) - rolling_T(rot, ym, rho)) / (2.0 * e);
+    P = autobal_rotor_motor_torque(rot, Om) * Om;
+    D = motor_dissipation(rot, y);
+    if (f > 0.0) {
+      CHECK_STATUS("normal forces", autobal_rotor_normal_forces(rot, AUTOBAL_ROTOR_FIXED, t, y, Nf, N), AUTOBAL_SUCCESS);
+      for (j = 0; j < n_planes; j++)
+        for (i = 0; i < 2; i++) {
+          size_t k = autobal_rotor_ball_index(rot, j, i);
+          Dfr += r[j][i] * f * Nf[k] * fabs(rate[j][i]);
+        }
+      printf("     friction dissipation sum r f N |psi'| = %.9g W\n", Dfr);
+    } else {
+      snprintf(what, sizeof what, "%s motor rolling: the JSON's dE/dt = L Omega - D", which);
+      CHECK_CLOSE(what, num(cas, "dE_dt"), P - D, 1e-12, 0);
+    }
+    snprintf(what, sizeof what, "%s motor rolling%s: d(E + T_rot)/dt along the C rhs (central difference) = P - D%s",
+             which, f > 0.0 ? " + friction" : "", f > 0.0 ? " - sum r f N |psi'|" : "");
+    CHECK_CLOSE(what, dE, P - D - Dfr, 1e-8, 0);
+  }
+  autobal_rotor_free(rot);
+}
+
+/* rho -> 0: the accelerations converge to the rho = 0 rolling values at rate O(rho) (rho enters only
+ * the Euler term (1 - 2 rho/(5 r)) Omega' and, with a motor, the spin inertia), and rolling.on = 0
+ * with ball_rho set is the point-mass model bit for bit. */
+static void run_rolling_limit(const char *json) {
+  const char *blk = after_key(json, "one_plane"), *st = after_key(blk, "state");
+  const char *mot = after_key(blk, "motor");
+  autobal_rotor_params p, p0;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], rhob[2] = {0.0, 0.0};
+  double y[14], base[14], dy[14], diff[3] = {0.0, 0.0, 0.0};
+  const double rhos[3] = {1e-3, 1e-4, 1e-5};
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+  size_t i, n, dim = 14;
+  autobal_rotor *rot;
+  char what[160];
+  printf("-- rolling inertia: rho -> 0 and the switch\n");
+  if (!(blk && st && mot) || load_params(blk, 1, &p0, m, r, h, psi, rate) != 0) {
+    CHECK("JSON blocks found", 0);
+    return;
+  }
+  p0.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  p0.drive.J = num(mot, "J"), p0.drive.L_0 = num(mot, "L_0"), p0.drive.omega_0 = num(mot, "Omega_0");
+  p0.drive.k_r = num(mot, "k_r"), p0.drive.omega_start = num(mot, "Omega");
+  for (i = 0; i < 4; i++) {
+    char k2[16];
+    y[i] = num(st, qn[i]);
+    snprintf(k2, sizeof k2, "%s_d", qn[i]);
+    y[4 + i] = num(st, k2);
+  }
+  y[8] = 0.3 + psi[0][0], y[9] = 0.3 + psi[0][1], y[10] = 300.0 + rate[0][0], y[11] = 300.0 + rate[0][1];
+  y[12] = 0.3, y[13] = 300.0;
+  for (n = 0; n <= 3; n++) {
+    p = p0;
+    p.rolling.on = 1;
+    rhob[0] = rhob[1] = n == 0 ? 0.0 : rhos[n - 1];
+    p.rolling.ball_rho[0] = rhob;
+    rot = autobal_rotor_alloc(&p, NULL);
+    CHECK("rolling rotor allocated", rot != NULL);
+    if (!rot) return;
+    CHECK("rhs", autobal_rotor_rhs(0.0, y, n == 0 ? base : dy, rot) == GSL_SUCCESS);
+    if (n > 0)
+      for (i = 0; i < dim; i++) diff[n - 1] = fmax(diff[n - 1], fabs(dy[i] - base[i]) / (1.0 + fabs(base[i])));
+    autobal_rotor_free(rot);
+  }
+  printf("     largest scaled difference from rho = 0: %.3e, %.3e, %.3e for rho = 1e-3, 1e-4, 1e-5 m\n", diff[0],
+         diff[1], diff[2]);
+  CHECK("rho changes the accelerations", diff[2] > 0.0);
+  snprintf(what, sizeof what, "rho -> 0 at rate 1: ratios %.6f, %.6f = 10", diff[0] / diff[1], diff[1] / diff[2]);
+  CHECK(what, fabs(diff[0] / diff[1] - 10.0) < 0.05 && fabs(diff[1] / diff[2] - 10.0) < 0.005);
+  /* the switch off: ball_rho ignored, the point-mass bits */
+  {
+    double d1[14], d2[14];
+    autobal_rotor *a, *b;
+    p = p0;
+    a = autobal_rotor_alloc(&p, NULL);
+    rhob[0] = rhob[1] = 0.0115;
+    p.rolling.on = 0;
+    p.rolling.ball_rho[0] = rhob;
+    b = autobal_rotor_alloc(&p, NULL);
+    CHECK("rotors allocated", a && b);
+    if (a && b) {
+      CHECK("rhs", autobal_rotor_rhs(0.0, y, d1, a) == GSL_SUCCESS && autobal_rotor_rhs(0.0, y, d2, b) == GSL_SUCCESS);
+      CHECK("rolling.on = 0: the point-mass right-hand side bit for bit", memcmp(d1, d2, sizeof d1) == 0);
+    }
+    autobal_rotor_free(a);
+    autobal_rotor_free(b);
+  }
+  /* bad input */
+  {
+    autobal_error e;
+    p = p0;
+    p.rolling.on = 1;
+    rhob[0] = 0.01, rhob[1] = -1e-3;
+    p.rolling.ball_rho[0] = rhob;
+    CHECK_STATUS("negative rho refused", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+    CHECK_MSG("the message names plane[0].ball_rho[1]", e.message, "plane[0].ball_rho[1]");
+    p.rolling.on = 2;
+    CHECK_STATUS("rolling.on = 2 refused", autobal_rotor_params_check(&p, &e), AUTOBAL_EINVAL);
+  }
+}
+
+
+/* A stuck rolling ball (friction EXACT, MOTOR, one plane): ball 11 stuck at its check-state psi with
+ * rolling inertia rho: its spin adds 2/5 m rho^2 to the spin inertia, which the energy balance
+ * d(E + T_rot)/dt = L Omega - D - r f N |psi'| of the slipping ball checks (T_rot of the stuck ball
+ * = 1/5 m rho^2 Omega^2), and its holding force is the documented
+ * H = m [r Omega' - u_D'' sin phi + v_D'' cos phi] - 2/5 m rho Omega', evaluated here from the
+ * right-hand side's accelerations. */
+static void run_rolling_stuck(const char *json) {
+  const char *blk = after_key(json, "one_plane"), *st = after_key(blk, "state"), *mot = after_key(blk, "motor");
+  const char *sec = after_key(json, "rolling_inertia");
+  static const char *const qn[4] = {"x", "y", "alpha", "beta"};
+  autobal_rotor_params p;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2], rhob[2], fb[2] = {0.02, 0.02}, mub[2] = {0.5, 0.5};
+  double y[14], dy[14], yp[14], ym[14], Nf[2], Hf[2], rho, Om, phi0, e = 1e-6, dE, P, D, Dfr, Hwant, uDdd, vDdd;
+  size_t i, dim = 14;
+  autobal_rotor *rot;
+  char what[200];
+  printf("-- one_plane, motor, rolling inertia with ball 11 stuck\n");
+  if (!(blk && st && mot && sec) || load_params(blk, 1, &p, m, r, h, psi, rate) != 0) {
+    CHECK("JSON blocks found", 0);
+    return;
+  }
+  rho = num(sec, "rho");
+  rhob[0] = rhob[1] = rho;
+  p.rolling.on = 1, p.rolling.ball_rho[0] = rhob;
+  p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT, p.friction.ball_f[0] = fb, p.friction.ball_mu[0] = mub;
+  Om = num(mot, "Omega"), phi0 = num(st, "phi_0");
+  p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
+  p.drive.J = num(mot, "J"), p.drive.L_0 = num(mot, "L_0"), p.drive.omega_0 = num(mot, "Omega_0");
+  p.drive.k_r = num(mot, "k_r"), p.drive.omega_start = Om;
+  rate[0][0] = 0.0;
+  rot = autobal_rotor_alloc(&p, NULL);
+  CHECK("rotor", rot != NULL);
+  if (!rot) return;
+  for (i = 0; i < 4; i++) {
+    char k2[16];
+    y[i] = num(st, qn[i]);
+    snprintf(k2, sizeof k2, "%s_d", qn[i]);
+    y[4 + i] = num(st, k2);
+  }
+  y[8] = phi0 + psi[0][0], y[9] = phi0 + psi[0][1], y[10] = Om, y[11] = Om + rate[0][1], y[12] = phi0, y[13] = Om;
+  CHECK_STATUS("ball 11 set stuck", autobal_rotor_ball_mode_set(rot, 0, AUTOBAL_ROTOR_BALL_STUCK), AUTOBAL_SUCCESS);
+  CHECK("rhs", autobal_rotor_rhs(0.7, y, dy, rot) == GSL_SUCCESS);
+  CHECK_STATUS("normal forces", autobal_rotor_normal_forces(rot, AUTOBAL_ROTOR_FIXED, 0.7, y, Nf, 2), AUTOBAL_SUCCESS);
+  CHECK_STATUS("holding forces", autobal_rotor_holding_forces(rot, AUTOBAL_ROTOR_FIXED, 0.7, y, Hf, 2), AUTOBAL_SUCCESS);
+  for (i = 0; i < dim; i++) {
+    yp[i] = y[i] + e * dy[i];
+    ym[i] = y[i] - e * dy[i];
+  }
+  dE = (motor_energy(rot, yp) + rolling_T(rot, yp, rho) - motor_energy(rot, ym) - rolling_T(rot, ym, rho)) / (2.0 * e);
+  P = autobal_rotor_motor_torque(rot, Om) * Om;
+  D = motor_dissipation(rot, y);
+  Dfr = r[0][1] * fb[1] * Nf[1] * fabs(rate[0][1]);
+  snprintf(what, sizeof what, "stuck rolling ball: d(E + T_rot)/dt = L Omega - D - r f N |psi'| (%.6f W of friction)", Dfr);
+  CHECK_CLOSE(what, dE, P - D - Dfr, 1e-8, 0);
+  uDdd = dy[4] + p.plane[0].d * dy[7];
+  vDdd = dy[5] - p.plane[0].d * dy[6];
+  Hwant = m[0][0] * (r[0][0] * dy[13] - uDdd * sin(y[8]) + vDdd * cos(y[8])) - 0.4 * m[0][0] * rho * dy[13];
+  CHECK_CLOSE("stuck rolling ball: H = m [r Omega' - u_D'' sin + v_D'' cos] - 2/5 m rho Omega'", Hf[0], Hwant, 1e-12, 1e-14);
+  CHECK("stuck: phi' = Omega, phi'' = Omega'", dy[8] == Om && dy[10] == dy[13]);
+  autobal_rotor_free(rot);
+}
+
 int main(void) {
   char *json;
   gsl_set_error_handler_off();
@@ -480,6 +793,13 @@ int main(void) {
     for (np = 1; np <= 2; np++)
       for (motor = 0; motor <= 1; motor++)
         for (kind = F_NORMAL_NOGRAV; kind <= F_STUCK; kind++) run_friction_case(json, np, motor, kind);
+    for (np = 1; np <= 2; np++)
+      for (motor = 0; motor <= 1; motor++) {
+        run_rolling_case(json, np, motor, 0.0);
+        run_rolling_case(json, np, motor, 0.02);
+      }
+    run_rolling_limit(json);
+    run_rolling_stuck(json);
   }
   free(json);
   printf("%d checks, %d failed\n", check_count_, check_failures_);

@@ -230,6 +230,54 @@ typedef struct autobal_rotor_friction {
                                                    * equal to f) */
 } autobal_rotor_friction;
 
+/* Rolling inertia (docs/device.md section 3, "Rolling inertia").  With on = 1 every ball is a solid
+ * sphere of radius rho_ji (m) whose centre runs on the track radius r_ji and which rolls without
+ * sliding on the inside of the outer race (contact at r_ji + rho_ji).  It adds the rotational
+ * kinetic energy T_rot = 1/5 m ((r + rho) Omega - r phi')^2: the ball equation (3.4) becomes
+ *   7/5 m r^2 phi'' - 2/5 m r (r + rho) Omega' + h r^2 (phi' - Omega) = m r (u_D'' sin - v_D'' cos)
+ * (rotating frame: 7/5 m r^2 psi'' + m r^2 (1 - 2 rho/(5 r)) Omega' + h r^2 psi' = ...), so the
+ * relative inertia is 7/5 of the point mass's for every rho >= 0 (rho -> 0 is NOT the point mass:
+ * that is on = 0); a MOTOR's phi_0 equation gains 2/5 m (r + rho) ((r + rho) Omega' - r phi''), a
+ * stuck ball (friction EXACT) adds 2/5 m rho^2 to the spin inertia and -2/5 m rho Omega' to its
+ * holding force.  The normal force keeps the point-mass formula (autobal_rotor_friction).  The
+ * right-hand sides then take the friction path (a general 4x4 solve; with the law NONE f = 0, no
+ * events).  The balanced states and the linear analyses (stability) do not include it: the
+ * equilibria are the same, their stability is not (the CLI refuses rolling there). */
+typedef struct autobal_rotor_rolling {
+  int on;                                          /* 0 off (default), 1 on */
+  const double *ball_rho[AUTOBAL_ROTOR_MAX_PLANES]; /* m, ball radius rho_ji >= 0 of plane j's balls
+                                                    * (n_balls entries, copied; NULL: all 0) */
+} autobal_rotor_rolling;
+
+/* Ball size and contact (docs/device.md section 4).  With on = 1 ball i has the diameter delta_i
+ * (m).  Balls on one TRACK (same plane, same track radius r, compared exactly) cannot overlap:
+ * neighbours keep the angular distance of at least the gap angle
+ *   gamma_ij = 2 asin((delta_i + delta_j) / (4 r))            (autobal_rotor_gap_angle);
+ * balls on different tracks do not touch; a track whose balls all have delta = 0 has no contact.
+ * The neighbours (pairs: the ball behind and the ball ahead in the positive sense) are fixed by
+ * the cyclic order of the initial state (autobal_rotor_contact_order).  An IMPACT (the gap of a pair
+ * reaching 0 while it closes) applies the generalized law with the model's mass matrix M (Newton's
+ * restitution on the gap rate u = J v, J = -1 at the ball behind, +1 ahead):
+ *   M dv = J^T Lambda,  J v+ = -e J v-,  Lambda = -(1 + e) u / G,  G = J M^-1 J^T,
+ * the kinetic energy dropping by 1/2 (1 - e^2) u^2 / G (MOTOR; a prescribed drive adds the work of
+ * its impulsive torque).  M^-1 J^T is computed as the response of the accelerations to a unit
+ * generalized force pair on the two balls (friction off, every ball free).  RESTING contact: when
+ * e |u| < v_rest the impact is plastic (u+ = 0) and the pair becomes a CLUSTER: the constraint
+ * gap'' = 0 is imposed on the accelerations by the contact force lambda (N m, generalized, > 0
+ * compressive), computed in every right-hand side; the pair separates when lambda falls to 0.
+ * Several touching pairs may form chains (at most AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE clusters at
+ * once; beyond that an impact keeps its restitution).  With contact on the right-hand sides take
+ * the friction path.  Not with friction.law = EXACT (EINVAL: stick-slip and contact together are
+ * not implemented). */
+#define AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE 16
+typedef struct autobal_rotor_contact {
+  int on;                                               /* 0 off (default), 1 on */
+  double restitution;                                   /* 1, e in [0, 1] */
+  double v_rest;                                        /* rad/s, resting-contact speed, >= 0 (0: 1e-3) */
+  const double *ball_diameter[AUTOBAL_ROTOR_MAX_PLANES]; /* m, delta_ji >= 0 (n_balls entries, copied;
+                                                         * NULL: all 0) */
+} autobal_rotor_contact;
+
 /* Largest number of points of a TABLE drive. */
 #define AUTOBAL_ROTOR_DRIVE_MAX_POINTS 10000000
 
@@ -261,6 +309,12 @@ typedef struct autobal_rotor_params {
   /* Rolling resistance and stiction of the balls (docs/device.md section 3); added in 0.3.0 at
    * the end of the struct: a zeroed block is AUTOBAL_ROTOR_FRICTION_NONE (the model above). */
   autobal_rotor_friction friction;
+  /* Rolling inertia of the balls (docs/device.md section 3, "Rolling inertia"); added in 0.3.0 at
+   * the end of the struct: a zeroed block is off (point masses, the model above bit for bit). */
+  autobal_rotor_rolling rolling;
+  /* Ball size and contact (docs/device.md section 4); added in 0.3.0 at the end of the struct: a
+   * zeroed block is off (balls pass through each other, the model above). */
+  autobal_rotor_contact contact;
 } autobal_rotor_params;
 
 /* The default example (docs/rotor.md): M_k = 6, A_k = 0.12, m_p = 4, A_p = 0.04,
@@ -437,6 +491,13 @@ AUTOBAL_API int autobal_rotor_convert_state(const autobal_rotor *r, int from_fra
  * allocation), stuck balls are masses fixed to the rotor, and a ball with N <= 0 also fails with
  * GSL_EBADFUNC (the message names the ball and t; dydt not written). */
 AUTOBAL_API int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor);
+/* Returned by both right-hand sides (instead of GSL_EBADFUNC) when, with friction, a ball's
+ * normal force is not positive: the state is outside the model (the ball would leave its
+ * track; message on the handle).  Equal to AUTOBAL_TRANSIENT_RHS_REJECT of
+ * autobal/transient.h: at a trial stage of a step the transient driver retries a shorter step,
+ * at a state the integration has reached it stops with AUTOBAL_ERHS.  A GSL driver treats it as
+ * a failure other than GSL_EBADFUNC, i.e. also retries with a smaller step. */
+#define AUTOBAL_ROTOR_RHS_LEAVES_TRACK (-1000)
 
 /* MOTOR drive (both right-hand sides): the system is linear in Omega' as well; the 4x4 solve
  * above is done for two right-hand sides (the terms without Omega' and those per unit Omega',
@@ -585,6 +646,53 @@ AUTOBAL_API int autobal_rotor_static_offset(const autobal_rotor_params *p, doubl
  * of the track ("carried round"), above 1 the balls lie at the bottom.  NaN when p is NULL, gravity
  * is off, the plane does not exist or has no balls; 0 on a vertical shaft, +inf at omega = 0 otherwise. */
 AUTOBAL_API double autobal_rotor_gravity_ratio(const autobal_rotor_params *p, size_t plane, double omega);
+
+/* ---- ball size and contact (docs/device.md section 4; autobal_rotor_contact) ---------------------- */
+
+/* The gap angle 2 asin((delta_i + delta_j) / (4 r)) (rad) of two balls on a track of radius r (m);
+ * NAN when the arguments are negative or (delta_i + delta_j) > 4 r. */
+AUTOBAL_API double autobal_rotor_gap_angle(double delta_i, double delta_j, double r);
+/* Contact on (1) or off (0). */
+AUTOBAL_API int autobal_rotor_contact_on(const autobal_rotor *r);
+/* Number of neighbour pairs (0 without contact) and pair p's balls (state indices behind, ahead;
+ * either may be NULL).  AUTOBAL_EINVAL when p is out of range. */
+AUTOBAL_API size_t autobal_rotor_contact_n_pairs(const autobal_rotor *r);
+AUTOBAL_API int autobal_rotor_contact_pair(const autobal_rotor *r, size_t p, size_t *behind, size_t *ahead);
+/* Set the pairs from the cyclic order of the balls of every track in the state y (frame), clusters
+ * cleared.  AUTOBAL_EINVAL, naming the balls, when two neighbours overlap (gap below -1e-12 rad);
+ * autobal_rotor_alloc does it with the initial angles. */
+AUTOBAL_API int autobal_rotor_contact_order(autobal_rotor *r, int frame, double t, const double *y);
+/* The gap of pair p (rad; the angular distance minus the gap angle) in y. */
+AUTOBAL_API double autobal_rotor_contact_gap(const autobal_rotor *r, size_t p, const double *y);
+/* The event function of pair p (falls through 0): its gap plus 1e-12 rad, or for a cluster its contact force
+ * lambda (N m) at (t, y) (NAN when the accelerations fail). */
+AUTOBAL_API double autobal_rotor_contact_switch(autobal_rotor *r, int frame, size_t p, double t, const double *y);
+/* Is pair p a cluster (1) or free (0)?  Set it (the caller keeps the gap at 0). */
+AUTOBAL_API int autobal_rotor_contact_active(const autobal_rotor *r, size_t p);
+AUTOBAL_API int autobal_rotor_contact_set_active(autobal_rotor *r, size_t p, int active);
+/* Apply the impact law to the single pair p at (t, y) with restitution e (the velocities of y
+ * changed in place; clusters held as constraints): optional outputs G (1/(kg m^2)), Lambda (N m s)
+ * and u (rad/s, the gap rate before).  AUTOBAL_ENUMERIC when the accelerations fail or G <= 0. */
+AUTOBAL_API int autobal_rotor_contact_impact(autobal_rotor *r, int frame, size_t p, double e, double t, double *y,
+                                             double *G, double *Lambda, double *u);
+/* The event reset of contact: clusters whose contact force is <= 0 are released; every free pair
+ * with gap <= 1e-9 rad that closes (u < 0) is an impact (restitution e; plastic, and a cluster,
+ * when e |u| < v_rest), repeated until no touching pair closes (chains); a pair so joined that is not
+ * pressed (lambda <= 0) is released at once.  Gaps of the pairs that
+ * touch are set to 0 exactly (the ball ahead moved by the tiny remaining gap or overlap).  Counts
+ * added to the optional outputs.  Returns 1 when y or a cluster changed, 0 when nothing did, or a
+ * negative status. */
+AUTOBAL_API int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *y, size_t *n_impacts,
+                                             size_t *n_joins, size_t *n_releases);
+/* Number of clusters (touching pairs held together). */
+AUTOBAL_API size_t autobal_rotor_contact_n_active(const autobal_rotor *r);
+/* Largest resultant m r of the balls of a plane the sizes allow (kg m): per track the resultant of
+ * its balls packed at their gap angles in track order, summed over the tracks.  Two equal balls:
+ * 2 m r cos(gamma/2).  Without contact: sum m r.  The balanced angles are out of reach when the
+ * unbalance m0 r0 exceeds it (autobal_rotor_contact_reachable). */
+AUTOBAL_API double autobal_rotor_contact_capacity(const autobal_rotor *r, size_t plane);
+/* 1 when plane's unbalance m0 r0 <= autobal_rotor_contact_capacity (relative slack 1e-12), else 0. */
+AUTOBAL_API int autobal_rotor_contact_reachable(const autobal_rotor *r, size_t plane);
 
 AUTOBAL_END_DECLS
 

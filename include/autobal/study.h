@@ -234,6 +234,18 @@ typedef struct autobal_study_rotor_transient_summary {
      are carried round) */
   double static_offset[4];
   double gravity_ratio_final[AUTOBAL_ROTOR_MAX_PLANES];
+  /* ball size and contact (docs/device.md section 4; p.contact.on = 1, else have_contact = 0 and
+     the rest 0): impacts over the run (a plastic one that joins a pair counted too), pairs joined
+     into resting contact and released, touching pairs (clusters) at t_reached; per plane the
+     largest resultant the sizes allow (autobal_rotor_contact_capacity, kg m) and whether the
+     unbalance is within it (1) or the balanced angles are out of reach (0) */
+  int have_contact;
+  unsigned long contact_impacts;
+  unsigned long contact_joins;
+  unsigned long contact_releases;
+  unsigned long contacts_final;
+  double contact_capacity[AUTOBAL_ROTOR_MAX_PLANES];
+  int contact_reachable[AUTOBAL_ROTOR_MAX_PLANES];
 } autobal_study_rotor_transient_summary;
 
 /* Check the inputs of a rotor transient without running it (and without

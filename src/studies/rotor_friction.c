@@ -148,6 +148,119 @@ void study_friction_summary_free(autobal_study_rotor_transient_summary *s) {
   }
 }
 
+/* ---- contact ------------------------------------------------------------------------------------- */
+
+typedef struct pair_event {
+  struct study_contact *c;
+  size_t p;
+} pair_event;
+
+struct study_contact {
+  autobal_rotor *rot;
+  int frame;
+  size_t np, first;
+  pair_event *ev;
+  study_friction *fric;
+  size_t impacts, joins, releases;
+  int failed;
+  char message[AUTOBAL_ERRMSG_SIZE];
+};
+
+static double pair_switch(double t, const double y[], void *user) {
+  const pair_event *e = (const pair_event *)user;
+  return autobal_rotor_contact_switch(e->c->rot, e->c->frame, e->p, t, y);
+}
+
+/* THE reset of a run with contact: contact events here, the others to the friction collector. */
+static int hybrid_reset(const autobal_transient_event_hit *hit, double y[], void *user) {
+  study_contact *c = (study_contact *)user;
+  int rc;
+  if (hit->index < c->first || hit->index >= c->first + c->np) return c->fric ? ball_reset(hit, y, c->fric) : 0;
+  rc = autobal_rotor_contact_settle(c->rot, c->frame, hit->t, y, &c->impacts, &c->joins, &c->releases);
+  if (rc < 0) {
+    c->failed = rc;
+    snprintf(c->message, sizeof c->message, "contact at t = %.17g s: %s", hit->t, autobal_rotor_errmsg(c->rot));
+    return 2;
+  }
+  return rc == 1 ? AUTOBAL_TRANSIENT_RESET : 0;
+}
+
+void study_contact_free(study_contact *c) {
+  if (c == NULL) return;
+  free(c->ev);
+  free(c);
+}
+
+int study_contact_begin(autobal_rotor *rot, int frame, autobal_transient *tr, double t0, double *y,
+                        study_friction *fric, study_contact **out, autobal_error *err) {
+  study_contact *c;
+  size_t p, np;
+  int rc;
+  *out = NULL;
+  if (!autobal_rotor_contact_on(rot)) return AUTOBAL_SUCCESS;
+  if ((rc = autobal_rotor_contact_order(rot, frame, t0, y)) != AUTOBAL_SUCCESS)
+    return autobal_error_set(err, rc, "%s", autobal_rotor_errmsg(rot));
+  np = autobal_rotor_contact_n_pairs(rot);
+  c = (study_contact *)calloc(1, sizeof *c);
+  if (c) c->ev = (pair_event *)calloc(np + 1, sizeof *c->ev);
+  if (!c || !c->ev) {
+    study_contact_free(c);
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+  }
+  c->rot = rot;
+  c->frame = frame;
+  c->np = np;
+  c->fric = fric;
+  for (p = 0; p < np; p++) {
+    int idx;
+    c->ev[p].c = c;
+    c->ev[p].p = p;
+    idx = autobal_transient_add_event(tr, pair_switch, &c->ev[p], -1, 0);
+    if (idx < 0) {
+      study_contact_free(c);
+      return autobal_error_set(err, idx, "%s", autobal_transient_errmsg(tr));
+    }
+    if (p == 0) c->first = (size_t)idx;
+  }
+  autobal_transient_set_event_reset(tr, hybrid_reset, c);
+  *out = c;
+  return AUTOBAL_SUCCESS;
+}
+
+int study_contact_finish(study_contact *c, const autobal_rotor *rot, autobal_study_rotor_transient_summary *s,
+                         autobal_error *err) {
+  size_t j;
+  if (!autobal_rotor_contact_on(rot)) return AUTOBAL_SUCCESS;
+  s->have_contact = 1;
+  for (j = 0; j < autobal_rotor_n_planes(rot); j++) {
+    s->contact_capacity[j] = autobal_rotor_contact_capacity(rot, j);
+    s->contact_reachable[j] = autobal_rotor_contact_reachable(rot, j);
+  }
+  if (c == NULL) return AUTOBAL_SUCCESS;
+  s->contact_impacts = c->impacts;
+  s->contact_joins = c->joins;
+  s->contact_releases = c->releases;
+  s->contacts_final = autobal_rotor_contact_n_active(rot);
+  if (c->failed) return autobal_error_set(err, c->failed, "%s", c->message);
+  return AUTOBAL_SUCCESS;
+}
+
+int study_contact_write_summary(autobal_archive *a, const autobal_study_rotor_transient_summary *s, const char *group) {
+  int st;
+  double reach[AUTOBAL_ROTOR_MAX_PLANES];
+  size_t j;
+  if (!s->have_contact) return 0;
+  st = autobal_archive_attr_double(a, group, "contact_impacts", (double)s->contact_impacts, "1");
+  if (!st) st = autobal_archive_attr_double(a, group, "contact_joins", (double)s->contact_joins, "1");
+  if (!st) st = autobal_archive_attr_double(a, group, "contact_releases", (double)s->contact_releases, "1");
+  if (!st) st = autobal_archive_attr_double(a, group, "contacts_final", (double)s->contacts_final, "1");
+  for (j = 0; j < s->n_planes; j++) reach[j] = s->contact_reachable[j];
+  if (!st && s->n_planes)
+    st = autobal_archive_attr_double_array(a, group, "contact_capacity", s->n_planes, s->contact_capacity, "kg m");
+  if (!st && s->n_planes) st = autobal_archive_attr_double_array(a, group, "contact_reachable", s->n_planes, reach, "1");
+  return st;
+}
+
 static const char *law_name(int law) {
   return law == AUTOBAL_ROTOR_FRICTION_EXACT ? "exact" : law == AUTOBAL_ROTOR_FRICTION_REGULARIZED ? "regularized" : "none";
 }
@@ -155,8 +268,23 @@ static const char *law_name(int law) {
 int study_friction_write_inputs(autobal_archive *a, const autobal_rotor *rot, const char *group) {
   const autobal_rotor_params *p = autobal_rotor_get_params(rot);
   size_t j;
-  int st;
-  if (p->friction.law == AUTOBAL_ROTOR_FRICTION_NONE) return 0;
+  int st = 0;
+  for (j = 0; j < p->n_planes && p->rolling.on && !st; j++) { /* rolling inertia: the balls' radii */
+    char grp[32];
+    if (p->plane[j].n_balls == 0) continue;
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_attr_double_array(a, grp, "ball_rho", p->plane[j].n_balls, p->rolling.ball_rho[j], "m");
+  }
+  for (j = 0; j < p->n_planes && p->contact.on && !st; j++) { /* contact: the balls' diameters */
+    char grp[32];
+    if (p->plane[j].n_balls == 0) continue;
+    snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
+    st = autobal_archive_attr_double_array(a, grp, "ball_diameter", p->plane[j].n_balls, p->contact.ball_diameter[j], "m");
+  }
+  if (!st && p->contact.on) st = autobal_archive_attr_double(a, group, "contact_restitution", p->contact.restitution, "1");
+  if (!st && p->contact.on)
+    st = autobal_archive_attr_double(a, group, "contact_v_rest", p->contact.v_rest > 0.0 ? p->contact.v_rest : 1e-3, "rad/s");
+  if (st || p->friction.law == AUTOBAL_ROTOR_FRICTION_NONE) return st;
   st = autobal_archive_attr_string(a, group, "friction", law_name(p->friction.law));
   if (!st && p->friction.law == AUTOBAL_ROTOR_FRICTION_REGULARIZED)
     st = autobal_archive_attr_double(a, group, "friction_u_eps", p->friction.u_eps, "rad/s");

@@ -33,6 +33,21 @@ void study_friction_free(study_friction *f);
 int study_friction_write_inputs(autobal_archive *a, const autobal_rotor *rot, const char *group);
 int study_friction_write_summary(autobal_archive *a, const autobal_study_rotor_transient_summary *s,
                                  const char *group);
+/* Contact (autobal_rotor_contact): one event per neighbour pair (autobal_rotor_contact_switch,
+ * falling) and THE event reset of the run, which dispatches on the event index: contact events to
+ * autobal_rotor_contact_settle, the others to the friction collector fric (may be NULL; its reset,
+ * installed by study_friction_begin, is replaced by this one).  The pairs are set from (t0, y)
+ * (overlap: AUTOBAL_EINVAL naming the balls).  *out = NULL (nothing done) without contact. */
+typedef struct study_contact study_contact;
+int study_contact_begin(autobal_rotor *rot, int frame, autobal_transient *tr, double t0, double *y,
+                        study_friction *fric, study_contact **out, autobal_error *err);
+/* After the run: s's contact fields (counts, clusters at the end, capacity, reachability); a failure
+ * of the settling during the run is returned here.  NULL c: the fields of a rotor without contact. */
+int study_contact_finish(study_contact *c, const autobal_rotor *rot, autobal_study_rotor_transient_summary *s,
+                         autobal_error *err);
+void study_contact_free(study_contact *c);
+int study_contact_write_summary(autobal_archive *a, const autobal_study_rotor_transient_summary *s, const char *group);
+
 /* Release the summary's friction arrays. */
 void study_friction_summary_free(autobal_study_rotor_transient_summary *s);
 

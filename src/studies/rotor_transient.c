@@ -205,6 +205,10 @@ int autobal_study_rotor_transient_check(const autobal_rotor_params *p, const aut
   return st;
 }
 
+/* the rotor's "outside the model" return is the driver's "reject this trial state" */
+_Static_assert(AUTOBAL_ROTOR_RHS_LEAVES_TRACK == AUTOBAL_TRANSIENT_RHS_REJECT,
+               "autobal_rotor_rhs's LEAVES_TRACK must be the transient driver's RHS_REJECT");
+
 /* ---- the run -------------------------------------------------------------------------- */
 typedef struct run_ctx {
   autobal_rotor *rotor;
@@ -585,6 +589,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   autobal_error e;
   run_ctx r;
   study_friction *fric = NULL;
+  study_contact *cont = NULL;
   double *y = NULL, t_reached = 0.0;
   int st, rc = AUTOBAL_SUCCESS, ev;
   size_t j;
@@ -661,15 +666,21 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     rc = autobal_error_set(err, st, "%s", e.message);
     goto done;
   }
+  if ((st = study_contact_begin(rot, o->frame, tr, 0.0, y, fric, &cont, &e))) { /* contact: impact events */
+    rc = autobal_error_set(err, st, "%s", e.message);
+    goto done;
+  }
   st = autobal_transient_run(tr, &sys, 0.0, o->t_end, y, &t_reached);
   autobal_transient_get_stats(tr, &s->solver);
   snprintf(s->stepper, sizeof s->stepper, "%s", autobal_transient_get_options(tr).stepper);
   snprintf(s->solver_message, sizeof s->solver_message, "%s", autobal_transient_errmsg(tr));
-  if (st == AUTOBAL_ERHS && autobal_rotor_friction_on(rot)) /* with the reason, e.g. a ball leaving its track */
+  if (st == AUTOBAL_ERHS && (autobal_rotor_friction_on(rot) || autobal_rotor_contact_on(rot))) /* with the reason, e.g. a ball leaving its track */
     snprintf(s->solver_message, sizeof s->solver_message, "%s: %s", autobal_transient_errmsg(tr),
              autobal_rotor_errmsg(rot));
   if (st < 0) rc = autobal_error_set(err, st, "%s", s->solver_message);
   st = study_friction_finish(fric, t_reached, s, &e);
+  if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
+  st = study_contact_finish(cont, rot, s, &e);
   if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
   if (r.io_failed && rc == AUTOBAL_SUCCESS)
     rc = autobal_error_set(err, AUTOBAL_EIO, "writing the time series failed: %s", autobal_archive_errmsg(a));
@@ -735,6 +746,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   if (a) {
     st = write_summary(a, s);
     if (!st) st = study_friction_write_summary(a, s, "/rotor/transient");
+    if (!st) st = study_contact_write_summary(a, s, "/rotor/transient");
     if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", autobal_archive_errmsg(a));
   }
   st = study_runup_finish(r.runup, rot, o, a, autobal_archive_series_length(r.series), s, &e);
@@ -752,6 +764,7 @@ done:
   free(r.rev_row);
   study_runup_free(r.runup);
   study_friction_free(fric);
+  study_contact_free(cont);
   free(y);
   if (s == &local) autobal_study_rotor_transient_summary_free(&local);
   return rc;

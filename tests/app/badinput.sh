@@ -103,6 +103,17 @@ expect 3 "plane1.ball_mu (ball 2)" "allowed range [0.05, inf)" -- "$A" rotor tra
 expect 3 "plane1.ball_f (ball 1)" "allowed range [0, inf)" -- "$A" rotor transient --set friction.law=exact --set plane1.ball_f=-1e-3
 expect 3 "friction.u_eps" "allowed range (0, inf)" -- "$A" rotor transient --set friction.law=regularized --set friction.u_eps=-0.5
 expect 3 "plane1.ball_mu" "not a finite number" -- "$A" rotor transient --set friction.law=exact --set plane1.ball_mu=nan
+# rolling inertia (docs/device.md section 3): a negative ball radius, a wrong count, not in the linear analyses
+expect 3 "plane1.ball_rho (ball 2)" "allowed range [0, inf)" -- "$A" rotor transient --set plane1.ball_rho=0.01,-1e-3
+expect 3 "ball_rho has 3 values" "2 balls" -- "$A" rotor transient --set plane1.ball_rho=0.01,0.01,0.01
+expect 3 "plane1.ball_rho" "unknown key" -- "$A" rotor stability --set plane1.ball_rho=0.01
+# ball size and contact (docs/device.md section 4): do not fit, overlap, e outside [0, 1], negative size
+expect 3 "plane 1" "do not fit" -- "$A" rotor transient --set plane1.ball_diameter=0.35
+expect 3 "balls 1 and 2 of plane 1" "overlap" -- "$A" rotor transient --set plane1.ball_diameter=0.023 --set plane1.ball_psi=1.0,1.2
+expect 3 "contact.restitution" "allowed range [0, 1]" -- "$A" rotor transient --set plane1.ball_diameter=0.023 --set contact.restitution=1.5
+expect 3 "plane1.ball_diameter (ball 1)" "allowed range [0, inf)" -- "$A" rotor transient --set plane1.ball_diameter=-0.01,0.01
+expect 3 "[contact]" "ball_diameter" -- "$A" rotor transient --set contact.restitution=0.5
+expect 3 "friction.law = EXACT" "not implemented" -- "$A" rotor transient --set plane1.ball_diameter=0.023 --set friction.law=exact
 expect 3 "plane1.ball_psi" "item 2" -- "$A" rotor transient --set plane1.ball_psi=1,nan
 expect 3 "transient.max_steps" "not an integer" -- "$A" rotor transient --set transient.max_steps=1e3
 expect 3 "transient.max_steps" "not an integer" -- "$A" rotor transient --set transient.max_steps=99999999999999999999

@@ -50,8 +50,8 @@ struct autobal_rotor {
   /* friction (docs/device.md section 3): the law, per ball f, mu, the workspace fs (f times the
    * sign or tanh of the current call) and the EXACT law's modes (mode0: a copy at the entry of
    * autobal_rotor_friction_settle); gravity inputs gu, gv (m/s^2: the in-plane gravity enters
-   * every ball equation as the acceleration (gu, gv) of D, fixed axes; 0 until gravity is
-   * implemented), Wtot = M + all small masses, Dm = sum_j d_j m_j (for the weights' rows);
+   * every ball equation as the acceleration (gu, gv) of D, fixed axes; (0, g sin theta) with gravity on, else 0),
+   * Wtot = M + all small masses, Dm = sum_j d_j m_j (for the weights' rows);
    * the cache of autobal_rotor_friction_switch: (t, frame, y copy) -> N, H */
   int law;
   double inv_ueps, gu, gv, Wtot, Dm;
@@ -61,6 +61,20 @@ struct autobal_rotor {
   /* gravity (docs/device.md section 2): g_s = g sin(theta) (m/s^2), the weights g_s W on y (N)
    * and g_s sum_j d_j m_j on alpha (N m), W = M + all small masses; all 0 when off */
   double gs, gW, gD;
+  /* rolling inertia (docs/device.md section 3): on, per ball rho (m), rk = 5/7 (the inverse relative
+   * inertia) and re = 2/5 (1 + rho/r) (the Omega' coefficient of the ball equation over m r^2);
+   * rk = 1, re = 0 when off */
+  int rolling;
+  double *rho, *rk, *re;
+  /* contact (docs/device.md section 4): on, restitution e, resting speed v_rest (rad/s); per ball
+   * delta (m); the pairs of neighbours on a track (np of them: pb behind, pa ahead, gap angle pg,
+   * offset pc: a multiple of 2 pi fixed by the order, see pair_gap), their cluster flags pact and
+   * contact forces plam (N m, of the last evaluation); workspaces: cQ (N), cW ((CMAX + 1) dim),
+   * cG (CMAX^2), the event cache (t, frame, y copy in cy) */
+  int contact, *pact, ccache_ok, ccache_frame;
+  size_t np, *pb, *pa;
+  double e_rest, v_rest, *delta, *pg, *pc, *plam, *cQ, *cW, *cG, *cy, ccache_t;
+  double *cstore;
   double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
   autobal_error err;
 };
@@ -442,11 +456,15 @@ static void rhs_common_rows(const autobal_rotor *R, const double y[], const doub
  * accelerations from the stored sines and cosines (elementwise). */
 
 static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
-                     double dydt[], double *Nout, double *Hout, int check_N);
+                     double dydt[], double *Nout, double *Hout, int check_N, const double *Q, int nofric);
+static int contact_rhs(autobal_rotor *R, int frame, double t, const double y[], double dydt[]);
 
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
-  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE) return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL, 1);
+  if (R->contact) return contact_rhs(R, AUTOBAL_ROTOR_FIXED, t, y, dydt);
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE || R->rolling)
+    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_FIXED, t, y, dydt, NULL, NULL,
+                     R->law != AUTOBAL_ROTOR_FRICTION_NONE, NULL, 0);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *phi = y + 8, *phid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -532,8 +550,10 @@ int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
 
 int autobal_rotor_rhs_rotating(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
-  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE)
-    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL, 1);
+  if (R->contact) return contact_rhs(R, AUTOBAL_ROTOR_ROTATING, t, y, dydt);
+  if (R->law != AUTOBAL_ROTOR_FRICTION_NONE || R->rolling)
+    return fric_eval(R, R->fws, &R->err, AUTOBAL_ROTOR_ROTATING, t, y, dydt, NULL, NULL,
+                     R->law != AUTOBAL_ROTOR_FRICTION_NONE, NULL, 0);
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *psi = y + 8, *psid = y + 8 + N;
   const double *sn = R->sn, *cs = R->cs;
@@ -725,11 +745,14 @@ static void fric_one_plane_apply(const autobal_rotor *R, const fric_plane *c, co
  * balls; both may be NULL).  check_N: fail when a ball has N <= 0.  Returns 0, or GSL_EBADFUNC
  * with the message on the handle. */
 static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
-                     double dydt[], double *Nout, double *Hout, int check_N) {
+                     double dydt[], double *Nout, double *Hout, int check_N, const double *Q, int nofric) {
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *ang = y + 8, *rate = y + 8 + N;
   double *sn = ws, *cs = ws + N, *fs = ws + 2 * N;
-  const int exact = R->law == AUTOBAL_ROTOR_FRICTION_EXACT, reg = R->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED;
+  /* nofric: every ball free and f = 0 (the impulsive response of an impact, docs/device.md section 4);
+   * Q (may be NULL): generalized forces on the balls' angles (N m), the contact forces */
+  const int exact = R->law == AUTOBAL_ROTOR_FRICTION_EXACT && !nofric;
+  const int reg = R->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED && !nofric;
   const double gu = R->gu, gv = R->gv;
   fric_plane cp[AUTOBAL_ROTOR_MAX_PLANES];
   double b[4], b1[4], qdd[4], qdd1[4], uv[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, W, Wd = 0.0, phi0;
@@ -777,7 +800,8 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     c->Pv = R->s0[j] * cth;
     rhsm -= R->s0[j] * (-gu * sth + gv * cth);
     for (k = k0; k < k1; k++) {
-      const double s = sn[k], cc = cs[k], m = R->m[k], mr = R->mr[k], r = R->r[k];
+      const double s = sn[k], cc = cs[k], mr = R->mr[k], r = R->r[k];
+      double m = R->m[k];
       if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) { /* a mass fixed to the rotor */
         fs[k] = 0.0;
         c->Fu -= W * W * mr * cc;
@@ -789,6 +813,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         c->Pu -= mr * s;
         c->Pv += mr * cc;
         Jeff += mr * r;
+        if (R->rolling) Jeff += 0.4 * m * R->rho[k] * R->rho[k]; /* the rolling ball's own spin */
         rhsm -= mr * (-gu * s + gv * cc);
       } else {
         const double pd = frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W; /* phi' */
@@ -800,6 +825,22 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         Au = s + fk * cc;
         Av = fk * s - cc;
         e = (Au * gu + Av * gv) / r - R->kappa[k] * psid - fk * pd * pd;
+        if (Q) e += Q[k] / (mr * r); /* a generalized force Q on phi: + Q/(m r^2) */
+        if (R->rolling) {
+          /* rolling inertia: phi'' = rk (... + re Omega'), the prescribed Omega' known here, a
+           * MOTOR's through b1 and the phi_0 row below (docs/device.md "Rolling inertia") */
+          const double rk = R->rk[k], ke = rk * R->re[k];
+          if (R->motor) {
+            /* phi_0 row: + 2/5 m (r + rho) ((r + rho) Omega' - r phi''), 2/5 m (r + rho) r = re m r^2 */
+            const double rr = r + R->rho[k];
+            Jeff += 0.4 * m * rr * rr - ke * R->re[k] * mr * r;
+            rhsm += ke * mr * r * e;
+            c->Pu -= ke * mr * Au;
+            c->Pv -= ke * mr * Av;
+          }
+          e = rk * (R->motor ? e : e + R->re[k] * Wd);
+          m *= rk; /* the coupling of D's accelerations: rk m */
+        }
         c->Cuu -= m * s * Au;
         c->Cuv -= m * s * Av;
         c->Cvu += m * cc * Au;
@@ -807,6 +848,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         c->Fu -= mr * (s * e + pd * pd * cc);
         c->Fv += mr * (cc * e - pd * pd * s);
         if (R->motor) {
+          m = R->m[k];
           rhsm += R->hr[k] * r * psid + r * fk * m * (r * pd * pd - gu * cc - gv * s);
           c->Pu += r * fk * m * cc;
           c->Pv += r * fk * m * s;
@@ -839,6 +881,13 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
           if (R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
             Su += R->mr[k] * sn[k];
             Sv += R->mr[k] * cs[k];
+          }
+      if (R->rolling) /* a slipping rolling ball's phi'' has rk re Omega' */
+        for (k = k0; k < k1; k++)
+          if (!(exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK)) {
+            const double kem = R->rk[k] * R->re[k] * R->mr[k];
+            Su += kem * sn[k];
+            Sv += kem * cs[k];
           }
       b1[0] += Su;
       b1[1] -= Sv;
@@ -915,14 +964,15 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         const double pd = stuck ? W : (frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W);
         const double Nk = m * (r * pd * pd - au * cc - av * s);
         if (Nout) Nout[k] = Nk;
-        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) : NAN;
+        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) - (R->rolling ? 0.4 * m * R->rho[k] * Wd : 0.0) : NAN;
         if (check_N && !(Nk > 0.0)) {
           const size_t ii = k - k0;
           autobal_error_set(errp, AUTOBAL_ENUMERIC,
                             "%s right-hand side failed at t = %.17g s: ball %zu of plane %zu (p%zu_b%zu) would "
                             "leave its track: normal force N = %.17g N (must be > 0)",
                             which, t, ii + 1, j + 1, j + 1, ii + 1, Nk);
-          return GSL_EBADFUNC;
+          /* outside the model's domain: at a trial stage the driver retries a shorter step */
+          return AUTOBAL_ROTOR_RHS_LEAVES_TRACK;
         }
       }
     }
@@ -942,6 +992,8 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
         const double psid = frame == AUTOBAL_ROTOR_FIXED ? rate[k] - W : rate[k];
         const double fk = fs[k];
         acc = ((s + fk * cc) * au + (fk * s - cc) * av) / r - R->kappa[k] * psid - fk * pd * pd;
+        if (Q) acc += Q[k] / (R->mr[k] * r);
+        if (R->rolling) acc = R->rk[k] * (acc + R->re[k] * Wd);
         if (frame == AUTOBAL_ROTOR_ROTATING) acc -= Wd;
       }
       dydt[8 + N + k] = acc;
@@ -986,7 +1038,7 @@ static int forces_common(autobal_rotor *r, int frame, double t, const double *y,
   if (r == NULL || y == NULL || (N == NULL && H == NULL) || n != r->N || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
     return AUTOBAL_EINVAL;
-  return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
+  return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0, NULL, 0) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
 }
 
 int autobal_rotor_normal_forces(autobal_rotor *r, int frame, double t, const double *y, double *N, size_t n) {
@@ -1003,7 +1055,7 @@ static int fric_cache(autobal_rotor *r, int frame, double t, const double *y) {
       memcmp(r->ycache, y, r->dim * sizeof(double)) == 0)
     return 0;
   r->cache_ok = 0;
-  if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return -1;
+  if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0, NULL, 0) != GSL_SUCCESS) return -1;
   memcpy(r->ycache, y, r->dim * sizeof(double));
   r->cache_t = t;
   r->cache_frame = frame;
@@ -1056,7 +1108,7 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   for (it = 0; it <= r->N; it++) {
     size_t worst = r->N;
     double excess = 0.0;
-    if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
+    if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0, NULL, 0) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
     for (k = 0; k < r->N; k++) {
       if (!(r->cN[k] > 0.0)) {
         size_t j = 0;
@@ -1090,6 +1142,372 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   if (n_slip) *n_slip = nl;
   if (n_reverse) *n_reverse = nr;
   return changed;
+}
+
+/* ---- contact (docs/device.md section 4) ------------------------------------------------------------ */
+
+double autobal_rotor_gap_angle(double delta_i, double delta_j, double r) {
+  const double x = (delta_i + delta_j) / (4.0 * r);
+  if (!(delta_i >= 0.0) || !(delta_j >= 0.0) || !(r > 0.0) || !(x <= 1.0)) return NAN;
+  return 2.0 * asin(x);
+}
+
+int autobal_rotor_contact_on(const autobal_rotor *r) { return r ? r->contact : 0; }
+size_t autobal_rotor_contact_n_pairs(const autobal_rotor *r) { return r ? r->np : 0; }
+int autobal_rotor_contact_pair(const autobal_rotor *r, size_t p, size_t *behind, size_t *ahead) {
+  if (!r || p >= r->np) return AUTOBAL_EINVAL;
+  if (behind) *behind = r->pb[p];
+  if (ahead) *ahead = r->pa[p];
+  return AUTOBAL_SUCCESS;
+}
+int autobal_rotor_contact_active(const autobal_rotor *r, size_t p) { return (r && p < r->np) ? r->pact[p] : 0; }
+int autobal_rotor_contact_set_active(autobal_rotor *r, size_t p, int active) {
+  if (!r || p >= r->np) return AUTOBAL_EINVAL;
+  r->pact[p] = active != 0;
+  r->ccache_ok = 0;
+  return AUTOBAL_SUCCESS;
+}
+size_t autobal_rotor_contact_n_active(const autobal_rotor *r) {
+  size_t p, n = 0;
+  for (p = 0; r && p < r->np; p++) n += (size_t)r->pact[p];
+  return n;
+}
+
+/* The gap of pair p: the unwrapped angle difference minus the gap angle plus the multiple of 2 pi
+ * (pc) fixed when the pairs were set, so that it is continuous along a run (the state's angles are
+ * unwrapped) and an overlap of any depth is negative. */
+static double pair_gap(const autobal_rotor *R, size_t p, const double *y) {
+  return y[8 + R->pa[p]] - y[8 + R->pb[p]] - R->pg[p] + R->pc[p];
+}
+double autobal_rotor_contact_gap(const autobal_rotor *r, size_t p, const double *y) {
+  return (r && y && p < r->np) ? pair_gap(r, p, y) : NAN;
+}
+
+/* Balls of state index k0..k1-1 sorted by their angle wrapped to [0, 2 pi) (insertion sort of the
+ * indices into idx; tracks are small). */
+static void sort_by_angle(const double *ang, size_t *idx, size_t n) {
+  size_t i, j;
+  for (i = 1; i < n; i++) {
+    const size_t v = idx[i];
+    const double a = ang[v] - 2.0 * M_PI * floor(ang[v] / (2.0 * M_PI));
+    for (j = i; j > 0; j--) {
+      const double b = ang[idx[j - 1]] - 2.0 * M_PI * floor(ang[idx[j - 1]] / (2.0 * M_PI));
+      if (b <= a) break;
+      idx[j] = idx[j - 1];
+    }
+    idx[j] = v;
+  }
+}
+
+/* The pairs from angles ang[k] (any frame: only differences matter); with check, overlap -> EINVAL. */
+static int contact_pairs(autobal_rotor *R, const double *ang, autobal_error *err) {
+  size_t j, k, np = 0;
+  size_t *idx = R->pb + R->N; /* scratch of N entries after the pairs' arrays (see alloc) */
+  for (j = 0; j < R->n_planes; j++) {
+    const size_t k0 = R->off[j], k1 = k0 + R->cnt[j];
+    for (k = k0; k < k1; k++) {
+      size_t n = 0, i, q;
+      double gsum = 0.0, dmax = 0.0;
+      int first = 1;
+      for (q = k0; q < k; q++)
+        if (R->r[q] == R->r[k]) first = 0;
+      if (!first) continue; /* the track of ball k was done */
+      for (q = k; q < k1; q++)
+        if (R->r[q] == R->r[k]) idx[n++] = q, dmax = fmax(dmax, R->delta[q]);
+      if (n < 2 || dmax == 0.0) continue;
+      sort_by_angle(ang, idx, n);
+      for (i = 0; i < n; i++) gsum += autobal_rotor_gap_angle(R->delta[idx[i]], R->delta[idx[(i + 1) % n]], R->r[k]);
+      for (i = 0; i < n; i++) {
+        const size_t b = idx[i], a = idx[(i + 1) % n];
+        double g;
+        R->pb[np] = b;
+        R->pa[np] = a;
+        R->pg[np] = autobal_rotor_gap_angle(R->delta[b], R->delta[a], R->r[k]);
+        R->pact[np] = 0;
+        R->plam[np] = 0.0;
+        g = ang[a] - ang[b] - R->pg[np];
+        R->pc[np] = -2.0 * M_PI * floor(g / (2.0 * M_PI)); /* the forward distance minus gamma, in [0, 2 pi) */
+        g += R->pc[np];
+        if (g > 2.0 * M_PI - 1e-12) g -= 2.0 * M_PI, R->pc[np] -= 2.0 * M_PI;
+        if (g > 2.0 * M_PI - gsum + 1e-12 || g < -1e-12) {
+          const size_t jb = b - k0 + 1, ja = a - k0 + 1;
+          return autobal_error_set(err, AUTOBAL_EINVAL,
+                                   "balls %zu and %zu of plane %zu (p%zu_b%zu, p%zu_b%zu) overlap at the initial "
+                                   "position: they must be at least the gap angle %.9g rad apart",
+                                   jb, ja, j + 1, j + 1, jb, j + 1, ja, R->pg[np]);
+        }
+        np++;
+      }
+    }
+  }
+  R->np = np;
+  R->ccache_ok = 0;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_contact_order(autobal_rotor *r, int frame, double t, const double *y) {
+  (void)frame, (void)t;
+  if (!r || !y) return AUTOBAL_EINVAL;
+  if (!r->contact) return AUTOBAL_SUCCESS;
+  return contact_pairs(r, y + 8, &r->err);
+}
+
+/* The responses w_p = a(Q = J_p^T) - a0 of the accelerations to a unit force pair on pair p
+ * (rows: all of the state; positions give 0), for the nw pairs list[] into R->cW + (1 + i) dim,
+ * with a0 (Q = 0) in R->cW.  nofric: the impulsive response (friction off, every ball free). */
+static int contact_responses(autobal_rotor *R, int frame, double t, const double *y, const size_t *list, size_t nw,
+                             int nofric) {
+  const size_t dim = R->dim;
+  const int chk = R->law != AUTOBAL_ROTOR_FRICTION_NONE && !nofric;
+  size_t i, n;
+  if (fric_eval(R, R->fws, &R->err, frame, t, y, R->cW, NULL, NULL, chk, NULL, nofric) != GSL_SUCCESS) return -1;
+  for (i = 0; i < nw; i++) {
+    double *w = R->cW + (1 + i) * dim;
+    memset(R->cQ, 0, R->N * sizeof(double));
+    R->cQ[R->pa[list[i]]] = 1.0;
+    R->cQ[R->pb[list[i]]] = -1.0;
+    if (fric_eval(R, R->fws, &R->err, frame, t, y, w, NULL, NULL, chk, R->cQ, nofric) != GSL_SUCCESS) return -1;
+    for (n = 0; n < dim; n++) w[n] -= R->cW[n];
+  }
+  return 0;
+}
+
+/* Solve the n x n system a x = b (a row-major, overwritten; b overwritten by x) by Gaussian
+ * elimination with partial pivoting; -1 when a pivot is below 1e-13 times the largest entry. */
+static int small_solve(double *a, double *b, size_t n) {
+  double scale = 0.0;
+  size_t i, j, k;
+  for (i = 0; i < n * n; i++) scale = fmax(scale, fabs(a[i]));
+  for (k = 0; k < n; k++) {
+    size_t piv = k;
+    for (i = k + 1; i < n; i++)
+      if (fabs(a[i * n + k]) > fabs(a[piv * n + k])) piv = i;
+    if (!(fabs(a[piv * n + k]) > 1e-13 * scale)) return -1;
+    if (piv != k) {
+      for (j = 0; j < n; j++) {
+        const double tt = a[k * n + j];
+        a[k * n + j] = a[piv * n + j];
+        a[piv * n + j] = tt;
+      }
+      {
+        const double tt = b[k];
+        b[k] = b[piv];
+        b[piv] = tt;
+      }
+    }
+    for (i = k + 1; i < n; i++) {
+      const double l = a[i * n + k] / a[k * n + k];
+      for (j = k + 1; j < n; j++) a[i * n + j] -= l * a[k * n + j];
+      b[i] -= l * b[k];
+    }
+  }
+  for (k = n; k-- > 0;) {
+    double sum = b[k];
+    for (j = k + 1; j < n; j++) sum -= a[k * n + j] * b[j];
+    b[k] = sum / a[k * n + k];
+  }
+  return 0;
+}
+
+/* The clusters' list (at most AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE) into list; returns the count. */
+static size_t active_list(const autobal_rotor *R, size_t *list) {
+  size_t p, n = 0;
+  for (p = 0; p < R->np && n < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE; p++)
+    if (R->pact[p]) list[n++] = p;
+  return n;
+}
+
+/* The accelerations with the clusters' constraints J_p a = 0: a = a0 + sum lambda_p w_p with
+ * G lambda = -J a0 (G_pq = J_p w_q); into dydt (may be NULL), lambda into R->plam. */
+static int contact_solve(autobal_rotor *R, int frame, double t, const double *y, double *dydt) {
+  size_t list[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE] = {0}, na = active_list(R, list), i, q, n;
+  const size_t dim = R->dim, N = R->N;
+  double lam[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
+  if (contact_responses(R, frame, t, y, list, na, 0) != 0) return -1;
+  for (i = 0; i < na; i++) {
+    const size_t a = 8 + N + R->pa[list[i]], b = 8 + N + R->pb[list[i]];
+    lam[i] = -(R->cW[a] - R->cW[b]);
+    for (q = 0; q < na; q++) {
+      const double *w = R->cW + (1 + q) * dim;
+      R->cG[i * na + q] = w[a] - w[b];
+    }
+  }
+  if (na > 0 && small_solve(R->cG, lam, na) != 0) return -1;
+  for (i = 0; i < na; i++) R->plam[list[i]] = lam[i];
+  if (dydt) {
+    memcpy(dydt, R->cW, dim * sizeof(double));
+    for (i = 0; i < na; i++) {
+      const double *w = R->cW + (1 + i) * dim;
+      for (n = 0; n < dim; n++) dydt[n] += lam[i] * w[n];
+    }
+    if (!ball_rows_finite(dydt, N)) return -1;
+  }
+  return 0;
+}
+
+static int contact_rhs(autobal_rotor *R, int frame, double t, const double y[], double dydt[]) {
+  const int chk = R->law != AUTOBAL_ROTOR_FRICTION_NONE;
+  size_t p;
+  int any = 0;
+  for (p = 0; p < R->np; p++) any |= R->pact[p];
+  if (!any) return fric_eval(R, R->fws, &R->err, frame, t, y, dydt, NULL, NULL, chk, NULL, 0);
+  autobal_error_clear(&R->err);
+  if (contact_solve(R, frame, t, y, dydt) != 0) {
+    if (R->err.status == AUTOBAL_SUCCESS)
+      autobal_error_set(&R->err, AUTOBAL_ENUMERIC,
+                        "%s right-hand side failed at t = %.17g s: the accelerations with the touching balls held "
+                        "together (contact) could not be solved",
+                        frame == AUTOBAL_ROTOR_FIXED ? "fixed-frame" : "rotating-frame", t);
+    return GSL_EBADFUNC;
+  }
+  return GSL_SUCCESS;
+}
+
+double autobal_rotor_contact_switch(autobal_rotor *r, int frame, size_t p, double t, const double *y) {
+  if (!r || !y || p >= r->np) return NAN;
+  /* a free pair: its gap plus a skin of 1e-12 rad, so that a pair just set to gap 0 by a reset
+   * starts positive (the engine reports a falling crossing only from g > 0) */
+  if (!r->pact[p]) return pair_gap(r, p, y) + 1e-12;
+  if (!(r->ccache_ok && r->ccache_t == t && r->ccache_frame == frame &&
+        memcmp(r->cy, y, r->dim * sizeof(double)) == 0)) {
+    r->ccache_ok = 0;
+    if (contact_solve(r, frame, t, y, NULL) != 0) return NAN;
+    memcpy(r->cy, y, r->dim * sizeof(double));
+    r->ccache_t = t;
+    r->ccache_frame = frame;
+    r->ccache_ok = 1;
+  }
+  return r->plam[p];
+}
+
+/* One impact step: the free pairs imp[0..ni-1] with the restitutions ei[], the clusters held
+ * (J v+ = 0): G Lambda = target - J v-, v += W Lambda.  Outputs of the first impact pair. */
+static int impact_apply(autobal_rotor *R, int frame, double t, double *y, const size_t *imp, const double *ei, size_t ni,
+                        double *Gout, double *Lout, double *uout) {
+  size_t list[2 * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE] = {0}, n = 0, i, q, k;
+  double rhs[2 * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE], G[4 * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
+  const size_t dim = R->dim, N = R->N;
+  for (i = 0; i < ni; i++) list[n++] = imp[i];
+  n += active_list(R, list + n);
+  if (contact_responses(R, frame, t, y, list, n, 1) != 0) return AUTOBAL_ENUMERIC;
+  for (i = 0; i < n; i++) {
+    const size_t a = 8 + N + R->pa[list[i]], b = 8 + N + R->pb[list[i]];
+    const double u = y[a] - y[b];
+    rhs[i] = (i < ni ? -ei[i] * u : 0.0) - u;
+    for (q = 0; q < n; q++) {
+      const double *w = R->cW + (1 + q) * dim;
+      G[i * n + q] = w[a] - w[b];
+    }
+    if (i == 0) {
+      if (uout) *uout = u;
+      if (Gout) *Gout = G[0];
+    }
+  }
+  if (!(G[0] > 0.0)) return AUTOBAL_ENUMERIC;
+  if (small_solve(G, rhs, n) != 0) return AUTOBAL_ENUMERIC;
+  if (Lout) *Lout = rhs[0];
+  for (i = 0; i < n; i++) {
+    const double *w = R->cW + (1 + i) * dim;
+    for (k = 0; k < dim; k++) y[k] += rhs[i] * w[k];
+  }
+  R->ccache_ok = 0;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_contact_impact(autobal_rotor *r, int frame, size_t p, double e, double t, double *y, double *G,
+                                 double *Lambda, double *u) {
+  if (!r || !y || p >= r->np || !(e >= 0.0 && e <= 1.0)) return AUTOBAL_EINVAL;
+  return impact_apply(r, frame, t, y, &p, &e, 1, G, Lambda, u);
+}
+
+/* Move the ball ahead of pair p so that its gap is exactly 0. */
+static void close_gap(autobal_rotor *R, size_t p, double *y) { y[8 + R->pa[p]] -= pair_gap(R, p, y); }
+
+int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *y, size_t *n_impacts, size_t *n_joins,
+                                 size_t *n_releases) {
+  const size_t N = r ? r->N : 0;
+  size_t p, rounds, ni = 0, nj = 0, nr = 0;
+  int changed = 0;
+  if (!r || !y) return AUTOBAL_EINVAL;
+  if (!r->contact || r->np == 0) return 0;
+  /* releases: clusters pulling (lambda <= 0) */
+  if (autobal_rotor_contact_n_active(r) > 0) {
+    if (contact_solve(r, frame, t, y, NULL) != 0) return AUTOBAL_ENUMERIC;
+    for (p = 0; p < r->np; p++)
+      if (r->pact[p] && !(r->plam[p] > 0.0)) {
+        r->pact[p] = 0;
+        close_gap(r, p, y);
+        nr++;
+        changed = 1;
+      }
+  }
+  /* impacts, until no touching free pair closes (chains); each round all such pairs at once */
+  for (rounds = 0; rounds < 1000; rounds++) {
+    size_t imp[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE], cnt = 0;
+    double ei[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
+    int join[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
+    for (p = 0; p < r->np && cnt < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE; p++) {
+      const double u = y[8 + N + r->pa[p]] - y[8 + N + r->pb[p]];
+      if (r->pact[p] || !(pair_gap(r, p, y) <= 1e-9) || !(u < 0.0)) continue;
+      join[cnt] = r->e_rest * -u < r->v_rest &&
+                  autobal_rotor_contact_n_active(r) + (size_t)cnt < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE;
+      ei[cnt] = join[cnt] ? 0.0 : r->e_rest;
+      imp[cnt++] = p;
+    }
+    if (cnt == 0) break;
+    for (p = 0; p < cnt; p++) close_gap(r, imp[p], y);
+    if (impact_apply(r, frame, t, y, imp, ei, cnt, NULL, NULL, NULL) != AUTOBAL_SUCCESS) return AUTOBAL_ENUMERIC;
+    for (p = 0; p < cnt; p++)
+      if (join[p]) r->pact[imp[p]] = 1, nj++;
+    ni += cnt;
+    changed = 1;
+  }
+  /* a pair joined by a plastic impact that is not pressed (lambda <= 0) separates at once: else its
+   * event (lambda falling through 0) would start at or below 0 and never fire */
+  if (nj > 0) {
+    if (contact_solve(r, frame, t, y, NULL) != 0) return AUTOBAL_ENUMERIC;
+    for (p = 0; p < r->np; p++)
+      if (r->pact[p] && !(r->plam[p] > 0.0)) {
+        r->pact[p] = 0;
+        close_gap(r, p, y);
+        nr++;
+      }
+  }
+  r->ccache_ok = 0;
+  if (n_impacts) *n_impacts += ni;
+  if (n_joins) *n_joins += nj;
+  if (n_releases) *n_releases += nr;
+  return changed;
+}
+
+double autobal_rotor_contact_capacity(const autobal_rotor *r, size_t plane) {
+  size_t k, q, k0, k1;
+  double cap = 0.0;
+  if (!r || plane >= r->n_planes) return NAN;
+  k0 = r->off[plane], k1 = k0 + r->cnt[plane];
+  for (k = k0; k < k1; k++) {
+    int first = 1;
+    double su = 0.0, sv = 0.0, ang = 0.0;
+    size_t prev = k;
+    for (q = k0; q < k; q++)
+      if (r->r[q] == r->r[k]) first = 0;
+    if (!first) continue;
+    for (q = k; q < k1; q++) /* the balls of this track packed in index order */
+      if (r->r[q] == r->r[k]) {
+        if (q != k) ang += r->contact ? autobal_rotor_gap_angle(r->delta[prev], r->delta[q], r->r[k]) : 0.0;
+        su += r->mr[q] * cos(ang);
+        sv += r->mr[q] * sin(ang);
+        prev = q;
+      }
+    cap += hypot(su, sv);
+  }
+  return cap;
+}
+
+int autobal_rotor_contact_reachable(const autobal_rotor *r, size_t plane) {
+  const double cap = autobal_rotor_contact_capacity(r, plane);
+  if (!(cap >= 0.0)) return 0;
+  return r->s0[plane] <= cap * (1.0 + 1e-12);
 }
 
 /* ---- parameters ----------------------------------------------------------- */
@@ -1477,6 +1895,74 @@ static int check_friction(const autobal_rotor_params *p, size_t j, autobal_error
   return AUTOBAL_SUCCESS;
 }
 
+/* The rolling block for plane j (the switch with j == 0). */
+static int check_rolling(const autobal_rotor_params *p, size_t j, autobal_error *err) {
+  const autobal_rotor_rolling *ro = &p->rolling;
+  char name[64];
+  size_t i;
+  int st;
+  if (j == 0 && ro->on != 0 && ro->on != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter rolling.on = %d is not valid: use 0 (off) or 1 (on)",
+                             ro->on);
+  if (!ro->on || !ro->ball_rho[j]) return AUTOBAL_SUCCESS;
+  for (i = 0; i < p->plane[j].n_balls; i++) {
+    snprintf(name, sizeof name, "plane[%zu].ball_rho[%zu]", j, i);
+    if ((st = autobal_check_param(err, name, ro->ball_rho[j][i], 0.0, 0, INFINITY, 1, "m"))) return st;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* The contact block for plane j (the switch, e, v_rest with j == 0): diameters >= 0, the balls of
+ * every track fit (the gap angles of neighbours sum to at most 2 pi). */
+static int check_contact(const autobal_rotor_params *p, size_t j, autobal_error *err) {
+  const autobal_rotor_contact *c = &p->contact;
+  const autobal_rotor_plane *pl = &p->plane[j];
+  char name[64];
+  size_t i, q;
+  int st;
+  if (j == 0) {
+    if (c->on != 0 && c->on != 1)
+      return autobal_error_set(err, AUTOBAL_EINVAL, "parameter contact.on = %d is not valid: use 0 (off) or 1 (on)", c->on);
+    if (!c->on) return AUTOBAL_SUCCESS;
+    if ((st = autobal_check_param(err, "contact.restitution", c->restitution, 0.0, 0, 1.0, 0, ""))) return st;
+    if ((st = autobal_check_param(err, "contact.v_rest", c->v_rest, 0.0, 0, INFINITY, 1, "rad/s"))) return st;
+    if (p->friction.law == AUTOBAL_ROTOR_FRICTION_EXACT)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "contact with friction.law = EXACT (stick-slip switching) is not implemented: use the "
+                               "law NONE or REGULARIZED with contact");
+  }
+  if (!c->on || !c->ball_diameter[j]) return AUTOBAL_SUCCESS;
+  for (i = 0; i < pl->n_balls; i++) {
+    snprintf(name, sizeof name, "plane[%zu].ball_diameter[%zu]", j, i);
+    if ((st = autobal_check_param(err, name, c->ball_diameter[j][i], 0.0, 0, INFINITY, 1, "m"))) return st;
+  }
+  for (i = 0; i < pl->n_balls; i++) { /* per track (first ball of each radius) */
+    double gsum = 0.0, dsum = 0.0, d1 = -1.0, dprev = 0.0, r = pl->ball_radius[i];
+    size_t n = 0;
+    int first = 1;
+    for (q = 0; q < i; q++)
+      if (pl->ball_radius[q] == r) first = 0;
+    if (!first) continue;
+    for (q = i; q < pl->n_balls; q++)
+      if (pl->ball_radius[q] == r) {
+        const double d = c->ball_diameter[j][q];
+        if (d1 < 0.0) d1 = d;
+        else gsum += autobal_rotor_gap_angle(dprev, d, r);
+        dsum += d;
+        dprev = d;
+        n++;
+      }
+    if (n >= 2) gsum += autobal_rotor_gap_angle(dprev, d1, r);
+    if (n >= 2 && !(gsum <= 2.0 * M_PI))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "the balls of plane %zu on the track of radius %.9g m do not fit: sum of the diameters %.9g m "
+                               "against the circumference %.9g m; neighbours need the gap angles 2 asin((delta_i + "
+                               "delta_j)/(4 r)), whose sum must be <= 2 pi (plane[%zu].ball_diameter)",
+                               j + 1, r, dsum, 2.0 * M_PI * r, j);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err) {
   autobal_rotor_lumped L;
   int st, warn = 0;
@@ -1554,6 +2040,8 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
         AUTOBAL_SUCCESS)
       return st;
     if ((st = check_friction(p, j, err)) != AUTOBAL_SUCCESS) return st;
+    if ((st = check_rolling(p, j, err)) != AUTOBAL_SUCCESS) return st;
+    if ((st = check_contact(p, j, err)) != AUTOBAL_SUCCESS) return st;
     ntot += p->plane[j].n_balls;
     heavy += msum * (1.0 / L.M + p->plane[j].d * p->plane[j].d / L.A);
   }
@@ -1590,9 +2078,9 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the rotor handle");
     return NULL;
   }
-  /* 18 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
+  /* 21 arrays of N doubles, 4 of dn, 2 of mn and the cache of a state (N may be 0: allocate at
    * least one element) */
-  R->store = (double *)calloc(18 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
+  R->store = (double *)calloc(21 * N + 4 * dn + 2 * mn + (8 + 2 * N + 4) + 1, sizeof(double));
   R->mode = (int *)calloc(2 * N + 1, sizeof(int));
   if (R->store == NULL || R->mode == NULL) {
     free(R->store);
@@ -1626,6 +2114,9 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
   R->fws = R->cH + N; /* 3 N: the friction path's sin, cos, f sgn */
   R->pd0 = R->fws + 3 * N;
   R->ycache = R->pd0 + N;
+  R->rho = R->ycache + (8 + 2 * N + 4);
+  R->rk = R->rho + N;
+  R->re = R->rk + N;
   R->mode0 = R->mode + N;
   R->p = *p;
   R->motor = p->drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR;
@@ -1762,6 +2253,56 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->p.friction.ball_mu[j] = NULL;
   }
   R->gv = R->gs; /* the friction right-hand sides take gravity as the acceleration (0, g_s) of D */
+  /* rolling inertia: rho copied, rk = 5/7, re = 2/5 (1 + rho/r) */
+  R->rolling = p->rolling.on != 0;
+  for (j = 0; j < p->n_planes; j++) {
+    size_t i;
+    for (i = 0; i < p->plane[j].n_balls; i++) {
+      k = R->off[j] + i;
+      R->rho[k] = (R->rolling && p->rolling.ball_rho[j]) ? p->rolling.ball_rho[j][i] : 0.0;
+      R->rk[k] = R->rolling ? 5.0 / 7.0 : 1.0;
+      R->re[k] = R->rolling ? 0.4 * (1.0 + R->rho[k] / R->r[k]) : 0.0;
+    }
+    R->p.rolling.ball_rho[j] = R->rolling ? R->rho + R->off[j] : NULL;
+  }
+  for (j = p->n_planes; j < AUTOBAL_ROTOR_MAX_PLANES; j++) R->p.rolling.ball_rho[j] = NULL;
+  /* contact: diameters copied, the pairs from the initial angles */
+  R->contact = p->contact.on != 0;
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) R->p.contact.ball_diameter[j] = NULL;
+  if (R->contact) {
+    const size_t dim = R->dim, CM = AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE;
+    const size_t nd = 5 * N + (2 * CM + 1) * dim + CM * CM + dim + 1;
+    R->cstore = (double *)calloc(nd, sizeof(double));
+    R->pb = (size_t *)calloc(3 * N + 1, sizeof(size_t));
+    R->pact = (int *)calloc(N + 1, sizeof(int));
+    if (!R->cstore || !R->pb || !R->pact) {
+      autobal_rotor_free(R);
+      autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the contact arrays");
+      return NULL;
+    }
+    R->pa = R->pb + 2 * N;
+    R->delta = R->cstore;
+    R->pg = R->delta + N;
+    R->pc = R->pg + N;
+    R->plam = R->pc + N;
+    R->cQ = R->plam + N;
+    R->cW = R->cQ + N;
+    R->cG = R->cW + (2 * CM + 1) * dim;
+    R->cy = R->cG + CM * CM;
+    R->e_rest = p->contact.restitution;
+    R->v_rest = p->contact.v_rest > 0.0 ? p->contact.v_rest : 1e-3;
+    for (j = 0; j < p->n_planes; j++) {
+      size_t i;
+      for (i = 0; i < p->plane[j].n_balls; i++)
+        R->delta[R->off[j] + i] = p->contact.ball_diameter[j] ? p->contact.ball_diameter[j][i] : 0.0;
+      R->p.contact.ball_diameter[j] = R->delta + R->off[j];
+    }
+    if (contact_pairs(R, R->psi_init, &e) != AUTOBAL_SUCCESS) {
+      if (err) *err = e;
+      autobal_rotor_free(R);
+      return NULL;
+    }
+  }
   R->err = e;
   return R;
 }
@@ -1770,6 +2311,9 @@ void autobal_rotor_free(autobal_rotor *r) {
   if (r == NULL) return;
   free(r->store);
   free(r->mode);
+  free(r->cstore);
+  free(r->pb);
+  free(r->pact);
   free(r);
 }
 
@@ -1844,6 +2388,7 @@ int autobal_rotor_set_omega(autobal_rotor *r, double omega) {
   if (st == AUTOBAL_SUCCESS) {
     r->p.omega = omega;
     r->cache_ok = 0; /* the friction forces cached for autobal_rotor_friction_switch */
+    r->ccache_ok = 0; /* the contact forces cached for autobal_rotor_contact_switch */
   }
   return st;
 }
@@ -2010,7 +2555,7 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
     /* the stuck flags of all balls, then their normal forces; the solve's workspace is the
      * ball columns of out, written after it */
     double *fo = out + output_count_base(r);
-    if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0) !=
+    if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0, NULL, 0) !=
         GSL_SUCCESS)
       for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
     for (k = 0; k < r->N; k++)
