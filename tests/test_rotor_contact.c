@@ -22,6 +22,7 @@
 #include "autobal/study.h"
 #include "autobal/transient.h"
 #include "check.h"
+#include "check_json.h"
 #include "rotor_energy.h"
 
 #ifndef M_PI
@@ -30,50 +31,6 @@
 
 #define JSON_PATH AUTOBAL_TEST_DATA_DIR "/../tools/derive/check_values.json"
 
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  char *buf;
-  long n;
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  buf = malloc((size_t)n + 1);
-  if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-    free(buf);
-    buf = NULL;
-  }
-  if (buf) buf[n] = '\0';
-  fclose(f);
-  return buf;
-}
-static const char *after_key(const char *p, const char *key) {
-  char pat[80];
-  const char *q;
-  snprintf(pat, sizeof pat, "\"%s\":", key);
-  q = p ? strstr(p, pat) : NULL;
-  return q ? q + strlen(pat) : NULL;
-}
-static double num(const char *p, const char *key) {
-  const char *q = after_key(p, key);
-  return q ? strtod(q, NULL) : NAN;
-}
-static size_t arr(const char *p, const char *key, double *v, size_t n) {
-  const char *q = after_key(p, key);
-  size_t k = 0;
-  char *end;
-  if (!q || !(q = strchr(q, '['))) return 0;
-  q++;
-  while (k < n) {
-    double x = strtod(q, &end);
-    if (end == q) break;
-    v[k++] = x;
-    q = end;
-    while (*q == ' ' || *q == '\n' || *q == ',') q++;
-    if (*q == ']') break;
-  }
-  return k;
-}
 
 static int load_params(const char *blk, size_t n_planes, autobal_rotor_params *pp, double m[2][2], double r[2][2],
                        double h[2][2], double psi[2][2], double rate[2][2]) {

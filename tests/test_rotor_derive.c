@@ -22,58 +22,12 @@
 
 #include "autobal/rotor.h"
 #include "check.h"
+#include "check_json.h"
 #include "rotor_energy.h"
 #include "models/rotor/rotor_internal.h"
 
 #define JSON_PATH AUTOBAL_TEST_DATA_DIR "/../tools/derive/check_values.json"
 
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  char *buf;
-  long n;
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  buf = malloc((size_t)n + 1);
-  if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-    free(buf);
-    buf = NULL;
-  }
-  if (buf) buf[n] = '\0';
-  fclose(f);
-  return buf;
-}
-
-/* Position just after "key": at or after p (NULL if absent). */
-static const char *after_key(const char *p, const char *key) {
-  char pat[80];
-  const char *q;
-  snprintf(pat, sizeof pat, "\"%s\":", key);
-  q = p ? strstr(p, pat) : NULL;
-  return q ? q + strlen(pat) : NULL;
-}
-static double num(const char *p, const char *key) {
-  const char *q = after_key(p, key);
-  return q ? strtod(q, NULL) : NAN;
-}
-/* An array of numbers after "key": up to n values into v; returns the count. */
-static size_t arr(const char *p, const char *key, double *v, size_t n) {
-  const char *q = after_key(p, key);
-  size_t k = 0;
-  char *end;
-  if (!q || !(q = strchr(q, '['))) return 0;
-  q++;
-  while (k < n) {
-    double x = strtod(q, &end);
-    if (end == q) break;
-    v[k++] = x;
-    q = end;
-    while (*q == ' ' || *q == '\n' || *q == ',') q++;
-    if (*q == ']') break;
-  }
-  return k;
-}
 
 /* The parameters of a JSON case block (one or two planes of two balls); the ball arrays point
  * into the caller's arrays.  Returns 0, or -1 (a check has failed). */
