@@ -270,13 +270,13 @@ int study_friction_write_inputs(autobal_archive *a, const autobal_rotor *rot, co
   size_t j;
   int st = 0;
   for (j = 0; j < p->n_planes && p->rolling.on && !st; j++) { /* rolling inertia: the balls' radii */
-    char grp[32];
+    char grp[48];
     if (p->plane[j].n_balls == 0) continue;
     snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
     st = autobal_archive_attr_double_array(a, grp, "ball_rho", p->plane[j].n_balls, p->rolling.ball_rho[j], "m");
   }
   for (j = 0; j < p->n_planes && p->contact.on && !st; j++) { /* contact: the balls' diameters */
-    char grp[32];
+    char grp[48];
     if (p->plane[j].n_balls == 0) continue;
     snprintf(grp, sizeof grp, "/rotor/plane%zu", j + 1);
     st = autobal_archive_attr_double_array(a, grp, "ball_diameter", p->plane[j].n_balls, p->contact.ball_diameter[j], "m");
