@@ -32,36 +32,6 @@
 #define JSON_PATH AUTOBAL_TEST_DATA_DIR "/../tools/derive/check_values.json"
 
 
-static int load_params(const char *blk, size_t n_planes, autobal_rotor_params *pp, double m[2][2], double r[2][2],
-                       double h[2][2], double psi[2][2], double rate[2][2]) {
-  const char *par = after_key(blk, "parameters"), *pl = after_key(blk, "planes");
-  autobal_rotor_params p = autobal_rotor_params_default();
-  const char *plane_at[2];
-  size_t j;
-  if (!(par && pl)) return -1;
-  p.input = AUTOBAL_ROTOR_HARDWARE;
-  p.hw.M_k = num(par, "M_k"), p.hw.A_k = num(par, "A_k"), p.hw.m_p = num(par, "m_p");
-  p.hw.A_p = num(par, "A_p"), p.hw.C_p = num(par, "C_p");
-  p.hw.l_L = num(par, "l_L"), p.hw.l_R = num(par, "l_R");
-  p.hw.c_Lx = num(par, "c_Lx"), p.hw.c_Ly = num(par, "c_Ly"), p.hw.c_Rx = num(par, "c_Rx"), p.hw.c_Ry = num(par, "c_Ry");
-  p.hw.h_Lx = num(par, "h_Lx"), p.hw.h_Ly = num(par, "h_Ly"), p.hw.h_Rx = num(par, "h_Rx"), p.hw.h_Ry = num(par, "h_Ry");
-  p.n_planes = n_planes;
-  plane_at[0] = strchr(pl, '{');
-  plane_at[1] = plane_at[0] ? strchr(strchr(plane_at[0], '}') + 1, '{') : NULL;
-  for (j = 0; j < n_planes; j++) {
-    const char *q = plane_at[j];
-    autobal_rotor_plane *P = &p.plane[j];
-    if (!q) return -1;
-    P->d = num(q, "d"), P->m0 = num(q, "m0"), P->r0 = num(q, "r0"), P->psi0 = num(q, "psi0");
-    P->n_balls = arr(q, "m", m[j], 2);
-    if (P->n_balls != 2 || arr(q, "r", r[j], 2) != 2 || arr(q, "h", h[j], 2) != 2 || arr(q, "psi", psi[j], 2) != 2 ||
-        arr(q, "rate", rate[j], 2) != 2)
-      return -1;
-    P->ball_mass = m[j], P->ball_radius = r[j], P->ball_damping = h[j], P->ball_psi = psi[j], P->ball_rate = rate[j];
-  }
-  *pp = p;
-  return 0;
-}
 
 /* Kinetic plus potential energy (docs/device.md "Energies", PAPER inertia) of a FIXED-frame state
  * y (rotor and balls; the spin phi_0, Omega and J given: a prescribed speed holds Omega). */
