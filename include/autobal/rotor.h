@@ -684,6 +684,19 @@ AUTOBAL_API int autobal_rotor_contact_impact(autobal_rotor *r, int frame, size_t
  * negative status. */
 AUTOBAL_API int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *y, size_t *n_impacts,
                                              size_t *n_joins, size_t *n_releases);
+/* The event reset of a run with the EXACT friction law and contact (docs/device.md, "Stiction and
+ * contact"): autobal_rotor_contact_settle and autobal_rotor_friction_settle in turn until neither changes
+ * anything.  With both: an impact's impulse sets free its balls and their clusters (stiction gives no
+ * impulse), which then slip the way they move; the other stuck balls stay fixed to the rotor; balls in
+ * resting contact move as one (a cluster with a stuck ball sticks); stuck balls in resting contact are a
+ * chain held by stiction as one body while its conditions hold, else it slips as a whole or comes apart
+ * where the balls pull away (counted as a release).  initial = 1 at the start of a run (the modes from
+ * the sign of psi', touching balls at rest relative to each other join in resting contact).  With only
+ * one of the two it calls that one's settle.  counts (required): sticks, slips, reversals, impacts,
+ * joins, releases, added.  Returns 1 when y, a mode or a cluster changed, 0 when nothing did, or a
+ * negative status (message on the handle). */
+AUTOBAL_API int autobal_rotor_hybrid_settle(autobal_rotor *r, int frame, double t, double *y, int initial,
+                                            size_t counts[6]);
 /* Number of clusters (touching pairs held together). */
 AUTOBAL_API size_t autobal_rotor_contact_n_active(const autobal_rotor *r);
 /* Largest resultant m r of the balls of a plane the sizes allow (kg m): per track the resultant of

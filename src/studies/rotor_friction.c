@@ -175,7 +175,23 @@ static double pair_switch(double t, const double y[], void *user) {
 static int hybrid_reset(const autobal_transient_event_hit *hit, double y[], void *user) {
   study_contact *c = (study_contact *)user;
   int rc;
-  if (hit->index < c->first || hit->index >= c->first + c->np) return c->fric ? ball_reset(hit, y, c->fric) : 0;
+  if (c->fric) { /* the exact law with contact: impacts and switches settled together, for either event */
+    study_friction *f = c->fric;
+    size_t n[6] = {0, 0, 0, 0, 0, 0};
+    const int ours = hit->index >= c->first && hit->index < c->first + c->np;
+    if (!ours && (hit->index < f->first || hit->index >= f->first + f->N)) return 0;
+    rc = autobal_rotor_hybrid_settle(c->rot, c->frame, hit->t, y, 0, n);
+    if (rc < 0) {
+      c->failed = rc;
+      snprintf(c->message, sizeof c->message, "contact and friction at t = %.17g s: %s", hit->t, autobal_rotor_errmsg(c->rot));
+      return 2;
+    }
+    f->sticks += n[0], f->slips += n[1], f->reversals += n[2];
+    c->impacts += n[3], c->joins += n[4], c->releases += n[5];
+    note_modes(f, hit->t);
+    return rc == 1 ? AUTOBAL_TRANSIENT_RESET : 0;
+  }
+  if (hit->index < c->first || hit->index >= c->first + c->np) return 0;
   rc = autobal_rotor_contact_settle(c->rot, c->frame, hit->t, y, &c->impacts, &c->joins, &c->releases);
   if (rc < 0) {
     c->failed = rc;
@@ -211,6 +227,16 @@ int study_contact_begin(autobal_rotor *rot, int frame, autobal_transient *tr, do
   c->frame = frame;
   c->np = np;
   c->fric = fric;
+  if (fric) { /* the exact law: settle the start again with the contacts (touching balls at rest join) */
+    size_t n[6] = {0, 0, 0, 0, 0, 0};
+    rc = autobal_rotor_hybrid_settle(rot, frame, t0, y, 1, n);
+    if (rc < 0) {
+      study_contact_free(c);
+      return autobal_error_set(err, rc, "the initial state: %s", autobal_rotor_errmsg(rot));
+    }
+    c->impacts += n[3], c->joins += n[4], c->releases += n[5];
+    note_modes(fric, t0);
+  }
   for (p = 0; p < np; p++) {
     int idx;
     c->ev[p].c = c;

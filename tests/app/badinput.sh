@@ -113,7 +113,6 @@ expect 3 "balls 1 and 2 of plane 1" "overlap" -- "$A" rotor transient --set plan
 expect 3 "contact.restitution" "allowed range [0, 1]" -- "$A" rotor transient --set plane1.ball_diameter=0.023 --set contact.restitution=1.5
 expect 3 "plane1.ball_diameter (ball 1)" "allowed range [0, inf)" -- "$A" rotor transient --set plane1.ball_diameter=-0.01,0.01
 expect 3 "[contact]" "ball_diameter" -- "$A" rotor transient --set contact.restitution=0.5
-expect 3 "friction.law = EXACT" "not implemented" -- "$A" rotor transient --set plane1.ball_diameter=0.023 --set friction.law=exact
 expect 3 "plane1.ball_psi" "item 2" -- "$A" rotor transient --set plane1.ball_psi=1,nan
 expect 3 "transient.max_steps" "not an integer" -- "$A" rotor transient --set transient.max_steps=1e3
 expect 3 "transient.max_steps" "not an integer" -- "$A" rotor transient --set transient.max_steps=99999999999999999999

@@ -72,7 +72,12 @@ struct autobal_rotor {
    * contact forces plam (N m, of the last evaluation); workspaces: cQ (N), cW ((CMAX + 1) dim),
    * cG (CMAX^2), the event cache (t, frame, y copy in cy) */
   int contact, *pact, ccache_ok, ccache_frame;
-  size_t np, *pb, *pa;
+  /* with the EXACT law: cfree[k] = 1 for a ball set free by an impact's impulse (stuck balls outside the
+   * impact's clusters stay fixed to the rotor), cleared by the friction settle; pt[p] = the first pair
+   * of pair p's track, pt[N + p] = the number of pairs of that track (pairs of a track are consecutive,
+   * pair i's ball ahead is pair i + 1's ball behind, cyclically) */
+  int *cfree, *modein, *reach;
+  size_t np, *pb, *pa, *pt, nsplit;
   double e_rest, v_rest, *delta, *pg, *pc, *plam, *cQ, *cW, *cG, *cy, ccache_t;
   double *cstore;
   double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
@@ -458,6 +463,9 @@ static void rhs_common_rows(const autobal_rotor *R, const double y[], const doub
 static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
                      double dydt[], double *Nout, double *Hout, int check_N, const double *Q, int nofric);
 static int contact_rhs(autobal_rotor *R, int frame, double t, const double y[], double dydt[]);
+static int contact_solve(autobal_rotor *R, int frame, double t, const double *y, double *dydt);
+static size_t active_list(const autobal_rotor *R, size_t *list, int impulse);
+static int pair_rigid(const autobal_rotor *R, size_t p, int impulse);
 
 int autobal_rotor_rhs(double t, const double y[], double dydt[], void *rotor) {
   autobal_rotor *R = (autobal_rotor *)rotor;
@@ -753,6 +761,11 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
    * Q (may be NULL): generalized forces on the balls' angles (N m), the contact forces */
   const int exact = R->law == AUTOBAL_ROTOR_FRICTION_EXACT && !nofric;
   const int reg = R->law == AUTOBAL_ROTOR_FRICTION_REGULARIZED && !nofric;
+  /* a stuck ball is a mass fixed to the rotor; in an impact's impulse (nofric) too, unless the
+   * impact set it free (cfree: the balls of the impacting pairs and their clusters) */
+  const int held = R->law == AUTOBAL_ROTOR_FRICTION_EXACT;
+  const int *cfree = nofric && R->contact ? R->cfree : NULL;
+#define FRIC_STUCK(k) (held && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK && !(cfree && cfree[k]))
   const double gu = R->gu, gv = R->gv;
   fric_plane cp[AUTOBAL_ROTOR_MAX_PLANES];
   double b[4], b1[4], qdd[4], qdd1[4], uv[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, W, Wd = 0.0, phi0;
@@ -802,8 +815,9 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     for (k = k0; k < k1; k++) {
       const double s = sn[k], cc = cs[k], mr = R->mr[k], r = R->r[k];
       double m = R->m[k];
-      if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) { /* a mass fixed to the rotor */
+      if (FRIC_STUCK(k)) { /* a mass fixed to the rotor */
         fs[k] = 0.0;
+        if (Q && R->motor) rhsm += Q[k]; /* a contact force on it acts on the rotor's spin */
         c->Fu -= W * W * mr * cc;
         c->Fv -= W * W * mr * s;
         if (!R->motor) {
@@ -876,15 +890,15 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
       const double cth = cw * R->cpsi0[j] - sw * R->spsi0[j], sth = sw * R->cpsi0[j] + cw * R->spsi0[j];
       double Su = R->s0[j] * sth, Sv = R->s0[j] * cth; /* sum m r sin, sum m r cos */
       const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
-      if (exact)
+      if (held)
         for (k = k0; k < k1; k++)
-          if (R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
+          if (FRIC_STUCK(k)) {
             Su += R->mr[k] * sn[k];
             Sv += R->mr[k] * cs[k];
           }
       if (R->rolling) /* a slipping rolling ball's phi'' has rk re Omega' */
         for (k = k0; k < k1; k++)
-          if (!(exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK)) {
+          if (!FRIC_STUCK(k)) {
             const double kem = R->rk[k] * R->re[k] * R->mr[k];
             Su += kem * sn[k];
             Sv += kem * cs[k];
@@ -960,11 +974,16 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
       const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
       for (k = k0; k < k1; k++) {
         const double s = sn[k], cc = cs[k], m = R->m[k], r = R->r[k];
-        const int stuck = exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
+        const int stuck = FRIC_STUCK(k);
         const double pd = stuck ? W : (frame == AUTOBAL_ROTOR_FIXED ? rate[k] : rate[k] + W);
         const double Nk = m * (r * pd * pd - au * cc - av * s);
         if (Nout) Nout[k] = Nk;
-        if (Hout) Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) - (R->rolling ? 0.4 * m * R->rho[k] * Wd : 0.0) : NAN;
+        /* the holding force: with a contact force Q on the stuck ball (N m on phi, Q / r along the
+         * track) the track holds H - Q / r */
+        if (Hout)
+          Hout[k] = stuck ? m * (r * Wd - au * s + av * cc) - (R->rolling ? 0.4 * m * R->rho[k] * Wd : 0.0) -
+                                (Q ? Q[k] / r : 0.0)
+                          : NAN;
         if (check_N && !(Nk > 0.0)) {
           const size_t ii = k - k0;
           autobal_error_set(errp, AUTOBAL_ENUMERIC,
@@ -984,7 +1003,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     for (k = k0; k < k1; k++) {
       const double s = sn[k], cc = cs[k], r = R->r[k];
       double acc;
-      if (exact && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) {
+      if (FRIC_STUCK(k)) {
         dydt[8 + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
         acc = frame == AUTOBAL_ROTOR_FIXED ? Wd : 0.0;
       } else {
@@ -1005,6 +1024,7 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     dydt[R->im + 1] = Wd;
   }
   return GSL_SUCCESS;
+#undef FRIC_STUCK
 }
 
 int autobal_rotor_friction_gravity_hook(autobal_rotor *r, double gu, double gv) {
@@ -1034,11 +1054,27 @@ int autobal_rotor_ball_mode_set(autobal_rotor *r, size_t k, int mode) {
   return AUTOBAL_SUCCESS;
 }
 
+/* N and H of every ball with the accelerations of the current modes and clusters: with clusters that
+ * are not rigid, their contact forces from the constraint solve act on the balls (Q = lambda on the ball
+ * ahead, -lambda on the ball behind). */
+static int full_forces(autobal_rotor *r, int frame, double t, const double *y, double *N, double *H) {
+  size_t list[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE], na = 0, i;
+  if (r->contact) na = active_list(r, list, 0);
+  if (na == 0) return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0, NULL, 0);
+  if (contact_solve(r, frame, t, y, NULL) != 0) return GSL_EBADFUNC;
+  memset(r->cQ, 0, r->N * sizeof(double));
+  for (i = 0; i < na; i++) {
+    r->cQ[r->pa[list[i]]] += r->plam[list[i]];
+    r->cQ[r->pb[list[i]]] -= r->plam[list[i]];
+  }
+  return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0, r->cQ, 0);
+}
+
 static int forces_common(autobal_rotor *r, int frame, double t, const double *y, double *N, double *H, size_t n) {
   if (r == NULL || y == NULL || (N == NULL && H == NULL) || n != r->N || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
     return AUTOBAL_EINVAL;
-  return fric_eval(r, r->fws, &r->err, frame, t, y, NULL, N, H, 0, NULL, 0) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
+  return full_forces(r, frame, t, y, N, H) == GSL_SUCCESS ? AUTOBAL_SUCCESS : AUTOBAL_ENUMERIC;
 }
 
 int autobal_rotor_normal_forces(autobal_rotor *r, int frame, double t, const double *y, double *N, size_t n) {
@@ -1055,7 +1091,7 @@ static int fric_cache(autobal_rotor *r, int frame, double t, const double *y) {
       memcmp(r->ycache, y, r->dim * sizeof(double)) == 0)
     return 0;
   r->cache_ok = 0;
-  if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0, NULL, 0) != GSL_SUCCESS) return -1;
+  if (full_forces(r, frame, t, y, r->cN, r->cH) != GSL_SUCCESS) return -1;
   memcpy(r->ycache, y, r->dim * sizeof(double));
   r->cache_t = t;
   r->cache_frame = frame;
@@ -1071,13 +1107,92 @@ static double ball_psid(const autobal_rotor *r, int frame, double t, const doubl
   return y[8 + r->N + k] - W;
 }
 
+/* ---- stuck chains (EXACT law with contact) -------------------------------------------------------
+ * Balls in resting contact that are all stuck form a chain b_0 .. b_n along their track (b_0 behind),
+ * held by stiction as one body.  Its contact forces Lambda_i >= 0 (N, between b_(i-1) and b_i; Lambda_0 =
+ * Lambda_(n+1) = 0) are not fixed by the accelerations: the chain holds when some choice of them lets
+ * every ball's track force stay within its stiction, |H_i - (Lambda_i - Lambda_(i+1))| <= mu_i N_i, H_i
+ * the holding force of b_i without contact forces.  With l_i = H_i - mu_i N_i, u_i = H_i + mu_i N_i that
+ * is (docs/device.md, "Stiction and contact"): sum l <= 0 <= sum u (the chain as a whole), every prefix
+ * sum of l <= 0 (the balls behind do not pull away backwards) and every suffix sum of u >= 0 (the balls
+ * ahead do not pull away forwards).  A single ball: |H| <= mu N. */
+
+/* The rigid cluster behind (dir = -1) or ahead (dir = +1) of ball k: the other ball, or N when none. */
+static size_t chain_next(const autobal_rotor *R, size_t k, int dir) {
+  size_t p;
+  for (p = 0; p < R->np; p++)
+    if (R->pact[p] && (dir > 0 ? R->pb[p] : R->pa[p]) == k && pair_rigid(R, p, 0)) return dir > 0 ? R->pa[p] : R->pb[p];
+  return R->N;
+}
+
+/* The stuck chain of stuck ball k into chain (behind to ahead); returns its length (>= 1).  A closed
+ * ring (every ball of a track stuck and touching) starts at its lowest state index. */
+static size_t chain_of(const autobal_rotor *R, size_t k, size_t *chain) {
+  size_t head = k, n = 0, c, steps = 0, lo = k;
+  if (!R->contact) {
+    chain[0] = k;
+    return 1;
+  }
+  for (c = chain_next(R, k, -1); c != R->N && steps < R->N; c = chain_next(R, c, -1), steps++) {
+    if (c == k) { /* a ring */
+      head = lo;
+      break;
+    }
+    head = c;
+    if (c < lo) lo = c;
+  }
+  chain[n++] = head;
+  for (c = chain_next(R, head, 1); c != R->N && c != head && n < R->N; c = chain_next(R, c, 1)) chain[n++] = c;
+  return n;
+}
+
+/* The smallest margin (N) of the chain's conditions with the forces N, H; *kind: 0 the whole chain
+ * slips backwards (sum l > 0), 1 forwards (sum u < 0), 2 the balls up to chain[*pos] pull away
+ * backwards, 3 the balls after chain[*pos] forwards (split between chain[*pos] and chain[*pos + 1]). */
+static double chain_margin(const autobal_rotor *R, const size_t *chain, size_t n, const double *N, const double *H,
+                           int *kind, size_t *pos) {
+  double sl = 0.0, su = 0.0, m, best;
+  size_t i;
+  for (i = 0; i < n; i++) {
+    const size_t k = chain[i];
+    sl += H[k] - R->mu[k] * N[k];
+    su += H[k] + R->mu[k] * N[k];
+  }
+  best = -sl, *kind = 0, *pos = 0;
+  if (su < best) best = su, *kind = 1;
+  m = 0.0;
+  for (i = 0; i + 1 < n; i++) { /* prefixes b_0..b_i */
+    m += H[chain[i]] - R->mu[chain[i]] * N[chain[i]];
+    if (-m < best) best = -m, *kind = 2, *pos = i;
+  }
+  m = 0.0;
+  for (i = n - 1; i > 0; i--) { /* suffixes b_i..b_n, split after chain[i - 1] */
+    m += H[chain[i]] + R->mu[chain[i]] * N[chain[i]];
+    if (m < best) best = m, *kind = 3, *pos = i - 1;
+  }
+  return best;
+}
+
+/* The pair joining balls b (behind) and a (ahead), or np. */
+static size_t pair_of(const autobal_rotor *R, size_t b, size_t a) {
+  size_t p;
+  for (p = 0; p < R->np; p++)
+    if (R->pb[p] == b && R->pa[p] == a) return p;
+  return R->np;
+}
+
 double autobal_rotor_friction_switch(autobal_rotor *r, int frame, size_t k, double t, const double *y) {
+  size_t n, pos;
+  int kind;
   if (r == NULL || y == NULL || k >= r->N || r->law != AUTOBAL_ROTOR_FRICTION_EXACT || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
     return NAN;
   if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK) return (double)r->mode[k] * ball_psid(r, frame, t, y, k);
+  n = r->contact ? chain_of(r, k, r->pb + r->N) : 1; /* the scratch after the pairs' arrays */
+  if (n > 1 && r->pb[r->N] != k) return -1.0; /* a chain is watched by its first ball */
   if (fric_cache(r, frame, t, y) != 0) return NAN;
-  return fabs(r->cH[k]) - r->mu[k] * r->cN[k];
+  if (n == 1) return fabs(r->cH[k]) - r->mu[k] * r->cN[k];
+  return -chain_margin(r, r->pb + r->N, n, r->cN, r->cH, &kind, &pos);
 }
 
 int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double *y, int initial, size_t *n_stick,
@@ -1097,18 +1212,66 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   for (k = 0; k < r->N; k++) {
     const double pd = ball_psid(r, frame, t, y, k);
     r->pd0[k] = y[8 + r->N + k]; /* restored for a ball that reaches 0 but slips on */
-    if (initial) r->mode[k] = pd > 0.0 ? 1 : pd < 0.0 ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
+    if (initial || (r->contact && r->cfree[k])) /* an impact's impulse set the ball free: its new direction */
+      r->mode[k] = pd > 0.0 ? 1 : pd < 0.0 ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
     else if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK && (double)r->mode[k] * pd <= 0.0)
       r->mode[k] = AUTOBAL_ROTOR_BALL_STUCK; /* psi' has reached 0 */
+    if (r->contact) r->cfree[k] = 0;
     if (r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK && pd != 0.0) {
       y[8 + r->N + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
       changed = 1;
     }
   }
-  for (it = 0; it <= r->N; it++) {
+  if (r->contact) { /* balls in resting contact move as one: a cluster with a stuck ball sticks */
+    int more = 1;
+    while (more) {
+      size_t p;
+      more = 0;
+      for (p = 0; p < r->np; p++) {
+        const size_t b = r->pb[p], a = r->pa[p];
+        if (!r->pact[p] || (r->mode[b] == AUTOBAL_ROTOR_BALL_STUCK) == (r->mode[a] == AUTOBAL_ROTOR_BALL_STUCK)) continue;
+        k = r->mode[b] == AUTOBAL_ROTOR_BALL_STUCK ? a : b;
+        r->mode[k] = AUTOBAL_ROTOR_BALL_STUCK;
+        y[8 + r->N + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
+        more = changed = 1;
+      }
+    }
+  }
+  for (it = 0; it <= 2 * r->N + 2; it++) {
     size_t worst = r->N;
     double excess = 0.0;
-    if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0, NULL, 0) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
+    if (r->contact) { /* stuck chains (a single stuck ball is a chain of one) */
+      size_t *chain = r->pb + r->N, n, i, pos, wpos = 0;
+      int kind, wkind = 0;
+      if (full_forces(r, frame, t, y, r->cN, r->cH) != GSL_SUCCESS) return AUTOBAL_ENUMERIC;
+      for (k = 0; k < r->N; k++) {
+        if (!(r->cN[k] > 0.0)) break;
+        if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK) continue;
+        n = chain_of(r, k, chain);
+        if (chain[0] == k) {
+          double nsum = 0.0, ex;
+          for (i = 0; i < n; i++) nsum += r->cN[chain[i]];
+          ex = -chain_margin(r, chain, n, r->cN, r->cH, &kind, &pos) / nsum;
+          if (ex > excess) excess = ex, worst = k, wkind = kind, wpos = pos;
+        }
+      }
+      if (k == r->N) {
+        if (worst == r->N) break;
+        n = chain_of(r, worst, chain);
+        if (wkind <= 1) /* the whole chain slips */
+          for (i = 0; i < n; i++) {
+            r->mode[chain[i]] = wkind == 0 ? AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE : AUTOBAL_ROTOR_BALL_SLIP_POSITIVE;
+            y[8 + r->N + chain[i]] = r->pd0[chain[i]];
+          }
+        else { /* the chain comes apart: the balls on either side are checked on their own */
+          r->pact[pair_of(r, chain[wpos], chain[wpos + 1])] = 0;
+          r->nsplit++;
+        }
+        r->ccache_ok = 0;
+        continue;
+      }
+    } else if (fric_eval(r, r->fws, &r->err, frame, t, y, NULL, r->cN, r->cH, 0, NULL, 0) != GSL_SUCCESS)
+      return AUTOBAL_ENUMERIC;
     for (k = 0; k < r->N; k++) {
       if (!(r->cN[k] > 0.0)) {
         size_t j = 0;
@@ -1130,6 +1293,8 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
     r->mode[worst] = r->cH[worst] > 0.0 ? AUTOBAL_ROTOR_BALL_SLIP_NEGATIVE : AUTOBAL_ROTOR_BALL_SLIP_POSITIVE;
     y[8 + r->N + worst] = r->pd0[worst]; /* its rate as it was (psi' = 0 if it was stuck at entry) */
   }
+  if (it > 2 * r->N + 2)
+    return autobal_error_set(&r->err, AUTOBAL_ENUMERIC, "friction: the switching rules did not settle at t = %.17g s", t);
   for (k = 0; k < r->N; k++) {
     const int was = r->mode0[k] == AUTOBAL_ROTOR_BALL_STUCK, is = r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
     if (r->mode[k] != r->mode0[k]) changed = 1;
@@ -1220,6 +1385,8 @@ static int contact_pairs(autobal_rotor *R, const double *ang, autobal_error *err
       for (i = 0; i < n; i++) {
         const size_t b = idx[i], a = idx[(i + 1) % n];
         double g;
+        R->pt[np] = np - i; /* the track's first pair */
+        R->pt[R->N + np] = n;
         R->pb[np] = b;
         R->pa[np] = a;
         R->pg[np] = autobal_rotor_gap_angle(R->delta[b], R->delta[a], R->r[k]);
@@ -1242,6 +1409,7 @@ static int contact_pairs(autobal_rotor *R, const double *ang, autobal_error *err
   }
   R->np = np;
   R->ccache_ok = 0;
+  memset(R->cfree, 0, R->N * sizeof(int));
   return AUTOBAL_SUCCESS;
 }
 
@@ -1309,18 +1477,32 @@ static int small_solve(double *a, double *b, size_t n) {
   return 0;
 }
 
-/* The clusters' list (at most AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE) into list; returns the count. */
-static size_t active_list(const autobal_rotor *R, size_t *list) {
+/* Ball k fixed to the rotor (EXACT law, stuck; in an impulse (impulse = 1) also not set free by it). */
+static int ball_fixed(const autobal_rotor *R, size_t k, int impulse) {
+  return R->law == AUTOBAL_ROTOR_FRICTION_EXACT && R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK &&
+         !(impulse && R->cfree[k]);
+}
+
+/* A cluster whose two balls are both fixed to the rotor: a rigid part of it, left out of the constraint
+ * solve (its contact force is not determined by the accelerations; stiction of the chain decides,
+ * see stuck_chains). */
+static int pair_rigid(const autobal_rotor *R, size_t p, int impulse) {
+  return ball_fixed(R, R->pb[p], impulse) && ball_fixed(R, R->pa[p], impulse);
+}
+
+/* The clusters' list (at most AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE) into list, without the rigid ones;
+ * returns the count. */
+static size_t active_list(const autobal_rotor *R, size_t *list, int impulse) {
   size_t p, n = 0;
   for (p = 0; p < R->np && n < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE; p++)
-    if (R->pact[p]) list[n++] = p;
+    if (R->pact[p] && !pair_rigid(R, p, impulse)) list[n++] = p;
   return n;
 }
 
 /* The accelerations with the clusters' constraints J_p a = 0: a = a0 + sum lambda_p w_p with
  * G lambda = -J a0 (G_pq = J_p w_q); into dydt (may be NULL), lambda into R->plam. */
 static int contact_solve(autobal_rotor *R, int frame, double t, const double *y, double *dydt) {
-  size_t list[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE] = {0}, na = active_list(R, list), i, q, n;
+  size_t list[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE] = {0}, na = active_list(R, list, 0), i, q, n;
   const size_t dim = R->dim, N = R->N;
   double lam[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
   if (contact_responses(R, frame, t, y, list, na, 0) != 0) return -1;
@@ -1333,6 +1515,8 @@ static int contact_solve(autobal_rotor *R, int frame, double t, const double *y,
     }
   }
   if (na > 0 && small_solve(R->cG, lam, na) != 0) return -1;
+  for (q = 0; q < R->np; q++)
+    if (R->pact[q] && pair_rigid(R, q, 0)) R->plam[q] = HUGE_VAL; /* never released by its force */
   for (i = 0; i < na; i++) R->plam[list[i]] = lam[i];
   if (dydt) {
     memcpy(dydt, R->cW, dim * sizeof(double));
@@ -1349,7 +1533,7 @@ static int contact_rhs(autobal_rotor *R, int frame, double t, const double y[], 
   const int chk = R->law != AUTOBAL_ROTOR_FRICTION_NONE;
   size_t p;
   int any = 0;
-  for (p = 0; p < R->np; p++) any |= R->pact[p];
+  for (p = 0; p < R->np; p++) any |= R->pact[p] && !pair_rigid(R, p, 0);
   if (!any) return fric_eval(R, R->fws, &R->err, frame, t, y, dydt, NULL, NULL, chk, NULL, 0);
   autobal_error_clear(&R->err);
   if (contact_solve(R, frame, t, y, dydt) != 0) {
@@ -1368,6 +1552,7 @@ double autobal_rotor_contact_switch(autobal_rotor *r, int frame, size_t p, doubl
   /* a free pair: its gap plus a skin of 1e-12 rad, so that a pair just set to gap 0 by a reset
    * starts positive (the engine reports a falling crossing only from g > 0) */
   if (!r->pact[p]) return pair_gap(r, p, y) + 1e-12;
+  if (pair_rigid(r, p, 0)) return 1.0; /* both balls stuck: held while they are */
   if (!(r->ccache_ok && r->ccache_t == t && r->ccache_frame == frame &&
         memcmp(r->cy, y, r->dim * sizeof(double)) == 0)) {
     r->ccache_ok = 0;
@@ -1388,7 +1573,16 @@ static int impact_apply(autobal_rotor *R, int frame, double t, double *y, const 
   double rhs[2 * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE], G[4 * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE * AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
   const size_t dim = R->dim, N = R->N;
   for (i = 0; i < ni; i++) list[n++] = imp[i];
-  n += active_list(R, list + n);
+  if (R->law == AUTOBAL_ROTOR_FRICTION_EXACT) { /* set free: the impacting balls and their clusters */
+    int more = 1;
+    for (i = 0; i < ni; i++) R->cfree[R->pb[imp[i]]] = R->cfree[R->pa[imp[i]]] = 1;
+    while (more) {
+      more = 0;
+      for (q = 0; q < R->np; q++)
+        if (R->pact[q] && R->cfree[R->pb[q]] != R->cfree[R->pa[q]]) R->cfree[R->pb[q]] = R->cfree[R->pa[q]] = 1, more = 1;
+    }
+  }
+  n += active_list(R, list + n, 1);
   if (contact_responses(R, frame, t, y, list, n, 1) != 0) return AUTOBAL_ENUMERIC;
   for (i = 0; i < n; i++) {
     const size_t a = 8 + N + R->pa[list[i]], b = 8 + N + R->pb[list[i]];
@@ -1477,6 +1671,65 @@ int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *
   if (n_impacts) *n_impacts += ni;
   if (n_joins) *n_joins += nj;
   if (n_releases) *n_releases += nr;
+  return changed;
+}
+
+int autobal_rotor_hybrid_settle(autobal_rotor *r, int frame, double t, double *y, int initial, size_t counts[6]) {
+  size_t k, p, it, ni = 0, nj = 0, nr = 0, ns = 0, nl = 0, nv = 0, max_it;
+  int changed = 0, rc;
+  double W, ph;
+  if (!r || !y || !counts || !isfinite(t) || (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
+    return AUTOBAL_EINVAL;
+  if (r->law != AUTOBAL_ROTOR_FRICTION_EXACT) {
+    if (!r->contact) return 0;
+    rc = autobal_rotor_contact_settle(r, frame, t, y, &counts[3], &counts[4], &counts[5]);
+    return rc;
+  }
+  if (!r->contact) {
+    rc = autobal_rotor_friction_settle(r, frame, t, y, initial, &ns, &nl, &nv);
+    if (rc >= 0) counts[0] += ns, counts[1] += nl, counts[2] += nv;
+    return rc;
+  }
+  spin_state(r, t, y, &W, &ph);
+  for (k = 0; k < r->N; k++) { /* the modes at entry, and which slipping balls have reached psi' = 0 */
+    r->modein[k] = r->mode[k];
+    r->reach[k] = r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK && (double)r->mode[k] * ball_psid(r, frame, t, y, k) <= 0.0;
+  }
+  if (initial) /* balls placed touching, at rest relative to each other, start in resting contact */
+    for (p = 0; p < r->np; p++) {
+      const double u = y[8 + r->N + r->pa[p]] - y[8 + r->N + r->pb[p]];
+      if (!r->pact[p] && fabs(pair_gap(r, p, y)) <= 1e-12 && fabs(u) <= 1e-12 && autobal_rotor_contact_n_active(r) < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE) {
+        r->pact[p] = 1;
+        close_gap(r, p, y);
+        changed = 1;
+      }
+    }
+  r->nsplit = 0;
+  max_it = 4 * r->N + 8;
+  for (it = 0; it < max_it; it++) {
+    const int c1 = autobal_rotor_contact_settle(r, frame, t, y, &ni, &nj, &nr);
+    int f1;
+    if (c1 < 0) return c1;
+    f1 = autobal_rotor_friction_settle(r, frame, t, y, initial && it == 0, NULL, NULL, NULL);
+    if (f1 < 0) return f1;
+    if (c1 == 0 && f1 == 0) break;
+    changed = 1;
+  }
+  if (it == max_it)
+    return autobal_error_set(&r->err, AUTOBAL_ENUMERIC,
+                             "contact and friction: the impacts and switching rules did not settle at t = %.17g s", t);
+  for (k = 0; k < r->N; k++) {
+    const int was = r->modein[k] == AUTOBAL_ROTOR_BALL_STUCK, is = r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
+    if (initial) continue;
+    if (!was && is) ns++;
+    else if (was && !is) nl++;
+    else if (!was && !is && (r->reach[k] || r->mode[k] != r->modein[k])) nv++;
+  }
+  counts[0] += ns, counts[1] += nl, counts[2] += nv;
+  counts[3] += ni, counts[4] += nj, counts[5] += nr + r->nsplit;
+  r->nsplit = 0;
+  r->cache_ok = 0;
+  r->ccache_ok = 0;
   return changed;
 }
 
@@ -1926,10 +2179,6 @@ static int check_contact(const autobal_rotor_params *p, size_t j, autobal_error 
     if (!c->on) return AUTOBAL_SUCCESS;
     if ((st = autobal_check_param(err, "contact.restitution", c->restitution, 0.0, 0, 1.0, 0, ""))) return st;
     if ((st = autobal_check_param(err, "contact.v_rest", c->v_rest, 0.0, 0, INFINITY, 1, "rad/s"))) return st;
-    if (p->friction.law == AUTOBAL_ROTOR_FRICTION_EXACT)
-      return autobal_error_set(err, AUTOBAL_EINVAL,
-                               "contact with friction.law = EXACT (stick-slip switching) is not implemented: use the "
-                               "law NONE or REGULARIZED with contact");
   }
   if (!c->on || !c->ball_diameter[j]) return AUTOBAL_SUCCESS;
   for (i = 0; i < pl->n_balls; i++) {
@@ -2274,13 +2523,17 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     const size_t nd = 5 * N + (2 * CM + 1) * dim + CM * CM + dim + 1;
     R->cstore = (double *)calloc(nd, sizeof(double));
     R->pb = (size_t *)calloc(3 * N + 1, sizeof(size_t));
-    R->pact = (int *)calloc(N + 1, sizeof(int));
-    if (!R->cstore || !R->pb || !R->pact) {
+    R->pact = (int *)calloc(4 * N + 4, sizeof(int));
+    R->pt = (size_t *)calloc(2 * N + 1, sizeof(size_t));
+    if (!R->cstore || !R->pb || !R->pact || !R->pt) {
       autobal_rotor_free(R);
       autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the contact arrays");
       return NULL;
     }
     R->pa = R->pb + 2 * N;
+    R->cfree = R->pact + N + 1;
+    R->modein = R->cfree + N + 1;
+    R->reach = R->modein + N + 1;
     R->delta = R->cstore;
     R->pg = R->delta + N;
     R->pc = R->pg + N;
@@ -2313,6 +2566,7 @@ void autobal_rotor_free(autobal_rotor *r) {
   free(r->mode);
   free(r->cstore);
   free(r->pb);
+  free(r->pt);
   free(r->pact);
   free(r);
 }
