@@ -11,9 +11,11 @@
  *  (b) energy along a motor run with impacts, sticks and slips: E(end) - E(0) = integral of (L Omega
  *      - D - sum r f N |psi'|) + the jumps of the resets (events and reset wired from the public
  *      functions), every jump <= 0; e = 1: the impacts on stuck balls (set free by the impulse)
- *      conserve energy;
+ *      conserve energy; also two touching balls that start stuck in resting contact (a chain) and
+ *      break free during the run-up;
  *  (c) f = mu = 0 with the exact law reproduces the frictionless run with contact (law NONE):
- *      the pressed pair of balls of test_rotor_contact's resting contact, 1 s, both frames. */
+ *      the pressed pair of balls of test_rotor_contact's resting contact, both frames: 1 s (impacts
+ *      only) to 1e-9 rad, 3 s (resting contact joined and released) to 1e-5 rad. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -262,7 +264,7 @@ static int erun_reset(const autobal_transient_event_hit *hit, double y[], void *
   return rc == 1 ? AUTOBAL_TRANSIENT_RESET : 0;
 }
 
-static void energy_run(double e) {
+static void energy_run(double e, int pressed) {
   autobal_rotor_params p = autobal_rotor_params_default();
   double psi[2] = {1.0, 1.3}, rate[2] = {20.0, -20.0}, dia[2] = {0.023, 0.023}, f[2] = {0.01, 0.01},
          mu[2] = {0.02, 0.02}, y[20], Nb[2], E0, E1, tol;
@@ -273,8 +275,14 @@ static void energy_run(double e) {
   erun_ev ev[4];
   size_t k, n0[6] = {0, 0, 0, 0, 0, 0};
   char what[240];
-  printf("-- (b) energy along a motor run with stiction and impacts, e = %g\n", e);
+  printf("-- (b) energy along a motor run with stiction and impacts, e = %g%s\n", e,
+         pressed ? ", an unbalance out of the balls' reach (pressed together: resting contact)" : "");
   p.plane[0].ball_psi = psi, p.plane[0].ball_rate = rate;
+  if (pressed) { /* test_rotor_contact's resting contact: the balanced angles closer than the gap angle */
+    p.plane[0].m0 = 0.0996;
+    psi[0] = 2.5, psi[1] = 2.5 + autobal_rotor_gap_angle(0.023, 0.023, 0.1), rate[0] = rate[1] = 0.0; /* touching */
+    f[0] = f[1] = 0.005, mu[0] = mu[1] = 0.01;
+  }
   p.drive.mode = AUTOBAL_ROTOR_DRIVE_MOTOR;
   p.drive.J = p.hw.C_p + 0.01, p.drive.L_0 = 5.0, p.drive.omega_0 = 600.0, p.drive.k_r = 1e-3;
   p.drive.omega_start = 300.0;
@@ -290,6 +298,7 @@ static void energy_run(double e) {
   autobal_rotor_initial_state(E.rot, AUTOBAL_ROTOR_FIXED, 0.0, y, E.dim);
   y[E.dim] = 0.0;
   CHECK("initial settle", autobal_rotor_hybrid_settle(E.rot, AUTOBAL_ROTOR_FIXED, 0.0, y, 1, n0) >= 0);
+  if (pressed) CHECK("the touching balls start in resting contact", autobal_rotor_contact_n_active(E.rot) == 1);
   E0 = motor_energy(E.rot, y);
   o.rtol = 1e-12, o.atol = 1e-14, o.stepper = "rk8pd", o.event_tol = 1e-12;
   sys.rhs = erun_rhs, sys.jac = NULL, sys.dim = E.dim + 1, sys.params = &E;
@@ -308,13 +317,15 @@ static void energy_run(double e) {
     autobal_transient_add_event(tr, erun_event, &ev[2 + k], -1, 0);
   }
   autobal_transient_set_event_reset(tr, erun_reset, &E);
-  CHECK_STATUS("1 s run", autobal_transient_run(tr, &sys, 0.0, 1.0, y, NULL), AUTOBAL_SUCCESS);
+  CHECK_STATUS("run", autobal_transient_run(tr, &sys, 0.0, pressed ? 3.0 : 1.0, y, NULL), AUTOBAL_SUCCESS);
   E1 = motor_energy(E.rot, y);
   printf("     %zu resets: %zu sticks, %zu slips, %zu reversals, %zu impacts, %zu joins, %zu releases\n", E.n_resets,
          E.counts[0], E.counts[1], E.counts[2], E.counts[3], E.counts[4], E.counts[5]);
-  printf("     E(1 s) - E(0) = %.12g J, work integral %.12g J, reset jumps %.6e J (E(0) = %.6g J)\n", E1 - E0, y[E.dim],
+  printf("     E(end) - E(0) = %.12g J, work integral %.12g J, reset jumps %.6e J (E(0) = %.6g J)\n", E1 - E0, y[E.dim],
          E.jumps, E0);
-  CHECK("impacts, sticks and slips happened", E.counts[3] > 0 && E.counts[0] > 0 && E.counts[1] > 0);
+  CHECK("sticks and slips happened (and impacts, apart from the pair in resting contact)",
+        (pressed || E.counts[3] > 0) && E.counts[0] > 0 && E.counts[1] > 0);
+  if (pressed) CHECK("the pair in resting contact came apart (a release)", E.counts[5] >= 1);
   tol = 1e-11 * fabs(E0);
   snprintf(what, sizeof what, "e = %g: E(end) - E(0) = integral (L Omega - D - friction) + the reset jumps", e);
   CHECK_CLOSE(what, E1 - E0, y[E.dim] + E.jumps, 0, tol);
@@ -324,7 +335,7 @@ static void energy_run(double e) {
     snprintf(what, sizeof what, "e = 1: the resets change the energy by %.3e J (within 1e-12 E per reset)", E.jumps);
     CHECK(what, fabs(E.jumps) <= 1e-12 * fabs(E0) * (double)E.n_resets);
   } else {
-    CHECK("e < 1: the impacts dissipate", E.jumps < -1e-6);
+    if (!pressed) CHECK("e < 1: the impacts dissipate", E.jumps < -1e-6);
   }
   autobal_transient_free(tr);
   autobal_rotor_free(E.rot);
@@ -332,7 +343,7 @@ static void energy_run(double e) {
 
 /* ---- (c) f = mu = 0: the exact law with contact against the law NONE ---------------------------- */
 
-static void zero_friction(int frame) {
+static void zero_friction(int frame, double t_end) {
   autobal_rotor_params p = autobal_rotor_params_default();
   autobal_study_rotor_transient_options o = autobal_study_rotor_transient_options_default();
   autobal_study_rotor_transient_summary s0, s1;
@@ -341,12 +352,12 @@ static void zero_friction(int frame) {
   size_t i;
   int st0, st1;
   char what[240];
-  printf("-- (c) f = mu = 0, exact law with contact vs law NONE with contact (%s frame)\n",
-         frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating");
+  printf("-- (c) f = mu = 0, exact law with contact vs law NONE with contact (%s frame, %g s)\n",
+         frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating", t_end);
   p.plane[0].m0 = 0.0996;
   p.plane[0].ball_psi = psi;
   p.contact.on = 1, p.contact.restitution = 0.5, p.contact.ball_diameter[0] = dia;
-  o.t_end = 1.0, o.frame = frame, o.rtol = 1e-11, o.atol = 1e-13;
+  o.t_end = t_end, o.frame = frame, o.rtol = 1e-11, o.atol = 1e-13;
   memset(&s0, 0, sizeof s0);
   memset(&s1, 0, sizeof s1);
   st0 = autobal_study_rotor_transient(&p, &o, NULL, &s0, &e);
@@ -361,8 +372,18 @@ static void zero_friction(int frame) {
            s0.contact_impacts, s0.contact_joins, s0.contact_releases, s1.contact_impacts, s1.contact_joins,
            s1.contact_releases, s1.friction_sticks, s1.friction_slips, s1.friction_reversals);
     for (i = 0; i < 2; i++) d = fmax(d, fabs(remainder(s0.ball_psi_final[0][i] - s1.ball_psi_final[0][i], 2.0 * M_PI)));
-    snprintf(what, sizeof what, "the same impacts (%lu) and final ball angles (differ by %.3e rad)", s0.contact_impacts, d);
-    CHECK(what, s0.contact_impacts == s1.contact_impacts && d < 1e-7);
+    if (t_end <= 1.0) { /* free flight and impacts only */
+      snprintf(what, sizeof what, "the same impacts (%lu) and final ball angles (differ by %.3e rad)", s0.contact_impacts, d);
+      CHECK(what, s0.contact_impacts == s1.contact_impacts && d < 1e-9);
+    } else {
+      /* with resting contact: grazing re-impacts of a pair in contact (|u| of 1e-12 .. 1e-9 rad/s) are
+       * counted differently (the exact law's events and resets at psi' = 0 restart the steps), so
+       * the impact counts may differ by a few; the joins and releases and the final angles agree */
+      snprintf(what, sizeof what, "the same joins (%lu) and releases, final ball angles differ by %.3e rad (< 1e-5)",
+               s0.contact_joins, d);
+      CHECK(what, s0.contact_joins > 0 && s0.contact_joins == s1.contact_joins &&
+                      s0.contact_releases == s1.contact_releases && d < 1e-5);
+    }
   }
   autobal_study_rotor_transient_summary_free(&s0);
   autobal_study_rotor_transient_summary_free(&s1);
@@ -371,10 +392,13 @@ static void zero_friction(int frame) {
 int main(void) {
   gsl_set_error_handler_off();
   test_chain();
-  energy_run(1.0);
-  energy_run(0.5);
-  zero_friction(AUTOBAL_ROTOR_FIXED);
-  zero_friction(AUTOBAL_ROTOR_ROTATING);
+  energy_run(1.0, 0);
+  energy_run(0.5, 0);
+  energy_run(0.5, 1);
+  zero_friction(AUTOBAL_ROTOR_FIXED, 1.0);
+  zero_friction(AUTOBAL_ROTOR_ROTATING, 1.0);
+  zero_friction(AUTOBAL_ROTOR_FIXED, 3.0);
+  zero_friction(AUTOBAL_ROTOR_ROTATING, 3.0);
   printf("%d checks, %d failed\n", check_count_, check_failures_);
   return check_failures_ ? 1 : 0;
 }

@@ -1197,7 +1197,7 @@ double autobal_rotor_friction_switch(autobal_rotor *r, int frame, size_t k, doub
 
 int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double *y, int initial, size_t *n_stick,
                                   size_t *n_slip, size_t *n_reverse) {
-  size_t k, it, ns = 0, nl = 0, nr = 0;
+  size_t k, it, ns = 0, nl = 0, nr = 0, nsplit0;
   int changed = 0;
   double W, ph;
   if (n_stick) *n_stick = 0;
@@ -1209,6 +1209,7 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   r->cache_ok = 0;
   spin_state(r, t, y, &W, &ph);
   memcpy(r->mode0, r->mode, r->N * sizeof(int));
+  nsplit0 = r->contact ? r->nsplit : 0;
   for (k = 0; k < r->N; k++) {
     const double pd = ball_psid(r, frame, t, y, k);
     r->pd0[k] = y[8 + r->N + k]; /* restored for a ball that reaches 0 but slips on */
@@ -1295,6 +1296,13 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   }
   if (it > 2 * r->N + 2)
     return autobal_error_set(&r->err, AUTOBAL_ENUMERIC, "friction: the switching rules did not settle at t = %.17g s", t);
+  /* changed: a mode, a rate or a cluster differs from the entry (a ball stuck and set slipping again
+   * with its rate restored in the same call is no change) */
+  if (r->contact) { /* (without contact the rule of 0.2.0: any stick set at entry counts) */
+    changed = r->nsplit != nsplit0;
+    for (k = 0; k < r->N; k++)
+      if (y[8 + r->N + k] != r->pd0[k]) changed = 1;
+  }
   for (k = 0; k < r->N; k++) {
     const int was = r->mode0[k] == AUTOBAL_ROTOR_BALL_STUCK, is = r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK;
     if (r->mode[k] != r->mode0[k]) changed = 1;
@@ -1642,7 +1650,7 @@ int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *
     int join[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
     for (p = 0; p < r->np && cnt < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE; p++) {
       const double u = y[8 + N + r->pa[p]] - y[8 + N + r->pb[p]];
-      if (r->pact[p] || !(pair_gap(r, p, y) <= 1e-9) || !(u < 0.0)) continue;
+      if (r->pact[p] || !(pair_gap(r, p, y) <= 1e-9) || !(u < -1e-12)) continue; /* closing (not a rounding error) */
       join[cnt] = r->e_rest * -u < r->v_rest &&
                   autobal_rotor_contact_n_active(r) + (size_t)cnt < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE;
       ei[cnt] = join[cnt] ? 0.0 : r->e_rest;
@@ -1706,11 +1714,16 @@ int autobal_rotor_hybrid_settle(autobal_rotor *r, int frame, double t, double *y
     }
   r->nsplit = 0;
   max_it = 4 * r->N + 8;
+  if (initial) { /* the modes first (the touching pairs' forces depend on them) */
+    rc = autobal_rotor_friction_settle(r, frame, t, y, 1, NULL, NULL, NULL);
+    if (rc < 0) return rc;
+    changed |= rc;
+  }
   for (it = 0; it < max_it; it++) {
     const int c1 = autobal_rotor_contact_settle(r, frame, t, y, &ni, &nj, &nr);
     int f1;
     if (c1 < 0) return c1;
-    f1 = autobal_rotor_friction_settle(r, frame, t, y, initial && it == 0, NULL, NULL, NULL);
+    f1 = autobal_rotor_friction_settle(r, frame, t, y, 0, NULL, NULL, NULL);
     if (f1 < 0) return f1;
     if (c1 == 0 && f1 == 0) break;
     changed = 1;
