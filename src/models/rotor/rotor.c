@@ -1650,7 +1650,8 @@ int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *
     int join[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
     for (p = 0; p < r->np && cnt < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE; p++) {
       const double u = y[8 + N + r->pa[p]] - y[8 + N + r->pb[p]];
-      if (r->pact[p] || !(pair_gap(r, p, y) <= 1e-9) || !(u < -1e-12)) continue; /* closing (not a rounding error) */
+      /* closing; with the exact law's repeated settles not by a rounding error (|u| <= 1e-12 rad/s) */
+      if (r->pact[p] || !(pair_gap(r, p, y) <= 1e-9) || !(u < (r->law == AUTOBAL_ROTOR_FRICTION_EXACT ? -1e-12 : 0.0))) continue;
       join[cnt] = r->e_rest * -u < r->v_rest &&
                   autobal_rotor_contact_n_active(r) + (size_t)cnt < AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE;
       ei[cnt] = join[cnt] ? 0.0 : r->e_rest;
