@@ -267,8 +267,10 @@ typedef struct autobal_rotor_rolling {
  * compressive), computed in every right-hand side; the pair separates when lambda falls to 0.
  * Several touching pairs may form chains (at most AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE clusters at
  * once; beyond that an impact keeps its restitution).  With contact on the right-hand sides take
- * the friction path.  Not with friction.law = EXACT (EINVAL: stick-slip and contact together are
- * not implemented). */
+ * the friction path.  With friction.law = EXACT: an impact's impulse sets its balls (and their
+ * clusters) free, other stuck balls stay fixed; a cluster sticks as one; stuck balls in resting contact
+ * form a chain held by stiction while its conditions hold (autobal_rotor_hybrid_settle, docs/device.md
+ * "Stiction and contact"). */
 #define AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE 16
 typedef struct autobal_rotor_contact {
   int on;                                               /* 0 off (default), 1 on */
@@ -537,7 +539,9 @@ AUTOBAL_API int autobal_rotor_holding_forces(autobal_rotor *r, int frame, double
                                              double *H, size_t n);
 /* The switching function of ball k (EXACT law), a transient-engine event function: slipping,
  * sgn(mode) psi_k' (> 0 while it slips, it falls through 0 when the ball stops); stuck,
- * |H_k| - mu_k N_k (<= 0 while it holds, it rises through 0 when the ball breaks free).  The
+ * |H_k| - mu_k N_k (<= 0 while it holds, it rises through 0 when the ball breaks free); with
+ * contact, for stuck balls in resting contact (a chain), the first ball of the chain reports minus the
+ * smallest margin of the chain's conditions (docs/device.md "Stiction and contact"), the others -1.  The
  * forces of all balls are computed once per (t, y) and cached on the handle (a copy of y is
  * compared), so calling it for every ball costs one solve when a ball is stuck.  NAN for bad
  * arguments or a failed solve. */
@@ -553,7 +557,10 @@ AUTOBAL_API double autobal_rotor_friction_switch(autobal_rotor *r, int frame, si
  * stuck and from stuck (at entry) to slipping; the balls that reached psi' = 0 but could not
  * stick are counted in n_reverse (may be NULL).  Returns 1 when a mode or y changed, 0 when
  * nothing changed, or a negative status (AUTOBAL_EINVAL: bad arguments or law not EXACT; AUTOBAL_ENUMERIC: the solve failed or
- * a ball has N <= 0, message on the handle). */
+ * a ball has N <= 0, message on the handle).  With contact on: a ball set free by an impact takes
+ * its mode from the sign of psi'; a cluster with a stuck ball sticks as a whole; stuck chains are
+ * checked as one body (slipping as a whole or coming apart); a mode and rate restored within the
+ * call is no change.  Use autobal_rotor_hybrid_settle as the event reset with contact. */
 AUTOBAL_API int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double *y,
                                               int initial, size_t *n_stick, size_t *n_slip,
                                               size_t *n_reverse);
