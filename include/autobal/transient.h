@@ -291,6 +291,19 @@ AUTOBAL_API void autobal_transient_set_event_reset(autobal_transient *tr,
 AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_transient_scalar_fn g,
                                             void *user, int direction, int terminal);
 
+/* Grazing crossings: events are sampled at the ends of the accepted steps, so an event function
+ * that crosses 0 and comes back within one step is missed.  With n > 0 probes, when event `index`
+ * has the same sign at both ends of a step, the driver also evaluates it at n interior points,
+ * t_prev + k h / (n + 1), on the cubic Hermite interpolant of the state (y and y' at both ends:
+ * the stepper's own where it hands them over, as rk8pd does, else two right-hand sides per step);
+ * the first point past 0 in a watched direction is checked on the integrated state and, if
+ * confirmed, the crossing is located between the step's start and that point as usual.  A
+ * crossing shorter than h / (n + 1) can still be missed.  n = 0 (the default) turns it off; at most
+ * 64; not for dwell events.  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+AUTOBAL_API int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n);
+/* Grazing crossings found by probes since the handle was allocated. */
+AUTOBAL_API unsigned long autobal_transient_probe_hits(const autobal_transient *tr);
+
 /* Add a dwell event: fires (once per run) the first time s(t, y) <
  * threshold has held continuously for `duration` (>= 0, time units) - e.g.
  * the residual unbalance below a tolerance for N revolutions: "time to

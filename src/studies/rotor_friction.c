@@ -8,6 +8,12 @@
 
 #include "internal.h"
 
+/* interior points of a step at which the stick-slip switching functions are probed for a grazing
+ * crossing (a stuck ball's |H| - mu N follows the rotor's vibration): on the washer of
+ * data/washer_friction.ini 1, 3, 7 and 15 probes found 79, 98, 111 and 110 crossings that the step
+ * ends missed, 7 and 15 the same switches and final state (docs/device.md "Grazing switches") */
+#define STUDY_FRICTION_PROBES 7u
+
 typedef struct ball_event {
   struct study_friction *f;
   size_t k;
@@ -104,6 +110,9 @@ int study_friction_begin(autobal_rotor *rot, int frame, autobal_transient *tr, d
       study_friction_free(f);
       return autobal_error_set(err, idx, "%s", autobal_transient_errmsg(tr));
     }
+    /* a stuck ball's |H| - mu N follows the rotor's vibration and may exceed 0 for less than a step:
+     * probed at interior points of every step (autobal_transient_set_event_probes) */
+    autobal_transient_set_event_probes(tr, idx, STUDY_FRICTION_PROBES);
     if (k == 0) f->first = (size_t)idx;
   }
   autobal_transient_set_event_reset(tr, ball_reset, f);

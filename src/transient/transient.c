@@ -130,6 +130,7 @@ typedef struct event_item {
   void *user;
   int direction, terminal;
   int dwell;
+  unsigned probes; /* interior points checked per step for a grazing crossing (0: none) */
   double threshold, duration;
   /* state of a run */
   double g_prev; /* g (or s - threshold) at the last accepted step */
@@ -157,6 +158,7 @@ struct autobal_transient {
   double *y_prev; /* state at the start of the last accepted step */
   double *y_work; /* event location */
   double *y_evt;  /* state at a located event */
+  double *pr_fa, *pr_fb, *pr_y; /* probes: derivatives at the step's ends (when computed), interpolant */
   /* events */
   event_item *ev;
   size_t nev, cap;
@@ -182,6 +184,7 @@ struct autobal_transient {
   double reject_t;              /* time of the last AUTOBAL_TRANSIENT_RHS_REJECT */
   unsigned long n_reject_calls; /* such returns in this run */
   autobal_transient_stats stats;
+  unsigned long stats_probe_hits; /* grazing crossings found by probes in this run */
   autobal_error err;
 };
 
@@ -369,7 +372,10 @@ autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_o
   tr->y_prev = malloc(dim * sizeof(double));
   tr->y_work = malloc(dim * sizeof(double));
   tr->y_evt = malloc(dim * sizeof(double));
-  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt ||
+  tr->pr_fa = malloc(3 * dim * sizeof(double));
+  tr->pr_fb = tr->pr_fa ? tr->pr_fa + dim : NULL;
+  tr->pr_y = tr->pr_fa ? tr->pr_fa + 2 * dim : NULL;
+  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt || !tr->pr_fa ||
       ctx_alloc(tr, &tr->main, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS ||
       ctx_alloc(tr, &tr->aux, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS) {
     autobal_transient_free(tr);
@@ -393,6 +399,7 @@ void autobal_transient_free(autobal_transient *tr) {
   free(tr->y_prev);
   free(tr->y_work);
   free(tr->y_evt);
+  free(tr->pr_fa);
   free(tr->ev);
   free(tr->order);
   free(tr);
@@ -521,6 +528,14 @@ int autobal_transient_add_dwell_event(autobal_transient *tr, autobal_transient_s
   it.duration = duration;
   return event_push(tr, &it);
 }
+
+int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n) {
+  if (tr == NULL || index < 0 || (size_t)index >= tr->nev || tr->ev[index].dwell || n > 64) return AUTOBAL_EINVAL;
+  tr->ev[index].probes = n;
+  return AUTOBAL_SUCCESS;
+}
+
+unsigned long autobal_transient_probe_hits(const autobal_transient *tr) { return tr ? tr->stats_probe_hits : 0; }
 
 void autobal_transient_clear_events(autobal_transient *tr) {
   if (tr) tr->nev = 0;
@@ -755,6 +770,61 @@ static int event_value(autobal_transient *tr, const event_item *e, double t, con
 
 static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
 
+/* The derivatives at both ends of the accepted step (t_prev, y_prev) -> (tn, yn) into *fa, *fb: the
+ * main stepper's own when it hands them over (f(tn) is the next step's first stage, f(t_prev) was
+ * this one's), else two evaluations into pr_fa, pr_fb. */
+static int step_ends(autobal_transient *tr, double t_prev, double tn, const double *yn, const double **fa,
+                     const double **fb) {
+  const gsl_odeiv2_step_type *T = tr->main.d->s->type;
+  if (T->can_use_dydt_in && T->gives_exact_dydt_out && tr->main.have_dydt) {
+    *fa = tr->main.dydt_out;
+    *fb = tr->main.dydt_in;
+    return AUTOBAL_SUCCESS;
+  }
+  if (rhs_checked(tr, t_prev, tr->y_prev, tr->pr_fa) != GSL_SUCCESS ||
+      rhs_checked(tr, tn, yn, tr->pr_fb) != GSL_SUCCESS)
+    return rhs_failure(tr);
+  *fa = tr->pr_fa;
+  *fb = tr->pr_fb;
+  return AUTOBAL_SUCCESS;
+}
+
+/* Probe event e for a grazing crossing inside the accepted step (t_prev, y_prev) -> (tn, yn), its
+ * values g_prev and gn of one sign: g on the cubic Hermite interpolant of the state at e->probes
+ * interior points; the first point past 0 (in a watched direction) is checked on the integrated
+ * state and, if confirmed, bracketed with t_prev for locate.  *found = 1 with *tc, *gc then. */
+static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn, const double *yn,
+                 const double **fa, const double **fb, double *tc, double *gc, int *found) {
+  const size_t n = tr->dim;
+  const double h = tn - t_prev;
+  unsigned k;
+  int rc;
+  *found = 0;
+  if (!*fa && (rc = step_ends(tr, t_prev, tn, yn, fa, fb)) != AUTOBAL_SUCCESS) return rc;
+  for (k = 1; k <= e->probes; k++) {
+    const double th = (double)k / (double)(e->probes + 1), th2 = th * th, th3 = th2 * th;
+    const double h00 = 2.0 * th3 - 3.0 * th2 + 1.0, h10 = (th3 - 2.0 * th2 + th) * h;
+    const double h01 = -2.0 * th3 + 3.0 * th2, h11 = (th3 - th2) * h;
+    const double t = t_prev + th * h;
+    double g = 0.0;
+    size_t i;
+    for (i = 0; i < n; i++) tr->pr_y[i] = h00 * tr->y_prev[i] + h10 * (*fa)[i] + h01 * yn[i] + h11 * (*fb)[i];
+    if ((rc = event_value(tr, e, t, tr->pr_y, &g)) != AUTOBAL_SUCCESS) return rc;
+    if (!((e->g_prev < 0.0 && g >= 0.0 && e->direction != -1) || (e->g_prev > 0.0 && g <= 0.0 && e->direction != 1)))
+      continue;
+    /* confirm on the integrated state */
+    if ((rc = aux_integrate(tr, t_prev, tr->y_prev, t, tr->y_evt, h)) != AUTOBAL_SUCCESS) return rc;
+    if ((rc = event_value(tr, e, t, tr->y_evt, &g)) != AUTOBAL_SUCCESS) return rc;
+    if ((e->g_prev < 0.0 && g >= 0.0) || (e->g_prev > 0.0 && g <= 0.0)) {
+      *tc = t;
+      *gc = g;
+      *found = 1;
+      return AUTOBAL_SUCCESS;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 /* Locate the sign change of event e in (ta, tb], with values ga (at ta, the
  * start of the accepted step, state ya) and gb (at tb, non-zero sign
  * different from ga, or 0).  Illinois iteration; each trial point is
@@ -776,10 +846,11 @@ static int locate(autobal_transient *tr, const event_item *e, double ta, const d
     rc = aux_integrate(tr, ta, ya, c, tr->y_work, h_hint);
     if (rc != AUTOBAL_SUCCESS) return rc;
     if ((rc = event_value(tr, e, c, tr->y_work, &fc)) != AUTOBAL_SUCCESS) return rc;
-    if (fc == 0.0 || sgn(fc) == sgn(fb)) {
+    /* a value exactly 0 counts as the near side: the hit stays strictly past the crossing, where
+     * the reset sees the new sign (a stuck ball's |H| - mu N exactly 0 would not break it free) */
+    if (fc != 0.0 && sgn(fc) == sgn(fb)) {
       b = c;
       fb = fc;
-      if (fc == 0.0) break;
       if (side == 1) fa *= 0.5;
       side = 1;
     } else {
@@ -949,6 +1020,7 @@ static int reset_restart(autobal_transient *tr, double t, const double *y) {
 static int process_events(autobal_transient *tr, double t_prev, double *t, double *y,
                           double h_taken) {
   const double tn = *t;
+  const double *fa = NULL, *fb = NULL; /* the step's end derivatives, once a probe needs them */
   size_t i, np = 0;
   int rc;
   for (i = 0; i < tr->nev; i++) {
@@ -966,6 +1038,18 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
         e->t_start = e->t_hit;
         e->dir_hit = rising ? 1 : -1;
         e->pending = 1;
+      } else if (e->probes > 0 && sgn(gn) == sgn(e->g_prev) && gn != 0.0) {
+        double tc = tn, gc = gn;
+        int found = 0;
+        if ((rc = probe(tr, e, t_prev, tn, y, &fa, &fb, &tc, &gc, &found)) != AUTOBAL_SUCCESS) return rc;
+        if (found) { /* a grazing crossing: located in (t_prev, tc] */
+          tr->stats_probe_hits++;
+          rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tc, gc, h_taken, &e->t_hit);
+          if (rc != AUTOBAL_SUCCESS) return rc;
+          e->t_start = e->t_hit;
+          e->dir_hit = e->g_prev < 0.0 ? 1 : -1;
+          e->pending = 1;
+        }
       }
     } else {
       if (e->dwell_state == DWELL_ABOVE && gn < 0.0) {
