@@ -3,14 +3,11 @@
  * the unbalance by an angle a about the shaft turns the whole solution by a.  In the rotating
  * frame's state that is: (x, y) and (beta, -alpha) rotated by a, the balls' psi shifted by a,
  * their rates unchanged, the spin the same.  Checked on full transients through the study API
- * (the event machinery included): the frictionless model and ball contact with impacts.
- * Not included: the exact stick-slip friction, whose transients are NOT symmetric today: the
- * right-hand sides, normal and holding forces and switching functions are equivariant to 1e-13
- * (stuck and slipping), but the transient driver misses grazing break-free crossings (|H| - mu N
- * rising above 0 and falling back within one step; it samples event functions at step ends
- * only), so the two runs break a ball free at t = 0.0204 s and 0.0363 s (default rotor, 300 rad/s,
- * f = 0.01, mu = 0.02): a finding of this test, for events located on a dense output (issue 20)
- * or a step limit while balls are stuck (issue 16).  Nor a run-up: the
+ * (the event machinery included): the frictionless model, ball contact with impacts, and the exact
+ * stick-slip law (default rotor, 300 rad/s, f = 0.01, mu = 0.02: both runs break ball 1 free at
+ * t = 0.0205743 s; this test once found them apart, 0.0206 s and 0.0349 s: the event location had
+ * stopped on a point where |H| - mu N was exactly 0.0, and the settle, which frees a ball only when
+ * |H| > mu N, left it stuck; the location now ends strictly past the crossing).  Nor a run-up: the
  * paper's Resal-angle model has the term C Omega' beta in the alpha equation only, so with
  * Omega' != 0 the model itself is not rotation symmetric (docs/rotor.md). */
 #include <math.h>
