@@ -844,8 +844,19 @@ static int ensemble_main(cli_ctx *ctx, int model, ens_mpi *mp) {
     }
     if (rc == CLI_EXIT_OK && complete && ctx->output) autobal_ensemble_journals_remove(ctx->output, NULL);
     if (rc == CLI_EXIT_OK || rc == CLI_EXIT_INTERRUPTED) print_summary(ctx, s, e, &t, mp, threads, wall, complete);
-    if (rc == CLI_EXIT_OK && t.n_failed && !ctx->json)
+    if (rc == CLI_EXIT_OK && t.n_failed && !ctx->json) {
+      size_t fm, j;
+      int fst;
+      const char *why;
       fprintf(stderr, "autobal: warning: %zu member(s) failed; their status is recorded in the archive\n", t.n_failed);
+      if (autobal_ensemble_first_failure(e, &fm, &fst, &why)) { /* the first one of this run, and why */
+        char msg[sizeof ctx->err];
+        fprintf(stderr, "autobal: warning: the first, member %zu (", fm);
+        for (j = 0; j < s->set.n_params; j++)
+          fprintf(stderr, "%s%s = %.17g", j ? ", " : "", s->set.param[j].name, autobal_ensemble_member_value(e, fm, j));
+        fprintf(stderr, "), status %d: %s\n", fst, s->model == MODEL_ROTOR ? cli_rotor_message(why, msg, sizeof msg) : why);
+      }
+    }
   }
 #ifdef AUTOBAL_HAVE_MPI
   if (mp->size > 1) MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD);

@@ -485,6 +485,15 @@ AUTOBAL_API int autobal_ensemble_add_records(autobal_ensemble *e, const double *
  * gather, on the writer). */
 AUTOBAL_API int autobal_ensemble_threads(const autobal_ensemble *e);
 AUTOBAL_API size_t autobal_ensemble_computed(const autobal_ensemble *e);
+/* Why a member failed: of the members this process's last run computed with a
+ * negative status, the one with the lowest number (the same whatever the
+ * number of threads), its status and its message (e.g. the rotor member's
+ * "balls 1 and 2 of plane 1 (p1_b1, p1_b2) overlap at the initial position:
+ * ..."; owned by e, valid until the next run).  Any output may be NULL.
+ * Returns 1 when such a member exists, 0 when none failed (outputs untouched)
+ * or e is NULL.  Members read from journals carry no message.  (Added in 0.3.0.) */
+AUTOBAL_API int autobal_ensemble_first_failure(const autobal_ensemble *e, size_t *member, int *status,
+                                               const char **message);
 AUTOBAL_API size_t autobal_ensemble_n_done(const autobal_ensemble *e);
 /* 1 if member m is done, 0 if not or m out of range. */
 AUTOBAL_API int autobal_ensemble_is_done(const autobal_ensemble *e, size_t m);
