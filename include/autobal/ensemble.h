@@ -271,6 +271,18 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * coefficients; f > mu fails the member (autobal_rotor_alloc).  The ensemble
  * group records the law (attribute friction; friction_u_eps for the
  * regularized law) and /rotor/plane<j> ball_f, ball_mu, as /rotor/transient.
+ * Ball size and contact (added in 0.3.0; p->contact, its ball_diameter arrays
+ * copied): every member gets the impact events and the event reset of `rotor
+ * transient` (prepare/complete), its pairs ordered from its own initial angles
+ * (a new handle per member), so a member equals the single
+ * autobal_study_rotor_transient run of its parameters; two more quantities
+ * after the others (n_quantities = 4, or 7 with the EXACT law): contact_impacts
+ * (impacts during the run) and contacts_final (pairs touching at the end).
+ * A member whose balls overlap at its initial angles fails (AUTOBAL_EINVAL,
+ * the message naming the balls: autobal_ensemble_first_failure), the others
+ * run.  The ensemble group records contact_restitution and contact_v_rest,
+ * /rotor/plane<j> ball_diameter, as /rotor/transient; the hash includes
+ * contact only when it is on (the journals of 0.2.0 stay valid).
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from
  * autobal_rotor_alloc; bad frame; a drive mode other than constant, ramp or
  * table) or AUTOBAL_ENOMEM; on failure *out is zeroed.
