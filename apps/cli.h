@@ -258,6 +258,10 @@ int cli_rotor_drive_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage);
  * transient` reads them, into p->friction; storage is cli_rotor_config_read's, where the lists are
  * kept. */
 int cli_rotor_friction_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage);
+/* Read [contact] (restitution, v_rest) with the planes' ball_diameter that cli_rotor_friction_read
+ * read (contact on when some plane gives it), as `rotor transient` reads them, into p->contact;
+ * storage is cli_rotor_config_read's, where the diameters are kept. */
+int cli_rotor_contact_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage);
 /* Write the rotor model *p (autobal_study_write_rotor_params): /rotor (model, input, inertia, omega, axial and,
  * for hardware input, M_k, A_k, m_p, A_p, C_p and the [supports] keys), /rotor/lumped (the 17
  * lumped coefficients the model uses, (2.7)-(2.11) for hardware input) and /rotor/plane<j>

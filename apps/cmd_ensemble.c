@@ -359,6 +359,8 @@ static int read_spec(cli_ctx *ctx, ens_spec *s) {
     if ((rc = cli_rotor_drive_read(ctx, &s->rp, s->rstorage))) return rc;
     /* [friction], ball_f, ball_mu: the balls' rolling resistance and stiction, as `rotor transient` */
     if ((rc = cli_rotor_friction_read(ctx, &s->rp, s->rstorage))) return rc;
+    /* [plane1]/[plane2] ball_diameter, [contact] restitution, v_rest: ball size and contact, as `rotor transient` */
+    if ((rc = cli_rotor_contact_read(ctx, &s->rp, s->rstorage))) return rc;
     if ((rc = read_transient(ctx, s))) return rc;
     if (autobal_ensemble_rotor_member(&s->rp, strcmp(s->frame_name, "fixed") ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED,
                                       s->frame_name, &s->mb, &err) != AUTOBAL_SUCCESS) {
@@ -575,14 +577,23 @@ static void print_unbalance(const ens_spec *s, const autobal_ensemble *e) {
     for (i = 0; i < AUTOBAL_ENSEMBLE_N_QUANTILES; i++) printf("%s %.4g, ", ql[i], sx.quantile[i] * f);
     printf("mean %.4g%s\n", sx.mean * f, sx.n_nan ? " (some values not finite, left out)" : "");
   }
-  if (autobal_ensemble_n_quantities(e) >= 5) { /* the exact friction law: stuck balls, time stuck */
+  if (autobal_ensemble_quantity_find(e, "balls_stuck_final") >= 0) { /* the exact friction law: stuck balls, time stuck */
     autobal_ensemble_stats b, ts;
+    const size_t qb = (size_t)autobal_ensemble_quantity_find(e, "balls_stuck_final");
     size_t nb = 0;
     for (i = 0; i < s->rp.n_planes; i++) nb += s->rp.plane[i].n_balls;
-    if (autobal_ensemble_get_stats(e, 2, &b) == AUTOBAL_SUCCESS && b.n && autobal_ensemble_get_stats(e, 3, &ts) == AUTOBAL_SUCCESS)
+    if (autobal_ensemble_get_stats(e, qb, &b) == AUTOBAL_SUCCESS && b.n && autobal_ensemble_get_stats(e, qb + 1, &ts) == AUTOBAL_SUCCESS)
       printf("  friction (exact): balls stuck at the end (of %zu): min %.4g, median %.4g, max %.4g, mean %.4g; the longest time "
              "one ball was stuck, s: median %.4g, max %.4g\n",
              nb, b.quantile[0], b.quantile[3], b.quantile[6], b.mean, ts.quantile[3], ts.quantile[6]);
+  }
+  if (autobal_ensemble_quantity_find(e, "contact_impacts") >= 0) { /* contact: impacts, touching pairs */
+    autobal_ensemble_stats im, cf;
+    const size_t qc = (size_t)autobal_ensemble_quantity_find(e, "contact_impacts");
+    if (autobal_ensemble_get_stats(e, qc, &im) == AUTOBAL_SUCCESS && im.n && autobal_ensemble_get_stats(e, qc + 1, &cf) == AUTOBAL_SUCCESS)
+      printf("  contact: impacts per member: min %.4g, median %.4g, max %.4g, mean %.4g; pairs touching at the end: min %.4g, "
+             "median %.4g, max %.4g, mean %.4g\n",
+             im.quantile[0], im.quantile[3], im.quantile[6], im.mean, cf.quantile[0], cf.quantile[3], cf.quantile[6], cf.mean);
   }
   for (i = 0; i < s->set.n_targets; i++) {
     autobal_ensemble_target_result tr;
@@ -844,8 +855,19 @@ static int ensemble_main(cli_ctx *ctx, int model, ens_mpi *mp) {
     }
     if (rc == CLI_EXIT_OK && complete && ctx->output) autobal_ensemble_journals_remove(ctx->output, NULL);
     if (rc == CLI_EXIT_OK || rc == CLI_EXIT_INTERRUPTED) print_summary(ctx, s, e, &t, mp, threads, wall, complete);
-    if (rc == CLI_EXIT_OK && t.n_failed && !ctx->json)
+    if (rc == CLI_EXIT_OK && t.n_failed && !ctx->json) {
+      size_t fm, j;
+      int fst;
+      const char *why;
       fprintf(stderr, "autobal: warning: %zu member(s) failed; their status is recorded in the archive\n", t.n_failed);
+      if (autobal_ensemble_first_failure(e, &fm, &fst, &why)) { /* the first one of this run, and why */
+        char msg[sizeof ctx->err];
+        fprintf(stderr, "autobal: warning: the first, member %zu (", fm);
+        for (j = 0; j < s->set.n_params; j++)
+          fprintf(stderr, "%s%s = %.17g", j ? ", " : "", s->set.param[j].name, autobal_ensemble_member_value(e, fm, j));
+        fprintf(stderr, "), status %d: %s\n", fst, s->model == MODEL_ROTOR ? cli_rotor_message(why, msg, sizeof msg) : why);
+      }
+    }
   }
 #ifdef AUTOBAL_HAVE_MPI
   if (mp->size > 1) MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD);

@@ -598,6 +598,32 @@ int cli_rotor_friction_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage
   return rc;
 }
 
+/* [contact] restitution (1, [0, 1]; default 1), v_rest (rad/s; default 1e-3): with ball_diameter,
+ * which read_friction read with the planes (contact on when given in some plane).  The ranges
+ * (restitution in [0, 1], v_rest >= 0, diameters >= 0, the balls of a track fit) are the library's
+ * checks (autobal_rotor_params_check), named in the configuration's terms. */
+static int read_contact(cli_ctx *ctx, rotor_cfg *c) {
+  int rc, pe = 0, pv = 0;
+  c->p.contact.restitution = 1.0;
+  c->p.contact.v_rest = 0.0;
+  if ((rc = cli_get_double(ctx, "contact", "restitution", 1.0, &c->p.contact.restitution, &pe))) return rc;
+  if ((rc = cli_get_quantity(ctx, "contact", "v_rest", "rad/s", 0.0, &c->p.contact.v_rest, &pv))) return rc;
+  if ((pe || pv) && !c->p.contact.on)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[contact]: %s is given but no ball has a size: set [plane1] ball_diameter",
+                    pe ? "restitution" : "v_rest");
+  return CLI_EXIT_OK;
+}
+
+/* Ball size and contact for the other rotor commands (apps/cmd_ensemble.c): read_contact into the
+ * configuration that cli_rotor_friction_read left in storage (the planes' ball_diameter lists stay
+ * there), copied to p->contact.  Call it after cli_rotor_friction_read. */
+int cli_rotor_contact_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage) {
+  rotor_cfg *c = storage;
+  int rc = read_contact(ctx, c);
+  p->contact = c->p.contact;
+  return rc;
+}
+
 /* The speed the revolutions are counted at: rotor.omega, or the largest |speed| of the drive. */
 static double speed_ref(const rotor_cfg *c) {
   const autobal_rotor_drive *d = &c->p.drive;
@@ -685,18 +711,12 @@ static int read_friction(cli_ctx *ctx, rotor_cfg *c) {
 }
 
 static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
-  int rc, pe = 0, pv = 0;
+  int rc;
   double wref;
   if ((rc = read_rotor_model(ctx, c))) return rc;
   if ((rc = read_drive(ctx, c))) return rc;
   if ((rc = read_friction(ctx, c))) return rc;
-  /* [contact] restitution (1, [0, 1]; default 1), v_rest (rad/s; default 1e-3): with ball_diameter */
-  c->p.contact.restitution = 1.0;
-  if ((rc = cli_get_double(ctx, "contact", "restitution", 1.0, &c->p.contact.restitution, &pe))) return rc;
-  if ((rc = cli_get_quantity(ctx, "contact", "v_rest", "rad/s", 0.0, &c->p.contact.v_rest, &pv))) return rc;
-  if ((pe || pv) && !c->p.contact.on)
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[contact]: %s is given but no ball has a size: set [plane1] ball_diameter",
-                    pe ? "restitution" : "v_rest");
+  if ((rc = read_contact(ctx, c))) return rc;
   wref = speed_ref(c);
   /* [balance] grade = G2.5: the permissible residual unbalance of that grade is reported */
   c->grade = NAN;

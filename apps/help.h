@@ -242,6 +242,9 @@
   "           when the dwell below balance_tol lies after the end of its ramp (t_b; a table's last time)\n" \
   "[friction] as `rotor transient` (law, u_eps; [plane1]/[plane2] ball_f, ball_mu); law = exact adds per member\n" \
   "           balls_stuck_final, time_stuck_max (s), friction_switches (write_unbalance = true: datasets)\n" \
+  "[contact]  as `rotor transient` ([plane1]/[plane2] ball_diameter (m); restitution = 1, v_rest = 1e-3 rad/s):\n" \
+  "           adds per member contact_impacts, contacts_final (pairs touching at the end); a member whose\n" \
+  "           balls overlap at its initial angles fails (the warning names the balls), the others run\n" \
   "parameters: psi_K, rate_K (initial angle/rate of ball K relative to the rotor; K = 1..N, plane 1 first),\n" \
   "            omega (constant drive only), ball_damping (every ball), m0, psi0 (plane 1's unbalance mass and\n" \
   "            angle), x, y (initial displacement);\n" \

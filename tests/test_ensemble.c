@@ -644,6 +644,16 @@ static void test_third_model(void) {
                AUTOBAL_ERHS);
   autobal_ensemble_get_tally(e, &t);
   CHECK("tally: 1 failed, 5 of 5 balanced", t.n_failed == 1 && t.n_ok == 5 && t.n_balanced == 5 && t.p == 1.0);
+  {
+    size_t fm = 99;
+    int fst = 0;
+    const char *why = NULL;
+    int has = autobal_ensemble_first_failure(e, &fm, &fst, &why);
+    printf("  first failure: %d, member %zu, status %d, '%s'\n", has, fm, fst, why ? why : "(null)");
+    CHECK("first failure: member 5 (lambda = 6), AUTOBAL_ERHS, with the driver's message",
+          has == 1 && fm == 5 && fst == AUTOBAL_ERHS && why && why[0]);
+    CHECK("first failure of NULL: none", autobal_ensemble_first_failure(NULL, &fm, NULL, NULL) == 0);
+  }
   CHECK_CLOSE("median time to balance (lambda = 3)", t.ttb_median, log(1e3) / 3.0, 0, 1e-7);
   {
     size_t nr, i;

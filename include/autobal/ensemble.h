@@ -271,6 +271,18 @@ AUTOBAL_API void autobal_ensemble_member_release(autobal_ensemble_member *member
  * coefficients; f > mu fails the member (autobal_rotor_alloc).  The ensemble
  * group records the law (attribute friction; friction_u_eps for the
  * regularized law) and /rotor/plane<j> ball_f, ball_mu, as /rotor/transient.
+ * Ball size and contact (added in 0.3.0; p->contact, its ball_diameter arrays
+ * copied): every member gets the impact events and the event reset of `rotor
+ * transient` (prepare/complete), its pairs ordered from its own initial angles
+ * (a new handle per member), so a member equals the single
+ * autobal_study_rotor_transient run of its parameters; two more quantities
+ * after the others (n_quantities = 4, or 7 with the EXACT law): contact_impacts
+ * (impacts during the run) and contacts_final (pairs touching at the end).
+ * A member whose balls overlap at its initial angles fails (AUTOBAL_EINVAL,
+ * the message naming the balls: autobal_ensemble_first_failure), the others
+ * run.  The ensemble group records contact_restitution and contact_v_rest,
+ * /rotor/plane<j> ball_diameter, as /rotor/transient; the hash includes
+ * contact only when it is on (the journals of 0.2.0 stay valid).
  * Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (p invalid: message from
  * autobal_rotor_alloc; bad frame; a drive mode other than constant, ramp or
  * table) or AUTOBAL_ENOMEM; on failure *out is zeroed.
@@ -485,6 +497,15 @@ AUTOBAL_API int autobal_ensemble_add_records(autobal_ensemble *e, const double *
  * gather, on the writer). */
 AUTOBAL_API int autobal_ensemble_threads(const autobal_ensemble *e);
 AUTOBAL_API size_t autobal_ensemble_computed(const autobal_ensemble *e);
+/* Why a member failed: of the members this process's last run computed with a
+ * negative status, the one with the lowest number (the same whatever the
+ * number of threads), its status and its message (e.g. the rotor member's
+ * "balls 1 and 2 of plane 1 (p1_b1, p1_b2) overlap at the initial position:
+ * ..."; owned by e, valid until the next run).  Any output may be NULL.
+ * Returns 1 when such a member exists, 0 when none failed (outputs untouched)
+ * or e is NULL.  Members read from journals carry no message.  (Added in 0.3.0.) */
+AUTOBAL_API int autobal_ensemble_first_failure(const autobal_ensemble *e, size_t *member, int *status,
+                                               const char **message);
 AUTOBAL_API size_t autobal_ensemble_n_done(const autobal_ensemble *e);
 /* 1 if member m is done, 0 if not or m out of range. */
 AUTOBAL_API int autobal_ensemble_is_done(const autobal_ensemble *e, size_t m);

@@ -74,6 +74,10 @@ struct autobal_ensemble {
   /* the last run */
   ens_buf outbox;
   size_t computed;
+  /* the failed member of the last run with the lowest number, and why (whatever the threads) */
+  int have_failure;
+  size_t failure_member;
+  autobal_error failure;
   autobal_error err;
 };
 
@@ -300,6 +304,7 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
   st = autobal_transient_run(w->tr, &su.sys, 0.0, s->t_end, w->y, &t_reached);
   w->ser = NULL;
   if (st == AUTOBAL_ECANCELLED) return 0;
+  if (st < 0) autobal_error_set(&w->err, st, "%s", autobal_transient_errmsg(w->tr));
   if (e->mb.complete) st = e->mb.complete(w->mw, t_reached, st, &w->err);
   autobal_transient_get_stats(w->tr, &stats);
   rec[AUTOBAL_ENSEMBLE_STATUS] = st;
@@ -637,6 +642,13 @@ const autobal_ensemble_param_info *autobal_ensemble_param_info_get(const autobal
 uint64_t autobal_ensemble_hash(const autobal_ensemble *e) { return e ? e->hash : 0; }
 int autobal_ensemble_threads(const autobal_ensemble *e) { return e ? e->threads : 0; }
 size_t autobal_ensemble_computed(const autobal_ensemble *e) { return e ? e->computed : 0; }
+int autobal_ensemble_first_failure(const autobal_ensemble *e, size_t *member, int *status, const char **message) {
+  if (!e || !e->have_failure) return 0;
+  if (member) *member = e->failure_member;
+  if (status) *status = e->failure.status;
+  if (message) *message = e->failure.message;
+  return 1;
+}
 size_t autobal_ensemble_n_done(const autobal_ensemble *e) { return e ? e->n_done : 0; }
 int autobal_ensemble_is_done(const autobal_ensemble *e, size_t m) { return e && m < e->n_members && e->done[m]; }
 
@@ -1028,9 +1040,15 @@ static void set_fatal(ens_run *R, int st, const char *msg) {
 }
 
 /* A finished member (inside the critical section): the outbox, the journal, the store. */
-static void member_done(ens_run *R, size_t m, const double *rec, ens_series *sr) {
+static void member_done(ens_run *R, size_t m, const double *rec, ens_series *sr, const autobal_error *why) {
   autobal_ensemble *e = R->e;
   size_t off = record_append(&e->outbox, e, m, rec, sr);
+  if (rec[AUTOBAL_ENSEMBLE_STATUS] < 0 && (!e->have_failure || m < e->failure_member)) {
+    const int st = (int)rec[AUTOBAL_ENSEMBLE_STATUS];
+    e->have_failure = 1;
+    e->failure_member = m;
+    autobal_error_set(&e->failure, st, "%s", why->message[0] ? why->message : autobal_strerror(st));
+  }
   if (off == (size_t)-1) {
     set_fatal(R, AUTOBAL_ENOMEM, "out of memory (results)");
     return;
@@ -1105,7 +1123,7 @@ static void compute(ens_run *R) {
       done = run_member(&w, m, rec, srp);
       if (done) {
         ENS_PRAGMA(omp critical(ens_out))
-        member_done(R, m, rec, srp);
+        member_done(R, m, rec, srp, &w.err);
       }
       free(sr.t);
       free(sr.rows);
@@ -1124,6 +1142,8 @@ int autobal_ensemble_run(autobal_ensemble *e) {
   memset(&R, 0, sizeof R);
   e->outbox.n = 0;
   e->computed = 0;
+  e->have_failure = 0;
+  autobal_error_clear(&e->failure);
   todo = store_ready(e) == AUTOBAL_SUCCESS ? malloc((e->n_members ? e->n_members : 1) * sizeof *todo) : NULL;
   if (!todo) {
     st = autobal_error_set(&e->err, AUTOBAL_ENOMEM, "out of memory");

@@ -41,6 +41,8 @@ static uint64_t hash_doubles(uint64_t h, const double *v, size_t n) {
 /* ================================ rotor ================================================ */
 enum { R_PSI, R_RATE, R_OMEGA, R_DAMPING, R_M0, R_X, R_Y, R_RAMP_RATE, R_RAMP_TIME, R_OMEGA_B, R_PSI0, R_BALL_F, R_BALL_MU };
 
+#define ROTOR_MAX_QUANTITIES 7
+
 typedef struct rotor_model {
   autobal_rotor_params p; /* ball arrays point into storage, a table drive's points into table */
   double *storage, *table;
@@ -48,6 +50,9 @@ typedef struct rotor_model {
   char frame_name[32];
   size_t n_balls, dim, nout;
   autobal_rotor *rot; /* the base handle: output names */
+  /* the quantities of this model: the two of every rotor, the exact law's three, contact's two */
+  autobal_ensemble_quantity quantity[ROTOR_MAX_QUANTITIES];
+  size_t n_quantities, q_friction, q_contact; /* index of the first friction / contact quantity (0: none) */
 } rotor_model;
 
 typedef struct rotor_worker {
@@ -62,6 +67,10 @@ typedef struct rotor_worker {
    * driver, user data here) and what it found at the end */
   study_friction *fric;
   double balls_stuck_final, time_stuck_max, switches;
+  /* contact: the member's impact events and the combined reset (the pairs ordered from its own
+   * initial angles), and what it found at the end */
+  study_contact *cont;
+  double contact_impacts, contacts_final;
 } rotor_worker;
 
 static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t *index, autobal_ensemble_param_info *info,
@@ -161,6 +170,7 @@ static int rotor_describe(const void *model, const char *name, autobal_ensemble_
 static void rotor_worker_free(void *wp) {
   rotor_worker *w = wp;
   if (!w) return;
+  study_contact_free(w->cont);
   study_friction_free(w->fric);
   autobal_rotor_free(w->rot);
   free(w->bpsi), free(w->brate), free(w->bdamp), free(w->bf), free(w->bmu), free(w->out);
@@ -259,10 +269,15 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
   }
   /* a ramp of the given rate: from the member's omega_b (its parameter or the drive's) */
   if (!isnan(rate)) p.drive.t_b = p.drive.t_a + fabs(p.drive.omega_b - p.drive.omega_a) / rate;
-  study_friction_free(w->fric); /* it points to the previous member's handle */
+  study_contact_free(w->cont); /* they point to the previous member's handle */
+  w->cont = NULL;
+  study_friction_free(w->fric);
   w->fric = NULL;
   w->balls_stuck_final = w->time_stuck_max = w->switches = NAN;
+  w->contact_impacts = w->contacts_final = NAN;
   autobal_rotor_free(w->rot);
+  /* a new handle per member: with contact it orders the pairs from this member's initial angles,
+   * and overlapping balls fail this member (EINVAL naming the balls), not the ensemble */
   w->rot = autobal_rotor_alloc(&p, err);
   if (!w->rot) return err && err->status < 0 ? err->status : AUTOBAL_EINVAL;
   w->omega = p.omega;
@@ -284,24 +299,33 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
 }
 
 /* The exact friction law: the stick-slip events and the reset of `rotor transient`
- * (src/studies/rotor_friction.c) on this worker's driver, settled at t = 0 as there. */
+ * (src/studies/rotor_friction.c) on this worker's driver, settled at t = 0 as there; then contact:
+ * one impact event per neighbour pair (ordered from this member's initial angles) and the reset
+ * that serves both, as `rotor transient` installs them. */
 static int rotor_prepare(void *wp, autobal_transient *tr, double y0[], autobal_error *err) {
   rotor_worker *w = wp;
-  return study_friction_begin(w->rot, w->M->frame, tr, 0.0, y0, &w->fric, err);
+  int st = study_friction_begin(w->rot, w->M->frame, tr, 0.0, y0, &w->fric, err);
+  if (st != AUTOBAL_SUCCESS) return st;
+  return study_contact_begin(w->rot, w->M->frame, tr, 0.0, y0, w->fric, &w->cont, err);
 }
 
-/* After the run: the friction results (final stuck flags, time stuck, switches); a ball that left
- * its track during the switching (the reset stopped the run) fails the member. */
+/* After the run: the friction results (final stuck flags, time stuck, switches) and the contact
+ * results (impacts, touching pairs at the end); a ball that left its track during the switching
+ * or a contact that could not be settled (the reset stopped the run) fails the member. */
 static int rotor_complete(void *wp, double t_reached, int run_status, autobal_error *err) {
   rotor_worker *w = wp;
   autobal_study_rotor_transient_summary *s;
   size_t j, i;
-  int st;
-  if (!w->fric) return run_status;
+  int st, stc;
+  if (!w->fric && !w->cont) return run_status;
   s = calloc(1, sizeof *s);
-  if (!s) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble friction)");
+  if (!s) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble friction, contact)");
   s->n_planes = w->M->p.n_planes;
   st = study_friction_finish(w->fric, t_reached, s, err);
+  /* contact (after friction: a friction failure keeps its message) */
+  stc = w->cont ? study_contact_finish(w->cont, w->rot, s, st == AUTOBAL_SUCCESS ? err : NULL) : AUTOBAL_SUCCESS;
+  if (s->have_contact) w->contact_impacts = (double)s->contact_impacts, w->contacts_final = (double)s->contacts_final;
+  if (st == AUTOBAL_SUCCESS) st = stc;
   if (s->have_friction) {
     w->balls_stuck_final = 0.0, w->time_stuck_max = 0.0;
     for (j = 0; j < s->n_planes; j++)
@@ -348,7 +372,7 @@ static void rotor_finish(void *wp, double t, const double y[], double *residual,
 /* The residual unbalance in engineering units, as `rotor transient` reports it
  * (src/studies/rotor_transient.c, engineering_compute): the worst plane's |s_j| and the ISO
  * 21940-11 grade of n_planes times it with the rotor mass, at the speed at the end. */
-static const autobal_ensemble_quantity rotor_quantities[5] = {
+static const autobal_ensemble_quantity rotor_quantities[ROTOR_MAX_QUANTITIES] = {
     {"residual_unbalance_abs_final", "kg m",
      "residual unbalance |s_j| at the end of the run, the largest over the balancer planes (one plane: |s|)"},
     {"balance_grade_final", "mm/s",
@@ -357,7 +381,10 @@ static const autobal_ensemble_quantity rotor_quantities[5] = {
     /* the exact friction law only */
     {"balls_stuck_final", "1", "number of balls stuck on their track at the end of the run (exact friction law)"},
     {"time_stuck_max", "s", "the longest total time one ball spent stuck during the run (exact friction law)"},
-    {"friction_switches", "1", "stick-slip switches during the run: sticks, slips from stuck and reversals at psi' = 0 (exact friction law)"}};
+    {"friction_switches", "1", "stick-slip switches during the run: sticks, slips from stuck and reversals at psi' = 0 (exact friction law)"},
+    /* contact only (ball_diameter given): after the friction quantities when both are on */
+    {"contact_impacts", "1", "impacts of neighbouring balls during the run (contact; the plastic ones that join a pair included)"},
+    {"contacts_final", "1", "pairs of neighbouring balls touching (held in resting contact) at the end of the run (contact)"}};
 
 static void rotor_finish_quantities(void *wp, double t, const double y[], double *q) {
   rotor_worker *w = wp;
@@ -380,7 +407,8 @@ static void rotor_finish_quantities(void *wp, double t, const double y[], double
   m = M->p.input == AUTOBAL_ROTOR_HARDWARE ? M->p.hw.m_p : M->p.lumped.M;
   q[0] = worst;
   q[1] = autobal_balance_grade(worst * (double)np, m, omega);
-  if (M->p.friction.law == AUTOBAL_ROTOR_FRICTION_EXACT) q[2] = w->balls_stuck_final, q[3] = w->time_stuck_max, q[4] = w->switches;
+  if (M->q_friction) q[M->q_friction] = w->balls_stuck_final, q[M->q_friction + 1] = w->time_stuck_max, q[M->q_friction + 2] = w->switches;
+  if (M->q_contact) q[M->q_contact] = w->contact_impacts, q[M->q_contact + 1] = w->contacts_final;
 }
 
 static int rotor_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
@@ -466,6 +494,12 @@ static uint64_t rotor_hash(const void *model) {
       h = hash_doubles(h, p->friction.ball_mu[pl], p->plane[pl].n_balls);
     }
   }
+  if (p->contact.on) { /* absent when off: the hashes before contact */
+    v[0] = 1.0, v[1] = p->contact.restitution, v[2] = p->contact.v_rest;
+    h = hash_doubles(h, v, 3);
+    for (pl = 0; pl < p->n_planes; pl++)
+      if (p->contact.ball_diameter[pl]) h = hash_doubles(h, p->contact.ball_diameter[pl], p->plane[pl].n_balls);
+  }
   return h;
 }
 
@@ -511,7 +545,7 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
       if (p->plane[pl].n_balls && (!p->friction.ball_f[pl] || !p->friction.ball_mu[pl]))
         return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: plane[%zu] has a friction law but no ball_f or ball_mu array", pl);
   M = calloc(1, sizeof *M);
-  if (!M || !(M->storage = calloc(7 * (nb ? nb : 1), sizeof *M->storage))) {
+  if (!M || !(M->storage = calloc(8 * (nb ? nb : 1), sizeof *M->storage))) {
     free(M);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble member)");
   }
@@ -520,7 +554,7 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
     const autobal_rotor_plane *b = &p->plane[pl];
     autobal_rotor_plane *c = &M->p.plane[pl];
     size_t i, n = b->n_balls;
-    double *s = M->storage + 7 * off;
+    double *s = M->storage + 8 * off;
     for (i = 0; i < n; i++) {
       s[i] = b->ball_mass[i];
       s[n + i] = b->ball_radius[i];
@@ -528,7 +562,9 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
       s[3 * n + i] = b->ball_psi ? b->ball_psi[i] : 0.0;
       s[4 * n + i] = b->ball_rate ? b->ball_rate[i] : 0.0;
       if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) s[5 * n + i] = p->friction.ball_f[pl][i], s[6 * n + i] = p->friction.ball_mu[pl][i];
+      s[7 * n + i] = p->contact.on && p->contact.ball_diameter[pl] ? p->contact.ball_diameter[pl][i] : 0.0;
     }
+    M->p.contact.ball_diameter[pl] = p->contact.on && n ? s + 7 * n : NULL; /* the diameters, copied (NULL: all 0) */
     if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) {
       M->p.friction.ball_f[pl] = n ? s + 5 * n : NULL;
       M->p.friction.ball_mu[pl] = n ? s + 6 * n : NULL;
@@ -586,8 +622,19 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   out->write_attrs = rotor_write_attrs;
   out->hash = rotor_hash;
   out->destroy = rotor_destroy;
-  out->n_quantities = M->p.friction.law == AUTOBAL_ROTOR_FRICTION_EXACT ? 5 : 2;
-  out->quantity = rotor_quantities;
+  /* the quantities: 2, the exact law's 3, contact's 2 (the layout of 0.2.0 without contact) */
+  M->n_quantities = 0;
+  memcpy(M->quantity, rotor_quantities, 2 * sizeof *M->quantity), M->n_quantities = 2;
+  if (M->p.friction.law == AUTOBAL_ROTOR_FRICTION_EXACT) {
+    M->q_friction = M->n_quantities;
+    memcpy(M->quantity + M->n_quantities, rotor_quantities + 2, 3 * sizeof *M->quantity), M->n_quantities += 3;
+  }
+  if (M->p.contact.on) {
+    M->q_contact = M->n_quantities;
+    memcpy(M->quantity + M->n_quantities, rotor_quantities + 5, 2 * sizeof *M->quantity), M->n_quantities += 2;
+  }
+  out->n_quantities = M->n_quantities;
+  out->quantity = M->quantity;
   out->finish_quantities = rotor_finish_quantities;
   out->prepare = rotor_prepare;
   out->complete = rotor_complete;
