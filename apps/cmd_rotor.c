@@ -595,6 +595,7 @@ int cli_rotor_friction_read(cli_ctx *ctx, autobal_rotor_params *p, void *storage
   rotor_cfg *c = storage;
   int rc = read_friction(ctx, c);
   p->friction = c->p.friction;
+  p->rolling = c->p.rolling; /* ball_rho, read with the planes' friction keys */
   return rc;
 }
 

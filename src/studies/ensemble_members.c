@@ -494,6 +494,12 @@ static uint64_t rotor_hash(const void *model) {
       h = hash_doubles(h, p->friction.ball_mu[pl], p->plane[pl].n_balls);
     }
   }
+  if (p->rolling.on) { /* absent when off: the hashes before rolling inertia */
+    v[0] = 2.0;
+    h = hash_doubles(h, v, 1);
+    for (pl = 0; pl < p->n_planes; pl++)
+      if (p->rolling.ball_rho[pl]) h = hash_doubles(h, p->rolling.ball_rho[pl], p->plane[pl].n_balls);
+  }
   if (p->contact.on) { /* absent when off: the hashes before contact */
     v[0] = 1.0, v[1] = p->contact.restitution, v[2] = p->contact.v_rest;
     h = hash_doubles(h, v, 3);
@@ -545,7 +551,7 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
       if (p->plane[pl].n_balls && (!p->friction.ball_f[pl] || !p->friction.ball_mu[pl]))
         return autobal_error_set(err, AUTOBAL_EINVAL, "rotor ensemble member: plane[%zu] has a friction law but no ball_f or ball_mu array", pl);
   M = calloc(1, sizeof *M);
-  if (!M || !(M->storage = calloc(8 * (nb ? nb : 1), sizeof *M->storage))) {
+  if (!M || !(M->storage = calloc(9 * (nb ? nb : 1), sizeof *M->storage))) {
     free(M);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble member)");
   }
@@ -554,7 +560,7 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
     const autobal_rotor_plane *b = &p->plane[pl];
     autobal_rotor_plane *c = &M->p.plane[pl];
     size_t i, n = b->n_balls;
-    double *s = M->storage + 8 * off;
+    double *s = M->storage + 9 * off;
     for (i = 0; i < n; i++) {
       s[i] = b->ball_mass[i];
       s[n + i] = b->ball_radius[i];
@@ -563,8 +569,10 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
       s[4 * n + i] = b->ball_rate ? b->ball_rate[i] : 0.0;
       if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) s[5 * n + i] = p->friction.ball_f[pl][i], s[6 * n + i] = p->friction.ball_mu[pl][i];
       s[7 * n + i] = p->contact.on && p->contact.ball_diameter[pl] ? p->contact.ball_diameter[pl][i] : 0.0;
+      s[8 * n + i] = p->rolling.on && p->rolling.ball_rho[pl] ? p->rolling.ball_rho[pl][i] : 0.0;
     }
     M->p.contact.ball_diameter[pl] = p->contact.on && n ? s + 7 * n : NULL; /* the diameters, copied (NULL: all 0) */
+    M->p.rolling.ball_rho[pl] = p->rolling.on && n ? s + 8 * n : NULL;      /* the balls' radii, copied (rolling) */
     if (p->friction.law != AUTOBAL_ROTOR_FRICTION_NONE) {
       M->p.friction.ball_f[pl] = n ? s + 5 * n : NULL;
       M->p.friction.ball_mu[pl] = n ? s + 6 * n : NULL;

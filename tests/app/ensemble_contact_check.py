@@ -18,55 +18,25 @@ Modes:
   inputs A.h5 D E V         /rotor/plane1 ball_diameter = D (every ball), /rotor/ensemble
                             contact_restitution = E, contact_v_rest = V
 """
+import os
 import sys
+
 import h5py
 import numpy as np
 
-
-def fail(msg):
-    print("FAIL", msg)
-    sys.exit(1)
-
-
-def ens(path):
-    return h5py.File(path, "r")["rotor/ensemble"]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ensemble_common import ens, fail, params as params_of, same as same_of  # noqa: E402
 
 
 def same(a, b):
-    ga, gb = ens(a), ens(b)
-    names = sorted(k for k in ga if isinstance(ga[k], h5py.Dataset))
-    if names != sorted(k for k in gb if isinstance(gb[k], h5py.Dataset)):
-        fail("different datasets")
-    for k in ("contact_impacts", "contacts_final"):
-        if k not in names:
-            fail("no dataset %s" % k)
-    for k in names:
-        x, y = ga[k][()], gb[k][()]
-        if x.shape != y.shape or not np.array_equal(x, y, equal_nan=x.dtype.kind == "f"):
-            fail("dataset %s differs" % k)
-    for g in (ga, gb):
-        if g.attrs.get("contact_restitution") is None:
-            fail("no contact_restitution attribute on /rotor/ensemble")
-    print("%d datasets equal bit for bit (%s)" % (len(names), ", ".join(names)))
+    same_of(a, b, ("contact_impacts", "contacts_final"), "contact_restitution")
 
 
 PARAMS = ("psi_1", "psi_2", "psi_3", "rate_1", "rate_2", "m0", "omega")
 
 
 def params(path, k):
-    g = ens(path)
-    shape = g["status"].shape
-    mode = g.attrs.get("mode")
-    mode = mode.decode() if isinstance(mode, bytes) else mode
-    if mode == "random":
-        out = [(n, g[n][k]) for n in PARAMS if n in g and g[n].shape == shape]
-    else:
-        idx = np.unravel_index(k, shape)
-        out = [(dim[0].name.split("/")[-1], dim[0][idx[ax]]) for ax, dim in enumerate(g["status"].dims)]
-    if not out:
-        fail("no parameters found")
-    for n, v in out:
-        print("%s %r" % (n, float(v)))
+    params_of(path, k, PARAMS)
 
 
 def member(path, k, tpath, nmin=0):

@@ -9,52 +9,25 @@ stiction).  Modes:
                             time stuck, switch count, residual in kg m
   close A.h5 B.h5 TOL       residual_unbalance_abs_final of A and B within TOL (relative)
 """
+import os
 import sys
+
 import h5py
 import numpy as np
 
-
-def fail(msg):
-    print("FAIL", msg)
-    sys.exit(1)
-
-
-def ens(path):
-    return h5py.File(path, "r")["rotor/ensemble"]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ensemble_common import ens, fail, params as params_of, same as same_of  # noqa: E402
 
 
 def same(a, b):
-    ga, gb = ens(a), ens(b)
-    names = sorted(k for k in ga if isinstance(ga[k], h5py.Dataset))
-    if names != sorted(k for k in gb if isinstance(gb[k], h5py.Dataset)):
-        fail("different datasets")
-    for k in names:
-        x, y = ga[k][()], gb[k][()]
-        if x.shape != y.shape or not np.array_equal(x, y, equal_nan=x.dtype.kind == "f"):
-            fail("dataset %s differs" % k)
-    for g in (ga, gb):
-        if g.attrs.get("friction") is None:
-            fail("no friction attribute on /rotor/ensemble")
-    print("%d datasets equal bit for bit (%s)" % (len(names), ", ".join(names)))
+    same_of(a, b, (), "friction")
 
 
 PARAMS = ("psi_1", "psi_2", "ball_f", "ball_mu", "psi0", "m0", "omega")
 
 
 def params(path, k):
-    g = ens(path)
-    shape = g["status"].shape
-    mode = g.attrs.get("mode")
-    mode = mode.decode() if isinstance(mode, bytes) else mode
-    if mode == "random":
-        out = [(n, g[n][k]) for n in PARAMS if n in g and g[n].shape == shape]
-    else:
-        idx = np.unravel_index(k, shape)
-        out = [(dim[0].name.split("/")[-1], dim[0][idx[ax]]) for ax, dim in enumerate(g["status"].dims)]
-    if not out:
-        fail("no parameters found")
-    for n, v in out:
-        print("%s %r" % (n, float(v)))
+    params_of(path, k, PARAMS)
 
 
 def member(path, k, tpath):
