@@ -59,6 +59,19 @@ for k in 0 3; do
   chk "ball_f varied: member $k = rotor transient with ball_f = $v" member rf.h5 $k tf$k.h5
 done
 
+# rolling inertia (ball_rho): the members are rolling balls (a member against rotor transient; the
+# point-mass ensemble differs), ball_rho recorded on /rotor/plane1
+{ awk '{print} /^ball_mu/ {print "ball_rho = 11.5 mm"}' model.ini
+  printf '[ensemble]\nparam1 = psi_1\nn1 = 2\nparam2 = psi_2\nn2 = 2\nwrite_unbalance = true\n'; } > rollgrid.ini
+run "$AUTOBAL" rotor ensemble rollgrid.ini -o roll.h5
+sets=$("$PY" "$here/ensemble_friction_check.py" params roll.h5 2 | awk '{print $2}' | paste -sd,)
+run "$AUTOBAL" rotor transient model.ini --set "plane1.ball_psi=$sets" --set plane1.ball_rho=0.0115 -q -o troll.h5
+chk "rolling inertia: member 2 = rotor transient with ball_rho = 11.5 mm" member roll.h5 2 troll.h5
+run "$AUTOBAL" rotor transient model.ini --set "plane1.ball_psi=$sets" -q -o tpoint.h5
+if "$PY" "$here/ensemble_friction_check.py" member roll.h5 2 tpoint.h5 >/dev/null; then bad "rolling inertia: the member equals the point-mass run (ball_rho ignored)"; else ok "rolling inertia: the member differs from the point-mass run"; fi
+"$PY" -c "import h5py,sys; f=h5py.File('roll.h5'); sys.exit(0 if list(f['rotor/plane1'].attrs['ball_rho'])==[0.0115,0.0115] else 1)" \
+  && ok "archive: ball_rho on /rotor/plane1" || bad "no ball_rho on /rotor/plane1"
+
 # the regularized law (no events): a member against rotor transient
 sed 's/^law = exact/law = regularized\nu_eps = 0.5 rad\/s/' model.ini > reg.ini
 { cat reg.ini; printf '[ensemble]\nparam1 = psi_1\nn1 = 2\nparam2 = psi_2\nn2 = 2\nwrite_unbalance = true\n'; } > reggrid.ini
