@@ -1338,6 +1338,7 @@ int autobal_rotor_contact_set_active(autobal_rotor *r, size_t p, int active) {
   if (!r || p >= r->np) return AUTOBAL_EINVAL;
   r->pact[p] = active != 0;
   r->ccache_ok = 0;
+  r->cache_ok = 0; /* the friction switches depend on the clusters too */
   return AUTOBAL_SUCCESS;
 }
 size_t autobal_rotor_contact_n_active(const autobal_rotor *r) {
@@ -1677,6 +1678,7 @@ int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *
       }
   }
   r->ccache_ok = 0;
+  r->cache_ok = 0;
   if (n_impacts) *n_impacts += ni;
   if (n_joins) *n_joins += nj;
   if (n_releases) *n_releases += nr;
@@ -1686,7 +1688,6 @@ int autobal_rotor_contact_settle(autobal_rotor *r, int frame, double t, double *
 int autobal_rotor_hybrid_settle(autobal_rotor *r, int frame, double t, double *y, int initial, size_t counts[6]) {
   size_t k, p, it, ni = 0, nj = 0, nr = 0, ns = 0, nl = 0, nv = 0, max_it;
   int changed = 0, rc;
-  double W, ph;
   if (!r || !y || !counts || !isfinite(t) || (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
     return AUTOBAL_EINVAL;
   if (r->law != AUTOBAL_ROTOR_FRICTION_EXACT) {
@@ -1699,7 +1700,6 @@ int autobal_rotor_hybrid_settle(autobal_rotor *r, int frame, double t, double *y
     if (rc >= 0) counts[0] += ns, counts[1] += nl, counts[2] += nv;
     return rc;
   }
-  spin_state(r, t, y, &W, &ph);
   for (k = 0; k < r->N; k++) { /* the modes at entry, and which slipping balls have reached psi' = 0 */
     r->modein[k] = r->mode[k];
     r->reach[k] = r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK && (double)r->mode[k] * ball_psid(r, frame, t, y, k) <= 0.0;
