@@ -11,9 +11,10 @@ converted here), not from the program's output.  Modes:
   profile T.h5 T OMEGA_RPM       `rotor transient`: Omega(t) is the linear interpolation of the table
                                  at every output time, constant after its last point
   slip T.h5 T0 T1                `rotor transient`: while the drum turns at the dip speed (t in
-                                 [T0, T1]) every ball moves relative to the drum at most output times
-                                 (at 900 rpm g / (r Omega^2) = 1.4 mu: the weight exceeds the stiction
-                                 during every revolution)
+                                 [T0, T1]) every ball moves relative to the drum (|dpsi/dt| > 1e-6
+                                 rad/s; a stuck ball keeps the ~1e-10 rad/s of its stick event) at
+                                 most output times (at 900 rpm g / (r Omega^2) = 1.4 mu: the weight
+                                 exceeds the stiction during every revolution)
 """
 import sys
 import h5py
@@ -85,7 +86,7 @@ def slip(path, t0, t1):
     n = 0
     while "p1_b%d_psi_rate" % (n + 1) in tr:
         n += 1
-    frac = np.array([np.mean(tr["p1_b%d_psi_rate" % (i + 1)][()][w] != 0.0) for i in range(n)])
+    frac = np.array([np.mean(np.abs(tr["p1_b%d_psi_rate" % (i + 1)][()][w]) > 1e-6) for i in range(n)])
     print("%d balls, t in [%s, %s] s (%d output times): fraction of times each moves relative to the "
           "drum: min %.3f (want > 0.5)" % (n, t0, t1, w.sum(), frac.min()))
     if n == 0 or w.sum() < 20 or not frac.min() > 0.5:
