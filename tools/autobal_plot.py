@@ -1362,6 +1362,9 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
     runs = [(h, ensemble_unbalance(h))]
     if compare is not None:
         runs.append((compare, ensemble_unbalance(compare)))
+        if runs[0][1][3] == runs[1][1][3]:  # the same friction (e.g. two drives): name the files
+            runs = [(hh, r[:3] + ("%s, %s" % (os.path.splitext(os.path.basename(hh.filename))[0], r[3]),) + r[4:])
+                    for hh, r in runs]
     fig, (a_cdf, a_hist) = plt.subplots(1, 2, figsize=(13, 5.8), constrained_layout=True)
     colors = ["tab:red", "tab:blue"]
     allu = np.concatenate([r[1][0] for r in runs])
