@@ -1348,6 +1348,10 @@ def ensemble_unbalance(h):
         label = "friction: %s law" % law
     else:
         label = "no friction"
+    if "ball_diameter" in h["rotor/plane1"].attrs:  # ball size and contact
+        dia = np.atleast_1d(h["rotor/plane1"].attrs["ball_diameter"])
+        e = g.attrs.get("contact_restitution")
+        label += " + contact (%s mm%s)" % (fmt(np.max(dia) * 1e3, 3), ", e = %s" % fmt(float(e), 3) if e is not None else "")
     return u[ok] * 1e6, gr[ok], stats, label, int(np.sum(~ok))
 
 
@@ -1376,7 +1380,7 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
             continue
         x = np.sort(u)
         a_cdf.step(x, np.arange(1, x.size + 1) / x.size, where="post", color=c, lw=1.8,
-                   label="%s (%d members%s): median %s g mm, G %s"
+                   label="%s\n(%d members%s): median %s g mm, G %s"
                    % (label, u.size, ", %d failed" % nbad if nbad else "", fmt(np.median(u), 3),
                       fmt(np.median(gr), 3)))
         r = u / gr  # g mm per mm/s: m / (n_planes Omega), the same for all members at one final speed
@@ -1389,7 +1393,7 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
         a_hist.hist(gr[gr > 0], bins=10 ** np.asarray(bins), color=c, alpha=0.55, label=label)
         if "target" in stats and stats.get("n_evaluated", 0):
             a_hist.axvline(stats["target"], color="k", lw=1.2, ls="--")
-            a_hist.text(0.02, 0.96 - 0.07 * colors.index(c), "%s: P(G ≤ %s mm/s) = %s (%d of %d), Wilson 95%% [%s, %s]"
+            a_hist.text(0.02, 0.96 - 0.11 * colors.index(c), "%s:\nP(G ≤ %s mm/s) = %s (%d of %d), Wilson 95%% [%s, %s]"
                         % (label, fmt(stats["target"], 3), fmt(stats["probability_within_target"], 3),
                            stats["n_within_target"], stats["n_evaluated"],
                            fmt(stats["probability_within_target_wilson_low"], 3),
@@ -1416,7 +1420,7 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
     a_hist.set_xlabel("balance quality grade G at the end (mm/s, ISO 21940-11); dashed: the target")
     a_hist.set_ylabel("members")
     a_hist.grid(True, which="both", alpha=0.3)
-    a_hist.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+    a_hist.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1)
     a_hist.set_title("grade distribution", fontsize=9)
     g = h["rotor/ensemble"]
     params = s(g.attrs.get("parameters", ""))

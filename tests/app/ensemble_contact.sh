@@ -8,7 +8,7 @@
 # ball angles that overlap fail exactly those members, with a message naming the balls, the others
 # run; bad input exits 3 with the message of `rotor transient` and writes nothing.
 set -u
-: "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+: "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
 fail=0; pass=0
@@ -85,6 +85,14 @@ done
 grep -v '^ball_diameter' model.ini > nodia.ini
 expect 3 "[contact]: restitution is given but no ball has a size: set [plane1] ball_diameter" "$AUTOBAL" rotor ensemble nodia.ini -o bad_nodia.h5
 ls bad_*.h5 bt.h5 >/dev/null 2>&1 && bad "a file written for bad input: $(ls bad_*.h5 bt.h5 2>/dev/null)" || ok "nothing written for bad input"
+
+# the README's example (data/washer_contact.ini: stiction and contact), 4 members of 6 s: 1 and 2
+# threads give the same archive
+W="--set ensemble.samples=4 --set transient.t_end=6"
+"$AUTOBAL" rotor ensemble "$DATA/washer_contact.ini" $W --set ensemble.threads=1 -o wc1.h5 >out.txt 2>err.txt && grep -qF "contact: impacts per member" out.txt \
+  && ok "data/washer_contact.ini runs (4 members, 6 s), the contact line printed" || { bad "data/washer_contact.ini"; cat out.txt err.txt; }
+"$AUTOBAL" rotor ensemble "$DATA/washer_contact.ini" $W --set ensemble.threads=2 -o wc2.h5 >out.txt 2>err.txt || bad "washer_contact, 2 threads"
+if "$PY" "$here/ensemble_contact_check.py" same wc1.h5 wc2.h5 >/dev/null; then ok "washer_contact: 1 and 2 threads bit for bit"; else bad "washer_contact: threads differ"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

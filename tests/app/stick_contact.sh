@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # App test: `autobal rotor transient` with the exact stick-slip law and ball contact together
 # (docs/device.md, "Stiction and contact"), as a user runs it:
-#  (a) the front loader of data/washer_friction.ini (ten 25 mm balls side by side at the bottom of a
-#      horizontal drum, stiction, run-up 100 -> 1200 rpm) with ball_diameter = 25 mm and e = 0.5: the run
+#  (a) data/washer_contact.ini without its [ensemble] (ten 25 mm balls side by side at the bottom of a
+#      horizontal drum, stiction, run-up 100 -> 1200 rpm, e = 0.5): the run
 #      ends without failure; at every output sample no two neighbours on the track are closer than their
 #      gap angle 2 asin(25 mm / (2 x 0.27 m)) (to 1e-9 rad); a ball flagged stuck at two consecutive
 #      samples has not moved relative to the drum; every normal force is positive; impacts, sticks and
@@ -26,17 +26,8 @@ expect() {
   ok "exit $code${needle:+ and '$needle'}: $*"
 }
 
-# (a) the washer with contact: its file without [ensemble], the balls 0.0927 rad apart (the gap angle
-# of 25 mm balls on 0.27 m is 0.092625 rad) and 25 mm in diameter
-"$PY" - "$data/washer_friction.ini" <<'PY' > washer.ini
-import re, sys
-s = open(sys.argv[1]).read()
-s = s[:s.index("[ensemble]")]
-psi = ", ".join("%.4f" % (-1.9875 + 0.0927 * i) for i in range(10))
-s = re.sub(r"(?m)^ball_psi = .*$", "ball_psi = " + psi + "\nball_diameter = 25 mm", s)
-s += "[contact]\nrestitution = 0.5\n"
-print(s)
-PY
+# (a) the washer with contact: its file without [ensemble]
+sed '/^\[ensemble\]/,$d' "$data/washer_contact.ini" > washer.ini
 expect 0 "contact:" "$AUTOBAL" rotor transient washer.ini -o washer.h5
 grep -qF "friction (exact):" out.txt && ok "summary: the friction line" || bad "no friction line in the summary"
 
