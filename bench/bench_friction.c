@@ -27,6 +27,23 @@
  *   bench_friction check F MU OMEGA_A OMEGA_B T_B
  *       States for friction_scipy.py to check its independent right-hand side: t, y, the modes
  *       (-1, 0, 1), autobal_rotor_rhs (EXACT law) and the normal and holding forces.
+ *
+ * Options before the mode (bench/run.sh contact, friction_scipy.py --contact):
+ *   --contact D E   ball contact (docs/device.md section 4, "Stiction and contact"): both balls of
+ *       diameter D (m), restitution E, v_rest the default 1e-3 rad/s; one event per pair
+ *       (autobal_rotor_contact_switch, direction -1) after the ball events, and the reset calls
+ *       autobal_rotor_hybrid_settle for every event (hybrid_reset of src/studies/rotor_friction.c);
+ *       the start: autobal_rotor_friction_settle (initial), autobal_rotor_contact_order,
+ *       autobal_rotor_hybrid_settle (initial).  JSON gains impacts, joins, releases, contacts_final
+ *       (pairs in resting contact at the end); the ensemble also members_with_impacts,
+ *       members_with_joins, min_impacts, max_impacts.  Random angles (SEED > 0): the second angle
+ *       is redrawn from the same LCG stream until the two balls are at least the gap angle
+ *       2 asin(D / (2 r)) + 1e-3 rad apart (no overlap, not touching).  check gains the event reset
+ *       at 6 states where the balls touch and close (every mode pattern, both pairs): y, modes
+ *       before, y, modes and counts after autobal_rotor_hybrid_settle.
+ *   --psi-gap D     only the redrawing of the random angles (no contact): the frictionless ensemble
+ *       starts from the same angles as the contact ensemble.
+ * run also prints y0 (the initial state, before any settle).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
