@@ -27,6 +27,23 @@
  *   bench_friction check F MU OMEGA_A OMEGA_B T_B
  *       States for friction_scipy.py to check its independent right-hand side: t, y, the modes
  *       (-1, 0, 1), autobal_rotor_rhs (EXACT law) and the normal and holding forces.
+ *
+ * Options before the mode (bench/run.sh contact, friction_scipy.py --contact):
+ *   --contact D E   ball contact (docs/device.md section 4, "Stiction and contact"): both balls of
+ *       diameter D (m), restitution E, v_rest the default 1e-3 rad/s; one event per pair
+ *       (autobal_rotor_contact_switch, direction -1) after the ball events, and the reset calls
+ *       autobal_rotor_hybrid_settle for every event (hybrid_reset of src/studies/rotor_friction.c);
+ *       the start: autobal_rotor_friction_settle (initial), autobal_rotor_contact_order,
+ *       autobal_rotor_hybrid_settle (initial).  JSON gains impacts, joins, releases, contacts_final
+ *       (pairs in resting contact at the end); the ensemble also members_with_impacts,
+ *       members_with_joins, min_impacts, max_impacts.  Random angles (SEED > 0): the second angle
+ *       is redrawn from the same LCG stream until the two balls are at least the gap angle
+ *       2 asin(D / (2 r)) + 1e-3 rad apart (no overlap, not touching).  check gains the event reset
+ *       at 6 states where the balls touch and close (every mode pattern, both pairs): y, modes
+ *       before, y, modes and counts after autobal_rotor_hybrid_settle.
+ *   --psi-gap D     only the redrawing of the random angles (no contact): the frictionless ensemble
+ *       starts from the same angles as the contact ensemble.
+ * run also prints y0 (the initial state, before any settle).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -65,14 +82,20 @@ typedef struct problem {
   double f, mu, rtol, atol, t1, omega_a, omega_b, t_b;
   double event_tol; /* 0: the driver's default */
   double h_init;    /* 0: automatic */
+  double psi_gap_d; /* m, > 0: random angles redrawn until the balls of this diameter do not touch */
+  double diameter;  /* m, > 0: ball contact on (both balls this diameter) */
+  double restitution;
 } problem;
+
+/* Leading options (before the mode), shared by every mode; argv shifted past them. */
+static double opt_diameter = 0.0, opt_restitution = 0.0, opt_psi_gap = 0.0;
 
 /* The rotor of member `seed` (0: the default angles). */
 static autobal_rotor *make_rotor(const problem *pb, unsigned long long seed, char *msg, size_t nmsg) {
   autobal_rotor_params p = autobal_rotor_params_default();
   autobal_error err;
   autobal_rotor *r;
-  double psi[2], fs[2] = {pb->f, pb->f}, mus[2] = {pb->mu, pb->mu};
+  double psi[2], fs[2] = {pb->f, pb->f}, mus[2] = {pb->mu, pb->mu}, dia[2] = {pb->diameter, pb->diameter};
   memset(&p.drive, 0, sizeof p.drive);
   p.drive.mode = AUTOBAL_ROTOR_DRIVE_RAMP;
   p.drive.omega_a = pb->omega_a;
@@ -84,7 +107,23 @@ static autobal_rotor *make_rotor(const problem *pb, unsigned long long seed, cha
     (void)urand(&s);
     psi[0] = PI * urand(&s);
     psi[1] = PI * urand(&s);
+    if (pb->psi_gap_d > 0.0) {
+      /* with contact the balls must not overlap: the second angle is redrawn (same LCG stream)
+       * until the angular distance exceeds the gap angle 2 asin(d / (2 r)) by 1e-3 rad */
+      const double gam = autobal_rotor_gap_angle(pb->psi_gap_d, pb->psi_gap_d, p.plane[0].ball_radius[0]);
+      for (;;) {
+        double dd = fmod(fabs(psi[1] - psi[0]), 2.0 * PI);
+        if (dd > PI) dd = 2.0 * PI - dd;
+        if (dd >= gam + 1e-3) break;
+        psi[1] = PI * urand(&s);
+      }
+    }
     p.plane[0].ball_psi = psi;
+  }
+  if (pb->diameter > 0.0) {
+    p.contact.on = 1;
+    p.contact.restitution = pb->restitution;
+    p.contact.ball_diameter[0] = dia;
   }
   if (pb->law == AUTOBAL_ROTOR_FRICTION_EXACT) {
     p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT;
@@ -99,8 +138,8 @@ static autobal_rotor *make_rotor(const problem *pb, unsigned long long seed, cha
 /* The event wiring of src/studies/rotor_friction.c with public functions. */
 typedef struct member {
   autobal_rotor *rot;
-  size_t k[2];
-  unsigned long sticks, slips, reversals;
+  int contact;
+  unsigned long sticks, slips, reversals, impacts, joins, releases;
   int failed;
 } member;
 
@@ -114,26 +153,49 @@ static double ball_switch(double t, const double y[], void *user) {
   return autobal_rotor_friction_switch(e->m->rot, AUTOBAL_ROTOR_FIXED, e->k, t, y);
 }
 
+static double pair_switch(double t, const double y[], void *user) {
+  const ball_ev *e = (const ball_ev *)user;
+  return autobal_rotor_contact_switch(e->m->rot, AUTOBAL_ROTOR_FIXED, e->k, t, y);
+}
+
+/* Stiction alone: autobal_rotor_friction_settle; with contact (hybrid_reset of
+ * src/studies/rotor_friction.c): autobal_rotor_hybrid_settle for every event. */
 static int ball_reset(const autobal_transient_event_hit *hit, double y[], void *user) {
   member *m = (member *)user;
-  size_t ns, nl, nr;
-  int rc = autobal_rotor_friction_settle(m->rot, AUTOBAL_ROTOR_FIXED, hit->t, y, 0, &ns, &nl, &nr);
-  if (rc < 0) {
-    m->failed = rc;
-    return 2;
+  int rc;
+  if (m->contact) {
+    size_t n[6] = {0, 0, 0, 0, 0, 0};
+    rc = autobal_rotor_hybrid_settle(m->rot, AUTOBAL_ROTOR_FIXED, hit->t, y, 0, n);
+    if (rc < 0) {
+      m->failed = rc;
+      return 2;
+    }
+    m->sticks += n[0];
+    m->slips += n[1];
+    m->reversals += n[2];
+    m->impacts += n[3];
+    m->joins += n[4];
+    m->releases += n[5];
+  } else {
+    size_t ns, nl, nr;
+    rc = autobal_rotor_friction_settle(m->rot, AUTOBAL_ROTOR_FIXED, hit->t, y, 0, &ns, &nl, &nr);
+    if (rc < 0) {
+      m->failed = rc;
+      return 2;
+    }
+    m->sticks += ns;
+    m->slips += nl;
+    m->reversals += nr;
   }
-  m->sticks += ns;
-  m->slips += nl;
-  m->reversals += nr;
   return rc == 1 ? AUTOBAL_TRANSIENT_RESET : 0;
 }
 
 typedef struct result {
   double cpu, wall;
   autobal_transient_stats st;
-  unsigned long sticks, slips, reversals;
+  unsigned long sticks, slips, reversals, impacts, joins, releases, contacts_final;
   int modes[2];
-  double y[16];
+  double y[16], y0[16];
   size_t dim;
 } result;
 
@@ -145,11 +207,12 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
   autobal_transient *tr;
   autobal_error err;
   member m;
-  ball_ev ev[2];
+  ball_ev ev[2], pev[4];
   double y[16], c0, w0;
-  size_t dim, k;
+  size_t dim, k, np = 0;
   int rc;
   memset(&m, 0, sizeof m);
+  memset(res, 0, sizeof *res);
   o.rtol = pb->rtol;
   o.atol = pb->atol;
   o.stepper = "rk8pd";
@@ -159,6 +222,7 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
   w0 = now_seconds();
   m.rot = make_rotor(pb, seed, msg, nmsg);
   if (m.rot == NULL) return 1;
+  m.contact = autobal_rotor_contact_on(m.rot);
   dim = autobal_rotor_dim(m.rot);
   if (dim > 16) return 1;
   tr = autobal_transient_alloc(dim, &o, &err);
@@ -172,9 +236,10 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
   sys.dim = dim;
   sys.params = m.rot;
   if (autobal_rotor_initial_state(m.rot, AUTOBAL_ROTOR_FIXED, 0.0, y, dim) != AUTOBAL_SUCCESS) return 1;
+  memcpy(res->y0, y, dim * sizeof(double));
   if (pb->law == AUTOBAL_ROTOR_FRICTION_EXACT) {
     if (autobal_rotor_friction_settle(m.rot, AUTOBAL_ROTOR_FIXED, 0.0, y, 1, NULL, NULL, NULL) < 0) {
-      snprintf(msg, nmsg, "initial settle: %s", autobal_rotor_errmsg(m.rot));
+      snprintf(msg, nmsg, "member %llu: initial settle: %s", seed, autobal_rotor_errmsg(m.rot));
       return 1;
     }
     for (k = 0; k < 2; k++) {
@@ -182,8 +247,26 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
       ev[k].k = k;
       if (autobal_transient_add_event(tr, ball_switch, &ev[k], 0, 0) < 0) return 1;
     }
-    autobal_transient_set_event_reset(tr, ball_reset, &m);
   }
+  if (m.contact) { /* study_contact_begin: the pairs from the state, the start settled with them */
+    size_t n[6] = {0, 0, 0, 0, 0, 0};
+    if (autobal_rotor_contact_order(m.rot, AUTOBAL_ROTOR_FIXED, 0.0, y) != AUTOBAL_SUCCESS ||
+        autobal_rotor_hybrid_settle(m.rot, AUTOBAL_ROTOR_FIXED, 0.0, y, 1, n) < 0) {
+      snprintf(msg, nmsg, "member %llu: initial contact settle: %s", seed, autobal_rotor_errmsg(m.rot));
+      return 1;
+    }
+    m.impacts += n[3];
+    m.joins += n[4];
+    m.releases += n[5];
+    np = autobal_rotor_contact_n_pairs(m.rot);
+    if (np > 4) return 1;
+    for (k = 0; k < np; k++) {
+      pev[k].m = &m;
+      pev[k].k = k;
+      if (autobal_transient_add_event(tr, pair_switch, &pev[k], -1, 0) < 0) return 1;
+    }
+  }
+  if (pb->law == AUTOBAL_ROTOR_FRICTION_EXACT || m.contact) autobal_transient_set_event_reset(tr, ball_reset, &m);
   rc = autobal_transient_run(tr, &sys, 0.0, pb->t1, y, NULL);
   autobal_transient_get_stats(tr, &res->st);
   res->cpu = cpu_seconds() - c0;
@@ -198,6 +281,10 @@ static int run_member(const problem *pb, unsigned long long seed, result *res, c
   res->sticks = m.sticks;
   res->slips = m.slips;
   res->reversals = m.reversals;
+  res->impacts = m.impacts;
+  res->joins = m.joins;
+  res->releases = m.releases;
+  res->contacts_final = m.contact ? (unsigned long)autobal_rotor_contact_n_active(m.rot) : 0;
   for (k = 0; k < 2; k++) res->modes[k] = autobal_rotor_ball_mode_get(m.rot, k);
   if (pb->law != AUTOBAL_ROTOR_FRICTION_EXACT) res->modes[0] = res->modes[1] = 9;
   memcpy(res->y, y, dim * sizeof(double));
@@ -216,6 +303,9 @@ static int parse_problem(char **a, problem *pb) {
   pb->rtol = atof(a[3]);
   pb->atol = atof(a[4]);
   pb->t1 = atof(a[5]);
+  pb->diameter = opt_diameter;
+  pb->restitution = opt_restitution;
+  pb->psi_gap_d = opt_diameter > 0.0 ? opt_diameter : opt_psi_gap;
   return 0;
 }
 
@@ -253,11 +343,14 @@ static int mode_run(int argc, char **argv) {
          "\"seed\": %llu, \"event_tol\": %.3g, \"h_init\": %.3g, \"repeats\": %d, \"cpu_seconds_min\": %.9g, \"seconds_min\": %.9g, "
          "\"steps\": %lu, \"rejected\": %lu, \"rhs_evals\": %lu, \"events\": %lu, \"event_steps\": %lu, "
          "\"resets\": %lu, \"sticks\": %lu, \"slips\": %lu, \"reversals\": %lu, \"modes\": [%d, %d], "
-         "\"y\": [",
+         "\"diameter\": %.6g, \"restitution\": %.6g, \"impacts\": %lu, \"joins\": %lu, \"releases\": %lu, "
+         "\"contacts_final\": %lu, \"y\": [",
          argv[2], pb.f, pb.mu, pb.rtol, pb.atol, pb.t1, seed, pb.event_tol, pb.h_init, repeats, best.cpu, best.wall,
          best.st.steps, best.st.rejected, best.st.rhs_evals, best.st.events, best.st.event_steps,
-         best.st.resets, best.sticks, best.slips, best.reversals, best.modes[0], best.modes[1]);
-  for (i = 0; i < best.dim; i++) printf("%.17g%s", best.y[i], i + 1 < best.dim ? ", " : "]}\n");
+         best.st.resets, best.sticks, best.slips, best.reversals, best.modes[0], best.modes[1],
+         pb.diameter, pb.restitution, best.impacts, best.joins, best.releases, best.contacts_final);
+  for (i = 0; i < best.dim; i++) printf("%.17g%s", best.y[i], i + 1 < best.dim ? ", " : "], \"y0\": [");
+  for (i = 0; i < best.dim; i++) printf("%.17g%s", best.y0[i], i + 1 < best.dim ? ", " : "]}\n");
   return 0;
 }
 
@@ -267,6 +360,7 @@ typedef struct pool {
   unsigned long next;
   pthread_mutex_t lock;
   unsigned long done, failed, sticks, slips, reversals, steps, rhs_evals, resets, stuck_final;
+  unsigned long impacts, joins, releases, contacts_final, with_impacts, with_joins, min_impacts, max_impacts;
   char msg[512];
 } pool;
 
@@ -295,6 +389,14 @@ static void *worker(void *arg) {
       p->rhs_evals += res.st.rhs_evals;
       p->resets += res.st.resets;
       p->stuck_final += (unsigned long)(res.modes[0] == 0) + (unsigned long)(res.modes[1] == 0);
+      p->impacts += res.impacts;
+      p->joins += res.joins;
+      p->releases += res.releases;
+      p->contacts_final += res.contacts_final;
+      p->with_impacts += (unsigned long)(res.impacts > 0);
+      p->with_joins += (unsigned long)(res.joins > 0);
+      if (p->done == 1 || res.impacts < p->min_impacts) p->min_impacts = res.impacts;
+      if (res.impacts > p->max_impacts) p->max_impacts = res.impacts;
     }
     pthread_mutex_unlock(&p->lock);
   }
@@ -331,11 +433,66 @@ static int mode_ensemble(int argc, char **argv) {
          "\"members\": %lu, \"threads\": %d, \"done\": %lu, \"failed\": %lu, \"wall_seconds\": %.6g, "
          "\"cpu_seconds\": %.6g, \"members_per_second\": %.6g, \"members_per_cpu_second\": %.6g, "
          "\"steps\": %lu, \"rhs_evals\": %lu, \"resets\": %lu, \"sticks\": %lu, \"slips\": %lu, "
-         "\"reversals\": %lu, \"balls_stuck_final\": %lu, \"message\": \"%s\"}\n",
+         "\"reversals\": %lu, \"balls_stuck_final\": %lu, \"diameter\": %.6g, \"restitution\": %.6g, "
+         "\"impacts\": %lu, \"joins\": %lu, \"releases\": %lu, \"contacts_final\": %lu, "
+         "\"members_with_impacts\": %lu, \"members_with_joins\": %lu, \"min_impacts\": %lu, "
+         "\"max_impacts\": %lu, \"message\": \"%s\"}\n",
          argv[2], pb.f, pb.mu, pb.rtol, pb.atol, pb.t1, p.members, nth, p.done, p.failed, wall, cpu,
          (double)p.done / wall, (double)p.done / cpu, p.steps, p.rhs_evals, p.resets, p.sticks, p.slips,
-         p.reversals, p.stuck_final, p.failed ? p.msg : "");
+         p.reversals, p.stuck_final, pb.diameter, pb.restitution, p.impacts, p.joins, p.releases,
+         p.contacts_final, p.with_impacts, p.with_joins, p.min_impacts, p.max_impacts, p.failed ? p.msg : "");
   return p.failed ? 1 : 0;
+}
+
+/* With contact: the event reset at states where the two balls touch (gap 0) and close, for
+ * friction_scipy.py's impact law: t, the modes and y before, autobal_rotor_hybrid_settle's y, modes
+ * and counts after.  ahead: 1 (ball 1 ahead of ball 0 by the gap angle) or 0 (ball 0 ahead). */
+static int check_impacts(autobal_rotor *rot, const problem *pb, unsigned long long *seed) {
+  static const int pat[6][2] = {{1, -1}, {0, -1}, {1, 0}, {-1, -1}, {-1, 1}, {0, 1}};
+  static const double rate[6][2] = {{3, -2}, {0, -5}, {4, 0}, {-1, -6}, {-2, 3}, {0, 4}};
+  static const int ahead[6] = {1, 1, 1, 1, 0, 0};
+  const double gam = autobal_rotor_gap_angle(pb->diameter, pb->diameter, 0.1);
+  double y[12], y0[12], w[3];
+  size_t i, k, n[6];
+  int s, rc;
+  printf(", \"gap_angle\": %.17g, \"restitution\": %.17g, \"impacts\": [", gam, pb->restitution);
+  for (s = 0; s < 6; s++) {
+    const double t = 0.14 * pb->t_b * (double)(s + 1) + 0.0077;
+    if (autobal_rotor_drive_eval(rot, t, w) != AUTOBAL_SUCCESS) return 1;
+    y[0] = 2e-4 * urand(seed);
+    y[1] = 2e-4 * urand(seed);
+    y[2] = 1e-3 * urand(seed);
+    y[3] = 1e-3 * urand(seed);
+    y[4] = 0.1 * urand(seed);
+    y[5] = 0.1 * urand(seed);
+    y[6] = 0.5 * urand(seed);
+    y[7] = 0.5 * urand(seed);
+    y[8 + (size_t)(1 - ahead[s])] = w[2] + PI * urand(seed);
+    y[8 + (size_t)ahead[s]] = y[8 + (size_t)(1 - ahead[s])] + gam;
+    for (k = 0; k < 2; k++) y[10 + k] = w[0] + rate[s][k];
+    memcpy(y0, y, sizeof y);
+    if (autobal_rotor_contact_order(rot, AUTOBAL_ROTOR_FIXED, t, y) != AUTOBAL_SUCCESS) {
+      fprintf(stderr, "bench_friction: %s\n", autobal_rotor_errmsg(rot));
+      return 1;
+    }
+    for (k = 0; k < 2; k++)
+      if (autobal_rotor_ball_mode_set(rot, k, pat[s][k]) != AUTOBAL_SUCCESS) return 1;
+    memset(n, 0, sizeof n);
+    rc = autobal_rotor_hybrid_settle(rot, AUTOBAL_ROTOR_FIXED, t, y, 0, n);
+    if (rc < 0) {
+      fprintf(stderr, "bench_friction: %s\n", autobal_rotor_errmsg(rot));
+      return 1;
+    }
+    printf("%s{\"t\": %.17g, \"ahead\": %d, \"modes\": [%d, %d], \"y\": [", s ? ", " : "", t, ahead[s],
+           pat[s][0], pat[s][1]);
+    for (i = 0; i < 12; i++) printf("%.17g%s", y0[i], i + 1 < 12 ? ", " : "], \"y_after\": [");
+    for (i = 0; i < 12; i++) printf("%.17g%s", y[i], i + 1 < 12 ? ", " : "], ");
+    printf("\"modes_after\": [%d, %d], \"counts\": [%zu, %zu, %zu, %zu, %zu, %zu]}",
+           autobal_rotor_ball_mode_get(rot, 0), autobal_rotor_ball_mode_get(rot, 1), n[0], n[1], n[2], n[3],
+           n[4], n[5]);
+  }
+  printf("]");
+  return 0;
 }
 
 /* States for the SciPy check: random states at t = 0.2 k T_B (k = 1..4), every mode pattern. */
@@ -356,6 +513,8 @@ static int mode_check(int argc, char **argv) {
   pb.omega_a = atof(argv[4]);
   pb.omega_b = atof(argv[5]);
   pb.t_b = atof(argv[6]);
+  pb.diameter = opt_diameter;
+  pb.restitution = opt_restitution;
   rot = make_rotor(&pb, 0, msg, sizeof msg);
   if (rot == NULL || autobal_rotor_dim(rot) != 12) return 1;
   printf("{\"states\": [");
@@ -392,7 +551,9 @@ static int mode_check(int argc, char **argv) {
       printf("%s", k ? "]}" : ", ");
     }
   }
-  printf("]}\n");
+  printf("]");
+  if (opt_diameter > 0.0 && check_impacts(rot, &pb, &seed) != 0) return 1;
+  printf("}\n");
   autobal_rotor_free(rot);
   return 0;
 }
@@ -400,6 +561,23 @@ static int mode_check(int argc, char **argv) {
 int main(int argc, char **argv) {
   int rc = 2;
   gsl_set_error_handler_off();
+  while (argc >= 2 && argv[1][0] == '-' && argv[1][1] == '-') {
+    if (strcmp(argv[1], "--contact") == 0 && argc >= 4) {
+      opt_diameter = atof(argv[2]);
+      opt_restitution = atof(argv[3]);
+      argv[3] = argv[0];
+      argv += 3;
+      argc -= 3;
+    } else if (strcmp(argv[1], "--psi-gap") == 0 && argc >= 3) {
+      opt_psi_gap = atof(argv[2]);
+      argv[2] = argv[0];
+      argv += 2;
+      argc -= 2;
+    } else {
+      argc = 0;
+      break;
+    }
+  }
   if (argc >= 2 && strcmp(argv[1], "run") == 0) rc = mode_run(argc, argv);
   else if (argc >= 2 && strcmp(argv[1], "ensemble") == 0) rc = mode_ensemble(argc, argv);
   else if (argc >= 2 && strcmp(argv[1], "check") == 0) rc = mode_check(argc, argv);
@@ -407,7 +585,9 @@ int main(int argc, char **argv) {
     fprintf(stderr,
             "usage: %s run none|exact F MU RTOL ATOL T1 REPEATS OMEGA_A OMEGA_B T_B SEED [EVENT_TOL [H_INIT]]\n"
             "       %s ensemble none|exact F MU RTOL ATOL T1 MEMBERS THREADS OMEGA_A OMEGA_B T_B\n"
-            "       %s check F MU OMEGA_A OMEGA_B T_B\n",
+            "       %s check F MU OMEGA_A OMEGA_B T_B\n"
+            "options before the mode: --contact DIAMETER RESTITUTION (ball contact, both balls; random angles\n"
+            "       respect the gap angle), --psi-gap DIAMETER (only the random angles of contact)\n",
             argv[0], argv[0], argv[0]);
   return rc;
 }

@@ -16,6 +16,11 @@
 #                                    and the constant-speed / run-up benches of the library before the
 #                                    friction merge (found with git log; --before-commit REV to choose,
 #                                    --no-before to skip); ARGS go to friction_scipy.py (e.g. --quick)
+#   bench/run.sh contact [ARGS...]   stiction AND ball contact (issue 16): 20 mm balls, restitution 0.5 and 1;
+#                                    per member and 256-member ensembles on 2 threads against the
+#                                    frictionless ensemble, SciPy with gap events at matched error (one
+#                                    member, e = 1); ARGS go to friction_scipy.py --contact (e.g. --quick,
+#                                    --only member, --restitutions 0.5,1, --scipy-seed 5)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -24,9 +29,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction) what=$1; shift ;;
-    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup or friction; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact) what=$1; shift ;;
+    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction or contact; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -40,6 +45,7 @@ case "$what" in
   pendulum) targets=(bench_pendulum) ;;
   rotor|runup) targets=(bench_rotor) ;;
   friction) targets=(bench_rotor bench_friction) ;;
+  contact) targets=(bench_rotor bench_friction) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
@@ -77,6 +83,11 @@ if [ "$what" = friction ]; then
   cd "$here"
   exec "$py" "$here/friction_scipy.py" --bench-friction "$build/bench_friction" \
     --bench-rotor "$build/bench_rotor" ${args[@]+"${args[@]}"}
+fi
+if [ "$what" = contact ]; then
+  cd "$here"
+  exec "$py" "$here/friction_scipy.py" --contact --bench-friction "$build/bench_friction" \
+    --bench-rotor "$build/bench_rotor" "$@"
 fi
 if [ "$what" = runup ]; then
   args=()
