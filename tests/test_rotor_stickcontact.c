@@ -8,6 +8,8 @@
  *      that the library's event function of the chain changes sign at mu* (1e-9), that the settle
  *      keeps the pair stuck at 1.02 mu* and lets it move at 0.98 mu*, and that one ball alone
  *      (no neighbour) slips at 1.02 mu*;
+ *  (a') an elastic impact of a ball on a stuck equal ball exchanges their rates: the hitter sticks
+ *      (not decided by the rounding of the stuck ball's stored rate), the other slips on at 5 rad/s;
  *  (b) energy along a motor run with impacts, sticks and slips: E(end) - E(0) = integral of (L Omega
  *      - D - sum r f N |psi'|) + the jumps of the resets (events and reset wired from the public
  *      functions), every jump <= 0; e = 1: the impacts on stuck balls (set free by the impulse)
@@ -209,6 +211,44 @@ static void test_chain(void) {
   }
 }
 
+/* ---- (a') an elastic impact on a stuck ball ----------------------------------------------------------
+ * Two equal balls at a prescribed speed exchange their relative rates in an elastic impact (J is an
+ * eigenvector of the rotor coupling: test_rotor_contact), so the ball that hits a stuck one is left at
+ * rest relative to the rotor and sticks, the stuck one is set free and slips on at the hitter's rate.
+ * Both frames; in the fixed frame the stuck ball's stored rate carries a rounding drift of 3e-13 rad/s,
+ * which must not decide the hitter's mode. */
+static void elastic_on_stuck(int frame) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  const double gam = autobal_rotor_gap_angle(0.02, 0.02, 0.1);
+  double psi[2] = {1.0, 1.0 + gam}, dia[2] = {0.02, 0.02}, f[2] = {0.01, 0.01}, mu[2] = {0.02, 0.02}, y[16];
+  autobal_rotor *rot;
+  size_t n[6] = {0, 0, 0, 0, 0, 0};
+  int rc;
+  char what[200];
+  printf("-- (a') an elastic impact on a stuck ball (%s frame)\n", frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating");
+  p.omega = 300.0;
+  p.plane[0].ball_psi = psi;
+  p.friction.law = AUTOBAL_ROTOR_FRICTION_EXACT, p.friction.ball_f[0] = f, p.friction.ball_mu[0] = mu;
+  p.contact.on = 1, p.contact.restitution = 1.0, p.contact.ball_diameter[0] = dia;
+  rot = autobal_rotor_alloc(&p, NULL);
+  CHECK("rotor", rot != NULL);
+  if (!rot) return;
+  autobal_rotor_initial_state(rot, frame, 0.0, y, autobal_rotor_dim(rot));
+  y[10] += 5.0;                                                /* ball 1 runs at +5 rad/s into ball 2 */
+  if (frame == AUTOBAL_ROTOR_FIXED) y[11] += 3e-13;            /* the stuck ball's rounding drift */
+  autobal_rotor_ball_mode_set(rot, 0, AUTOBAL_ROTOR_BALL_SLIP_POSITIVE);
+  autobal_rotor_ball_mode_set(rot, 1, AUTOBAL_ROTOR_BALL_STUCK);
+  rc = autobal_rotor_hybrid_settle(rot, frame, 0.0, y, 0, n);
+  CHECK("one impact, one stick, one slip", rc == 1 && n[3] == 1 && n[0] == 1 && n[1] == 1);
+  CHECK("the hitter is stuck, the hit ball slips forwards",
+        autobal_rotor_ball_mode_get(rot, 0) == AUTOBAL_ROTOR_BALL_STUCK &&
+            autobal_rotor_ball_mode_get(rot, 1) == AUTOBAL_ROTOR_BALL_SLIP_POSITIVE);
+  snprintf(what, sizeof what, "the hit ball moves on at the hitter's 5 rad/s (%.15f)", y[11] - (frame == AUTOBAL_ROTOR_FIXED ? 300.0 : 0.0));
+  CHECK_CLOSE(what, y[11] - (frame == AUTOBAL_ROTOR_FIXED ? 300.0 : 0.0), 5.0, 1e-12, 0.0);
+  CHECK("the hitter's rate is the rotor's exactly", y[10] == (frame == AUTOBAL_ROTOR_FIXED ? 300.0 : 0.0));
+  autobal_rotor_free(rot);
+}
+
 /* ---- (b) energy along a motor run with stiction and contact ------------------------------------- */
 
 typedef struct erun {
@@ -391,6 +431,8 @@ static void zero_friction(int frame, double t_end) {
 int main(void) {
   gsl_set_error_handler_off();
   test_chain();
+  elastic_on_stuck(AUTOBAL_ROTOR_FIXED);
+  elastic_on_stuck(AUTOBAL_ROTOR_ROTATING);
   energy_run(1.0, 0);
   energy_run(0.5, 0);
   energy_run(0.5, 1);

@@ -1213,8 +1213,10 @@ int autobal_rotor_friction_settle(autobal_rotor *r, int frame, double t, double 
   for (k = 0; k < r->N; k++) {
     const double pd = ball_psid(r, frame, t, y, k);
     r->pd0[k] = y[8 + r->N + k]; /* restored for a ball that reaches 0 but slips on */
-    if (initial || (r->contact && r->cfree[k])) /* an impact's impulse set the ball free: its new direction */
-      r->mode[k] = pd > 0.0 ? 1 : pd < 0.0 ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
+    if (initial) r->mode[k] = pd > 0.0 ? 1 : pd < 0.0 ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
+    else if (r->contact && r->cfree[k]) /* an impact's impulse set the ball free: its new direction; at rest
+                                          * relative to the rotor (to rounding: 1e-12 (1 + |Omega|) rad/s) it sticks */
+      r->mode[k] = pd > 1e-12 * (1.0 + fabs(W)) ? 1 : pd < -1e-12 * (1.0 + fabs(W)) ? -1 : AUTOBAL_ROTOR_BALL_STUCK;
     else if (r->mode[k] != AUTOBAL_ROTOR_BALL_STUCK && (double)r->mode[k] * pd <= 0.0)
       r->mode[k] = AUTOBAL_ROTOR_BALL_STUCK; /* psi' has reached 0 */
     if (r->contact) r->cfree[k] = 0;
@@ -1584,6 +1586,10 @@ static int impact_apply(autobal_rotor *R, int frame, double t, double *y, const 
   for (i = 0; i < ni; i++) list[n++] = imp[i];
   if (R->law == AUTOBAL_ROTOR_FRICTION_EXACT) { /* set free: the impacting balls and their clusters */
     int more = 1;
+    double W, ph;
+    spin_state(R, t, y, &W, &ph);
+    for (k = 0; k < N; k++) /* a stuck ball moves with the rotor exactly (its integrated rate drifts by rounding) */
+      if (R->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) y[8 + N + k] = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
     for (i = 0; i < ni; i++) R->cfree[R->pb[imp[i]]] = R->cfree[R->pa[imp[i]]] = 1;
     while (more) {
       more = 0;
