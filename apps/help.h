@@ -157,7 +157,8 @@
   "            spheres of that radius (relative inertia 7/5, docs/device.md section 3)\n" \
   "[contact]   ball size and impacts (docs/device.md section 4; on when [plane1]/[plane2] ball_diameter\n" \
   "            (m, >= 0, one value or one per ball) is given): restitution = 1 (in [0, 1])\n" \
-  "            v_rest = 1e-3 rad/s (slower impacts join the pair in resting contact)\n" \
+  "            v_rest = 1e-3 rad/s (slower impacts join the pair in resting contact); with law = exact\n" \
+  "            stuck balls pressed together hold as one body (docs/device.md \"Stiction and contact\")\n" \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'; with a drive its\n"   \
   "attributes drive_* and the column Omega; with friction the columns p<j>_b<i>_stuck, p<j>_b<i>_N\n" \
   "and the attributes friction_*, p<j>_ball_time_stuck), /rotor/revolutions\n"                   \
