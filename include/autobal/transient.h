@@ -27,10 +27,15 @@
  *    interpolation), so the output is as accurate as any accepted step.  A
  *    dt_out smaller than the natural step therefore limits the step to dt_out.
  *  - Events: a function g(t, y) whose sign change over an accepted step is
- *    located to event_tol in time by an Illinois (modified regula falsi)
- *    iteration, where every trial point is obtained by RE-INTEGRATING from
- *    the start of that step with the same stepper and tolerances (an
- *    auxiliary stepper object, so the main integration is not disturbed).
+ *    located to event_tol in time, where every trial point is obtained by
+ *    RE-INTEGRATING from the start of that step with the same stepper and
+ *    tolerances (an auxiliary stepper object, so the main integration is not
+ *    disturbed).  The trial points are guided by the crossing on the step's
+ *    cubic Hermite interpolant (corrected by its error at each trial point)
+ *    and end with two points event_tol apart around it; an Illinois
+ *    (modified regula falsi) iteration on the integrated g finishes when
+ *    they do not bracket the crossing.  The interpolant only places the
+ *    trial points: the reported time and state are integrated ones.
  *    Events are terminal (the run stops at the event with the state there)
  *    or not (reported, the run continues), and may reset the state or the
  *    system (hybrid systems: impacts, stick-slip; the integration restarts

@@ -159,6 +159,9 @@ struct autobal_transient {
   double *y_work; /* event location */
   double *y_evt;  /* state at a located event */
   double *pr_fa, *pr_fb, *pr_y; /* probes: derivatives at the step's ends (when computed), interpolant */
+  double *y_hit;  /* locate: the integrated state at hit_t (far side of the last located crossing) */
+  double hit_t;   /* its time; hit_valid: it belongs to the step being processed */
+  int hit_valid;
   /* events */
   event_item *ev;
   size_t nev, cap;
@@ -372,9 +375,10 @@ autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_o
   tr->y_prev = malloc(dim * sizeof(double));
   tr->y_work = malloc(dim * sizeof(double));
   tr->y_evt = malloc(dim * sizeof(double));
-  tr->pr_fa = malloc(3 * dim * sizeof(double));
+  tr->pr_fa = malloc(4 * dim * sizeof(double));
   tr->pr_fb = tr->pr_fa ? tr->pr_fa + dim : NULL;
   tr->pr_y = tr->pr_fa ? tr->pr_fa + 2 * dim : NULL;
+  tr->y_hit = tr->pr_fa ? tr->pr_fa + 3 * dim : NULL;
   if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt || !tr->pr_fa ||
       ctx_alloc(tr, &tr->main, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS ||
       ctx_alloc(tr, &tr->aux, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS) {
@@ -789,26 +793,32 @@ static int step_ends(autobal_transient *tr, double t_prev, double tn, const doub
   return AUTOBAL_SUCCESS;
 }
 
+/* The cubic Hermite interpolant of the accepted step (t_prev, y_prev, fa) -> (tn, yn, fb) at t, into
+ * out. */
+static void hermite(const autobal_transient *tr, double t_prev, double tn, const double *yn, const double *fa,
+                    const double *fb, double t, double *out) {
+  const double h = tn - t_prev, th = (t - t_prev) / h, th2 = th * th, th3 = th2 * th;
+  const double h00 = 2.0 * th3 - 3.0 * th2 + 1.0, h10 = (th3 - 2.0 * th2 + th) * h;
+  const double h01 = -2.0 * th3 + 3.0 * th2, h11 = (th3 - th2) * h;
+  size_t i;
+  for (i = 0; i < tr->dim; i++) out[i] = h00 * tr->y_prev[i] + h10 * fa[i] + h01 * yn[i] + h11 * fb[i];
+}
+
 /* Probe event e for a grazing crossing inside the accepted step (t_prev, y_prev) -> (tn, yn), its
  * values g_prev and gn of one sign: g on the cubic Hermite interpolant of the state at e->probes
  * interior points; the first point past 0 (in a watched direction) is checked on the integrated
  * state and, if confirmed, bracketed with t_prev for locate.  *found = 1 with *tc, *gc then. */
 static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn, const double *yn,
                  const double **fa, const double **fb, double *tc, double *gc, int *found) {
-  const size_t n = tr->dim;
   const double h = tn - t_prev;
   unsigned k;
   int rc;
   *found = 0;
   if (!*fa && (rc = step_ends(tr, t_prev, tn, yn, fa, fb)) != AUTOBAL_SUCCESS) return rc;
   for (k = 1; k <= e->probes; k++) {
-    const double th = (double)k / (double)(e->probes + 1), th2 = th * th, th3 = th2 * th;
-    const double h00 = 2.0 * th3 - 3.0 * th2 + 1.0, h10 = (th3 - 2.0 * th2 + th) * h;
-    const double h01 = -2.0 * th3 + 3.0 * th2, h11 = (th3 - th2) * h;
-    const double t = t_prev + th * h;
+    const double t = t_prev + (double)k / (double)(e->probes + 1) * h;
     double g = 0.0;
-    size_t i;
-    for (i = 0; i < n; i++) tr->pr_y[i] = h00 * tr->y_prev[i] + h10 * (*fa)[i] + h01 * yn[i] + h11 * (*fb)[i];
+    hermite(tr, t_prev, tn, yn, *fa, *fb, t, tr->pr_y);
     if ((rc = event_value(tr, e, t, tr->pr_y, &g)) != AUTOBAL_SUCCESS) return rc;
     if (!((e->g_prev < 0.0 && g >= 0.0 && e->direction != -1) || (e->g_prev > 0.0 && g <= 0.0 && e->direction != 1)))
       continue;
@@ -825,29 +835,40 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
   return AUTOBAL_SUCCESS;
 }
 
-/* Locate the sign change of event e in (ta, tb], with values ga (at ta, the
- * start of the accepted step, state ya) and gb (at tb, non-zero sign
- * different from ga, or 0).  Illinois iteration; each trial point is
- * integrated from (ta, ya).  *t_hit is on the far side of the crossing. */
-static int locate(autobal_transient *tr, const event_item *e, double ta, const double *ya,
-                  double ga, double tb, double gb, double h_hint, double *t_hit) {
-  double a = ta, fa = ga, b = tb, fb = gb;
-  int side = 0, iter;
-  if (fb == 0.0) {
-    *t_hit = tb;
-    return AUTOBAL_SUCCESS;
-  }
-  for (iter = 0; iter < 200 && b - a > tr->opt.event_tol; iter++) {
-    double c, fc = 0.0;
-    int rc;
-    c = b - fb * (b - a) / (fb - fa);
+/* Event value on the step's interpolant at t (no integration); *ok = 0 when it is NaN. */
+static double interp_value(autobal_transient *tr, const event_item *e, double t_prev, double tn,
+                           const double *yn, const double *fa, const double *fb, double t, int *ok) {
+  double g;
+  hermite(tr, t_prev, tn, yn, fa, fb, t, tr->pr_y);
+  g = e->g(t, tr->pr_y, e->user);
+  if (e->dwell) g -= e->threshold;
+  *ok = !isnan(g);
+  return g;
+}
+
+/* The crossing of g(interpolant(t)) + delta in (a, b) (the step's cubic Hermite interpolant, from
+ * (t_prev, y_prev) to (tn, yn), a >= t_prev, b <= tn), the far side the sign of far: Illinois
+ * iteration to a bracket far below event_tol, cheap (no integration); the midpoint of that bracket
+ * in *ts.  delta, the difference between g on the integrated state and g on the interpolant at a
+ * trial point, corrects the interpolant's error near it.  *found = 0 when the corrected function
+ * does not change sign between a and b (or g is NaN on the interpolant). */
+static void interp_root(autobal_transient *tr, const event_item *e, double t_prev, double tn,
+                        const double *yn, const double *fpa, const double *fpb, double a, double b,
+                        double delta, double far, double *ts, int *found) {
+  const double tol = 1e-5 * tr->opt.event_tol;
+  double fa, fb;
+  int side = 0, iter, ok_a, ok_b;
+  *found = 0;
+  fa = interp_value(tr, e, t_prev, tn, yn, fpa, fpb, a, &ok_a) + delta;
+  fb = interp_value(tr, e, t_prev, tn, yn, fpa, fpb, b, &ok_b) + delta;
+  if (!ok_a || !ok_b || fb == 0.0 || sgn(fb) != sgn(far) || (fa != 0.0 && sgn(fa) == sgn(far))) return;
+  for (iter = 0; iter < 100 && b - a > tol; iter++) {
+    double c = b - fb * (b - a) / (fb - fa), fc;
+    int ok;
     if (!(c > a && c < b)) c = a + 0.5 * (b - a);
-    if (!(c > a && c < b)) break; /* a and b adjacent doubles */
-    rc = aux_integrate(tr, ta, ya, c, tr->y_work, h_hint);
-    if (rc != AUTOBAL_SUCCESS) return rc;
-    if ((rc = event_value(tr, e, c, tr->y_work, &fc)) != AUTOBAL_SUCCESS) return rc;
-    /* a value exactly 0 counts as the near side: the hit stays strictly past the crossing, where
-     * the reset sees the new sign (a stuck ball's |H| - mu N exactly 0 would not break it free) */
+    if (!(c > a && c < b)) break;
+    fc = interp_value(tr, e, t_prev, tn, yn, fpa, fpb, c, &ok) + delta;
+    if (!ok) return;
     if (fc != 0.0 && sgn(fc) == sgn(fb)) {
       b = c;
       fb = fc;
@@ -858,6 +879,88 @@ static int locate(autobal_transient *tr, const event_item *e, double ta, const d
       fa = fc;
       if (side == -1) fb *= 0.5;
       side = -1;
+    }
+  }
+  *ts = a + 0.5 * (b - a);
+  *found = 1;
+}
+
+/* Locate the sign change of event e in (ta, tb], with values ga (at ta = t_prev, the start of the
+ * accepted step (t_prev, y_prev) -> (tn, yn), state ya = y_prev) and gb (at tb <= tn, non-zero sign
+ * different from ga, or 0).  *fpa, *fpb: the step's end derivatives (NULL until step_ends gives
+ * them).  Every trial point is integrated from (ta, ya); *t_hit is on the far side of the crossing,
+ * within event_tol of it.
+ * The integrated trial points follow an estimate ts of the crossing on the step's interpolant
+ * (interp_root), corrected after each trial point c by the interpolant's error there
+ * (g(y(c)) - g(interpolant(c))), at most 3 times, until ts moves by less than 1e-3 event_tol; then
+ * two points ts -+ d, d = 1e-3 event_tol growing tenfold (at most 3 times) while they do not bracket
+ * the crossing.  Illinois iteration on the integrated g finishes in whatever bracket is left (the
+ * whole (ta, tb] if the interpolant gave nothing).  The integrated state at the last far-side point
+ * is kept in y_hit (hit_t, hit_valid), so that the caller need not integrate to *t_hit again. */
+static int locate(autobal_transient *tr, const event_item *e, double ta, const double *ya, double ga,
+                  double tb, double gb, double h_hint, double tn, const double *yn, const double **fpa,
+                  const double **fpb, double *t_hit) {
+  const double tol = tr->opt.event_tol;
+  double a = ta, fa = ga, b = tb, fb = gb, ts = 0.0;
+  int side = 0, iter, found = 0, ncorr = 0, k = 0, rc;
+  if (fb == 0.0) {
+    *t_hit = tb;
+    return AUTOBAL_SUCCESS;
+  }
+  if (b - a > tol) {
+    if (!*fpa && (rc = step_ends(tr, ta, tn, yn, fpa, fpb)) != AUTOBAL_SUCCESS) return rc;
+    interp_root(tr, e, ta, tn, yn, *fpa, *fpb, a, b, 0.0, gb, &ts, &found);
+  }
+  for (iter = 0; iter < 200 && b - a > tol; iter++) {
+    double c, fc = 0.0;
+    int guided = 0, ok;
+    if (found && ncorr < 4) {
+      c = ts; /* the (corrected) interpolant's estimate */
+      guided = 1;
+    } else if (found && k < 8) {
+      /* the tight bracket around the estimate: ts - d, then ts + d (each only if inside the
+       * current bracket), d growing tenfold after each pair */
+      const double d = 1e-3 * tol * pow(10.0, (double)(k / 2));
+      c = (k % 2 == 0) ? ts - d : ts + d;
+      k++;
+      if (!(c > a && c < b)) continue;
+      guided = 1;
+    } else {
+      c = b - fb * (b - a) / (fb - fa);
+      if (!(c > a && c < b)) c = a + 0.5 * (b - a);
+      if (!(c > a && c < b)) break; /* a and b adjacent doubles */
+    }
+    rc = aux_integrate(tr, ta, ya, c, tr->y_work, h_hint);
+    if (rc != AUTOBAL_SUCCESS) return rc;
+    if ((rc = event_value(tr, e, c, tr->y_work, &fc)) != AUTOBAL_SUCCESS) return rc;
+    /* a value exactly 0 counts as the near side: the hit stays strictly past the crossing, where
+     * the reset sees the new sign (a stuck ball's |H| - mu N exactly 0 would not break it free) */
+    if (fc != 0.0 && sgn(fc) == sgn(fb)) {
+      b = c;
+      fb = fc;
+      memcpy(tr->y_hit, tr->y_work, tr->dim * sizeof(double));
+      tr->hit_t = c;
+      tr->hit_valid = 1;
+      if (side == 1 && !guided) fa *= 0.5;
+      side = guided ? 0 : 1;
+    } else {
+      a = c;
+      fa = fc;
+      if (side == -1 && !guided) fb *= 0.5;
+      side = guided ? 0 : -1;
+    }
+    if (found && ncorr < 4) {
+      /* correct the estimate by the interpolant's error at c */
+      const double gi = interp_value(tr, e, ta, tn, yn, *fpa, *fpb, c, &ok);
+      double ts_new = ts;
+      ncorr++;
+      if (ok) interp_root(tr, e, ta, tn, yn, *fpa, *fpb, a, b, fc - gi, gb, &ts_new, &ok);
+      if (!ok || b - a <= tol) {
+        found = 0; /* Illinois from here */
+      } else {
+        if (fabs(ts_new - c) <= 1e-3 * tol) ncorr = 4; /* converged: bracket it */
+        ts = ts_new;
+      }
     }
   }
   *t_hit = b;
@@ -1023,6 +1126,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
   const double *fa = NULL, *fb = NULL; /* the step's end derivatives, once a probe needs them */
   size_t i, np = 0;
   int rc;
+  tr->hit_valid = 0;
   for (i = 0; i < tr->nev; i++) {
     event_item *e = &tr->ev[i];
     double gn = 0.0;
@@ -1033,7 +1137,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
       const int rising = e->g_prev < 0.0 && gn >= 0.0;
       const int falling = e->g_prev > 0.0 && gn <= 0.0;
       if ((rising && e->direction != -1) || (falling && e->direction != 1)) {
-        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, &e->t_hit);
+        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, tn, y, &fa, &fb, &e->t_hit);
         if (rc != AUTOBAL_SUCCESS) return rc;
         e->t_start = e->t_hit;
         e->dir_hit = rising ? 1 : -1;
@@ -1044,7 +1148,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
         if ((rc = probe(tr, e, t_prev, tn, y, &fa, &fb, &tc, &gc, &found)) != AUTOBAL_SUCCESS) return rc;
         if (found) { /* a grazing crossing: located in (t_prev, tc] */
           tr->stats_probe_hits++;
-          rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tc, gc, h_taken, &e->t_hit);
+          rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tc, gc, h_taken, tn, y, &fa, &fb, &e->t_hit);
           if (rc != AUTOBAL_SUCCESS) return rc;
           e->t_start = e->t_hit;
           e->dir_hit = e->g_prev < 0.0 ? 1 : -1;
@@ -1054,7 +1158,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
     } else {
       if (e->dwell_state == DWELL_ABOVE && gn < 0.0) {
         double tc;
-        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, &tc);
+        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, tn, y, &fa, &fb, &tc);
         if (rc != AUTOBAL_SUCCESS) return rc;
         e->dwell_state = DWELL_BELOW;
         e->t_enter = tc;
@@ -1081,6 +1185,9 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
     double *ys;
     if (e->t_hit >= tn) {
       ys = y;
+    } else if (tr->hit_valid && e->t_hit == tr->hit_t) { /* locate integrated to it already */
+      memcpy(tr->y_evt, tr->y_hit, tr->dim * sizeof(double));
+      ys = tr->y_evt;
     } else {
       rc = aux_integrate(tr, t_prev, tr->y_prev, e->t_hit, tr->y_evt, h_taken);
       if (rc != AUTOBAL_SUCCESS) return rc;
