@@ -554,25 +554,8 @@ def main():
             e, _ = ru.err_of(np.array(c["y"]), ref, scale)
             sw = "%d/%d/%d" % (c["sticks"], c["slips"], c["reversals"])
             line = f"{tol:>12.0e}{c['rhs_evals']:>8d}{sw:>10}{e:>13.2e}{tc * 1e3:>14.3f}"
-            if len(pts) >= 2 and le[0] <= math.log(e) <= le[-1]:
-                tsp = math.exp(float(np.interp(math.log(e), le, lt)))
-                matched.append(tsp / tc)
-                line += f"{tsp * 1e3:>13.1f}{tsp / tc:>7.0f}x"
-            else:
-                line += f"{'-':>13}{'-':>8}"
-            ok = [t for (ee, t) in allp if ee <= max(e, floor)]
-            if ok:
-                cheap.append(min(ok) / tc)
-                line += f"{min(ok) * 1e3:>15.1f}{min(ok) / tc:>7.0f}x"
-            else:
-                line += "   no SciPy run of the grid is this accurate"
-            print(line)
-        for name, v in (("interpolated", matched), ("cheapest at least as accurate", cheap)):
-            if v:
-                m = min(v)
-                print(f"smallest time ratio SciPy / autobal at matched error ({name}): {m:.0f}x "
-                      f"(target >= 30x: {'met' if m >= 30 else 'NOT met'})")
-        print()
+            print(line + matched_columns(e, tc, pts, le, lt, allp, floor, matched, cheap))
+        print_matched(matched, cheap)
 
     if args.only in (None, "before") and args.before:
         print(f"== (c) friction off: the library now vs before friction was merged ({args.before}); "
@@ -821,25 +804,37 @@ def main_contact(args):
             if c["impacts"] != branch:
                 print(line + "   other branch: not compared")
                 continue
-            if len(pts) >= 2 and le[0] <= math.log(er) <= le[-1]:
-                tsp = math.exp(float(np.interp(math.log(er), le, lt)))
-                matched.append(tsp / tc)
-                line += f"{tsp * 1e3:>13.1f}{tsp / tc:>7.0f}x"
-            else:
-                line += f"{'-':>13}{'-':>8}"
-            ok = [t for (ee, t) in allp if ee <= max(er, floor)]
-            if ok:
-                cheap.append(min(ok) / tc)
-                line += f"{min(ok) * 1e3:>15.1f}{min(ok) / tc:>7.0f}x"
-            else:
-                line += "   no SciPy run of the grid is this accurate"
-            print(line)
-        for name, v in (("interpolated", matched), ("cheapest at least as accurate", cheap)):
-            if v:
-                m = min(v)
-                print(f"smallest time ratio SciPy / autobal at matched error ({name}): {m:.0f}x "
-                      f"(target >= 30x: {'met' if m >= 30 else 'NOT met'})")
-        print()
+            print(line + matched_columns(er, tc, pts, le, lt, allp, floor, matched, cheap))
+        print_matched(matched, cheap)
+
+
+def matched_columns(err, tc, pts, le, lt, allp, floor, matched, cheap):
+    """The matched-error columns of one autobal run (error err, CPU time tc) against the SciPy runs:
+    SciPy's time interpolated (log-log) at err, and the cheapest SciPy run at least as accurate;
+    the ratios appended to matched and cheap."""
+    col = ""
+    if len(pts) >= 2 and le[0] <= math.log(err) <= le[-1]:
+        tsp = math.exp(float(np.interp(math.log(err), le, lt)))
+        matched.append(tsp / tc)
+        col += f"{tsp * 1e3:>13.1f}{tsp / tc:>7.0f}x"
+    else:
+        col += f"{'-':>13}{'-':>8}"
+    ok = [t for (ee, t) in allp if ee <= max(err, floor)]
+    if ok:
+        cheap.append(min(ok) / tc)
+        col += f"{min(ok) * 1e3:>15.1f}{min(ok) / tc:>7.0f}x"
+    else:
+        col += "   no SciPy run of the grid is this accurate"
+    return col
+
+
+def print_matched(matched, cheap):
+    for name, v in (("interpolated", matched), ("cheapest at least as accurate", cheap)):
+        if v:
+            m = min(v)
+            print(f"smallest time ratio SciPy / autobal at matched error ({name}): {m:.0f}x "
+                  f"(target >= 30x: {'met' if m >= 30 else 'NOT met'})")
+    print()
 
 
 if __name__ == "__main__":
