@@ -9,18 +9,8 @@
 # run; bad input exits 3 with the message of `rotor transient` and writes nothing.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 chk() { local what=$1; shift; if "$PY" "$here/ensemble_contact_check.py" "$@"; then ok "$what"; else bad "$what"; fi; }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  [ $rc -eq "$code" ] && grep -qF -- "$needle" err.txt && ok "exit $code '$needle': $*" || { bad "exit $rc (want $code '$needle'): $*"; cat err.txt; }
-}
 
 # the default rotor with a large unbalance (tests/app/contact.sh): two 23 mm balls (gap angle
 # 0.2305 rad) are pressed together, bounce (restitution 0.5) and come to resting contact
@@ -83,7 +73,7 @@ for case in "plane1.ball_diameter=-20mm|plane1.ball_diameter (ball 1) = -0.02 m 
   expect 3 "$msg" "$AUTOBAL" rotor ensemble grid.ini --set "$set" -o bad_${set%%=*}.h5
 done
 grep -v '^ball_diameter' model.ini > nodia.ini
-expect 3 "[contact]: restitution is given but no ball has a size: set [plane1] ball_diameter" "$AUTOBAL" rotor ensemble nodia.ini -o bad_nodia.h5
+expect_err 3 "[contact]: restitution is given but no ball has a size: set [plane1] ball_diameter" "$AUTOBAL" rotor ensemble nodia.ini -o bad_nodia.h5
 ls bad_*.h5 bt.h5 >/dev/null 2>&1 && bad "a file written for bad input: $(ls bad_*.h5 bt.h5 2>/dev/null)" || ok "nothing written for bad input"
 
 # the README's example (data/washer_contact.ini: stiction and contact), 4 members of 6 s: 1 and 2
@@ -94,5 +84,4 @@ W="--set ensemble.samples=4 --set transient.t_end=6"
 "$AUTOBAL" rotor ensemble "$DATA/washer_contact.ini" $W --set ensemble.threads=2 -o wc2.h5 >out.txt 2>err.txt || bad "washer_contact, 2 threads"
 if "$PY" "$here/ensemble_contact_check.py" same wc1.h5 wc2.h5 >/dev/null; then ok "washer_contact: 1 and 2 threads bit for bit"; else bad "washer_contact: threads differ"; fi
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

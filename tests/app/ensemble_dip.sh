@@ -8,12 +8,7 @@
 # speed follows the table, and at 900 rpm (g / (r Omega^2) = 1.4 mu) the balls slip.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 chk() { local what=$1 py=$2; shift 2; if "$PY" "$here/$py" "$@"; then ok "$what"; else bad "$what"; fi; }
 
 # the file as given: its 8-point table (written here from the file's lines, rpm) is what the archive
@@ -47,5 +42,4 @@ chk "rotor transient: the drive table on /rotor/transient" ensemble_dip_check.py
 chk "rotor transient: Omega(t) follows the table, 1200 rpm at the end" ensemble_dip_check.py profile t0.h5 "$T" "$W"
 chk "rotor transient: the balls slip at 900 rpm (t in [7, 8] s)" ensemble_dip_check.py slip t0.h5 7 8
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

@@ -12,19 +12,8 @@
 #      (1e-8 rad).
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
+. "$(dirname "$0")/common.bash"
 data=$(cd "$here/../../data" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
-  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat out.txt err.txt; return; fi
-  ok "exit $code${needle:+ and '$needle'}: $*"
-}
 
 # (a) the washer with contact: its file without [ensemble]
 sed '/^\[ensemble\]/,$d' "$data/washer_contact.ini" > washer.ini
@@ -98,5 +87,4 @@ sys.exit(1 if bad else 0)
 PY
 then ok "both frames agree"; else bad "frames differ"; fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish
