@@ -520,9 +520,7 @@ def main():
             floor = max(floor, e)
         print(f"error floor (the references agree to): {floor:.1e}")
         print()
-        mtols = [float(s) for s in args.matched_tols.split(",")]
-        g0, g1 = (round(-2 * math.log10(float(s))) for s in args.grid.split(","))
-        grid = [10.0 ** (-k / 2.0) for k in range(g0, g1 + 1)]
+        mtols, grid = tolerances(args)
         print(f"SciPy DOP853 hybrid on {len(grid)} tolerances (best of {args.scipy_repeats} CPU times):")
         print(f"{'tol':>10}{'rhs evals':>11}{'switches':>10}{'max rel err':>12}{'time [ms]':>12}")
         pts, allp = [], []
@@ -759,9 +757,7 @@ def main_contact(args):
             print("  no tight autobal run follows SciPy's branch: the floor is unknown (0 used)")
         print(f"error floor (the references agree to): {floor:.1e}")
         print()
-        mtols = [float(v) for v in args.matched_tols.split(",")]
-        g0, g1 = (round(-2 * math.log10(float(v))) for v in args.grid.split(","))
-        grid = [10.0 ** (-k / 2.0) for k in range(g0, g1 + 1)]
+        mtols, grid = tolerances(args)
         print(f"SciPy DOP853 hybrid on {len(grid)} tolerances (best of {args.scipy_repeats} CPU times):")
         print(f"{'tol':>10}{'rhs evals':>11}{'st/sl/rev/imp':>16}{'max rel err':>12}{'time [ms]':>12}")
         pts, allp = [], []
@@ -806,6 +802,14 @@ def main_contact(args):
                 continue
             print(line + matched_columns(er, tc, pts, le, lt, allp, floor, matched, cheap))
         print_matched(matched, cheap)
+
+
+def tolerances(args):
+    """autobal's tolerances for the matched-error runs and SciPy's grid (half decades between the
+    two ends of --grid)."""
+    mtols = [float(v) for v in args.matched_tols.split(",")]
+    g0, g1 = (round(-2 * math.log10(float(v))) for v in args.grid.split(","))
+    return mtols, [10.0 ** (-k / 2.0) for k in range(g0, g1 + 1)]
 
 
 def matched_columns(err, tc, pts, le, lt, allp, floor, matched, cheap):
