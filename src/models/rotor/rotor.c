@@ -73,11 +73,11 @@ struct autobal_rotor {
    * cG (CMAX^2), the event cache (t, frame, y copy in cy) */
   int contact, *pact, ccache_ok, ccache_frame;
   /* with the EXACT law: cfree[k] = 1 for a ball set free by an impact's impulse (stuck balls outside the
-   * impact's clusters stay fixed to the rotor), cleared by the friction settle; pt[p] = the first pair
-   * of pair p's track, pt[N + p] = the number of pairs of that track (pairs of a track are consecutive,
-   * pair i's ball ahead is pair i + 1's ball behind, cyclically) */
+   * impact's clusters stay fixed to the rotor), cleared by the friction settle; modein, reach: the
+   * modes at the entry of autobal_rotor_hybrid_settle and which slipping balls had reached psi' = 0
+   * (for its counts); nsplit: stuck chains split by the friction settle (counted as releases) */
   int *cfree, *modein, *reach;
-  size_t np, *pb, *pa, *pt, nsplit;
+  size_t np, *pb, *pa, nsplit;
   double e_rest, v_rest, *delta, *pg, *pc, *plam, *cQ, *cW, *cG, *cy, ccache_t;
   double *cstore;
   double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
@@ -1396,8 +1396,6 @@ static int contact_pairs(autobal_rotor *R, const double *ang, autobal_error *err
       for (i = 0; i < n; i++) {
         const size_t b = idx[i], a = idx[(i + 1) % n];
         double g;
-        R->pt[np] = np - i; /* the track's first pair */
-        R->pt[R->N + np] = n;
         R->pb[np] = b;
         R->pa[np] = a;
         R->pg[np] = autobal_rotor_gap_angle(R->delta[b], R->delta[a], R->r[k]);
@@ -2544,8 +2542,7 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
     R->cstore = (double *)calloc(nd, sizeof(double));
     R->pb = (size_t *)calloc(3 * N + 1, sizeof(size_t));
     R->pact = (int *)calloc(4 * N + 4, sizeof(int));
-    R->pt = (size_t *)calloc(2 * N + 1, sizeof(size_t));
-    if (!R->cstore || !R->pb || !R->pact || !R->pt) {
+    if (!R->cstore || !R->pb || !R->pact) {
       autobal_rotor_free(R);
       autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory allocating the contact arrays");
       return NULL;
@@ -2586,7 +2583,6 @@ void autobal_rotor_free(autobal_rotor *r) {
   free(r->mode);
   free(r->cstore);
   free(r->pb);
-  free(r->pt);
   free(r->pact);
   free(r);
 }
