@@ -460,8 +460,13 @@ static void rhs_common_rows(const autobal_rotor *R, const double y[], const doub
  * depend on the vector width), (3) after the 4x4 (or 2x2) solve, the ball
  * accelerations from the stored sines and cosines (elementwise). */
 
+static int fric_eval_full(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t,
+                          const double y[], double dydt[], double *Nout, double *Hout, int check_N, const double *Q,
+                          int nofric, const size_t *plist, size_t nw, double *Wr);
 static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
-                     double dydt[], double *Nout, double *Hout, int check_N, const double *Q, int nofric);
+                     double dydt[], double *Nout, double *Hout, int check_N, const double *Q, int nofric) {
+  return fric_eval_full(R, ws, errp, frame, t, y, dydt, Nout, Hout, check_N, Q, nofric, NULL, 0, NULL);
+}
 static int contact_rhs(autobal_rotor *R, int frame, double t, const double y[], double dydt[]);
 static int contact_solve(autobal_rotor *R, int frame, double t, const double *y, double *dydt);
 static size_t active_list(const autobal_rotor *R, size_t *list, int impulse);
@@ -751,9 +756,14 @@ static void fric_one_plane_apply(const autobal_rotor *R, const fric_plane *c, co
  * accelerations into dydt (may be NULL), the
  * normal forces into Nout and the holding forces of the stuck balls into Hout (NAN for slipping
  * balls; both may be NULL).  check_N: fail when a ball has N <= 0.  Returns 0, or GSL_EBADFUNC
- * with the message on the handle. */
-static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t, const double y[],
-                     double dydt[], double *Nout, double *Hout, int check_N, const double *Q, int nofric) {
+ * with the message on the handle.
+ * Responses (nw > 0, with Q = NULL and dydt given): besides a0 = dydt, the change of the whole
+ * right-hand side under a unit force pair on each pair plist[i] (Q = +1 on its ball ahead, -1 on the
+ * ball behind) into Wr + i dim: the accelerations are linear in Q, so each response is one more
+ * right-hand side of the same solve (contact_responses; docs/device.md "Resting contact"). */
+static int fric_eval_full(const autobal_rotor *R, double *ws, autobal_error *errp, int frame, double t,
+                          const double y[], double dydt[], double *Nout, double *Hout, int check_N, const double *Q,
+                          int nofric, const size_t *plist, size_t nw, double *Wr) {
   const size_t N = R->N;
   const double *q = y, *qd = y + 4, *ang = y + 8, *rate = y + 8 + N;
   double *sn = ws, *cs = ws + N, *fs = ws + 2 * N;
@@ -770,7 +780,10 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
   fric_plane cp[AUTOBAL_ROTOR_MAX_PLANES];
   double b[4], b1[4], qdd[4], qdd1[4], uv[AUTOBAL_ROTOR_MAX_PLANES][2], sw, cw, W, Wd = 0.0, phi0;
   double Jeff = R->Jeff, rhsm = 0.0;
-  size_t j, k;
+  /* the responses: their right-hand sides of the solve and of the phi_0 row, then their q'' */
+  double rb[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE][4], rm[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE],
+      rq[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE][4], rW[AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE];
+  size_t j, k, i;
   const char *which = frame == AUTOBAL_ROTOR_FIXED ? "fixed-frame (friction)" : "rotating-frame (friction)";
 
   if (R->motor) {
@@ -909,6 +922,35 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
       b1[3] += d * Su;
     }
   }
+  if (nw > AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE || (nw > 0 && (Q || !dydt))) return fric_fail(errp, t, which);
+  for (i = 0; i < nw; i++) { /* the Q terms of the loop above, for Q[pa] = +1, Q[pb] = -1 */
+    const size_t kk[2] = {R->pa[plist[i]], R->pb[plist[i]]};
+    int side;
+    rb[i][0] = rb[i][1] = rb[i][2] = rb[i][3] = 0.0;
+    rm[i] = 0.0;
+    for (side = 0; side < 2; side++) {
+      const double Qk = side == 0 ? 1.0 : -1.0;
+      double d = 0.0, de, mr;
+      k = kk[side];
+      for (j = 0; j < R->n_planes; j++)
+        if (k >= R->off[j] && k < R->off[j] + R->cnt[j]) d = R->p.plane[j].d;
+      if (FRIC_STUCK(k)) {
+        if (R->motor) rm[i] += Qk;
+        continue;
+      }
+      mr = R->mr[k];
+      de = Qk / (mr * R->r[k]);
+      if (R->rolling) {
+        if (R->motor) rm[i] += R->rk[k] * R->re[k] * mr * R->r[k] * de;
+        de *= R->rk[k];
+      }
+      /* b -= F with F_u -= mr s e, F_v += mr c e */
+      rb[i][0] += mr * sn[k] * de;
+      rb[i][1] -= mr * cs[k] * de;
+      rb[i][2] += d * mr * cs[k] * de;
+      rb[i][3] += d * mr * sn[k] * de;
+    }
+  }
   if (R->n_planes == 1) {
     const fric_plane *c = &cp[0];
     const double g = R->g[0];
@@ -923,8 +965,9 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     idet = 1.0 / det;
     fric_one_plane_apply(R, c, S, idet, b, qdd);
     if (R->motor) fric_one_plane_apply(R, c, S, idet, b1, qdd1);
+    for (i = 0; i < nw; i++) fric_one_plane_apply(R, c, S, idet, rb[i], rq[i]);
   } else {
-    double a[4][4], x[2][4];
+    double a[4][4], x[2 + AUTOBAL_ROTOR_CONTACT_MAX_ACTIVE][4];
     memset(a, 0, sizeof a);
     a[0][0] = R->L.M;
     a[1][1] = R->L.M;
@@ -941,9 +984,12 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     }
     memcpy(x[0], b, sizeof b);
     if (R->motor) memcpy(x[1], b1, sizeof b1);
-    if (lu4_solve(a, x, R->motor ? 2 : 1) != 0) return fric_fail(errp, t, which);
+    else memset(x[1], 0, sizeof x[1]);
+    for (i = 0; i < nw; i++) memcpy(x[2 + i], rb[i], sizeof rb[i]);
+    if (lu4_solve(a, x, nw > 0 ? 2 + (int)nw : R->motor ? 2 : 1) != 0) return fric_fail(errp, t, which);
     memcpy(qdd, x[0], sizeof qdd);
     if (R->motor) memcpy(qdd1, x[1], sizeof qdd1);
+    for (i = 0; i < nw; i++) memcpy(rq[i], x[2 + i], sizeof rq[i]);
   }
   if (R->motor) { /* the phi_0 row: Jeff' Omega' + G . q'' = rhsm + L - k_r Omega - C alpha' beta' */
     double G[4] = {0.0, 0.0, R->L.C * q[3], 0.0}, den, num;
@@ -960,6 +1006,12 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
     if (!(den > 1e-13 * Jeff)) return fric_fail(errp, t, which);
     Wd = num / den;
     for (j = 0; j < 4; j++) qdd[j] += Wd * qdd1[j];
+    for (i = 0; i < nw; i++) {
+      rW[i] = (rm[i] - (G[0] * rq[i][0] + G[1] * rq[i][1] + G[2] * rq[i][2] + G[3] * rq[i][3])) / den;
+      for (j = 0; j < 4; j++) rq[i][j] += rW[i] * qdd1[j];
+    }
+  } else {
+    for (i = 0; i < nw; i++) rW[i] = 0.0;
   }
   if (!isfinite(qdd[0] + qdd[1] + qdd[2] + qdd[3] + Wd)) return fric_fail(errp, t, which);
   for (j = 0; j < R->n_planes; j++) {
@@ -1022,6 +1074,31 @@ static int fric_eval(const autobal_rotor *R, double *ws, autobal_error *errp, in
   if (R->motor) {
     dydt[R->im] = W;
     dydt[R->im + 1] = Wd;
+  }
+  for (i = 0; i < nw; i++) { /* the responses' rows, as the rows above without the Q-free terms */
+    double *w = Wr + i * R->dim;
+    memset(w, 0, R->dim * sizeof(double));
+    for (k = 0; k < 4; k++) w[4 + k] = rq[i][k];
+    for (j = 0; j < R->n_planes; j++) {
+      const double d = R->p.plane[j].d, au = rq[i][0] + d * rq[i][3], av = rq[i][1] - d * rq[i][2];
+      const size_t k0 = R->off[j], k1 = R->off[j] + R->cnt[j];
+      for (k = k0; k < k1; k++) {
+        double acc;
+        if (FRIC_STUCK(k)) {
+          acc = frame == AUTOBAL_ROTOR_FIXED ? rW[i] : 0.0;
+        } else {
+          const double s = sn[k], cc = cs[k], fk = fs[k], r = R->r[k];
+          acc = ((s + fk * cc) * au + (fk * s - cc) * av) / r;
+          if (k == R->pa[plist[i]]) acc += 1.0 / (R->mr[k] * r);
+          if (k == R->pb[plist[i]]) acc -= 1.0 / (R->mr[k] * r);
+          if (R->rolling) acc = R->rk[k] * (acc + R->re[k] * rW[i]);
+          if (frame == AUTOBAL_ROTOR_ROTATING) acc -= rW[i];
+        }
+        w[8 + N + k] = acc;
+      }
+    }
+    if (!ball_rows_finite(w, N) || !isfinite(rW[i])) return fric_fail(errp, t, which);
+    if (R->motor) w[R->im + 1] = rW[i];
   }
   return GSL_SUCCESS;
 #undef FRIC_STUCK
@@ -1431,22 +1508,16 @@ int autobal_rotor_contact_order(autobal_rotor *r, int frame, double t, const dou
 
 /* The responses w_p = a(Q = J_p^T) - a0 of the accelerations to a unit force pair on pair p
  * (rows: all of the state; positions give 0), for the nw pairs list[] into R->cW + (1 + i) dim,
- * with a0 (Q = 0) in R->cW.  nofric: the impulsive response (friction off, every ball free). */
+ * with a0 (Q = 0) in R->cW.  nofric: the impulsive response (friction off, every ball free).
+ * One evaluation: the accelerations are linear in Q, so the responses are further right-hand sides
+ * of the same solve (fric_eval_full), not differences of evaluations. */
 static int contact_responses(autobal_rotor *R, int frame, double t, const double *y, const size_t *list, size_t nw,
                              int nofric) {
-  const size_t dim = R->dim;
   const int chk = R->law != AUTOBAL_ROTOR_FRICTION_NONE && !nofric;
-  size_t i, n;
-  if (fric_eval(R, R->fws, &R->err, frame, t, y, R->cW, NULL, NULL, chk, NULL, nofric) != GSL_SUCCESS) return -1;
-  for (i = 0; i < nw; i++) {
-    double *w = R->cW + (1 + i) * dim;
-    memset(R->cQ, 0, R->N * sizeof(double));
-    R->cQ[R->pa[list[i]]] = 1.0;
-    R->cQ[R->pb[list[i]]] = -1.0;
-    if (fric_eval(R, R->fws, &R->err, frame, t, y, w, NULL, NULL, chk, R->cQ, nofric) != GSL_SUCCESS) return -1;
-    for (n = 0; n < dim; n++) w[n] -= R->cW[n];
-  }
-  return 0;
+  return fric_eval_full(R, R->fws, &R->err, frame, t, y, R->cW, NULL, NULL, chk, NULL, nofric, list, nw,
+                        R->cW + R->dim) == GSL_SUCCESS
+             ? 0
+             : -1;
 }
 
 /* Solve the n x n system a x = b (a row-major, overwritten; b overwritten by x) by Gaussian
