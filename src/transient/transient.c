@@ -160,6 +160,7 @@ struct autobal_transient {
   double *y_evt;  /* state at a located event */
   double *pr_fa, *pr_fb, *pr_y; /* probes: derivatives at the step's ends (when computed), interpolant */
   double *y_hit;  /* locate: the integrated state at hit_t (far side of the last located crossing) */
+  double *loc;    /* locate: its Hermite nodes (4 dim), a hop's stages (4 dim), f at a trial point (dim) */
   double hit_t;   /* its time; hit_valid: it belongs to the step being processed */
   int hit_valid;
   /* events */
@@ -379,7 +380,8 @@ autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_o
   tr->pr_fb = tr->pr_fa ? tr->pr_fa + dim : NULL;
   tr->pr_y = tr->pr_fa ? tr->pr_fa + 2 * dim : NULL;
   tr->y_hit = tr->pr_fa ? tr->pr_fa + 3 * dim : NULL;
-  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt || !tr->pr_fa ||
+  tr->loc = malloc(9 * dim * sizeof(double));
+  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt || !tr->pr_fa || !tr->loc ||
       ctx_alloc(tr, &tr->main, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS ||
       ctx_alloc(tr, &tr->aux, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS) {
     autobal_transient_free(tr);
@@ -404,6 +406,7 @@ void autobal_transient_free(autobal_transient *tr) {
   free(tr->y_work);
   free(tr->y_evt);
   free(tr->pr_fa);
+  free(tr->loc);
   free(tr->ev);
   free(tr->order);
   free(tr);
@@ -734,14 +737,21 @@ static void ctx_reset(stepper_ctx *c) {
 
 /* Integrate with the auxiliary context from (ta, ya) to tb >= ta into yout
  * (adaptive, same stepper and tolerances; usually one step when tb - ta is
- * no longer than an accepted step). */
+ * no longer than an accepted step).  fa (may be NULL): f(ta, ya), known to the
+ * caller; a stepper that takes its first stage from outside then does not
+ * evaluate it again (the same numbers: it is the same function at the same
+ * point). */
 static int aux_integrate(autobal_transient *tr, double ta, const double *ya, double tb,
-                         double *yout, double h_hint) {
+                         double *yout, double h_hint, const double *fa) {
   double t = ta, h = tb - ta, h_taken = 0.0;
   unsigned long nsteps = 0, rej = 0;
   memcpy(yout, ya, tr->dim * sizeof(double));
   if (!(tb > ta)) return AUTOBAL_SUCCESS;
   ctx_reset(&tr->aux);
+  if (fa && tr->aux.d->s->type->can_use_dydt_in) {
+    memcpy(tr->aux.dydt_in, fa, tr->dim * sizeof(double));
+    tr->aux.have_dydt = 1;
+  }
   if (h_hint > 0.0 && h_hint < h) h = h_hint;
   if (tr->opt.h_max > 0.0 && h > tr->opt.h_max) h = tr->opt.h_max;
   while (t < tb) {
@@ -793,15 +803,20 @@ static int step_ends(autobal_transient *tr, double t_prev, double tn, const doub
   return AUTOBAL_SUCCESS;
 }
 
-/* The cubic Hermite interpolant of the accepted step (t_prev, y_prev, fa) -> (tn, yn, fb) at t, into
- * out. */
-static void hermite(const autobal_transient *tr, double t_prev, double tn, const double *yn, const double *fa,
-                    const double *fb, double t, double *out) {
-  const double h = tn - t_prev, th = (t - t_prev) / h, th2 = th * th, th3 = th2 * th;
+/* A cubic Hermite segment: the states and derivatives y0, f0 at t0 and y1, f1 at t1 (t0 < t1). */
+typedef struct hseg {
+  double t0, t1;
+  const double *y0, *f0, *y1, *f1;
+} hseg;
+
+/* The cubic Hermite interpolant of the segment at t, into out. */
+static void hermite(const autobal_transient *tr, const hseg *sg, double t, double *out) {
+  const double h = sg->t1 - sg->t0, th = (t - sg->t0) / h, th2 = th * th, th3 = th2 * th;
   const double h00 = 2.0 * th3 - 3.0 * th2 + 1.0, h10 = (th3 - 2.0 * th2 + th) * h;
   const double h01 = -2.0 * th3 + 3.0 * th2, h11 = (th3 - th2) * h;
+  const double *y0 = sg->y0, *f0 = sg->f0, *y1 = sg->y1, *f1 = sg->f1;
   size_t i;
-  for (i = 0; i < tr->dim; i++) out[i] = h00 * tr->y_prev[i] + h10 * fa[i] + h01 * yn[i] + h11 * fb[i];
+  for (i = 0; i < tr->dim; i++) out[i] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i];
 }
 
 /* Probe event e for a grazing crossing inside the accepted step (t_prev, y_prev) -> (tn, yn), its
@@ -818,12 +833,13 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
   for (k = 1; k <= e->probes; k++) {
     const double t = t_prev + (double)k / (double)(e->probes + 1) * h;
     double g = 0.0;
-    hermite(tr, t_prev, tn, yn, *fa, *fb, t, tr->pr_y);
+    const hseg sg = {t_prev, tn, tr->y_prev, *fa, yn, *fb};
+    hermite(tr, &sg, t, tr->pr_y);
     if ((rc = event_value(tr, e, t, tr->pr_y, &g)) != AUTOBAL_SUCCESS) return rc;
     if (!((e->g_prev < 0.0 && g >= 0.0 && e->direction != -1) || (e->g_prev > 0.0 && g <= 0.0 && e->direction != 1)))
       continue;
     /* confirm on the integrated state */
-    if ((rc = aux_integrate(tr, t_prev, tr->y_prev, t, tr->y_evt, h)) != AUTOBAL_SUCCESS) return rc;
+    if ((rc = aux_integrate(tr, t_prev, tr->y_prev, t, tr->y_evt, h, *fa)) != AUTOBAL_SUCCESS) return rc;
     if ((rc = event_value(tr, e, t, tr->y_evt, &g)) != AUTOBAL_SUCCESS) return rc;
     if ((e->g_prev < 0.0 && g >= 0.0) || (e->g_prev > 0.0 && g <= 0.0)) {
       *tc = t;
@@ -835,39 +851,35 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
   return AUTOBAL_SUCCESS;
 }
 
-/* Event value on the step's interpolant at t (no integration); *ok = 0 when it is NaN. */
-static double interp_value(autobal_transient *tr, const event_item *e, double t_prev, double tn,
-                           const double *yn, const double *fa, const double *fb, double t, int *ok) {
+/* Event value on a Hermite segment at t (no integration); *ok = 0 when it is NaN. */
+static double interp_value(autobal_transient *tr, const event_item *e, const hseg *sg, double t, int *ok) {
   double g;
-  hermite(tr, t_prev, tn, yn, fa, fb, t, tr->pr_y);
+  hermite(tr, sg, t, tr->pr_y);
   g = e->g(t, tr->pr_y, e->user);
   if (e->dwell) g -= e->threshold;
   *ok = !isnan(g);
   return g;
 }
 
-/* The crossing of g(interpolant(t)) + delta in (a, b) (the step's cubic Hermite interpolant, from
- * (t_prev, y_prev) to (tn, yn), a >= t_prev, b <= tn), the far side the sign of far: Illinois
- * iteration to a bracket far below event_tol, cheap (no integration); the midpoint of that bracket
- * in *ts.  delta, the difference between g on the integrated state and g on the interpolant at a
- * trial point, corrects the interpolant's error near it.  *found = 0 when the corrected function
- * does not change sign between a and b (or g is NaN on the interpolant). */
-static void interp_root(autobal_transient *tr, const event_item *e, double t_prev, double tn,
-                        const double *yn, const double *fpa, const double *fpb, double a, double b,
-                        double delta, double far, double *ts, int *found) {
+/* The crossing of g(interpolant(t)) in (a, b) (a Hermite segment containing [a, b]), the far side
+ * the sign of far: Illinois iteration to a bracket far below event_tol, cheap (no integration); the
+ * midpoint of that bracket in *ts.  *found = 0 when g on the segment does not change sign between
+ * a and b (or is NaN there). */
+static void interp_root(autobal_transient *tr, const event_item *e, const hseg *sg, double a, double b, double far,
+                        double *ts, int *found) {
   const double tol = 1e-5 * tr->opt.event_tol;
   double fa, fb;
   int side = 0, iter, ok_a, ok_b;
   *found = 0;
-  fa = interp_value(tr, e, t_prev, tn, yn, fpa, fpb, a, &ok_a) + delta;
-  fb = interp_value(tr, e, t_prev, tn, yn, fpa, fpb, b, &ok_b) + delta;
+  fa = interp_value(tr, e, sg, a, &ok_a);
+  fb = interp_value(tr, e, sg, b, &ok_b);
   if (!ok_a || !ok_b || fb == 0.0 || sgn(fb) != sgn(far) || (fa != 0.0 && sgn(fa) == sgn(far))) return;
   for (iter = 0; iter < 100 && b - a > tol; iter++) {
     double c = b - fb * (b - a) / (fb - fa), fc;
     int ok;
     if (!(c > a && c < b)) c = a + 0.5 * (b - a);
     if (!(c > a && c < b)) break;
-    fc = interp_value(tr, e, t_prev, tn, yn, fpa, fpb, c, &ok) + delta;
+    fc = interp_value(tr, e, sg, c, &ok);
     if (!ok) return;
     if (fc != 0.0 && sgn(fc) == sgn(fb)) {
       b = c;
@@ -885,60 +897,116 @@ static void interp_root(autobal_transient *tr, const event_item *e, double t_pre
   *found = 1;
 }
 
+/* A short hop: one classical Runge-Kutta step (4th order) from an integrated point (tp, yp, fp) to
+ * tc = tp + d (d of either sign, |d| at most 1e-3 of the accepted step, where its local error,
+ * O(d^5), is far below the stepper's), into yc, with f(tc, yc) into fc (4 evaluations).  Returns
+ * GSL_SUCCESS or the right-hand side's failure (then yc is not valid). */
+static int hop(autobal_transient *tr, double tp, const double *yp, const double *fp, double tc, double *yc,
+               double *fc) {
+  const size_t n = tr->dim;
+  const double d = tc - tp;
+  double *k2 = tr->loc + 4 * n, *k3 = k2 + n, *k4 = k3 + n, *yt = k4 + n;
+  size_t i;
+  int rc;
+  for (i = 0; i < n; i++) yt[i] = yp[i] + 0.5 * d * fp[i];
+  if ((rc = rhs_checked(tr, tp + 0.5 * d, yt, k2)) != GSL_SUCCESS) return rc;
+  for (i = 0; i < n; i++) yt[i] = yp[i] + 0.5 * d * k2[i];
+  if ((rc = rhs_checked(tr, tp + 0.5 * d, yt, k3)) != GSL_SUCCESS) return rc;
+  for (i = 0; i < n; i++) yt[i] = yp[i] + d * k3[i];
+  if ((rc = rhs_checked(tr, tc, yt, k4)) != GSL_SUCCESS) return rc;
+  for (i = 0; i < n; i++) yc[i] = yp[i] + d / 6.0 * (fp[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+  return rhs_checked(tr, tc, yc, fc);
+}
+
 /* Locate the sign change of event e in (ta, tb], with values ga (at ta = t_prev, the start of the
  * accepted step (t_prev, y_prev) -> (tn, yn), state ya = y_prev) and gb (at tb <= tn, non-zero sign
  * different from ga, or 0).  *fpa, *fpb: the step's end derivatives (NULL until step_ends gives
- * them).  Every trial point is integrated from (ta, ya); *t_hit is on the far side of the crossing,
- * within event_tol of it.
- * The integrated trial points follow an estimate ts of the crossing on the step's interpolant
- * (interp_root), corrected after each trial point c by the interpolant's error there
- * (g(y(c)) - g(interpolant(c))), at most 3 times, until ts moves by less than 1e-3 event_tol; then
- * two points ts -+ d, d = 1e-3 event_tol growing tenfold (at most 3 times) while they do not bracket
- * the crossing.  Illinois iteration on the integrated g finishes in whatever bracket is left (the
- * whole (ta, tb] if the interpolant gave nothing).  The integrated state at the last far-side point
- * is kept in y_hit (hit_t, hit_valid), so that the caller need not integrate to *t_hit again. */
+ * them).  Every trial point is integrated; *t_hit is on the far side of the crossing, within
+ * event_tol of it.
+ * The trial points follow an estimate ts of the crossing: the root of g on a cubic Hermite segment
+ * between two integrated points with their derivatives, at first the accepted step itself, then the
+ * last trial points on either side of the crossing (the segment shrinks onto it, and its error, of
+ * order (length)^4, with it).  The first trial point is ts itself, integrated from (ta, ya) by the
+ * stepper (its derivative there comes with the step when the stepper gives it); each later one is
+ * put just across the new estimate from the trial point before, by a margin m (1e-3 event_tol, at
+ * least a few ulps of t; tenfold whenever a trial point lands on the same side as the one before),
+ * so that two trial points close the bracket once the estimate is good to event_tol (typically the
+ * third point).  A later trial point within 1e-3 of the accepted step from the last one is reached
+ * by a short hop from it (one classical Runge-Kutta step, 4 evaluations, local error O(d^5) far
+ * below the stepper's), else integrated from (ta, ya) by the stepper.  Illinois iteration on the
+ * integrated g finishes in whatever bracket is left (the whole (ta, tb] if the segment gave
+ * nothing, or after 8 guided points).  The integrated state at the last far-side point is kept in
+ * y_hit (hit_t, hit_valid), so that the caller need not integrate to *t_hit again. */
 static int locate(autobal_transient *tr, const event_item *e, double ta, const double *ya, double ga,
                   double tb, double gb, double h_hint, double tn, const double *yn, const double **fpa,
                   const double **fpb, double *t_hit) {
+  const size_t n = tr->dim;
   const double tol = tr->opt.event_tol;
-  double a = ta, fa = ga, b = tb, fb = gb, ts = 0.0;
-  int side = 0, iter, found = 0, ncorr = 0, k = 0, rc;
+  double a = ta, fa = ga, b = tb, fb = gb, ts = 0.0, m, tp = ta;
+  /* node buffers: [0] near side, [1] far side (state, derivative); the last trial point's index */
+  double *ny[2] = {tr->loc, tr->loc + 2 * n}, *nf[2] = {tr->loc + n, tr->loc + 3 * n};
+  hseg sg;
+  int side = 0, iter, found = 0, nguided = 0, last = 0, rc, have_p = 0;
   if (fb == 0.0) {
     *t_hit = tb;
     return AUTOBAL_SUCCESS;
   }
+  m = fmax(1e-3 * tol, 8.0 * DBL_EPSILON * fmax(fabs(ta), fabs(tb)));
   if (b - a > tol) {
     if (!*fpa && (rc = step_ends(tr, ta, tn, yn, fpa, fpb)) != AUTOBAL_SUCCESS) return rc;
-    interp_root(tr, e, ta, tn, yn, *fpa, *fpb, a, b, 0.0, gb, &ts, &found);
+    sg.t0 = ta, sg.y0 = ya, sg.f0 = *fpa, sg.t1 = tn, sg.y1 = yn, sg.f1 = *fpb;
+    interp_root(tr, e, &sg, a, b, gb, &ts, &found);
   }
   for (iter = 0; iter < 200 && b - a > tol; iter++) {
     double c, fc = 0.0;
-    int guided = 0, ok;
-    if (found && ncorr < 4) {
-      c = ts; /* the (corrected) interpolant's estimate */
+    const double *fcd = NULL; /* f(c, y(c)) when known */
+    int guided = 0, far, hopped = 0;
+    if (found && nguided < 8) {
+      /* the estimate, then just across it from the last trial point */
+      c = last == 0 ? ts : last > 0 ? ts - m : ts + m;
+      if (!(c > a && c < b)) c = a + 0.5 * (b - a);
+      if (!(c > a && c < b)) break; /* a and b adjacent doubles */
       guided = 1;
-    } else if (found && k < 8) {
-      /* the tight bracket around the estimate: ts - d, then ts + d (each only if inside the
-       * current bracket), d growing tenfold after each pair */
-      const double d = 1e-3 * tol * pow(10.0, (double)(k / 2));
-      c = (k % 2 == 0) ? ts - d : ts + d;
-      k++;
-      if (!(c > a && c < b)) continue;
-      guided = 1;
+      nguided++;
     } else {
       c = b - fb * (b - a) / (fb - fa);
       if (!(c > a && c < b)) c = a + 0.5 * (b - a);
       if (!(c > a && c < b)) break; /* a and b adjacent doubles */
     }
-    rc = aux_integrate(tr, ta, ya, c, tr->y_work, h_hint);
-    if (rc != AUTOBAL_SUCCESS) return rc;
+    if (guided && have_p && fabs(c - tp) <= 1e-3 * h_hint) {
+      /* the node the hop starts from is the last trial point; the new point goes to the other
+       * node's buffer only if it lands on that side, so hop into y_work and copy after */
+      const int pi = last > 0 ? 1 : 0;
+      rc = hop(tr, tp, ny[pi], nf[pi], c, tr->y_work, tr->loc + 8 * n);
+      if (rc == GSL_SUCCESS) {
+        hopped = 1;
+        fcd = tr->loc + 8 * n;
+        tr->stats.event_steps++;
+      } else if (!(rc == GSL_FAILURE && tr->fail_kind == 0)) {
+        return rhs_failure(tr);
+      }
+    }
+    if (!hopped) {
+      const gsl_odeiv2_step_type *T = tr->aux.d->s->type;
+      rc = aux_integrate(tr, ta, ya, c, tr->y_work, h_hint, *fpa);
+      if (rc != AUTOBAL_SUCCESS) return rc;
+      if (guided) {
+        if (T->gives_exact_dydt_out && tr->aux.have_dydt) {
+          fcd = tr->aux.dydt_in; /* f at the step's end (take_step swapped it in) */
+        } else {
+          if (rhs_checked(tr, c, tr->y_work, tr->loc + 8 * n) != GSL_SUCCESS) return rhs_failure(tr);
+          fcd = tr->loc + 8 * n;
+        }
+      }
+    }
     if ((rc = event_value(tr, e, c, tr->y_work, &fc)) != AUTOBAL_SUCCESS) return rc;
     /* a value exactly 0 counts as the near side: the hit stays strictly past the crossing, where
      * the reset sees the new sign (a stuck ball's |H| - mu N exactly 0 would not break it free) */
-    if (fc != 0.0 && sgn(fc) == sgn(fb)) {
+    far = fc != 0.0 && sgn(fc) == sgn(fb);
+    if (far) {
       b = c;
       fb = fc;
-      memcpy(tr->y_hit, tr->y_work, tr->dim * sizeof(double));
+      memcpy(tr->y_hit, tr->y_work, n * sizeof(double));
       tr->hit_t = c;
       tr->hit_valid = 1;
       if (side == 1 && !guided) fa *= 0.5;
@@ -949,17 +1017,23 @@ static int locate(autobal_transient *tr, const event_item *e, double ta, const d
       if (side == -1 && !guided) fb *= 0.5;
       side = guided ? 0 : -1;
     }
-    if (found && ncorr < 4) {
-      /* correct the estimate by the interpolant's error at c */
-      const double gi = interp_value(tr, e, ta, tn, yn, *fpa, *fpb, c, &ok);
-      double ts_new = ts;
-      ncorr++;
-      if (ok) interp_root(tr, e, ta, tn, yn, *fpa, *fpb, a, b, fc - gi, gb, &ts_new, &ok);
-      if (!ok || b - a <= tol) {
-        found = 0; /* Illinois from here */
-      } else {
-        if (fabs(ts_new - c) <= 1e-3 * tol) ncorr = 4; /* converged: bracket it */
-        ts = ts_new;
+    if (guided) {
+      const int now = far ? 1 : -1, k = far ? 1 : 0;
+      if (last == now) m *= 10.0; /* the estimate was off by more than m */
+      last = now;
+      /* the new point becomes the segment's node on its side */
+      memcpy(ny[k], tr->y_work, n * sizeof(double));
+      memcpy(nf[k], fcd, n * sizeof(double));
+      tp = c;
+      have_p = 1;
+      if (far) sg.t1 = c, sg.y1 = ny[1], sg.f1 = nf[1];
+      else sg.t0 = c, sg.y0 = ny[0], sg.f0 = nf[0];
+      if (b - a > tol) {
+        int ok;
+        double ts_new = ts;
+        interp_root(tr, e, &sg, a, b, gb, &ts_new, &ok);
+        if (ok) ts = ts_new;
+        else found = 0; /* Illinois from here */
       }
     }
   }
@@ -1100,7 +1174,7 @@ static int reset_restart(autobal_transient *tr, double t, const double *y) {
        * sign just after the reset decides the next crossing (as CVODE's root finding does),
        * else a function that leaves 0 and comes back within one step would be missed */
       const double ts = t + fmax(tr->opt.event_tol, 4.0 * DBL_EPSILON * fabs(t));
-      if ((rc = aux_integrate(tr, t, y, ts, tr->y_work, 0.0)) != AUTOBAL_SUCCESS) return rc;
+      if ((rc = aux_integrate(tr, t, y, ts, tr->y_work, 0.0, NULL)) != AUTOBAL_SUCCESS) return rc;
       if ((rc = event_value(tr, e, ts, tr->y_work, &g)) != AUTOBAL_SUCCESS) return rc;
     }
     if (e->dwell) {
@@ -1189,7 +1263,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
       memcpy(tr->y_evt, tr->y_hit, tr->dim * sizeof(double));
       ys = tr->y_evt;
     } else {
-      rc = aux_integrate(tr, t_prev, tr->y_prev, e->t_hit, tr->y_evt, h_taken);
+      rc = aux_integrate(tr, t_prev, tr->y_prev, e->t_hit, tr->y_evt, h_taken, fa);
       if (rc != AUTOBAL_SUCCESS) return rc;
       ys = tr->y_evt;
     }
