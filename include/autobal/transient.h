@@ -27,15 +27,19 @@
  *    interpolation), so the output is as accurate as any accepted step.  A
  *    dt_out smaller than the natural step therefore limits the step to dt_out.
  *  - Events: a function g(t, y) whose sign change over an accepted step is
- *    located to event_tol in time, where every trial point is obtained by
+ *    located to event_tol in time on integrated trial points: the first by
  *    RE-INTEGRATING from the start of that step with the same stepper and
  *    tolerances (an auxiliary stepper object, so the main integration is not
- *    disturbed).  The trial points are guided by the crossing on the step's
- *    cubic Hermite interpolant (corrected by its error at each trial point)
- *    and end with two points event_tol apart around it; an Illinois
- *    (modified regula falsi) iteration on the integrated g finishes when
- *    they do not bracket the crossing.  The interpolant only places the
- *    trial points: the reported time and state are integrated ones.
+ *    disturbed), later ones within 1e-3 of the step from the last trial
+ *    point by a short hop from it (one classical Runge-Kutta step, local
+ *    error O(hop^5), far below the stepper's).  The trial points are placed
+ *    at the crossing of a cubic Hermite interpolant between the nearest
+ *    integrated points on either side (at first the whole step), the later
+ *    ones just across it from the point before, so that usually three
+ *    points bracket the crossing to event_tol; an Illinois (modified regula
+ *    falsi) iteration on the integrated g finishes when they do not.  The
+ *    interpolant only places the trial points: the reported time and state
+ *    are integrated ones, the time on the far side of the crossing.
  *    Events are terminal (the run stops at the event with the state there)
  *    or not (reported, the run continues), and may reset the state or the
  *    system (hybrid systems: impacts, stick-slip; the integration restarts
@@ -230,8 +234,8 @@ typedef struct autobal_transient_stats {
   unsigned long jac_evals;   /* Jacobian evaluations (analytic or finite-difference)         */
   unsigned long fd_jac_evals; /* of which by finite differences                              */
   unsigned long events;      /* events reported to the handler (dwell events included)       */
-  unsigned long event_steps; /* accepted steps of the auxiliary integrations that located
-                                events (not counted in steps)                                */
+  unsigned long event_steps; /* accepted steps of the auxiliary integrations and short hops
+                                that located events (not counted in steps)                   */
   unsigned long observer_calls;
   double wall_seconds;       /* wall time of the run (CLOCK_MONOTONIC)                       */
   double t_start;            /* t0                                                           */
