@@ -186,7 +186,11 @@
   HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
   "            critical_speeds = true  omega_min, omega_max (rad/s; default 5% of the 1st natural frequency .. 4x)\n" \
   "            n_omega = 400  xtol_rel = 1e-8\n" \
-  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical\n" \
+  "            unbalance_min, unbalance_max (kg m or g mm): EVERY unbalance m0 r0 in the range (one plane, two\n" \
+  "            balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
+  "            \"Every unbalance\")\n" \
+  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
+  "         /rotor/stability/every_unbalance (and .../speeds)\n" \
   HELP_DOCS_ROTOR
 #define HELP_ROTOR_SWEEP \
   "Stability margin of the balanced motion (eq. (3.14) in docs/rotor.md) along one parameter; every verdict\n" \

@@ -316,6 +316,11 @@ typedef struct autobal_study_rotor_stability_options {
   autobal_study_progress_fn progress; /* fraction of the critical-speed search; non-zero: cancel
                            (polled before every margin evaluation)             (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
+  /* every unbalance in a range (one plane, two balls; autobal_rotor_stab_every_unbalance; added at
+     the end): non-zero = analyse m0 r0 in [unbalance_min, unbalance_max] (kg m) at omega and, with
+     critical_speeds, the speeds stable for all of them            (default 0, NaN, NaN) */
+  int every_unbalance;
+  double unbalance_min, unbalance_max;
 } autobal_study_rotor_stability_options;
 
 /* The defaults listed above. */
@@ -341,6 +346,11 @@ typedef struct autobal_study_rotor_stability_summary {
   double *storage_;                 /* the arrays behind result's pointers (private) */
   int critical_cancelled;           /* 1: the critical-speed search was cancelled (have_critical = 0;
                                        the analysis at omega in `result` is complete) */
+  /* every unbalance (options.every_unbalance; added at the end) */
+  int have_every;                   /* 1: `every` holds the analysis at omega */
+  autobal_rotor_unbalance_range every;
+  int have_every_speeds;            /* 1: `every_speeds` holds the speeds stable for every unbalance */
+  autobal_rotor_crit every_speeds;  /* rad/s (signed like omega) */
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every
