@@ -300,6 +300,9 @@ typedef struct autobal_pendulum_crit_set {
   double stable_hi[AUTOBAL_PENDULUM_MAX_CRIT + 1];
   int truncated;  /* 1: more changes than the capacity; the set covers only up to
                      R_w[n-1] (autobal_pendulum_critical_speeds_damped); else 0 */
+  int unresolved; /* 1: two critical speeds of autobal_pendulum_critical_speeds lie in the same
+                     ulp of W = R_w^2 (an island or window narrower than a double can show:
+                     reported as equal values); else 0 */
 } autobal_pendulum_crit_set;
 
 /* Number of entries of s with kind != TOUCH, and the j-th of them (j from

@@ -1,0 +1,278 @@
+/* pendulum_exact.c: P(x) of (10) in exact integer arithmetic (pendulum_exact.h).  A double is
+ * a binary fraction, so R_m = r 2^-E and k = kappa 2^-F exactly, and every coefficient of (10),
+ * every discriminant and every deciding quantity of the verdict at a dyadic W is an integer
+ * after multiplication by a known power of 2: its sign is exact.  Near R_m -> 1/4 the critical
+ * speeds come from a near-cancellation of these integers (the triple root x = -W of (10) at
+ * R_m = 1/4, the series (14)), which no fixed floating-point precision survives for long.
+ *
+ * May use: the numerics (exact_poly.h), pendulum_verdict.h (the discriminant's term table). */
+#include "analysis/pendulum_exact.h"
+
+#include "analysis/pendulum_verdict.h"
+
+static void set_binary_fraction(double v, mpz_t num, long *den_exp) {
+  autobal_dyadic d;
+  autobal_dyadic_init(&d);
+  autobal_dyadic_set_d(&d, v);
+  mpz_set(num, d.m);
+  if (d.e >= 0) {
+    mpz_mul_2exp(num, num, (mp_bitcnt_t)d.e);
+    *den_exp = 0;
+  } else {
+    *den_exp = -d.e;
+  }
+  autobal_dyadic_clear(&d);
+}
+
+void autobal_pendulum_exact_init(autobal_pendulum_exact *x, double R_m, double k) {
+  mpz_t G, L, r2k, t;
+  int j;
+  mpz_init(x->r);
+  mpz_init(x->kappa);
+  for (j = 0; j < 5; j++) {
+    autobal_xpoly_init(&x->C[j]);
+    mpz_init(x->v[j]);
+  }
+  mpz_init(x->t0);
+  mpz_init(x->t1);
+  mpz_init(x->t2);
+  autobal_dyadic_init(&x->W);
+  set_binary_fraction(R_m, x->r, &x->E);
+  if (k == 0.0) {
+    mpz_set_ui(x->kappa, 0);
+    x->F = 0;
+  } else {
+    set_binary_fraction(k, x->kappa, &x->F);
+  }
+  mpz_inits(G, L, r2k, t, NULL);
+  mpz_set_ui(G, 1);
+  mpz_mul_2exp(G, G, (mp_bitcnt_t)(x->F + x->E)); /* G = 2^(F+E) */
+  mpz_set_ui(L, 1);
+  mpz_mul_2exp(L, L, (mp_bitcnt_t)(x->F + 2 * x->E)); /* L = 2^(F+2E) */
+  mpz_mul(r2k, x->r, x->r);
+  mpz_mul(r2k, r2k, x->kappa); /* kappa r^2 = L k R_m^2 */
+  mpz_mul(t, x->r, G);         /* r G = L R_m */
+  /* C0 = kappa r^2 W^4 */
+  mpz_set(x->C[0].c[4], r2k);
+  /* C1 = 2 r G (W^3 - W^2) + 4 kappa r^2 W^3 */
+  mpz_mul_ui(x->C[1].c[2], t, 2);
+  mpz_neg(x->C[1].c[2], x->C[1].c[2]);
+  mpz_mul_ui(x->C[1].c[3], t, 2);
+  mpz_addmul_ui(x->C[1].c[3], r2k, 4);
+  /* C2 = L (W^2 - 2W + 1) + 2 r G (W^2 + 6W) + 6 kappa r^2 W^2 */
+  mpz_set(x->C[2].c[0], L);
+  mpz_mul_si(x->C[2].c[1], L, -2);
+  mpz_addmul_ui(x->C[2].c[1], t, 12);
+  mpz_set(x->C[2].c[2], L);
+  mpz_addmul_ui(x->C[2].c[2], t, 2);
+  mpz_addmul_ui(x->C[2].c[2], r2k, 6);
+  /* C3 = 2 (L - r G)(W + 1) + 4 kappa r^2 W */
+  mpz_sub(x->C[3].c[0], L, t);
+  mpz_mul_ui(x->C[3].c[0], x->C[3].c[0], 2);
+  mpz_set(x->C[3].c[1], x->C[3].c[0]);
+  mpz_addmul_ui(x->C[3].c[1], r2k, 4);
+  /* C4 = L - 2 r G + kappa r^2 */
+  mpz_set(x->C[4].c[0], L);
+  mpz_submul_ui(x->C[4].c[0], t, 2);
+  mpz_add(x->C[4].c[0], x->C[4].c[0], r2k);
+  for (j = 0; j < 5; j++) autobal_xpoly_normalize(&x->C[j]);
+  mpz_clears(G, L, r2k, t, NULL);
+}
+
+void autobal_pendulum_exact_clear(autobal_pendulum_exact *x) {
+  int j;
+  mpz_clear(x->r);
+  mpz_clear(x->kappa);
+  for (j = 0; j < 5; j++) {
+    autobal_xpoly_clear(&x->C[j]);
+    mpz_clear(x->v[j]);
+  }
+  mpz_clear(x->t0);
+  mpz_clear(x->t1);
+  mpz_clear(x->t2);
+  autobal_dyadic_clear(&x->W);
+}
+
+/* D = the discriminant of the quartic whose coefficients (a, b, c, d, e) are the polynomials
+ * q[4], q[3], q[2], q[1], q[0] */
+static void quartic_disc_poly(const autobal_xpoly q[5], autobal_xpoly *D) {
+  autobal_xpoly pw[5][5], term;
+  int i, j, t;
+  for (i = 0; i < 5; i++)
+    for (j = 0; j < 5; j++) autobal_xpoly_init(&pw[i][j]);
+  autobal_xpoly_init(&term);
+  for (i = 0; i < 5; i++) { /* i: 0 = a = q[4], ..., 4 = e = q[0] */
+    mpz_set_ui(pw[i][0].c[0], 1);
+    pw[i][0].len = 1;
+    for (j = 1; j < 5; j++) (void)autobal_xpoly_mul(&pw[i][j], &pw[i][j - 1], &q[4 - i]);
+  }
+  autobal_xpoly_zero(D);
+  for (t = 0; t < 16; t++) {
+    autobal_xpoly_zero(&term);
+    mpz_set_si(term.c[0], autobal_pendulum_quartic_disc_[t].coef);
+    term.len = 1;
+    for (i = 0; i < 5; i++) (void)autobal_xpoly_mul(&term, &term, &pw[i][autobal_pendulum_quartic_disc_[t].ex[i]]);
+    (void)autobal_xpoly_addmul_si(D, &term, 1);
+  }
+  for (i = 0; i < 5; i++)
+    for (j = 0; j < 5; j++) autobal_xpoly_clear(&pw[i][j]);
+  autobal_xpoly_clear(&term);
+}
+
+void autobal_pendulum_exact_disc(autobal_pendulum_exact *x, autobal_xpoly *D) {
+  quartic_disc_poly(x->C, D);
+}
+
+void autobal_pendulum_exact_disc_cubic(autobal_pendulum_exact *x, autobal_xpoly *D) {
+  /* 18 a6 a4 a2 a0 - 4 a4^3 a0 + a4^2 a2^2 - 4 a6 a2^3 - 27 a6^2 a0^2 */
+  static const int TERMS[5][5] = {/* coef, exponents of a6, a4, a2, a0 */
+                                  {18, 1, 1, 1, 1},
+                                  {-4, 0, 3, 0, 1},
+                                  {1, 0, 2, 2, 0},
+                                  {-4, 1, 0, 3, 0},
+                                  {-27, 2, 0, 0, 2}};
+  const autobal_xpoly *base[4];
+  autobal_xpoly term;
+  int t, v, e;
+  base[0] = &x->C[4];
+  base[1] = &x->C[3];
+  base[2] = &x->C[2];
+  base[3] = &x->C[1];
+  autobal_xpoly_init(&term);
+  autobal_xpoly_zero(D);
+  for (t = 0; t < 5; t++) {
+    autobal_xpoly_zero(&term);
+    mpz_set_si(term.c[0], TERMS[t][0]);
+    term.len = 1;
+    for (v = 0; v < 4; v++)
+      for (e = 0; e < TERMS[t][v + 1]; e++) (void)autobal_xpoly_mul(&term, &term, base[v]);
+    (void)autobal_xpoly_addmul_si(D, &term, 1);
+  }
+  autobal_xpoly_clear(&term);
+}
+
+int autobal_pendulum_exact_disc_p1(autobal_pendulum_exact *x, autobal_xpoly *D) {
+  autobal_xpoly f[5], DR;
+  mpz_t S;
+  int j, bad = 0;
+  for (j = 0; j < 5; j++) autobal_xpoly_init(&f[j]);
+  autobal_xpoly_init(&DR);
+  mpz_init(S);
+  mpz_set_ui(S, 1);
+  mpz_mul_2exp(S, S, (mp_bitcnt_t)x->E); /* 2^E f, polynomials in R */
+  mpz_neg(f[0].c[2], S);                 /* -R^2             */
+  mpz_mul_ui(f[1].c[1], S, 2);           /* 2R nu            */
+  mpz_neg(f[2].c[0], S);                 /* (R^2 - 1) nu^2   */
+  mpz_set(f[2].c[2], S);
+  mpz_mul_si(f[3].c[1], S, -2); /* -2R nu^3         */
+  mpz_sub(f[4].c[0], S, x->r);  /* (1 - R_m) nu^4   */
+  for (j = 0; j < 5; j++) autobal_xpoly_normalize(&f[j]);
+  quartic_disc_poly(f, &DR);
+  autobal_xpoly_zero(D);
+  for (j = 0; j < DR.len; j++) {
+    if (j % 2) {
+      if (mpz_sgn(DR.c[j]) != 0) bad = 1;
+    } else {
+      mpz_set(D->c[j / 2], DR.c[j]);
+    }
+  }
+  autobal_xpoly_normalize(D);
+  for (j = 0; j < 5; j++) autobal_xpoly_clear(&f[j]);
+  autobal_xpoly_clear(&DR);
+  mpz_clear(S);
+  return bad ? -1 : 0;
+}
+
+/* disc of the quartic with values a..e (mpz) into out; t0, t1 scratch */
+static void quartic_disc_value(mpz_t out, mpz_t *v, mpz_t t0) {
+  int t, i, e;
+  mpz_set_ui(out, 0);
+  for (t = 0; t < 16; t++) {
+    mpz_set_si(t0, autobal_pendulum_quartic_disc_[t].coef);
+    for (i = 0; i < 5; i++)
+      for (e = 0; e < autobal_pendulum_quartic_disc_[t].ex[i]; e++) mpz_mul(t0, t0, v[4 - i]);
+    mpz_add(out, out, t0);
+  }
+}
+
+int autobal_pendulum_exact_verdict(autobal_pendulum_exact *x) {
+  long sc;
+  int j;
+  mpz_t *v = x->v;
+  /* v[j] = 2^(4s) L c_j(W): one positive factor for all five (scale degree 4) */
+  for (j = 0; j < 5; j++) autobal_xpoly_eval_scaled(&x->C[j], &x->W, 4, v[j], x->t0, &sc);
+  if (mpz_sgn(x->kappa) == 0) {
+    /* x = 0 and the cubic a6 x^3 + a4 x^2 + a2 x + a0 = v4 x^3 + v3 x^2 + v2 x + v1 */
+    int s0 = mpz_sgn(v[1]), sd;
+    if (s0 < 0) return AUTOBAL_VERDICT_UNSTABLE;
+    /* discriminant of the cubic */
+    mpz_mul(x->t0, v[4], v[3]);
+    mpz_mul(x->t0, x->t0, v[2]);
+    mpz_mul(x->t0, x->t0, v[1]);
+    mpz_mul_ui(x->t1, x->t0, 18);
+    mpz_pow_ui(x->t0, v[3], 3);
+    mpz_mul(x->t0, x->t0, v[1]);
+    mpz_submul_ui(x->t1, x->t0, 4);
+    mpz_mul(x->t0, v[3], v[2]);
+    mpz_addmul(x->t1, x->t0, x->t0);
+    mpz_pow_ui(x->t0, v[2], 3);
+    mpz_mul(x->t0, x->t0, v[4]);
+    mpz_submul_ui(x->t1, x->t0, 4);
+    mpz_mul(x->t0, v[4], v[1]);
+    mpz_mul(x->t0, x->t0, x->t0);
+    mpz_submul_ui(x->t1, x->t0, 27);
+    sd = mpz_sgn(x->t1);
+    if (sd < 0) return AUTOBAL_VERDICT_UNSTABLE;
+    if (mpz_sgn(v[2]) <= 0 || mpz_sgn(v[3]) <= 0 || mpz_sgn(v[4]) <= 0)
+      return AUTOBAL_VERDICT_UNSTABLE;
+    if (sd == 0 || s0 == 0) return AUTOBAL_VERDICT_MARGINAL;
+    return AUTOBAL_VERDICT_STABLE;
+  }
+  {
+    /* k > 0: c0 > 0; all roots real and <= 0 iff all c_j > 0 and four real roots */
+    int sdisc, neg = 0;
+    if (mpz_sgn(v[1]) <= 0 || mpz_sgn(v[2]) <= 0 || mpz_sgn(v[3]) <= 0 || mpz_sgn(v[4]) <= 0)
+      return AUTOBAL_VERDICT_UNSTABLE;
+    quartic_disc_value(x->t2, v, x->t0);
+    sdisc = mpz_sgn(x->t2);
+    if (sdisc < 0) return AUTOBAL_VERDICT_UNSTABLE;
+    /* P8 = 8ac - 3b^2 (a = v4, b = v3, c = v2, d = v1, e = v0) */
+    mpz_mul(x->t0, v[4], v[2]);
+    mpz_mul_ui(x->t0, x->t0, 8);
+    mpz_mul(x->t1, v[3], v[3]);
+    mpz_submul_ui(x->t0, x->t1, 3);
+    if (mpz_sgn(x->t0) >= 0) neg = 1;
+    /* D4 = 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 */
+    mpz_pow_ui(x->t0, v[4], 3);
+    mpz_mul(x->t0, x->t0, v[0]);
+    mpz_mul_ui(x->t1, x->t0, 64); /* t1 = D4 accumulates */
+    mpz_mul(x->t0, v[4], v[2]);
+    mpz_mul(x->t0, x->t0, x->t0);
+    mpz_submul_ui(x->t1, x->t0, 16);
+    mpz_mul(x->t0, v[3], v[3]);
+    mpz_mul(x->t0, x->t0, v[4]);
+    mpz_mul(x->t0, x->t0, v[2]);
+    mpz_addmul_ui(x->t1, x->t0, 16);
+    mpz_mul(x->t0, v[4], v[4]);
+    mpz_mul(x->t0, x->t0, v[3]);
+    mpz_mul(x->t0, x->t0, v[1]);
+    mpz_submul_ui(x->t1, x->t0, 16);
+    mpz_pow_ui(x->t0, v[3], 4);
+    mpz_submul_ui(x->t1, x->t0, 3);
+    if (mpz_sgn(x->t1) >= 0) neg = 1;
+    if (sdisc == 0) return AUTOBAL_VERDICT_MARGINAL;
+    return neg ? AUTOBAL_VERDICT_UNSTABLE : AUTOBAL_VERDICT_STABLE;
+  }
+}
+
+int autobal_pendulum_exact_verdict_W(autobal_pendulum_exact *x, long double W) {
+  autobal_dyadic_set_ld(&x->W, W);
+  return autobal_pendulum_exact_verdict(x);
+}
+
+int autobal_pendulum_exact_verdict_Rw(autobal_pendulum_exact *x, double R_w) {
+  autobal_dyadic_set_d(&x->W, R_w);
+  mpz_mul(x->W.m, x->W.m, x->W.m);
+  x->W.e *= 2;
+  return autobal_pendulum_exact_verdict(x);
+}
