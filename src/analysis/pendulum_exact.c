@@ -5,10 +5,24 @@
  * speeds come from a near-cancellation of these integers (the triple root x = -W of (10) at
  * R_m = 1/4, the series (14)), which no fixed floating-point precision survives for long.
  *
- * May use: the numerics (exact_poly.h), pendulum_verdict.h (the discriminant's term table). */
+ * May use: the numerics (exact_poly.h), core.  Used by pendulum_verdict.c (its fall-back where
+ * long double cannot decide), pendulum_critical.c and pendulum_map.c. */
 #include "analysis/pendulum_exact.h"
 
-#include "analysis/pendulum_verdict.h"
+#include "autobal/pendulum.h"
+#include "autobal/stability.h"
+
+/* The 16 terms of the discriminant of a x^4 + b x^3 + c x^2 + d x + e: coefficient and
+ * exponents of (a, b, c, d, e) (the same table as pendulum_verdict.c's long double test). */
+static const struct {
+  int coef;
+  int ex[5];
+} QDISC[16] = {{256, {3, 0, 0, 0, 3}}, {-192, {2, 1, 0, 1, 2}}, {-128, {2, 0, 2, 0, 2}},
+               {144, {2, 0, 1, 2, 1}}, {-27, {2, 0, 0, 4, 0}},  {144, {1, 2, 1, 0, 2}},
+               {-6, {1, 2, 0, 2, 1}},  {-80, {1, 1, 2, 1, 1}},  {18, {1, 1, 1, 3, 0}},
+               {16, {1, 0, 4, 0, 1}},  {-4, {1, 0, 3, 2, 0}},   {-27, {0, 4, 0, 0, 2}},
+               {18, {0, 3, 1, 1, 1}},  {-4, {0, 3, 0, 3, 0}},   {-4, {0, 2, 3, 0, 1}},
+               {1, {0, 2, 2, 2, 0}}};
 
 static void set_binary_fraction(double v, mpz_t num, long *den_exp) {
   autobal_dyadic d;
@@ -109,9 +123,9 @@ static void quartic_disc_poly(const autobal_xpoly q[5], autobal_xpoly *D) {
   autobal_xpoly_zero(D);
   for (t = 0; t < 16; t++) {
     autobal_xpoly_zero(&term);
-    mpz_set_si(term.c[0], autobal_pendulum_quartic_disc_[t].coef);
+    mpz_set_si(term.c[0], QDISC[t].coef);
     term.len = 1;
-    for (i = 0; i < 5; i++) (void)autobal_xpoly_mul(&term, &term, &pw[i][autobal_pendulum_quartic_disc_[t].ex[i]]);
+    for (i = 0; i < 5; i++) (void)autobal_xpoly_mul(&term, &term, &pw[i][QDISC[t].ex[i]]);
     (void)autobal_xpoly_addmul_si(D, &term, 1);
   }
   for (i = 0; i < 5; i++)
@@ -188,9 +202,9 @@ static void quartic_disc_value(mpz_t out, mpz_t *v, mpz_t t0) {
   int t, i, e;
   mpz_set_ui(out, 0);
   for (t = 0; t < 16; t++) {
-    mpz_set_si(t0, autobal_pendulum_quartic_disc_[t].coef);
+    mpz_set_si(t0, QDISC[t].coef);
     for (i = 0; i < 5; i++)
-      for (e = 0; e < autobal_pendulum_quartic_disc_[t].ex[i]; e++) mpz_mul(t0, t0, v[4 - i]);
+      for (e = 0; e < QDISC[t].ex[i]; e++) mpz_mul(t0, t0, v[4 - i]);
     mpz_add(out, out, t0);
   }
 }
