@@ -87,9 +87,8 @@ int autobal_pendulum_undamped_discriminant(double R_m, double k, double disc[13]
   return AUTOBAL_SUCCESS;
 }
 
-/* One candidate on the W axis: a root of a discriminant known to lie in [lo, hi] (adjacent or
- * equal doubles), or the closed-form double root (18) at k = 1 (lo = hi = its double value,
- * rw = the closed form for R_w). */
+/* One candidate on the W axis: a root of the discriminant known to lie in [lo, hi] (adjacent
+ * or equal doubles), and R_w there. */
 typedef struct {
   double lo, hi, rw;
 } crit_cand;
@@ -104,7 +103,7 @@ static int cmp_cand(const void *pa, const void *pb) {
 int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m, double k,
                                      autobal_pendulum_crit_set *out) {
   autobal_pendulum_exact ex;
-  autobal_xpoly D;
+  autobal_xpoly D, Dp, G;
   crit_cand cand[CAND_MAX];
   double lo[CAND_MAX], hi[CAND_MAX], rw[CAND_MAX];
   int vint[CAND_MAX + 1];
@@ -117,54 +116,43 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
   memset(out, 0, sizeof *out);
   autobal_pendulum_exact_init(&ex, R_m, k);
   autobal_xpoly_init(&D);
-  if (k == 0.0) {
-    /* x = 0 and the cubic: the cubic's discriminant in W, and W = 1 where a0 = 2 R_m W^2 (W - 1)
-     * changes sign (13) */
-    autobal_pendulum_exact_disc_cubic(&ex, &D);
-  } else if (k == 1.0) {
-    /* (15): the verdict changes only where the factor P1 has a double root (its
-     * discriminant E(W)); the double root of (10) at (18), where P1 and its conjugate share a
-     * root, keeps it (a touch, added below) */
-    if (autobal_pendulum_exact_disc_p1(&ex, &D) != 0) rc = -1;
-  } else {
-    /* the discriminant of (10) in x: W^4 times a polynomial of degree <= 8 (every term holds
-     * e = c0 ~ W^4 or d^2 = c1^2 ~ W^4) */
-    autobal_pendulum_exact_disc(&ex, &D);
+  autobal_xpoly_init(&Dp);
+  autobal_xpoly_init(&G);
+  /* the discriminant of (10) in x, exactly, with its factor W^j (j = 4 for k > 0, from
+   * e = c0 ~ W^4 and d^2 = c1^2 ~ W^4 in every term) divided out: the root W = 0 is no speed */
+  autobal_pendulum_exact_disc(&ex, &D);
+  (void)autobal_xpoly_strip_low(&D);
+  /* its simple roots (sign changes) ... */
+  rc = autobal_xpoly_positive_roots(&D, lo, hi, CAND_MAX / 2, &nr, &unresolved);
+  for (i = 0; rc == 0 && i < nr; i++) {
+    cand[nc].lo = lo[i];
+    cand[nc].hi = hi[i];
+    nc++;
   }
-  (void)autobal_xpoly_strip_low(&D); /* the root W = 0 is not a speed */
-  if (rc == 0) rc = autobal_xpoly_positive_roots(&D, lo, hi, CAND_MAX - 2, &nr, &unresolved);
+  /* ... and its multiple roots, the roots of gcd(D, D'): the double roots of (10) where the
+   * verdict may be kept, e.g. (18) at k = 1 and W = 1 (x = 0 twice) at k = 0 */
+  if (rc == 0) {
+    autobal_xpoly_deriv(&Dp, &D);
+    autobal_xpoly_gcd(&G, &D, &Dp);
+    if (G.len >= 2) rc = autobal_xpoly_positive_roots(&G, lo, hi, CAND_MAX / 2, &nr, &unresolved);
+    else nr = 0;
+  }
+  for (i = 0; rc == 0 && i < nr; i++) {
+    size_t j, dup = 0;
+    for (j = 0; j < nc; j++) /* a root of odd multiplicity >= 3 is in both lists */
+      if (!(hi[i] < cand[j].lo || lo[i] > cand[j].hi)) dup = 1;
+    if (dup) continue;
+    cand[nc].lo = lo[i];
+    cand[nc].hi = hi[i];
+    nc++;
+  }
   if (rc != 0) {
     st = autobal_error_set(&ws->err, AUTOBAL_ENUMERIC,
                            "critical_speeds: root isolation of the discriminant failed at R_m = %.17g, k = %.17g",
                            R_m, k);
     goto done;
   }
-  for (i = 0; i < nr; i++) {
-    cand[nc].lo = lo[i];
-    cand[nc].hi = hi[i];
-    cand[nc].rw = (double)sqrtl(0.5L * ((long double)lo[i] + (long double)hi[i]));
-    nc++;
-  }
-  if (k == 0.0) {
-    int have = 0;
-    for (i = 0; i < nc; i++)
-      if (cand[i].lo <= 1.0 && cand[i].hi >= 1.0) have = 1;
-    if (!have) {
-      cand[nc].lo = cand[nc].hi = cand[nc].rw = 1.0;
-      nc++;
-    }
-  }
-  if (k == 1.0 && R_m != 0.25) {
-    /* (18) squared: W18 = 2(1 - 2R_m)/(1 - 4R_m)^2 (1 - 4R_m is exact for R_m near 1/4); a
-     * double root of (10) for every R_m != 1/4, a touch where it lies in a stable region
-     * (R_m > R_m^(1), also above 1/4) */
-    double d = fabs(1.0 - 4.0 * R_m), W18 = 2.0 * (1.0 - 2.0 * R_m) / (d * d);
-    if (isfinite(W18)) {
-      cand[nc].lo = cand[nc].hi = W18;
-      cand[nc].rw = sqrt(2.0 * (1.0 - 2.0 * R_m)) / d;
-      nc++;
-    }
-  }
+  for (i = 0; i < nc; i++) cand[i].rw = (double)sqrtl(0.5L * ((long double)cand[i].lo + (long double)cand[i].hi));
   qsort(cand, nc, sizeof *cand, cmp_cand);
   /* the exact verdict on every interval between consecutive candidates, at a long double
    * strictly inside it (the midpoint of the gap; beyond the last: 2 hi + 1) */
@@ -194,6 +182,8 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
 done:
   if (st != AUTOBAL_SUCCESS) memset(out, 0, sizeof *out);
   autobal_xpoly_clear(&D);
+  autobal_xpoly_clear(&Dp);
+  autobal_xpoly_clear(&G);
   autobal_pendulum_exact_clear(&ex);
   return st;
 }

@@ -137,66 +137,6 @@ void autobal_pendulum_exact_disc(autobal_pendulum_exact *x, autobal_xpoly *D) {
   quartic_disc_poly(x->C, D);
 }
 
-void autobal_pendulum_exact_disc_cubic(autobal_pendulum_exact *x, autobal_xpoly *D) {
-  /* 18 a6 a4 a2 a0 - 4 a4^3 a0 + a4^2 a2^2 - 4 a6 a2^3 - 27 a6^2 a0^2 */
-  static const int TERMS[5][5] = {/* coef, exponents of a6, a4, a2, a0 */
-                                  {18, 1, 1, 1, 1},
-                                  {-4, 0, 3, 0, 1},
-                                  {1, 0, 2, 2, 0},
-                                  {-4, 1, 0, 3, 0},
-                                  {-27, 2, 0, 0, 2}};
-  const autobal_xpoly *base[4];
-  autobal_xpoly term;
-  int t, v, e;
-  base[0] = &x->C[4];
-  base[1] = &x->C[3];
-  base[2] = &x->C[2];
-  base[3] = &x->C[1];
-  autobal_xpoly_init(&term);
-  autobal_xpoly_zero(D);
-  for (t = 0; t < 5; t++) {
-    autobal_xpoly_zero(&term);
-    mpz_set_si(term.c[0], TERMS[t][0]);
-    term.len = 1;
-    for (v = 0; v < 4; v++)
-      for (e = 0; e < TERMS[t][v + 1]; e++) (void)autobal_xpoly_mul(&term, &term, base[v]);
-    (void)autobal_xpoly_addmul_si(D, &term, 1);
-  }
-  autobal_xpoly_clear(&term);
-}
-
-int autobal_pendulum_exact_disc_p1(autobal_pendulum_exact *x, autobal_xpoly *D) {
-  autobal_xpoly f[5], DR;
-  mpz_t S;
-  int j, bad = 0;
-  for (j = 0; j < 5; j++) autobal_xpoly_init(&f[j]);
-  autobal_xpoly_init(&DR);
-  mpz_init(S);
-  mpz_set_ui(S, 1);
-  mpz_mul_2exp(S, S, (mp_bitcnt_t)x->E); /* 2^E f, polynomials in R */
-  mpz_neg(f[0].c[2], S);                 /* -R^2             */
-  mpz_mul_ui(f[1].c[1], S, 2);           /* 2R nu            */
-  mpz_neg(f[2].c[0], S);                 /* (R^2 - 1) nu^2   */
-  mpz_set(f[2].c[2], S);
-  mpz_mul_si(f[3].c[1], S, -2); /* -2R nu^3         */
-  mpz_sub(f[4].c[0], S, x->r);  /* (1 - R_m) nu^4   */
-  for (j = 0; j < 5; j++) autobal_xpoly_normalize(&f[j]);
-  quartic_disc_poly(f, &DR);
-  autobal_xpoly_zero(D);
-  for (j = 0; j < DR.len; j++) {
-    if (j % 2) {
-      if (mpz_sgn(DR.c[j]) != 0) bad = 1;
-    } else {
-      mpz_set(D->c[j / 2], DR.c[j]);
-    }
-  }
-  autobal_xpoly_normalize(D);
-  for (j = 0; j < 5; j++) autobal_xpoly_clear(&f[j]);
-  autobal_xpoly_clear(&DR);
-  mpz_clear(S);
-  return bad ? -1 : 0;
-}
-
 /* disc of the quartic with values a..e (mpz) into out; t0, t1 scratch */
 static void quartic_disc_value(mpz_t out, mpz_t *v, mpz_t t0) {
   int t, i, e;

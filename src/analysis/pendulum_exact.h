@@ -22,16 +22,9 @@ typedef struct autobal_pendulum_exact {
 void autobal_pendulum_exact_init(autobal_pendulum_exact *x, double R_m, double k);
 void autobal_pendulum_exact_clear(autobal_pendulum_exact *x);
 
-/* The discriminant of P(x) in x (a quartic; its cubic factor at k = 0 is NOT split off here)
+/* The discriminant of P(x) in x (a quartic, also at k = 0, where it is a0^2 times the cubic's)
  * as an integer polynomial in W: L^6 disc_x P(W).  Degree <= 12. */
 void autobal_pendulum_exact_disc(autobal_pendulum_exact *x, autobal_xpoly *D);
-/* k = 0: the discriminant of the cubic a6 x^3 + a4 x^2 + a2 x + a0 of (10) (L^4 times it). */
-void autobal_pendulum_exact_disc_cubic(autobal_pendulum_exact *x, autobal_xpoly *D);
-/* k = 1: the discriminant in nu of f(nu) = (1 - R_m) nu^4 - 2R nu^3 + (R^2 - 1) nu^2 + 2R nu
- * - R^2 (the factor P1 of (15) at lambda = i(nu - R), R = R_w), times 2^(6E); it is even in
- * R, returned as a polynomial in W = R^2.  Returns -1 if an odd power survived (a bug). */
-int autobal_pendulum_exact_disc_p1(autobal_pendulum_exact *x, autobal_xpoly *D);
-
 /* The exact verdict of the undamped system at W = R_w^2 (the dyadic in x->W, set by the
  * caller, or by the two wrappers): AUTOBAL_VERDICT_STABLE when every root x of (10) is real
  * and <= 0 with distinct roots, AUTOBAL_VERDICT_MARGINAL on the boundary (a deciding quantity

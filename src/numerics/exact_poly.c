@@ -80,6 +80,62 @@ void autobal_xpoly_deriv(autobal_xpoly *out, const autobal_xpoly *p) {
   autobal_xpoly_normalize(out);
 }
 
+static void xpoly_copy(autobal_xpoly *out, const autobal_xpoly *a) {
+  int i;
+  for (i = 0; i < AUTOBAL_XPOLY_MAXLEN; i++) mpz_set(out->c[i], a->c[i]);
+  out->len = a->len;
+}
+
+/* divide by the gcd of the coefficients, leading coefficient made positive */
+static void xpoly_primitive(autobal_xpoly *p, mpz_t g) {
+  int i;
+  if (p->len == 0) return;
+  mpz_set_ui(g, 0);
+  for (i = 0; i < p->len; i++) mpz_gcd(g, g, p->c[i]);
+  if (mpz_sgn(p->c[p->len - 1]) < 0) mpz_neg(g, g);
+  for (i = 0; i < p->len; i++) mpz_divexact(p->c[i], p->c[i], g);
+}
+
+void autobal_xpoly_gcd(autobal_xpoly *out, const autobal_xpoly *a, const autobal_xpoly *b) {
+  autobal_xpoly A, B;
+  mpz_t g, fa, fb, t;
+  autobal_xpoly_init(&A);
+  autobal_xpoly_init(&B);
+  mpz_inits(g, fa, fb, t, NULL);
+  xpoly_copy(&A, a);
+  xpoly_copy(&B, b);
+  autobal_xpoly_normalize(&A);
+  autobal_xpoly_normalize(&B);
+  if (A.len < B.len) {
+    int i;
+    for (i = 0; i < AUTOBAL_XPOLY_MAXLEN; i++) mpz_swap(A.c[i], B.c[i]);
+    i = A.len, A.len = B.len, B.len = i;
+  }
+  xpoly_primitive(&A, g);
+  xpoly_primitive(&B, g);
+  while (B.len > 0) {
+    /* A := prem(A, B), made primitive; then swap */
+    int i;
+    while (A.len >= B.len && A.len > 0) {
+      int sh = A.len - B.len;
+      mpz_gcd(g, A.c[A.len - 1], B.c[B.len - 1]);
+      mpz_divexact(fa, B.c[B.len - 1], g); /* A := fa A - fb x^sh B */
+      mpz_divexact(fb, A.c[A.len - 1], g);
+      for (i = 0; i < A.len; i++) mpz_mul(A.c[i], A.c[i], fa);
+      for (i = 0; i < B.len; i++) mpz_submul(A.c[i + sh], B.c[i], fb);
+      autobal_xpoly_normalize(&A);
+      xpoly_primitive(&A, g);
+    }
+    for (i = 0; i < AUTOBAL_XPOLY_MAXLEN; i++) mpz_swap(A.c[i], B.c[i]);
+    i = A.len, A.len = B.len, B.len = i;
+  }
+  xpoly_primitive(&A, g);
+  xpoly_copy(out, &A);
+  autobal_xpoly_clear(&A);
+  autobal_xpoly_clear(&B);
+  mpz_clears(g, fa, fb, t, NULL);
+}
+
 void autobal_dyadic_init(autobal_dyadic *d) {
   mpz_init(d->m);
   d->e = 0;

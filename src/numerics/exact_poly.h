@@ -31,6 +31,12 @@ int autobal_xpoly_strip_low(autobal_xpoly *p);
 /* out = p' */
 void autobal_xpoly_deriv(autobal_xpoly *out, const autobal_xpoly *p);
 
+/* out = the primitive greatest common divisor of a and b over the rationals (positive leading
+ * coefficient; primitive pseudo-remainder sequence).  Its roots are the common roots of a and
+ * b: with b = a' the multiple roots of a, each once less often.  The zero polynomial when both
+ * are zero. */
+void autobal_xpoly_gcd(autobal_xpoly *out, const autobal_xpoly *a, const autobal_xpoly *b);
+
 /* A dyadic number m 2^e (m an integer of any size). */
 typedef struct autobal_dyadic {
   mpz_t m;
