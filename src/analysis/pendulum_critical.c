@@ -161,10 +161,6 @@ int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
     long double b = i == nc ? 2.0L * a + 1.0L : cand[i].lo;
     long double m = 0.5L * (a + b);
     int v;
-    if (autobal_pendulum_cancelled_(ws)) {
-      st = AUTOBAL_ECANCELLED;
-      goto done;
-    }
     if (!(m > a && m < b)) m = a; /* candidates in adjacent ulps: the shared end separates them */
     v = autobal_pendulum_exact_verdict_W(&ex, m);
     if (v == AUTOBAL_VERDICT_MARGINAL) {
