@@ -88,6 +88,24 @@ for rm in ["0.249", "0.2492", "0.2494", "0.2495", "0.2496", "0.2497", "0.2498", 
                   e2 <= 60 * q**5 + 1e-15 and e3 <= 60 * q**5 + 1e-15 and d["closed_forms"]["eq13_R_w1_k0"] == 1.0
                   and d["closed_form_errors"]["eq13_R_w1_k0"] == 0.0 and d["k0_kind_name"] == ["gained", "lost", "gained"])
 
+# ---- item 5: the closed forms at small R_m (the first form of (14), (16), (17)) -----------------
+for rm in ["0.001", "0.01", "0.03"]:
+    d, r = compare(rm, "0")
+    if d is None:
+        continue
+    x = float(d["R_m"])
+    eps, s3 = (x / 2) ** (1 / 3), x ** (1 / 3)
+    cf, ce = d["closed_forms"], d["closed_form_errors"]
+    w2, w3 = [mpmath.mpf(v) for v in r["R_w"][1:3]]
+    check(f"  R_m = {rm}: (14) first form, errors {ce['eq14_R_w2_k0']:.2e} < 60 R_m^3, {ce['eq14_R_w3_k0']:.2e} < 10 eps^4, "
+          f"consistent with the reference",
+          cf["eq14_form"] == "R_m < 0.05" and ce["eq14_R_w2_k0"] < 60 * x**3 and ce["eq14_R_w3_k0"] < 10 * eps**4
+          and abs(abs(cf["eq14_R_w2_k0"] - w2) / w2 - ce["eq14_R_w2_k0"]) < 1e-14
+          and abs(abs(cf["eq14_R_w3_k0"] - w3) / w3 - ce["eq14_R_w3_k0"]) < 1e-14)
+    # (16) exact; (17) truncated after s^3: next term -407 s^4/3456 (docs/pendulum.md)
+    check(f"  R_m = {rm}: (16) error {ce['eq16_R_w1_k1']:.1e} < 1e-14, (17) error {ce['eq17_R_w1_k1']:.2e} < 0.2 s^4",
+          ce["eq16_R_w1_k1"] < 1e-14 and ce["eq17_R_w1_k1"] < 0.2 * s3**4 and d["k1_kind_name"][0] == "gained")
+
 # ---- item 2: the island near R_m = 0.0448, k = 0.9999 ----------------------------------------
 counts = []
 for i in range(13):
