@@ -257,8 +257,11 @@ AUTOBAL_API int autobal_pendulum_undamped_poly(double R_m, double R_w, double k,
  * c_j > 0 and the quartic's discriminant > 0 with 8ac - 3b^2 < 0 and
  * 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 < 0; k = 1: the same test on
  * the factor P1 of (15) at lambda = i mu (four real mu).
- * AUTOBAL_VERDICT_MARGINAL when a deciding quantity is zero within its
- * rounding bound (on a critical speed, e.g. a double root).  No workspace. */
+ * Where a deciding quantity is within its long double rounding bound the same
+ * criteria are evaluated exactly in integers (GMP; R_m, k and W = R_w^2 as the
+ * binary fractions they are).  AUTOBAL_VERDICT_MARGINAL only when a deciding
+ * quantity is exactly zero (on a critical speed, e.g. a double root).  No
+ * workspace. */
 AUTOBAL_API int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
                                                   autobal_error *err);
 
@@ -270,9 +273,11 @@ AUTOBAL_API int autobal_pendulum_cond12(double R_m, double R_w, double *lhs, int
                                         autobal_error *err);
 
 /* Discriminant of P(x) of (10) with respect to x, as a polynomial in
- * W = R_w^2 of degree <= 12: disc[0..12] ascending in W, built by
- * polynomial arithmetic on the coefficients of (10) (which are polynomials
- * in W).  Its positive roots are the candidate critical speeds. */
+ * W = R_w^2 of degree <= 12: disc[0..12] ascending in W, built exactly
+ * (integer polynomial arithmetic on the coefficients of (10), GMP) and rounded
+ * once per coefficient.  Its positive roots are the candidate critical speeds
+ * (autobal_pendulum_critical_speeds uses the exact polynomial, not these
+ * rounded coefficients: near R_m -> 1/4 its roots are ill-conditioned in them). */
 AUTOBAL_API int autobal_pendulum_undamped_discriminant(double R_m, double k, double disc[13],
                                                        autobal_error *err);
 
@@ -300,6 +305,9 @@ typedef struct autobal_pendulum_crit_set {
   double stable_hi[AUTOBAL_PENDULUM_MAX_CRIT + 1];
   int truncated;  /* 1: more changes than the capacity; the set covers only up to
                      R_w[n-1] (autobal_pendulum_critical_speeds_damped); else 0 */
+  int unresolved; /* 1: two critical speeds of autobal_pendulum_critical_speeds lie in the same
+                     ulp of W = R_w^2 (an island or window narrower than a double can show:
+                     reported as equal values); else 0 */
 } autobal_pendulum_crit_set;
 
 /* Number of entries of s with kind != TOUCH, and the j-th of them (j from
@@ -308,41 +316,35 @@ AUTOBAL_API size_t autobal_pendulum_crit_count(const autobal_pendulum_crit_set *
 AUTOBAL_API double autobal_pendulum_crit_get(const autobal_pendulum_crit_set *s, size_t j);
 
 /* Critical speeds of the UNDAMPED system (H = h = 0) for R_m in (0, 1/2),
- * k in [0, 1], located exactly (no sampling), R_w = sqrt(W):
- *  1. candidates: the positive real roots W of the discriminant of (10) in x
- *     (autobal_pendulum_undamped_discriminant, built in long double; k = 0:
- *     of the cubic, plus W = 1 of (13); k = 1: of the factor P1 of (15),
- *     whose roots are the exact transitions, plus the double roots of (10)
- *     such as (18)), isolated between the critical points of the polynomial
- *     and refined by Brent's method;
- *  2. 0 <= k < 1: every candidate is refined again by Brent on the
- *     discriminant u^2 - 4v of the quadratic factor x^2 + u x + v of (10)
- *     that holds the colliding pair (Bairstow, long double) -- well
- *     conditioned, unlike the expanded discriminant -- and the degenerate
- *     points W = 2(1-2R_m)/(1-4R_m)^2 ((18) squared, limit k -> 1) and W = 1
- *     (limit k -> 0) are searched directly for a window in which that pair
- *     is complex: windows of width ~ sqrt(1-k) are found down to 1-k = 1e-16
- *     for R_m up to ~0.2 (tested);
- *  3. the verdict on each interval between consecutive candidates
- *     (autobal_pendulum_undamped_verdict, with the pair test as fallback
- *     where it is undecided) gives the kind.  A TOUCH is reported only
- *     inside a stable region (a double root of (10) where stability is kept,
- *     e.g. (18) at k = 1); touches in unstable regions are dropped.
- * Accuracy: about 1e-13 relative for R_m <= 0.2 (checked against (16) and
- * against 50-digit references); near R_m -> 1/4, where R_w2, R_w3 ~ 1/(1-4R_m),
- * it degrades: at R_m = 0.249 (R_w ~ 250) critical speeds about 1e-11, the
- * ends of a narrow k -> 1 window about 1e-8, and windows with 1-k < 1e-10
- * are missed.  Near the triple point R_m^(1) the three values separate only
- * by ~|R_m - R_m^(1)|, and their accuracy is limited accordingly.
- * Capacity: the candidates are roots of polynomials of degree <= 7 in W plus
- * at most four window ends (or W = 1 at k = 0): at most 14 critical speeds and
- * 15 stable intervals, well below AUTOBAL_PENDULUM_MAX_CRIT, so nothing is ever
- * cut off.
+ * k in [0, 1], located exactly (no sampling, no rounding in any decision), R_w = sqrt(W):
+ *  1. the discriminant D(W) of (10) in x is formed as a polynomial in W with
+ *     integer coefficients (GMP): R_m and k are the binary fractions r 2^-E and
+ *     kappa 2^-F they are, so the coefficients of (10) times 2^(F+2E) are
+ *     integer polynomials in W;
+ *  2. its positive roots are isolated exactly, recursively between the roots of
+ *     its derivatives (D is monotone between them), each down to a bracket of two
+ *     adjacent doubles, by exact signs of D at doubles; the multiple roots of D
+ *     (double roots of (10), e.g. (18) at k = 1 and W = 1 at k = 0) are the roots
+ *     of gcd(D, D'), isolated the same way;
+ *  3. the verdict on each interval between consecutive candidates is exact (the
+ *     criteria of autobal_pendulum_undamped_verdict on integers) and gives the
+ *     kind.  A TOUCH is reported only inside a stable region (a double root of (10)
+ *     where stability is kept, e.g. (18) at k = 1, for R_m > R_m^(1) and also
+ *     above 1/4); touches in unstable regions are dropped.
+ * Accuracy: a few units in the last place (about 1e-16 relative) for every R_m
+ * and k, also near R_m -> 1/4 where R_w2, R_w3 ~ 1/(1 - 4R_m).  Resolution: every
+ * stable island or unstable window whose ends lie more than one ulp of W apart is
+ * reported; two critical speeds within one ulp of W are reported as two equal
+ * values with out->unresolved = 1 when D changes sign in the middle of that ulp
+ * (a pair closer than half an ulp without that change is not seen).  Cost: 0.1
+ * to 1 ms.
+ * Capacity: at most 8 candidates (the degree of D after its factor W^4): well
+ * below AUTOBAL_PENDULUM_MAX_CRIT, so nothing is ever cut off.
  * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL ws; R_m outside (0, 1/2) or
- * k outside [0, 1], message naming it; out NULL): *out untouched; or a status
- * of an internal root solve, refinement or verdict (AUTOBAL_ENUMERIC,
- * AUTOBAL_EINVAL; not expected for valid input): *out is then all zeros
- * (n = n_stable = 0).  The message is in ws ("" after success). */
+ * k outside [0, 1], message naming it; out NULL): *out untouched; or
+ * AUTOBAL_ENUMERIC (root isolation or verdict inconsistent; not expected for
+ * valid input): *out is then all zeros (n = n_stable = 0).  The message is in
+ * ws ("" after success). */
 AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
                                                  double k, autobal_pendulum_crit_set *out);
 

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "analysis/pendulum_verdict.h"
+#include "analysis/pendulum_exact.h"
 #include "internal.h"
 #include "models/pendulum/pendulum_internal.h"
 
@@ -485,13 +486,26 @@ int autobal_pendulum_undamped_poly(double R_m, double R_w, double k, double coef
   return AUTOBAL_SUCCESS;
 }
 
+/* The undamped verdict decided: long double where its rounding bounds decide, else exactly
+ * in integers (pendulum_exact.h; MARGINAL then means exactly on a boundary). */
+int autobal_pendulum_undamped_verdict_exact_(double R_m, double R_w, double k) {
+  int sure, v = autobal_pendulum_undamped_verdict_ld_(R_m, (long double)R_w * (long double)R_w, k, &sure);
+  if (!sure || v == AUTOBAL_VERDICT_MARGINAL) {
+    autobal_pendulum_exact ex;
+    autobal_pendulum_exact_init(&ex, R_m, k);
+    v = autobal_pendulum_exact_verdict_Rw(&ex, R_w);
+    autobal_pendulum_exact_clear(&ex);
+  }
+  return v;
+}
+
 int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
                                       autobal_error *err) {
   int st;
   if ((st = autobal_pendulum_check_rm_k_(R_m, k, err)) != 0) return st;
   if ((st = autobal_check_param(err, "R_w", R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
   if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "undamped_verdict: NULL output");
-  *verdict = autobal_pendulum_undamped_verdict_ld_(R_m, (long double)R_w * (long double)R_w, k, NULL);
+  *verdict = autobal_pendulum_undamped_verdict_exact_(R_m, R_w, k);
   return AUTOBAL_SUCCESS;
 }
 
