@@ -104,6 +104,19 @@ static int keep_arrays(autobal_study_rotor_stability_summary *s) {
   return AUTOBAL_SUCCESS;
 }
 
+/* A speed search of the stability study: its range on the side of omega's sign into *lo, *hi, and the
+ * progress hook ph (reporting `fraction`) installed on the handle when the options have one. */
+static void search_setup(const autobal_rotor_params *p, const autobal_study_rotor_stability_options *o,
+                         const autobal_study_rotor_stability_summary *s, autobal_rotor_stab *h, double fraction,
+                         progress_hook *ph, double *lo, double *hi) {
+  *lo = p->omega > 0 ? s->omega_min : -s->omega_max;
+  *hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+  ph->fn = o->progress;
+  ph->user = o->progress_user;
+  ph->fraction = fraction;
+  if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, ph);
+}
+
 int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_study_rotor_stability_options *opt,
                                   autobal_archive *a, autobal_study_rotor_stability_summary *summary,
                                   autobal_error *err) {
@@ -150,12 +163,9 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
     goto fail;
   }
   if (o->critical_speeds) {
-    double lo = p->omega > 0 ? s->omega_min : -s->omega_max, hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+    double lo, hi;
     progress_hook ph;
-    ph.fn = o->progress;
-    ph.user = o->progress_user;
-    ph.fraction = 0.5;
-    if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, &ph);
+    search_setup(p, o, s, h, 0.5, &ph, &lo, &hi);
     st = autobal_rotor_stab_critical(h, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, o->n_omega, o->xtol_rel, &s->critical);
     autobal_rotor_stab_set_cancel(h, NULL, NULL);
     if (st == AUTOBAL_ECANCELLED) {
@@ -199,12 +209,9 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
     }
     s->have_every = 1;
     if (o->critical_speeds) {
-      double lo = p->omega > 0 ? s->omega_min : -s->omega_max, hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+      double lo, hi;
       progress_hook ph;
-      ph.fn = o->progress;
-      ph.user = o->progress_user;
-      ph.fraction = 0.75;
-      if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, &ph);
+      search_setup(p, o, s, h, 0.75, &ph, &lo, &hi);
       st = autobal_rotor_stab_every_unbalance_speeds(h, o->unbalance_min, o->unbalance_max, lo, hi, o->n_omega,
                                                      o->xtol_rel, &s->every_speeds);
       autobal_rotor_stab_set_cancel(h, NULL, NULL);
