@@ -541,7 +541,8 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   autobal_error err;
   char msg[sizeof ctx->err];
   double lo1, hi1, lo2, hi2;
-  int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
+  int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st, have_umin = 0, have_umax = 0;
+  double umin = NAN, umax = NAN;
   long n1 = (long)o.n1, n2 = (long)o.n2, threads = o.threads;
   size_t n;
   memset(&sum, 0, sizeof sum);
@@ -560,7 +561,15 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "map", "max2", autobal_rotor_stab_param_unit(p2), hi2, &hi2, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "n2", n2, &n2, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "threads", threads, &threads, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (have_umin != have_umax) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[map]: unbalance_min and unbalance_max go together (the range of m0 r0 of a map for every "
+                  "unbalance, e.g. unbalance_min = 10 g mm, unbalance_max = 4000 g mm)");
+    goto done;
+  }
   if (p1 == p2) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[map]: param1 and param2 must differ (both %s)", autobal_rotor_stab_param_name(p1));
     goto done;
@@ -576,6 +585,9 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   o.min1 = lo1, o.max1 = hi1, o.min2 = lo2, o.max2 = hi2;
   o.n1 = (size_t)n1, o.n2 = (size_t)n2;
   o.threads = (int)threads;
+  o.every_unbalance = have_umin && have_umax;
+  o.unbalance_min = umin;
+  o.unbalance_max = umax;
   o.progress = stop_requested;
   autobal_error_clear(&err);
   st = autobal_study_rotor_map(&c->p, &o, NULL, &sum, &err);
@@ -603,12 +615,16 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
     cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_bool(&j, "every_unbalance", o.every_unbalance);
     cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
            hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
            autobal_rotor_stab_param_unit(p2));
+    if (o.every_unbalance)
+      printf("  for EVERY unbalance m0 r0 in [%.6g, %.6g] g mm (each point's verdict covers the whole range)\n",
+             umin * 1e6, umax * 1e6);
     printf("  stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }

@@ -208,7 +208,9 @@
   "[map] param1 = omega         min1 max1  n1 = 120   (first axis)\n" \
   "      param2 = ball_damping  min2 max2  n2 = 60    (second axis)\n" \
   "      threads = 0 (OpenMP threads; 0: default)\n" \
-  "      param1, param2: two different parameters below; min, max in their units\n\n" \
+  "      param1, param2: two different parameters below; min, max in their units\n" \
+  "      unbalance_min, unbalance_max (kg m or g mm): each point's verdict for EVERY m0 r0 in the range\n" \
+  "      (one plane, two balls; docs/rotor.md \"Every unbalance\"); unbalance_mass is then no axis\n\n" \
   HELP_ROTOR_STAB_AXES \
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR

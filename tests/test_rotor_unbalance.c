@@ -11,6 +11,8 @@
  *    checked by sampling;
  *  - the every-unbalance speed set equals the intersection of the per-unbalance verdicts (120
  *    speeds x 161 unbalances), away from its boundaries;
+ *  - the map for every unbalance (omega x ball damping) against 201 sampled unbalances per point,
+ *    1 and 2 threads bit for bit, no verdict where the balls cannot balance the range;
  *  - m0 and omega restored bitwise, and the error paths. */
 #include <math.h>
 #include <stdio.h>
@@ -169,6 +171,46 @@ int main(void) {
     }
     printf("     %zu of the sampled speeds inside the set\n", n_in);
     CHECK("the speed set equals the intersection of the sampled per-unbalance verdicts", bad == 0);
+  }
+  /* the map for every unbalance: each point against 201 sampled unbalances; 1 and 2 threads alike */
+  {
+    static const double w[6] = {300.0, 405.0, 420.0, 600.0, 900.0, 1500.0}, hb[4] = {0.02, 0.1, 0.3, 0.6};
+    static const double bm[2] = {0.05, 0.01};
+    double mg1[24], mg2[24], sv[201];
+    int vd1[24], vd2[24], st1, st2;
+    size_t i, j, bad = 0, same = 1;
+    autobal_rotor_params q = autobal_rotor_params_default();
+    st1 = autobal_rotor_stab_map_every_unbalance(&q, NULL, AUTOBAL_ROTOR_PARAM_OMEGA, w, 6,
+                                                 AUTOBAL_ROTOR_PARAM_BALL_DAMPING, hb, 4, 1e-4, 0.004, 1, mg1, vd1, &err);
+    st2 = autobal_rotor_stab_map_every_unbalance(&q, NULL, AUTOBAL_ROTOR_PARAM_OMEGA, w, 6,
+                                                 AUTOBAL_ROTOR_PARAM_BALL_DAMPING, hb, 4, 1e-4, 0.004, 2, mg2, vd2, &err);
+    CHECK_STATUS("map for every unbalance, 1 thread", st1, AUTOBAL_SUCCESS);
+    CHECK_STATUS("map for every unbalance, 2 threads", st2, AUTOBAL_SUCCESS);
+    for (i = 0; i < 24; i++) same &= vd1[i] == vd2[i] && memcmp(&mg1[i], &mg2[i], sizeof mg1[i]) == 0;
+    CHECK("1 and 2 threads give the same map bit for bit", same);
+    for (j = 0; j < 201; j++) sv[j] = (1e-4 + (0.004 - 1e-4) * (double)j / 200.0) / 0.1;
+    for (i = 0; i < 24; i++) {
+      autobal_rotor_stab *t = autobal_rotor_stab_alloc(&q, NULL, &err);
+      int all = 1;
+      if (!t) break;
+      autobal_rotor_stab_set(t, AUTOBAL_ROTOR_PARAM_OMEGA, w[i / 4]);
+      autobal_rotor_stab_set(t, AUTOBAL_ROTOR_PARAM_BALL_DAMPING, hb[i % 4]);
+      autobal_rotor_stab_sweep(t, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, sv, 201, margins, verdicts);
+      for (j = 0; j < 201; j++) all &= verdicts[j] == AUTOBAL_VERDICT_STABLE;
+      if ((vd1[i] == AUTOBAL_VERDICT_STABLE) != all) {
+        bad++;
+        printf("     omega %g, h %g: map %d, sampled all stable %d\n", w[i / 4], hb[i % 4], vd1[i], all);
+      }
+      autobal_rotor_stab_free(t);
+    }
+    CHECK("each map point: stable for all == every sampled unbalance stable", bad == 0);
+    /* ball mass 0.01 kg (2 m r = 0.002 kg m) cannot balance 0.004 kg m: no verdict there */
+    st1 = autobal_rotor_stab_map_every_unbalance(&q, NULL, AUTOBAL_ROTOR_PARAM_OMEGA, w + 3, 1,
+                                                 AUTOBAL_ROTOR_PARAM_BALL_MASS, bm, 2, 1e-4, 0.004, 1, mg1, vd1, &err);
+    CHECK("ball mass 0.05: a verdict; 0.01: none (the balls cannot balance the range)",
+          st1 == AUTOBAL_SUCCESS && vd1[0] != AUTOBAL_ROTOR_VERDICT_NONE && vd1[1] == AUTOBAL_ROTOR_VERDICT_NONE &&
+              isnan(mg1[1]));
+    CHECK_STATUS("unbalance_mass as an axis", autobal_rotor_stab_map_every_unbalance(&q, NULL, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, w, 1, AUTOBAL_ROTOR_PARAM_OMEGA, w, 1, 1e-4, 0.004, 1, mg1, vd1, &err), AUTOBAL_EINVAL);
   }
   /* errors */
   {

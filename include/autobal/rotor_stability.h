@@ -463,9 +463,9 @@ typedef struct autobal_rotor_unbalance_range {
   double sub_margin[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1/s, the margin at the midpoint */
   int all_stable;             /* 1: stable for every m0 r0 in [s_lo, s_hi] (no critical value inside and
                                  stable in every sub-interval and at both ends), else 0 */
-  double margin_min;          /* 1/s, the smallest margin met at the points evaluated (ends, the
-                                 midpoints and the points just inside each end of every sub-interval);
-                                 not a bound */
+  double margin_worst;        /* 1/s, the largest margin (max Re lambda: the least stable) met at the
+                                 points evaluated (ends, the midpoints and the points just inside each
+                                 end of every sub-interval); not a bound over the range */
   size_t n_missed;            /* verdict changes inside a sub-interval that the crossing polynomial did
                                  not give (found by bisection, added to s_crit); 0 expected */
   size_t evaluations;         /* margin evaluations */
@@ -495,6 +495,20 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double
 AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo, double s_hi,
                                                           double w_lo, double w_hi, size_t n_grid,
                                                           double xtol_rel, autobal_rotor_crit *out);
+
+/* autobal_rotor_stab_map with, at every grid point, the verdict for EVERY unbalance m0 r0 in
+ * [s_lo, s_hi] (autobal_rotor_stab_every_unbalance): STABLE (stable for all), UNSTABLE (unstable for
+ * some), MARGINAL (a critical unbalance inside with stable sides: a touch), AUTOBAL_ROTOR_VERDICT_NONE
+ * (the balls cannot balance every unbalance of the range at this point, e.g. a small ball mass);
+ * margin: margin_worst (1/s).  unbalance_mass cannot be an axis.  Same threads, errors and
+ * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
+ * not apply (two planes, three or more balls, full inertia, anisotropic supports). */
+AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
+                                                       const autobal_rotor_stab_options *opt, int param1,
+                                                       const double *v1, size_t n1, int param2,
+                                                       const double *v2, size_t n2, double s_lo, double s_hi,
+                                                       int n_threads, double *margin, int *verdict,
+                                                       autobal_error *err);
 
 /* ---- the rotor-housing without balls: natural frequencies, Campbell diagram,
  *      unbalance response (the balls are removed; in the FULL inertia model the

@@ -676,6 +676,11 @@ typedef struct autobal_study_rotor_map_options {
   autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
                            rows (0.25 to 1 s of work); non-zero: cancel           (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
+  /* every unbalance (added at the end): non-zero = each point's verdict is the one for every m0 r0
+     in [unbalance_min, unbalance_max] kg m (autobal_rotor_stab_map_every_unbalance)
+                                                                   (default 0, NaN, NaN) */
+  int every_unbalance;
+  double unbalance_min, unbalance_max;
 } autobal_study_rotor_map_options;
 AUTOBAL_API autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void);
 

@@ -222,7 +222,7 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
     for (k = 0; k < out->n_crit; k++) edges[ne++] = out->s_crit[k];
     edges[ne++] = s_hi;
     out->all_stable = 1;
-    out->margin_min = INFINITY;
+    out->margin_worst = -INFINITY;
     for (k = 0; k + 1 < ne; k++) {
       const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
       const double pts[3] = {lo + 1e-9 * wdt, lo + 0.5 * wdt, hi - 1e-9 * wdt};
@@ -233,7 +233,7 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
       for (q = 0; q < 3; q++) {
         if ((st = verdict_at(s, r0, wdt > 0.0 ? pts[q] : lo, &mg[q], &vv[q])) != AUTOBAL_SUCCESS) return st;
         out->evaluations++;
-        if (mg[q] < out->margin_min) out->margin_min = mg[q];
+        if (mg[q] > out->margin_worst) out->margin_worst = mg[q];
       }
       if (opposite(vv[0], vv[1]) || opposite(vv[1], vv[2])) {
         /* a crossing the polynomial roots did not give (a MARGINAL verdict, within the verdict
@@ -274,7 +274,7 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
       int vv;
       if ((st = verdict_at(s, r0, k == 0 ? s_lo : s_hi, &mg, &vv)) != AUTOBAL_SUCCESS) return st;
       out->evaluations++;
-      if (mg < out->margin_min) out->margin_min = mg;
+      if (mg > out->margin_worst) out->margin_worst = mg;
       if (vv != AUTOBAL_VERDICT_STABLE) out->all_stable = 0;
     }
   }

@@ -371,7 +371,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_min", u->s_lo, "kg m");
     if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_max", u->s_hi, "kg m");
     if (!st) st = autobal_archive_attr_int(a, ge, "stable_for_all", u->all_stable);
-    if (!st) st = autobal_archive_attr_double(a, ge, "margin_min_evaluated", u->margin_min, "1/s");
+    if (!st) st = autobal_archive_attr_double(a, ge, "margin_worst_evaluated", u->margin_worst, "1/s");
     if (!st) st = autobal_archive_attr_int(a, ge, "n_missed", (long)u->n_missed);
     if (!st) st = autobal_archive_attr_int(a, ge, "evaluations", (long)u->evaluations);
     if (!st && u->n_crit > 0) {
@@ -591,6 +591,9 @@ autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void) {
   o.n1 = 120;
   o.n2 = 60;
   o.threads = 0;
+  o.every_unbalance = 0;
+  o.unbalance_min = NAN;
+  o.unbalance_max = NAN;
   return o;
 }
 
@@ -647,8 +650,13 @@ int autobal_study_rotor_map(const autobal_rotor_params *p, const autobal_study_r
     while (s->n1_done < s->n1 && !cancelled) {
       size_t r = s->n1 - s->n1_done < rows ? s->n1 - s->n1_done : rows, off = s->n1_done * s->n2;
       double t0 = now_seconds();
-      st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2, s->values2, s->n2,
-                                  o->threads, s->margin + off, s->verdict + off, err);
+      if (o->every_unbalance)
+        st = autobal_rotor_stab_map_every_unbalance(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2,
+                                                    s->values2, s->n2, o->unbalance_min, o->unbalance_max, o->threads,
+                                                    s->margin + off, s->verdict + off, err);
+      else
+        st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2, s->values2, s->n2,
+                                    o->threads, s->margin + off, s->verdict + off, err);
       if (st) return st;
       s->n1_done += r;
       rows = next_block(rows, now_seconds() - t0);
@@ -691,6 +699,14 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
   }
   if (!st) st = autobal_archive_coord(a, g, n1s, nr, s->values1, autobal_rotor_stab_param_unit(s->param1), "first parameter (rows)");
   if (!st) st = autobal_archive_coord(a, g, n2s, s->n2, s->values2, autobal_rotor_stab_param_unit(s->param2), "second parameter (columns)");
+  if (!st && o->every_unbalance) {
+    st = autobal_archive_attr_int(a, g, "every_unbalance", 1);
+    if (!st) st = autobal_archive_attr_double(a, g, "unbalance_min", o->unbalance_min, "kg m");
+    if (!st) st = autobal_archive_attr_double(a, g, "unbalance_max", o->unbalance_max, "kg m");
+    if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "for every unbalance in [unbalance_min, unbalance_max]: the largest margin met (the least stable unbalance evaluated; NaN: the balls cannot balance every unbalance of the range)");
+    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "for every unbalance in [unbalance_min, unbalance_max]: 1 stable for all, 0 a critical unbalance touches (stable around it), -1 unstable for some, -2 the balls cannot balance every unbalance of the range");
+    return st;
+  }
   if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
   if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
   return st;
