@@ -5,8 +5,8 @@
 #      and at 1e-6 on either side of each critical unbalance the two runs differ (a root crosses);
 #  (b) the speeds stable for every unbalance in 10..4000 g mm: ordinary runs at m0 = 0.1, 20, 40 g
 #      (r0 = 0.1 m) just inside and just outside the reported lower end agree with it;
-#  (c) the archive: /rotor/stability/every_unbalance with units; bad input: one key alone, a range the
-#      balls cannot balance, exit 3 and nothing written.
+#  (c) the archive: /rotor/stability/every_unbalance with units; the map for every unbalance; bad input:
+#      one key alone, a range the balls cannot balance, exit 3 and nothing written.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -66,6 +66,19 @@ ok = ok and g["sub_lo"].attrs["units"] in (b"kg m", "kg m") and "description" in
 sys.exit(0 if ok else 1)
 PY
 then ok "archive: every_unbalance group with its range, verdict and units"; else bad "archive: every_unbalance group"; fi
+
+# the map for every unbalance (omega x ball damping): its archive and the pairing of its keys
+printf '[map]\nparam1 = omega\nmin1 = 400\nmax1 = 1000\nn1 = 4\nparam2 = ball_damping\nmin2 = 0.05\nmax2 = 0.2\nn2 = 2\nunbalance_min = 10 g mm\nunbalance_max = 4000 g mm\n' > m.ini
+expect 0 "for EVERY unbalance" "$AUTOBAL" rotor map m.ini -o m.h5
+if "$PY" - m.h5 <<'PY'
+import sys, h5py
+g = h5py.File(sys.argv[1], "r")["/rotor/map"]
+sys.exit(0 if g.attrs["every_unbalance"] == 1 and abs(g.attrs["unbalance_max"] - 4e-3) < 1e-15 and g["verdict"].shape == (4, 2) else 1)
+PY
+then ok "map archive: every_unbalance, its range, verdict[4][2]"; else bad "map archive"; fi
+printf '[map]\nunbalance_max = 4000 g mm\n' > m2.ini
+expect 3 "unbalance_min" "$AUTOBAL" rotor map m2.ini -o m2.h5
+[ ! -e m2.h5 ] && ok "map, one key alone: nothing written" || bad "m2.h5 written"
 
 # (c) bad input: exit 3, nothing written
 printf '[stability]\nunbalance_min = 100 g mm\n' > c1.ini
