@@ -320,14 +320,16 @@ static void test_analyze(void) {
           r.verdict == AUTOBAL_VERDICT_STABLE && r.verdict_roots == AUTOBAL_VERDICT_STABLE);
     autobal_pendulum_params_from_k(3.0, 0.1, 0.0, 0.0, 0.5, &p, NULL);
     autobal_pendulum_analyze(ws, &p, &r);
-    CHECK("H = h = 0: undamped, sign test marginal (roots on the axis)",
-          r.undamped == 1 && r.verdict == AUTOBAL_VERDICT_MARGINAL);
+    CHECK("H = h = 0: undamped, the verdict from (10) (stable), n_rhp = 0",
+          r.undamped == 1 && r.verdict == AUTOBAL_VERDICT_STABLE && r.n_rhp == 0);
     CHECK("H = h = 0, R_m = 0.1, k = 0.5, R_w = 3: stable in the first approximation",
           r.undamped_verdict == AUTOBAL_VERDICT_STABLE && roots_stable_undamped(0.1, 3.0, 0.5));
     p.R_w = 2.0; /* inside the window (1.657, 2.557) of R_m = 0.1, k = 0.5 */
     autobal_pendulum_analyze(ws, &p, &r);
     CHECK("H = h = 0, R_m = 0.1, k = 0.5, R_w = 2: unstable",
           r.undamped_verdict == AUTOBAL_VERDICT_UNSTABLE && !roots_stable_undamped(0.1, 2.0, 0.5));
+    CHECK("... the verdict too, from (10) (a complex pair of x: n_rhp = 2), roots agree",
+          r.verdict == AUTOBAL_VERDICT_UNSTABLE && r.n_rhp == 2 && r.verdict_roots == AUTOBAL_VERDICT_UNSTABLE);
   }
   /* error paths */
   {

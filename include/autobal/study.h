@@ -473,12 +473,16 @@ AUTOBAL_API int autobal_study_pendulum_transient(const autobal_pendulum_params *
  * phys (NULL: none): the physical parameters p came from, recorded in the archive.  With an
  * archive (NULL: none), after a successful analysis: /pendulum (+ /pendulum/physical) and
  * /pendulum/roots (char_poly(power), root_real, root_imag, eig_real, eig_imag (root), verdict,
- * verdict_roots, max_real, root_eig_mismatch, n_right_half_plane, cond7/8/9 _applicable and
- * _predicts_stable).  Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (bad parameters: the model's
+ * criterion (autobal_study_pendulum_roots_criterion), verdict_roots, max_real,
+ * root_eig_mismatch, n_right_half_plane, cond7/8/9 _applicable and _predicts_stable).  Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (bad parameters: the model's
  * message, nothing written), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC; an archive status when writing
  * failed (what was written stays). */
 AUTOBAL_API int autobal_study_pendulum_roots(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys,
                                              autobal_archive *a, autobal_pendulum_result *result, autobal_error *err);
+/* The criterion that gave result->verdict, as text: "Routh-Hurwitz on (6)" (damped), or
+ * "exact undamped criterion (10)" (H = h = 0: (6) is even in lambda, see
+ * autobal_pendulum_analyze).  A static string; never NULL (result NULL gives ""). */
+AUTOBAL_API const char *autobal_study_pendulum_roots_criterion(const autobal_pendulum_result *result);
 /* The archive part of autobal_study_pendulum_roots for a result computed before (the archive
  * may then be created only after a successful analysis).  Returns an autobal status (the
  * archive's message in autobal_archive_errmsg). */
