@@ -246,7 +246,24 @@ typedef struct autobal_study_rotor_transient_summary {
   unsigned long contacts_final;
   double contact_capacity[AUTOBAL_ROTOR_MAX_PLANES];
   int contact_reachable[AUTOBAL_ROTOR_MAX_PLANES];
+  /* the layout of state_final (added in 0.3.x at the end of the struct), for
+     autobal_study_rotor_transient_state_name: its frame (autobal_rotor_frame: ball angles phi
+     absolute or psi relative to the rotor), 1 when (z, z') follow the balls, 1 when a MOTOR's
+     (phi_0, Omega) are the last two entries */
+  int state_frame;
+  int state_axial;
+  int state_motor;
 } autobal_study_rotor_transient_summary;
+
+/* Name and SI unit of entry k < summary->dim of summary->state_final: "x", "y", "alpha",
+ * "beta", "x_rate", "y_rate", "alpha_rate", "beta_rate" (m, m, rad, rad, m/s, m/s, rad/s,
+ * rad/s); then per ball in state order (plane by plane) "phi_<n>" (frame fixed: absolute
+ * angle) or "psi_<n>" (rotating: relative to the rotor), rad, then "phi_rate_<n>" or
+ * "psi_rate_<n>", rad/s, n = 1 .. N; then "z", "z_rate" (axial) and "phi_0", "Omega" (motor).
+ * The name is written to buf (len >= 32 is enough); *unit (may be NULL) gets a static string.
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL summary or buf, k >= dim, len too short). */
+AUTOBAL_API int autobal_study_rotor_transient_state_name(const autobal_study_rotor_transient_summary *summary,
+                                                         size_t k, char *buf, size_t len, const char **unit);
 
 /* Check the inputs of a rotor transient without running it (and without
  * touching an archive): the parameters (autobal_rotor_alloc), the initial
