@@ -9,7 +9,7 @@
  *   omega0 = sqrt(c / M_s),  R_w = omega / omega0,  R_m = m / M_s,  H = h_x / (omega0 M_s),
  *   h = h_ball / (m omega0),  sin psi0 = m0 r0 / (2 m r),
  * Delta of the rotor factors exactly (d = 0, K12 = 0: D = K11 K22, N = K22) into
- *   Delta(lambda) = M_s^4 omega0^8 P6(lambda / omega0) * K22(lambda) K22*(lambda),
+ *   Delta(lambda) = M_s^2 omega0^8 P6(lambda / omega0) * K22(lambda) K22*(lambda),
  * P6 the pendulum's characteristic polynomial (6) and K22 = A P^2 + (h_t - i C w) P + c_t the
  * tilt, P = lambda + i w.  So the 12 rotor roots are omega0 times the 8 pendulum roots plus the
  * 4 tilt roots, which have the closed form lambda = -i w + (-(h_t - i C w) +- sqrt((h_t - i C w)^2

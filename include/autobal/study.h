@@ -246,7 +246,7 @@ typedef struct autobal_study_rotor_transient_summary {
   unsigned long contacts_final;
   double contact_capacity[AUTOBAL_ROTOR_MAX_PLANES];
   int contact_reachable[AUTOBAL_ROTOR_MAX_PLANES];
-  /* the layout of state_final (added in 0.3.x at the end of the struct), for
+  /* the layout of state_final (added in 0.3.0 at the end of the struct), for
      autobal_study_rotor_transient_state_name: its frame (autobal_rotor_frame: ball angles phi
      absolute or psi relative to the rotor), 1 when (z, z') follow the balls, 1 when a MOTOR's
      (phi_0, Omega) are the last two entries */
