@@ -467,8 +467,9 @@ int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long do
 
 /* The criterion of pendulum_undamped.inc in long double (uq_undamped_ld) and, where the
  * compiler has it, __float128 (uq_undamped_q): the second pass shrinks the band around a
- * critical speed in which the signs stay undecided by 2^-49 (about from 1e-7 to 1e-21
- * relative in R_w near R_m = 1/4, k -> 1, where the discriminant cancels most). */
+ * critical speed in which the signs stay undecided by a factor 2^-49 (in long double it is up
+ * to 1e-7 relative in R_w at R_m = 0.24, k = 0.999, where the discriminant cancels most; with
+ * the second pass tests/app/undamped_verdict.sh finds no undecided point at 1e-15). */
 #define UQ_REAL long double
 #define UQ_EPS U_LD
 #define UQ(name) name##_ld
