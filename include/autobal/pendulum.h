@@ -206,14 +206,15 @@ typedef struct autobal_pendulum_result {
                            lambda = 0 (the family psi = -phi of balanced states) is divided
                            out first, see zero_root_deflated.  Undamped (H = h = 0: (6) is
                            even in lambda and the Routh array breaks down): the exact
-                           criterion (10) in long double with rounding bounds: STABLE = every
+                           criterion (10) (long double with rounding bounds, else exactly
+                           in integers, see autobal_pendulum_undamped_verdict): STABLE = every
                            root on the imaginary axis and semisimple (every x = lambda^2 of
                            (10) real, negative and simple; at k = 1 also the double roots where
                            P1 and conj(P1) of (15) meet, which are semisimple), UNSTABLE
                            otherwise (a root off the axis, or, at R_w = 0 and at k = 0,
                            R_w = 1, a multiple lambda = 0 without enough eigenvectors);
-                           MARGINAL only within the rounding bound of a critical speed (a
-                           double root of (10) that the arithmetic cannot separate).  At k == 0
+                           MARGINAL only exactly on a critical speed (a double root of (10)
+                           whose semisimplicity is not decided).  At k == 0
                            lambda = 0 is then double (the family and its rate) and left out  */
   int verdict_roots;    /* verdict from the roots alone (AUTOBAL_PENDULUM_ROOTS_TOL),
                            with the same deflation (two roots at k == 0 undamped); undamped,
@@ -228,7 +229,7 @@ typedef struct autobal_pendulum_result {
   int undamped;         /* 1 when H == 0 and h == 0: (6) is even in lambda, verdict from (10) */
   int undamped_verdict; /* the paper's "first approximation" of (10) as the maps use it:
                            STABLE when all roots x = lambda^2 of (10) are real and <= 0,
-                           UNSTABLE otherwise, MARGINAL on a boundary within rounding
+                           UNSTABLE otherwise, MARGINAL exactly on a boundary
                            (autobal_pendulum_undamped_verdict; no semisimplicity check);
                            0 when not undamped                                             */
   autobal_pendulum_sufficient cond7; /* (7): R_m << 1 or h >> 1: stable if R_w > 1

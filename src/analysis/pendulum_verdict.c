@@ -299,7 +299,7 @@ int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict, int
   if (p->H == 0.0 && p->h == 0.0) { /* undamped: (6) is even in lambda, the exact criterion (10) */
     double k, kc;
     autobal_pendulum_k_and_kc_(p, &k, &kc);
-    *verdict = autobal_pendulum_undamped_exact_(p->R_m, p->R_w, k, n_rhp);
+    *verdict = autobal_pendulum_undamped_semisimple_(p->R_m, p->R_w, k, n_rhp);
     return AUTOBAL_SUCCESS;
   }
   return damped_verdict_psi(p, verdict, n_rhp, err);
@@ -466,10 +466,12 @@ int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long do
 /* ---- the exact undamped criterion for the verdict of (4) --------------------- */
 
 /* The criterion of pendulum_undamped.inc in long double (uq_undamped_ld) and, where the
- * compiler has it, __float128 (uq_undamped_q): the second pass shrinks the band around a
+ * compiler has it, __float128 (uq_undamped_q), for the number of real roots of (10) behind the
+ * count of right-half-plane roots (the verdict itself is decided exactly where long double
+ * cannot, autobal_pendulum_undamped_verdict_exact_): the second pass shrinks the band around a
  * critical speed in which the signs stay undecided by a factor 2^-49 (in long double it is up
  * to 1e-7 relative in R_w at R_m = 0.24, k = 0.999, where the discriminant cancels most; with
- * the second pass tests/app/undamped_verdict.sh finds no undecided point at 1e-15). */
+ * the second pass tests/app/undamped_verdict.sh finds no wrong count at 1e-15). */
 #define UQ_REAL long double
 #define UQ_EPS U_LD
 #define UQ(name) name##_ld
@@ -584,23 +586,32 @@ static int undamped_n_rhp(double R_m, double R_w, double k, int nreal) {
 }
 
 /* The verdict of autobal_pendulum_verdict and autobal_pendulum_analyze when H = h = 0: the
- * exact criterion (10) (pendulum_undamped.inc: STABLE when every root x is real, negative and
- * simple -- or, at k = 1, double only where a root of P1 meets one of conj(P1), which is
- * semisimple -- so every lambda lies on the imaginary axis and is semisimple; UNSTABLE when a
- * root x is not real or is positive; MARGINAL when a deciding sign is within its rounding bound
- * in long double and then in __float128, i.e. on a critical speed), with the two points where
- * (10) has a double root exactly for double input decided: R_w = 0 (the shaft at rest, lambda
- * = 0 fourfold) and, at k = 0, R_w = 1 (a0 = 0: lambda = 0 fourfold, the structural pair
+ * exact criterion (10) as autobal_pendulum_undamped_verdict_exact_ decides it (long double, else
+ * exactly in integers: STABLE when every root x is real, negative and simple -- or, at k = 1,
+ * double only where a root of P1 meets one of conj(P1), which is semisimple -- so every lambda
+ * lies on the imaginary axis and is semisimple; UNSTABLE when a root x is not real or is
+ * positive; MARGINAL only exactly on a critical speed), with the two points where (10) has a
+ * double root exactly for double input decided: R_w = 0 (the shaft at rest, lambda = 0
+ * fourfold) and, at k = 0, R_w = 1 (a0 = 0: lambda = 0 fourfold, the structural pair
  * included).  There lambda = 0 has fewer eigenvectors than its multiplicity (the pendulums
- * drift, or the shaft resonates, linearly in time): UNSTABLE. */
-int autobal_pendulum_undamped_exact_(double R_m, double R_w, double k, int *n_rhp) {
-  int sure, nreal, v = uq_undamped_ld(R_m, R_w, k, &sure, &nreal);
-#ifdef PEND_HAVE_FLOAT128
-  if (!sure) v = uq_undamped_q(R_m, R_w, k, &sure, &nreal);
-#endif
+ * drift, or the shaft resonates, linearly in time): UNSTABLE.  The count of right-half-plane
+ * roots needs the number of real roots of (10): long double, binary128 where that is undecided
+ * (undamped_n_rhp). */
+int autobal_pendulum_undamped_semisimple_(double R_m, double R_w, double k, int *n_rhp) {
+  int v = autobal_pendulum_undamped_verdict_exact_(R_m, R_w, k);
   if (v == AUTOBAL_VERDICT_MARGINAL && (R_w == 0.0 || (k == 0.0 && R_w == 1.0)))
     v = AUTOBAL_VERDICT_UNSTABLE;
-  if (n_rhp) *n_rhp = v == AUTOBAL_VERDICT_STABLE ? 0 : undamped_n_rhp(R_m, R_w, k, nreal);
+  if (n_rhp) {
+    int sure, nreal;
+    *n_rhp = 0;
+    if (v != AUTOBAL_VERDICT_STABLE) {
+      (void)uq_undamped_ld(R_m, R_w, k, &sure, &nreal);
+#ifdef PEND_HAVE_FLOAT128
+      if (!sure) (void)uq_undamped_q(R_m, R_w, k, &sure, &nreal);
+#endif
+      *n_rhp = undamped_n_rhp(R_m, R_w, k, nreal);
+    }
+  }
   return v;
 }
 
@@ -730,10 +741,9 @@ int autobal_pendulum_analyze(autobal_pendulum_workspace *ws, const autobal_pendu
   r->undamped = (p->H == 0.0 && p->h == 0.0);
   if (r->undamped) {
     /* (6) is even in lambda and the Routh array breaks down (a zero row): the exact
-     * criterion (10) decides (autobal_pendulum_undamped_exact_) */
-    r->verdict = autobal_pendulum_undamped_exact_(p->R_m, p->R_w, k, &r->n_rhp);
-    r->undamped_verdict =
-        autobal_pendulum_undamped_verdict_ld_(p->R_m, (long double)p->R_w * p->R_w, k, NULL);
+     * criterion (10) decides (autobal_pendulum_undamped_semisimple_) */
+    r->verdict = autobal_pendulum_undamped_semisimple_(p->R_m, p->R_w, k, &r->n_rhp);
+    r->undamped_verdict = autobal_pendulum_undamped_verdict_exact_(p->R_m, p->R_w, k);
   } else {
     /* sign test on the coefficients */
     st = autobal_pendulum_sign_test_poly_(r->coef, cerr, p->R_w * p->R_w, k == 0.0, &r->verdict,
