@@ -145,6 +145,8 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_number(&j, "k", autobal_pendulum_k(&p));
     cli_json_object_end(&j);
     cli_json_string(&j, "verdict", autobal_verdict_name(r.verdict));
+    cli_json_string(&j, "criterion", autobal_study_pendulum_roots_criterion(&r));
+    cli_json_int(&j, "n_right_half_plane", r.n_rhp);
     cli_json_string(&j, "verdict_roots", autobal_verdict_name(r.verdict_roots));
     cli_json_quantity(&j, "max_real", r.max_real, "1");
     cli_json_quantity(&j, "root_eig_mismatch", r.mismatch, "1");
@@ -159,8 +161,9 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
-    printf("main motion (4): %s (Routh-Hurwitz on (6)); roots say %s; margin max Re(lambda) = %.6e\n",
-           autobal_verdict_name(r.verdict), autobal_verdict_name(r.verdict_roots), r.max_real);
+    printf("main motion (4): %s (%s); roots say %s; margin max Re(lambda) = %.6e\n",
+           autobal_verdict_name(r.verdict), autobal_study_pendulum_roots_criterion(&r),
+           autobal_verdict_name(r.verdict_roots), r.max_real);
     printf("  %-3s %24s %24s   %24s %24s\n", "#", "root of (6): Re", "Im", "eigenvalue of (5): Re", "Im");
     for (i = 0; i < AUTOBAL_PENDULUM_ORDER; i++)
       printf("  %-3zu %24.15e %24.15e   %24.15e %24.15e\n", i, r.root_re[i], r.root_im[i], r.eig_re[i], r.eig_im[i]);

@@ -305,6 +305,25 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     cli_json_number(&j, "root_eig_mismatch", r->n_closed ? r->root_eig_mismatch : NAN);
     cli_json_number(&j, "full_mismatch", r->full_mismatch);
     cli_json_number(&j, "floquet_mismatch", r->floquet_mismatch);
+    /* the roots behind the verdict: Delta's (one plane) or the closed matrix's eigenvalues (two
+     * planes), the closed matrix's eigenvalues matched to them, the full model's eigenvalues
+     * (isotropic), the Floquet multipliers; arrays present only where computed */
+    if (r->n_poly) cli_json_numbers(&j, "char_poly", r->poly, r->n_poly);
+    if (r->n_closed) {
+      cli_json_quantities(&j, "root_real", r->root_re, r->n_closed, "1/s");
+      cli_json_quantities(&j, "root_imag", r->root_im, r->n_closed, "1/s");
+      cli_json_quantities(&j, "closed_eig_real", r->closed_eig_re, r->n_closed, "1/s");
+      cli_json_quantities(&j, "closed_eig_imag", r->closed_eig_im, r->n_closed, "1/s");
+    }
+    if (r->n_full) {
+      cli_json_quantities(&j, "full_eig_real", r->full_re, r->n_full, "1/s");
+      cli_json_quantities(&j, "full_eig_imag", r->full_im, r->n_full, "1/s");
+    }
+    if (r->n_floquet) {
+      cli_json_quantities(&j, "floquet_mu_real", r->mu_re, r->n_floquet, "1");
+      cli_json_quantities(&j, "floquet_mu_imag", r->mu_im, r->n_floquet, "1");
+      cli_json_quantity(&j, "period", r->period, "s");
+    }
     if (do_crit) json_crit(&j, cr, "rad/s");
     if (sum.have_every) {
       const autobal_rotor_unbalance_range *u = &sum.every;

@@ -70,8 +70,10 @@
 #define HELP_PENDULUM_ROOTS                                                                              \
   "Roots of the characteristic polynomial, eq. (6) in docs/pendulum.md (GSL complex polynomial\n"       \
   "solver), eigenvalues of the 8x8 first-order matrix of the linearization, eq. (5) in\n"               \
-  "docs/pendulum.md (GSL), their agreement, the Routh-Hurwitz verdict, the stability margin (largest\n" \
-  "real part) and the sufficient conditions, eqs. (7)-(9) in docs/pendulum.md.\n\n"                     \
+  "docs/pendulum.md (GSL), their agreement, the Routh-Hurwitz verdict (without damping, H = h = 0:\n"   \
+  "the exact criterion of eq. (10) in docs/pendulum.md, roots on the imaginary axis and semisimple),\n" \
+  "the stability margin (largest real part) and the sufficient conditions, eqs. (7)-(9) in\n"          \
+  "docs/pendulum.md.\n\n"                                                                              \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\narchive: /pendulum (parameters as attributes), /pendulum/roots\n" HELP_DOCS_PENDULUM
 

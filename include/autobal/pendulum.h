@@ -200,19 +200,38 @@ typedef struct autobal_pendulum_result {
   double max_real_eig;  /* largest real part of the eigenvalues                         */
   double mismatch;      /* bottleneck-optimal max_i |root_i - eig_i| (autobal_match_roots) */
   double mismatch_rel;  /* mismatch / max(1, max |root|)                                 */
-  int verdict;          /* autobal_verdict of the main motion: the Routh-Hurwitz sign
-                           test on coef (AUTOBAL_PENDULUM_HURWITZ_RTOL); when k == 0 the
-                           structural root lambda = 0 (the family psi = -phi of balanced
-                           states) is divided out first, see zero_root_deflated          */
+  int verdict;          /* autobal_verdict of the main motion.  Damped (H > 0 or h > 0): the
+                           Routh-Hurwitz sign test on coef (AUTOBAL_PENDULUM_HURWITZ_RTOL),
+                           STABLE = asymptotically stable; when k == 0 the structural root
+                           lambda = 0 (the family psi = -phi of balanced states) is divided
+                           out first, see zero_root_deflated.  Undamped (H = h = 0: (6) is
+                           even in lambda and the Routh array breaks down): the exact
+                           criterion (10) (long double with rounding bounds, else exactly
+                           in integers, see autobal_pendulum_undamped_verdict): STABLE = every
+                           root on the imaginary axis and semisimple (every x = lambda^2 of
+                           (10) real, negative and simple; at k = 1 also the double roots where
+                           P1 and conj(P1) of (15) meet, which are semisimple), UNSTABLE
+                           otherwise (a root off the axis, or, at R_w = 0 and at k = 0,
+                           R_w = 1, a multiple lambda = 0 without enough eigenvectors);
+                           MARGINAL only exactly on a critical speed (a double root of (10)
+                           whose semisimplicity is not decided).  At k == 0
+                           lambda = 0 is then double (the family and its rate) and left out  */
   int verdict_roots;    /* verdict from the roots alone (AUTOBAL_PENDULUM_ROOTS_TOL),
-                           with the same deflation                                       */
+                           with the same deflation (two roots at k == 0 undamped); undamped,
+                           roots on the axis within the tolerance give STABLE (rounded roots
+                           cannot tell whether a multiple root is semisimple: verdict does) */
   int verdicts_agree;   /* verdict == verdict_roots                                      */
-  int n_rhp;            /* roots with Re > 0 by the Routh array (see autobal_poly_hurwitz) */
+  int n_rhp;            /* roots with Re > 0: damped, by the Routh array (see
+                           autobal_poly_hurwitz); undamped, from the roots x of (10) (a
+                           positive x gives one, a complex pair of x two); on a boundary a
+                           lower bound                                                    */
   int zero_root_deflated; /* 1 when k == 0 exactly and lambda = 0 was divided out        */
-  int undamped;         /* 1 when H == 0 and h == 0: then (6) is even in lambda and the  */
-  int undamped_verdict; /* verdict "in the first approximation" of (10): STABLE when all
-                           roots x = lambda^2 of (10) are real and <= 0, else UNSTABLE
-                           (autobal_pendulum_undamped_verdict); 0 when not undamped      */
+  int undamped;         /* 1 when H == 0 and h == 0: (6) is even in lambda, verdict from (10) */
+  int undamped_verdict; /* the paper's "first approximation" of (10) as the maps use it:
+                           STABLE when all roots x = lambda^2 of (10) are real and <= 0,
+                           UNSTABLE otherwise, MARGINAL exactly on a boundary
+                           (autobal_pendulum_undamped_verdict; no semisimplicity check);
+                           0 when not undamped                                             */
   autobal_pendulum_sufficient cond7; /* (7): R_m << 1 or h >> 1: stable if R_w > 1
                                         (converges slowly: the exact threshold at k = 1 is
                                         R_w1 ~ 1 + 1.5 R_m^(1/3), (17))                 */
@@ -234,8 +253,10 @@ AUTOBAL_API int autobal_pendulum_analyze(autobal_pendulum_workspace *ws,
                                          const autobal_pendulum_params *p,
                                          autobal_pendulum_result *res);
 
-/* Sign-test verdict only (cheap: builds (6) and runs the Routh test, with
- * the k == 0 deflation; no roots, no workspace).  *n_rhp may be NULL. */
+/* The verdict of autobal_pendulum_analyze without roots (cheap, no workspace): damped, builds
+ * (6) and runs the Routh test, with the k == 0 deflation; undamped (H = h = 0), the exact
+ * criterion (10) (see autobal_pendulum_result.verdict).  *n_rhp (may be NULL): the count of
+ * autobal_pendulum_result.n_rhp. */
 AUTOBAL_API int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict,
                                          int *n_rhp, autobal_error *err);
 

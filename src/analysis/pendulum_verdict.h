@@ -162,6 +162,11 @@ int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long do
 /* The undamped verdict at (R_m, R_w, k) decided: the long double test where its bounds decide,
  * else exact (integers, GMP); MARGINAL only exactly on a boundary. */
 int autobal_pendulum_undamped_verdict_exact_(double R_m, double R_w, double k);
+/* Verdict of autobal_pendulum_verdict / autobal_pendulum_analyze when H = h = 0: that of
+ * autobal_pendulum_undamped_verdict_exact_ with R_w = 0 and (k = 0) R_w = 1, where lambda = 0
+ * is not semisimple, UNSTABLE; if n_rhp != NULL, the number of roots of (6) with Re > 0 (no
+ * validation). */
+int autobal_pendulum_undamped_semisimple_(double R_m, double R_w, double k, int *n_rhp);
 /* Range checks of R_m in (0, 0.5) and k in [0, 1]. */
 int autobal_pendulum_check_rm_k_(double R_m, double k, autobal_error *err);
 
