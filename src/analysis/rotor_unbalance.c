@@ -28,6 +28,7 @@
 
 #include "analysis/rotor_closed.h"
 #include "analysis/rotor_stab_handle.h"
+#include "analysis/rotor_stability.h"
 #include "internal.h"
 
 /* p(z) for ascending real coefficients (long double Horner). */
@@ -370,4 +371,47 @@ int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo
     if (st == AUTOBAL_SUCCESS) st = st1 != AUTOBAL_SUCCESS ? st1 : st2;
   }
   return st;
+}
+
+/* A map point's verdict for every unbalance in [s_lo, s_hi] (the map's per-point function). */
+typedef struct every_map {
+  double s_lo, s_hi;
+} every_map;
+
+static int every_point(autobal_rotor_stab *s, void *user, double *mg, int *v) {
+  const every_map *em = (const every_map *)user;
+  autobal_rotor_unbalance_range ur;
+  size_t k;
+  int st = autobal_rotor_stab_every_unbalance(s, em->s_lo, em->s_hi, &ur);
+  *mg = NAN;
+  *v = AUTOBAL_ROTOR_VERDICT_NONE;
+  if (st == AUTOBAL_EINVAL) return AUTOBAL_SUCCESS; /* the balls cannot balance every unbalance here: NONE */
+  if (st != AUTOBAL_SUCCESS) return st;
+  /* the worst verdict over the range: a critical unbalance inside with stable sides is a touch */
+  *v = AUTOBAL_VERDICT_STABLE;
+  for (k = 0; k < ur.n_sub; k++)
+    if (ur.sub_verdict[k] < *v) *v = ur.sub_verdict[k];
+  if (!ur.all_stable && *v == AUTOBAL_VERDICT_STABLE) *v = AUTOBAL_VERDICT_MARGINAL;
+  *mg = ur.margin_worst;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p, const autobal_rotor_stab_options *opt,
+                                           int param1, const double *v1, size_t n1, int param2, const double *v2,
+                                           size_t n2, double s_lo, double s_hi, int n_threads, double *margin,
+                                           int *verdict, autobal_error *err) {
+  every_map em;
+  if (param1 == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS || param2 == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "map for every unbalance: unbalance_mass cannot be an axis (the unbalance is the range "
+                             "[%g, %g] kg m)",
+                             s_lo, s_hi);
+  if (!(isfinite(s_lo) && isfinite(s_hi) && s_lo > 0.0 && s_lo <= s_hi))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "map for every unbalance: the range of m0 r0 [%g, %g] kg m needs 0 < min <= max, finite",
+                             s_lo, s_hi);
+  em.s_lo = s_lo;
+  em.s_hi = s_hi;
+  return autobal_rotor_stab_map_run_(p, opt, every_point, &em, param1, v1, n1, param2, v2, n2, n_threads, margin,
+                                     verdict, err);
 }
