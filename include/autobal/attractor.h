@@ -24,8 +24,10 @@
  *                 side of the unbalance: sum_i m_i r_i cos(psi_i - psi_j0) > 0 at the end.
  *  3 FIXED        every ball at rest, not 1 or 2 (e.g. a partial compensation).
  *  4 CIRCULATING  some ball circulates (|T_i| >= min_turns), every circulating ball steadily
- *                 (|r_i' - r_i''| <= rate_tol |r_i' + r_i''| / 2) and at one common rate (each
- *                 within rate_tol of their mean r).  Its frequency is the balls' absolute rate
+ *                 (|r_i' - r_i''| <= rate_tol |r_i' + r_i''| / 2) and at one common rate: each
+ *                 one's mean relative rate over the whole window,
+ *                 r_i = (psi_i(t_{n-1}) - psi_i(t_0)) / (t_{n-1} - t_0), within rate_tol of
+ *                 their mean r.  Its frequency is the balls' absolute rate
  *                 nu = Omega + r (Omega the spin speed at the end; rad/s, signed as Omega), and
  *                 it is compared with the natural frequency f_k of the rotor (given by the
  *                 caller, e.g. autobal_rotor_modes at Omega: the Campbell diagram's column at

@@ -70,7 +70,7 @@ int autobal_attractor_classify(const autobal_attractor_options *opt, const autob
                                autobal_attractor_result *r, autobal_error *err) {
   size_t n, nb, i, k, mid;
   int st;
-  double t0, t1, tm, rate1[MAX_BALLS], rate2[MAX_BALLS];
+  double t0, t1, tm, rate1[MAX_BALLS], rate2[MAX_BALLS], rate[MAX_BALLS];
   int rest[MAX_BALLS], circ[MAX_BALLS];
   if (r) {
     r->cls = AUTOBAL_ATTRACTOR_UNCLASSIFIED;
@@ -128,6 +128,7 @@ int autobal_attractor_classify(const autobal_attractor_options *opt, const autob
     range_of(w->psi + i, nb, 0, n, &lo, &hi);
     rest[i] = hi - lo <= opt->rest_tol;
     turns = (w->psi[(n - 1) * nb + i] - w->psi[i]) / TWO_PI;
+    rate[i] = (w->psi[(n - 1) * nb + i] - w->psi[i]) / (t1 - t0); /* over the whole window */
     circ[i] = fabs(turns) >= opt->min_turns;
     rate1[i] = (w->psi[mid * nb + i] - w->psi[i]) / (w->t[mid] - t0);
     /* two samples: one rate */
@@ -169,11 +170,11 @@ int autobal_attractor_classify(const autobal_attractor_options *opt, const autob
       if (circ[i]) {
         double ri = 0.5 * (rate1[i] + rate2[i]);
         if (!(fabs(rate1[i] - rate2[i]) <= opt->rate_tol * fabs(ri))) steady = 0;
-        mean += ri, nc++;
+        mean += rate[i], nc++;
       }
     mean /= (double)nc;
     for (i = 0; i < nb && steady; i++)
-      if (circ[i] && !(fabs(0.5 * (rate1[i] + rate2[i]) - mean) <= opt->rate_tol * fabs(mean))) steady = 0;
+      if (circ[i] && !(fabs(rate[i] - mean) <= opt->rate_tol * fabs(mean))) steady = 0;
     if (steady) {
       double nu = w->speed + mean, best = INFINITY;
       int sense = nu * w->speed > 0 ? 1 : -1; /* the whirl nu excites */
