@@ -211,11 +211,26 @@ static void test_periodic_irregular(const autobal_attractor_options *o) {
   for (k = 0; k < NS; k++) x.psi[k * NB] = -263.0 * x.t[k], x.psi[k * NB + 1] = -150.0 * x.t[k];
   for (k = 0; k < NS; k++) x.res[k] = 2.0;
   expect("two balls circulating at -263 and -150 rad/s", &x, o, AUTOBAL_ATTRACTOR_PERIODIC);
+  /* a rate that swings by +-60 rad/s with a period of half the window: the two halves' mean rates
+   * agree (-263 both), the quarters' do not (-263 +- 38.2): not a steady circulation (the case of a
+   * member of the default rotor's 32 x 32 map whose wandering balls passed a halves-only test) */
+  for (k = 0; k < NS; k++)
+    x.psi[k * NB] = -263.0 * x.t[k] - 60.0 / (4 * PI_) * (cos(4 * PI_ * x.t[k]) - 1.0), x.psi[k * NB + 1] = 0.1;
+  expect("rate -263 +- 60 sin(4 pi t): halves equal, quarters 14.5 % apart", &x, o, AUTOBAL_ATTRACTOR_PERIODIC);
+  for (k = 0; k < NS; k++)
+    x.psi[k * NB] = -263.0 * x.t[k] - 3.0 / (4 * PI_) * (cos(4 * PI_ * x.t[k]) - 1.0);
+  expect("... +- 3 sin(4 pi t): quarters 0.73 % apart, steady", &x, o, AUTOBAL_ATTRACTOR_CIRCULATING);
   /* a circulation slowing down: psi = -263 t + 31.5 t^2, halves' rates -247.25 and -215.75 */
   for (k = 0; k < NS; k++) x.psi[k * NB] = -263.0 * x.t[k] + 31.5 * x.t[k] * x.t[k], x.psi[k * NB + 1] = 0.1;
   expect("a ball slowing from 263 to 200 rad/s", &x, o, AUTOBAL_ATTRACTOR_IRREGULAR);
   for (k = 0; k < NS; k++) x.psi[k * NB] = -263.0 * x.t[k] + 2.0 * x.t[k] * x.t[k];
-  expect("... from 263 to 259 rad/s (halves within rate_tol 2 %)", &x, o, AUTOBAL_ATTRACTOR_CIRCULATING);
+  expect("... from 263 to 259 rad/s (quarters within 0.6 % of the mean rate, rate_tol 2 %)", &x, o, AUTOBAL_ATTRACTOR_CIRCULATING);
+  for (k = 0; k < NS; k++) x.psi[k * NB] = -263.0 * x.t[k] + 5.0 * x.t[k] * x.t[k];
+  expect("... from 263 to 253 rad/s (first quarter -261.75 vs mean -258, 1.45 %; last -254.25, 1.45 %)", &x, o,
+         AUTOBAL_ATTRACTOR_CIRCULATING);
+  for (k = 0; k < NS; k++) x.psi[k * NB] = -263.0 * x.t[k] + 7.0 * x.t[k] * x.t[k];
+  expect("... from 263 to 249 rad/s (first quarter 2.05 % from the mean -256; halves 7 rad/s apart > 2 pi / window)", &x, o,
+         AUTOBAL_ATTRACTOR_IRREGULAR);
   /* non-finite samples, too few samples */
   x.res[7] = NAN;
   expect("a NaN residual", &x, o, AUTOBAL_ATTRACTOR_IRREGULAR);

@@ -17,17 +17,17 @@
  *                 <= balance_tol at every sample of the window.
  *  Each ball i has over the window the range R_i = max psi_i - min psi_i of its angle psi_i
  *  relative to the rotor (continuous, not wrapped), its turn count
- *  T_i = (psi_i(t_{n-1}) - psi_i(t_0)) / 2 pi and the mean relative rates r_i' and r_i'' over
- *  the first and the second half of the window (by the samples nearest the middle).
+ *  T_i = (psi_i(t_{n-1}) - psi_i(t_0)) / 2 pi, its mean relative rate over the window
+ *  r_i = (psi_i(t_{n-1}) - psi_i(t_0)) / (t_{n-1} - t_0), over each of its four quarters and
+ *  the mean relative rates r_i' and r_i'' over its first and second half (the parts end at the
+ *  samples nearest t_0 + j (t_{n-1} - t_0) / 4).
  *  2 HEAVY_SIDE   every ball at rest (R_i <= rest_tol) and, in every plane j with balls and a
  *                 non-zero unbalance U_j at angle psi_j0, the balls' first moment points to the
  *                 side of the unbalance: sum_i m_i r_i cos(psi_i - psi_j0) > 0 at the end.
  *  3 FIXED        every ball at rest, not 1 or 2 (e.g. a partial compensation).
  *  4 CIRCULATING  some ball circulates (|T_i| >= min_turns), every circulating ball steadily
- *                 (|r_i' - r_i''| <= rate_tol |r_i' + r_i''| / 2) and at one common rate: each
- *                 one's mean relative rate over the whole window,
- *                 r_i = (psi_i(t_{n-1}) - psi_i(t_0)) / (t_{n-1} - t_0), within rate_tol of
- *                 their mean r.  Its frequency is the balls' absolute rate
+ *                 (its rate over each quarter within rate_tol |r_i| of r_i) and at one common
+ *                 rate (each r_i within rate_tol of their mean r).  Its frequency is the balls' absolute rate
  *                 nu = Omega + r (Omega the spin speed at the end; rad/s, signed as Omega), and
  *                 it is compared with the natural frequency f_k of the rotor (given by the
  *                 caller, e.g. autobal_rotor_modes at Omega: the Campbell diagram's column at

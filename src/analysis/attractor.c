@@ -12,6 +12,7 @@
 #define TWO_PI 6.283185307179586476925286766559
 #define PI_ 3.1415926535897932384626433832795
 #define MAX_BALLS 64
+#define N_PARTS 4 /* the parts of the window over which a circulation must be steady */
 
 static const char *const class_name[AUTOBAL_ATTRACTOR_N_CLASSES] = {"unclassified", "balanced", "heavy_side", "fixed",
                                                                     "circulating",  "periodic", "irregular"};
@@ -60,6 +61,17 @@ static void range_of(const double *x, size_t stride, size_t a, size_t b, double 
   }
 }
 
+/* The sample nearest time `target` (t increasing, n >= 1). */
+static size_t nearest_sample(const double *t, size_t n, double target) {
+  size_t lo = 0, hi = n - 1;
+  while (hi - lo > 1) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (t[mid] < target) lo = mid;
+    else hi = mid;
+  }
+  return fabs(t[lo] - target) <= fabs(t[hi] - target) ? lo : hi;
+}
+
 /* Two envelopes [lo1, hi1], [lo2, hi2] agree within tol times the largest magnitude. */
 static int same_envelope(double lo1, double hi1, double lo2, double hi2, double tol) {
   double scale = fmax(fmax(fabs(lo1), fabs(hi1)), fmax(fabs(lo2), fabs(hi2)));
@@ -71,6 +83,7 @@ int autobal_attractor_classify(const autobal_attractor_options *opt, const autob
   size_t n, nb, i, k, mid;
   int st;
   double t0, t1, tm, rate1[MAX_BALLS], rate2[MAX_BALLS], rate[MAX_BALLS];
+  size_t part[N_PARTS + 1];
   int rest[MAX_BALLS], circ[MAX_BALLS];
   if (r) {
     r->cls = AUTOBAL_ATTRACTOR_UNCLASSIFIED;
@@ -123,6 +136,9 @@ int autobal_attractor_classify(const autobal_attractor_options *opt, const autob
   if (mid + 1 < n && fabs(w->t[mid - 1] - tm) < fabs(w->t[mid] - tm)) mid--;
   if (mid == 0) mid = 1;
   if (mid >= n) mid = n - 1;
+  /* the window's quarters: between the samples nearest t0 + j (t1 - t0) / 4 (a part of no sample
+   * is left out) */
+  for (k = 0; k <= N_PARTS; k++) part[k] = nearest_sample(w->t, n, t0 + (t1 - t0) * (double)k / N_PARTS);
   for (i = 0; i < nb; i++) {
     double lo, hi, turns;
     range_of(w->psi + i, nb, 0, n, &lo, &hi);
@@ -167,9 +183,14 @@ int autobal_attractor_classify(const autobal_attractor_options *opt, const autob
     double mean = 0.0;
     size_t nc = 0;
     for (i = 0; i < nb; i++)
-      if (circ[i]) {
-        double ri = 0.5 * (rate1[i] + rate2[i]);
-        if (!(fabs(rate1[i] - rate2[i]) <= opt->rate_tol * fabs(ri))) steady = 0;
+      if (circ[i]) { /* steady: its rate over each quarter within rate_tol of its rate over the window */
+        for (k = 0; k < N_PARTS; k++) {
+          size_t a = part[k], b = part[k + 1];
+          double rq;
+          if (b <= a) continue;
+          rq = (w->psi[b * nb + i] - w->psi[a * nb + i]) / (w->t[b] - w->t[a]);
+          if (!(fabs(rq - rate[i]) <= opt->rate_tol * fabs(rate[i]))) steady = 0;
+        }
         mean += rate[i], nc++;
       }
     mean /= (double)nc;

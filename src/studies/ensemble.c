@@ -86,9 +86,9 @@ struct autobal_ensemble {
 #define ATTRACTOR_RULE                                                                                                         \
   "over the final window (the last attractor_window_revs revolutions, not before the settle time): 1 balanced: stopped at "  \
   "balance or residual unbalance <= balance_tol at every sample; each ball's angle psi relative to the rotor: range R, "     \
-  "turns T, mean rates over the two halves; 2 heavy_side: every ball at rest (R <= attractor_rest_tol) and in every plane "  \
+  "turns T, mean rates over the window, its quarters and its halves; 2 heavy_side: every ball at rest (R <= attractor_rest_tol) and in every plane "  \
   "sum m r cos(psi - psi0) > 0; 3 fixed: every ball at rest otherwise; 4 circulating: some ball with |T| >= "                \
-  "attractor_min_turns, each steady (halves' rates within attractor_rate_tol) at one common rate r, frequency nu = Omega + " \
+  "attractor_min_turns, each steady (quarters' rates within attractor_rate_tol) at one common rate r, frequency nu = Omega + " \
   "r, compared with the nearest natural frequency of the whirl it excites; 5 periodic: the halves' ranges of the residual "  \
   "unbalance and the amplitude agree within attractor_envelope_tol and the balls' mean rates within attractor_rate_tol (or " \
   "2 pi / window); 6 irregular: otherwise; 0 unclassified: failed or not run"
