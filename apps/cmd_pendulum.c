@@ -1,5 +1,6 @@
 /* cmd_pendulum.c: `autobal pendulum roots|critical|map`. */
 #define _POSIX_C_SOURCE 200809L
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -144,6 +145,8 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_number(&j, "k", autobal_pendulum_k(&p));
     cli_json_object_end(&j);
     cli_json_string(&j, "verdict", autobal_verdict_name(r.verdict));
+    cli_json_string(&j, "criterion", autobal_study_pendulum_roots_criterion(&r));
+    cli_json_int(&j, "n_right_half_plane", r.n_rhp);
     cli_json_string(&j, "verdict_roots", autobal_verdict_name(r.verdict_roots));
     cli_json_quantity(&j, "max_real", r.max_real, "1");
     cli_json_quantity(&j, "root_eig_mismatch", r.mismatch, "1");
@@ -158,8 +161,9 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
-    printf("main motion (4): %s (Routh-Hurwitz on (6)); roots say %s; margin max Re(lambda) = %.6e\n",
-           autobal_verdict_name(r.verdict), autobal_verdict_name(r.verdict_roots), r.max_real);
+    printf("main motion (4): %s (%s); roots say %s; margin max Re(lambda) = %.6e\n",
+           autobal_verdict_name(r.verdict), autobal_study_pendulum_roots_criterion(&r),
+           autobal_verdict_name(r.verdict_roots), r.max_real);
     printf("  %-3s %24s %24s   %24s %24s\n", "#", "root of (6): Re", "Im", "eigenvalue of (5): Re", "Im");
     for (i = 0; i < AUTOBAL_PENDULUM_ORDER; i++)
       printf("  %-3zu %24.15e %24.15e   %24.15e %24.15e\n", i, r.root_re[i], r.root_im[i], r.eig_re[i], r.eig_im[i]);
@@ -176,6 +180,36 @@ int cli_cmd_pendulum_roots(cli_ctx *ctx) {
 /* ---- pendulum critical ------------------------------------------------------------- */
 static const char *kind_name(int kind) {
   return kind > 0 ? "stability gained" : kind < 0 ? "stability lost" : "touch (no change)";
+}
+
+/* The kinds of a set as ints (autobal_crit_kind) and names, for --json. */
+static void json_kinds(cli_json *j, const char *prefix, const autobal_pendulum_crit_set *s) {
+  char key[64];
+  size_t i;
+  snprintf(key, sizeof key, "%s_kind", prefix);
+  cli_json_array(j, key);
+  for (i = 0; i < s->n; i++) cli_json_int(j, NULL, s->kind[i]);
+  cli_json_array_end(j);
+  snprintf(key, sizeof key, "%s_kind_name", prefix);
+  cli_json_array(j, key);
+  for (i = 0; i < s->n; i++)
+    cli_json_string(j, NULL, s->kind[i] > 0 ? "gained" : s->kind[i] < 0 ? "lost" : "touch");
+  cli_json_array_end(j);
+  snprintf(key, sizeof key, "%s_unresolved", prefix);
+  cli_json_bool(j, key, s->unresolved);
+}
+
+/* The speed of the first touch of s (NaN if none). */
+static double first_touch(const autobal_pendulum_crit_set *s) {
+  size_t i;
+  for (i = 0; i < s->n; i++)
+    if (s->kind[i] == AUTOBAL_CRIT_TOUCH) return s->R_w[i];
+  return NAN;
+}
+
+/* |formula - numerical| / numerical, NaN where either is missing */
+static double rel_err(double formula, double numerical) {
+  return isfinite(formula) && isfinite(numerical) ? fabs(formula - numerical) / numerical : NAN;
 }
 
 /* The stable intervals; with omega0 > 0 (physical input) also in rpm. */
@@ -283,6 +317,12 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
   /* the computation first (autobal_study_pendulum_critical), the archive afterwards */
   st = autobal_study_pendulum_critical(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
   if (sum.damped_truncated_warning && !ctx->json) fprintf(stderr, "autobal: warning: %s\n", sum.warning_message);
+  if (st == AUTOBAL_SUCCESS && (sum.undamped.unresolved || sum.undamped_k0.unresolved || sum.undamped_k1.unresolved))
+    fprintf(stderr,
+            "autobal: warning: two undamped critical speeds lie within one unit in the last place of W = R_w^2 "
+            "(%s): an island or window narrower than a double resolves is reported as two equal values "
+            "(*_unresolved in the archive and the JSON)\n",
+            sum.undamped.unresolved ? "at the given k" : sum.undamped_k0.unresolved ? "at k = 0" : "at k = 1");
   if (st == AUTOBAL_ECANCELLED) {
     pend_partial pp;
     pp.p = &p, pp.phys = physical ? &phys : NULL, pp.sum = &sum;
@@ -319,9 +359,10 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
       cli_json_quantity(&j, "omega0", w0, "rad/s");
       cli_json_quantities(&j, "undamped_critical_omega", wc, i, "rad/s");
     }
-    cli_json_array(&j, "undamped_kind");
-    for (i = 0; i < und->n; i++) cli_json_int(&j, NULL, und->kind[i]);
-    cli_json_array_end(&j);
+    json_kinds(&j, "undamped", und);
+    /* two critical speeds closer than this relative width in W = R_w^2 may be reported equal
+     * (then *_unresolved = true); every island or window wider than it is reported */
+    cli_json_number(&j, "undamped_resolution_W", DBL_EPSILON);
     cli_json_quantities(&j, "undamped_stable_lo", und->stable_lo, und->n_stable, "1");
     cli_json_quantities(&j, "undamped_stable_hi", und->stable_hi, und->n_stable, "1");
     if (have_damped) {
@@ -331,9 +372,37 @@ int cli_cmd_pendulum_critical(cli_ctx *ctx) {
       cli_json_bool(&j, "damped_truncated", damped->truncated);
     }
     cli_json_quantities(&j, "k0_critical_R_w", k0->R_w, k0->n, "1");
+    json_kinds(&j, "k0", k0);
     cli_json_quantities(&j, "k1_critical_R_w", k1->R_w, k1->n, "1");
+    json_kinds(&j, "k1", k1);
     cli_json_quantity(&j, "R_m1", rm1, "1");
     cli_json_quantity(&j, "R_w_at_R_m1", rw_rm1, "1");
+    {
+      /* the paper's closed forms and series at R_m (null where not defined) and their relative
+       * errors against the numerical critical speeds they approximate */
+      int small = p.R_m < 0.05;
+      double f14_2 = small ? s2 : l2, f14_3 = small ? s3 : l3;
+      double n18 = p.R_m > rm1 ? first_touch(k1) : NAN;
+      double f18 = p.R_m > rm1 ? rw23_18 : NAN;
+      cli_json_object(&j, "closed_forms");
+      cli_json_number(&j, "eq13_R_w1_k0", rw1_13);
+      cli_json_string(&j, "eq14_form", small ? "R_m < 0.05" : p.R_m < 0.25 ? "0.05 <= R_m < 0.25" : "none");
+      cli_json_number(&j, "eq14_R_w2_k0", f14_2);
+      cli_json_number(&j, "eq14_R_w3_k0", f14_3);
+      cli_json_number(&j, "eq16_R_w1_k1", rw1_16);
+      cli_json_number(&j, "eq16_u", u16);
+      cli_json_number(&j, "eq17_R_w1_k1", rw1_17);
+      cli_json_number(&j, "eq18_R_w23_k1", f18);
+      cli_json_object_end(&j);
+      cli_json_object(&j, "closed_form_errors");
+      cli_json_number(&j, "eq13_R_w1_k0", rel_err(rw1_13, autobal_pendulum_crit_get(k0, 0)));
+      cli_json_number(&j, "eq14_R_w2_k0", rel_err(f14_2, autobal_pendulum_crit_get(k0, 1)));
+      cli_json_number(&j, "eq14_R_w3_k0", rel_err(f14_3, autobal_pendulum_crit_get(k0, 2)));
+      cli_json_number(&j, "eq16_R_w1_k1", rel_err(rw1_16, autobal_pendulum_crit_get(k1, 0)));
+      cli_json_number(&j, "eq17_R_w1_k1", rel_err(rw1_17, autobal_pendulum_crit_get(k1, 0)));
+      cli_json_number(&j, "eq18_R_w23_k1", rel_err(f18, n18));
+      cli_json_object_end(&j);
+    }
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     double w0 = physical ? pendulum_omega0(&phys) : NAN;

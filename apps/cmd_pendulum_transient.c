@@ -161,7 +161,19 @@ int cli_cmd_pendulum_transient(cli_ctx *ctx) {
       cli_json_quantity(&jj, "amplitude_final", sum.amplitude_final, "1");
       cli_json_quantity(&jj, "alpha_final", sum.alpha_final, "rad");
       cli_json_quantity(&jj, "beta_final", sum.beta_final, "rad");
-      cli_json_numbers(&jj, "final_state", sum.final_state, 8);
+      {
+        static const char *const names[8] = {"xi", "eta", "psi", "phi", "xi_rate", "eta_rate", "psi_rate", "phi_rate"};
+        /* dimensionless: lengths in units of l, rates per tau = omega0 t */
+        static const char *const units[8] = {"1", "1", "rad", "rad", "1", "1", "rad", "rad"};
+        int k;
+        cli_json_numbers(&jj, "final_state", sum.final_state, 8);
+        cli_json_array(&jj, "final_state_names");
+        for (k = 0; k < 8; k++) cli_json_string(&jj, NULL, names[k]);
+        cli_json_array_end(&jj);
+        cli_json_array(&jj, "final_state_units");
+        for (k = 0; k < 8; k++) cli_json_string(&jj, NULL, units[k]);
+        cli_json_array_end(&jj);
+      }
       cli_json_int(&jj, "steps", (long)sum.solver.steps);
       cli_json_int(&jj, "rhs_evaluations", (long)sum.solver.rhs_evals);
       cli_json_quantity(&jj, "wall_time", sum.solver.wall_seconds, "s");

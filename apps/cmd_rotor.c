@@ -1009,6 +1009,21 @@ static void print_json(cli_ctx *ctx, const rotor_cfg *c, const autobal_study_rot
     cli_json_int(&jj, "friction_slips", (long)s->friction_slips);
     cli_json_int(&jj, "friction_reversals", (long)s->friction_reversals);
   }
+  if (s->state_final) { /* the state at t_reached: values, names and units entry by entry */
+    size_t k;
+    char nm[64];
+    const char *u;
+    cli_json_string(&jj, "final_state_frame", s->state_frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating");
+    cli_json_numbers(&jj, "final_state", s->state_final, s->dim);
+    cli_json_array(&jj, "final_state_names");
+    for (k = 0; k < s->dim; k++)
+      cli_json_string(&jj, NULL, autobal_study_rotor_transient_state_name(s, k, nm, sizeof nm, &u) ? "?" : nm);
+    cli_json_array_end(&jj);
+    cli_json_array(&jj, "final_state_units");
+    for (k = 0; k < s->dim; k++)
+      cli_json_string(&jj, NULL, autobal_study_rotor_transient_state_name(s, k, nm, sizeof nm, &u) ? "?" : u);
+    cli_json_array_end(&jj);
+  }
   cli_json_int(&jj, "steps", (long)s->solver.steps);
   cli_json_int(&jj, "rhs_evaluations", (long)s->solver.rhs_evals);
   cli_json_quantity(&jj, "wall_time", s->solver.wall_seconds, "s");

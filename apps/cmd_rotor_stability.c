@@ -227,7 +227,8 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   char msg[sizeof ctx->err];
   double clo = 0, chi = 0, xtol = o.xtol_rel;
   long cn = (long)o.n_omega;
-  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds;
+  int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds, have_umin = 0, have_umax = 0;
+  double umin = NAN, umax = NAN;
   size_t i;
   memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
@@ -238,7 +239,15 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "stability", "omega_max", "rad/s", chi, &chi, &have_hi))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_omega", cn, &cn, NULL))) goto done;
   if ((rc = cli_get_double(ctx, "stability", "xtol_rel", xtol, &xtol, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "stability", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
+  if ((rc = cli_get_quantity(ctx, "stability", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (have_umin != have_umax) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[stability]: unbalance_min and unbalance_max go together (the range of m0 r0 for 'every unbalance', "
+                  "e.g. unbalance_min = 10 g mm, unbalance_max = 4000 g mm)");
+    goto done;
+  }
   if (!(c->p.omega != 0.0)) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[rotor]: omega = 0: the balanced motion of a rotor at rest has no stability to analyse");
     goto done;
@@ -255,6 +264,9 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   o.omega_max = chi;
   o.n_omega = (size_t)cn;
   o.xtol_rel = xtol;
+  o.every_unbalance = have_umin && have_umax;
+  o.unbalance_min = umin;
+  o.unbalance_max = umax;
   o.progress = stop_requested;
   /* the analysis first, the archive afterwards: a failed analysis leaves no file */
   autobal_error_clear(&err);
@@ -293,7 +305,46 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     cli_json_number(&j, "root_eig_mismatch", r->n_closed ? r->root_eig_mismatch : NAN);
     cli_json_number(&j, "full_mismatch", r->full_mismatch);
     cli_json_number(&j, "floquet_mismatch", r->floquet_mismatch);
+    /* the roots behind the verdict: Delta's (one plane) or the closed matrix's eigenvalues (two
+     * planes), the closed matrix's eigenvalues matched to them, the full model's eigenvalues
+     * (isotropic), the Floquet multipliers; arrays present only where computed */
+    if (r->n_poly) cli_json_numbers(&j, "char_poly", r->poly, r->n_poly);
+    if (r->n_closed) {
+      cli_json_quantities(&j, "root_real", r->root_re, r->n_closed, "1/s");
+      cli_json_quantities(&j, "root_imag", r->root_im, r->n_closed, "1/s");
+      cli_json_quantities(&j, "closed_eig_real", r->closed_eig_re, r->n_closed, "1/s");
+      cli_json_quantities(&j, "closed_eig_imag", r->closed_eig_im, r->n_closed, "1/s");
+    }
+    if (r->n_full) {
+      cli_json_quantities(&j, "full_eig_real", r->full_re, r->n_full, "1/s");
+      cli_json_quantities(&j, "full_eig_imag", r->full_im, r->n_full, "1/s");
+    }
+    if (r->n_floquet) {
+      cli_json_quantities(&j, "floquet_mu_real", r->mu_re, r->n_floquet, "1");
+      cli_json_quantities(&j, "floquet_mu_imag", r->mu_im, r->n_floquet, "1");
+      cli_json_quantity(&j, "period", r->period, "s");
+    }
     if (do_crit) json_crit(&j, cr, "rad/s");
+    if (sum.have_every) {
+      const autobal_rotor_unbalance_range *u = &sum.every;
+      cli_json_object(&j, "every_unbalance");
+      cli_json_quantity(&j, "unbalance_min", u->s_lo, "kg m");
+      cli_json_quantity(&j, "unbalance_max", u->s_hi, "kg m");
+      cli_json_bool(&j, "stable_for_all", u->all_stable);
+      cli_json_quantities(&j, "critical_unbalance", u->s_crit, u->n_crit, "kg m");
+      cli_json_quantities(&j, "sub_lo", u->sub_lo, u->n_sub, "kg m");
+      cli_json_quantities(&j, "sub_hi", u->sub_hi, u->n_sub, "kg m");
+      cli_json_array(&j, "sub_verdict");
+      for (i = 0; i < u->n_sub; i++) cli_json_string(&j, NULL, autobal_verdict_name(u->sub_verdict[i]));
+      cli_json_array_end(&j);
+      cli_json_int(&j, "n_missed", (long)u->n_missed);
+      if (sum.have_every_speeds) {
+        cli_json_object(&j, "speeds");
+        json_crit(&j, &sum.every_speeds, "rad/s");
+        cli_json_object_end(&j);
+      }
+      cli_json_object_end(&j);
+    }
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor stability at omega = %.6g rad/s (%.1f rpm), %zu plane(s), %zu ball(s), %s supports\n", c->p.omega,
@@ -321,6 +372,23 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       else printf("vs exp(lambda T): %.3e\n", r->floquet_mismatch);
     }
     if (do_crit) print_intervals("speed (omega)", "rad/s", cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
+    if (sum.have_every) {
+      const autobal_rotor_unbalance_range *u = &sum.every;
+      printf("  EVERY UNBALANCE m0 r0 in [%.6g, %.6g] g mm at this speed: %s\n", u->s_lo * 1e6, u->s_hi * 1e6,
+             u->all_stable ? "STABLE for all" : "NOT stable for all");
+      printf("  critical unbalances (a root of Delta on the imaginary axis):");
+      if (u->n_crit == 0) printf(" none in the range");
+      for (i = 0; i < u->n_crit; i++) printf(" %.8g", u->s_crit[i] * 1e6);
+      printf(" g mm\n  verdict between them:");
+      for (i = 0; i < u->n_sub; i++)
+        printf(" [%.6g, %.6g] %s", u->sub_lo[i] * 1e6, u->sub_hi[i] * 1e6, autobal_verdict_name(u->sub_verdict[i]));
+      printf(" (g mm)\n");
+      if (u->n_missed)
+        printf("  (%zu change(s) of the verdict found by bisection, not by the crossing polynomial)\n", u->n_missed);
+      if (sum.have_every_speeds)
+        print_intervals("speed for every unbalance", "rad/s", &sum.every_speeds,
+                        c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
+    }
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:
@@ -492,7 +560,8 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   autobal_error err;
   char msg[sizeof ctx->err];
   double lo1, hi1, lo2, hi2;
-  int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st;
+  int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st, have_umin = 0, have_umax = 0;
+  double umin = NAN, umax = NAN;
   long n1 = (long)o.n1, n2 = (long)o.n2, threads = o.threads;
   size_t n;
   memset(&sum, 0, sizeof sum);
@@ -511,7 +580,15 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "map", "max2", autobal_rotor_stab_param_unit(p2), hi2, &hi2, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "n2", n2, &n2, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "map", "threads", threads, &threads, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
+  if ((rc = cli_get_quantity(ctx, "map", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (have_umin != have_umax) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[map]: unbalance_min and unbalance_max go together (the range of m0 r0 of a map for every "
+                  "unbalance, e.g. unbalance_min = 10 g mm, unbalance_max = 4000 g mm)");
+    goto done;
+  }
   if (p1 == p2) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[map]: param1 and param2 must differ (both %s)", autobal_rotor_stab_param_name(p1));
     goto done;
@@ -527,6 +604,9 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   o.min1 = lo1, o.max1 = hi1, o.min2 = lo2, o.max2 = hi2;
   o.n1 = (size_t)n1, o.n2 = (size_t)n2;
   o.threads = (int)threads;
+  o.every_unbalance = have_umin && have_umax;
+  o.unbalance_min = umin;
+  o.unbalance_max = umax;
   o.progress = stop_requested;
   autobal_error_clear(&err);
   st = autobal_study_rotor_map(&c->p, &o, NULL, &sum, &err);
@@ -554,12 +634,16 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
     cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_bool(&j, "every_unbalance", o.every_unbalance);
     cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     printf("rotor map %ld x %ld: %s in [%g, %g] %s x %s in [%g, %g] %s\n", n1, n2, autobal_rotor_stab_param_name(p1), lo1,
            hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
            autobal_rotor_stab_param_unit(p2));
+    if (o.every_unbalance)
+      printf("  for EVERY unbalance m0 r0 in [%.6g, %.6g] g mm (each point's verdict covers the whole range)\n",
+             umin * 1e6, umax * 1e6);
     printf("  stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }

@@ -70,8 +70,10 @@
 #define HELP_PENDULUM_ROOTS                                                                              \
   "Roots of the characteristic polynomial, eq. (6) in docs/pendulum.md (GSL complex polynomial\n"       \
   "solver), eigenvalues of the 8x8 first-order matrix of the linearization, eq. (5) in\n"               \
-  "docs/pendulum.md (GSL), their agreement, the Routh-Hurwitz verdict, the stability margin (largest\n" \
-  "real part) and the sufficient conditions, eqs. (7)-(9) in docs/pendulum.md.\n\n"                     \
+  "docs/pendulum.md (GSL), their agreement, the Routh-Hurwitz verdict (without damping, H = h = 0:\n"   \
+  "the exact criterion of eq. (10) in docs/pendulum.md, roots on the imaginary axis and semisimple),\n" \
+  "the stability margin (largest real part) and the sufficient conditions, eqs. (7)-(9) in\n"          \
+  "docs/pendulum.md.\n\n"                                                                              \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\narchive: /pendulum (parameters as attributes), /pendulum/roots\n" HELP_DOCS_PENDULUM
 
@@ -186,7 +188,11 @@
   HELP_ROTOR_PARAMS HELP_ROTOR_STAB_OPTS \
   "            critical_speeds = true  omega_min, omega_max (rad/s; default 5% of the 1st natural frequency .. 4x)\n" \
   "            n_omega = 400  xtol_rel = 1e-8\n" \
-  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical\n" \
+  "            unbalance_min, unbalance_max (kg m or g mm): EVERY unbalance m0 r0 in the range (one plane, two\n" \
+  "            balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
+  "            \"Every unbalance\")\n" \
+  "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
+  "         /rotor/stability/every_unbalance (and .../speeds)\n" \
   HELP_DOCS_ROTOR
 #define HELP_ROTOR_SWEEP \
   "Stability margin of the balanced motion (eq. (3.14) in docs/rotor.md) along one parameter; every verdict\n" \
@@ -204,7 +210,9 @@
   "[map] param1 = omega         min1 max1  n1 = 120   (first axis)\n" \
   "      param2 = ball_damping  min2 max2  n2 = 60    (second axis)\n" \
   "      threads = 0 (OpenMP threads; 0: default)\n" \
-  "      param1, param2: two different parameters below; min, max in their units\n\n" \
+  "      param1, param2: two different parameters below; min, max in their units\n" \
+  "      unbalance_min, unbalance_max (kg m or g mm): each point's verdict for EVERY m0 r0 in the range\n" \
+  "      (one plane, two balls; docs/rotor.md \"Every unbalance\"); unbalance_mass is then no axis\n\n" \
   HELP_ROTOR_STAB_AXES \
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR

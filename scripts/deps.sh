@@ -3,7 +3,7 @@
 #   scripts/deps.sh           build, tests, examples, pictures
 #   scripts/deps.sh --bench   also what the benchmarks compare against (SUNDIALS)
 set -euo pipefail
-PKGS="build-essential cmake ninja-build pkg-config git libgsl-dev libhdf5-dev hdf5-tools libinih-dev libudunits2-dev udunits-bin
+PKGS="build-essential cmake ninja-build pkg-config git libgsl-dev libhdf5-dev hdf5-tools libinih-dev libudunits2-dev libgmp-dev udunits-bin
       python3 python3-numpy python3-scipy python3-sympy python3-h5py python3-xarray python3-h5netcdf python3-matplotlib valgrind
       libopenmpi-dev openmpi-bin"
 if [ "${1:-}" = --bench ]; then PKGS="$PKGS libsundials-dev"; fi

@@ -320,14 +320,16 @@ static void test_analyze(void) {
           r.verdict == AUTOBAL_VERDICT_STABLE && r.verdict_roots == AUTOBAL_VERDICT_STABLE);
     autobal_pendulum_params_from_k(3.0, 0.1, 0.0, 0.0, 0.5, &p, NULL);
     autobal_pendulum_analyze(ws, &p, &r);
-    CHECK("H = h = 0: undamped, sign test marginal (roots on the axis)",
-          r.undamped == 1 && r.verdict == AUTOBAL_VERDICT_MARGINAL);
+    CHECK("H = h = 0: undamped, the verdict from (10) (stable), n_rhp = 0",
+          r.undamped == 1 && r.verdict == AUTOBAL_VERDICT_STABLE && r.n_rhp == 0);
     CHECK("H = h = 0, R_m = 0.1, k = 0.5, R_w = 3: stable in the first approximation",
           r.undamped_verdict == AUTOBAL_VERDICT_STABLE && roots_stable_undamped(0.1, 3.0, 0.5));
     p.R_w = 2.0; /* inside the window (1.657, 2.557) of R_m = 0.1, k = 0.5 */
     autobal_pendulum_analyze(ws, &p, &r);
     CHECK("H = h = 0, R_m = 0.1, k = 0.5, R_w = 2: unstable",
           r.undamped_verdict == AUTOBAL_VERDICT_UNSTABLE && !roots_stable_undamped(0.1, 2.0, 0.5));
+    CHECK("... the verdict too, from (10) (a complex pair of x: n_rhp = 2), roots agree",
+          r.verdict == AUTOBAL_VERDICT_UNSTABLE && r.n_rhp == 2 && r.verdict_roots == AUTOBAL_VERDICT_UNSTABLE);
   }
   /* error paths */
   {
@@ -374,6 +376,50 @@ static void test_undamped(void) {
   CHECK("2000 random points: exact sign criterion == GSL roots of (10) all real <= 0", bad == 0);
   CHECK("k = 0 points: (12) == verdict", bad12 == 0);
   CHECK("most points compared", n > 1800);
+  {
+    /* the verdict of autobal_pendulum_verdict / analyze at H = h = 0 (issue 18 item 4) against
+     * the eigenvalues of the 8x8 matrix of (5) (GSL, no use of (10)): unstable iff some
+     * eigenvalue has Re > 0, the count of those = n_rhp; at k = 0 the two eigenvalues nearest 0
+     * (the family and its rate) are left out.  Points whose largest |Re| lies between 1e-9 and
+     * 1e-4 (near a critical speed, where a double root splits by ~sqrt(eps)) are skipped. */
+    autobal_eigen_workspace *ew = autobal_eigen_workspace_alloc(8);
+    int nv = 0, badv = 0, badn = 0, nst = 0, nun = 0;
+    for (t = 0; t < 3000; t++) {
+      double Rm = 0.001 + 0.49 * urand(), Rw = 0.05 + 4.0 * urand();
+      double k = t % 5 == 0 ? 0.0 : (t % 5 == 1 ? 1.0 : urand());
+      double A[64], er[8], ei[8], mre = -INFINITY;
+      int v = -9, nr = -9, cnt = 0, i, j, skip[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+      autobal_pendulum_params p;
+      autobal_pendulum_result r;
+      autobal_pendulum_params_from_k(Rw, Rm, 0.0, 0.0, k, &p, NULL);
+      k = autobal_pendulum_k(&p);
+      autobal_pendulum_first_order_matrix(&p, A, NULL);
+      autobal_eigen_nonsymm(ew, A, er, ei, NULL);
+      for (j = 0; j < (k == 0.0 ? 2 : 0); j++) {
+        int b = -1;
+        for (i = 0; i < 8; i++)
+          if (!skip[i] && (b < 0 || hypot(er[i], ei[i]) < hypot(er[b], ei[b]))) b = i;
+        skip[b] = 1;
+      }
+      for (i = 0; i < 8; i++) {
+        if (skip[i]) continue;
+        if (fabs(er[i]) > mre) mre = fabs(er[i]);
+        cnt += er[i] > 1e-9 * (1.0 + hypot(er[i], ei[i]));
+      }
+      if (mre > 1e-9 && mre < 1e-4) continue;
+      nv++;
+      autobal_pendulum_verdict(&p, &v, &nr, NULL);
+      autobal_pendulum_analyze(ws, &p, &r);
+      if (v != (cnt ? AUTOBAL_VERDICT_UNSTABLE : AUTOBAL_VERDICT_STABLE) || r.verdict != v) badv++;
+      if (nr != cnt || r.n_rhp != cnt) badn++;
+      nst += v == AUTOBAL_VERDICT_STABLE, nun += v == AUTOBAL_VERDICT_UNSTABLE;
+    }
+    autobal_eigen_workspace_free(ew);
+    printf("   (%d undamped points vs eigenvalues of (5): %d stable, %d unstable)\n", nv, nst, nun);
+    CHECK("3000 random points, H = h = 0: verdict (verdict and analyze) == eigenvalues of (5)", badv == 0);
+    CHECK("... n_rhp == eigenvalues with Re > 0", badn == 0);
+    CHECK("... most points compared, both verdicts", nv > 2500 && nst > 300 && nun > 300);
+  }
   autobal_error_clear(&err);
   CHECK_STATUS("undamped_verdict: k = 1.5", autobal_pendulum_undamped_verdict(0.1, 1, 1.5, &t, &err),
                AUTOBAL_EINVAL);

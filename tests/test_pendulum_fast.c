@@ -198,7 +198,10 @@ int main(void) {
     CHECK("12000 random points (k = 0, 1, H = 0, h = 0, R_w up to 3000): verdict, n_rhp == analyze",
           nbad == 0);
     nbad = 0;
-    CHECK("... all three verdicts occur", nstab > 1000 && nunst > 1000 && nmarg > 100);
+    /* MARGINAL: damped points on a boundary only (k = 0 with h = 0 never occurs here; the
+     * undamped ones are decided by (10)) */
+    CHECK("... stable and unstable occur, marginal (damped boundaries) rarely",
+          nstab > 1000 && nunst > 1000 && nmarg < 10);
     CHECK("... 1-point maps (damped; the map's own lanes kernel) == verdict", bad_map == 0);
     /* boundary points: along lines in R_w, the verdict changes are bracketed
      * to adjacent doubles; the points and 3 ulps either side */

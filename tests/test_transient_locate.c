@@ -77,6 +77,25 @@ static int on_reset(const autobal_transient_event_hit *h, double y[], void *u) {
   return AUTOBAL_TRANSIENT_RESET;
 }
 
+/* A driver with `stepper` at rtol = atol = 1e-12 (into *o), event g in `direction`, the handler
+ * recording into *H (zeroed); NULL (a failed check) if it cannot be allocated. */
+static autobal_transient *make(const char *stepper, autobal_transient_options *o, hits *H,
+                               double (*g)(double, const double *, void *), int direction) {
+  autobal_transient *tr;
+  memset(H, 0, sizeof *H);
+  o->stepper = stepper;
+  o->rtol = 1e-12;
+  o->atol = 1e-12;
+  tr = autobal_transient_alloc(2, o, NULL);
+  if (!tr) {
+    CHECK("alloc", 0);
+    return NULL;
+  }
+  autobal_transient_add_event(tr, g, NULL, direction, 0);
+  autobal_transient_set_event_handler(tr, on_hit, H);
+  return tr;
+}
+
 static void level_crossings(const char *stepper) {
   autobal_transient_options o = autobal_transient_options_default();
   autobal_transient_system sys = {rhs, NULL, 2, NULL};
@@ -87,17 +106,7 @@ static void level_crossings(const char *stepper) {
   const double a = acos(0.3);
   int k, far = 1;
   char what[160];
-  memset(&H, 0, sizeof H);
-  o.stepper = stepper;
-  o.rtol = 1e-12;
-  o.atol = 1e-12;
-  tr = autobal_transient_alloc(2, &o, NULL);
-  if (!tr) {
-    CHECK("alloc", 0);
-    return;
-  }
-  autobal_transient_add_event(tr, g_level, NULL, 0, 0);
-  autobal_transient_set_event_handler(tr, on_hit, &H);
+  if (!(tr = make(stepper, &o, &H, g_level, 0))) return;
   CHECK_STATUS("run", autobal_transient_run(tr, &sys, 0.0, 10.0, y, NULL), AUTOBAL_SUCCESS);
   autobal_transient_get_stats(tr, &st);
   snprintf(what, sizeof what, "%s: 20 crossings of x = 0.3 in [0, 10]", stepper);
@@ -140,17 +149,7 @@ static void wall_impacts(const char *stepper) {
   double y[2] = {1.0, 0.0}, worst = 0.0, worst_x = 0.0;
   int k, far = 1;
   char what[160];
-  memset(&H, 0, sizeof H);
-  o.stepper = stepper;
-  o.rtol = 1e-12;
-  o.atol = 1e-12;
-  tr = autobal_transient_alloc(2, &o, NULL);
-  if (!tr) {
-    CHECK("alloc", 0);
-    return;
-  }
-  autobal_transient_add_event(tr, g_wall, NULL, -1, 0);
-  autobal_transient_set_event_handler(tr, on_hit, &H);
+  if (!(tr = make(stepper, &o, &H, g_wall, -1))) return;
   autobal_transient_set_event_reset(tr, on_reset, &H);
   CHECK_STATUS("run with the wall", autobal_transient_run(tr, &sys, 0.0, 5.0, y, NULL), AUTOBAL_SUCCESS);
   /* the impacts of the exact motion in [0, 5] (the closed form above from x = -1/2 exactly) */

@@ -200,19 +200,38 @@ typedef struct autobal_pendulum_result {
   double max_real_eig;  /* largest real part of the eigenvalues                         */
   double mismatch;      /* bottleneck-optimal max_i |root_i - eig_i| (autobal_match_roots) */
   double mismatch_rel;  /* mismatch / max(1, max |root|)                                 */
-  int verdict;          /* autobal_verdict of the main motion: the Routh-Hurwitz sign
-                           test on coef (AUTOBAL_PENDULUM_HURWITZ_RTOL); when k == 0 the
-                           structural root lambda = 0 (the family psi = -phi of balanced
-                           states) is divided out first, see zero_root_deflated          */
+  int verdict;          /* autobal_verdict of the main motion.  Damped (H > 0 or h > 0): the
+                           Routh-Hurwitz sign test on coef (AUTOBAL_PENDULUM_HURWITZ_RTOL),
+                           STABLE = asymptotically stable; when k == 0 the structural root
+                           lambda = 0 (the family psi = -phi of balanced states) is divided
+                           out first, see zero_root_deflated.  Undamped (H = h = 0: (6) is
+                           even in lambda and the Routh array breaks down): the exact
+                           criterion (10) (long double with rounding bounds, else exactly
+                           in integers, see autobal_pendulum_undamped_verdict): STABLE = every
+                           root on the imaginary axis and semisimple (every x = lambda^2 of
+                           (10) real, negative and simple; at k = 1 also the double roots where
+                           P1 and conj(P1) of (15) meet, which are semisimple), UNSTABLE
+                           otherwise (a root off the axis, or, at R_w = 0 and at k = 0,
+                           R_w = 1, a multiple lambda = 0 without enough eigenvectors);
+                           MARGINAL only exactly on a critical speed (a double root of (10)
+                           whose semisimplicity is not decided).  At k == 0
+                           lambda = 0 is then double (the family and its rate) and left out  */
   int verdict_roots;    /* verdict from the roots alone (AUTOBAL_PENDULUM_ROOTS_TOL),
-                           with the same deflation                                       */
+                           with the same deflation (two roots at k == 0 undamped); undamped,
+                           roots on the axis within the tolerance give STABLE (rounded roots
+                           cannot tell whether a multiple root is semisimple: verdict does) */
   int verdicts_agree;   /* verdict == verdict_roots                                      */
-  int n_rhp;            /* roots with Re > 0 by the Routh array (see autobal_poly_hurwitz) */
+  int n_rhp;            /* roots with Re > 0: damped, by the Routh array (see
+                           autobal_poly_hurwitz); undamped, from the roots x of (10) (a
+                           positive x gives one, a complex pair of x two); on a boundary a
+                           lower bound                                                    */
   int zero_root_deflated; /* 1 when k == 0 exactly and lambda = 0 was divided out        */
-  int undamped;         /* 1 when H == 0 and h == 0: then (6) is even in lambda and the  */
-  int undamped_verdict; /* verdict "in the first approximation" of (10): STABLE when all
-                           roots x = lambda^2 of (10) are real and <= 0, else UNSTABLE
-                           (autobal_pendulum_undamped_verdict); 0 when not undamped      */
+  int undamped;         /* 1 when H == 0 and h == 0: (6) is even in lambda, verdict from (10) */
+  int undamped_verdict; /* the paper's "first approximation" of (10) as the maps use it:
+                           STABLE when all roots x = lambda^2 of (10) are real and <= 0,
+                           UNSTABLE otherwise, MARGINAL exactly on a boundary
+                           (autobal_pendulum_undamped_verdict; no semisimplicity check);
+                           0 when not undamped                                             */
   autobal_pendulum_sufficient cond7; /* (7): R_m << 1 or h >> 1: stable if R_w > 1
                                         (converges slowly: the exact threshold at k = 1 is
                                         R_w1 ~ 1 + 1.5 R_m^(1/3), (17))                 */
@@ -234,8 +253,10 @@ AUTOBAL_API int autobal_pendulum_analyze(autobal_pendulum_workspace *ws,
                                          const autobal_pendulum_params *p,
                                          autobal_pendulum_result *res);
 
-/* Sign-test verdict only (cheap: builds (6) and runs the Routh test, with
- * the k == 0 deflation; no roots, no workspace).  *n_rhp may be NULL. */
+/* The verdict of autobal_pendulum_analyze without roots (cheap, no workspace): damped, builds
+ * (6) and runs the Routh test, with the k == 0 deflation; undamped (H = h = 0), the exact
+ * criterion (10) (see autobal_pendulum_result.verdict).  *n_rhp (may be NULL): the count of
+ * autobal_pendulum_result.n_rhp. */
 AUTOBAL_API int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict,
                                          int *n_rhp, autobal_error *err);
 
@@ -257,8 +278,11 @@ AUTOBAL_API int autobal_pendulum_undamped_poly(double R_m, double R_w, double k,
  * c_j > 0 and the quartic's discriminant > 0 with 8ac - 3b^2 < 0 and
  * 64a^3e - 16a^2c^2 + 16ab^2c - 16a^2bd - 3b^4 < 0; k = 1: the same test on
  * the factor P1 of (15) at lambda = i mu (four real mu).
- * AUTOBAL_VERDICT_MARGINAL when a deciding quantity is zero within its
- * rounding bound (on a critical speed, e.g. a double root).  No workspace. */
+ * Where a deciding quantity is within its long double rounding bound the same
+ * criteria are evaluated exactly in integers (GMP; R_m, k and W = R_w^2 as the
+ * binary fractions they are).  AUTOBAL_VERDICT_MARGINAL only when a deciding
+ * quantity is exactly zero (on a critical speed, e.g. a double root).  No
+ * workspace. */
 AUTOBAL_API int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
                                                   autobal_error *err);
 
@@ -270,9 +294,11 @@ AUTOBAL_API int autobal_pendulum_cond12(double R_m, double R_w, double *lhs, int
                                         autobal_error *err);
 
 /* Discriminant of P(x) of (10) with respect to x, as a polynomial in
- * W = R_w^2 of degree <= 12: disc[0..12] ascending in W, built by
- * polynomial arithmetic on the coefficients of (10) (which are polynomials
- * in W).  Its positive roots are the candidate critical speeds. */
+ * W = R_w^2 of degree <= 12: disc[0..12] ascending in W, built exactly
+ * (integer polynomial arithmetic on the coefficients of (10), GMP) and rounded
+ * once per coefficient.  Its positive roots are the candidate critical speeds
+ * (autobal_pendulum_critical_speeds uses the exact polynomial, not these
+ * rounded coefficients: near R_m -> 1/4 its roots are ill-conditioned in them). */
 AUTOBAL_API int autobal_pendulum_undamped_discriminant(double R_m, double k, double disc[13],
                                                        autobal_error *err);
 
@@ -300,6 +326,9 @@ typedef struct autobal_pendulum_crit_set {
   double stable_hi[AUTOBAL_PENDULUM_MAX_CRIT + 1];
   int truncated;  /* 1: more changes than the capacity; the set covers only up to
                      R_w[n-1] (autobal_pendulum_critical_speeds_damped); else 0 */
+  int unresolved; /* 1: two critical speeds of autobal_pendulum_critical_speeds lie in the same
+                     ulp of W = R_w^2 (an island or window narrower than a double can show:
+                     reported as equal values); else 0 */
 } autobal_pendulum_crit_set;
 
 /* Number of entries of s with kind != TOUCH, and the j-th of them (j from
@@ -308,41 +337,35 @@ AUTOBAL_API size_t autobal_pendulum_crit_count(const autobal_pendulum_crit_set *
 AUTOBAL_API double autobal_pendulum_crit_get(const autobal_pendulum_crit_set *s, size_t j);
 
 /* Critical speeds of the UNDAMPED system (H = h = 0) for R_m in (0, 1/2),
- * k in [0, 1], located exactly (no sampling), R_w = sqrt(W):
- *  1. candidates: the positive real roots W of the discriminant of (10) in x
- *     (autobal_pendulum_undamped_discriminant, built in long double; k = 0:
- *     of the cubic, plus W = 1 of (13); k = 1: of the factor P1 of (15),
- *     whose roots are the exact transitions, plus the double roots of (10)
- *     such as (18)), isolated between the critical points of the polynomial
- *     and refined by Brent's method;
- *  2. 0 <= k < 1: every candidate is refined again by Brent on the
- *     discriminant u^2 - 4v of the quadratic factor x^2 + u x + v of (10)
- *     that holds the colliding pair (Bairstow, long double) -- well
- *     conditioned, unlike the expanded discriminant -- and the degenerate
- *     points W = 2(1-2R_m)/(1-4R_m)^2 ((18) squared, limit k -> 1) and W = 1
- *     (limit k -> 0) are searched directly for a window in which that pair
- *     is complex: windows of width ~ sqrt(1-k) are found down to 1-k = 1e-16
- *     for R_m up to ~0.2 (tested);
- *  3. the verdict on each interval between consecutive candidates
- *     (autobal_pendulum_undamped_verdict, with the pair test as fallback
- *     where it is undecided) gives the kind.  A TOUCH is reported only
- *     inside a stable region (a double root of (10) where stability is kept,
- *     e.g. (18) at k = 1); touches in unstable regions are dropped.
- * Accuracy: about 1e-13 relative for R_m <= 0.2 (checked against (16) and
- * against 50-digit references); near R_m -> 1/4, where R_w2, R_w3 ~ 1/(1-4R_m),
- * it degrades: at R_m = 0.249 (R_w ~ 250) critical speeds about 1e-11, the
- * ends of a narrow k -> 1 window about 1e-8, and windows with 1-k < 1e-10
- * are missed.  Near the triple point R_m^(1) the three values separate only
- * by ~|R_m - R_m^(1)|, and their accuracy is limited accordingly.
- * Capacity: the candidates are roots of polynomials of degree <= 7 in W plus
- * at most four window ends (or W = 1 at k = 0): at most 14 critical speeds and
- * 15 stable intervals, well below AUTOBAL_PENDULUM_MAX_CRIT, so nothing is ever
- * cut off.
+ * k in [0, 1], located exactly (no sampling, no rounding in any decision), R_w = sqrt(W):
+ *  1. the discriminant D(W) of (10) in x is formed as a polynomial in W with
+ *     integer coefficients (GMP): R_m and k are the binary fractions r 2^-E and
+ *     kappa 2^-F they are, so the coefficients of (10) times 2^(F+2E) are
+ *     integer polynomials in W;
+ *  2. its positive roots are isolated exactly, recursively between the roots of
+ *     its derivatives (D is monotone between them), each down to a bracket of two
+ *     adjacent doubles, by exact signs of D at doubles; the multiple roots of D
+ *     (double roots of (10), e.g. (18) at k = 1 and W = 1 at k = 0) are the roots
+ *     of gcd(D, D'), isolated the same way;
+ *  3. the verdict on each interval between consecutive candidates is exact (the
+ *     criteria of autobal_pendulum_undamped_verdict on integers) and gives the
+ *     kind.  A TOUCH is reported only inside a stable region (a double root of (10)
+ *     where stability is kept, e.g. (18) at k = 1, for R_m > R_m^(1) and also
+ *     above 1/4); touches in unstable regions are dropped.
+ * Accuracy: a few units in the last place (about 1e-16 relative) for every R_m
+ * and k, also near R_m -> 1/4 where R_w2, R_w3 ~ 1/(1 - 4R_m).  Resolution: every
+ * stable island or unstable window whose ends lie more than one ulp of W apart is
+ * reported; two critical speeds within one ulp of W are reported as two equal
+ * values with out->unresolved = 1 when D changes sign in the middle of that ulp
+ * (a pair closer than half an ulp without that change is not seen).  Cost: 0.1
+ * to 1 ms.
+ * Capacity: at most 8 candidates (the degree of D after its factor W^4): well
+ * below AUTOBAL_PENDULUM_MAX_CRIT, so nothing is ever cut off.
  * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL ws; R_m outside (0, 1/2) or
- * k outside [0, 1], message naming it; out NULL): *out untouched; or a status
- * of an internal root solve, refinement or verdict (AUTOBAL_ENUMERIC,
- * AUTOBAL_EINVAL; not expected for valid input): *out is then all zeros
- * (n = n_stable = 0).  The message is in ws ("" after success). */
+ * k outside [0, 1], message naming it; out NULL): *out untouched; or
+ * AUTOBAL_ENUMERIC (root isolation or verdict inconsistent; not expected for
+ * valid input): *out is then all zeros (n = n_stable = 0).  The message is in
+ * ws ("" after success). */
 AUTOBAL_API int autobal_pendulum_critical_speeds(autobal_pendulum_workspace *ws, double R_m,
                                                  double k, autobal_pendulum_crit_set *out);
 

@@ -447,6 +447,69 @@ AUTOBAL_API int autobal_rotor_stab_map(const autobal_rotor_params *p,
                                        size_t n2, int n_threads, double *margin, int *verdict,
                                        autobal_error *err);
 
+/* ---- every unbalance in a range (docs/rotor.md "Every unbalance") -------------- */
+
+/* Largest number of critical unbalances reported at one speed. */
+#define AUTOBAL_ROTOR_MAX_UCRIT 32
+
+typedef struct autobal_rotor_unbalance_range {
+  double omega;               /* rad/s, the speed analysed */
+  double s_lo, s_hi;          /* kg m, the range of m0 r0 analysed */
+  size_t n_crit;              /* critical unbalances strictly inside (s_lo, s_hi) */
+  double s_crit[AUTOBAL_ROTOR_MAX_UCRIT]; /* kg m, ascending: a root of Delta on the imaginary axis */
+  size_t n_sub;               /* sub-intervals of [s_lo, s_hi] between them (n_crit + 1) */
+  double sub_lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], sub_hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* kg m */
+  int sub_verdict[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* AUTOBAL_VERDICT_* at the midpoint (constant inside) */
+  double sub_margin[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1/s, the margin at the midpoint */
+  int all_stable;             /* 1: stable for every m0 r0 in [s_lo, s_hi] (no critical value inside and
+                                 stable in every sub-interval and at both ends), else 0 */
+  double margin_worst;        /* 1/s, the largest margin (max Re lambda: the least stable) met at the
+                                 points evaluated (ends, the midpoints and the points just inside each
+                                 end of every sub-interval); not a bound over the range */
+  size_t n_missed;            /* verdict changes inside a sub-interval that the crossing polynomial did
+                                 not give (found by bisection, added to s_crit); 0 expected */
+  size_t evaluations;         /* margin evaluations */
+} autobal_rotor_unbalance_range;
+
+/* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
+ * handle's current omega: one plane with two balls with a common h/m, isotropic supports, the
+ * paper's inertia model (AUTOBAL_EUNSUPPORTED otherwise, with a message).  Method (guaranteed, not
+ * sampled): Delta(lambda; s) = A(lambda) - (|Q(s)|^2 / 4) B(lambda) with A, B independent of s, so
+ * a root crosses the imaginary axis only at the critical unbalances where A(i y) = u B(i y) for a real
+ * u = |Q|^2 / 4 and real y (the real roots of a polynomial of degree <= 11 in y^2, and y = 0), mapped
+ * back to s through the balanced angles; one verdict (method POLY) per sub-interval between them, checked
+ * at both ends too (a disagreement is bisected and counted in n_missed).  s_lo > |m1 r1 - m2 r2|,
+ * s_hi < m1 r1 + m2 r2 (the balls must balance every s off a line through the axis), r0 > 0 (s is varied through m0).  The working
+ * m0 is restored (bitwise) afterwards.  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (range, NULL),
+ * AUTOBAL_EUNSUPPORTED, AUTOBAL_ECANCELLED (the handle's hook), AUTOBAL_ENUMERIC, AUTOBAL_ENOMEM. */
+AUTOBAL_API int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi,
+                                                   autobal_rotor_unbalance_range *out);
+
+/* The speeds in [w_lo, w_hi] (rad/s, one sign) where the balanced motion is stable for every
+ * unbalance in [s_lo, s_hi]: autobal_rotor_stab_every_unbalance on n_grid equally spaced speeds, every
+ * change of its all_stable verdict refined by bisection to xtol_rel (relative).  out: value[] the
+ * changes, kind[] +1 (stable for all above) / -1, stable_lo/hi the intervals, evaluations the margin
+ * evaluations.  A window narrower than the grid spacing can be missed (in speed; never in unbalance).
+ * omega and m0 are restored.  Statuses as above, AUTOBAL_WARNING when more than
+ * AUTOBAL_ROTOR_MAX_CRIT changes (truncated = 1). */
+AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo, double s_hi,
+                                                          double w_lo, double w_hi, size_t n_grid,
+                                                          double xtol_rel, autobal_rotor_crit *out);
+
+/* autobal_rotor_stab_map with, at every grid point, the verdict for EVERY unbalance m0 r0 in
+ * [s_lo, s_hi] (autobal_rotor_stab_every_unbalance): STABLE (stable for all), UNSTABLE (unstable for
+ * some), MARGINAL (a critical unbalance inside with stable sides: a touch), AUTOBAL_ROTOR_VERDICT_NONE
+ * (the balls cannot balance every unbalance of the range at this point, e.g. a small ball mass);
+ * margin: margin_worst (1/s).  unbalance_mass cannot be an axis.  Same threads, errors and
+ * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
+ * not apply (two planes, three or more balls, full inertia, anisotropic supports). */
+AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
+                                                       const autobal_rotor_stab_options *opt, int param1,
+                                                       const double *v1, size_t n1, int param2,
+                                                       const double *v2, size_t n2, double s_lo, double s_hi,
+                                                       int n_threads, double *margin, int *verdict,
+                                                       autobal_error *err);
+
 /* ---- the rotor-housing without balls: natural frequencies, Campbell diagram,
  *      unbalance response (the balls are removed; in the FULL inertia model the
  *      masses m0 + sum m_i stay attached at their planes) ------------------------- */

@@ -246,7 +246,24 @@ typedef struct autobal_study_rotor_transient_summary {
   unsigned long contacts_final;
   double contact_capacity[AUTOBAL_ROTOR_MAX_PLANES];
   int contact_reachable[AUTOBAL_ROTOR_MAX_PLANES];
+  /* the layout of state_final (added in 0.3.0 at the end of the struct), for
+     autobal_study_rotor_transient_state_name: its frame (autobal_rotor_frame: ball angles phi
+     absolute or psi relative to the rotor), 1 when (z, z') follow the balls, 1 when a MOTOR's
+     (phi_0, Omega) are the last two entries */
+  int state_frame;
+  int state_axial;
+  int state_motor;
 } autobal_study_rotor_transient_summary;
+
+/* Name and SI unit of entry k < summary->dim of summary->state_final: "x", "y", "alpha",
+ * "beta", "x_rate", "y_rate", "alpha_rate", "beta_rate" (m, m, rad, rad, m/s, m/s, rad/s,
+ * rad/s); then per ball in state order (plane by plane) "phi_<n>" (frame fixed: absolute
+ * angle) or "psi_<n>" (rotating: relative to the rotor), rad, then "phi_rate_<n>" or
+ * "psi_rate_<n>", rad/s, n = 1 .. N; then "z", "z_rate" (axial) and "phi_0", "Omega" (motor).
+ * The name is written to buf (len >= 32 is enough); *unit (may be NULL) gets a static string.
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL summary or buf, k >= dim, len too short). */
+AUTOBAL_API int autobal_study_rotor_transient_state_name(const autobal_study_rotor_transient_summary *summary,
+                                                         size_t k, char *buf, size_t len, const char **unit);
 
 /* Check the inputs of a rotor transient without running it (and without
  * touching an archive): the parameters (autobal_rotor_alloc), the initial
@@ -316,6 +333,11 @@ typedef struct autobal_study_rotor_stability_options {
   autobal_study_progress_fn progress; /* fraction of the critical-speed search; non-zero: cancel
                            (polled before every margin evaluation)             (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
+  /* every unbalance in a range (one plane, two balls; autobal_rotor_stab_every_unbalance; added at
+     the end): non-zero = analyse m0 r0 in [unbalance_min, unbalance_max] (kg m) at omega and, with
+     critical_speeds, the speeds stable for all of them            (default 0, NaN, NaN) */
+  int every_unbalance;
+  double unbalance_min, unbalance_max;
 } autobal_study_rotor_stability_options;
 
 /* The defaults listed above. */
@@ -341,6 +363,11 @@ typedef struct autobal_study_rotor_stability_summary {
   double *storage_;                 /* the arrays behind result's pointers (private) */
   int critical_cancelled;           /* 1: the critical-speed search was cancelled (have_critical = 0;
                                        the analysis at omega in `result` is complete) */
+  /* every unbalance (options.every_unbalance; added at the end) */
+  int have_every;                   /* 1: `every` holds the analysis at omega */
+  autobal_rotor_unbalance_range every;
+  int have_every_speeds;            /* 1: `every_speeds` holds the speeds stable for every unbalance */
+  autobal_rotor_crit every_speeds;  /* rad/s (signed like omega) */
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every
@@ -463,12 +490,16 @@ AUTOBAL_API int autobal_study_pendulum_transient(const autobal_pendulum_params *
  * phys (NULL: none): the physical parameters p came from, recorded in the archive.  With an
  * archive (NULL: none), after a successful analysis: /pendulum (+ /pendulum/physical) and
  * /pendulum/roots (char_poly(power), root_real, root_imag, eig_real, eig_imag (root), verdict,
- * verdict_roots, max_real, root_eig_mismatch, n_right_half_plane, cond7/8/9 _applicable and
- * _predicts_stable).  Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (bad parameters: the model's
+ * criterion (autobal_study_pendulum_roots_criterion), verdict_roots, max_real,
+ * root_eig_mismatch, n_right_half_plane, cond7/8/9 _applicable and _predicts_stable).  Returns AUTOBAL_SUCCESS; AUTOBAL_EINVAL (bad parameters: the model's
  * message, nothing written), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC; an archive status when writing
  * failed (what was written stays). */
 AUTOBAL_API int autobal_study_pendulum_roots(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys,
                                              autobal_archive *a, autobal_pendulum_result *result, autobal_error *err);
+/* The criterion that gave result->verdict, as text: "Routh-Hurwitz on (6)" (damped), or
+ * "exact undamped criterion (10)" (H = h = 0: (6) is even in lambda, see
+ * autobal_pendulum_analyze).  A static string; never NULL (result NULL gives ""). */
+AUTOBAL_API const char *autobal_study_pendulum_roots_criterion(const autobal_pendulum_result *result);
 /* The archive part of autobal_study_pendulum_roots for a result computed before (the archive
  * may then be created only after a successful analysis).  Returns an autobal status (the
  * archive's message in autobal_archive_errmsg). */
@@ -666,6 +697,11 @@ typedef struct autobal_study_rotor_map_options {
   autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
                            rows (0.25 to 1 s of work); non-zero: cancel           (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
+  /* every unbalance (added at the end): non-zero = each point's verdict is the one for every m0 r0
+     in [unbalance_min, unbalance_max] kg m (autobal_rotor_stab_map_every_unbalance)
+                                                                   (default 0, NaN, NaN) */
+  int every_unbalance;
+  double unbalance_min, unbalance_max;
 } autobal_study_rotor_map_options;
 AUTOBAL_API autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void);
 

@@ -308,7 +308,8 @@ AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_trans
  * the first point past 0 in a watched direction is checked on the integrated state and, if
  * confirmed, the crossing is located between the step's start and that point as usual.  A
  * crossing shorter than h / (n + 1) can still be missed.  n = 0 (the default) turns it off; at most
- * 64; not for dwell events.  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+ * 64; not for dwell events.  Events with the same n share the interpolated states of a step.  Returns
+ * AUTOBAL_SUCCESS, AUTOBAL_EINVAL or AUTOBAL_ENOMEM (the shared states are allocated here). */
 AUTOBAL_API int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n);
 /* Grazing crossings found by probes since the handle was allocated. */
 AUTOBAL_API unsigned long autobal_transient_probe_hits(const autobal_transient *tr);

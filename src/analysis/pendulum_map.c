@@ -139,7 +139,7 @@ static MAP_INLINE int quartic_decide(const quartic_q *q, size_t l) {
 
 /* the exact long-double test, with the map's convention MARGINAL -> STABLE */
 static int undamped_map_exact(double Rm, double Rw, double k) {
-  int v = autobal_pendulum_undamped_verdict_ld_(Rm, (long double)Rw * Rw, k, NULL);
+  int v = autobal_pendulum_undamped_verdict_exact_(Rm, Rw, k);
   return v == AUTOBAL_VERDICT_MARGINAL ? AUTOBAL_VERDICT_STABLE : v; /* on a boundary */
 }
 

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "analysis/pendulum_verdict.h"
+#include "analysis/pendulum_exact.h"
 #include "internal.h"
 #include "models/pendulum/pendulum_internal.h"
 
@@ -295,6 +296,12 @@ int autobal_pendulum_verdict(const autobal_pendulum_params *p, int *verdict, int
     if (st) return st;
   }
   if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "verdict: NULL output");
+  if (p->H == 0.0 && p->h == 0.0) { /* undamped: (6) is even in lambda, the exact criterion (10) */
+    double k, kc;
+    autobal_pendulum_k_and_kc_(p, &k, &kc);
+    *verdict = autobal_pendulum_undamped_semisimple_(p->R_m, p->R_w, k, n_rhp);
+    return AUTOBAL_SUCCESS;
+  }
   return damped_verdict_psi(p, verdict, n_rhp, err);
 }
 
@@ -456,6 +463,158 @@ int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long do
   }
 }
 
+/* ---- the exact undamped criterion for the verdict of (4) --------------------- */
+
+/* The criterion of pendulum_undamped.inc in long double (uq_undamped_ld) and, where the
+ * compiler has it, __float128 (uq_undamped_q), for the number of real roots of (10) behind the
+ * count of right-half-plane roots (the verdict itself is decided exactly where long double
+ * cannot, autobal_pendulum_undamped_verdict_exact_): the second pass shrinks the band around a
+ * critical speed in which the signs stay undecided by a factor 2^-49 (in long double it is up
+ * to 1e-7 relative in R_w at R_m = 0.24, k = 0.999, where the discriminant cancels most; with
+ * the second pass tests/app/undamped_verdict.sh finds no wrong count at 1e-15). */
+#define UQ_REAL long double
+#define UQ_EPS U_LD
+#define UQ(name) name##_ld
+#include "analysis/pendulum_undamped.inc"
+#undef UQ_REAL
+#undef UQ_EPS
+#undef UQ
+#if defined(__SIZEOF_FLOAT128__) && !defined(AUTOBAL_NO_FLOAT128)
+#define PEND_HAVE_FLOAT128 1
+typedef __float128 pend_f128;
+#define UQ_REAL pend_f128
+#define UQ_EPS ((pend_f128)0x1p-112) /* the machine epsilon of binary128, as U_LD is */
+#define UQ(name) name##_q
+#include "analysis/pendulum_undamped.inc"
+#undef UQ_REAL
+#undef UQ_EPS
+#undef UQ
+#endif
+
+/* Number of sign changes of c[0..n-1], zeros skipped (Descartes' rule of signs). */
+static int sign_changes_ld(const long double *c, int n) {
+  int i, prev = 0, v = 0;
+  for (i = 0; i < n; i++) {
+    int s = (c[i] > 0.0L) - (c[i] < 0.0L);
+    if (s == 0) continue;
+    if (prev != 0 && s != prev) v++;
+    prev = s;
+  }
+  return v;
+}
+
+/* Signs of the two real roots of the quartic c (c[4] > 0) that has exactly two real roots
+ * (and a complex pair): 1 when both are positive (they have one sign: c0 > 0).  The roots by
+ * the Weierstrass (Durand-Kerner) iteration in long double; the two real ones are the two
+ * with the smallest |Im x| / |x| (the pair's is not small: the discriminant is decided). */
+static int quartic_two_real_positive(const long double c[5]) {
+  long double zr[4], zi[4], rb = 0.0L;
+  int it, j, l, best[2] = {0, 1};
+  for (j = 0; j < 4; j++)
+    if (fabsl(c[j] / c[4]) > rb) rb = fabsl(c[j] / c[4]);
+  rb += 1.0L;
+  for (j = 0; j < 4; j++) { /* (0.4 + 0.9 i)^j scaled to the root bound */
+    long double ar = 0.4L, ai = 0.9L, pr = rb, pi = 0.0L, t;
+    for (l = 0; l < j + 1; l++) {
+      t = pr * ar - pi * ai;
+      pi = pr * ai + pi * ar;
+      pr = t;
+    }
+    zr[j] = pr;
+    zi[j] = pi;
+  }
+  for (it = 0; it < 500; it++) {
+    long double moved = 0.0L;
+    for (j = 0; j < 4; j++) {
+      long double pr = c[4], pi = 0.0L, qr = c[4], qi = 0.0L, t, den, dr, di;
+      for (l = 3; l >= 0; l--) { /* Horner: p(z) */
+        t = pr * zr[j] - pi * zi[j] + c[l];
+        pi = pr * zi[j] + pi * zr[j];
+        pr = t;
+      }
+      for (l = 0; l < 4; l++) { /* c4 prod (z - z_l) */
+        long double er, ei;
+        if (l == j) continue;
+        er = zr[j] - zr[l];
+        ei = zi[j] - zi[l];
+        t = qr * er - qi * ei;
+        qi = qr * ei + qi * er;
+        qr = t;
+      }
+      den = qr * qr + qi * qi;
+      if (!(den > 0.0L)) continue;
+      dr = (pr * qr + pi * qi) / den;
+      di = (pi * qr - pr * qi) / den;
+      zr[j] -= dr;
+      zi[j] -= di;
+      moved += fabsl(dr) + fabsl(di);
+    }
+    if (!(moved > 0.0L)) break;
+  }
+  {
+    long double rel[4];
+    for (j = 0; j < 4; j++) rel[j] = fabsl(zi[j]) / (fabsl(zr[j]) + fabsl(zi[j]));
+    for (j = 0; j < 4; j++) /* the two smallest |Im| / |x| */
+      if (rel[j] < rel[best[0]]) best[0] = j;
+    best[1] = best[0] == 0 ? 1 : 0;
+    for (j = 0; j < 4; j++)
+      if (j != best[0] && rel[j] < rel[best[1]]) best[1] = j;
+  }
+  return zr[best[0]] + zr[best[1]] > 0.0L;
+}
+
+/* Roots lambda of (6) with Re > 0 when H = h = 0, from the roots x = lambda^2 of (10): a
+ * negative x gives two lambda on the imaginary axis, x = 0 two at 0, a positive x one on the
+ * right, a complex pair of x two on the right; so the count is deg - (negative roots) - (zero
+ * roots).  nreal: the number of real roots of the polynomial uq_undamped looked at. */
+static int undamped_n_rhp(double R_m, double R_w, double k, int nreal) {
+  long double Rm = R_m, W = (long double)R_w * R_w, c[5];
+  if (R_w == 0.0) return 0; /* x = 0 twice and real negative roots: every lambda on the axis */
+  if (k == 1.0) return 4 - nreal; /* each complex pair of f(nu): one of P1, one of conj(P1) */
+  autobal_pendulum_undamped_coefs_ld_(Rm, W, k, c);
+  if (k == 0.0) {
+    /* the cubic c[1..4] (x = 0 divided out) */
+    if (c[1] == 0.0L) { /* W = 1: x = 0 again, then a6 x^2 + a4 x + a2 (positive coefficients) */
+      return c[3] * c[3] - 4.0L * c[4] * c[2] >= 0.0L ? 0 : 2;
+    }
+    if (nreal == 1) return 2 + (c[1] < 0.0L); /* the real root has the sign of -a0 */
+    return sign_changes_ld(c + 1, 4);          /* three real roots: Descartes is exact */
+  }
+  if (nreal == 4) return sign_changes_ld(c, 5); /* Descartes is exact */
+  if (nreal == 0) return 4;
+  return sign_changes_ld(c, 5) == 0 ? 2 : (quartic_two_real_positive(c) ? 4 : 2);
+}
+
+/* The verdict of autobal_pendulum_verdict and autobal_pendulum_analyze when H = h = 0: the
+ * exact criterion (10) as autobal_pendulum_undamped_verdict_exact_ decides it (long double, else
+ * exactly in integers: STABLE when every root x is real, negative and simple -- or, at k = 1,
+ * double only where a root of P1 meets one of conj(P1), which is semisimple -- so every lambda
+ * lies on the imaginary axis and is semisimple; UNSTABLE when a root x is not real or is
+ * positive; MARGINAL only exactly on a critical speed), with the two points where (10) has a
+ * double root exactly for double input decided: R_w = 0 (the shaft at rest, lambda = 0
+ * fourfold) and, at k = 0, R_w = 1 (a0 = 0: lambda = 0 fourfold, the structural pair
+ * included).  There lambda = 0 has fewer eigenvectors than its multiplicity (the pendulums
+ * drift, or the shaft resonates, linearly in time): UNSTABLE.  The count of right-half-plane
+ * roots needs the number of real roots of (10): long double, binary128 where that is undecided
+ * (undamped_n_rhp). */
+int autobal_pendulum_undamped_semisimple_(double R_m, double R_w, double k, int *n_rhp) {
+  int v = autobal_pendulum_undamped_verdict_exact_(R_m, R_w, k);
+  if (v == AUTOBAL_VERDICT_MARGINAL && (R_w == 0.0 || (k == 0.0 && R_w == 1.0)))
+    v = AUTOBAL_VERDICT_UNSTABLE;
+  if (n_rhp) {
+    int sure, nreal;
+    *n_rhp = 0;
+    if (v != AUTOBAL_VERDICT_STABLE) {
+      (void)uq_undamped_ld(R_m, R_w, k, &sure, &nreal);
+#ifdef PEND_HAVE_FLOAT128
+      if (!sure) (void)uq_undamped_q(R_m, R_w, k, &sure, &nreal);
+#endif
+      *n_rhp = undamped_n_rhp(R_m, R_w, k, nreal);
+    }
+  }
+  return v;
+}
+
 int autobal_pendulum_check_rm_k_(double R_m, double k, autobal_error *err) {
   int st;
   if ((st = autobal_check_param(err, "R_m", R_m, 0.0, 1, 0.5, 1, "")) != 0) return st;
@@ -485,13 +644,26 @@ int autobal_pendulum_undamped_poly(double R_m, double R_w, double k, double coef
   return AUTOBAL_SUCCESS;
 }
 
+/* The undamped verdict decided: long double where its rounding bounds decide, else exactly
+ * in integers (pendulum_exact.h; MARGINAL then means exactly on a boundary). */
+int autobal_pendulum_undamped_verdict_exact_(double R_m, double R_w, double k) {
+  int sure, v = autobal_pendulum_undamped_verdict_ld_(R_m, (long double)R_w * (long double)R_w, k, &sure);
+  if (!sure || v == AUTOBAL_VERDICT_MARGINAL) {
+    autobal_pendulum_exact ex;
+    autobal_pendulum_exact_init(&ex, R_m, k);
+    v = autobal_pendulum_exact_verdict_Rw(&ex, R_w);
+    autobal_pendulum_exact_clear(&ex);
+  }
+  return v;
+}
+
 int autobal_pendulum_undamped_verdict(double R_m, double R_w, double k, int *verdict,
                                       autobal_error *err) {
   int st;
   if ((st = autobal_pendulum_check_rm_k_(R_m, k, err)) != 0) return st;
   if ((st = autobal_check_param(err, "R_w", R_w, 0.0, 0, INFINITY, 1, "")) != 0) return st;
   if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "undamped_verdict: NULL output");
-  *verdict = autobal_pendulum_undamped_verdict_ld_(R_m, (long double)R_w * (long double)R_w, k, NULL);
+  *verdict = autobal_pendulum_undamped_verdict_exact_(R_m, R_w, k);
   return AUTOBAL_SUCCESS;
 }
 
@@ -566,38 +738,50 @@ int autobal_pendulum_analyze(autobal_pendulum_workspace *ws, const autobal_pendu
   }
   r->mismatch_rel = r->mismatch / scale;
   r->zero_root_deflated = (k == 0.0);
-  /* sign test on the coefficients */
-  st = autobal_pendulum_sign_test_poly_(r->coef, cerr, p->R_w * p->R_w, k == 0.0, &r->verdict, &r->n_rhp,
-                                        &ws->err);
-  if (st) return st;
-  /* verdict from the roots (drop the root nearest 0 when deflated) */
+  r->undamped = (p->H == 0.0 && p->h == 0.0);
+  if (r->undamped) {
+    /* (6) is even in lambda and the Routh array breaks down (a zero row): the exact
+     * criterion (10) decides (autobal_pendulum_undamped_semisimple_) */
+    r->verdict = autobal_pendulum_undamped_semisimple_(p->R_m, p->R_w, k, &r->n_rhp);
+    r->undamped_verdict = autobal_pendulum_undamped_verdict_exact_(p->R_m, p->R_w, k);
+  } else {
+    /* sign test on the coefficients */
+    st = autobal_pendulum_sign_test_poly_(r->coef, cerr, p->R_w * p->R_w, k == 0.0, &r->verdict,
+                                          &r->n_rhp, &ws->err);
+    if (st) return st;
+  }
+  /* verdict from the roots: drop the root nearest 0 when deflated (both roots at 0 when
+   * undamped: there lambda = 0 is double at k = 0, the family and its rate) */
   {
     double rr[8], ri[8], emax = -INFINITY;
-    size_t n = 0, skip = 8, esk = 8;
-    if (k == 0.0) {
+    size_t n = 0, nskip = k == 0.0 ? (r->undamped ? 2 : 1) : 0, j;
+    int skip[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    for (j = 0; j < nskip; j++) { /* eig[i] is matched to root[i] */
       double best = INFINITY;
+      size_t b = 8;
       for (i = 0; i < 8; i++)
-        if (hypot(r->root_re[i], r->root_im[i]) < best) {
+        if (!skip[i] && hypot(r->root_re[i], r->root_im[i]) < best) {
           best = hypot(r->root_re[i], r->root_im[i]);
-          skip = i;
+          b = i;
         }
-      esk = skip; /* eig[i] is matched to root[i] */
+      if (b < 8) skip[b] = 1;
     }
     for (i = 0; i < 8; i++) {
-      if (i == skip) continue;
+      if (skip[i]) continue;
       rr[n] = r->root_re[i];
       ri[n] = r->root_im[i];
       n++;
     }
     r->verdict_roots = autobal_roots_verdict(n, rr, ri, AUTOBAL_PENDULUM_ROOTS_TOL, &r->max_real);
+    /* undamped: roots on the imaginary axis within the tolerance are what stability needs;
+     * whether a multiple one is semisimple the rounded roots cannot tell (verdict decides) */
+    if (r->undamped && r->verdict_roots == AUTOBAL_VERDICT_MARGINAL)
+      r->verdict_roots = AUTOBAL_VERDICT_STABLE;
     for (i = 0; i < 8; i++)
-      if (i != esk && r->eig_re[i] > emax) emax = r->eig_re[i];
+      if (!skip[i] && r->eig_re[i] > emax) emax = r->eig_re[i];
     r->max_real_eig = emax;
   }
   r->verdicts_agree = r->verdict == r->verdict_roots;
-  r->undamped = (p->H == 0.0 && p->h == 0.0);
-  if (r->undamped)
-    r->undamped_verdict = autobal_pendulum_undamped_verdict_ld_(p->R_m, (long double)p->R_w * p->R_w, k, NULL);
   sufficient_conditions(p, k, r);
   return AUTOBAL_SUCCESS;
 }

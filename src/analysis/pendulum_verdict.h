@@ -159,6 +159,14 @@ void autobal_pendulum_quartic_aux_ld_(const long double c[5], long double *P8, l
                                       int *sure);
 /* Verdict of the undamped system (10) at (Rm, W = R_w^2, k) in long double (sure may be NULL). */
 int autobal_pendulum_undamped_verdict_ld_(long double Rm, long double W, long double k, int *sure);
+/* The undamped verdict at (R_m, R_w, k) decided: the long double test where its bounds decide,
+ * else exact (integers, GMP); MARGINAL only exactly on a boundary. */
+int autobal_pendulum_undamped_verdict_exact_(double R_m, double R_w, double k);
+/* Verdict of autobal_pendulum_verdict / autobal_pendulum_analyze when H = h = 0: that of
+ * autobal_pendulum_undamped_verdict_exact_ with R_w = 0 and (k = 0) R_w = 1, where lambda = 0
+ * is not semisimple, UNSTABLE; if n_rhp != NULL, the number of roots of (6) with Re > 0 (no
+ * validation). */
+int autobal_pendulum_undamped_semisimple_(double R_m, double R_w, double k, int *n_rhp);
 /* Range checks of R_m in (0, 0.5) and k in [0, 1]. */
 int autobal_pendulum_check_rm_k_(double R_m, double k, autobal_error *err);
 

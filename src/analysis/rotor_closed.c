@@ -272,31 +272,14 @@ static void rp_axpby(double x, const rpoly *a, double y, const rpoly *b, rpoly *
   *out = t;
 }
 
-int autobal_rotor_char_poly(const autobal_rotor_closed *c, double coef[13], double cerr[13],
-                            autobal_error *err) {
-  const autobal_rotor_lumped *L;
-  const autobal_rotor_closed_plane *pl;
-  double w, d, ma, qabs, max_imag = 0.0;
-  cpoly P, P2, P4, Pb4, one, K11, K12, K22, D, N, L2, F, Fs, FF, Ns, NN, PP, G, Del, t1, t2;
-  rpoly aP, aP2, aP4, aone, aK11, aK12, aK22, aD, aN, aL2, aF, aPP, aNN, aDel, r1, r2;
-  size_t k;
-  if (c == NULL || coef == NULL)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "char_poly: NULL argument");
-  if (c->n_planes != 1)
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "char_poly: Delta is built for one plane (n_planes = %zu); use the closed "
-                             "matrix for two planes",
-                             c->n_planes);
-  if (!c->isotropic)
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "char_poly: the supports are not isotropic (c_x = c_y, c_alpha = "
-                             "c_beta, c_xbeta = c_yalpha and the same for h are required)");
-  L = &c->L;
-  pl = &c->plane[0];
-  w = c->omega;
-  d = pl->d;
-  ma = pl->m_add;
-  qabs = hypot(pl->Q_re, pl->Q_im);
+/* The two parts of Delta = F F* - (|Q| / 2)^2 P^4 Pb^4 N N* of a one-plane isotropic closed system:
+ * FF = F F* and G = P^4 Pb^4 N N* (complex arithmetic; both are real polynomials).  Neither depends
+ * on Q: with the paper's inertia (m_add = 0) they do not depend on the unbalance at all. */
+static void delta_parts(const autobal_rotor_closed *c, cpoly *FFo, cpoly *Go, cpoly *NNo) {
+  const autobal_rotor_lumped *L = &c->L;
+  const autobal_rotor_closed_plane *pl = &c->plane[0];
+  const double w = c->omega, d = pl->d, ma = pl->m_add;
+  cpoly P, P2, P4, Pb4, one, K11, K12, K22, D, N, L2, F, Fs, FF, Ns, NN, PP, G, t1, t2;
   {
     const double vP[4] = {0.0, w, 1.0, 0.0}; /* P = lambda + i w */
     const double v1[2] = {1.0, 0.0};
@@ -340,9 +323,38 @@ int autobal_rotor_char_poly(const autobal_rotor_closed *c, double coef[13], doub
   cp_mul(&N, &Ns, &NN);
   cp_mul(&P4, &Pb4, &PP);
   cp_mul(&PP, &NN, &G);
+  *FFo = FF;
+  *Go = G;
+  if (NNo) *NNo = NN;
+}
+
+int autobal_rotor_char_poly(const autobal_rotor_closed *c, double coef[13], double cerr[13],
+                            autobal_error *err) {
+  const autobal_rotor_lumped *L;
+  const autobal_rotor_closed_plane *pl;
+  double w, d, ma, qabs, max_imag = 0.0;
+  cpoly FF, G, Del;
+  rpoly aP, aP2, aP4, aone, aK11, aK12, aK22, aD, aN, aL2, aF, aPP, aNN, aDel, r1, r2;
+  size_t k;
+  if (c == NULL || coef == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "char_poly: NULL argument");
+  if (c->n_planes != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "char_poly: Delta is built for one plane (n_planes = %zu); use the closed "
+                             "matrix for two planes",
+                             c->n_planes);
+  if (!c->isotropic)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "char_poly: the supports are not isotropic (c_x = c_y, c_alpha = "
+                             "c_beta, c_xbeta = c_yalpha and the same for h are required)");
+  L = &c->L;
+  pl = &c->plane[0];
+  w = c->omega;
+  d = pl->d;
+  ma = pl->m_add;
+  qabs = hypot(pl->Q_re, pl->Q_im);
+  delta_parts(c, &FF, &G, NULL);
   cp_axpby(1.0, 0.0, &FF, -0.25 * qabs * qabs, 0.0, &G, &Del);
-  if (Del.len != AUTOBAL_ROTOR_POLY_LEN)
-    return autobal_error_set(err, AUTOBAL_ENUMERIC, "char_poly: internal degree error");
   autobal_cpoly_real_part(Del.c, Del.len, coef, &max_imag);
   if (!(max_imag <= 1e-10))
     return autobal_error_set(err, AUTOBAL_ENUMERIC,
@@ -386,6 +398,24 @@ int autobal_rotor_char_poly(const autobal_rotor_closed *c, double coef[13], doub
     rp_axpby(1.0, &r1, 0.25 * qabs * qabs, &r2, &aDel);
     for (k = 0; k < AUTOBAL_ROTOR_POLY_LEN; k++) cerr[k] = 64.0 * DBL_EPSILON * aDel.c[k];
   }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_char_parts_(const autobal_rotor_closed *c, double A[13], double Bt[13], autobal_error *err) {
+  cpoly FF, G, NN;
+  double mi1 = 0.0, mi2 = 0.0;
+  if (c == NULL || A == NULL || Bt == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "char_parts: NULL argument");
+  if (c->n_planes != 1 || !c->isotropic)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "char_parts: one plane and isotropic supports are required");
+  delta_parts(c, &FF, &G, &NN);
+  if (FF.len != AUTOBAL_ROTOR_POLY_LEN || NN.len > AUTOBAL_ROTOR_POLY_LEN)
+    return autobal_error_set(err, AUTOBAL_ENUMERIC, "char_parts: internal degree error");
+  memset(Bt, 0, AUTOBAL_ROTOR_POLY_LEN * sizeof(double));
+  autobal_cpoly_real_part(FF.c, FF.len, A, &mi1);
+  autobal_cpoly_real_part(NN.c, NN.len, Bt, &mi2);
+  if (!(mi1 <= 1e-10) || !(mi2 <= 1e-10))
+    return autobal_error_set(err, AUTOBAL_ENUMERIC, "char_parts: F F* or N N* is not real (relative %.3g, %.3g)",
+                             mi1, mi2);
   return AUTOBAL_SUCCESS;
 }
 

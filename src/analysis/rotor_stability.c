@@ -544,20 +544,38 @@ int autobal_rotor_stab_critical_cap_(autobal_rotor_stab *s, int param, double lo
 
 /* ---- maps ---------------------------------------------------------------------------- */
 
-static int map_point(autobal_rotor_stab *s, int p1, double x1, int p2, double x2, double *mg,
+/* Which verdict a map point takes: the one of the handle's unbalance, or (every = 1) stability for
+ * every m0 r0 in [s_lo, s_hi] (autobal_rotor_stab_every_unbalance). */
+typedef struct map_mode {
+  int every;
+  double s_lo, s_hi;
+} map_mode;
+
+static int map_point(autobal_rotor_stab *s, const map_mode *mm, int p1, double x1, int p2, double x2, double *mg,
                      int *v) {
+  autobal_rotor_unbalance_range ur;
+  size_t k;
   int st;
   *mg = NAN;
   *v = AUTOBAL_ROTOR_VERDICT_NONE;
   if ((st = autobal_rotor_stab_set(s, p1, x1)) != AUTOBAL_SUCCESS) return st;
   if ((st = autobal_rotor_stab_set(s, p2, x2)) != AUTOBAL_SUCCESS) return st;
-  return autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_AUTO, mg, v);
+  if (!mm->every) return autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_AUTO, mg, v);
+  st = autobal_rotor_stab_every_unbalance(s, mm->s_lo, mm->s_hi, &ur);
+  if (st == AUTOBAL_EINVAL) return AUTOBAL_SUCCESS; /* the balls cannot balance every unbalance here: NONE */
+  if (st != AUTOBAL_SUCCESS) return st;
+  /* the worst verdict over the range: a critical unbalance inside with stable sides is a touch */
+  *v = AUTOBAL_VERDICT_STABLE;
+  for (k = 0; k < ur.n_sub; k++)
+    if (ur.sub_verdict[k] < *v) *v = ur.sub_verdict[k];
+  if (!ur.all_stable && *v == AUTOBAL_VERDICT_STABLE) *v = AUTOBAL_VERDICT_MARGINAL;
+  *mg = ur.margin_worst;
+  return AUTOBAL_SUCCESS;
 }
 
-int autobal_rotor_stab_map(const autobal_rotor_params *p, const autobal_rotor_stab_options *opt,
-                           int param1, const double *v1, size_t n1, int param2, const double *v2,
-                           size_t n2, int n_threads, double *margin, int *verdict,
-                           autobal_error *err) {
+static int map_run(const autobal_rotor_params *p, const autobal_rotor_stab_options *opt, const map_mode *mm,
+                   int param1, const double *v1, size_t n1, int param2, const double *v2, size_t n2, int n_threads,
+                   double *margin, int *verdict, autobal_error *err) {
   size_t ntot;
   int fail = AUTOBAL_SUCCESS;
   char failmsg[AUTOBAL_ERRMSG_SIZE];
@@ -592,7 +610,7 @@ int autobal_rotor_stab_map(const autobal_rotor_params *p, const autobal_rotor_st
       for (idx = 0; idx < (long long)ntot; idx++) {
         const size_t i = (size_t)idx / n2, j = (size_t)idx % n2;
         if (local != AUTOBAL_SUCCESS) continue;
-        local = map_point(s, param1, v1[i], param2, v2[j], &margin[idx], &verdict[idx]);
+        local = map_point(s, mm, param1, v1[i], param2, v2[j], &margin[idx], &verdict[idx]);
         if (local != AUTOBAL_SUCCESS)
           snprintf(msg, sizeof msg, "map point (%s = %.9g, %s = %.9g): %.400s",
                    autobal_rotor_stab_param_name(param1), v1[i],
@@ -618,7 +636,7 @@ int autobal_rotor_stab_map(const autobal_rotor_params *p, const autobal_rotor_st
     if (s == NULL) fail = AUTOBAL_ENOMEM;
     for (idx = 0; idx < ntot && fail == AUTOBAL_SUCCESS; idx++) {
       const size_t i = idx / n2, j = idx % n2;
-      fail = map_point(s, param1, v1[i], param2, v2[j], &margin[idx], &verdict[idx]);
+      fail = map_point(s, mm, param1, v1[i], param2, v2[j], &margin[idx], &verdict[idx]);
       if (fail != AUTOBAL_SUCCESS)
         snprintf(failmsg, sizeof failmsg, "map point (%s = %.9g, %s = %.9g): %.400s",
                  autobal_rotor_stab_param_name(param1), v1[i],
@@ -629,4 +647,29 @@ int autobal_rotor_stab_map(const autobal_rotor_params *p, const autobal_rotor_st
 #endif
   if (fail != AUTOBAL_SUCCESS) return autobal_error_set(err, fail, "%s", failmsg);
   return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_stab_map(const autobal_rotor_params *p, const autobal_rotor_stab_options *opt,
+                           int param1, const double *v1, size_t n1, int param2, const double *v2,
+                           size_t n2, int n_threads, double *margin, int *verdict,
+                           autobal_error *err) {
+  const map_mode mm = {0, 0.0, 0.0};
+  return map_run(p, opt, &mm, param1, v1, n1, param2, v2, n2, n_threads, margin, verdict, err);
+}
+
+int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p, const autobal_rotor_stab_options *opt,
+                                           int param1, const double *v1, size_t n1, int param2, const double *v2,
+                                           size_t n2, double s_lo, double s_hi, int n_threads, double *margin,
+                                           int *verdict, autobal_error *err) {
+  const map_mode mm = {1, s_lo, s_hi};
+  if (param1 == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS || param2 == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "map for every unbalance: unbalance_mass cannot be an axis (the unbalance is the range "
+                             "[%g, %g] kg m)",
+                             s_lo, s_hi);
+  if (!(isfinite(s_lo) && isfinite(s_hi) && s_lo > 0.0 && s_lo <= s_hi))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "map for every unbalance: the range of m0 r0 [%g, %g] kg m needs 0 < min <= max, finite",
+                             s_lo, s_hi);
+  return map_run(p, opt, &mm, param1, v1, n1, param2, v2, n2, n_threads, margin, verdict, err);
 }

@@ -2,6 +2,7 @@
  * critical speeds at the given parameters (undamped from (10), damped from (6)), the curves
  * R_wj(R_m) of figure 2, the paper's closed forms (13), (14), (16)-(18), and their archive
  * layout (include/autobal/study.h). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -187,6 +188,9 @@ static int write_crit_set(autobal_archive *a, const char *g, const char *prefix,
   /* 1: the list was full (the damped search): the set covers R_w up to its last critical speed only */
   snprintf(name, sizeof name, "%s_truncated", prefix);
   if (!st) st = autobal_archive_attr_int(a, g, name, s->truncated);
+  /* 1: two critical speeds within one ulp of W = R_w^2 (reported as equal values) */
+  snprintf(name, sizeof name, "%s_unresolved", prefix);
+  if (!st) st = autobal_archive_attr_int(a, g, name, s->unresolved);
   if (!st && s->n > 0) {
     for (i = 0; i < s->n; i++) kinds[i] = s->kind[i];
     st = autobal_archive_dim(a, g, dimc, s->n, "index of a critical speed");
@@ -230,6 +234,7 @@ int autobal_study_pendulum_critical_write(autobal_archive *a, const autobal_pend
     if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
   }
   if (!st) st = autobal_archive_attr_string(a, g, "description", "critical speeds of the undamped balancer (H = h = 0) at the R_m and k of /pendulum, from the discriminant of (10); damped_* at the given H, h from (6)");
+  if (!st) st = autobal_archive_attr_double(a, g, "undamped_resolution_W", DBL_EPSILON, "1");
   if (!st) st = write_crit_set(a, g, "undamped", &s->undamped);
   if (!st && s->have_damped) st = write_crit_set(a, g, "damped", &s->damped);
   if (!st) st = write_crit_set(a, g, "undamped_k0", &s->undamped_k0);

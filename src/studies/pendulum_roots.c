@@ -26,6 +26,11 @@ int autobal_study_pendulum_roots(const autobal_pendulum_params *p, const autobal
   return AUTOBAL_SUCCESS;
 }
 
+const char *autobal_study_pendulum_roots_criterion(const autobal_pendulum_result *r) {
+  if (!r) return "";
+  return r->undamped ? "exact undamped criterion (10)" : "Routh-Hurwitz on (6)";
+}
+
 int autobal_study_pendulum_roots_write(autobal_archive *a, const autobal_pendulum_params *p,
                                        const autobal_pendulum_physical *phys, const autobal_pendulum_result *r) {
   static const char *const dim_root[] = {"root"};
@@ -46,6 +51,7 @@ int autobal_study_pendulum_roots_write(autobal_archive *a, const autobal_pendulu
   if (!st) st = autobal_archive_var(a, g, "eig_real", 1, dim_root, r->eig_re, "1", "real part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
   if (!st) st = autobal_archive_var(a, g, "eig_imag", 1, dim_root, r->eig_im, "1", "imaginary part of the eigenvalues of the 8x8 matrix of (5), matched to the roots");
   if (!st) st = autobal_archive_attr_string(a, g, "verdict", autobal_verdict_name(r->verdict));
+  if (!st) st = autobal_archive_attr_string(a, g, "criterion", autobal_study_pendulum_roots_criterion(r));
   if (!st) st = autobal_archive_attr_string(a, g, "verdict_roots", autobal_verdict_name(r->verdict_roots));
   if (!st) st = autobal_archive_attr_double(a, g, "max_real", r->max_real, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "root_eig_mismatch", r->mismatch, "1");

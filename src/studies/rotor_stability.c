@@ -61,6 +61,9 @@ autobal_study_rotor_stability_options autobal_study_rotor_stability_options_defa
   o.omega_max = NAN;
   o.n_omega = 400;
   o.xtol_rel = 1e-8;
+  o.every_unbalance = 0;
+  o.unbalance_min = NAN;
+  o.unbalance_max = NAN;
   return o;
 }
 
@@ -99,6 +102,19 @@ static int keep_arrays(autobal_study_rotor_stability_summary *s) {
 #undef KEEP
   s->storage_ = m;
   return AUTOBAL_SUCCESS;
+}
+
+/* A speed search of the stability study: its range on the side of omega's sign into *lo, *hi, and the
+ * progress hook ph (reporting `fraction`) installed on the handle when the options have one. */
+static void search_setup(const autobal_rotor_params *p, const autobal_study_rotor_stability_options *o,
+                         const autobal_study_rotor_stability_summary *s, autobal_rotor_stab *h, double fraction,
+                         progress_hook *ph, double *lo, double *hi) {
+  *lo = p->omega > 0 ? s->omega_min : -s->omega_max;
+  *hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+  ph->fn = o->progress;
+  ph->user = o->progress_user;
+  ph->fraction = fraction;
+  if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, ph);
 }
 
 int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_study_rotor_stability_options *opt,
@@ -147,12 +163,9 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
     goto fail;
   }
   if (o->critical_speeds) {
-    double lo = p->omega > 0 ? s->omega_min : -s->omega_max, hi = p->omega > 0 ? s->omega_max : -s->omega_min;
+    double lo, hi;
     progress_hook ph;
-    ph.fn = o->progress;
-    ph.user = o->progress_user;
-    ph.fraction = 0.5;
-    if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, &ph);
+    search_setup(p, o, s, h, 0.5, &ph, &lo, &hi);
     st = autobal_rotor_stab_critical(h, AUTOBAL_ROTOR_PARAM_OMEGA, lo, hi, o->n_omega, o->xtol_rel, &s->critical);
     autobal_rotor_stab_set_cancel(h, NULL, NULL);
     if (st == AUTOBAL_ECANCELLED) {
@@ -182,6 +195,34 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
     s->have_critical = 1;
     /* the analysis above stays valid: critical() restores omega but overwrites the workspace */
     st = autobal_rotor_stab_analyze(h, &s->result);
+    if (st) {
+      autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+      goto fail;
+    }
+  }
+  if (o->every_unbalance) {
+    /* every unbalance in [unbalance_min, unbalance_max]: at omega, then the speeds */
+    st = autobal_rotor_stab_every_unbalance(h, o->unbalance_min, o->unbalance_max, &s->every);
+    if (st) {
+      autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+      goto fail;
+    }
+    s->have_every = 1;
+    if (o->critical_speeds) {
+      double lo, hi;
+      progress_hook ph;
+      search_setup(p, o, s, h, 0.75, &ph, &lo, &hi);
+      st = autobal_rotor_stab_every_unbalance_speeds(h, o->unbalance_min, o->unbalance_max, lo, hi, o->n_omega,
+                                                     o->xtol_rel, &s->every_speeds);
+      autobal_rotor_stab_set_cancel(h, NULL, NULL);
+      if (st == AUTOBAL_WARNING) st = AUTOBAL_SUCCESS; /* truncated: recorded in every_speeds.truncated */
+      if (st) {
+        autobal_error_set(err, st, "every unbalance, speeds: %s", autobal_rotor_stab_errmsg(h));
+        goto fail;
+      }
+      s->have_every_speeds = 1;
+    }
+    st = autobal_rotor_stab_analyze(h, &s->result); /* the analysis at omega, as above */
     if (st) {
       autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
       goto fail;
@@ -319,6 +360,43 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = autobal_archive_attr_double(a, gc, "omega_max", s->omega_max, "rad/s");
     if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", (long)s->n_omega);
     if (!st) st = write_crit(a, gc, &s->critical, "rad/s");
+  }
+  if (!st && s->have_every) {
+    const char *ge = "/rotor/stability/every_unbalance";
+    const autobal_rotor_unbalance_range *u = &s->every;
+    static const char *const dcu[] = {"unbalance_critical"}, *const dsub[] = {"sub_interval"};
+    st = autobal_archive_group(a, ge);
+    if (!st) st = autobal_archive_attr_string(a, ge, "description", "stability of the balanced motion for every unbalance m0 r0 in [unbalance_min, unbalance_max] at omega: the critical unbalances (a root of Delta on the imaginary axis), the verdict between them (docs/rotor.md, Every unbalance)");
+    if (!st) st = autobal_archive_attr_double(a, ge, "omega", u->omega, "rad/s");
+    if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_min", u->s_lo, "kg m");
+    if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_max", u->s_hi, "kg m");
+    if (!st) st = autobal_archive_attr_int(a, ge, "stable_for_all", u->all_stable);
+    if (!st) st = autobal_archive_attr_double(a, ge, "margin_worst_evaluated", u->margin_worst, "1/s");
+    if (!st) st = autobal_archive_attr_int(a, ge, "n_missed", (long)u->n_missed);
+    if (!st) st = autobal_archive_attr_int(a, ge, "evaluations", (long)u->evaluations);
+    if (!st && u->n_crit > 0) {
+      st = autobal_archive_dim(a, ge, "unbalance_critical", u->n_crit, "index of a critical unbalance");
+      if (!st) st = autobal_archive_var(a, ge, "critical_unbalance", 1, dcu, u->s_crit, "kg m", "critical unbalance m0 r0: a root of Delta on the imaginary axis");
+    }
+    if (!st && u->n_sub > 0) {
+      int v[AUTOBAL_ROTOR_MAX_UCRIT + 1];
+      size_t q;
+      for (q = 0; q < u->n_sub; q++) v[q] = u->sub_verdict[q];
+      st = autobal_archive_dim(a, ge, "sub_interval", u->n_sub, "index of a sub-interval between critical unbalances");
+      if (!st) st = autobal_archive_var(a, ge, "sub_lo", 1, dsub, u->sub_lo, "kg m", "lower end of the sub-interval (m0 r0)");
+      if (!st) st = autobal_archive_var(a, ge, "sub_hi", 1, dsub, u->sub_hi, "kg m", "upper end of the sub-interval (m0 r0)");
+      if (!st) st = autobal_archive_var_int(a, ge, "sub_verdict", 1, dsub, v, "1", "verdict inside the sub-interval: 1 stable, 0 marginal, -1 unstable");
+      if (!st) st = autobal_archive_var(a, ge, "sub_margin", 1, dsub, u->sub_margin, "1/s", "stability margin (largest real part) at the sub-interval's midpoint");
+    }
+    if (!st && s->have_every_speeds) {
+      const char *gs = "/rotor/stability/every_unbalance/speeds";
+      st = autobal_archive_group(a, gs);
+      if (!st) st = autobal_archive_attr_string(a, gs, "description", "speeds where the balanced motion is stable for every unbalance in the range: the changes of that verdict (refined by bisection) and the stable intervals");
+      if (!st) st = autobal_archive_attr_double(a, gs, "omega_min", s->omega_min, "rad/s");
+      if (!st) st = autobal_archive_attr_double(a, gs, "omega_max", s->omega_max, "rad/s");
+      if (!st) st = autobal_archive_attr_int(a, gs, "n_omega", (long)s->n_omega);
+      if (!st) st = write_crit(a, gs, &s->every_speeds, "rad/s");
+    }
   }
   return st;
 }
@@ -513,6 +591,9 @@ autobal_study_rotor_map_options autobal_study_rotor_map_options_default(void) {
   o.n1 = 120;
   o.n2 = 60;
   o.threads = 0;
+  o.every_unbalance = 0;
+  o.unbalance_min = NAN;
+  o.unbalance_max = NAN;
   return o;
 }
 
@@ -569,8 +650,13 @@ int autobal_study_rotor_map(const autobal_rotor_params *p, const autobal_study_r
     while (s->n1_done < s->n1 && !cancelled) {
       size_t r = s->n1 - s->n1_done < rows ? s->n1 - s->n1_done : rows, off = s->n1_done * s->n2;
       double t0 = now_seconds();
-      st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2, s->values2, s->n2,
-                                  o->threads, s->margin + off, s->verdict + off, err);
+      if (o->every_unbalance)
+        st = autobal_rotor_stab_map_every_unbalance(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2,
+                                                    s->values2, s->n2, o->unbalance_min, o->unbalance_max, o->threads,
+                                                    s->margin + off, s->verdict + off, err);
+      else
+        st = autobal_rotor_stab_map(p, &o->stab, o->param1, s->values1 + s->n1_done, r, o->param2, s->values2, s->n2,
+                                    o->threads, s->margin + off, s->verdict + off, err);
       if (st) return st;
       s->n1_done += r;
       rows = next_block(rows, now_seconds() - t0);
@@ -613,6 +699,14 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
   }
   if (!st) st = autobal_archive_coord(a, g, n1s, nr, s->values1, autobal_rotor_stab_param_unit(s->param1), "first parameter (rows)");
   if (!st) st = autobal_archive_coord(a, g, n2s, s->n2, s->values2, autobal_rotor_stab_param_unit(s->param2), "second parameter (columns)");
+  if (!st && o->every_unbalance) {
+    st = autobal_archive_attr_int(a, g, "every_unbalance", 1);
+    if (!st) st = autobal_archive_attr_double(a, g, "unbalance_min", o->unbalance_min, "kg m");
+    if (!st) st = autobal_archive_attr_double(a, g, "unbalance_max", o->unbalance_max, "kg m");
+    if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "for every unbalance in [unbalance_min, unbalance_max]: the largest margin met (the least stable unbalance evaluated; NaN: the balls cannot balance every unbalance of the range)");
+    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "for every unbalance in [unbalance_min, unbalance_max]: 1 stable for all, 0 a critical unbalance touches (stable around it), -1 unstable for some, -2 the balls cannot balance every unbalance of the range");
+    return st;
+  }
   if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");
   if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "1 stable, 0 marginal, -1 unstable, -2 no balanced configuration");
   return st;

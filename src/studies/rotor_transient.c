@@ -354,6 +354,38 @@ static const char *state_name(size_t k, size_t nb, int frame, char *buf, size_t 
   return "z_rate";
 }
 
+int autobal_study_rotor_transient_state_name(const autobal_study_rotor_transient_summary *s, size_t k, char *buf,
+                                             size_t len, const char **unit) {
+  size_t nb = 0, j;
+  const char *u = NULL;
+  int n;
+  if (!s || !buf || k >= s->dim) return AUTOBAL_EINVAL;
+  for (j = 0; j < s->n_planes && j < AUTOBAL_ROTOR_MAX_PLANES; j++) nb += s->n_balls[j];
+  if (k < 8) {
+    static const char *const q[8] = {"x", "y", "alpha", "beta", "x_rate", "y_rate", "alpha_rate", "beta_rate"};
+    static const char *const qu[8] = {"m", "m", "rad", "rad", "m/s", "m/s", "rad/s", "rad/s"};
+    n = snprintf(buf, len, "%s", q[k]);
+    u = qu[k];
+  } else if (k < 8 + nb) {
+    n = snprintf(buf, len, "%s_%zu", s->state_frame == AUTOBAL_ROTOR_FIXED ? "phi" : "psi", k - 8 + 1);
+    u = "rad";
+  } else if (k < 8 + 2 * nb) {
+    n = snprintf(buf, len, "%s_rate_%zu", s->state_frame == AUTOBAL_ROTOR_FIXED ? "phi" : "psi", k - 8 - nb + 1);
+    u = "rad/s";
+  } else if (s->state_axial && k < 8 + 2 * nb + 2) {
+    n = snprintf(buf, len, "%s", k == 8 + 2 * nb ? "z" : "z_rate");
+    u = k == 8 + 2 * nb ? "m" : "m/s";
+  } else if (s->state_motor && k + 2 >= s->dim) {
+    n = snprintf(buf, len, "%s", k + 2 == s->dim ? "phi_0" : "Omega");
+    u = k + 2 == s->dim ? "rad" : "rad/s";
+  } else {
+    return AUTOBAL_EINVAL; /* not a layout this summary describes */
+  }
+  if (n < 0 || (size_t)n >= len) return AUTOBAL_EINVAL;
+  if (unit) *unit = u;
+  return AUTOBAL_SUCCESS;
+}
+
 static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const autobal_study_rotor_transient_options *o) {
   const autobal_rotor_params *p = autobal_rotor_get_params(rot);
   const char *g = "/rotor/transient";
@@ -739,6 +771,9 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     free(pb);
   }
   s->dim = r.dim;
+  s->state_frame = o->frame;
+  s->state_axial = rp->axial != 0;
+  s->state_motor = r.motor;
   s->state_final = malloc(r.dim * sizeof(double));
   if (s->state_final) memcpy(s->state_final, y, r.dim * sizeof(double));
   else if (rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");

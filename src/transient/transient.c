@@ -161,6 +161,10 @@ struct autobal_transient {
   double *pr_fa, *pr_fb, *pr_y; /* probes: derivatives at the step's ends (when computed), interpolant */
   double *y_hit;  /* locate: the integrated state at hit_t (far side of the last located crossing) */
   double *loc;    /* locate: its Hermite nodes (4 dim), a hop's stages (4 dim), f at a trial point (dim) */
+  double *pc_y;   /* probes: the interpolated states at the probe points of this step (pc_cap x dim),
+                     shared by every event with pc_n probes (pc_valid[k]: point k + 1 computed) */
+  unsigned pc_cap, pc_n;
+  unsigned char pc_valid[64];
   double hit_t;   /* its time; hit_valid: it belongs to the step being processed */
   int hit_valid;
   /* events */
@@ -407,6 +411,7 @@ void autobal_transient_free(autobal_transient *tr) {
   free(tr->y_evt);
   free(tr->pr_fa);
   free(tr->loc);
+  free(tr->pc_y);
   free(tr->ev);
   free(tr->order);
   free(tr);
@@ -538,6 +543,12 @@ int autobal_transient_add_dwell_event(autobal_transient *tr, autobal_transient_s
 
 int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n) {
   if (tr == NULL || index < 0 || (size_t)index >= tr->nev || tr->ev[index].dwell || n > 64) return AUTOBAL_EINVAL;
+  if (n > tr->pc_cap) { /* the shared probe states (allocated here, not in run()) */
+    double *p = realloc(tr->pc_y, (size_t)n * tr->dim * sizeof(double));
+    if (!p) return AUTOBAL_ENOMEM;
+    tr->pc_y = p;
+    tr->pc_cap = n;
+  }
   tr->ev[index].probes = n;
   return AUTOBAL_SUCCESS;
 }
@@ -826,16 +837,26 @@ static void hermite(const autobal_transient *tr, const hseg *sg, double t, doubl
 static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn, const double *yn,
                  const double **fa, const double **fb, double *tc, double *gc, int *found) {
   const double h = tn - t_prev;
+  /* the interpolated states at the probe points are shared by the events with the same number of
+   * probes in this step (pc_n: that number, 0 until the first probe of the step) */
+  const int shared = e->probes <= tr->pc_cap && (tr->pc_n == 0 || tr->pc_n == e->probes);
   unsigned k;
   int rc;
   *found = 0;
   if (!*fa && (rc = step_ends(tr, t_prev, tn, yn, fa, fb)) != AUTOBAL_SUCCESS) return rc;
+  if (shared && tr->pc_n == 0) {
+    tr->pc_n = e->probes;
+    memset(tr->pc_valid, 0, sizeof tr->pc_valid);
+  }
   for (k = 1; k <= e->probes; k++) {
     const double t = t_prev + (double)k / (double)(e->probes + 1) * h;
-    double g = 0.0;
-    const hseg sg = {t_prev, tn, tr->y_prev, *fa, yn, *fb};
-    hermite(tr, &sg, t, tr->pr_y);
-    if ((rc = event_value(tr, e, t, tr->pr_y, &g)) != AUTOBAL_SUCCESS) return rc;
+    double g = 0.0, *yk = shared ? tr->pc_y + (size_t)(k - 1) * tr->dim : tr->pr_y;
+    if (!shared || !tr->pc_valid[k - 1]) {
+      const hseg sg = {t_prev, tn, tr->y_prev, *fa, yn, *fb};
+      hermite(tr, &sg, t, yk);
+      if (shared) tr->pc_valid[k - 1] = 1;
+    }
+    if ((rc = event_value(tr, e, t, yk, &g)) != AUTOBAL_SUCCESS) return rc;
     if (!((e->g_prev < 0.0 && g >= 0.0 && e->direction != -1) || (e->g_prev > 0.0 && g <= 0.0 && e->direction != 1)))
       continue;
     /* confirm on the integrated state */
@@ -1201,6 +1222,7 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
   size_t i, np = 0;
   int rc;
   tr->hit_valid = 0;
+  tr->pc_n = 0; /* no probe state of this step yet */
   for (i = 0; i < tr->nev; i++) {
     event_item *e = &tr->ev[i];
     double gn = 0.0;

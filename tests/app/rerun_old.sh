@@ -2,7 +2,8 @@
 # App test: archives written by autobal 0.1.0 (tests/data/archives-0.1.0/, one per command,
 # written by the program as it was before the library took over the analyses, issue 14) are
 # re-run by today's `autobal rerun`: every dataset must be reproduced bit for bit (dtype, shape,
-# bytes), and the new archive must be one that today's readers accept (Conventions, status).
+# bytes), except the undamped critical speeds, exact since issue 18 (within 1e-14 relative, see
+# IMPROVED below), and the new archive must be one that today's readers accept (Conventions, status).
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 here=$(cd "$(dirname "$0")" && pwd)
@@ -23,8 +24,25 @@ def walk(g, out):
         if isinstance(v, h5py.Dataset): out[v.name] = v
         else: walk(v, out)
 A, B = {}, {}; walk(a, A); walk(b, B)
-bad = [k for k in A if k not in B or A[k].dtype != B[k].dtype or A[k].shape != B[k].shape
-       or A[k][()].tobytes() != B[k][()].tobytes()]
+# Undamped critical speeds are exact since issue 18 (integer arithmetic): the 0.1 values of these
+# datasets were up to 3.8e-15 off (against 50-digit references), today's are within 1.3e-16, so
+# they may differ in the last digits: same dtype, shape and NaN pattern, within 1e-14 relative.
+IMPROVED = {"/pendulum/critical/undamped_R_w", "/pendulum/critical/undamped_stable_lo",
+            "/pendulum/critical/undamped_stable_hi", "/pendulum/critical/undamped_k0_R_w",
+            "/pendulum/critical/undamped_k0_stable_lo", "/pendulum/critical/undamped_k0_stable_hi",
+            "/pendulum/critical/undamped_k1_R_w", "/pendulum/critical/undamped_k1_stable_lo",
+            "/pendulum/critical/undamped_k1_stable_hi", "/pendulum/critical/curves/R_w_k0",
+            "/pendulum/critical/curves/R_w_k1"}
+def same(x, y, name):
+    if x.dtype != y.dtype or x.shape != y.shape: return False
+    u, v = x[()], y[()]
+    if u.tobytes() == v.tobytes(): return True
+    if name not in IMPROVED: return False
+    u, v = np.asarray(u, float), np.asarray(v, float)
+    fin = np.isfinite(u)
+    return bool(np.array_equal(fin, np.isfinite(v)) and np.array_equal(u[~fin], v[~fin], equal_nan=True)
+                and np.all(np.abs(u[fin] - v[fin]) <= 1e-14 * np.abs(u[fin])))
+bad = [k for k in A if k not in B or not same(A[k], B[k], k)]
 extra = [k for k in B if k not in A]
 ok = not bad and not extra and b.attrs["status"] == "complete" and "autobal-1" in b.attrs["Conventions"].split()
 print(("ok  " if ok else "FAIL") + f" {sys.argv[1].split('/')[-1]}: {len(A)} datasets reproduced bit for bit"

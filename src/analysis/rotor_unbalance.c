@@ -1,0 +1,373 @@
+/* rotor_unbalance.c: stability of the balanced motion for EVERY unbalance in a range (one plane,
+ * two balls, isotropic supports, the paper's inertia model), by the critical unbalances, not by
+ * sampling (docs/rotor.md "Every unbalance").
+ *
+ * With these assumptions the closed characteristic polynomial is
+ *     Delta(lambda; u) = A(lambda) - u (lambda^2 + w^2)^4 B(lambda),   u = |Q|^2 / 4  (kg^2),
+ * A = F F*, B = N N* (P^4 Pb^4 = (lambda^2 + w^2)^4) independent of the unbalance; the unbalance
+ * s = m0 r0 enters through u only: for two balls (a_i = m_i r_i) at the balanced angles,
+ * cos(psi_1 - psi_2) = c = (s^2 - a_1^2 - a_2^2) / (2 a_1 a_2) and |Q|^2 = m_1^2 + m_2^2 +
+ * 2 m_1 m_2 (2 c^2 - 1).  A root of Delta crosses the imaginary axis at lambda = i y only where
+ * A(i y) = u (w^2 - y^2)^4 B(i y) with u real: y = 0 (u = A_0 / (w^8 B_0)), or A(i y) / B(i y) real,
+ * i.e. y h(y^2) = Im(A(i y) conj B(i y)) = 0 with h a real polynomial of degree <= 7 in z = y^2,
+ * u = Re(A(i y) / B(i y)) / (w^2 - z)^4 (z = w^2 is no crossing: there Delta = A, independent of u).
+ * Between two consecutive such critical values the number of roots in the right half-plane is
+ * constant, so one verdict per sub-interval decides it.  Candidates are generous (roots of h with a
+ * small imaginary part count too: a spurious one only splits a sub-interval), and every
+ * sub-interval is checked at both ends and the midpoint; a disagreement (a crossing the polynomial
+ * roots missed) is bisected.
+ *
+ * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h). */
+#include "autobal/rotor_stability.h"
+#include "autobal/stability.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/rotor_closed.h"
+#include "analysis/rotor_stab_handle.h"
+#include "internal.h"
+
+/* p(z) for ascending real coefficients (long double Horner). */
+static long double lpoly(const long double *c, size_t len, long double z) {
+  long double v = 0.0L;
+  while (len-- > 0) v = v * z + c[len];
+  return v;
+}
+
+/* The even and odd parts of a real polynomial at lambda = i y, in z = y^2:
+ * p(i y) = E(z) + i y O(z).  E has 7, O 6 coefficients (len 13 in). */
+static void split_iy(const double *p, long double E[7], long double O[6]) {
+  size_t j;
+  for (j = 0; j < 7; j++) E[j] = (j % 2 == 0 ? 1.0L : -1.0L) * (long double)p[2 * j];
+  for (j = 0; j < 6; j++) O[j] = (j % 2 == 0 ? 1.0L : -1.0L) * (long double)p[2 * j + 1];
+}
+
+/* u* at the crossing y = sqrt(z): Re(A(iy) / B(iy)) / (w^2 - z)^4 = (Ae Be + z Ao Bo) / ((Be^2 +
+ * z Bo^2) (w^2 - z)^4). */
+static double u_at(const long double Ae[7], const long double Ao[6], const long double Be[7],
+                   const long double Bo[6], long double w2, long double z) {
+  const long double ae = lpoly(Ae, 7, z), ao = lpoly(Ao, 6, z), be = lpoly(Be, 7, z), bo = lpoly(Bo, 6, z);
+  const long double q = (w2 - z) * (w2 - z), den = (be * be + z * bo * bo) * q * q;
+  if (!(den > 0.0L)) return NAN;
+  return (double)((ae * be + z * ao * bo) / den);
+}
+
+/* The unbalances s >= 0 of two balls a1, a2 (kg m), masses m1, m2, whose |Q|^2 / 4 equals u:
+ * up to 2 values into out; returns the count. */
+static size_t s_of_u(double u, double m1, double m2, double a1, double a2, double out[2]) {
+  const double k = (4.0 * u - m1 * m1 - m2 * m2) / (2.0 * m1 * m2); /* cos 2 (psi_1 - psi_2) */
+  size_t n = 0;
+  int sgn;
+  if (!(k >= -1.0 - 1e-12 && k <= 1.0 + 1e-12)) return 0;
+  for (sgn = -1; sgn <= 1; sgn += 2) {
+    const double c = sgn * sqrt(fmax(0.0, 0.5 * (k + 1.0)));
+    const double s2 = a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * c;
+    if (s2 >= 0.0) {
+      const double s = sqrt(s2);
+      if (n == 1 && s == out[0]) continue;
+      out[n++] = s;
+    }
+  }
+  return n;
+}
+
+/* One verdict STABLE and the other UNSTABLE. */
+static int opposite(int a, int b) {
+  return (a == AUTOBAL_VERDICT_STABLE && b == AUTOBAL_VERDICT_UNSTABLE) ||
+         (a == AUTOBAL_VERDICT_UNSTABLE && b == AUTOBAL_VERDICT_STABLE);
+}
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Verdict and margin at unbalance s (kg m) at the handle's omega: m0 = s / r0. */
+static int verdict_at(autobal_rotor_stab *s, double r0, double sv, double *margin, int *verdict) {
+  int st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, sv / r0);
+  if (st != AUTOBAL_SUCCESS) return st;
+  return autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_POLY, margin, verdict);
+}
+
+/* The checks of the model's domain; fills the two balls' data. */
+static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, double *m1, double *m2, double *a1,
+                        double *a2, double *r0) {
+  const autobal_rotor_params *p = &s->cur;
+  const autobal_rotor_plane *pl = &p->plane[0];
+  if (p->n_planes != 1 || pl->n_balls != 2)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance: built for one plane with two balls (here %zu plane(s), %zu "
+                             "ball(s) in plane 1); use sweeps over unbalance_mass otherwise",
+                             p->n_planes, pl->n_balls);
+  if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance: needs the paper's inertia model (inertia = paper): with "
+                             "inertia = full the unbalance mass also enters the mass matrix");
+  if (!autobal_rotor_lumped_isotropic_(&s->L))
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance: needs isotropic supports (the closed polynomial Delta)");
+  *m1 = pl->ball_mass[0];
+  *m2 = pl->ball_mass[1];
+  *a1 = pl->ball_mass[0] * pl->ball_radius[0];
+  *a2 = pl->ball_mass[1] * pl->ball_radius[1];
+  *r0 = pl->r0;
+  if (!autobal_rotor_close_rel_(s->h[0] / *m1, s->h[1] / *m2, 1e-12))
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance: the two balls need a common h/m (the closure of Delta)");
+  if (!(*r0 > 0.0))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "every unbalance: r0 = %g m must be > 0 (the unbalance s = m0 r0 is varied "
+                             "through m0)",
+                             *r0);
+  if (!(p->omega != 0.0 && isfinite(p->omega)))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: omega must be finite and non-zero");
+  {
+    const double smin = fabs(*a1 - *a2), smax = *a1 + *a2;
+    if (!(isfinite(s_lo) && isfinite(s_hi) && s_lo > smin && s_hi < smax && s_lo <= s_hi))
+      return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                               "every unbalance: the range of m0 r0 [%.9g, %.9g] kg m must lie in (%.9g, %.9g) "
+                               "kg m, where the two balls (m r = %.9g, %.9g kg m) balance it off a line through "
+                               "the axis (the closure of Delta), with min <= max",
+                               s_lo, s_hi, smin, smax, *a1, *a2);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* The core at the handle's current omega (m0 is changed; the caller restores it). */
+static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
+  double m1 = 0.0, m2 = 0.0, a1 = 0.0, a2 = 0.0, r0 = 0.0, A[13], B[13], cand[2 * 13 + 2], sc;
+  long double Ae[7], Ao[6], Be[7], Bo[6], h[12], w2 = (long double)s->cur.omega * (long double)s->cur.omega;
+  size_t nc = 0, i, j, deg;
+  int st;
+  autobal_rotor_closed c;
+  memset(out, 0, sizeof *out);
+  out->s_lo = s_lo;
+  out->s_hi = s_hi;
+  out->omega = s->cur.omega;
+  if ((st = check_domain(s, s_lo, s_hi, &m1, &m2, &a1, &a2, &r0)) != AUTOBAL_SUCCESS) return st;
+  /* A and B at this speed (independent of m0: any balanceable m0 will do for the closed system) */
+  if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, 0.5 * (s_lo + s_hi) / r0)) !=
+      AUTOBAL_SUCCESS)
+    return st;
+  if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_char_parts_(&c, A, B, &s->err)) != AUTOBAL_SUCCESS) return st;
+  split_iy(A, Ae, Ao);
+  split_iy(B, Be, Bo);
+  /* y = 0: Delta(0; u) = A_0 - u w^8 B_0 */
+  if (B[0] != 0.0) nc += s_of_u(u_at(Ae, Ao, Be, Bo, w2, 0.0L), m1, m2, a1, a2, cand + nc);
+  /* h(z) = Ae Bo - Ao Be (degree <= 7 with B = N N* of degree 4), scaled z = sc^2 zeta, sc = |omega| */
+  sc = fabs(s->cur.omega);
+  for (i = 0; i < 12; i++) h[i] = 0.0L;
+  for (i = 0; i < 7; i++)
+    for (j = 0; j < 6; j++) h[i + j] += Ae[i] * Bo[j] - (j < 6 && i < 6 ? Ao[i] * Be[j] : 0.0L);
+  for (i = 0; i < 6; i++) h[i + 6] -= Ao[i] * Be[6];
+  {
+    /* scaled, normalized coefficients for the root finder */
+    double hs[12], re[11], im[11], big = 0.0;
+    long double z2 = (long double)sc * (long double)sc, pw = 1.0L;
+    for (i = 0; i < 12; i++) {
+      hs[i] = (double)(h[i] * pw);
+      pw *= z2;
+      big = fmax(big, fabs(hs[i]));
+    }
+    deg = 11;
+    while (deg > 0 && !(fabs(hs[deg]) > 1e-13 * big)) deg--;
+    if (deg >= 1 && big > 0.0) {
+      autobal_poly_workspace *w = autobal_poly_workspace_alloc(deg);
+      if (!w) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance: out of memory");
+      for (i = 0; i <= deg; i++) hs[i] /= big;
+      st = autobal_poly_roots(w, hs, deg + 1, re, im, &s->err);
+      autobal_poly_workspace_free(w);
+      if (st != AUTOBAL_SUCCESS) return st;
+      for (i = 0; i < deg; i++) {
+        long double zz;
+        int it;
+          if (!(re[i] > 0.0) || fabs(im[i]) > 1e-3 * fabs(re[i])) continue; /* generous: near-real count */
+        /* polish on the long double h(z) by Newton (kept only if it stays close) */
+        zz = (long double)re[i] * z2;
+        for (it = 0; it < 8; it++) {
+          long double v = 0.0L, dv = 0.0L;
+          size_t k;
+          for (k = 12; k-- > 0;) {
+            dv = dv * zz + v;
+            v = v * zz + h[k];
+          }
+          if (dv == 0.0L) break;
+          {
+            const long double zn = zz - v / dv;
+            if (!(fabsl(zn - (long double)re[i] * z2) <= 1e-3L * (long double)re[i] * z2)) break;
+            zz = zn;
+          }
+        }
+          if (fabsl(zz - w2) > 1e-12L * w2) nc += s_of_u(u_at(Ae, Ao, Be, Bo, w2, zz), m1, m2, a1, a2, cand + nc);
+      }
+    }
+  }
+  /* the critical unbalances inside (s_lo, s_hi), sorted, unique */
+  qsort(cand, nc, sizeof cand[0], cmp_double);
+  for (i = 0; i < nc; i++) {
+    if (!(cand[i] > s_lo && cand[i] < s_hi)) continue;
+    if (out->n_crit > 0 && cand[i] - out->s_crit[out->n_crit - 1] <= 1e-12 * cand[i]) continue;
+    if (out->n_crit >= AUTOBAL_ROTOR_MAX_UCRIT) break;
+    out->s_crit[out->n_crit++] = cand[i];
+  }
+  /* verdicts: each sub-interval at its midpoint and just inside both ends; disagreements bisected */
+  {
+    double edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
+    size_t ne = 0, k;
+    edges[ne++] = s_lo;
+    for (k = 0; k < out->n_crit; k++) edges[ne++] = out->s_crit[k];
+    edges[ne++] = s_hi;
+    out->all_stable = 1;
+    out->margin_worst = -INFINITY;
+    for (k = 0; k + 1 < ne; k++) {
+      const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
+      const double pts[3] = {lo + 1e-9 * wdt, lo + 0.5 * wdt, hi - 1e-9 * wdt};
+      int vv[3], q;
+      double mg[3];
+      if (autobal_rotor_stab_cancelled_(s))
+        return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
+      for (q = 0; q < 3; q++) {
+        if ((st = verdict_at(s, r0, wdt > 0.0 ? pts[q] : lo, &mg[q], &vv[q])) != AUTOBAL_SUCCESS) return st;
+        out->evaluations++;
+        if (mg[q] > out->margin_worst) out->margin_worst = mg[q];
+      }
+      if (opposite(vv[0], vv[1]) || opposite(vv[1], vv[2])) {
+        /* a crossing the polynomial roots did not give (a MARGINAL verdict, within the verdict
+         * tolerance of a critical value, is no disagreement): bisect between the two that differ */
+        double x0 = opposite(vv[0], vv[1]) ? pts[0] : pts[1], x1 = opposite(vv[0], vv[1]) ? pts[1] : pts[2];
+        int v0 = opposite(vv[0], vv[1]) ? vv[0] : vv[1], it;
+        for (it = 0; it < 60 && x1 - x0 > 1e-12 * x1; it++) {
+          const double xm = 0.5 * (x0 + x1);
+          double mm;
+          int vm;
+          if ((st = verdict_at(s, r0, xm, &mm, &vm)) != AUTOBAL_SUCCESS) return st;
+          out->evaluations++;
+          if (vm == v0) x0 = xm;
+          else x1 = xm;
+        }
+        out->n_missed++;
+        if (out->n_crit < AUTOBAL_ROTOR_MAX_UCRIT) {
+          out->s_crit[out->n_crit++] = 0.5 * (x0 + x1);
+          qsort(out->s_crit, out->n_crit, sizeof out->s_crit[0], cmp_double);
+        }
+        out->all_stable = 0;
+      }
+      if (out->n_sub < AUTOBAL_ROTOR_MAX_UCRIT + 1) {
+        out->sub_lo[out->n_sub] = lo;
+        out->sub_hi[out->n_sub] = hi;
+        out->sub_verdict[out->n_sub] = vv[1];
+        out->sub_margin[out->n_sub] = mg[1];
+        out->n_sub++;
+      }
+      if (vv[0] != AUTOBAL_VERDICT_STABLE || vv[1] != AUTOBAL_VERDICT_STABLE || vv[2] != AUTOBAL_VERDICT_STABLE)
+        out->all_stable = 0;
+    }
+    /* a critical unbalance inside the range puts a root on the axis there: not stable for it */
+    if (out->n_crit > 0) out->all_stable = 0;
+    /* the ends themselves */
+    for (k = 0; k < 2; k++) {
+      double mg;
+      int vv;
+      if ((st = verdict_at(s, r0, k == 0 ? s_lo : s_hi, &mg, &vv)) != AUTOBAL_SUCCESS) return st;
+      out->evaluations++;
+      if (mg > out->margin_worst) out->margin_worst = mg;
+      if (vv != AUTOBAL_VERDICT_STABLE) out->all_stable = 0;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi,
+                                       autobal_rotor_unbalance_range *out) {
+  double m0;
+  int st, st2;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: out is NULL");
+  m0 = s->cur.plane[0].m0;
+  st = every_unbalance(s, s_lo, s_hi, out);
+  st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
+  return st != AUTOBAL_SUCCESS ? st : st2;
+}
+
+int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo, double s_hi, double w_lo,
+                                              double w_hi, size_t n_grid, double xtol_rel, autobal_rotor_crit *out) {
+  autobal_rotor_unbalance_range ur;
+  double m0, w0, prev_w = 0.0;
+  int prev = 0, st = AUTOBAL_SUCCESS, open = 0;
+  size_t k;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: out is NULL");
+  memset(out, 0, sizeof *out);
+  out->param = AUTOBAL_ROTOR_PARAM_OMEGA;
+  if (!(isfinite(w_lo) && isfinite(w_hi) && w_lo < w_hi && (w_lo > 0.0 || w_hi < 0.0)))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "every unbalance: the speed range [%g, %g] rad/s must be finite, lo < hi, and not "
+                             "contain 0",
+                             w_lo, w_hi);
+  if (n_grid < 2 || n_grid > 100000000)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: n_grid = %zu must be in [2, 1e8]", n_grid);
+  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: xtol_rel = %g must be in (0, 0.1)",
+                             xtol_rel);
+  m0 = s->cur.plane[0].m0;
+  w0 = s->cur.omega;
+  for (k = 0; k < n_grid; k++) {
+    const double w = w_lo + (w_hi - w_lo) * (double)k / (double)(n_grid - 1);
+    int v;
+    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS) break;
+    if ((st = every_unbalance(s, s_lo, s_hi, &ur)) != AUTOBAL_SUCCESS) break;
+    out->evaluations += ur.evaluations;
+    v = ur.all_stable;
+    if (k > 0 && v != prev) {
+      /* refine the change by bisection on the every-unbalance verdict */
+      double x0 = prev_w, x1 = w;
+      while (fabs(x1 - x0) > xtol_rel * fmax(fabs(x0), fabs(x1))) {
+        const double xm = 0.5 * (x0 + x1);
+        if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, xm)) != AUTOBAL_SUCCESS) break;
+        if ((st = every_unbalance(s, s_lo, s_hi, &ur)) != AUTOBAL_SUCCESS) break;
+        out->evaluations += ur.evaluations;
+        if (ur.all_stable == prev) x0 = xm;
+        else x1 = xm;
+      }
+      if (st != AUTOBAL_SUCCESS) break;
+      if (out->n >= AUTOBAL_ROTOR_MAX_CRIT) {
+        out->truncated = 1;
+        st = AUTOBAL_WARNING;
+        autobal_error_set(&s->err, AUTOBAL_WARNING,
+                          "every unbalance: more than %d changes of the verdict; the results cover [%g, %g] rad/s",
+                          AUTOBAL_ROTOR_MAX_CRIT, w_lo, out->value[out->n - 1]);
+        break;
+      }
+      out->value[out->n] = 0.5 * (x0 + x1);
+      out->kind[out->n] = v ? 1 : -1;
+      if (v) {
+        out->stable_lo[out->n_stable] = out->value[out->n];
+        open = 1;
+      } else if (open) {
+        out->stable_hi[out->n_stable++] = out->value[out->n];
+        open = 0;
+      }
+      out->n++;
+    } else if (k == 0 && v) {
+      out->stable_lo[0] = w_lo;
+      open = 1;
+    }
+    prev = v;
+    prev_w = w;
+    if (autobal_rotor_stab_cancelled_(s)) {
+      st = autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
+      break;
+    }
+  }
+  if (st == AUTOBAL_SUCCESS && open) out->stable_hi[out->n_stable++] = w_hi;
+  {
+    const int st1 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w0);
+    const int st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
+    if (st == AUTOBAL_SUCCESS) st = st1 != AUTOBAL_SUCCESS ? st1 : st2;
+  }
+  return st;
+}
