@@ -6,7 +6,7 @@
  * What stays here: the [ensemble] and [transient] keys and their messages; the --resume/--force
  * rules for journals and an existing archive; the journal's identity (an FNV-1a hash of the sorted
  * configuration without the run-control keys threads/resume/max_members/time_limit and the
- * statistics keys target_grade/target_unbalance/write_unbalance, which change no member's result,
+ * statistics keys target_grade/target_unbalance/write_unbalance/write_attractors, which change no member's result,
  * so that a resume may change them); SIGINT as the
  * engine's cancel hook; the progress bar; and the MPI layer.
  *
@@ -129,6 +129,26 @@ static int read_transient(cli_ctx *ctx, ens_spec *s) {
   return CLI_EXIT_OK;
 }
 
+/* [ensemble] attractor_window_revs, attractor_rest_tol (rad), attractor_min_turns,
+ * attractor_rate_tol, attractor_envelope_tol: the thresholds of the attractor classification
+ * (include/autobal/attractor.h; checked here so that the message names the key); write_attractors
+ * (default true: the per-member attractor, circulation_frequency, natural_frequency). */
+static int read_attractor_keys(cli_ctx *ctx, ens_spec *s) {
+  autobal_attractor_options *o = &s->set.attractor;
+  autobal_error err;
+  int rc;
+  *o = autobal_attractor_options_default();
+  if ((rc = cli_get_double(ctx, "ensemble", "attractor_window_revs", o->window_revs, &o->window_revs, NULL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "ensemble", "attractor_rest_tol", "rad", o->rest_tol, &o->rest_tol, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "ensemble", "attractor_min_turns", o->min_turns, &o->min_turns, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "ensemble", "attractor_rate_tol", o->rate_tol, &o->rate_tol, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "ensemble", "attractor_envelope_tol", o->envelope_tol, &o->envelope_tol, NULL))) return rc;
+  if ((rc = cli_get_bool(ctx, "ensemble", "write_attractors", 1, &s->set.write_attractors, NULL))) return rc;
+  autobal_error_clear(&err);
+  if (autobal_attractor_options_check(o, &err) != AUTOBAL_SUCCESS) return cli_fail(ctx, CLI_EXIT_INPUT, "[ensemble]: %s", err.message);
+  return CLI_EXIT_OK;
+}
+
 /* [ensemble] target_grade = G6.3 (P(G <= 6.3 mm/s) at the end), target_unbalance = 50 g mm (the
  * whole rotor's permissible residual unbalance: with two planes each plane's |s_j| against half of
  * it, as `rotor transient` checks [balance] grade), write_unbalance = true (the per-member
@@ -149,6 +169,7 @@ static int read_unbalance_targets(cli_ctx *ctx, ens_spec *s) {
     return cli_fail(ctx, CLI_EXIT_INPUT, "[ensemble]: target_unbalance = %g g mm is out of range: allowed (0, inf) (e.g. 50 g mm)",
                     s->target_unbalance * 1e6);
   if ((rc = cli_get_bool(ctx, "ensemble", "write_unbalance", 0, &t->write_quantities, NULL))) return rc;
+  if ((rc = read_attractor_keys(ctx, s))) return rc;
   t->n_targets = 0;
   if (!isnan(s->target_grade)) {
     t->target[t->n_targets].quantity = "balance_grade_final";
@@ -309,7 +330,7 @@ static int config_hash(const cli_ctx *ctx, const ens_spec *s, uint64_t *out) {
     if (!strcmp(sec, "[ensemble]") && eq &&
         (!strncmp(p, "threads ", 8) || !strncmp(p, "resume ", 7) || !strncmp(p, "max_members ", 12) ||
          !strncmp(p, "time_limit ", 11) || !strncmp(p, "target_grade ", 13) || !strncmp(p, "target_unbalance ", 17) ||
-         !strncmp(p, "write_unbalance ", 16)))
+         !strncmp(p, "write_unbalance ", 16) || !strncmp(p, "write_attractors ", 17)))
       continue;
     if (n == cap) {
       char **nlines = realloc(lines, (cap = cap ? 2 * cap : 64) * sizeof *lines);
@@ -607,11 +628,29 @@ static void print_unbalance(const ens_spec *s, const autobal_ensemble *e) {
   }
 }
 
+/* The attractor counts and the circulating members' frequencies against the natural frequencies. */
+static void print_attractors(const autobal_ensemble_attractors *at) {
+  int c, first = 1;
+  printf("  attractors:");
+  for (c = 1; c < AUTOBAL_ATTRACTOR_N_CLASSES; c++) {
+    printf("%s %zu %s", first ? "" : ",", at->count[c], autobal_attractor_class_name(c));
+    first = 0;
+  }
+  if (at->count[0]) printf(", %zu unclassified (failed)", at->count[0]);
+  printf("\n");
+  if (at->count[AUTOBAL_ATTRACTOR_CIRCULATING])
+    printf("  circulating: a ball at nu = %.6g..%.6g rad/s absolute, %.4g..%.4g x the nearest natural frequency of its whirl "
+           "at the member's speed (Campbell)\n",
+           at->frequency_min, at->frequency_max, at->ratio_min, at->ratio_max);
+}
+
 static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensemble *e, const autobal_ensemble_tally *t,
                           const ens_mpi *mp, int threads, double wall, int complete) {
   const autobal_ensemble_settings *p = &s->set;
   const char *tu = s->model == MODEL_ROTOR ? "s" : "(tau)";
-  size_t j, n = autobal_ensemble_n_members(e);
+  size_t j, n = autobal_ensemble_n_members(e), aix = autobal_ensemble_attractor_index(e);
+  autobal_ensemble_attractors at;
+  const int have_attr = autobal_ensemble_get_attractors(e, &at) == AUTOBAL_SUCCESS;
   if (ctx->json) {
     cli_json jj;
     cli_json_summary_begin(&jj, ctx);
@@ -632,6 +671,16 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensembl
       cli_json_quantities(&jj, "probability_balanced_wilson95", ci, 2, "1");
     }
     if (s->model == MODEL_ROTOR) json_unbalance(&jj, s, e);
+    if (have_attr) {
+      int c;
+      cli_json_object(&jj, "attractors");
+      for (c = 0; c < AUTOBAL_ATTRACTOR_N_CLASSES; c++) cli_json_int(&jj, autobal_attractor_class_name(c), (long)at.count[c]);
+      cli_json_object_end(&jj);
+      cli_json_quantity(&jj, "circulation_frequency_min", at.frequency_min, "rad/s");
+      cli_json_quantity(&jj, "circulation_frequency_max", at.frequency_max, "rad/s");
+      cli_json_quantity(&jj, "circulation_frequency_ratio_min", at.ratio_min, "1");
+      cli_json_quantity(&jj, "circulation_frequency_ratio_max", at.ratio_max, "1");
+    }
     cli_json_quantity(&jj, "time_to_balance_mean", t->ttb_mean, s->model == MODEL_PENDULUM ? "1" : "s");
     cli_json_quantity(&jj, "time_to_balance_median", t->ttb_median, s->model == MODEL_PENDULUM ? "1" : "s");
     cli_json_bool(&jj, "complete", complete);
@@ -666,16 +715,20 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensembl
   if (t->n_balanced)
     printf("  time to balance %s: mean %.4g, median %.4g, max %.4g\n", tu, t->ttb_mean, t->ttb_median, t->ttb_max);
   if (s->model == MODEL_ROTOR) print_unbalance(s, e);
+  if (have_attr) print_attractors(&at);
   if (!p->random && p->n_params == 2 && p->param[0].n <= 48 && p->param[1].n <= 96) {
     size_t i1, i2;
-    printf("  basin of attraction (rows %s %g..%g, columns %s %g..%g; # balanced, . not, x failed, ? not run):\n",
-           p->param[0].name, p->param[0].min, autobal_ensemble_grid_value(e, 0, p->param[0].n - 1), p->param[1].name,
-           p->param[1].min, autobal_ensemble_grid_value(e, 1, p->param[1].n - 1));
+    printf("  basin of attraction (rows %s %g..%g, columns %s %g..%g; %s):\n", p->param[0].name, p->param[0].min,
+           autobal_ensemble_grid_value(e, 0, p->param[0].n - 1), p->param[1].name, p->param[1].min,
+           autobal_ensemble_grid_value(e, 1, p->param[1].n - 1),
+           have_attr ? "# balanced, h heavy side, f fixed elsewhere, c circulating, p periodic, i irregular, x failed, ? not run"
+                     : "# balanced, . not, x failed, ? not run");
     for (i1 = 0; i1 < p->param[0].n; i1++) {
       printf("    ");
       for (i2 = 0; i2 < p->param[1].n; i2++) {
         const double *r = autobal_ensemble_summary(e, i1 * p->param[1].n + i2);
-        putchar(!r ? '?' : r[AUTOBAL_ENSEMBLE_STATUS] < 0 ? 'x' : r[AUTOBAL_ENSEMBLE_BALANCED] == 1 ? '#' : '.');
+        const char *sym = r && have_attr ? autobal_attractor_class_symbol((int)r[aix]) : NULL;
+        putchar(!r ? '?' : r[AUTOBAL_ENSEMBLE_STATUS] < 0 ? 'x' : sym ? sym[0] : r[AUTOBAL_ENSEMBLE_BALANCED] == 1 ? '#' : '.');
       }
       putchar('\n');
     }

@@ -217,6 +217,13 @@ int cli_cmd_rerun(cli_ctx *ctx) {
   }
   /* the effective configuration (every key); archives of earlier versions: the given one */
   rc = apply_ini(ctx, &inner, path, eff ? "effective_config" : "input_config", eff ? eff : ini);
+  /* an ensemble recorded before the attractor classification (no write_attractors among its
+   * keys) writes the datasets it wrote then: its per-member attractor variables stay off (the
+   * class counts are attributes) */
+  if (rc == CLI_EXIT_OK && !strcmp(cmd->name, "rotor ensemble") &&
+      !cli_config_has_key(inner.cfg, "ensemble", "write_attractors") &&
+      (rc = cli_config_add_default(&inner, "ensemble", "write_attractors", "false")) != CLI_EXIT_OK)
+    cli_fail(ctx, rc, "%s", inner.err[0] ? inner.err : "out of memory");
   /* NEW.h5 records the recorded run's given configuration, not the effective one as "given" */
   if (rc == CLI_EXIT_OK && ini && cli_config_set_given_text(inner.cfg, ini) != 0)
     rc = cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");

@@ -247,6 +247,11 @@
   "[ensemble] target_grade = G6.3 (or 6.3 mm/s)  target_unbalance = 50 g mm   (P(grade at the end <= target),\n" \
   "           P(residual unbalance <= target; two planes: each plane within half), Wilson 95% intervals)\n" \
   "           write_unbalance = false (true: per-member residual_unbalance_abs_final, balance_grade_final)\n" \
+  "           attractors: each member classified over its final window (README, \"Attractors\"): balanced,\n" \
+  "           heavy_side, fixed, circulating (frequency vs the natural frequency at its speed), periodic, irregular;\n" \
+  "           attractor_window_revs = 100 (revolutions, (0, 1e6])  attractor_rest_tol = 0.05 rad ((0, pi])\n" \
+  "           attractor_min_turns = 2 ([1, 1e9])  attractor_rate_tol = 0.02  attractor_envelope_tol = 0.05 ((0, 1))\n" \
+  "           write_attractors = true (per-member attractor, circulation_frequency, natural_frequency)\n" \
   "[drive]    as `rotor transient` (mode = constant|ramp|table); with a ramp or table a member is balanced only\n" \
   "           when the dwell below balance_tol lies after the end of its ramp (t_b; a table's last time)\n" \
   "[friction] as `rotor transient` (law, u_eps; [plane1]/[plane2] ball_f, ball_mu); law = exact adds per member\n" \

@@ -18,6 +18,7 @@
 #include "autobal/pendulum.h"
 #include "autobal/archive.h"
 #include "autobal/study.h"
+#include "autobal/attractor.h"
 #include "autobal/ensemble.h"
 
 #endif

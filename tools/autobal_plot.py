@@ -30,7 +30,8 @@ For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name wit
                                 spin speed, each mode followed through crossings by
                                 track_modes, whirl, 1X and 2X, critical speeds, rev/min and Hz
                                 axes) and unbalance response
-    /rotor/ensemble,            <stem>_ensemble.png         basin map (outcome over the grid or the
+    /rotor/ensemble,            <stem>_ensemble.png         basin map (outcome, with the attractor class of the
+                                                            members that did not balance, over the grid or the
     /pendulum/ensemble                                      random samples), time to balance over it,
                                 P(balance) along the first parameter, time-to-balance distribution
     /rotor/ensemble/residual_   <stem>_unbalance.png        (with ensemble.write_unbalance = true) the
@@ -1089,9 +1090,16 @@ def plot_rotor_stability(h, outdir, stem, written):
 
 
 # ---- ensembles (autobal rotor ensemble | pendulum ensemble) ----------------------------------
-OUTCOME_CODES = [1, 0, -1, -2]
-OUTCOME_COLORS = {1: "#5cb85c", 0: "#e8787a", -1: "#444444", -2: "#ffffff"}
-OUTCOME_NAMES = {1: "balanced", 0: "not balanced by t_end", -1: "failed (solver status < 0)", -2: "not run yet"}
+# 1 balanced, 0 not balanced (archives without attractor classes), 10 + class for the members
+# that did not balance when the archive has the classes (rotor: /rotor/ensemble/attractor, legend
+# "0 unclassified, 1 balanced, 2 heavy_side, 3 fixed, 4 circulating, 5 periodic, 6 irregular"),
+# -1 failed, -2 not run
+OUTCOME_CODES = [1, 11, 12, 13, 14, 15, 16, 0, -1, -2]
+OUTCOME_COLORS = {1: "#5cb85c", 11: "#a9dfa9", 12: "#f0ad4e", 13: "#9b59b6", 14: "#d9534f", 15: "#5bc0de",
+                  16: "#8c564b", 0: "#e8787a", -1: "#444444", -2: "#ffffff"}
+OUTCOME_NAMES = {1: "balanced", 11: "below balance_tol at the end (dwell unfinished)", 12: "heavy side",
+                 13: "balls at rest elsewhere (fixed)", 14: "a ball circulating", 15: "periodic", 16: "irregular",
+                 0: "not balanced by t_end", -1: "failed (solver status < 0)", -2: "not run yet"}
 
 
 def ensemble_outcome(g):
@@ -1101,15 +1109,20 @@ def ensemble_outcome(g):
     st = g["status"][()] if "status" in g else np.zeros(np.shape(bal), int)
     done = g["done"][()] if "done" in g else np.ones(np.shape(bal), int)
     out = np.where(bal == 1, 1, 0)
+    if "attractor" in g:  # what the members that did not balance settled to
+        cls = np.asarray(g["attractor"][()], dtype=int)
+        out = np.where((bal != 1) & (cls >= 1) & (cls <= 6), 10 + cls, out)
     out = np.where(st < 0, -1, out)
     return np.where(done == 0, -2, out).astype(int)
 
 
 def outcome_image(ax, x, y, code):
     """Draw an outcome grid code[x, y] with a fixed colour per outcome; returns legend handles."""
-    cmap = ListedColormap([OUTCOME_COLORS[c] for c in sorted(OUTCOME_CODES)])
-    norm = BoundaryNorm([-2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
-    ax.pcolormesh(x, y, np.asarray(code).T, cmap=cmap, norm=norm, shading="nearest", edgecolors="face")
+    codes = sorted(OUTCOME_CODES)
+    cmap = ListedColormap([OUTCOME_COLORS[c] for c in codes])
+    norm = BoundaryNorm(np.arange(len(codes) + 1) - 0.5, cmap.N)
+    index = np.searchsorted(codes, np.asarray(code))
+    ax.pcolormesh(x, y, index.T, cmap=cmap, norm=norm, shading="nearest", edgecolors="face")
     return outcome_handles(code)
 
 
@@ -1169,7 +1182,7 @@ def plot_ensemble(h, outdir, stem, written, model):
         c2, t2 = code, ttb
         note = ""
         if len(params) == 3:  # a third axis: the fraction balanced across it, and the mean time
-            frac, _ = binomial_fraction(np.sum(code == 1, axis=2), np.sum((code == 1) | (code == 0), axis=2))
+            frac, _ = binomial_fraction(np.sum(code == 1, axis=2), np.sum(code >= 0, axis=2))
             im = a_map.pcolormesh(x, y, frac.T, cmap="RdYlGn", vmin=0, vmax=1, shading="nearest")
             a_map.set_facecolor("0.85")
             fig.colorbar(im, ax=a_map, label="fraction balanced over %s (grey: none ran)" % params[2])
@@ -1238,7 +1251,7 @@ def plot_ensemble(h, outdir, stem, written, model):
         a_map.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4,
                      frameon=False)
     # (c) P(balance) along the first parameter, with the archive's overall value
-    ran = (code == 1) | (code == 0)  # members that ran without failure
+    ran = code >= 0  # members that ran without failure
     p_all = param(g, "probability_balanced", np.nan)
     p_se = param(g, "probability_balanced_stderr", np.nan)
     if not random:
@@ -1277,7 +1290,9 @@ def plot_ensemble(h, outdir, stem, written, model):
     angle_ticks(a_p.xaxis, x1, units(g[params[0]]))
     a_p.grid(True, alpha=0.3)
     a_p.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), frameon=False)
-    counts = ", ".join("%s %d" % (OUTCOME_NAMES[c].split(" (")[0], int(np.sum(code == c)))
+    short = dict(OUTCOME_NAMES)
+    short.update({11: "below tol", 12: "heavy side", 13: "fixed", 14: "circulating"})
+    counts = ", ".join("%s %d" % (short[c].split(" (")[0], int(np.sum(code == c)))
                        for c in OUTCOME_CODES if np.any(code == c))
     a_p.set_title("probability of balancing along %s; %s" % (params[0], counts), fontsize=10)
     # (d) distribution of the time to balance

@@ -77,6 +77,7 @@
 #include "autobal/rotor.h"
 #include "autobal/pendulum.h"
 #include "autobal/archive.h"
+#include "autobal/attractor.h"
 
 AUTOBAL_BEGIN_DECLS
 
@@ -215,6 +216,17 @@ typedef struct autobal_ensemble_member {
    * stick-slip switching of the exact friction law. */
   int (*prepare)(void *worker, autobal_transient *tr, double y0[], autobal_error *err);
   int (*complete)(void *worker, double t_reached, int run_status, autobal_error *err);
+  /* Optional (added in 0.3.0, issue 17; a zeroed tail: none): the attractor classification
+   * (autobal/attractor.h).  After `finish` (and finish_quantities) of a member that did not fail,
+   * classify(worker, opt, balance_tol, stopped_balanced, n, t, y, res, err) receives the samples
+   * of the final window the observer saw: the last opt->window_revs revolutions of the member's
+   * speed (the whole run when shorter), none before its settle_time; times t[n] and states
+   * y[n * dim] (row-major); stopped_balanced is 1 when the run stopped at balance.  It fills res
+   * (for instance by autobal_attractor_classify).  Its class, frequency and natural frequency end
+   * the member's summary (autobal_ensemble_attractor_index).  A failure (negative status) leaves
+   * the member UNCLASSIFIED (its run's status is kept).  The rotor member has it. */
+  int (*classify)(void *worker, const autobal_attractor_options *opt, double balance_tol, int stopped_balanced, size_t n,
+                  const double *t, const double *y, autobal_attractor_result *res, autobal_error *err);
 } autobal_ensemble_member;
 
 /* Release a member made by autobal_ensemble_*_member (calls destroy; the
@@ -352,13 +364,21 @@ typedef struct autobal_ensemble_settings {
   int write_quantities;    /* 1: autobal_ensemble_write writes each quantity as a per-member
                               variable (0, the default: statistics only, as attributes; the
                               datasets stay those of 0.1.0)                                 */
+  /* the attractor classification of a member with `classify` (added in 0.3.0, issue 17): its
+     thresholds (checked by alloc: autobal_attractor_options_check; they change a member's
+     class, so they are in the journal's hash) and whether autobal_ensemble_write writes the
+     per-member variables attractor, circulation_frequency, natural_frequency (1, the default;
+     0: the class counts only, as attributes) */
+  autobal_attractor_options attractor;
+  int write_attractors;
 } autobal_ensemble_settings;
 
 /* Settings with the defaults: grid, no parameters, endpoint 0, samples 256,
  * seed 1, t_end 20, revs_out 0.25 (use_revs_out 1), dt_out 0, the transient
  * defaults with rtol 1e-10, atol 1e-9, balance_tol 0.01, balance_revs 50,
  * stop_at_balance 1, threads 0, no series, no limits, identity 0, no targets,
- * write_quantities 0. */
+ * write_quantities 0, attractor autobal_attractor_options_default(),
+ * write_attractors 1. */
 AUTOBAL_API autobal_ensemble_settings autobal_ensemble_settings_default(void);
 
 /* ---- the handle ------------------------------------------------------------------------ */
@@ -590,6 +610,26 @@ typedef struct autobal_ensemble_target_result {
 } autobal_ensemble_target_result;
 /* Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (bad i, NULL, no results kept). */
 AUTOBAL_API int autobal_ensemble_get_target(const autobal_ensemble *e, size_t i, autobal_ensemble_target_result *r);
+
+/* ---- attractors (added in 0.3.0, issue 17) ----------------------------------------------------- */
+
+/* A member's summary with a classifying member ends with AUTOBAL_ENSEMBLE_N_ATTRACTOR doubles
+ * from autobal_ensemble_attractor_index(e) on: the class (enum autobal_attractor_class, 0 for a
+ * failed member), the circulation frequency nu (rad/s) and the nearest natural frequency (rad/s;
+ * both NaN unless CIRCULATING).  The index is (size_t)-1 when the member does not classify. */
+#define AUTOBAL_ENSEMBLE_N_ATTRACTOR 3
+AUTOBAL_API size_t autobal_ensemble_attractor_index(const autobal_ensemble *e);
+/* Members of each class among the done ones (count[c], c < AUTOBAL_ATTRACTOR_N_CLASSES; failed
+ * members count as UNCLASSIFIED), and over the CIRCULATING ones the smallest and the largest
+ * frequency nu and ratio nu / natural frequency (NaN when there is none; any of them may be NULL).
+ * Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (e or count NULL, the member does not classify, or
+ * this process keeps no results). */
+typedef struct autobal_ensemble_attractors {
+  size_t count[AUTOBAL_ATTRACTOR_N_CLASSES];
+  double frequency_min, frequency_max;  /* rad/s                                 */
+  double ratio_min, ratio_max;          /* nu / natural frequency, 1            */
+} autobal_ensemble_attractors;
+AUTOBAL_API int autobal_ensemble_get_attractors(const autobal_ensemble *e, autobal_ensemble_attractors *a);
 
 /* ---- the archive ---------------------------------------------------------------------------- */
 

@@ -50,6 +50,7 @@ struct autobal_ensemble {
   char tname[AUTOBAL_ENSEMBLE_MAX_TARGETS][ENS_NAME]; /* the targets' quantity names */
   size_t tq[AUTOBAL_ENSEMBLE_MAX_TARGETS];            /* ... and their indices        */
   size_t qoff;                                        /* summary index of quantity 0  */
+  size_t aoff;                                        /* ... of the attractor block (-1: none) */
   const char *namep[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   autobal_ensemble_param_info info[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   size_t stride[AUTOBAL_ENSEMBLE_MAX_PARAMS];
@@ -80,6 +81,17 @@ struct autobal_ensemble {
   autobal_error failure;
   autobal_error err;
 };
+
+/* The classification rule in words (the archive's attractor_rule; autobal/attractor.h). */
+#define ATTRACTOR_RULE                                                                                                         \
+  "over the final window (the last attractor_window_revs revolutions, not before the settle time): 1 balanced: stopped at "  \
+  "balance or residual unbalance <= balance_tol at every sample; each ball's angle psi relative to the rotor: range R, "     \
+  "turns T, mean rates over the window, its quarters and its halves; 2 heavy_side: every ball at rest (R <= attractor_rest_tol) and in every plane "  \
+  "sum m r cos(psi - psi0) > 0; 3 fixed: every ball at rest otherwise; 4 circulating: some ball with |T| >= "                \
+  "attractor_min_turns, each steady (quarters' rates within attractor_rate_tol) at one common rate r, frequency nu = Omega + " \
+  "r, compared with the nearest natural frequency of the whirl it excites; 5 periodic: the halves' ranges of the residual "  \
+  "unbalance and the amplitude agree within attractor_envelope_tol and the balls' mean rates within attractor_rate_tol (or " \
+  "2 pi / window); 6 irregular: otherwise; 0 unclassified: failed or not run"
 
 /* ---- members --------------------------------------------------------------------------------- */
 static double ens_uniform(uint64_t seed, uint64_t k) {
@@ -126,6 +138,8 @@ autobal_ensemble_settings autobal_ensemble_settings_default(void) {
   s.balance_tol = 0.01;
   s.balance_revs = 50.0;
   s.stop_at_balance = 1;
+  s.attractor = autobal_attractor_options_default();
+  s.write_attractors = 1;
   return s;
 }
 
@@ -167,6 +181,9 @@ typedef struct ens_worker {
   autobal_transient_scalar_fn mon;
   void *mon_user;
   double settle, tol;
+  /* the final window for the attractor classification: a ring of (t, y) rows */
+  double *ring_t, *ring_y, *win_t, *win_y;
+  size_t ring_cap, ring_n, ring_head;
 } ens_worker;
 
 static void worker_free(ens_worker *w) {
@@ -175,6 +192,7 @@ static void worker_free(ens_worker *w) {
   free(w->y);
   free(w->row);
   free(w->values);
+  free(w->ring_t), free(w->ring_y), free(w->win_t), free(w->win_y);
   memset(w, 0, sizeof *w);
 }
 
@@ -213,7 +231,63 @@ static int worker_observer(double t, const double y[], void *user) {
   if (w->e->mb.observe(w->mw, t, y, &amp, w->ser ? w->row : NULL) != 0) return 1;
   if (amp > w->amp_max) w->amp_max = amp;
   if (w->ser) series_push(w->ser, t, w->row);
+  if (w->ring_cap) { /* the newest ring_cap rows */
+    size_t at = (w->ring_head + w->ring_n) % w->ring_cap;
+    if (w->ring_n == w->ring_cap) w->ring_head = (w->ring_head + 1) % w->ring_cap;
+    else w->ring_n++;
+    w->ring_t[at] = t;
+    memcpy(w->ring_y + at * w->e->mb.dim, y, w->e->mb.dim * sizeof *y);
+  }
   return 0;
+}
+
+/* The ring for a member whose window is window_time long (INFINITY: the whole run) with output
+ * interval dt_out: rows enough for the window and its ends (at most the run's observer calls).
+ * Sized between members, never during a run.  Status. */
+static int ring_prepare(ens_worker *w, double window_time, double dt_out) {
+  const autobal_ensemble_settings *s = &w->e->s;
+  size_t need = series_rows_max(s, dt_out), dim = w->e->mb.dim;
+  if (isfinite(window_time) && window_time / dt_out + 3 < (double)need) need = (size_t)ceil(window_time / dt_out) + 3;
+  w->ring_n = w->ring_head = 0;
+  if (need > w->ring_cap) {
+    double *a = realloc(w->ring_t, need * sizeof *a), *b, *c, *d;
+    if (a) w->ring_t = a;
+    b = a ? realloc(w->ring_y, need * dim * sizeof *b) : NULL;
+    if (b) w->ring_y = b;
+    c = b ? realloc(w->win_t, need * sizeof *c) : NULL;
+    if (c) w->win_t = c;
+    d = c ? realloc(w->win_y, need * dim * sizeof *d) : NULL;
+    if (d) w->win_y = d;
+    if (!d) {
+      w->ring_cap = 0;
+      return AUTOBAL_ENOMEM;
+    }
+  }
+  w->ring_cap = need;
+  return AUTOBAL_SUCCESS;
+}
+
+/* The member's class from its final window: the ring's rows at t >= max(t_from, settle) in time
+ * order, handed to the member's classify.  rec's attractor block filled. */
+static void classify_member(ens_worker *w, double *rec, double t_from, int stopped_balanced) {
+  const autobal_ensemble *e = w->e;
+  size_t k, n = 0, dim = e->mb.dim;
+  autobal_attractor_result res;
+  autobal_error err;
+  double *a = rec + e->aoff;
+  a[0] = AUTOBAL_ATTRACTOR_UNCLASSIFIED, a[1] = NAN, a[2] = NAN;
+  if (t_from < w->settle) t_from = w->settle;
+  for (k = 0; k < w->ring_n; k++) {
+    size_t at = (w->ring_head + k) % w->ring_cap;
+    if (w->ring_t[at] < t_from) continue;
+    w->win_t[n] = w->ring_t[at];
+    memcpy(w->win_y + n * dim, w->ring_y + at * dim, dim * sizeof *w->win_y);
+    n++;
+  }
+  autobal_error_clear(&err);
+  if (e->mb.classify(w->mw, &e->s.attractor, e->s.balance_tol, stopped_balanced, n, w->win_t, w->win_y, &res, &err) != AUTOBAL_SUCCESS)
+    return;
+  a[0] = res.cls, a[1] = res.frequency, a[2] = res.natural_frequency;
 }
 
 /* The monitor the dwell event sees: before the member's settle_time s, or 2 balance_tol where s
@@ -272,6 +346,16 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
     return 1;
   }
   w->ser = sr;
+  w->ring_n = w->ring_head = 0;
+  if (e->mb.classify) {
+    double rev = fabs(su.speed) > 0 ? TWO_PI / fabs(su.speed) : INFINITY;
+    if ((st = ring_prepare(w, s->attractor.window_revs * rev, dt_out)) != AUTOBAL_SUCCESS) {
+      rec[AUTOBAL_ENSEMBLE_STATUS] = st;
+      w->ser = NULL;
+      return 1;
+    }
+    w->settle = su.settle_time;
+  }
   opt = s->transient;
   opt.dt_out = dt_out;
   opt.event_tol = 1e-9 * s->t_end;
@@ -321,6 +405,12 @@ static int run_member(ens_worker *w, size_t m, double *rec, ens_series *sr) {
   rec[AUTOBAL_ENSEMBLE_AMPLITUDE_FINAL] = amp1;
   if (amp1 > w->amp_max) w->amp_max = amp1;
   rec[AUTOBAL_ENSEMBLE_AMPLITUDE_MAX] = w->amp_max;
+  if (e->mb.classify && st >= 0) {
+    double rev = fabs(su.speed) > 0 ? TWO_PI / fabs(su.speed) : INFINITY;
+    classify_member(w, rec, t_reached - s->attractor.window_revs * rev * (1 + 1e-12),
+                    st == AUTOBAL_EVENT && rec[AUTOBAL_ENSEMBLE_BALANCED] == 1);
+  }
+  w->ring_n = 0;
   return 1;
 }
 
@@ -383,6 +473,13 @@ static uint64_t settings_hash(const autobal_ensemble *e) {
   h = fnv_u64(h, (uint64_t)s->use_dwell);
   h = fnv_double(h, s->use_dwell ? s->balance_dwell : s->balance_revs);
   h = fnv_u64(h, (uint64_t)s->stop_at_balance);
+  if (e->mb.classify) { /* a member's class depends on them (hashes of members without: as before) */
+    h = fnv_double(h, s->attractor.window_revs);
+    h = fnv_double(h, s->attractor.rest_tol);
+    h = fnv_double(h, s->attractor.min_turns);
+    h = fnv_double(h, s->attractor.rate_tol);
+    h = fnv_double(h, s->attractor.envelope_tol);
+  }
   h = fnv_u64(h, e->n_keep);
   for (j = 0; j < e->n_keep; j++) h = fnv_u64(h, e->keep[j]);
   h = fnv_u64(h, e->mb.hash ? e->mb.hash(e->mb.model) : 0);
@@ -463,6 +560,16 @@ static int check_settings(const autobal_ensemble_member *mb, const autobal_ensem
   }
   if (s->write_quantities != 0 && s->write_quantities != 1)
     return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: write_quantities = %d: allowed 0 or 1", s->write_quantities);
+  if (s->write_attractors != 0 && s->write_attractors != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: write_attractors = %d: allowed 0 or 1", s->write_attractors);
+  if (mb->classify && (st = autobal_attractor_options_check(&s->attractor, err)) != AUTOBAL_SUCCESS) {
+    if (err) {
+      char msg[sizeof err->message];
+      snprintf(msg, sizeof msg, "%s", err->message);
+      autobal_error_set(err, st, "ensemble: %s", msg);
+    }
+    return st;
+  }
   if (s->random != 0 && s->random != 1)
     return autobal_error_set(err, AUTOBAL_EINVAL, "ensemble: random = %d: allowed 0 (grid) or 1", s->random);
   if (s->n_params < 1 || s->n_params > AUTOBAL_ENSEMBLE_MAX_PARAMS)
@@ -575,6 +682,8 @@ autobal_ensemble *autobal_ensemble_alloc(const autobal_ensemble_member *member, 
   }
   e->qoff = AUTOBAL_ENSEMBLE_ANGLES + member->n_angles;
   e->nsum = e->qoff + member->n_quantities;
+  e->aoff = (size_t)-1;
+  if (member->classify) e->aoff = e->nsum, e->nsum += AUTOBAL_ENSEMBLE_N_ATTRACTOR;
   e->ncols = member->n_columns;
   e->keep = calloc(s->n_series ? s->n_series : 1, sizeof *e->keep);
   e->keep_cap = calloc(s->n_series ? s->n_series : 1, sizeof *e->keep_cap);
@@ -1392,6 +1501,80 @@ static int write_statistics(autobal_ensemble *e, autobal_archive *a, const char 
   return st;
 }
 
+/* ---- attractors ------------------------------------------------------------------------------ */
+size_t autobal_ensemble_attractor_index(const autobal_ensemble *e) { return e ? e->aoff : (size_t)-1; }
+
+int autobal_ensemble_get_attractors(const autobal_ensemble *e, autobal_ensemble_attractors *out) {
+  size_t m;
+  if (out) {
+    memset(out, 0, sizeof *out);
+    out->frequency_min = out->frequency_max = out->ratio_min = out->ratio_max = NAN;
+  }
+  if (!e || !out || e->aoff == (size_t)-1 || !e->par.results || !e->sum) return AUTOBAL_EINVAL;
+  for (m = 0; m < e->n_members; m++) {
+    const double *r = e->sum + m * e->nsum + e->aoff;
+    int c;
+    if (!e->done[m]) continue;
+    c = r[0] >= 0 && r[0] < AUTOBAL_ATTRACTOR_N_CLASSES ? (int)r[0] : AUTOBAL_ATTRACTOR_UNCLASSIFIED;
+    if (!(e->sum[m * e->nsum + AUTOBAL_ENSEMBLE_STATUS] >= 0)) c = AUTOBAL_ATTRACTOR_UNCLASSIFIED;
+    out->count[c]++;
+    if (c == AUTOBAL_ATTRACTOR_CIRCULATING) {
+      double q = r[1] / r[2];
+      if (!(r[1] >= out->frequency_min)) out->frequency_min = r[1];
+      if (!(r[1] <= out->frequency_max)) out->frequency_max = r[1];
+      if (isfinite(q) && !(q >= out->ratio_min)) out->ratio_min = q;
+      if (isfinite(q) && !(q <= out->ratio_max)) out->ratio_max = q;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+static int write_attractors(autobal_ensemble *e, autobal_archive *a, const char *g, int rank, const char **dims, int *iv,
+                            double *dv) {
+  const autobal_attractor_options *o = &e->s.attractor;
+  autobal_ensemble_attractors at;
+  char obj[128], nm[64];
+  size_t m, n = e->n_members;
+  int st = autobal_ensemble_get_attractors(e, &at), c;
+  if (st) return st;
+  st = autobal_archive_attr_double(a, g, "attractor_window_revs", o->window_revs, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "attractor_rest_tol", o->rest_tol, "rad");
+  if (!st) st = autobal_archive_attr_double(a, g, "attractor_min_turns", o->min_turns, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "attractor_rate_tol", o->rate_tol, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "attractor_envelope_tol", o->envelope_tol, "1");
+  if (!st) st = autobal_archive_attr_string(a, g, "attractor_legend", autobal_attractor_legend());
+  if (!st) st = autobal_archive_attr_string(a, g, "attractor_rule", ATTRACTOR_RULE);
+  for (c = 0; c < AUTOBAL_ATTRACTOR_N_CLASSES && !st; c++) {
+    snprintf(nm, sizeof nm, "n_attractor_%s", autobal_attractor_class_name(c));
+    st = autobal_archive_attr_int(a, g, nm, (long)at.count[c]);
+  }
+  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_min", at.frequency_min, "rad/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_max", at.frequency_max, "rad/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_ratio_min", at.ratio_min, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_ratio_max", at.ratio_max, "1");
+  if (st || !e->s.write_attractors) return st;
+  for (m = 0; m < n; m++) {
+    const double *r = e->sum + m * e->nsum;
+    iv[m] = e->done[m] && r[AUTOBAL_ENSEMBLE_STATUS] >= 0 && r[e->aoff] >= 0 && r[e->aoff] < AUTOBAL_ATTRACTOR_N_CLASSES ? (int)r[e->aoff] : 0;
+  }
+  st = autobal_archive_var_int(a, g, "attractor", rank, dims, iv, "1",
+                               "what the member's motion settled to over the final window (attractor_rule; legend)");
+  snprintf(obj, sizeof obj, "%s/attractor", g);
+  if (!st) st = autobal_archive_attr_string(a, obj, "legend", autobal_attractor_legend());
+  if (!st) st = autobal_archive_attr_string(a, obj, "description", ATTRACTOR_RULE);
+  for (m = 0; m < n; m++) dv[m] = e->done[m] ? e->sum[m * e->nsum + e->aoff + 1] : NAN;
+  if (!st)
+    st = autobal_archive_var(a, g, "circulation_frequency", rank, dims, dv, "rad/s",
+                             "circulating members: absolute angular rate nu = Omega + mean relative rate of the circulating "
+                             "ball(s) over the final window (NaN: not circulating)");
+  for (m = 0; m < n; m++) dv[m] = e->done[m] ? e->sum[m * e->nsum + e->aoff + 2] : NAN;
+  if (!st)
+    st = autobal_archive_var(a, g, "natural_frequency", rank, dims, dv, "rad/s",
+                             "circulating members: the natural frequency of the rotor at the member's speed (Campbell "
+                             "diagram, autobal_rotor_modes) of the whirl nu excites, nearest to |nu| (NaN: not circulating)");
+  return st;
+}
+
 int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_model)(void *user, autobal_archive *a),
                            void *user, const autobal_ensemble_execution *exec) {
   char g[64], buf[256];
@@ -1555,6 +1738,9 @@ int autobal_ensemble_write(autobal_ensemble *e, autobal_archive *a, int (*write_
     dims[rank] = e->mb.angle_dim;
     if (!st) st = autobal_archive_var(a, g, "final_angle", rank + 1, dims, ang, "rad", e->mb.angle_long_name);
   }
+  /* the attractors: the rule's thresholds and the class counts (attributes), the per-member class
+   * and circulation frequencies (with write_attractors) */
+  if (e->mb.classify && !st) st = write_attractors(e, a, g, rank, dims, iv, dv);
   /* grid of two or more axes: the probability of balancing along each axis, over the others
    * (e.g. over the initial ball angles at each ramp rate), as attributes of the axis' coordinate
    * (attributes, not variables: the datasets of an archive of 0.1.0 stay exactly those a rerun

@@ -9,7 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "autobal/attractor.h"
 #include "autobal/ensemble.h"
+#include "autobal/rotor_stability.h"
 #include "autobal/study.h"
 #include "internal.h"
 #include "studies/rotor_friction.h"
@@ -71,6 +73,12 @@ typedef struct rotor_worker {
    * initial angles), and what it found at the end */
   study_contact *cont;
   double contact_impacts, contacts_final;
+  /* the attractor classification: the member's parameters (pointers into this worker's arrays),
+   * each ball's plane and first moment m r, and the final window's angles, residuals, amplitudes */
+  autobal_rotor_params pm;
+  size_t *cplane;
+  double *cmom, *cpsi, *cres, *camp;
+  size_t ccap;
 } rotor_worker;
 
 static int rotor_parse(const rotor_model *M, const char *name, int *kind, size_t *index, autobal_ensemble_param_info *info,
@@ -174,6 +182,7 @@ static void rotor_worker_free(void *wp) {
   study_friction_free(w->fric);
   autobal_rotor_free(w->rot);
   free(w->bpsi), free(w->brate), free(w->bdamp), free(w->bf), free(w->bmu), free(w->out);
+  free(w->cplane), free(w->cmom), free(w->cpsi), free(w->cres), free(w->camp);
   free(w);
 }
 
@@ -200,7 +209,17 @@ static void *rotor_worker_alloc(const void *model, const char *const *names, siz
   w->bf = calloc(nb, sizeof *w->bf);
   w->bmu = calloc(nb, sizeof *w->bmu);
   w->out = calloc(M->nout ? M->nout : 1, sizeof *w->out);
-  if (!w->bpsi || !w->brate || !w->bdamp || !w->bf || !w->bmu || !w->out) goto nomem;
+  w->cplane = calloc(nb, sizeof *w->cplane);
+  w->cmom = calloc(nb, sizeof *w->cmom);
+  if (!w->bpsi || !w->brate || !w->bdamp || !w->bf || !w->bmu || !w->out || !w->cplane || !w->cmom) goto nomem;
+  {
+    size_t pl, i, k = 0;
+    for (pl = 0; pl < M->p.n_planes; pl++)
+      for (i = 0; i < M->p.plane[pl].n_balls; i++, k++) {
+        w->cplane[k] = pl;
+        w->cmom[k] = M->p.plane[pl].ball_mass[i] * M->p.plane[pl].ball_radius[i];
+      }
+  }
   return w;
 nomem:
   rotor_worker_free(w);
@@ -281,6 +300,7 @@ static int rotor_setup(void *wp, const double *values, double y0[], autobal_ense
   w->rot = autobal_rotor_alloc(&p, err);
   if (!w->rot) return err && err->status < 0 ? err->status : AUTOBAL_EINVAL;
   w->omega = p.omega;
+  w->pm = p;
   st = autobal_rotor_initial_state(w->rot, M->frame, 0.0, y0, M->dim);
   if (st != AUTOBAL_SUCCESS) return st;
   su->sys.rhs = M->frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating;
@@ -409,6 +429,65 @@ static void rotor_finish_quantities(void *wp, double t, const double y[], double
   q[1] = autobal_balance_grade(worst * (double)np, m, omega);
   if (M->q_friction) q[M->q_friction] = w->balls_stuck_final, q[M->q_friction + 1] = w->time_stuck_max, q[M->q_friction + 2] = w->switches;
   if (M->q_contact) q[M->q_contact] = w->contact_impacts, q[M->q_contact + 1] = w->contacts_final;
+}
+
+/* The attractor of a member (autobal/attractor.h) from its final window: each sample's ball angles
+ * relative to the rotor (psi = phi - phi_0(t) in the fixed frame), residual unbalance
+ * (autobal_rotor_balance_monitor) and amplitude (output 0); the planes' unbalances; the spin
+ * speed at the end and the natural frequencies of the rotor-housing there (autobal_rotor_modes:
+ * the Campbell diagram's column at that speed, damped frequencies Im lambda, with their whirl). */
+static int rotor_classify(void *wp, const autobal_attractor_options *opt, double balance_tol, int stopped_balanced, size_t n,
+                          const double *t, const double *y, autobal_attractor_result *res, autobal_error *err) {
+  rotor_worker *w = wp;
+  const rotor_model *M = w->M;
+  const size_t nb = M->n_balls, np = M->p.n_planes;
+  autobal_attractor_window win;
+  double umom[AUTOBAL_ROTOR_MAX_PLANES], uang[AUTOBAL_ROTOR_MAX_PLANES], freq[AUTOBAL_ROTOR_N_MODES], spin[2];
+  int whirl[AUTOBAL_ROTOR_N_MODES], st;
+  size_t k, i, j;
+  if (n > w->ccap) { /* between members, never during a run */
+    double *a = realloc(w->cpsi, n * (nb ? nb : 1) * sizeof *a), *b, *c;
+    if (a) w->cpsi = a;
+    b = a ? realloc(w->cres, n * sizeof *b) : NULL;
+    if (b) w->cres = b;
+    c = b ? realloc(w->camp, n * sizeof *c) : NULL;
+    if (c) w->camp = c;
+    if (!c) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble attractor)");
+    w->ccap = n;
+  }
+  for (k = 0; k < n; k++) {
+    const double *yk = y + k * M->dim;
+    double phi0 = 0.0;
+    if (M->frame == AUTOBAL_ROTOR_FIXED) phi0 = autobal_rotor_spin(w->rot, t[k], yk, spin) == AUTOBAL_SUCCESS ? spin[1] : NAN;
+    for (i = 0; i < nb; i++) w->cpsi[k * nb + i] = yk[8 + i] - phi0;
+    w->cres[k] = autobal_rotor_balance_monitor(w->rot, M->frame, t[k], yk);
+    w->camp[k] = autobal_rotor_outputs(w->rot, M->frame, t[k], yk, w->out, M->nout) == AUTOBAL_SUCCESS ? w->out[0] : NAN;
+  }
+  for (j = 0; j < np; j++) /* the member's own m0, psi0 (parameters of the ensemble) */
+    umom[j] = w->pm.plane[j].m0 * w->pm.plane[j].r0, uang[j] = w->pm.plane[j].psi0;
+  memset(&win, 0, sizeof win);
+  win.n = n, win.t = t, win.n_balls = nb, win.psi = w->cpsi, win.residual = w->cres, win.amplitude = w->camp;
+  win.balance_tol = balance_tol, win.stopped_balanced = stopped_balanced;
+  win.speed = w->omega;
+  if (n && M->p.drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT)
+    win.speed = autobal_rotor_spin(w->rot, t[n - 1], y + (n - 1) * M->dim, spin) == AUTOBAL_SUCCESS ? spin[0] : NAN;
+  win.n_planes = np, win.plane_of_ball = w->cplane, win.ball_moment = w->cmom;
+  win.unbalance_moment = umom, win.unbalance_angle = uang;
+  /* the natural frequencies only when a ball may circulate (the modes cost an eigenproblem) */
+  win.n_modes = 0;
+  if (isfinite(win.speed)) {
+    autobal_attractor_result probe;
+    st = autobal_attractor_classify(opt, &win, &probe, err);
+    if (st != AUTOBAL_SUCCESS) return st;
+    if (probe.cls != AUTOBAL_ATTRACTOR_CIRCULATING) {
+      *res = probe;
+      return AUTOBAL_SUCCESS;
+    }
+    st = autobal_rotor_modes(&w->pm, win.speed, 0, freq, NULL, NULL, whirl, err);
+    if (st != AUTOBAL_SUCCESS) return st;
+    win.n_modes = AUTOBAL_ROTOR_N_MODES, win.mode_frequency = freq, win.mode_whirl = whirl;
+  }
+  return autobal_attractor_classify(opt, &win, res, err);
 }
 
 static int rotor_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
@@ -646,6 +725,7 @@ int autobal_ensemble_rotor_member(const autobal_rotor_params *p, int frame, cons
   out->finish_quantities = rotor_finish_quantities;
   out->prepare = rotor_prepare;
   out->complete = rotor_complete;
+  out->classify = rotor_classify;
   return AUTOBAL_SUCCESS;
 }
 

@@ -956,7 +956,11 @@ def ensemble_plot_check(tools, f, outdir):
         check("%s: failed cells = n_failed = %d" % (f, int(a["n_failed"])), int(np.sum(code == -1)) == int(a["n_failed"]))
         check("%s: not-run cells = n_members - n_done = %d" % (f, int(a["n_members"]) - int(a["n_done"])),
               int(np.sum(code == -2)) == int(a["n_members"]) - int(a["n_done"]))
-        ran = int(np.sum((code == 1) | (code == 0)))
+        ran = int(np.sum(code >= 0))
+        if "attractor" in g:  # the members that did not balance drawn by their class (10 + class)
+            cls = g["attractor"][()]
+            check("%s: the cells of the members that ran and did not balance show their class" % f,
+                  np.array_equal(code[(code >= 0) & (code != 1)], 10 + cls[(code >= 0) & (code != 1)]))
         if ran:
             close("%s: P(balance) of the drawn cells = probability_balanced" % f, np.sum(code == 1) / ran,
                   float(a["probability_balanced"]), rtol=1e-12)
