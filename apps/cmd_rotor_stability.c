@@ -409,10 +409,31 @@ static int read_param(cli_ctx *ctx, const char *sec, const char *key, const char
   *param = autobal_rotor_stab_param_from_name(name);
   if (*param < 0)
     return cli_fail(ctx, CLI_EXIT_INPUT,
-                    "[%s]: %s = '%s' is not one of: omega, ball_damping, ball_mass, stiffness_scale, damping_scale, "
-                    "unbalance_mass",
+                    "[%s]: %s = '%s' is not a parameter: one of omega, ball_damping, ball_mass, stiffness_scale, "
+                    "damping_scale, unbalance_mass, anisotropy, C_over_A, a key of [rotor] or [supports] (e.g. "
+                    "supports.c_Lx, rotor.M_k) or of [lumped] (e.g. lumped.h_x), or planeN.KEY with KEY one of d, m0, "
+                    "r0, psi0, unbalance, ball_mass, ball_radius, ball_damping (docs/rotor.md \"Sweeps and maps\")",
                     sec, key, name);
   return CLI_EXIT_OK;
+}
+
+/* The ends of a parameter's range are values the model accepts: each is set on a handle of the
+ * rotor (autobal_rotor_stab_set), whose message names the key and its allowed range; a key that
+ * is not a parameter of this rotor (a hardware key of a lumped rotor, plane2 of a one-plane
+ * rotor) fails the same way.  Exit 3 before anything is computed. */
+static int check_param_range(cli_ctx *ctx, const autobal_rotor_params *p, const char *sec, int param, const char *klo,
+                             double lo, const char *khi, double hi) {
+  autobal_error e;
+  autobal_rotor_stab *h;
+  int st, rc = CLI_EXIT_OK;
+  autobal_error_clear(&e);
+  if (!(h = autobal_rotor_stab_alloc(p, NULL, &e))) return cli_fail(ctx, CLI_EXIT_INPUT, "%s", e.message);
+  if ((st = autobal_rotor_stab_set(h, param, lo)) != AUTOBAL_SUCCESS)
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s: %s", sec, klo, autobal_rotor_stab_errmsg(h));
+  else if ((st = autobal_rotor_stab_set(h, param, hi)) != AUTOBAL_SUCCESS)
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s: %s", sec, khi, autobal_rotor_stab_errmsg(h));
+  autobal_rotor_stab_free(h);
+  return rc;
 }
 
 static double param_default_hi(const stab_cfg *c, int param) {
@@ -476,7 +497,8 @@ int cli_cmd_rotor_sweep(cli_ctx *ctx) {
   if ((rc = cli_config_check_unused(ctx))) goto done;
   pname = autobal_rotor_stab_param_name(param);
   unit = autobal_rotor_stab_param_unit(param);
-  if ((rc = need_order(ctx, "sweep", "min", lo, "max", hi, unit, 1)) || (rc = need_int(ctx, "sweep", "n", n, 2, 10000000)) ||
+  if ((rc = check_param_range(ctx, &c->p, "sweep", param, "min", lo, "max", hi)) ||
+      (rc = need_order(ctx, "sweep", "min", lo, "max", hi, unit, 1)) || (rc = need_int(ctx, "sweep", "n", n, 2, 10000000)) ||
       (rc = need_xtol(ctx, "sweep", xtol)))
     goto done;
   if (param != AUTOBAL_ROTOR_PARAM_OMEGA && !(c->p.omega != 0.0)) {
@@ -593,7 +615,9 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[map]: param1 and param2 must differ (both %s)", autobal_rotor_stab_param_name(p1));
     goto done;
   }
-  if ((rc = need_order(ctx, "map", "min1", lo1, "max1", hi1, autobal_rotor_stab_param_unit(p1), 0)) ||
+  if ((rc = check_param_range(ctx, &c->p, "map", p1, "min1", lo1, "max1", hi1)) ||
+      (rc = check_param_range(ctx, &c->p, "map", p2, "min2", lo2, "max2", hi2)) ||
+      (rc = need_order(ctx, "map", "min1", lo1, "max1", hi1, autobal_rotor_stab_param_unit(p1), 0)) ||
       (rc = need_order(ctx, "map", "min2", lo2, "max2", hi2, autobal_rotor_stab_param_unit(p2), 0)) ||
       (rc = need_int(ctx, "map", "n1", n1, 1, 100000)) || (rc = need_int(ctx, "map", "n2", n2, 1, 100000)) ||
       (rc = need_int(ctx, "map", "threads", threads, 0, 1024)))

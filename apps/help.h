@@ -180,7 +180,16 @@
   "  ball_mass        kg     mass of every ball of every plane; 0.1x .. 4x plane1's first ball\n" \
   "  stiffness_scale  1      factor on every support stiffness; 0.25 .. 4\n" \
   "  damping_scale    1      factor on every support viscosity; 0 .. 4\n" \
-  "  unbalance_mass   kg     unbalance mass m0 of every plane; 0 .. 4x plane1.m0 + 0.001\n"
+  "  unbalance_mass   kg     unbalance mass m0 of every plane; 0 .. 4x plane1.m0 + 0.001\n" \
+  "  anisotropy       1      y support stiffnesses = this x the x ones (c_Ly = a c_Lx, c_Ry = a c_Rx); v/4 .. 4v\n" \
+  "  C_over_A         1      polar inertia C_p = this x (A_k + A_p); v/4 .. 4v\n" \
+  "  any numeric key of the rotor's config, as section.key (v: its value; default v/4 .. 4v):\n" \
+  "    rotor.M_k .. rotor.C_p, supports.l_L .. supports.h_Ry (hardware input; the names alone work too),\n" \
+  "    lumped.M .. lumped.h_yalpha (lumped input),\n" \
+  "    planeN.d (m; default the span of the supports), planeN.m0 (kg), planeN.r0 (m), planeN.psi0 (rad;\n" \
+  "    -pi .. pi), planeN.unbalance (kg m or g mm: m0 = value / r0), planeN.ball_mass (kg),\n" \
+  "    planeN.ball_radius (track radius, m or mm), planeN.ball_damping (kg/s): every ball of plane N\n" \
+  "  (docs/rotor.md \"Sweeps and maps over any key\")\n"
 #define HELP_ROTOR_STABILITY \
   "Stability of the balanced motion, eq. (3.14) in docs/rotor.md: the degree-12 polynomial Delta (GSL roots,\n" \
   "Routh-Hurwitz), the closed 12x12 (16x16) matrix, the full model in rotating coordinates, Floquet multipliers\n" \
@@ -212,7 +221,8 @@
   "      threads = 0 (OpenMP threads; 0: default)\n" \
   "      param1, param2: two different parameters below; min, max in their units\n" \
   "      unbalance_min, unbalance_max (kg m or g mm): each point's verdict for EVERY m0 r0 in the range\n" \
-  "      (one plane, two balls; docs/rotor.md \"Every unbalance\"); unbalance_mass is then no axis\n\n" \
+  "      (one plane, two balls; docs/rotor.md \"Every unbalance\"); unbalance_mass, plane1.m0 and\n" \
+  "      plane1.unbalance are then no axes\n\n" \
   HELP_ROTOR_STAB_AXES \
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR

@@ -920,7 +920,7 @@ static void test_errors(void) {
   CHECK_MSG("message", autobal_rotor_stab_errmsg(s), "ball_mass");
   CHECK("value unchanged after a refused set", autobal_rotor_stab_get(s, AUTOBAL_ROTOR_PARAM_BALL_MASS) == 0.05);
   CHECK_STATUS("set NaN omega", autobal_rotor_stab_set(s, 0, NAN), AUTOBAL_EINVAL);
-  CHECK("param names", !strcmp(autobal_rotor_stab_param_name(3), "stiffness_scale") && autobal_rotor_stab_param_from_name("ball_damping") == 1 && autobal_rotor_stab_param_from_name("nope") == -1 && autobal_rotor_stab_param_name(6) == NULL);
+  CHECK("param names", !strcmp(autobal_rotor_stab_param_name(3), "stiffness_scale") && autobal_rotor_stab_param_from_name("ball_damping") == 1 && autobal_rotor_stab_param_from_name("nope") == -1 && autobal_rotor_stab_param_name(8) == NULL);
   CHECK("method names", !strcmp(autobal_rotor_stab_method_name(4), "floquet") && !strcmp(autobal_rotor_stab_method_name(7), "unknown"));
   autobal_rotor_stab_set(s, 0, 0.0);
   CHECK_STATUS("margin at omega = 0", autobal_rotor_stab_margin(s, 0, &mg, &v), AUTOBAL_EUNSUPPORTED);

@@ -714,6 +714,32 @@ AUTOBAL_API double autobal_rotor_contact_capacity(const autobal_rotor *r, size_t
 /* 1 when plane's unbalance m0 r0 <= autobal_rotor_contact_capacity (relative slack 1e-12), else 0. */
 AUTOBAL_API int autobal_rotor_contact_reachable(const autobal_rotor *r, size_t plane);
 
+/* ---- the rotor model's parameter fields --------------------------------------- */
+
+/* One double field of autobal_rotor_hardware or autobal_rotor_lumped: the
+ * `autobal` configuration section and key (the key is the field's name and the
+ * name of the archive attribute), its SI unit (a UDUNITS-2 string) and where it
+ * sits in its struct (offsetof).  The tables are static constant data owned by
+ * the library, in the order the archive writes them. */
+typedef struct autobal_rotor_field {
+  const char *section; /* "rotor" or "supports" (hardware), "lumped" (lumped) */
+  const char *name;    /* field name = configuration key = archive attribute, e.g. "c_Lx" */
+  const char *unit;    /* SI unit, e.g. "N/m" */
+  size_t offset;       /* byte offset of the double in its struct */
+  const char *key;     /* "section.name", e.g. "supports.c_Lx": the name of the field as a
+                          parameter of sweeps and maps (autobal_rotor_stab_param_from_name) */
+} autobal_rotor_field;
+
+/* The 17 fields of autobal_rotor_hardware (M_k, A_k, m_p, A_p, C_p in
+ * [rotor]; l_L ... h_Ry in [supports]); *n (may be NULL) set to the count. */
+AUTOBAL_API const autobal_rotor_field *autobal_rotor_hardware_fields(size_t *n);
+/* The 17 fields of autobal_rotor_lumped ([lumped]); *n as above. */
+AUTOBAL_API const autobal_rotor_field *autobal_rotor_lumped_fields(size_t *n);
+/* The field `f` of the struct at `base` (an autobal_rotor_hardware for the
+ * hardware table, an autobal_rotor_lumped for the lumped table). */
+AUTOBAL_API double *autobal_rotor_field_ptr(void *base, const autobal_rotor_field *f);
+AUTOBAL_API double autobal_rotor_field_get(const void *base, const autobal_rotor_field *f);
+
 AUTOBAL_END_DECLS
 
 #endif

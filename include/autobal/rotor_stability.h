@@ -205,7 +205,22 @@ typedef enum autobal_rotor_stab_method {
 /* Static name: "auto", "poly", "closed", "full", "floquet" ("unknown"). */
 AUTOBAL_API const char *autobal_rotor_stab_method_name(int method);
 
-/* Parameters a sweep or map can vary (autobal_rotor_stab_set). */
+/* Parameters a sweep or map can vary (autobal_rotor_stab_set).  Besides the named ids below,
+ * every numeric key of the rotor's configuration is a parameter (a parameter is a config key):
+ *   - a field of autobal_rotor_hardware: AUTOBAL_ROTOR_PARAM_HARDWARE(i), i the index into
+ *     autobal_rotor_hardware_fields(), named by its key "rotor.M_k", "supports.c_Lx", ...
+ *     (only for parameters given as hardware: the lumped set is recomputed from it);
+ *   - a field of autobal_rotor_lumped: AUTOBAL_ROTOR_PARAM_LUMPED(i), "lumped.c_x", ...
+ *     (only for parameters given as a lumped set);
+ *   - a key of plane j (0-based; "plane1" is j = 0): AUTOBAL_ROTOR_PARAM_PLANE(j, f) with f an
+ *     autobal_rotor_plane_key, named "plane1.d", "plane1.m0", "plane1.r0", "plane1.psi0",
+ *     "plane1.unbalance" (m0 r0, kg m: sets m0 = value / r0), "plane1.ball_mass",
+ *     "plane1.ball_radius" (the track radius), "plane1.ball_damping" (the last three set every
+ *     ball of that plane).
+ * The hardware and lumped fields may also be named without their section ("c_Lx", "c_x": the
+ * names are unique), and omega as "rotor.omega".  Every value goes through the model's own
+ * checks (autobal_rotor_params_check): a value the model refuses fails with a message naming
+ * the key and the allowed range. */
 typedef enum autobal_rotor_stab_param {
   AUTOBAL_ROTOR_PARAM_OMEGA = 0,           /* rad/s, spin speed (!= 0 for the analysis) */
   AUTOBAL_ROTOR_PARAM_BALL_DAMPING = 1,    /* kg/s, h_i of every ball of every plane, >= 0 */
@@ -213,17 +228,47 @@ typedef enum autobal_rotor_stab_param {
   AUTOBAL_ROTOR_PARAM_STIFFNESS_SCALE = 3, /* 1, factor on every support stiffness (all c_ of
                                               the lumped set), > 0 */
   AUTOBAL_ROTOR_PARAM_DAMPING_SCALE = 4,   /* 1, factor on every support viscosity, >= 0 */
-  AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS = 5   /* kg, m0 of every plane, >= 0 */
+  AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS = 5,  /* kg, m0 of every plane, >= 0 */
+  AUTOBAL_ROTOR_PARAM_ANISOTROPY = 6,      /* 1, "anisotropy" > 0: the y stiffnesses become this
+                                              factor times the x ones (hardware: c_Ly = a c_Lx,
+                                              c_Ry = a c_Rx; lumped: c_y = a c_x, c_alpha = a c_beta,
+                                              c_yalpha = a c_xbeta); 1 is isotropic stiffness */
+  AUTOBAL_ROTOR_PARAM_C_OVER_A = 7         /* 1, "C_over_A" >= 0: the polar moment of inertia C
+                                              (hardware: C_p) set to this factor times the
+                                              transverse one A = A_k + A_p */
 } autobal_rotor_stab_param;
 
-/* Name ("omega", "ball_damping", "ball_mass", "stiffness_scale",
- * "damping_scale", "unbalance_mass") and SI unit ("rad/s", "kg/s", "kg", "1",
- * "1", "kg") of a parameter id.  Static strings owned by the library (never
- * free them; valid for the life of the program); NULL for an unknown id. */
+/* The keys of a plane (the f of AUTOBAL_ROTOR_PARAM_PLANE). */
+typedef enum autobal_rotor_plane_key {
+  AUTOBAL_ROTOR_PLANE_D = 0,            /* m, "d" */
+  AUTOBAL_ROTOR_PLANE_M0 = 1,           /* kg, "m0" */
+  AUTOBAL_ROTOR_PLANE_R0 = 2,           /* m, "r0" */
+  AUTOBAL_ROTOR_PLANE_PSI0 = 3,         /* rad, "psi0" (with two planes: the phase of one
+                                           unbalance against the other) */
+  AUTOBAL_ROTOR_PLANE_UNBALANCE = 4,    /* kg m, "unbalance" = m0 r0 */
+  AUTOBAL_ROTOR_PLANE_BALL_MASS = 5,    /* kg, "ball_mass" of every ball of the plane */
+  AUTOBAL_ROTOR_PLANE_BALL_RADIUS = 6,  /* m, "ball_radius" (track radius) of every ball */
+  AUTOBAL_ROTOR_PLANE_BALL_DAMPING = 7, /* kg/s, "ball_damping" of every ball */
+  AUTOBAL_ROTOR_PLANE_N_KEYS = 8
+} autobal_rotor_plane_key;
+
+#define AUTOBAL_ROTOR_PARAM_HARDWARE(i) (100 + (int)(i))
+#define AUTOBAL_ROTOR_PARAM_LUMPED(i) (200 + (int)(i))
+#define AUTOBAL_ROTOR_PARAM_PLANE(j, f) (300 + 16 * (int)(j) + (int)(f))
+
+/* Name (the config key: "omega", "ball_damping", "ball_mass", "stiffness_scale",
+ * "damping_scale", "unbalance_mass", "anisotropy", "C_over_A", "supports.c_Lx", "lumped.c_x",
+ * "plane1.d", ...) and SI unit ("rad/s", "kg/s", "kg", "1", ...) of a parameter id.  Static
+ * strings owned by the library (never free them; valid for the life of the program); NULL for
+ * an unknown id. */
 AUTOBAL_API const char *autobal_rotor_stab_param_name(int param);
 AUTOBAL_API const char *autobal_rotor_stab_param_unit(int param);
-/* Parameter id from its name (exact, case-sensitive); -1 if unknown or NULL. */
+/* Parameter id from its name (exact, case-sensitive; the aliases above included); -1 if
+ * unknown or NULL. */
 AUTOBAL_API int autobal_rotor_stab_param_from_name(const char *name);
+/* Every parameter id, in a fixed order (the named ids, then hardware, lumped and plane keys):
+ * writes min(n, count) ids into ids (may be NULL with n = 0) and returns the count. */
+AUTOBAL_API size_t autobal_rotor_stab_param_list(int *ids, size_t n);
 
 typedef struct autobal_rotor_stab_options {
   int method;        /* autobal_rotor_stab_method for verdicts and sweeps (default AUTO) */
@@ -500,7 +545,7 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s,
  * [s_lo, s_hi] (autobal_rotor_stab_every_unbalance): STABLE (stable for all), UNSTABLE (unstable for
  * some), MARGINAL (a critical unbalance inside with stable sides: a touch), AUTOBAL_ROTOR_VERDICT_NONE
  * (the balls cannot balance every unbalance of the range at this point, e.g. a small ball mass);
- * margin: margin_worst (1/s).  unbalance_mass cannot be an axis.  Same threads, errors and
+ * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
  * not apply (two planes, three or more balls, full inertia, anisotropic supports). */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,

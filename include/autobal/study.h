@@ -54,29 +54,8 @@ AUTOBAL_BEGIN_DECLS
  * written and summarised.  Called from the thread that runs the study. */
 typedef int (*autobal_study_progress_fn)(double fraction, void *user);
 
-/* ---- the rotor model's parameter fields --------------------------------------- */
-
-/* One double field of autobal_rotor_hardware or autobal_rotor_lumped: the
- * `autobal` configuration section and key (the key is the field's name and the
- * name of the archive attribute), its SI unit (a UDUNITS-2 string) and where it
- * sits in its struct (offsetof).  The tables are static constant data owned by
- * the library, in the order the archive writes them. */
-typedef struct autobal_rotor_field {
-  const char *section; /* "rotor" or "supports" (hardware), "lumped" (lumped) */
-  const char *name;    /* field name = configuration key = archive attribute, e.g. "c_Lx" */
-  const char *unit;    /* SI unit, e.g. "N/m" */
-  size_t offset;       /* byte offset of the double in its struct */
-} autobal_rotor_field;
-
-/* The 17 fields of autobal_rotor_hardware (M_k, A_k, m_p, A_p, C_p in
- * [rotor]; l_L ... h_Ry in [supports]); *n (may be NULL) set to the count. */
-AUTOBAL_API const autobal_rotor_field *autobal_rotor_hardware_fields(size_t *n);
-/* The 17 fields of autobal_rotor_lumped ([lumped]); *n as above. */
-AUTOBAL_API const autobal_rotor_field *autobal_rotor_lumped_fields(size_t *n);
-/* The field `f` of the struct at `base` (an autobal_rotor_hardware for the
- * hardware table, an autobal_rotor_lumped for the lumped table). */
-AUTOBAL_API double *autobal_rotor_field_ptr(void *base, const autobal_rotor_field *f);
-AUTOBAL_API double autobal_rotor_field_get(const void *base, const autobal_rotor_field *f);
+/* The rotor model's parameter-field tables (autobal_rotor_field, autobal_rotor_hardware_fields,
+ * autobal_rotor_lumped_fields) are declared in autobal/rotor.h. */
 
 /* ---- shared archive writers ---------------------------------------------------- */
 
@@ -631,8 +610,12 @@ AUTOBAL_API void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_
 /* The default range of a swept rotor parameter (AUTOBAL_ROTOR_PARAM_*, in its unit
  * autobal_rotor_stab_param_unit): OMEGA: autobal_study_rotor_speed_range; BALL_DAMPING:
  * [0, 10 h_1 + 1e-3]; BALL_MASS: [0.1 m_1, 4 m_1] (h_1, m_1: plane 1's first ball, 0.1 and
- * 0.05 without balls); UNBALANCE_MASS: [0, 4 m0 + 1e-3]; DAMPING_SCALE: [0, 4]; else
- * [0.25, 4]. */
+ * 0.05 without balls); UNBALANCE_MASS: [0, 4 m0 + 1e-3]; DAMPING_SCALE: [0, 4];
+ * STIFFNESS_SCALE: [0.25, 4]; any other key (a hardware, lumped or plane key, anisotropy,
+ * C_over_A) around its value v at p: [v/4, 4 v] for v > 0, [4 v, v/4] for v < 0, [0, 1] for
+ * v = 0, a plane's psi0 over [-pi, pi], a plane's d over [-l_L, l_R] (hardware input) or
+ * v -/+ (2 |v| + 0.1) m; NaN, NaN for a key that is not a parameter of p (a hardware key of a
+ * lumped rotor, plane2 of a one-plane rotor). */
 AUTOBAL_API void autobal_study_rotor_param_range(const autobal_rotor_params *p, int param, double *lo, double *hi);
 
 /* Options of `autobal rotor sweep` (section [sweep]; [stability] in stab). */

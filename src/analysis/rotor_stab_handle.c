@@ -62,23 +62,99 @@ const char *autobal_rotor_stab_method_name(int method) {
   }
 }
 
-static const char *const param_names[] = {"omega", "ball_damping", "ball_mass",
-                                          "stiffness_scale", "damping_scale", "unbalance_mass"};
-static const char *const param_units[] = {"rad/s", "kg/s", "kg", "1", "1", "kg"};
-#define N_PARAMS 6
+static const char *const param_names[] = {"omega",          "ball_damping",   "ball_mass",  "stiffness_scale",
+                                          "damping_scale",  "unbalance_mass", "anisotropy", "C_over_A"};
+static const char *const param_units[] = {"rad/s", "kg/s", "kg", "1", "1", "kg", "1", "1"};
+#define N_PARAMS 8
+#define PARAM_HW0 100
+#define PARAM_LU0 200
+#define PARAM_PL0 300
+/* the keys of a plane (autobal_rotor_plane_key) and their names, spelled out for each plane so
+ * that the names are static strings */
+#define PLANE_KEYS(P)                                                                                        \
+  {P ".d", P ".m0", P ".r0", P ".psi0", P ".unbalance", P ".ball_mass", P ".ball_radius", P ".ball_damping"}
+static const char *const plane_names[AUTOBAL_ROTOR_MAX_PLANES][AUTOBAL_ROTOR_PLANE_N_KEYS] = {PLANE_KEYS("plane1"),
+                                                                                             PLANE_KEYS("plane2")};
+#undef PLANE_KEYS
+static const char *const plane_units[AUTOBAL_ROTOR_PLANE_N_KEYS] = {"m", "kg", "m", "rad", "kg m", "kg", "m", "kg/s"};
+
+/* The field of a hardware or lumped id (NULL otherwise). */
+static const autobal_rotor_field *param_field(int param, int *lumped) {
+  size_t n;
+  const autobal_rotor_field *t;
+  if (param >= PARAM_HW0 && param < PARAM_LU0) {
+    t = autobal_rotor_hardware_fields(&n);
+    *lumped = 0;
+    return (size_t)(param - PARAM_HW0) < n ? &t[param - PARAM_HW0] : NULL;
+  }
+  if (param >= PARAM_LU0 && param < PARAM_PL0) {
+    t = autobal_rotor_lumped_fields(&n);
+    *lumped = 1;
+    return (size_t)(param - PARAM_LU0) < n ? &t[param - PARAM_LU0] : NULL;
+  }
+  return NULL;
+}
+/* Plane index and key of a plane id (0 if not one). */
+static int param_plane(int param, size_t *j, int *key) {
+  int q = param - PARAM_PL0;
+  if (param < PARAM_PL0 || q / 16 >= AUTOBAL_ROTOR_MAX_PLANES || q % 16 >= AUTOBAL_ROTOR_PLANE_N_KEYS) return 0;
+  *j = (size_t)(q / 16);
+  *key = q % 16;
+  return 1;
+}
 
 const char *autobal_rotor_stab_param_name(int param) {
-  return param >= 0 && param < N_PARAMS ? param_names[param] : NULL;
+  const autobal_rotor_field *f;
+  int lumped, key;
+  size_t j;
+  if (param >= 0 && param < N_PARAMS) return param_names[param];
+  if ((f = param_field(param, &lumped)) != NULL) return f->key;
+  if (param_plane(param, &j, &key)) return plane_names[j][key];
+  return NULL;
 }
 const char *autobal_rotor_stab_param_unit(int param) {
-  return param >= 0 && param < N_PARAMS ? param_units[param] : NULL;
+  const autobal_rotor_field *f;
+  int lumped, key;
+  size_t j;
+  if (param >= 0 && param < N_PARAMS) return param_units[param];
+  if ((f = param_field(param, &lumped)) != NULL) return f->unit;
+  if (param_plane(param, &j, &key)) return plane_units[key];
+  return NULL;
 }
 int autobal_rotor_stab_param_from_name(const char *name) {
-  int i;
+  size_t i, j, n;
+  const autobal_rotor_field *t;
   if (name == NULL) return -1;
   for (i = 0; i < N_PARAMS; i++)
-    if (!strcmp(name, param_names[i])) return i;
+    if (!strcmp(name, param_names[i])) return (int)i;
+  if (!strcmp(name, "rotor.omega")) return AUTOBAL_ROTOR_PARAM_OMEGA;
+  t = autobal_rotor_hardware_fields(&n);
+  for (i = 0; i < n; i++)
+    if (!strcmp(name, t[i].key) || !strcmp(name, t[i].name)) return AUTOBAL_ROTOR_PARAM_HARDWARE(i);
+  t = autobal_rotor_lumped_fields(&n);
+  for (i = 0; i < n; i++)
+    if (!strcmp(name, t[i].key) || !strcmp(name, t[i].name)) return AUTOBAL_ROTOR_PARAM_LUMPED(i);
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++)
+    for (i = 0; i < AUTOBAL_ROTOR_PLANE_N_KEYS; i++)
+      if (!strcmp(name, plane_names[j][i])) return AUTOBAL_ROTOR_PARAM_PLANE(j, i);
   return -1;
+}
+size_t autobal_rotor_stab_param_list(int *ids, size_t n) {
+  size_t k = 0, i, j, nh, nl;
+  (void)autobal_rotor_hardware_fields(&nh);
+  (void)autobal_rotor_lumped_fields(&nl);
+#define PUT(id)                   \
+  do {                            \
+    if (ids && k < n) ids[k] = (id); \
+    k++;                          \
+  } while (0)
+  for (i = 0; i < N_PARAMS; i++) PUT((int)i);
+  for (i = 0; i < nh; i++) PUT(AUTOBAL_ROTOR_PARAM_HARDWARE(i));
+  for (i = 0; i < nl; i++) PUT(AUTOBAL_ROTOR_PARAM_LUMPED(i));
+  for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++)
+    for (i = 0; i < AUTOBAL_ROTOR_PLANE_N_KEYS; i++) PUT(AUTOBAL_ROTOR_PARAM_PLANE(j, i));
+#undef PUT
+  return k;
 }
 
 autobal_rotor_stab_options autobal_rotor_stab_options_default(void) {
@@ -193,12 +269,13 @@ autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
   s->cur.axial = 0;
   s->c_scale = 1.0;
   s->h_scale = 1.0;
+  s->input0 = p->input;
   if (p->input == AUTOBAL_ROTOR_HARDWARE)
     (void)autobal_rotor_lumped_from_hardware(&p->hw, &s->Lbase, NULL);
   else
     s->Lbase = p->lumped;
   s->L = s->Lbase;
-  nstore = 8 * N + nmem + 1;
+  nstore = 9 * N + nmem + 1;
   if (N <= AUTOBAL_ROTOR_STAB_MAX_FULL_BALLS)
     nstore += 7 * s->ns * s->ns + 9 * s->ns + 2 * s->nm * s->nm;
   s->store = (double *)calloc(nstore, sizeof(double));
@@ -212,8 +289,9 @@ autobal_rotor_stab *autobal_rotor_stab_alloc(const autobal_rotor_params *p,
   s->member_store = s->psi + N;
   s->m_save = s->member_store + nmem;
   s->h_save = s->m_save + N;
+  s->r_save = s->h_save + N;
   {
-    double *q = s->h_save + N;
+    double *q = s->r_save + N;
     size_t o2 = 0;
     for (j = 0; j < p->n_planes; j++) {
       const autobal_rotor_plane *pl = &p->plane[j];
@@ -327,6 +405,9 @@ static void scale_lumped(autobal_rotor_stab *s) {
   const autobal_rotor_lumped *B = &s->Lbase;
   autobal_rotor_lumped *L = &s->L;
   const double f = s->c_scale, g = s->h_scale;
+  L->M = B->M; /* the inertias are not scaled */
+  L->A = B->A;
+  L->C = B->C;
   L->c_x = f * B->c_x;
   L->c_y = f * B->c_y;
   L->c_z = f * B->c_z;
@@ -344,6 +425,170 @@ static void scale_lumped(autobal_rotor_stab *s) {
   /* keep the working parameters consistent (lumped input with the scaled set) */
   s->cur.input = AUTOBAL_ROTOR_LUMPED;
   s->cur.lumped = *L;
+}
+
+/* A new base lumped set (before the scale factors): checked as the model checks its input
+ * (autobal_rotor_params_check on the working parameters with it), then taken. */
+static int take_lumped_base(autobal_rotor_stab *s, const char *key, const autobal_rotor_lumped *Lb) {
+  autobal_rotor_params cand = s->cur;
+  autobal_rotor_lumped save = s->Lbase, Lsave = s->L;
+  const int input_save = s->cur.input;
+  autobal_error e;
+  int st;
+  s->Lbase = *Lb;
+  scale_lumped(s); /* s->L and s->cur.lumped from the new base */
+  cand.input = AUTOBAL_ROTOR_LUMPED;
+  cand.lumped = s->L;
+  autobal_error_clear(&e);
+  st = autobal_rotor_params_check(&cand, &e);
+  if (st < 0) {
+    s->Lbase = save;
+    s->L = Lsave;
+    s->cur.lumped = Lsave;
+    s->cur.input = input_save;
+    return autobal_error_set(&s->err, st, "%s: %.900s", key, e.message);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* A hardware set: converted to the lumped base ((2.7), (2.9), (2.11)) and taken. */
+static int take_hardware(autobal_rotor_stab *s, const char *key, const autobal_rotor_hardware *hw) {
+  autobal_rotor_lumped Lb;
+  autobal_error e;
+  int st;
+  autobal_error_clear(&e);
+  if ((st = autobal_rotor_lumped_from_hardware(hw, &Lb, &e)) != AUTOBAL_SUCCESS)
+    return autobal_error_set(&s->err, st, "%s: %.900s", key, e.message);
+  if ((st = take_lumped_base(s, key, &Lb)) != AUTOBAL_SUCCESS) return st;
+  s->cur.hw = *hw;
+  return AUTOBAL_SUCCESS;
+}
+
+static int need_input(autobal_rotor_stab *s, const char *key, int input) {
+  if (s->input0 == input) return AUTOBAL_SUCCESS;
+  return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                           "%s: the rotor is given %s, so this key is not one of its parameters (use the %s keys)", key,
+                           s->input0 == AUTOBAL_ROTOR_HARDWARE ? "by its hardware ([rotor], [supports])"
+                                                              : "as a lumped set ([lumped])",
+                           s->input0 == AUTOBAL_ROTOR_HARDWARE ? "rotor.* and supports.*" : "lumped.*");
+}
+
+/* autobal_rotor_stab_set for the ids beyond the named ones that change the supports or the
+ * inertia (ANISOTROPY, C_OVER_A), the hardware and lumped fields, and the plane keys. */
+static int set_key(autobal_rotor_stab *s, int param, double value) {
+  const autobal_rotor_field *f;
+  const char *key = autobal_rotor_stab_param_name(param);
+  int lumped, pk, st;
+  size_t j, i;
+  if (key == NULL)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "parameter id %d is not valid (see autobal_rotor_stab_param_list)", param);
+  if (param == AUTOBAL_ROTOR_PARAM_ANISOTROPY || param == AUTOBAL_ROTOR_PARAM_C_OVER_A) {
+    const int an = param == AUTOBAL_ROTOR_PARAM_ANISOTROPY;
+    if ((st = autobal_check_param(&s->err, key, value, 0.0, an, INFINITY, 1, "")) != AUTOBAL_SUCCESS) return st;
+    if (s->input0 == AUTOBAL_ROTOR_HARDWARE) {
+      autobal_rotor_hardware hw = s->cur.hw;
+      if (an) {
+        hw.c_Ly = value * hw.c_Lx;
+        hw.c_Ry = value * hw.c_Rx;
+      } else {
+        hw.C_p = value * (hw.A_k + hw.A_p);
+      }
+      return take_hardware(s, key, &hw);
+    } else {
+      autobal_rotor_lumped Lb = s->Lbase;
+      if (an) {
+        Lb.c_y = value * Lb.c_x;
+        Lb.c_alpha = value * Lb.c_beta;
+        Lb.c_yalpha = value * Lb.c_xbeta;
+      } else {
+        Lb.C = value * Lb.A;
+      }
+      return take_lumped_base(s, key, &Lb);
+    }
+  }
+  if ((f = param_field(param, &lumped)) != NULL) {
+    if ((st = need_input(s, key, lumped ? AUTOBAL_ROTOR_LUMPED : AUTOBAL_ROTOR_HARDWARE)) != AUTOBAL_SUCCESS)
+      return st;
+    if (!isfinite(value))
+      return autobal_check_param(&s->err, key, value, -INFINITY, 1, INFINITY, 1, f->unit);
+    if (lumped) {
+      autobal_rotor_lumped Lb = s->Lbase;
+      *autobal_rotor_field_ptr(&Lb, f) = value;
+      return take_lumped_base(s, key, &Lb);
+    } else {
+      autobal_rotor_hardware hw = s->cur.hw;
+      *autobal_rotor_field_ptr(&hw, f) = value;
+      return take_hardware(s, key, &hw);
+    }
+  }
+  if (!param_plane(param, &j, &pk))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "parameter id %d is not valid", param);
+  if (j >= s->n_planes)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "%s: the rotor has %zu balancing plane%s", key, s->n_planes,
+                             s->n_planes == 1 ? "" : "s");
+  if (pk >= AUTOBAL_ROTOR_PLANE_BALL_MASS) {
+    const size_t o = s->off[j], n = s->cnt[j];
+    double *a = pk == AUTOBAL_ROTOR_PLANE_BALL_MASS ? s->m : (pk == AUTOBAL_ROTOR_PLANE_BALL_RADIUS ? s->r : s->h);
+    if (n == 0) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "%s: plane %zu has no balls", key, j + 1);
+    if ((st = autobal_check_param(&s->err, key, value, 0.0, pk != AUTOBAL_ROTOR_PLANE_BALL_DAMPING, INFINITY, 1,
+                                  plane_units[pk])) != AUTOBAL_SUCCESS)
+      return st;
+    for (i = 0; i < n; i++) a[o + i] = value;
+    return AUTOBAL_SUCCESS;
+  }
+  {
+    autobal_rotor_plane *pl = &s->cur.plane[j];
+    switch (pk) {
+      case AUTOBAL_ROTOR_PLANE_D:
+      case AUTOBAL_ROTOR_PLANE_PSI0:
+        if ((st = autobal_check_param(&s->err, key, value, -INFINITY, 1, INFINITY, 1, plane_units[pk])))
+          return st;
+        if (pk == AUTOBAL_ROTOR_PLANE_D)
+          pl->d = value;
+        else
+          pl->psi0 = value;
+        return AUTOBAL_SUCCESS;
+      case AUTOBAL_ROTOR_PLANE_M0:
+      case AUTOBAL_ROTOR_PLANE_R0:
+        if ((st = autobal_check_param(&s->err, key, value, 0.0, 0, INFINITY, 1, plane_units[pk]))) return st;
+        if (pk == AUTOBAL_ROTOR_PLANE_M0)
+          pl->m0 = value;
+        else
+          pl->r0 = value;
+        return AUTOBAL_SUCCESS;
+      default: /* UNBALANCE: m0 = value / r0 */
+        if ((st = autobal_check_param(&s->err, key, value, 0.0, 0, INFINITY, 1, plane_units[pk]))) return st;
+        if (!(pl->r0 > 0.0))
+          return autobal_error_set(&s->err, AUTOBAL_EINVAL, "%s: needs r0 > 0 (m0 = unbalance / r0); r0 = %g m", key,
+                                   pl->r0);
+        pl->m0 = value / pl->r0;
+        return AUTOBAL_SUCCESS;
+    }
+  }
+}
+
+static double get_key(const autobal_rotor_stab *s, int param) {
+  const autobal_rotor_field *f;
+  int lumped, pk;
+  size_t j;
+  if (param == AUTOBAL_ROTOR_PARAM_ANISOTROPY) return s->Lbase.c_y / s->Lbase.c_x;
+  if (param == AUTOBAL_ROTOR_PARAM_C_OVER_A) return s->Lbase.C / s->Lbase.A;
+  if ((f = param_field(param, &lumped)) != NULL) {
+    if (lumped != (s->input0 == AUTOBAL_ROTOR_LUMPED)) return NAN;
+    return lumped ? autobal_rotor_field_get(&s->Lbase, f) : autobal_rotor_field_get(&s->cur.hw, f);
+  }
+  if (!param_plane(param, &j, &pk) || j >= s->n_planes) return NAN;
+  switch (pk) {
+    case AUTOBAL_ROTOR_PLANE_D: return s->cur.plane[j].d;
+    case AUTOBAL_ROTOR_PLANE_M0: return s->cur.plane[j].m0;
+    case AUTOBAL_ROTOR_PLANE_R0: return s->cur.plane[j].r0;
+    case AUTOBAL_ROTOR_PLANE_PSI0: return s->cur.plane[j].psi0;
+    case AUTOBAL_ROTOR_PLANE_UNBALANCE: return s->cur.plane[j].m0 * s->cur.plane[j].r0;
+    case AUTOBAL_ROTOR_PLANE_BALL_MASS: return s->cnt[j] ? s->m[s->off[j]] : NAN;
+    case AUTOBAL_ROTOR_PLANE_BALL_RADIUS: return s->cnt[j] ? s->r[s->off[j]] : NAN;
+    default: return s->cnt[j] ? s->h[s->off[j]] : NAN;
+  }
 }
 
 int autobal_rotor_stab_set(autobal_rotor_stab *s, int param, double value) {
@@ -384,8 +629,7 @@ int autobal_rotor_stab_set(autobal_rotor_stab *s, int param, double value) {
       for (j = 0; j < s->n_planes; j++) s->cur.plane[j].m0 = value;
       return AUTOBAL_SUCCESS;
     default:
-      return autobal_error_set(&s->err, AUTOBAL_EINVAL,
-                               "parameter id %d is not valid (0 omega .. 5 unbalance_mass)", param);
+      return set_key(s, param, value);
   }
 }
 
@@ -398,7 +642,7 @@ double autobal_rotor_stab_get(const autobal_rotor_stab *s, int param) {
     case AUTOBAL_ROTOR_PARAM_STIFFNESS_SCALE: return s->c_scale;
     case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE: return s->h_scale;
     case AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS: return s->cur.plane[0].m0;
-    default: return NAN;
+    default: return get_key(s, param);
   }
 }
 

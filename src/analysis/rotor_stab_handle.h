@@ -19,7 +19,10 @@
 
 struct autobal_rotor_stab {
   autobal_rotor_params cur;        /* working parameters; ball arrays point into m, r, h, psi0i, rate0 */
-  autobal_rotor_lumped Lbase;      /* lumped coefficients at alloc */
+  autobal_rotor_lumped Lbase;      /* lumped coefficients before the scale factors (at alloc, or
+                                      after a hardware, lumped, ANISOTROPY or C_OVER_A change) */
+  int input0;                      /* the input kind given at alloc (AUTOBAL_ROTOR_HARDWARE or
+                                      _LUMPED): which of the keys are parameters */
   autobal_rotor_lumped L;          /* current lumped coefficients */
   double c_scale, h_scale;         /* current STIFFNESS_SCALE, DAMPING_SCALE */
   autobal_rotor_stab_options opt;  /* member angle pointers into member_store */
@@ -29,8 +32,8 @@ struct autobal_rotor_stab {
   double *store;                   /* one block for every array below */
   double *m, *r, *h, *psi_init, *rate_init; /* N each, current ball data */
   double *member_store;            /* member angles (sum n_j) */
-  double *m_save, *h_save;         /* N each: ball masses / dampings saved by a sweep or a
-                                      critical search (stab_save / stab_restore) */
+  double *m_save, *h_save, *r_save; /* N each: ball masses / dampings / track radii saved by a
+                                      sweep or a critical search (stab_save / stab_restore) */
   double *psi;                     /* N balanced angles of the member */
   int psi_status;                  /* status of the last member computation */
   /* workspaces */

@@ -321,35 +321,39 @@ int autobal_rotor_stab_analyze(autobal_rotor_stab *s, autobal_rotor_stab_result 
 /* ---- sweeps and critical values ------------------------------------------------------- */
 
 /* Everything autobal_rotor_stab_set can change (any parameter id): the working parameters
- * (omega, input and lumped set, every plane's m0; the ball arrays hold the same pointers),
- * the current lumped set and scale factors, and every ball's mass and damping (into the
- * handle's m_save / h_save, sized at alloc).  A sweep or critical search saves them first
+ * (omega, input, hardware and lumped sets, every plane's scalars; the ball arrays hold the same
+ * pointers), the base and current lumped sets and scale factors, and every ball's mass, damping
+ * and track radius (into the handle's m_save / h_save / r_save, sized at alloc).  A sweep or critical search saves them first
  * and puts them back bitwise afterwards, also after a failure. */
 typedef struct stab_saved {
   autobal_rotor_params cur;
-  autobal_rotor_lumped L;
+  autobal_rotor_lumped L, Lbase;
   double c_scale, h_scale;
 } stab_saved;
 
 static void stab_save(autobal_rotor_stab *s, stab_saved *sv) {
   sv->cur = s->cur;
   sv->L = s->L;
+  sv->Lbase = s->Lbase;
   sv->c_scale = s->c_scale;
   sv->h_scale = s->h_scale;
   if (s->N > 0) {
     memcpy(s->m_save, s->m, s->N * sizeof *s->m);
     memcpy(s->h_save, s->h, s->N * sizeof *s->h);
+    memcpy(s->r_save, s->r, s->N * sizeof *s->r);
   }
 }
 
 static void stab_restore(autobal_rotor_stab *s, const stab_saved *sv) {
   s->cur = sv->cur;
   s->L = sv->L;
+  s->Lbase = sv->Lbase;
   s->c_scale = sv->c_scale;
   s->h_scale = sv->h_scale;
   if (s->N > 0) {
     memcpy(s->m, s->m_save, s->N * sizeof *s->m);
     memcpy(s->h, s->h_save, s->N * sizeof *s->h);
+    memcpy(s->r, s->r_save, s->N * sizeof *s->r);
   }
 }
 
@@ -551,13 +555,24 @@ static int margin_point(autobal_rotor_stab *s, void *user, double *mg, int *v) {
   return autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_AUTO, mg, v);
 }
 
+/* Parameters defined relative to others at the moment they are set: ANISOTROPY (the y
+ * stiffnesses from the x ones), C_OVER_A (C from A), a plane's unbalance (m0 from r0). */
+static int relative_param(int p) {
+  return p == AUTOBAL_ROTOR_PARAM_ANISOTROPY || p == AUTOBAL_ROTOR_PARAM_C_OVER_A ||
+         p == AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_UNBALANCE) ||
+         p == AUTOBAL_ROTOR_PARAM_PLANE(1, AUTOBAL_ROTOR_PLANE_UNBALANCE);
+}
+
+/* One point: a relative parameter is set after the other one, so that its value holds at the
+ * point whatever the other changes (e.g. anisotropy with supports.c_Lx). */
 static int map_point(autobal_rotor_stab *s, autobal_rotor_map_point_fn_ fn, void *user, int p1, double x1, int p2,
                      double x2, double *mg, int *v) {
   int st;
+  const int swap = relative_param(p1) && !relative_param(p2);
   *mg = NAN;
   *v = AUTOBAL_ROTOR_VERDICT_NONE;
-  if ((st = autobal_rotor_stab_set(s, p1, x1)) != AUTOBAL_SUCCESS) return st;
-  if ((st = autobal_rotor_stab_set(s, p2, x2)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_set(s, swap ? p2 : p1, swap ? x2 : x1)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_set(s, swap ? p1 : p2, swap ? x1 : x2)) != AUTOBAL_SUCCESS) return st;
   return fn(s, user, mg, v);
 }
 

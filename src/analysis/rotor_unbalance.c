@@ -396,16 +396,22 @@ static int every_point(autobal_rotor_stab *s, void *user, double *mg, int *v) {
   return AUTOBAL_SUCCESS;
 }
 
+/* Whether a parameter sets the unbalance itself (the map for every unbalance varies it). */
+static int unbalance_axis(int param) {
+  return param == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS || param == AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_M0) ||
+         param == AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_UNBALANCE);
+}
+
 int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p, const autobal_rotor_stab_options *opt,
                                            int param1, const double *v1, size_t n1, int param2, const double *v2,
                                            size_t n2, double s_lo, double s_hi, int n_threads, double *margin,
                                            int *verdict, autobal_error *err) {
   every_map em;
-  if (param1 == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS || param2 == AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS)
+  if (unbalance_axis(param1) || unbalance_axis(param2))
     return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "map for every unbalance: unbalance_mass cannot be an axis (the unbalance is the range "
+                             "map for every unbalance: %s cannot be an axis (the unbalance is the range "
                              "[%g, %g] kg m)",
-                             s_lo, s_hi);
+                             autobal_rotor_stab_param_name(unbalance_axis(param1) ? param1 : param2), s_lo, s_hi);
   if (!(isfinite(s_lo) && isfinite(s_hi) && s_lo > 0.0 && s_lo <= s_hi))
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "map for every unbalance: the range of m0 r0 [%g, %g] kg m needs 0 < min <= max, finite",

@@ -11,6 +11,10 @@
 #include "autobal/study.h"
 #include "internal.h"
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 /* ---- cancellation and partial results (shared by the studies of this file) ---------------- */
 
 /* The handle's cancel hook (autobal_rotor_stab_set_cancel) calling a study's progress callback
@@ -402,6 +406,35 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
 }
 
 /* ---- sweep, map, Campbell ------------------------------------------------------------------ */
+/* The default range of a configuration key as a parameter: around its value v at p (read
+ * through a stability handle): [v/4, 4 v] for v > 0, [4 v, v/4] for v < 0, [0, 1] for v = 0;
+ * a phase psi0 over [-pi, pi]; a plane position d over the span of the supports [-l_L, l_R]
+ * (hardware) or v -/+ (2 |v| + 0.1) m (lumped).  NaN, NaN for a key that is not a parameter of
+ * p (e.g. a hardware key of a lumped rotor). */
+static void key_range(const autobal_rotor_params *p, int param, double *lo, double *hi) {
+  autobal_rotor_stab *h = autobal_rotor_stab_alloc(p, NULL, NULL);
+  const char *name = autobal_rotor_stab_param_name(param);
+  const size_t nm = name ? strlen(name) : 0;
+  double v = h ? autobal_rotor_stab_get(h, param) : NAN;
+  autobal_rotor_stab_free(h);
+  *lo = *hi = NAN;
+  if (!isfinite(v) || !name) return;
+  if (nm > 5 && !strcmp(name + nm - 5, ".psi0")) {
+    *lo = -M_PI, *hi = M_PI;
+  } else if (nm > 2 && !strcmp(name + nm - 2, ".d")) {
+    if (p->input == AUTOBAL_ROTOR_HARDWARE && p->hw.l_L + p->hw.l_R > 0.0)
+      *lo = -p->hw.l_L, *hi = p->hw.l_R;
+    else
+      *lo = v - (2.0 * fabs(v) + 0.1), *hi = v + (2.0 * fabs(v) + 0.1);
+  } else if (v > 0.0) {
+    *lo = 0.25 * v, *hi = 4.0 * v;
+  } else if (v < 0.0) {
+    *lo = 4.0 * v, *hi = 0.25 * v;
+  } else {
+    *lo = 0.0, *hi = 1.0;
+  }
+}
+
 void autobal_study_rotor_param_range(const autobal_rotor_params *p, int param, double *lo, double *hi) {
   const autobal_rotor_plane *pl = &p->plane[0];
   double l0, h0;
@@ -422,8 +455,11 @@ void autobal_study_rotor_param_range(const autobal_rotor_params *p, int param, d
     case AUTOBAL_ROTOR_PARAM_DAMPING_SCALE:
       *lo = 0.0, *hi = 4.0;
       return;
-    default:
+    case AUTOBAL_ROTOR_PARAM_STIFFNESS_SCALE:
       *lo = 0.25, *hi = 4.0;
+      return;
+    default:
+      key_range(p, param, lo, hi);
       return;
   }
 }

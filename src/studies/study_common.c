@@ -1,5 +1,4 @@
-/* study_common.c: what every study shares: the rotor model's parameter-field tables, the
- * archive writers of the model parameters and of the transient driver's statistics, and the
+/* study_common.c: what every study shares: the archive writers of the model parameters and of the transient driver's statistics, and the
  * ISO 21940-11 balance quality figures (include/autobal/study.h). */
 #include <math.h>
 #include <stddef.h>
@@ -7,46 +6,16 @@
 
 #include "autobal/study.h"
 
-#define HW(sec, f, u) {sec, #f, u, offsetof(autobal_rotor_hardware, f)}
-/* autobal_rotor_hardware: the masses and inertias in [rotor], the supports in [supports] */
-static const autobal_rotor_field k_hw_fields[] = {
-    HW("rotor", M_k, "kg"),         HW("rotor", A_k, "kg m^2"),     HW("rotor", m_p, "kg"),
-    HW("rotor", A_p, "kg m^2"),     HW("rotor", C_p, "kg m^2"),     HW("supports", l_L, "m"),
-    HW("supports", l_R, "m"),       HW("supports", c_Lx, "N/m"),    HW("supports", c_Ly, "N/m"),
-    HW("supports", c_Lz, "N/m"),    HW("supports", c_Rx, "N/m"),    HW("supports", c_Ry, "N/m"),
-    HW("supports", h_Lx, "N s/m"),  HW("supports", h_Ly, "N s/m"),  HW("supports", h_Lz, "N s/m"),
-    HW("supports", h_Rx, "N s/m"),  HW("supports", h_Ry, "N s/m")};
-#undef HW
-#define LU(f, u) {"lumped", #f, u, offsetof(autobal_rotor_lumped, f)}
-static const autobal_rotor_field k_lumped_fields[] = {
-    LU(M, "kg"),         LU(A, "kg m^2"),     LU(C, "kg m^2"),      LU(c_x, "N/m"),      LU(c_y, "N/m"),
-    LU(c_z, "N/m"),      LU(c_alpha, "N m"),  LU(c_beta, "N m"),    LU(c_xbeta, "N"),    LU(c_yalpha, "N"),
-    LU(h_x, "N s/m"),    LU(h_y, "N s/m"),    LU(h_z, "N s/m"),     LU(h_alpha, "N m s"), LU(h_beta, "N m s"),
-    LU(h_xbeta, "N s"),  LU(h_yalpha, "N s")};
-#undef LU
-#define N_HW (sizeof k_hw_fields / sizeof k_hw_fields[0])
-#define N_LUMPED (sizeof k_lumped_fields / sizeof k_lumped_fields[0])
-
-const autobal_rotor_field *autobal_rotor_hardware_fields(size_t *n) {
-  if (n) *n = N_HW;
-  return k_hw_fields;
-}
-const autobal_rotor_field *autobal_rotor_lumped_fields(size_t *n) {
-  if (n) *n = N_LUMPED;
-  return k_lumped_fields;
-}
-double *autobal_rotor_field_ptr(void *base, const autobal_rotor_field *f) {
-  return (double *)(void *)((char *)base + f->offset);
-}
-double autobal_rotor_field_get(const void *base, const autobal_rotor_field *f) {
-  return *(const double *)(const void *)((const char *)base + f->offset);
-}
+/* The field tables (autobal_rotor_hardware_fields, autobal_rotor_lumped_fields) live in the model
+ * layer: src/models/rotor/rotor_fields.c. */
 
 int autobal_study_write_rotor_params(autobal_archive *a, const autobal_rotor_params *p, int initial) {
   autobal_rotor_lumped L;
   const char *g = "/rotor", *gl = "/rotor/lumped";
   char grp[64];
-  size_t i, j;
+  size_t i, j, n_hw, n_lumped;
+  const autobal_rotor_field *k_hw_fields = autobal_rotor_hardware_fields(&n_hw);
+  const autobal_rotor_field *k_lumped_fields = autobal_rotor_lumped_fields(&n_lumped);
   int st;
   if (!a || !p) return AUTOBAL_EINVAL;
   /* the coefficients the model uses (autobal_rotor_alloc does the same) */
@@ -71,11 +40,11 @@ int autobal_study_write_rotor_params(autobal_archive *a, const autobal_rotor_par
     if (!st) st = autobal_archive_attr_double(a, g, "static_offset_y", qs[1], "m");
     if (!st) st = autobal_archive_attr_double(a, g, "static_offset_alpha", qs[2], "rad");
   }
-  for (i = 0; p->input == AUTOBAL_ROTOR_HARDWARE && i < N_HW && !st; i++)
+  for (i = 0; p->input == AUTOBAL_ROTOR_HARDWARE && i < n_hw && !st; i++)
     st = autobal_archive_attr_double(a, g, k_hw_fields[i].name, autobal_rotor_field_get(&p->hw, &k_hw_fields[i]),
                                      k_hw_fields[i].unit);
   if (!st) st = autobal_archive_group(a, gl);
-  for (i = 0; i < N_LUMPED && !st; i++)
+  for (i = 0; i < n_lumped && !st; i++)
     st = autobal_archive_attr_double(a, gl, k_lumped_fields[i].name, autobal_rotor_field_get(&L, &k_lumped_fields[i]),
                                      k_lumped_fields[i].unit);
   for (j = 0; j < p->n_planes && j < AUTOBAL_ROTOR_MAX_PLANES && !st; j++) {

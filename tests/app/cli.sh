@@ -155,13 +155,13 @@ ls | grep -q partial && bad "temporary files left: $(ls | grep partial)" || ok "
 # ---- rotor sweep/map --help: the parameter table against the program ------------------------------
 "$A" rotor sweep --help > sweep_help.txt
 "$A" rotor map --help > map_help.txt
-sed -n '/^parameters (unit/,/^$/p' sweep_help.txt | awk '/^  [a-z_]+ +[^ ]+ +/ {print $1, $2}' > table.txt
-sed -n '/^parameters (unit/,/^$/p' map_help.txt | awk '/^  [a-z_]+ +[^ ]+ +/ {print $1, $2}' > table_map.txt
+sed -n '/^parameters (unit/,/^$/p' sweep_help.txt | awk '/^  [A-Za-z_]+ +[^ ]+ +/ && $1 != "any" {print $1, $2}' > table.txt
+sed -n '/^parameters (unit/,/^$/p' map_help.txt | awk '/^  [A-Za-z_]+ +[^ ]+ +/ && $1 != "any" {print $1, $2}' > table_map.txt
 [ "$(wc -l < table.txt)" -ge 6 ] && cmp -s table.txt table_map.txt && ok "rotor sweep and rotor map --help list the same $(wc -l < table.txt) parameters with units" \
   || { bad "parameter tables"; cat table.txt table_map.txt; }
-# the names the program accepts (its message for a bad name) are the names of the table
+# the named parameters the program accepts (its message for a bad name) are the names of the table
 "$A" rotor sweep --set sweep.param=bogus > /dev/null 2> err.txt
-accepted=$(sed -n "s/.*is not one of: //p" err.txt | tr -d ' ' | tr ',' '\n' | sort | tr '\n' ' ')
+accepted=$(sed -n "s/.*is not a parameter: one of \(.*\), a key of .*/\1/p" err.txt | tr -d ' ' | tr ',' '\n' | sort | tr '\n' ' ')
 listed=$(awk '{print $1}' table.txt | sort | tr '\n' ' ')
 [ -n "$accepted" ] && [ "$accepted" = "$listed" ] && ok "the table lists exactly the accepted parameters: $listed" \
   || bad "accepted '$accepted' vs listed '$listed'"
@@ -183,6 +183,8 @@ want = {  # the defaults stated in the help, with the default model of `rotor sw
     "stiffness_scale": (0.25, 4.0),
     "damping_scale": (0.0, 4.0),
     "unbalance_mass": (0.0, 4 * 0.02 + 0.001),
+    "anisotropy": (0.25, 4.0),  # isotropic default: c_Ly/c_Lx = 1
+    "C_over_A": (0.25 * 0.03 / 0.16, 4 * 0.03 / 0.16),  # C_p / (A_k + A_p) of data/rotor_default.ini
 }
 bad = 0
 for p, unit in table.items():

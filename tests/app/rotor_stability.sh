@@ -71,7 +71,7 @@ expect 3 "isotropic" "$AUTOBAL" rotor stability "$DATA/rotor_anisotropic.ini" --
 expect 3 "omega = 0" "$AUTOBAL" rotor stability --set rotor.omega=0
 expect 3 "no balanced configuration" "$AUTOBAL" rotor stability --set plane1.m0=0.5
 expect 3 "did you mean 'stability.tol'" "$AUTOBAL" rotor stability --set stability.tolx=1e-9
-expect 3 "is not one of" "$AUTOBAL" rotor sweep --set sweep.param=colour
+expect 3 "is not a parameter" "$AUTOBAL" rotor sweep --set sweep.param=colour
 expect 3 "max = 1 rad/s must be larger than min = 5 rad/s" "$AUTOBAL" rotor sweep --set sweep.min=5 --set sweep.max=1
 expect 3 "must differ" "$AUTOBAL" rotor map --set map.param2=omega
 expect 3 "omega_min" "$AUTOBAL" rotor campbell --set campbell.omega_max=-1

@@ -152,7 +152,7 @@ def check_critical(g, margin):
     kinds = np.array(g["critical_kind"]) if "critical_kind" in g else np.array([])
     check("some critical values", len(vals) >= 1, str(vals))
     for v, k in zip(vals, kinds):
-        lo, hi = margin(v * (1 - 1e-7)), margin(v * (1 + 1e-7))
+        lo, hi = margin(v - 1e-7 * abs(v)), margin(v + 1e-7 * abs(v))
         check("margin changes sign across %.10g (kind %d)" % (v, k),
               (lo > 0) != (hi > 0) and (k == 1) == (hi < 0), "%.3g -> %.3g" % (lo, hi))
     if "stable_lo" in g:
