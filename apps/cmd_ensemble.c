@@ -394,6 +394,7 @@ static int read_spec(cli_ctx *ctx, ens_spec *s) {
     if (autobal_ensemble_pendulum_member(&s->pp, s->y0, &s->mb, &err) != AUTOBAL_SUCCESS)
       return cli_fail(ctx, cli_exit_code(err.status), "[pendulum]: %s", err.message);
     if ((rc = read_transient(ctx, s))) return rc;
+    if ((rc = read_attractor_keys(ctx, s))) return rc;
   }
   return read_ensemble(ctx, s);
 }
@@ -629,7 +630,7 @@ static void print_unbalance(const ens_spec *s, const autobal_ensemble *e) {
 }
 
 /* The attractor counts and the circulating members' frequencies against the natural frequencies. */
-static void print_attractors(const autobal_ensemble_attractors *at) {
+static void print_attractors(const autobal_ensemble_attractors *at, int pendulum) {
   int c, first = 1;
   printf("  attractors:");
   for (c = 1; c < AUTOBAL_ATTRACTOR_N_CLASSES; c++) {
@@ -639,9 +640,10 @@ static void print_attractors(const autobal_ensemble_attractors *at) {
   if (at->count[0]) printf(", %zu unclassified (failed)", at->count[0]);
   printf("\n");
   if (at->count[AUTOBAL_ATTRACTOR_CIRCULATING])
-    printf("  circulating: a ball at nu = %.6g..%.6g rad/s absolute, %.4g..%.4g x the nearest natural frequency of its whirl "
-           "at the member's speed (Campbell)\n",
-           at->frequency_min, at->frequency_max, at->ratio_min, at->ratio_max);
+    printf("  circulating: a %s at nu = %.6g..%.6g %s absolute, %.4g..%.4g x the nearest natural frequency of its whirl "
+           "at the member's speed (%s)\n",
+           pendulum ? "pendulum" : "ball", at->frequency_min, at->frequency_max, pendulum ? "x omega0" : "rad/s",
+           at->ratio_min, at->ratio_max, pendulum ? "the shaft, sqrt(1 - H^2/4)" : "Campbell");
 }
 
 static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensemble *e, const autobal_ensemble_tally *t,
@@ -715,7 +717,7 @@ static void print_summary(cli_ctx *ctx, const ens_spec *s, const autobal_ensembl
   if (t->n_balanced)
     printf("  time to balance %s: mean %.4g, median %.4g, max %.4g\n", tu, t->ttb_mean, t->ttb_median, t->ttb_max);
   if (s->model == MODEL_ROTOR) print_unbalance(s, e);
-  if (have_attr) print_attractors(&at);
+  if (have_attr) print_attractors(&at, s->model == MODEL_PENDULUM);
   if (!p->random && p->n_params == 2 && p->param[0].n <= 48 && p->param[1].n <= 96) {
     size_t i1, i2;
     printf("  basin of attraction (rows %s %g..%g, columns %s %g..%g; %s):\n", p->param[0].name, p->param[0].min,

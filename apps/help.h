@@ -288,6 +288,11 @@
   "[initial]   xi eta psi phi xi_rate eta_rate psi_rate phi_rate   (all 0)\n" \
   "[transient] as `pendulum transient` (t_end = 300, ...), but stop_at_balance = true by default\n" \
   HELP_ENSEMBLE_KEYS \
+  "[ensemble] attractors: each member classified over its final window (README, \"Attractors\"), as for the\n" \
+  "           rotor; the pendulums' directions from the shaft centre play the balls, their absolute rate\n" \
+  "           (units of omega0) is compared with the shaft's natural frequency, sqrt(1 - H^2/4) (damped);\n" \
+  "           the window (attractor_window_revs = 100 revolutions) must fit in\n" \
+  "           t_end, or the member counts as irregular; the same keys attractor_* and write_attractors\n" \
   "parameters: xi, eta, psi, phi, xi_rate, eta_rate, psi_rate, phi_rate (initial state), R_w, R_m, H, h,\n" \
   "            psi0 or k\n" \
   "default: grid psi x phi, 16 x 16 over [-pi, pi)\n" \

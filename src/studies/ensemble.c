@@ -1536,6 +1536,8 @@ static int write_attractors(autobal_ensemble *e, autobal_archive *a, const char 
   char obj[128], nm[64];
   size_t m, n = e->n_members;
   int st = autobal_ensemble_get_attractors(e, &at), c;
+  /* rates in rad/s for a model in seconds; in units of omega0 (dimensionless "1") for the pendulum's tau */
+  const char *fu = strcmp(e->mb.time_units, "s") ? "1" : "rad/s";
   if (st) return st;
   st = autobal_archive_attr_double(a, g, "attractor_window_revs", o->window_revs, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "attractor_rest_tol", o->rest_tol, "rad");
@@ -1548,8 +1550,8 @@ static int write_attractors(autobal_ensemble *e, autobal_archive *a, const char 
     snprintf(nm, sizeof nm, "n_attractor_%s", autobal_attractor_class_name(c));
     st = autobal_archive_attr_int(a, g, nm, (long)at.count[c]);
   }
-  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_min", at.frequency_min, "rad/s");
-  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_max", at.frequency_max, "rad/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_min", at.frequency_min, fu);
+  if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_max", at.frequency_max, fu);
   if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_ratio_min", at.ratio_min, "1");
   if (!st) st = autobal_archive_attr_double(a, g, "circulation_frequency_ratio_max", at.ratio_max, "1");
   if (st || !e->s.write_attractors) return st;
@@ -1564,14 +1566,15 @@ static int write_attractors(autobal_ensemble *e, autobal_archive *a, const char 
   if (!st) st = autobal_archive_attr_string(a, obj, "description", ATTRACTOR_RULE);
   for (m = 0; m < n; m++) dv[m] = e->done[m] ? e->sum[m * e->nsum + e->aoff + 1] : NAN;
   if (!st)
-    st = autobal_archive_var(a, g, "circulation_frequency", rank, dims, dv, "rad/s",
+    st = autobal_archive_var(a, g, "circulation_frequency", rank, dims, dv, fu,
                              "circulating members: absolute angular rate nu = Omega + mean relative rate of the circulating "
                              "ball(s) over the final window (NaN: not circulating)");
   for (m = 0; m < n; m++) dv[m] = e->done[m] ? e->sum[m * e->nsum + e->aoff + 2] : NAN;
   if (!st)
-    st = autobal_archive_var(a, g, "natural_frequency", rank, dims, dv, "rad/s",
-                             "circulating members: the natural frequency of the rotor at the member's speed (Campbell "
-                             "diagram, autobal_rotor_modes) of the whirl nu excites, nearest to |nu| (NaN: not circulating)");
+    st = autobal_archive_var(a, g, "natural_frequency", rank, dims, dv, fu,
+                             "circulating members: the natural frequency of the rotor at the member's speed (rotor: the "
+                             "Campbell diagram, autobal_rotor_modes; pendulum: the shaft, sqrt(1 - H^2/4) in units of omega0) of the whirl "
+                             "nu excites, nearest to |nu| (NaN: not circulating)");
   return st;
 }
 

@@ -743,6 +743,9 @@ typedef struct pend_worker {
   int kind[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   size_t index[AUTOBAL_ENSEMBLE_MAX_PARAMS];
   autobal_pendulum_motion motion;
+  /* the attractor classification's final window (pend_classify): angles, residual, amplitude */
+  double *cpsi, *cres, *camp;
+  size_t ccap;
 } pend_worker;
 
 static int pend_parse(const char *name, int *kind, size_t *index, autobal_ensemble_param_info *info, autobal_error *err) {
@@ -796,7 +799,14 @@ static int pend_check(const void *model, const char *const *names, size_t n, aut
   return AUTOBAL_SUCCESS;
 }
 
-static void pend_worker_free(void *w) { free(w); }
+static void pend_worker_free(void *wp) {
+  pend_worker *w = wp;
+  if (!w) return;
+  free(w->cpsi);
+  free(w->cres);
+  free(w->camp);
+  free(w);
+}
 
 static void *pend_worker_alloc(const void *model, const char *const *names, size_t n, autobal_error *err) {
   pend_worker *w;
@@ -878,6 +888,61 @@ static void pend_finish(void *wp, double t, const double y[], double *residual, 
   angles[1] = d.beta;
 }
 
+/* The attractor of a pendulum member (autobal/attractor.h) from its final window.  The rule's ball
+ * angles are the directions of the two pendulum masses from O relative to the rotor, measured from
+ * +U (the side of the unbalance Me) towards +V: pendulum 1's mass sits at l(-sin psi, cos psi), at
+ * angle psi + pi/2; pendulum 2's at l(-sin phi, -cos phi), at -phi - pi/2 (docs/pendulum.md,
+ * "Axes"); both continuous in time.  Each pendulum has the first moment m l (1 in units of m l),
+ * the unbalance M e = 2 m l sin psi0 lies at angle 0.  The residual unbalance and the amplitude
+ * are those of the ensemble (autobal_pendulum_motion_derive).  Time is tau = omega0 t, so rates
+ * and frequencies are in units of omega0 = sqrt(c / (M + 2m)), the natural frequency of the shaft
+ * carrying rotor and pendulums as one mass (the model's scale, the first critical speed without
+ * unbalance, (13)); damped by H: sqrt(1 - H^2/4), for both whirl directions (no gyroscopic effect
+ * in the plane); none when H >= 2. */
+static int pend_classify(void *wp, const autobal_attractor_options *opt, double balance_tol, int stopped_balanced, size_t n,
+                         const double *t, const double *y, autobal_attractor_result *res, autobal_error *err) {
+  pend_worker *w = wp;
+  const autobal_pendulum_params *p = &w->motion.p;
+  autobal_attractor_window win;
+  autobal_pendulum_motion_derived d;
+  static const size_t plane_of[2] = {0, 0};
+  static const double moment[2] = {1.0, 1.0};
+  const double zh = 0.5 * p->H;
+  double umom = 2.0 * sin(p->psi0), uang = 0.0, freq[2];
+  int whirl[2] = {+1, -1};
+  size_t k;
+  if (n > w->ccap) { /* between members, never during a run */
+    double *a = realloc(w->cpsi, 2 * n * sizeof *a), *b, *c;
+    if (a) w->cpsi = a;
+    b = a ? realloc(w->cres, n * sizeof *b) : NULL;
+    if (b) w->cres = b;
+    c = b ? realloc(w->camp, n * sizeof *c) : NULL;
+    if (c) w->camp = c;
+    if (!c) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (pendulum ensemble attractor)");
+    w->ccap = n;
+  }
+  for (k = 0; k < n; k++) {
+    const double *yk = y + k * AUTOBAL_PENDULUM_STATE_DIM;
+    w->cpsi[2 * k] = yk[2] + 0.25 * TWO_PI;
+    w->cpsi[2 * k + 1] = -yk[3] - 0.25 * TWO_PI;
+    autobal_pendulum_motion_derive(p, yk, &d);
+    w->cres[k] = d.unbalance;
+    w->camp[k] = d.amplitude;
+  }
+  memset(&win, 0, sizeof win);
+  win.n = n, win.t = t, win.n_balls = 2, win.psi = w->cpsi, win.residual = w->cres, win.amplitude = w->camp;
+  win.balance_tol = balance_tol, win.stopped_balanced = stopped_balanced;
+  win.speed = p->R_w;
+  win.n_planes = 1, win.plane_of_ball = plane_of, win.ball_moment = moment;
+  win.unbalance_moment = &umom, win.unbalance_angle = &uang;
+  win.n_modes = 0;
+  if (zh < 1.0) {
+    freq[0] = freq[1] = sqrt(1.0 - zh * zh);
+    win.n_modes = 2, win.mode_frequency = freq, win.mode_whirl = whirl;
+  }
+  return autobal_attractor_classify(opt, &win, res, err);
+}
+
 static int pend_column_name(const void *model, size_t k, char *name, size_t size, const char **units) {
   static const char *const n[PEND_NCOLS] = {"xi", "eta", "psi", "phi", "xi_rate", "eta_rate", "psi_rate", "phi_rate",
                                             "amplitude", "unbalance", "unbalance_u", "unbalance_v", "alpha", "beta", "jacobi"};
@@ -943,5 +1008,6 @@ int autobal_ensemble_pendulum_member(const autobal_pendulum_params *p, const dou
   out->write_attrs = pend_write_attrs;
   out->hash = pend_hash;
   out->destroy = pend_destroy;
+  out->classify = pend_classify;
   return AUTOBAL_SUCCESS;
 }
