@@ -220,7 +220,7 @@ int cli_cmd_rerun(cli_ctx *ctx) {
   /* an ensemble recorded before the attractor classification (no write_attractors among its
    * keys) writes the datasets it wrote then: its per-member attractor variables stay off (the
    * class counts are attributes) */
-  if (rc == CLI_EXIT_OK && !strcmp(cmd->name, "rotor ensemble") &&
+  if (rc == CLI_EXIT_OK && (!strcmp(cmd->name, "rotor ensemble") || !strcmp(cmd->name, "pendulum ensemble")) &&
       !cli_config_has_key(inner.cfg, "ensemble", "write_attractors") &&
       (rc = cli_config_add_default(&inner, "ensemble", "write_attractors", "false")) != CLI_EXIT_OK)
     cli_fail(ctx, rc, "%s", inner.err[0] ? inner.err : "out of memory");

@@ -59,5 +59,5 @@ expect 3 "attractor_rate_tol" "$AUTOBAL" rotor ensemble --set ensemble.attractor
 expect 3 "attractor_envelope_tol" "$AUTOBAL" rotor ensemble --set ensemble.attractor_envelope_tol=-0.1
 expect 3 "attractor_rest_toll" "$AUTOBAL" rotor ensemble --set ensemble.attractor_rest_toll=0.1
 expect 3 "write_attractors" "$AUTOBAL" rotor ensemble --set ensemble.write_attractors=maybe
-expect 3 "attractor_rest_tol" "$AUTOBAL" pendulum ensemble --set ensemble.attractor_rest_tol=0.1
+expect 3 "attractor_rest_tol" "$AUTOBAL" pendulum ensemble --set ensemble.attractor_rest_tol=0   # the pendulum ensemble takes the same keys
 finish
