@@ -431,6 +431,23 @@ static void rotor_finish_quantities(void *wp, double t, const double y[], double
   if (M->q_contact) q[M->q_contact] = w->contact_impacts, q[M->q_contact + 1] = w->contacts_final;
 }
 
+/* The arrays of a final window of n samples with nb balls (angles n x nb, residual, amplitude),
+ * grown between members, never during a run; *cap the samples they hold. */
+static int window_reserve(double **psi, double **res, double **amp, size_t *cap, size_t n, size_t nb,
+                          autobal_error *err) {
+  double *a, *b, *c;
+  if (n <= *cap) return AUTOBAL_SUCCESS;
+  a = realloc(*psi, n * (nb ? nb : 1) * sizeof *a);
+  if (a) *psi = a;
+  b = a ? realloc(*res, n * sizeof *b) : NULL;
+  if (b) *res = b;
+  c = b ? realloc(*amp, n * sizeof *c) : NULL;
+  if (c) *amp = c;
+  if (!c) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (ensemble attractor window)");
+  *cap = n;
+  return AUTOBAL_SUCCESS;
+}
+
 /* The attractor of a member (autobal/attractor.h) from its final window: each sample's ball angles
  * relative to the rotor (psi = phi - phi_0(t) in the fixed frame), residual unbalance
  * (autobal_rotor_balance_monitor) and amplitude (output 0); the planes' unbalances; the spin
@@ -445,16 +462,7 @@ static int rotor_classify(void *wp, const autobal_attractor_options *opt, double
   double umom[AUTOBAL_ROTOR_MAX_PLANES], uang[AUTOBAL_ROTOR_MAX_PLANES], freq[AUTOBAL_ROTOR_N_MODES], spin[2];
   int whirl[AUTOBAL_ROTOR_N_MODES], st;
   size_t k, i, j;
-  if (n > w->ccap) { /* between members, never during a run */
-    double *a = realloc(w->cpsi, n * (nb ? nb : 1) * sizeof *a), *b, *c;
-    if (a) w->cpsi = a;
-    b = a ? realloc(w->cres, n * sizeof *b) : NULL;
-    if (b) w->cres = b;
-    c = b ? realloc(w->camp, n * sizeof *c) : NULL;
-    if (c) w->camp = c;
-    if (!c) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (rotor ensemble attractor)");
-    w->ccap = n;
-  }
+  if ((st = window_reserve(&w->cpsi, &w->cres, &w->camp, &w->ccap, n, nb, err)) != AUTOBAL_SUCCESS) return st;
   for (k = 0; k < n; k++) {
     const double *yk = y + k * M->dim;
     double phi0 = 0.0;
@@ -911,16 +919,8 @@ static int pend_classify(void *wp, const autobal_attractor_options *opt, double 
   double umom = 2.0 * sin(p->psi0), uang = 0.0, freq[2];
   int whirl[2] = {+1, -1};
   size_t k;
-  if (n > w->ccap) { /* between members, never during a run */
-    double *a = realloc(w->cpsi, 2 * n * sizeof *a), *b, *c;
-    if (a) w->cpsi = a;
-    b = a ? realloc(w->cres, n * sizeof *b) : NULL;
-    if (b) w->cres = b;
-    c = b ? realloc(w->camp, n * sizeof *c) : NULL;
-    if (c) w->camp = c;
-    if (!c) return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory (pendulum ensemble attractor)");
-    w->ccap = n;
-  }
+  int st;
+  if ((st = window_reserve(&w->cpsi, &w->cres, &w->camp, &w->ccap, n, 2, err)) != AUTOBAL_SUCCESS) return st;
   for (k = 0; k < n; k++) {
     const double *yk = y + k * AUTOBAL_PENDULUM_STATE_DIM;
     w->cpsi[2 * k] = yk[2] + 0.25 * TWO_PI;
