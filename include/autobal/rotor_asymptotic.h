@@ -20,13 +20,15 @@
  *     (L2) kappa^2 (-Re G) > a (Im^2 G - q^2 |G|^2)   (enough ball damping).
  * (L1) is the pendulum's (7), (L2) contains its (8) (high speed, q = 0) and its corrected (9)
  * (large support damping).  The rotor-housing's own roots (of D D*) move by O(m_b) and must stay
- * stable too: their first-order shifts are part of the prediction (light support damping).  Small
- * parameter: the larger of eps_b = max |ball root| (sum over the roots of D D* and N N* of 1/|root|
- * + 4/|omega|) (a bound of the relative change of a G P^4 over the ball roots) and eps_r = the largest
- * shift of a rotor root relative to its distance from 0, -kappa and the other roots; the prediction
- * is "decided" when a predicted real part is >= its error or all are <= -error (ball root j:
- * eps_b |u_j| / |2 lambda_j + kappa|; rotor root k: eps_r |shift_k|).  Measured (docs/rotor.md):
- * every decided prediction with small parameter <= 0.2 agreed with the exact verdict.
+ * stable too: their first-order shifts are part of the prediction (light support damping).
+ * Small parameter: the larger of eps_b = max_j c1 |u_j| / |2 lambda_j + kappa| over the ball roots,
+ * c1 = sum of 1/|root| over the roots of D D* and N N* plus 4/|omega| (a bound of the logarithmic
+ * derivative of a G P^4 near lambda = 0, which the approximation freezes), the relative error
+ * bound of each ball root, and eps_r = the largest shift of a rotor root relative to its distance
+ * from 0, -kappa and the other roots of D D*.  The prediction is "decided" when a predicted real
+ * part is >= its error or all are <= -error (ball root j: eps_bj |lambda_j|; rotor root k:
+ * eps_r |shift_k|).  Measured (docs/rotor.md): every decided prediction with small parameter
+ * <= 0.2 agreed with the exact verdict.
  *
  * HIGH SPEED (|omega| -> infinity, paper inertia, A != C): Re G omega^2 -> -(1/M + d^2/(A - C))
  * and Im G omega^3 -> -(h/M^2 - 2 d h_c/(M (A - C)) + d^2 h_t/(A - C)^2), so (L1), (L2) become
@@ -69,7 +71,7 @@ typedef struct autobal_rotor_asymptotic {
                                (the other four of Delta are their conjugates) */
   double rotor_re_max;      /* 1/s, the largest of rotor_re */
   int light_stable;         /* (L1), (L2) and rotor_re_max < 0: predicts STABLE (all 12 roots) */
-  double light_small;       /* max(eps_b, eps_r), see above */
+  double light_small;       /* max(eps_b, eps_r), see above (1) */
   int light_decided;        /* 1 when the prediction lies outside its error band (see above); 0: too
                                close to the boundary to say */
   int light_applicable;     /* light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */

@@ -162,20 +162,23 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
       eps_r = fmax(eps_r, sep > 0.0 ? cabs(dl) / sep : INFINITY);
       lre = fmax(lre, creal(nl));
     }
-    /* the ball roots' small parameter: |ball root| times a bound of the relative first-order change of
-     * a G P^4 near lambda = 0, sum 1/|root| over D D* and N N* plus 4/|omega| */
+    /* the ball roots' error: freezing a G P^4 at lambda = 0 changes u_j by at most |u_j| |lambda_j| c1,
+     * c1 = sum 1/|root| over D D* and N N* plus 4/|omega| (a bound of |d log(a G P^4)/d lambda| near 0),
+     * so lambda_j by e_j = c1 |lambda_j| |u_j| / |2 lambda_j + kappa|: relative c1 |u_j| / |2 lambda_j + kappa| */
     c1 = 4.0 / fabs(w);
     for (k = 0; k < 8; k++) c1 += 1.0 / hypot(dre[k], dim_[k]);
     for (k = 0; k < 4; k++) c1 += 1.0 / hypot(nre[k], nim[k]);
-    eps_b = lmax * c1;
-    /* decided: some predicted real part >= its error (UNSTABLE) or all <= -error (STABLE); the error
-     * of ball root j is eps_b |u_j| / |2 lambda_j + kappa|, of rotor root k eps_r |shift_k| */
+    eps_b = 0.0;
+    /* decided: some predicted real part >= its error (UNSTABLE) or all <= -error (STABLE); rotor root
+     * k: error eps_r |shift_k| */
     for (j = 0; j < 8; j++) {
       double re, e;
       if (j < 4) {
         cplx lj = r.ball_re[j] + I * r.ball_im[j];
+        double rel = c1 * cabs(u[j / 2]) / cabs(2.0 * lj + kap);
+        eps_b = fmax(eps_b, rel);
         re = r.ball_re[j];
-        e = eps_b * cabs(u[j / 2]) / cabs(2.0 * lj + kap);
+        e = rel * cabs(lj);
       } else {
         cplx dl = (r.rotor_re[j - 4] + I * r.rotor_im[j - 4]) - (dre[pick[j - 4]] + I * dim_[pick[j - 4]]);
         re = r.rotor_re[j - 4];
