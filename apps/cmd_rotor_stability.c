@@ -205,6 +205,53 @@ static void default_speed_range(const autobal_rotor_params *p, double *lo, doubl
   autobal_study_rotor_speed_range(p, lo, hi);
 }
 
+/* The asymptotic conditions (docs/rotor.md, Asymptotic conditions): beside the exact verdict. */
+static const char *asym_word(int applicable) { return applicable ? "applicable" : "NOT applicable"; }
+static void print_asymptotic(const autobal_rotor_asymptotic *q) {
+  printf("  asymptotic conditions (for comparison only; the verdict above is exact):\n");
+  printf("    light balls: (L1) Re G < 0 [%s], (L2) kappa = %.6g > kappa_min = %.6g 1/s [%s], rotor roots max Re %.6g 1/s:"
+         " predicts %s%s; small parameter %.3g (%s, <= %g)\n",
+         q->supercritical ? "yes" : "no", q->kappa, q->kappa_min,
+         q->supercritical && q->kappa > q->kappa_min ? "yes" : "no", q->rotor_re_max,
+         q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
+         q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  if (q->high_defined)
+    printf("    high speed: (H1) 1/m_eff > 0 [%s], (H2) kappa > kappa_inf = %.6g 1/s [%s] (m_eff %.6g kg, h_eff %.6g N s/m):"
+           " predicts %s; small parameter %.3g (%s)\n",
+           q->m_eff > 0 ? "yes" : "no", q->kappa_inf, q->high_stable ? "yes" : "no", q->m_eff, q->h_eff,
+           q->high_stable ? "STABLE for every unbalance"
+                          : (q->m_eff > 0 ? "UNSTABLE for unbalances near q = 0" : "UNSTABLE for every unbalance"),
+           q->high_small, asym_word(q->high_applicable));
+}
+static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {
+  cli_json_object(j, "asymptotic");
+  cli_json_number(j, "small_threshold", AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  cli_json_quantity(j, "G_real", q->G_re, "m/N");
+  cli_json_quantity(j, "G_imag", q->G_im, "m/N");
+  cli_json_quantity(j, "kappa", q->kappa, "1/s");
+  cli_json_number(j, "q", q->q);
+  cli_json_bool(j, "light_supercritical", q->supercritical);
+  cli_json_quantity(j, "light_kappa_min", q->kappa_min, "1/s");
+  cli_json_bool(j, "light_predicts_stable", q->light_stable);
+  cli_json_quantities(j, "light_ball_root_real", q->ball_re, 4, "1/s");
+  cli_json_quantities(j, "light_ball_root_imag", q->ball_im, 4, "1/s");
+  cli_json_quantities(j, "light_rotor_root_real", q->rotor_re, 4, "1/s");
+  cli_json_quantities(j, "light_rotor_root_imag", q->rotor_im, 4, "1/s");
+  cli_json_bool(j, "light_decided", q->light_decided);
+  cli_json_number(j, "light_small", q->light_small);
+  cli_json_bool(j, "light_applicable", q->light_applicable);
+  cli_json_bool(j, "high_defined", q->high_defined);
+  if (q->high_defined) {
+    cli_json_quantity(j, "high_m_eff", q->m_eff, "kg");
+    cli_json_quantity(j, "high_h_eff", q->h_eff, "N s/m");
+    cli_json_quantity(j, "high_kappa_inf", q->kappa_inf, "1/s");
+    cli_json_bool(j, "high_predicts_stable", q->high_stable);
+    cli_json_number(j, "high_small", q->high_small);
+    cli_json_bool(j, "high_applicable", q->high_applicable);
+  }
+  cli_json_object_end(j);
+}
+
 /* ---- rotor stability: the library's study (autobal_study_rotor_stability) -------------- */
 typedef struct stab_partial {
   const autobal_rotor_params *p;
@@ -325,6 +372,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       cli_json_quantity(&j, "period", r->period, "s");
     }
     if (do_crit) json_crit(&j, cr, "rad/s");
+    if (sum.have_asymptotic) json_asymptotic(&j, &sum.asymptotic);
     if (sum.have_every) {
       const autobal_rotor_unbalance_range *u = &sum.every;
       cli_json_object(&j, "every_unbalance");
@@ -371,6 +419,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       if (isnan(r->floquet_mismatch)) printf("vs exp(lambda T): not applicable (no constant-coefficient roots to compare)\n");
       else printf("vs exp(lambda T): %.3e\n", r->floquet_mismatch);
     }
+    if (sum.have_asymptotic) print_asymptotic(&sum.asymptotic);
     if (do_crit) print_intervals("speed (omega)", "rad/s", cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
     if (sum.have_every) {
       const autobal_rotor_unbalance_range *u = &sum.every;

@@ -12,6 +12,7 @@
 #include "autobal/version.h"
 #include "autobal/rotor.h"
 #include "autobal/rotor_stability.h"
+#include "autobal/rotor_asymptotic.h"
 #include "autobal/runup.h"
 #include "autobal/stability.h"
 #include "autobal/transient.h"

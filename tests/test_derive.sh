@@ -47,4 +47,11 @@ echo "$ind"
 for pat in 'independent check: NumPy' 'independent check (device)'; do
   grep -F "$pat" <<<"$ind" | grep -q ': OK' || { echo "test_derive: independent check '$pat' did not report OK"; exit 1; }
 done
+# the asymptotic stability conditions of the rotor (tools/derive/derive_asymptotic.py, docs/rotor.md
+# "Asymptotic conditions")
+asy=$("$py" "$src/tools/derive/derive_asymptotic.py" 2>&1) || { echo "$asy"; echo "test_derive: FAILED (asymptotic conditions)"; exit 1; }
+echo "$asy"
+for pat in 'light balls (1)' 'light balls (2)' 'light balls (3)' 'high speed (4)' 'pendulum (5)' 'rotor roots (6)'; do
+  grep -F "$pat" <<<"$asy" | grep -q ': OK' || { echo "test_derive: asymptotic check '$pat' did not report OK"; exit 1; }
+done
 echo "test_derive: all checks passed"

@@ -39,6 +39,7 @@
 #include "autobal/status.h"
 #include "autobal/rotor.h"
 #include "autobal/rotor_stability.h"
+#include "autobal/rotor_asymptotic.h"
 #include "autobal/runup.h"
 #include "autobal/pendulum.h"
 #include "autobal/transient.h"
@@ -347,6 +348,11 @@ typedef struct autobal_study_rotor_stability_summary {
   autobal_rotor_unbalance_range every;
   int have_every_speeds;            /* 1: `every_speeds` holds the speeds stable for every unbalance */
   autobal_rotor_crit every_speeds;  /* rad/s (signed like omega) */
+  /* asymptotic conditions at omega (added at the end; autobal/rotor_asymptotic.h): computed when
+     Delta exists (one plane, isotropic, closure) and kappa > 0; written to
+     /rotor/stability/asymptotic */
+  int have_asymptotic;
+  autobal_rotor_asymptotic asymptotic;
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every

@@ -121,6 +121,23 @@ static void search_setup(const autobal_rotor_params *p, const autobal_study_roto
   if (o->progress) autobal_rotor_stab_set_cancel(h, progress_cancel, ph);
 }
 
+/* The asymptotic conditions (autobal/rotor_asymptotic.h) beside the exact verdict: one plane with
+ * the closure (Delta exists) and ball damping; otherwise none (have_asymptotic = 0). */
+static int asymptotic_conditions(autobal_rotor_stab *h, autobal_study_rotor_stability_summary *s,
+                                 autobal_error *err) {
+  autobal_rotor_closed c;
+  autobal_error e;
+  int st;
+  if (s->result.n_poly == 0 || autobal_rotor_stab_closed(h, &c) != AUTOBAL_SUCCESS) return AUTOBAL_SUCCESS;
+  if (!(c.plane[0].kappa > 0.0)) return AUTOBAL_SUCCESS;
+  autobal_error_clear(&e);
+  st = autobal_rotor_asymptotic_conditions(&c, &s->asymptotic, &e);
+  if (st == AUTOBAL_EINVAL) return AUTOBAL_SUCCESS; /* not applicable here (e.g. an undamped resonance) */
+  if (st) return autobal_error_set(err, st, "asymptotic conditions: %s", e.message);
+  s->have_asymptotic = 1;
+  return AUTOBAL_SUCCESS;
+}
+
 int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_study_rotor_stability_options *opt,
                                   autobal_archive *a, autobal_study_rotor_stability_summary *summary,
                                   autobal_error *err) {
@@ -166,6 +183,7 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
     autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
     goto fail;
   }
+  if ((st = asymptotic_conditions(h, s, err)) != 0) goto fail;
   if (o->critical_speeds) {
     double lo, hi;
     progress_hook ph;
@@ -298,6 +316,38 @@ static int write_options(autobal_archive *a, const char *g, const autobal_rotor_
   return st;
 }
 
+/* /rotor/stability/asymptotic: the asymptotic conditions (docs/rotor.md, Asymptotic conditions). */
+static int write_asymptotic(autobal_archive *a, const autobal_rotor_asymptotic *q) {
+  const char *g = "/rotor/stability/asymptotic";
+  int st = autobal_archive_group(a, g);
+  if (!st) st = autobal_archive_attr_string(a, g, "description", "ASYMPTOTIC conditions, reported beside the exact verdict, never instead of it (docs/rotor.md, Asymptotic conditions): light balls (L1) Re G < 0, (L2) kappa^2 (-Re G) > a (Im^2 G - q^2 |G|^2); high speed (H1) 1/M + d^2/(A - C) > 0, (H2) kappa > kappa_inf; each applicable when its small parameter is at most small_threshold");
+  if (!st) st = autobal_archive_attr_double(a, g, "small_threshold", AUTOBAL_ROTOR_ASYMPTOTIC_SMALL, "1");
+  if (!st) st = autobal_archive_attr_double(a, g, "G_real", q->G_re, "m/N");
+  if (!st) st = autobal_archive_attr_double(a, g, "G_imag", q->G_im, "m/N");
+  if (!st) st = autobal_archive_attr_double(a, g, "kappa", q->kappa, "1/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "q", q->q, "1");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_supercritical", q->supercritical);
+  if (!st) st = autobal_archive_attr_double(a, g, "light_kappa_min", q->kappa_min, "1/s");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_predicts_stable", q->light_stable);
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_ball_root_real", 4, q->ball_re, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_ball_root_imag", 4, q->ball_im, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_rotor_root_real", 4, q->rotor_re, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_rotor_root_imag", 4, q->rotor_im, "1/s");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_decided", q->light_decided);
+  if (!st) st = autobal_archive_attr_double(a, g, "light_small", q->light_small, "1");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_applicable", q->light_applicable);
+  if (!st) st = autobal_archive_attr_int(a, g, "high_defined", q->high_defined);
+  if (!st && q->high_defined) {
+    st = autobal_archive_attr_double(a, g, "high_m_eff", q->m_eff, "kg");
+    if (!st) st = autobal_archive_attr_double(a, g, "high_h_eff", q->h_eff, "N s/m");
+    if (!st) st = autobal_archive_attr_double(a, g, "high_kappa_inf", q->kappa_inf, "1/s");
+    if (!st) st = autobal_archive_attr_int(a, g, "high_predicts_stable", q->high_stable);
+    if (!st) st = autobal_archive_attr_double(a, g, "high_small", q->high_small, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "high_applicable", q->high_applicable);
+  }
+  return st;
+}
+
 int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_params *p,
                                         const autobal_study_rotor_stability_options *opt,
                                         const autobal_study_rotor_stability_summary *s) {
@@ -365,6 +415,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = autobal_archive_attr_int(a, gc, "n_omega", (long)s->n_omega);
     if (!st) st = write_crit(a, gc, &s->critical, "rad/s");
   }
+  if (!st && s->have_asymptotic) st = write_asymptotic(a, &s->asymptotic);
   if (!st && s->have_every) {
     const char *ge = "/rotor/stability/every_unbalance";
     const autobal_rotor_unbalance_range *u = &s->every;

@@ -1,0 +1,98 @@
+/* autobal/rotor_asymptotic.h: asymptotic stability conditions of the balanced motion of a rotor
+ * with one ball autobalancer, the rotor's analogues of the pendulum's (7)-(9) (docs/rotor.md,
+ * "Asymptotic conditions"; derived in tools/derive/derive_asymptotic.py).  They are reported beside
+ * the exact verdict (autobal_rotor_stab_analyze), never instead of it.
+ *
+ * Setting: the closed one-plane system of autobal_rotor_char_poly (isotropic supports, two or more
+ * balls with a common kappa = h_i / m_i, closure_ok), omega != 0.  With P = lambda + i omega and the
+ * polynomials K11, K12, K22, D, N of Delta (autobal/rotor_stability.h), write
+ *     G = N(0) / D(0)   (m/N)
+ * for the compliance of the balancer centre to a force of the balls turning with the shaft (the
+ * forward synchronous receptance of the rotor-housing at the balancer plane, balls removed),
+ * a = m_b omega^4 / 2, q = |Q| / m_b in [0, 1).
+ *
+ * LIGHT BALLS (slow ball motion: the ball roots small against the rotor's roots, the distance of
+ * the roots of D and N from lambda = 0, and |omega|).  Near lambda = 0, D(lambda), N(lambda), P^4
+ * are frozen at lambda = 0 and Delta reduces to
+ *     (u - a G)(u - a conj G) = (q a)^2 |G|^2,   u = lambda^2 + kappa lambda,
+ * four ball roots.  They lie in the left half-plane iff (q < 1, kappa > 0)
+ *     (L1) Re G < 0                                   (the balancer runs "supercritical")
+ *     (L2) kappa^2 (-Re G) > a (Im^2 G - q^2 |G|^2)   (enough ball damping).
+ * (L1) is the pendulum's (7), (L2) contains its (8) (high speed, q = 0) and its corrected (9)
+ * (large support damping).  The rotor-housing's own roots (of D D*) move by O(m_b) and must stay
+ * stable too: their first-order shifts are part of the prediction (light support damping).
+ * Small parameter: the larger of eps_b = max_j c1 |u_j| / |2 lambda_j + kappa| over the ball roots,
+ * c1 = sum of 1/|root| over the roots of D D* and N N* plus 4/|omega| (a bound of the logarithmic
+ * derivative of a G P^4 near lambda = 0, which the approximation freezes), the relative error
+ * bound of each ball root, and eps_r = the largest shift of a rotor root relative to its distance
+ * from 0, -kappa and the other roots of D D*.  The prediction is "decided" when a predicted real
+ * part is >= its error or all are <= -error (ball root j: eps_bj |lambda_j|; rotor root k:
+ * eps_r |shift_k|).  Measured (docs/rotor.md): every decided prediction with small parameter
+ * <= 0.2 agreed with the exact verdict.
+ *
+ * HIGH SPEED (|omega| -> infinity, paper inertia, A != C): Re G omega^2 -> -(1/M + d^2/(A - C))
+ * and Im G omega^3 -> -(h/M^2 - 2 d h_c/(M (A - C)) + d^2 h_t/(A - C)^2), so (L1), (L2) become
+ *     (H1) (A - C)(A - C + M d^2) > 0,
+ *     (H2) kappa > kappa_inf = sqrt(m_b / (2 m_eff)) h_eff / m_eff,
+ *          m_eff = 1 / (1/M + d^2/(A - C)),  h_eff = m_eff^2 (h/M^2 - 2 d h_c/(M (A - C)) + d^2 h_t/(A - C)^2),
+ * the pendulum's (8) h > H sqrt(R_m) with the rotor's effective mass and damping at the balancer
+ * plane.  (H2) is the condition at q = 0 (the balls at right angles, m0 r0 = sqrt(2) m r for two
+ * identical balls), the most demanding unbalance: for q > 0 the bracket of (L2) turns negative as
+ * omega grows.  Small parameter: max(sqrt(m_b / (2 m_eff)), omega_max / |omega|), omega_max the
+ * highest natural frequency of the rotor-housing at rest, undamped.
+ *
+ * Units SI.  Conditions are "applicable" when their small parameter is at most
+ * AUTOBAL_ROTOR_ASYMPTOTIC_SMALL.
+ */
+#ifndef AUTOBAL_ROTOR_ASYMPTOTIC_H
+#define AUTOBAL_ROTOR_ASYMPTOTIC_H
+
+#include "autobal/export.h"
+#include "autobal/rotor_stability.h"
+#include "autobal/status.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* Applicability threshold of the small parameters (the pendulum's AUTOBAL_PENDULUM_ASYMPTOTIC_SMALL). */
+#define AUTOBAL_ROTOR_ASYMPTOTIC_SMALL 0.05
+
+typedef struct autobal_rotor_asymptotic {
+  /* light balls: (L1), (L2) */
+  double G_re, G_im;        /* m/N, G = N(0) / D(0) */
+  double kappa;             /* 1/s, the balls' common h_i / m_i */
+  double q;                 /* 1, |Q| / m_b */
+  double kappa_min;         /* 1/s, the smallest kappa with (L2): sqrt(a (Im^2 G - q^2 |G|^2) / (-Re G)),
+                               0 when the bracket is <= 0, NaN when Re G >= 0 */
+  int supercritical;        /* (L1): Re G < 0 */
+  double ball_re[4], ball_im[4]; /* 1/s, the four predicted ball roots */
+  double rotor_re[4], rotor_im[4]; /* 1/s, the four roots of D (the rotor-housing's, rotating
+                               coordinates) shifted to first order by the balls:
+                               lambda_k + (m_b / 2) P^4 N / ((lambda^2 + kappa lambda) D') at lambda_k
+                               (the other four of Delta are their conjugates) */
+  double rotor_re_max;      /* 1/s, the largest of rotor_re */
+  int light_stable;         /* (L1), (L2) and rotor_re_max < 0: predicts STABLE (all 12 roots) */
+  double light_small;       /* max(eps_b, eps_r), see above (1) */
+  int light_decided;        /* 1 when the prediction lies outside its error band (see above); 0: too
+                               close to the boundary to say */
+  int light_applicable;     /* light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+  /* high speed: (H1), (H2); defined only for paper inertia and A != C (high_defined) */
+  int high_defined;
+  double m_eff;             /* kg */
+  double h_eff;             /* kg/s (N s/m) */
+  double kappa_inf;         /* 1/s */
+  int high_stable;          /* (H1) and kappa > kappa_inf: predicts STABLE for every unbalance at high
+                               speed (with (H1) false: UNSTABLE at high speed for light balls, any kappa) */
+  double high_small;        /* max(sqrt(m_b / (2 m_eff)), omega_max / |omega|) */
+  int high_applicable;      /* high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+} autobal_rotor_asymptotic;
+
+/* The conditions above for the closed system c (autobal_rotor_stab_closed).  Returns
+ * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL, n_planes != 1, not isotropic, no closure, omega == 0,
+ * kappa <= 0: message in err; *out untouched), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (the roots of
+ * D D* or N N*).  Allocates two small polynomial workspaces per call. */
+AUTOBAL_API int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
+                                                    autobal_error *err);
+
+AUTOBAL_END_DECLS
+
+#endif

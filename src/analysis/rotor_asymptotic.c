@@ -1,0 +1,222 @@
+/* rotor_asymptotic.c: asymptotic stability conditions of the balanced motion of a rotor with one
+ * ball autobalancer (light balls; high speed), the rotor's analogues of the pendulum's (7)-(9)
+ * (autobal/rotor_asymptotic.h, docs/rotor.md "Asymptotic conditions", derivation in
+ * tools/derive/derive_asymptotic.py).
+ *
+ * Computed from the closed system's data (autobal_rotor_closed) alone, with its own small complex
+ * polynomial arithmetic: G = N(0) / D(0) at P = i omega, the quartic of the ball roots, the roots of
+ * D D* and N N* for the small parameter, and the high-speed closed forms.
+ *
+ * May use: the public headers (autobal/rotor_stability.h for the closed system's data,
+ * autobal/stability.h for polynomial roots) and core.  Calls no other analysis file. */
+#include "autobal/rotor_asymptotic.h"
+#include "autobal/stability.h"
+
+#include <complex.h>
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+typedef double complex cplx;
+
+/* r = a * b for ascending complex coefficient arrays (lengths na, nb; r has na + nb - 1). */
+static void cmul(const cplx *a, size_t na, const cplx *b, size_t nb, cplx *r) {
+  size_t i, j;
+  for (i = 0; i < na + nb - 1; i++) r[i] = 0;
+  for (i = 0; i < na; i++)
+    for (j = 0; j < nb; j++) r[i + j] += a[i] * b[j];
+}
+
+/* Roots (re, im; 2n - 2 of them) of the real polynomial X X* (X complex, ascending, length n <= 5). */
+static int roots_xx(const cplx *x, size_t n, double *re, double *im, autobal_error *err) {
+  cplx xc[5], pr[9];
+  double cr[9];
+  size_t i, len = 2 * n - 1;
+  autobal_poly_workspace *w;
+  int st;
+  for (i = 0; i < n; i++) xc[i] = conj(x[i]);
+  cmul(x, n, xc, n, pr);
+  for (i = 0; i < len; i++) cr[i] = creal(pr[i]); /* X X* is real: the imaginary parts cancel */
+  w = autobal_poly_workspace_alloc(len - 1);
+  if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "asymptotic conditions: out of memory");
+  st = autobal_poly_roots(w, cr, len, re, im, err);
+  autobal_poly_workspace_free(w);
+  return st;
+}
+
+/* x(z), ascending complex coefficients; conj_coef = 1 evaluates X* instead. */
+static cplx ceval(const cplx *x, size_t n, cplx z, int conj_coef) {
+  cplx v = 0;
+  while (n-- > 0) v = v * z + (conj_coef ? conj(x[n]) : x[n]);
+  return v;
+}
+
+int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
+                                        autobal_error *err) {
+  const autobal_rotor_closed_plane *pl;
+  const autobal_rotor_lumped *L;
+  autobal_rotor_asymptotic r;
+  double w, d, mb, ma, kap, a, q, lmax = 0.0;
+  cplx P[2], P2[3], K11[3], K12[3], K22[3], t1[5], t2[5], D[5], N[3], G, u[2];
+  size_t i;
+  int st;
+  if (c == NULL || out == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: NULL argument");
+  if (c->n_planes != 1 || !c->isotropic || !c->closure_ok)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: need one plane, isotropic supports and the closure (3.16) "
+                             "(n_planes %zu, isotropic %d, closure %d)",
+                             c->n_planes, c->isotropic, c->closure_ok);
+  pl = &c->plane[0];
+  L = &c->L;
+  w = c->omega;
+  d = pl->d;
+  mb = pl->mass;
+  ma = pl->m_add;
+  kap = pl->kappa;
+  if (!(w != 0.0) || !isfinite(w))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: omega = %g (must be non-zero)", w);
+  if (!(kap > 0.0) || !(mb > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: ball damping rate kappa = %g 1/s, ball mass %g kg (both must be > 0)",
+                             kap, mb);
+  memset(&r, 0, sizeof r);
+  r.kappa = kap;
+  q = hypot(pl->Q_re, pl->Q_im) / mb;
+  r.q = q;
+  /* the polynomials of Delta (autobal/rotor_stability.h), P = lambda + i omega */
+  P[0] = I * w;
+  P[1] = 1.0;
+  cmul(P, 2, P, 2, P2);
+  for (i = 0; i < 3; i++) {
+    K11[i] = (L->M + ma) * P2[i] + (i < 2 ? L->h_x * P[i] : 0.0) + (i == 0 ? L->c_x : 0.0);
+    K12[i] = -((i < 2 ? L->h_xbeta * P[i] : 0.0) + (i == 0 ? L->c_xbeta : 0.0)) + ma * d * P2[i];
+    K22[i] = (L->A + ma * d * d) * P2[i] + (i < 2 ? (L->h_alpha - I * L->C * w) * P[i] : 0.0) +
+             (i == 0 ? L->c_alpha : 0.0);
+  }
+  cmul(K11, 3, K22, 3, t1);
+  cmul(K12, 3, K12, 3, t2);
+  for (i = 0; i < 5; i++) D[i] = t1[i] - t2[i];
+  for (i = 0; i < 3; i++) N[i] = K22[i] - 2.0 * d * K12[i] + d * d * K11[i];
+  if (!(cabs(D[0]) > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: D(0) = 0 (an undamped resonance of the rotor-housing at omega = %g rad/s)",
+                             w);
+  G = N[0] / D[0];
+  r.G_re = creal(G);
+  r.G_im = cimag(G);
+  /* light balls: (u - a G)(u - a conj G) = (q a |G|)^2, u = lambda^2 + kappa lambda */
+  a = 0.5 * mb * w * w * w * w;
+  {
+    double Gre = creal(G), Gim = cimag(G), G2 = Gre * Gre + Gim * Gim;
+    double disc = q * q * G2 - Gim * Gim; /* (u - a Re G)^2 = a^2 disc */
+    double br = Gim * Gim - q * q * G2;   /* the bracket of (L2) */
+    cplx sq = csqrt((cplx)disc);
+    u[0] = a * (Gre + sq);
+    u[1] = a * (Gre - sq);
+    r.supercritical = Gre < 0.0;
+    if (Gre < 0.0) r.kappa_min = br > 0.0 ? sqrt(a * br / (-Gre)) : 0.0;
+    else r.kappa_min = NAN;
+    r.light_stable = Gre < 0.0 && kap * kap * (-Gre) > a * br && q < 1.0;
+    for (i = 0; i < 2; i++) {
+      cplx s = csqrt(kap * kap + 4.0 * u[i]);
+      cplx l1 = 0.5 * (-kap + s), l2 = 0.5 * (-kap - s);
+      r.ball_re[2 * i] = creal(l1), r.ball_im[2 * i] = cimag(l1);
+      r.ball_re[2 * i + 1] = creal(l2), r.ball_im[2 * i + 1] = cimag(l2);
+      lmax = fmax(lmax, fmax(cabs(l1), cabs(l2)));
+    }
+  }
+  {
+    /* the rotor-housing's roots: the 4 roots of D among the 8 of D D*, shifted to first order in
+     * the balls, delta_k = (m_b / 2) P^4 N / ((lambda^2 + kappa lambda) D') at lambda_k; their
+     * small parameter |delta_k| / (distance of lambda_k from 0, -kappa and the other roots) */
+    double dre[8], dim_[8], nre[4], nim[4], ratio[8], eps_b, eps_r = 0.0, lre = -INFINITY, c1;
+    cplx Dd[4];
+    size_t j, k, pick[8];
+    int dec_unstable = 0, dec_stable = 1;
+    if ((st = roots_xx(D, 5, dre, dim_, err)) != 0) return st;
+    if ((st = roots_xx(N, 3, nre, nim, err)) != 0) return st;
+    for (j = 0; j < 4; j++) Dd[j] = (double)(j + 1) * D[j + 1];
+    for (j = 0; j < 8; j++) {
+      cplx z = dre[j] + I * dim_[j];
+      double a1 = cabs(ceval(D, 5, z, 0)), a2 = cabs(ceval(D, 5, z, 1));
+      ratio[j] = a1 / fmax(a2, DBL_MIN);
+      pick[j] = j;
+    }
+    for (j = 1; j < 8; j++) /* the 4 smallest |D| / |D*| (insertion sort) */
+      for (k = j; k > 0 && ratio[pick[k]] < ratio[pick[k - 1]]; k--) {
+        size_t t = pick[k];
+        pick[k] = pick[k - 1], pick[k - 1] = t;
+      }
+    for (j = 0; j < 4; j++) {
+      size_t m = pick[j];
+      cplx lk = dre[m] + I * dim_[m], Pk = lk + I * w, P4 = Pk * Pk * Pk * Pk, dl, nl;
+      double sep = fmin(cabs(lk), cabs(lk + kap));
+      for (k = 0; k < 8; k++)
+        if (k != m) sep = fmin(sep, hypot(dre[k] - dre[m], dim_[k] - dim_[m]));
+      dl = 0.5 * mb * P4 * ceval(N, 3, lk, 0) / ((lk * lk + kap * lk) * ceval(Dd, 4, lk, 0));
+      nl = lk + dl;
+      r.rotor_re[j] = creal(nl), r.rotor_im[j] = cimag(nl);
+      eps_r = fmax(eps_r, sep > 0.0 ? cabs(dl) / sep : INFINITY);
+      lre = fmax(lre, creal(nl));
+    }
+    /* the ball roots' error: freezing a G P^4 at lambda = 0 changes u_j by at most |u_j| |lambda_j| c1,
+     * c1 = sum 1/|root| over D D* and N N* plus 4/|omega| (a bound of |d log(a G P^4)/d lambda| near 0),
+     * so lambda_j by e_j = c1 |lambda_j| |u_j| / |2 lambda_j + kappa|: relative c1 |u_j| / |2 lambda_j + kappa| */
+    c1 = 4.0 / fabs(w);
+    for (k = 0; k < 8; k++) c1 += 1.0 / hypot(dre[k], dim_[k]);
+    for (k = 0; k < 4; k++) c1 += 1.0 / hypot(nre[k], nim[k]);
+    eps_b = 0.0;
+    /* decided: some predicted real part >= its error (UNSTABLE) or all <= -error (STABLE); rotor root
+     * k: error eps_r |shift_k| */
+    for (j = 0; j < 8; j++) {
+      double re, e;
+      if (j < 4) {
+        cplx lj = r.ball_re[j] + I * r.ball_im[j];
+        double rel = c1 * cabs(u[j / 2]) / cabs(2.0 * lj + kap);
+        eps_b = fmax(eps_b, rel);
+        re = r.ball_re[j];
+        e = rel * cabs(lj);
+      } else {
+        cplx dl = (r.rotor_re[j - 4] + I * r.rotor_im[j - 4]) - (dre[pick[j - 4]] + I * dim_[pick[j - 4]]);
+        re = r.rotor_re[j - 4];
+        e = eps_r * cabs(dl);
+      }
+      if (re >= e) dec_unstable = 1;
+      if (!(re <= -e)) dec_stable = 0;
+    }
+    r.rotor_re_max = lre;
+    r.light_stable = r.light_stable && lre < 0.0;
+    r.light_small = fmax(eps_b, eps_r);
+    r.light_decided = dec_unstable || dec_stable;
+    r.light_applicable = r.light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+  }
+  /* high speed: paper inertia, A != C */
+  r.high_defined = ma == 0.0 && L->A != L->C;
+  if (r.high_defined) {
+    double M = L->M, Ap = L->A - L->C, ginf = 1.0 / M + d * d / Ap;
+    double eta = L->h_x / (M * M) - 2.0 * d * L->h_xbeta / (M * Ap) + d * d * L->h_alpha / (Ap * Ap);
+    /* highest undamped natural frequency at rest: eigenvalues of diag(M, A)^-1 [[c, -c_c], [-c_c, c_t]] */
+    double tr = L->c_x / M + L->c_alpha / L->A;
+    double det = (L->c_x * L->c_alpha - L->c_xbeta * L->c_xbeta) / (M * L->A);
+    double wmax = sqrt(fmax(0.0, 0.5 * (tr + sqrt(fmax(0.0, tr * tr - 4.0 * det)))));
+    r.m_eff = 1.0 / ginf;
+    r.h_eff = eta / (ginf * ginf);
+    if (ginf > 0.0) {
+      r.kappa_inf = sqrt(0.5 * mb * ginf) * eta / ginf;
+      r.high_stable = kap > r.kappa_inf;
+      r.high_small = fmax(sqrt(0.5 * mb * ginf), wmax / fabs(w));
+    } else { /* (H1) fails: Re G > 0 at high speed */
+      r.kappa_inf = NAN;
+      r.high_stable = 0;
+      r.high_small = fmax(sqrt(0.5 * mb * fabs(ginf)), wmax / fabs(w));
+    }
+    r.high_applicable = r.high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+  } else {
+    r.m_eff = r.h_eff = r.kappa_inf = r.high_small = NAN;
+  }
+  *out = r;
+  return AUTOBAL_SUCCESS;
+}

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# rotor stability: the asymptotic conditions reported beside the exact verdict (docs/rotor.md
+# "Asymptotic conditions"): console lines, JSON field `asymptotic`, archive group
+# /rotor/stability/asymptotic with units, each recomputed with NumPy (rotor_asymptotic_check.py):
+#  (a) the default rotor at 500 rad/s (balls too heavy: not applicable, undecided);
+#  (b) light balls (5e-6 kg) below the first resonance, 100 rad/s: predicted and exactly UNSTABLE;
+#  (c) light balls (5e-7 kg) at 2000 rad/s, balls at right angles (q = 0), ball damping below and above kappa_min;
+#  (d) a disk-like rotor (C > A, 0 < C - A < M d^2): (H1) fails, high speed predicts UNSTABLE;
+#  (e) two planes: no asymptotic conditions (nothing printed or written).
+set -u
+: "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+. "$(dirname "$0")/common.bash"
+
+one() { # name omega d m hb m0 [C]: run console, JSON and archive, then the NumPy check
+  local name=$1 w=$2 d=$3 m=$4 hb=$5 m0=$6 C=${7:-0.03}
+  printf '[rotor]\nomega = %s\nC_p = %s\n[plane1]\nd = %s\nball_mass = %s, %s\nball_damping = %s, %s\nm0 = %s\n[stability]\ncritical_speeds = false\n' \
+    "$w" "$C" "$d" "$m" "$m" "$hb" "$hb" "$m0" > "$name.ini"
+  expect 0 "asymptotic conditions (for comparison only" "$AUTOBAL" rotor stability "$name.ini"
+  cp out.txt "$name.txt"
+  "$AUTOBAL" rotor stability "$name.ini" --json > "$name.json" 2>err.txt || bad "$name: json run"
+  "$AUTOBAL" rotor stability "$name.ini" -o "$name.h5" > /dev/null 2>err.txt || bad "$name: archive run"
+  if "$PY" "$here/rotor_asymptotic_check.py" "$name.json" "$name.h5" "$w" "$d" "$m" "$hb" "$m0" "$C" > chk.txt 2>&1; then
+    ok "$name: NumPy check ($(grep -c '^ok' chk.txt) checks)"
+  else
+    bad "$name: NumPy check"; cat chk.txt
+  fi
+}
+verdict_of() { "$PY" -c 'import json,sys; j=json.load(open(sys.argv[1])); print(j["verdict"], j["asymptotic"][sys.argv[2]], j["asymptotic"]["light_decided"], j["asymptotic"]["light_applicable"])' "$1" "$2"; }
+
+one default 500 0.1 0.05 0.1 0.02
+grep -q "predicts STABLE (undecided" default.txt && ok "default: light balls undecided (small parameter > 1)" || { bad "default: console line"; cat default.txt; }
+
+one sub 100 0.1 5e-6 1e-5 2e-6
+read -r v p dec app < <(verdict_of sub.json light_predicts_stable)
+[ "$v $p $dec $app" = "unstable False True True" ] && ok "100 rad/s, light balls: exactly unstable, predicted UNSTABLE, decided, applicable" || bad "100 rad/s: $v $p $dec $app"
+grep -q "predicts UNSTABLE; small parameter" sub.txt && ok "console: predicts UNSTABLE" || { bad "console 100 rad/s"; cat sub.txt; }
+
+# q = 0: m0 r0 = sqrt(2) m r; kappa_min at 2000 rad/s is 0.0124 1/s for balls of 5e-7 kg (NumPy check above)
+m0q=$("$PY" -c 'print(2**0.5 * 5e-7 * 0.1 / 0.1)')
+one lowdamp 2000 0.1 5e-7 4e-9 "$m0q"
+read -r v p dec app < <(verdict_of lowdamp.json light_predicts_stable)
+[ "$v $p $dec $app" = "unstable False True True" ] && ok "2000 rad/s, q = 0, kappa = 0.008 < kappa_min: unstable, predicted UNSTABLE" || bad "lowdamp: $v $p $dec $app"
+one highdamp 2000 0.1 5e-7 1e-8 "$m0q"
+read -r v p dec app < <(verdict_of highdamp.json light_predicts_stable)
+[ "$v $p $dec $app" = "stable True True True" ] && ok "2000 rad/s, q = 0, kappa = 0.02 > kappa_min: stable, predicted STABLE" || bad "highdamp: $v $p $dec $app"
+
+one disk 5000 0.1 5e-5 5e-4 2e-5 0.2
+read -r v p dec app < <(verdict_of disk.json high_predicts_stable)
+[ "$v $p" = "unstable False" ] && ok "disk-like rotor (C - A = 0.04 < M d^2 = 0.1), 5000 rad/s: unstable, high speed predicts UNSTABLE" || bad "disk: $v $p"
+grep -q "UNSTABLE for every unbalance" disk.txt && ok "console: UNSTABLE for every unbalance" || { bad "console disk"; cat disk.txt; }
+
+expect 0 "" "$AUTOBAL" rotor stability "$DATA/rotor_two_planes.ini" --set stability.critical_speeds=false
+grep -q "asymptotic" out.txt && bad "two planes: asymptotic conditions printed" || ok "two planes: no asymptotic conditions"
+finish
