@@ -130,7 +130,8 @@ AUTOBAL_API double autobal_balance_grade_class(double G);
  * absolute angles (|phi| ~ omega t, thousands of rad) carry a rounding of ulp(phi) ~ 5e-13 rad at
  * every step, which below rtol ~ 1e-11 sets the step count (growing ~4x per decade of rtol
  * instead of 10^(1/8)) and the accuracy (docs/rotor.md, "How the ball angles are integrated").
- * At rtol >= 1e-10 the fixed frame integrates the absolute angles as before (bit for bit). */
+ * At rtol >= 1e-10 the fixed frame integrates the absolute angles as before (bit for bit; a tight
+ * atol there still meets the rounding, see the documentation). */
 #define AUTOBAL_STUDY_ROTOR_RELATIVE_RTOL 1e-10
 
 /* Options of a rotor transient (`autobal rotor transient`, section [transient]
