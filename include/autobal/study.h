@@ -103,6 +103,17 @@ AUTOBAL_API double autobal_balance_grade_class(double G);
 
 /* ---- rotor transient ---------------------------------------------------------- */
 
+/* Tolerances tighter than this (rtol < 1e-10, the default rtol) integrate a FIXED-frame rotor
+ * transient with the ball angles relative to the rotor angle phi_0(t) (the rotating-frame state
+ * and right-hand side, autobal_rotor_rhs_rotating), and the fixed-frame state is reconstructed at
+ * every output as phi = phi_0(t) + psi, phi' = Omega + psi' (autobal_rotor_convert_state): the
+ * absolute angles (|phi| ~ omega t, thousands of rad) carry a rounding of ulp(phi) ~ 5e-13 rad at
+ * every step, which below rtol ~ 1e-11 sets the step count (growing ~4x per decade of rtol
+ * instead of 10^(1/8)) and the accuracy (docs/rotor.md, "How the ball angles are integrated").
+ * At rtol >= 1e-10 the fixed frame integrates the absolute angles as before (bit for bit; a tight
+ * atol there still meets the rounding, see the documentation). */
+#define AUTOBAL_STUDY_ROTOR_RELATIVE_RTOL 1e-10
+
 /* Options of a rotor transient (`autobal rotor transient`, section [transient]
  * and [balance] of its configuration).  With a prescribed speed profile
  * (autobal_rotor_params.drive a ramp or table), omega below is the largest |Omega|
@@ -119,7 +130,9 @@ typedef struct autobal_study_rotor_transient_options {
   const char *stepper;  /* GSL stepper name (autobal_transient_stepper_names()); NULL:
                            "rk8pd"; the string is only read during the call            */
   int frame;            /* AUTOBAL_ROTOR_FIXED or AUTOBAL_ROTOR_ROTATING: the frame of
-                           the integrated ball angles                           (default FIXED) */
+                           the ball angles in the outputs (state datasets, state_final);
+                           FIXED with rtol < AUTOBAL_STUDY_ROTOR_RELATIVE_RTOL is integrated
+                           with the angles relative to the rotor (see there)    (default FIXED) */
   double balance_tol;   /* the rotor counts as balanced when the largest relative
                            residual unbalance |s_j|/(m_j0 r_j0) of the planes stays below
                            this (autobal_rotor_balance_monitor), > 0             (default 0.01) */

@@ -117,6 +117,14 @@ static int check_options(const autobal_study_rotor_transient_options *o, double 
   return AUTOBAL_SUCCESS;
 }
 
+/* The frame the run integrates in: o->frame, except FIXED at rtol < AUTOBAL_STUDY_ROTOR_RELATIVE_RTOL,
+ * which integrates the ball angles relative to the rotor (the rotating frame) and gives the
+ * fixed-frame state at the outputs (include/autobal/study.h). */
+static int integration_frame(const autobal_study_rotor_transient_options *o) {
+  return o->frame == AUTOBAL_ROTOR_FIXED && o->rtol < AUTOBAL_STUDY_ROTOR_RELATIVE_RTOL ? AUTOBAL_ROTOR_ROTATING
+                                                                                        : o->frame;
+}
+
 /* Model, driver and initial state; on failure nothing is left allocated.  Returns
  * AUTOBAL_SUCCESS or AUTOBAL_WARNING (the model's warning in err) or a failure. */
 static int setup(const autobal_rotor_params *p, const autobal_study_rotor_transient_options *o, autobal_rotor **rot_out,
@@ -148,7 +156,7 @@ static int setup(const autobal_rotor_params *p, const autobal_study_rotor_transi
     autobal_rotor_free(rot);
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
   }
-  if ((st = autobal_rotor_initial_state(rot, o->frame, 0.0, y, autobal_rotor_dim(rot)))) {
+  if ((st = autobal_rotor_initial_state(rot, integration_frame(o), 0.0, y, autobal_rotor_dim(rot)))) {
     autobal_error_set(err, st, "%s", autobal_rotor_errmsg(rot));
     free(y);
     autobal_transient_free(tr);
@@ -163,7 +171,7 @@ static int setup(const autobal_rotor_params *p, const autobal_study_rotor_transi
     double *N = calloc(nb ? nb : 1, sizeof *N);
     size_t k, j, i;
     int bad = -1;
-    st = N ? autobal_rotor_normal_forces(rot, o->frame, 0.0, y, N, nb) : AUTOBAL_ENOMEM;
+    st = N ? autobal_rotor_normal_forces(rot, integration_frame(o), 0.0, y, N, nb) : AUTOBAL_ENOMEM;
     for (k = 0; st == AUTOBAL_SUCCESS && k < nb && bad < 0; k++)
       if (!(N[k] > 0)) bad = (int)k;
     if (st != AUTOBAL_SUCCESS || bad >= 0) {
@@ -212,7 +220,8 @@ _Static_assert(AUTOBAL_ROTOR_RHS_LEAVES_TRACK == AUTOBAL_TRANSIENT_RHS_REJECT,
 /* ---- the run -------------------------------------------------------------------------- */
 typedef struct run_ctx {
   autobal_rotor *rotor;
-  int frame;
+  int frame;     /* the frame of y, integrated (integration_frame) */
+  int out_frame; /* the frame of the state datasets (options.frame) */
   size_t dim, nout, ncols;
   double *row; /* one sample: state + outputs */
   autobal_archive_series *series;
@@ -259,7 +268,9 @@ static int observer(double t, const double y[], void *user) {
   run_ctx *r = user;
   double *out = r->row + r->dim;
   size_t j;
-  memcpy(r->row, y, r->dim * sizeof *y);
+  if (r->frame == r->out_frame) memcpy(r->row, y, r->dim * sizeof *y);
+  else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, t, y, r->row, r->dim) != AUTOBAL_SUCCESS)
+    return 1;
   if (autobal_rotor_outputs(r->rotor, r->frame, t, y, out, r->nout) != AUTOBAL_SUCCESS) return 1;
   if (!r->first_sample_done) {
     r->first_sample_done = 1;
@@ -408,6 +419,11 @@ static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const auto
   if (!st) st = autobal_archive_attr_double(a, g, "balance_revs", o->balance_revs, "1");
   if (!st) st = autobal_archive_attr_string(a, g, "stepper", o->stepper ? o->stepper : "rk8pd");
   if (!st) st = autobal_archive_attr_string(a, g, "frame", o->frame == AUTOBAL_ROTOR_FIXED ? "fixed" : "rotating");
+  /* a fixed-frame run at rtol < 1e-10 integrates the angles relative to the rotor (only then said) */
+  if (!st && integration_frame(o) != o->frame)
+    st = autobal_archive_attr_string(a, g, "frame_integrated",
+                                     "rotating: ball angles psi = phi - phi_0 integrated (rtol < 1e-10), the "
+                                     "state datasets phi = phi_0 + psi");
   /* the prescribed speed (only when not constant: the constant drive keeps the 0.1.0 layout) */
   if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
     st = autobal_archive_attr_string(a, g, "drive_mode", "ramp");
@@ -479,7 +495,7 @@ static int open_series(run_ctx *r, autobal_archive *a) {
   int st = AUTOBAL_SUCCESS;
   if (!names || !lnames || !np || !up || !lp) st = AUTOBAL_ENOMEM;
   for (k = 0; !st && k < r->dim; k++) {
-    const char *nm = state_name(k, nb, r->frame, names[k], sizeof names[k], &up[k], &lp[k]);
+    const char *nm = state_name(k, nb, r->out_frame, names[k], sizeof names[k], &up[k], &lp[k]);
     if (r->motor && k + 2 >= r->dim) { /* a motor's phi_0 and Omega: the state's last two entries */
       nm = k + 2 == r->dim ? "state_phi_0" : "state_Omega";
       up[k] = k + 2 == r->dim ? "rad" : "rad/s";
@@ -539,7 +555,7 @@ static void engineering_compute(autobal_study_rotor_transient_summary *s, const 
   for (j = 0; j < np; j++) {
     double s4[4], s0 = p->plane[j].m0 * p->plane[j].r0;
     s->residual_unbalance_abs_final[j] =
-        autobal_rotor_plane_unbalance(rot, j, o->frame, t, y, s4) == AUTOBAL_SUCCESS ? hypot(s4[0], s4[1]) : NAN;
+        autobal_rotor_plane_unbalance(rot, j, r->frame, t, y, s4) == AUTOBAL_SUCCESS ? hypot(s4[0], s4[1]) : NAN;
     s->residual_unbalance_rel_final[j] = s0 > 0 ? s->residual_unbalance_abs_final[j] / s0 : NAN;
     if (!(s->residual_unbalance_abs_final[j] <= worst)) worst = s->residual_unbalance_abs_final[j];
   }
@@ -641,7 +657,8 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   }
   rp = autobal_rotor_get_params(rot);
   r.rotor = rot;
-  r.frame = o->frame;
+  r.frame = integration_frame(o);
+  r.out_frame = o->frame;
   r.progress = o->progress;
   r.progress_user = o->progress_user;
   r.dim = autobal_rotor_dim(rot);
@@ -682,7 +699,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
       goto done;
     }
   }
-  sys.rhs = o->frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating;
+  sys.rhs = r.frame == AUTOBAL_ROTOR_FIXED ? autobal_rotor_rhs : autobal_rotor_rhs_rotating;
   sys.jac = NULL;
   sys.dim = r.dim;
   sys.params = rot;
@@ -694,11 +711,11 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     rc = autobal_error_set(err, ev, "%s", autobal_transient_errmsg(tr));
     goto done;
   }
-  if ((st = study_friction_begin(rot, o->frame, tr, 0.0, y, &fric, &e))) { /* EXACT law: stick-slip events */
+  if ((st = study_friction_begin(rot, r.frame, tr, 0.0, y, &fric, &e))) { /* EXACT law: stick-slip events */
     rc = autobal_error_set(err, st, "%s", e.message);
     goto done;
   }
-  if ((st = study_contact_begin(rot, o->frame, tr, 0.0, y, fric, &cont, &e))) { /* contact: impact events */
+  if ((st = study_contact_begin(rot, r.frame, tr, 0.0, y, fric, &cont, &e))) { /* contact: impact events */
     rc = autobal_error_set(err, st, "%s", e.message);
     goto done;
   }
@@ -722,7 +739,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   if (s->balanced) s->time_to_balance = hit.t_start;
   s->t_reached = t_reached;
   s->residual_unbalance_initial = r.s_rel_initial;
-  s->residual_unbalance_final = autobal_rotor_balance_monitor(rot, o->frame, t_reached, y);
+  s->residual_unbalance_final = autobal_rotor_balance_monitor(rot, r.frame, t_reached, y);
   s->amplitude_first_10pct_max = r.amp_first;
   s->amplitude_last_10pct_max = r.amp_last;
   s->amplitude_max = r.max_amp;
@@ -753,7 +770,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
       size_t k = autobal_rotor_ball_index(rot, j, i);
       double dv[3], ang;
       (void)autobal_rotor_spin(rot, t_reached, y, dv); /* dv[1] = phi_0 (omega t for a constant speed) */
-      ang = o->frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - dv[1] : y[8 + k];
+      ang = r.frame == AUTOBAL_ROTOR_FIXED ? y[8 + k] - dv[1] : y[8 + k];
       s->ball_psi_final[j][i] = remainder(ang, TWO_PI);
     }
     /* the balanced configuration (3.14), where it exists */
@@ -775,8 +792,11 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   s->state_axial = rp->axial != 0;
   s->state_motor = r.motor;
   s->state_final = malloc(r.dim * sizeof(double));
-  if (s->state_final) memcpy(s->state_final, y, r.dim * sizeof(double));
-  else if (rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+  if (s->state_final) { /* in options.frame: phi = phi_0 + psi when integrated relative */
+    if (autobal_rotor_convert_state(rot, r.frame, o->frame, t_reached, y, s->state_final, r.dim) != AUTOBAL_SUCCESS &&
+        rc == AUTOBAL_SUCCESS)
+      rc = autobal_error_set(err, AUTOBAL_EINVAL, "the final state could not be converted to the fixed frame");
+  } else if (rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
 
   if (a) {
     st = write_summary(a, s);
