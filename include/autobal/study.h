@@ -688,7 +688,7 @@ typedef struct autobal_study_pendulum_sweep_summary {
   size_t n_stable;
   size_t n_crit;            /* critical values found (<= AUTOBAL_STUDY_PENDULUM_MAX_CRIT) */
   double crit[AUTOBAL_STUDY_PENDULUM_MAX_CRIT];   /* where the verdict changes, ascending */
-  int crit_below[AUTOBAL_STUDY_PENDULUM_MAX_CRIT]; /* the verdicts just below and above */
+  int crit_below[AUTOBAL_STUDY_PENDULUM_MAX_CRIT]; /* the verdicts at the grid points below and above */
   int crit_above[AUTOBAL_STUDY_PENDULUM_MAX_CRIT];
   int crit_truncated;       /* 1: more changes on the grid than the list holds */
   size_t n_done;            /* grid points computed (n, or fewer after a cancellation) */

@@ -110,7 +110,7 @@ static int resolve_axis(int which, int param, double mn, double mx, size_t n, in
                         int *olog, autobal_error *err) {
   const char *key = autobal_pendulum_param_name(param);
   double dlo, dhi;
-  int dlog;
+  int dlog, st;
   if (key == NULL)
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: param%d = %d is not a pendulum parameter (allowed 0..%d)",
                              which, param, AUTOBAL_PENDULUM_NPARAM - 1);
@@ -119,6 +119,8 @@ static int resolve_axis(int which, int param, double mn, double mx, size_t n, in
   if (isnan(mx)) mx = legacy ? leg_max : dhi;
   if (n == 0) n = legacy ? leg_n : 200;
   if (lg < 0) lg = dlog && mn > 0.0;
+  if ((st = autobal_pendulum_param_check(param, mn, err)) != 0) return st;
+  if ((st = autobal_pendulum_param_check(param, mx, err)) != 0) return st;
   if (!(mn <= mx) || !isfinite(mn) || !isfinite(mx))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: axis %d (pendulum.%s): need min%d <= max%d, got %g, %g",
                              which, key, which, which, mn, mx);
@@ -490,9 +492,11 @@ int autobal_study_pendulum_sweep(const autobal_pendulum_params *p, const autobal
     }
     if ((st = autobal_pendulum_grid_critical(&spec, s->values[i], s->values[i + 1], lg, o->xtol_rel, &x, &vl, &vh, err)))
       return st;
+    (void)vl, (void)vh; /* the ends of the final bracket may be MARGINAL (within the rounding
+                          bounds of the sign test): the kinds are the grid neighbours' verdicts */
     s->crit[s->n_crit] = x;
-    s->crit_below[s->n_crit] = vl;
-    s->crit_above[s->n_crit] = vh;
+    s->crit_below[s->n_crit] = s->verdict[i];
+    s->crit_above[s->n_crit] = s->verdict[i + 1];
     s->n_crit++;
     if (o->progress && o->progress(0.5 + 0.5 * (double)(i + 1) / (double)n, o->progress_user)) s->cancelled = 1;
   }
