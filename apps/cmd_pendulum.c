@@ -483,7 +483,8 @@ static int read_convention(cli_ctx *ctx, const char *section, int *paper) {
 }
 
 /* One axis of the map: min<i>, max<i>, n<i>, log<i>; on the default axes (R_m rows, R_w columns)
- * the former keys Rm_min, Rm_max, n_Rm (Rw_min, Rw_max, n_Rw) give the defaults of those. */
+ * the former keys Rm_min, Rm_max, n_Rm (Rw_min, Rw_max, n_Rw) give the range, and min<i>, max<i>,
+ * n<i>, read only when given, take precedence over them. */
 static int read_map_axis(cli_ctx *ctx, int which, int param, double leg_min, double leg_max, long leg_n,
                          double *mn, double *mx, size_t *n, int *lg) {
   char kmin[8], kmax[8], kn[8], klog[8];
@@ -492,25 +493,30 @@ static int read_map_axis(cli_ctx *ctx, int which, int param, double leg_min, dou
   int legacy = param == (which == 1 ? AUTOBAL_PENDULUM_PARAM_R_M : AUTOBAL_PENDULUM_PARAM_R_W), rc, scale;
   double dlo, dhi, a, b;
   long nn;
-  int pa, pb, pn, qa = 0, qb = 0, qn = 0;
+  int pa, pb, pn;
   snprintf(kmin, sizeof kmin, "min%d", which);
   snprintf(kmax, sizeof kmax, "max%d", which);
   snprintf(kn, sizeof kn, "n%d", which);
   snprintf(klog, sizeof klog, "log%d", which);
   autobal_study_pendulum_param_range(param, &dlo, &dhi, NULL);
   if (legacy) {
-    if ((rc = cli_get_double(ctx, "map", lmin, leg_min, &dlo, &qa))) return rc;
-    if ((rc = cli_get_double(ctx, "map", lmax, leg_max, &dhi, &qb))) return rc;
-    if ((rc = cli_get_int(ctx, "map", ln, leg_n, &leg_n, &qn))) return rc;
+    if ((rc = cli_get_double(ctx, "map", lmin, leg_min, &dlo, NULL))) return rc;
+    if ((rc = cli_get_double(ctx, "map", lmax, leg_max, &dhi, NULL))) return rc;
+    if ((rc = cli_get_int(ctx, "map", ln, leg_n, &leg_n, NULL))) return rc;
   } else {
     leg_n = 200;
   }
-  if ((rc = cli_get_double(ctx, "map", kmin, dlo, &a, &pa))) return rc;
-  if ((rc = cli_get_double(ctx, "map", kmax, dhi, &b, &pb))) return rc;
-  if ((rc = cli_get_int(ctx, "map", kn, leg_n, &nn, &pn))) return rc;
-  if ((qa && pa && a != dlo) || (qb && pb && b != dhi) || (qn && pn && nn != leg_n))
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: axis %d is R_%s: give %s/%s/%s or %s/%s/%s, not both with different values",
-                    which, which == 1 ? "m" : "w", lmin, lmax, ln, kmin, kmax, kn);
+  /* on a default axis the former keys are the recorded ones; min<i>/max<i>/n<i> are read only
+   * when given (so that an edited Rm_min in an archive's effective configuration counts) */
+  a = dlo, b = dhi, nn = leg_n, pa = pb = pn = 0;
+  if ((!legacy || cli_config_has_key(ctx->cfg, "map", kmin)) &&
+      (rc = cli_get_double(ctx, "map", kmin, dlo, &a, &pa)))
+    return rc;
+  if ((!legacy || cli_config_has_key(ctx->cfg, "map", kmax)) &&
+      (rc = cli_get_double(ctx, "map", kmax, dhi, &b, &pb)))
+    return rc;
+  if ((!legacy || cli_config_has_key(ctx->cfg, "map", kn)) && (rc = cli_get_int(ctx, "map", kn, leg_n, &nn, &pn)))
+    return rc;
   if ((rc = read_scale(ctx, "map", klog, &scale))) return rc;
   if (nn < 1 || nn > 100000)
     return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: %s = %ld is out of range: allowed [1, 100000]", pn ? kn : ln, nn);

@@ -93,9 +93,9 @@
   "Stability map of the main motion, eq. (4) in docs/pendulum.md, over a grid of any two of the\n"      \
   "parameters R_w, R_m, H, h, k, psi0 and the ratio H/h (default (R_m, R_w)): for one k, or for every\n"  \
   "unbalance (stable for all k of a set in [0, 1]).  Damped: Routh-Hurwitz sign test on eq. (6) in\n"   \
-  "docs/pendulum.md; undamped (H = h = 0): the exact criterion of eq. (10) as 'pendulum roots' uses it\n" \
-  "(roots on the imaginary axis and semisimple), or with convention = paper the paper's first\n"       \
-  "approximation (all roots of eq. (10) real and <= 0).  An undamped map carries the note on the\n"     \
+  "docs/pendulum.md; undamped (H = h = 0): the exact criterion of eq. (10) in docs/pendulum.md as\n"   \
+  "'pendulum roots' uses it (roots on the imaginary axis and semisimple), or with convention = paper\n" \
+  "the first approximation (all roots x real and <= 0).  An undamped map carries the note on the\n"    \
   "small-damping limit (docs/pendulum.md).  OpenMP-parallel.\n\n"                                       \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\n[map]\n"                                                                                            \
@@ -103,7 +103,7 @@
   "  min1 max1 n1 log1, min2 max2 n2 log2   their ranges, points (<= 1e5), scale auto|log|linear\n"      \
   "      (defaults: R_w 0.05..5, R_m 0.005..0.495, H and h 1e-4..1 log, k 0..1, psi0 0..pi/4,\n"       \
   "       H/h 0.01..100 log; 200 points)\n"                                                            \
-  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     the same for an R_m axis 1 (former keys)\n"          \
+  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     the range of an R_m axis 1 (min1 ... take precedence)\n" \
   "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     the same for an R_w axis 2 (former keys)\n"          \
   "      H/h axis: H = (H/h) h with h held at pendulum.h (or h from the other axis);\n"              \
   "      with H on the other axis, h = H / (H/h)\n"                                                    \

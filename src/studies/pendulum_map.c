@@ -83,14 +83,16 @@ void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_map_summary 
   s->verdict = NULL;
 }
 
-/* n values from lo to hi, linear or logarithmic (the ends exact) */
+/* n values from lo to hi, linear (the expression of the former (R_m, R_w) grids, so that their
+ * archives rerun bit for bit) or logarithmic (the ends exact) */
 static void fill_axis(double *v, size_t n, double lo, double hi, int lg) {
   size_t i;
   for (i = 0; i < n; i++) {
-    double t = n == 1 ? 0.0 : (double)i / (double)(n - 1);
-    v[i] = lg ? exp(log(lo) + (log(hi) - log(lo)) * t) : lo + (hi - lo) * t;
+    if (n == 1) v[i] = lo;
+    else if (lg) v[i] = exp(log(lo) + (log(hi) - log(lo)) * ((double)i / (double)(n - 1)));
+    else v[i] = lo + (hi - lo) * (double)i / (double)(n - 1);
   }
-  if (n > 1) v[0] = lo, v[n - 1] = hi;
+  if (lg && n > 1) v[0] = lo, v[n - 1] = hi;
 }
 
 /* is H = h = 0 at every point of a grid over param1 (and param2, -1: none) at p */
