@@ -36,8 +36,8 @@
  * (0, NaN).
  *
  * Memory: the library allocates only in autobal_pendulum_workspace_alloc()
- * and (once per thread, up front) inside autobal_pendulum_map() when max_real
- * is requested; all other outputs are caller-owned structs or arrays of
+ * and (once per thread, up front) inside autobal_pendulum_map() and
+ * autobal_pendulum_grid() when max_real is requested; all other outputs are caller-owned structs or arrays of
  * documented size.
  * Threads: every function is reentrant; a workspace is used by one thread
  * at a time (one workspace per thread).

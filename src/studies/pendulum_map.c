@@ -106,16 +106,22 @@ static int all_undamped(const autobal_pendulum_params *p, int param1, int param2
   return p->H == 0.0 && p->h == 0.0;
 }
 
-/* resolve one axis of the options: range, points, scale; "options: ..." messages */
+/* resolve one axis of the options: range, points, scale; "options: ..." messages.  which = 1, 2:
+ * the map's axes (keys min1, max1, n1), 0: the sweep (min, max, n in [2, 1e7]) */
 static int resolve_axis(int which, int param, double mn, double mx, size_t n, int lg, double leg_min,
                         double leg_max, size_t leg_n, int legacy, double *omin, double *omax, size_t *on,
                         int *olog, autobal_error *err) {
   const char *key = autobal_pendulum_param_name(param);
+  char sfx[4] = "", what[48];
   double dlo, dhi;
   int dlog, st;
+  size_t nmin = which ? 1 : 2, nmax = which ? 100000 : 10000000;
+  if (which) snprintf(sfx, sizeof sfx, "%d", which);
   if (key == NULL)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: param%d = %d is not a pendulum parameter (allowed 0..%d)",
-                             which, param, AUTOBAL_PENDULUM_NPARAM - 1);
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: param%s = %d is not a pendulum parameter (allowed 0..%d)",
+                             sfx, param, AUTOBAL_PENDULUM_NPARAM - 1);
+  if (which) snprintf(what, sizeof what, "axis %d (pendulum.%s)", which, key);
+  else snprintf(what, sizeof what, "sweep of pendulum.%s", key);
   autobal_study_pendulum_param_range(param, &dlo, &dhi, &dlog);
   if (isnan(mn)) mn = legacy ? leg_min : dlo;
   if (isnan(mx)) mx = legacy ? leg_max : dhi;
@@ -123,18 +129,16 @@ static int resolve_axis(int which, int param, double mn, double mx, size_t n, in
   if (lg < 0) lg = dlog && mn > 0.0;
   if ((st = autobal_pendulum_param_check(param, mn, err)) != 0) return st;
   if ((st = autobal_pendulum_param_check(param, mx, err)) != 0) return st;
-  if (!(mn <= mx) || !isfinite(mn) || !isfinite(mx))
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: axis %d (pendulum.%s): need min%d <= max%d, got %g, %g",
-                             which, key, which, which, mn, mx);
+  if (!(which ? mn <= mx : mn < mx))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: %s: need min%s %s max%s, got %g, %g", what, sfx,
+                             which ? "<=" : "<", sfx, mn, mx);
   if (param == AUTOBAL_PENDULUM_PARAM_R_W && mx > 1e4)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: axis %d (pendulum.R_w): max%d = %g is too large: allowed <= 1e4",
-                             which, which, mx);
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: %s: max%s = %g is too large: allowed <= 1e4", what, sfx, mx);
   if (lg && !(mn > 0.0))
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: axis %d (pendulum.%s): a logarithmic axis needs min%d > 0, got %g",
-                             which, key, which, mn);
-  if (n < 1 || n > 100000)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: axis %d (pendulum.%s): n%d = %zu is out of range: allowed [1, 100000]",
-                             which, key, which, n);
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: %s: a logarithmic axis needs min%s > 0, got %g", what, sfx, mn);
+  if (n < nmin || n > nmax)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: %s: n%s = %zu is out of range: allowed [%zu, %zu]", what, sfx,
+                             n, nmin, nmax);
   *omin = mn, *omax = mx, *on = n, *olog = lg != 0;
   return AUTOBAL_SUCCESS;
 }
@@ -427,12 +431,8 @@ int autobal_study_pendulum_sweep(const autobal_pendulum_params *p, const autobal
   if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
   if (o->n < 2 || o->n > 10000000)
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: n = %zu is out of range: allowed [2, 1e7]", o->n);
-  if ((st = resolve_axis(1, o->param, o->min, o->max, o->n, o->log_scale, NAN, NAN, 0, 0, &mn, &mx, &n, &lg, err)))
+  if ((st = resolve_axis(0, o->param, o->min, o->max, o->n, o->log_scale, NAN, NAN, 0, 0, &mn, &mx, &n, &lg, err)))
     return st;
-  if (!(mn < mx))
-    return autobal_error_set(err, AUTOBAL_EINVAL, "options: sweep of pendulum.%s: need min < max, got %g, %g",
-                             autobal_pendulum_param_name(o->param), mn, mx);
-  n = o->n;
   if (o->every_unbalance && (o->n_k < 2 || o->n_k > 100000))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: n_k = %zu is out of range: allowed [2, 100000]", o->n_k);
   if (!(o->xtol_rel > 0 && o->xtol_rel < 0.1))
