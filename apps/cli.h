@@ -284,6 +284,7 @@ const char *cli_rotor_message(const char *msg, char *buf, size_t len);
 int cli_cmd_pendulum_roots(cli_ctx *ctx);
 int cli_cmd_pendulum_critical(cli_ctx *ctx);
 int cli_cmd_pendulum_map(cli_ctx *ctx);
+int cli_cmd_pendulum_sweep(cli_ctx *ctx);
 int cli_cmd_rotor_transient(cli_ctx *ctx);
 int cli_cmd_pendulum_transient(cli_ctx *ctx);
 int cli_cmd_rotor_stability(cli_ctx *ctx);

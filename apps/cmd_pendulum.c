@@ -1,4 +1,4 @@
-/* cmd_pendulum.c: `autobal pendulum roots|critical|map`. */
+/* cmd_pendulum.c: `autobal pendulum roots|critical|map|sweep`. */
 #define _POSIX_C_SOURCE 200809L
 #include <float.h>
 #include <math.h>
@@ -444,7 +444,86 @@ done:
   return rc;
 }
 
-/* ---- pendulum map: the library's study (autobal_study_pendulum_map) ------------------- */
+/* ---- pendulum map and sweep: the library's studies (autobal_study_pendulum_map, _sweep) ----- */
+
+/* A parameter key of [map] param1/param2 or [sweep] param: its AUTOBAL_PENDULUM_PARAM_* */
+static int read_param_key(cli_ctx *ctx, const char *section, const char *key, const char *def, int *param) {
+  const char *name;
+  int rc;
+  if ((rc = cli_get_string(ctx, section, key, def, &name, NULL))) return rc;
+  *param = autobal_pendulum_param_lookup(name);
+  if (*param < 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[%s]: %s = '%s' is not a pendulum parameter: allowed R_w, R_m, H, h, k, psi0, H/h", section, key,
+                    name);
+  return CLI_EXIT_OK;
+}
+
+/* "auto" (-1), "log" (1) or "linear" (0) */
+static int read_scale(cli_ctx *ctx, const char *section, const char *key, int *lg) {
+  const char *v;
+  int rc;
+  if ((rc = cli_get_string(ctx, section, key, "auto", &v, NULL))) return rc;
+  if (!strcmp(v, "auto")) *lg = -1;
+  else if (!strcmp(v, "log")) *lg = 1;
+  else if (!strcmp(v, "linear")) *lg = 0;
+  else return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: %s = '%s': allowed auto, log, linear", section, key, v);
+  return CLI_EXIT_OK;
+}
+
+/* "exact" (0) or "paper" (1) */
+static int read_convention(cli_ctx *ctx, const char *section, int *paper) {
+  const char *v;
+  int rc;
+  if ((rc = cli_get_string(ctx, section, "convention", "exact", &v, NULL))) return rc;
+  if (!strcmp(v, "exact")) *paper = 0;
+  else if (!strcmp(v, "paper")) *paper = 1;
+  else return cli_fail(ctx, CLI_EXIT_INPUT, "[%s]: convention = '%s': allowed exact, paper", section, v);
+  return CLI_EXIT_OK;
+}
+
+/* One axis of the map: min<i>, max<i>, n<i>, log<i>; on the default axes (R_m rows, R_w columns)
+ * the former keys Rm_min, Rm_max, n_Rm (Rw_min, Rw_max, n_Rw) give the range, and min<i>, max<i>,
+ * n<i>, read only when given, take precedence over them. */
+static int read_map_axis(cli_ctx *ctx, int which, int param, double leg_min, double leg_max, long leg_n,
+                         double *mn, double *mx, size_t *n, int *lg) {
+  char kmin[8], kmax[8], kn[8], klog[8];
+  const char *lmin = which == 1 ? "Rm_min" : "Rw_min", *lmax = which == 1 ? "Rm_max" : "Rw_max";
+  const char *ln = which == 1 ? "n_Rm" : "n_Rw";
+  int legacy = param == (which == 1 ? AUTOBAL_PENDULUM_PARAM_R_M : AUTOBAL_PENDULUM_PARAM_R_W), rc, scale;
+  double dlo, dhi, a, b;
+  long nn;
+  int pa, pb, pn;
+  snprintf(kmin, sizeof kmin, "min%d", which);
+  snprintf(kmax, sizeof kmax, "max%d", which);
+  snprintf(kn, sizeof kn, "n%d", which);
+  snprintf(klog, sizeof klog, "log%d", which);
+  autobal_study_pendulum_param_range(param, &dlo, &dhi, NULL);
+  if (legacy) {
+    if ((rc = cli_get_double(ctx, "map", lmin, leg_min, &dlo, NULL))) return rc;
+    if ((rc = cli_get_double(ctx, "map", lmax, leg_max, &dhi, NULL))) return rc;
+    if ((rc = cli_get_int(ctx, "map", ln, leg_n, &leg_n, NULL))) return rc;
+  } else {
+    leg_n = 200;
+  }
+  /* on a default axis the former keys are the recorded ones; min<i>/max<i>/n<i> are read only
+   * when given (so that an edited Rm_min in an archive's effective configuration counts) */
+  a = dlo, b = dhi, nn = leg_n, pa = pb = pn = 0;
+  if ((!legacy || cli_config_has_key(ctx->cfg, "map", kmin)) &&
+      (rc = cli_get_double(ctx, "map", kmin, dlo, &a, &pa)))
+    return rc;
+  if ((!legacy || cli_config_has_key(ctx->cfg, "map", kmax)) &&
+      (rc = cli_get_double(ctx, "map", kmax, dhi, &b, &pb)))
+    return rc;
+  if ((!legacy || cli_config_has_key(ctx->cfg, "map", kn)) && (rc = cli_get_int(ctx, "map", kn, leg_n, &nn, &pn)))
+    return rc;
+  if ((rc = read_scale(ctx, "map", klog, &scale))) return rc;
+  if (nn < 1 || nn > 100000)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: %s = %ld is out of range: allowed [1, 100000]", pn ? kn : ln, nn);
+  *mn = a, *mx = b, *n = (size_t)nn, *lg = scale;
+  return CLI_EXIT_OK;
+}
+
 int cli_cmd_pendulum_map(cli_ctx *ctx) {
   autobal_pendulum_params p;
   autobal_pendulum_physical phys;
@@ -452,47 +531,39 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
   autobal_study_pendulum_map_summary sum;
   autobal_archive *a = NULL;
   autobal_error err;
-  int physical = 0, rc, st, every = 0, want_max = 0, k_given = 0;
-  double rm_min, rm_max, rw_min, rw_max;
-  long n_rm, n_rw, n_k, threads;
+  int physical = 0, rc, st, every = 0, want_max = 0, k_given = 0, p1, p2, paper = 0;
+  long n_k, threads;
   size_t n;
+  const char *n1s, *n2s;
 
   memset(&sum, 0, sizeof sum);
   autobal_error_clear(&err);
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rm_min", o.Rm_min, &rm_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rm_max", o.Rm_max, &rm_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_Rm", (long)o.n_Rm, &n_rm, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rw_min", o.Rw_min, &rw_min, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "map", "Rw_max", o.Rw_max, &rw_max, NULL))) return rc;
-  if ((rc = cli_get_int(ctx, "map", "n_Rw", (long)o.n_Rw, &n_rw, NULL))) return rc;
+  if ((rc = read_param_key(ctx, "map", "param1", "R_m", &p1))) return rc;
+  if ((rc = read_param_key(ctx, "map", "param2", "R_w", &p2))) return rc;
+  if ((rc = read_map_axis(ctx, 1, p1, o.Rm_min, o.Rm_max, (long)o.n_Rm, &o.min1, &o.max1, &o.n1, &o.log1))) return rc;
+  if ((rc = read_map_axis(ctx, 2, p2, o.Rw_min, o.Rw_max, (long)o.n_Rw, &o.min2, &o.max2, &o.n2, &o.log2))) return rc;
   if ((rc = cli_get_bool(ctx, "map", "every_unbalance", o.every_unbalance, &every, NULL))) return rc;
   if ((rc = cli_get_int(ctx, "map", "n_k", (long)o.n_k, &n_k, &k_given))) return rc;
   if ((rc = cli_get_bool(ctx, "map", "max_real", o.max_real, &want_max, NULL))) return rc;
   if ((rc = cli_get_int(ctx, "map", "threads", o.threads, &threads, NULL))) return rc;
+  if ((rc = read_convention(ctx, "map", &paper))) return rc;
   if ((rc = cli_config_check_unused(ctx))) return rc;
-  if (!(rm_min > 0 && rm_min <= rm_max && rm_max < 0.5))
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 < Rm_min <= Rm_max < 0.5, got Rm_min = %g, Rm_max = %g", rm_min,
-                    rm_max);
-  if (!(rw_min >= 0 && rw_min <= rw_max && rw_max <= 1e4))
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: need 0 <= Rw_min <= Rw_max <= 1e4, got Rw_min = %g, Rw_max = %g",
-                    rw_min, rw_max);
-  if (n_rm < 1 || n_rm > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_Rm = %ld is out of range: allowed [1, 100000]", n_rm);
-  if (n_rw < 1 || n_rw > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_Rw = %ld is out of range: allowed [1, 100000]", n_rw);
+  if (p1 == p2)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: param1 and param2 are both '%s': give two different parameters",
+                    autobal_pendulum_param_name(p1));
   if (n_k < 2 || n_k > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k = %ld is out of range: allowed [2, 100000]", n_k);
   if (threads < 0 || threads > 1024) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: threads = %ld is out of range: allowed [0, 1024]", threads);
   if (k_given && !every) return cli_fail(ctx, CLI_EXIT_INPUT, "[map]: n_k is used only with every_unbalance = true");
-  o.Rm_min = rm_min;
-  o.Rm_max = rm_max;
-  o.n_Rm = (size_t)n_rm;
-  o.Rw_min = rw_min;
-  o.Rw_max = rw_max;
-  o.n_Rw = (size_t)n_rw;
+  o.param1 = p1, o.param2 = p2;
+  if (p1 == AUTOBAL_PENDULUM_PARAM_R_M) o.Rm_min = o.min1, o.Rm_max = o.max1, o.n_Rm = o.n1;
+  if (p2 == AUTOBAL_PENDULUM_PARAM_R_W) o.Rw_min = o.min2, o.Rw_max = o.max2, o.n_Rw = o.n2;
   o.every_unbalance = every;
   o.n_k = (size_t)n_k;
   o.max_real = want_max;
   o.threads = (int)threads;
-  n = (size_t)n_rm * (size_t)n_rw;
+  o.paper_convention = paper;
+  n = o.n1 * o.n2;
   o.progress = stop_requested;
   /* the map first, the archive afterwards: a failed computation leaves no file */
   st = autobal_study_pendulum_map(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
@@ -504,7 +575,7 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     goto done;
   }
   if (st) {
-    rc = cli_fail(ctx, cli_exit_code(st), "%s", err.message);
+    rc = cli_fail(ctx, cli_exit_code(st), st == AUTOBAL_EINVAL ? "[map]: %s" : "%s", err.message);
     goto done;
   }
   if ((rc = cli_archive_open(ctx, every ? "autobal pendulum map (every unbalance)" : "autobal pendulum map", &a)))
@@ -514,24 +585,141 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
     if (rc) goto done;
   }
+  n1s = autobal_pendulum_param_name(p1), n2s = autobal_pendulum_param_name(p2);
   if (ctx->json) {
     cli_json j;
     cli_json_summary_begin(&j, ctx);
     cli_json_bool(&j, "every_unbalance", every);
-    cli_json_int(&j, "n_Rm", n_rm);
-    cli_json_int(&j, "n_Rw", n_rw);
+    cli_json_string(&j, "axis1", n1s);
+    cli_json_string(&j, "axis2", n2s);
+    cli_json_string(&j, "axis1_scale", sum.log1 ? "log" : "linear");
+    cli_json_string(&j, "axis2_scale", sum.log2 ? "log" : "linear");
+    cli_json_string(&j, "convention", paper ? "paper" : "exact");
+    cli_json_int(&j, "n1", (long)sum.n_Rm);
+    cli_json_int(&j, "n2", (long)sum.n_Rw);
+    if (p1 == AUTOBAL_PENDULUM_PARAM_R_M && p2 == AUTOBAL_PENDULUM_PARAM_R_W) {
+      cli_json_int(&j, "n_Rm", (long)sum.n_Rm);
+      cli_json_int(&j, "n_Rw", (long)sum.n_Rw);
+    }
     cli_json_int(&j, "n_stable", (long)sum.n_stable);
     cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
+    if (sum.undamped) cli_json_string(&j, "note", autobal_study_pendulum_undamped_note());
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
-    printf("map %ld x %ld over R_m in [%g, %g], R_w in [%g, %g], %s\n", n_rm, n_rw, rm_min, rm_max, rw_min, rw_max,
-           every ? "stable for every k in the set" : "one k");
+    printf("map %zu x %zu over %s in [%g, %g]%s, %s in [%g, %g]%s, %s\n", sum.n_Rm, sum.n_Rw, n1s, sum.R_m[0],
+           sum.R_m[sum.n_Rm - 1], sum.log1 ? " (log)" : "", n2s, sum.R_w[0], sum.R_w[sum.n_Rw - 1],
+           sum.log2 ? " (log)" : "", every ? "stable for every k in the set" : "one k");
+    if (p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO || p2 == AUTOBAL_PENDULUM_PARAM_H_RATIO)
+      printf("axis H/h: %s\n", (p1 == AUTOBAL_PENDULUM_PARAM_H || p2 == AUTOBAL_PENDULUM_PARAM_H)
+                                   ? "h = H / (H/h), H from its axis"
+                                   : (p1 == AUTOBAL_PENDULUM_PARAM_HP || p2 == AUTOBAL_PENDULUM_PARAM_HP)
+                                         ? "H = (H/h) h, h from its axis"
+                                         : "H = (H/h) h, h held at pendulum.h");
     printf("stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
+    if (sum.undamped) printf("note (undamped%s): %s\n", paper ? ", paper's convention" : "", autobal_study_pendulum_undamped_note());
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
   rc = CLI_EXIT_OK;
 done:
   autobal_study_pendulum_map_summary_free(&sum);
+  return rc;
+}
+
+static int write_sweep(autobal_archive *a, const void *data) {
+  const pend_partial *pp = (const pend_partial *)data;
+  return autobal_study_pendulum_sweep_write(a, pp->p, pp->phys, pp->sum);
+}
+
+int cli_cmd_pendulum_sweep(cli_ctx *ctx) {
+  autobal_pendulum_params p;
+  autobal_pendulum_physical phys;
+  autobal_study_pendulum_sweep_options o = autobal_study_pendulum_sweep_options_default();
+  autobal_study_pendulum_sweep_summary sum;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  int physical = 0, rc, st, every = 0, k_given = 0, param, paper = 0, lg = -1;
+  long n, n_k;
+  double dlo, dhi, mn, mx, xtol;
+  size_t i;
+  const char *name;
+
+  memset(&sum, 0, sizeof sum);
+  autobal_error_clear(&err);
+  if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
+  if ((rc = read_param_key(ctx, "sweep", "param", "R_w", &param))) return rc;
+  autobal_study_pendulum_param_range(param, &dlo, &dhi, NULL);
+  if ((rc = cli_get_double(ctx, "sweep", "min", dlo, &mn, NULL))) return rc;
+  if ((rc = cli_get_double(ctx, "sweep", "max", dhi, &mx, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "sweep", "n", (long)o.n, &n, NULL))) return rc;
+  if ((rc = read_scale(ctx, "sweep", "log", &lg))) return rc;
+  if ((rc = cli_get_bool(ctx, "sweep", "every_unbalance", o.every_unbalance, &every, NULL))) return rc;
+  if ((rc = cli_get_int(ctx, "sweep", "n_k", (long)o.n_k, &n_k, &k_given))) return rc;
+  if ((rc = cli_get_double(ctx, "sweep", "xtol_rel", o.xtol_rel, &xtol, NULL))) return rc;
+  if ((rc = read_convention(ctx, "sweep", &paper))) return rc;
+  if ((rc = cli_config_check_unused(ctx))) return rc;
+  if (n < 2 || n > 10000000) return cli_fail(ctx, CLI_EXIT_INPUT, "[sweep]: n = %ld is out of range: allowed [2, 1e7]", n);
+  if (n_k < 2 || n_k > 100000) return cli_fail(ctx, CLI_EXIT_INPUT, "[sweep]: n_k = %ld is out of range: allowed [2, 100000]", n_k);
+  if (k_given && !every) return cli_fail(ctx, CLI_EXIT_INPUT, "[sweep]: n_k is used only with every_unbalance = true");
+  o.param = param, o.min = mn, o.max = mx, o.n = (size_t)n, o.log_scale = lg, o.every_unbalance = every;
+  o.n_k = (size_t)n_k, o.xtol_rel = xtol, o.paper_convention = paper;
+  o.progress = stop_requested;
+  st = autobal_study_pendulum_sweep(&p, physical ? &phys : NULL, &o, NULL, &sum, &err);
+  if (st == AUTOBAL_ECANCELLED) {
+    pend_partial pp;
+    pp.p = &p, pp.phys = physical ? &phys : NULL, pp.sum = &sum;
+    rc = finish_interrupted(ctx, "autobal pendulum sweep", err.message, write_sweep, &pp);
+    goto done;
+  }
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), st == AUTOBAL_EINVAL ? "[sweep]: %s" : "%s", err.message);
+    goto done;
+  }
+  if ((rc = cli_archive_open(ctx, "autobal pendulum sweep", &a))) goto done;
+  if (a) {
+    st = autobal_study_pendulum_sweep_write(a, &p, physical ? &phys : NULL, &sum);
+    rc = cli_archive_end(ctx, &a, st, CLI_EXIT_OK);
+    if (rc) goto done;
+  }
+  name = autobal_pendulum_param_name(param);
+  if (ctx->json) {
+    cli_json j;
+    const char *unit = autobal_pendulum_param_unit(param);
+    cli_json_summary_begin(&j, ctx);
+    cli_json_string(&j, "param", name);
+    cli_json_string(&j, "scale", sum.log_scale ? "log" : "linear");
+    cli_json_string(&j, "convention", paper ? "paper" : "exact");
+    cli_json_bool(&j, "every_unbalance", every);
+    cli_json_int(&j, "n", (long)sum.n);
+    cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)sum.n, "1");
+    cli_json_quantities(&j, "critical", sum.crit, sum.n_crit, unit);
+    cli_json_array(&j, "critical_below");
+    for (i = 0; i < sum.n_crit; i++) cli_json_int(&j, NULL, sum.crit_below[i]);
+    cli_json_array_end(&j);
+    cli_json_array(&j, "critical_above");
+    for (i = 0; i < sum.n_crit; i++) cli_json_int(&j, NULL, sum.crit_above[i]);
+    cli_json_array_end(&j);
+    cli_json_bool(&j, "critical_truncated", sum.crit_truncated);
+    if (sum.undamped) cli_json_string(&j, "note", autobal_study_pendulum_undamped_note());
+    cli_json_summary_end(&j, ctx);
+  } else if (!ctx->quiet) {
+    print_params(&p, &phys, physical);
+    printf("sweep of %s over [%g, %g]%s, %zu points, %s: stable at %zu (%.1f%%)\n", name, sum.min, sum.max,
+           sum.log_scale ? " (log)" : "", sum.n, every ? "stable for every k in the set" : "one k", sum.n_stable,
+           100.0 * (double)sum.n_stable / (double)sum.n);
+    if (param == AUTOBAL_PENDULUM_PARAM_H_RATIO) printf("axis H/h: H = (H/h) h, h held at pendulum.h\n");
+    printf("critical values of %s (verdict changes, bisection to %g relative):\n", name, xtol);
+    if (sum.n_crit == 0) printf("  (none on the grid)\n");
+    for (i = 0; i < sum.n_crit; i++)
+      printf("  %s = %.12g   %s -> %s\n", name, sum.crit[i], autobal_verdict_name(sum.crit_below[i]),
+             autobal_verdict_name(sum.crit_above[i]));
+    if (sum.crit_truncated) printf("  (TRUNCATED: more changes than the list holds)\n");
+    if (sum.undamped) printf("note (undamped%s): %s\n", paper ? ", paper's convention" : "", autobal_study_pendulum_undamped_note());
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+  rc = CLI_EXIT_OK;
+done:
+  autobal_study_pendulum_sweep_summary_free(&sum);
   return rc;
 }

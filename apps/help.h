@@ -90,19 +90,45 @@
   "\narchive: /pendulum/critical, /pendulum/critical/curves\n" HELP_DOCS_PENDULUM
 
 #define HELP_PENDULUM_MAP                                                                                \
-  "Stability map of the main motion, eq. (4) in docs/pendulum.md, over an (R_m, R_w) grid: for one k,\n" \
-  "or for every unbalance (stable for all k of a set in [0, 1]).  Damped: Routh-Hurwitz sign test on\n"  \
-  "eq. (6) in docs/pendulum.md; undamped (H = h = 0): all roots of eq. (10) in docs/pendulum.md real\n"  \
-  "and <= 0.  OpenMP-parallel.\n\n"                                                                      \
+  "Stability map of the main motion, eq. (4) in docs/pendulum.md, over a grid of any two of the\n"      \
+  "parameters R_w, R_m, H, h, k, psi0 and the ratio H/h (default (R_m, R_w)): for one k, or for every\n"  \
+  "unbalance (stable for all k of a set in [0, 1]).  Damped: Routh-Hurwitz sign test on eq. (6) in\n"   \
+  "docs/pendulum.md; undamped (H = h = 0): the exact criterion of eq. (10) in docs/pendulum.md as\n"   \
+  "'pendulum roots' uses it (roots on the imaginary axis and semisimple), or with convention = paper\n" \
+  "the first approximation (all roots x real and <= 0).  An undamped map carries the note on the\n"    \
+  "small-damping limit (docs/pendulum.md).  OpenMP-parallel.\n\n"                                       \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\n[map]\n"                                                                                            \
-  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     R_m axis\n"                                          \
-  "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     R_w axis\n"                                          \
-  "  every_unbalance = false   true: stable for all k in {j/(n_k-1)}, j = 0..n_k-1\n"                    \
+  "  param1 = R_m   param2 = R_w   the axes (rows, columns): R_w R_m H h k psi0 H/h\n"                    \
+  "  min1 max1 n1 log1, min2 max2 n2 log2   their ranges, points (<= 1e5), scale auto|log|linear\n"      \
+  "      (defaults: R_w 0.05..5, R_m 0.005..0.495, H and h 1e-4..1 log, k 0..1, psi0 0..pi/4,\n"       \
+  "       H/h 0.01..100 log; 200 points)\n"                                                            \
+  "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     the range of an R_m axis 1 (min1 ... take precedence)\n" \
+  "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     the same for an R_w axis 2 (former keys)\n"          \
+  "      H/h axis: H = (H/h) h with h held at pendulum.h (or h from the other axis);\n"              \
+  "      with H on the other axis, h = H / (H/h)\n"                                                    \
+  "  every_unbalance = false   true: stable for all k in {j/(n_k-1)}, j = 0..n_k-1 (not with a k axis)\n" \
   "  n_k = 65                  size of that k set (>= 2)\n"                                              \
+  "  convention = exact        undamped verdict: exact (as pendulum roots) | paper\n"                   \
   "  max_real = false          also store the largest real part of the roots (slower)\n"                 \
   "  threads = 0               OpenMP threads (0: default)\n"                                            \
-  "\narchive: /pendulum/map (verdict[R_m][R_w]: 1 stable, 0 marginal, -1 unstable)\n" HELP_DOCS_PENDULUM
+  "\narchive: /pendulum/map (verdict[axis1][axis2]: 1 stable, 0 marginal, -1 unstable; coordinates\n"    \
+  "named after the parameters, H/h as H_over_h; attributes axis1, axis2, axis*_scale, note)\n"           \
+  HELP_DOCS_PENDULUM
+
+#define HELP_PENDULUM_SWEEP                                                                              \
+  "Stability of the main motion, eq. (4) in docs/pendulum.md, along one parameter (R_w, R_m, H, h, k,\n" \
+  "psi0 or H/h), for one k or every unbalance, and its critical values: every change of the verdict\n"  \
+  "between neighbouring grid points, refined by bisection on the verdict.  Verdicts as in\n"           \
+  "'pendulum map'.  A window narrower than the grid step can be missed (for the undamped system\n"     \
+  "over R_w at one k, 'pendulum critical' is exact).\n\n"                                              \
+  HELP_PENDULUM_PARAMS                                                                                   \
+  "\n[sweep]\n"                                                                                          \
+  "  param = R_w         the swept parameter\n"                                                          \
+  "  min max            its range (defaults as in 'pendulum map')   n = 1000   log = auto|log|linear\n"  \
+  "  every_unbalance = false   n_k = 65   xtol_rel = 1e-10   convention = exact|paper\n"                 \
+  "\narchive: /pendulum/sweep (verdict over the parameter's coordinate; critical, critical_below,\n"     \
+  "critical_above)\n" HELP_DOCS_PENDULUM
 
 #define HELP_PENDULUM_TRANSIENT                                                                          \
   "Transient of the two-pendulum autobalancer: the nonlinear equations of motion, eq. (1) in\n"         \

@@ -18,8 +18,14 @@
 #include "autobal/pendulum.h"
 #include "check.h"
 
+/* the undamped convention of the maps under test: 0 the exact one of autobal_pendulum_verdict,
+ * 1 the paper's (autobal_pendulum_map_spec.paper_convention) */
+static int g_paper = 0;
+
 /* worst verdict over ks at (Rm, Rw) from the one-point functions, with the
- * map's conventions (undamped: MARGINAL counts as STABLE) */
+ * map's conventions (undamped, paper: MARGINAL counts as STABLE; exact: the documented rule of
+ * autobal_pendulum_verdict -- lambda = 0 is not semisimple at R_w = 0 and at k = 0, R_w = 1,
+ * any other MARGINAL stays) */
 static int reference(double Rm, double Rw, double H, double h, const double *ks, size_t nk) {
   int worst = AUTOBAL_VERDICT_STABLE;
   size_t t;
@@ -27,7 +33,9 @@ static int reference(double Rm, double Rw, double H, double h, const double *ks,
     int v;
     if (H == 0.0 && h == 0.0) {
       autobal_pendulum_undamped_verdict(Rm, Rw, ks[t], &v, NULL);
-      if (v == AUTOBAL_VERDICT_MARGINAL) v = AUTOBAL_VERDICT_STABLE;
+      if (v == AUTOBAL_VERDICT_MARGINAL)
+        v = g_paper ? AUTOBAL_VERDICT_STABLE
+                    : (Rw == 0.0 || (ks[t] == 0.0 && Rw == 1.0)) ? AUTOBAL_VERDICT_UNSTABLE : AUTOBAL_VERDICT_MARGINAL;
     } else {
       autobal_pendulum_params p;
       autobal_pendulum_params_from_k(Rw, Rm, H, h, ks[t], &p, NULL);
@@ -54,6 +62,7 @@ static int check_map(size_t nm, size_t nw, double rm0, double rm1, double rw0, d
   memset(&s, 0, sizeof s);
   s.R_m = rm, s.n_Rm = nm, s.R_w = rw, s.n_Rw = nw, s.H = H, s.h = h, s.k = ks, s.n_k = nk;
   s.n_threads = 1;
+  s.paper_convention = g_paper;
   if (autobal_pendulum_map(&s, v1, NULL, NULL) != AUTOBAL_SUCCESS) bad++;
   s.n_threads = 2;
   if (autobal_pendulum_map(&s, v2, NULL, NULL) != AUTOBAL_SUCCESS) bad++;
@@ -123,6 +132,24 @@ int main(void) {
    * decide and the long-double test runs */
   bad = check_map(9, 3, 0.01, 0.49, 0.0, 2.0, 0.0, 0.0, NULL, 0, &same, cnt);
   CHECK("grid through R_w = 1 (long-double fall-back): entries == reference", bad == 0);
+  /* the two conventions differ exactly where lambda = 0 is not semisimple: R_w = 0 (every k)
+   * and k = 0, R_w = 1; the grid R_w = 0, 1, 2 has both */
+  {
+    long ce[3], cp[3];
+    bad = check_map(9, 3, 0.01, 0.49, 0.0, 2.0, 0.0, 0.0, k0, 1, &same, ce);
+    CHECK("exact convention, k = 0 through R_w = 0 and 1: entries == reference", bad == 0);
+    g_paper = 1;
+    bad = check_map(9, 3, 0.01, 0.49, 0.0, 2.0, 0.0, 0.0, k0, 1, &same, cp);
+    CHECK("paper convention, the same grid: entries == reference", bad == 0);
+    bad = check_map(23, 41, 0.01, 0.49, 0.0, 6.0, 0.0, 0.0, NULL, 0, &same, cp);
+    CHECK("paper convention, 65 k: entries == reference", bad == 0);
+    bad = check_map(9, 3, 0.01, 0.49, 0.0, 2.0, 0.0, 0.0, k0, 1, &same, cp);
+    g_paper = 0;
+    printf("     k = 0, R_w in {0, 1, 2}: exact: %ld unstable, %ld stable; paper: %ld unstable, %ld stable\n",
+           ce[0], ce[2], cp[0], cp[2]);
+    CHECK("... the exact convention has 18 more unstable points (R_w = 0 and 1 on 9 rows)",
+          ce[0] == cp[0] + 18 && ce[2] + 18 == cp[2]);
+  }
 
   printf("-- the sign test's quick Routh stage vs the generic Routh test\n");
   {

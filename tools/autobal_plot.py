@@ -11,7 +11,8 @@ For each group it knows it writes DIR/<stem>_<kind>.png (stem = archive name wit
     /pendulum/critical/curves   <stem>_critical_speeds.png  R_wj(R_m) for k = 0 and k = 1 (the
                                 paper's figure 2) with regions A and B shaded;
                                 beside it the stable R_w intervals of /pendulum/critical at the run's R_m
-    /pendulum/map               <stem>_stability_map.png    verdict over (R_m, R_w) [+ max_real]
+    /pendulum/map               <stem>_stability_map.png    verdict over its two axes (default (R_m, R_w)) [+ max_real]
+    /pendulum/sweep             <stem>_sweep.png            verdict along one parameter, critical values marked
     /pendulum/roots             <stem>_roots.png            roots of (6) and eigenvalues of (5)
     /pendulum/transient         <stem>_transient.png        shaft amplitude and residual unbalance
                                 (log scales), pendulum angles; time to balance marked
@@ -52,6 +53,7 @@ Exit codes: 0 done, 2 bad command line, 3 nothing this script can draw in the ar
 import argparse
 import os
 import sys
+import textwrap
 import warnings
 
 import matplotlib
@@ -336,9 +338,16 @@ def verdict_image(ax, x, y, v):
     return [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c]) for c in present]
 
 
+AXIS_LABELS = {"R_m": "mass ratio R_m = m/(M + 2m)", "R_w": "rotor speed R_w = ω/ω0",
+               "H": "external damping H", "h": "pendulum damping h", "k": "unbalance k = sin²(2ψ0)",
+               "psi0": "main-motion angle ψ0", "H_over_h": "damping ratio H/h"}
+
+
 def plot_pendulum_map(h, outdir, stem, written):
     g = h["pendulum/map"]
-    rm, rw = g["R_m"][:], g["R_w"][:]
+    # the axes (archives before 0.3: R_m and R_w)
+    d1, d2 = s(g.attrs.get("axis1_dim", "R_m")), s(g.attrs.get("axis2_dim", "R_w"))
+    rm, rw = g[d1][:], g[d2][:]
     v = g["verdict"][:]
     has_mr = "max_real" in g
     fig, axes = plt.subplots(1, 2 if has_mr else 1, figsize=(13 if has_mr else 8, 6), constrained_layout=True,
@@ -355,18 +364,24 @@ def plot_pendulum_map(h, outdir, stem, written):
     else:
         what = "k = %s" % ", ".join(fmt(k, 3) for k in ks)
     ax.set_title("Stability of the main motion (4): %s\n%s%s" % (what, damp, status_note(h)), fontsize=11)
-    ax.set_xlabel("mass ratio R_m = m/(M + 2m) %s" % ubr(units(g["R_m"])))
-    ax.set_ylabel("rotor speed R_w = ω/ω0 %s" % ubr(units(g["R_w"])))
+    ax.set_xlabel("%s %s" % (AXIS_LABELS.get(d1, d1), ubr(units(g[d1]))))
+    ax.set_ylabel("%s %s" % (AXIS_LABELS.get(d2, d2), ubr(units(g[d2]))))
+    if s(g.attrs.get("axis1_scale", "linear")) == "log":
+        ax.set_xscale("log")
+    if s(g.attrs.get("axis2_scale", "linear")) == "log":
+        ax.set_yscale("log")
+    if "note" in g.attrs:  # the undamped map's note on the small-damping limit
+        fig.supxlabel(textwrap.fill("Note: " + s(g.attrs["note"]), 170), fontsize=6.5, x=0.01, ha="left")
     # the design point of the configuration (archives of earlier versions do not record it)
-    if "design_R_m" in g.attrs and "design_R_w" in g.attrs:
-        dm, dw = float(g.attrs["design_R_m"]), float(g.attrs["design_R_w"])
+    if "design_" + d1 in g.attrs and "design_" + d2 in g.attrs:
+        dm, dw = float(g.attrs["design_" + d1]), float(g.attrs["design_" + d2])
         if rm.min() <= dm <= rm.max() and rw.min() <= dw <= rw.max():
             for a_ in axes[0]:
                 a_.plot([dm], [dw], marker="*", ms=16, mfc="gold", mec="k", ls="none", zorder=5)
             handles = handles + [Line2D([], [], marker="*", ms=12, mfc="gold", mec="k", ls="none",
-                                        label="design point (R_m %s, R_w %s)" % (fmt(dm, 3), fmt(dw, 3)))]
+                                        label="design point (%s %s, %s %s)" % (d1, fmt(dm, 3), d2, fmt(dw, 3)))]
     # physical speed on a secondary axis when the configuration gave the physical set
-    if "omega" in g and len(rw) > 1 and rw[-1] != rw[0]:
+    if "omega" in g and d2 == "R_w" and len(rw) > 1 and rw[-1] != rw[0]:
         w0 = float(g["omega"][-1] / rw[-1]) if rw[-1] else float(g["omega"][0] / rw[0])
         if np.isfinite(w0) and w0 > 0:
             sec = ax.secondary_yaxis("right", functions=(lambda r: r * w0 * RPM_PER_RAD_S,
@@ -384,6 +399,29 @@ def plot_pendulum_map(h, outdir, stem, written):
         ax2.set_xlabel(ax.get_xlabel())
         ax2.set_ylabel(ax.get_ylabel())
     save(fig, outdir, stem, "stability_map", written)
+
+
+def plot_pendulum_sweep(h, outdir, stem, written):
+    g = h["pendulum/sweep"]
+    d = s(g.attrs.get("axis1_dim", "R_w"))
+    x, v = g[d][:], g["verdict"][:]
+    fig, ax = plt.subplots(figsize=(9, 3.6), constrained_layout=True)
+    ax.step(x, v, where="mid", color="k", lw=1.2)
+    for c in ("critical",):
+        if c in g:
+            for xc in g[c][:]:
+                ax.axvline(xc, color="tab:red", lw=0.8, ls="--")
+    ax.set_yticks([-1, 0, 1])
+    ax.set_yticklabels(["unstable", "marginal", "stable"])
+    if s(g.attrs.get("axis1_scale", "linear")) == "log":
+        ax.set_xscale("log")
+    ax.set_xlabel("%s %s" % (AXIS_LABELS.get(d, d), ubr(units(g[d]))))
+    every = int(param(g, "every_unbalance", 0) or 0)
+    ax.set_title("Stability of the main motion (4) along %s%s (red: critical values)\n%s%s"
+                 % (d, " for every unbalance" if every else "", pendulum_params_text(h), status_note(h)), fontsize=10)
+    if "note" in g.attrs:
+        fig.supxlabel(textwrap.fill("Note: " + s(g.attrs["note"]), 150), fontsize=6, x=0.01, ha="left")
+    save(fig, outdir, stem, "sweep", written)
 
 
 def plot_pendulum_roots(h, outdir, stem, written):
@@ -1447,6 +1485,7 @@ def plot_rotor_unbalance(h, outdir, stem, written, compare=None):
 PLOTTERS = [
     ("pendulum/critical/curves", plot_pendulum_critical),
     ("pendulum/map", plot_pendulum_map),
+    ("pendulum/sweep", plot_pendulum_sweep),
     ("pendulum/roots", plot_pendulum_roots),
     ("pendulum/transient", plot_pendulum_transient),
     ("rotor/transient", plot_rotor_transient),

@@ -36,8 +36,8 @@
  * (0, NaN).
  *
  * Memory: the library allocates only in autobal_pendulum_workspace_alloc()
- * and (once per thread, up front) inside autobal_pendulum_map() when max_real
- * is requested; all other outputs are caller-owned structs or arrays of
+ * and (once per thread, up front) inside autobal_pendulum_map() and
+ * autobal_pendulum_grid() when max_real is requested; all other outputs are caller-owned structs or arrays of
  * documented size.
  * Threads: every function is reentrant; a workspace is used by one thread
  * at a time (one workspace per thread).
@@ -464,6 +464,13 @@ typedef struct autobal_pendulum_map_spec {
                         the default set k = j/64, j = 0..64                      */
   size_t n_k;
   int n_threads;     /* OpenMP threads: 0 = runtime default, 1 = serial          */
+  int paper_convention; /* undamped only (added in 0.3): 0 (what a zeroed spec gives) =
+                        the exact verdict of autobal_pendulum_verdict (`pendulum roots`):
+                        a root lambda on the imaginary axis must be semisimple, so R_w = 0
+                        and, at k = 0, R_w = 1 are UNSTABLE, and a point exactly on a
+                        critical speed is MARGINAL (0); non-zero = the paper's "first
+                        approximation" of autobal_pendulum_undamped_verdict (all x <= 0;
+                        a MARGINAL point counts as STABLE)                                */
 } autobal_pendulum_map_spec;
 
 /* Stability map over the grid, row-major [n_Rm][n_Rw]:
@@ -471,8 +478,10 @@ typedef struct autobal_pendulum_map_spec {
  * (R_m[i], R_w[j]):
  *  - damped (H > 0 or h > 0): the Routh-Hurwitz sign test on (6)
  *    (autobal_pendulum_verdict): 1 stable, 0 marginal, -1 unstable;
- *  - undamped (H = h = 0): autobal_pendulum_undamped_verdict: 1 stable in
- *    the first approximation, -1 unstable.
+ *  - undamped (H = h = 0): by default the verdict of autobal_pendulum_verdict (the exact
+ *    criterion (10) with semisimplicity: 1 stable, 0 exactly on a critical speed, -1
+ *    unstable); with spec->paper_convention that of autobal_pendulum_undamped_verdict
+ *    (1 stable in the first approximation, also on a boundary, -1 unstable).
  * max_real (may be NULL) receives the largest real part of the roots of (6)
  * over the k set (for the undamped system this is about 0 when stable, at
  * rounding level); computing it costs a root solve per point and k.
@@ -493,6 +502,107 @@ typedef struct autobal_pendulum_map_spec {
  * err. */
 AUTOBAL_API int autobal_pendulum_map(const autobal_pendulum_map_spec *spec, signed char *verdict,
                                      double *max_real, autobal_error *err);
+
+/* ======================================================================== */
+/* Maps and sweeps over any parameter (docs/pendulum.md, "Maps and sweeps") */
+/* ======================================================================== */
+
+/* The parameters (configuration keys of [pendulum]) a map or a sweep can vary.  All are
+ * dimensionless except psi0 (rad).  H_RATIO is the derived ratio H/h (see
+ * autobal_pendulum_params_vary for the rule that turns it into H and h). */
+enum {
+  AUTOBAL_PENDULUM_PARAM_R_W = 0,  /* "R_w"  speed ratio, [0, 1e6]                       */
+  AUTOBAL_PENDULUM_PARAM_R_M = 1,  /* "R_m"  mass ratio, (0, 0.5)                        */
+  AUTOBAL_PENDULUM_PARAM_H = 2,    /* "H"    external (shaft) damping, [0, 1e6]          */
+  AUTOBAL_PENDULUM_PARAM_HP = 3,   /* "h"    pendulum damping, [0, 1e6]                  */
+  AUTOBAL_PENDULUM_PARAM_K = 4,    /* "k"    unbalance sin^2(2 psi0), [0, 1]             */
+  AUTOBAL_PENDULUM_PARAM_PSI0 = 5, /* "psi0" main-motion angle, rad, [0, pi/2)          */
+  AUTOBAL_PENDULUM_PARAM_H_RATIO = 6, /* "H/h" ratio of the dampings, (0, 1e6]           */
+  AUTOBAL_PENDULUM_NPARAM = 7
+};
+
+/* The key of a parameter as in the configuration ("R_w", ..., "H/h"); NULL if unknown. */
+AUTOBAL_API const char *autobal_pendulum_param_name(int param);
+/* Its name as an HDF5 dimension / dataset name ("H/h" -> "H_over_h"); NULL if unknown. */
+AUTOBAL_API const char *autobal_pendulum_param_dim(int param);
+/* Its unit ("1", or "rad" for psi0) and a one-line description; NULL if unknown. */
+AUTOBAL_API const char *autobal_pendulum_param_unit(int param);
+AUTOBAL_API const char *autobal_pendulum_param_description(int param);
+/* The parameter of a name ("R_w", "R_m", "H", "h", "k", "psi0", "H/h" or "H_over_h", exact
+ * case: H and h differ), or -1. */
+AUTOBAL_API int autobal_pendulum_param_lookup(const char *name);
+/* Check one value of a parameter against its range (message: "parameter pendulum.R_m = 0.6
+ * is too large: must be < 0.5 (allowed range (0, 0.5))"). */
+AUTOBAL_API int autobal_pendulum_param_check(int param, double value, autobal_error *err);
+
+/* *out = base with up to two parameters set (param2 = -1: only param1), validated.
+ * R_w, R_m, H, h, psi0 are set as given; k sets psi0 = asin(sqrt k)/2 (the convention of
+ * autobal_pendulum_params_from_k).  The ratio H/h = r is applied after the other parameter:
+ * if the other parameter is H, then h = H / r; otherwise H = r h with h the other
+ * parameter's value (when it is h) or base->h.  So a map over (H/h, h) scans the ratio at
+ * each pendulum damping, (H/h, R_w) keeps the configured h and sets H.  param1 == param2,
+ * H/h together with k or psi0 alone is fine, but H/h with base->h = 0 and no H or h axis
+ * is rejected ("H/h needs pendulum.h > 0"), as are k with psi0 and a ratio with both H and
+ * h on the other axis (impossible with two axes).  Returns AUTOBAL_SUCCESS or
+ * AUTOBAL_EINVAL (message naming the key, its value and the allowed range); *out is
+ * written only on success. */
+AUTOBAL_API int autobal_pendulum_params_vary(const autobal_pendulum_params *base, int param1,
+                                             double v1, int param2, double v2,
+                                             autobal_pendulum_params *out, autobal_error *err);
+
+/* A grid over one or two parameters. */
+typedef struct autobal_pendulum_grid_spec {
+  autobal_pendulum_params base; /* the values of the parameters not on an axis            */
+  int param1;                   /* AUTOBAL_PENDULUM_PARAM_* of the rows                   */
+  const double *v1;             /* n1 values                                              */
+  size_t n1;
+  int param2;                   /* of the columns; -1: a line (n2 = 1, v2 ignored)        */
+  const double *v2;
+  size_t n2;
+  const double *k;              /* every unbalance: a point is STABLE only if it is for
+                                   every k of these n_k values in [0, 1] (the worst verdict
+                                   is kept); NULL and n_k = 0: base's psi0 (one unbalance).
+                                   Not with a k or psi0 axis.                             */
+  size_t n_k;
+  int paper_convention;         /* as in autobal_pendulum_map_spec (0: exact, semisimple) */
+  int n_threads;                /* OpenMP threads: 0 = runtime default, 1 = serial        */
+} autobal_pendulum_grid_spec;
+
+/* Check a grid spec (every value of both axes, the combination of the axes, the k set)
+ * without computing; the message names the bad key and value ("R_m[3]" style for the k set,
+ * "pendulum.H = -1 ..." for an axis value). */
+AUTOBAL_API int autobal_pendulum_grid_check(const autobal_pendulum_grid_spec *s, autobal_error *err);
+
+/* Verdict at one point (v1, v2) of the grid's parameters (v2 ignored for a line): the worst
+ * over the k set, per k that of autobal_pendulum_verdict (damped: Routh-Hurwitz on (6);
+ * undamped: the exact criterion (10), or the paper's first approximation with
+ * paper_convention).  max_real (may be NULL): the largest real part of the roots of (6)
+ * over the k set (a root solve per k; ws is then needed, else ws may be NULL). */
+AUTOBAL_API int autobal_pendulum_grid_point(const autobal_pendulum_grid_spec *s, double v1,
+                                            double v2, autobal_pendulum_workspace *ws,
+                                            int *verdict, double *max_real, autobal_error *err);
+
+/* Stability over the grid: verdict[i*n2 + j] at (v1[i], v2[j]) (n2 = 1 for a line), and
+ * max_real likewise (may be NULL; a root solve per point and k).  The axes (R_m, R_w) go
+ * through autobal_pendulum_map (bitwise the same verdicts); any other pair is evaluated
+ * point by point with autobal_pendulum_grid_point.  OpenMP over points; the result does not
+ * depend on the threads.  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (nothing written; see
+ * autobal_pendulum_grid_check), AUTOBAL_ENOMEM, or the status of a failing point (the
+ * arrays then partially written). */
+AUTOBAL_API int autobal_pendulum_grid(const autobal_pendulum_grid_spec *s, signed char *verdict,
+                                      double *max_real, autobal_error *err);
+
+/* A critical value of param1 on a line (s->param2 = -1): given lo < hi with different
+ * verdicts (as autobal_pendulum_grid_point gives them), bisect on the verdict (in log lo ..
+ * log hi when log_scale, lo > 0) until hi - lo <= xtol_rel max(|lo|, |hi|) (or 1e-300);
+ * *x = the midpoint of the final bracket, *v_lo, *v_hi (may be NULL) the verdicts at its
+ * ends.  Where more than one change lies in [lo, hi] one of them is found.  Returns
+ * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (bad arguments; equal verdicts at lo and hi) or the
+ * status of a point. */
+AUTOBAL_API int autobal_pendulum_grid_critical(const autobal_pendulum_grid_spec *s, double lo,
+                                               double hi, int log_scale, double xtol_rel,
+                                               double *x, int *v_lo, int *v_hi,
+                                               autobal_error *err);
 
 /* ======================================================================== */
 /* Equations of motion (1)                                                  */

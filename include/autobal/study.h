@@ -589,26 +589,57 @@ typedef struct autobal_study_pendulum_map_options {
   autobal_study_progress_fn progress; /* fraction of the rows done, called after each block of
                             rows (0.25 to 1 s of work); non-zero: cancel         (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
+  /* any two parameters (added in 0.3; docs/pendulum.md, "Maps and sweeps"): */
+  int param1, param2;    /* AUTOBAL_PENDULUM_PARAM_* of the rows and the columns  (default R_M, R_W) */
+  double min1, max1, min2, max2; /* their ranges; NaN: Rm_min/Rm_max for an R_m axis, Rw_min/Rw_max
+                            for an R_w axis, else autobal_study_pendulum_param_range  (default NaN) */
+  size_t n1, n2;         /* points; 0: n_Rm (R_m axis), n_Rw (R_w axis), else 200     (default 0) */
+  int log1, log2;        /* 1: logarithmic spacing (min > 0), 0: linear, -1: log for H, h, H/h
+                            when min > 0, else linear                                (default -1) */
+  int paper_convention;  /* undamped: 0 the exact verdict of `pendulum roots` (semisimple roots),
+                            1 the paper's first approximation (autobal_pendulum_map_spec)
+                                                                                     (default 0) */
 } autobal_study_pendulum_map_options;
+
+/* The default range of a pendulum parameter on a map or sweep axis (AUTOBAL_PENDULUM_PARAM_*):
+ * R_w [0.05, 5], R_m [0.005, 0.495], H and h [1e-4, 1], k [0, 1], psi0 [0, pi/4], H/h [0.01, 100];
+ * *log_scale (may be NULL) 1 for H, h and H/h.  Unknown param: NaN. */
+AUTOBAL_API void autobal_study_pendulum_param_range(int param, double *lo, double *hi, int *log_scale);
+
+/* The note an undamped map or sweep carries (console, archive attribute `note`): the measured
+ * small-damping picture of docs/pendulum.md ("The undamped map is not the small-damping
+ * limit").  A static string, never NULL. */
+AUTOBAL_API const char *autobal_study_pendulum_undamped_note(void);
 
 AUTOBAL_API autobal_study_pendulum_map_options autobal_study_pendulum_map_options_default(void);
 
 /* A stability map over (R_m, R_w) at p's H and h (autobal_pendulum_map).  The arrays are owned
  * by the summary (autobal_study_pendulum_map_summary_free). */
 typedef struct autobal_study_pendulum_map_summary {
-  size_t n_Rm, n_Rw, n_k;   /* axes and the number of k values */
+  size_t n_Rm, n_Rw, n_k;   /* points of axis 1 and 2 (named so for the default axes R_m, R_w)
+                               and the number of k values */
   int every_unbalance;      /* options.every_unbalance: the verdict holds for every k */
-  double *R_m, *R_w, *k;    /* [n_Rm], [n_Rw], [n_k] */
+  double *R_m, *R_w, *k;    /* [n_Rm], [n_Rw]: the values of axis 1 and axis 2 (whatever their
+                               parameters: see param1, param2), [n_k] */
   int *verdict;             /* [n_Rm x n_Rw] row-major: 1 stable, 0 marginal, -1 unstable */
   double *max_real;         /* [n_Rm x n_Rw] with options.max_real, else NULL */
   size_t n_stable;          /* points with verdict 1 */
-  size_t n_Rm_done;         /* rows (R_m) computed: n_Rm, or fewer after a cancellation */
+  size_t n_Rm_done;         /* rows (axis 1) computed: n_Rm, or fewer after a cancellation */
+  /* added in 0.3 */
+  int param1, param2;       /* AUTOBAL_PENDULUM_PARAM_* of axis 1 (rows) and 2 (columns) */
+  int log1, log2;           /* 1: the axis was spaced logarithmically */
+  int paper_convention;     /* options.paper_convention */
+  int undamped;             /* 1: H = h = 0 at every point (then the note applies) */
 } autobal_study_pendulum_map_summary;
 
-/* Compute the map; opt NULL: defaults; phys (NULL: none) recorded in the archive with an omega
- * axis.  With an archive (NULL: none), after a successful computation: /pendulum and
- * /pendulum/map (criterion, every_unbalance, k_values, R_m and R_w coordinates, design_R_m,
- * design_R_w, omega(R_w) with phys, verdict(R_m, R_w), max_real(R_m, R_w)).  `summary` (not
+/* Compute the map over options.param1 x options.param2 (autobal_pendulum_grid; the other
+ * parameters at p); opt NULL: defaults; phys (NULL: none) recorded in the archive with an omega
+ * axis when an axis is R_w.  With an archive (NULL: none), after a successful computation:
+ * /pendulum and /pendulum/map (criterion, convention, every_unbalance, k_values, axis1, axis2
+ * (the keys), axis1_dim, axis2_dim, axis1_scale, axis2_scale ("linear"/"log"), ratio_rule with an
+ * H/h axis, note (undamped maps: autobal_study_pendulum_undamped_note), the two coordinates named
+ * by autobal_pendulum_param_dim (default R_m and R_w) with units, design_<dim> of each axis,
+ * omega(R_w) with phys, verdict(axis1, axis2), max_real(axis1, axis2)).  `summary` (not
  * NULL) is zeroed first; free it also after a failure.  Returns AUTOBAL_SUCCESS,
  * AUTOBAL_EINVAL ("options: ..." or the model's message), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC or
  * an archive status, or AUTOBAL_ECANCELLED (options.progress asked to stop; the rows are
@@ -623,6 +654,67 @@ AUTOBAL_API int autobal_study_pendulum_map_write(autobal_archive *a, const autob
                                                  const autobal_pendulum_physical *phys,
                                                  const autobal_study_pendulum_map_summary *summary);
 AUTOBAL_API void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_map_summary *summary);
+
+/* ---- pendulum sweep ----------------------------------------------------------------------- */
+
+/* Options of `autobal pendulum sweep` (section [sweep]). */
+typedef struct autobal_study_pendulum_sweep_options {
+  int param;             /* AUTOBAL_PENDULUM_PARAM_* swept                             (default R_W) */
+  double min, max;       /* range, min < max; NaN: autobal_study_pendulum_param_range    (default NaN) */
+  size_t n;              /* grid points, in [2, 1e7]                                    (default 1000) */
+  int log_scale;         /* as log1 of the map options                                    (default -1) */
+  int every_unbalance;   /* non-zero: stable for every k of n_k values in [0, 1]          (default 0) */
+  size_t n_k;            /* k values with every_unbalance, in [2, 1e5]                    (default 65) */
+  double xtol_rel;       /* relative accuracy of the critical values, in (0, 0.1)       (default 1e-10) */
+  int paper_convention;  /* as in the map options                                        (default 0) */
+  autobal_study_progress_fn progress; /* fraction done; non-zero: cancel               (default NULL) */
+  void *progress_user;
+} autobal_study_pendulum_sweep_options;
+AUTOBAL_API autobal_study_pendulum_sweep_options autobal_study_pendulum_sweep_options_default(void);
+
+#define AUTOBAL_STUDY_PENDULUM_MAX_CRIT 64
+/* A sweep: the verdict on the grid and the critical values where it changes.  Arrays owned by
+ * the summary (autobal_study_pendulum_sweep_summary_free). */
+typedef struct autobal_study_pendulum_sweep_summary {
+  int param, log_scale, every_unbalance, paper_convention, undamped;
+  double min, max;          /* the range used */
+  double xtol_rel;          /* options.xtol_rel */
+  size_t n, n_k;            /* grid points, k values */
+  double *values;           /* [n] */
+  double *k;                /* [n_k] (the k of p when not every_unbalance) */
+  int *verdict;             /* [n] 1 stable, 0 marginal, -1 unstable */
+  size_t n_stable;
+  size_t n_crit;            /* critical values found (<= AUTOBAL_STUDY_PENDULUM_MAX_CRIT) */
+  double crit[AUTOBAL_STUDY_PENDULUM_MAX_CRIT];   /* where the verdict changes, ascending */
+  int crit_below[AUTOBAL_STUDY_PENDULUM_MAX_CRIT]; /* the verdicts at the grid points below and above */
+  int crit_above[AUTOBAL_STUDY_PENDULUM_MAX_CRIT];
+  int crit_truncated;       /* 1: more changes on the grid than the list holds */
+  size_t n_done;            /* grid points computed (n, or fewer after a cancellation) */
+  int cancelled;
+} autobal_study_pendulum_sweep_summary;
+
+/* Sweep options.param over its grid (autobal_pendulum_grid on a line, the other parameters at
+ * p) and refine every change of the verdict between neighbouring points by bisection
+ * (autobal_pendulum_grid_critical) to xtol_rel.  Changes between two grid points that undo each
+ * other (a window narrower than the step) are not seen: for the undamped system over R_w at one
+ * k, `pendulum critical` (autobal_pendulum_critical_speeds) is exact.  With an archive:
+ * /pendulum and /pendulum/sweep (param, key, dim, scale, criterion, convention, every_unbalance,
+ * k_values, note when undamped, the coordinate named by autobal_pendulum_param_dim, verdict,
+ * critical_<dim>, critical_below, critical_above).  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL
+ * ("options: ..." or the model's message naming the key), AUTOBAL_ENOMEM, a point's status,
+ * AUTOBAL_ECANCELLED (the first n_done points valid and written with partial = 1, no critical
+ * values), or an archive status.  `summary` (not NULL) is zeroed first; free it also after a
+ * failure. */
+AUTOBAL_API int autobal_study_pendulum_sweep(const autobal_pendulum_params *p,
+                                             const autobal_pendulum_physical *phys,
+                                             const autobal_study_pendulum_sweep_options *opt,
+                                             autobal_archive *a,
+                                             autobal_study_pendulum_sweep_summary *summary,
+                                             autobal_error *err);
+AUTOBAL_API int autobal_study_pendulum_sweep_write(autobal_archive *a, const autobal_pendulum_params *p,
+                                                   const autobal_pendulum_physical *phys,
+                                                   const autobal_study_pendulum_sweep_summary *summary);
+AUTOBAL_API void autobal_study_pendulum_sweep_summary_free(autobal_study_pendulum_sweep_summary *summary);
 
 /* ---- rotor sweep, map and Campbell diagram ------------------------------------------------ */
 

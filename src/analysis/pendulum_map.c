@@ -137,16 +137,22 @@ static MAP_INLINE int quartic_decide(const quartic_q *q, size_t l) {
   return 0;
 }
 
-/* the exact long-double test, with the map's convention MARGINAL -> STABLE */
-static int undamped_map_exact(double Rm, double Rw, double k) {
+/* the exact test (long double, else integers) with the map's convention: paper = the
+ * first approximation (MARGINAL, exactly on a boundary, counts as STABLE); otherwise the
+ * verdict of autobal_pendulum_verdict (autobal_pendulum_undamped_semisimple_): at R_w = 0
+ * and, for k = 0, at R_w = 1 the root lambda = 0 is not semisimple (UNSTABLE), any other
+ * MARGINAL stays MARGINAL */
+static int undamped_map_exact(double Rm, double Rw, double k, int paper) {
   int v = autobal_pendulum_undamped_verdict_exact_(Rm, Rw, k);
-  return v == AUTOBAL_VERDICT_MARGINAL ? AUTOBAL_VERDICT_STABLE : v; /* on a boundary */
+  if (v != AUTOBAL_VERDICT_MARGINAL) return v;
+  if (paper) return AUTOBAL_VERDICT_STABLE; /* on a boundary */
+  return (Rw == 0.0 || (k == 0.0 && Rw == 1.0)) ? AUTOBAL_VERDICT_UNSTABLE : AUTOBAL_VERDICT_MARGINAL;
 }
 
 /* The map's undamped verdicts for 0 < k < 1 of MAP_LANES lanes (R_w[l], k[l]):
  * P(x) of (10), c_j with magnitudes m_j; unstable iff c_1 < 0 or the quartic
  * test says so (c_0, c_2, c_3, c_4 > 0 always). */
-static MAP_INLINE void undamped_lanes(const mvec *Rwp, double Rm, const mvec *kp, int *v) {
+static MAP_INLINE void undamped_lanes(const mvec *Rwp, double Rm, const mvec *kp, int paper, int *v) {
   mvec Rw = *Rwp, k = *kp, W = Rw * Rw, r2 = k * Rm * Rm, W2 = W * W, W3 = W2 * W;
   mvec a0 = 2.0 * Rm * W2 * (W - 1.0), m0 = 2.0 * Rm * W2 * (W + 1.0);
   mvec a2 = (W - 1.0) * (W - 1.0) + 2.0 * Rm * W * (W + 6.0);
@@ -164,14 +170,17 @@ static MAP_INLINE void undamped_lanes(const mvec *Rwp, double Rm, const mvec *kp
   for (l = 0; l < MAP_LANES; l++) {
     int sd = filt_sign(MV_L(c[1], l), MV_L(m[1], l));
     v[l] = sd < 0 ? AUTOBAL_VERDICT_UNSTABLE : sd > 0 ? quartic_decide(&q, l) : 0;
-    if (v[l] == 0) v[l] = undamped_map_exact(Rm, MV_L(Rw, l), MV_L(k, l));
+    if (v[l] == 0) v[l] = undamped_map_exact(Rm, MV_L(Rw, l), MV_L(k, l), paper);
   }
 }
 
-/* The map's undamped verdict at one point and one k: STABLE or UNSTABLE. */
-static int undamped_map_verdict(double Rm, double Rw, double k) {
+/* The map's undamped verdict at one point and one k (see undamped_map_exact for paper). */
+static int undamped_map_verdict(double Rm, double Rw, double k, int paper) {
   double W = Rw * Rw;
   int v = 0;
+  /* lambda = 0 not semisimple (autobal_pendulum_undamped_semisimple_); the filters below
+   * leave these points undecided anyway (a0 = 0), this says it explicitly */
+  if (!paper && (Rw == 0.0 || (k == 0.0 && Rw == 1.0))) return AUTOBAL_VERDICT_UNSTABLE;
   if (k == 1.0) {
     mvec c[5], m[5];
     quartic_q q;
@@ -202,10 +211,10 @@ static int undamped_map_verdict(double Rm, double Rw, double k) {
   } else {
     mvec Rwv = MV_BCAST(Rw), kv = MV_BCAST(k);
     int vl[MAP_LANES];
-    undamped_lanes(&Rwv, Rm, &kv, vl);
+    undamped_lanes(&Rwv, Rm, &kv, paper, vl);
     return vl[0];
   }
-  if (v == 0) v = undamped_map_exact(Rm, Rw, k); /* undecided in double */
+  if (v == 0) v = undamped_map_exact(Rm, Rw, k, paper); /* undecided in double */
   return v;
 }
 
@@ -235,7 +244,7 @@ static int map_point(const map_ctx *mc, double Rm, double Rw, autobal_pendulum_w
     int vv, st;
     autobal_pendulum_damped_ctx_ c;
     if (mc->undamped) {
-      vv = undamped_map_verdict(Rm, Rw, k);
+      vv = undamped_map_verdict(Rm, Rw, k, s->paper_convention);
     } else {
       double coef[9], cerr[9];
       autobal_pendulum_char_poly_from_parts_(Rw, Rm, &P, k, kc, coef, cerr);
@@ -273,9 +282,9 @@ MAP_CLONES static int map_point_all_k(const map_ctx *mc, double Rm, double Rw, s
    * undamped: the cubic) and, undamped, k == 1 (the factor P1) */
   autobal_pendulum_char_parts_v_(&Rwv, Rm, s->H, s->h, P.A, P.Aa, P.B, NULL); /* (unused when undamped) */
   if (und) {
-    if (mc->has_zero) worst = undamped_map_verdict(Rm, Rw, 0.0);
+    if (mc->has_zero) worst = undamped_map_verdict(Rm, Rw, 0.0, s->paper_convention);
     if (mc->has_one && worst != AUTOBAL_VERDICT_UNSTABLE) {
-      int v1 = undamped_map_verdict(Rm, Rw, 1.0);
+      int v1 = undamped_map_verdict(Rm, Rw, 1.0, s->paper_convention);
       if (v1 < worst) worst = v1;
     }
   } else if (mc->has_zero) {
@@ -301,7 +310,7 @@ MAP_CLONES static int map_point_all_k(const map_ctx *mc, double Rm, double Rw, s
       if (k != 0.0 && !(und && k == 1.0)) MV_L(kv, l) = k;
     }
     if (und) {
-      undamped_lanes(&Rwv, Rm, &kv, vl);
+      undamped_lanes(&Rwv, Rm, &kv, s->paper_convention, vl);
     } else {
       mvec kcv = 1.0 - kv;
       autobal_pendulum_char_poly_from_parts_v_(&Rwv, Rm, P.A, P.Aa, P.B, &kv, &kcv, c, ce);
@@ -339,7 +348,7 @@ MAP_CLONES static int map_tile(const map_ctx *mc, size_t i, size_t j0, size_t j1
       mvec Rwv, kv = MV_BCAST(mc->ks[0]);
       int vl[MAP_LANES];
       for (l = 0; l < MAP_LANES; l++) MV_L(Rwv, l) = s->R_w[j + l < j1 ? j + l : j1 - 1];
-      undamped_lanes(&Rwv, Rm, &kv, vl);
+      undamped_lanes(&Rwv, Rm, &kv, s->paper_convention, vl);
       for (l = 0; l < MAP_LANES && j + l < j1; l++) verdict[base + j + l] = (signed char)vl[l];
     }
     return AUTOBAL_SUCCESS;
@@ -469,3 +478,342 @@ int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdic
   return AUTOBAL_SUCCESS;
 }
 
+
+/* ======================================================================== */
+/* Maps and sweeps over any parameter                                       */
+/* ======================================================================== */
+
+static const char *const param_names[AUTOBAL_PENDULUM_NPARAM] = {"R_w", "R_m", "H", "h",
+                                                                 "k", "psi0", "H/h"};
+static const char *const param_dims[AUTOBAL_PENDULUM_NPARAM] = {"R_w", "R_m", "H", "h",
+                                                                "k", "psi0", "H_over_h"};
+static const char *const param_desc[AUTOBAL_PENDULUM_NPARAM] = {
+    "rotor speed omega/omega0",
+    "mass ratio m/(M + 2m)",
+    "external (shaft) damping H2/(omega0 M_sigma)",
+    "pendulum damping H1/(m l^2 omega0)",
+    "unbalance parameter sin^2(2 psi0)",
+    "pendulum angle of the main motion (4)",
+    "ratio of the external to the pendulum damping H/h"};
+
+const char *autobal_pendulum_param_name(int param) {
+  return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_names[param] : NULL;
+}
+const char *autobal_pendulum_param_dim(int param) {
+  return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_dims[param] : NULL;
+}
+const char *autobal_pendulum_param_unit(int param) {
+  if (param < 0 || param >= AUTOBAL_PENDULUM_NPARAM) return NULL;
+  return param == AUTOBAL_PENDULUM_PARAM_PSI0 ? "rad" : "1";
+}
+const char *autobal_pendulum_param_description(int param) {
+  return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_desc[param] : NULL;
+}
+int autobal_pendulum_param_lookup(const char *name) {
+  int i;
+  if (name == NULL) return -1;
+  for (i = 0; i < AUTOBAL_PENDULUM_NPARAM; i++)
+    if (!strcmp(name, param_names[i]) || !strcmp(name, param_dims[i])) return i;
+  return -1;
+}
+
+int autobal_pendulum_param_check(int param, double v, autobal_error *err) {
+  char name[32];
+  if (param < 0 || param >= AUTOBAL_PENDULUM_NPARAM)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "unknown pendulum parameter %d", param);
+  snprintf(name, sizeof name, "pendulum.%s", param_names[param]);
+  switch (param) {
+  case AUTOBAL_PENDULUM_PARAM_R_M:
+    return autobal_check_param(err, name, v, 0.0, 1, 0.5, 1, "");
+  case AUTOBAL_PENDULUM_PARAM_K:
+    return autobal_check_param(err, name, v, 0.0, 0, 1.0, 0, "");
+  case AUTOBAL_PENDULUM_PARAM_PSI0:
+    return autobal_check_param(err, name, v, 0.0, 0, 1.5707963267948966, 1, "rad");
+  case AUTOBAL_PENDULUM_PARAM_H_RATIO:
+    return autobal_check_param(err, name, v, 0.0, 1, AUTOBAL_PENDULUM_MAX_RATIO, 0, "");
+  default: /* R_w, H, h */
+    return autobal_check_param(err, name, v, 0.0, 0, AUTOBAL_PENDULUM_MAX_RATIO, 0, "");
+  }
+}
+
+/* set one direct parameter (not the ratio) */
+static void param_set(autobal_pendulum_params *p, int param, double v) {
+  switch (param) {
+  case AUTOBAL_PENDULUM_PARAM_R_W: p->R_w = v; break;
+  case AUTOBAL_PENDULUM_PARAM_R_M: p->R_m = v; break;
+  case AUTOBAL_PENDULUM_PARAM_H: p->H = v; break;
+  case AUTOBAL_PENDULUM_PARAM_HP: p->h = v; break;
+  case AUTOBAL_PENDULUM_PARAM_K: p->psi0 = 0.5 * asin(sqrt(v)); break;
+  case AUTOBAL_PENDULUM_PARAM_PSI0: p->psi0 = v; break;
+  default: break;
+  }
+}
+
+/* the combination of two axes (values aside) */
+static int params_pair_check(const autobal_pendulum_params *base, int p1, int p2,
+                             autobal_error *err) {
+  int r1 = p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO, r2 = p2 == AUTOBAL_PENDULUM_PARAM_H_RATIO;
+  int other = r1 ? p2 : p1;
+  if (p1 < 0 || p1 >= AUTOBAL_PENDULUM_NPARAM || p2 < -1 || p2 >= AUTOBAL_PENDULUM_NPARAM)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "unknown pendulum parameter (%d, %d): allowed 0..%d",
+                             p1, p2, AUTOBAL_PENDULUM_NPARAM - 1);
+  if (p1 == p2)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "both axes are pendulum.%s: give two different parameters",
+                             param_names[p1]);
+  if ((p1 == AUTOBAL_PENDULUM_PARAM_K && p2 == AUTOBAL_PENDULUM_PARAM_PSI0) ||
+      (p2 == AUTOBAL_PENDULUM_PARAM_K && p1 == AUTOBAL_PENDULUM_PARAM_PSI0))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "axes k and psi0 are the same parameter (k = sin^2(2 psi0))");
+  if ((r1 || r2) && other != AUTOBAL_PENDULUM_PARAM_H && other != AUTOBAL_PENDULUM_PARAM_HP &&
+      !(base->h > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "axis H/h needs pendulum.h > 0 (it keeps h and sets H = (H/h) h), got "
+                             "pendulum.h = %g; or put h or H on the other axis",
+                             base->h);
+  return AUTOBAL_SUCCESS;
+}
+
+static int params_vary_i(const autobal_pendulum_params *base, int p1, double v1, int p2, double v2,
+                         autobal_pendulum_params *out, autobal_error *err) {
+  autobal_pendulum_params q = *base;
+  int st;
+  if ((st = autobal_pendulum_param_check(p1, v1, err)) != 0) return st;
+  if (p2 >= 0 && (st = autobal_pendulum_param_check(p2, v2, err)) != 0) return st;
+  if (p1 != AUTOBAL_PENDULUM_PARAM_H_RATIO) param_set(&q, p1, v1);
+  if (p2 >= 0 && p2 != AUTOBAL_PENDULUM_PARAM_H_RATIO) param_set(&q, p2, v2);
+  if (p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO || p2 == AUTOBAL_PENDULUM_PARAM_H_RATIO) {
+    double r = p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO ? v1 : v2;
+    int other = p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO ? p2 : p1;
+    if (other == AUTOBAL_PENDULUM_PARAM_H) q.h = q.H / r;
+    else q.H = r * q.h;
+    if (!(q.H <= AUTOBAL_PENDULUM_MAX_RATIO && q.h <= AUTOBAL_PENDULUM_MAX_RATIO))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "H/h = %g gives H = %g, h = %g: must be <= %g (allowed range [0, %g])", r,
+                               q.H, q.h, AUTOBAL_PENDULUM_MAX_RATIO, AUTOBAL_PENDULUM_MAX_RATIO);
+  }
+  if ((st = autobal_pendulum_params_validate(&q, err)) != 0) return st;
+  *out = q;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_params_vary(const autobal_pendulum_params *base, int param1, double v1,
+                                 int param2, double v2, autobal_pendulum_params *out,
+                                 autobal_error *err) {
+  int st;
+  if (base == NULL || out == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "params_vary: NULL argument");
+  if ((st = params_pair_check(base, param1, param2, err)) != 0) return st;
+  return params_vary_i(base, param1, v1, param2, v2, out, err);
+}
+
+int autobal_pendulum_grid_check(const autobal_pendulum_grid_spec *s, autobal_error *err) {
+  size_t i, n2;
+  int st;
+  char name[40];
+  autobal_pendulum_params q;
+  if (s == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL spec");
+  if ((st = autobal_pendulum_params_validate(&s->base, err)) != 0) return st;
+  if ((st = params_pair_check(&s->base, s->param1, s->param2, err)) != 0) return st;
+  n2 = s->param2 < 0 ? 1 : s->n2;
+  if ((s->n1 > 0 && s->v1 == NULL) || (s->param2 >= 0 && n2 > 0 && s->v2 == NULL))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL axis array");
+  if (s->n_threads < 0)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "parameter n_threads = %d is out of range: allowed [0, inf)",
+                             s->n_threads);
+  if (s->k == NULL && s->n_k != 0)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "grid: k is NULL but n_k = %zu", s->n_k);
+  if (s->k != NULL && s->n_k > 0) {
+    if (s->param1 == AUTOBAL_PENDULUM_PARAM_K || s->param1 == AUTOBAL_PENDULUM_PARAM_PSI0 ||
+        s->param2 == AUTOBAL_PENDULUM_PARAM_K || s->param2 == AUTOBAL_PENDULUM_PARAM_PSI0)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "every unbalance (a set of k) cannot be combined with a k or psi0 axis");
+    for (i = 0; i < s->n_k; i++) {
+      snprintf(name, sizeof name, "k[%zu]", i);
+      if ((st = autobal_check_param(err, name, s->k[i], 0.0, 0, 1.0, 0, "")) != 0) return st;
+    }
+  }
+  /* every value of each axis alone, then the pairs that the ratio rule couples (an axis
+   * value is checked with the other axis at its first value) */
+  for (i = 0; i < s->n1; i++)
+    if ((st = params_vary_i(&s->base, s->param1, s->v1[i], s->param2,
+                            s->param2 >= 0 && n2 > 0 ? s->v2[0] : 0.0, &q, err)) != 0)
+      return st;
+  if (s->param2 >= 0 && s->n1 > 0)
+    for (i = 0; i < n2; i++)
+      if ((st = params_vary_i(&s->base, s->param1, s->v1[0], s->param2, s->v2[i], &q, err)) != 0)
+        return st;
+  if (s->param1 == AUTOBAL_PENDULUM_PARAM_H_RATIO || s->param2 == AUTOBAL_PENDULUM_PARAM_H_RATIO) {
+    size_t j; /* the ratio couples the axes: check every pair */
+    for (i = 0; i < s->n1; i++)
+      for (j = 0; j < n2 && s->param2 >= 0; j++)
+        if ((st = params_vary_i(&s->base, s->param1, s->v1[i], s->param2, s->v2[j], &q, err)) != 0)
+          return st;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* the point verdict without the spec's checks */
+static int grid_point_i(const autobal_pendulum_grid_spec *s, double v1, double v2,
+                        autobal_pendulum_workspace *ws, int *verdict, double *max_real,
+                        autobal_error *err) {
+  autobal_pendulum_params q;
+  double kone, kcone, mre = -INFINITY;
+  const double *ks;
+  size_t nk, i;
+  int st, worst = AUTOBAL_VERDICT_STABLE, und;
+  if ((st = params_vary_i(&s->base, s->param1, v1, s->param2, v2, &q, err)) != 0) return st;
+  und = q.H == 0.0 && q.h == 0.0;
+  if (s->k != NULL && s->n_k > 0) {
+    ks = s->k, nk = s->n_k;
+  } else {
+    autobal_pendulum_k_and_kc_(&q, &kone, &kcone);
+    ks = &kone, nk = 1;
+  }
+  for (i = 0; i < nk; i++) {
+    double k = ks[i], kc = nk == 1 && ks == &kone ? kcone : 1.0 - k;
+    int v;
+    if (und) {
+      v = s->paper_convention ? undamped_map_exact(q.R_m, q.R_w, k, 1)
+                              : autobal_pendulum_undamped_semisimple_(q.R_m, q.R_w, k, NULL);
+    } else if ((st = autobal_pendulum_damped_verdict_k_(q.R_w, q.R_m, q.H, q.h, k, kc, &v, NULL, err)) != 0) {
+      return st;
+    }
+    if (v < worst) worst = v;
+    if (max_real) {
+      autobal_pendulum_damped_ctx_ c;
+      double m;
+      if (ws == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid: max_real needs a workspace");
+      c.ws = ws;
+      c.R_m = q.R_m;
+      c.H = q.H;
+      c.h = q.h;
+      c.k = k;
+      c.kc = kc;
+      if ((st = autobal_pendulum_damped_maxre_fn_(q.R_w, &c, &m)) != 0)
+        return autobal_error_set(err, st, "%s", autobal_pendulum_errmsg(ws));
+      if (m > mre) mre = m;
+    } else if (worst == AUTOBAL_VERDICT_UNSTABLE) {
+      break; /* the worst verdict is known */
+    }
+  }
+  *verdict = worst;
+  if (max_real) *max_real = mre;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_grid_point(const autobal_pendulum_grid_spec *s, double v1, double v2,
+                                autobal_pendulum_workspace *ws, int *verdict, double *max_real,
+                                autobal_error *err) {
+  int st;
+  if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid_point: NULL output");
+  if (s == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL spec");
+  if ((st = params_pair_check(&s->base, s->param1, s->param2, err)) != 0) return st;
+  if (s->k == NULL && s->n_k != 0)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "grid: k is NULL but n_k = %zu", s->n_k);
+  return grid_point_i(s, v1, v2, ws, verdict, max_real, err);
+}
+
+int autobal_pendulum_grid(const autobal_pendulum_grid_spec *s, signed char *verdict, double *max_real,
+                          autobal_error *err) {
+  size_t n2, ntot;
+  int st, fail = AUTOBAL_SUCCESS;
+  autobal_error ferr;
+  if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL output");
+  if ((st = autobal_pendulum_grid_check(s, err)) != 0) return st;
+  n2 = s->param2 < 0 ? 1 : s->n2;
+  ntot = s->n1 * n2;
+  if (ntot == 0) return AUTOBAL_SUCCESS;
+  if (s->param1 == AUTOBAL_PENDULUM_PARAM_R_M && s->param2 == AUTOBAL_PENDULUM_PARAM_R_W) {
+    /* the fast map, the same verdicts (its one-k case takes k, 1 - k) */
+    autobal_pendulum_map_spec m;
+    double k1 = autobal_pendulum_k(&s->base);
+    memset(&m, 0, sizeof m);
+    m.R_m = s->v1, m.n_Rm = s->n1, m.R_w = s->v2, m.n_Rw = s->n2;
+    m.H = s->base.H, m.h = s->base.h;
+    if (s->k != NULL && s->n_k > 0) m.k = s->k, m.n_k = s->n_k;
+    else m.k = &k1, m.n_k = 1;
+    m.n_threads = s->n_threads;
+    m.paper_convention = s->paper_convention;
+    return autobal_pendulum_map(&m, verdict, max_real, err);
+  }
+  autobal_error_clear(&ferr);
+#ifdef AUTOBAL_HAVE_OPENMP
+  {
+    int nth = s->n_threads > 0 ? s->n_threads : omp_get_max_threads();
+#pragma omp parallel num_threads(nth)
+    {
+      autobal_pendulum_workspace *ws = NULL;
+      autobal_error lerr;
+      int local = AUTOBAL_SUCCESS;
+      long long t;
+      autobal_error_clear(&lerr);
+      if (max_real && (ws = autobal_pendulum_workspace_alloc()) == NULL) local = AUTOBAL_ENOMEM;
+#pragma omp for schedule(dynamic, 16)
+      for (t = 0; t < (long long)ntot; t++) {
+        size_t i = (size_t)t / n2, j = (size_t)t % n2;
+        int v = 0;
+        if (local != AUTOBAL_SUCCESS) continue;
+        local = grid_point_i(s, s->v1[i], s->param2 >= 0 ? s->v2[j] : 0.0, ws, &v,
+                             max_real ? &max_real[t] : NULL, &lerr);
+        verdict[t] = (signed char)v;
+      }
+      if (local != AUTOBAL_SUCCESS) {
+#pragma omp critical(autobal_pendulum_grid_fail)
+        {
+          if (fail == AUTOBAL_SUCCESS) fail = local, ferr = lerr;
+        }
+      }
+      autobal_pendulum_workspace_free(ws);
+    }
+  }
+#else
+  {
+    autobal_pendulum_workspace *ws = NULL;
+    size_t t;
+    if (max_real && (ws = autobal_pendulum_workspace_alloc()) == NULL) fail = AUTOBAL_ENOMEM;
+    for (t = 0; t < ntot && fail == AUTOBAL_SUCCESS; t++) {
+      size_t i = t / n2, j = t % n2;
+      int v = 0;
+      fail = grid_point_i(s, s->v1[i], s->param2 >= 0 ? s->v2[j] : 0.0, ws, &v,
+                          max_real ? &max_real[t] : NULL, &ferr);
+      verdict[t] = (signed char)v;
+    }
+    autobal_pendulum_workspace_free(ws);
+  }
+#endif
+  if (fail == AUTOBAL_ENOMEM)
+    return autobal_error_set(err, AUTOBAL_ENOMEM, "grid: cannot allocate a per-thread workspace");
+  if (fail != AUTOBAL_SUCCESS)
+    return autobal_error_set(err, fail, "grid: evaluation failed at a point: %s", ferr.message);
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_pendulum_grid_critical(const autobal_pendulum_grid_spec *s, double lo, double hi,
+                                   int log_scale, double xtol_rel, double *x, int *v_lo, int *v_hi,
+                                   autobal_error *err) {
+  int st, vl, vh, vm, it;
+  if (s == NULL || x == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid_critical: NULL argument");
+  if (s->param2 >= 0)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "grid_critical: the spec must be a line (param2 = -1)");
+  if (!(lo < hi) || (log_scale && !(lo > 0.0)) || !(xtol_rel > 0.0 && xtol_rel < 0.1))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "grid_critical: need lo < hi (lo > 0 on a log scale) and 0 < xtol_rel < 0.1, "
+                             "got lo = %g, hi = %g, xtol_rel = %g",
+                             lo, hi, xtol_rel);
+  if ((st = autobal_pendulum_grid_point(s, lo, 0.0, NULL, &vl, NULL, err)) != 0) return st;
+  if ((st = grid_point_i(s, hi, 0.0, NULL, &vh, NULL, err)) != 0) return st;
+  if (vl == vh)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "grid_critical: the verdicts at %.17g and %.17g are equal (%d)",
+                             lo, hi, vl);
+  for (it = 0; it < 2000; it++) {
+    double mid = log_scale ? sqrt(lo) * sqrt(hi) : lo + 0.5 * (hi - lo);
+    double scale = fabs(lo) > fabs(hi) ? fabs(lo) : fabs(hi);
+    if (hi - lo <= xtol_rel * scale || hi - lo <= 1e-300 || !(mid > lo && mid < hi)) break;
+    if ((st = grid_point_i(s, mid, 0.0, NULL, &vm, NULL, err)) != 0) return st;
+    if (vm == vl) lo = mid; /* the change lies above mid */
+    else hi = mid, vh = vm;
+  }
+  *x = log_scale ? sqrt(lo) * sqrt(hi) : lo + 0.5 * (hi - lo);
+  if (v_lo) *v_lo = vl;
+  if (v_hi) *v_hi = vh;
+  return AUTOBAL_SUCCESS;
+}
