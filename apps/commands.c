@@ -23,6 +23,8 @@ const cli_command cli_commands[] = {
      HELP_ROTOR_SWEEP, cli_cmd_rotor_sweep},
     {"rotor map", "stability map over two parameters (e.g. omega x ball damping), OpenMP-parallel", HELP_ROTOR_MAP,
      cli_cmd_rotor_map},
+    {"rotor design", "size a balancer: stable for every unbalance over a speed range with a margin; ranked designs",
+     HELP_ROTOR_DESIGN, cli_cmd_rotor_design},
     {"rotor campbell", "natural frequencies, Campbell diagram, unbalance response, resonance speeds",
      HELP_ROTOR_CAMPBELL, cli_cmd_rotor_campbell},
     {"rotor ensemble", "many transients over initial ball angles or parameters: basin map, P(balance); OpenMP/MPI",

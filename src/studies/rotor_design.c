@@ -805,9 +805,11 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   const char *g = "/rotor/design", *gr = "/rotor/design/ranked";
   const char *dims4[4] = {"ball_mass", "ball_damping", "plane_position", "track_radius"};
   const char *rank1[1] = {"rank"};
+  autobal_study_rotor_design_options res;
   size_t nm, i;
   int st;
   if (!a || !p || !opt || !S || !S->mass) return AUTOBAL_EINVAL;
+  if (resolve(p, opt, &res, NULL) == AUTOBAL_SUCCESS) opt = &res; /* the bounds and counts as used */
   nm = S->n_mass_done;
   if (nm == 0) return AUTOBAL_EINVAL;
   st = autobal_study_write_rotor_params(a, p, 0);
