@@ -61,6 +61,14 @@ static void test_ratio_set(void) {
       CHECK_STATUS("margin set", st, AUTOBAL_SUCCESS);
       CHECK("m0 restored bitwise", autobal_rotor_stab_get(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS) == m0_before);
       CHECK("no missed crossing", rs.n_missed == 0);
+      if (rs.n_missed) {
+        size_t j;
+        printf("  w %g delta %g: critical t", speeds[a], deltas[b]);
+        for (j = 0; j < rs.n_crit; j++) printf(" %.12g", rs.t_crit[j]);
+        printf("; set");
+        for (j = 0; j < rs.n; j++) printf(" (%.12g, %.12g)", rs.lo[j], rs.hi[j]);
+        printf("\n");
+      }
       for (k = 0; k < NT; k++) {
         const double t = m0v[k] * r0 / mr;
         if (dist_crit(&rs, t) < 2e-4) continue;

@@ -522,7 +522,7 @@ typedef struct autobal_rotor_ratio_set {
   size_t n;              /* open intervals of t where every root has Re lambda < -delta */
   double lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1, ascending, disjoint */
   size_t n_missed;       /* sub-intervals whose midpoint and ends disagreed (counted as not stable); 0 expected */
-  size_t evaluations;    /* margin evaluations (POLY) */
+  size_t evaluations;    /* stability verdicts of single unbalances (Routh-Hurwitz on the shifted Delta) */
 } autobal_rotor_ratio_set;
 
 /* The set above at the handle's omega (docs/rotor.md "Design"): one plane with two identical balls

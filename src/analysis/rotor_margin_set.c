@@ -15,11 +15,12 @@
  * leading coefficient A~_12 - u G~_12 vanishes: u = A~_12 / G~_12 is a critical value too.  Each
  * critical u in [0, m^2] gives |c| = sqrt(u) / m and the two t = sqrt(2 (1 +- |c|)).  Between two
  * consecutive critical t the number of roots right of -delta is constant: one verdict per
- * sub-interval (checked at its midpoint and just inside both ends; a disagreement makes the
- * sub-interval count as not stable and is counted in n_missed) decides it.
+ * sub-interval (Routh-Hurwitz on the coefficients of Delta~, at its midpoint and just inside both
+ * ends; a disagreement makes the sub-interval count as not stable and is counted in n_missed)
+ * decides it.
  *
  * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h),
- * and the public margin (rotor_stability.c). */
+ * (the margin of single configurations is not used here: the tests check the sets against it). */
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
 
@@ -67,17 +68,21 @@ static size_t t_of_u(double u, double m, double *out) {
   return 2;
 }
 
-/* margin < -delta at t (POLY); *ok 1 yes, 0 no, -1 no verdict (balls on one line); *mg the margin. */
-static int ok_at(autobal_rotor_stab *s, double t, double mr, double r0, double delta, int *ok, double *mg) {
-  int v, st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, t * mr / r0);
-  if (st != AUTOBAL_SUCCESS) return st;
-  st = autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_POLY, mg, &v);
-  if (st == AUTOBAL_EUNSUPPORTED) { /* the balls (almost) on one line: no closure, no verdict */
+/* Every root of Delta(. ; u(t)) left of -delta?  Routh-Hurwitz (with its error bounds, rtol 1e-12 on
+ * the coefficients) on Delta~ = A~ - u G~: *ok 1 stable, 0 unstable, -1 within the tolerance of the
+ * line Re lambda = -delta (MARGINAL: next to a critical t, or the neutral root at t = 0, 2). */
+static int ok_at(const long double *At, const long double *Gt, double m, double t, int *ok, autobal_error *err) {
+  const long double cc = (long double)(t * t / 2.0 - 1.0), u = (long double)m * (long double)m * cc * cc;
+  double d[13];
+  size_t k;
+  int v, st;
+  for (k = 0; k < 13; k++) d[k] = (double)(At[k] - u * Gt[k]);
+  if (d[12] == 0.0) {
     *ok = -1;
     return AUTOBAL_SUCCESS;
   }
-  if (st != AUTOBAL_SUCCESS) return st;
-  *ok = (v != AUTOBAL_ROTOR_VERDICT_NONE && *mg < -delta);
+  if ((st = autobal_poly_hurwitz(d, 13, 1e-12, &v, NULL, err)) != AUTOBAL_SUCCESS) return st;
+  *ok = v == AUTOBAL_VERDICT_STABLE ? 1 : (v == AUTOBAL_VERDICT_UNSTABLE ? 0 : -1);
   return AUTOBAL_SUCCESS;
 }
 
@@ -213,30 +218,29 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
     out->n = 0;
     for (k = 0; k + 1 < ne; k++) {
       const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
-      /* just inside the ends (further from t = 0 and 2, where the balls line up and the closure of
-       * (3.16) is lost: there sin(psi_1 - psi_2) ~ t or ~ sqrt(2 - t)) */
-      const double pts[3] = {lo + (k == 0 ? 1e-3 : 1e-7) * wdt, lo + 0.5 * wdt,
-                             hi - (k + 2 == ne ? 1e-3 : 1e-7) * wdt};
+      const double pts[3] = {lo + 1e-7 * wdt, lo + 0.5 * wdt, hi - 1e-7 * wdt};
       int ok[3], q;
-      double mg;
       if (autobal_rotor_stab_cancelled_(s))
         return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "margin set: cancelled by the caller");
       for (q = 0; q < 3; q++) {
-        if ((st = ok_at(s, pts[q], mr, r0, delta, &ok[q], &mg)) != AUTOBAL_SUCCESS) return st;
+        if ((st = ok_at(At, Gt, m, pts[q], &ok[q], &s->err)) != AUTOBAL_SUCCESS) return st;
         out->evaluations++;
       }
-      if ((ok[0] >= 0 && ok[1] >= 0 && ok[0] != ok[1]) || (ok[1] >= 0 && ok[2] >= 0 && ok[1] != ok[2]))
+      /* the ends just inside a critical t may be within the test's tolerance (-1): they do not vote */
+      /* (not counted in sub-intervals narrower than 1e-6, e.g. (0, sqrt(eps)) next to the neutral
+       * root at t = 0, where the coefficients cannot decide; such a one is accepted only if all agree) */
+      if (wdt >= 1e-6 &&
+          ((ok[0] >= 0 && ok[1] >= 0 && ok[0] != ok[1]) || (ok[2] >= 0 && ok[1] >= 0 && ok[2] != ok[1])))
         out->n_missed++;
-      /* an end without a verdict (balls almost on one line, only next to t = 0 or 2) does not vote */
       if (ok[1] == 1 && ok[0] != 0 && ok[2] != 0) {
         int merge = 0;
         if (out->n > 0 && out->hi[out->n - 1] == lo) {
-          /* two stable neighbours: at a true critical t a root touches -delta (margin = -delta, not
-           * < -delta); a spurious candidate (a near-real root of h) is no crossing: merge them */
+          /* two stable neighbours: at a true critical t a root touches -delta (no STABLE verdict
+           * there); a spurious candidate (a near-real root of h) is no crossing: merge them */
           int okc;
-          if ((st = ok_at(s, lo, mr, r0, delta, &okc, &mg)) != AUTOBAL_SUCCESS) return st;
+          if ((st = ok_at(At, Gt, m, lo, &okc, &s->err)) != AUTOBAL_SUCCESS) return st;
           out->evaluations++;
-          merge = okc == 1 && mg < -delta - 1e-9 * (1.0 + fabs(delta));
+          merge = okc == 1;
         }
         if (merge) out->hi[out->n - 1] = hi;
         else {
