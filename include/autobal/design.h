@@ -95,6 +95,8 @@ typedef struct autobal_study_rotor_design_summary {
   size_t ratio_sets;  /* exact every-unbalance tests (autobal_rotor_stab_margin_ratio_set) */
   size_t margin_evaluations; /* single-unbalance stability analyses (POLY) of the search and re-check */
   size_t optimizer_evaluations; /* objective evaluations of the simplex optimizer */
+  int ranked;         /* 1: the ranking and the re-checks finished (0 after a cancellation: the
+                         archive is then marked partial) */
 } autobal_study_rotor_design_summary;
 
 /* Run the design search.  Map: for every (m, h, d) of the grids, the exact sets of normalized

@@ -619,6 +619,7 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
       S->designs[S->n_designs++] = cand[i];
     }
   }
+  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
   if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
     /* the best design: the first that passes its re-check, else the first */
     size_t b = 0;
@@ -826,6 +827,10 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   if (!st) st = autobal_archive_attr_int(a, g, "ratio_sets", (long)S->ratio_sets);
   if (!st) st = autobal_archive_attr_int(a, g, "margin_evaluations", (long)S->margin_evaluations);
   if (!st) st = autobal_archive_attr_int(a, g, "optimizer_evaluations", (long)S->optimizer_evaluations);
+  if (!st && nm == S->n_mass && !S->ranked) {
+    st = autobal_archive_attr_int(a, g, "partial", 1);
+    if (!st) st = autobal_archive_attr_string(a, g, "partial_what", "interrupted during the ranking: the map is complete, no ranked designs");
+  }
   if (!st && nm < S->n_mass) {
     char what[200];
     snprintf(what, sizeof what, "interrupted: the first %zu of %zu rows of the map (ball_mass values); no ranking", nm,
@@ -842,7 +847,7 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   if (!st) st = autobal_archive_var_int(a, g, "feasible", 4, dims4, S->feasible, "1", "1: every root Re lambda < -margin_required at every speed of the grid for every unbalance of the range; 0: not; -1: the balls cannot balance unbalance_max (2 m r <= m0 r0)");
   if (!st) st = autobal_archive_var(a, g, "radius_window_lo", 3, dims4, S->window_lo, "m", "lower end of the widest open interval of feasible track radii within the bounds (exact in r; NaN: none)");
   if (!st) st = autobal_archive_var(a, g, "radius_window_hi", 3, dims4, S->window_hi, "m", "upper end of the same interval");
-  if (st || S->n_designs == 0) return st;
+  if (st || S->n_designs == 0 || !S->ranked) return st;
   {
     const size_t n = S->n_designs;
     double *v = malloc(n * sizeof *v);
