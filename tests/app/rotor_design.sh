@@ -4,7 +4,7 @@
 # Delta built from the hardware values; transients of the best design and of an infeasible one):
 #  (a) the run: exit 0, the ranked table, the best design printed and written (config_out), the
 #      written .ini runs as it is (`rotor stability` finds it stable at speed_max);
-#  (b) the archive and the independent checks (rotor_design_check.py); data/rotor_design.ini as
+#  (b) the archive and the independent checks (rotor_design_check.py); data/design_default.ini as
 #      shipped: its best design feasible, re-checked, and its config stable;
 #  (c) bad input: each range error names its key and exits 3 with nothing written; two planes and
 #      three balls are refused naming the key; SIGINT: exit 6, the archive incomplete with the map rows
@@ -44,10 +44,10 @@ expect 0 "BALANCED MOTION: stable" "$AUTOBAL" rotor stability best.ini --set sta
 "$PY" "$here/rotor_design_check.py" d.h5 best.ini "$AUTOBAL" > check.txt 2>&1 && ok "rotor_design_check.py: $(grep -c '^ok' check.txt) checks" || { bad "rotor_design_check.py"; cat check.txt; }
 grep '^ok\|^FAIL' check.txt | head -40
 
-# data/rotor_design.ini as shipped (the 3-parameter search of docs/rotor.md "Design"): the best design
+# data/design_default.ini as shipped (the 3-parameter search of docs/rotor.md "Design"): the best design
 # feasible and re-checked, at least one feasible map point, the archive's best_config runs
-expect 0 "best design as a config" "$AUTOBAL" rotor design "$DATA/rotor_design.ini" -o full.h5
-"$PY" - <<'PY' && ok "data/rotor_design.ini: best design feasible and re-checked, ranked by robust margin" || bad "data/rotor_design.ini archive"
+expect 0 "best design as a config" "$AUTOBAL" rotor design "$DATA/design_default.ini" -o full.h5
+"$PY" - <<'PY' && ok "data/design_default.ini: best design feasible and re-checked, ranked by robust margin" || bad "data/design_default.ini archive"
 import h5py
 g = h5py.File("full.h5", "r")["/rotor/design"]
 r = g["ranked"]
