@@ -77,7 +77,7 @@ cat d.ini >> two.ini
 expect_err 3 "plane2" "$AUTOBAL" rotor design two.ini
 
 # SIGINT during a long search: exit 6, the archive incomplete, the map rows done
-"$AUTOBAL" rotor design d.ini --set design.n_ball_mass=40 --set design.n_speed=200 -o int.h5 > int.out 2> int.err &
+"$AUTOBAL" rotor design d.ini --set design.n_ball_mass=200 --set design.n_ball_damping=40 --set design.n_speed=400 -o int.h5 > int.out 2> int.err &
 pid=$!
 sleep 3
 kill -INT $pid
@@ -89,7 +89,7 @@ import h5py
 f = h5py.File("int.h5", "r")
 assert f.attrs["status"] == "incomplete", f.attrs["status"]
 g = f["/rotor/design"]
-assert g.attrs["partial"] == 1 and 0 < g.attrs["done"] < g.attrs["requested"] == 40, dict(g.attrs)
+assert g.attrs["partial"] == 1 and 0 < g.attrs["done"] < g.attrs["requested"] == 200, dict(g.attrs)
 assert g["feasible"].shape[0] == g.attrs["done"]
 PY
 else
