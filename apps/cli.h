@@ -290,6 +290,7 @@ int cli_cmd_pendulum_transient(cli_ctx *ctx);
 int cli_cmd_rotor_stability(cli_ctx *ctx);
 int cli_cmd_rotor_sweep(cli_ctx *ctx);
 int cli_cmd_rotor_map(cli_ctx *ctx);
+int cli_cmd_rotor_design(cli_ctx *ctx);
 int cli_cmd_rotor_campbell(cli_ctx *ctx);
 /* apps/cmd_ensemble.c: many transients (grid or seeded random samples), OpenMP and optional MPI */
 int cli_cmd_rotor_ensemble(cli_ctx *ctx);

@@ -29,6 +29,8 @@ const cli_command cli_commands[] = {
      HELP_ROTOR_CAMPBELL, cli_cmd_rotor_campbell},
     {"rotor ensemble", "many transients over initial ball angles or parameters: basin map, P(balance); OpenMP/MPI",
      HELP_ROTOR_ENSEMBLE, cli_cmd_rotor_ensemble},
+    {"rotor design", "size a balancer: stable for every unbalance over a speed range with a margin; ranked designs",
+     HELP_ROTOR_DESIGN, cli_cmd_rotor_design},
     {"pendulum ensemble", "many pendulum transients over initial angles or parameters: basin map, P(balance)",
      HELP_PENDULUM_ENSEMBLE, cli_cmd_pendulum_ensemble},
     {"info", "FILE.h5: what an archive holds: command, parameters, results, datasets", HELP_INFO, cli_cmd_info},

@@ -252,6 +252,22 @@
   HELP_ROTOR_STAB_AXES \
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR
+#define HELP_ROTOR_DESIGN \
+  "Size a ball autobalancer (two identical balls in plane 1) for the machine of the config: the designs\n" \
+  "whose balanced motion has every root Re lambda < -margin at every speed of the range and for EVERY\n" \
+  "unbalance of the range, exact in the unbalance and the track radius, ranked by the robust margin;\n" \
+  "the best re-checked by the every-unbalance analysis and printed as a runnable config.\n\n" \
+  HELP_ROTOR_PARAMS \
+  "[design] speed_min, speed_max (rad/s or rpm; required)  n_speed = 101  n_verify = 0 (4 (n_speed-1) + 1)\n" \
+  "         unbalance_min, unbalance_max (kg m or g mm; required)  margin = 0.1 (1/s)\n" \
+  "         ball_mass_min, ball_mass_max (kg or g; default 0.5x, 2x plane 1's)  n_ball_mass = 8\n" \
+  "         track_radius_min, track_radius_max (m or mm; 0.5x, 1.5x)  n_track_radius = 24 (the map only)\n" \
+  "         ball_damping_min, ball_damping_max (kg/s; 0.1x, 10x)  n_ball_damping = 8\n" \
+  "         position_min, position_max (m; plane 1's d, fixed)  n_position = 1\n" \
+  "         n_best = 10  n_starts = 3 (Nelder-Mead starts)  max_iter = 80  config_out = FILE (the best as .ini)\n" \
+  "         a pair with min = max fixes that variable; one plane, two balls, inertia = paper, isotropic only\n" \
+  "\narchive: /rotor/design (feasible[ball_mass][ball_damping][plane_position][track_radius], radius windows,\n" \
+  "ranked/ designs, best_config)\n" HELP_DOCS_ROTOR
 #define HELP_ROTOR_CAMPBELL \
   "Rotor-housing without balls: natural frequencies at rest (undamped, damped), Campbell diagram (C omega\n" \
   "gyroscopic), steady unbalance response, critical speeds (frequency = omega) and response peaks.\n\n" \

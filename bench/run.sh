@@ -21,6 +21,9 @@
 #                                    frictionless ensemble, SciPy with gap events at matched error (one
 #                                    member, e = 1); ARGS go to friction_scipy.py --contact (e.g. --quick,
 #                                    --only member, --restitutions 0.5,1, --scipy-seed 5)
+#   bench/run.sh design [N_POSITION] the design search (`autobal rotor design`) over 4 balancer parameters
+#                                    for the default machine: time, exact tests and stability verdicts per
+#                                    second (N_POSITION = 1: 3 parameters, the position fixed)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -29,9 +32,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction|contact) what=$1; shift ;;
-    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction or contact; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact|design) what=$1; shift ;;
+    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact or design; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -46,6 +49,7 @@ case "$what" in
   rotor|runup) targets=(bench_rotor) ;;
   friction) targets=(bench_rotor bench_friction) ;;
   contact) targets=(bench_rotor bench_friction) ;;
+  design) targets=(bench_design) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
@@ -88,6 +92,9 @@ if [ "$what" = contact ]; then
   cd "$here"
   exec "$py" "$here/friction_scipy.py" --contact --bench-friction "$build/bench_friction" \
     --bench-rotor "$build/bench_rotor" "$@"
+fi
+if [ "$what" = design ]; then
+  exec "$build/bench_design" "$@"
 fi
 if [ "$what" = runup ]; then
   args=()

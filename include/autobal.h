@@ -21,5 +21,6 @@
 #include "autobal/study.h"
 #include "autobal/attractor.h"
 #include "autobal/ensemble.h"
+#include "autobal/design.h"
 
 #endif

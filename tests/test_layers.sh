@@ -47,7 +47,7 @@ layer_of_public() {
     autobal/pendulum.h) echo models:pendulum ;;
     autobal/rotor_stability.h | autobal/rotor_asymptotic.h | autobal/runup.h | autobal/attractor.h) echo analysis ;;
     autobal/archive.h) echo archive ;;
-    autobal/study*.h | autobal/studies*.h | autobal/ensemble.h) echo studies ;;
+    autobal/study*.h | autobal/studies*.h | autobal/ensemble.h | autobal/design.h) echo studies ;;
     autobal.h) echo umbrella ;;
     *) echo "?" ;;
   esac

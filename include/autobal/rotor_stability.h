@@ -555,6 +555,33 @@ AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_param
                                                        int n_threads, double *margin, int *verdict,
                                                        autobal_error *err);
 
+/* ---- every unbalance with a margin, two identical balls (the design search) ----------- */
+
+/* The normalized unbalances t = m0 r0 / (m r) in (0, 2) of one plane with two identical balls (mass m,
+ * radius r) for which every root of the balanced motion has Re lambda < -delta. */
+typedef struct autobal_rotor_ratio_set {
+  double omega;          /* rad/s, the speed analysed (the handle's) */
+  double delta;          /* 1/s, the margin demanded (any sign; 0: plain stability) */
+  size_t n_crit;         /* critical t in (0, 2): a root of Delta on Re lambda = -delta */
+  double t_crit[AUTOBAL_ROTOR_MAX_UCRIT]; /* 1, ascending */
+  size_t n;              /* open intervals of t where every root has Re lambda < -delta */
+  double lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1, ascending, disjoint */
+  size_t n_missed;       /* sub-intervals whose midpoint and ends disagreed (counted as not stable); 0 expected */
+  size_t evaluations;    /* stability verdicts of single unbalances (Routh-Hurwitz on the shifted Delta) */
+} autobal_rotor_ratio_set;
+
+/* The set above at the handle's omega (docs/rotor.md "Design"): one plane with two identical balls
+ * (same m, r, h), isotropic supports, the paper's inertia; r0 > 0.  Guaranteed in t (not sampled):
+ * the critical t are those where Delta(mu - delta; u) has a root on the imaginary axis or loses its
+ * degree (u = |Q|^2 / 4 = m^2 (t^2 / 2 - 1)^2), one verdict per sub-interval between them.  The
+ * verdict depends on the balls' radius only through t, so the set serves every track radius.  m0
+ * is restored (bitwise).  Returns AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL out, r0 <= 0, omega 0,
+ * delta not finite), AUTOBAL_EUNSUPPORTED (message names what), AUTOBAL_ENUMERIC (root finder;
+ * more than AUTOBAL_ROTOR_MAX_UCRIT critical values), AUTOBAL_ENOMEM, AUTOBAL_ECANCELLED (the
+ * handle's hook).  *out is zeroed first. */
+AUTOBAL_API int autobal_rotor_stab_margin_ratio_set(autobal_rotor_stab *s, double delta,
+                                                    autobal_rotor_ratio_set *out);
+
 /* ---- the rotor-housing without balls: natural frequencies, Campbell diagram,
  *      unbalance response (the balls are removed; in the FULL inertia model the
  *      masses m0 + sum m_i stay attached at their planes) ------------------------- */

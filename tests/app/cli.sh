@@ -81,7 +81,7 @@ for model in rotor pendulum; do
     if [ "$n" -ne 1 ] || ! grep -qF "$summary" "model_$model.txt"; then miss=$((miss+1)); echo "  $model $action: $n lines"; fi
   done < actions.txt
   [ $miss -eq 0 ] && ok "autobal $model --help lists each action of $model once, with its summary" || bad "autobal $model --help: $miss actions wrong"
-  others=$(grep -cE "^  (transient|stability|sweep|map|campbell|ensemble|roots|critical) " "model_$model.txt")
+  others=$(grep -cE "^  (transient|stability|sweep|map|campbell|ensemble|design|roots|critical) " "model_$model.txt")
   [ "$others" -eq "$(grep -c "^$model " actions.txt)" ] && ok "  ... and no other model's actions" || bad "autobal $model --help lists $others actions"
   run "$A" "$model"; rc=$?
   if [ $rc -eq 2 ] && cmp -s err.txt "model_$model.txt" && [ ! -s out.txt ]; then ok "autobal $model alone: the same on stderr, exit 2"

@@ -1,0 +1,249 @@
+/* cmd_rotor_design.c: `autobal rotor design`: size a ball autobalancer (two identical balls in one
+ * plane) for the machine of the config, a speed range and a range of unbalances, with a required
+ * margin (the library's autobal_study_rotor_design; docs/rotor.md "Design"). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "autobal/archive.h"
+#include "autobal/design.h"
+#include "autobal/rotor.h"
+#include "autobal/study.h"
+#include "cli.h"
+#include "units.h"
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return 0.0;
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct design_bar {
+  cli_ctx *ctx;
+  double last;
+} design_bar;
+static int design_progress(double fraction, void *user) {
+  design_bar *b = (design_bar *)user;
+  if (fraction == b->last) return cli_interrupted();
+  b->last = fraction;
+  return cli_progress(b->ctx, "rotor design", fraction);
+}
+
+static int need_range(cli_ctx *ctx, const char *kmin, double lo, const char *kmax, double hi, const char *unit,
+                      int strict, int positive) {
+  if (positive && !(lo > 0.0))
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[design]: %s = %g %s is out of range: must be > 0", kmin, lo, unit);
+  if (strict ? lo < hi : lo <= hi) return CLI_EXIT_OK;
+  return cli_fail(ctx, CLI_EXIT_INPUT, "[design]: %s = %g %s must be %s %s = %g %s", kmax, hi, unit,
+                  strict ? "larger than" : "at least", kmin, lo, unit);
+}
+static int need_count(cli_ctx *ctx, const char *key, long v, long lo, long hi) {
+  if (v >= lo && v <= hi) return CLI_EXIT_OK;
+  return cli_fail(ctx, CLI_EXIT_INPUT, "[design]: %s = %ld is out of range: allowed [%ld, %ld]", key, v, lo, hi);
+}
+
+/* A bound pair of [design]: both or neither (then the library's default). */
+static int get_bounds(cli_ctx *ctx, const char *kmin, const char *kmax, const char *unit, double *lo, double *hi) {
+  int rc, p1 = 0, p2 = 0;
+  if ((rc = cli_get_quantity(ctx, "design", kmin, unit, NAN, lo, &p1))) return rc;
+  if ((rc = cli_get_quantity(ctx, "design", kmax, unit, NAN, hi, &p2))) return rc;
+  if (p1 != p2)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[design]: %s and %s go together (give both, or neither for the default)",
+                    kmin, kmax);
+  if (p1) return need_range(ctx, kmin, *lo, kmax, *hi, unit, 0, strcmp(unit, "m") != 0 || strcmp(kmin, "position_min"));
+  return CLI_EXIT_OK;
+}
+
+typedef struct design_partial {
+  const autobal_rotor_params *p;
+  const autobal_study_rotor_design_options *o;
+  const autobal_study_rotor_design_summary *sum;
+} design_partial;
+
+int cli_cmd_rotor_design(cli_ctx *ctx) {
+  autobal_rotor_params p;
+  void *storage = NULL;
+  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
+  autobal_study_rotor_design_summary sum;
+  autobal_archive *a = NULL;
+  autobal_error err;
+  design_bar bar;
+  char msg[sizeof ctx->err];
+  const char *config_out = NULL;
+  long n_speed = (long)o.n_omega, n_verify = 0, n_mass = (long)o.n_mass, n_radius = (long)o.n_radius,
+       n_damping = (long)o.n_damping, n_position = (long)o.n_position, n_best = (long)o.n_best,
+       n_starts = (long)o.n_starts, max_iter = (long)o.max_iter;
+  int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
+  double t0, seconds;
+  size_t i;
+  memset(&sum, 0, sizeof sum);
+  if ((rc = cli_rotor_config_read(ctx, &p, &storage))) goto done;
+  if (p.gravity) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[rotor]: gravity = true is not supported by `autobal rotor design`: it sizes the balancer on the "
+                  "weightless balanced state; set gravity = false");
+    goto done;
+  }
+  cli_declare_section(ctx, "transient");
+  cli_declare_section(ctx, "balance");
+  cli_declare_section(ctx, "stability");
+  if ((rc = cli_get_quantity(ctx, "design", "speed_min", "rad/s", NAN, &o.omega_min, &have_wmin))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "speed_max", "rad/s", NAN, &o.omega_max, &have_wmax))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_speed", n_speed, &n_speed, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_verify", n_verify, &n_verify, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "unbalance_min", "kg m", NAN, &o.unbalance_min, &have_umin))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "unbalance_max", "kg m", NAN, &o.unbalance_max, &have_umax))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "margin", "1/s", o.margin, &o.margin, NULL))) goto done;
+  if ((rc = get_bounds(ctx, "ball_mass_min", "ball_mass_max", "kg", &o.mass_min, &o.mass_max))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_ball_mass", n_mass, &n_mass, NULL))) goto done;
+  if ((rc = get_bounds(ctx, "track_radius_min", "track_radius_max", "m", &o.radius_min, &o.radius_max))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_track_radius", n_radius, &n_radius, NULL))) goto done;
+  if ((rc = get_bounds(ctx, "ball_damping_min", "ball_damping_max", "kg/s", &o.damping_min, &o.damping_max)))
+    goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_ball_damping", n_damping, &n_damping, NULL))) goto done;
+  if ((rc = get_bounds(ctx, "position_min", "position_max", "m", &o.position_min, &o.position_max))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_position", n_position, &n_position, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_best", n_best, &n_best, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_starts", n_starts, &n_starts, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "max_iter", max_iter, &max_iter, NULL))) goto done;
+  if ((rc = cli_get_string(ctx, "design", "config_out", NULL, &config_out, &have_out))) goto done;
+  if ((rc = cli_config_check_unused(ctx))) goto done;
+  if (!have_wmin || !have_wmax) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: speed_min and speed_max are required (the operating speed range, e.g. speed_min = "
+                  "4500 rpm, speed_max = 9000 rpm)");
+    goto done;
+  }
+  if (!have_umin || !have_umax) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: unbalance_min and unbalance_max are required (the range of m0 r0 the machine meets, "
+                  "e.g. unbalance_min = 500 g mm, unbalance_max = 4000 g mm)");
+    goto done;
+  }
+  if ((rc = need_range(ctx, "speed_min", o.omega_min, "speed_max", o.omega_max, "rad/s", 1, 1)) ||
+      (rc = need_range(ctx, "unbalance_min", o.unbalance_min, "unbalance_max", o.unbalance_max, "kg m", 0, 1)) ||
+      (rc = need_count(ctx, "n_speed", n_speed, 2, 100000)) || (rc = need_count(ctx, "n_verify", n_verify, 0, 1000000)) ||
+      (rc = need_count(ctx, "n_ball_mass", n_mass, 1, 1000)) || (rc = need_count(ctx, "n_track_radius", n_radius, 1, 1000)) ||
+      (rc = need_count(ctx, "n_ball_damping", n_damping, 1, 1000)) ||
+      (rc = need_count(ctx, "n_position", n_position, 1, 1000)) || (rc = need_count(ctx, "n_best", n_best, 1, 1000)) ||
+      (rc = need_count(ctx, "n_starts", n_starts, 0, 100)) || (rc = need_count(ctx, "max_iter", max_iter, 1, 10000)))
+    goto done;
+  if (n_verify == 1) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: n_verify = 1 is out of range: allowed 0 (default) or [2, 1000000]");
+    goto done;
+  }
+  if (!(o.margin >= 0.0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: margin = %g 1/s is out of range: must be >= 0", o.margin);
+    goto done;
+  }
+  o.n_omega = (size_t)n_speed;
+  o.n_verify = (size_t)n_verify;
+  o.n_mass = (size_t)n_mass;
+  o.n_radius = (size_t)n_radius;
+  o.n_damping = (size_t)n_damping;
+  o.n_position = (size_t)n_position;
+  o.n_best = (size_t)n_best;
+  o.n_starts = (size_t)n_starts;
+  o.max_iter = (size_t)max_iter;
+  bar.ctx = ctx;
+  bar.last = -1.0;
+  o.progress = design_progress;
+  o.progress_user = &bar;
+  autobal_error_clear(&err);
+  t0 = wall_seconds();
+  st = autobal_study_rotor_design(&p, &o, NULL, &sum, &err);
+  seconds = wall_seconds() - t0;
+  cli_progress_done(ctx);
+  if (st == AUTOBAL_ECANCELLED) {
+    /* exit 6; with -o the map rows done go into the archive, marked incomplete */
+    if ((rc = cli_archive_open(ctx, "autobal rotor design", &a))) goto done;
+    rc = cli_fail(ctx, CLI_EXIT_INTERRUPTED, "%s: %s; %s", cli_signal_reason(), err.message,
+                  a ? "the archive keeps what was computed (status incomplete)" : "nothing written (no -o)");
+    if (a && sum.mass && sum.n_mass_done > 0 && autobal_study_rotor_design_write(a, &p, &o, &sum))
+      fprintf(stderr, "autobal: error: writing the partial results failed: %s\n", autobal_archive_errmsg(a));
+    goto done;
+  }
+  if (st) {
+    rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
+    goto done;
+  }
+  if ((rc = cli_archive_open(ctx, "autobal rotor design", &a))) goto done;
+  if (a) {
+    st = autobal_study_rotor_design_write(a, &p, &o, &sum);
+    rc = cli_archive_end(ctx, &a, st, rc);
+    if (rc) goto done;
+  }
+  if (have_out && sum.best_config) {
+    FILE *f = fopen(config_out, "w");
+    if (!f || fputs(sum.best_config, f) < 0 || fclose(f) != 0) {
+      rc = cli_fail(ctx, CLI_EXIT_IO, "[design]: config_out = '%s': cannot write the best design's config", config_out);
+      goto done;
+    }
+  }
+  if (ctx->json) {
+    cli_json j;
+    cli_json_summary_begin(&j, ctx);
+    cli_json_quantity(&j, "speed_min", o.omega_min, "rad/s");
+    cli_json_quantity(&j, "speed_max", o.omega_max, "rad/s");
+    cli_json_quantity(&j, "unbalance_min", o.unbalance_min, "kg m");
+    cli_json_quantity(&j, "unbalance_max", o.unbalance_max, "kg m");
+    cli_json_quantity(&j, "margin", o.margin, "1/s");
+    cli_json_int(&j, "n_feasible", (long)sum.n_feasible);
+    cli_json_int(&j, "ratio_sets", (long)sum.ratio_sets);
+    cli_json_int(&j, "stability_analyses", (long)sum.margin_evaluations);
+    cli_json_array(&j, "designs");
+    for (i = 0; i < sum.n_designs; i++) {
+      const autobal_rotor_design *d = &sum.designs[i];
+      cli_json_object(&j, NULL);
+      cli_json_quantity(&j, "ball_mass", d->mass, "kg");
+      cli_json_quantity(&j, "track_radius", d->radius, "m");
+      cli_json_quantity(&j, "ball_damping", d->damping, "kg/s");
+      cli_json_quantity(&j, "position", d->position, "m");
+      cli_json_quantity(&j, "robust_margin", d->margin, "1/s");
+      cli_json_bool(&j, "feasible", d->feasible);
+      cli_json_int(&j, "recheck", d->recheck);
+      cli_json_object_end(&j);
+    }
+    cli_json_array_end(&j);
+    if (sum.best_config) cli_json_string(&j, "best_config", sum.best_config);
+    cli_json_summary_end(&j, ctx);
+  } else if (!ctx->quiet) {
+    const size_t ncells = sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
+    printf("rotor design: two identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
+           o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
+    printf("  every unbalance m0 r0 in [%.6g, %.6g] g mm, required margin %.6g 1/s (every root Re lambda < -margin)\n",
+           o.unbalance_min * 1e6, o.unbalance_max * 1e6, o.margin);
+    printf("  map: %zu ball masses [%.6g, %.6g] g x %zu dampings [%.6g, %.6g] kg/s x %zu positions x %zu radii "
+           "[%.6g, %.6g] mm: %zu of %zu feasible\n",
+           sum.n_mass, sum.mass[0] * 1e3, sum.mass[sum.n_mass - 1] * 1e3, sum.n_damping, sum.damping[0],
+           sum.damping[sum.n_damping - 1], sum.n_position, sum.n_radius, sum.radius[0] * 1e3,
+           sum.radius[sum.n_radius - 1] * 1e3, sum.n_feasible, ncells);
+    printf("  ranked designs (robust margin rho: the exact test passes with it at every grid speed and unbalance):\n");
+    printf("    %4s %10s %10s %12s %10s %12s %8s %8s\n", "rank", "mass g", "radius mm", "damping kg/s", "d mm",
+           "rho 1/s", "feasible", "recheck");
+    for (i = 0; i < sum.n_designs; i++) {
+      const autobal_rotor_design *d = &sum.designs[i];
+      printf("    %4zu %10.5g %10.5g %12.5g %10.5g %12.5g %8s %8s%s\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,
+             d->position * 1e3, d->margin, d->feasible ? "yes" : "no",
+             d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "");
+    }
+    if (sum.n_designs == 0) printf("    none: no design in the bounds balances the range with the margin\n");
+    printf("  %zu exact every-unbalance tests, %zu stability analyses (%.0f per second), %zu optimizer evaluations\n",
+           sum.ratio_sets, sum.margin_evaluations, seconds > 0 ? (double)sum.margin_evaluations / seconds : 0.0,
+           sum.optimizer_evaluations);
+    if (sum.best_config) {
+      if (have_out) printf("best design as a config (written to %s):\n", config_out);
+      else printf("best design as a config ([design] config_out = FILE writes it):\n");
+      fputs(sum.best_config, stdout);
+    }
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  }
+done:
+  if (a) rc = cli_archive_finish(ctx, a, rc);
+  autobal_study_rotor_design_summary_free(&sum);
+  free(storage);
+  return rc;
+}

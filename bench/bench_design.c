@@ -1,0 +1,66 @@
+/* bench_design.c: the design search of `autobal rotor design` (autobal_study_rotor_design) over FOUR
+ * balancer parameters -- ball mass, track radius, ball damping and the plane position -- for the
+ * default machine (data/rotor_default.ini), speeds 4500..9000 rpm, every unbalance 500..4000 g mm,
+ * required margin 0.2 1/s.  Prints the wall and CPU time, the counts of exact every-unbalance tests
+ * and of single stability verdicts, and those per second.  Usage: bench_design [n_position]
+ * (default 5; 1 fixes the position: a 3-parameter search).  Single-threaded. */
+#include <gsl/gsl_errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "autobal.h"
+
+static double wall(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int main(int argc, char **argv) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
+  autobal_study_rotor_design_summary S;
+  autobal_error err;
+  const double pi = 3.14159265358979323846;
+  double t0, c0, tw, tc;
+  int st;
+  size_t k;
+  gsl_set_error_handler_off();
+  o.omega_min = 4500.0 * pi / 30.0;
+  o.omega_max = 9000.0 * pi / 30.0;
+  o.unbalance_min = 500e-6;
+  o.unbalance_max = 4000e-6;
+  o.margin = 0.2;
+  o.mass_min = 0.025, o.mass_max = 0.1, o.n_mass = 8;
+  o.radius_min = 0.05, o.radius_max = 0.15, o.n_radius = 24;
+  o.damping_min = 0.01, o.damping_max = 1.0, o.n_damping = 8;
+  o.position_min = 0.05, o.position_max = 0.15, o.n_position = argc > 1 ? (size_t)atoi(argv[1]) : 5;
+  if (o.n_position == 1) o.position_min = o.position_max = p.plane[0].d;
+  t0 = wall();
+  c0 = (double)clock() / CLOCKS_PER_SEC;
+  st = autobal_study_rotor_design(&p, &o, NULL, &S, &err);
+  tw = wall() - t0;
+  tc = (double)clock() / CLOCKS_PER_SEC - c0;
+  if (st) {
+    fprintf(stderr, "bench_design: %s\n", err.message);
+    return 1;
+  }
+  printf("design search, default machine, %s: %zu speeds in [4500, 9000] rpm, every m0 r0 in [500, 4000] g mm, "
+         "margin 0.2 1/s\n",
+         o.n_position > 1 ? "4 parameters (mass, radius, damping, position)" : "3 parameters (mass, radius, damping)",
+         o.n_omega);
+  printf("  map %zu x %zu x %zu (x %zu radii, exact windows): %zu feasible points\n", S.n_mass, S.n_damping,
+         S.n_position, S.n_radius, S.n_feasible);
+  printf("  wall %.2f s, CPU %.2f s (one thread)\n", tw, tc);
+  printf("  exact every-unbalance tests: %zu (%.0f per CPU second)\n", S.ratio_sets, (double)S.ratio_sets / tc);
+  printf("  single stability verdicts: %zu (%.0f per CPU second, %.0f per wall second)\n", S.margin_evaluations,
+         (double)S.margin_evaluations / tc, (double)S.margin_evaluations / tw);
+  printf("  optimizer evaluations: %zu\n", S.optimizer_evaluations);
+  for (k = 0; k < S.n_designs && k < 3; k++)
+    printf("  #%zu: m %.4g g, r %.4g mm, h %.4g kg/s, d %.4g mm: rho %.4g 1/s, re-check %s\n", k,
+           S.designs[k].mass * 1e3, S.designs[k].radius * 1e3, S.designs[k].damping, S.designs[k].position * 1e3,
+           S.designs[k].margin, S.designs[k].recheck == 1 ? "ok" : "FAILED");
+  autobal_study_rotor_design_summary_free(&S);
+  return 0;
+}

@@ -1,0 +1,140 @@
+/* autobal/design.h: sizing a ball autobalancer for a machine (`autobal rotor design`,
+ * docs/rotor.md "Design").
+ *
+ * Given the machine (rotor, supports: autobal_rotor_params with one balancer plane of two balls),
+ * an operating speed range [omega_min, omega_max], a range of unbalances m0 r0 in
+ * [unbalance_min, unbalance_max] and a required margin delta (1/s), the search finds the balancers
+ * (two identical balls: ball mass m, track radius r, ball damping h, and the axial position d of the
+ * plane, which in this one-plane model also holds the unbalance) for which every root of the
+ * balanced motion has Re lambda < -delta at every speed of the speed grid and for EVERY unbalance
+ * of the range.  The verdict of a design is guaranteed in the unbalance and in the track radius
+ * (autobal_rotor_stab_margin_ratio_set: the critical values, not samples; the radius enters only
+ * through t = m0 r0 / (m r)), and sampled in the speed (n_omega points, re-checked on a finer grid)
+ * and in m, h, d (a grid, then a simplex optimizer).
+ *
+ * Ranking: by the robust margin rho of a design, the largest delta for which it is feasible
+ * (1/s; the slowest decay rate over the speed grid and every unbalance of the range), computed by
+ * the exact test and bisection to about 1e-3 1/s.  Larger is better.
+ *
+ * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, three or more balls,
+ * balls that differ, the full inertia model, anisotropic supports, a run-up profile (the speed
+ * range only), gravity.
+ *
+ * Units: SI inside (kg, m, kg/s, rad/s, 1/s, kg m).  Threads: none (one handle per call).  Errors
+ * in err; the library never prints. */
+#ifndef AUTOBAL_DESIGN_H
+#define AUTOBAL_DESIGN_H
+
+#include <stddef.h>
+
+#include "autobal/archive.h"
+#include "autobal/export.h"
+#include "autobal/rotor.h"
+#include "autobal/status.h"
+#include "autobal/study.h"
+
+AUTOBAL_BEGIN_DECLS
+
+/* Options of `autobal rotor design` (section [design]).  A bound pair with min == max fixes that
+ * variable (its grid then has one point).  NaN bounds take the defaults said. */
+typedef struct autobal_study_rotor_design_options {
+  double omega_min, omega_max;   /* rad/s, operating speeds, 0 < min < max (required)  (NaN, NaN) */
+  size_t n_omega;                /* speeds of the search grid, [2, 1e5]                     (101) */
+  size_t n_verify;               /* speeds of the re-check grid, [2, 1e6]; 0: 4 (n_omega-1) + 1 (0) */
+  double unbalance_min, unbalance_max; /* kg m, 0 < min <= max (required)                (NaN, NaN) */
+  double margin;                 /* 1/s, required decay rate delta >= 0                      (0.1) */
+  double mass_min, mass_max;     /* kg, ball mass > 0; NaN: 0.5x and 2x the given ball's mass */
+  size_t n_mass;                 /* geometric grid, [1, 1000]                                  (8) */
+  double radius_min, radius_max; /* m, track radius > 0; NaN: 0.5x and 1.5x the given radius */
+  size_t n_radius;               /* geometric grid of the map only (the search is exact in r) (24) */
+  double damping_min, damping_max; /* kg/s, ball damping > 0; NaN: 0.1x and 10x the given one */
+  size_t n_damping;              /* geometric grid, [1, 1000]                                  (8) */
+  double position_min, position_max; /* m, plane position d; NaN: the given d (fixed)          */
+  size_t n_position;             /* linear grid, [1, 1000] (1 if fixed)                        (1) */
+  size_t n_best;                 /* ranked designs reported, [1, 1000]                        (10) */
+  size_t n_starts;               /* optimizer starts (best grid designs), [0, 100]             (3) */
+  size_t max_iter;               /* optimizer iterations per start, [1, 10000]                (80) */
+  autobal_study_progress_fn progress; /* fraction done; non-zero: cancel                  (NULL) */
+  void *progress_user;                                                              /* (NULL) */
+} autobal_study_rotor_design_options;
+
+AUTOBAL_API autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void);
+
+/* One design and its figures. */
+typedef struct autobal_rotor_design {
+  double mass;      /* kg, each of the two balls */
+  double radius;    /* m, track radius of both */
+  double damping;   /* kg/s, h of each ball */
+  double position;  /* m, plane position d */
+  double margin;    /* 1/s, robust margin rho (see the top); -inf: unstable beyond the bisection's reach */
+  int feasible;     /* 1: rho > the required margin (every speed of the grid, every unbalance) */
+  int source;       /* 0: a grid point of the map, 1: the optimizer */
+  int recheck;      /* 1: the exact every-unbalance analysis (autobal_rotor_stab_every_unbalance_speeds)
+                       finds it stable for every unbalance on the whole re-check speed grid, and the
+                       margins it evaluates are all < -required margin; 0: it does not (then feasible
+                       is set to 0 too); -1: not re-checked */
+  double recheck_margin; /* 1/s, -(the largest margin the re-check evaluated): a sampled upper
+                            estimate of rho on the finer speed grid */
+} autobal_rotor_design;
+
+/* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */
+typedef struct autobal_study_rotor_design_summary {
+  size_t n_mass, n_damping, n_position, n_radius;
+  double *mass, *damping, *position, *radius; /* the grids (kg, kg/s, m, m) */
+  int *feasible;    /* [n_mass][n_damping][n_position][n_radius]: 1 feasible with the required margin
+                       at every speed of the grid and every unbalance, 0 not, -1 the balls cannot
+                       balance the largest unbalance (2 m r <= unbalance_max) */
+  double *window_lo, *window_hi; /* [n_mass][n_damping][n_position] m: the widest interval of track
+                       radii (within the bounds) where the design is feasible, exact in r (NaN: none) */
+  size_t n_feasible;  /* feasible points of the map */
+  size_t n_mass_done; /* rows of the map computed (n_mass, fewer after a cancellation) */
+  size_t n_designs;   /* ranked designs (best first) */
+  autobal_rotor_design *designs;
+  char *best_config;  /* INI text of the best design (a runnable config: rotor, supports, plane1 with
+                         the design's balls, omega = omega_max); NULL if there is no design */
+  size_t ratio_sets;  /* exact every-unbalance tests (autobal_rotor_stab_margin_ratio_set) */
+  size_t margin_evaluations; /* single-unbalance stability analyses (POLY) of the search and re-check */
+  size_t optimizer_evaluations; /* objective evaluations of the simplex optimizer */
+  int ranked;         /* 1: the ranking and the re-checks finished (0 after a cancellation: the
+                         archive is then marked partial) */
+} autobal_study_rotor_design_summary;
+
+/* Run the design search.  Map: for every (m, h, d) of the grids, the exact sets of normalized
+ * unbalances t stable with the required margin at every speed of the grid are intersected; the
+ * track radii r with [unbalance_min, unbalance_max] / (m r) inside one of its intervals form open
+ * intervals, stored exactly (window_*) and sampled on the radius grid (feasible).  Ranking: every
+ * map cell with a window contributes its design at the window's geometric middle; the best
+ * n_starts are polished by the Nelder-Mead simplex (GSL gsl_multimin_fminimizer_nmsimplex2) on
+ * -rho over the bounded box; the best n_best designs (distinct) are re-checked by the independent
+ * every-unbalance analysis on the n_verify grid.  With an archive: /rotor (the machine) and
+ * /rotor/design.  Returns AUTOBAL_SUCCESS (also when no design is feasible: n_designs counts the
+ * ranked ones, feasible says which pass), AUTOBAL_EINVAL (options: the message names the field and
+ * range), AUTOBAL_EUNSUPPORTED (the machine: message names the key), AUTOBAL_ENOMEM,
+ * AUTOBAL_ENUMERIC, an archive status, AUTOBAL_ECANCELLED (progress asked to stop: the map rows
+ * done are in the summary and, with an archive, written with partial = 1).  summary is zeroed
+ * first; free it also after a failure. */
+AUTOBAL_API int autobal_study_rotor_design(const autobal_rotor_params *p,
+                                           const autobal_study_rotor_design_options *opt, autobal_archive *a,
+                                           autobal_study_rotor_design_summary *summary, autobal_error *err);
+AUTOBAL_API int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_params *p,
+                                                 const autobal_study_rotor_design_options *opt,
+                                                 const autobal_study_rotor_design_summary *summary);
+AUTOBAL_API void autobal_study_rotor_design_summary_free(autobal_study_rotor_design_summary *summary);
+
+/* The robust margin rho (1/s) of one design over the speed grid of opt (n_omega points in
+ * [omega_min, omega_max]) and every unbalance in [unbalance_min, unbalance_max], by the exact test
+ * and bisection (accuracy about 1e-3 (1 + |rho|) 1/s).  *rho = -INFINITY when the balls cannot
+ * balance unbalance_max.  Statuses as above. */
+AUTOBAL_API int autobal_study_rotor_design_margin(const autobal_rotor_params *p,
+                                                  const autobal_study_rotor_design_options *opt,
+                                                  const autobal_rotor_design *design, double *rho,
+                                                  autobal_error *err);
+
+/* The machine p with the design's balls (both balls m, r, h; plane 1 at d) as INI text (malloc'ed;
+ * free()).  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
+AUTOBAL_API char *autobal_study_rotor_design_config(const autobal_rotor_params *p,
+                                                    const autobal_rotor_design *design, double omega);
+
+AUTOBAL_END_DECLS
+
+#endif

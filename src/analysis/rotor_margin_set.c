@@ -1,0 +1,268 @@
+/* rotor_margin_set.c: the unbalances for which the balanced motion of one plane with two IDENTICAL
+ * balls is stable with a margin delta (every root Re lambda < -delta), as a set of the normalized
+ * unbalance t = m0 r0 / (m r) in (0, 2), decided by its critical values, not by sampling
+ * (docs/rotor.md "Design").  The building block of the design search (src/studies/rotor_design.c).
+ *
+ * With identical balls (mass m, radius r, damping h) the balanced angles depend on the unbalance
+ * s = m0 r0 only through t = s / (m r): c = cos(psi_1 - psi_2) = t^2 / 2 - 1, and
+ * u = |Q|^2 / 4 = m^2 c^2.  Delta(lambda; u) = A(lambda) - u G(lambda), G = (lambda^2 + w^2)^4 Bt
+ * (rotor_closed.h), A and G independent of the unbalance and of r.  The roots of Delta lie left of
+ * Re lambda = -delta iff the roots of Delta~(mu) = Delta(mu - delta) = A~(mu) - u G~(mu) lie in the
+ * left half-plane, with A~, G~ the Taylor-shifted polynomials.  A root of Delta~ is on the imaginary
+ * axis, mu = i y, only where A~(iy) = u G~(iy) with u real: y = 0 (u = A~_0 / G~_0), or
+ * Im(A~(iy) conj G~(iy)) = y h(y^2) = 0, h = Ae Go - Ao Ge (even/odd parts in z = y^2, degree <= 11),
+ * u = (Ae Ge + z Ao Go) / (Ge^2 + z Go^2).  A root can also leave through infinity where the
+ * leading coefficient A~_12 - u G~_12 vanishes: u = A~_12 / G~_12 is a critical value too.  Each
+ * critical u in [0, m^2] gives |c| = sqrt(u) / m and the two t = sqrt(2 (1 +- |c|)).  Between two
+ * consecutive critical t the number of roots right of -delta is constant: one verdict per
+ * sub-interval (Routh-Hurwitz on the coefficients of Delta~, at its midpoint and just inside both
+ * ends; a disagreement makes the sub-interval count as not stable and is counted in n_missed)
+ * decides it.
+ *
+ * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h),
+ * (the margin of single configurations is not used here: the tests check the sets against it). */
+#include "autobal/rotor_stability.h"
+#include "autobal/stability.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/rotor_closed.h"
+#include "analysis/rotor_stab_handle.h"
+#include "internal.h"
+
+/* p(z) for ascending real coefficients (long double Horner). */
+static long double lpoly(const long double *c, size_t len, long double z) {
+  long double v = 0.0L;
+  while (len-- > 0) v = v * z + c[len];
+  return v;
+}
+
+/* q(mu) = p(mu + a) in place, ascending coefficients c[0..n] (Horner's Taylor shift). */
+static void taylor_shift(long double *c, size_t n, long double a) {
+  size_t k, j;
+  for (k = 0; k < n; k++)
+    for (j = n; j-- > k;) c[j] += a * c[j + 1];
+}
+
+/* Even and odd parts at mu = i y in z = y^2: p(i y) = E(z) + i y O(z) (p of degree 12). */
+static void split_iy(const long double *p, long double E[7], long double O[6]) {
+  size_t j;
+  for (j = 0; j < 7; j++) E[j] = (j % 2 == 0 ? 1.0L : -1.0L) * p[2 * j];
+  for (j = 0; j < 6; j++) O[j] = (j % 2 == 0 ? 1.0L : -1.0L) * p[2 * j + 1];
+}
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The two t of a critical u (if 0 <= u <= m^2, generously) into out; returns the count. */
+static size_t t_of_u(double u, double m, double *out) {
+  double ac;
+  if (!(u >= -1e-12 * m * m && u <= m * m * (1.0 + 1e-12))) return 0;
+  ac = fmin(1.0, sqrt(fmax(0.0, u)) / m);
+  out[0] = sqrt(2.0 * (1.0 - ac));
+  out[1] = sqrt(2.0 * (1.0 + ac));
+  return 2;
+}
+
+/* Every root of Delta(. ; u(t)) left of -delta?  Routh-Hurwitz (with its error bounds, rtol 1e-12 on
+ * the coefficients) on Delta~ = A~ - u G~: *ok 1 stable, 0 unstable, -1 within the tolerance of the
+ * line Re lambda = -delta (MARGINAL: next to a critical t, or the neutral root at t = 0, 2). */
+static int ok_at(const long double *At, const long double *Gt, double m, double t, int *ok, autobal_error *err) {
+  const long double cc = (long double)(t * t / 2.0 - 1.0), u = (long double)m * (long double)m * cc * cc;
+  double d[13];
+  size_t k;
+  int v, st;
+  for (k = 0; k < 13; k++) d[k] = (double)(At[k] - u * Gt[k]);
+  if (d[12] == 0.0) {
+    *ok = -1;
+    return AUTOBAL_SUCCESS;
+  }
+  if ((st = autobal_poly_hurwitz(d, 13, 1e-12, &v, NULL, err)) != AUTOBAL_SUCCESS) return st;
+  *ok = v == AUTOBAL_VERDICT_STABLE ? 1 : (v == AUTOBAL_VERDICT_UNSTABLE ? 0 : -1);
+  return AUTOBAL_SUCCESS;
+}
+
+static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_set *out) {
+  const autobal_rotor_params *p = &s->cur;
+  const autobal_rotor_plane *pl = &p->plane[0];
+  double m, mr, r0, A[13], Bt[13], cand[2 * 14], tcand[4 * 14];
+  long double At[13], Gt[13], Ae[7], Ao[6], Ge[7], Go[6], h[12], w2;
+  size_t nu = 0, nt = 0, i, j, deg;
+  int st;
+  autobal_rotor_closed c;
+  if (p->n_planes != 1 || pl->n_balls != 2)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "margin set: built for one plane with two balls (here %zu plane(s), %zu ball(s) in "
+                             "plane 1)",
+                             p->n_planes, pl->n_balls);
+  if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "margin set: needs the paper's inertia model (inertia = paper)");
+  if (!autobal_rotor_lumped_isotropic_(&s->L))
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "margin set: needs isotropic supports");
+  if (!(s->m[0] == s->m[1] && s->r[0] == s->r[1] && s->h[0] == s->h[1]))
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "margin set: needs two identical balls (the same ball_mass, ball_radius and "
+                             "ball_damping)");
+  m = s->m[0];
+  mr = s->m[0] * s->r[0];
+  r0 = pl->r0;
+  if (!(r0 > 0.0))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "margin set: r0 = %g m must be > 0 (the unbalance is varied through m0)", r0);
+  if (!(p->omega != 0.0 && isfinite(p->omega)))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "margin set: omega must be finite and non-zero");
+  if (!isfinite(delta))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "margin set: the margin delta = %g 1/s must be finite",
+                             delta);
+  out->omega = p->omega;
+  out->delta = delta;
+  /* A and Bt (independent of m0: t = 1 is balanceable) */
+  if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, mr / r0)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_char_parts_(&c, A, Bt, &s->err)) != AUTOBAL_SUCCESS) return st;
+  w2 = (long double)p->omega * (long double)p->omega;
+  {
+    /* G = (lambda^2 + w^2)^4 Bt: multiply Bt (degree <= 4) four times by (lambda^2 + w^2) */
+    long double g[13];
+    size_t k;
+    for (i = 0; i < 13; i++) {
+      g[i] = (long double)Bt[i];
+      At[i] = (long double)A[i];
+    }
+    for (k = 0; k < 4; k++) {
+      for (i = 12; i >= 2; i--) g[i] = g[i - 2] + w2 * g[i];
+      g[1] *= w2;
+      g[0] *= w2;
+    }
+    for (i = 0; i < 13; i++) Gt[i] = g[i];
+  }
+  taylor_shift(At, 12, -(long double)delta);
+  taylor_shift(Gt, 12, -(long double)delta);
+  split_iy(At, Ae, Ao);
+  split_iy(Gt, Ge, Go);
+  /* y = 0 and infinity */
+  if (Gt[0] != 0.0L) cand[nu++] = (double)(At[0] / Gt[0]);
+  if (Gt[12] != 0.0L) cand[nu++] = (double)(At[12] / Gt[12]);
+  /* h(z) = Ae Go - Ao Ge, degree <= 11 */
+  for (i = 0; i < 12; i++) h[i] = 0.0L;
+  for (i = 0; i < 7; i++)
+    for (j = 0; j < 6; j++) h[i + j] += Ae[i] * Go[j];
+  for (i = 0; i < 6; i++)
+    for (j = 0; j < 7; j++) h[i + j] -= Ao[i] * Ge[j];
+  {
+    double hs[12], re[11], im[11], big = 0.0;
+    const long double z2 = w2;
+    long double pw = 1.0L;
+    for (i = 0; i < 12; i++) {
+      hs[i] = (double)(h[i] * pw);
+      pw *= z2;
+      big = fmax(big, fabs(hs[i]));
+    }
+    deg = 11;
+    while (deg > 0 && !(fabs(hs[deg]) > 1e-13 * big)) deg--;
+    if (deg >= 1 && big > 0.0) {
+      autobal_poly_workspace *w = autobal_poly_workspace_alloc(deg);
+      if (!w) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "margin set: out of memory");
+      for (i = 0; i <= deg; i++) hs[i] /= big;
+      st = autobal_poly_roots(w, hs, deg + 1, re, im, &s->err);
+      autobal_poly_workspace_free(w);
+      if (st != AUTOBAL_SUCCESS) return st;
+      for (i = 0; i < deg; i++) {
+        long double zz, ge, go, den;
+        int it;
+        if (!(re[i] > 0.0) || fabs(im[i]) > 1e-3 * fabs(re[i])) continue; /* generous: near-real count */
+        zz = (long double)re[i] * z2;
+        for (it = 0; it < 8; it++) { /* Newton on the long double h, kept only if it stays close */
+          long double v = 0.0L, dv = 0.0L, zn;
+          size_t k;
+          for (k = 12; k-- > 0;) {
+            dv = dv * zz + v;
+            v = v * zz + h[k];
+          }
+          if (dv == 0.0L) break;
+          zn = zz - v / dv;
+          if (!(fabsl(zn - (long double)re[i] * z2) <= 1e-3L * (long double)re[i] * z2)) break;
+          zz = zn;
+        }
+        ge = lpoly(Ge, 7, zz);
+        go = lpoly(Go, 6, zz);
+        den = ge * ge + zz * go * go;
+        if (den > 0.0L) cand[nu++] = (double)((lpoly(Ae, 7, zz) * ge + zz * lpoly(Ao, 6, zz) * go) / den);
+      }
+    }
+  }
+  for (i = 0; i < nu; i++) nt += t_of_u(cand[i], m, tcand + nt);
+  qsort(tcand, nt, sizeof tcand[0], cmp_double);
+  out->n_crit = 0;
+  for (i = 0; i < nt; i++) {
+    if (!(tcand[i] > 0.0 && tcand[i] < 2.0)) continue;
+    if (out->n_crit > 0 && tcand[i] - out->t_crit[out->n_crit - 1] <= 1e-12) continue;
+    if (out->n_crit >= AUTOBAL_ROTOR_MAX_UCRIT)
+      return autobal_error_set(&s->err, AUTOBAL_ENUMERIC,
+                               "margin set: more than %d critical unbalances at %g rad/s", AUTOBAL_ROTOR_MAX_UCRIT,
+                               p->omega);
+    out->t_crit[out->n_crit++] = tcand[i];
+  }
+  /* one verdict per sub-interval of (0, 2) */
+  {
+    double edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
+    size_t ne = 0, k;
+    edges[ne++] = 0.0;
+    for (k = 0; k < out->n_crit; k++) edges[ne++] = out->t_crit[k];
+    edges[ne++] = 2.0;
+    out->n = 0;
+    for (k = 0; k + 1 < ne; k++) {
+      const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
+      const double pts[3] = {lo + 1e-7 * wdt, lo + 0.5 * wdt, hi - 1e-7 * wdt};
+      int ok[3], q;
+      if (autobal_rotor_stab_cancelled_(s))
+        return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "margin set: cancelled by the caller");
+      for (q = 0; q < 3; q++) {
+        if ((st = ok_at(At, Gt, m, pts[q], &ok[q], &s->err)) != AUTOBAL_SUCCESS) return st;
+        out->evaluations++;
+      }
+      /* the ends just inside a critical t may be within the test's tolerance (-1): they do not vote */
+      /* (not counted in sub-intervals narrower than 1e-6, e.g. (0, sqrt(eps)) next to the neutral
+       * root at t = 0, where the coefficients cannot decide; such a one is accepted only if all agree) */
+      if (wdt >= 1e-6 &&
+          ((ok[0] >= 0 && ok[1] >= 0 && ok[0] != ok[1]) || (ok[2] >= 0 && ok[1] >= 0 && ok[2] != ok[1])))
+        out->n_missed++;
+      if (ok[1] == 1 && ok[0] != 0 && ok[2] != 0) {
+        int merge = 0;
+        if (out->n > 0 && out->hi[out->n - 1] == lo) {
+          /* two stable neighbours: at a true critical t a root touches -delta (no STABLE verdict
+           * there); a spurious candidate (a near-real root of h) is no crossing: merge them */
+          int okc;
+          if ((st = ok_at(At, Gt, m, lo, &okc, &s->err)) != AUTOBAL_SUCCESS) return st;
+          out->evaluations++;
+          merge = okc == 1;
+        }
+        if (merge) out->hi[out->n - 1] = hi;
+        else {
+          out->lo[out->n] = lo;
+          out->hi[out->n] = hi;
+          out->n++;
+        }
+      }
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_stab_margin_ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_set *out) {
+  double m0;
+  int st, st2;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "margin set: out is NULL");
+  memset(out, 0, sizeof *out);
+  if (s->cur.n_planes < 1) return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "margin set: no plane");
+  m0 = s->cur.plane[0].m0;
+  st = ratio_set(s, delta, out);
+  st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
+  return st != AUTOBAL_SUCCESS ? st : st2;
+}

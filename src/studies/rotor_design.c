@@ -1,0 +1,888 @@
+/* rotor_design.c: `autobal rotor design`: sizing a balancer of two identical balls in one plane for a
+ * machine, a speed range and a range of unbalances, with a required margin (include/autobal/design.h,
+ * docs/rotor.md "Design").  The exact test per design and speed is autobal_rotor_stab_margin_ratio_set;
+ * the re-check is autobal_rotor_stab_every_unbalance_speeds (an independent path: Delta's critical
+ * unbalances without the margin shift, verdicts by the same POLY margin); the optimizer is GSL's
+ * Nelder-Mead simplex (nmsimplex2): the robust margin is a minimum over speeds and unbalances,
+ * continuous but with kinks where the worst point moves, and has no gradient. */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multimin.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal/design.h"
+#include "autobal/rotor_stability.h"
+#include "autobal/study.h"
+#include "internal.h"
+
+autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void) {
+  autobal_study_rotor_design_options o;
+  memset(&o, 0, sizeof o);
+  o.omega_min = o.omega_max = NAN;
+  o.n_omega = 101;
+  o.n_verify = 0;
+  o.unbalance_min = o.unbalance_max = NAN;
+  o.margin = 0.1;
+  o.mass_min = o.mass_max = NAN;
+  o.n_mass = 8;
+  o.radius_min = o.radius_max = NAN;
+  o.n_radius = 24;
+  o.damping_min = o.damping_max = NAN;
+  o.n_damping = 8;
+  o.position_min = o.position_max = NAN;
+  o.n_position = 1;
+  o.n_best = 10;
+  o.n_starts = 3;
+  o.max_iter = 80;
+  return o;
+}
+
+void autobal_study_rotor_design_summary_free(autobal_study_rotor_design_summary *s) {
+  if (!s) return;
+  free(s->mass);
+  free(s->damping);
+  free(s->position);
+  free(s->radius);
+  free(s->feasible);
+  free(s->window_lo);
+  free(s->window_hi);
+  free(s->designs);
+  free(s->best_config);
+  memset(s, 0, sizeof *s);
+}
+
+/* ---- the search context ------------------------------------------------------------ */
+
+typedef struct dctx {
+  const autobal_rotor_params *base;
+  autobal_study_rotor_design_options o; /* NaN bounds resolved */
+  double *omega;                        /* n_omega speeds of the grid */
+  autobal_rotor_params work;
+  double bm[2], br[2], bh[2], bpsi[2], brate[2];
+  autobal_rotor_stab *s;
+  double s_d; /* the handle's plane position */
+  autobal_error *err;
+  double fraction;
+  size_t ratio_sets, evaluations, nm_evals;
+  int nm_status; /* a failure inside the optimizer's objective */
+} dctx;
+
+static int cancel_hook(void *user) {
+  dctx *c = (dctx *)user;
+  return c->o.progress && c->o.progress(c->fraction, c->o.progress_user) != 0;
+}
+
+/* The handle for plane position d (re-allocated when d changes). */
+static int handle_at(dctx *c, double d) {
+  autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+  if (c->s && c->s_d == d) return AUTOBAL_SUCCESS;
+  autobal_rotor_stab_free(c->s);
+  c->work.plane[0].d = d;
+  c->s = autobal_rotor_stab_alloc(&c->work, &so, c->err);
+  if (!c->s) return c->err ? c->err->status : AUTOBAL_EINVAL;
+  autobal_rotor_stab_set_cancel(c->s, cancel_hook, c);
+  c->s_d = d;
+  return AUTOBAL_SUCCESS;
+}
+
+static int fail_handle(dctx *c, int st) {
+  return autobal_error_set(c->err, st, "%s", autobal_rotor_stab_errmsg(c->s));
+}
+
+/* The handle at design (m, h, d) and speed k. */
+static int set_design(dctx *c, double m, double h, double d) {
+  int st;
+  if ((st = handle_at(c, d)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_BALL_MASS, m)) != AUTOBAL_SUCCESS) return fail_handle(c, st);
+  if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_BALL_DAMPING, h)) != AUTOBAL_SUCCESS)
+    return fail_handle(c, st);
+  return AUTOBAL_SUCCESS;
+}
+
+static int ratio_set_at(dctx *c, size_t k, double delta, autobal_rotor_ratio_set *rs) {
+  int st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_OMEGA, c->omega[k]);
+  if (st == AUTOBAL_SUCCESS) st = autobal_rotor_stab_margin_ratio_set(c->s, delta, rs);
+  c->ratio_sets++;
+  c->evaluations += rs->evaluations;
+  return st != AUTOBAL_SUCCESS ? fail_handle(c, st) : st;
+}
+
+/* Interval lists (open, ascending): a := a intersect b. */
+typedef struct ivals {
+  size_t n;
+  double lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], hi[AUTOBAL_ROTOR_MAX_UCRIT + 1];
+} ivals;
+
+static void intersect(ivals *a, const autobal_rotor_ratio_set *b) {
+  ivals r;
+  size_t i, j;
+  r.n = 0;
+  for (i = 0; i < a->n; i++)
+    for (j = 0; j < b->n; j++) {
+      const double lo = fmax(a->lo[i], b->lo[j]), hi = fmin(a->hi[i], b->hi[j]);
+      if (lo < hi && r.n < AUTOBAL_ROTOR_MAX_UCRIT + 1) {
+        r.lo[r.n] = lo;
+        r.hi[r.n] = hi;
+        r.n++;
+      }
+    }
+  *a = r;
+}
+
+/* The open radius windows of a t-set for ball mass m within [rmin, rmax]: r with
+ * (s_lo / (m r), s_hi / (m r)) inside some (a, b), i.e. s_hi / (m b) < r < s_lo / (m a).  The widest
+ * into *wlo, *whi (NaN if none); returns the count. */
+static size_t radius_windows(const dctx *c, const ivals *T, double m, double *wlo, double *whi) {
+  size_t i, n = 0;
+  double best = -1.0;
+  *wlo = *whi = NAN;
+  for (i = 0; i < T->n; i++) {
+    const double rl = c->o.unbalance_max / (m * T->hi[i]);
+    const double rh = T->lo[i] > 0.0 ? c->o.unbalance_min / (m * T->lo[i]) : INFINITY;
+    const double lo = fmax(rl, c->o.radius_min), hi = fmin(rh, c->o.radius_max);
+    /* open in r; a fixed radius (min == max) must lie strictly inside */
+    const int ok = c->o.radius_min == c->o.radius_max ? (rl < c->o.radius_min && c->o.radius_min < rh) : lo < hi;
+    if (!ok) continue;
+    n++;
+    if (log(hi / lo) > best || (c->o.radius_min == c->o.radius_max && best < 0.0)) {
+      best = c->o.radius_min == c->o.radius_max ? 0.0 : log(hi / lo);
+      *wlo = lo;
+      *whi = hi;
+    }
+  }
+  return n;
+}
+
+/* The exact t-set with the required margin at every speed of the grid for (m, h, d); stops early
+ * once no radius within the bounds can work. */
+static int cell_set(dctx *c, double m, double h, double d, ivals *T) {
+  autobal_rotor_ratio_set rs;
+  size_t k;
+  int st;
+  double wl, wh;
+  if ((st = set_design(c, m, h, d)) != AUTOBAL_SUCCESS) return st;
+  T->n = 1;
+  T->lo[0] = 0.0;
+  T->hi[0] = 2.0;
+  for (k = 0; k < c->o.n_omega; k++) {
+    if ((st = ratio_set_at(c, k, c->o.margin, &rs)) != AUTOBAL_SUCCESS) return st;
+    intersect(T, &rs);
+    if (radius_windows(c, T, m, &wl, &wh) == 0) {
+      T->n = 0;
+      break;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* [t_lo, t_hi] inside one open interval of rs. */
+static int covers(const autobal_rotor_ratio_set *rs, double t_lo, double t_hi) {
+  size_t i;
+  for (i = 0; i < rs->n; i++)
+    if (rs->lo[i] < t_lo && t_hi < rs->hi[i]) return 1;
+  return 0;
+}
+
+/* The robust margin rho of a design (see design.h): a value at which the exact test passes at every
+ * speed, within about 1e-3 (1 + |rho|) of the largest such value. */
+static int robust_margin(dctx *c, const autobal_rotor_design *dsg, double *rho) {
+  const double t_lo = c->o.unbalance_min / (dsg->mass * dsg->radius);
+  const double t_hi = c->o.unbalance_max / (dsg->mass * dsg->radius);
+  const double r0 = c->work.plane[0].r0;
+  autobal_rotor_ratio_set rs;
+  double U = INFINITY, eps;
+  size_t k;
+  int st;
+  *rho = -INFINITY;
+  if (!(t_hi < 2.0)) return AUTOBAL_SUCCESS;
+  if ((st = set_design(c, dsg->mass, dsg->damping, dsg->position)) != AUTOBAL_SUCCESS) return st;
+  /* an upper bound: the margins at the two ends of the range, every speed */
+  for (k = 0; k < c->o.n_omega; k++) {
+    double mg[2];
+    int v, q;
+    if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_OMEGA, c->omega[k])) != AUTOBAL_SUCCESS)
+      return fail_handle(c, st);
+    for (q = 0; q < 2; q++) {
+      /* the handle's balls keep the base radius c->br: the same t needs m0 = t m br / r0 */
+      const double t = q == 0 ? t_lo : t_hi;
+      if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, t * dsg->mass * c->br[0] / r0)) !=
+          AUTOBAL_SUCCESS)
+        return fail_handle(c, st);
+      st = autobal_rotor_stab_margin(c->s, AUTOBAL_ROTOR_STAB_POLY, &mg[q], &v);
+      c->evaluations++;
+      /* balls (almost) on one line at an end of the range: no sample there (U is only a start) */
+      if (st == AUTOBAL_EUNSUPPORTED || v == AUTOBAL_ROTOR_VERDICT_NONE) mg[q] = -INFINITY;
+      else if (st != AUTOBAL_SUCCESS) return fail_handle(c, st);
+    }
+    U = fmin(U, -fmax(mg[0], mg[1]));
+  }
+  if (!isfinite(U)) U = 1e3; /* no sample: start high, the exact test bisects down */
+  eps = 1e-3 * (1.0 + fabs(U));
+  U -= eps;
+  /* the exact test at U at every speed; where it fails, bisect that speed down */
+  for (k = 0; k < c->o.n_omega; k++) {
+    double hi, lo, step;
+    if ((st = ratio_set_at(c, k, U, &rs)) != AUTOBAL_SUCCESS) return st;
+    if (covers(&rs, t_lo, t_hi)) continue;
+    hi = U;
+    step = eps + 0.1 * fabs(U);
+    for (;;) {
+      lo = hi - step;
+      if (lo < -1e6) return AUTOBAL_SUCCESS; /* -inf: unstable far beyond any use */
+      if ((st = ratio_set_at(c, k, lo, &rs)) != AUTOBAL_SUCCESS) return st;
+      if (covers(&rs, t_lo, t_hi)) break;
+      hi = lo;
+      step *= 2.0;
+    }
+    while (hi - lo > eps) {
+      const double mid = 0.5 * (lo + hi);
+      if ((st = ratio_set_at(c, k, mid, &rs)) != AUTOBAL_SUCCESS) return st;
+      if (covers(&rs, t_lo, t_hi)) lo = mid;
+      else hi = mid;
+    }
+    U = lo;
+  }
+  *rho = U;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- the optimizer: the box mapped onto R^n by v = lo (hi/lo)^((1 + sin x) / 2) (geometric) or
+ * lo + (hi - lo) (1 + sin x) / 2 (linear, the position) ---------------------------------------- */
+
+typedef struct nmvar {
+  int which; /* 0 mass, 1 radius, 2 damping, 3 position */
+  double lo, hi;
+  int geometric;
+} nmvar;
+
+typedef struct nmctx {
+  dctx *c;
+  nmvar var[4];
+  size_t n;
+  autobal_rotor_design base;
+} nmctx;
+
+static double from_x(const nmvar *v, double x) {
+  const double f = 0.5 * (1.0 + sin(x));
+  return v->geometric ? v->lo * pow(v->hi / v->lo, f) : v->lo + (v->hi - v->lo) * f;
+}
+static double to_x(const nmvar *v, double val) {
+  double f = v->geometric ? log(val / v->lo) / log(v->hi / v->lo) : (val - v->lo) / (v->hi - v->lo);
+  f = fmin(1.0, fmax(0.0, f));
+  return asin(2.0 * f - 1.0);
+}
+static void design_of(const nmctx *n, const gsl_vector *x, autobal_rotor_design *d) {
+  size_t i;
+  *d = n->base;
+  for (i = 0; i < n->n; i++) {
+    const double v = from_x(&n->var[i], gsl_vector_get(x, i));
+    switch (n->var[i].which) {
+      case 0: d->mass = v; break;
+      case 1: d->radius = v; break;
+      case 2: d->damping = v; break;
+      default: d->position = v; break;
+    }
+  }
+}
+
+static double nm_objective(const gsl_vector *x, void *user) {
+  nmctx *n = (nmctx *)user;
+  autobal_rotor_design d;
+  double rho;
+  int st;
+  if (n->c->nm_status != AUTOBAL_SUCCESS) return 1e6;
+  design_of(n, x, &d);
+  n->c->nm_evals++;
+  st = robust_margin(n->c, &d, &rho);
+  if (st != AUTOBAL_SUCCESS) {
+    n->c->nm_status = st;
+    return 1e6;
+  }
+  if (!isfinite(rho)) { /* cannot balance the range: a slope towards larger m r */
+    return 1e5 + 1e3 * (n->c->o.unbalance_max / (2.0 * d.mass * d.radius));
+  }
+  return -rho;
+}
+
+/* Polish a design with the simplex; *out the best found (its rho evaluated). */
+static int polish(dctx *c, const autobal_rotor_design *start, autobal_rotor_design *out) {
+  nmctx n;
+  gsl_multimin_function f;
+  gsl_multimin_fminimizer *mz;
+  gsl_vector *x, *step;
+  size_t i, it;
+  int st = AUTOBAL_SUCCESS, gst;
+  memset(&n, 0, sizeof n);
+  n.c = c;
+  n.base = *start;
+  {
+    const double lo[4] = {c->o.mass_min, c->o.radius_min, c->o.damping_min, c->o.position_min};
+    const double hi[4] = {c->o.mass_max, c->o.radius_max, c->o.damping_max, c->o.position_max};
+    for (i = 0; i < 4; i++)
+      if (lo[i] < hi[i]) {
+        n.var[n.n].which = (int)i;
+        n.var[n.n].lo = lo[i];
+        n.var[n.n].hi = hi[i];
+        n.var[n.n].geometric = i < 3;
+        n.n++;
+      }
+  }
+  *out = *start;
+  if (n.n == 0) return AUTOBAL_SUCCESS;
+  f.n = n.n;
+  f.f = nm_objective;
+  f.params = &n;
+  mz = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, n.n);
+  x = gsl_vector_alloc(n.n);
+  step = gsl_vector_alloc(n.n);
+  if (!mz || !x || !step) {
+    gsl_multimin_fminimizer_free(mz);
+    gsl_vector_free(x);
+    gsl_vector_free(step);
+    return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory (optimizer)");
+  }
+  for (i = 0; i < n.n; i++) {
+    const double v = n.var[i].which == 0 ? start->mass
+                     : n.var[i].which == 1 ? start->radius
+                     : n.var[i].which == 2 ? start->damping
+                                           : start->position;
+    gsl_vector_set(x, i, to_x(&n.var[i], v));
+    gsl_vector_set(step, i, 0.25);
+  }
+  c->nm_status = AUTOBAL_SUCCESS;
+  gst = gsl_multimin_fminimizer_set(mz, &f, x, step);
+  for (it = 0; gst == GSL_SUCCESS && it < c->o.max_iter && c->nm_status == AUTOBAL_SUCCESS; it++) {
+    if ((gst = gsl_multimin_fminimizer_iterate(mz)) != GSL_SUCCESS) break;
+    if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(mz), 1e-3) == GSL_SUCCESS) break;
+  }
+  if (c->nm_status != AUTOBAL_SUCCESS) st = c->nm_status;
+  else {
+    design_of(&n, gsl_multimin_fminimizer_x(mz), out);
+    out->source = 1;
+    st = robust_margin(c, out, &out->margin);
+  }
+  gsl_multimin_fminimizer_free(mz);
+  gsl_vector_free(x);
+  gsl_vector_free(step);
+  return st;
+}
+
+/* ---- the re-check ---------------------------------------------------------------------- */
+
+static int recheck(dctx *c, autobal_rotor_design *d) {
+  autobal_rotor_params q = *c->base;
+  autobal_rotor_plane *pl = &q.plane[0];
+  double m[2] = {d->mass, d->mass}, r[2] = {d->radius, d->radius}, h[2] = {d->damping, d->damping};
+  autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+  autobal_rotor_stab *s;
+  autobal_rotor_crit cr;
+  autobal_rotor_unbalance_range ur;
+  size_t k, nv = c->o.n_verify;
+  double worst = -INFINITY;
+  int st, ok;
+  pl->d = d->position;
+  pl->ball_mass = m;
+  pl->ball_radius = r;
+  pl->ball_damping = h;
+  s = autobal_rotor_stab_alloc(&q, &so, c->err);
+  if (!s) return c->err ? c->err->status : AUTOBAL_EINVAL;
+  autobal_rotor_stab_set_cancel(s, cancel_hook, c);
+  st = autobal_rotor_stab_every_unbalance_speeds(s, c->o.unbalance_min, c->o.unbalance_max, c->o.omega_min,
+                                                 c->o.omega_max, nv, 1e-6, &cr);
+  c->evaluations += cr.evaluations;
+  if (st == AUTOBAL_EINVAL) { /* the balls cannot balance the range: not feasible */
+    d->recheck = 0;
+    d->recheck_margin = -INFINITY;
+    d->feasible = 0;
+    autobal_rotor_stab_free(s);
+    return AUTOBAL_SUCCESS;
+  }
+  if (st != AUTOBAL_SUCCESS) {
+    st = autobal_error_set(c->err, st, "design re-check: %s", autobal_rotor_stab_errmsg(s));
+    autobal_rotor_stab_free(s);
+    return st;
+  }
+  ok = cr.n == 0 && cr.n_stable == 1 && cr.stable_lo[0] == c->o.omega_min && cr.stable_hi[0] == c->o.omega_max;
+  for (k = 0; k < nv; k++) {
+    const double w = c->o.omega_min + (c->o.omega_max - c->o.omega_min) * (double)k / (double)(nv - 1);
+    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS ||
+        (st = autobal_rotor_stab_every_unbalance(s, c->o.unbalance_min, c->o.unbalance_max, &ur)) != AUTOBAL_SUCCESS) {
+      st = autobal_error_set(c->err, st, "design re-check: %s", autobal_rotor_stab_errmsg(s));
+      autobal_rotor_stab_free(s);
+      return st;
+    }
+    c->evaluations += ur.evaluations;
+    worst = fmax(worst, ur.margin_worst);
+    if (!ur.all_stable) ok = 0;
+  }
+  autobal_rotor_stab_free(s);
+  d->recheck_margin = -worst;
+  if (!(d->recheck_margin > c->o.margin)) ok = 0;
+  d->recheck = ok;
+  if (!ok) d->feasible = 0;
+  return AUTOBAL_SUCCESS;
+}
+
+/* ---- options --------------------------------------------------------------------------- */
+
+static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_design_options *in,
+                   autobal_study_rotor_design_options *o, autobal_error *err) {
+  const autobal_rotor_plane *pl;
+  *o = *in;
+  if (p->n_planes != 1)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[plane2]: the design covers one balancer plane (here %zu): the guaranteed every-unbalance "
+                             "verdict is built for one plane with two balls",
+                             p->n_planes);
+  pl = &p->plane[0];
+  if (pl->n_balls != 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[plane1] ball_mass: the design covers two balls (here %zu): for three or more the verdict "
+                             "depends on the member of the family and is not guaranteed",
+                             pl->n_balls);
+  if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[rotor] inertia: the design needs inertia = paper (with full inertia the unbalance mass "
+                             "enters the mass matrix)");
+  if (!(pl->r0 > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "[plane1] r0 = %g m must be > 0 (the unbalance is m0 r0)", pl->r0);
+  if (isnan(o->mass_min)) o->mass_min = 0.5 * pl->ball_mass[0];
+  if (isnan(o->mass_max)) o->mass_max = 2.0 * pl->ball_mass[0];
+  if (isnan(o->radius_min)) o->radius_min = 0.5 * pl->ball_radius[0];
+  if (isnan(o->radius_max)) o->radius_max = 1.5 * pl->ball_radius[0];
+  if (isnan(o->damping_min)) o->damping_min = 0.1 * pl->ball_damping[0];
+  if (isnan(o->damping_max)) o->damping_max = 10.0 * pl->ball_damping[0];
+  if (isnan(o->position_min)) o->position_min = pl->d;
+  if (isnan(o->position_max)) o->position_max = pl->d;
+#define NEED(cond, ...) \
+  if (!(cond)) return autobal_error_set(err, AUTOBAL_EINVAL, __VA_ARGS__)
+  NEED(isfinite(o->omega_min) && isfinite(o->omega_max) && o->omega_min > 0.0 && o->omega_min < o->omega_max,
+       "options: omega_min = %g, omega_max = %g rad/s: need 0 < omega_min < omega_max (finite)", o->omega_min,
+       o->omega_max);
+  NEED(o->n_omega >= 2 && o->n_omega <= 100000, "options: n_omega = %zu must be in [2, 100000]", o->n_omega);
+  if (o->n_verify == 0) o->n_verify = 4 * (o->n_omega - 1) + 1;
+  NEED(o->n_verify >= 2 && o->n_verify <= 1000000, "options: n_verify = %zu must be in [2, 1000000]", o->n_verify);
+  NEED(isfinite(o->unbalance_min) && isfinite(o->unbalance_max) && o->unbalance_min > 0.0 &&
+           o->unbalance_min <= o->unbalance_max,
+       "options: unbalance_min = %g, unbalance_max = %g kg m: need 0 < min <= max (finite)", o->unbalance_min,
+       o->unbalance_max);
+  NEED(isfinite(o->margin) && o->margin >= 0.0, "options: margin = %g 1/s must be >= 0 (finite)", o->margin);
+  NEED(isfinite(o->mass_min) && isfinite(o->mass_max) && o->mass_min > 0.0 && o->mass_min <= o->mass_max,
+       "options: mass_min = %g, mass_max = %g kg: need 0 < min <= max", o->mass_min, o->mass_max);
+  NEED(isfinite(o->radius_min) && isfinite(o->radius_max) && o->radius_min > 0.0 && o->radius_min <= o->radius_max,
+       "options: radius_min = %g, radius_max = %g m: need 0 < min <= max", o->radius_min, o->radius_max);
+  NEED(isfinite(o->damping_min) && isfinite(o->damping_max) && o->damping_min > 0.0 &&
+           o->damping_min <= o->damping_max,
+       "options: damping_min = %g, damping_max = %g kg/s: need 0 < min <= max", o->damping_min, o->damping_max);
+  NEED(isfinite(o->position_min) && isfinite(o->position_max) && o->position_min <= o->position_max,
+       "options: position_min = %g, position_max = %g m: need min <= max (finite)", o->position_min, o->position_max);
+  NEED(o->n_mass >= 1 && o->n_mass <= 1000 && o->n_damping >= 1 && o->n_damping <= 1000 && o->n_position >= 1 &&
+           o->n_position <= 1000 && o->n_radius >= 1 && o->n_radius <= 1000,
+       "options: n_mass = %zu, n_damping = %zu, n_position = %zu, n_radius = %zu must be in [1, 1000]", o->n_mass,
+       o->n_damping, o->n_position, o->n_radius);
+  NEED(o->n_best >= 1 && o->n_best <= 1000, "options: n_best = %zu must be in [1, 1000]", o->n_best);
+  NEED(o->n_starts <= 100, "options: n_starts = %zu must be in [0, 100]", o->n_starts);
+  NEED(o->max_iter >= 1 && o->max_iter <= 10000, "options: max_iter = %zu must be in [1, 10000]", o->max_iter);
+#undef NEED
+  if (o->mass_min == o->mass_max) o->n_mass = 1;
+  if (o->radius_min == o->radius_max) o->n_radius = 1;
+  if (o->damping_min == o->damping_max) o->n_damping = 1;
+  if (o->position_min == o->position_max) o->n_position = 1;
+  return AUTOBAL_SUCCESS;
+}
+
+static double *grid_of(double lo, double hi, size_t n, int geometric) {
+  double *g = malloc(n * sizeof *g);
+  size_t i;
+  if (!g) return NULL;
+  for (i = 0; i < n; i++) {
+    const double f = n > 1 ? (double)i / (double)(n - 1) : 0.0;
+    g[i] = geometric ? lo * pow(hi / lo, f) : lo + (hi - lo) * f;
+  }
+  if (n > 1) g[n - 1] = hi;
+  return g;
+}
+
+static int cmp_design(const void *a, const void *b) {
+  const autobal_rotor_design *x = (const autobal_rotor_design *)a, *y = (const autobal_rotor_design *)b;
+  if (x->margin > y->margin) return -1;
+  if (x->margin < y->margin) return 1;
+  return (x->source > y->source) - (x->source < y->source);
+}
+
+static int same_design(const autobal_rotor_design *a, const autobal_rotor_design *b) {
+  return fabs(a->mass - b->mass) <= 1e-6 * b->mass && fabs(a->radius - b->radius) <= 1e-6 * b->radius &&
+         fabs(a->damping - b->damping) <= 1e-6 * b->damping &&
+         fabs(a->position - b->position) <= 1e-6 * (fabs(b->position) + 1e-3);
+}
+
+/* ---- the study ------------------------------------------------------------------------- */
+
+static int run(dctx *c, autobal_study_rotor_design_summary *S) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t ncell = o->n_mass * o->n_damping * o->n_position;
+  autobal_rotor_design *cand = NULL;
+  size_t ncand = 0, i, j, k, q;
+  int st = AUTOBAL_SUCCESS;
+  S->n_mass = o->n_mass;
+  S->n_damping = o->n_damping;
+  S->n_position = o->n_position;
+  S->n_radius = o->n_radius;
+  S->mass = grid_of(o->mass_min, o->mass_max, o->n_mass, 1);
+  S->damping = grid_of(o->damping_min, o->damping_max, o->n_damping, 1);
+  S->position = grid_of(o->position_min, o->position_max, o->n_position, 0);
+  S->radius = grid_of(o->radius_min, o->radius_max, o->n_radius, 1);
+  S->feasible = malloc(ncell * o->n_radius * sizeof *S->feasible);
+  S->window_lo = malloc(ncell * sizeof *S->window_lo);
+  S->window_hi = malloc(ncell * sizeof *S->window_hi);
+  cand = malloc((ncell + o->n_starts) * sizeof *cand);
+  c->omega = grid_of(o->omega_min, o->omega_max, o->n_omega, 0);
+  if (!S->mass || !S->damping || !S->position || !S->radius || !S->feasible || !S->window_lo || !S->window_hi ||
+      !cand || !c->omega) {
+    free(cand);
+    return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  }
+  /* 1. the map, row by row of ball mass */
+  for (i = 0; i < o->n_mass && st == AUTOBAL_SUCCESS; i++) {
+    const double m = S->mass[i];
+    c->fraction = 0.7 * (double)i / (double)o->n_mass;
+    for (j = 0; j < o->n_damping && st == AUTOBAL_SUCCESS; j++)
+      for (k = 0; k < o->n_position && st == AUTOBAL_SUCCESS; k++) {
+        const size_t cell = (i * o->n_damping + j) * o->n_position + k;
+        ivals T;
+        double wl, wh;
+        if ((st = cell_set(c, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) break;
+        radius_windows(c, &T, m, &wl, &wh);
+        S->window_lo[cell] = wl;
+        S->window_hi[cell] = wh;
+        for (q = 0; q < o->n_radius; q++) {
+          const double r = S->radius[q], t_lo = o->unbalance_min / (m * r), t_hi = o->unbalance_max / (m * r);
+          size_t e;
+          int f = 0;
+          if (!(t_hi < 2.0)) f = -1;
+          else
+            for (e = 0; e < T.n; e++)
+              if (T.lo[e] < t_lo && t_hi < T.hi[e]) f = 1;
+          S->feasible[cell * o->n_radius + q] = f;
+          S->n_feasible += f == 1;
+        }
+        if (!isnan(wl)) {
+          autobal_rotor_design *d = &cand[ncand++];
+          memset(d, 0, sizeof *d);
+          d->mass = m;
+          d->damping = S->damping[j];
+          d->position = S->position[k];
+          d->radius = isfinite(wh) ? sqrt(wl * wh) : wl;
+          d->recheck = -1;
+        }
+      }
+    if (st == AUTOBAL_SUCCESS) S->n_mass_done = i + 1;
+    if (st == AUTOBAL_SUCCESS && o->progress && o->progress(0.7 * (double)(i + 1) / (double)o->n_mass, o->progress_user))
+      st = autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
+                             i + 1, o->n_mass);
+  }
+  if (st == AUTOBAL_ECANCELLED && c->err && strstr(c->err->message, "cancelled by the caller") &&
+      !strstr(c->err->message, "rows of the map"))
+    autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
+                      S->n_mass_done, o->n_mass);
+  /* 2. the robust margin of every cell's design; 3. the optimizer from the best */
+  for (i = 0; i < ncand && st == AUTOBAL_SUCCESS; i++) {
+    c->fraction = 0.7 + 0.1 * (double)i / (double)ncand;
+    st = robust_margin(c, &cand[i], &cand[i].margin);
+  }
+  if (st == AUTOBAL_SUCCESS) {
+    size_t n0 = ncand;
+    qsort(cand, ncand, sizeof *cand, cmp_design);
+    for (i = 0; i < o->n_starts && i < n0 && st == AUTOBAL_SUCCESS; i++) {
+      autobal_rotor_design d;
+      c->fraction = 0.8 + 0.1 * (double)i / (double)o->n_starts;
+      if ((st = polish(c, &cand[i], &d)) != AUTOBAL_SUCCESS) break;
+      d.recheck = -1;
+      cand[ncand++] = d;
+    }
+  }
+  /* 4. rank (distinct designs), re-check the best n_best */
+  if (st == AUTOBAL_SUCCESS) {
+    qsort(cand, ncand, sizeof *cand, cmp_design);
+    S->designs = malloc((ncand ? ncand : 1) * sizeof *S->designs);
+    if (!S->designs) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+    for (i = 0; i < ncand && st == AUTOBAL_SUCCESS && S->n_designs < o->n_best; i++) {
+      int dup = 0;
+      for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
+      if (dup) continue;
+      cand[i].feasible = cand[i].margin > o->margin;
+      c->fraction = 0.9 + 0.1 * (double)S->n_designs / (double)o->n_best;
+      if ((st = recheck(c, &cand[i])) != AUTOBAL_SUCCESS) break;
+      S->designs[S->n_designs++] = cand[i];
+    }
+  }
+  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
+  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
+    /* the best design: the first that passes its re-check, else the first */
+    size_t b = 0;
+    for (i = 0; i < S->n_designs; i++)
+      if (S->designs[i].feasible) {
+        b = i;
+        break;
+      }
+    if (b != 0) {
+      autobal_rotor_design t = S->designs[b];
+      memmove(S->designs + 1, S->designs, b * sizeof *S->designs);
+      S->designs[0] = t;
+    }
+    S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
+    if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  }
+  free(cand);
+  return st;
+}
+
+int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_study_rotor_design_options *opt,
+                               autobal_archive *a, autobal_study_rotor_design_summary *summary, autobal_error *err) {
+  autobal_study_rotor_design_options def = autobal_study_rotor_design_options_default();
+  dctx c;
+  int st, wst;
+  autobal_error_clear(err);
+  if (!summary) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
+  memset(summary, 0, sizeof *summary);
+  if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
+  memset(&c, 0, sizeof c);
+  c.err = err;
+  c.base = p;
+  if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  c.work = *p;
+  {
+    const autobal_rotor_plane *pl = &p->plane[0];
+    size_t i;
+    for (i = 0; i < 2; i++) {
+      c.bm[i] = pl->ball_mass[0];
+      c.br[i] = pl->ball_radius[0];
+      c.bh[i] = pl->ball_damping[0];
+      c.bpsi[i] = pl->ball_psi ? pl->ball_psi[i] : 0.0;
+      c.brate[i] = pl->ball_rate ? pl->ball_rate[i] : 0.0;
+    }
+    c.work.plane[0].ball_mass = c.bm;
+    c.work.plane[0].ball_radius = c.br;
+    c.work.plane[0].ball_damping = c.bh;
+    c.work.plane[0].ball_psi = c.bpsi;
+    c.work.plane[0].ball_rate = c.brate;
+  }
+  c.s_d = NAN;
+  st = run(&c, summary);
+  summary->ratio_sets = c.ratio_sets;
+  summary->margin_evaluations = c.evaluations;
+  summary->optimizer_evaluations = c.nm_evals;
+  autobal_rotor_stab_free(c.s);
+  free(c.omega);
+  if (a && (st == AUTOBAL_SUCCESS || (st == AUTOBAL_ECANCELLED && summary->feasible && summary->n_mass_done > 0))) {
+    if ((wst = autobal_study_rotor_design_write(a, p, &c.o, summary)) != AUTOBAL_SUCCESS)
+      return autobal_error_set(err, wst, "%s", autobal_archive_errmsg(a));
+  }
+  return st;
+}
+
+int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autobal_study_rotor_design_options *opt,
+                                      const autobal_rotor_design *design, double *rho, autobal_error *err) {
+  autobal_study_rotor_design_options def = autobal_study_rotor_design_options_default();
+  dctx c;
+  int st;
+  if (!p || !design || !rho) return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: NULL argument");
+  memset(&c, 0, sizeof c);
+  c.err = err;
+  c.base = p;
+  if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
+  c.work = *p;
+  c.bm[0] = c.bm[1] = p->plane[0].ball_mass[0];
+  c.br[0] = c.br[1] = p->plane[0].ball_radius[0];
+  c.bh[0] = c.bh[1] = p->plane[0].ball_damping[0];
+  c.work.plane[0].ball_mass = c.bm;
+  c.work.plane[0].ball_radius = c.br;
+  c.work.plane[0].ball_damping = c.bh;
+  c.work.plane[0].ball_psi = NULL;
+  c.work.plane[0].ball_rate = NULL;
+  c.s_d = NAN;
+  c.omega = grid_of(c.o.omega_min, c.o.omega_max, c.o.n_omega, 0);
+  if (!c.omega) return autobal_error_set(err, AUTOBAL_ENOMEM, "design margin: out of memory");
+  st = robust_margin(&c, design, rho);
+  autobal_rotor_stab_free(c.s);
+  free(c.omega);
+  return st;
+}
+
+/* ---- the config text ------------------------------------------------------------------- */
+
+typedef struct sbuf {
+  char *p;
+  size_t n, cap;
+  int oom;
+} sbuf;
+
+static void put(sbuf *b, const char *fmt, ...) AUTOBAL_PRINTF(2, 3);
+static void put(sbuf *b, const char *fmt, ...) {
+  va_list ap;
+  int k;
+  if (b->oom) return;
+  for (;;) {
+    va_start(ap, fmt);
+    k = vsnprintf(b->p + b->n, b->cap - b->n, fmt, ap);
+    va_end(ap);
+    if (k < 0) {
+      b->oom = 1;
+      return;
+    }
+    if ((size_t)k < b->cap - b->n) {
+      b->n += (size_t)k;
+      return;
+    }
+    {
+      size_t nc = 2 * b->cap + (size_t)k + 64;
+      char *q = realloc(b->p, nc);
+      if (!q) {
+        b->oom = 1;
+        return;
+      }
+      b->p = q;
+      b->cap = nc;
+    }
+  }
+}
+
+char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const autobal_rotor_design *d, double omega) {
+  sbuf b;
+  size_t nf, i;
+  const autobal_rotor_field *f;
+  const char *sec = "";
+  const autobal_rotor_plane *pl;
+  if (!p || !d || p->n_planes < 1) return NULL;
+  pl = &p->plane[0];
+  memset(&b, 0, sizeof b);
+  b.cap = 4096;
+  b.p = malloc(b.cap);
+  if (!b.p) return NULL;
+  b.p[0] = '\0';
+  put(&b, "; written by autobal rotor design: the machine with the design's balancer (docs/rotor.md \"Design\")\n");
+  put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
+  if (p->input == AUTOBAL_ROTOR_HARDWARE) {
+    f = autobal_rotor_hardware_fields(&nf);
+    for (i = 0; i < nf; i++) {
+      if (strcmp(sec, f[i].section)) {
+        sec = f[i].section;
+        put(&b, "%s[%s]\n", i ? "\n" : "\n", sec);
+        if (!strcmp(sec, "rotor"))
+          put(&b, "omega = %.17g\ninertia = paper\naxial = %d\n", omega, p->axial ? 1 : 0);
+      }
+      put(&b, "%s = %.17g\n", f[i].name, autobal_rotor_field_get(&p->hw, &f[i]));
+    }
+  } else {
+    put(&b, "\n[rotor]\nomega = %.17g\ninertia = paper\naxial = %d\n", omega, p->axial ? 1 : 0);
+    put(&b, "\n[supports]\nl_L = %.17g\nl_R = %.17g\n", p->hw.l_L, p->hw.l_R);
+    f = autobal_rotor_lumped_fields(&nf);
+    put(&b, "\n[lumped]\n");
+    for (i = 0; i < nf; i++) put(&b, "%s = %.17g\n", f[i].name, autobal_rotor_field_get(&p->lumped, &f[i]));
+  }
+  put(&b, "\n[plane1]\nd = %.17g\nm0 = %.17g\nr0 = %.17g\npsi0 = %.17g\n", d->position, pl->m0, pl->r0, pl->psi0);
+  put(&b, "ball_mass = %.17g, %.17g\nball_radius = %.17g, %.17g\nball_damping = %.17g, %.17g\n", d->mass, d->mass,
+      d->radius, d->radius, d->damping, d->damping);
+  put(&b, "ball_psi = %.17g, %.17g\nball_rate = %.17g, %.17g\n", pl->ball_psi ? pl->ball_psi[0] : 0.0,
+      pl->ball_psi ? pl->ball_psi[1] : 0.0, pl->ball_rate ? pl->ball_rate[0] : 0.0,
+      pl->ball_rate ? pl->ball_rate[1] : 0.0);
+  if (b.oom) {
+    free(b.p);
+    return NULL;
+  }
+  return b.p;
+}
+
+/* ---- the archive --------------------------------------------------------------------------- */
+
+int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_params *p,
+                                     const autobal_study_rotor_design_options *opt,
+                                     const autobal_study_rotor_design_summary *S) {
+  const char *g = "/rotor/design", *gr = "/rotor/design/ranked";
+  const char *dims4[4] = {"ball_mass", "ball_damping", "plane_position", "track_radius"};
+  const char *rank1[1] = {"rank"};
+  autobal_study_rotor_design_options res;
+  size_t nm, i;
+  int st;
+  if (!a || !p || !opt || !S || !S->mass) return AUTOBAL_EINVAL;
+  if (resolve(p, opt, &res, NULL) == AUTOBAL_SUCCESS) opt = &res; /* the bounds and counts as used */
+  nm = S->n_mass_done;
+  if (nm == 0) return AUTOBAL_EINVAL;
+  st = autobal_study_write_rotor_params(a, p, 0);
+  if (!st) st = autobal_archive_group(a, g);
+  if (!st) st = autobal_archive_attr_string(a, g, "method", "docs/rotor.md \"Design\": exact in the unbalance and the track radius (critical values), sampled in the speed, grid + Nelder-Mead (GSL nmsimplex2) in ball mass, damping, plane position");
+  if (!st) st = autobal_archive_attr_double(a, g, "omega_min", opt->omega_min, "rad/s");
+  if (!st) st = autobal_archive_attr_double(a, g, "omega_max", opt->omega_max, "rad/s");
+  if (!st) st = autobal_archive_attr_int(a, g, "n_omega", (long)opt->n_omega);
+  if (!st) st = autobal_archive_attr_int(a, g, "n_verify", (long)opt->n_verify);
+  if (!st) st = autobal_archive_attr_double(a, g, "unbalance_min", opt->unbalance_min, "kg m");
+  if (!st) st = autobal_archive_attr_double(a, g, "unbalance_max", opt->unbalance_max, "kg m");
+  if (!st) st = autobal_archive_attr_double(a, g, "margin_required", opt->margin, "1/s");
+  if (!st) st = autobal_archive_attr_int(a, g, "n_feasible", (long)S->n_feasible);
+  if (!st) st = autobal_archive_attr_int(a, g, "ratio_sets", (long)S->ratio_sets);
+  if (!st) st = autobal_archive_attr_int(a, g, "margin_evaluations", (long)S->margin_evaluations);
+  if (!st) st = autobal_archive_attr_int(a, g, "optimizer_evaluations", (long)S->optimizer_evaluations);
+  if (!st && nm == S->n_mass && !S->ranked) {
+    st = autobal_archive_attr_int(a, g, "partial", 1);
+    if (!st) st = autobal_archive_attr_string(a, g, "partial_what", "interrupted during the ranking: the map is complete, no ranked designs");
+  }
+  if (!st && nm < S->n_mass) {
+    char what[200];
+    snprintf(what, sizeof what, "interrupted: the first %zu of %zu rows of the map (ball_mass values); no ranking", nm,
+             S->n_mass);
+    st = autobal_archive_attr_int(a, g, "partial", 1);
+    if (!st) st = autobal_archive_attr_int(a, g, "done", (long)nm);
+    if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)S->n_mass);
+    if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
+  }
+  if (!st) st = autobal_archive_coord(a, g, "ball_mass", nm, S->mass, "kg", "ball mass (each of the two balls)");
+  if (!st) st = autobal_archive_coord(a, g, "ball_damping", S->n_damping, S->damping, "kg/s", "ball damping h (each ball)");
+  if (!st) st = autobal_archive_coord(a, g, "plane_position", S->n_position, S->position, "m", "axial position d of the plane");
+  if (!st) st = autobal_archive_coord(a, g, "track_radius", S->n_radius, S->radius, "m", "track radius r of both balls");
+  if (!st) st = autobal_archive_var_int(a, g, "feasible", 4, dims4, S->feasible, "1", "1: every root Re lambda < -margin_required at every speed of the grid for every unbalance of the range; 0: not; -1: the balls cannot balance unbalance_max (2 m r <= m0 r0)");
+  if (!st) st = autobal_archive_var(a, g, "radius_window_lo", 3, dims4, S->window_lo, "m", "lower end of the widest open interval of feasible track radii within the bounds (exact in r; NaN: none)");
+  if (!st) st = autobal_archive_var(a, g, "radius_window_hi", 3, dims4, S->window_hi, "m", "upper end of the same interval");
+  if (st || S->n_designs == 0 || !S->ranked) return st;
+  {
+    const size_t n = S->n_designs;
+    double *v = malloc(n * sizeof *v);
+    int *iv = malloc(n * sizeof *iv);
+    if (!v || !iv) {
+      free(v);
+      free(iv);
+      return AUTOBAL_ENOMEM;
+    }
+    st = autobal_archive_group(a, gr);
+    if (!st) st = autobal_archive_dim(a, gr, "rank", n, "rank of the design, 0 the best");
+#define COL(field, name, unit, lname)                                           \
+  if (!st) {                                                                    \
+    for (i = 0; i < n; i++) v[i] = S->designs[i].field;                         \
+    st = autobal_archive_var(a, gr, name, 1, rank1, v, unit, lname);            \
+  }
+#define ICOL(field, name, lname)                                                \
+  if (!st) {                                                                    \
+    for (i = 0; i < n; i++) iv[i] = S->designs[i].field;                        \
+    st = autobal_archive_var_int(a, gr, name, 1, rank1, iv, "1", lname);        \
+  }
+    COL(mass, "ball_mass", "kg", "ball mass (each of the two balls)")
+    COL(radius, "track_radius", "m", "track radius")
+    COL(damping, "ball_damping", "kg/s", "ball damping h")
+    COL(position, "plane_position", "m", "plane position d")
+    COL(margin, "robust_margin", "1/s", "robust margin rho: the exact test passes with this margin at every speed of the grid for every unbalance of the range")
+    COL(recheck_margin, "recheck_margin", "1/s", "-(largest margin evaluated by the re-check on the finer speed grid): a sampled upper estimate of rho")
+    ICOL(feasible, "feasible", "1: robust_margin > margin_required and the re-check agrees")
+    ICOL(recheck, "recheck", "1: the exact every-unbalance analysis finds it stable for every unbalance on the re-check grid with margins below -margin_required; 0: not; -1: not re-checked")
+    ICOL(source, "source", "0: a grid point of the map, 1: the Nelder-Mead optimizer")
+#undef COL
+#undef ICOL
+    free(v);
+    free(iv);
+  }
+  if (!st && S->best_config) st = autobal_archive_attr_string(a, g, "best_config", S->best_config);
+  return st;
+}

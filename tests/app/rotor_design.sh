@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# rotor design (docs/rotor.md "Design"): a small search on the default machine, in the units users
+# think in (rpm, g mm, g, mm), then rotor_design_check.py re-checks it independently (NumPy roots of
+# Delta built from the hardware values; transients of the best design and of an infeasible one):
+#  (a) the run: exit 0, the ranked table, the best design printed and written (config_out), the
+#      written .ini runs as it is (`rotor stability` finds it stable at speed_max);
+#  (b) the archive and the independent checks (rotor_design_check.py); data/design_default.ini as
+#      shipped: its best design feasible, re-checked, and its config stable;
+#  (c) bad input: each range error names its key and exits 3 with nothing written; two planes and
+#      three balls are refused naming the key; SIGINT: exit 6, the archive incomplete with the map rows
+#      done.
+set -u
+: "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+. "$(dirname "$0")/common.bash"
+
+cat > d.ini <<'INI'
+[design]
+speed_min = 4500 rpm
+speed_max = 8500 rpm
+n_speed = 9
+unbalance_min = 500 g mm
+unbalance_max = 4000 g mm
+margin = 0.2
+ball_mass_min = 25 g
+ball_mass_max = 80 g
+n_ball_mass = 4
+track_radius_min = 60 mm
+track_radius_max = 140 mm
+n_track_radius = 5
+ball_damping_min = 0.02
+ball_damping_max = 1
+n_ball_damping = 4
+n_best = 3
+n_starts = 1
+max_iter = 25
+INI
+expect 0 "best design as a config" "$AUTOBAL" rotor design d.ini -o d.h5 --set design.config_out=best.ini
+grep -q "ranked designs" out.txt && ok "ranked table printed" || bad "no ranked table"
+grep -q "stability analyses (" out.txt && ok "count of stability analyses printed: $(grep -o '[0-9]* stability analyses ([0-9]* per second)' out.txt)" || bad "no analysis count"
+[ -s best.ini ] && ok "best.ini written" || bad "best.ini missing"
+grep -q "^ball_mass = " out.txt && ok "the config is printed" || bad "config not printed"
+expect 0 "BALANCED MOTION: stable" "$AUTOBAL" rotor stability best.ini --set stability.critical_speeds=false
+
+"$PY" "$here/rotor_design_check.py" d.h5 best.ini "$AUTOBAL" > check.txt 2>&1 && ok "rotor_design_check.py: $(grep -c '^ok' check.txt) checks" || { bad "rotor_design_check.py"; cat check.txt; }
+grep '^ok\|^FAIL' check.txt | head -40
+
+# data/design_default.ini as shipped (the 3-parameter search of docs/rotor.md "Design"): the best design
+# feasible and re-checked, at least one feasible map point, the archive's best_config runs
+expect 0 "best design as a config" "$AUTOBAL" rotor design "$DATA/design_default.ini" -o full.h5
+"$PY" - <<'PY' && ok "data/design_default.ini: best design feasible and re-checked, ranked by robust margin" || bad "data/design_default.ini archive"
+import h5py
+g = h5py.File("full.h5", "r")["/rotor/design"]
+r = g["ranked"]
+assert r["feasible"][0] == 1 and r["recheck"][0] == 1, (r["feasible"][:], r["recheck"][:])
+assert r["robust_margin"][0] > g.attrs["margin_required"]
+assert g.attrs["n_feasible"] == (g["feasible"][:] == 1).sum() > 0
+open("full_best.ini", "w").write(g.attrs["best_config"])
+PY
+expect 0 "BALANCED MOTION: stable" "$AUTOBAL" rotor stability full_best.ini --set stability.critical_speeds=false
+
+# (c) bad input
+expect_err 3 "speed_max" "$AUTOBAL" rotor design d.ini --set design.speed_max=4000rpm -o bad1.h5
+[ ! -e bad1.h5 ] && ok "nothing written" || bad "bad1.h5 written"
+expect_err 3 "unbalance_max" "$AUTOBAL" rotor design d.ini --set "design.unbalance_max=100 g mm" -o bad2.h5
+expect_err 3 "n_speed" "$AUTOBAL" rotor design d.ini --set design.n_speed=1
+expect_err 3 "ball_mass_max" "$AUTOBAL" rotor design d.ini --set "design.ball_mass_max=10 g"
+grep -v '^ball_mass_max' d.ini > onlymin.ini
+expect_err 3 "ball_mass_min and ball_mass_max go together" "$AUTOBAL" rotor design onlymin.ini
+printf '[design]\nspeed_min = 400\nspeed_max = 800\n' > nou.ini
+expect_err 3 "unbalance_min and unbalance_max are required" "$AUTOBAL" rotor design nou.ini
+printf '[plane1]\nball_mass = 0.05, 0.05, 0.05\nball_radius = 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1\nball_psi = 0, 2, 4\nball_rate = 0, 0, 0\n' > three.ini
+cat d.ini >> three.ini
+expect_err 3 "ball_mass" "$AUTOBAL" rotor design three.ini
+grep -q "two balls" err.txt && ok "three balls: says two balls" || bad "three balls message: $(cat err.txt)"
+printf '[plane2]\nd = -0.12\nm0 = 0.015\nr0 = 0.09\nball_mass = 0.04, 0.04\nball_radius = 0.09, 0.09\nball_damping = 0.5, 0.5\nball_psi = 1, 2\n' > two.ini
+cat d.ini >> two.ini
+expect_err 3 "plane2" "$AUTOBAL" rotor design two.ini
+
+# SIGINT during a long search: exit 6, the archive incomplete, the map rows done
+"$AUTOBAL" rotor design d.ini --set design.n_ball_mass=200 --set design.n_ball_damping=40 --set design.n_speed=400 -o int.h5 > int.out 2> int.err &
+pid=$!
+sleep 3
+kill -INT $pid
+wait $pid; rc=$?
+[ $rc -eq 6 ] && ok "SIGINT: exit 6" || { bad "SIGINT: exit $rc"; cat int.err; }
+if [ -e int.h5 ]; then
+  "$PY" - <<'PY' && ok "int.h5: status incomplete, partial map rows done < requested" || bad "int.h5"
+import h5py
+f = h5py.File("int.h5", "r")
+assert f.attrs["status"] == "incomplete", f.attrs["status"]
+g = f["/rotor/design"]
+assert g.attrs["partial"] == 1 and 0 < g.attrs["done"] < g.attrs["requested"] == 200, dict(g.attrs)
+assert g["feasible"].shape[0] == g.attrs["done"]
+PY
+else
+  grep -q "nothing written\|interrupted\|SIGINT" int.err && ok "SIGINT before the first row: nothing written, said so" || bad "no int.h5 and no message"
+fi
+finish
