@@ -22,6 +22,7 @@ typedef struct dop853_state {
   double *ytmp; /* a stage's argument */
   double *f;    /* 4 x dim: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
   double t0, h;
+  double atol, rtol; /* the control's tolerances (0, 0: the componentwise estimate) */
   int ready;
   /* non-zero entries of each row of A (rows 1..15, columns < the row) */
   unsigned char nnz[NEXT];
@@ -93,15 +94,35 @@ static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[]
   memcpy(s->y1, s->ytmp, n * sizeof(double));
   st = GSL_ODEIV_FN_EVAL(sys, t + h, s->y1, s->k + (size_t)NST * n);
   if (st != GSL_SUCCESS) return st;
-  for (i = 0; i < n; i++) {
-    double e5 = 0.0, e3 = 0.0, den;
-    for (j = 0; j <= NST; j++) {
-      const double kj = s->k[(size_t)j * n + i];
-      e5 += DOP853_E5[j] * kj;
-      e3 += DOP853_E3[j] * kj;
+  if (s->atol > 0.0 || s->rtol > 0.0) {
+    /* Hairer's normwise combination: the factor |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the
+     * scaled 2-norms, the same for every component (yerr_i = h e5_i factor / |e5|) */
+    double n5 = 0.0, n3 = 0.0, fac;
+    for (i = 0; i < n; i++) {
+      double e5 = 0.0, e3 = 0.0;
+      const double sc = s->atol + s->rtol * fmax(fabs(s->y0[i]), fabs(s->y1[i]));
+      for (j = 0; j <= NST; j++) {
+        const double kj = s->k[(size_t)j * n + i];
+        e5 += DOP853_E5[j] * kj;
+        e3 += DOP853_E3[j] * kj;
+      }
+      yerr[i] = e5;
+      n5 += (e5 / sc) * (e5 / sc);
+      n3 += (e3 / sc) * (e3 / sc);
     }
-    den = hypot(e5, 0.1 * e3);
-    yerr[i] = den > 0.0 ? h * e5 * (fabs(e5) / den) : 0.0;
+    fac = n5 + n3 > 0.0 ? sqrt(n5) / sqrt(n5 + 0.01 * n3) : 0.0;
+    for (i = 0; i < n; i++) yerr[i] *= h * fac;
+  } else {
+    for (i = 0; i < n; i++) {
+      double e5 = 0.0, e3 = 0.0, den;
+      for (j = 0; j <= NST; j++) {
+        const double kj = s->k[(size_t)j * n + i];
+        e5 += DOP853_E5[j] * kj;
+        e3 += DOP853_E3[j] * kj;
+      }
+      den = hypot(e5, 0.1 * e3);
+      yerr[i] = den > 0.0 ? h * e5 * (fabs(e5) / den) : 0.0;
+    }
   }
   memcpy(y, s->y1, n * sizeof(double));
   if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * n, n * sizeof(double));
@@ -159,6 +180,12 @@ void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, doub
     u = d + x1 * u;
     out[i] = s->y0[i] + x * u;
   }
+}
+
+void autobal_transient_dop853_set_tol_(void *vstate, double atol, double rtol) {
+  dop853_state *s = (dop853_state *)vstate;
+  s->atol = atol;
+  s->rtol = rtol;
 }
 
 void autobal_transient_dop853_last_step_(const void *vstate, double *t0, double *h) {

@@ -28,6 +28,13 @@ int autobal_transient_dop853_dense_ready_(const void *state);
  * step's result, to rounding), into out (dim doubles).  Local error O(h^8). */
 void autobal_transient_dop853_dense_eval_(const void *state, double theta, double *out);
 
+/* The tolerances of the control that judges the steps (GSL's standard control with these atol,
+ * rtol, a_y = 1, a_dydt = 0): with them the error estimate is Hairer's normwise one (the factor
+ * |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the 2-norms scaled by atol + rtol max(|y0_i|, |y1_i|),
+ * common to every component: yerr_i = h e5_i |e5| / sqrt(|e5|^2 + 0.01 |e3|^2)); without them
+ * (0, 0, the state after alloc) the componentwise one above. */
+void autobal_transient_dop853_set_tol_(void *state, double atol, double rtol);
+
 /* The start (t0) and the length (h) of the last step taken by apply(). */
 void autobal_transient_dop853_last_step_(const void *state, double *t0, double *h);
 

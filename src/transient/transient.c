@@ -347,6 +347,7 @@ static int ctx_alloc(autobal_transient *tr, stepper_ctx *c, const gsl_odeiv2_ste
    * arguments are valid, so GSL's error handler is not invoked except for
    * out-of-memory. */
   c->d = gsl_odeiv2_driver_alloc_y_new(&tr->gsys, T, 1.0, atol, rtol);
+  if (c->d && T == k_dop853) autobal_transient_dop853_set_tol_(c->d->s->state, atol, rtol);
   c->y0 = calloc(n, sizeof(double));
   c->yerr = calloc(n, sizeof(double));
   c->dydt_in = calloc(n, sizeof(double));
