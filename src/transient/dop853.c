@@ -12,7 +12,7 @@
 
 #include "transient/dop853_coeffs.inc"
 
-enum { NST = 12, NEXT = 16, NNZ_MAX = 16 };
+enum { NST = 12, NEXT = 16 };
 
 typedef struct dop853_state {
   size_t dim;
@@ -24,14 +24,10 @@ typedef struct dop853_state {
   double t0, h;
   double atol, rtol; /* the control's tolerances (0, 0: the componentwise estimate) */
   int ready;
-  /* non-zero entries of each row of A (rows 1..15, columns < the row) */
-  unsigned char nnz[NEXT];
-  unsigned char col[NEXT][NNZ_MAX];
 } dop853_state;
 
 static void *dop853_alloc(size_t dim) {
   dop853_state *s = calloc(1, sizeof *s);
-  int i, j;
   if (s == NULL) return NULL;
   s->dim = dim;
   s->k = malloc(NEXT * dim * sizeof(double));
@@ -48,25 +44,28 @@ static void *dop853_alloc(size_t dim) {
     free(s);
     GSL_ERROR_NULL("failed to allocate space for dop853_state", GSL_ENOMEM);
   }
-  for (i = 0; i < NEXT; i++) {
-    s->nnz[i] = 0;
-    for (j = 0; j < i && j < NEXT; j++)
-      if (DOP853_A[i][j] != 0.0) s->col[i][s->nnz[i]++] = (unsigned char)j;
-  }
   return s;
 }
 
-/* ytmp = y0 + h sum_j A[row][j] k_j */
+/* ytmp = y0 + h sum_j A[row][j] k_j (row 1..15; the generated straight-line kernels) */
 static void stage_arg(dop853_state *s, int row, double h) {
-  const size_t n = s->dim;
-  size_t i;
-  int q;
-  memcpy(s->ytmp, s->y0, n * sizeof(double));
-  for (q = 0; q < s->nnz[row]; q++) {
-    const int j = s->col[row][q];
-    const double a = h * DOP853_A[row][j];
-    const double *kj = s->k + (size_t)j * n;
-    for (i = 0; i < n; i++) s->ytmp[i] += a * kj[i];
+  switch (row) {
+    case 1: dop853_arg_1(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 2: dop853_arg_2(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 3: dop853_arg_3(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 4: dop853_arg_4(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 5: dop853_arg_5(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 6: dop853_arg_6(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 7: dop853_arg_7(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 8: dop853_arg_8(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 9: dop853_arg_9(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 10: dop853_arg_10(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 11: dop853_arg_11(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 12: dop853_arg_12(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 13: dop853_arg_13(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 14: dop853_arg_14(s->dim, h, s->y0, s->k, s->ytmp); break;
+    case 15: dop853_arg_15(s->dim, h, s->y0, s->k, s->ytmp); break;
+    default: break;
   }
 }
 
@@ -99,13 +98,9 @@ static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[]
      * scaled 2-norms, the same for every component (yerr_i = h e5_i factor / |e5|) */
     double n5 = 0.0, n3 = 0.0, fac;
     for (i = 0; i < n; i++) {
-      double e5 = 0.0, e3 = 0.0;
+      double e5, e3;
       const double sc = s->atol + s->rtol * fmax(fabs(s->y0[i]), fabs(s->y1[i]));
-      for (j = 0; j <= NST; j++) {
-        const double kj = s->k[(size_t)j * n + i];
-        e5 += DOP853_E5[j] * kj;
-        e3 += DOP853_E3[j] * kj;
-      }
+      dop853_err_at(n, i, s->k, &e5, &e3);
       yerr[i] = e5;
       n5 += (e5 / sc) * (e5 / sc);
       n3 += (e3 / sc) * (e3 / sc);
@@ -114,12 +109,8 @@ static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[]
     for (i = 0; i < n; i++) yerr[i] *= h * fac;
   } else {
     for (i = 0; i < n; i++) {
-      double e5 = 0.0, e3 = 0.0, den;
-      for (j = 0; j <= NST; j++) {
-        const double kj = s->k[(size_t)j * n + i];
-        e5 += DOP853_E5[j] * kj;
-        e3 += DOP853_E3[j] * kj;
-      }
+      double e5, e3, den;
+      dop853_err_at(n, i, s->k, &e5, &e3);
       den = hypot(e5, 0.1 * e3);
       yerr[i] = den > 0.0 ? h * e5 * (fabs(e5) / den) : 0.0;
     }
@@ -133,24 +124,14 @@ int autobal_transient_dop853_dense_prepare_(void *vstate, const gsl_odeiv2_syste
   dop853_state *s = (dop853_state *)vstate;
   const size_t n = s->dim;
   const double h = s->h;
-  size_t i;
-  int j, r, st;
+  int j, st;
   if (s->ready) return GSL_SUCCESS;
   for (j = NST + 1; j < NEXT; j++) {
     stage_arg(s, j, h);
     st = GSL_ODEIV_FN_EVAL(sys, s->t0 + DOP853_C[j] * h, s->ytmp, s->k + (size_t)j * n);
     if (st != GSL_SUCCESS) return st;
   }
-  for (r = 0; r < 4; r++) {
-    double *fr = s->f + (size_t)r * n;
-    memset(fr, 0, n * sizeof(double));
-    for (j = 0; j < NEXT; j++) {
-      const double d = h * DOP853_D[r][j];
-      const double *kj = s->k + (size_t)j * n;
-      if (d == 0.0) continue;
-      for (i = 0; i < n; i++) fr[i] += d * kj[i];
-    }
-  }
+  dop853_dense_rows(n, h, s->k, s->f);
   s->ready = 1;
   return GSL_SUCCESS;
 }
