@@ -21,6 +21,11 @@
 #                                    frictionless ensemble, SciPy with gap events at matched error (one
 #                                    member, e = 1); ARGS go to friction_scipy.py --contact (e.g. --quick,
 #                                    --only member, --restitutions 0.5,1, --scipy-seed 5)
+#   bench/run.sh dense [ARGS...]     output every quarter revolution (issue 20): dop853 on its continuous
+#                                    extension vs exact hits (rk8pd, dop853) vs SciPy DOP853/LSODA/Radau
+#                                    with t_eval, pendulum and rotor (2, 8 balls), at matched error of the
+#                                    output points; archive (JSON) and work-precision plot; ARGS go to
+#                                    dense_scipy.py (e.g. --cases pendulum --tols 1e-8, --from A.json)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -29,9 +34,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction|contact) what=$1; shift ;;
-    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction or contact; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact|dense) what=$1; shift ;;
+    -h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact or dense; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -46,10 +51,14 @@ case "$what" in
   rotor|runup) targets=(bench_rotor) ;;
   friction) targets=(bench_rotor bench_friction) ;;
   contact) targets=(bench_rotor bench_friction) ;;
+  dense) targets=(bench_dense) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 py=/usr/bin/python3
+if [ "$what" = dense ]; then
+  exec "$py" "$here/dense_scipy.py" --bench "$build/bench_dense" "$@"
+fi
 # bench_rotor of the library at git revision $1 (built once, in $build-before-REV); prints its path
 build_before() {
   local rev old

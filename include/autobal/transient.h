@@ -161,7 +161,7 @@ typedef struct autobal_transient_options {
                              output times, events and dwell completions are taken on it
                              (dense output, see "Dense output" above); 1: hit exactly by
                              cutting steps, as every other stepper does; 0 or 1
-                             (default 0; added in 0.4.0, at the end)                   */
+                             (default 0; added in 0.2.0, at the end)                   */
 } autobal_transient_options;
 
 /* The defaults listed above. */
