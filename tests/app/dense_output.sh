@@ -44,7 +44,7 @@ for kind, grp, names, tol in (("pendulum", "/pendulum/transient", ["xi", "eta", 
     if kind == "rotor":  # ball angles: absolute error (rad); displacements relative to their scale
         sc[4:6] = 1.0
     ed = np.max(np.abs(d - r) / sc); ex = np.max(np.abs(x - r) / sc); edx = np.max(np.abs(d - x) / sc)
-    lim = 1e-6 if kind == "pendulum" else 1e-5
+    lim = 1e-7
     print(f"{kind}: max error at the output points (scaled): dense {ed:.2e}, exact {ex:.2e}, dense vs exact {edx:.2e}, limit {lim:g}")
     if not (ed < lim and ex < lim):
         print(f"FAIL {kind}: errors above {lim}"); fails += 1
