@@ -25,6 +25,7 @@ typedef struct ptr_cfg {
   double t_end, dt_out, revs_out, rtol, atol, h_max, balance_tol, balance_revs;
   long max_steps;
   const char *stepper;
+  const char *output; /* dense | exact */
   int stop_at_balance;
   int has_dt_out; /* dt_out given (else revs_out) */
 } ptr_cfg;
@@ -54,6 +55,7 @@ static int read_config(cli_ctx *ctx, ptr_cfg *c) {
   c->balance_tol = 1e-3;
   c->balance_revs = 20.0;
   c->stepper = "rk8pd";
+  c->output = "dense";
   if ((rc = get_d(ctx, "transient", "t_end", &c->t_end))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "dt_out", 0.0, &c->dt_out, &has_dt))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "revs_out", c->revs_out, &c->revs_out, &has_revs))) return rc;
@@ -62,6 +64,9 @@ static int read_config(cli_ctx *ctx, ptr_cfg *c) {
   if ((rc = get_d(ctx, "transient", "h_max", &c->h_max))) return rc;
   if ((rc = cli_get_int(ctx, "transient", "max_steps", c->max_steps, &c->max_steps, NULL))) return rc;
   if ((rc = cli_get_string(ctx, "transient", "stepper", c->stepper, &c->stepper, NULL))) return rc;
+  if ((rc = cli_get_string(ctx, "transient", "output", c->output, &c->output, NULL))) return rc;
+  if (strcmp(c->output, "dense") != 0 && strcmp(c->output, "exact") != 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: output = '%s' is not one of: dense, exact", c->output);
   if ((rc = get_d(ctx, "transient", "balance_tol", &c->balance_tol))) return rc;
   if ((rc = get_d(ctx, "transient", "balance_revs", &c->balance_revs))) return rc;
   if ((rc = cli_get_bool(ctx, "transient", "stop_at_balance", 0, &c->stop_at_balance, NULL))) return rc;
@@ -127,6 +132,7 @@ int cli_cmd_pendulum_transient(cli_ctx *ctx) {
   opt.h_max = c.h_max;
   opt.max_steps = (unsigned long)c.max_steps;
   opt.stepper = c.stepper;
+  opt.exact_output = strcmp(c.output, "exact") == 0;
   opt.balance_tol = c.balance_tol;
   opt.balance_revs = c.balance_revs;
   opt.stop_at_balance = c.stop_at_balance;

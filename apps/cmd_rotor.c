@@ -32,6 +32,7 @@ typedef struct rotor_cfg {
   double t_end, dt_out, rtol, atol, h_max, balance_tol, balance_revs;
   long max_steps;
   const char *stepper, *frame_name;
+  const char *output; /* dense | exact */
   int frame, stop_at_balance;
   /* [balance] */
   double grade; /* ISO 21940-11 grade to check, mm/s; NaN: none */
@@ -740,6 +741,7 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   c->balance_tol = 0.01;
   c->balance_revs = 50;
   c->stepper = "rk8pd";
+  c->output = "dense";
   c->frame_name = "fixed";
   {
     double revs_out = 0.25;
@@ -753,6 +755,9 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if ((rc = get_q(ctx, "transient", "h_max", "s", &c->h_max))) return rc;
     if ((rc = cli_get_int(ctx, "transient", "max_steps", c->max_steps, &c->max_steps, NULL))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "stepper", c->stepper, &c->stepper, NULL))) return rc;
+    if ((rc = cli_get_string(ctx, "transient", "output", c->output, &c->output, NULL))) return rc;
+    if (strcmp(c->output, "dense") != 0 && strcmp(c->output, "exact") != 0)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: output = '%s' is not one of: dense, exact", c->output);
     if ((rc = cli_get_string(ctx, "transient", "frame", c->frame_name, &c->frame_name, NULL))) return rc;
     if ((rc = get_d(ctx, "transient", "balance_tol", &c->balance_tol))) return rc;
     if ((rc = cli_get_double(ctx, "transient", "balance_revs", c->balance_revs, &c->balance_revs, &has_brevs))) return rc;
@@ -810,6 +815,7 @@ static autobal_study_rotor_transient_options study_options(const rotor_cfg *c) {
   o.h_max = c->h_max;
   o.max_steps = (unsigned long)c->max_steps;
   o.stepper = c->stepper;
+  o.exact_output = strcmp(c->output, "exact") == 0;
   o.frame = c->frame;
   o.balance_tol = c->balance_tol;
   o.balance_revs = c->balance_revs;

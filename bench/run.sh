@@ -24,6 +24,11 @@
 #   bench/run.sh design [N_POSITION] the design search (`autobal rotor design`) over 4 balancer parameters
 #                                    for the default machine: time, exact tests and stability verdicts per
 #                                    second (N_POSITION = 1: 3 parameters, the position fixed)
+#   bench/run.sh dense [ARGS...]     output every quarter revolution (issue 20): dop853 on its continuous
+#                                    extension vs exact hits (rk8pd, dop853) vs SciPy DOP853/LSODA/Radau
+#                                    with t_eval, pendulum and rotor (2, 8 balls), at matched error of the
+#                                    output points; archive (JSON) and work-precision plot; ARGS go to
+#                                    dense_scipy.py (e.g. --cases pendulum --tols 1e-8, --from A.json)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -32,9 +37,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction|contact|design) what=$1; shift ;;
-    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact or design; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact|design|dense) what=$1; shift ;;
+    -h|--help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design or dense; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -50,10 +55,14 @@ case "$what" in
   friction) targets=(bench_rotor bench_friction) ;;
   contact) targets=(bench_rotor bench_friction) ;;
   design) targets=(bench_design) ;;
+  dense) targets=(bench_dense) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 py=/usr/bin/python3
+if [ "$what" = dense ]; then
+  exec "$py" "$here/dense_scipy.py" --bench "$build/bench_dense" "$@"
+fi
 # bench_rotor of the library at git revision $1 (built once, in $build-before-REV); prints its path
 build_before() {
   local rev old

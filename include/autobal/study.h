@@ -147,6 +147,9 @@ typedef struct autobal_study_rotor_transient_options {
   double capture_band;  /* 1, relative half-width of the band around each resonance speed, (0, 1)
                                                                                  (default 0.05) */
   double capture_time;  /* s, a stay in the band this long is a capture, (0, inf)    (default 2) */
+  int exact_output;     /* 1: output times and the balance monitor hit exactly (steps cut there);
+                           0: on the stepper's continuous extension when it has one (dop853;
+                           autobal_transient_options.exact_output)                (default 0) */
 } autobal_study_rotor_transient_options;
 
 /* The defaults listed above. */
@@ -426,6 +429,9 @@ typedef struct autobal_study_pendulum_transient_options {
   int stop_at_balance;  /* non-zero: stop once balanced                             (default 0) */
   autobal_study_progress_fn progress; /* NULL: none                              (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
+  int exact_output;     /* 1: output times and the balance monitor hit exactly (steps cut there);
+                           0: on the stepper's continuous extension when it has one (dop853;
+                           autobal_transient_options.exact_output)                (default 0) */
 } autobal_study_pendulum_transient_options;
 
 AUTOBAL_API autobal_study_pendulum_transient_options autobal_study_pendulum_transient_options_default(void);

@@ -14,6 +14,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "internal.h"
+#include "transient/dop853.h"
 
 /* ------------------------------------------------------------------------ */
 /* Stepper table                                                            */
@@ -24,18 +25,21 @@ typedef struct stepper_entry {
   const gsl_odeiv2_step_type *const *type; /* address of GSL's exported pointer */
 } stepper_entry;
 
+/* autobal's own step type (transient/dop853.c) */
+static const gsl_odeiv2_step_type *const k_dop853 = &autobal_transient_dop853_type_;
+
 static const stepper_entry k_steppers[] = {
     {"rk2", &gsl_odeiv2_step_rk2},       {"rk4", &gsl_odeiv2_step_rk4},
     {"rkf45", &gsl_odeiv2_step_rkf45},   {"rkck", &gsl_odeiv2_step_rkck},
     {"rk8pd", &gsl_odeiv2_step_rk8pd},   {"rk1imp", &gsl_odeiv2_step_rk1imp},
     {"rk2imp", &gsl_odeiv2_step_rk2imp}, {"rk4imp", &gsl_odeiv2_step_rk4imp},
     {"bsimp", &gsl_odeiv2_step_bsimp},   {"msadams", &gsl_odeiv2_step_msadams},
-    {"msbdf", &gsl_odeiv2_step_msbdf},
+    {"msbdf", &gsl_odeiv2_step_msbdf},   {"dop853", &k_dop853},
 };
 #define N_STEPPERS (sizeof k_steppers / sizeof k_steppers[0])
 
 static const char k_stepper_names[] =
-    "rk2, rk4, rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams, msbdf";
+    "rk2, rk4, rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams, msbdf, dop853";
 
 const char *autobal_transient_stepper_names(void) { return k_stepper_names; }
 
@@ -64,6 +68,7 @@ autobal_transient_options autobal_transient_options_default(void) {
   o.event_tol = 1e-10;
   o.progress_step = 0.005;
   o.progress_wall = 0.0;
+  o.exact_output = 0;
   return o;
 }
 
@@ -104,6 +109,10 @@ int autobal_transient_options_validate(const autobal_transient_options *opt, aut
   if ((rc = autobal_check_param(err, "progress_wall", opt->progress_wall, 0.0, 0, INFINITY, 1,
                                 "s")) != 0)
     return rc;
+  if (opt->exact_output != 0 && opt->exact_output != 1)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option exact_output = %d is out of range: allowed 0 or 1",
+                             opt->exact_output);
   return AUTOBAL_SUCCESS;
 }
 
@@ -165,6 +174,10 @@ struct autobal_transient {
                      shared by every event with pc_n probes (pc_valid[k]: point k + 1 computed) */
   unsigned pc_cap, pc_n;
   unsigned char pc_valid[64];
+  double *y_out;  /* dense output: the interpolated state at an output time */
+  int dense;      /* this run: output and events on the main stepper's continuous extension */
+  double t0_run, t1_run, t_out; /* the run's span and its next output time (number k_out) */
+  unsigned long k_out;
   double hit_t;   /* its time; hit_valid: it belongs to the step being processed */
   int hit_valid;
   /* events */
@@ -334,6 +347,7 @@ static int ctx_alloc(autobal_transient *tr, stepper_ctx *c, const gsl_odeiv2_ste
    * arguments are valid, so GSL's error handler is not invoked except for
    * out-of-memory. */
   c->d = gsl_odeiv2_driver_alloc_y_new(&tr->gsys, T, 1.0, atol, rtol);
+  if (c->d && T == k_dop853) autobal_transient_dop853_set_tol_(c->d->s->state, atol, rtol);
   c->y0 = calloc(n, sizeof(double));
   c->yerr = calloc(n, sizeof(double));
   c->dydt_in = calloc(n, sizeof(double));
@@ -380,12 +394,13 @@ autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_o
   tr->y_prev = malloc(dim * sizeof(double));
   tr->y_work = malloc(dim * sizeof(double));
   tr->y_evt = malloc(dim * sizeof(double));
+  tr->y_out = malloc(dim * sizeof(double));
   tr->pr_fa = malloc(4 * dim * sizeof(double));
   tr->pr_fb = tr->pr_fa ? tr->pr_fa + dim : NULL;
   tr->pr_y = tr->pr_fa ? tr->pr_fa + 2 * dim : NULL;
   tr->y_hit = tr->pr_fa ? tr->pr_fa + 3 * dim : NULL;
   tr->loc = malloc(9 * dim * sizeof(double));
-  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt || !tr->pr_fa || !tr->loc ||
+  if (!tr->fd_f0 || !tr->fd_f1 || !tr->fd_y || !tr->y_prev || !tr->y_work || !tr->y_evt || !tr->y_out || !tr->pr_fa || !tr->loc ||
       ctx_alloc(tr, &tr->main, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS ||
       ctx_alloc(tr, &tr->aux, tr->type, o.atol, o.rtol) != AUTOBAL_SUCCESS) {
     autobal_transient_free(tr);
@@ -409,6 +424,7 @@ void autobal_transient_free(autobal_transient *tr) {
   free(tr->y_prev);
   free(tr->y_work);
   free(tr->y_evt);
+  free(tr->y_out);
   free(tr->pr_fa);
   free(tr->loc);
   free(tr->pc_y);
@@ -795,6 +811,71 @@ static int event_value(autobal_transient *tr, const event_item *e, double t, con
 
 static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
 
+/* ---- dense output (the main stepper's continuous extension) ------------------ */
+
+/* The state at t in [t_prev, tn] of the last accepted step of the main stepper, on its
+ * continuous extension (dop853: built at the first call of a step, 3 right-hand sides), into
+ * out.  Returns AUTOBAL_SUCCESS or AUTOBAL_ERHS (a right-hand side failed or rejected the
+ * state of an extra stage, or the interpolated state is not finite). */
+static int dense_at(autobal_transient *tr, double t, double *out) {
+  void *st = tr->main.d->s->state;
+  double t0, h, th;
+  if (!autobal_transient_dop853_dense_ready_(st)) {
+    int rc = autobal_transient_dop853_dense_prepare_(st, &tr->gsys);
+    if (rc == GSL_FAILURE && tr->fail_kind == 0) {
+      autobal_transient_dop853_last_step_(st, &t0, &h);
+      return autobal_error_set(&tr->err, AUTOBAL_ERHS,
+                               "the right-hand side rejected the state (outside its domain) at a "
+                               "stage of the continuous extension of the step from t = %.17g",
+                               t0);
+    }
+    if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
+  }
+  autobal_transient_dop853_last_step_(st, &t0, &h);
+  th = (t - t0) / h;
+  if (th < 0.0) th = 0.0;
+  if (th > 1.0) th = 1.0;
+  autobal_transient_dop853_dense_eval_(st, th, out);
+  if (!all_finite(out, tr->dim)) {
+    nonfinite_failure(tr, t, out);
+    return rhs_failure(tr);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* Locate the sign change of event e in (ta, tb] (tb <= the end of the last accepted step; values
+ * ga at ta, gb at tb of different signs, or gb = 0) on the continuous extension: Illinois
+ * (modified regula falsi) on g(t, u(t)) until the bracket is within event_tol; *t_hit is its far
+ * end (g there already has the new sign or is 0).  No integration: each trial point is one
+ * evaluation of the interpolant (pr_y) and of g. */
+static int locate_dense(autobal_transient *tr, const event_item *e, double ta, double ga, double tb,
+                        double gb, double *t_hit) {
+  const double tol = tr->opt.event_tol;
+  double a = ta, fa = ga, b = tb, fb = gb;
+  int side = 0, iter, rc;
+  for (iter = 0; iter < 200 && fb != 0.0 && b - a > tol; iter++) {
+    double c = b - fb * (b - a) / (fb - fa), fc = 0.0;
+    if (!(c > a && c < b)) c = a + 0.5 * (b - a);
+    if (!(c > a && c < b)) break; /* a and b adjacent doubles */
+    if ((rc = dense_at(tr, c, tr->pr_y)) != AUTOBAL_SUCCESS) return rc;
+    if ((rc = event_value(tr, e, c, tr->pr_y, &fc)) != AUTOBAL_SUCCESS) return rc;
+    /* a value exactly 0 counts as the near side, as in locate() */
+    if (fc != 0.0 && sgn(fc) == sgn(fb)) {
+      b = c;
+      fb = fc;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    } else {
+      a = c;
+      fa = fc;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    }
+  }
+  *t_hit = b;
+  return AUTOBAL_SUCCESS;
+}
+
 /* The derivatives at both ends of the accepted step (t_prev, y_prev) -> (tn, yn) into *fa, *fb: the
  * main stepper's own when it hands them over (f(tn) is the next step's first stage, f(t_prev) was
  * this one's), else two evaluations into pr_fa, pr_fb. */
@@ -843,7 +924,7 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
   unsigned k;
   int rc;
   *found = 0;
-  if (!*fa && (rc = step_ends(tr, t_prev, tn, yn, fa, fb)) != AUTOBAL_SUCCESS) return rc;
+  if (!tr->dense && !*fa && (rc = step_ends(tr, t_prev, tn, yn, fa, fb)) != AUTOBAL_SUCCESS) return rc;
   if (shared && tr->pc_n == 0) {
     tr->pc_n = e->probes;
     memset(tr->pc_valid, 0, sizeof tr->pc_valid);
@@ -852,13 +933,23 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
     const double t = t_prev + (double)k / (double)(e->probes + 1) * h;
     double g = 0.0, *yk = shared ? tr->pc_y + (size_t)(k - 1) * tr->dim : tr->pr_y;
     if (!shared || !tr->pc_valid[k - 1]) {
-      const hseg sg = {t_prev, tn, tr->y_prev, *fa, yn, *fb};
-      hermite(tr, &sg, t, yk);
+      if (tr->dense) {
+        if ((rc = dense_at(tr, t, yk)) != AUTOBAL_SUCCESS) return rc;
+      } else {
+        const hseg sg = {t_prev, tn, tr->y_prev, *fa, yn, *fb};
+        hermite(tr, &sg, t, yk);
+      }
       if (shared) tr->pc_valid[k - 1] = 1;
     }
     if ((rc = event_value(tr, e, t, yk, &g)) != AUTOBAL_SUCCESS) return rc;
     if (!((e->g_prev < 0.0 && g >= 0.0 && e->direction != -1) || (e->g_prev > 0.0 && g <= 0.0 && e->direction != 1)))
       continue;
+    if (tr->dense) { /* the continuous extension is the solution: nothing to confirm */
+      *tc = t;
+      *gc = g;
+      *found = 1;
+      return AUTOBAL_SUCCESS;
+    }
     /* confirm on the integrated state */
     if ((rc = aux_integrate(tr, t_prev, tr->y_prev, t, tr->y_evt, h, *fa)) != AUTOBAL_SUCCESS) return rc;
     if ((rc = event_value(tr, e, t, tr->y_evt, &g)) != AUTOBAL_SUCCESS) return rc;
@@ -1211,6 +1302,39 @@ static int reset_restart(autobal_transient *tr, double t, const double *y) {
   return RESTARTED;
 }
 
+/* Dense mode: the observer at every output time t_out < t_upto (also = t_upto when incl) not yet
+ * reported, in the last accepted step (its end (tn, yn)), the state interpolated on the
+ * continuous extension (yn itself at tn; nothing interpolated without an observer).  Returns
+ * AUTOBAL_SUCCESS, OBSERVER_STOP (the observer asked to stop: the state in y_out, its time in
+ * *t_stop) or a failure. */
+enum { OBSERVER_STOP = 1001 };
+static int emit_outputs(autobal_transient *tr, double t_upto, int incl, double tn, const double *yn,
+                        double *t_stop) {
+  while (tr->t_out < t_upto || (incl && tr->t_out == t_upto)) {
+    const double to = tr->t_out;
+    if (tr->observer) {
+      int uc, rc;
+      if (to == tn) {
+        memcpy(tr->y_out, yn, tr->dim * sizeof(double));
+      } else if ((rc = dense_at(tr, to, tr->y_out)) != AUTOBAL_SUCCESS) {
+        return rc;
+      }
+      uc = tr->observer(to, tr->y_out, tr->observer_user);
+      tr->stats.observer_calls++;
+      if (uc != 0) {
+        tr->stats.user_code = uc;
+        *t_stop = to;
+        tr->k_out++;
+        tr->t_out = to >= tr->t1_run ? INFINITY : output_time(tr, tr->t0_run, tr->t1_run, tr->k_out);
+        return OBSERVER_STOP;
+      }
+    }
+    tr->k_out++;
+    tr->t_out = to >= tr->t1_run ? INFINITY : output_time(tr, tr->t0_run, tr->t1_run, tr->k_out);
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 /* Process the events of the accepted step (t_prev, y_prev) -> (*t, y).
  * Returns AUTOBAL_SUCCESS (continue), RESTARTED (an event reset the state: y
  * and *t hold it, the stepper starts afresh there), AUTOBAL_EVENT (stop; y and
@@ -1233,7 +1357,8 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
       const int rising = e->g_prev < 0.0 && gn >= 0.0;
       const int falling = e->g_prev > 0.0 && gn <= 0.0;
       if ((rising && e->direction != -1) || (falling && e->direction != 1)) {
-        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, tn, y, &fa, &fb, &e->t_hit);
+        rc = tr->dense ? locate_dense(tr, e, t_prev, e->g_prev, tn, gn, &e->t_hit)
+                       : locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, tn, y, &fa, &fb, &e->t_hit);
         if (rc != AUTOBAL_SUCCESS) return rc;
         e->t_start = e->t_hit;
         e->dir_hit = rising ? 1 : -1;
@@ -1244,7 +1369,8 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
         if ((rc = probe(tr, e, t_prev, tn, y, &fa, &fb, &tc, &gc, &found)) != AUTOBAL_SUCCESS) return rc;
         if (found) { /* a grazing crossing: located in (t_prev, tc] */
           tr->stats_probe_hits++;
-          rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tc, gc, h_taken, tn, y, &fa, &fb, &e->t_hit);
+          rc = tr->dense ? locate_dense(tr, e, t_prev, e->g_prev, tc, gc, &e->t_hit)
+                         : locate(tr, e, t_prev, tr->y_prev, e->g_prev, tc, gc, h_taken, tn, y, &fa, &fb, &e->t_hit);
           if (rc != AUTOBAL_SUCCESS) return rc;
           e->t_start = e->t_hit;
           e->dir_hit = e->g_prev < 0.0 ? 1 : -1;
@@ -1254,7 +1380,8 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
     } else {
       if (e->dwell_state == DWELL_ABOVE && gn < 0.0) {
         double tc;
-        rc = locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, tn, y, &fa, &fb, &tc);
+        rc = tr->dense ? locate_dense(tr, e, t_prev, e->g_prev, tn, gn, &tc)
+                       : locate(tr, e, t_prev, tr->y_prev, e->g_prev, tn, gn, h_taken, tn, y, &fa, &fb, &tc);
         if (rc != AUTOBAL_SUCCESS) return rc;
         e->dwell_state = DWELL_BELOW;
         e->t_enter = tc;
@@ -1279,8 +1406,20 @@ static int process_events(autobal_transient *tr, double t_prev, double *t, doubl
     autobal_transient_event_hit hit;
     int stop;
     double *ys;
+    if (tr->dense) {
+      double t_stop = 0.0;
+      rc = emit_outputs(tr, e->t_hit, 0, tn, y, &t_stop);
+      if (rc == OBSERVER_STOP) {
+        memcpy(y, tr->y_out, tr->dim * sizeof(double));
+        *t = t_stop;
+      }
+      if (rc != AUTOBAL_SUCCESS) return rc;
+    }
     if (e->t_hit >= tn) {
       ys = y;
+    } else if (tr->dense) {
+      if ((rc = dense_at(tr, e->t_hit, tr->y_evt)) != AUTOBAL_SUCCESS) return rc;
+      ys = tr->y_evt;
     } else if (tr->hit_valid && e->t_hit == tr->hit_t) { /* locate integrated to it already */
       memcpy(tr->y_evt, tr->y_hit, tr->dim * sizeof(double));
       ys = tr->y_evt;
@@ -1379,6 +1518,9 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
   }
   tr->sys = *sys;
   ctx_reset(&tr->main);
+  tr->dense = tr->type == k_dop853 && !tr->opt.exact_output;
+  tr->t0_run = t0;
+  tr->t1_run = t1;
   tr->reset_run = 0;
   tr->t_reset = t0;
   span = t1 - t0;
@@ -1432,9 +1574,12 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
     if (tr->opt.h_min > 0.0 && h < tr->opt.h_min) h = tr->opt.h_min;
   }
   t_out = output_time(tr, t0, t1, k_out);
+  tr->k_out = k_out;
+  tr->t_out = t_out;
 
   while (t < t1) {
-    double target = t_out, t_prev = t, h_taken = 0.0;
+    /* dense output: the steps are not cut at output times (nor at dwell completions) */
+    double target = tr->dense ? t1 : t_out, t_prev = t, h_taken = 0.0;
     if (tr->opt.max_steps > 0 && tr->stats.steps >= tr->opt.max_steps) {
       autobal_error_set(&tr->err, AUTOBAL_EMAXSTEPS,
                         "maximum number of steps (%lu) reached at t = %.17g before t1 = %.17g",
@@ -1442,7 +1587,7 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
       return finish(tr, AUTOBAL_EMAXSTEPS, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
     }
     /* land exactly on pending dwell completions */
-    for (i = 0; i < tr->nev; i++) {
+    for (i = 0; i < tr->nev && !tr->dense; i++) {
       const event_item *e = &tr->ev[i];
       if (e->dwell && e->dwell_state == DWELL_BELOW) {
         const double tf = e->t_enter + e->duration;
@@ -1483,6 +1628,11 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
     }
     if (tr->nev > 0) {
       rc = process_events(tr, t_prev, &t, y, h_taken);
+      if (rc == OBSERVER_STOP) {
+        autobal_error_set(&tr->err, AUTOBAL_EVENT, "observer requested a stop (%d) at t = %.17g",
+                          tr->stats.user_code, t);
+        return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_OBSERVER, t, t_reached, wall0);
+      }
       if (rc == AUTOBAL_EVENT) {
         autobal_error_set(&tr->err, AUTOBAL_EVENT, "stopped at event %d at t = %.17g",
                           tr->stats.event_index, t);
@@ -1496,7 +1646,20 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
         return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
       }
     }
-    if (t >= t_out) {
+    if (tr->dense) {
+      double t_stop = 0.0;
+      rc = emit_outputs(tr, t, 1, t, y, &t_stop);
+      if (rc == OBSERVER_STOP) {
+        memcpy(y, tr->y_out, n * sizeof(double));
+        autobal_error_set(&tr->err, AUTOBAL_EVENT, "observer requested a stop (%d) at t = %.17g",
+                          tr->stats.user_code, t_stop);
+        return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_OBSERVER, t_stop, t_reached, wall0);
+      }
+      if (rc != AUTOBAL_SUCCESS) {
+        tr->stats.user_code = tr->fail_code;
+        return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
+      }
+    } else if (t >= t_out) {
       if (tr->observer) {
         int uc = tr->observer(t, y, tr->observer_user);
         tr->stats.observer_calls++;

@@ -1,0 +1,41 @@
+/* dop853.h (private, src/transient/): the Dormand-Prince 8(5,3) pair DOP853 with its
+ * 7th-order continuous extension, as a gsl_odeiv2 step type (Hairer, Norsett & Wanner,
+ * Solving ODEs I, 2nd ed., II.5 and II.6; Hairer's dop853.f).  Used by transient.c only. */
+#ifndef AUTOBAL_TRANSIENT_DOP853_H
+#define AUTOBAL_TRANSIENT_DOP853_H
+
+#include <stddef.h>
+#include <gsl/gsl_odeiv2.h>
+
+/* The step type "dop853": 12 stages per step, the first taken from dydt_in when given (FSAL:
+ * dydt_out, f at the end of the step, is exact and is the 13th stage, used by the error estimate).
+ * yerr_i = h e5_i |e5_i| / hypot(e5_i, 0.1 e3_i) with e5, e3 the 5th- and 3rd-order embedded
+ * differences, the componentwise form of Hairer's estimate (O(h^8); as SciPy's
+ * DOP853._estimate_error).  order() returns 7: GSL's control then shrinks a step by
+ * r^(-1/7) and grows it by r^(-1/8), r the largest scaled error, matching the O(h^8) estimate. */
+extern const gsl_odeiv2_step_type autobal_transient_dop853_type_;
+
+/* After an accepted step (the last apply() of this state, from (t, y0) with step h): build the
+ * continuous extension, 3 more right-hand sides (stages 13..15) through sys.  Returns GSL_SUCCESS
+ * or the right-hand side's non-zero status (then no interpolation is available). */
+int autobal_transient_dop853_dense_prepare_(void *state, const gsl_odeiv2_system *sys);
+
+/* 1 if the continuous extension of the last accepted step is built (prepare succeeded since the
+ * last apply or reset). */
+int autobal_transient_dop853_dense_ready_(const void *state);
+
+/* The continuous extension at t0 + theta h, theta in [0, 1] (theta = 0 gives y0, theta = 1 the
+ * step's result, to rounding), into out (dim doubles).  Local error O(h^8). */
+void autobal_transient_dop853_dense_eval_(const void *state, double theta, double *out);
+
+/* The tolerances of the control that judges the steps (GSL's standard control with these atol,
+ * rtol, a_y = 1, a_dydt = 0): with them the error estimate is Hairer's normwise one (the factor
+ * |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the 2-norms scaled by atol + rtol max(|y0_i|, |y1_i|),
+ * common to every component: yerr_i = h e5_i |e5| / sqrt(|e5|^2 + 0.01 |e3|^2)); without them
+ * (0, 0, the state after alloc) the componentwise one above. */
+void autobal_transient_dop853_set_tol_(void *state, double atol, double rtol);
+
+/* The start (t0) and the length (h) of the last step taken by apply(). */
+void autobal_transient_dop853_last_step_(const void *state, double *t0, double *h);
+
+#endif
