@@ -52,4 +52,15 @@ int autobal_poly_roots_qr(autobal_poly_workspace *w, const double *c, double *re
 int autobal_poly_hurwitz_err_full(const double *c, const double *cerr, size_t len, int *verdict,
                                   int *n_rhp, autobal_error *err);
 
+/* The positive real roots z of h(z) = sum_k h[k] z^k (n <= 12 long double coefficients) as the
+ * critical-value searches of the rotor analysis need them (src/numerics/poly_positive.c): the
+ * roots of the scaled, normalized double polynomial h(z2 x) by autobal_poly_roots, those with
+ * x > 0 and |Im x| <= 1e-3 Re x (a generous "near real", so that none is lost), each polished by
+ * at most 8 Newton steps on the long double h (kept only while within 1e-3 of the start).
+ * Coefficients below 1e-13 of the largest scaled one are dropped from the top.  z (capacity 11)
+ * receives *nz roots, unsorted.  AUTOBAL_SUCCESS, AUTOBAL_ENOMEM, or the status of
+ * autobal_poly_roots (message in err). */
+int autobal_poly_positive_roots_ld_(const long double *h, size_t n, long double z2, long double *z, size_t *nz,
+                                    autobal_error *err);
+
 #endif

@@ -91,7 +91,7 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
   const autobal_rotor_plane *pl = &p->plane[0];
   double m, mr, r0, A[13], Bt[13], cand[2 * 14], tcand[4 * 14];
   long double At[13], Gt[13], Ae[7], Ao[6], Ge[7], Go[6], h[12], w2;
-  size_t nu = 0, nt = 0, i, j, deg;
+  size_t nu = 0, nt = 0, i, j;
   int st;
   autobal_rotor_closed c;
   if (p->n_planes != 1 || pl->n_balls != 2)
@@ -155,45 +155,12 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
   for (i = 0; i < 6; i++)
     for (j = 0; j < 7; j++) h[i + j] -= Ao[i] * Ge[j];
   {
-    double hs[12], re[11], im[11], big = 0.0;
-    const long double z2 = w2;
-    long double pw = 1.0L;
-    for (i = 0; i < 12; i++) {
-      hs[i] = (double)(h[i] * pw);
-      pw *= z2;
-      big = fmax(big, fabs(hs[i]));
-    }
-    deg = 11;
-    while (deg > 0 && !(fabs(hs[deg]) > 1e-13 * big)) deg--;
-    if (deg >= 1 && big > 0.0) {
-      autobal_poly_workspace *w = autobal_poly_workspace_alloc(deg);
-      if (!w) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "margin set: out of memory");
-      for (i = 0; i <= deg; i++) hs[i] /= big;
-      st = autobal_poly_roots(w, hs, deg + 1, re, im, &s->err);
-      autobal_poly_workspace_free(w);
-      if (st != AUTOBAL_SUCCESS) return st;
-      for (i = 0; i < deg; i++) {
-        long double zz, ge, go, den;
-        int it;
-        if (!(re[i] > 0.0) || fabs(im[i]) > 1e-3 * fabs(re[i])) continue; /* generous: near-real count */
-        zz = (long double)re[i] * z2;
-        for (it = 0; it < 8; it++) { /* Newton on the long double h, kept only if it stays close */
-          long double v = 0.0L, dv = 0.0L, zn;
-          size_t k;
-          for (k = 12; k-- > 0;) {
-            dv = dv * zz + v;
-            v = v * zz + h[k];
-          }
-          if (dv == 0.0L) break;
-          zn = zz - v / dv;
-          if (!(fabsl(zn - (long double)re[i] * z2) <= 1e-3L * (long double)re[i] * z2)) break;
-          zz = zn;
-        }
-        ge = lpoly(Ge, 7, zz);
-        go = lpoly(Go, 6, zz);
-        den = ge * ge + zz * go * go;
-        if (den > 0.0L) cand[nu++] = (double)((lpoly(Ae, 7, zz) * ge + zz * lpoly(Ao, 6, zz) * go) / den);
-      }
+    long double zr[11];
+    size_t nz, q;
+    if ((st = autobal_poly_positive_roots_ld_(h, 12, w2, zr, &nz, &s->err)) != AUTOBAL_SUCCESS) return st;
+    for (q = 0; q < nz; q++) {
+      const long double zz = zr[q], ge = lpoly(Ge, 7, zz), go = lpoly(Go, 6, zz), den = ge * ge + zz * go * go;
+      if (den > 0.0L) cand[nu++] = (double)((lpoly(Ae, 7, zz) * ge + zz * lpoly(Ao, 6, zz) * go) / den);
     }
   }
   for (i = 0; i < nu; i++) nt += t_of_u(cand[i], m, tcand + nt);

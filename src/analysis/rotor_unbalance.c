@@ -141,7 +141,7 @@ static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, double 
 static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
   double m1 = 0.0, m2 = 0.0, a1 = 0.0, a2 = 0.0, r0 = 0.0, A[13], B[13], cand[2 * 13 + 2], sc;
   long double Ae[7], Ao[6], Be[7], Bo[6], h[12], w2 = (long double)s->cur.omega * (long double)s->cur.omega;
-  size_t nc = 0, i, j, deg;
+  size_t nc = 0, i, j;
   int st;
   autobal_rotor_closed c;
   memset(out, 0, sizeof *out);
@@ -163,49 +163,16 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
   sc = fabs(s->cur.omega);
   for (i = 0; i < 12; i++) h[i] = 0.0L;
   for (i = 0; i < 7; i++)
-    for (j = 0; j < 6; j++) h[i + j] += Ae[i] * Bo[j] - (j < 6 && i < 6 ? Ao[i] * Be[j] : 0.0L);
+    for (j = 0; j < 6; j++) h[i + j] += Ae[i] * Bo[j] - (i < 6 ? Ao[i] * Be[j] : 0.0L);
   for (i = 0; i < 6; i++) h[i + 6] -= Ao[i] * Be[6];
   {
-    /* scaled, normalized coefficients for the root finder */
-    double hs[12], re[11], im[11], big = 0.0;
-    long double z2 = (long double)sc * (long double)sc, pw = 1.0L;
-    for (i = 0; i < 12; i++) {
-      hs[i] = (double)(h[i] * pw);
-      pw *= z2;
-      big = fmax(big, fabs(hs[i]));
-    }
-    deg = 11;
-    while (deg > 0 && !(fabs(hs[deg]) > 1e-13 * big)) deg--;
-    if (deg >= 1 && big > 0.0) {
-      autobal_poly_workspace *w = autobal_poly_workspace_alloc(deg);
-      if (!w) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance: out of memory");
-      for (i = 0; i <= deg; i++) hs[i] /= big;
-      st = autobal_poly_roots(w, hs, deg + 1, re, im, &s->err);
-      autobal_poly_workspace_free(w);
-      if (st != AUTOBAL_SUCCESS) return st;
-      for (i = 0; i < deg; i++) {
-        long double zz;
-        int it;
-          if (!(re[i] > 0.0) || fabs(im[i]) > 1e-3 * fabs(re[i])) continue; /* generous: near-real count */
-        /* polish on the long double h(z) by Newton (kept only if it stays close) */
-        zz = (long double)re[i] * z2;
-        for (it = 0; it < 8; it++) {
-          long double v = 0.0L, dv = 0.0L;
-          size_t k;
-          for (k = 12; k-- > 0;) {
-            dv = dv * zz + v;
-            v = v * zz + h[k];
-          }
-          if (dv == 0.0L) break;
-          {
-            const long double zn = zz - v / dv;
-            if (!(fabsl(zn - (long double)re[i] * z2) <= 1e-3L * (long double)re[i] * z2)) break;
-            zz = zn;
-          }
-        }
-          if (fabsl(zz - w2) > 1e-12L * w2) nc += s_of_u(u_at(Ae, Ao, Be, Bo, w2, zz), m1, m2, a1, a2, cand + nc);
-      }
-    }
+    long double zr[11];
+    size_t nz, q;
+    if ((st = autobal_poly_positive_roots_ld_(h, 12, (long double)sc * (long double)sc, zr, &nz, &s->err)) !=
+        AUTOBAL_SUCCESS)
+      return st;
+    for (q = 0; q < nz; q++)
+      if (fabsl(zr[q] - w2) > 1e-12L * w2) nc += s_of_u(u_at(Ae, Ao, Be, Bo, w2, zr[q]), m1, m2, a1, a2, cand + nc);
   }
   /* the critical unbalances inside (s_lo, s_hi), sorted, unique */
   qsort(cand, nc, sizeof cand[0], cmp_double);
