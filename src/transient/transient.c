@@ -848,6 +848,23 @@ static int dense_at(autobal_transient *tr, double t, double *out) {
  * (modified regula falsi) on g(t, u(t)) until the bracket is within event_tol; *t_hit is its far
  * end (g there already has the new sign or is 0).  No integration: each trial point is one
  * evaluation of the interpolant (pr_y) and of g. */
+
+/* One Illinois step of a bracket [a, b] with values fa, fb of opposite signs at the trial point
+ * c with value fc (a value exactly 0 counts as the near side a): the side that is kept twice has
+ * its value halved (side: the side moved last, +1 b, -1 a, 0 none). */
+static void illinois(double c, double fc, double *a, double *fa, double *b, double *fb, int *side) {
+  if (fc != 0.0 && sgn(fc) == sgn(*fb)) {
+    *b = c;
+    *fb = fc;
+    if (*side == 1) *fa *= 0.5;
+    *side = 1;
+  } else {
+    *a = c;
+    *fa = fc;
+    if (*side == -1) *fb *= 0.5;
+    *side = -1;
+  }
+}
 static int locate_dense(autobal_transient *tr, const event_item *e, double ta, double ga, double tb,
                         double gb, double *t_hit) {
   const double tol = tr->opt.event_tol;
@@ -860,17 +877,7 @@ static int locate_dense(autobal_transient *tr, const event_item *e, double ta, d
     if ((rc = dense_at(tr, c, tr->pr_y)) != AUTOBAL_SUCCESS) return rc;
     if ((rc = event_value(tr, e, c, tr->pr_y, &fc)) != AUTOBAL_SUCCESS) return rc;
     /* a value exactly 0 counts as the near side, as in locate() */
-    if (fc != 0.0 && sgn(fc) == sgn(fb)) {
-      b = c;
-      fb = fc;
-      if (side == 1) fa *= 0.5;
-      side = 1;
-    } else {
-      a = c;
-      fa = fc;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    }
+    illinois(c, fc, &a, &fa, &b, &fb, &side);
   }
   *t_hit = b;
   return AUTOBAL_SUCCESS;
@@ -993,17 +1000,7 @@ static void interp_root(autobal_transient *tr, const event_item *e, const hseg *
     if (!(c > a && c < b)) break;
     fc = interp_value(tr, e, sg, c, &ok);
     if (!ok) return;
-    if (fc != 0.0 && sgn(fc) == sgn(fb)) {
-      b = c;
-      fb = fc;
-      if (side == 1) fa *= 0.5;
-      side = 1;
-    } else {
-      a = c;
-      fa = fc;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    }
+    illinois(c, fc, &a, &fa, &b, &fb, &side);
   }
   *ts = a + 0.5 * (b - a);
   *found = 1;
