@@ -5,18 +5,7 @@
 # allowed range, nothing written.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
-  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat err.txt out.txt; return; fi
-  ok "exit $code${needle:+ and '$needle'}: $*"
-}
+. "$(dirname "$0")/common.bash"
 A=$AUTOBAL
 U="--set pendulum.H=0 --set pendulum.h=0 --set pendulum.R_m=0.125"
 # undamped (k, R_w) maps, both conventions; the default axes at k = 0 through R_w = 0 and 1
@@ -54,5 +43,4 @@ expect 3 "convention = 'none': allowed exact, paper" $A pendulum map --set map.c
 expect 3 "unknown key 'map.Rm_min'" $A pendulum map --set map.param1=H --set map.Rm_min=0.1 -o bad11.h5
 n=$(ls bad*.h5 2>/dev/null | wc -l)
 [ "$n" -eq 0 ] && ok "no archive written on bad input" || bad "$n archives written on bad input"
-echo "$pass passed, $fail failed"
-exit $fail
+finish

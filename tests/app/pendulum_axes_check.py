@@ -26,16 +26,8 @@ import numpy as np
 import sympy as sp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pendulum_smalldamp_check import matrices  # noqa: E402 (the matrices of (5), written out there)
-
-FAIL = 0
-
-
-def check(what, ok, detail=""):
-    global FAIL
-    print("%s %s%s" % ("ok  " if ok else "FAIL", what, ("  [" + detail + "]") if detail else ""))
-    if not ok:
-        FAIL += 1
+import pendulum_smalldamp_check as sd  # noqa: E402 (the matrices of (5) written out there, and the check harness)
+from pendulum_smalldamp_check import check, matrices  # noqa: E402
 
 
 def exact_verdict(Rm, Rw, k):
@@ -231,8 +223,8 @@ def main():
     print("     damped sweep over h: program %s, NumPy %.10f, (8): H sqrt(R_m) = %.10f" % (crit, hc, np.sqrt(0.1)))
     check("sweep over h (R_w = 20, H = 1, k = 1): one change, unstable -> stable, at NumPy's h to 1e-6",
           len(crit) == 1 and below[0] == -1 and above[0] == 1 and abs(crit[0] - hc) < 1e-6 * hc)
-    print("%d failed" % FAIL)
-    return 1 if FAIL else 0
+    print("%d failed" % sd.FAIL)
+    return 1 if sd.FAIL else 0
 
 
 if __name__ == "__main__":
