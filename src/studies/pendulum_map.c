@@ -85,6 +85,24 @@ void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_map_summary 
 
 /* n values from lo to hi, linear (the expression of the former (R_m, R_w) grids, so that their
  * archives rerun bit for bit) or logarithmic (the ends exact) */
+/* The values of k (every unbalance: n_k from 0 to 1; else p's) and a grid over param1 = v1[0 .. n1)
+ * with them and the convention (param2 for the caller). */
+static void grid_spec_init(autobal_pendulum_grid_spec *spec, const autobal_pendulum_params *p, int every, double *k,
+                           size_t n_k, int paper_convention, int param1, const double *v1, size_t n1) {
+  size_t i;
+  if (every)
+    for (i = 0; i < n_k; i++) k[i] = (double)i / (double)(n_k - 1);
+  else
+    k[0] = autobal_pendulum_k(p);
+  memset(spec, 0, sizeof *spec);
+  spec->base = *p;
+  spec->param1 = param1;
+  spec->v1 = v1;
+  spec->n1 = n1;
+  if (every) spec->k = k, spec->n_k = n_k;
+  spec->paper_convention = paper_convention;
+}
+
 static void fill_axis(double *v, size_t n, double lo, double hi, int lg) {
   size_t i;
   for (i = 0; i < n; i++) {
@@ -204,20 +222,10 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
   }
   fill_axis(s->R_m, n1, min1, max1, log1);
   fill_axis(s->R_w, n2, min2, max2, log2);
-  if (o->every_unbalance)
-    for (i = 0; i < s->n_k; i++) s->k[i] = (double)i / (double)(s->n_k - 1);
-  else
-    s->k[0] = autobal_pendulum_k(p);
-  memset(&spec, 0, sizeof spec);
-  spec.base = *p;
-  spec.param1 = o->param1;
-  spec.v1 = s->R_m;
-  spec.n1 = n1;
+  grid_spec_init(&spec, p, o->every_unbalance, s->k, s->n_k, s->paper_convention, o->param1, s->R_m, n1);
   spec.param2 = o->param2;
   spec.v2 = s->R_w;
   spec.n2 = n2;
-  if (o->every_unbalance) spec.k = s->k, spec.n_k = s->n_k;
-  spec.paper_convention = s->paper_convention;
   spec.n_threads = o->threads;
   /* the whole grid is checked before the first point (nothing computed or written on bad input) */
   if ((st = autobal_pendulum_grid_check(&spec, err)) != 0) {
@@ -451,18 +459,8 @@ int autobal_study_pendulum_sweep(const autobal_pendulum_params *p, const autobal
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
   }
   fill_axis(s->values, n, mn, mx, lg);
-  if (o->every_unbalance)
-    for (i = 0; i < s->n_k; i++) s->k[i] = (double)i / (double)(s->n_k - 1);
-  else
-    s->k[0] = autobal_pendulum_k(p);
-  memset(&spec, 0, sizeof spec);
-  spec.base = *p;
-  spec.param1 = o->param;
-  spec.v1 = s->values;
-  spec.n1 = n;
+  grid_spec_init(&spec, p, o->every_unbalance, s->k, s->n_k, s->paper_convention, o->param, s->values, n);
   spec.param2 = -1;
-  if (o->every_unbalance) spec.k = s->k, spec.n_k = s->n_k;
-  spec.paper_convention = s->paper_convention;
   if ((st = autobal_pendulum_grid_check(&spec, err)) != 0) {
     free(v);
     return st;
