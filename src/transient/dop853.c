@@ -26,6 +26,16 @@ typedef struct dop853_state {
   int ready;
 } dop853_state;
 
+static void dop853_free(void *vstate) {
+  dop853_state *s = (dop853_state *)vstate;
+  free(s->k);
+  free(s->y0);
+  free(s->y1);
+  free(s->ytmp);
+  free(s->f);
+  free(s);
+}
+
 static void *dop853_alloc(size_t dim) {
   dop853_state *s = calloc(1, sizeof *s);
   if (s == NULL) return NULL;
@@ -36,12 +46,7 @@ static void *dop853_alloc(size_t dim) {
   s->ytmp = malloc(dim * sizeof(double));
   s->f = malloc(4 * dim * sizeof(double));
   if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->f) {
-    free(s->k);
-    free(s->y0);
-    free(s->y1);
-    free(s->ytmp);
-    free(s->f);
-    free(s);
+    dop853_free(s);
     GSL_ERROR_NULL("failed to allocate space for dop853_state", GSL_ENOMEM);
   }
   return s;
@@ -193,15 +198,6 @@ static unsigned int dop853_order(void *vstate) {
   return 7;
 }
 
-static void dop853_free(void *vstate) {
-  dop853_state *s = (dop853_state *)vstate;
-  free(s->k);
-  free(s->y0);
-  free(s->y1);
-  free(s->ytmp);
-  free(s->f);
-  free(s);
-}
 
 const gsl_odeiv2_step_type autobal_transient_dop853_type_ = {
     "dop853", 1, 1, dop853_alloc, dop853_apply, dop853_set_driver, dop853_reset, dop853_order, dop853_free};
