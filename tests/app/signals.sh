@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # App test: SIGINT, SIGTERM and SIGHUP stop every long-running command (README, "Exit codes"):
-# rotor stability|sweep|map|campbell, pendulum map|critical, info, rerun and plot get each signal after a
-# short delay while they run a job far longer than the test (grids of millions of points); each
+# rotor stability|sweep|map|campbell, pendulum map|critical, info, rerun and plot get each signal (pendulum
+# sweep: SIGTERM) after a short delay while they run a job far longer than the test (grids of millions of points); each
 # must exit 6 within a few seconds, and the archive (-o) must be readable, status "incomplete",
 # status_reason "interrupted by SIG...", with the partial data present and consistent
 # (signals_check.py: lengths = the recorded count done, the grid = the first points of the requested
@@ -95,6 +95,15 @@ print({'stable': 1, 'marginal': 0, 'unstable': -1}[a['verdict']], repr(float(a['
   interrupt $sig pcrit_$sig "$A" pendulum critical "$P" --set critical.n_sweep=100000000 -q -o pcrit_$sig.h5
   chk "pcrit_$sig.h5: critical speeds at R_m, no damped search, no curves" pcrit pcrit_$sig.h5 SIG$sig 499 damped
 done
+
+# pendulum sweep over R_w (1e7 points), interrupted: the points done, one checked by `pendulum roots`
+interrupt TERM psweep "$A" pendulum sweep "$P" --set sweep.param=R_w --set sweep.min=0.5 --set sweep.max=4 \
+  --set sweep.n=10000000 -q -o psweep.h5
+read -r k rw < <("$PY" -c "
+import h5py; r = h5py.File('psweep.h5')['pendulum/sweep/R_w'][:]; k = len(r) // 2; print(k, repr(float(r[k])))")
+vk=$("$A" pendulum roots "$P" --set pendulum.R_w="$rw" --json | "$PY" -c "
+import json, sys; print({'stable': 1, 'marginal': 0, 'unstable': -1}[json.load(sys.stdin)['verdict']])")
+chk "psweep.h5: partial pendulum sweep, verdict at R_w[$k] as pendulum roots" psweep psweep.h5 SIGTERM 0.5 4 10000000 "$k" "${vk:-9}"
 
 # pendulum critical interrupted in the curves (1e6 points of R_m)
 interrupt INT pcurve "$A" pendulum critical "$P" --set critical.n_Rm=1000000 -q -o pcurve.h5

@@ -160,6 +160,25 @@ def main():
                 fail(f"max_real at R_m = {rm[i]!r}, R_w = {rw[j]!r}: {mr[i, j]!r}, `pendulum roots` gives {ref_mr!r}")
             print(f"  pendulum map: verdict {ref}, max_real {ref_mr:.9g} at (R_m[{i}], R_w[{j}]) as `pendulum roots`")
         print(f"  pendulum map: {done} of {n_rm} rows")
+    elif kind == "psweep":  # args: lo hi n k verdict_k: a partial pendulum sweep, point k by `pendulum roots`
+        common(f, sig, "pendulum sweep")
+        lo, hi, n = float(args[0]), float(args[1]), int(args[2])
+        g = f["pendulum/sweep"]
+        done = partial(g, n)
+        if not 0 < done < n:
+            fail(f"done = {done}: want a partial sweep")
+        rw, vd = g["R_w"][:], g["verdict"][:]
+        if rw.shape != (done,) or vd.shape != (done,):
+            fail(f"lengths {rw.shape}, {vd.shape}, want ({done},)")
+        if not np.allclose(rw, linspace(lo, hi, n)[:done], rtol=1e-13, atol=0):
+            fail("R_w is not the first points of the requested grid")
+        verdict_margin(vd, None, (-1, 0, 1))
+        if "critical" in g:
+            fail("critical values after an interrupted sweep")
+        k, ref = int(args[3]), int(args[4])
+        if vd[k] != ref:
+            fail(f"verdict at R_w = {rw[k]!r}: {vd[k]}, `pendulum roots` gives {ref}")
+        print(f"  pendulum sweep: {done} of {n} points; verdict {ref} at R_w[{k}] as `pendulum roots`")
     elif kind == "pcrit":  # args: n_Rm damped|curves
         common(f, sig, "pendulum critical")
         n_rm, where = int(args[0]), args[1]
