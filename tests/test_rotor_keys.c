@@ -83,8 +83,7 @@ static double matrix_margin(autobal_rotor_stab *h) {
   if (gsl_eigen_nonsymm(&mv.matrix, ev, w) == 0)
     for (i = 0; i < n; i++) {
       const double re = GSL_REAL(gsl_vector_complex_get(ev, i)), im = GSL_IMAG(gsl_vector_complex_get(ev, i));
-      /* the neutral roots of the balls' family (lambda = 0) carry no stability information for two
-       * balls there is none; skip exact zeros of the rotation symmetry */
+      /* skip exact zeros (a neutral family root; two balls have none, so nothing is skipped here) */
       if (fabs(re) + fabs(im) > 1e-9 && re > mx) mx = re;
     }
   gsl_eigen_nonsymm_free(w);

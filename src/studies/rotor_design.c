@@ -75,15 +75,20 @@ static int cancel_hook(void *user) {
   return c->o.progress && c->o.progress(c->fraction, c->o.progress_user) != 0;
 }
 
-/* The handle for plane position d (re-allocated when d changes). */
+/* The handle (allocated once) with its plane at position d (the key plane1.d). */
 static int handle_at(dctx *c, double d) {
-  autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+  int st;
   if (c->s && c->s_d == d) return AUTOBAL_SUCCESS;
-  autobal_rotor_stab_free(c->s);
   c->work.plane[0].d = d;
-  c->s = autobal_rotor_stab_alloc(&c->work, &so, c->err);
-  if (!c->s) return c->err ? c->err->status : AUTOBAL_EINVAL;
-  autobal_rotor_stab_set_cancel(c->s, cancel_hook, c);
+  if (!c->s) {
+    autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+    c->s = autobal_rotor_stab_alloc(&c->work, &so, c->err);
+    if (!c->s) return c->err ? c->err->status : AUTOBAL_EINVAL;
+    autobal_rotor_stab_set_cancel(c->s, cancel_hook, c);
+  } else if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_D), d)) !=
+             AUTOBAL_SUCCESS) {
+    return autobal_error_set(c->err, st, "%s", autobal_rotor_stab_errmsg(c->s));
+  }
   c->s_d = d;
   return AUTOBAL_SUCCESS;
 }
