@@ -79,18 +79,23 @@ expect_err 3 "plane2" "$AUTOBAL" rotor design two.ini
 # SIGINT during a long search: exit 6, the archive incomplete, the map rows done
 "$AUTOBAL" rotor design d.ini --set design.n_ball_mass=200 --set design.n_ball_damping=40 --set design.n_speed=400 -o int.h5 > int.out 2> int.err &
 pid=$!
-sleep 3
+sleep "$([ "${SANITIZE:-0}" = 1 ] && echo 8 || echo 3)"   # the first map row takes longer under ASan
 kill -INT $pid
 wait $pid; rc=$?
 [ $rc -eq 6 ] && ok "SIGINT: exit 6" || { bad "SIGINT: exit $rc"; cat int.err; }
 if [ -e int.h5 ]; then
-  "$PY" - <<'PY' && ok "int.h5: status incomplete, partial map rows done < requested" || bad "int.h5"
+  "$PY" - <<'PY' && ok "int.h5: status incomplete, the map rows done (if any) marked partial" || bad "int.h5"
 import h5py
 f = h5py.File("int.h5", "r")
 assert f.attrs["status"] == "incomplete", f.attrs["status"]
-g = f["/rotor/design"]
-assert g.attrs["partial"] == 1 and 0 < g.attrs["done"] < g.attrs["requested"] == 200, dict(g.attrs)
-assert g["feasible"].shape[0] == g.attrs["done"]
+assert f.attrs["status_reason"] == "interrupted by SIGINT", f.attrs["status_reason"]
+if "/rotor/design" in f:  # rows done: they are there, marked partial
+    g = f["/rotor/design"]
+    assert g.attrs["partial"] == 1 and 0 < g.attrs["done"] < g.attrs["requested"] == 200, dict(g.attrs)
+    assert g["feasible"].shape[0] == g.attrs["done"]
+else:  # interrupted inside the first row: the model and provenance only
+    assert "/rotor" in f, list(f)
+    print("interrupted before the first map row: no /rotor/design")
 PY
 else
   grep -q "nothing written\|interrupted\|SIGINT" int.err && ok "SIGINT before the first row: nothing written, said so" || bad "no int.h5 and no message"
