@@ -446,6 +446,10 @@ done:
 
 /* ---- pendulum map and sweep: the library's studies (autobal_study_pendulum_map, _sweep) ----- */
 
+/* " " and the unit of a physical key for the summaries ("" for the dimensionless ones) */
+static const char *unit_sfx(int param) { return autobal_pendulum_param_is_physical(param) ? " " : ""; }
+static const char *unit_of(int param) { return autobal_pendulum_param_unit(param); }
+
 /* A parameter key of [map] param1/param2 or [sweep] param: its AUTOBAL_PENDULUM_PARAM_* */
 static int read_param_key(cli_ctx *ctx, const char *section, const char *key, const char *def, int *param) {
   const char *name;
@@ -454,8 +458,9 @@ static int read_param_key(cli_ctx *ctx, const char *section, const char *key, co
   *param = autobal_pendulum_param_lookup(name);
   if (*param < 0)
     return cli_fail(ctx, CLI_EXIT_INPUT,
-                    "[%s]: %s = '%s' is not a pendulum parameter: allowed R_w, R_m, H, h, k, psi0, H/h", section, key,
-                    name);
+                    "[%s]: %s = '%s' is not a pendulum parameter: allowed R_w, R_m, H, h, k, psi0, H/h (dimensionless) "
+                    "and, with a [pendulum] given by its physical keys, M, e, m, l, c, H1, H2, omega (in their units)",
+                    section, key, name);
   return CLI_EXIT_OK;
 }
 
@@ -485,8 +490,8 @@ static int read_convention(cli_ctx *ctx, const char *section, int *paper) {
 /* One axis of the map: min<i>, max<i>, n<i>, log<i>; on the default axes (R_m rows, R_w columns)
  * the former keys Rm_min, Rm_max, n_Rm (Rw_min, Rw_max, n_Rw) give the range, and min<i>, max<i>,
  * n<i>, read only when given, take precedence over them. */
-static int read_map_axis(cli_ctx *ctx, int which, int param, double leg_min, double leg_max, long leg_n,
-                         double *mn, double *mx, size_t *n, int *lg) {
+static int read_map_axis(cli_ctx *ctx, int which, int param, const autobal_pendulum_physical *phys, double leg_min,
+                         double leg_max, long leg_n, double *mn, double *mx, size_t *n, int *lg) {
   char kmin[8], kmax[8], kn[8], klog[8];
   const char *lmin = which == 1 ? "Rm_min" : "Rw_min", *lmax = which == 1 ? "Rm_max" : "Rw_max";
   const char *ln = which == 1 ? "n_Rm" : "n_Rw";
@@ -498,7 +503,8 @@ static int read_map_axis(cli_ctx *ctx, int which, int param, double leg_min, dou
   snprintf(kmax, sizeof kmax, "max%d", which);
   snprintf(kn, sizeof kn, "n%d", which);
   snprintf(klog, sizeof klog, "log%d", which);
-  autobal_study_pendulum_param_range(param, &dlo, &dhi, NULL);
+  const char *unit = autobal_pendulum_param_unit(param); /* a physical key in its units ("3000 rpm") */
+  autobal_study_pendulum_param_range_physical(param, phys, &dlo, &dhi, NULL);
   if (legacy) {
     if ((rc = cli_get_double(ctx, "map", lmin, leg_min, &dlo, NULL))) return rc;
     if ((rc = cli_get_double(ctx, "map", lmax, leg_max, &dhi, NULL))) return rc;
@@ -510,10 +516,10 @@ static int read_map_axis(cli_ctx *ctx, int which, int param, double leg_min, dou
    * when given (so that an edited Rm_min in an archive's effective configuration counts) */
   a = dlo, b = dhi, nn = leg_n, pa = pb = pn = 0;
   if ((!legacy || cli_config_has_key(ctx->cfg, "map", kmin)) &&
-      (rc = cli_get_double(ctx, "map", kmin, dlo, &a, &pa)))
+      (rc = cli_get_quantity(ctx, "map", kmin, unit, dlo, &a, &pa)))
     return rc;
   if ((!legacy || cli_config_has_key(ctx->cfg, "map", kmax)) &&
-      (rc = cli_get_double(ctx, "map", kmax, dhi, &b, &pb)))
+      (rc = cli_get_quantity(ctx, "map", kmax, unit, dhi, &b, &pb)))
     return rc;
   if ((!legacy || cli_config_has_key(ctx->cfg, "map", kn)) && (rc = cli_get_int(ctx, "map", kn, leg_n, &nn, &pn)))
     return rc;
@@ -541,8 +547,12 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
   if ((rc = read_param_key(ctx, "map", "param1", "R_m", &p1))) return rc;
   if ((rc = read_param_key(ctx, "map", "param2", "R_w", &p2))) return rc;
-  if ((rc = read_map_axis(ctx, 1, p1, o.Rm_min, o.Rm_max, (long)o.n_Rm, &o.min1, &o.max1, &o.n1, &o.log1))) return rc;
-  if ((rc = read_map_axis(ctx, 2, p2, o.Rw_min, o.Rw_max, (long)o.n_Rw, &o.min2, &o.max2, &o.n2, &o.log2))) return rc;
+  if ((rc = read_map_axis(ctx, 1, p1, physical ? &phys : NULL, o.Rm_min, o.Rm_max, (long)o.n_Rm, &o.min1, &o.max1,
+                          &o.n1, &o.log1)))
+    return rc;
+  if ((rc = read_map_axis(ctx, 2, p2, physical ? &phys : NULL, o.Rw_min, o.Rw_max, (long)o.n_Rw, &o.min2, &o.max2,
+                          &o.n2, &o.log2)))
+    return rc;
   if ((rc = cli_get_bool(ctx, "map", "every_unbalance", o.every_unbalance, &every, NULL))) return rc;
   if ((rc = cli_get_int(ctx, "map", "n_k", (long)o.n_k, &n_k, &k_given))) return rc;
   if ((rc = cli_get_bool(ctx, "map", "max_real", o.max_real, &want_max, NULL))) return rc;
@@ -607,15 +617,22 @@ int cli_cmd_pendulum_map(cli_ctx *ctx) {
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
-    printf("map %zu x %zu over %s in [%g, %g]%s, %s in [%g, %g]%s, %s\n", sum.n_Rm, sum.n_Rw, n1s, sum.R_m[0],
-           sum.R_m[sum.n_Rm - 1], sum.log1 ? " (log)" : "", n2s, sum.R_w[0], sum.R_w[sum.n_Rw - 1],
-           sum.log2 ? " (log)" : "", every ? "stable for every k in the set" : "one k");
+    printf("map %zu x %zu over %s in [%g, %g]%s%s%s, %s in [%g, %g]%s%s%s, %s\n", sum.n_Rm, sum.n_Rw, n1s,
+           sum.R_m[0], sum.R_m[sum.n_Rm - 1], unit_sfx(p1), autobal_pendulum_param_is_physical(p1) ? unit_of(p1) : "",
+           sum.log1 ? " (log)" : "", n2s, sum.R_w[0], sum.R_w[sum.n_Rw - 1], unit_sfx(p2),
+           autobal_pendulum_param_is_physical(p2) ? unit_of(p2) : "", sum.log2 ? " (log)" : "",
+           every ? "stable for every k in the set" : "one k");
+    if (autobal_pendulum_param_is_physical(p1) || autobal_pendulum_param_is_physical(p2))
+      printf("physical axis: at each point the physical set with the key changed is converted by (2)-(3)\n");
     if (p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO || p2 == AUTOBAL_PENDULUM_PARAM_H_RATIO)
       printf("axis H/h: %s\n", (p1 == AUTOBAL_PENDULUM_PARAM_H || p2 == AUTOBAL_PENDULUM_PARAM_H)
                                    ? "h = H / (H/h), H from its axis"
                                    : (p1 == AUTOBAL_PENDULUM_PARAM_HP || p2 == AUTOBAL_PENDULUM_PARAM_HP)
                                          ? "H = (H/h) h, h from its axis"
-                                         : "H = (H/h) h, h held at pendulum.h");
+                                         : (autobal_pendulum_param_is_physical(p1) ||
+                                            autobal_pendulum_param_is_physical(p2))
+                                               ? "H = (H/h) h, h of each point's physical set"
+                                               : "H = (H/h) h, h held at pendulum.h");
     printf("stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (sum.undamped) printf("note (undamped%s): %s\n", paper ? ", paper's convention" : "", autobal_study_pendulum_undamped_note());
     if (ctx->output) printf("archive: %s\n", ctx->output);
@@ -648,9 +665,10 @@ int cli_cmd_pendulum_sweep(cli_ctx *ctx) {
   autobal_error_clear(&err);
   if ((rc = cli_read_pendulum_params(ctx, &p, &phys, &physical))) return rc;
   if ((rc = read_param_key(ctx, "sweep", "param", "R_w", &param))) return rc;
-  autobal_study_pendulum_param_range(param, &dlo, &dhi, NULL);
-  if ((rc = cli_get_double(ctx, "sweep", "min", dlo, &mn, NULL))) return rc;
-  if ((rc = cli_get_double(ctx, "sweep", "max", dhi, &mx, NULL))) return rc;
+  autobal_study_pendulum_param_range_physical(param, physical ? &phys : NULL, &dlo, &dhi, NULL);
+  /* a physical key in its units ("3000 rpm"); the others plain numbers (psi0 in rad or deg) */
+  if ((rc = cli_get_quantity(ctx, "sweep", "min", autobal_pendulum_param_unit(param), dlo, &mn, NULL))) return rc;
+  if ((rc = cli_get_quantity(ctx, "sweep", "max", autobal_pendulum_param_unit(param), dhi, &mx, NULL))) return rc;
   if ((rc = cli_get_int(ctx, "sweep", "n", (long)o.n, &n, NULL))) return rc;
   if ((rc = read_scale(ctx, "sweep", "log", &lg))) return rc;
   if ((rc = cli_get_bool(ctx, "sweep", "every_unbalance", o.every_unbalance, &every, NULL))) return rc;
@@ -705,15 +723,19 @@ int cli_cmd_pendulum_sweep(cli_ctx *ctx) {
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
     print_params(&p, &phys, physical);
-    printf("sweep of %s over [%g, %g]%s, %zu points, %s: stable at %zu (%.1f%%)\n", name, sum.min, sum.max,
-           sum.log_scale ? " (log)" : "", sum.n, every ? "stable for every k in the set" : "one k", sum.n_stable,
-           100.0 * (double)sum.n_stable / (double)sum.n);
+    int phk = autobal_pendulum_param_is_physical(param);
+    printf("sweep of %s over [%g, %g]%s%s%s, %zu points, %s: stable at %zu (%.1f%%)\n", name, sum.min, sum.max,
+           unit_sfx(param), phk ? unit_of(param) : "", sum.log_scale ? " (log)" : "", sum.n,
+           every ? "stable for every k in the set" : "one k", sum.n_stable, 100.0 * (double)sum.n_stable / (double)sum.n);
+    if (phk) printf("physical key: at each point the physical set with %s changed is converted by (2)-(3)\n", name);
     if (param == AUTOBAL_PENDULUM_PARAM_H_RATIO) printf("axis H/h: H = (H/h) h, h held at pendulum.h\n");
     printf("critical values of %s (verdict changes, bisection to %g relative):\n", name, xtol);
     if (sum.n_crit == 0) printf("  (none on the grid)\n");
-    for (i = 0; i < sum.n_crit; i++)
-      printf("  %s = %.12g   %s -> %s\n", name, sum.crit[i], autobal_verdict_name(sum.crit_below[i]),
-             autobal_verdict_name(sum.crit_above[i]));
+    for (i = 0; i < sum.n_crit; i++) {
+      printf("  %s = %.12g%s%s", name, sum.crit[i], unit_sfx(param), phk ? unit_of(param) : "");
+      if (param == AUTOBAL_PENDULUM_PARAM_OMEGA) printf(" (%.9g rpm)", cli_rpm(sum.crit[i]));
+      printf("   %s -> %s\n", autobal_verdict_name(sum.crit_below[i]), autobal_verdict_name(sum.crit_above[i]));
+    }
     if (sum.crit_truncated) printf("  (TRUNCATED: more changes than the list holds)\n");
     if (sum.undamped) printf("note (undamped%s): %s\n", paper ? ", paper's convention" : "", autobal_study_pendulum_undamped_note());
     if (ctx->output) printf("archive: %s\n", ctx->output);

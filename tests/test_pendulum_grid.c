@@ -33,7 +33,7 @@ int main(void) {
             autobal_pendulum_param_lookup("H_over_h") == AUTOBAL_PENDULUM_PARAM_H_RATIO &&
             autobal_pendulum_param_lookup("h") == AUTOBAL_PENDULUM_PARAM_HP &&
             autobal_pendulum_param_lookup("H") == AUTOBAL_PENDULUM_PARAM_H &&
-            autobal_pendulum_param_lookup("R_x") == -1 && autobal_pendulum_param_name(7) == NULL &&
+            autobal_pendulum_param_lookup("R_x") == -1 && autobal_pendulum_param_name(AUTOBAL_PENDULUM_NPARAM) == NULL &&
             !strcmp(autobal_pendulum_param_unit(AUTOBAL_PENDULUM_PARAM_PSI0), "rad"));
   CHECK_STATUS("R_m = 0.5 rejected", autobal_pendulum_param_check(AUTOBAL_PENDULUM_PARAM_R_M, 0.5, &err), AUTOBAL_EINVAL);
   CHECK_MSG("... names the key and the range", err.message, "pendulum.R_m = 0.5 is too large: must be < 0.5 (allowed range (0, 0.5))");

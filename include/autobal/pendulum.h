@@ -507,9 +507,14 @@ AUTOBAL_API int autobal_pendulum_map(const autobal_pendulum_map_spec *spec, sign
 /* Maps and sweeps over any parameter (docs/pendulum.md, "Maps and sweeps") */
 /* ======================================================================== */
 
-/* The parameters (configuration keys of [pendulum]) a map or a sweep can vary.  All are
- * dimensionless except psi0 (rad).  H_RATIO is the derived ratio H/h (see
- * autobal_pendulum_params_vary for the rule that turns it into H and h). */
+/* The parameters (configuration keys of [pendulum]) a map or a sweep can vary.  0 .. 6 are
+ * dimensionless (psi0 in rad); H_RATIO is the derived ratio H/h (see
+ * autobal_pendulum_params_vary for the rule that turns it into H and h).  7 .. 14 are the
+ * physical keys, in SI units (added in 0.3; docs/pendulum.md, "Physical keys on an axis"):
+ * at each point the physical set with the key changed is converted by
+ * autobal_pendulum_params_from_physical, as the configuration is.  Their ranges here are
+ * those of the key alone; the model's domain (M e < 2 m l; R_w, H, h <= 1e6) is checked on
+ * the whole set (autobal_pendulum_param_domain). */
 enum {
   AUTOBAL_PENDULUM_PARAM_R_W = 0,  /* "R_w"  speed ratio, [0, 1e6]                       */
   AUTOBAL_PENDULUM_PARAM_R_M = 1,  /* "R_m"  mass ratio, (0, 0.5)                        */
@@ -518,22 +523,48 @@ enum {
   AUTOBAL_PENDULUM_PARAM_K = 4,    /* "k"    unbalance sin^2(2 psi0), [0, 1]             */
   AUTOBAL_PENDULUM_PARAM_PSI0 = 5, /* "psi0" main-motion angle, rad, [0, pi/2)          */
   AUTOBAL_PENDULUM_PARAM_H_RATIO = 6, /* "H/h" ratio of the dampings, (0, 1e6]           */
-  AUTOBAL_PENDULUM_NPARAM = 7
+  AUTOBAL_PENDULUM_PARAM_M = 7,     /* "M"     rotor mass, kg, > 0                        */
+  AUTOBAL_PENDULUM_PARAM_E = 8,     /* "e"     eccentricity, m, >= 0                      */
+  AUTOBAL_PENDULUM_PARAM_MP = 9,    /* "m"     mass of each pendulum, kg, > 0             */
+  AUTOBAL_PENDULUM_PARAM_L = 10,    /* "l"     rod length, m, > 0                         */
+  AUTOBAL_PENDULUM_PARAM_C = 11,    /* "c"     shaft stiffness, N/m, > 0                  */
+  AUTOBAL_PENDULUM_PARAM_H1 = 12,   /* "H1"    pendulum viscous moment coeff., N m s, >= 0 */
+  AUTOBAL_PENDULUM_PARAM_H2 = 13,   /* "H2"    external viscous damping, N s/m, >= 0      */
+  AUTOBAL_PENDULUM_PARAM_OMEGA = 14, /* "omega" rotor speed, rad/s, >= 0                  */
+  AUTOBAL_PENDULUM_NPARAM = 15
 };
 
-/* The key of a parameter as in the configuration ("R_w", ..., "H/h"); NULL if unknown. */
+/* The key of a parameter as in the configuration ("R_w", ..., "H/h", "M", ..., "omega"); NULL if
+ * unknown. */
 AUTOBAL_API const char *autobal_pendulum_param_name(int param);
-/* Its name as an HDF5 dimension / dataset name ("H/h" -> "H_over_h"); NULL if unknown. */
+/* Its name as an HDF5 dimension / dataset name ("H/h" -> "H_over_h"; the others as the key);
+ * NULL if unknown. */
 AUTOBAL_API const char *autobal_pendulum_param_dim(int param);
-/* Its unit ("1", or "rad" for psi0) and a one-line description; NULL if unknown. */
+/* Its unit ("1", "rad" for psi0, the SI unit of a physical key: "kg", "m", "N/m", "N m s",
+ * "N s/m", "rad/s") and a one-line description; NULL if unknown. */
 AUTOBAL_API const char *autobal_pendulum_param_unit(int param);
 AUTOBAL_API const char *autobal_pendulum_param_description(int param);
-/* The parameter of a name ("R_w", "R_m", "H", "h", "k", "psi0", "H/h" or "H_over_h", exact
- * case: H and h differ), or -1. */
+/* The parameter of a name ("R_w", "R_m", "H", "h", "k", "psi0", "H/h" or "H_over_h", "M", "e",
+ * "m", "l", "c", "H1", "H2", "omega"; exact case: H and h, M and m differ), or -1. */
 AUTOBAL_API int autobal_pendulum_param_lookup(const char *name);
+/* 1 for a physical key (AUTOBAL_PENDULUM_PARAM_M .. _OMEGA), else 0. */
+AUTOBAL_API int autobal_pendulum_param_is_physical(int param);
+/* 1 when the dimensionless parameter `dimensionless` (R_w .. H/h) is a function of the physical
+ * key `physical` by (2)-(3) (R_w of omega, c, M, m; R_m of M, m; H of H2, c, M, m; h of H1, m, l,
+ * c, M; k and psi0 of M, e, m, l; H/h = H2 m l^2 / (H1 (M + 2m)) of H2, H1, m, l, M), else 0.
+ * Such a pair cannot be the two axes of a map. */
+AUTOBAL_API int autobal_pendulum_param_depends(int dimensionless, int physical);
 /* Check one value of a parameter against its range (message: "parameter pendulum.R_m = 0.6
- * is too large: must be < 0.5 (allowed range (0, 0.5))"). */
+ * is too large: must be < 0.5 (allowed range (0, 0.5))"; a physical key with its unit). */
 AUTOBAL_API int autobal_pendulum_param_check(int param, double value, autobal_error *err);
+/* The values of the physical key `param` for which phys with that key changed (the others kept)
+ * lies in the model's domain (autobal_pendulum_params_from_physical succeeds): an interval,
+ * since every condition is monotone in each key.  *lo, *hi: its ends, each the last value found
+ * inside (to about 1e-15 relative) or the key's own bound (0; *hi = INFINITY when unbounded).
+ * Needs phys itself in the domain.  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL (not a physical
+ * key; phys outside the domain: the conversion's message). */
+AUTOBAL_API int autobal_pendulum_param_domain(const autobal_pendulum_physical *phys, int param, double *lo,
+                                              double *hi, autobal_error *err);
 
 /* *out = base with up to two parameters set (param2 = -1: only param1), validated.
  * R_w, R_m, H, h, psi0 are set as given; k sets psi0 = asin(sqrt k)/2 (the convention of
@@ -543,12 +574,30 @@ AUTOBAL_API int autobal_pendulum_param_check(int param, double value, autobal_er
  * each pendulum damping, (H/h, R_w) keeps the configured h and sets H.  param1 == param2,
  * H/h together with k or psi0 alone is fine, but H/h with base->h = 0 and no H or h axis
  * is rejected ("H/h needs pendulum.h > 0"), as are k with psi0 and a ratio with both H and
- * h on the other axis (impossible with two axes).  Returns AUTOBAL_SUCCESS or
- * AUTOBAL_EINVAL (message naming the key, its value and the allowed range); *out is
- * written only on success. */
+ * h on the other axis (impossible with two axes), and a physical key (it needs the physical
+ * set: autobal_pendulum_params_vary_physical).  Returns AUTOBAL_SUCCESS or AUTOBAL_EINVAL
+ * (message naming the key, its value and the allowed range); *out is written only on success. */
 AUTOBAL_API int autobal_pendulum_params_vary(const autobal_pendulum_params *base, int param1,
                                              double v1, int param2, double v2,
                                              autobal_pendulum_params *out, autobal_error *err);
+
+/* The same with the physical set `phys` that base was converted from (NULL: none; then a physical
+ * key is refused, "needs the physical set").  With a physical key on an axis, *out is the
+ * conversion (autobal_pendulum_params_from_physical, the configuration's own path) of phys with
+ * that key (or both keys) set, and then a dimensionless parameter of the other axis set on it as
+ * above; base is then not used.  Without one it is autobal_pendulum_params_vary (phys ignored).
+ * Refused (AUTOBAL_EINVAL, message naming the keys): a physical key with a dimensionless one that
+ * depends on it (autobal_pendulum_param_depends: e.g. omega with R_w, m with R_m, e with k), H/h
+ * with a physical key and phys->H1 = 0, and a point outside the model's domain ("pendulum.e =
+ * 0.05 m leaves the model's domain (...): at the other values of this point pendulum.e must lie
+ * in [0, 0.04) m").  phys_out (may be NULL): the physical set of the point (phys with the keys
+ * set; a copy of phys without a physical axis). */
+AUTOBAL_API int autobal_pendulum_params_vary_physical(const autobal_pendulum_params *base,
+                                                      const autobal_pendulum_physical *phys, int param1,
+                                                      double v1, int param2, double v2,
+                                                      autobal_pendulum_params *out,
+                                                      autobal_pendulum_physical *phys_out,
+                                                      autobal_error *err);
 
 /* A grid over one or two parameters. */
 typedef struct autobal_pendulum_grid_spec {
@@ -566,6 +615,10 @@ typedef struct autobal_pendulum_grid_spec {
   size_t n_k;
   int paper_convention;         /* as in autobal_pendulum_map_spec (0: exact, semisimple) */
   int n_threads;                /* OpenMP threads: 0 = runtime default, 1 = serial        */
+  const autobal_pendulum_physical *phys; /* (added in 0.3) the physical set base came from,
+                                   needed for a physical axis (each point converted as in
+                                   autobal_pendulum_params_vary_physical); NULL: none.
+                                   Not with every unbalance and an e axis.               */
 } autobal_pendulum_grid_spec;
 
 /* Check a grid spec (every value of both axes, the combination of the axes, the k set)

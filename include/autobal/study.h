@@ -597,8 +597,9 @@ typedef struct autobal_study_pendulum_map_options {
   void *progress_user;                                                       /* (default NULL) */
   /* any two parameters (added in 0.3; docs/pendulum.md, "Maps and sweeps"): */
   int param1, param2;    /* AUTOBAL_PENDULUM_PARAM_* of the rows and the columns  (default R_M, R_W) */
-  double min1, max1, min2, max2; /* their ranges; NaN: Rm_min/Rm_max for an R_m axis, Rw_min/Rw_max
-                            for an R_w axis, else autobal_study_pendulum_param_range  (default NaN) */
+  double min1, max1, min2, max2; /* their ranges (a physical key in SI units); NaN: Rm_min/Rm_max for
+                            an R_m axis, Rw_min/Rw_max for an R_w axis, else
+                            autobal_study_pendulum_param_range_physical               (default NaN) */
   size_t n1, n2;         /* points; 0: n_Rm (R_m axis), n_Rw (R_w axis), else 200     (default 0) */
   int log1, log2;        /* 1: logarithmic spacing (min > 0), 0: linear, -1: log for H, h, H/h
                             when min > 0, else linear                                (default -1) */
@@ -611,6 +612,13 @@ typedef struct autobal_study_pendulum_map_options {
  * R_w [0.05, 5], R_m [0.005, 0.495], H and h [1e-4, 1], k [0, 1], psi0 [0, pi/4], H/h [0.01, 100];
  * *log_scale (may be NULL) 1 for H, h and H/h.  Unknown param: NaN. */
 AUTOBAL_API void autobal_study_pendulum_param_range(int param, double *lo, double *hi, int *log_scale);
+/* The same for any parameter, a physical key (AUTOBAL_PENDULUM_PARAM_M .. _OMEGA) from the physical
+ * set phys (added in 0.3): omega 0.05 .. 5 omega0 and e 0 .. sqrt(2) m l / M (the ranges of R_w and
+ * psi0), H2 and H1 the range of H and h converted, M, m, l, c a quarter to four times their value;
+ * each cut to the model's domain at the other keys' values (autobal_pendulum_param_domain).
+ * *log_scale 1 for all physical keys but omega and e.  phys NULL: NaN for a physical key. */
+AUTOBAL_API void autobal_study_pendulum_param_range_physical(int param, const autobal_pendulum_physical *phys,
+                                                             double *lo, double *hi, int *log_scale);
 
 /* The note an undamped map or sweep carries (console, archive attribute `note`): the measured
  * small-damping picture of docs/pendulum.md ("The undamped map is not the small-damping
@@ -640,7 +648,9 @@ typedef struct autobal_study_pendulum_map_summary {
 
 /* Compute the map over options.param1 x options.param2 (autobal_pendulum_grid; the other
  * parameters at p); opt NULL: defaults; phys (NULL: none) recorded in the archive with an omega
- * axis when an axis is R_w.  With an archive (NULL: none), after a successful computation:
+ * axis when an axis is R_w, and needed for a physical key on an axis (M, e, m, l, c, H1, H2, omega:
+ * each point is phys with the key changed, converted by autobal_pendulum_params_from_physical;
+ * the coordinate is named by the key, in its SI unit).  With an archive (NULL: none), after a successful computation:
  * /pendulum and /pendulum/map (criterion, convention, every_unbalance, k_values, axis1, axis2
  * (the keys), axis1_dim, axis2_dim, axis1_scale, axis2_scale ("linear"/"log"), ratio_rule with an
  * H/h axis, note (undamped maps: autobal_study_pendulum_undamped_note), the two coordinates named
@@ -666,7 +676,8 @@ AUTOBAL_API void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_
 /* Options of `autobal pendulum sweep` (section [sweep]). */
 typedef struct autobal_study_pendulum_sweep_options {
   int param;             /* AUTOBAL_PENDULUM_PARAM_* swept                             (default R_W) */
-  double min, max;       /* range, min < max; NaN: autobal_study_pendulum_param_range    (default NaN) */
+  double min, max;       /* range, min < max (a physical key in SI units); NaN:
+                            autobal_study_pendulum_param_range_physical               (default NaN) */
   size_t n;              /* grid points, in [2, 1e7]                                    (default 1000) */
   int log_scale;         /* as log1 of the map options                                    (default -1) */
   int every_unbalance;   /* non-zero: stable for every k of n_k values in [0, 1]          (default 0) */

@@ -483,10 +483,13 @@ int autobal_pendulum_map(const autobal_pendulum_map_spec *s, signed char *verdic
 /* Maps and sweeps over any parameter                                       */
 /* ======================================================================== */
 
-static const char *const param_names[AUTOBAL_PENDULUM_NPARAM] = {"R_w", "R_m", "H", "h",
-                                                                 "k", "psi0", "H/h"};
-static const char *const param_dims[AUTOBAL_PENDULUM_NPARAM] = {"R_w", "R_m", "H", "h",
-                                                                "k", "psi0", "H_over_h"};
+static const char *const param_names[AUTOBAL_PENDULUM_NPARAM] = {
+    "R_w", "R_m", "H", "h", "k", "psi0", "H/h", "M", "e", "m", "l", "c", "H1", "H2", "omega"};
+static const char *const param_dims[AUTOBAL_PENDULUM_NPARAM] = {
+    "R_w", "R_m", "H", "h", "k", "psi0", "H_over_h", "M", "e", "m", "l", "c", "H1", "H2", "omega"};
+/* SI units of the physical keys: those of autobal_pendulum_physical and of the configuration */
+static const char *const param_units[AUTOBAL_PENDULUM_NPARAM] = {
+    "1", "1", "1", "1", "1", "rad", "1", "kg", "m", "kg", "m", "N/m", "N m s", "N s/m", "rad/s"};
 static const char *const param_desc[AUTOBAL_PENDULUM_NPARAM] = {
     "rotor speed omega/omega0",
     "mass ratio m/(M + 2m)",
@@ -494,7 +497,33 @@ static const char *const param_desc[AUTOBAL_PENDULUM_NPARAM] = {
     "pendulum damping H1/(m l^2 omega0)",
     "unbalance parameter sin^2(2 psi0)",
     "pendulum angle of the main motion (4)",
-    "ratio of the external to the pendulum damping H/h"};
+    "ratio of the external to the pendulum damping H/h",
+    "rotor mass M (physical key, converted by (2)-(3) at each point)",
+    "eccentricity e of the rotor's centre of mass (physical key, converted by (2)-(3) at each point)",
+    "mass m of each pendulum (physical key, converted by (2)-(3) at each point)",
+    "pendulum rod length l (physical key, converted by (2)-(3) at each point)",
+    "shaft stiffness c (physical key, converted by (2)-(3) at each point)",
+    "viscous moment coefficient H1 of each pendulum (physical key, converted by (2)-(3) at each point)",
+    "external viscous damping H2 of the shaft (physical key, converted by (2)-(3) at each point)",
+    "rotor speed omega (physical key, converted by (2)-(3) at each point)"};
+
+#define P_BIT(x) (1u << (x))
+/* the physical keys each dimensionless parameter is a function of, by (2)-(3) */
+static const unsigned param_deps[AUTOBAL_PENDULUM_PARAM_H_RATIO + 1] = {
+    /* R_w  */ P_BIT(AUTOBAL_PENDULUM_PARAM_OMEGA) | P_BIT(AUTOBAL_PENDULUM_PARAM_C) | P_BIT(AUTOBAL_PENDULUM_PARAM_M) |
+        P_BIT(AUTOBAL_PENDULUM_PARAM_MP),
+    /* R_m  */ P_BIT(AUTOBAL_PENDULUM_PARAM_M) | P_BIT(AUTOBAL_PENDULUM_PARAM_MP),
+    /* H    */ P_BIT(AUTOBAL_PENDULUM_PARAM_H2) | P_BIT(AUTOBAL_PENDULUM_PARAM_C) | P_BIT(AUTOBAL_PENDULUM_PARAM_M) |
+        P_BIT(AUTOBAL_PENDULUM_PARAM_MP),
+    /* h    */ P_BIT(AUTOBAL_PENDULUM_PARAM_H1) | P_BIT(AUTOBAL_PENDULUM_PARAM_MP) | P_BIT(AUTOBAL_PENDULUM_PARAM_L) |
+        P_BIT(AUTOBAL_PENDULUM_PARAM_C) | P_BIT(AUTOBAL_PENDULUM_PARAM_M),
+    /* k    */ P_BIT(AUTOBAL_PENDULUM_PARAM_M) | P_BIT(AUTOBAL_PENDULUM_PARAM_E) | P_BIT(AUTOBAL_PENDULUM_PARAM_MP) |
+        P_BIT(AUTOBAL_PENDULUM_PARAM_L),
+    /* psi0 */ P_BIT(AUTOBAL_PENDULUM_PARAM_M) | P_BIT(AUTOBAL_PENDULUM_PARAM_E) | P_BIT(AUTOBAL_PENDULUM_PARAM_MP) |
+        P_BIT(AUTOBAL_PENDULUM_PARAM_L),
+    /* H/h = H2 m l^2 / (H1 (M + 2m)): c and omega cancel */
+    P_BIT(AUTOBAL_PENDULUM_PARAM_H2) | P_BIT(AUTOBAL_PENDULUM_PARAM_H1) | P_BIT(AUTOBAL_PENDULUM_PARAM_MP) |
+        P_BIT(AUTOBAL_PENDULUM_PARAM_L) | P_BIT(AUTOBAL_PENDULUM_PARAM_M)};
 
 const char *autobal_pendulum_param_name(int param) {
   return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_names[param] : NULL;
@@ -503,8 +532,7 @@ const char *autobal_pendulum_param_dim(int param) {
   return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_dims[param] : NULL;
 }
 const char *autobal_pendulum_param_unit(int param) {
-  if (param < 0 || param >= AUTOBAL_PENDULUM_NPARAM) return NULL;
-  return param == AUTOBAL_PENDULUM_PARAM_PSI0 ? "rad" : "1";
+  return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_units[param] : NULL;
 }
 const char *autobal_pendulum_param_description(int param) {
   return param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_desc[param] : NULL;
@@ -515,6 +543,14 @@ int autobal_pendulum_param_lookup(const char *name) {
   for (i = 0; i < AUTOBAL_PENDULUM_NPARAM; i++)
     if (!strcmp(name, param_names[i]) || !strcmp(name, param_dims[i])) return i;
   return -1;
+}
+int autobal_pendulum_param_is_physical(int param) {
+  return param >= AUTOBAL_PENDULUM_PARAM_M && param <= AUTOBAL_PENDULUM_PARAM_OMEGA;
+}
+int autobal_pendulum_param_depends(int dimensionless, int physical) {
+  if (dimensionless < 0 || dimensionless > AUTOBAL_PENDULUM_PARAM_H_RATIO || !autobal_pendulum_param_is_physical(physical))
+    return 0;
+  return (param_deps[dimensionless] & P_BIT(physical)) != 0;
 }
 
 int autobal_pendulum_param_check(int param, double v, autobal_error *err) {
@@ -531,12 +567,99 @@ int autobal_pendulum_param_check(int param, double v, autobal_error *err) {
     return autobal_check_param(err, name, v, 0.0, 0, 1.5707963267948966, 1, "rad");
   case AUTOBAL_PENDULUM_PARAM_H_RATIO:
     return autobal_check_param(err, name, v, 0.0, 1, AUTOBAL_PENDULUM_MAX_RATIO, 0, "");
+  /* the physical keys: the bounds of autobal_pendulum_params_from_physical for the key alone */
+  case AUTOBAL_PENDULUM_PARAM_M:
+  case AUTOBAL_PENDULUM_PARAM_MP:
+  case AUTOBAL_PENDULUM_PARAM_L:
+  case AUTOBAL_PENDULUM_PARAM_C:
+    return autobal_check_param(err, name, v, 0.0, 1, INFINITY, 1, param_units[param]);
+  case AUTOBAL_PENDULUM_PARAM_E:
+  case AUTOBAL_PENDULUM_PARAM_H1:
+  case AUTOBAL_PENDULUM_PARAM_H2:
+  case AUTOBAL_PENDULUM_PARAM_OMEGA:
+    return autobal_check_param(err, name, v, 0.0, 0, INFINITY, 1, param_units[param]);
   default: /* R_w, H, h */
     return autobal_check_param(err, name, v, 0.0, 0, AUTOBAL_PENDULUM_MAX_RATIO, 0, "");
   }
 }
 
-/* set one direct parameter (not the ratio) */
+/* the field of a physical key */
+static double *phys_field(autobal_pendulum_physical *q, int param) {
+  switch (param) {
+  case AUTOBAL_PENDULUM_PARAM_M: return &q->M;
+  case AUTOBAL_PENDULUM_PARAM_E: return &q->e;
+  case AUTOBAL_PENDULUM_PARAM_MP: return &q->m;
+  case AUTOBAL_PENDULUM_PARAM_L: return &q->l;
+  case AUTOBAL_PENDULUM_PARAM_C: return &q->c;
+  case AUTOBAL_PENDULUM_PARAM_H1: return &q->H1;
+  case AUTOBAL_PENDULUM_PARAM_H2: return &q->H2;
+  case AUTOBAL_PENDULUM_PARAM_OMEGA: return &q->omega;
+  default: return NULL;
+  }
+}
+
+static double phys_get(const autobal_pendulum_physical *q, int param) {
+  autobal_pendulum_physical c = *q;
+  return *phys_field(&c, param);
+}
+
+/* does the physical set with the key at v convert (the configuration's path) */
+static int phys_inside(const autobal_pendulum_physical *phys, int param, double v) {
+  autobal_pendulum_physical q = *phys;
+  autobal_pendulum_params out;
+  *phys_field(&q, param) = v;
+  return autobal_pendulum_params_from_physical(&q, &out, NULL) == AUTOBAL_SUCCESS;
+}
+
+/* from `good` (inside) towards +inf (dir > 0) or 0 (dir < 0): the last value inside before the
+ * domain ends, INFINITY / 0 when it does not (the key's own bound) */
+static double phys_domain_end(const autobal_pendulum_physical *phys, int param, double good, int dir) {
+  double bad, x;
+  int it;
+  if (dir > 0) {
+    x = good > 0.0 ? 2.0 * good : 1e-300;
+    while (phys_inside(phys, param, x)) {
+      good = x;
+      if (x > 1e300) return INFINITY;
+      x *= 2.0;
+    }
+  } else {
+    if (!(good > 0.0)) return 0.0;
+    x = 0.5 * good;
+    while (phys_inside(phys, param, x)) {
+      good = x;
+      if (x < 1e-300) return 0.0;
+      x *= 0.5;
+    }
+  }
+  bad = x; /* good and bad within a factor 2: bisect to adjacent doubles */
+  for (it = 0; it < 2000; it++) {
+    double mid = good + 0.5 * (bad - good);
+    if (mid == good || mid == bad) break;
+    if (phys_inside(phys, param, mid)) good = mid;
+    else bad = mid;
+  }
+  return good;
+}
+
+int autobal_pendulum_param_domain(const autobal_pendulum_physical *phys, int param, double *lo, double *hi,
+                                  autobal_error *err) {
+  autobal_pendulum_params out;
+  double v;
+  int st;
+  if (phys == NULL || lo == NULL || hi == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "param_domain: NULL argument");
+  if (!autobal_pendulum_param_is_physical(param))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "param_domain: %s is not a physical key (allowed M, e, m, l, c, H1, H2, omega)",
+                             param >= 0 && param < AUTOBAL_PENDULUM_NPARAM ? param_names[param] : "?");
+  if ((st = autobal_pendulum_params_from_physical(phys, &out, err)) != 0) return st;
+  v = phys_get(phys, param);
+  *lo = phys_domain_end(phys, param, v, -1);
+  *hi = phys_domain_end(phys, param, v, +1);
+  return AUTOBAL_SUCCESS;
+}
+
+/* set one direct parameter (not the ratio, not a physical key) */
 static void param_set(autobal_pendulum_params *p, int param, double v) {
   switch (param) {
   case AUTOBAL_PENDULUM_PARAM_R_W: p->R_w = v; break;
@@ -549,37 +672,113 @@ static void param_set(autobal_pendulum_params *p, int param, double v) {
   }
 }
 
+/* the physical keys a dimensionless parameter depends on, as text ("omega, c, M, m") */
+static void deps_text(int dimensionless, char *buf, size_t len) {
+  int i;
+  size_t n = 0;
+  buf[0] = '\0';
+  for (i = AUTOBAL_PENDULUM_PARAM_M; i <= AUTOBAL_PENDULUM_PARAM_OMEGA && n < len; i++)
+    if (autobal_pendulum_param_depends(dimensionless, i)) {
+      int w = snprintf(buf + n, len - n, "%s%s", n ? ", " : "", param_names[i]);
+      if (w < 0) break;
+      n += (size_t)w;
+    }
+}
+
 /* the combination of two axes (values aside) */
-static int params_pair_check(const autobal_pendulum_params *base, int p1, int p2,
-                             autobal_error *err) {
+static int params_pair_check(const autobal_pendulum_params *base, const autobal_pendulum_physical *phys, int p1,
+                             int p2, autobal_error *err) {
   int r1 = p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO, r2 = p2 == AUTOBAL_PENDULUM_PARAM_H_RATIO;
-  int other = r1 ? p2 : p1;
+  int other = r1 ? p2 : p1, i;
   if (p1 < 0 || p1 >= AUTOBAL_PENDULUM_NPARAM || p2 < -1 || p2 >= AUTOBAL_PENDULUM_NPARAM)
     return autobal_error_set(err, AUTOBAL_EINVAL, "unknown pendulum parameter (%d, %d): allowed 0..%d",
                              p1, p2, AUTOBAL_PENDULUM_NPARAM - 1);
   if (p1 == p2)
     return autobal_error_set(err, AUTOBAL_EINVAL, "both axes are pendulum.%s: give two different parameters",
                              param_names[p1]);
+  for (i = 0; i < 2; i++) {
+    int a = i ? p2 : p1, b = i ? p1 : p2;
+    if (!autobal_pendulum_param_is_physical(a)) continue;
+    if (phys == NULL)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "pendulum.%s is a physical key: it needs the physical set ([pendulum] given by M, e, m, "
+                               "l, c, H1, H2, omega, not by the dimensionless keys R_w, R_m, H, h, k or psi0)",
+                               param_names[a]);
+    if (b >= 0 && autobal_pendulum_param_depends(b, a)) {
+      char deps[64];
+      deps_text(b, deps, sizeof deps);
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "axes pendulum.%s and pendulum.%s cannot be combined: %s is a function of %s by (2)-(3) "
+                               "(it depends on %s); pair a physical key with a dimensionless one that does not depend "
+                               "on it, or with another physical key",
+                               param_names[a], param_names[b], param_names[b], param_names[a], deps);
+    }
+  }
   if ((p1 == AUTOBAL_PENDULUM_PARAM_K && p2 == AUTOBAL_PENDULUM_PARAM_PSI0) ||
       (p2 == AUTOBAL_PENDULUM_PARAM_K && p1 == AUTOBAL_PENDULUM_PARAM_PSI0))
     return autobal_error_set(err, AUTOBAL_EINVAL, "axes k and psi0 are the same parameter (k = sin^2(2 psi0))");
-  if ((r1 || r2) && other != AUTOBAL_PENDULUM_PARAM_H && other != AUTOBAL_PENDULUM_PARAM_HP &&
-      !(base->h > 0.0))
+  if ((r1 || r2) && autobal_pendulum_param_is_physical(other)) {
+    if (!(phys->H1 > 0.0))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "axis H/h needs pendulum.H1 > 0 (it keeps h of each point and sets H = (H/h) h), got "
+                               "pendulum.H1 = %g N m s",
+                               phys->H1);
+  } else if ((r1 || r2) && other != AUTOBAL_PENDULUM_PARAM_H && other != AUTOBAL_PENDULUM_PARAM_HP && !(base->h > 0.0)) {
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "axis H/h needs pendulum.h > 0 (it keeps h and sets H = (H/h) h), got "
                              "pendulum.h = %g; or put h or H on the other axis",
                              base->h);
+  }
   return AUTOBAL_SUCCESS;
 }
 
-static int params_vary_i(const autobal_pendulum_params *base, int p1, double v1, int p2, double v2,
-                         autobal_pendulum_params *out, autobal_error *err) {
+/* a physical set outside the model's domain at a point: the key (and the other physical axis),
+ * the conversion's message and the interval of the key at the other values of the point */
+static int phys_domain_error(const autobal_pendulum_physical *phys, const autobal_pendulum_physical *q, int pa,
+                             int pb, const char *why, autobal_error *err) {
+  char other[96] = "", range[160] = "";
+  const char *u = param_units[pa];
+  autobal_pendulum_physical at = *q;
+  double lo, hi, v = phys_get(q, pa);
+  if (pb >= 0)
+    snprintf(other, sizeof other, " (with pendulum.%s = %.6g %s)", param_names[pb], phys_get(q, pb), param_units[pb]);
+  /* the interval of the key with the others at this point, found from the configured value */
+  *phys_field(&at, pa) = phys_get(phys, pa);
+  if (autobal_pendulum_param_domain(&at, pa, &lo, &hi, NULL) == AUTOBAL_SUCCESS) {
+    int lo_open = pa == AUTOBAL_PENDULUM_PARAM_M || pa == AUTOBAL_PENDULUM_PARAM_MP || pa == AUTOBAL_PENDULUM_PARAM_L ||
+                  pa == AUTOBAL_PENDULUM_PARAM_C || lo > 0.0;
+    if (isinf(hi))
+      snprintf(range, sizeof range, ": at the other values of this point pendulum.%s must lie in %c%.6g, inf) %s",
+               param_names[pa], lo_open ? '(' : '[', lo, u);
+    else
+      snprintf(range, sizeof range, ": at the other values of this point pendulum.%s must lie in %c%.6g, %.6g) %s",
+               param_names[pa], lo_open ? '(' : '[', lo, hi, u);
+  }
+  return autobal_error_set(err, AUTOBAL_EINVAL, "pendulum.%s = %.6g %s%s leaves the model's domain (%s)%s",
+                           param_names[pa], v, u, other, why, range);
+}
+
+static int params_vary_i(const autobal_pendulum_params *base, const autobal_pendulum_physical *phys, int p1,
+                         double v1, int p2, double v2, autobal_pendulum_params *out,
+                         autobal_pendulum_physical *phys_out, autobal_error *err) {
   autobal_pendulum_params q = *base;
-  int st;
+  int st, ph1 = autobal_pendulum_param_is_physical(p1), ph2 = p2 >= 0 && autobal_pendulum_param_is_physical(p2);
   if ((st = autobal_pendulum_param_check(p1, v1, err)) != 0) return st;
   if (p2 >= 0 && (st = autobal_pendulum_param_check(p2, v2, err)) != 0) return st;
-  if (p1 != AUTOBAL_PENDULUM_PARAM_H_RATIO) param_set(&q, p1, v1);
-  if (p2 >= 0 && p2 != AUTOBAL_PENDULUM_PARAM_H_RATIO) param_set(&q, p2, v2);
+  if (ph1 || ph2) {
+    /* the physical set with the key(s) changed, converted as the configuration is */
+    autobal_pendulum_physical x = *phys;
+    autobal_error cerr;
+    if (ph1) *phys_field(&x, p1) = v1;
+    if (ph2) *phys_field(&x, p2) = v2;
+    if (autobal_pendulum_params_from_physical(&x, &q, &cerr) != AUTOBAL_SUCCESS)
+      return phys_domain_error(phys, &x, ph1 ? p1 : p2, ph1 && ph2 ? p2 : -1, cerr.message, err);
+    if (phys_out) *phys_out = x;
+  } else if (phys_out && phys) {
+    *phys_out = *phys;
+  }
+  if (!ph1 && p1 != AUTOBAL_PENDULUM_PARAM_H_RATIO) param_set(&q, p1, v1);
+  if (p2 >= 0 && !ph2 && p2 != AUTOBAL_PENDULUM_PARAM_H_RATIO) param_set(&q, p2, v2);
   if (p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO || p2 == AUTOBAL_PENDULUM_PARAM_H_RATIO) {
     double r = p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO ? v1 : v2;
     int other = p1 == AUTOBAL_PENDULUM_PARAM_H_RATIO ? p2 : p1;
@@ -601,8 +800,18 @@ int autobal_pendulum_params_vary(const autobal_pendulum_params *base, int param1
   int st;
   if (base == NULL || out == NULL)
     return autobal_error_set(err, AUTOBAL_EINVAL, "params_vary: NULL argument");
-  if ((st = params_pair_check(base, param1, param2, err)) != 0) return st;
-  return params_vary_i(base, param1, v1, param2, v2, out, err);
+  if ((st = params_pair_check(base, NULL, param1, param2, err)) != 0) return st;
+  return params_vary_i(base, NULL, param1, v1, param2, v2, out, NULL, err);
+}
+
+int autobal_pendulum_params_vary_physical(const autobal_pendulum_params *base, const autobal_pendulum_physical *phys,
+                                          int param1, double v1, int param2, double v2, autobal_pendulum_params *out,
+                                          autobal_pendulum_physical *phys_out, autobal_error *err) {
+  int st;
+  if (base == NULL || out == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "params_vary: NULL argument");
+  if ((st = params_pair_check(base, phys, param1, param2, err)) != 0) return st;
+  return params_vary_i(base, phys, param1, v1, param2, v2, out, phys_out, err);
 }
 
 int autobal_pendulum_grid_check(const autobal_pendulum_grid_spec *s, autobal_error *err) {
@@ -612,7 +821,7 @@ int autobal_pendulum_grid_check(const autobal_pendulum_grid_spec *s, autobal_err
   autobal_pendulum_params q;
   if (s == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL spec");
   if ((st = autobal_pendulum_params_validate(&s->base, err)) != 0) return st;
-  if ((st = params_pair_check(&s->base, s->param1, s->param2, err)) != 0) return st;
+  if ((st = params_pair_check(&s->base, s->phys, s->param1, s->param2, err)) != 0) return st;
   n2 = s->param2 < 0 ? 1 : s->n2;
   if ((s->n1 > 0 && s->v1 == NULL) || (s->param2 >= 0 && n2 > 0 && s->v2 == NULL))
     return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL axis array");
@@ -626,26 +835,51 @@ int autobal_pendulum_grid_check(const autobal_pendulum_grid_spec *s, autobal_err
         s->param2 == AUTOBAL_PENDULUM_PARAM_K || s->param2 == AUTOBAL_PENDULUM_PARAM_PSI0)
       return autobal_error_set(err, AUTOBAL_EINVAL,
                                "every unbalance (a set of k) cannot be combined with a k or psi0 axis");
+    if (s->param1 == AUTOBAL_PENDULUM_PARAM_E || s->param2 == AUTOBAL_PENDULUM_PARAM_E)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "every unbalance (a set of k) cannot be combined with an e axis (pendulum.e changes "
+                               "only the unbalance, psi0, which the k set replaces)");
     for (i = 0; i < s->n_k; i++) {
       snprintf(name, sizeof name, "k[%zu]", i);
       if ((st = autobal_check_param(err, name, s->k[i], 0.0, 0, 1.0, 0, "")) != 0) return st;
     }
   }
+  if (s->n1 > 0 && (s->param2 < 0 || n2 > 0) &&
+      (autobal_pendulum_param_is_physical(s->param1) || autobal_pendulum_param_is_physical(s->param2))) {
+    /* a physical axis: first the ends of the axes, so that a range leaving the model's domain is
+     * reported at its end.  Every condition of the domain is monotone in each key (M e < 2 m l;
+     * R_w, H, h <= 1e6), so on a box the worst point is a corner, whatever the order of the
+     * axis values. */
+    size_t c1, c2, ii[2], jj[2];
+    double x;
+    ii[0] = ii[1] = jj[0] = jj[1] = 0;
+    for (i = 1, x = s->v1[0]; i < s->n1; i++) if (s->v1[i] < x) x = s->v1[i], ii[0] = i;
+    for (i = 1, x = s->v1[0]; i < s->n1; i++) if (s->v1[i] > x) x = s->v1[i], ii[1] = i;
+    if (s->param2 >= 0) {
+      for (i = 1, x = s->v2[0]; i < n2; i++) if (s->v2[i] < x) x = s->v2[i], jj[0] = i;
+      for (i = 1, x = s->v2[0]; i < n2; i++) if (s->v2[i] > x) x = s->v2[i], jj[1] = i;
+    }
+    for (c1 = 0; c1 < 2; c1++)
+      for (c2 = 0; c2 < 2; c2++)
+        if ((st = params_vary_i(&s->base, s->phys, s->param1, s->v1[ii[c1]], s->param2,
+                                s->param2 >= 0 ? s->v2[jj[c2]] : 0.0, &q, NULL, err)) != 0)
+          return st;
+  }
   /* every value of each axis alone, then the pairs that the ratio rule couples (an axis
    * value is checked with the other axis at its first value) */
   for (i = 0; i < s->n1; i++)
-    if ((st = params_vary_i(&s->base, s->param1, s->v1[i], s->param2,
-                            s->param2 >= 0 && n2 > 0 ? s->v2[0] : 0.0, &q, err)) != 0)
+    if ((st = params_vary_i(&s->base, s->phys, s->param1, s->v1[i], s->param2,
+                            s->param2 >= 0 && n2 > 0 ? s->v2[0] : 0.0, &q, NULL, err)) != 0)
       return st;
   if (s->param2 >= 0 && s->n1 > 0)
     for (i = 0; i < n2; i++)
-      if ((st = params_vary_i(&s->base, s->param1, s->v1[0], s->param2, s->v2[i], &q, err)) != 0)
+      if ((st = params_vary_i(&s->base, s->phys, s->param1, s->v1[0], s->param2, s->v2[i], &q, NULL, err)) != 0)
         return st;
   if (s->param1 == AUTOBAL_PENDULUM_PARAM_H_RATIO || s->param2 == AUTOBAL_PENDULUM_PARAM_H_RATIO) {
     size_t j; /* the ratio couples the axes: check every pair */
     for (i = 0; i < s->n1; i++)
       for (j = 0; j < n2 && s->param2 >= 0; j++)
-        if ((st = params_vary_i(&s->base, s->param1, s->v1[i], s->param2, s->v2[j], &q, err)) != 0)
+        if ((st = params_vary_i(&s->base, s->phys, s->param1, s->v1[i], s->param2, s->v2[j], &q, NULL, err)) != 0)
           return st;
   }
   return AUTOBAL_SUCCESS;
@@ -660,7 +894,7 @@ static int grid_point_i(const autobal_pendulum_grid_spec *s, double v1, double v
   const double *ks;
   size_t nk, i;
   int st, worst = AUTOBAL_VERDICT_STABLE, und;
-  if ((st = params_vary_i(&s->base, s->param1, v1, s->param2, v2, &q, err)) != 0) return st;
+  if ((st = params_vary_i(&s->base, s->phys, s->param1, v1, s->param2, v2, &q, NULL, err)) != 0) return st;
   und = q.H == 0.0 && q.h == 0.0;
   if (s->k != NULL && s->n_k > 0) {
     ks = s->k, nk = s->n_k;
@@ -706,7 +940,7 @@ int autobal_pendulum_grid_point(const autobal_pendulum_grid_spec *s, double v1, 
   int st;
   if (verdict == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid_point: NULL output");
   if (s == NULL) return autobal_error_set(err, AUTOBAL_EINVAL, "grid: NULL spec");
-  if ((st = params_pair_check(&s->base, s->param1, s->param2, err)) != 0) return st;
+  if ((st = params_pair_check(&s->base, s->phys, s->param1, s->param2, err)) != 0) return st;
   if (s->k == NULL && s->n_k != 0)
     return autobal_error_set(err, AUTOBAL_EINVAL, "grid: k is NULL but n_k = %zu", s->n_k);
   return grid_point_i(s, v1, v2, ws, verdict, max_real, err);

@@ -64,6 +64,40 @@ void autobal_study_pendulum_param_range(int param, double *lo, double *hi, int *
   if (log_scale) *log_scale = lg;
 }
 
+void autobal_study_pendulum_param_range_physical(int param, const autobal_pendulum_physical *phys, double *lo,
+                                                 double *hi, int *log_scale) {
+  double a = NAN, b = NAN, Ms, w0, dlo, dhi, v;
+  int lg = 0;
+  if (!autobal_pendulum_param_is_physical(param)) {
+    autobal_study_pendulum_param_range(param, lo, hi, log_scale);
+    return;
+  }
+  lg = param != AUTOBAL_PENDULUM_PARAM_OMEGA && param != AUTOBAL_PENDULUM_PARAM_E; /* scales: log */
+  if (phys != NULL && autobal_pendulum_param_domain(phys, param, &dlo, &dhi, NULL) == AUTOBAL_SUCCESS) {
+    Ms = phys->M + 2.0 * phys->m; /* (2) */
+    w0 = sqrt(phys->c / Ms);
+    switch (param) {
+    case AUTOBAL_PENDULUM_PARAM_OMEGA: a = 0.05 * w0, b = 5.0 * w0; break;  /* R_w 0.05 .. 5 */
+    case AUTOBAL_PENDULUM_PARAM_E: a = 0.0, b = sqrt(2.0) * phys->m * phys->l / phys->M; break; /* psi0 0 .. pi/4 */
+    case AUTOBAL_PENDULUM_PARAM_H2: a = 1e-4 * w0 * Ms, b = w0 * Ms; break; /* H 1e-4 .. 1 */
+    case AUTOBAL_PENDULUM_PARAM_H1:                                                   /* h 1e-4 .. 1 */
+      a = 1e-4 * phys->m * phys->l * phys->l * w0, b = phys->m * phys->l * phys->l * w0;
+      break;
+    default: /* M, m, l, c: a quarter to four times the configured value */
+      v = param == AUTOBAL_PENDULUM_PARAM_M ? phys->M : param == AUTOBAL_PENDULUM_PARAM_MP ? phys->m
+          : param == AUTOBAL_PENDULUM_PARAM_L ? phys->l : phys->c;
+      a = 0.25 * v, b = 4.0 * v;
+      break;
+    }
+    /* inside the model's domain at the configured values of the other keys */
+    if (a < dlo) a = dlo;
+    if (b > dhi) b = dhi;
+  }
+  if (lo) *lo = a;
+  if (hi) *hi = b;
+  if (log_scale) *log_scale = lg;
+}
+
 /* The measured small-damping picture (docs/pendulum.md, "The undamped map is not the
  * small-damping limit"): every-unbalance maps of the default grid (R_m 0.005..0.495 x R_w
  * 0.05..5, 200 x 200, k = j/64), measured with `autobal pendulum map` and reproduced
@@ -87,8 +121,9 @@ void autobal_study_pendulum_map_summary_free(autobal_study_pendulum_map_summary 
  * archives rerun bit for bit) or logarithmic (the ends exact) */
 /* The values of k (every unbalance: n_k from 0 to 1; else p's) and a grid over param1 = v1[0 .. n1)
  * with them and the convention (param2 for the caller). */
-static void grid_spec_init(autobal_pendulum_grid_spec *spec, const autobal_pendulum_params *p, int every, double *k,
-                           size_t n_k, int paper_convention, int param1, const double *v1, size_t n1) {
+static void grid_spec_init(autobal_pendulum_grid_spec *spec, const autobal_pendulum_params *p,
+                           const autobal_pendulum_physical *phys, int every, double *k, size_t n_k,
+                           int paper_convention, int param1, const double *v1, size_t n1) {
   size_t i;
   if (every)
     for (i = 0; i < n_k; i++) k[i] = (double)i / (double)(n_k - 1);
@@ -101,6 +136,7 @@ static void grid_spec_init(autobal_pendulum_grid_spec *spec, const autobal_pendu
   spec->n1 = n1;
   if (every) spec->k = k, spec->n_k = n_k;
   spec->paper_convention = paper_convention;
+  spec->phys = phys;
 }
 
 static void fill_axis(double *v, size_t n, double lo, double hi, int lg) {
@@ -119,16 +155,17 @@ static int all_undamped(const autobal_pendulum_params *p, int param1, int param2
   ax[0] = param1, ax[1] = param2;
   for (i = 0; i < 2; i++)
     if (ax[i] == AUTOBAL_PENDULUM_PARAM_H || ax[i] == AUTOBAL_PENDULUM_PARAM_HP ||
-        ax[i] == AUTOBAL_PENDULUM_PARAM_H_RATIO)
+        ax[i] == AUTOBAL_PENDULUM_PARAM_H_RATIO || ax[i] == AUTOBAL_PENDULUM_PARAM_H1 ||
+        ax[i] == AUTOBAL_PENDULUM_PARAM_H2)
       return 0;
   return p->H == 0.0 && p->h == 0.0;
 }
 
 /* resolve one axis of the options: range, points, scale; "options: ..." messages.  which = 1, 2:
  * the map's axes (keys min1, max1, n1), 0: the sweep (min, max, n in [2, 1e7]) */
-static int resolve_axis(int which, int param, double mn, double mx, size_t n, int lg, double leg_min,
-                        double leg_max, size_t leg_n, int legacy, double *omin, double *omax, size_t *on,
-                        int *olog, autobal_error *err) {
+static int resolve_axis(int which, int param, const autobal_pendulum_physical *phys, double mn, double mx, size_t n,
+                        int lg, double leg_min, double leg_max, size_t leg_n, int legacy, double *omin, double *omax,
+                        size_t *on, int *olog, autobal_error *err) {
   const char *key = autobal_pendulum_param_name(param);
   char sfx[4] = "", what[48];
   double dlo, dhi;
@@ -140,7 +177,12 @@ static int resolve_axis(int which, int param, double mn, double mx, size_t n, in
                              sfx, param, AUTOBAL_PENDULUM_NPARAM - 1);
   if (which) snprintf(what, sizeof what, "axis %d (pendulum.%s)", which, key);
   else snprintf(what, sizeof what, "sweep of pendulum.%s", key);
-  autobal_study_pendulum_param_range(param, &dlo, &dhi, &dlog);
+  if (autobal_pendulum_param_is_physical(param) && phys == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "%s: pendulum.%s is a physical key: it needs the physical set ([pendulum] given by M, e, "
+                             "m, l, c, H1, H2, omega, not by the dimensionless keys R_w, R_m, H, h, k or psi0)",
+                             what, key);
+  autobal_study_pendulum_param_range_physical(param, phys, &dlo, &dhi, &dlog);
   if (isnan(mn)) mn = legacy ? leg_min : dlo;
   if (isnan(mx)) mx = legacy ? leg_max : dhi;
   if (n == 0) n = legacy ? leg_n : 200;
@@ -189,11 +231,11 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: n_Rm = %zu is out of range: allowed [1, 100000]", o->n_Rm);
   if (o->param2 == AUTOBAL_PENDULUM_PARAM_R_W && o->n2 == 0 && (o->n_Rw < 1 || o->n_Rw > 100000))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: n_Rw = %zu is out of range: allowed [1, 100000]", o->n_Rw);
-  if ((st = resolve_axis(1, o->param1, o->min1, o->max1, o->n1, o->log1, o->Rm_min, o->Rm_max,
+  if ((st = resolve_axis(1, o->param1, phys, o->min1, o->max1, o->n1, o->log1, o->Rm_min, o->Rm_max,
                          o->param1 == AUTOBAL_PENDULUM_PARAM_R_M ? o->n_Rm : 200,
                          o->param1 == AUTOBAL_PENDULUM_PARAM_R_M, &min1, &max1, &n1, &log1, err)))
     return st;
-  if ((st = resolve_axis(2, o->param2, o->min2, o->max2, o->n2, o->log2, o->Rw_min, o->Rw_max,
+  if ((st = resolve_axis(2, o->param2, phys, o->min2, o->max2, o->n2, o->log2, o->Rw_min, o->Rw_max,
                          o->param2 == AUTOBAL_PENDULUM_PARAM_R_W ? o->n_Rw : 200,
                          o->param2 == AUTOBAL_PENDULUM_PARAM_R_W, &min2, &max2, &n2, &log2, err)))
     return st;
@@ -222,7 +264,7 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
   }
   fill_axis(s->R_m, n1, min1, max1, log1);
   fill_axis(s->R_w, n2, min2, max2, log2);
-  grid_spec_init(&spec, p, o->every_unbalance, s->k, s->n_k, s->paper_convention, o->param1, s->R_m, n1);
+  grid_spec_init(&spec, p, phys, o->every_unbalance, s->k, s->n_k, s->paper_convention, o->param1, s->R_m, n1);
   spec.param2 = o->param2;
   spec.v2 = s->R_w;
   spec.n2 = n2;
@@ -268,9 +310,19 @@ int autobal_study_pendulum_map(const autobal_pendulum_params *p, const autobal_p
   return AUTOBAL_SUCCESS;
 }
 
-/* the value of a parameter at p (H/h: H/h, NaN when h = 0) */
-static double param_value(const autobal_pendulum_params *p, int param) {
+/* the value of a parameter at p (H/h: H/h, NaN when h = 0; a physical key: its value in phys,
+ * NaN without) */
+static double param_value(const autobal_pendulum_params *p, const autobal_pendulum_physical *phys, int param) {
+  if (autobal_pendulum_param_is_physical(param) && phys == NULL) return NAN;
   switch (param) {
+  case AUTOBAL_PENDULUM_PARAM_M: return phys->M;
+  case AUTOBAL_PENDULUM_PARAM_E: return phys->e;
+  case AUTOBAL_PENDULUM_PARAM_MP: return phys->m;
+  case AUTOBAL_PENDULUM_PARAM_L: return phys->l;
+  case AUTOBAL_PENDULUM_PARAM_C: return phys->c;
+  case AUTOBAL_PENDULUM_PARAM_H1: return phys->H1;
+  case AUTOBAL_PENDULUM_PARAM_H2: return phys->H2;
+  case AUTOBAL_PENDULUM_PARAM_OMEGA: return phys->omega;
   case AUTOBAL_PENDULUM_PARAM_R_W: return p->R_w;
   case AUTOBAL_PENDULUM_PARAM_R_M: return p->R_m;
   case AUTOBAL_PENDULUM_PARAM_H: return p->H;
@@ -299,6 +351,8 @@ static const char *ratio_rule(int param1, int param2) {
   else return "";
   if (other == AUTOBAL_PENDULUM_PARAM_H) return "h = H / (H/h), H from its axis";
   if (other == AUTOBAL_PENDULUM_PARAM_HP) return "H = (H/h) h, h from its axis";
+  if (autobal_pendulum_param_is_physical(other))
+    return "H = (H/h) h, h of each point's physical set (converted by (2)-(3))";
   return "H = (H/h) h, h held at pendulum.h";
 }
 
@@ -308,9 +362,9 @@ static int damped_everywhere(const autobal_pendulum_params *p, int param1, int p
   double lo[2];
   ax[0] = param1, ax[1] = param2, lo[0] = lo1, lo[1] = lo2;
   if (p->H > 0 || p->h > 0) {
-    for (i = 0; i < 2; i++) /* an axis of H or h starting at 0 can reach H = h = 0 */
-      if ((ax[i] == AUTOBAL_PENDULUM_PARAM_H && p->h == 0 && lo[i] == 0) ||
-          (ax[i] == AUTOBAL_PENDULUM_PARAM_HP && p->H == 0 && lo[i] == 0))
+    for (i = 0; i < 2; i++) /* an axis of H or h (H2 or H1) starting at 0 can reach H = h = 0 */
+      if (((ax[i] == AUTOBAL_PENDULUM_PARAM_H || ax[i] == AUTOBAL_PENDULUM_PARAM_H2) && p->h == 0 && lo[i] == 0) ||
+          ((ax[i] == AUTOBAL_PENDULUM_PARAM_HP || ax[i] == AUTOBAL_PENDULUM_PARAM_H1) && p->H == 0 && lo[i] == 0))
         return 0;
     return 1;
   }
@@ -389,9 +443,9 @@ int autobal_study_pendulum_map_write(autobal_archive *a, const autobal_pendulum_
                                       autobal_pendulum_param_description(p2));
   /* the design point of the configuration ([pendulum]), for marking on the map */
   snprintf(name, sizeof name, "design_%s", dims[0]);
-  if (!st) st = autobal_archive_attr_double(a, g, name, param_value(p, p1), autobal_pendulum_param_unit(p1));
+  if (!st) st = autobal_archive_attr_double(a, g, name, param_value(p, phys, p1), autobal_pendulum_param_unit(p1));
   snprintf(name, sizeof name, "design_%s", dims[1]);
-  if (!st) st = autobal_archive_attr_double(a, g, name, param_value(p, p2), autobal_pendulum_param_unit(p2));
+  if (!st) st = autobal_archive_attr_double(a, g, name, param_value(p, phys, p2), autobal_pendulum_param_unit(p2));
   if (!st && phys && p2 == AUTOBAL_PENDULUM_PARAM_R_W) st = write_omega(a, g, dims[1], s->R_w, s->n_Rw, phys);
   else if (!st && phys && p1 == AUTOBAL_PENDULUM_PARAM_R_W) st = write_omega(a, g, dims[0], s->R_m, nr, phys);
   if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
@@ -439,7 +493,7 @@ int autobal_study_pendulum_sweep(const autobal_pendulum_params *p, const autobal
   if (!p) return autobal_error_set(err, AUTOBAL_EINVAL, "parameters: NULL");
   if (o->n < 2 || o->n > 10000000)
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: n = %zu is out of range: allowed [2, 1e7]", o->n);
-  if ((st = resolve_axis(0, o->param, o->min, o->max, o->n, o->log_scale, NAN, NAN, 0, 0, &mn, &mx, &n, &lg, err)))
+  if ((st = resolve_axis(0, o->param, phys, o->min, o->max, o->n, o->log_scale, NAN, NAN, 0, 0, &mn, &mx, &n, &lg, err)))
     return st;
   if (o->every_unbalance && (o->n_k < 2 || o->n_k > 100000))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: n_k = %zu is out of range: allowed [2, 100000]", o->n_k);
@@ -459,7 +513,7 @@ int autobal_study_pendulum_sweep(const autobal_pendulum_params *p, const autobal
     return autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
   }
   fill_axis(s->values, n, mn, mx, lg);
-  grid_spec_init(&spec, p, o->every_unbalance, s->k, s->n_k, s->paper_convention, o->param, s->values, n);
+  grid_spec_init(&spec, p, phys, o->every_unbalance, s->k, s->n_k, s->paper_convention, o->param, s->values, n);
   spec.param2 = -1;
   if ((st = autobal_pendulum_grid_check(&spec, err)) != 0) {
     free(v);
