@@ -176,7 +176,7 @@ int main(void) {
     s.n_threads = 0, s.v1 = NULL;
     CHECK_STATUS("NULL axis", autobal_pendulum_grid(&s, out, NULL, &err), AUTOBAL_EINVAL);
     CHECK("... nothing written", out[0] == 7);
-    s.v1 = vals, s.param1 = 9;
+    s.v1 = vals, s.param1 = 99;
     CHECK_STATUS("unknown parameter", autobal_pendulum_grid(&s, out, NULL, &err), AUTOBAL_EINVAL);
     CHECK_STATUS("grid_point: NULL output", autobal_pendulum_grid_point(&s, 0.1, 0.0, NULL, NULL, NULL, &err), AUTOBAL_EINVAL);
     s.param1 = AUTOBAL_PENDULUM_PARAM_H;
