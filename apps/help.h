@@ -99,7 +99,10 @@
   "small-damping limit (docs/pendulum.md).  OpenMP-parallel.\n\n"                                       \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\n[map]\n"                                                                                            \
-  "  param1 = R_m   param2 = R_w   the axes (rows, columns): R_w R_m H h k psi0 H/h\n"                    \
+  "  param1 = R_m   param2 = R_w   the axes (rows, columns): R_w R_m H h k psi0 H/h, or with a\n"        \
+  "      physical [pendulum] its keys M e m l c H1 H2 omega (ranges in their units, e.g. 500 rpm,\n"     \
+  "      80 g; each point converted by eqs. (2)-(3) in docs/pendulum.md; not with a dimensionless\n"  \
+  "      parameter it determines)\n"                                                                   \
   "  min1 max1 n1 log1, min2 max2 n2 log2   their ranges, points (<= 1e5), scale auto|log|linear\n"      \
   "      (defaults: R_w 0.05..5, R_m 0.005..0.495, H and h 1e-4..1 log, k 0..1, psi0 0..pi/4,\n"       \
   "       H/h 0.01..100 log; 200 points)\n"                                                            \
@@ -118,13 +121,13 @@
 
 #define HELP_PENDULUM_SWEEP                                                                              \
   "Stability of the main motion, eq. (4) in docs/pendulum.md, along one parameter (R_w, R_m, H, h, k,\n" \
-  "psi0 or H/h), for one k or every unbalance, and its critical values: every change of the verdict\n"  \
-  "between neighbouring grid points, refined by bisection on the verdict.  Verdicts as in\n"           \
-  "'pendulum map'.  A window narrower than the grid step can be missed (for the undamped system\n"     \
-  "over R_w at one k, 'pendulum critical' is exact).\n\n"                                              \
+  "psi0, H/h, or a physical key such as omega in rpm), for one k or every unbalance, and its critical\n" \
+  "values: every change of the verdict between neighbouring grid points, refined by bisection on the\n" \
+  "verdict.  Verdicts as in 'pendulum map'.  A window narrower than the grid step can be missed\n"     \
+  "(for the undamped system over R_w at one k, 'pendulum critical' is exact).\n\n"                     \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\n[sweep]\n"                                                                                          \
-  "  param = R_w         the swept parameter\n"                                                          \
+  "  param = R_w         the swept parameter (or a physical key M e m l c H1 H2 omega, as in 'map')\n"  \
   "  min max            its range (defaults as in 'pendulum map')   n = 1000   log = auto|log|linear\n"  \
   "  every_unbalance = false   n_k = 65   xtol_rel = 1e-10   convention = exact|paper\n"                 \
   "\narchive: /pendulum/sweep (verdict over the parameter's coordinate; critical, critical_below,\n"     \
