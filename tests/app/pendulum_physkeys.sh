@@ -5,7 +5,8 @@
 # pendulum_physkeys_check.py against an independent conversion (2)-(3) and:
 #   - omega at k = 0, undamped: the critical speeds (13) and the roots of (12) (SymPy, exact);
 #   - c and m, undamped: the verdict of (10) from 30-digit roots, changes bisected;
-#   - H1, damped: NumPy eigenvalues of (5), changes bisected;
+#   - H1, damped, and omega for every unbalance (data/pendulum_physical_speed.ini): NumPy eigenvalues
+#     of (5), changes bisected;
 #   - maps over (m, l) and (e, R_w), damped: NumPy eigenvalues of (5) at every point.
 # Then: a rerun reproduces a physical sweep bit for bit; bad input (unknown key, a key mixed with a
 # dimensionless parameter it determines, a physical key of a dimensionless configuration, a range
@@ -31,6 +32,8 @@ expect 0 "critical values of m" $A pendulum sweep "$C" $U --set pendulum.omega=1
 chk undamped m.h5
 expect 0 "critical values of H1" $A pendulum sweep "$C" --set sweep.param=H1 --set sweep.n=200 -o H1.h5
 chk damped H1.h5
+expect 0 "critical values of omega" $A pendulum sweep "$DATA/pendulum_physical_speed.ini" -o speed.h5
+chk damped speed.h5
 expect 0 "map 12 x 10 over m in [0.12, 0.5] kg (log), l in [0.15, 0.45] m (log)" $A pendulum map "$C" \
   --set pendulum.H2=300 --set map.param1=m --set "map.min1=120 g" --set "map.max1=500 g" --set map.n1=12 \
   --set map.param2=l --set "map.min2=15 cm" --set "map.max2=45 cm" --set map.n2=10 -o ml.h5
