@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "autobal/pendulum.h"
+#include "autobal/study.h"
 #include "check.h"
 
 /* (2)-(3) as docs/pendulum.md writes them */
@@ -266,6 +267,46 @@ int main(void) {
     }
     CHECK("omega: every critical speed R_wj omega0 found by bisection to 1e-12, kinds as the exact ones", ok && nfound >= 3);
     CHECK("c: every critical stiffness M_sigma omega^2 / R_wj^2 to 1e-11, kinds reversed", okc && nfound >= 3);
+    autobal_pendulum_workspace_free(ws);
+  }
+
+  printf("-- the study: a sweep over omega with its default range\n");
+  {
+    autobal_study_pendulum_sweep_options o = autobal_study_pendulum_sweep_options_default();
+    autobal_study_pendulum_sweep_summary sum;
+    autobal_pendulum_workspace *ws = autobal_pendulum_workspace_alloc();
+    autobal_pendulum_crit_set cs;
+    double w0, lo, hi;
+    size_t n, m = 0;
+    int lg = -1, ok = 1;
+    P = P0;
+    P.H1 = 0.0, P.H2 = 0.0, P.m = 1.0, P.e = 0.01;
+    autobal_pendulum_params_from_physical(&P, &base, NULL);
+    w0 = sqrt(P.c / (P.M + 2.0 * P.m));
+    autobal_study_pendulum_param_range_physical(AUTOBAL_PENDULUM_PARAM_OMEGA, &P, &lo, &hi, &lg);
+    CHECK("default omega range: 0.05 .. 5 omega0, linear (that of R_w)",
+          fabs(lo - 0.05 * w0) <= 1e-15 * lo && fabs(hi - 5.0 * w0) <= 1e-15 * hi && lg == 0);
+    autobal_study_pendulum_param_range_physical(AUTOBAL_PENDULUM_PARAM_E, &P, &lo, &hi, &lg);
+    CHECK("default e range: 0 .. sqrt(2) m l / M (psi0 0 .. pi/4)",
+          lo == 0.0 && fabs(asin(P.M * hi / (2.0 * P.m * P.l)) - 0.78539816339744831) < 1e-15 && lg == 0);
+    autobal_study_pendulum_param_range_physical(AUTOBAL_PENDULUM_PARAM_MP, NULL, &lo, &hi, &lg);
+    CHECK("no physical set: NaN", isnan(lo) && isnan(hi));
+    o.param = AUTOBAL_PENDULUM_PARAM_OMEGA;
+    o.n = 500;
+    st = autobal_study_pendulum_sweep(&base, &P, &o, NULL, &sum, &err);
+    autobal_pendulum_critical_speeds(ws, base.R_m, autobal_pendulum_k(&base), &cs);
+    for (n = 0; n < cs.n; n++) {
+      if (cs.kind[n] == AUTOBAL_CRIT_TOUCH || cs.R_w[n] < 0.05 || cs.R_w[n] > 5.0) continue;
+      ok &= m < sum.n_crit && fabs(sum.crit[m] - cs.R_w[n] * w0) <= 1e-9 * cs.R_w[n] * w0;
+      m++;
+    }
+    CHECK("autobal_study_pendulum_sweep over omega: the exact critical speeds times omega0 (1e-9)",
+          st == 0 && ok && m == sum.n_crit && m >= 3 && sum.min == 0.05 * w0);
+    autobal_study_pendulum_sweep_summary_free(&sum);
+    st = autobal_study_pendulum_sweep(&base, NULL, &o, NULL, &sum, &err);
+    CHECK_STATUS("... without the physical set: refused", st, AUTOBAL_EINVAL);
+    CHECK_MSG("... message", err.message, "pendulum.omega is a physical key");
+    autobal_study_pendulum_sweep_summary_free(&sum);
     autobal_pendulum_workspace_free(ws);
   }
 
