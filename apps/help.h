@@ -105,7 +105,7 @@
   "      parameter it determines)\n"                                                                   \
   "  min1 max1 n1 log1, min2 max2 n2 log2   their ranges, points (<= 1e5), scale auto|log|linear\n"      \
   "      (defaults: R_w 0.05..5, R_m 0.005..0.495, H and h 1e-4..1 log, k 0..1, psi0 0..pi/4,\n"       \
-  "       H/h 0.01..100 log; omega 0.05..5 omega0, e 0..sqrt(2) m l/M, H1 and H2 those of h and H,\n" \
+  "       H/h 0.01..100 log; omega 0.05..5 omega0, e 0..(e at psi0 = pi/4), H1, H2 those of h, H,\n" \
   "       M m l c a quarter to four times their value, log; all inside the model's domain; 200 points)\n" \
   "  Rm_min = 0.005  Rm_max = 0.495  n_Rm = 200     the range of an R_m axis 1 (min1 ... take precedence)\n" \
   "  Rw_min = 0.05   Rw_max = 5      n_Rw = 200     the same for an R_w axis 2 (former keys)\n"          \

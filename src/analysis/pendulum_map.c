@@ -3,9 +3,13 @@
  * (6) and the two-stage Routh test, undamped verdicts with a double-precision filter, OpenMP
  * rows.  The verdicts are bitwise those of the one-point functions.
  *
+ * Also the maps and sweeps over any parameter (autobal_pendulum_grid*), the physical keys among
+ * them: a point with a physical key is converted by the model's autobal_pendulum_params_from_physical
+ * (the configuration's own conversion (2)-(3)), never by a copy of it.
+ *
  * May use: pendulum_critical.h and pendulum_verdict.h (workspace, verdicts, the Routh kernel,
- * the damped margin), the model's kernel of (6) (models/pendulum/pendulum_internal.h), the
- * numerics, core (internal.h).  Nothing in src/ below calls it. */
+ * the damped margin), the model's kernel of (6) (models/pendulum/pendulum_internal.h) and its
+ * conversion (2)-(3), the numerics, core (internal.h).  Nothing in src/ below calls it. */
 #include "autobal/pendulum.h"
 
 #include <float.h>
