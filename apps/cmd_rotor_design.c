@@ -75,7 +75,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   const char *config_out = NULL;
   long n_speed = (long)o.n_omega, n_verify = 0, n_mass = (long)o.n_mass, n_radius = (long)o.n_radius,
        n_damping = (long)o.n_damping, n_position = (long)o.n_position, n_best = (long)o.n_best,
-       n_starts = (long)o.n_starts, max_iter = (long)o.max_iter;
+       n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
+       n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
+  const char *rank_by = "margin";
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
   double t0, seconds;
   size_t i;
@@ -110,6 +112,15 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   if ((rc = cli_get_int(ctx, "design", "n_starts", n_starts, &n_starts, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "design", "max_iter", max_iter, &max_iter, NULL))) goto done;
   if ((rc = cli_get_string(ctx, "design", "config_out", NULL, &config_out, &have_out))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_transient", n_transient, &n_transient, NULL))) goto done;
+  if ((rc = cli_get_string(ctx, "design", "rank_by", rank_by, &rank_by, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_start_angles", n_start, &n_start, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_transient_unbalances", n_tunb, &n_tunb, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_transient_speeds", n_tspeed, &n_tspeed, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "transient_t_end", "s", o.t_end, &o.t_end, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "design", "balance_tol", o.balance_tol, &o.balance_tol, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "design", "balance_revs", o.balance_revs, &o.balance_revs, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "threads", threads, &threads, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if (!have_wmin || !have_wmax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
@@ -131,6 +142,40 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       (rc = need_count(ctx, "n_position", n_position, 1, 1000)) || (rc = need_count(ctx, "n_best", n_best, 1, 1000)) ||
       (rc = need_count(ctx, "n_starts", n_starts, 0, 100)) || (rc = need_count(ctx, "max_iter", max_iter, 1, 10000)))
     goto done;
+  if ((rc = need_count(ctx, "n_transient", n_transient, 0, 1000)) || (rc = need_count(ctx, "n_start_angles", n_start, 1, 64)) ||
+      (rc = need_count(ctx, "n_transient_unbalances", n_tunb, 1, 100)) ||
+      (rc = need_count(ctx, "n_transient_speeds", n_tspeed, 1, 100)) || (rc = need_count(ctx, "threads", threads, 0, 4096)))
+    goto done;
+  if (!strcmp(rank_by, "margin")) o.rank_by = AUTOBAL_DESIGN_RANK_MARGIN;
+  else if (!strcmp(rank_by, "time")) o.rank_by = AUTOBAL_DESIGN_RANK_TIME;
+  else if (!strcmp(rank_by, "p_balance")) o.rank_by = AUTOBAL_DESIGN_RANK_P_BALANCE;
+  else {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: rank_by = '%s' is not allowed: margin, time or p_balance", rank_by);
+    goto done;
+  }
+  if (o.rank_by != AUTOBAL_DESIGN_RANK_MARGIN && n_transient == 0) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: rank_by = %s needs the transients: n_transient = 0 is out of range with it, allowed [1, 1000]",
+                  rank_by);
+    goto done;
+  }
+  if (!(o.t_end > 0.0 && o.t_end <= 1e6)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: transient_t_end = %g s is out of range: allowed (0, 1e6]", o.t_end);
+    goto done;
+  }
+  if (!(o.balance_tol > 0.0 && o.balance_tol < 1.0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: balance_tol = %g is out of range: allowed (0, 1)", o.balance_tol);
+    goto done;
+  }
+  if (!(o.balance_revs >= 0.0 && o.balance_revs <= 1e6)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: balance_revs = %g is out of range: allowed [0, 1e6]", o.balance_revs);
+    goto done;
+  }
+  o.n_transient = (size_t)n_transient;
+  o.n_start = (size_t)n_start;
+  o.n_transient_unbalances = (size_t)n_tunb;
+  o.n_transient_speeds = (size_t)n_tspeed;
+  o.threads = (int)threads;
   if (n_verify == 1) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: n_verify = 1 is out of range: allowed 0 (default) or [2, 1000000]");
     goto done;
@@ -205,6 +250,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       cli_json_quantity(&j, "robust_margin", d->margin, "1/s");
       cli_json_bool(&j, "feasible", d->feasible);
       cli_json_int(&j, "recheck", d->recheck);
+      if (d->n_runs > 0) {
+        cli_json_quantity(&j, "p_balance", d->p_balance, "1");
+        cli_json_quantity(&j, "time_to_balance_median", d->ttb_median, "s");
+        cli_json_quantity(&j, "time_to_balance_worst", d->ttb_worst, "s");
+        cli_json_int(&j, "transient_members", (long)d->n_runs);
+      }
       cli_json_object_end(&j);
     }
     cli_json_array_end(&j);
@@ -231,6 +282,27 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
              d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "");
     }
     if (sum.n_designs == 0) printf("    none: no design in the bounds balances the range with the margin\n");
+    if (sum.transients > 0) {
+      char sbuf[32] = "";
+      if (!(p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE))
+        snprintf(sbuf, sizeof sbuf, "%zu", o.n_transient_speeds);
+      printf("  transients of the first %zu designs (ranked by %s): %zu start angles per ball x %zu unbalances x %s%s,\n"
+             "  %g s each; balanced = attractor class balanced; time to balance = start of %g revolutions with the "
+             "residual unbalance below %g\n",
+             o.n_transient < sum.n_designs ? o.n_transient : sum.n_designs, rank_by, o.n_start,
+             o.unbalance_min < o.unbalance_max ? o.n_transient_unbalances : (size_t)1, sbuf,
+             p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE ? "the run-up profile from rest" : " speeds",
+             o.t_end, o.balance_revs, o.balance_tol);
+      printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
+             "median ttb s", "worst ttb s");
+      for (i = 0; i < sum.n_designs; i++) {
+        const autobal_rotor_design *d = &sum.designs[i];
+        if (d->n_runs == 0) continue;
+        printf("    %4zu %10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, d->mass * 1e3, d->radius * 1e3,
+               d->damping, d->n_balanced, d->n_runs, d->ttb_median, d->ttb_worst);
+      }
+      printf("  %zu transients\n", sum.transients);
+    }
     printf("  %zu exact every-unbalance tests, %zu stability analyses (%.0f per second), %zu optimizer evaluations\n",
            sum.ratio_sets, sum.margin_evaluations, seconds > 0 ? (double)sum.margin_evaluations / seconds : 0.0,
            sum.optimizer_evaluations);

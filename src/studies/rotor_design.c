@@ -13,10 +13,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "autobal/attractor.h"
 #include "autobal/design.h"
+#include "autobal/ensemble.h"
 #include "autobal/rotor_stability.h"
 #include "autobal/study.h"
 #include "internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void) {
   autobal_study_rotor_design_options o;
@@ -37,6 +43,15 @@ autobal_study_rotor_design_options autobal_study_rotor_design_options_default(vo
   o.n_best = 10;
   o.n_starts = 3;
   o.max_iter = 80;
+  o.n_transient = 0;
+  o.rank_by = AUTOBAL_DESIGN_RANK_MARGIN;
+  o.n_start = 3;
+  o.n_transient_unbalances = 2;
+  o.n_transient_speeds = 2;
+  o.t_end = 10.0;
+  o.balance_tol = 0.01;
+  o.balance_revs = 50.0;
+  o.threads = 0;
   return o;
 }
 
@@ -431,6 +446,151 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   return AUTOBAL_SUCCESS;
 }
 
+/* ---- transients of a design (options.n_transient) -------------------------------------- */
+
+static int ens_cancel(void *user) { return cancel_hook(user); }
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* A run-up profile (RAMP or TABLE drive) replaces the speed grid of the transients. */
+static int has_profile(const autobal_rotor_params *p) {
+  return p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
+}
+
+/* One ensemble of design d at constant speed w (ignored with a profile); times appended to ttb. */
+static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, double *ttb, size_t *nt,
+                           size_t *nbal) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  autobal_rotor_params q = *c->base;
+  autobal_rotor_plane *pl = &q.plane[0];
+  double m[2] = {d->mass, d->mass}, r[2] = {d->radius, d->radius}, h[2] = {d->damping, d->damping};
+  double psi[2] = {0.0, 0.0}, rate[2] = {0.0, 0.0};
+  const double n = (double)o->n_start, step = 2.0 * M_PI / n;
+  autobal_ensemble_member mem;
+  autobal_ensemble_settings es = autobal_ensemble_settings_default();
+  autobal_ensemble *e;
+  size_t k, ai, nm;
+  int st;
+  pl->d = d->position;
+  pl->ball_mass = m;
+  pl->ball_radius = r;
+  pl->ball_damping = h;
+  pl->ball_psi = psi;
+  pl->ball_rate = rate;
+  if (!has_profile(&q)) {
+    q.drive.mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
+    q.omega = w;
+  }
+  if ((st = autobal_ensemble_rotor_member(&q, AUTOBAL_ROTOR_FIXED, "fixed", &mem, c->err)) != AUTOBAL_SUCCESS)
+    return st;
+  es.random = 0;
+  es.endpoint = 1;
+  es.n_params = 3;
+  /* ball 1 at 0, step, ..., ball 2 half a step further on: no member starts with the balls together */
+  es.param[0].name = "psi_1";
+  es.param[0].min = 0.0;
+  es.param[0].max = step * (n - 1.0);
+  es.param[0].n = o->n_start;
+  es.param[1].name = "psi_2";
+  es.param[1].min = 0.5 * step;
+  es.param[1].max = 0.5 * step + step * (n - 1.0);
+  es.param[1].n = o->n_start;
+  es.param[2].name = "m0";
+  es.param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / pl->r0;
+  es.param[2].max = o->unbalance_max / pl->r0;
+  es.param[2].n = o->unbalance_min < o->unbalance_max ? o->n_transient_unbalances : 1;
+  es.t_end = o->t_end;
+  es.balance_tol = o->balance_tol;
+  es.use_dwell = 0;
+  es.balance_revs = o->balance_revs;
+  es.stop_at_balance = 1;
+  es.threads = o->threads;
+  e = autobal_ensemble_alloc(&mem, &es, c->err);
+  if (!e) {
+    autobal_ensemble_member_release(&mem);
+    return c->err ? c->err->status : AUTOBAL_EINVAL;
+  }
+  autobal_ensemble_set_cancel(e, ens_cancel, c);
+  st = autobal_ensemble_run(e);
+  if (st != AUTOBAL_SUCCESS) {
+    st = autobal_error_set(c->err, st, "design transients: %s", autobal_ensemble_errmsg(e));
+  } else {
+    nm = autobal_ensemble_n_members(e);
+    ai = autobal_ensemble_attractor_index(e);
+    for (k = 0; k < nm; k++) {
+      const double *sm = autobal_ensemble_summary(e, k);
+      const int bal = sm && ai != (size_t)-1 && sm[AUTOBAL_ENSEMBLE_STATUS] >= 0.0 &&
+                      (int)sm[ai] == AUTOBAL_ATTRACTOR_BALANCED;
+      const double t = sm ? sm[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] : NAN;
+      ttb[(*nt)++] = bal && isfinite(t) ? t : INFINITY;
+      *nbal += (size_t)bal;
+    }
+  }
+  autobal_ensemble_free(e);
+  autobal_ensemble_member_release(&mem);
+  return st;
+}
+
+/* P(balance), median and worst time to balance of design d (see design.h). */
+static int design_transients(dctx *c, autobal_rotor_design *d, size_t *runs) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t nsp = has_profile(c->base) ? 1 : o->n_transient_speeds;
+  const size_t per = o->n_start * o->n_start * o->n_transient_unbalances;
+  double *ttb = malloc(nsp * per * sizeof *ttb);
+  size_t nt = 0, nbal = 0, k;
+  int st = AUTOBAL_SUCCESS;
+  if (!ttb) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design transients: out of memory");
+  for (k = 0; k < nsp && st == AUTOBAL_SUCCESS; k++) {
+    const double w = nsp > 1 ? o->omega_min + (o->omega_max - o->omega_min) * (double)k / (double)(nsp - 1)
+                             : o->omega_max;
+    st = design_ensemble(c, d, k == nsp - 1 ? o->omega_max : w, ttb, &nt, &nbal);
+  }
+  if (st == AUTOBAL_SUCCESS && nt > 0) {
+    qsort(ttb, nt, sizeof *ttb, cmp_double);
+    d->n_runs = nt;
+    d->n_balanced = nbal;
+    d->p_balance = (double)nbal / (double)nt;
+    d->ttb_worst = ttb[nt - 1];
+    d->ttb_median = nt % 2 ? ttb[nt / 2] : 0.5 * (ttb[nt / 2 - 1] + ttb[nt / 2]);
+    *runs += nt;
+  }
+  free(ttb);
+  return st;
+}
+
+/* The order of options.rank_by among designs that ran transients (see design.h). */
+static int cmp_key(double a, double b, int larger_first) {
+  if (a == b) return 0;
+  return (larger_first ? a > b : a < b) ? -1 : 1;
+}
+static int cmp_transient(const autobal_rotor_design *x, const autobal_rotor_design *y, int rank_by_key) {
+  int r;
+  if ((r = cmp_key(x->feasible, y->feasible, 1))) return r;
+  if (rank_by_key == AUTOBAL_DESIGN_RANK_P_BALANCE) {
+    if ((r = cmp_key(x->p_balance, y->p_balance, 1))) return r;
+    if ((r = cmp_key(x->ttb_worst, y->ttb_worst, 0))) return r;
+    if ((r = cmp_key(x->ttb_median, y->ttb_median, 0))) return r;
+  } else {
+    if ((r = cmp_key(x->ttb_worst, y->ttb_worst, 0))) return r;
+    if ((r = cmp_key(x->ttb_median, y->ttb_median, 0))) return r;
+    if ((r = cmp_key(x->p_balance, y->p_balance, 1))) return r;
+  }
+  return cmp_key(x->margin, y->margin, 1);
+}
+
+/* Stable insertion sort of the first n designs by cmp_transient. */
+static void rank_transients(autobal_rotor_design *d, size_t n, int key) {
+  size_t i, j;
+  for (i = 1; i < n; i++) {
+    autobal_rotor_design t = d[i];
+    for (j = i; j > 0 && cmp_transient(&t, &d[j - 1], key) < 0; j--) d[j] = d[j - 1];
+    d[j] = t;
+  }
+}
+
 /* ---- options --------------------------------------------------------------------------- */
 
 static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_design_options *in,
@@ -491,6 +651,23 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
   NEED(o->n_best >= 1 && o->n_best <= 1000, "options: n_best = %zu must be in [1, 1000]", o->n_best);
   NEED(o->n_starts <= 100, "options: n_starts = %zu must be in [0, 100]", o->n_starts);
   NEED(o->max_iter >= 1 && o->max_iter <= 10000, "options: max_iter = %zu must be in [1, 10000]", o->max_iter);
+  NEED(o->n_transient <= 1000, "options: n_transient = %zu must be in [0, 1000]", o->n_transient);
+  NEED(o->rank_by == AUTOBAL_DESIGN_RANK_MARGIN || o->rank_by == AUTOBAL_DESIGN_RANK_TIME ||
+           o->rank_by == AUTOBAL_DESIGN_RANK_P_BALANCE,
+       "options: rank_by = %d: allowed 0 (margin), 1 (time), 2 (p_balance)", o->rank_by);
+  NEED(o->rank_by == AUTOBAL_DESIGN_RANK_MARGIN || o->n_transient > 0,
+       "options: rank_by = %s needs transients: n_transient = 0 (allowed [1, 1000] with it)",
+       o->rank_by == AUTOBAL_DESIGN_RANK_TIME ? "time" : "p_balance");
+  NEED(o->n_start >= 1 && o->n_start <= 64, "options: n_start = %zu must be in [1, 64]", o->n_start);
+  NEED(o->n_transient_unbalances >= 1 && o->n_transient_unbalances <= 100,
+       "options: n_transient_unbalances = %zu must be in [1, 100]", o->n_transient_unbalances);
+  NEED(o->n_transient_speeds >= 1 && o->n_transient_speeds <= 100,
+       "options: n_transient_speeds = %zu must be in [1, 100]", o->n_transient_speeds);
+  NEED(o->t_end > 0.0 && o->t_end <= 1e6, "options: t_end = %g s must be in (0, 1e6]", o->t_end);
+  NEED(o->balance_tol > 0.0 && o->balance_tol < 1.0, "options: balance_tol = %g must be in (0, 1)", o->balance_tol);
+  NEED(o->balance_revs >= 0.0 && o->balance_revs <= 1e6, "options: balance_revs = %g must be in [0, 1e6]",
+       o->balance_revs);
+  NEED(o->threads >= 0 && o->threads <= 4096, "options: threads = %d must be in [0, 4096]", o->threads);
 #undef NEED
   if (o->mass_min == o->mass_max) o->n_mass = 1;
   if (o->radius_min == o->radius_max) o->n_radius = 1;
@@ -621,10 +798,11 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
       cand[i].feasible = cand[i].margin > o->margin;
       c->fraction = 0.9 + 0.1 * (double)S->n_designs / (double)o->n_best;
       if ((st = recheck(c, &cand[i])) != AUTOBAL_SUCCESS) break;
+      cand[i].p_balance = cand[i].ttb_median = cand[i].ttb_worst = NAN;
+      cand[i].n_runs = cand[i].n_balanced = 0;
       S->designs[S->n_designs++] = cand[i];
     }
   }
-  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
   if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
     /* the best design: the first that passes its re-check, else the first */
     size_t b = 0;
@@ -638,6 +816,18 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
       memmove(S->designs + 1, S->designs, b * sizeof *S->designs);
       S->designs[0] = t;
     }
+    /* 5. transients of the first n_transient designs; the ranking by rank_by among them */
+    {
+      const size_t nk = o->n_transient < S->n_designs ? o->n_transient : S->n_designs;
+      for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
+        c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
+        st = design_transients(c, &S->designs[i], &S->transients);
+      }
+      if (st == AUTOBAL_SUCCESS && o->rank_by != AUTOBAL_DESIGN_RANK_MARGIN) rank_transients(S->designs, nk, o->rank_by);
+    }
+  }
+  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
+  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
     S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
     if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   }
@@ -717,6 +907,25 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   autobal_rotor_stab_free(c.s);
   free(c.omega);
   return st;
+}
+
+int autobal_study_rotor_design_transients(const autobal_rotor_params *p, const autobal_study_rotor_design_options *opt,
+                                          autobal_rotor_design *design, autobal_error *err) {
+  autobal_study_rotor_design_options def = autobal_study_rotor_design_options_default();
+  dctx c;
+  size_t runs = 0;
+  int st;
+  autobal_error_clear(err);
+  if (!p || !design) return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: NULL argument");
+  memset(&c, 0, sizeof c);
+  c.err = err;
+  c.base = p;
+  if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: mass, radius, damping must be > 0, position finite");
+  design->p_balance = design->ttb_median = design->ttb_worst = NAN;
+  design->n_runs = design->n_balanced = 0;
+  return design_transients(&c, design, &runs);
 }
 
 /* ---- the config text ------------------------------------------------------------------- */
@@ -832,6 +1041,19 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   if (!st) st = autobal_archive_attr_int(a, g, "ratio_sets", (long)S->ratio_sets);
   if (!st) st = autobal_archive_attr_int(a, g, "margin_evaluations", (long)S->margin_evaluations);
   if (!st) st = autobal_archive_attr_int(a, g, "optimizer_evaluations", (long)S->optimizer_evaluations);
+  if (!st && opt->n_transient > 0) {
+    static const char *const rk[3] = {"margin", "time", "p_balance"};
+    st = autobal_archive_attr_string(a, g, "rank_by", rk[opt->rank_by]);
+    if (!st) st = autobal_archive_attr_int(a, g, "n_transient", (long)opt->n_transient);
+    if (!st) st = autobal_archive_attr_int(a, g, "transient_n_start", (long)opt->n_start);
+    if (!st) st = autobal_archive_attr_int(a, g, "transient_n_unbalances", (long)opt->n_transient_unbalances);
+    if (!st) st = autobal_archive_attr_int(a, g, "transient_n_speeds", has_profile(p) ? 0L : (long)opt->n_transient_speeds);
+    if (!st) st = autobal_archive_attr_double(a, g, "transient_t_end", opt->t_end, "s");
+    if (!st) st = autobal_archive_attr_double(a, g, "transient_balance_tol", opt->balance_tol, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "transient_balance_revs", opt->balance_revs, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "transients", (long)S->transients);
+    if (!st) st = autobal_archive_attr_string(a, g, "transient_method", "docs/rotor.md \"Design\": per design an ensemble grid over the start angles of both balls (ball 2 half a step on), the unbalances and the speeds (or the run-up profile from rest); balanced = attractor class balanced; time to balance = start of the stretch of transient_balance_revs revolutions with the residual unbalance below transient_balance_tol, inf when not balanced by transient_t_end");
+  }
   if (!st && nm == S->n_mass && !S->ranked) {
     st = autobal_archive_attr_int(a, g, "partial", 1);
     if (!st) st = autobal_archive_attr_string(a, g, "partial_what", "interrupted during the ranking: the map is complete, no ranked designs");
@@ -883,6 +1105,19 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     ICOL(feasible, "feasible", "1: robust_margin > margin_required and the re-check agrees")
     ICOL(recheck, "recheck", "1: the exact every-unbalance analysis finds it stable for every unbalance on the re-check grid with margins below -margin_required; 0: not; -1: not re-checked")
     ICOL(source, "source", "0: a grid point of the map, 1: the Nelder-Mead optimizer")
+    if (opt->n_transient > 0) {
+      COL(p_balance, "p_balance", "1", "share of the design's transients whose attractor is balanced (NaN: not run)")
+      COL(ttb_median, "time_to_balance_median", "s", "median time to balance over the design's transients (inf: more than half do not balance)")
+      COL(ttb_worst, "time_to_balance_worst", "s", "largest time to balance over the design's transients (inf: some member does not balance within transient_t_end)")
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].n_runs;
+        st = autobal_archive_var_int(a, gr, "transient_members", 1, rank1, iv, "1", "transients run for the design (0: none)");
+      }
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].n_balanced;
+        st = autobal_archive_var_int(a, gr, "transient_balanced", 1, rank1, iv, "1", "of them balanced (attractor class balanced)");
+      }
+    }
 #undef COL
 #undef ICOL
     free(v);

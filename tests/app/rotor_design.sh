@@ -58,7 +58,36 @@ open("full_best.ini", "w").write(g.attrs["best_config"])
 PY
 expect 0 "BALANCED MOTION: stable" "$AUTOBAL" rotor stability full_best.ini --set stability.critical_speeds=false
 
+# transients of the best designs (default n_transient = 5, here the 3 ranked): P(balance), median and
+# worst time to balance per design with units; rank_by = time orders the designs by their own numbers
+"$PY" - <<'PY' && ok "d.h5: transients of the ranked designs archived with units, P in [0, 1], median <= worst" || bad "d.h5 transients"
+import h5py, numpy as np
+g = h5py.File("d.h5", "r")["/rotor/design"]
+r = g["ranked"]
+assert g.attrs["rank_by"] == "margin" and g.attrs["n_transient"] == 5, dict(g.attrs)
+assert r["p_balance"].attrs["units"] == "1" and r["time_to_balance_worst"].attrs["units"] == "s"
+assert r["time_to_balance_median"].attrs["units"] == "s"
+n = r["transient_members"][:]
+assert (n == 3 * 3 * 2 * 2).all(), n                  # 3 x 3 starts x 2 unbalances x 2 speeds
+assert g.attrs["transients"] == n.sum()
+p = r["p_balance"][:]
+assert np.allclose(p, r["transient_balanced"][:] / n)
+med, worst = r["time_to_balance_median"][:], r["time_to_balance_worst"][:]
+assert (med <= worst).all() and (np.isinf(worst) == (p < 1)).all(), (med, worst, p)
+assert (np.diff(r["robust_margin"][:]) <= 0).all() or r["feasible"][0] == 1  # margin order (best feasible first)
+PY
+expect 0 "ranked by time" "$AUTOBAL" rotor design d.ini -o dt.h5 --set design.rank_by=time
+"$PY" - <<'PY' && ok "rank_by = time: ordered by (feasible, worst, median time to balance) as archived" || bad "dt.h5 order"
+import h5py, numpy as np
+r = h5py.File("dt.h5", "r")["/rotor/design/ranked"]
+key = list(zip(-r["feasible"][:], r["time_to_balance_worst"][:], r["time_to_balance_median"][:], -r["p_balance"][:]))
+assert key == sorted(key), key
+PY
+
 # (c) bad input
+expect_err 3 "rank_by" "$AUTOBAL" rotor design d.ini --set design.rank_by=speed
+expect_err 3 "n_transient" "$AUTOBAL" rotor design d.ini --set design.rank_by=p_balance --set design.n_transient=0
+expect_err 3 "n_start_angles" "$AUTOBAL" rotor design d.ini --set design.n_start_angles=0
 expect_err 3 "speed_max" "$AUTOBAL" rotor design d.ini --set design.speed_max=4000rpm -o bad1.h5
 [ ! -e bad1.h5 ] && ok "nothing written" || bad "bad1.h5 written"
 expect_err 3 "unbalance_max" "$AUTOBAL" rotor design d.ini --set "design.unbalance_max=100 g mm" -o bad2.h5
