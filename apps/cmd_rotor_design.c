@@ -78,6 +78,8 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
        n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
        n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
   const char *rank_by = "margin";
+  double balance_from = NAN;
+  int have_from = 0, profile;
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
   double t0, seconds;
   size_t i;
@@ -92,6 +94,8 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   cli_declare_section(ctx, "transient");
   cli_declare_section(ctx, "balance");
   cli_declare_section(ctx, "stability");
+  if ((rc = cli_rotor_drive_read(ctx, &p, storage))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "balance_from", "rad/s", NAN, &balance_from, &have_from))) goto done;
   if ((rc = cli_get_quantity(ctx, "design", "speed_min", "rad/s", NAN, &o.omega_min, &have_wmin))) goto done;
   if ((rc = cli_get_quantity(ctx, "design", "speed_max", "rad/s", NAN, &o.omega_max, &have_wmax))) goto done;
   if ((rc = cli_get_int(ctx, "design", "n_speed", n_speed, &n_speed, NULL))) goto done;
@@ -122,6 +126,68 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   if ((rc = cli_get_double(ctx, "design", "balance_revs", o.balance_revs, &o.balance_revs, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "design", "threads", threads, &threads, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  profile = p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
+  if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[drive]: mode = motor is not supported by `autobal rotor design`: its transients run a prescribed "
+                  "run-up profile (mode = ramp or table)");
+    goto done;
+  }
+  if (have_from && !profile) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: balance_from needs a run-up profile ([drive] mode = ramp or table); without one give "
+                  "speed_min and speed_max");
+    goto done;
+  }
+  if (profile) {
+    /* the rule: the operating range is [balance_from, the profile's top speed] */
+    double top = 0.0;
+    size_t k;
+    if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) top = fmax(fabs(p.drive.omega_a), fabs(p.drive.omega_b));
+    else
+      for (k = 0; k < p.drive.n_points; k++) top = fmax(top, fabs(p.drive.table_omega[k]));
+    if (have_wmax && fabs(o.omega_max - top) > 1e-9 * top) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: speed_max = %.6g rpm disagrees with the run-up profile's top speed %.6g rpm ([drive]): "
+                    "with a profile the operating range ends at its top speed; drop speed_max or make them equal",
+                    cli_rpm(o.omega_max), cli_rpm(top));
+      goto done;
+    }
+    if (have_from && have_wmin && o.omega_min != balance_from) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: speed_min = %.6g rpm and balance_from = %.6g rpm disagree: with a run-up profile give "
+                    "balance_from only (the lowest speed of the operating range)",
+                    cli_rpm(o.omega_min), cli_rpm(balance_from));
+      goto done;
+    }
+    if (!have_from && !have_wmin) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: balance_from is required with a run-up profile: the speed from which the balanced "
+                    "motion must be stable, in (0, %.6g rpm) (the profile's top speed), e.g. balance_from = 4500 rpm",
+                    cli_rpm(top));
+      goto done;
+    }
+    {
+      const double tend = p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? p.drive.t_b
+                          : p.drive.n_points                       ? p.drive.table_t[p.drive.n_points - 1]
+                                                                   : 0.0;
+      if (!isnan(o.t_end) && !(o.t_end > tend)) {
+        rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[design]: transient_t_end = %g s is out of range with the run-up profile: must be larger than "
+                      "its end, %g s ([drive])",
+                      o.t_end, tend);
+        goto done;
+      }
+    }
+    if (have_from) o.omega_min = balance_from;
+    o.omega_max = top;
+    have_wmin = have_wmax = 1;
+    if (!(o.omega_min > 0.0 && o.omega_min < top)) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: balance_from = %.6g rpm is out of range: allowed (0, %.6g rpm) (the profile's top speed)",
+                    cli_rpm(o.omega_min), cli_rpm(top));
+      goto done;
+    }
+  }
   if (!have_wmin || !have_wmax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
                   "[design]: speed_min and speed_max are required (the operating speed range, e.g. speed_min = "
@@ -159,7 +225,7 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                   rank_by);
     goto done;
   }
-  if (!(o.t_end > 0.0 && o.t_end <= 1e6)) {
+  if (!isnan(o.t_end) && !(o.t_end > 0.0 && o.t_end <= 1e6)) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: transient_t_end = %g s is out of range: allowed (0, 1e6]", o.t_end);
     goto done;
   }
@@ -265,6 +331,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     const size_t ncells = sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
     printf("rotor design: two identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
            o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
+    if (profile)
+      printf("  the speed range from the run-up profile ([drive] mode = %s): balance_from to its top speed\n",
+             p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? "ramp" : "table");
     printf("  every unbalance m0 r0 in [%.6g, %.6g] g mm, required margin %.6g 1/s (every root Re lambda < -margin)\n",
            o.unbalance_min * 1e6, o.unbalance_max * 1e6, o.margin);
     printf("  map: %zu ball masses [%.6g, %.6g] g x %zu dampings [%.6g, %.6g] kg/s x %zu positions x %zu radii "
@@ -292,7 +361,11 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
              o.n_transient < sum.n_designs ? o.n_transient : sum.n_designs, rank_by, o.n_start,
              o.unbalance_min < o.unbalance_max ? o.n_transient_unbalances : (size_t)1, sbuf,
              p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE ? "the run-up profile from rest" : " speeds",
-             o.t_end, o.balance_revs, o.balance_tol);
+             isnan(o.t_end) ? (profile ? (p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? p.drive.t_b
+                                                                                   : p.drive.table_t[p.drive.n_points - 1])
+                                       : 0.0) + 10.0
+                            : o.t_end,
+             o.balance_revs, o.balance_tol);
       printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
              "median ttb s", "worst ttb s");
       for (i = 0; i < sum.n_designs; i++) {

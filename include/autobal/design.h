@@ -16,9 +16,14 @@
  * (1/s; the slowest decay rate over the speed grid and every unbalance of the range), computed by
  * the exact test and bisection to about 1e-3 1/s.  Larger is better.
  *
+ * Run-up profile: when p->drive is a RAMP or TABLE drive, the transients run that profile from
+ * t = 0, and the operating speed range is [omega_min, the profile's top speed max |Omega|]:
+ * omega_max may be NaN (then the top speed) or must equal it (AUTOBAL_EINVAL otherwise); the
+ * stability analyses take constant speeds (the drive is dropped for them); the best config
+ * carries the profile ([drive]).  A MOTOR drive: AUTOBAL_EUNSUPPORTED.
+ *
  * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, three or more balls,
- * balls that differ, the full inertia model, anisotropic supports, a run-up profile (the speed
- * range only), gravity.
+ * balls that differ, the full inertia model, anisotropic supports, a motor drive, gravity.
  *
  * Units: SI inside (kg, m, kg/s, rad/s, 1/s, kg m).  Threads: none (one handle per call).  Errors
  * in err; the library never prints. */
@@ -66,7 +71,7 @@ typedef struct autobal_study_rotor_design_options {
   size_t n_start;                /* start angles per ball, [1, 64]                               (3) */
   size_t n_transient_unbalances; /* [1, 100] (1: unbalance_max)                                  (2) */
   size_t n_transient_speeds;     /* [1, 100] (1: omega_max); ignored with a run-up profile       (2) */
-  double t_end;                  /* s, each transient, (0, 1e6]                                 (10) */
+  double t_end;                  /* s, each transient, (0, 1e6]; NaN: 10 s after the profile's end (NaN) */
   double balance_tol;            /* residual unbalance of "balanced" (ensemble), (0, 1)       (0.01) */
   double balance_revs;           /* revolutions it must stay below, [0, 1e6]                    (50) */
   int threads;                   /* OpenMP threads of the ensembles, 0: the OpenMP default       (0) */

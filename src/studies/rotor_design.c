@@ -24,6 +24,25 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/* A run-up profile (RAMP or TABLE drive): the transients run it; its top speed is the end of the
+ * operating speed range; its end time t_b (a table's last time). */
+static int has_profile(const autobal_rotor_params *p) {
+  return p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
+}
+static double profile_top(const autobal_rotor_params *p) {
+  const autobal_rotor_drive *d = &p->drive;
+  double m = 0.0;
+  size_t k;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return fmax(fabs(d->omega_a), fabs(d->omega_b));
+  for (k = 0; k < d->n_points; k++) m = fmax(m, fabs(d->table_omega[k]));
+  return m;
+}
+static double profile_end(const autobal_rotor_params *p) {
+  const autobal_rotor_drive *d = &p->drive;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return d->t_b;
+  return d->n_points ? d->table_t[d->n_points - 1] : 0.0;
+}
+
 autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void) {
   autobal_study_rotor_design_options o;
   memset(&o, 0, sizeof o);
@@ -48,7 +67,7 @@ autobal_study_rotor_design_options autobal_study_rotor_design_options_default(vo
   o.n_start = 3;
   o.n_transient_unbalances = 2;
   o.n_transient_speeds = 2;
-  o.t_end = 10.0;
+  o.t_end = NAN;
   o.balance_tol = 0.01;
   o.balance_revs = 50.0;
   o.threads = 0;
@@ -403,6 +422,7 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   size_t k, nv = c->o.n_verify;
   double worst = -INFINITY;
   int st, ok;
+  memset(&q.drive, 0, sizeof q.drive); /* constant speeds */
   pl->d = d->position;
   pl->ball_mass = m;
   pl->ball_radius = r;
@@ -455,10 +475,6 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* A run-up profile (RAMP or TABLE drive) replaces the speed grid of the transients. */
-static int has_profile(const autobal_rotor_params *p) {
-  return p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
-}
 
 /* One ensemble of design d at constant speed w (ignored with a profile); times appended to ttb. */
 static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, double *ttb, size_t *nt,
@@ -614,6 +630,24 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
                              "enters the mass matrix)");
   if (!(pl->r0 > 0.0))
     return autobal_error_set(err, AUTOBAL_EINVAL, "[plane1] r0 = %g m must be > 0 (the unbalance is m0 r0)", pl->r0);
+  if (p->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT && !has_profile(p))
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[drive] mode: the design takes a prescribed run-up profile (mode = ramp or table), not a "
+                             "motor (the ensemble of its transients has no motor)");
+  if (isnan(o->t_end)) o->t_end = (has_profile(p) ? profile_end(p) : 0.0) + 10.0;
+  if (has_profile(p)) {
+    const double top = profile_top(p);
+    if (isnan(o->omega_max)) o->omega_max = top;
+    else if (fabs(o->omega_max - top) > 1e-9 * top)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "options: omega_max = %.10g rad/s disagrees with the run-up profile's top speed %.10g "
+                               "rad/s ([drive]): leave omega_max unset (NaN) or make them equal",
+                               o->omega_max, top);
+    if (!(o->t_end > profile_end(p)))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "options: t_end = %g s must be larger than the end of the run-up profile, %g s ([drive])",
+                               o->t_end, profile_end(p));
+  }
   if (isnan(o->mass_min)) o->mass_min = 0.5 * pl->ball_mass[0];
   if (isnan(o->mass_max)) o->mass_max = 2.0 * pl->ball_mass[0];
   if (isnan(o->radius_min)) o->radius_min = 0.5 * pl->ball_radius[0];
@@ -849,6 +883,7 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
   c.work = *p;
+  memset(&c.work.drive, 0, sizeof c.work.drive); /* the stability analyses: constant speeds */
   {
     const autobal_rotor_plane *pl = &p->plane[0];
     size_t i;
@@ -892,6 +927,7 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
   c.work = *p;
+  memset(&c.work.drive, 0, sizeof c.work.drive);
   c.bm[0] = c.bm[1] = p->plane[0].ball_mass[0];
   c.br[0] = c.br[1] = p->plane[0].ball_radius[0];
   c.bh[0] = c.bh[1] = p->plane[0].ball_damping[0];
@@ -1005,6 +1041,19 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   put(&b, "ball_psi = %.17g, %.17g\nball_rate = %.17g, %.17g\n", pl->ball_psi ? pl->ball_psi[0] : 0.0,
       pl->ball_psi ? pl->ball_psi[1] : 0.0, pl->ball_rate ? pl->ball_rate[0] : 0.0,
       pl->ball_rate ? pl->ball_rate[1] : 0.0);
+  if (has_profile(p)) {
+    const autobal_rotor_drive *dr = &p->drive;
+    if (dr->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+      put(&b, "\n[drive]\nmode = ramp\nomega_a = %.17g\nomega_b = %.17g\nt_a = %.17g\nt_b = %.17g\n", dr->omega_a,
+          dr->omega_b, dr->t_a, dr->t_b);
+    } else {
+      put(&b, "\n[drive]\nmode = table\ntable_t = ");
+      for (i = 0; i < dr->n_points; i++) put(&b, "%s%.17g", i ? ", " : "", dr->table_t[i]);
+      put(&b, "\ntable_omega = ");
+      for (i = 0; i < dr->n_points; i++) put(&b, "%s%.17g", i ? ", " : "", dr->table_omega[i]);
+      put(&b, "\n");
+    }
+  }
   if (b.oom) {
     free(b.p);
     return NULL;

@@ -84,6 +84,30 @@ key = list(zip(-r["feasible"][:], r["time_to_balance_worst"][:], r["time_to_bala
 assert key == sorted(key), key
 PY
 
+# a run-up profile ([drive] ramp 0 -> 8500 rpm in 4 s): the operating range is [balance_from, top speed],
+# the transients run the profile from rest (time to balance not before its end), the best config carries it
+{ printf '[drive]\nmode = ramp\nomega_a = 0\nomega_b = 8500 rpm\nt_a = 0 s\nt_b = 4 s\n'; grep -v '^speed_m' d.ini; printf 'balance_from = 4500 rpm\nn_transient = 2\n'; } > ru.ini
+expect 0 "run-up profile from rest" "$AUTOBAL" rotor design ru.ini -o ru.h5 --set design.config_out=rubest.ini
+"$PY" - <<'PY' && ok "run-up: speed range [balance_from, top speed], 18 members per design, time to balance after the ramp" || bad "ru.h5"
+import h5py, numpy as np
+g = h5py.File("ru.h5", "r")["/rotor/design"]
+r = g["ranked"]
+rpm = 2 * np.pi / 60
+assert abs(g.attrs["omega_min"] - 4500 * rpm) < 1e-9 and abs(g.attrs["omega_max"] - 8500 * rpm) < 1e-9, dict(g.attrs)
+assert g.attrs["transient_n_speeds"] == 0 and g.attrs["transient_t_end"] == 14.0
+n = r["transient_members"][:]
+assert (n[:2] == 3 * 3 * 2).all() and (n[2:] == 0).all(), n   # no speed axis: the profile
+t = r["time_to_balance_median"][:2]
+assert (t[np.isfinite(t)] >= 4.0).all(), t
+PY
+grep -q '^mode = ramp' rubest.ini && ok "the best config carries the run-up profile" || bad "no [drive] in rubest.ini"
+expect_err 3 "disagrees with the run-up profile" "$AUTOBAL" rotor design ru.ini --set design.speed_max=9000rpm
+expect_err 3 "balance_from" "$AUTOBAL" rotor design ru.ini --set design.speed_min=4000rpm
+expect_err 3 "balance_from needs a run-up profile" "$AUTOBAL" rotor design d.ini --set design.balance_from=4000rpm
+expect_err 3 "transient_t_end" "$AUTOBAL" rotor design ru.ini --set design.transient_t_end=3
+{ printf '[drive]\nmode = motor\nomega_0 = 1000\nJ = 0.05\nL_0 = 5\n'; cat d.ini; } > mo.ini
+expect_err 3 "mode = motor is not supported" "$AUTOBAL" rotor design mo.ini
+
 # (c) bad input
 expect_err 3 "rank_by" "$AUTOBAL" rotor design d.ini --set design.rank_by=speed
 expect_err 3 "n_transient" "$AUTOBAL" rotor design d.ini --set design.rank_by=p_balance --set design.n_transient=0
