@@ -497,11 +497,73 @@ static void test_transients(void) {
   autobal_study_rotor_design_summary_free(&S0);
 }
 
+static int same_designs(const autobal_rotor_design *a, const autobal_rotor_design *b, size_t n) {
+  size_t i;
+  int same = 1;
+  for (i = 0; i < n; i++)
+    same &= !memcmp(&a[i].mass, &b[i].mass, sizeof(double)) && !memcmp(&a[i].radius, &b[i].radius, sizeof(double)) &&
+            !memcmp(&a[i].damping, &b[i].damping, sizeof(double)) &&
+            !memcmp(&a[i].position, &b[i].position, sizeof(double)) &&
+            !memcmp(&a[i].margin, &b[i].margin, sizeof(double)) &&
+            !memcmp(&a[i].recheck_margin, &b[i].recheck_margin, sizeof(double)) && a[i].feasible == b[i].feasible &&
+            a[i].source == b[i].source && a[i].recheck == b[i].recheck;
+  return same;
+}
+
+/* OpenMP over the map cells and the candidates' margins: 1 and 2 threads give the same summary
+ * bit for bit (map, windows, counts, ranked designs); a 4-parameter search (the position free). */
+static void test_threads(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
+  autobal_study_rotor_design_summary S1, S2;
+  autobal_error err;
+  int st1, st2;
+  o.omega_min = 450.0;
+  o.omega_max = 900.0;
+  o.n_omega = 11;
+  o.unbalance_min = 0.0005;
+  o.unbalance_max = 0.004;
+  o.margin = 0.2;
+  o.n_mass = 3;
+  o.n_damping = 3;
+  o.n_radius = 5;
+  o.position_min = 0.05;
+  o.position_max = 0.15;
+  o.n_position = 3;
+  o.n_best = 4;
+  o.n_starts = 1;
+  o.max_iter = 20;
+  o.threads = 1;
+  st1 = autobal_study_rotor_design(&p, &o, NULL, &S1, &err);
+  o.threads = 2;
+  st2 = autobal_study_rotor_design(&p, &o, NULL, &S2, &err);
+  CHECK("threads: both searches ran", st1 == AUTOBAL_SUCCESS && st2 == AUTOBAL_SUCCESS);
+  if (st1 == AUTOBAL_SUCCESS && st2 == AUTOBAL_SUCCESS) {
+    const size_t nc = S1.n_mass * S1.n_damping * S1.n_position;
+    printf("  threads: %zu feasible, %zu exact tests, %zu verdicts, %zu designs\n", S1.n_feasible, S1.ratio_sets,
+           S1.margin_evaluations, S1.n_designs);
+    CHECK("threads: some feasible, some not", S1.n_feasible > 0 && S1.n_feasible < nc * S1.n_radius);
+    CHECK("threads: counts equal", S1.n_feasible == S2.n_feasible && S1.ratio_sets == S2.ratio_sets &&
+                                       S1.margin_evaluations == S2.margin_evaluations &&
+                                       S1.optimizer_evaluations == S2.optimizer_evaluations && S1.n_mass_done == S2.n_mass_done);
+    CHECK("threads: map bit for bit", !memcmp(S1.feasible, S2.feasible, nc * S1.n_radius * sizeof *S1.feasible) &&
+                                          !memcmp(S1.window_lo, S2.window_lo, nc * sizeof *S1.window_lo) &&
+                                          !memcmp(S1.window_hi, S2.window_hi, nc * sizeof *S1.window_hi));
+    CHECK("threads: ranked designs bit for bit",
+          S1.n_designs == S2.n_designs && S1.n_designs > 0 &&
+              same_designs(S1.designs, S2.designs, S1.n_designs) && S1.best_config && S2.best_config &&
+              !strcmp(S1.best_config, S2.best_config));
+  }
+  autobal_study_rotor_design_summary_free(&S1);
+  autobal_study_rotor_design_summary_free(&S2);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_ratio_set();
   test_search();
   test_errors();
   test_transients();
+  test_threads();
   return check_summary();
 }

@@ -20,6 +20,10 @@
 #include "autobal/study.h"
 #include "internal.h"
 
+#ifdef AUTOBAL_HAVE_OPENMP
+#include <omp.h>
+#endif
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -102,10 +106,27 @@ typedef struct dctx {
   double fraction;
   size_t ratio_sets, evaluations, nm_evals;
   int nm_status; /* a failure inside the optimizer's objective */
+  int *stop;     /* a worker's copy (OpenMP): set when the search stops; NULL in the caller's */
 } dctx;
+
+static int read_flag(const int *f) {
+  int v;
+#ifdef AUTOBAL_HAVE_OPENMP
+#pragma omp atomic read
+#endif
+  v = *f;
+  return v;
+}
+static void raise_flag(int *f) {
+#ifdef AUTOBAL_HAVE_OPENMP
+#pragma omp atomic write
+#endif
+  *f = 1;
+}
 
 static int cancel_hook(void *user) {
   dctx *c = (dctx *)user;
+  if (c->stop) return read_flag(c->stop);
   return c->o.progress && c->o.progress(c->fraction, c->o.progress_user) != 0;
 }
 
@@ -735,13 +756,188 @@ static int same_design(const autobal_rotor_design *a, const autobal_rotor_design
          fabs(a->position - b->position) <= 1e-6 * (fabs(b->position) + 1e-3);
 }
 
+/* One cell (i, j, k) of the map: its radius window and feasible row (n_feasible and the candidates
+ * are collected by map_collect, in cell order). */
+static int map_cell(dctx *c, autobal_study_rotor_design_summary *S, size_t cell) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
+               i = cell / (o->n_position * o->n_damping);
+  const double m = S->mass[i];
+  ivals T;
+  double wl, wh;
+  size_t q;
+  int st;
+  if ((st = cell_set(c, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) return st;
+  radius_windows(c, &T, m, &wl, &wh);
+  S->window_lo[cell] = wl;
+  S->window_hi[cell] = wh;
+  for (q = 0; q < o->n_radius; q++) {
+    const double r = S->radius[q], t_lo = o->unbalance_min / (m * r), t_hi = o->unbalance_max / (m * r);
+    size_t e;
+    int f = 0;
+    if (!(t_hi < 2.0)) f = -1;
+    else
+      for (e = 0; e < T.n; e++)
+        if (T.lo[e] < t_lo && t_hi < T.hi[e]) f = 1;
+    S->feasible[cell * o->n_radius + q] = f;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+static void map_collect(const dctx *c, autobal_study_rotor_design_summary *S, size_t cell, autobal_rotor_design *cand,
+                        size_t *ncand) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
+               i = cell / (o->n_position * o->n_damping);
+  const double wl = S->window_lo[cell], wh = S->window_hi[cell];
+  size_t q;
+  for (q = 0; q < o->n_radius; q++) S->n_feasible += S->feasible[cell * o->n_radius + q] == 1;
+  if (!isnan(wl)) {
+    autobal_rotor_design *d = &cand[(*ncand)++];
+    memset(d, 0, sizeof *d);
+    d->mass = S->mass[i];
+    d->damping = S->damping[j];
+    d->position = S->position[k];
+    d->radius = isfinite(wh) ? sqrt(wl * wh) : wl;
+    d->recheck = -1;
+  }
+}
+
+#ifdef AUTOBAL_HAVE_OPENMP
+static int nthreads(const autobal_study_rotor_design_options *o) {
+  return o->threads > 0 ? o->threads : omp_get_max_threads();
+}
+
+/* A worker's copy of the search context: its own handle, balls, error and counts; no progress
+ * callback (the caller's thread reports), stopped through *stop. */
+static void dctx_clone(const dctx *c, dctx *t, autobal_error *e, int *stop) {
+  *t = *c;
+  t->s = NULL;
+  t->s_d = NAN;
+  t->err = e;
+  autobal_error_clear(e);
+  t->ratio_sets = t->evaluations = t->nm_evals = 0;
+  t->o.progress = NULL;
+  t->stop = stop;
+  t->work.plane[0].ball_mass = t->bm;
+  t->work.plane[0].ball_radius = t->br;
+  t->work.plane[0].ball_damping = t->bh;
+  t->work.plane[0].ball_psi = t->bpsi;
+  t->work.plane[0].ball_rate = t->brate;
+}
+
+/* The first failure by index (deterministic whatever the threads), the counts summed. */
+typedef struct pfail {
+  long long idx;
+  int status;
+  char msg[AUTOBAL_ERRMSG_SIZE];
+} pfail;
+
+/* n jobs over the threads: job(t, k) on a worker's copy t; thread 0 reports progress
+ * (f0 + df * done / n) and stops everything when the caller asks. */
+typedef int (*pjob)(dctx *t, size_t k, void *user);
+static int run_parallel(dctx *c, size_t n, pjob job, void *user, double f0, double df, unsigned char *done,
+                        int *cancelled) {
+  int stop = 0, nth = nthreads(&c->o);
+  size_t ndone = 0;
+  pfail fail;
+  fail.idx = -1;
+  fail.status = AUTOBAL_SUCCESS;
+  fail.msg[0] = '\0';
+  *cancelled = 0;
+#pragma omp parallel num_threads(nth)
+  {
+    dctx t;
+    autobal_error e;
+    long long idx;
+    dctx_clone(c, &t, &e, &stop);
+#pragma omp for schedule(dynamic, 1)
+    for (idx = 0; idx < (long long)n; idx++) {
+      int st;
+      if (read_flag(&stop)) continue;
+      st = job(&t, (size_t)idx, user);
+      if (st != AUTOBAL_SUCCESS) {
+#pragma omp critical(autobal_design_fail)
+        {
+          if (fail.idx < 0 || idx < fail.idx) {
+            fail.idx = idx;
+            fail.status = st;
+            snprintf(fail.msg, sizeof fail.msg, "%s", e.message);
+          }
+        }
+        raise_flag(&stop);
+        continue;
+      }
+      if (done) done[idx] = 1;
+#pragma omp atomic
+      ndone++;
+      if (omp_get_thread_num() == 0 && c->o.progress) {
+        size_t nd;
+#pragma omp atomic read
+        nd = ndone;
+        if (c->o.progress(f0 + df * (double)nd / (double)n, c->o.progress_user)) {
+#pragma omp atomic write
+          *cancelled = 1;
+          raise_flag(&stop);
+        }
+      }
+    }
+#pragma omp critical(autobal_design_sum)
+    {
+      c->ratio_sets += t.ratio_sets;
+      c->evaluations += t.evaluations;
+    }
+    autobal_rotor_stab_free(t.s);
+  }
+  if (*cancelled) return AUTOBAL_ECANCELLED;
+  if (fail.status != AUTOBAL_SUCCESS) return autobal_error_set(c->err, fail.status, "%s", fail.msg);
+  return AUTOBAL_SUCCESS;
+}
+
+static int job_cell(dctx *t, size_t k, void *user) { return map_cell(t, (autobal_study_rotor_design_summary *)user, k); }
+
+/* The map over the threads, cell by cell; the rows of ball mass done in full (a prefix) count. */
+static int map_parallel(dctx *c, autobal_study_rotor_design_summary *S, autobal_rotor_design *cand, size_t *ncand) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t per = o->n_damping * o->n_position, ncell = o->n_mass * per;
+  unsigned char *done = calloc(ncell ? ncell : 1, 1);
+  size_t i, k;
+  int st, cancelled;
+  if (!done) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  st = run_parallel(c, ncell, job_cell, S, 0.0, 0.7, done, &cancelled);
+  for (i = 0; i < o->n_mass; i++) {
+    int full = 1;
+    for (k = 0; k < per; k++) full &= done[i * per + k];
+    if (!full) break;
+    for (k = 0; k < per; k++) map_collect(c, S, i * per + k, cand, ncand);
+    S->n_mass_done = i + 1;
+  }
+  free(done);
+  if (cancelled)
+    return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
+                             S->n_mass_done, o->n_mass);
+  return st;
+}
+
+static int job_margin(dctx *t, size_t k, void *user) {
+  autobal_rotor_design *cand = (autobal_rotor_design *)user;
+  return robust_margin(t, &cand[k], &cand[k].margin);
+}
+
+static int margins_parallel(dctx *c, autobal_rotor_design *cand, size_t ncand) {
+  int cancelled, st = run_parallel(c, ncand, job_margin, cand, 0.7, 0.1, NULL, &cancelled);
+  if (cancelled) return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (ranking)");
+  return st;
+}
+#endif
+
 /* ---- the study ------------------------------------------------------------------------- */
 
 static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   const autobal_study_rotor_design_options *o = &c->o;
   const size_t ncell = o->n_mass * o->n_damping * o->n_position;
   autobal_rotor_design *cand = NULL;
-  size_t ncand = 0, i, j, k, q;
+  size_t ncand = 0, i, j, k;
   int st = AUTOBAL_SUCCESS;
   S->n_mass = o->n_mass;
   S->n_damping = o->n_damping;
@@ -762,38 +958,18 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   }
   /* 1. the map, row by row of ball mass */
+#ifdef AUTOBAL_HAVE_OPENMP
+  if (nthreads(o) > 1) {
+    st = map_parallel(c, S, cand, &ncand);
+  } else
+#endif
   for (i = 0; i < o->n_mass && st == AUTOBAL_SUCCESS; i++) {
-    const double m = S->mass[i];
     c->fraction = 0.7 * (double)i / (double)o->n_mass;
     for (j = 0; j < o->n_damping && st == AUTOBAL_SUCCESS; j++)
       for (k = 0; k < o->n_position && st == AUTOBAL_SUCCESS; k++) {
         const size_t cell = (i * o->n_damping + j) * o->n_position + k;
-        ivals T;
-        double wl, wh;
-        if ((st = cell_set(c, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) break;
-        radius_windows(c, &T, m, &wl, &wh);
-        S->window_lo[cell] = wl;
-        S->window_hi[cell] = wh;
-        for (q = 0; q < o->n_radius; q++) {
-          const double r = S->radius[q], t_lo = o->unbalance_min / (m * r), t_hi = o->unbalance_max / (m * r);
-          size_t e;
-          int f = 0;
-          if (!(t_hi < 2.0)) f = -1;
-          else
-            for (e = 0; e < T.n; e++)
-              if (T.lo[e] < t_lo && t_hi < T.hi[e]) f = 1;
-          S->feasible[cell * o->n_radius + q] = f;
-          S->n_feasible += f == 1;
-        }
-        if (!isnan(wl)) {
-          autobal_rotor_design *d = &cand[ncand++];
-          memset(d, 0, sizeof *d);
-          d->mass = m;
-          d->damping = S->damping[j];
-          d->position = S->position[k];
-          d->radius = isfinite(wh) ? sqrt(wl * wh) : wl;
-          d->recheck = -1;
-        }
+        if ((st = map_cell(c, S, cell)) != AUTOBAL_SUCCESS) break;
+        map_collect(c, S, cell, cand, &ncand);
       }
     if (st == AUTOBAL_SUCCESS) S->n_mass_done = i + 1;
     if (st == AUTOBAL_SUCCESS && o->progress && o->progress(0.7 * (double)(i + 1) / (double)o->n_mass, o->progress_user))
@@ -805,6 +981,10 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
                       S->n_mass_done, o->n_mass);
   /* 2. the robust margin of every cell's design; 3. the optimizer from the best */
+#ifdef AUTOBAL_HAVE_OPENMP
+  if (st == AUTOBAL_SUCCESS && nthreads(o) > 1) st = margins_parallel(c, cand, ncand);
+  else
+#endif
   for (i = 0; i < ncand && st == AUTOBAL_SUCCESS; i++) {
     c->fraction = 0.7 + 0.1 * (double)i / (double)ncand;
     st = robust_margin(c, &cand[i], &cand[i].margin);
