@@ -886,6 +886,7 @@ static int run_parallel(dctx *c, size_t n, pjob job, void *user, double f0, doub
     {
       c->ratio_sets += t.ratio_sets;
       c->evaluations += t.evaluations;
+      c->nm_evals += t.nm_evals;
     }
     autobal_rotor_stab_free(t.s);
   }
@@ -922,6 +923,34 @@ static int map_parallel(dctx *c, autobal_study_rotor_design_summary *S, autobal_
 static int job_margin(dctx *t, size_t k, void *user) {
   autobal_rotor_design *cand = (autobal_rotor_design *)user;
   return robust_margin(t, &cand[k], &cand[k].margin);
+}
+
+typedef struct polish_job {
+  const autobal_rotor_design *start;
+  autobal_rotor_design *out;
+} polish_job;
+static int job_polish(dctx *t, size_t k, void *user) {
+  polish_job *pj = (polish_job *)user;
+  int st = polish(t, &pj->start[k], &pj->out[k]);
+  pj->out[k].recheck = -1;
+  return st;
+}
+/* The optimizer from the first n starts, over the threads; out[k] from start[k]. */
+static int polish_parallel(dctx *c, const autobal_rotor_design *start, size_t n, autobal_rotor_design *out) {
+  polish_job pj;
+  int cancelled, st;
+  pj.start = start;
+  pj.out = out;
+  st = run_parallel(c, n, job_polish, &pj, 0.8, 0.1, NULL, &cancelled);
+  if (cancelled) return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (optimizer)");
+  return st;
+}
+
+static int job_recheck(dctx *t, size_t k, void *user) { return recheck(t, &((autobal_rotor_design *)user)[k]); }
+static int recheck_parallel(dctx *c, autobal_rotor_design *d, size_t n) {
+  int cancelled, st = run_parallel(c, n, job_recheck, d, 0.9, 0.1, NULL, &cancelled);
+  if (cancelled) return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (re-check)");
+  return st;
 }
 
 static int margins_parallel(dctx *c, autobal_rotor_design *cand, size_t ncand) {
@@ -992,6 +1021,12 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   if (st == AUTOBAL_SUCCESS) {
     size_t n0 = ncand;
     qsort(cand, ncand, sizeof *cand, cmp_design);
+#ifdef AUTOBAL_HAVE_OPENMP
+    if (nthreads(o) > 1) {
+      st = polish_parallel(c, cand, o->n_starts < n0 ? o->n_starts : n0, cand + ncand);
+      if (st == AUTOBAL_SUCCESS) ncand += o->n_starts < n0 ? o->n_starts : n0;
+    } else
+#endif
     for (i = 0; i < o->n_starts && i < n0 && st == AUTOBAL_SUCCESS; i++) {
       autobal_rotor_design d;
       c->fraction = 0.8 + 0.1 * (double)i / (double)o->n_starts;
@@ -1005,6 +1040,22 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     qsort(cand, ncand, sizeof *cand, cmp_design);
     S->designs = malloc((ncand ? ncand : 1) * sizeof *S->designs);
     if (!S->designs) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+#ifdef AUTOBAL_HAVE_OPENMP
+    if (st == AUTOBAL_SUCCESS && nthreads(o) > 1) {
+      /* the distinct best n_best (as below), then their re-checks over the threads */
+      for (i = 0; i < ncand && S->n_designs < o->n_best; i++) {
+        int dup = 0;
+        for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
+        if (dup) continue;
+        cand[i].feasible = cand[i].margin > o->margin;
+        cand[i].p_balance = cand[i].ttb_median = cand[i].ttb_worst = NAN;
+        cand[i].n_runs = cand[i].n_balanced = 0;
+        S->designs[S->n_designs++] = cand[i];
+      }
+      st = recheck_parallel(c, S->designs, S->n_designs);
+      if (st != AUTOBAL_SUCCESS) S->n_designs = 0;
+    } else
+#endif
     for (i = 0; i < ncand && st == AUTOBAL_SUCCESS && S->n_designs < o->n_best; i++) {
       int dup = 0;
       for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
