@@ -275,6 +275,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                   a ? "the archive keeps what was computed (status incomplete)" : "nothing written (no -o)");
     if (a && sum.mass && sum.n_mass_done > 0 && autobal_study_rotor_design_write(a, &p, &o, &sum))
       fprintf(stderr, "autobal: error: writing the partial results failed: %s\n", autobal_archive_errmsg(a));
+    else if (a && !(sum.mass && sum.n_mass_done > 0) && autobal_study_write_rotor_params(a, &p, 0))
+      /* interrupted inside the first row of the map: the machine only */
+      fprintf(stderr, "autobal: error: writing the machine failed: %s\n", autobal_archive_errmsg(a));
     goto done;
   }
   if (st) {
@@ -376,9 +379,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       }
       printf("  %zu transients\n", sum.transients);
     }
-    printf("  %zu exact every-unbalance tests, %zu stability analyses (%.0f per second), %zu optimizer evaluations\n",
+    printf("  %zu exact every-unbalance tests, %zu stability analyses (%.0f per second%s), %zu optimizer evaluations\n",
            sum.ratio_sets, sum.margin_evaluations, seconds > 0 ? (double)sum.margin_evaluations / seconds : 0.0,
-           sum.optimizer_evaluations);
+           sum.transients > 0 ? " of the whole run, transients included" : "", sum.optimizer_evaluations);
     if (sum.best_config) {
       if (have_out) printf("best design as a config (written to %s):\n", config_out);
       else printf("best design as a config ([design] config_out = FILE writes it):\n");
