@@ -75,7 +75,11 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   const char *config_out = NULL;
   long n_speed = (long)o.n_omega, n_verify = 0, n_mass = (long)o.n_mass, n_radius = (long)o.n_radius,
        n_damping = (long)o.n_damping, n_position = (long)o.n_position, n_best = (long)o.n_best,
-       n_starts = (long)o.n_starts, max_iter = (long)o.max_iter;
+       n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
+       n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
+  const char *rank_by = "margin";
+  double balance_from = NAN;
+  int have_from = 0, profile;
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
   double t0, seconds;
   size_t i;
@@ -90,6 +94,8 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   cli_declare_section(ctx, "transient");
   cli_declare_section(ctx, "balance");
   cli_declare_section(ctx, "stability");
+  if ((rc = cli_rotor_drive_read(ctx, &p, storage))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "balance_from", "rad/s", NAN, &balance_from, &have_from))) goto done;
   if ((rc = cli_get_quantity(ctx, "design", "speed_min", "rad/s", NAN, &o.omega_min, &have_wmin))) goto done;
   if ((rc = cli_get_quantity(ctx, "design", "speed_max", "rad/s", NAN, &o.omega_max, &have_wmax))) goto done;
   if ((rc = cli_get_int(ctx, "design", "n_speed", n_speed, &n_speed, NULL))) goto done;
@@ -110,7 +116,78 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   if ((rc = cli_get_int(ctx, "design", "n_starts", n_starts, &n_starts, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "design", "max_iter", max_iter, &max_iter, NULL))) goto done;
   if ((rc = cli_get_string(ctx, "design", "config_out", NULL, &config_out, &have_out))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_transient", n_transient, &n_transient, NULL))) goto done;
+  if ((rc = cli_get_string(ctx, "design", "rank_by", rank_by, &rank_by, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_start_angles", n_start, &n_start, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_transient_unbalances", n_tunb, &n_tunb, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_transient_speeds", n_tspeed, &n_tspeed, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "transient_t_end", "s", o.t_end, &o.t_end, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "design", "balance_tol", o.balance_tol, &o.balance_tol, NULL))) goto done;
+  if ((rc = cli_get_double(ctx, "design", "balance_revs", o.balance_revs, &o.balance_revs, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "threads", threads, &threads, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  profile = p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
+  if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[drive]: mode = motor is not supported by `autobal rotor design`: its transients run a prescribed "
+                  "run-up profile (mode = ramp or table)");
+    goto done;
+  }
+  if (have_from && !profile) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: balance_from needs a run-up profile ([drive] mode = ramp or table); without one give "
+                  "speed_min and speed_max");
+    goto done;
+  }
+  if (profile) {
+    /* the rule: the operating range is [balance_from, the profile's top speed] */
+    double top = 0.0;
+    size_t k;
+    if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) top = fmax(fabs(p.drive.omega_a), fabs(p.drive.omega_b));
+    else
+      for (k = 0; k < p.drive.n_points; k++) top = fmax(top, fabs(p.drive.table_omega[k]));
+    if (have_wmax && fabs(o.omega_max - top) > 1e-9 * top) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: speed_max = %.6g rpm disagrees with the run-up profile's top speed %.6g rpm ([drive]): "
+                    "with a profile the operating range ends at its top speed; drop speed_max or make them equal",
+                    cli_rpm(o.omega_max), cli_rpm(top));
+      goto done;
+    }
+    if (have_from && have_wmin && o.omega_min != balance_from) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: speed_min = %.6g rpm and balance_from = %.6g rpm disagree: with a run-up profile give "
+                    "balance_from only (the lowest speed of the operating range)",
+                    cli_rpm(o.omega_min), cli_rpm(balance_from));
+      goto done;
+    }
+    if (!have_from && !have_wmin) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: balance_from is required with a run-up profile: the speed from which the balanced "
+                    "motion must be stable, in (0, %.6g rpm) (the profile's top speed), e.g. balance_from = 4500 rpm",
+                    cli_rpm(top));
+      goto done;
+    }
+    {
+      const double tend = p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? p.drive.t_b
+                          : p.drive.n_points                       ? p.drive.table_t[p.drive.n_points - 1]
+                                                                   : 0.0;
+      if (!isnan(o.t_end) && !(o.t_end > tend)) {
+        rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                      "[design]: transient_t_end = %g s is out of range with the run-up profile: must be larger than "
+                      "its end, %g s ([drive])",
+                      o.t_end, tend);
+        goto done;
+      }
+    }
+    if (have_from) o.omega_min = balance_from;
+    o.omega_max = top;
+    have_wmin = have_wmax = 1;
+    if (!(o.omega_min > 0.0 && o.omega_min < top)) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: balance_from = %.6g rpm is out of range: allowed (0, %.6g rpm) (the profile's top speed)",
+                    cli_rpm(o.omega_min), cli_rpm(top));
+      goto done;
+    }
+  }
   if (!have_wmin || !have_wmax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
                   "[design]: speed_min and speed_max are required (the operating speed range, e.g. speed_min = "
@@ -131,6 +208,40 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       (rc = need_count(ctx, "n_position", n_position, 1, 1000)) || (rc = need_count(ctx, "n_best", n_best, 1, 1000)) ||
       (rc = need_count(ctx, "n_starts", n_starts, 0, 100)) || (rc = need_count(ctx, "max_iter", max_iter, 1, 10000)))
     goto done;
+  if ((rc = need_count(ctx, "n_transient", n_transient, 0, 1000)) || (rc = need_count(ctx, "n_start_angles", n_start, 1, 64)) ||
+      (rc = need_count(ctx, "n_transient_unbalances", n_tunb, 1, 100)) ||
+      (rc = need_count(ctx, "n_transient_speeds", n_tspeed, 1, 100)) || (rc = need_count(ctx, "threads", threads, 0, 4096)))
+    goto done;
+  if (!strcmp(rank_by, "margin")) o.rank_by = AUTOBAL_DESIGN_RANK_MARGIN;
+  else if (!strcmp(rank_by, "time")) o.rank_by = AUTOBAL_DESIGN_RANK_TIME;
+  else if (!strcmp(rank_by, "p_balance")) o.rank_by = AUTOBAL_DESIGN_RANK_P_BALANCE;
+  else {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: rank_by = '%s' is not allowed: margin, time or p_balance", rank_by);
+    goto done;
+  }
+  if (o.rank_by != AUTOBAL_DESIGN_RANK_MARGIN && n_transient == 0) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: rank_by = %s needs the transients: n_transient = 0 is out of range with it, allowed [1, 1000]",
+                  rank_by);
+    goto done;
+  }
+  if (!isnan(o.t_end) && !(o.t_end > 0.0 && o.t_end <= 1e6)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: transient_t_end = %g s is out of range: allowed (0, 1e6]", o.t_end);
+    goto done;
+  }
+  if (!(o.balance_tol > 0.0 && o.balance_tol < 1.0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: balance_tol = %g is out of range: allowed (0, 1)", o.balance_tol);
+    goto done;
+  }
+  if (!(o.balance_revs >= 0.0 && o.balance_revs <= 1e6)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: balance_revs = %g is out of range: allowed [0, 1e6]", o.balance_revs);
+    goto done;
+  }
+  o.n_transient = (size_t)n_transient;
+  o.n_start = (size_t)n_start;
+  o.n_transient_unbalances = (size_t)n_tunb;
+  o.n_transient_speeds = (size_t)n_tspeed;
+  o.threads = (int)threads;
   if (n_verify == 1) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: n_verify = 1 is out of range: allowed 0 (default) or [2, 1000000]");
     goto done;
@@ -164,6 +275,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                   a ? "the archive keeps what was computed (status incomplete)" : "nothing written (no -o)");
     if (a && sum.mass && sum.n_mass_done > 0 && autobal_study_rotor_design_write(a, &p, &o, &sum))
       fprintf(stderr, "autobal: error: writing the partial results failed: %s\n", autobal_archive_errmsg(a));
+    else if (a && !(sum.mass && sum.n_mass_done > 0) && autobal_study_write_rotor_params(a, &p, 0))
+      /* interrupted inside the first row of the map: the machine only */
+      fprintf(stderr, "autobal: error: writing the machine failed: %s\n", autobal_archive_errmsg(a));
     goto done;
   }
   if (st) {
@@ -205,6 +319,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       cli_json_quantity(&j, "robust_margin", d->margin, "1/s");
       cli_json_bool(&j, "feasible", d->feasible);
       cli_json_int(&j, "recheck", d->recheck);
+      if (d->n_runs > 0) {
+        cli_json_quantity(&j, "p_balance", d->p_balance, "1");
+        cli_json_quantity(&j, "time_to_balance_median", d->ttb_median, "s");
+        cli_json_quantity(&j, "time_to_balance_worst", d->ttb_worst, "s");
+        cli_json_int(&j, "transient_members", (long)d->n_runs);
+      }
       cli_json_object_end(&j);
     }
     cli_json_array_end(&j);
@@ -214,6 +334,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     const size_t ncells = sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
     printf("rotor design: two identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
            o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
+    if (profile)
+      printf("  the speed range from the run-up profile ([drive] mode = %s): balance_from to its top speed\n",
+             p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? "ramp" : "table");
     printf("  every unbalance m0 r0 in [%.6g, %.6g] g mm, required margin %.6g 1/s (every root Re lambda < -margin)\n",
            o.unbalance_min * 1e6, o.unbalance_max * 1e6, o.margin);
     printf("  map: %zu ball masses [%.6g, %.6g] g x %zu dampings [%.6g, %.6g] kg/s x %zu positions x %zu radii "
@@ -231,9 +354,34 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
              d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "");
     }
     if (sum.n_designs == 0) printf("    none: no design in the bounds balances the range with the margin\n");
-    printf("  %zu exact every-unbalance tests, %zu stability analyses (%.0f per second), %zu optimizer evaluations\n",
+    if (sum.transients > 0) {
+      char sbuf[32] = "";
+      if (!(p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE))
+        snprintf(sbuf, sizeof sbuf, "%zu", o.n_transient_speeds);
+      printf("  transients of the first %zu designs (ranked by %s): %zu start angles per ball x %zu unbalances x %s%s,\n"
+             "  %g s each; balanced = attractor class balanced; time to balance = start of %g revolutions with the "
+             "residual unbalance below %g\n",
+             o.n_transient < sum.n_designs ? o.n_transient : sum.n_designs, rank_by, o.n_start,
+             o.unbalance_min < o.unbalance_max ? o.n_transient_unbalances : (size_t)1, sbuf,
+             p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE ? "the run-up profile from rest" : " speeds",
+             isnan(o.t_end) ? (profile ? (p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? p.drive.t_b
+                                                                                   : p.drive.table_t[p.drive.n_points - 1])
+                                       : 0.0) + 10.0
+                            : o.t_end,
+             o.balance_revs, o.balance_tol);
+      printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
+             "median ttb s", "worst ttb s");
+      for (i = 0; i < sum.n_designs; i++) {
+        const autobal_rotor_design *d = &sum.designs[i];
+        if (d->n_runs == 0) continue;
+        printf("    %4zu %10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, d->mass * 1e3, d->radius * 1e3,
+               d->damping, d->n_balanced, d->n_runs, d->ttb_median, d->ttb_worst);
+      }
+      printf("  %zu transients\n", sum.transients);
+    }
+    printf("  %zu exact every-unbalance tests, %zu stability analyses (%.0f per second%s), %zu optimizer evaluations\n",
            sum.ratio_sets, sum.margin_evaluations, seconds > 0 ? (double)sum.margin_evaluations / seconds : 0.0,
-           sum.optimizer_evaluations);
+           sum.transients > 0 ? " of the whole run, transients included" : "", sum.optimizer_evaluations);
     if (sum.best_config) {
       if (have_out) printf("best design as a config (written to %s):\n", config_out);
       else printf("best design as a config ([design] config_out = FILE writes it):\n");

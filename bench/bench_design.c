@@ -3,10 +3,13 @@
  * default machine (data/rotor_default.ini), speeds 4500..9000 rpm, every unbalance 500..4000 g mm,
  * required margin 0.2 1/s.  Prints the wall and CPU time, the counts of exact every-unbalance tests
  * and of single stability verdicts, and those per second.  Usage: bench_design [n_position]
- * (default 5; 1 fixes the position: a 3-parameter search).  Single-threaded. */
+ * (default 5; 1 fixes the position: a 3-parameter search).  The search runs twice in the same
+ * process: on 1 thread (the reference) and on 2 OpenMP threads (options.threads); the two results
+ * must agree bit for bit, and the wall-time ratio 1 thread / 2 threads is printed. */
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "autobal.h"
@@ -37,25 +40,54 @@ int main(int argc, char **argv) {
   o.damping_min = 0.01, o.damping_max = 1.0, o.n_damping = 8;
   o.position_min = 0.05, o.position_max = 0.15, o.n_position = argc > 1 ? (size_t)atoi(argv[1]) : 5;
   if (o.n_position == 1) o.position_min = o.position_max = p.plane[0].d;
-  t0 = wall();
-  c0 = (double)clock() / CLOCKS_PER_SEC;
-  st = autobal_study_rotor_design(&p, &o, NULL, &S, &err);
-  tw = wall() - t0;
-  tc = (double)clock() / CLOCKS_PER_SEC - c0;
-  if (st) {
-    fprintf(stderr, "bench_design: %s\n", err.message);
-    return 1;
+  {
+    autobal_study_rotor_design_summary S1;
+    double tw1, tc1;
+    size_t ncell;
+    int same;
+    o.threads = 1;
+    t0 = wall();
+    c0 = (double)clock() / CLOCKS_PER_SEC;
+    st = autobal_study_rotor_design(&p, &o, NULL, &S1, &err);
+    tw1 = wall() - t0;
+    tc1 = (double)clock() / CLOCKS_PER_SEC - c0;
+    if (st) {
+      fprintf(stderr, "bench_design: %s\n", err.message);
+      return 1;
+    }
+    o.threads = 2;
+    t0 = wall();
+    c0 = (double)clock() / CLOCKS_PER_SEC;
+    st = autobal_study_rotor_design(&p, &o, NULL, &S, &err);
+    tw = wall() - t0;
+    tc = (double)clock() / CLOCKS_PER_SEC - c0;
+    if (st) {
+      fprintf(stderr, "bench_design: %s\n", err.message);
+      return 1;
+    }
+    ncell = S.n_mass * S.n_damping * S.n_position;
+    same = S.n_designs == S1.n_designs && S.ratio_sets == S1.ratio_sets &&
+           S.margin_evaluations == S1.margin_evaluations && S.n_feasible == S1.n_feasible &&
+           !memcmp(S.feasible, S1.feasible, ncell * S.n_radius * sizeof *S.feasible) &&
+           !memcmp(S.window_lo, S1.window_lo, ncell * sizeof *S.window_lo) &&
+           !memcmp(S.designs, S1.designs, S.n_designs * sizeof *S.designs);
+    printf("design search, default machine, %s: %zu speeds in [4500, 9000] rpm, every m0 r0 in [500, 4000] g mm, "
+           "margin 0.2 1/s\n",
+           o.n_position > 1 ? "4 parameters (mass, radius, damping, position)" : "3 parameters (mass, radius, damping)",
+           o.n_omega);
+    printf("  map %zu x %zu x %zu (x %zu radii, exact windows): %zu feasible points\n", S.n_mass, S.n_damping,
+           S.n_position, S.n_radius, S.n_feasible);
+    printf("  1 thread:  wall %.2f s, CPU %.2f s\n", tw1, tc1);
+    printf("  2 threads: wall %.2f s, CPU %.2f s (all threads)\n", tw, tc);
+    printf("  speed-up (wall, 1 thread / 2 threads, same run): %.2f; results bit for bit equal: %s\n", tw1 / tw,
+           same ? "yes" : "NO");
+    printf("  exact every-unbalance tests: %zu (%.0f per CPU second)\n", S.ratio_sets, (double)S.ratio_sets / tc1);
+    printf("  single stability verdicts: %zu (%.0f per CPU second; %.0f per wall second on 1, %.0f on 2 threads)\n",
+           S.margin_evaluations, (double)S.margin_evaluations / tc1, (double)S.margin_evaluations / tw1,
+           (double)S.margin_evaluations / tw);
+    autobal_study_rotor_design_summary_free(&S1);
+    if (!same) return 1;
   }
-  printf("design search, default machine, %s: %zu speeds in [4500, 9000] rpm, every m0 r0 in [500, 4000] g mm, "
-         "margin 0.2 1/s\n",
-         o.n_position > 1 ? "4 parameters (mass, radius, damping, position)" : "3 parameters (mass, radius, damping)",
-         o.n_omega);
-  printf("  map %zu x %zu x %zu (x %zu radii, exact windows): %zu feasible points\n", S.n_mass, S.n_damping,
-         S.n_position, S.n_radius, S.n_feasible);
-  printf("  wall %.2f s, CPU %.2f s (one thread)\n", tw, tc);
-  printf("  exact every-unbalance tests: %zu (%.0f per CPU second)\n", S.ratio_sets, (double)S.ratio_sets / tc);
-  printf("  single stability verdicts: %zu (%.0f per CPU second, %.0f per wall second)\n", S.margin_evaluations,
-         (double)S.margin_evaluations / tc, (double)S.margin_evaluations / tw);
   printf("  optimizer evaluations: %zu\n", S.optimizer_evaluations);
   for (k = 0; k < S.n_designs && k < 3; k++)
     printf("  #%zu: m %.4g g, r %.4g mm, h %.4g kg/s, d %.4g mm: rho %.4g 1/s, re-check %s\n", k,

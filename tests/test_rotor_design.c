@@ -357,10 +357,213 @@ static void test_errors(void) {
   autobal_rotor_stab_free(s);
 }
 
+/* Transients of designs (options.n_transient): a design fixed by its bounds (one candidate).
+ * (a) unbalance_max = 7000 g mm with the default balls (t = 1.4): the exact single-unbalance
+ *     analysis finds the balanced motion unstable there (checked here), so no member started at that
+ *     unbalance can settle to it: P(balance) <= 1/2 (half the members have that unbalance);
+ * (b) a robust design (rho > 4 1/s by the exact test) balances from every start: P = 1, times finite;
+ * (c) a search with three designs run: rank_by = p_balance and time order them by their own numbers,
+ *     rank_by = margin leaves the ranking of n_transient = 0 unchanged. */
+static void one_design(autobal_rotor_params *p, autobal_study_rotor_design_options *o, double m, double r, double h) {
+  o->mass_min = o->mass_max = m;
+  o->radius_min = o->radius_max = r;
+  o->damping_min = o->damping_max = h;
+  o->n_starts = 0;
+  o->n_best = 1;
+  o->n_transient = 1;
+  (void)p;
+}
+
+static void test_transients(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default(), b;
+  autobal_study_rotor_design_summary S, S0;
+  autobal_error err;
+  size_t i;
+  int st;
+  o.omega_min = 450.0;
+  o.omega_max = 900.0;
+  o.n_omega = 11;
+  o.unbalance_min = 0.0005;
+  o.unbalance_max = 0.007;
+  o.margin = 0.0;
+  b = o;
+  one_design(&p, &b, 0.05, 0.1, 0.1);
+  {
+    autobal_rotor_params q = p;
+    autobal_rotor_stab *s;
+    double mg;
+    int v;
+    q.omega = 900.0;
+    q.plane[0].m0 = o.unbalance_max / q.plane[0].r0;
+    s = autobal_rotor_stab_alloc(&q, NULL, NULL);
+    st = autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_POLY, &mg, &v);
+    printf("  (a) exact margin at 900 rad/s, 7000 g mm: %g 1/s\n", mg);
+    CHECK("(a) the balanced motion is unstable at the corner", st == AUTOBAL_SUCCESS && mg > 0.0);
+    autobal_rotor_stab_free(s);
+  }
+  {
+    autobal_rotor_design d;
+    memset(&d, 0, sizeof d);
+    d.mass = 0.05;
+    d.radius = 0.1;
+    d.damping = 0.1;
+    d.position = p.plane[0].d;
+    st = autobal_study_rotor_design_margin(&p, &b, &d, &d.margin, &err);
+    CHECK_STATUS("(a) robust margin", st, AUTOBAL_SUCCESS);
+    st = autobal_study_rotor_design_transients(&p, &b, &d, &err);
+    CHECK_STATUS("(a) transients of one design", st, AUTOBAL_SUCCESS);
+    printf("  (a) rho %g, P %zu/%zu, median %g s, worst %g s\n", d.margin, d.n_balanced, d.n_runs, d.ttb_median,
+           d.ttb_worst);
+    CHECK("(a) infeasible by the exact analysis", d.margin < 0.0);
+    CHECK("(a) 3 x 3 starts x 2 unbalances x 2 speeds", d.n_runs == 36);
+    CHECK("(a) P(balance) <= 1/2", d.p_balance <= 0.5 && d.p_balance == (double)d.n_balanced / 36.0);
+    CHECK("(a) worst time infinite", isinf(d.ttb_worst));
+  }
+  b = o;
+  b.unbalance_max = 0.004;
+  one_design(&p, &b, 0.0758, 0.05, 0.88);
+  st = autobal_study_rotor_design(&p, &b, NULL, &S, &err);
+  CHECK_STATUS("(b) design with transients", st, AUTOBAL_SUCCESS);
+  if (st == AUTOBAL_SUCCESS && S.n_designs == 1) {
+    const autobal_rotor_design *d = &S.designs[0];
+    printf("  (b) rho %g, P %zu/%zu, median %g s, worst %g s\n", d->margin, d->n_balanced, d->n_runs, d->ttb_median,
+           d->ttb_worst);
+    CHECK("(b) robust by the exact analysis", d->feasible && d->margin > 1.0);
+    CHECK("(b) P(balance) = 1", d->n_runs == 36 && d->p_balance == 1.0);
+    CHECK("(b) times finite, 0 < median <= worst < t_end = 10 s",
+          d->ttb_median > 0.0 && d->ttb_median <= d->ttb_worst && d->ttb_worst < 10.0); /* t_end: 10 s by default without a profile */
+  } else CHECK("(b) one design", 0);
+  autobal_study_rotor_design_summary_free(&S);
+  /* (c) the ranking keys */
+  b = o;
+  b.unbalance_max = 0.004;
+  b.n_mass = 3;
+  b.n_damping = 3;
+  b.n_radius = 4;
+  b.n_best = 4;
+  b.n_starts = 0;
+  b.n_start = 2;
+  b.n_transient_speeds = 1;
+  st = autobal_study_rotor_design(&p, &b, NULL, &S0, &err);
+  CHECK_STATUS("(c) search without transients", st, AUTOBAL_SUCCESS);
+  b.n_transient = 3;
+  st = autobal_study_rotor_design(&p, &b, NULL, &S, &err);
+  CHECK_STATUS("(c) rank_by margin with transients", st, AUTOBAL_SUCCESS);
+  if (st == AUTOBAL_SUCCESS && S.n_designs == S0.n_designs && S.n_designs >= 3) {
+    int same = 1;
+    for (i = 0; i < S.n_designs; i++)
+      same &= S.designs[i].mass == S0.designs[i].mass && S.designs[i].radius == S0.designs[i].radius &&
+              S.designs[i].damping == S0.designs[i].damping && S.designs[i].margin == S0.designs[i].margin;
+    CHECK("(c) rank_by = margin: the ranking of n_transient = 0, bit for bit", same);
+    CHECK("(c) the first three ran, the fourth not",
+          S.designs[2].n_runs == 8 && (S.n_designs < 4 || (S.designs[3].n_runs == 0 && isnan(S.designs[3].p_balance))));
+  } else CHECK("(c) same designs", 0);
+  autobal_study_rotor_design_summary_free(&S);
+  {
+    int key;
+    for (key = AUTOBAL_DESIGN_RANK_TIME; key <= AUTOBAL_DESIGN_RANK_P_BALANCE; key++) {
+      int ordered = 1;
+      b.rank_by = key;
+      st = autobal_study_rotor_design(&p, &b, NULL, &S, &err);
+      CHECK_STATUS("(c) rank_by time / p_balance", st, AUTOBAL_SUCCESS);
+      for (i = 0; st == AUTOBAL_SUCCESS && i + 1 < 3 && i + 1 < S.n_designs; i++) {
+        const autobal_rotor_design *x = &S.designs[i], *y = &S.designs[i + 1];
+        printf("  rank_by %d: #%zu P %g worst %g median %g rho %g\n", key, i, x->p_balance, x->ttb_worst, x->ttb_median,
+               x->margin);
+        if (x->feasible != y->feasible) ordered &= x->feasible > y->feasible;
+        else if (key == AUTOBAL_DESIGN_RANK_P_BALANCE)
+          ordered &= x->p_balance > y->p_balance || (x->p_balance == y->p_balance && x->ttb_worst <= y->ttb_worst);
+        else
+          ordered &= x->ttb_worst < y->ttb_worst || (x->ttb_worst == y->ttb_worst && x->ttb_median <= y->ttb_median);
+      }
+      CHECK("(c) ordered by the stated key", ordered);
+      /* the same three designs as by margin, only reordered */
+      if (st == AUTOBAL_SUCCESS) {
+        size_t k, found = 0;
+        for (i = 0; i < 3; i++)
+          for (k = 0; k < 3; k++) found += S.designs[i].mass == S0.designs[k].mass && S.designs[i].radius == S0.designs[k].radius &&
+                                         S.designs[i].damping == S0.designs[k].damping;
+        CHECK("(c) the same three designs, reordered", found == 3);
+        {
+          char needle[128];
+          snprintf(needle, sizeof needle, "ball_mass = %.17g, %.17g", S.designs[0].mass, S.designs[0].mass);
+          CHECK("(c) best config is the first design's", S.best_config && strstr(S.best_config, needle));
+        }
+      }
+      autobal_study_rotor_design_summary_free(&S);
+    }
+  }
+  autobal_study_rotor_design_summary_free(&S0);
+}
+
+static int same_designs(const autobal_rotor_design *a, const autobal_rotor_design *b, size_t n) {
+  size_t i;
+  int same = 1;
+  for (i = 0; i < n; i++)
+    same &= !memcmp(&a[i].mass, &b[i].mass, sizeof(double)) && !memcmp(&a[i].radius, &b[i].radius, sizeof(double)) &&
+            !memcmp(&a[i].damping, &b[i].damping, sizeof(double)) &&
+            !memcmp(&a[i].position, &b[i].position, sizeof(double)) &&
+            !memcmp(&a[i].margin, &b[i].margin, sizeof(double)) &&
+            !memcmp(&a[i].recheck_margin, &b[i].recheck_margin, sizeof(double)) && a[i].feasible == b[i].feasible &&
+            a[i].source == b[i].source && a[i].recheck == b[i].recheck;
+  return same;
+}
+
+/* OpenMP over the map cells, the candidates' margins, the optimizer's starts and the re-checks: 1 and 2 threads give the same summary
+ * bit for bit (map, windows, counts, ranked designs); a 4-parameter search (the position free). */
+static void test_threads(void) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
+  autobal_study_rotor_design_summary S1, S2;
+  autobal_error err;
+  int st1, st2;
+  o.omega_min = 450.0;
+  o.omega_max = 900.0;
+  o.n_omega = 11;
+  o.unbalance_min = 0.0005;
+  o.unbalance_max = 0.004;
+  o.margin = 0.2;
+  o.n_mass = 3;
+  o.n_damping = 3;
+  o.n_radius = 5;
+  o.position_min = 0.05;
+  o.position_max = 0.15;
+  o.n_position = 3;
+  o.n_best = 4;
+  o.n_starts = 3;
+  o.max_iter = 20;
+  o.threads = 1;
+  st1 = autobal_study_rotor_design(&p, &o, NULL, &S1, &err);
+  o.threads = 2;
+  st2 = autobal_study_rotor_design(&p, &o, NULL, &S2, &err);
+  CHECK("threads: both searches ran", st1 == AUTOBAL_SUCCESS && st2 == AUTOBAL_SUCCESS);
+  if (st1 == AUTOBAL_SUCCESS && st2 == AUTOBAL_SUCCESS) {
+    const size_t nc = S1.n_mass * S1.n_damping * S1.n_position;
+    printf("  threads: %zu feasible, %zu exact tests, %zu verdicts, %zu designs\n", S1.n_feasible, S1.ratio_sets,
+           S1.margin_evaluations, S1.n_designs);
+    CHECK("threads: some feasible, some not", S1.n_feasible > 0 && S1.n_feasible < nc * S1.n_radius);
+    CHECK("threads: counts equal", S1.n_feasible == S2.n_feasible && S1.ratio_sets == S2.ratio_sets &&
+                                       S1.margin_evaluations == S2.margin_evaluations &&
+                                       S1.optimizer_evaluations == S2.optimizer_evaluations && S1.n_mass_done == S2.n_mass_done);
+    CHECK("threads: map bit for bit", !memcmp(S1.feasible, S2.feasible, nc * S1.n_radius * sizeof *S1.feasible) &&
+                                          !memcmp(S1.window_lo, S2.window_lo, nc * sizeof *S1.window_lo) &&
+                                          !memcmp(S1.window_hi, S2.window_hi, nc * sizeof *S1.window_hi));
+    CHECK("threads: ranked designs bit for bit",
+          S1.n_designs == S2.n_designs && S1.n_designs > 0 &&
+              same_designs(S1.designs, S2.designs, S1.n_designs) && S1.best_config && S2.best_config &&
+              !strcmp(S1.best_config, S2.best_config));
+  }
+  autobal_study_rotor_design_summary_free(&S1);
+  autobal_study_rotor_design_summary_free(&S2);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_ratio_set();
   test_search();
   test_errors();
+  test_transients();
+  test_threads();
   return check_summary();
 }

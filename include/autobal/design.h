@@ -16,9 +16,14 @@
  * (1/s; the slowest decay rate over the speed grid and every unbalance of the range), computed by
  * the exact test and bisection to about 1e-3 1/s.  Larger is better.
  *
+ * Run-up profile: when p->drive is a RAMP or TABLE drive, the transients run that profile from
+ * t = 0, and the operating speed range is [omega_min, the profile's top speed max |Omega|]:
+ * omega_max may be NaN (then the top speed) or must equal it (AUTOBAL_EINVAL otherwise); the
+ * stability analyses take constant speeds (the drive is dropped for them); the best config
+ * carries the profile ([drive]).  A MOTOR drive: AUTOBAL_EUNSUPPORTED.
+ *
  * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, three or more balls,
- * balls that differ, the full inertia model, anisotropic supports, a run-up profile (the speed
- * range only), gravity.
+ * balls that differ, the full inertia model, anisotropic supports, a motor drive, gravity.
  *
  * Units: SI inside (kg, m, kg/s, rad/s, 1/s, kg m).  Threads: none (one handle per call).  Errors
  * in err; the library never prints. */
@@ -54,11 +59,34 @@ typedef struct autobal_study_rotor_design_options {
   size_t n_best;                 /* ranked designs reported, [1, 1000]                        (10) */
   size_t n_starts;               /* optimizer starts (best grid designs), [0, 100]             (3) */
   size_t max_iter;               /* optimizer iterations per start, [1, 10000]                (80) */
+  /* Transients of the best designs (docs/rotor.md "Design", "Ranking by transients"): for each of
+   * the first n_transient ranked designs an ensemble (autobal_ensemble_rotor_member, grid) over the
+   * start angles of the two balls (n_start each, ball 2 offset by half a step so that no member
+   * starts with the balls together), the unbalances (n_transient_unbalances, linear from
+   * unbalance_min to unbalance_max) and the speeds (n_transient_speeds, linear from omega_min to
+   * omega_max; with a run-up profile (p->drive RAMP or TABLE) the profile from rest instead).
+   * Each design gets P(balance), the median and the worst time to balance (autobal_rotor_design). */
+  size_t n_transient;            /* designs run, [0, 1000]; 0: none (the fields stay NaN)     (0) */
+  int rank_by;                   /* enum autobal_design_rank                  (AUTOBAL_DESIGN_RANK_MARGIN) */
+  size_t n_start;                /* start angles per ball, [1, 64]                               (3) */
+  size_t n_transient_unbalances; /* [1, 100] (1: unbalance_max)                                  (2) */
+  size_t n_transient_speeds;     /* [1, 100] (1: omega_max); ignored with a run-up profile       (2) */
+  double t_end;                  /* s, each transient, (0, 1e6]; NaN: 10 s after the profile's end (NaN) */
+  double balance_tol;            /* residual unbalance of "balanced" (ensemble), (0, 1)       (0.01) */
+  double balance_revs;           /* revolutions it must stay below, [0, 1e6]                    (50) */
+  int threads;                   /* OpenMP threads of the ensembles, 0: the OpenMP default       (0) */
   autobal_study_progress_fn progress; /* fraction done; non-zero: cancel                  (NULL) */
   void *progress_user;                                                              /* (NULL) */
 } autobal_study_rotor_design_options;
 
 AUTOBAL_API autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void);
+
+/* The ranking key (options.rank_by).  MARGIN: the robust margin rho, larger first.  P_BALANCE:
+ * among the first n_transient designs, feasible ones first, then P(balance) larger first, then
+ * the worst, then the median time to balance shorter first, then rho.  TIME: feasible first, then
+ * the worst time to balance, then the median, shorter first, then P(balance), then rho.  The
+ * designs after the first n_transient keep their order by rho. */
+enum autobal_design_rank { AUTOBAL_DESIGN_RANK_MARGIN = 0, AUTOBAL_DESIGN_RANK_TIME = 1, AUTOBAL_DESIGN_RANK_P_BALANCE = 2 };
 
 /* One design and its figures. */
 typedef struct autobal_rotor_design {
@@ -75,6 +103,15 @@ typedef struct autobal_rotor_design {
                        is set to 0 too); -1: not re-checked */
   double recheck_margin; /* 1/s, -(the largest margin the re-check evaluated): a sampled upper
                             estimate of rho on the finer speed grid */
+  /* Transients (options.n_transient; NaN and 0 when not run).  A member's time to balance is the
+   * ensemble's: the start of the stretch of balance_revs revolutions over which the residual
+   * unbalance stays below balance_tol (not before the end of a run-up profile); +inf for a member
+   * that does not balance within t_end.  A member counts as balanced when its attractor class is
+   * AUTOBAL_ATTRACTOR_BALANCED. */
+  double p_balance;     /* 1, balanced members / members */
+  double ttb_median;    /* s, median time to balance over all members (+inf counts) */
+  double ttb_worst;     /* s, largest time to balance (+inf when some member does not balance) */
+  size_t n_runs, n_balanced; /* members run, members balanced */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */
@@ -95,6 +132,7 @@ typedef struct autobal_study_rotor_design_summary {
   size_t ratio_sets;  /* exact every-unbalance tests (autobal_rotor_stab_margin_ratio_set) */
   size_t margin_evaluations; /* single-unbalance stability analyses (POLY) of the search and re-check */
   size_t optimizer_evaluations; /* objective evaluations of the simplex optimizer */
+  size_t transients;  /* transient members run in all (options.n_transient) */
   int ranked;         /* 1: the ranking and the re-checks finished (0 after a cancellation: the
                          archive is then marked partial) */
 } autobal_study_rotor_design_summary;
@@ -129,6 +167,13 @@ AUTOBAL_API int autobal_study_rotor_design_margin(const autobal_rotor_params *p,
                                                   const autobal_study_rotor_design_options *opt,
                                                   const autobal_rotor_design *design, double *rho,
                                                   autobal_error *err);
+
+/* The transients of one design (the ensembles of options.n_transient, see the options): fills
+ * design->p_balance, ttb_median, ttb_worst, n_runs, n_balanced.  Needs the options' speed and
+ * unbalance ranges (not n_transient).  Statuses as autobal_study_rotor_design. */
+AUTOBAL_API int autobal_study_rotor_design_transients(const autobal_rotor_params *p,
+                                                      const autobal_study_rotor_design_options *opt,
+                                                      autobal_rotor_design *design, autobal_error *err);
 
 /* The machine p with the design's balls (both balls m, r, h; plane 1 at d) as INI text (malloc'ed;
  * free()).  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */

@@ -13,10 +13,39 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "autobal/attractor.h"
 #include "autobal/design.h"
+#include "autobal/ensemble.h"
 #include "autobal/rotor_stability.h"
 #include "autobal/study.h"
 #include "internal.h"
+
+#ifdef AUTOBAL_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* A run-up profile (RAMP or TABLE drive): the transients run it; its top speed is the end of the
+ * operating speed range; its end time t_b (a table's last time). */
+static int has_profile(const autobal_rotor_params *p) {
+  return p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p->drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
+}
+static double profile_top(const autobal_rotor_params *p) {
+  const autobal_rotor_drive *d = &p->drive;
+  double m = 0.0;
+  size_t k;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return fmax(fabs(d->omega_a), fabs(d->omega_b));
+  for (k = 0; k < d->n_points; k++) m = fmax(m, fabs(d->table_omega[k]));
+  return m;
+}
+static double profile_end(const autobal_rotor_params *p) {
+  const autobal_rotor_drive *d = &p->drive;
+  if (d->mode == AUTOBAL_ROTOR_DRIVE_RAMP) return d->t_b;
+  return d->n_points ? d->table_t[d->n_points - 1] : 0.0;
+}
 
 autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void) {
   autobal_study_rotor_design_options o;
@@ -37,6 +66,15 @@ autobal_study_rotor_design_options autobal_study_rotor_design_options_default(vo
   o.n_best = 10;
   o.n_starts = 3;
   o.max_iter = 80;
+  o.n_transient = 0;
+  o.rank_by = AUTOBAL_DESIGN_RANK_MARGIN;
+  o.n_start = 3;
+  o.n_transient_unbalances = 2;
+  o.n_transient_speeds = 2;
+  o.t_end = NAN;
+  o.balance_tol = 0.01;
+  o.balance_revs = 50.0;
+  o.threads = 0;
   return o;
 }
 
@@ -68,10 +106,27 @@ typedef struct dctx {
   double fraction;
   size_t ratio_sets, evaluations, nm_evals;
   int nm_status; /* a failure inside the optimizer's objective */
+  int *stop;     /* a worker's copy (OpenMP): set when the search stops; NULL in the caller's */
 } dctx;
+
+static int read_flag(const int *f) {
+  int v;
+#ifdef AUTOBAL_HAVE_OPENMP
+#pragma omp atomic read
+#endif
+  v = *f;
+  return v;
+}
+static void raise_flag(int *f) {
+#ifdef AUTOBAL_HAVE_OPENMP
+#pragma omp atomic write
+#endif
+  *f = 1;
+}
 
 static int cancel_hook(void *user) {
   dctx *c = (dctx *)user;
+  if (c->stop) return read_flag(c->stop);
   return c->o.progress && c->o.progress(c->fraction, c->o.progress_user) != 0;
 }
 
@@ -388,6 +443,7 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   size_t k, nv = c->o.n_verify;
   double worst = -INFINITY;
   int st, ok;
+  memset(&q.drive, 0, sizeof q.drive); /* constant speeds */
   pl->d = d->position;
   pl->ball_mass = m;
   pl->ball_radius = r;
@@ -431,6 +487,147 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   return AUTOBAL_SUCCESS;
 }
 
+/* ---- transients of a design (options.n_transient) -------------------------------------- */
+
+static int ens_cancel(void *user) { return cancel_hook(user); }
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+
+/* One ensemble of design d at constant speed w (ignored with a profile); times appended to ttb. */
+static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, double *ttb, size_t *nt,
+                           size_t *nbal) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  autobal_rotor_params q = *c->base;
+  autobal_rotor_plane *pl = &q.plane[0];
+  double m[2] = {d->mass, d->mass}, r[2] = {d->radius, d->radius}, h[2] = {d->damping, d->damping};
+  double psi[2] = {0.0, 0.0}, rate[2] = {0.0, 0.0};
+  const double n = (double)o->n_start, step = 2.0 * M_PI / n;
+  autobal_ensemble_member mem;
+  autobal_ensemble_settings es = autobal_ensemble_settings_default();
+  autobal_ensemble *e;
+  size_t k, ai, nm;
+  int st;
+  pl->d = d->position;
+  pl->ball_mass = m;
+  pl->ball_radius = r;
+  pl->ball_damping = h;
+  pl->ball_psi = psi;
+  pl->ball_rate = rate;
+  if (!has_profile(&q)) {
+    q.drive.mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
+    q.omega = w;
+  }
+  if ((st = autobal_ensemble_rotor_member(&q, AUTOBAL_ROTOR_FIXED, "fixed", &mem, c->err)) != AUTOBAL_SUCCESS)
+    return st;
+  es.random = 0;
+  es.endpoint = 1;
+  es.n_params = 3;
+  /* ball 1 at 0, step, ..., ball 2 half a step further on: no member starts with the balls together */
+  es.param[0].name = "psi_1";
+  es.param[0].min = 0.0;
+  es.param[0].max = step * (n - 1.0);
+  es.param[0].n = o->n_start;
+  es.param[1].name = "psi_2";
+  es.param[1].min = 0.5 * step;
+  es.param[1].max = 0.5 * step + step * (n - 1.0);
+  es.param[1].n = o->n_start;
+  es.param[2].name = "m0";
+  es.param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / pl->r0;
+  es.param[2].max = o->unbalance_max / pl->r0;
+  es.param[2].n = o->unbalance_min < o->unbalance_max ? o->n_transient_unbalances : 1;
+  es.t_end = o->t_end;
+  es.balance_tol = o->balance_tol;
+  es.use_dwell = 0;
+  es.balance_revs = o->balance_revs;
+  es.stop_at_balance = 1;
+  es.threads = o->threads;
+  e = autobal_ensemble_alloc(&mem, &es, c->err);
+  if (!e) {
+    autobal_ensemble_member_release(&mem);
+    return c->err ? c->err->status : AUTOBAL_EINVAL;
+  }
+  autobal_ensemble_set_cancel(e, ens_cancel, c);
+  st = autobal_ensemble_run(e);
+  if (st != AUTOBAL_SUCCESS) {
+    st = autobal_error_set(c->err, st, "design transients: %s", autobal_ensemble_errmsg(e));
+  } else {
+    nm = autobal_ensemble_n_members(e);
+    ai = autobal_ensemble_attractor_index(e);
+    for (k = 0; k < nm; k++) {
+      const double *sm = autobal_ensemble_summary(e, k);
+      const int bal = sm && ai != (size_t)-1 && sm[AUTOBAL_ENSEMBLE_STATUS] >= 0.0 &&
+                      (int)sm[ai] == AUTOBAL_ATTRACTOR_BALANCED;
+      const double t = sm ? sm[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] : NAN;
+      ttb[(*nt)++] = bal && isfinite(t) ? t : INFINITY;
+      *nbal += (size_t)bal;
+    }
+  }
+  autobal_ensemble_free(e);
+  autobal_ensemble_member_release(&mem);
+  return st;
+}
+
+/* P(balance), median and worst time to balance of design d (see design.h). */
+static int design_transients(dctx *c, autobal_rotor_design *d, size_t *runs) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t nsp = has_profile(c->base) ? 1 : o->n_transient_speeds;
+  const size_t per = o->n_start * o->n_start * o->n_transient_unbalances;
+  double *ttb = malloc(nsp * per * sizeof *ttb);
+  size_t nt = 0, nbal = 0, k;
+  int st = AUTOBAL_SUCCESS;
+  if (!ttb) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design transients: out of memory");
+  for (k = 0; k < nsp && st == AUTOBAL_SUCCESS; k++) {
+    const double w = nsp > 1 ? o->omega_min + (o->omega_max - o->omega_min) * (double)k / (double)(nsp - 1)
+                             : o->omega_max;
+    st = design_ensemble(c, d, k == nsp - 1 ? o->omega_max : w, ttb, &nt, &nbal);
+  }
+  if (st == AUTOBAL_SUCCESS && nt > 0) {
+    qsort(ttb, nt, sizeof *ttb, cmp_double);
+    d->n_runs = nt;
+    d->n_balanced = nbal;
+    d->p_balance = (double)nbal / (double)nt;
+    d->ttb_worst = ttb[nt - 1];
+    d->ttb_median = nt % 2 ? ttb[nt / 2] : 0.5 * (ttb[nt / 2 - 1] + ttb[nt / 2]);
+    *runs += nt;
+  }
+  free(ttb);
+  return st;
+}
+
+/* The order of options.rank_by among designs that ran transients (see design.h). */
+static int cmp_key(double a, double b, int larger_first) {
+  if (a == b) return 0;
+  return (larger_first ? a > b : a < b) ? -1 : 1;
+}
+static int cmp_transient(const autobal_rotor_design *x, const autobal_rotor_design *y, int rank_by_key) {
+  int r;
+  if ((r = cmp_key(x->feasible, y->feasible, 1))) return r;
+  if (rank_by_key == AUTOBAL_DESIGN_RANK_P_BALANCE) {
+    if ((r = cmp_key(x->p_balance, y->p_balance, 1))) return r;
+    if ((r = cmp_key(x->ttb_worst, y->ttb_worst, 0))) return r;
+    if ((r = cmp_key(x->ttb_median, y->ttb_median, 0))) return r;
+  } else {
+    if ((r = cmp_key(x->ttb_worst, y->ttb_worst, 0))) return r;
+    if ((r = cmp_key(x->ttb_median, y->ttb_median, 0))) return r;
+    if ((r = cmp_key(x->p_balance, y->p_balance, 1))) return r;
+  }
+  return cmp_key(x->margin, y->margin, 1);
+}
+
+/* Stable insertion sort of the first n designs by cmp_transient. */
+static void rank_transients(autobal_rotor_design *d, size_t n, int key) {
+  size_t i, j;
+  for (i = 1; i < n; i++) {
+    autobal_rotor_design t = d[i];
+    for (j = i; j > 0 && cmp_transient(&t, &d[j - 1], key) < 0; j--) d[j] = d[j - 1];
+    d[j] = t;
+  }
+}
+
 /* ---- options --------------------------------------------------------------------------- */
 
 static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_design_options *in,
@@ -454,6 +651,24 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
                              "enters the mass matrix)");
   if (!(pl->r0 > 0.0))
     return autobal_error_set(err, AUTOBAL_EINVAL, "[plane1] r0 = %g m must be > 0 (the unbalance is m0 r0)", pl->r0);
+  if (p->drive.mode != AUTOBAL_ROTOR_DRIVE_CONSTANT && !has_profile(p))
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[drive] mode: the design takes a prescribed run-up profile (mode = ramp or table), not a "
+                             "motor (the ensemble of its transients has no motor)");
+  if (isnan(o->t_end)) o->t_end = (has_profile(p) ? profile_end(p) : 0.0) + 10.0;
+  if (has_profile(p)) {
+    const double top = profile_top(p);
+    if (isnan(o->omega_max)) o->omega_max = top;
+    else if (fabs(o->omega_max - top) > 1e-9 * top)
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "options: omega_max = %.10g rad/s disagrees with the run-up profile's top speed %.10g "
+                               "rad/s ([drive]): leave omega_max unset (NaN) or make them equal",
+                               o->omega_max, top);
+    if (!(o->t_end > profile_end(p)))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "options: t_end = %g s must be larger than the end of the run-up profile, %g s ([drive])",
+                               o->t_end, profile_end(p));
+  }
   if (isnan(o->mass_min)) o->mass_min = 0.5 * pl->ball_mass[0];
   if (isnan(o->mass_max)) o->mass_max = 2.0 * pl->ball_mass[0];
   if (isnan(o->radius_min)) o->radius_min = 0.5 * pl->ball_radius[0];
@@ -491,6 +706,23 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
   NEED(o->n_best >= 1 && o->n_best <= 1000, "options: n_best = %zu must be in [1, 1000]", o->n_best);
   NEED(o->n_starts <= 100, "options: n_starts = %zu must be in [0, 100]", o->n_starts);
   NEED(o->max_iter >= 1 && o->max_iter <= 10000, "options: max_iter = %zu must be in [1, 10000]", o->max_iter);
+  NEED(o->n_transient <= 1000, "options: n_transient = %zu must be in [0, 1000]", o->n_transient);
+  NEED(o->rank_by == AUTOBAL_DESIGN_RANK_MARGIN || o->rank_by == AUTOBAL_DESIGN_RANK_TIME ||
+           o->rank_by == AUTOBAL_DESIGN_RANK_P_BALANCE,
+       "options: rank_by = %d: allowed 0 (margin), 1 (time), 2 (p_balance)", o->rank_by);
+  NEED(o->rank_by == AUTOBAL_DESIGN_RANK_MARGIN || o->n_transient > 0,
+       "options: rank_by = %s needs transients: n_transient = 0 (allowed [1, 1000] with it)",
+       o->rank_by == AUTOBAL_DESIGN_RANK_TIME ? "time" : "p_balance");
+  NEED(o->n_start >= 1 && o->n_start <= 64, "options: n_start = %zu must be in [1, 64]", o->n_start);
+  NEED(o->n_transient_unbalances >= 1 && o->n_transient_unbalances <= 100,
+       "options: n_transient_unbalances = %zu must be in [1, 100]", o->n_transient_unbalances);
+  NEED(o->n_transient_speeds >= 1 && o->n_transient_speeds <= 100,
+       "options: n_transient_speeds = %zu must be in [1, 100]", o->n_transient_speeds);
+  NEED(o->t_end > 0.0 && o->t_end <= 1e6, "options: t_end = %g s must be in (0, 1e6]", o->t_end);
+  NEED(o->balance_tol > 0.0 && o->balance_tol < 1.0, "options: balance_tol = %g must be in (0, 1)", o->balance_tol);
+  NEED(o->balance_revs >= 0.0 && o->balance_revs <= 1e6, "options: balance_revs = %g must be in [0, 1e6]",
+       o->balance_revs);
+  NEED(o->threads >= 0 && o->threads <= 4096, "options: threads = %d must be in [0, 4096]", o->threads);
 #undef NEED
   if (o->mass_min == o->mass_max) o->n_mass = 1;
   if (o->radius_min == o->radius_max) o->n_radius = 1;
@@ -524,13 +756,217 @@ static int same_design(const autobal_rotor_design *a, const autobal_rotor_design
          fabs(a->position - b->position) <= 1e-6 * (fabs(b->position) + 1e-3);
 }
 
+/* One cell (i, j, k) of the map: its radius window and feasible row (n_feasible and the candidates
+ * are collected by map_collect, in cell order). */
+static int map_cell(dctx *c, autobal_study_rotor_design_summary *S, size_t cell) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
+               i = cell / (o->n_position * o->n_damping);
+  const double m = S->mass[i];
+  ivals T;
+  double wl, wh;
+  size_t q;
+  int st;
+  if ((st = cell_set(c, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) return st;
+  radius_windows(c, &T, m, &wl, &wh);
+  S->window_lo[cell] = wl;
+  S->window_hi[cell] = wh;
+  for (q = 0; q < o->n_radius; q++) {
+    const double r = S->radius[q], t_lo = o->unbalance_min / (m * r), t_hi = o->unbalance_max / (m * r);
+    size_t e;
+    int f = 0;
+    if (!(t_hi < 2.0)) f = -1;
+    else
+      for (e = 0; e < T.n; e++)
+        if (T.lo[e] < t_lo && t_hi < T.hi[e]) f = 1;
+    S->feasible[cell * o->n_radius + q] = f;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+static void map_collect(const dctx *c, autobal_study_rotor_design_summary *S, size_t cell, autobal_rotor_design *cand,
+                        size_t *ncand) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
+               i = cell / (o->n_position * o->n_damping);
+  const double wl = S->window_lo[cell], wh = S->window_hi[cell];
+  size_t q;
+  for (q = 0; q < o->n_radius; q++) S->n_feasible += S->feasible[cell * o->n_radius + q] == 1;
+  if (!isnan(wl)) {
+    autobal_rotor_design *d = &cand[(*ncand)++];
+    memset(d, 0, sizeof *d);
+    d->mass = S->mass[i];
+    d->damping = S->damping[j];
+    d->position = S->position[k];
+    d->radius = isfinite(wh) ? sqrt(wl * wh) : wl;
+    d->recheck = -1;
+  }
+}
+
+#ifdef AUTOBAL_HAVE_OPENMP
+static int nthreads(const autobal_study_rotor_design_options *o) {
+  return o->threads > 0 ? o->threads : omp_get_max_threads();
+}
+
+/* A worker's copy of the search context: its own handle, balls, error and counts; no progress
+ * callback (the caller's thread reports), stopped through *stop. */
+static void dctx_clone(const dctx *c, dctx *t, autobal_error *e, int *stop) {
+  *t = *c;
+  t->s = NULL;
+  t->s_d = NAN;
+  t->err = e;
+  autobal_error_clear(e);
+  t->ratio_sets = t->evaluations = t->nm_evals = 0;
+  t->o.progress = NULL;
+  t->stop = stop;
+  t->work.plane[0].ball_mass = t->bm;
+  t->work.plane[0].ball_radius = t->br;
+  t->work.plane[0].ball_damping = t->bh;
+  t->work.plane[0].ball_psi = t->bpsi;
+  t->work.plane[0].ball_rate = t->brate;
+}
+
+/* The first failure by index (deterministic whatever the threads), the counts summed. */
+typedef struct pfail {
+  long long idx;
+  int status;
+  char msg[AUTOBAL_ERRMSG_SIZE];
+} pfail;
+
+/* n jobs over the threads: job(t, k) on a worker's copy t; thread 0 reports progress
+ * (f0 + df * done / n) and stops everything when the caller asks. */
+typedef int (*pjob)(dctx *t, size_t k, void *user);
+static int run_parallel(dctx *c, size_t n, pjob job, void *user, double f0, double df, unsigned char *done,
+                        int *cancelled) {
+  int stop = 0, nth = nthreads(&c->o);
+  size_t ndone = 0;
+  pfail fail;
+  fail.idx = -1;
+  fail.status = AUTOBAL_SUCCESS;
+  fail.msg[0] = '\0';
+  *cancelled = 0;
+#pragma omp parallel num_threads(nth)
+  {
+    dctx t;
+    autobal_error e;
+    long long idx;
+    dctx_clone(c, &t, &e, &stop);
+#pragma omp for schedule(dynamic, 1)
+    for (idx = 0; idx < (long long)n; idx++) {
+      int st;
+      if (read_flag(&stop)) continue;
+      st = job(&t, (size_t)idx, user);
+      if (st != AUTOBAL_SUCCESS) {
+#pragma omp critical(autobal_design_fail)
+        {
+          if (fail.idx < 0 || idx < fail.idx) {
+            fail.idx = idx;
+            fail.status = st;
+            snprintf(fail.msg, sizeof fail.msg, "%s", e.message);
+          }
+        }
+        raise_flag(&stop);
+        continue;
+      }
+      if (done) done[idx] = 1;
+#pragma omp atomic
+      ndone++;
+      if (omp_get_thread_num() == 0 && c->o.progress) {
+        size_t nd;
+#pragma omp atomic read
+        nd = ndone;
+        if (c->o.progress(f0 + df * (double)nd / (double)n, c->o.progress_user)) {
+#pragma omp atomic write
+          *cancelled = 1;
+          raise_flag(&stop);
+        }
+      }
+    }
+#pragma omp critical(autobal_design_sum)
+    {
+      c->ratio_sets += t.ratio_sets;
+      c->evaluations += t.evaluations;
+      c->nm_evals += t.nm_evals;
+    }
+    autobal_rotor_stab_free(t.s);
+  }
+  if (*cancelled) return AUTOBAL_ECANCELLED;
+  if (fail.status != AUTOBAL_SUCCESS) return autobal_error_set(c->err, fail.status, "%s", fail.msg);
+  return AUTOBAL_SUCCESS;
+}
+
+static int job_cell(dctx *t, size_t k, void *user) { return map_cell(t, (autobal_study_rotor_design_summary *)user, k); }
+
+/* The map over the threads, cell by cell; the rows of ball mass done in full (a prefix) count. */
+static int map_parallel(dctx *c, autobal_study_rotor_design_summary *S, autobal_rotor_design *cand, size_t *ncand) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t per = o->n_damping * o->n_position, ncell = o->n_mass * per;
+  unsigned char *done = calloc(ncell ? ncell : 1, 1);
+  size_t i, k;
+  int st, cancelled;
+  if (!done) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  st = run_parallel(c, ncell, job_cell, S, 0.0, 0.7, done, &cancelled);
+  for (i = 0; i < o->n_mass; i++) {
+    int full = 1;
+    for (k = 0; k < per; k++) full &= done[i * per + k];
+    if (!full) break;
+    for (k = 0; k < per; k++) map_collect(c, S, i * per + k, cand, ncand);
+    S->n_mass_done = i + 1;
+  }
+  free(done);
+  if (cancelled)
+    return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
+                             S->n_mass_done, o->n_mass);
+  return st;
+}
+
+static int job_margin(dctx *t, size_t k, void *user) {
+  autobal_rotor_design *cand = (autobal_rotor_design *)user;
+  return robust_margin(t, &cand[k], &cand[k].margin);
+}
+
+typedef struct polish_job {
+  const autobal_rotor_design *start;
+  autobal_rotor_design *out;
+} polish_job;
+static int job_polish(dctx *t, size_t k, void *user) {
+  polish_job *pj = (polish_job *)user;
+  int st = polish(t, &pj->start[k], &pj->out[k]);
+  pj->out[k].recheck = -1;
+  return st;
+}
+/* The optimizer from the first n starts, over the threads; out[k] from start[k]. */
+static int polish_parallel(dctx *c, const autobal_rotor_design *start, size_t n, autobal_rotor_design *out) {
+  polish_job pj;
+  int cancelled, st;
+  pj.start = start;
+  pj.out = out;
+  st = run_parallel(c, n, job_polish, &pj, 0.8, 0.1, NULL, &cancelled);
+  if (cancelled) return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (optimizer)");
+  return st;
+}
+
+static int job_recheck(dctx *t, size_t k, void *user) { return recheck(t, &((autobal_rotor_design *)user)[k]); }
+static int recheck_parallel(dctx *c, autobal_rotor_design *d, size_t n) {
+  int cancelled, st = run_parallel(c, n, job_recheck, d, 0.9, 0.1, NULL, &cancelled);
+  if (cancelled) return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (re-check)");
+  return st;
+}
+
+static int margins_parallel(dctx *c, autobal_rotor_design *cand, size_t ncand) {
+  int cancelled, st = run_parallel(c, ncand, job_margin, cand, 0.7, 0.1, NULL, &cancelled);
+  if (cancelled) return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (ranking)");
+  return st;
+}
+#endif
+
 /* ---- the study ------------------------------------------------------------------------- */
 
 static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   const autobal_study_rotor_design_options *o = &c->o;
   const size_t ncell = o->n_mass * o->n_damping * o->n_position;
   autobal_rotor_design *cand = NULL;
-  size_t ncand = 0, i, j, k, q;
+  size_t ncand = 0, i, j, k;
   int st = AUTOBAL_SUCCESS;
   S->n_mass = o->n_mass;
   S->n_damping = o->n_damping;
@@ -551,38 +987,18 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   }
   /* 1. the map, row by row of ball mass */
+#ifdef AUTOBAL_HAVE_OPENMP
+  if (nthreads(o) > 1) {
+    st = map_parallel(c, S, cand, &ncand);
+  } else
+#endif
   for (i = 0; i < o->n_mass && st == AUTOBAL_SUCCESS; i++) {
-    const double m = S->mass[i];
     c->fraction = 0.7 * (double)i / (double)o->n_mass;
     for (j = 0; j < o->n_damping && st == AUTOBAL_SUCCESS; j++)
       for (k = 0; k < o->n_position && st == AUTOBAL_SUCCESS; k++) {
         const size_t cell = (i * o->n_damping + j) * o->n_position + k;
-        ivals T;
-        double wl, wh;
-        if ((st = cell_set(c, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) break;
-        radius_windows(c, &T, m, &wl, &wh);
-        S->window_lo[cell] = wl;
-        S->window_hi[cell] = wh;
-        for (q = 0; q < o->n_radius; q++) {
-          const double r = S->radius[q], t_lo = o->unbalance_min / (m * r), t_hi = o->unbalance_max / (m * r);
-          size_t e;
-          int f = 0;
-          if (!(t_hi < 2.0)) f = -1;
-          else
-            for (e = 0; e < T.n; e++)
-              if (T.lo[e] < t_lo && t_hi < T.hi[e]) f = 1;
-          S->feasible[cell * o->n_radius + q] = f;
-          S->n_feasible += f == 1;
-        }
-        if (!isnan(wl)) {
-          autobal_rotor_design *d = &cand[ncand++];
-          memset(d, 0, sizeof *d);
-          d->mass = m;
-          d->damping = S->damping[j];
-          d->position = S->position[k];
-          d->radius = isfinite(wh) ? sqrt(wl * wh) : wl;
-          d->recheck = -1;
-        }
+        if ((st = map_cell(c, S, cell)) != AUTOBAL_SUCCESS) break;
+        map_collect(c, S, cell, cand, &ncand);
       }
     if (st == AUTOBAL_SUCCESS) S->n_mass_done = i + 1;
     if (st == AUTOBAL_SUCCESS && o->progress && o->progress(0.7 * (double)(i + 1) / (double)o->n_mass, o->progress_user))
@@ -594,6 +1010,10 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
                       S->n_mass_done, o->n_mass);
   /* 2. the robust margin of every cell's design; 3. the optimizer from the best */
+#ifdef AUTOBAL_HAVE_OPENMP
+  if (st == AUTOBAL_SUCCESS && nthreads(o) > 1) st = margins_parallel(c, cand, ncand);
+  else
+#endif
   for (i = 0; i < ncand && st == AUTOBAL_SUCCESS; i++) {
     c->fraction = 0.7 + 0.1 * (double)i / (double)ncand;
     st = robust_margin(c, &cand[i], &cand[i].margin);
@@ -601,6 +1021,12 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   if (st == AUTOBAL_SUCCESS) {
     size_t n0 = ncand;
     qsort(cand, ncand, sizeof *cand, cmp_design);
+#ifdef AUTOBAL_HAVE_OPENMP
+    if (nthreads(o) > 1) {
+      st = polish_parallel(c, cand, o->n_starts < n0 ? o->n_starts : n0, cand + ncand);
+      if (st == AUTOBAL_SUCCESS) ncand += o->n_starts < n0 ? o->n_starts : n0;
+    } else
+#endif
     for (i = 0; i < o->n_starts && i < n0 && st == AUTOBAL_SUCCESS; i++) {
       autobal_rotor_design d;
       c->fraction = 0.8 + 0.1 * (double)i / (double)o->n_starts;
@@ -614,6 +1040,22 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     qsort(cand, ncand, sizeof *cand, cmp_design);
     S->designs = malloc((ncand ? ncand : 1) * sizeof *S->designs);
     if (!S->designs) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+#ifdef AUTOBAL_HAVE_OPENMP
+    if (st == AUTOBAL_SUCCESS && nthreads(o) > 1) {
+      /* the distinct best n_best (as below), then their re-checks over the threads */
+      for (i = 0; i < ncand && S->n_designs < o->n_best; i++) {
+        int dup = 0;
+        for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
+        if (dup) continue;
+        cand[i].feasible = cand[i].margin > o->margin;
+        cand[i].p_balance = cand[i].ttb_median = cand[i].ttb_worst = NAN;
+        cand[i].n_runs = cand[i].n_balanced = 0;
+        S->designs[S->n_designs++] = cand[i];
+      }
+      st = recheck_parallel(c, S->designs, S->n_designs);
+      if (st != AUTOBAL_SUCCESS) S->n_designs = 0;
+    } else
+#endif
     for (i = 0; i < ncand && st == AUTOBAL_SUCCESS && S->n_designs < o->n_best; i++) {
       int dup = 0;
       for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
@@ -621,10 +1063,11 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
       cand[i].feasible = cand[i].margin > o->margin;
       c->fraction = 0.9 + 0.1 * (double)S->n_designs / (double)o->n_best;
       if ((st = recheck(c, &cand[i])) != AUTOBAL_SUCCESS) break;
+      cand[i].p_balance = cand[i].ttb_median = cand[i].ttb_worst = NAN;
+      cand[i].n_runs = cand[i].n_balanced = 0;
       S->designs[S->n_designs++] = cand[i];
     }
   }
-  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
   if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
     /* the best design: the first that passes its re-check, else the first */
     size_t b = 0;
@@ -638,6 +1081,18 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
       memmove(S->designs + 1, S->designs, b * sizeof *S->designs);
       S->designs[0] = t;
     }
+    /* 5. transients of the first n_transient designs; the ranking by rank_by among them */
+    {
+      const size_t nk = o->n_transient < S->n_designs ? o->n_transient : S->n_designs;
+      for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
+        c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
+        st = design_transients(c, &S->designs[i], &S->transients);
+      }
+      if (st == AUTOBAL_SUCCESS && o->rank_by != AUTOBAL_DESIGN_RANK_MARGIN) rank_transients(S->designs, nk, o->rank_by);
+    }
+  }
+  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
+  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
     S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
     if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   }
@@ -659,6 +1114,7 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
   c.work = *p;
+  memset(&c.work.drive, 0, sizeof c.work.drive); /* the stability analyses: constant speeds */
   {
     const autobal_rotor_plane *pl = &p->plane[0];
     size_t i;
@@ -702,6 +1158,7 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
   c.work = *p;
+  memset(&c.work.drive, 0, sizeof c.work.drive);
   c.bm[0] = c.bm[1] = p->plane[0].ball_mass[0];
   c.br[0] = c.br[1] = p->plane[0].ball_radius[0];
   c.bh[0] = c.bh[1] = p->plane[0].ball_damping[0];
@@ -717,6 +1174,25 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   autobal_rotor_stab_free(c.s);
   free(c.omega);
   return st;
+}
+
+int autobal_study_rotor_design_transients(const autobal_rotor_params *p, const autobal_study_rotor_design_options *opt,
+                                          autobal_rotor_design *design, autobal_error *err) {
+  autobal_study_rotor_design_options def = autobal_study_rotor_design_options_default();
+  dctx c;
+  size_t runs = 0;
+  int st;
+  autobal_error_clear(err);
+  if (!p || !design) return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: NULL argument");
+  memset(&c, 0, sizeof c);
+  c.err = err;
+  c.base = p;
+  if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: mass, radius, damping must be > 0, position finite");
+  design->p_balance = design->ttb_median = design->ttb_worst = NAN;
+  design->n_runs = design->n_balanced = 0;
+  return design_transients(&c, design, &runs);
 }
 
 /* ---- the config text ------------------------------------------------------------------- */
@@ -796,6 +1272,19 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   put(&b, "ball_psi = %.17g, %.17g\nball_rate = %.17g, %.17g\n", pl->ball_psi ? pl->ball_psi[0] : 0.0,
       pl->ball_psi ? pl->ball_psi[1] : 0.0, pl->ball_rate ? pl->ball_rate[0] : 0.0,
       pl->ball_rate ? pl->ball_rate[1] : 0.0);
+  if (has_profile(p)) {
+    const autobal_rotor_drive *dr = &p->drive;
+    if (dr->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
+      put(&b, "\n[drive]\nmode = ramp\nomega_a = %.17g\nomega_b = %.17g\nt_a = %.17g\nt_b = %.17g\n", dr->omega_a,
+          dr->omega_b, dr->t_a, dr->t_b);
+    } else {
+      put(&b, "\n[drive]\nmode = table\ntable_t = ");
+      for (i = 0; i < dr->n_points; i++) put(&b, "%s%.17g", i ? ", " : "", dr->table_t[i]);
+      put(&b, "\ntable_omega = ");
+      for (i = 0; i < dr->n_points; i++) put(&b, "%s%.17g", i ? ", " : "", dr->table_omega[i]);
+      put(&b, "\n");
+    }
+  }
   if (b.oom) {
     free(b.p);
     return NULL;
@@ -832,6 +1321,19 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   if (!st) st = autobal_archive_attr_int(a, g, "ratio_sets", (long)S->ratio_sets);
   if (!st) st = autobal_archive_attr_int(a, g, "margin_evaluations", (long)S->margin_evaluations);
   if (!st) st = autobal_archive_attr_int(a, g, "optimizer_evaluations", (long)S->optimizer_evaluations);
+  if (!st && opt->n_transient > 0) {
+    static const char *const rk[3] = {"margin", "time", "p_balance"};
+    st = autobal_archive_attr_string(a, g, "rank_by", rk[opt->rank_by]);
+    if (!st) st = autobal_archive_attr_int(a, g, "n_transient", (long)opt->n_transient);
+    if (!st) st = autobal_archive_attr_int(a, g, "transient_n_start", (long)opt->n_start);
+    if (!st) st = autobal_archive_attr_int(a, g, "transient_n_unbalances", (long)opt->n_transient_unbalances);
+    if (!st) st = autobal_archive_attr_int(a, g, "transient_n_speeds", has_profile(p) ? 0L : (long)opt->n_transient_speeds);
+    if (!st) st = autobal_archive_attr_double(a, g, "transient_t_end", opt->t_end, "s");
+    if (!st) st = autobal_archive_attr_double(a, g, "transient_balance_tol", opt->balance_tol, "1");
+    if (!st) st = autobal_archive_attr_double(a, g, "transient_balance_revs", opt->balance_revs, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "transients", (long)S->transients);
+    if (!st) st = autobal_archive_attr_string(a, g, "transient_method", "docs/rotor.md \"Design\": per design an ensemble grid over the start angles of both balls (ball 2 half a step on), the unbalances and the speeds (or the run-up profile from rest); balanced = attractor class balanced; time to balance = start of the stretch of transient_balance_revs revolutions with the residual unbalance below transient_balance_tol, inf when not balanced by transient_t_end");
+  }
   if (!st && nm == S->n_mass && !S->ranked) {
     st = autobal_archive_attr_int(a, g, "partial", 1);
     if (!st) st = autobal_archive_attr_string(a, g, "partial_what", "interrupted during the ranking: the map is complete, no ranked designs");
@@ -883,6 +1385,19 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     ICOL(feasible, "feasible", "1: robust_margin > margin_required and the re-check agrees")
     ICOL(recheck, "recheck", "1: the exact every-unbalance analysis finds it stable for every unbalance on the re-check grid with margins below -margin_required; 0: not; -1: not re-checked")
     ICOL(source, "source", "0: a grid point of the map, 1: the Nelder-Mead optimizer")
+    if (opt->n_transient > 0) {
+      COL(p_balance, "p_balance", "1", "share of the design's transients whose attractor is balanced (NaN: not run)")
+      COL(ttb_median, "time_to_balance_median", "s", "median time to balance over the design's transients (inf: more than half do not balance)")
+      COL(ttb_worst, "time_to_balance_worst", "s", "largest time to balance over the design's transients (inf: some member does not balance within transient_t_end)")
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].n_runs;
+        st = autobal_archive_var_int(a, gr, "transient_members", 1, rank1, iv, "1", "transients run for the design (0: none)");
+      }
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].n_balanced;
+        st = autobal_archive_var_int(a, gr, "transient_balanced", 1, rank1, iv, "1", "of them balanced (attractor class balanced)");
+      }
+    }
 #undef COL
 #undef ICOL
     free(v);

@@ -36,7 +36,7 @@ max_iter = 25
 INI
 expect 0 "best design as a config" "$AUTOBAL" rotor design d.ini -o d.h5 --set design.config_out=best.ini
 grep -q "ranked designs" out.txt && ok "ranked table printed" || bad "no ranked table"
-grep -q "stability analyses (" out.txt && ok "count of stability analyses printed: $(grep -o '[0-9]* stability analyses ([0-9]* per second)' out.txt)" || bad "no analysis count"
+grep -q "stability analyses (" out.txt && ok "count of stability analyses printed: $(grep -o "[0-9]* stability analyses ([0-9]* per second[^)]*)" out.txt)" || bad "no analysis count"
 [ -s best.ini ] && ok "best.ini written" || bad "best.ini missing"
 grep -q "^ball_mass = " out.txt && ok "the config is printed" || bad "config not printed"
 expect 0 "BALANCED MOTION: stable" "$AUTOBAL" rotor stability best.ini --set stability.critical_speeds=false
@@ -58,7 +58,60 @@ open("full_best.ini", "w").write(g.attrs["best_config"])
 PY
 expect 0 "BALANCED MOTION: stable" "$AUTOBAL" rotor stability full_best.ini --set stability.critical_speeds=false
 
+# transients of the best designs (default n_transient = 5, here the 3 ranked): P(balance), median and
+# worst time to balance per design with units; rank_by = time orders the designs by their own numbers
+"$PY" - <<'PY' && ok "d.h5: transients of the ranked designs archived with units, P in [0, 1], median <= worst" || bad "d.h5 transients"
+import h5py, numpy as np
+g = h5py.File("d.h5", "r")["/rotor/design"]
+r = g["ranked"]
+assert g.attrs["rank_by"] == "margin" and g.attrs["n_transient"] == 5, dict(g.attrs)
+assert r["p_balance"].attrs["units"] == "1" and r["time_to_balance_worst"].attrs["units"] == "s"
+assert r["time_to_balance_median"].attrs["units"] == "s"
+n = r["transient_members"][:]
+assert (n == 3 * 3 * 2 * 2).all(), n                  # 3 x 3 starts x 2 unbalances x 2 speeds
+assert g.attrs["transients"] == n.sum()
+p = r["p_balance"][:]
+assert np.allclose(p, r["transient_balanced"][:] / n)
+med, worst = r["time_to_balance_median"][:], r["time_to_balance_worst"][:]
+assert (med <= worst).all() and (np.isinf(worst) == (p < 1)).all(), (med, worst, p)
+assert (np.diff(r["robust_margin"][:]) <= 0).all() or r["feasible"][0] == 1  # margin order (best feasible first)
+PY
+expect 0 "ranked by time" "$AUTOBAL" rotor design d.ini -o dt.h5 --set design.rank_by=time
+"$PY" - <<'PY' && ok "rank_by = time: ordered by (feasible, worst, median time to balance) as archived" || bad "dt.h5 order"
+import h5py, numpy as np
+r = h5py.File("dt.h5", "r")["/rotor/design/ranked"]
+key = list(zip(-r["feasible"][:], r["time_to_balance_worst"][:], r["time_to_balance_median"][:], -r["p_balance"][:]))
+assert key == sorted(key), key
+PY
+
+# a run-up profile ([drive] ramp 0 -> 8500 rpm in 4 s): the operating range is [balance_from, top speed],
+# the transients run the profile from rest (time to balance not before its end), the best config carries it
+{ printf '[drive]\nmode = ramp\nomega_a = 0\nomega_b = 8500 rpm\nt_a = 0 s\nt_b = 4 s\n'; grep -v '^speed_m' d.ini; printf 'balance_from = 4500 rpm\nn_transient = 2\n'; } > ru.ini
+expect 0 "run-up profile from rest" "$AUTOBAL" rotor design ru.ini -o ru.h5 --set design.config_out=rubest.ini
+"$PY" - <<'PY' && ok "run-up: speed range [balance_from, top speed], 18 members per design, time to balance after the ramp" || bad "ru.h5"
+import h5py, numpy as np
+g = h5py.File("ru.h5", "r")["/rotor/design"]
+r = g["ranked"]
+rpm = 2 * np.pi / 60
+assert abs(g.attrs["omega_min"] - 4500 * rpm) < 1e-9 and abs(g.attrs["omega_max"] - 8500 * rpm) < 1e-9, dict(g.attrs)
+assert g.attrs["transient_n_speeds"] == 0 and g.attrs["transient_t_end"] == 14.0
+n = r["transient_members"][:]
+assert (n[:2] == 3 * 3 * 2).all() and (n[2:] == 0).all(), n   # no speed axis: the profile
+t = r["time_to_balance_median"][:2]
+assert (t[np.isfinite(t)] >= 4.0).all(), t
+PY
+grep -q '^mode = ramp' rubest.ini && ok "the best config carries the run-up profile" || bad "no [drive] in rubest.ini"
+expect_err 3 "disagrees with the run-up profile" "$AUTOBAL" rotor design ru.ini --set design.speed_max=9000rpm
+expect_err 3 "balance_from" "$AUTOBAL" rotor design ru.ini --set design.speed_min=4000rpm
+expect_err 3 "balance_from needs a run-up profile" "$AUTOBAL" rotor design d.ini --set design.balance_from=4000rpm
+expect_err 3 "transient_t_end" "$AUTOBAL" rotor design ru.ini --set design.transient_t_end=3
+{ printf '[drive]\nmode = motor\nomega_0 = 1000\nJ = 0.05\nL_0 = 5\n'; cat d.ini; } > mo.ini
+expect_err 3 "mode = motor is not supported" "$AUTOBAL" rotor design mo.ini
+
 # (c) bad input
+expect_err 3 "rank_by" "$AUTOBAL" rotor design d.ini --set design.rank_by=speed
+expect_err 3 "n_transient" "$AUTOBAL" rotor design d.ini --set design.rank_by=p_balance --set design.n_transient=0
+expect_err 3 "n_start_angles" "$AUTOBAL" rotor design d.ini --set design.n_start_angles=0
 expect_err 3 "speed_max" "$AUTOBAL" rotor design d.ini --set design.speed_max=4000rpm -o bad1.h5
 [ ! -e bad1.h5 ] && ok "nothing written" || bad "bad1.h5 written"
 expect_err 3 "unbalance_max" "$AUTOBAL" rotor design d.ini --set "design.unbalance_max=100 g mm" -o bad2.h5
