@@ -90,17 +90,23 @@ def terms(coef, src):
 
 
 print("")
+print("/* the kernels are inlined into each multiversioned clone of their callers (dop853.c) */")
+print("#if defined(__GNUC__)")
+print("#define DOP853_INLINE inline __attribute__((always_inline))")
+print("#else")
+print("#define DOP853_INLINE inline")
+print("#endif")
 print("/* out = y0 + h sum_j A[s][j] k_j over the non-zero A[s][j] (k: stage j at k + j n) */")
 for srow in range(1, 16):
     coef = [(j, lit(A[(srow, j)])) for j in range(srow) if (srow, j) in A]
-    print("static inline void dop853_arg_%d(size_t n, double h, const double *restrict y0, "
+    print("static DOP853_INLINE void dop853_arg_%d(size_t n, double h, const double *restrict y0, "
           "const double *restrict k, double *restrict out) {" % srow)
     print("  size_t i;")
     print("  for (i = 0; i < n; i++)")
     print("    out[i] = y0[i] + h * (%s);" % terms(coef, lambda j: "k[%d * n + i]" % j))
     print("}")
 print("/* e5 = sum_j E5[j] k_j, e3 = sum_j E3[j] k_j (j = 0..12) at component i */")
-print("static inline void dop853_err_at(size_t n, size_t i, const double *restrict k, double *e5, double *e3) {")
+print("static DOP853_INLINE void dop853_err_at(size_t n, size_t i, const double *restrict k, double *e5, double *e3) {")
 c5 = [(j, lit(E5[j])) for j in range(13) if j in E5]
 c3 = []
 for j in range(13):
@@ -113,7 +119,7 @@ print("  *e5 = %s;" % terms(c5, lambda j: "k[%d * n + i]" % j))
 print("  *e3 = %s;" % terms(c3, lambda j: "k[%d * n + i]" % j))
 print("}")
 print("/* f + r n = h sum_j D[r][j] k_j (r = 0..3: the extension's F3..F6) */")
-print("static inline void dop853_dense_rows(size_t n, double h, const double *restrict k, double *restrict f) {")
+print("static DOP853_INLINE void dop853_dense_rows(size_t n, double h, const double *restrict k, double *restrict f) {")
 print("  size_t i;")
 print("  for (i = 0; i < n; i++) {")
 for r in range(4):
