@@ -105,8 +105,6 @@ for srow in range(1, 16):
     print("  for (i = 0; i < n; i++)")
     print("    out[i] = y0[i] + h * (%s);" % terms(coef, lambda j: "k[%d * n + i]" % j))
     print("}")
-print("/* e5 = sum_j E5[j] k_j, e3 = sum_j E3[j] k_j (j = 0..12) at component i */")
-print("static DOP853_INLINE void dop853_err_at(size_t n, size_t i, const double *restrict k, double *e5, double *e3) {")
 c5 = [(j, lit(E5[j])) for j in range(13) if j in E5]
 c3 = []
 for j in range(13):
@@ -115,8 +113,14 @@ for j in range(13):
         c3.append((j, (b if b else "0.0") + " - " + lit(bhh[j])))
     elif b:
         c3.append((j, b))
-print("  *e5 = %s;" % terms(c5, lambda j: "k[%d * n + i]" % j))
-print("  *e3 = %s;" % terms(c3, lambda j: "k[%d * n + i]" % j))
+print("/* e5 = sum_j E5[j] k_j, e3 = sum_j E3[j] k_j (j = 0..12), every component in one loop */")
+print("static DOP853_INLINE void dop853_err_rows(size_t n, const double *restrict k, double *restrict e5, "
+      "double *restrict e3) {")
+print("  size_t i;")
+print("  for (i = 0; i < n; i++) {")
+print("    e5[i] = %s;" % terms(c5, lambda j: "k[%d * n + i]" % j))
+print("    e3[i] = %s;" % terms(c3, lambda j: "k[%d * n + i]" % j))
+print("  }")
 print("}")
 print("/* f + r n = h sum_j D[r][j] k_j (r = 0..3: the extension's F3..F6) */")
 print("static DOP853_INLINE void dop853_dense_rows(size_t n, double h, const double *restrict k, double *restrict f) {")

@@ -102,9 +102,7 @@ DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double
   {
     /* e5 into yerr, e3 into ytmp: one vectorizable pass per estimate (the same sums, term by term,
      * as before), then the norms summed in component order */
-    double *restrict e5 = yerr, *restrict e3 = s->ytmp;
-    const double *restrict k = s->k;
-    for (i = 0; i < n; i++) dop853_err_at(n, i, k, &e5[i], &e3[i]);
+    dop853_err_rows(n, s->k, yerr, s->ytmp);
   }
   if (s->atol > 0.0 || s->rtol > 0.0) {
     /* Hairer's normwise combination: the factor |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the

@@ -5,6 +5,7 @@
 #include "autobal/transient.h"
 
 #include <float.h>
+#include <stdint.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -239,12 +240,18 @@ static int rhs_adapter(double t, const double y[], double dydt[], void *params) 
   return GSL_SUCCESS;
 }
 
-/* All of v[0..n-1] finite?  Branch-free (vectorizable); NaN fails too. */
+/* All of v[0..n-1] finite?  NaN fails too.  On the bits (the compiler vectorizes integer and,
+ * add, or, not the comparison of doubles): the exponent field plus one carries into the sign bit
+ * exactly when it is all ones (inf or NaN). */
 static int all_finite(const double *v, size_t n) {
-  int ok = 1;
+  uint64_t bad = 0;
   size_t i;
-  for (i = 0; i < n; i++) ok &= fabs(v[i]) <= DBL_MAX;
-  return ok;
+  for (i = 0; i < n; i++) {
+    uint64_t u;
+    memcpy(&u, &v[i], sizeof u);
+    bad |= (u & UINT64_C(0x7ff0000000000000)) + UINT64_C(0x0010000000000000);
+  }
+  return (bad >> 63) == 0;
 }
 
 /* Record a non-finite rhs value (kind 2) at t, first bad component of v. */
