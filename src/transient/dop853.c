@@ -25,13 +25,17 @@ enum { NST = 12, NEXT = 16 };
 #define DOP853_CLONES
 #endif
 
+/* The arrays below have the stride np = dim rounded up to a multiple of DOP853_LANES; the padding
+ * is zero (calloc; the right-hand side writes only dim components), so it stays zero through
+ * every combination and never reaches the caller. */
 typedef struct dop853_state {
-  size_t dim;
-  double *k;    /* NEXT x dim stages: 0..11 the step's, 12 f(t + h, y1), 13..15 the extension's */
+  size_t dim, np;
+  double *k;    /* NEXT x np stages: 0..11 the step's, 12 f(t + h, y1), 13..15 the extension's */
   double *y0;   /* the state at the start of the last step */
   double *y1;   /* its result */
-  double *ytmp; /* a stage's argument */
-  double *f;    /* 4 x dim: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
+  double *ytmp; /* a stage's argument; e3 after the step */
+  double *e5;   /* the 5th-order estimate (unscaled) */
+  double *f;    /* 4 x np: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
   double t0, h;
   double atol, rtol; /* the control's tolerances (0, 0: the componentwise estimate) */
   int ready;
@@ -43,6 +47,7 @@ static void dop853_free(void *vstate) {
   free(s->y0);
   free(s->y1);
   free(s->ytmp);
+  free(s->e5);
   free(s->f);
   free(s);
 }
@@ -51,12 +56,14 @@ static void *dop853_alloc(size_t dim) {
   dop853_state *s = calloc(1, sizeof *s);
   if (s == NULL) return NULL;
   s->dim = dim;
-  s->k = malloc(NEXT * dim * sizeof(double));
-  s->y0 = malloc(dim * sizeof(double));
-  s->y1 = malloc(dim * sizeof(double));
-  s->ytmp = malloc(dim * sizeof(double));
-  s->f = malloc(4 * dim * sizeof(double));
-  if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->f) {
+  s->np = (dim + DOP853_LANES - 1) / DOP853_LANES * DOP853_LANES;
+  s->k = calloc(NEXT * s->np, sizeof(double));
+  s->y0 = calloc(s->np, sizeof(double));
+  s->y1 = calloc(s->np, sizeof(double));
+  s->ytmp = calloc(s->np, sizeof(double));
+  s->e5 = calloc(s->np, sizeof(double));
+  s->f = calloc(4 * s->np, sizeof(double));
+  if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->e5 || !s->f) {
     dop853_free(s);
     GSL_ERROR_NULL("failed to allocate space for dop853_state", GSL_ENOMEM);
   }
@@ -66,7 +73,7 @@ static void *dop853_alloc(size_t dim) {
 DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[], double yerr[],
                         const double dydt_in[], double dydt_out[], const gsl_odeiv2_system *sys) {
   dop853_state *s = (dop853_state *)vstate;
-  const size_t n = dim;
+  const size_t n = dim, np = s->np;
   size_t i;
   int st;
   s->ready = 0;
@@ -81,8 +88,8 @@ DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double
   /* stages 1..11, each kernel inlined here (one straight-line pass per stage argument) */
 #define DOP853_STAGE(J)                                                                      \
   do {                                                                                       \
-    dop853_arg_##J(n, h, s->y0, s->k, s->ytmp);                                              \
-    st = GSL_ODEIV_FN_EVAL(sys, t + DOP853_C[J] * h, s->ytmp, s->k + (size_t)(J) * n);        \
+    dop853_arg_##J(np, h, s->y0, s->k, s->ytmp);                                             \
+    st = GSL_ODEIV_FN_EVAL(sys, t + DOP853_C[J] * h, s->ytmp, s->k + (size_t)(J) * np);       \
     if (st != GSL_SUCCESS) return st;                                                        \
   } while (0)
   DOP853_STAGE(1);
@@ -96,46 +103,46 @@ DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double
   DOP853_STAGE(9);
   DOP853_STAGE(10);
   DOP853_STAGE(11);
-  dop853_arg_12(n, h, s->y0, s->k, s->y1); /* row 12 holds the weights b */
-  st = GSL_ODEIV_FN_EVAL(sys, t + h, s->y1, s->k + (size_t)NST * n);
+  dop853_arg_12(np, h, s->y0, s->k, s->y1); /* row 12 holds the weights b */
+  st = GSL_ODEIV_FN_EVAL(sys, t + h, s->y1, s->k + (size_t)NST * np);
   if (st != GSL_SUCCESS) return st;
-  {
-    /* e5 into yerr, e3 into ytmp: one vectorizable pass per estimate (the same sums, term by term,
-     * as before), then the norms summed in component order */
-    dop853_err_rows(n, s->k, yerr, s->ytmp);
-  }
+  /* e5 and e3 in one pass over the padded components (the same sums, term by term, as the
+   * componentwise form), then the norms summed in component order */
+  dop853_err_rows(np, s->k, s->e5, s->ytmp);
   if (s->atol > 0.0 || s->rtol > 0.0) {
     /* Hairer's normwise combination: the factor |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the
      * scaled 2-norms, the same for every component (yerr_i = h e5_i factor / |e5|) */
-    const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict e3 = s->ytmp;
+    const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict e5 = s->e5,
+                           *restrict e3 = s->ytmp;
     const double atol = s->atol, rtol = s->rtol;
-    double n5 = 0.0, n3 = 0.0, fac;
+    double n5 = 0.0, n3 = 0.0, fac, hf;
     for (i = 0; i < n; i++) {
       const double a0 = fabs(y0[i]), a1 = fabs(y1[i]);
       /* max(a0, a1) inline (fmax is a libm call here; the same value for numbers, and a NaN
        * state is refused after the step anyway) */
       const double sc = atol + rtol * (a0 >= a1 ? a0 : a1);
-      const double q5 = yerr[i] / sc, q3 = e3[i] / sc;
+      const double q5 = e5[i] / sc, q3 = e3[i] / sc;
       n5 += q5 * q5;
       n3 += q3 * q3;
     }
     fac = n5 + n3 > 0.0 ? sqrt(n5) / sqrt(n5 + 0.01 * n3) : 0.0;
-    for (i = 0; i < n; i++) yerr[i] *= h * fac;
+    hf = h * fac;
+    for (i = 0; i < n; i++) yerr[i] = e5[i] * hf;
   } else {
-    const double *restrict e3 = s->ytmp;
+    const double *restrict e5 = s->e5, *restrict e3 = s->ytmp;
     for (i = 0; i < n; i++) {
-      const double e5 = yerr[i], den = hypot(e5, 0.1 * e3[i]);
-      yerr[i] = den > 0.0 ? h * e5 * (fabs(e5) / den) : 0.0;
+      const double den = hypot(e5[i], 0.1 * e3[i]);
+      yerr[i] = den > 0.0 ? h * e5[i] * (fabs(e5[i]) / den) : 0.0;
     }
   }
   memcpy(y, s->y1, n * sizeof(double));
-  if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * n, n * sizeof(double));
+  if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * np, n * sizeof(double));
   return GSL_SUCCESS;
 }
 
 DOP853_CLONES int autobal_transient_dop853_dense_prepare_(void *vstate, const gsl_odeiv2_system *sys) {
   dop853_state *s = (dop853_state *)vstate;
-  const size_t n = s->dim;
+  const size_t np = s->np;
   const double h = s->h;
   int st;
   if (s->ready) return GSL_SUCCESS;
@@ -145,7 +152,7 @@ DOP853_CLONES int autobal_transient_dop853_dense_prepare_(void *vstate, const gs
     DOP853_STAGE(14);
     DOP853_STAGE(15);
   }
-  dop853_dense_rows(n, h, s->k, s->f);
+  dop853_dense_rows(np, h, s->k, s->f);
   s->ready = 1;
   return GSL_SUCCESS;
 }
@@ -159,10 +166,10 @@ int autobal_transient_dop853_dense_ready_(const void *vstate) {
  * F0 = y1 - y0, F1 = h f0 - F0, F2 = F0 - h f1 - F1 (= 2 F0 - h (f0 + f1)), F3..F6 = h D k. */
 DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
   const dop853_state *s = (const dop853_state *)vstate;
-  const size_t n = s->dim;
+  const size_t n = s->dim, np = s->np;
   const double x = theta, x1 = 1.0 - theta, h = s->h;
-  const double *k0 = s->k, *k12 = s->k + (size_t)NST * n;
-  const double *f3 = s->f, *f4 = f3 + n, *f5 = f4 + n, *f6 = f5 + n;
+  const double *k0 = s->k, *k12 = s->k + (size_t)NST * np;
+  const double *f3 = s->f, *f4 = f3 + np, *f5 = f4 + np, *f6 = f5 + np;
   size_t i;
   for (i = 0; i < n; i++) {
     const double d = s->y1[i] - s->y0[i];
