@@ -139,8 +139,9 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
   return GSL_SUCCESS;
 }
 
-/* small systems (up to 16 components) get the step with their padded size as a constant: every
- * loop unrolled, no loop control (pendulum: 8 components, a one-plane rotor with 2 balls 12) */
+/* small systems (up to 24 components) get the step with their padded size as a constant: every
+ * loop unrolled, no loop control (pendulum: 8 components; a one-plane rotor with 2 balls 12, with
+ * 8 balls 24) */
 DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[],
                                       double yerr[], const double dydt_in[], double dydt_out[],
                                       const gsl_odeiv2_system *sys) {
@@ -150,6 +151,8 @@ DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double
     case 8: return dop853_step(s, dim, 8, t, h, y, yerr, dydt_in, dydt_out, sys);
     case 12: return dop853_step(s, dim, 12, t, h, y, yerr, dydt_in, dydt_out, sys);
     case 16: return dop853_step(s, dim, 16, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 20: return dop853_step(s, dim, 20, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 24: return dop853_step(s, dim, 24, t, h, y, yerr, dydt_in, dydt_out, sys);
     default: return dop853_step(s, dim, s->np, t, h, y, yerr, dydt_in, dydt_out, sys);
   }
 }
