@@ -157,21 +157,30 @@ DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double
   }
 }
 
-DOP853_CLONES int autobal_transient_dop853_dense_prepare_(void *vstate, const gsl_odeiv2_system *sys) {
-  dop853_state *s = (dop853_state *)vstate;
-  const size_t np = s->np;
-  const double h = s->h;
+static DOP853_INLINE int dop853_extend(dop853_state *s, const size_t np, const gsl_odeiv2_system *sys) {
+  const double t = s->t0, h = s->h;
   int st;
-  if (s->ready) return GSL_SUCCESS;
-  {
-    const double t = s->t0;
-    DOP853_STAGE(13);
-    DOP853_STAGE(14);
-    DOP853_STAGE(15);
-  }
+  DOP853_STAGE(13);
+  DOP853_STAGE(14);
+  DOP853_STAGE(15);
   dop853_dense_rows(np, h, s->k, s->f);
   s->ready = 1;
   return GSL_SUCCESS;
+}
+
+/* the extension's 3 stages and its coefficients, once per step (unrolled as dop853_apply) */
+DOP853_CLONES int autobal_transient_dop853_dense_prepare_(void *vstate, const gsl_odeiv2_system *sys) {
+  dop853_state *s = (dop853_state *)vstate;
+  if (s->ready) return GSL_SUCCESS;
+  switch (s->np) {
+    case 4: return dop853_extend(s, 4, sys);
+    case 8: return dop853_extend(s, 8, sys);
+    case 12: return dop853_extend(s, 12, sys);
+    case 16: return dop853_extend(s, 16, sys);
+    case 20: return dop853_extend(s, 20, sys);
+    case 24: return dop853_extend(s, 24, sys);
+    default: return dop853_extend(s, s->np, sys);
+  }
 }
 
 int autobal_transient_dop853_dense_ready_(const void *vstate) {
