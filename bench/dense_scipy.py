@@ -120,8 +120,14 @@ def run_case(args, model, n, tmp):
             t, Y = read_samples(f, dim)
             if len(t) != len(grid) or np.max(np.abs(t - grid)) > 1e-9 * t_end:
                 raise RuntimeError("output times differ from the grid")
-            res["autobal"].append(dict(stepper=stepper, output=output, tol=tol, atol=atol,
-                                       err=err_of(Y, ref, scale), run=w))
+            entry = dict(stepper=stepper, output=output, tol=tol, atol=atol, err=err_of(Y, ref, scale), run=w)
+            if args.before:
+                # the same configuration with an older bench_dense (library), right after: before/after
+                # in one run
+                wb = bench(args.before, model, n, stepper, output, tol, atol, revs, 0.25, args.c_repeats, f)
+                tb, Yb = read_samples(f, dim)
+                entry["before"] = dict(err=err_of(Yb, ref, scale), run=wb)
+            res["autobal"].append(entry)
     res["scipy"] = []
     for method in args.methods:
         for tol in args.scipy_tols:
@@ -148,10 +154,15 @@ def print_tables(arch):
         print(hdr)
         print("-" * len(hdr))
         dop = [(s["err"], s["seconds"]) for s in res["scipy"] if s["method"] == "DOP853"]
+        rows = []
         for a in res["autobal"]:
+            rows.append((a["stepper"] + " " + a["output"], a))
+            if "before" in a:
+                rows.append(("  before", dict(a["before"], tol=a["tol"])))
+        for label, a in rows:
             o = a["run"]
             m = matched(dop, a["err"])
-            print(f"{a['stepper'] + ' ' + a['output']:<16}{a['tol']:>7.0e}{a['err']:>10.2e}"
+            print(f"{label:<16}{a['tol']:>7.0e}{a['err']:>10.2e}"
                   f"{o['out_rhs']:>9d}{o['none_rhs']:>9d}"
                   f"{100 * (o['out_rhs'] / o['none_rhs'] - 1):>7.1f}"
                   f"{o['out_seconds'] * 1e3:>9.3f}ms{o['none_seconds'] * 1e3:>9.3f}ms"
@@ -199,6 +210,8 @@ def main():
     ap.add_argument("--rotor-atol-factor", type=float, default=1.0,
                     help="rotor: atol = tol x this (default 1: rtol = atol = tol, as bench/rotor_scipy.py)")
     ap.add_argument("--c-repeats", type=int, default=51)
+    ap.add_argument("--before", help="an older bench_dense binary, run right after each autobal configuration "
+                    "(before/after in one run; printed as rows 'before')")
     ap.add_argument("--scipy-repeats", type=int, default=3)
     ap.add_argument("--out", default="dense_bench.json", help="the archive (JSON) of this run")
     ap.add_argument("--from", dest="from_", help="print (and plot) an existing archive instead of running")

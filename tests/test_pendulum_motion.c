@@ -676,6 +676,24 @@ static void test_derived(void) {
   CHECK_CLOSE("alpha wrapped", d.alpha, -0.25, 0.0, 1e-14);
   CHECK_CLOSE("beta wrapped", d.beta, 0.125, 0.0, 1e-14);
   CHECK("derived jacobi = jacobi_integral", d.jacobi == autobal_pendulum_jacobi_integral(p, y));
+  /* derive computes the shared sines once: every field must still be exactly what the separate
+   * definitions give (the archive's columns are documented as these functions), on a few states */
+  {
+    int trial;
+    for (trial = 0; trial < 5; trial++) {
+      double yy[8], u, v, unb;
+      int i2;
+      for (i2 = 0; i2 < 8; i2++) yy[i2] = sin(1.7 * (trial + 1) + 0.9 * i2) * (1.0 + 3.0 * trial);
+      autobal_pendulum_motion_derive(p, yy, &d);
+      unb = autobal_pendulum_residual_unbalance(p, yy, &u, &v);
+      CHECK("derive: all fields equal the separate functions bit for bit",
+            d.amplitude == autobal_pendulum_shaft_amplitude(yy) && d.unbalance == unb &&
+                d.unbalance_u == u && d.unbalance_v == v &&
+                d.alpha == autobal_pendulum_wrap_angle(yy[2] - p->psi0) &&
+                d.beta == autobal_pendulum_wrap_angle(yy[3] - p->psi0) &&
+                d.jacobi == autobal_pendulum_jacobi_integral(p, yy));
+    }
+  }
 
   /* time to balance: unbalance below 1e-4 for 20 time units */
   {

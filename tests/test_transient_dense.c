@@ -403,6 +403,75 @@ static void test_observer_stop_and_options(void) {
   CHECK_MSG("exact_output = 2 rejected", err.message, "exact_output");
 }
 
+/* ---- every system size: the padded, unrolled and generic kernels ---------------------------- */
+
+/* n identical copies of y' = cos(t) y, y(0) = 1: y = exp(sin t).  dop853 pads its stage arrays to
+ * a multiple of 4 components and has a step unrolled for each padded size up to 24 and a generic
+ * one above; every size must give every component exactly the same numbers (the components do not
+ * interact, and the padding must not leak into them), the closed form within the tolerance, and
+ * the step sequence of n = 1 (Hairer's normwise factor |e5|/sqrt(|e5|^2 + 0.01 |e3|^2) does not
+ * depend on the number of identical components). */
+static int copies_rhs(double t, const double y[], double f[], void *p) {
+  const size_t n = *(const size_t *)p;
+  size_t i;
+  for (i = 0; i < n; i++) f[i] = cos(t) * y[i];
+  return 0;
+}
+
+typedef struct copies_obs {
+  size_t n;
+  unsigned long calls;
+  int same;
+  double max_err;
+} copies_obs;
+
+static int copies_observe(double t, const double y[], void *user) {
+  copies_obs *o = (copies_obs *)user;
+  size_t i;
+  for (i = 1; i < o->n; i++)
+    if (memcmp(&y[i], &y[0], sizeof y[0]) != 0) o->same = 0;
+  o->max_err = fmax(o->max_err, fabs(y[0] - exp(sin(t))));
+  o->calls++;
+  return 0;
+}
+
+static void test_sizes(void) {
+  static const size_t sizes[] = {1, 2, 3, 4, 5, 7, 8, 9, 12, 13, 16, 17, 20, 21, 24, 25, 28, 33};
+  unsigned long steps1 = 0;
+  size_t q;
+  for (q = 0; q < sizeof sizes / sizeof sizes[0]; q++) {
+    size_t n = sizes[q];
+    autobal_transient_options opt = autobal_transient_options_default();
+    autobal_transient_system sys = {copies_rhs, NULL, n, &n};
+    autobal_transient *tr;
+    autobal_transient_stats st;
+    copies_obs o = {n, 0, 1, 0.0};
+    double y[33];
+    char what[160];
+    size_t i;
+    int rc;
+    opt.stepper = "dop853";
+    opt.rtol = opt.atol = 1e-9;
+    opt.dt_out = 0.37;
+    tr = autobal_transient_alloc(n, &opt, NULL);
+    for (i = 0; i < n; i++) y[i] = 1.0;
+    autobal_transient_set_observer(tr, copies_observe, &o);
+    rc = autobal_transient_run(tr, &sys, 0.0, 20.0, y, NULL);
+    autobal_transient_get_stats(tr, &st);
+    autobal_transient_free(tr);
+    if (n == 1) steps1 = st.steps;
+    snprintf(what, sizeof what, "dop853 dense, %zu identical components: run succeeds, 56 output times (0, 0.37, .., 19.98, 20)", n);
+    CHECK(what, rc == AUTOBAL_SUCCESS && o.calls == 56);
+    snprintf(what, sizeof what, "dop853 dense, %zu components: all components bit for bit equal", n);
+    CHECK(what, o.same);
+    snprintf(what, sizeof what, "dop853 dense, %zu components: |y - exp(sin t)| <= 100 tol", n);
+    CHECK(what, o.max_err <= 1e-7);
+    snprintf(what, sizeof what, "dop853 dense, %zu components: the steps of n = 1 (%lu, here %lu)", n,
+             steps1, st.steps);
+    CHECK(what, st.steps == steps1);
+  }
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   test_coefficients();
@@ -410,5 +479,6 @@ int main(void) {
   test_dense_accuracy();
   test_events();
   test_observer_stop_and_options();
+  test_sizes();
   return check_summary();
 }

@@ -90,17 +90,26 @@ def terms(coef, src):
 
 
 print("")
+print("/* the kernels are inlined into each multiversioned clone of their callers (dop853.c) */")
+print("#if defined(__GNUC__)")
+print("#define DOP853_INLINE inline __attribute__((always_inline))")
+print("#else")
+print("#define DOP853_INLINE inline")
+print("#endif")
+print("/* n below is the stride of the stage arrays, padded to a multiple of DOP853_LANES (dop853.c");
+print(" * pads with zeros): the loops run in blocks of 4 components with no remainder, which the");
+print(" * compiler turns into straight vector code (no remainder loop, no run-time checks) */")
+print("#define DOP853_LANES 4")
 print("/* out = y0 + h sum_j A[s][j] k_j over the non-zero A[s][j] (k: stage j at k + j n) */")
 for srow in range(1, 16):
     coef = [(j, lit(A[(srow, j)])) for j in range(srow) if (srow, j) in A]
-    print("static inline void dop853_arg_%d(size_t n, double h, const double *restrict y0, "
+    print("static DOP853_INLINE void dop853_arg_%d(size_t n, double h, const double *restrict y0, "
           "const double *restrict k, double *restrict out) {" % srow)
-    print("  size_t i;")
-    print("  for (i = 0; i < n; i++)")
-    print("    out[i] = y0[i] + h * (%s);" % terms(coef, lambda j: "k[%d * n + i]" % j))
+    print("  size_t b, i;")
+    print("  for (b = 0; b < n; b += DOP853_LANES)")
+    print("    for (i = b; i < b + DOP853_LANES; i++)")
+    print("      out[i] = y0[i] + h * (%s);" % terms(coef, lambda j: "k[%d * n + i]" % j))
     print("}")
-print("/* e5 = sum_j E5[j] k_j, e3 = sum_j E3[j] k_j (j = 0..12) at component i */")
-print("static inline void dop853_err_at(size_t n, size_t i, const double *restrict k, double *e5, double *e3) {")
 c5 = [(j, lit(E5[j])) for j in range(13) if j in E5]
 c3 = []
 for j in range(13):
@@ -109,15 +118,23 @@ for j in range(13):
         c3.append((j, (b if b else "0.0") + " - " + lit(bhh[j])))
     elif b:
         c3.append((j, b))
-print("  *e5 = %s;" % terms(c5, lambda j: "k[%d * n + i]" % j))
-print("  *e3 = %s;" % terms(c3, lambda j: "k[%d * n + i]" % j))
+print("/* e5 = sum_j E5[j] k_j, e3 = sum_j E3[j] k_j (j = 0..12), every component in one loop */")
+print("static DOP853_INLINE void dop853_err_rows(size_t n, const double *restrict k, double *restrict e5, "
+      "double *restrict e3) {")
+print("  size_t b, i;")
+print("  for (b = 0; b < n; b += DOP853_LANES)")
+print("    for (i = b; i < b + DOP853_LANES; i++) {")
+print("      e5[i] = %s;" % terms(c5, lambda j: "k[%d * n + i]" % j))
+print("      e3[i] = %s;" % terms(c3, lambda j: "k[%d * n + i]" % j))
+print("    }")
 print("}")
 print("/* f + r n = h sum_j D[r][j] k_j (r = 0..3: the extension's F3..F6) */")
-print("static inline void dop853_dense_rows(size_t n, double h, const double *restrict k, double *restrict f) {")
-print("  size_t i;")
-print("  for (i = 0; i < n; i++) {")
+print("static DOP853_INLINE void dop853_dense_rows(size_t n, double h, const double *restrict k, double *restrict f) {")
+print("  size_t b, i;")
+print("  for (b = 0; b < n; b += DOP853_LANES)")
+print("    for (i = b; i < b + DOP853_LANES; i++) {")
 for r in range(4):
     coef = [(j, lit(D[(r, j)])) for j in range(16) if (r, j) in D]
-    print("    f[%d * n + i] = h * (%s);" % (r, terms(coef, lambda j: "k[%d * n + i]" % j)))
-print("  }")
+    print("      f[%d * n + i] = h * (%s);" % (r, terms(coef, lambda j: "k[%d * n + i]" % j)))
+print("    }")
 print("}")

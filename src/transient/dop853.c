@@ -14,13 +14,28 @@
 
 enum { NST = 12, NEXT = 16 };
 
+/* The step's linear combinations are also compiled for AVX2 and chosen at load time (GCC's
+ * function multiversioning, x86-64 with ifunc): 4 components per instruction instead of 2.  No
+ * FMA and no reassociation (ISO C mode: -ffp-contract=off), so every clone computes the same
+ * numbers, bit for bit. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(AUTOBAL_NO_MULTIVERSION)
+#define DOP853_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define DOP853_CLONES
+#endif
+
+/* The arrays below have the stride np = dim rounded up to a multiple of DOP853_LANES; the padding
+ * is zero (calloc; the right-hand side writes only dim components), so it stays zero through
+ * every combination and never reaches the caller. */
 typedef struct dop853_state {
-  size_t dim;
-  double *k;    /* NEXT x dim stages: 0..11 the step's, 12 f(t + h, y1), 13..15 the extension's */
+  size_t dim, np;
+  double *k;    /* NEXT x np stages: 0..11 the step's, 12 f(t + h, y1), 13..15 the extension's */
   double *y0;   /* the state at the start of the last step */
   double *y1;   /* its result */
-  double *ytmp; /* a stage's argument */
-  double *f;    /* 4 x dim: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
+  double *ytmp; /* a stage's argument; e3 after the step */
+  double *e5;   /* the 5th-order estimate (unscaled) */
+  double *f;    /* 4 x np: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
   double t0, h;
   double atol, rtol; /* the control's tolerances (0, 0: the componentwise estimate) */
   int ready;
@@ -32,6 +47,7 @@ static void dop853_free(void *vstate) {
   free(s->y0);
   free(s->y1);
   free(s->ytmp);
+  free(s->e5);
   free(s->f);
   free(s);
 }
@@ -40,46 +56,25 @@ static void *dop853_alloc(size_t dim) {
   dop853_state *s = calloc(1, sizeof *s);
   if (s == NULL) return NULL;
   s->dim = dim;
-  s->k = malloc(NEXT * dim * sizeof(double));
-  s->y0 = malloc(dim * sizeof(double));
-  s->y1 = malloc(dim * sizeof(double));
-  s->ytmp = malloc(dim * sizeof(double));
-  s->f = malloc(4 * dim * sizeof(double));
-  if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->f) {
+  s->np = (dim + DOP853_LANES - 1) / DOP853_LANES * DOP853_LANES;
+  s->k = calloc(NEXT * s->np, sizeof(double));
+  s->y0 = calloc(s->np, sizeof(double));
+  s->y1 = calloc(s->np, sizeof(double));
+  s->ytmp = calloc(s->np, sizeof(double));
+  s->e5 = calloc(s->np, sizeof(double));
+  s->f = calloc(4 * s->np, sizeof(double));
+  if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->e5 || !s->f) {
     dop853_free(s);
     GSL_ERROR_NULL("failed to allocate space for dop853_state", GSL_ENOMEM);
   }
   return s;
 }
 
-/* ytmp = y0 + h sum_j A[row][j] k_j (row 1..15; the generated straight-line kernels) */
-static void stage_arg(dop853_state *s, int row, double h) {
-  switch (row) {
-    case 1: dop853_arg_1(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 2: dop853_arg_2(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 3: dop853_arg_3(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 4: dop853_arg_4(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 5: dop853_arg_5(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 6: dop853_arg_6(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 7: dop853_arg_7(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 8: dop853_arg_8(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 9: dop853_arg_9(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 10: dop853_arg_10(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 11: dop853_arg_11(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 12: dop853_arg_12(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 13: dop853_arg_13(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 14: dop853_arg_14(s->dim, h, s->y0, s->k, s->ytmp); break;
-    case 15: dop853_arg_15(s->dim, h, s->y0, s->k, s->ytmp); break;
-    default: break;
-  }
-}
-
-static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[], double yerr[],
-                        const double dydt_in[], double dydt_out[], const gsl_odeiv2_system *sys) {
-  dop853_state *s = (dop853_state *)vstate;
-  const size_t n = dim;
+static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size_t np, double t,
+                                            double h, double y[], double yerr[], const double dydt_in[],
+                                            double dydt_out[], const gsl_odeiv2_system *sys) {
   size_t i;
-  int st, j;
+  int st;
   s->ready = 0;
   s->t0 = t;
   s->h = h;
@@ -89,56 +84,103 @@ static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[]
   } else if ((st = GSL_ODEIV_FN_EVAL(sys, t, y, s->k)) != GSL_SUCCESS) {
     return st;
   }
-  for (j = 1; j < NST; j++) {
-    stage_arg(s, j, h);
-    st = GSL_ODEIV_FN_EVAL(sys, t + DOP853_C[j] * h, s->ytmp, s->k + (size_t)j * n);
-    if (st != GSL_SUCCESS) return st;
-  }
-  stage_arg(s, NST, h); /* row 12 holds the weights b */
-  memcpy(s->y1, s->ytmp, n * sizeof(double));
-  st = GSL_ODEIV_FN_EVAL(sys, t + h, s->y1, s->k + (size_t)NST * n);
+  /* stages 1..11, each kernel inlined here (one straight-line pass per stage argument) */
+#define DOP853_STAGE(J)                                                                      \
+  do {                                                                                       \
+    dop853_arg_##J(np, h, s->y0, s->k, s->ytmp);                                             \
+    st = GSL_ODEIV_FN_EVAL(sys, t + DOP853_C[J] * h, s->ytmp, s->k + (size_t)(J) * np);       \
+    if (st != GSL_SUCCESS) return st;                                                        \
+  } while (0)
+  DOP853_STAGE(1);
+  DOP853_STAGE(2);
+  DOP853_STAGE(3);
+  DOP853_STAGE(4);
+  DOP853_STAGE(5);
+  DOP853_STAGE(6);
+  DOP853_STAGE(7);
+  DOP853_STAGE(8);
+  DOP853_STAGE(9);
+  DOP853_STAGE(10);
+  DOP853_STAGE(11);
+  dop853_arg_12(np, h, s->y0, s->k, s->y1); /* row 12 holds the weights b */
+  st = GSL_ODEIV_FN_EVAL(sys, t + h, s->y1, s->k + (size_t)NST * np);
   if (st != GSL_SUCCESS) return st;
+  /* e5 and e3 in one pass over the padded components (the same sums, term by term, as the
+   * componentwise form), then the norms summed in component order */
+  dop853_err_rows(np, s->k, s->e5, s->ytmp);
   if (s->atol > 0.0 || s->rtol > 0.0) {
     /* Hairer's normwise combination: the factor |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the
      * scaled 2-norms, the same for every component (yerr_i = h e5_i factor / |e5|) */
-    double n5 = 0.0, n3 = 0.0, fac;
+    const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict e5 = s->e5,
+                           *restrict e3 = s->ytmp;
+    const double atol = s->atol, rtol = s->rtol;
+    double n5 = 0.0, n3 = 0.0, fac, hf;
     for (i = 0; i < n; i++) {
-      double e5, e3;
-      const double sc = s->atol + s->rtol * fmax(fabs(s->y0[i]), fabs(s->y1[i]));
-      dop853_err_at(n, i, s->k, &e5, &e3);
-      yerr[i] = e5;
-      n5 += (e5 / sc) * (e5 / sc);
-      n3 += (e3 / sc) * (e3 / sc);
+      const double a0 = fabs(y0[i]), a1 = fabs(y1[i]);
+      /* max(a0, a1) inline (fmax is a libm call here; the same value for numbers, and a NaN
+       * state is refused after the step anyway) */
+      const double sc = atol + rtol * (a0 >= a1 ? a0 : a1);
+      const double q5 = e5[i] / sc, q3 = e3[i] / sc;
+      n5 += q5 * q5;
+      n3 += q3 * q3;
     }
     fac = n5 + n3 > 0.0 ? sqrt(n5) / sqrt(n5 + 0.01 * n3) : 0.0;
-    for (i = 0; i < n; i++) yerr[i] *= h * fac;
+    hf = h * fac;
+    for (i = 0; i < n; i++) yerr[i] = e5[i] * hf;
   } else {
+    const double *restrict e5 = s->e5, *restrict e3 = s->ytmp;
     for (i = 0; i < n; i++) {
-      double e5, e3, den;
-      dop853_err_at(n, i, s->k, &e5, &e3);
-      den = hypot(e5, 0.1 * e3);
-      yerr[i] = den > 0.0 ? h * e5 * (fabs(e5) / den) : 0.0;
+      const double den = hypot(e5[i], 0.1 * e3[i]);
+      yerr[i] = den > 0.0 ? h * e5[i] * (fabs(e5[i]) / den) : 0.0;
     }
   }
   memcpy(y, s->y1, n * sizeof(double));
-  if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * n, n * sizeof(double));
+  if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * np, n * sizeof(double));
   return GSL_SUCCESS;
 }
 
-int autobal_transient_dop853_dense_prepare_(void *vstate, const gsl_odeiv2_system *sys) {
+/* small systems (up to 24 components) get the step with their padded size as a constant: every
+ * loop unrolled, no loop control (pendulum: 8 components; a one-plane rotor with 2 balls 12, with
+ * 8 balls 24) */
+DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[],
+                                      double yerr[], const double dydt_in[], double dydt_out[],
+                                      const gsl_odeiv2_system *sys) {
   dop853_state *s = (dop853_state *)vstate;
-  const size_t n = s->dim;
-  const double h = s->h;
-  int j, st;
-  if (s->ready) return GSL_SUCCESS;
-  for (j = NST + 1; j < NEXT; j++) {
-    stage_arg(s, j, h);
-    st = GSL_ODEIV_FN_EVAL(sys, s->t0 + DOP853_C[j] * h, s->ytmp, s->k + (size_t)j * n);
-    if (st != GSL_SUCCESS) return st;
+  switch (s->np) {
+    case 4: return dop853_step(s, dim, 4, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 8: return dop853_step(s, dim, 8, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 12: return dop853_step(s, dim, 12, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 16: return dop853_step(s, dim, 16, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 20: return dop853_step(s, dim, 20, t, h, y, yerr, dydt_in, dydt_out, sys);
+    case 24: return dop853_step(s, dim, 24, t, h, y, yerr, dydt_in, dydt_out, sys);
+    default: return dop853_step(s, dim, s->np, t, h, y, yerr, dydt_in, dydt_out, sys);
   }
-  dop853_dense_rows(n, h, s->k, s->f);
+}
+
+static DOP853_INLINE int dop853_extend(dop853_state *s, const size_t np, const gsl_odeiv2_system *sys) {
+  const double t = s->t0, h = s->h;
+  int st;
+  DOP853_STAGE(13);
+  DOP853_STAGE(14);
+  DOP853_STAGE(15);
+  dop853_dense_rows(np, h, s->k, s->f);
   s->ready = 1;
   return GSL_SUCCESS;
+}
+
+/* the extension's 3 stages and its coefficients, once per step (unrolled as dop853_apply) */
+DOP853_CLONES int autobal_transient_dop853_dense_prepare_(void *vstate, const gsl_odeiv2_system *sys) {
+  dop853_state *s = (dop853_state *)vstate;
+  if (s->ready) return GSL_SUCCESS;
+  switch (s->np) {
+    case 4: return dop853_extend(s, 4, sys);
+    case 8: return dop853_extend(s, 8, sys);
+    case 12: return dop853_extend(s, 12, sys);
+    case 16: return dop853_extend(s, 16, sys);
+    case 20: return dop853_extend(s, 20, sys);
+    case 24: return dop853_extend(s, 24, sys);
+    default: return dop853_extend(s, s->np, sys);
+  }
 }
 
 int autobal_transient_dop853_dense_ready_(const void *vstate) {
@@ -148,12 +190,12 @@ int autobal_transient_dop853_dense_ready_(const void *vstate) {
 /* Hairer's contd8: with x = theta, x1 = 1 - x,
  *   u = y0 + x (F0 + x1 (F1 + x (F2 + x1 (F3 + x (F4 + x1 (F5 + x F6)))))),
  * F0 = y1 - y0, F1 = h f0 - F0, F2 = F0 - h f1 - F1 (= 2 F0 - h (f0 + f1)), F3..F6 = h D k. */
-void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
+DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
   const dop853_state *s = (const dop853_state *)vstate;
-  const size_t n = s->dim;
+  const size_t n = s->dim, np = s->np;
   const double x = theta, x1 = 1.0 - theta, h = s->h;
-  const double *k0 = s->k, *k12 = s->k + (size_t)NST * n;
-  const double *f3 = s->f, *f4 = f3 + n, *f5 = f4 + n, *f6 = f5 + n;
+  const double *k0 = s->k, *k12 = s->k + (size_t)NST * np;
+  const double *f3 = s->f, *f4 = f3 + np, *f5 = f4 + np, *f6 = f5 + np;
   size_t i;
   for (i = 0; i < n; i++) {
     const double d = s->y1[i] - s->y0[i];

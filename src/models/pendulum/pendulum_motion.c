@@ -262,11 +262,26 @@ double autobal_pendulum_jacobi_power(const autobal_pendulum_params *p, const dou
   return -p->H * (vx * y[4] + vy * y[5]) - p->R_m * p->h * (y[6] * y[6] + y[7] * y[7]);
 }
 
+/* The same expressions as shaft_amplitude, residual_unbalance, wrap_angle and jacobi_integral
+ * (the same numbers, bit for bit: no contraction in ISO C mode), with sin(psi0) and the sines and
+ * cosines of the two angles computed once instead of twice (called at every output point). */
 void autobal_pendulum_motion_derive(const autobal_pendulum_params *p, const double y[],
                                     autobal_pendulum_motion_derived *out) {
-  out->amplitude = autobal_pendulum_shaft_amplitude(y);
-  out->unbalance = autobal_pendulum_residual_unbalance(p, y, &out->unbalance_u, &out->unbalance_v);
+  const double s0 = sin(p->psi0);
+  const double s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
+  const double du = s0 - 0.5 * (s1 + s2), dv = 0.5 * (c1 - c2);
+  const double Rw2 = p->R_w * p->R_w, Rm = p->R_m;
+  const double xi = y[0], eta = y[1], dxi = y[4], deta = y[5], dpsi = y[6], dphi = y[7];
+  const double T2 = 0.5 * (dxi * dxi + deta * deta + Rm * (dpsi * dpsi + dphi * dphi)) -
+                    Rm * dxi * (c1 * dpsi + c2 * dphi) - Rm * deta * (s1 * dpsi - s2 * dphi);
+  const double T0 =
+      0.5 * Rw2 * (xi * xi + eta * eta + 2.0 * Rm * (xi * (2.0 * s0 - s1 - s2) + eta * (c1 - c2)));
+  const double V = 0.5 * (xi * xi + eta * eta);
+  out->amplitude = hypot(y[0], y[1]);
+  out->unbalance_u = du;
+  out->unbalance_v = dv;
+  out->unbalance = hypot(du, dv);
   out->alpha = autobal_pendulum_wrap_angle(y[2] - p->psi0);
   out->beta = autobal_pendulum_wrap_angle(y[3] - p->psi0);
-  out->jacobi = autobal_pendulum_jacobi_integral(p, y);
+  out->jacobi = T2 - T0 + V;
 }
