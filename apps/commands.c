@@ -13,7 +13,7 @@ const cli_command cli_commands[] = {
      HELP_PENDULUM_CRITICAL, cli_cmd_pendulum_critical},
     {"pendulum map", "stability map over any two parameters (default (R_m, R_w)), one k or every unbalance",
      HELP_PENDULUM_MAP, cli_cmd_pendulum_map},
-    {"pendulum sweep", "stability along any parameter (R_w, R_m, H, h, k, psi0, H/h); critical values",
+    {"pendulum sweep", "stability along any parameter (R_w, R_m, H, h, k, psi0, H/h, or a physical key); critical values",
      HELP_PENDULUM_SWEEP, cli_cmd_pendulum_sweep},
     {"pendulum transient", "transient of the two-pendulum autobalancer: time series, time to balance",
      HELP_PENDULUM_TRANSIENT, cli_cmd_pendulum_transient},
