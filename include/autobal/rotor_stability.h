@@ -568,7 +568,8 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s,
  * (the balls cannot balance every unbalance of the range at this point, e.g. a small ball mass);
  * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
- * not apply (two planes, three or more balls, full inertia, anisotropic supports). */
+ * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC,
+ * full inertia, anisotropic supports). */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
                                                        const autobal_rotor_stab_options *opt, int param1,
                                                        const double *v1, size_t n1, int param2,
