@@ -107,6 +107,22 @@ static int parse_member(cli_ctx *ctx, stab_cfg *c, size_t j) {
   return CLI_EXIT_OK;
 }
 
+/* [SEC] unbalance_member = every|symmetric: the members of plane 1 that the every-unbalance analysis
+ * covers with three or more identical balls (rotor_stability.h, autobal_rotor_unbalance_member). */
+static int read_unbalance_member(cli_ctx *ctx, const char *sec, int *rule, const char **name) {
+  int rc;
+  *name = "every";
+  if ((rc = cli_get_string(ctx, sec, "unbalance_member", *name, name, NULL))) return rc;
+  if (!strcmp(*name, "every")) *rule = AUTOBAL_ROTOR_UNBALANCE_EVERY;
+  else if (!strcmp(*name, "symmetric")) *rule = AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC;
+  else
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[%s]: unbalance_member = '%s' is not one of: every, symmetric (the members of the family of "
+                    "balanced configurations that 'every unbalance' covers with three or more balls)",
+                    sec, *name);
+  return CLI_EXIT_OK;
+}
+
 /* gravity = true is refused: these analyses linearize about the weightless balanced state (the
  * library's balanced states and linear analyses ignore gravity, docs/device.md section 2). */
 static int refuse_gravity(cli_ctx *ctx, const autobal_rotor_params *p) {
@@ -275,6 +291,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   double clo = 0, chi = 0, xtol = o.xtol_rel;
   long cn = (long)o.n_omega;
   int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds, have_umin = 0, have_umax = 0;
+  const char *umember = "every";
   double umin = NAN, umax = NAN;
   size_t i;
   memset(&sum, 0, sizeof sum);
@@ -288,6 +305,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_double(ctx, "stability", "xtol_rel", xtol, &xtol, NULL))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
+  if ((rc = read_unbalance_member(ctx, "stability", &c->opt.unbalance_member, &umember))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if (have_umin != have_umax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
@@ -379,6 +397,12 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       cli_json_quantity(&j, "unbalance_min", u->s_lo, "kg m");
       cli_json_quantity(&j, "unbalance_max", u->s_hi, "kg m");
       cli_json_bool(&j, "stable_for_all", u->all_stable);
+      if (u->n_balls >= 3) {
+        cli_json_string(&j, "unbalance_member", umember);
+        cli_json_int(&j, "n_balls", (long)u->n_balls);
+        cli_json_quantity(&j, "u_min", u->u_min, "kg^2");
+        cli_json_quantity(&j, "u_max", u->u_max, "kg^2");
+      }
       cli_json_quantities(&j, "critical_unbalance", u->s_crit, u->n_crit, "kg m");
       cli_json_quantities(&j, "sub_lo", u->sub_lo, u->n_sub, "kg m");
       cli_json_quantities(&j, "sub_hi", u->sub_hi, u->n_sub, "kg m");
@@ -425,6 +449,9 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       const autobal_rotor_unbalance_range *u = &sum.every;
       printf("  EVERY UNBALANCE m0 r0 in [%.6g, %.6g] g mm at this speed: %s\n", u->s_lo * 1e6, u->s_hi * 1e6,
              u->all_stable ? "STABLE for all" : "NOT stable for all");
+      if (u->n_balls >= 3)
+        printf("  %zu identical balls, unbalance_member = %s: u = |Q|^2/4 in [%.9g, %.9g] kg^2 over the range\n",
+               u->n_balls, umember, u->u_min, u->u_max);
       printf("  critical unbalances (a root of Delta on the imaginary axis):");
       if (u->n_crit == 0) printf(" none in the range");
       for (i = 0; i < u->n_crit; i++) printf(" %.8g", u->s_crit[i] * 1e6);
@@ -632,6 +659,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   char msg[sizeof ctx->err];
   double lo1, hi1, lo2, hi2;
   int p1 = 0, p2 = 1, rc = CLI_EXIT_OK, st, have_umin = 0, have_umax = 0;
+  const char *umember = "every";
   double umin = NAN, umax = NAN;
   long n1 = (long)o.n1, n2 = (long)o.n2, threads = o.threads;
   size_t n;
@@ -653,6 +681,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   if ((rc = cli_get_int(ctx, "map", "threads", threads, &threads, NULL))) goto done;
   if ((rc = cli_get_quantity(ctx, "map", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
   if ((rc = cli_get_quantity(ctx, "map", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
+  if ((rc = read_unbalance_member(ctx, "map", &c->opt.unbalance_member, &umember))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if (have_umin != have_umax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
@@ -708,6 +737,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_int(&j, "n2", n2);
     cli_json_int(&j, "n_stable", (long)sum.n_stable);
     cli_json_bool(&j, "every_unbalance", o.every_unbalance);
+    if (o.every_unbalance && c->p.plane[0].n_balls >= 3) cli_json_string(&j, "unbalance_member", umember);
     cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
@@ -715,8 +745,9 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
            hi1, autobal_rotor_stab_param_unit(p1), autobal_rotor_stab_param_name(p2), lo2, hi2,
            autobal_rotor_stab_param_unit(p2));
     if (o.every_unbalance)
-      printf("  for EVERY unbalance m0 r0 in [%.6g, %.6g] g mm (each point's verdict covers the whole range)\n",
-             umin * 1e6, umax * 1e6);
+      printf("  for EVERY unbalance m0 r0 in [%.6g, %.6g] g mm (each point's verdict covers the whole range)%s%s\n",
+             umin * 1e6, umax * 1e6, c->p.plane[0].n_balls >= 3 ? ", unbalance_member = " : "",
+             c->p.plane[0].n_balls >= 3 ? umember : "");
     printf("  stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }

@@ -232,8 +232,9 @@
   "            critical_speeds = true  omega_min, omega_max (rad/s; default 5% of the 1st natural frequency .. 4x)\n" \
   "            n_omega = 400  xtol_rel = 1e-8\n" \
   "            unbalance_min, unbalance_max (kg m or g mm): EVERY unbalance m0 r0 in the range (one plane, two\n" \
-  "            balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
+  "            or more balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
   "            \"Every unbalance\")\n" \
+  "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: not yet)\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
   "         /rotor/stability/every_unbalance (and .../speeds)\n" \
   HELP_DOCS_ROTOR
@@ -255,8 +256,8 @@
   "      threads = 0 (OpenMP threads; 0: default)\n" \
   "      param1, param2: two different parameters below; min, max in their units\n" \
   "      unbalance_min, unbalance_max (kg m or g mm): each point's verdict for EVERY m0 r0 in the range\n" \
-  "      (one plane, two balls; docs/rotor.md \"Every unbalance\"); unbalance_mass, plane1.m0 and\n" \
-  "      plane1.unbalance are then no axes\n\n" \
+  "      (one plane, two or more balls; docs/rotor.md \"Every unbalance\"); unbalance_mass, plane1.m0 and\n" \
+  "      plane1.unbalance are then no axes; unbalance_member = every|symmetric (3 or more balls)\n\n" \
   HELP_ROTOR_STAB_AXES \
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR

@@ -54,4 +54,10 @@ echo "$asy"
 for pat in 'light balls (1)' 'light balls (2)' 'light balls (3)' 'high speed (4)' 'pendulum (5)' 'rotor roots (6)'; do
   grep -F "$pat" <<<"$asy" | grep -q ': OK' || { echo "test_derive: asymptotic check '$pat' did not report OK"; exit 1; }
 done
+# every unbalance with n >= 3 identical balls (tools/derive/derive_nballs.py, docs/rotor.md "Every unbalance")
+nb=$("$py" "$src/tools/derive/derive_nballs.py" 2>&1) || { echo "$nb"; echo "test_derive: FAILED (n balls)"; exit 1; }
+echo "$nb"
+for pat in 'n balls, common kappa' 'symmetric fan: t = ' 'symmetric fan: u(y) monotone'; do
+  grep -F "$pat" <<<"$nb" | grep -q ': OK' || { echo "test_derive: n-balls check '$pat' did not report OK"; exit 1; }
+done
 echo "test_derive: all checks passed"

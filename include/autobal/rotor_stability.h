@@ -276,7 +276,21 @@ typedef struct autobal_rotor_stab_options {
   double tol;        /* relative verdict tolerance (default 1e-9) */
   double floquet_rtol; /* relative tolerance of the monodromy integration (default 1e-11) */
   double floquet_atol; /* absolute tolerance, scaled state (default 1e-13) */
+  /* the members of plane 1 that the every-unbalance analysis (autobal_rotor_stab_every_unbalance,
+     its speeds and map) covers for three or more identical balls: autobal_rotor_unbalance_member
+     (added at the end; no effect with two balls, whose member is unique)     (default EVERY) */
+  int unbalance_member;
 } autobal_rotor_stab_options;
+
+/* The member rule of the every-unbalance analysis with n >= 3 balls (docs/rotor.md "Every
+ * unbalance"). */
+typedef enum autobal_rotor_unbalance_member {
+  /* every member of the family (wherever the balls settle); not yet available for n >= 3
+     (AUTOBAL_EUNSUPPORTED with a message) */
+  AUTOBAL_ROTOR_UNBALANCE_EVERY = 0,
+  /* the symmetric fan psi_i = psi0 + pi + (i - (n-1)/2) delta (AUTOBAL_ROTOR_MEMBER_SYMMETRIC) */
+  AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC = 1
+} autobal_rotor_unbalance_member;
 
 AUTOBAL_API autobal_rotor_stab_options autobal_rotor_stab_options_default(void);
 
@@ -514,11 +528,18 @@ typedef struct autobal_rotor_unbalance_range {
   size_t n_missed;            /* verdict changes inside a sub-interval that the crossing polynomial did
                                  not give (found by bisection, added to s_crit); 0 expected */
   size_t evaluations;         /* margin evaluations */
+  /* added at the end: three or more identical balls (n_balls >= 3) */
+  size_t n_balls;             /* balls in plane 1 */
+  int member_rule;            /* autobal_rotor_unbalance_member analysed (n_balls >= 3) */
+  double u_min, u_max;        /* kg^2, the range of u = |Q|^2 / 4 over the range's members (n_balls >= 3;
+                                 NaN for two balls) */
 } autobal_rotor_unbalance_range;
 
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
- * handle's current omega: one plane with two balls with a common h/m, isotropic supports, the
- * paper's inertia model (AUTOBAL_EUNSUPPORTED otherwise, with a message).  Method (guaranteed, not
+ * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
+ * m, r, h) with the member rule opt.unbalance_member = SYMMETRIC (the symmetric fan; EVERY is not yet
+ * available for n >= 3), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
+ * otherwise, with a message).  Method (guaranteed, not
  * sampled): Delta(lambda; s) = A(lambda) - (|Q(s)|^2 / 4) B(lambda) with A, B independent of s, so
  * a root crosses the imaginary axis only at the critical unbalances where A(i y) = u B(i y) for a real
  * u = |Q|^2 / 4 and real y (the real roots of a polynomial of degree <= 11 in y^2, and y = 0), mapped
@@ -547,7 +568,8 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s,
  * (the balls cannot balance every unbalance of the range at this point, e.g. a small ball mass);
  * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
- * not apply (two planes, three or more balls, full inertia, anisotropic supports). */
+ * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC,
+ * full inertia, anisotropic supports). */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
                                                        const autobal_rotor_stab_options *opt, int param1,
                                                        const double *v1, size_t n1, int param2,

@@ -213,6 +213,9 @@ static int check_options(const autobal_rotor_stab_options *o, const autobal_roto
   if ((st = autobal_check_param(err, "floquet_atol", o->floquet_atol, 0.0, 1, 1e-3, 0, "")) !=
       AUTOBAL_SUCCESS)
     return st;
+  if (o->unbalance_member < AUTOBAL_ROTOR_UNBALANCE_EVERY || o->unbalance_member > AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option unbalance_member = %d is not valid (0 every, 1 symmetric)", o->unbalance_member);
   for (j = 0; j < p->n_planes; j++) {
     const autobal_rotor_member *m = &o->member[j];
     if (m->kind < AUTOBAL_ROTOR_MEMBER_DEFAULT || m->kind > AUTOBAL_ROTOR_MEMBER_GIVEN)

@@ -17,6 +17,19 @@
  * sub-interval is checked at both ends and the midpoint; a disagreement (a crossing the polynomial
  * roots missed) is bisected.
  *
+ *
+ * Three or more identical balls (mass m, track radius r, damping h; a = m r), member rule SYMMETRIC
+ * (the fan psi_i = psi0 + pi + (i - (n-1)/2) delta): with theta = delta / 2, x = cos theta and
+ * y = cos 2 theta = 2 x^2 - 1, the unbalance is t = s / a = sin(n theta) / sin(theta) = U_{n-1}(x),
+ * and |Q| / m = |sin(2 n theta) / sin(2 theta)| = |U_{n-1}(y)| (Chebyshev polynomials of the second
+ * kind; tools/derive/derive_nballs.py).  The admissible fan has 2 theta in [0, 2 pi / n], y in
+ * [cos(2 pi / n), 1], where t increases with y.  The roots of U_{n-1} are cos(k pi / n) and those of
+ * U'_{n-1} interlace them, so on this range u(y) = m^2 U_{n-1}(y)^2 / 4 has exactly two critical
+ * points: y1, the one root of U'_{n-1} in (cos(2 pi / n), cos(pi / n)) (a local maximum), and
+ * y0 = cos(pi / n) (u = 0); u is monotone between them.  The range of u over [s_lo, s_hi] and the
+ * unbalances of a critical u follow exactly (bisection on the monotone pieces); the verdicts use the
+ * symmetric member.  The member rule EVERY is not available yet for n >= 3.
+ *
  * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h). */
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
@@ -75,6 +88,134 @@ static size_t s_of_u(double u, double m1, double m2, double a1, double a2, doubl
   return n;
 }
 
+/* ---- n >= 3 identical balls, the symmetric fan ---- */
+
+/* U_{n-1}(y) (Chebyshev, second kind) and its derivative, by the recurrences
+ * U_{k+1} = 2 y U_k - U_{k-1}, U'_{k+1} = 2 U_k + 2 y U'_k - U'_{k-1}. */
+static double cheb_u(size_t n, double y, double *dU) {
+  double u0 = 1.0, u1 = 2.0 * y, d0 = 0.0, d1 = 2.0;
+  size_t k;
+  if (n == 1) {
+    if (dU) *dU = 0.0;
+    return 1.0;
+  }
+  for (k = 2; k < n; k++) {
+    const double u2 = 2.0 * y * u1 - u0, d2 = 2.0 * u1 + 2.0 * y * d1 - d0;
+    u0 = u1, u1 = u2, d0 = d1, d1 = d2;
+  }
+  if (dU) *dU = d1;
+  return u1;
+}
+
+/* The symmetric fan of n identical balls (mass m, a = m r): its range in y = cos(delta). */
+typedef struct sym_fan {
+  size_t n;
+  double m, a;
+  double y_min;  /* cos(2 pi / n): t = 0 */
+  double y1;     /* the root of U'_{n-1} in (y_min, y0): |U_{n-1}| has its local maximum */
+  double y0;     /* cos(pi / n): U_{n-1} = 0, Q = 0 */
+  double ya, yb; /* the y of s_lo, s_hi */
+} sym_fan;
+
+/* t = s / a of the fan at y (x = sqrt((1 + y) / 2)). */
+static double fan_t(const sym_fan *f, double y) { return cheb_u(f->n, sqrt(0.5 * (1.0 + y)), NULL); }
+
+/* u = |Q|^2 / 4 (kg^2) of the fan at y. */
+static double fan_u(const sym_fan *f, double y) {
+  const double g = cheb_u(f->n, y, NULL);
+  return 0.25 * f->m * f->m * g * g;
+}
+
+/* The y in [y_min, 1] with fan_t(y) = t (increasing), by bisection to the last bit. */
+static double fan_y_of_t(const sym_fan *f, double t) {
+  double lo = f->y_min, hi = 1.0;
+  int it;
+  for (it = 0; it < 200; it++) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (fan_t(f, mid) < t) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+static void fan_init(sym_fan *f, size_t n, double m, double a, double s_lo, double s_hi) {
+  double lo, hi;
+  int it;
+  f->n = n, f->m = m, f->a = a;
+  f->y_min = cos(2.0 * M_PI / (double)n);
+  f->y0 = cos(M_PI / (double)n);
+  /* U'_{n-1} changes sign once on (y_min, y0) (interlacing): bisect on its sign */
+  lo = f->y_min, hi = f->y0;
+  {
+    double dlo;
+    (void)cheb_u(n, lo, &dlo);
+    for (it = 0; it < 200; it++) {
+      const double mid = 0.5 * (lo + hi);
+      double dm;
+      if (!(mid > lo && mid < hi)) break;
+      (void)cheb_u(n, mid, &dm);
+      if ((dm > 0.0) == (dlo > 0.0)) lo = mid;
+      else hi = mid;
+    }
+  }
+  f->y1 = 0.5 * (lo + hi);
+  f->ya = fan_y_of_t(f, s_lo / a);
+  f->yb = fan_y_of_t(f, s_hi / a);
+}
+
+/* The range of u over [ya, yb]: the ends and the critical points y1, y0 inside. */
+static void fan_u_range(const sym_fan *f, double *umin, double *umax) {
+  const double ys[4] = {f->ya, f->yb, f->y1, f->y0};
+  size_t k;
+  *umin = INFINITY, *umax = -INFINITY;
+  for (k = 0; k < 4; k++) {
+    double u;
+    if (k >= 2 && !(ys[k] > f->ya && ys[k] < f->yb)) continue;
+    u = k == 3 ? 0.0 : fan_u(f, ys[k]);
+    if (u < *umin) *umin = u;
+    if (u > *umax) *umax = u;
+  }
+}
+
+/* The unbalances s in [s_lo, s_hi] of the fan whose u equals uc: one per monotone piece of u(y)
+ * ([y_min, y1], [y1, y0], [y0, 1] cut to [ya, yb]) that brackets it, by bisection; returns the
+ * count (<= 3) written to out. */
+static size_t fan_s_of_u(const sym_fan *f, double uc, double out[3]) {
+  const double br[4] = {f->y_min, f->y1, f->y0, 1.0};
+  size_t k, n = 0;
+  if (!isfinite(uc)) return 0;
+  for (k = 0; k < 3; k++) {
+    double lo = fmax(br[k], f->ya), hi = fmin(br[k + 1], f->yb), flo, fhi;
+    int it;
+    if (!(lo <= hi)) continue;
+    flo = fan_u(f, lo) - uc;
+    fhi = fan_u(f, hi) - uc;
+    if ((flo > 0.0 && fhi > 0.0) || (flo < 0.0 && fhi < 0.0)) continue;
+    for (it = 0; it < 200; it++) {
+      const double mid = 0.5 * (lo + hi), fm = fan_u(f, mid) - uc;
+      if (!(mid > lo && mid < hi)) break;
+      if ((fm > 0.0) == (flo > 0.0)) lo = mid, flo = fm;
+      else hi = mid;
+    }
+    out[n++] = f->a * fan_t(f, 0.5 * (lo + hi));
+  }
+  return n;
+}
+
+/* The balls' data of the every-unbalance analysis: two balls (m1, m2, a1, a2) or a fan. */
+typedef struct balls_info {
+  size_t nb;
+  double m1, m2, a1, a2, r0;
+  sym_fan fan;
+} balls_info;
+
+/* The unbalances of a critical u: two balls by the closed form, a fan by fan_s_of_u. */
+static size_t map_u(const balls_info *bi, double u, double *out) {
+  if (bi->nb == 2) return s_of_u(u, bi->m1, bi->m2, bi->a1, bi->a2, out);
+  return fan_s_of_u(&bi->fan, u, out);
+}
+
 /* One verdict STABLE and the other UNSTABLE. */
 static int opposite(int a, int b) {
   return (a == AUTOBAL_VERDICT_STABLE && b == AUTOBAL_VERDICT_UNSTABLE) ||
@@ -93,14 +234,48 @@ static int verdict_at(autobal_rotor_stab *s, double r0, double sv, double *margi
   return autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_POLY, margin, verdict);
 }
 
-/* The checks of the model's domain; fills the two balls' data. */
-static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, double *m1, double *m2, double *a1,
-                        double *a2, double *r0) {
+/* The checks of n >= 3 balls: identical balls, the member rule, the range. */
+static int check_fan(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info *bi) {
+  const autobal_rotor_plane *pl = &s->cur.plane[0];
+  const size_t n = pl->n_balls;
+  size_t i;
+  for (i = 1; i < n; i++)
+    if (!autobal_rotor_close_rel_(pl->ball_mass[i], pl->ball_mass[0], 1e-12) ||
+        !autobal_rotor_close_rel_(pl->ball_radius[i], pl->ball_radius[0], 1e-12) ||
+        !autobal_rotor_close_rel_(s->h[i], s->h[0], 1e-12))
+      return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                               "every unbalance: %zu balls in plane 1 need identical balls (plane1.ball_mass, "
+                               "plane1.ball_radius and plane1.ball_damping equal for every ball; ball %zu differs "
+                               "from ball 1)",
+                               n, i + 1);
+  if (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance: with %zu balls the member of the family matters; unbalance_member = "
+                             "every (every member) is not available yet for three or more balls: use "
+                             "unbalance_member = symmetric (the symmetric fan, the default balanced configuration)",
+                             n);
+  bi->nb = n;
+  bi->m1 = bi->m2 = pl->ball_mass[0];
+  bi->a1 = bi->a2 = pl->ball_mass[0] * pl->ball_radius[0];
+  if (!(isfinite(s_lo) && isfinite(s_hi) && s_lo > 0.0 && s_hi < (double)n * bi->a1 && s_lo <= s_hi))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "every unbalance: the range of m0 r0 [%.9g, %.9g] kg m must lie in (0, %.9g) kg m, "
+                             "where the %zu balls (m r = %.9g kg m each) balance it off a line through the axis "
+                             "(the closure of Delta), with min <= max",
+                             s_lo, s_hi, (double)n * bi->a1, n, bi->a1);
+  fan_init(&bi->fan, n, bi->m1, bi->a1, s_lo, s_hi);
+  return AUTOBAL_SUCCESS;
+}
+
+/* The checks of the model's domain; fills the balls' data. */
+static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info *bi) {
   const autobal_rotor_params *p = &s->cur;
   const autobal_rotor_plane *pl = &p->plane[0];
-  if (p->n_planes != 1 || pl->n_balls != 2)
+  double *m1 = &bi->m1, *m2 = &bi->m2, *a1 = &bi->a1, *a2 = &bi->a2, *r0 = &bi->r0;
+  memset(bi, 0, sizeof *bi);
+  if (p->n_planes != 1 || pl->n_balls < 2)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "every unbalance: built for one plane with two balls (here %zu plane(s), %zu "
+                             "every unbalance: built for one plane with two or more balls (here %zu plane(s), %zu "
                              "ball(s) in plane 1); use sweeps over unbalance_mass otherwise",
                              p->n_planes, pl->n_balls);
   if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
@@ -110,14 +285,7 @@ static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, double 
   if (!autobal_rotor_lumped_isotropic_(&s->L))
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
                              "every unbalance: needs isotropic supports (the closed polynomial Delta)");
-  *m1 = pl->ball_mass[0];
-  *m2 = pl->ball_mass[1];
-  *a1 = pl->ball_mass[0] * pl->ball_radius[0];
-  *a2 = pl->ball_mass[1] * pl->ball_radius[1];
   *r0 = pl->r0;
-  if (!autobal_rotor_close_rel_(s->h[0] / *m1, s->h[1] / *m2, 1e-12))
-    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "every unbalance: the two balls need a common h/m (the closure of Delta)");
   if (!(*r0 > 0.0))
     return autobal_error_set(&s->err, AUTOBAL_EINVAL,
                              "every unbalance: r0 = %g m must be > 0 (the unbalance s = m0 r0 is varied "
@@ -125,6 +293,15 @@ static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, double 
                              *r0);
   if (!(p->omega != 0.0 && isfinite(p->omega)))
     return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: omega must be finite and non-zero");
+  if (pl->n_balls >= 3) return check_fan(s, s_lo, s_hi, bi);
+  bi->nb = 2;
+  *m1 = pl->ball_mass[0];
+  *m2 = pl->ball_mass[1];
+  *a1 = pl->ball_mass[0] * pl->ball_radius[0];
+  *a2 = pl->ball_mass[1] * pl->ball_radius[1];
+  if (!autobal_rotor_close_rel_(s->h[0] / *m1, s->h[1] / *m2, 1e-12))
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance: the two balls need a common h/m (the closure of Delta)");
   {
     const double smin = fabs(*a1 - *a2), smax = *a1 + *a2;
     if (!(isfinite(s_lo) && isfinite(s_hi) && s_lo > smin && s_hi < smax && s_lo <= s_hi))
@@ -138,8 +315,9 @@ static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, double 
 }
 
 /* The core at the handle's current omega (m0 is changed; the caller restores it). */
-static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
-  double m1 = 0.0, m2 = 0.0, a1 = 0.0, a2 = 0.0, r0 = 0.0, A[13], B[13], cand[2 * 13 + 2], sc;
+static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
+  double r0 = 0.0, A[13], B[13], cand[3 * 13 + 6], sc;
+  balls_info bi;
   long double Ae[7], Ao[6], Be[7], Bo[6], h[12], w2 = (long double)s->cur.omega * (long double)s->cur.omega;
   size_t nc = 0, i, j;
   int st;
@@ -148,7 +326,12 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
   out->s_lo = s_lo;
   out->s_hi = s_hi;
   out->omega = s->cur.omega;
-  if ((st = check_domain(s, s_lo, s_hi, &m1, &m2, &a1, &a2, &r0)) != AUTOBAL_SUCCESS) return st;
+  out->n_balls = s->cur.plane[0].n_balls;
+  out->member_rule = s->opt.unbalance_member;
+  out->u_min = out->u_max = NAN;
+  if ((st = check_domain(s, s_lo, s_hi, &bi)) != AUTOBAL_SUCCESS) return st;
+  r0 = bi.r0;
+  if (bi.nb >= 3) fan_u_range(&bi.fan, &out->u_min, &out->u_max);
   /* A and B at this speed (independent of m0: any balanceable m0 will do for the closed system) */
   if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, 0.5 * (s_lo + s_hi) / r0)) !=
       AUTOBAL_SUCCESS)
@@ -158,7 +341,7 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
   split_iy(A, Ae, Ao);
   split_iy(B, Be, Bo);
   /* y = 0: Delta(0; u) = A_0 - u w^8 B_0 */
-  if (B[0] != 0.0) nc += s_of_u(u_at(Ae, Ao, Be, Bo, w2, 0.0L), m1, m2, a1, a2, cand + nc);
+  if (B[0] != 0.0) nc += map_u(&bi, u_at(Ae, Ao, Be, Bo, w2, 0.0L), cand + nc);
   /* h(z) = Ae Bo - Ao Be (degree <= 7 with B = N N* of degree 4), scaled z = sc^2 zeta, sc = |omega| */
   sc = fabs(s->cur.omega);
   for (i = 0; i < 12; i++) h[i] = 0.0L;
@@ -172,7 +355,7 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
         AUTOBAL_SUCCESS)
       return st;
     for (q = 0; q < nz; q++)
-      if (fabsl(zr[q] - w2) > 1e-12L * w2) nc += s_of_u(u_at(Ae, Ao, Be, Bo, w2, zr[q]), m1, m2, a1, a2, cand + nc);
+      if (fabsl(zr[q] - w2) > 1e-12L * w2) nc += map_u(&bi, u_at(Ae, Ao, Be, Bo, w2, zr[q]), cand + nc);
   }
   /* the critical unbalances inside (s_lo, s_hi), sorted, unique */
   qsort(cand, nc, sizeof cand[0], cmp_double);
@@ -247,6 +430,22 @@ static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, auto
     }
   }
   return AUTOBAL_SUCCESS;
+}
+
+/* The core with plane 1's member set to the rule's (n >= 3 balls, SYMMETRIC: the symmetric fan) for the
+ * verdicts; the member option is restored afterwards. */
+static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
+  autobal_rotor_member save;
+  int st;
+  if (s->n_planes != 1 || s->cur.plane[0].n_balls < 3 || s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+    return every_unbalance_core(s, s_lo, s_hi, out);
+  save = s->opt.member[0];
+  s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_SYMMETRIC;
+  s->opt.member[0].n_angles = 0;
+  s->opt.member[0].angles = NULL;
+  st = every_unbalance_core(s, s_lo, s_hi, out);
+  s->opt.member[0] = save;
+  return st;
 }
 
 int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi,

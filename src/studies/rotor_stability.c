@@ -426,6 +426,13 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_min", u->s_lo, "kg m");
     if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_max", u->s_hi, "kg m");
     if (!st) st = autobal_archive_attr_int(a, ge, "stable_for_all", u->all_stable);
+    if (!st && u->n_balls >= 3) { /* three or more identical balls: the member rule and the range of u */
+      st = autobal_archive_attr_string(a, ge, "unbalance_member",
+                                       u->member_rule == AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC ? "symmetric" : "every");
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_balls", (long)u->n_balls);
+      if (!st) st = autobal_archive_attr_double(a, ge, "u_min", u->u_min, "kg^2");
+      if (!st) st = autobal_archive_attr_double(a, ge, "u_max", u->u_max, "kg^2");
+    }
     if (!st) st = autobal_archive_attr_double(a, ge, "margin_worst_evaluated", u->margin_worst, "1/s");
     if (!st) st = autobal_archive_attr_int(a, ge, "n_missed", (long)u->n_missed);
     if (!st) st = autobal_archive_attr_int(a, ge, "evaluations", (long)u->evaluations);
@@ -790,6 +797,9 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
     st = autobal_archive_attr_int(a, g, "every_unbalance", 1);
     if (!st) st = autobal_archive_attr_double(a, g, "unbalance_min", o->unbalance_min, "kg m");
     if (!st) st = autobal_archive_attr_double(a, g, "unbalance_max", o->unbalance_max, "kg m");
+    if (!st && p->n_planes == 1 && p->plane[0].n_balls >= 3)
+      st = autobal_archive_attr_string(a, g, "unbalance_member",
+                                       o->stab.unbalance_member == AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC ? "symmetric" : "every");
     if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "for every unbalance in [unbalance_min, unbalance_max]: the largest margin met (the least stable unbalance evaluated; NaN: the balls cannot balance every unbalance of the range)");
     if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "for every unbalance in [unbalance_min, unbalance_max]: 1 stable for all, 0 a critical unbalance touches (stable around it), -1 unstable for some, -2 the balls cannot balance every unbalance of the range");
     return st;
