@@ -425,8 +425,12 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       const autobal_rotor_unbalance_range *u = &sum.every;
       printf("  EVERY UNBALANCE m0 r0 in [%.6g, %.6g] g mm at this speed: %s\n", u->s_lo * 1e6, u->s_hi * 1e6,
              u->all_stable ? "STABLE for all" : "NOT stable for all");
+      if (c->p.n_planes == 2)
+        printf("  (two planes: both planes' m0 r0 in the range on a 9 x 9 grid, SAMPLED; every relative phase at "
+               "each, exact; worst margin %.6e 1/s)\n",
+               u->margin_worst);
       printf("  critical unbalances (a root of Delta on the imaginary axis):");
-      if (u->n_crit == 0) printf(" none in the range");
+      if (u->n_crit == 0) printf(c->p.n_planes == 2 ? " not computed for two planes" : " none in the range");
       for (i = 0; i < u->n_crit; i++) printf(" %.8g", u->s_crit[i] * 1e6);
       printf(" g mm\n  verdict between them:");
       for (i = 0; i < u->n_sub; i++)
