@@ -518,7 +518,9 @@ typedef struct autobal_rotor_unbalance_range {
 
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
  * handle's current omega: one plane with two balls with a common h/m, isotropic supports, the
- * paper's inertia model (AUTOBAL_EUNSUPPORTED otherwise, with a message).  Method (guaranteed, not
+ * paper's inertia model (AUTOBAL_EUNSUPPORTED otherwise, with a message; two planes of two balls:
+ * autobal_rotor_stab_every_unbalance2 with [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only
+ * all_stable, margin_worst, n_missed, evaluations and one sub-interval filled).  Method (guaranteed, not
  * sampled): Delta(lambda; s) = A(lambda) - (|Q(s)|^2 / 4) B(lambda) with A, B independent of s, so
  * a root crosses the imaginary axis only at the critical unbalances where A(i y) = u B(i y) for a real
  * u = |Q|^2 / 4 and real y (the real roots of a polynomial of degree <= 11 in y^2, and y = 0), mapped
