@@ -229,9 +229,11 @@
   "            n_omega = 400  xtol_rel = 1e-8\n" \
   "            unbalance_min, unbalance_max (kg m or g mm): EVERY unbalance m0 r0 in the range (one plane, two\n" \
   "            balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
-  "            \"Every unbalance\")\n" \
+  "            \"Every unbalance\"); two planes of two balls: every relative phase (exact critical phases) on an\n" \
+  "            n_unbalance x n_unbalance grid of both planes' m0 r0 (sampled), plane 2's range unbalance2_min,\n" \
+  "            unbalance2_max (default: plane 1's)   n_unbalance = 9\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
-  "         /rotor/stability/every_unbalance (and .../speeds)\n" \
+  "         /rotor/stability/every_unbalance (and .../speeds, two planes .../phase)\n" \
   HELP_DOCS_ROTOR
 #define HELP_ROTOR_SWEEP \
   "Stability margin of the balanced motion (eq. (3.14) in docs/rotor.md) along one parameter; every verdict\n" \
