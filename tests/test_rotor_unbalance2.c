@@ -7,6 +7,9 @@
  *    against its neighbours 1e-3 rad either side) at the reported frequency y;
  *  - the grid verdict equals the AND of the sampled verdicts at the grid points; the one-plane entry
  *    point dispatches to it for two planes;
+ *  - a slice (s2 fixed) with only the ends of plane 1's range as grid points has the verdict of 61 x 90
+ *    sampled (s1, phase), also where the instability lies only inside the range (found by sampling
+ *    beforehand: 360 rad/s and s2 = 3500 g mm, 380 and 400 rad/s with 4500 g mm, 410 with 5500);
  *  - m0 and psi0 restored bitwise; the error paths. */
 #include <math.h>
 #include <stdio.h>
@@ -176,6 +179,38 @@ static void case_grid(double w, double lo1, double hi1, double lo2, double hi2, 
   autobal_rotor_stab_free(s);
 }
 
+/* One slice (s2 fixed), plane 1's range seen by the exact slice with only its two ends as grid
+ * points, against 61 x 90 sampled (s1, phase); returns 1 if the sampled instability lies only inside
+ * the range (the ends stable for every phase): the case only the exact slice can see. */
+static int case_slice(double w, double s2, double lo1, double hi1) {
+  autobal_rotor_params p = two_planes(w);
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
+  autobal_rotor_unbalance_range2 u;
+  const double lo[2] = {lo1, s2}, hi[2] = {hi1, s2};
+  size_t i, k;
+  int all = 1, ends = 1;
+  char what[200];
+  if (!s) return 0;
+  CHECK_STATUS("slice", autobal_rotor_stab_every_unbalance2(s, lo, hi, 2, &u), AUTOBAL_SUCCESS);
+  CHECK("slice decided exactly", u.exact_in_s1 == 1 && u.n_missed == 0);
+  for (i = 0; i <= 60; i++) {
+    const double s1 = lo1 + (hi1 - lo1) * (double)i / 60.0;
+    for (k = 0; k < 90; k++) {
+      double mg;
+      if (sampled_verdict(s, s1, s2, M_PI * ((double)k + 0.5) / 90.0, &mg) != AUTOBAL_VERDICT_STABLE) {
+        all = 0;
+        if (i == 0 || i == 60) ends = 0;
+      }
+    }
+  }
+  snprintf(what, sizeof what, "w %g s2 %g s1 in [%g, %g]: exact slice %d, 61 x 90 sampled %d (ends %d)", w, s2, lo1,
+           hi1, u.all_stable, all, ends);
+  CHECK(what, u.all_stable == all);
+  autobal_rotor_stab_free(s);
+  return !all && ends;
+}
+
 static void errors(void) {
   autobal_rotor_params p = two_planes(500.0), q = autobal_rotor_params_default();
   autobal_error err;
@@ -205,6 +240,16 @@ int main(void) {
   case_grid(500.0, 0.001, 0.006, 0.001, 0.006, 9);
   case_grid(350.0, 0.001, 0.006, 0.001, 0.006, 9);
   case_grid(420.0, 0.0005, 0.0095, 0.0005, 0.0070, 6);
+  {
+    /* slices: exact over s1 */
+    static const double cs[][2] = {{340.0, 0.00135}, {360.0, 0.0035}, {380.0, 0.0045}, {400.0, 0.0045},
+                                   {410.0, 0.0055}, {500.0, 0.00135}, {370.0, 0.0005}, {1000.0, 0.0065}};
+    size_t a;
+    int interior = 0;
+    for (a = 0; a < sizeof cs / sizeof cs[0]; a++) interior += case_slice(cs[a][0], cs[a][1], 0.0005, 0.0095);
+    printf("slices whose instability lies only inside the range: %d\n", interior);
+    CHECK("slices unstable only inside plane 1's range (ends stable) were met", interior >= 3);
+  }
   errors();
   return check_summary();
 }

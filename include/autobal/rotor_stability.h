@@ -581,9 +581,12 @@ AUTOBAL_API int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1,
                                                autobal_rotor_phase_range *out);
 
 /* Every phase and every unbalance s1 in [s_lo[0], s_hi[0]], s2 in [s_lo[1], s_hi[1]] (kg m) of two
- * planes: autobal_rotor_stab_every_phase on an n_grid x n_grid grid of (s1, s2) (one point on an
- * axis whose range is a single value).  Guaranteed in the phase, SAMPLED in the unbalances: a window
- * of instability narrower than the grid can be missed. */
+ * planes, on n_grid values of s2 (one if its range is a single value): at each, EXACT over every s1 in
+ * the range and every phase (with y = |Q2|^2 fixed, a root on the axis at lambda = i w has (|Q1|^2,
+ * |Q1||Q2| cos) rational in w: the region's boundary crossings are polynomial roots, docs/rotor.md
+ * "Every unbalance"), plus autobal_rotor_stab_every_phase at n_grid values of s1 (the margins and a
+ * cross-check).  Guaranteed in s1 and the phase, SAMPLED in s2: a window of instability narrower than
+ * the s2 grid can be missed. */
 typedef struct autobal_rotor_unbalance_range2 {
   double omega;               /* rad/s */
   double s_lo[2], s_hi[2];    /* kg m, per plane */
@@ -594,8 +597,13 @@ typedef struct autobal_rotor_unbalance_range2 {
   int all_stable;             /* 1: every grid point stable for every phase */
   double margin_worst;        /* 1/s, the largest margin met */
   double worst_s[2], worst_phase; /* kg m, rad: where */
-  double first_bad_s[2];      /* kg m: the first grid point not stable (NaN if none) */
+  double first_bad_s[2];      /* kg m: the first grid point not stable (NaN if none; s1 NaN: a slice whose
+                                 instability lies between the grid points of plane 1) */
   size_t n_missed, evaluations;
+  int exact_in_s1;            /* 1: every slice was decided exactly over plane 1's whole range (the
+                                 cos form of Delta16 held); 0: some slice fell back to plane 1's grid */
+  size_t n_slices_not_stable; /* plane-2 grid values at which some s1 in the range and some phase is
+                                 not stable (exact over s1 when exact_in_s1) */
 } autobal_rotor_unbalance_range2;
 
 AUTOBAL_API int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const double s_lo[2],

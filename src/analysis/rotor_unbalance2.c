@@ -240,6 +240,9 @@ typedef struct parts2 {
   long double imag_rel;  /* the largest relative imaginary part met (a check of the construction) */
   long double v_rel;     /* max |V| / max |U| */
   int v_zero;            /* V negligible: Delta16 = E + cos(arg p) U */
+  /* the raw parts (real, ascending): Delta16 = D0 + x M11 + y M22 + x y T12 + t U0, x = |Q1|^2,
+     y = |Q2|^2, t = |Q1||Q2| cos(arg p) (when v_zero) */
+  long double D0[17], M11[17], M22[17], T12[17], U0[17];
 } parts2;
 
 static int build_parts(const autobal_rotor_closed *c, parts2 *o, autobal_error *err) {
@@ -255,6 +258,17 @@ static int build_parts(const autobal_rotor_closed *c, parts2 *o, autobal_error *
   lp_axpy(1.0L, &Ec, a1 * a1 * a2 * a2, &T12, &Ec);
   lp_axpy(a1 * a2, &M[0][1], a1 * a2, &M[1][0], &Uc);
   lp_axpy(I * a1 * a2, &M[0][1], -I * a1 * a2, &M[1][0], &Vc);
+  {
+    lp u0;
+    lp_axpy(1.0L, &M[0][1], 1.0L, &M[1][0], &u0);
+    if (D0.n > 17 || M[0][0].n > 17 || M[1][1].n > 17 || T12.n > 17 || u0.n > 17)
+      return autobal_error_set(err, AUTOBAL_ENUMERIC, "every phase: Delta16 has more than 17 coefficients");
+    real_of(&D0, o->D0, 17);
+    real_of(&M[0][0], o->M11, 17);
+    real_of(&M[1][1], o->M22, 17);
+    real_of(&T12, o->T12, 17);
+    real_of(&u0, o->U0, 17);
+  }
   if (Ec.n > 17 || Uc.n > 17 || Vc.n > 17)
     return autobal_error_set(err, AUTOBAL_ENUMERIC, "every phase: Delta16 has more than 17 coefficients");
   im = fmaxl(im, real_of(&Ec, o->E, 17));
@@ -557,6 +571,119 @@ static int every_phase(autobal_rotor_stab *s, autobal_rotor_phase_range *out) {
   return AUTOBAL_SUCCESS;
 }
 
+/* The interval of |Q|^2 of two balls (m_i, a_i = m_i r_i) over the unbalances s in [lo, hi] (the
+ * balanced angles: c = cos(psi_1 - psi_2) = (s^2 - a1^2 - a2^2) / (2 a1 a2) increases with s,
+ * |Q|^2 = m1^2 + m2^2 + 2 m1 m2 (2 c^2 - 1)). */
+static void q2_range(const autobal_rotor_plane *pl, double lo, double hi, long double *x_lo, long double *x_hi) {
+  const long double m1 = pl->ball_mass[0], m2 = pl->ball_mass[1], a1 = m1 * pl->ball_radius[0],
+                    a2 = m2 * pl->ball_radius[1];
+  const long double c0 = ((long double)lo * lo - a1 * a1 - a2 * a2) / (2.0L * a1 * a2),
+                    c1 = ((long double)hi * hi - a1 * a1 - a2 * a2) / (2.0L * a1 * a2);
+  const long double q0 = c0 * c0, q1 = c1 * c1, qmin = (c0 <= 0.0L && c1 >= 0.0L) ? 0.0L : fminl(q0, q1),
+                    qmax = fmaxl(q0, q1);
+  *x_lo = m1 * m1 + m2 * m2 + 2.0L * m1 * m2 * (2.0L * qmin - 1.0L);
+  *x_hi = m1 * m1 + m2 * m2 + 2.0L * m1 * m2 * (2.0L * qmax - 1.0L);
+}
+
+/* Is the crossing point (x(z), t(z)) at z = y^2 inside the region x in [x_lo, x_hi], t^2 <= x yq? */
+static int in_region(const long double *A0e, const long double *A0o, const long double *A1e, const long double *A1o,
+                     const long double *A2e, const long double *A2o, long double z, long double x_lo, long double x_hi,
+                     long double yq) {
+  const long double e0 = lpv(A0e, 9, z), o0 = lpv(A0o, 8, z), e1 = lpv(A1e, 9, z), o1 = lpv(A1o, 8, z),
+                    e2 = lpv(A2e, 9, z), o2 = lpv(A2o, 8, z);
+  const long double det = e1 * o2 - e2 * o1;
+  long double x, tt;
+  if (det == 0.0L) return 0;
+  x = (e2 * o0 - e0 * o2) / det;
+  tt = (e0 * o1 - e1 * o0) / det;
+  return x >= x_lo * (1.0L - 1e-12L) && x <= x_hi * (1.0L + 1e-12L) && tt * tt <= x * yq * (1.0L + 1e-12L);
+}
+
+/* At the handle's plane-2 unbalance (and omega): is there a crossing for SOME s1 in [lo, hi] and some
+ * phase?  Exact in s1 and the phase (docs/rotor.md "Every unbalance"): with y = |Q2|^2 fixed,
+ * Delta16(i w) = A0 + x A1 + t A2 = 0 is two real linear equations for (x, t), solved as rational
+ * functions of z = w^2; the region is x in X (the |Q1|^2 of [lo, hi]), t^2 <= x y (every phase).  Its
+ * boundary crossings are the positive roots of Nx - x_lo det, Nx - x_hi det, Nt^2 - y Nx det and det;
+ * membership is tested at each root and between consecutive ones.  w = 0: a quadratic in x.
+ * *crossing = 1 if found; *ok = 0 if the parts are not of the cos form (use the grid instead). */
+static int slice_crossing(autobal_rotor_stab *s, double lo, double hi, int *crossing, int *ok) {
+  autobal_rotor_closed c;
+  parts2 q;
+  long double A0[17], A1[17], A0e[9], A0o[8], A1e[9], A1o[8], A2e[9], A2o[8], x_lo, x_hi, yq;
+  long double det[16], nx[16], nt[16], P1[16], P2[16], P3[31], zr[4][32], zs[140];
+  size_t nz[4], k, a, b, n = 0;
+  int st;
+  const long double w2 = (long double)s->cur.omega * s->cur.omega;
+  *crossing = 0;
+  *ok = 0;
+  if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+  if ((st = build_parts(&c, &q, &s->err)) != AUTOBAL_SUCCESS) return st;
+  if (!q.v_zero) return AUTOBAL_SUCCESS;
+  *ok = 1;
+  yq = (long double)c.plane[1].Q_re * c.plane[1].Q_re + (long double)c.plane[1].Q_im * c.plane[1].Q_im;
+  q2_range(&s->cur.plane[0], lo, hi, &x_lo, &x_hi);
+  for (k = 0; k < 17; k++) {
+    A0[k] = q.D0[k] + yq * q.M22[k];
+    A1[k] = q.M11[k] + yq * q.T12[k];
+  }
+  split(A0, 17, A0e, A0o);
+  split(A1, 17, A1e, A1o);
+  split(q.U0, 17, A2e, A2o);
+  /* w = 0: A0(0) + x A1(0) + t A2(0) = 0 with t^2 <= x y, x in X */
+  {
+    const long double a0 = A0[0], a1 = A1[0], a2 = q.U0[0];
+    if (a2 != 0.0L) {
+      /* f(x) = (a0 + a1 x)^2 - a2^2 y x <= 0 for some x in X: f convex; its minimum over X */
+      const long double A = a1 * a1, B = 2.0L * a0 * a1 - a2 * a2 * yq, C0 = a0 * a0;
+      long double xm = A > 0.0L ? -B / (2.0L * A) : x_lo, fmin;
+      if (xm < x_lo) xm = x_lo;
+      if (xm > x_hi) xm = x_hi;
+      fmin = fminl(fminl(A * xm * xm + B * xm + C0, A * x_lo * x_lo + B * x_lo + C0), A * x_hi * x_hi + B * x_hi + C0);
+      if (fmin <= 0.0L) *crossing = 1;
+    } else if (a1 != 0.0L) {
+      const long double xx = -a0 / a1;
+      if (xx >= x_lo && xx <= x_hi) *crossing = 1;
+    }
+  }
+  memset(det, 0, sizeof det);
+  memset(nx, 0, sizeof nx);
+  memset(nt, 0, sizeof nt);
+  memset(P3, 0, sizeof P3);
+  for (a = 0; a < 9; a++)
+    for (b = 0; b < 8; b++) {
+      det[a + b] += A1e[a] * A2o[b] - A2e[a] * A1o[b];
+      nx[a + b] += A2e[a] * A0o[b] - A0e[a] * A2o[b];
+      nt[a + b] += A0e[a] * A1o[b] - A1e[a] * A0o[b];
+    }
+  for (k = 0; k < 16; k++) {
+    P1[k] = nx[k] - x_lo * det[k];
+    P2[k] = nx[k] - x_hi * det[k];
+  }
+  for (a = 0; a < 16; a++)
+    for (b = 0; b < 16; b++) P3[a + b] += nt[a] * nt[b] - yq * nx[a] * det[b];
+  if ((st = pos_roots(P1, 16, w2, zr[0], &nz[0], &s->err)) != AUTOBAL_SUCCESS) return st;
+  if ((st = pos_roots(P2, 16, w2, zr[1], &nz[1], &s->err)) != AUTOBAL_SUCCESS) return st;
+  if ((st = pos_roots(P3, 31, w2, zr[2], &nz[2], &s->err)) != AUTOBAL_SUCCESS) return st;
+  if ((st = pos_roots(det, 16, w2, zr[3], &nz[3], &s->err)) != AUTOBAL_SUCCESS) return st;
+  for (a = 0; a < 4; a++)
+    for (b = 0; b < nz[a]; b++) zs[n++] = zr[a][b];
+  /* sort */
+  for (a = 1; a < n; a++)
+    for (b = a; b > 0 && zs[b - 1] > zs[b]; b--) {
+      const long double tmp = zs[b];
+      zs[b] = zs[b - 1];
+      zs[b - 1] = tmp;
+    }
+  if (in_region(A0e, A0o, A1e, A1o, A2e, A2o, n ? 0.5L * zs[0] : w2, x_lo, x_hi, yq)) *crossing = 1;
+  if (n && in_region(A0e, A0o, A1e, A1o, A2e, A2o, 2.0L * zs[n - 1], x_lo, x_hi, yq)) *crossing = 1;
+  for (k = 0; k < n && !*crossing; k++) {
+    if (in_region(A0e, A0o, A1e, A1o, A2e, A2o, zs[k], x_lo, x_hi, yq)) *crossing = 1;
+    if (k + 1 < n && in_region(A0e, A0o, A1e, A1o, A2e, A2o, 0.5L * (zs[k] + zs[k + 1]), x_lo, x_hi, yq))
+      *crossing = 1;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 /* Set plane j's unbalance m0 r0 = sv. */
 static int set_unb(autobal_rotor_stab *s, size_t j, double sv) {
   return autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(j, AUTOBAL_ROTOR_PLANE_M0), sv / s->cur.plane[j].r0);
@@ -614,12 +741,19 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
   for (k = 0; k < 2; k++) out->n_s[k] = n[k] = s_lo[k] == s_hi[k] ? 1 : n_grid;
   out->all_stable = 1;
   out->margin_worst = -INFINITY;
-  for (i = 0; i < n[0]; i++) {
-    const double s1 = n[0] == 1 ? s_lo[0] : s_lo[0] + (s_hi[0] - s_lo[0]) * (double)i / (double)(n[0] - 1);
-    if ((st = set_unb(s, 0, s1)) != AUTOBAL_SUCCESS) return st;
-    for (k = 0; k < n[1]; k++) {
-      const double s2 = n[1] == 1 ? s_lo[1] : s_lo[1] + (s_hi[1] - s_lo[1]) * (double)k / (double)(n[1] - 1);
-      if ((st = set_unb(s, 1, s2)) != AUTOBAL_SUCCESS) return st;
+  out->exact_in_s1 = 1;
+  /* one slice per plane-2 unbalance: exact over plane 1's range and every phase (slice_crossing), and
+   * every_phase at the grid points of plane 1 (the margins, and a cross-check) */
+  for (k = 0; k < n[1]; k++) {
+    const double s2 = n[1] == 1 ? s_lo[1] : s_lo[1] + (s_hi[1] - s_lo[1]) * (double)k / (double)(n[1] - 1);
+    int crossing = 0, ok = 0, grid_ok = 1, slice_ok;
+    if ((st = set_unb(s, 1, s2)) != AUTOBAL_SUCCESS) return st;
+    if ((st = set_unb(s, 0, s_lo[0])) != AUTOBAL_SUCCESS) return st;
+    if ((st = slice_crossing(s, s_lo[0], s_hi[0], &crossing, &ok)) != AUTOBAL_SUCCESS) return st;
+    if (!ok) out->exact_in_s1 = 0;
+    for (i = 0; i < n[0]; i++) {
+      const double s1 = n[0] == 1 ? s_lo[0] : s_lo[0] + (s_hi[0] - s_lo[0]) * (double)i / (double)(n[0] - 1);
+      if ((st = set_unb(s, 0, s1)) != AUTOBAL_SUCCESS) return st;
       if ((st = every_phase(s, &ph)) != AUTOBAL_SUCCESS) return st;
       out->n_points++;
       out->evaluations += ph.evaluations;
@@ -637,8 +771,20 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
           out->first_bad_s[1] = s2;
         }
         out->all_stable = 0;
+        grid_ok = 0;
         out->n_not_stable++;
       }
+    }
+    /* the slice: no crossing in the region and stable at one point of it (the grid's), else not */
+    slice_ok = ok ? (!crossing && grid_ok) : grid_ok;
+    if (ok && !crossing && !grid_ok) out->n_missed++; /* a grid point unstable without a crossing: should not happen */
+    if (!slice_ok) {
+      out->n_slices_not_stable++;
+      if (out->all_stable) {
+        out->first_bad_s[0] = NAN;
+        out->first_bad_s[1] = s2;
+      }
+      out->all_stable = 0;
     }
   }
   return AUTOBAL_SUCCESS;
