@@ -420,6 +420,8 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
         cli_json_int(&j, "n_unbalance1", (long)u2->n_s[0]);
         cli_json_int(&j, "n_unbalance2", (long)u2->n_s[1]);
         cli_json_int(&j, "n_points_not_stable", (long)u2->n_not_stable);
+        cli_json_bool(&j, "exact_in_unbalance1", u2->exact_in_s1);
+        cli_json_int(&j, "n_unbalance2_not_stable", (long)u2->n_slices_not_stable);
         cli_json_quantity(&j, "margin_worst", u2->margin_worst, "1/s");
         cli_json_object_end(&j);
       }
@@ -480,12 +482,20 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
              u->all_stable ? "STABLE for all" : "NOT stable for all");
       if (sum.have_every2) {
         const autobal_rotor_unbalance_range2 *u2 = &sum.every2;
-        printf("  two planes: plane 1 m0 r0 in [%.6g, %.6g], plane 2 in [%.6g, %.6g] g mm on a %zu x %zu grid (SAMPLED in "
-               "the magnitudes), every relative phase at each (exact): %zu point(s) not stable; worst margin %.6e 1/s\n",
-               u2->s_lo[0] * 1e6, u2->s_hi[0] * 1e6, u2->s_lo[1] * 1e6, u2->s_hi[1] * 1e6, u2->n_s[0], u2->n_s[1],
-               u2->n_not_stable, u2->margin_worst);
+        printf("  two planes: plane 1 m0 r0 in [%.6g, %.6g] g mm (%s), plane 2 in [%.6g, %.6g] g mm at %zu value(s) "
+               "(SAMPLED), every relative phase (exact): %zu plane-2 value(s) not stable; %zu of %zu grid points not "
+               "stable; worst margin %.6e 1/s\n",
+               u2->s_lo[0] * 1e6, u2->s_hi[0] * 1e6, u2->exact_in_s1 ? "all of it, exact" : "a grid, sampled",
+               u2->s_lo[1] * 1e6, u2->s_hi[1] * 1e6, u2->n_s[1], u2->n_slices_not_stable, u2->n_not_stable,
+               u2->n_points, u2->margin_worst);
         if (!u2->all_stable)
-          printf("  first point not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
+        {
+          if (isnan(u2->first_bad_s[0]))
+            printf("  first not stable: plane 2 m0 r0 = %.6g g mm, plane 1 between its grid points\n",
+                   u2->first_bad_s[1] * 1e6);
+          else
+            printf("  first not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
+        }
       } else {
         printf("  critical unbalances (a root of Delta on the imaginary axis):");
         if (u->n_crit == 0) printf(" none in the range");

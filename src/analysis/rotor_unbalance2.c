@@ -900,9 +900,7 @@ int autobal_rotor_every_unbalance_two_planes_(autobal_rotor_stab *s, double s_lo
   out->n_sub = 1;
   out->sub_lo[0] = s_lo;
   out->sub_hi[0] = s_hi;
-  out->sub_verdict[0] = u.all_stable ? AUTOBAL_VERDICT_STABLE
-                        : u.margin_worst > 0.0 ? AUTOBAL_VERDICT_UNSTABLE
-                                               : AUTOBAL_VERDICT_MARGINAL;
+  out->sub_verdict[0] = u.all_stable ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
   out->sub_margin[0] = u.margin_worst;
   return AUTOBAL_SUCCESS;
 }

@@ -249,9 +249,7 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
       s->every.n_sub = 1;
       s->every.sub_lo[0] = lo2[0];
       s->every.sub_hi[0] = hi2[0];
-      s->every.sub_verdict[0] = s->every2.all_stable ? AUTOBAL_VERDICT_STABLE
-                                : s->every2.margin_worst > 0.0 ? AUTOBAL_VERDICT_UNSTABLE
-                                                               : AUTOBAL_VERDICT_MARGINAL;
+      s->every.sub_verdict[0] = s->every2.all_stable ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
       s->every.sub_margin[0] = s->every2.margin_worst;
       st = autobal_rotor_stab_every_phase(h, p->plane[0].m0 * p->plane[0].r0, p->plane[1].m0 * p->plane[1].r0,
                                           &s->every_phase);
@@ -485,13 +483,15 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     }
     if (!st && s->have_every2) {
       const autobal_rotor_unbalance_range2 *u2 = &s->every2;
-      if (!st) st = autobal_archive_attr_string(a, ge, "two_planes", "both planes: unbalance_min..max for plane 1, unbalance2_min..max for plane 2, on an n_unbalance x n_unbalance grid (SAMPLED in the magnitudes), every relative phase at each point (exact critical phases); no critical unbalances; one sub-interval with the worst verdict met");
+      if (!st) st = autobal_archive_attr_string(a, ge, "two_planes", "both planes: unbalance_min..max for plane 1 (exact over the whole range when exact_in_unbalance1 = 1), unbalance2_min..max for plane 2 at n_unbalance values (SAMPLED), every relative phase (exact); the margins at an n_unbalance x n_unbalance grid; no critical unbalances; one sub-interval with the worst verdict met");
       if (!st) st = autobal_archive_attr_double(a, ge, "unbalance2_min", u2->s_lo[1], "kg m");
       if (!st) st = autobal_archive_attr_double(a, ge, "unbalance2_max", u2->s_hi[1], "kg m");
       if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance1", (long)u2->n_s[0]);
       if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance2", (long)u2->n_s[1]);
       if (!st) st = autobal_archive_attr_int(a, ge, "n_points_not_stable", (long)u2->n_not_stable);
       if (!st) st = autobal_archive_attr_int(a, ge, "n_points_with_critical_phase", (long)u2->n_with_crit);
+      if (!st) st = autobal_archive_attr_int(a, ge, "exact_in_unbalance1", u2->exact_in_s1);
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance2_not_stable", (long)u2->n_slices_not_stable);
     }
     if (!st && s->have_every_phase) {
       const char *gp = "/rotor/stability/every_unbalance/phase";
