@@ -292,7 +292,9 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   long cn = (long)o.n_omega;
   int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds, have_umin = 0, have_umax = 0;
   const char *umember = "every";
-  double umin = NAN, umax = NAN;
+  double umin = NAN, umax = NAN, u2min = NAN, u2max = NAN;
+  long n_unb = 9;
+  int have_u2min = 0, have_u2max = 0, have_nunb = 0;
   size_t i;
   memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
@@ -306,7 +308,28 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = read_unbalance_member(ctx, "stability", &c->opt.unbalance_member, &umember))) goto done;
+  if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_min", "kg m", NAN, &u2min, &have_u2min))) goto done;
+  if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_max", "kg m", NAN, &u2max, &have_u2max))) goto done;
+  if ((rc = cli_get_int(ctx, "stability", "n_unbalance", n_unb, &n_unb, &have_nunb))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  if ((have_u2min || have_u2max || have_nunb) && (c->p.n_planes != 2 || !have_umin)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[stability]: unbalance2_min, unbalance2_max and n_unbalance are for two planes (here %zu) with "
+                  "unbalance_min and unbalance_max (every unbalance)",
+                  c->p.n_planes);
+    goto done;
+  }
+  if (have_u2min != have_u2max) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[stability]: unbalance2_min and unbalance2_max go together (plane 2's range of m0 r0; default: "
+                  "plane 1's)");
+    goto done;
+  }
+  if (n_unb < 2 || n_unb > 1000) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[stability]: n_unbalance = %ld must be in [2, 1000] (grid points per plane)",
+                  n_unb);
+    goto done;
+  }
   if (have_umin != have_umax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
                   "[stability]: unbalance_min and unbalance_max go together (the range of m0 r0 for 'every unbalance', "
@@ -332,6 +355,9 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   o.every_unbalance = have_umin && have_umax;
   o.unbalance_min = umin;
   o.unbalance_max = umax;
+  o.unbalance2_min = u2min;
+  o.unbalance2_max = u2max;
+  o.n_unbalance = (size_t)n_unb;
   o.progress = stop_requested;
   /* the analysis first, the archive afterwards: a failed analysis leaves no file */
   autobal_error_clear(&err);
@@ -410,6 +436,35 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       for (i = 0; i < u->n_sub; i++) cli_json_string(&j, NULL, autobal_verdict_name(u->sub_verdict[i]));
       cli_json_array_end(&j);
       cli_json_int(&j, "n_missed", (long)u->n_missed);
+      if (sum.have_every2) {
+        const autobal_rotor_unbalance_range2 *u2 = &sum.every2;
+        cli_json_object(&j, "two_planes");
+        cli_json_quantity(&j, "unbalance2_min", u2->s_lo[1], "kg m");
+        cli_json_quantity(&j, "unbalance2_max", u2->s_hi[1], "kg m");
+        cli_json_int(&j, "n_unbalance1", (long)u2->n_s[0]);
+        cli_json_int(&j, "n_unbalance2", (long)u2->n_s[1]);
+        cli_json_int(&j, "n_points_not_stable", (long)u2->n_not_stable);
+        cli_json_bool(&j, "exact_in_unbalance1", u2->exact_in_s1);
+        cli_json_int(&j, "n_unbalance2_not_stable", (long)u2->n_slices_not_stable);
+        cli_json_quantity(&j, "margin_worst", u2->margin_worst, "1/s");
+        cli_json_object_end(&j);
+      }
+      if (sum.have_every_phase) {
+        const autobal_rotor_phase_range *ph = &sum.every_phase;
+        cli_json_object(&j, "phase");
+        cli_json_quantity(&j, "unbalance1", ph->s[0], "kg m");
+        cli_json_quantity(&j, "unbalance2", ph->s[1], "kg m");
+        cli_json_bool(&j, "stable_for_all_phases", ph->all_stable);
+        cli_json_quantities(&j, "critical_phase", ph->phase_crit, ph->n_crit, "rad");
+        cli_json_quantities(&j, "crossing_frequency", ph->y_crit, ph->n_crit, "1/s");
+        cli_json_quantities(&j, "arc_lo", ph->sub_lo, ph->n_sub, "rad");
+        cli_json_quantities(&j, "arc_hi", ph->sub_hi, ph->n_sub, "rad");
+        cli_json_array(&j, "arc_verdict");
+        for (i = 0; i < ph->n_sub; i++) cli_json_string(&j, NULL, autobal_verdict_name(ph->sub_verdict[i]));
+        cli_json_array_end(&j);
+        cli_json_int(&j, "n_missed", (long)ph->n_missed);
+        cli_json_object_end(&j);
+      }
       if (sum.have_every_speeds) {
         cli_json_object(&j, "speeds");
         json_crit(&j, &sum.every_speeds, "rad/s");
@@ -452,13 +507,43 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       if (u->n_balls >= 3)
         printf("  %zu identical balls, unbalance_member = %s: u = |Q|^2/4 in [%.9g, %.9g] kg^2 over the range\n",
                u->n_balls, umember, u->u_min, u->u_max);
-      printf("  critical unbalances (a root of Delta on the imaginary axis):");
-      if (u->n_crit == 0) printf(" none in the range");
-      for (i = 0; i < u->n_crit; i++) printf(" %.8g", u->s_crit[i] * 1e6);
-      printf(" g mm\n  verdict between them:");
-      for (i = 0; i < u->n_sub; i++)
-        printf(" [%.6g, %.6g] %s", u->sub_lo[i] * 1e6, u->sub_hi[i] * 1e6, autobal_verdict_name(u->sub_verdict[i]));
-      printf(" (g mm)\n");
+      if (sum.have_every2) {
+        const autobal_rotor_unbalance_range2 *u2 = &sum.every2;
+        printf("  two planes: plane 1 m0 r0 in [%.6g, %.6g] g mm (%s), plane 2 in [%.6g, %.6g] g mm at %zu value(s) "
+               "(SAMPLED), every relative phase (exact): %zu plane-2 value(s) not stable; %zu of %zu grid points not "
+               "stable; worst margin %.6e 1/s\n",
+               u2->s_lo[0] * 1e6, u2->s_hi[0] * 1e6, u2->exact_in_s1 ? "all of it, exact" : "a grid, sampled",
+               u2->s_lo[1] * 1e6, u2->s_hi[1] * 1e6, u2->n_s[1], u2->n_slices_not_stable, u2->n_not_stable,
+               u2->n_points, u2->margin_worst);
+        if (!u2->all_stable)
+        {
+          if (isnan(u2->first_bad_s[0]))
+            printf("  first not stable: plane 2 m0 r0 = %.6g g mm, plane 1 between its grid points\n",
+                   u2->first_bad_s[1] * 1e6);
+          else
+            printf("  first not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
+        }
+      } else {
+        printf("  critical unbalances (a root of Delta on the imaginary axis):");
+        if (u->n_crit == 0) printf(" none in the range");
+        for (i = 0; i < u->n_crit; i++) printf(" %.8g", u->s_crit[i] * 1e6);
+        printf(" g mm\n  verdict between them:");
+        for (i = 0; i < u->n_sub; i++)
+          printf(" [%.6g, %.6g] %s", u->sub_lo[i] * 1e6, u->sub_hi[i] * 1e6, autobal_verdict_name(u->sub_verdict[i]));
+        printf(" (g mm)\n");
+      }
+      if (sum.have_every_phase) {
+        const autobal_rotor_phase_range *ph = &sum.every_phase;
+        printf("  every relative phase (plane2.psi0 - plane1.psi0, period pi) at this configuration's m0 r0 = %.6g, %.6g g "
+               "mm: %s\n  critical phases:",
+               ph->s[0] * 1e6, ph->s[1] * 1e6, ph->all_stable ? "STABLE for all" : "NOT stable for all");
+        if (ph->n_crit == 0) printf(" none");
+        for (i = 0; i < ph->n_crit; i++) printf(" %.9f", ph->phase_crit[i]);
+        printf(" rad\n  verdict between them:");
+        for (i = 0; i < ph->n_sub; i++)
+          printf(" [%.6f, %.6f] %s", ph->sub_lo[i], ph->sub_hi[i], autobal_verdict_name(ph->sub_verdict[i]));
+        printf(" (rad)\n");
+      }
       if (u->n_missed)
         printf("  (%zu change(s) of the verdict found by bisection, not by the crossing polynomial)\n", u->n_missed);
       if (sum.have_every_speeds)

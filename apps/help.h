@@ -233,10 +233,12 @@
   "            n_omega = 400  xtol_rel = 1e-8\n" \
   "            unbalance_min, unbalance_max (kg m or g mm): EVERY unbalance m0 r0 in the range (one plane, two\n" \
   "            or more balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
-  "            \"Every unbalance\")\n" \
+  "            \"Every unbalance\"); two planes of two balls: every relative phase and plane 1's whole range\n" \
+  "            (exact), plane 2's m0 r0 on n_unbalance values (sampled) of its range unbalance2_min,\n" \
+  "            unbalance2_max (default: plane 1's)   n_unbalance = 9\n" \
   "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: not yet)\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
-  "         /rotor/stability/every_unbalance (and .../speeds)\n" \
+  "         /rotor/stability/every_unbalance (and .../speeds, two planes .../phase)\n" \
   HELP_DOCS_ROTOR
 #define HELP_ROTOR_SWEEP \
   "Stability margin of the balanced motion (eq. (3.14) in docs/rotor.md) along one parameter; every verdict\n" \

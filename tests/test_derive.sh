@@ -60,4 +60,8 @@ echo "$nb"
 for pat in 'n balls, common kappa' 'symmetric fan: t = ' 'symmetric fan: u(y) monotone'; do
   grep -F "$pat" <<<"$nb" | grep -q ': OK' || { echo "test_derive: n-balls check '$pat' did not report OK"; exit 1; }
 done
+# two planes: Delta16 depends on the relative phase through cos(arg Q1 conj Q2) only (rotor_unbalance2.c)
+tp=$("$py" "$src/tools/derive/derive_two_planes_phase.py" 2>&1) || { echo "$tp"; echo "test_derive: FAILED (two planes phase)"; exit 1; }
+echo "$tp"
+[ "$(grep -c ': OK' <<<"$tp")" = 4 ] || { echo "test_derive: two planes phase: not 4 checks OK"; exit 1; }
 echo "test_derive: all checks passed"

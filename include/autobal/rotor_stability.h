@@ -539,7 +539,9 @@ typedef struct autobal_rotor_unbalance_range {
  * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
  * m, r, h) with the member rule opt.unbalance_member = SYMMETRIC (the symmetric fan; EVERY is not yet
  * available for n >= 3), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
- * otherwise, with a message).  Method (guaranteed, not
+ * otherwise, with a message; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
+ * [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only all_stable, margin_worst, n_missed,
+ * evaluations and one sub-interval filled).  Method (guaranteed, not
  * sampled): Delta(lambda; s) = A(lambda) - (|Q(s)|^2 / 4) B(lambda) with A, B independent of s, so
  * a root crosses the imaginary axis only at the critical unbalances where A(i y) = u B(i y) for a real
  * u = |Q|^2 / 4 and real y (the real roots of a polynomial of degree <= 11 in y^2, and y = 0), mapped
@@ -561,6 +563,80 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double
 AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo, double s_hi,
                                                           double w_lo, double w_hi, size_t n_grid,
                                                           double xtol_rel, autobal_rotor_crit *out);
+
+/* ---- every unbalance and every phase, two planes of two balls (rotor_unbalance2.c) ----- */
+
+#define AUTOBAL_ROTOR_MAX_PCRIT 64
+
+/* The relative phase phi = plane2.psi0 - plane1.psi0 (rad) at fixed unbalances s1, s2 (kg m) of two
+ * planes: every phase at which a root of the closed system is on the imaginary axis, and the verdict
+ * between them.  The verdict has period pi in phi (turning one unbalance by pi turns its balls by pi
+ * and leaves Q_j = sum m e^{2 i psi} unchanged), so phases are reported in [0, pi). */
+typedef struct autobal_rotor_phase_range {
+  double omega;               /* rad/s */
+  double s[2];                /* kg m, m0 r0 of plane 1 and 2 */
+  size_t n_crit;              /* critical phases in [0, pi) */
+  double phase_crit[AUTOBAL_ROTOR_MAX_PCRIT]; /* rad, ascending */
+  double y_crit[AUTOBAL_ROTOR_MAX_PCRIT];     /* 1/s, the root i y on the axis (rotating frame, y >= 0) */
+  size_t n_sub;               /* arcs of [0, pi) between them (cyclic: the last wraps to the first + pi) */
+  double sub_lo[AUTOBAL_ROTOR_MAX_PCRIT + 1], sub_hi[AUTOBAL_ROTOR_MAX_PCRIT + 1]; /* rad */
+  int sub_verdict[AUTOBAL_ROTOR_MAX_PCRIT + 1]; /* AUTOBAL_VERDICT_* at the arc's midpoint */
+  double sub_margin[AUTOBAL_ROTOR_MAX_PCRIT + 1]; /* 1/s */
+  int all_stable;             /* 1: stable for every phase (no critical phase, every check stable) */
+  double margin_worst;        /* 1/s, the largest margin met at the phases evaluated */
+  double phase_worst;         /* rad, where it was met */
+  size_t n_missed;            /* verdict changes the crossing polynomial did not give (bisected); 0 expected */
+  size_t evaluations;         /* margin evaluations (closed 16x16 matrix) */
+} autobal_rotor_phase_range;
+
+/* Every relative phase at the unbalances s1, s2 (kg m) at the handle's omega: two planes, two balls
+ * per plane with a common h/m per plane, isotropic supports, the paper's inertia model.  Method: the
+ * closed characteristic polynomial is Delta = E + p Y + conj(p) Y*, p = e^{i arg(Q1 conj(Q2))}, with
+ * E, Y built exactly by polynomial arithmetic (docs/rotor.md "Every unbalance"); a root on the axis at
+ * lambda = i y needs E(iy) + a U(iy) + b V(iy) = 0 (p = a + i b, U = Y + Y*, V = i (Y - Y*)), two real
+ * linear equations whose solution has a^2 + b^2 = 1 only at the real roots of one polynomial R(y^2)
+ * (and at y = 0 separately).  Every arc between critical phases is checked at its midpoint and near
+ * both ends by the closed matrix (method CLOSED); disagreements are bisected (n_missed).  The working
+ * m0 and psi0 are restored bitwise.  Statuses as autobal_rotor_stab_every_unbalance. */
+AUTOBAL_API int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1, double s2,
+                                               autobal_rotor_phase_range *out);
+
+/* Every phase and every unbalance s1 in [s_lo[0], s_hi[0]], s2 in [s_lo[1], s_hi[1]] (kg m) of two
+ * planes, on n_grid values of s2 (one if its range is a single value): at each, EXACT over every s1 in
+ * the range and every phase (with y = |Q2|^2 fixed, a root on the axis at lambda = i w has (|Q1|^2,
+ * |Q1||Q2| cos) rational in w: the region's boundary crossings are polynomial roots, docs/rotor.md
+ * "Every unbalance"), plus autobal_rotor_stab_every_phase at n_grid values of s1 (the margins and a
+ * cross-check).  Guaranteed in s1 and the phase, SAMPLED in s2: a window of instability narrower than
+ * the s2 grid can be missed. */
+typedef struct autobal_rotor_unbalance_range2 {
+  double omega;               /* rad/s */
+  double s_lo[2], s_hi[2];    /* kg m, per plane */
+  size_t n_s[2];              /* grid points per plane */
+  size_t n_points;            /* n_s[0] n_s[1] */
+  size_t n_not_stable;        /* grid points where some phase is not stable */
+  size_t n_with_crit;         /* grid points with a critical phase */
+  int all_stable;             /* 1: every grid point stable for every phase */
+  double margin_worst;        /* 1/s, the largest margin met */
+  double worst_s[2], worst_phase; /* kg m, rad: where */
+  double first_bad_s[2];      /* kg m: the first grid point not stable (NaN if none; s1 NaN: a slice whose
+                                 instability lies between the grid points of plane 1) */
+  size_t n_missed, evaluations;
+  int exact_in_s1;            /* 1: every slice was decided exactly over plane 1's whole range (the
+                                 cos form of Delta16 held); 0: some slice fell back to plane 1's grid */
+  size_t n_slices_not_stable; /* plane-2 grid values at which some s1 in the range and some phase is
+                                 not stable (exact over s1 when exact_in_s1) */
+} autobal_rotor_unbalance_range2;
+
+AUTOBAL_API int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const double s_lo[2],
+                                                    const double s_hi[2], size_t n_grid,
+                                                    autobal_rotor_unbalance_range2 *out);
+
+/* The speeds where autobal_rotor_stab_every_unbalance2 says stable, as
+ * autobal_rotor_stab_every_unbalance_speeds (grid in speed, each change bisected to xtol_rel). */
+AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s, const double s_lo[2],
+                                                           const double s_hi[2], size_t n_grid, double w_lo,
+                                                           double w_hi, size_t n_omega, double xtol_rel,
+                                                           autobal_rotor_crit *out);
 
 /* autobal_rotor_stab_map with, at every grid point, the verdict for EVERY unbalance m0 r0 in
  * [s_lo, s_hi] (autobal_rotor_stab_every_unbalance): STABLE (stable for all), UNSTABLE (unstable for

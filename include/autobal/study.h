@@ -335,6 +335,11 @@ typedef struct autobal_study_rotor_stability_options {
      critical_speeds, the speeds stable for all of them            (default 0, NaN, NaN) */
   int every_unbalance;
   double unbalance_min, unbalance_max;
+  /* two planes (added at the end; autobal_rotor_stab_every_unbalance2): plane 2's range (NaN: the
+     same as plane 1's) and the grid points per plane of the magnitudes, in [2, 1000]
+                                                                   (default NaN, NaN, 9) */
+  double unbalance2_min, unbalance2_max;
+  size_t n_unbalance;
 } autobal_study_rotor_stability_options;
 
 /* The defaults listed above. */
@@ -370,6 +375,14 @@ typedef struct autobal_study_rotor_stability_summary {
      /rotor/stability/asymptotic */
   int have_asymptotic;
   autobal_rotor_asymptotic asymptotic;
+  /* two planes, every unbalance (added at the end): `every2` the grid of magnitudes with every
+     phase (then `every` holds its verdict only: no critical unbalances, one sub-interval);
+     `every_phase` the critical phases at the configuration's own m0 r0 of both planes (when they
+     lie where the balls balance off a line) */
+  int have_every2;
+  autobal_rotor_unbalance_range2 every2;
+  int have_every_phase;
+  autobal_rotor_phase_range every_phase;
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every

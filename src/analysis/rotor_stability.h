@@ -18,4 +18,13 @@ int autobal_rotor_stab_map_run_(const autobal_rotor_params *p, const autobal_rot
                                 int param2, const double *v2, size_t n2, int n_threads, double *margin, int *verdict,
                                 autobal_error *err);
 
+/* Two planes through the one-plane every-unbalance entry points (rotor_unbalance2.c): both planes
+ * over [s_lo, s_hi], every relative phase, AUTOBAL_ROTOR_EVERY2_GRID unbalances per plane. */
+#define AUTOBAL_ROTOR_EVERY2_GRID 9
+int autobal_rotor_every_unbalance_two_planes_(autobal_rotor_stab *s, double s_lo, double s_hi,
+                                              autobal_rotor_unbalance_range *out);
+int autobal_rotor_every_unbalance_speeds_two_planes_(autobal_rotor_stab *s, double s_lo, double s_hi, double w_lo,
+                                                     double w_hi, size_t n_grid, double xtol_rel,
+                                                     autobal_rotor_crit *out);
+
 #endif

@@ -454,6 +454,7 @@ int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double s_lo, doubl
   int st, st2;
   if (s == NULL) return AUTOBAL_EINVAL;
   if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: out is NULL");
+  if (s->cur.n_planes == 2) return autobal_rotor_every_unbalance_two_planes_(s, s_lo, s_hi, out);
   m0 = s->cur.plane[0].m0;
   st = every_unbalance(s, s_lo, s_hi, out);
   st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
@@ -468,6 +469,8 @@ int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo
   size_t k;
   if (s == NULL) return AUTOBAL_EINVAL;
   if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: out is NULL");
+  if (s->cur.n_planes == 2)
+    return autobal_rotor_every_unbalance_speeds_two_planes_(s, s_lo, s_hi, w_lo, w_hi, n_grid, xtol_rel, out);
   memset(out, 0, sizeof *out);
   out->param = AUTOBAL_ROTOR_PARAM_OMEGA;
   if (!(isfinite(w_lo) && isfinite(w_hi) && w_lo < w_hi && (w_lo > 0.0 || w_hi < 0.0)))

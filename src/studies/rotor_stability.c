@@ -68,6 +68,9 @@ autobal_study_rotor_stability_options autobal_study_rotor_stability_options_defa
   o.every_unbalance = 0;
   o.unbalance_min = NAN;
   o.unbalance_max = NAN;
+  o.unbalance2_min = NAN;
+  o.unbalance2_max = NAN;
+  o.n_unbalance = 9;
   return o;
 }
 
@@ -224,7 +227,40 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
   }
   if (o->every_unbalance) {
     /* every unbalance in [unbalance_min, unbalance_max]: at omega, then the speeds */
-    st = autobal_rotor_stab_every_unbalance(h, o->unbalance_min, o->unbalance_max, &s->every);
+    const int two = p->n_planes == 2;
+    const double lo2[2] = {o->unbalance_min, isnan(o->unbalance2_min) ? o->unbalance_min : o->unbalance2_min},
+                 hi2[2] = {o->unbalance_max, isnan(o->unbalance2_max) ? o->unbalance_max : o->unbalance2_max};
+    if (two) {
+      /* two planes: the grid of magnitudes with every phase, and the phases at the configuration's */
+      st = autobal_rotor_stab_every_unbalance2(h, lo2, hi2, o->n_unbalance, &s->every2);
+      if (st) {
+        autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+        goto fail;
+      }
+      s->have_every2 = 1;
+      memset(&s->every, 0, sizeof s->every);
+      s->every.omega = s->every2.omega;
+      s->every.s_lo = lo2[0];
+      s->every.s_hi = hi2[0];
+      s->every.all_stable = s->every2.all_stable;
+      s->every.margin_worst = s->every2.margin_worst;
+      s->every.n_missed = s->every2.n_missed;
+      s->every.evaluations = s->every2.evaluations;
+      s->every.n_sub = 1;
+      s->every.sub_lo[0] = lo2[0];
+      s->every.sub_hi[0] = hi2[0];
+      s->every.sub_verdict[0] = s->every2.all_stable ? AUTOBAL_VERDICT_STABLE : AUTOBAL_VERDICT_UNSTABLE;
+      s->every.sub_margin[0] = s->every2.margin_worst;
+      st = autobal_rotor_stab_every_phase(h, p->plane[0].m0 * p->plane[0].r0, p->plane[1].m0 * p->plane[1].r0,
+                                          &s->every_phase);
+      if (st == AUTOBAL_SUCCESS) s->have_every_phase = 1;
+      else if (st != AUTOBAL_EINVAL) {
+        autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
+        goto fail;
+      }
+      st = AUTOBAL_SUCCESS;
+    } else
+      st = autobal_rotor_stab_every_unbalance(h, o->unbalance_min, o->unbalance_max, &s->every);
     if (st) {
       autobal_error_set(err, st, "%s", autobal_rotor_stab_errmsg(h));
       goto fail;
@@ -234,8 +270,10 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
       double lo, hi;
       progress_hook ph;
       search_setup(p, o, s, h, 0.75, &ph, &lo, &hi);
-      st = autobal_rotor_stab_every_unbalance_speeds(h, o->unbalance_min, o->unbalance_max, lo, hi, o->n_omega,
-                                                     o->xtol_rel, &s->every_speeds);
+      st = two ? autobal_rotor_stab_every_unbalance2_speeds(h, lo2, hi2, o->n_unbalance, lo, hi, o->n_omega,
+                                                            o->xtol_rel, &s->every_speeds)
+               : autobal_rotor_stab_every_unbalance_speeds(h, o->unbalance_min, o->unbalance_max, lo, hi, o->n_omega,
+                                                           o->xtol_rel, &s->every_speeds);
       autobal_rotor_stab_set_cancel(h, NULL, NULL);
       if (st == AUTOBAL_WARNING) st = AUTOBAL_SUCCESS; /* truncated: recorded in every_speeds.truncated */
       if (st) {
@@ -449,6 +487,43 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
       if (!st) st = autobal_archive_var(a, ge, "sub_hi", 1, dsub, u->sub_hi, "kg m", "upper end of the sub-interval (m0 r0)");
       if (!st) st = autobal_archive_var_int(a, ge, "sub_verdict", 1, dsub, v, "1", "verdict inside the sub-interval: 1 stable, 0 marginal, -1 unstable");
       if (!st) st = autobal_archive_var(a, ge, "sub_margin", 1, dsub, u->sub_margin, "1/s", "stability margin (largest real part) at the sub-interval's midpoint");
+    }
+    if (!st && s->have_every2) {
+      const autobal_rotor_unbalance_range2 *u2 = &s->every2;
+      if (!st) st = autobal_archive_attr_string(a, ge, "two_planes", "both planes: unbalance_min..max for plane 1 (exact over the whole range when exact_in_unbalance1 = 1), unbalance2_min..max for plane 2 at n_unbalance values (SAMPLED), every relative phase (exact); the margins at an n_unbalance x n_unbalance grid; no critical unbalances; one sub-interval with the worst verdict met");
+      if (!st) st = autobal_archive_attr_double(a, ge, "unbalance2_min", u2->s_lo[1], "kg m");
+      if (!st) st = autobal_archive_attr_double(a, ge, "unbalance2_max", u2->s_hi[1], "kg m");
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance1", (long)u2->n_s[0]);
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance2", (long)u2->n_s[1]);
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_points_not_stable", (long)u2->n_not_stable);
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_points_with_critical_phase", (long)u2->n_with_crit);
+      if (!st) st = autobal_archive_attr_int(a, ge, "exact_in_unbalance1", u2->exact_in_s1);
+      if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance2_not_stable", (long)u2->n_slices_not_stable);
+    }
+    if (!st && s->have_every_phase) {
+      const char *gp = "/rotor/stability/every_unbalance/phase";
+      const autobal_rotor_phase_range *ph = &s->every_phase;
+      static const char *const dpc[] = {"phase_critical"}, *const darc[] = {"phase_arc"};
+      st = autobal_archive_group(a, gp);
+      if (!st) st = autobal_archive_attr_string(a, gp, "description", "every relative phase plane2.psi0 - plane1.psi0 at the configuration's m0 r0 of both planes: the critical phases (a root on the imaginary axis) in [0, pi) (the verdict has period pi) and the verdict on the arcs between them (docs/rotor.md, Every unbalance)");
+      if (!st) st = autobal_archive_attr_double(a, gp, "unbalance1", ph->s[0], "kg m");
+      if (!st) st = autobal_archive_attr_double(a, gp, "unbalance2", ph->s[1], "kg m");
+      if (!st) st = autobal_archive_attr_int(a, gp, "stable_for_all_phases", ph->all_stable);
+      if (!st) st = autobal_archive_attr_int(a, gp, "n_missed", (long)ph->n_missed);
+      if (!st && ph->n_crit > 0) {
+        st = autobal_archive_dim(a, gp, "phase_critical", ph->n_crit, "index of a critical phase");
+        if (!st) st = autobal_archive_var(a, gp, "critical_phase", 1, dpc, ph->phase_crit, "rad", "critical relative phase: a root of the closed system on the imaginary axis");
+        if (!st) st = autobal_archive_var(a, gp, "crossing_frequency", 1, dpc, ph->y_crit, "1/s", "imaginary part of that root (rotating frame)");
+      }
+      if (!st && ph->n_sub > 0) {
+        int v[AUTOBAL_ROTOR_MAX_PCRIT + 1];
+        size_t q;
+        for (q = 0; q < ph->n_sub; q++) v[q] = ph->sub_verdict[q];
+        st = autobal_archive_dim(a, gp, "phase_arc", ph->n_sub, "index of an arc between critical phases");
+        if (!st) st = autobal_archive_var(a, gp, "arc_lo", 1, darc, ph->sub_lo, "rad", "start of the arc (relative phase)");
+        if (!st) st = autobal_archive_var(a, gp, "arc_hi", 1, darc, ph->sub_hi, "rad", "end of the arc (may exceed pi: it wraps)");
+        if (!st) st = autobal_archive_var_int(a, gp, "arc_verdict", 1, darc, v, "1", "verdict on the arc: 1 stable, 0 marginal, -1 unstable");
+      }
     }
     if (!st && s->have_every_speeds) {
       const char *gs = "/rotor/stability/every_unbalance/speeds";

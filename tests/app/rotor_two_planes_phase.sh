@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# App test: `autobal rotor stability` with two planes and [stability] unbalance_min/max (every
+# unbalance and every relative phase, docs/rotor.md "Every unbalance"); the critical phases checked by
+# rotor_two_planes_phase_check.py against Floquet multipliers of the full linearized model (SciPy);
+# the JSON fields; bad input provoked.
+set -u
+: "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+fail=0; pass=0
+ok()  { echo "ok   $*"; pass=$((pass+1)); }
+bad() { echo "FAIL $*"; fail=$((fail+1)); }
+expect() {
+  local code=$1 needle=$2; shift 2
+  "$@" >out.txt 2>err.txt; local rc=$?
+  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat out.txt err.txt; return; fi
+  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat out.txt err.txt; return; fi
+  ok "exit $code${needle:+ and '$needle'}: $*"
+}
+T2="$DATA/rotor_two_planes.ini"
+U=(--set "stability.unbalance_min=1000 g mm" --set "stability.unbalance_max=6000 g mm")
+
+# 370 rad/s: the file's unbalances have two critical phases
+expect 0 "critical phases:" "$AUTOBAL" rotor stability "$T2" --set rotor.omega=370 --set stability.critical_speeds=false \
+  "${U[@]}" --set stability.n_unbalance=3 -o ph.h5
+grep -q "NOT stable for all" out.txt && ok "370 rad/s: not stable for every phase" || bad "verdict at 370 rad/s"
+"$PY" "$here/rotor_two_planes_phase_check.py" ph.h5 >py.txt 2>&1 && ok "critical phases vs Floquet of the full model" || { bad "phase check"; cat py.txt; }
+# 500 rad/s: stable for every phase and every unbalance of the 5 x 5 grid; JSON fields
+expect 0 "" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false "${U[@]}" \
+  --set "stability.unbalance2_min=500 g mm" --set "stability.unbalance2_max=7000 g mm" --set stability.n_unbalance=5 --json
+"$PY" -c "
+import json, sys
+d = json.load(open('out.txt'))
+e = d['every_unbalance']
+assert e['stable_for_all'] is True, e
+t = e['two_planes']
+assert abs(t['unbalance2_min'] - 5e-4) < 1e-15 and abs(t['unbalance2_max'] - 7e-3) < 1e-15, t
+assert t['n_unbalance1'] == 5 and t['n_unbalance2'] == 5 and t['n_points_not_stable'] == 0, t
+p = e['phase']
+assert p['stable_for_all_phases'] is True and len(p['critical_phase']) == 0, p
+" && ok "JSON at 500 rad/s: two_planes and phase objects" || { bad "JSON fields"; head -c 3000 out.txt; }
+# bad input
+expect 3 "unbalance2_min and unbalance2_max go together" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
+  "${U[@]}" --set "stability.unbalance2_min=500 g mm"
+expect 3 "n_unbalance = 1 must be in [2, 1000]" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
+  "${U[@]}" --set stability.n_unbalance=1
+expect 3 "are for two planes (here 1)" "$AUTOBAL" rotor stability --set stability.critical_speeds=false \
+  "${U[@]}" --set stability.n_unbalance=5
+expect 3 "plane 2's m0 r0" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
+  "${U[@]}" --set "stability.unbalance2_min=500 g mm" --set "stability.unbalance2_max=8000 g mm"
+echo "rotor_two_planes_phase: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

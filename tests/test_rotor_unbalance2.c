@@ -1,0 +1,255 @@
+/* test_rotor_unbalance2.c: two balancer planes, every relative phase (autobal_rotor_stab_every_phase)
+ * and every unbalance on a grid (autobal_rotor_stab_every_unbalance2), docs/rotor.md "Every unbalance",
+ * against analyses that do not use the crossing polynomial:
+ *  - 721 sampled phases per case (the closed 16x16 matrix's eigenvalues, method CLOSED) have the
+ *    verdict of their arc between the critical phases; "stable for all" iff every sample is stable;
+ *  - at every critical phase the closed matrix has an eigenvalue on the imaginary axis (|Re| small
+ *    against its neighbours 1e-3 rad either side) at the reported frequency y;
+ *  - the grid verdict equals the AND of the sampled verdicts at the grid points; the one-plane entry
+ *    point dispatches to it for two planes;
+ *  - a slice (s2 fixed) with only the ends of plane 1's range as grid points has the verdict of 61 x 90
+ *    sampled (s1, phase), also where the instability lies only inside the range (found by sampling
+ *    beforehand: 360 rad/s and s2 = 3500 g mm, 380 and 400 rad/s with 4500 g mm, 410 with 5500);
+ *  - m0 and psi0 restored bitwise; the error paths. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal.h"
+#include "check.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static double m1[2] = {0.05, 0.05}, r1[2] = {0.1, 0.1}, h1[2] = {0.5, 0.5};
+static double m2[2] = {0.04, 0.04}, r2[2] = {0.09, 0.09}, h2[2] = {0.5, 0.5};
+
+/* data/rotor_two_planes.ini */
+static autobal_rotor_params two_planes(double w) {
+  autobal_rotor_params p = autobal_rotor_params_default();
+  p.plane[0].d = 0.10;
+  p.plane[0].m0 = 0.02;
+  p.plane[0].r0 = 0.1;
+  p.plane[0].psi0 = 0.0;
+  p.plane[0].ball_mass = m1;
+  p.plane[0].ball_radius = r1;
+  p.plane[0].ball_damping = h1;
+  p.plane[0].ball_psi = NULL;
+  p.plane[0].ball_rate = NULL;
+  p.n_planes = 2;
+  p.plane[1] = p.plane[0];
+  p.plane[1].d = -0.12;
+  p.plane[1].m0 = 0.015;
+  p.plane[1].r0 = 0.09;
+  p.plane[1].psi0 = 2.0;
+  p.plane[1].ball_mass = m2;
+  p.plane[1].ball_radius = r2;
+  p.plane[1].ball_damping = h2;
+  p.omega = w;
+  return p;
+}
+
+static void set_point(autobal_rotor_stab *s, double s1, double s2, double phi) {
+  autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_M0), s1 / 0.1);
+  autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(1, AUTOBAL_ROTOR_PLANE_M0), s2 / 0.09);
+  autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(1, AUTOBAL_ROTOR_PLANE_PSI0), phi); /* plane1.psi0 = 0 */
+}
+
+static int sampled_verdict(autobal_rotor_stab *s, double s1, double s2, double phi, double *mg) {
+  int v = 0;
+  set_point(s, s1, s2, phi);
+  autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_CLOSED, mg, &v);
+  return v;
+}
+
+/* min |Re lambda| of the closed matrix and the |Im| of that eigenvalue */
+static void axis_root(autobal_rotor_stab *s, double *re_min, double *im_at) {
+  autobal_rotor_closed c;
+  double a[256], re[16], im[16];
+  autobal_eigen_workspace *w = autobal_eigen_workspace_alloc(16);
+  size_t k;
+  autobal_rotor_stab_closed(s, &c);
+  autobal_rotor_closed_matrix(&c, a, 16, NULL);
+  autobal_eigen_nonsymm(w, a, re, im, NULL);
+  *re_min = INFINITY;
+  for (k = 0; k < 16; k++)
+    if (fabs(re[k]) < *re_min) {
+      *re_min = fabs(re[k]);
+      *im_at = fabs(im[k]);
+    }
+  autobal_eigen_workspace_free(w);
+}
+
+static void case_phase(double w, double s1, double s2, int want_crit) {
+  autobal_rotor_params p = two_planes(w);
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
+  autobal_rotor_phase_range ph;
+  const double m0a = p.plane[0].m0, m0b = p.plane[1].m0, psi = p.plane[1].psi0;
+  size_t k, bad = 0, n_unstable = 0;
+  char what[160];
+  int st;
+  if (!s) {
+    CHECK("alloc", 0);
+    return;
+  }
+  st = autobal_rotor_stab_every_phase(s, s1, s2, &ph);
+  snprintf(what, sizeof what, "w %g s %g %g", w, s1, s2);
+  CHECK_STATUS(what, st, AUTOBAL_SUCCESS);
+  CHECK("restored m0, psi0 bitwise", autobal_rotor_stab_params(s)->plane[0].m0 == m0a &&
+                                         autobal_rotor_stab_params(s)->plane[1].m0 == m0b &&
+                                         autobal_rotor_stab_params(s)->plane[1].psi0 == psi);
+  CHECK("n_missed = 0", ph.n_missed == 0);
+  if (want_crit >= 0) CHECK("critical phases expected (or none)", want_crit ? ph.n_crit > 0 : ph.n_crit == 0);
+  /* dense sampling: every phase's verdict is its arc's */
+  for (k = 0; k <= 720; k++) {
+    const double phi = M_PI * (double)k / 720.0;
+    double mg, near = INFINITY;
+    size_t j, arc = 0;
+    const int v = sampled_verdict(s, s1, s2, phi, &mg);
+    if (v != AUTOBAL_VERDICT_STABLE) n_unstable++;
+    for (j = 0; j < ph.n_crit; j++) {
+      const double d = fabs(remainder(phi - ph.phase_crit[j], M_PI));
+      if (d < near) near = d;
+    }
+    if (near < 1e-6) continue;
+    for (j = 0; j < ph.n_sub; j++) {
+      const double x = ph.sub_lo[j] + remainder(phi - ph.sub_lo[j] - 0.5 * (ph.sub_hi[j] - ph.sub_lo[j]), M_PI) +
+                       0.5 * (ph.sub_hi[j] - ph.sub_lo[j]);
+      if (x >= ph.sub_lo[j] && x <= ph.sub_hi[j]) arc = j;
+    }
+    if (v != ph.sub_verdict[arc]) bad++;
+  }
+  snprintf(what, sizeof what, "w %g s %g %g: 721 sampled phases have their arc's verdict (%zu differ)", w, s1, s2, bad);
+  CHECK(what, bad == 0);
+  CHECK("stable for all iff every sample stable", ph.all_stable == (n_unstable == 0));
+  /* each critical phase: an eigenvalue of the closed matrix on the axis at y */
+  for (k = 0; k < ph.n_crit; k++) {
+    double re0, im0, rel, iml, rer, imr;
+    set_point(s, s1, s2, ph.phase_crit[k]);
+    axis_root(s, &re0, &im0);
+    set_point(s, s1, s2, ph.phase_crit[k] - 1e-3);
+    axis_root(s, &rel, &iml);
+    set_point(s, s1, s2, ph.phase_crit[k] + 1e-3);
+    axis_root(s, &rer, &imr);
+    snprintf(what, sizeof what, "w %g: critical phase %.9f: |Re| %.3g (1e-3 rad off: %.3g, %.3g)", w,
+             ph.phase_crit[k], re0, rel, rer);
+    CHECK(what, re0 < 1e-6 * fmax(1.0, im0) && re0 < 1e-3 * fmin(rel, rer));
+    CHECK_CLOSE("frequency of the crossing", im0, ph.y_crit[k], 1e-6, 1e-6);
+  }
+  autobal_rotor_stab_free(s);
+}
+
+static void case_grid(double w, double lo1, double hi1, double lo2, double hi2, size_t n) {
+  autobal_rotor_params p = two_planes(w);
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
+  autobal_rotor_unbalance_range2 u;
+  autobal_rotor_unbalance_range u1;
+  const double lo[2] = {lo1, lo2}, hi[2] = {hi1, hi2};
+  size_t i, j, k, nbad = 0;
+  int all = 1;
+  char what[160];
+  if (!s) {
+    CHECK("alloc", 0);
+    return;
+  }
+  CHECK_STATUS("every_unbalance2", autobal_rotor_stab_every_unbalance2(s, lo, hi, n, &u), AUTOBAL_SUCCESS);
+  for (i = 0; i < n; i++)
+    for (j = 0; j < n; j++) {
+      const double s1 = lo1 + (hi1 - lo1) * (double)i / (double)(n - 1), s2 = lo2 + (hi2 - lo2) * (double)j / (double)(n - 1);
+      int ok = 1;
+      for (k = 0; k < 180; k++) {
+        double mg;
+        if (sampled_verdict(s, s1, s2, M_PI * ((double)k + 0.5) / 180.0, &mg) != AUTOBAL_VERDICT_STABLE) ok = 0;
+      }
+      if (!ok) nbad++;
+      all &= ok;
+    }
+  snprintf(what, sizeof what, "w %g: grid verdict %d (%zu not stable) vs sampled %d (%zu)", w, u.all_stable,
+           u.n_not_stable, all, nbad);
+  CHECK(what, u.all_stable == all && u.n_not_stable >= nbad && u.n_points == n * n);
+  if (lo1 == lo2 && hi1 == hi2 && n == 9) {
+    /* the one-plane entry point with two planes: the same grid and verdict */
+    CHECK_STATUS("dispatch", autobal_rotor_stab_every_unbalance(s, lo1, hi1, &u1), AUTOBAL_SUCCESS);
+    CHECK("dispatch: same verdict and margin", u1.all_stable == u.all_stable && u1.margin_worst == u.margin_worst);
+  }
+  autobal_rotor_stab_free(s);
+}
+
+/* One slice (s2 fixed), plane 1's range seen by the exact slice with only its two ends as grid
+ * points, against 61 x 90 sampled (s1, phase); returns 1 if the sampled instability lies only inside
+ * the range (the ends stable for every phase): the case only the exact slice can see. */
+static int case_slice(double w, double s2, double lo1, double hi1) {
+  autobal_rotor_params p = two_planes(w);
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
+  autobal_rotor_unbalance_range2 u;
+  const double lo[2] = {lo1, s2}, hi[2] = {hi1, s2};
+  size_t i, k;
+  int all = 1, ends = 1;
+  char what[200];
+  if (!s) return 0;
+  CHECK_STATUS("slice", autobal_rotor_stab_every_unbalance2(s, lo, hi, 2, &u), AUTOBAL_SUCCESS);
+  CHECK("slice decided exactly", u.exact_in_s1 == 1 && u.n_missed == 0);
+  for (i = 0; i <= 60; i++) {
+    const double s1 = lo1 + (hi1 - lo1) * (double)i / 60.0;
+    for (k = 0; k < 90; k++) {
+      double mg;
+      if (sampled_verdict(s, s1, s2, M_PI * ((double)k + 0.5) / 90.0, &mg) != AUTOBAL_VERDICT_STABLE) {
+        all = 0;
+        if (i == 0 || i == 60) ends = 0;
+      }
+    }
+  }
+  snprintf(what, sizeof what, "w %g s2 %g s1 in [%g, %g]: exact slice %d, 61 x 90 sampled %d (ends %d)", w, s2, lo1,
+           hi1, u.all_stable, all, ends);
+  CHECK(what, u.all_stable == all);
+  autobal_rotor_stab_free(s);
+  return !all && ends;
+}
+
+static void errors(void) {
+  autobal_rotor_params p = two_planes(500.0), q = autobal_rotor_params_default();
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err), *t = autobal_rotor_stab_alloc(&q, NULL, &err);
+  autobal_rotor_phase_range ph;
+  autobal_rotor_unbalance_range2 u;
+  const double lo[2] = {0.001, 0.001}, hi[2] = {0.011, 0.005}, hi2[2] = {0.005, 0.005};
+  CHECK_STATUS("one plane", autobal_rotor_stab_every_phase(t, 0.001, 0.001, &ph), AUTOBAL_EUNSUPPORTED);
+  CHECK_STATUS("range beyond 2 m r", autobal_rotor_stab_every_unbalance2(s, lo, hi, 5, &u), AUTOBAL_EINVAL);
+  CHECK_MSG("message names the plane and range", autobal_rotor_stab_errmsg(s), "plane 1");
+  CHECK_STATUS("n_grid 1", autobal_rotor_stab_every_unbalance2(s, lo, hi2, 1, &u), AUTOBAL_EINVAL);
+  CHECK_STATUS("NULL", autobal_rotor_stab_every_phase(s, 0.001, 0.001, NULL), AUTOBAL_EINVAL);
+  autobal_rotor_stab_free(s);
+  autobal_rotor_stab_free(t);
+}
+
+int main(void) {
+  /* verdict changing with the phase (found by sampling; the sampling here is independent) */
+  case_phase(350.0, 0.005, 0.0025, 1);
+  case_phase(250.0, 0.0005, 0.0005, 1);
+  case_phase(375.0, 0.002, 0.0005, 1);
+  case_phase(350.0, 0.0095, 0.0065, 1);
+  /* stable or unstable for every phase */
+  case_phase(500.0, 0.002, 0.00135, -1);
+  case_phase(300.0, 0.002, 0.00135, -1);
+  case_phase(1000.0, 0.009, 0.007, -1);
+  case_grid(500.0, 0.001, 0.006, 0.001, 0.006, 9);
+  case_grid(350.0, 0.001, 0.006, 0.001, 0.006, 9);
+  case_grid(420.0, 0.0005, 0.0095, 0.0005, 0.0070, 6);
+  {
+    /* slices: exact over s1 */
+    static const double cs[][2] = {{340.0, 0.00135}, {360.0, 0.0035}, {380.0, 0.0045}, {400.0, 0.0045},
+                                   {410.0, 0.0055}, {500.0, 0.00135}, {370.0, 0.0005}, {1000.0, 0.0065}};
+    size_t a;
+    int interior = 0;
+    for (a = 0; a < sizeof cs / sizeof cs[0]; a++) interior += case_slice(cs[a][0], cs[a][1], 0.0005, 0.0095);
+    printf("slices whose instability lies only inside the range: %d\n", interior);
+    CHECK("slices unstable only inside plane 1's range (ends stable) were met", interior >= 3);
+  }
+  errors();
+  return check_summary();
+}
