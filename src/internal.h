@@ -62,5 +62,9 @@ int autobal_poly_hurwitz_err_full(const double *c, const double *cerr, size_t le
  * autobal_poly_roots (message in err). */
 int autobal_poly_positive_roots_ld_(const long double *h, size_t n, long double z2, long double *z, size_t *nz,
                                     autobal_error *err);
+/* The same for n <= 64 coefficients (z capacity n - 1), with the top-coefficient cut `trim`
+ * (1e-13 above) and the "near real" / Newton window `near` (1e-3 above) given. */
+int autobal_poly_positive_roots_tol_(const long double *h, size_t n, long double z2, double trim, double near,
+                                     long double *z, size_t *nz, autobal_error *err);
 
 #endif

@@ -27,4 +27,14 @@ int autobal_rotor_every_unbalance_speeds_two_planes_(autobal_rotor_stab *s, doub
                                                      double w_hi, size_t n_grid, double xtol_rel,
                                                      autobal_rotor_crit *out);
 
+/* The verdict "stable for all" at the handle's current omega (user: the caller's data), with the
+ * count of evaluations it took. */
+typedef int (*autobal_rotor_speed_verdict_fn_)(autobal_rotor_stab *s, void *user, int *all_stable,
+                                               size_t *evaluations);
+/* The speeds in [w_lo, w_hi] where fn says stable: n_grid speeds, each change bisected to xtol_rel;
+ * out cleared and filled as by autobal_rotor_stab_every_unbalance_speeds; omega restored
+ * (rotor_speed_scan.c). */
+int autobal_rotor_scan_speeds_(autobal_rotor_stab *s, double w_lo, double w_hi, size_t n_grid, double xtol_rel,
+                               autobal_rotor_speed_verdict_fn_ fn, void *user, autobal_rotor_crit *out);
+
 #endif

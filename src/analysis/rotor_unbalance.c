@@ -461,85 +461,36 @@ int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double s_lo, doubl
   return st != AUTOBAL_SUCCESS ? st : st2;
 }
 
+typedef struct {
+  double s_lo, s_hi;
+} speeds_ctx;
+
+/* autobal_rotor_speed_verdict_fn_ of the one-plane speed set. */
+static int speeds_verdict(autobal_rotor_stab *s, void *user, int *all_stable, size_t *evaluations) {
+  const speeds_ctx *c = (const speeds_ctx *)user;
+  autobal_rotor_unbalance_range ur;
+  const int st = every_unbalance(s, c->s_lo, c->s_hi, &ur);
+  if (st != AUTOBAL_SUCCESS) return st;
+  *evaluations = ur.evaluations;
+  *all_stable = ur.all_stable;
+  return st;
+}
+
 int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s, double s_lo, double s_hi, double w_lo,
                                               double w_hi, size_t n_grid, double xtol_rel, autobal_rotor_crit *out) {
-  autobal_rotor_unbalance_range ur;
-  double m0, w0, prev_w = 0.0;
-  int prev = 0, st = AUTOBAL_SUCCESS, open = 0;
-  size_t k;
+  speeds_ctx c;
+  double m0;
+  int st, st2;
   if (s == NULL) return AUTOBAL_EINVAL;
   if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: out is NULL");
   if (s->cur.n_planes == 2)
     return autobal_rotor_every_unbalance_speeds_two_planes_(s, s_lo, s_hi, w_lo, w_hi, n_grid, xtol_rel, out);
-  memset(out, 0, sizeof *out);
-  out->param = AUTOBAL_ROTOR_PARAM_OMEGA;
-  if (!(isfinite(w_lo) && isfinite(w_hi) && w_lo < w_hi && (w_lo > 0.0 || w_hi < 0.0)))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
-                             "every unbalance: the speed range [%g, %g] rad/s must be finite, lo < hi, and not "
-                             "contain 0",
-                             w_lo, w_hi);
-  if (n_grid < 2 || n_grid > 100000000)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: n_grid = %zu must be in [2, 1e8]", n_grid);
-  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: xtol_rel = %g must be in (0, 0.1)",
-                             xtol_rel);
+  c.s_lo = s_lo;
+  c.s_hi = s_hi;
   m0 = s->cur.plane[0].m0;
-  w0 = s->cur.omega;
-  for (k = 0; k < n_grid; k++) {
-    const double w = w_lo + (w_hi - w_lo) * (double)k / (double)(n_grid - 1);
-    int v;
-    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS) break;
-    if ((st = every_unbalance(s, s_lo, s_hi, &ur)) != AUTOBAL_SUCCESS) break;
-    out->evaluations += ur.evaluations;
-    v = ur.all_stable;
-    if (k > 0 && v != prev) {
-      /* refine the change by bisection on the every-unbalance verdict */
-      double x0 = prev_w, x1 = w;
-      while (fabs(x1 - x0) > xtol_rel * fmax(fabs(x0), fabs(x1))) {
-        const double xm = 0.5 * (x0 + x1);
-        if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, xm)) != AUTOBAL_SUCCESS) break;
-        if ((st = every_unbalance(s, s_lo, s_hi, &ur)) != AUTOBAL_SUCCESS) break;
-        out->evaluations += ur.evaluations;
-        if (ur.all_stable == prev) x0 = xm;
-        else x1 = xm;
-      }
-      if (st != AUTOBAL_SUCCESS) break;
-      if (out->n >= AUTOBAL_ROTOR_MAX_CRIT) {
-        out->truncated = 1;
-        st = AUTOBAL_WARNING;
-        autobal_error_set(&s->err, AUTOBAL_WARNING,
-                          "every unbalance: more than %d changes of the verdict; the results cover [%g, %g] rad/s",
-                          AUTOBAL_ROTOR_MAX_CRIT, w_lo, out->value[out->n - 1]);
-        break;
-      }
-      out->value[out->n] = 0.5 * (x0 + x1);
-      out->kind[out->n] = v ? 1 : -1;
-      if (v) {
-        out->stable_lo[out->n_stable] = out->value[out->n];
-        open = 1;
-      } else if (open) {
-        out->stable_hi[out->n_stable++] = out->value[out->n];
-        open = 0;
-      }
-      out->n++;
-    } else if (k == 0 && v) {
-      out->stable_lo[0] = w_lo;
-      open = 1;
-    }
-    prev = v;
-    prev_w = w;
-    if (autobal_rotor_stab_cancelled_(s)) {
-      st = autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
-      break;
-    }
-  }
-  if (st == AUTOBAL_SUCCESS && open) out->stable_hi[out->n_stable++] = w_hi;
-  {
-    const int st1 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w0);
-    const int st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
-    if (st == AUTOBAL_SUCCESS) st = st1 != AUTOBAL_SUCCESS ? st1 : st2;
-  }
-  return st;
+  st = autobal_rotor_scan_speeds_(s, w_lo, w_hi, n_grid, xtol_rel, speeds_verdict, &c, out);
+  st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
+  return st != AUTOBAL_SUCCESS ? st : st2;
 }
 
 /* A map point's verdict for every unbalance in [s_lo, s_hi] (the map's per-point function). */

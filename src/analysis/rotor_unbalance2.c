@@ -297,50 +297,11 @@ static int build_parts(const autobal_rotor_closed *c, parts2 *o, autobal_error *
   return AUTOBAL_SUCCESS;
 }
 
-/* The positive roots z of the real polynomial r (n coefficients), generous: near-real pairs count
- * (their real part), polished by Newton in long double while close.  Scaled z = z2 x. */
+/* The positive roots z of the real polynomial r (n <= 64 coefficients), generous: near-real pairs
+ * (|Im| <= 1e-2 Re) count with their real part, polished by Newton in long double while close;
+ * scaled z = z2 x (src/numerics/poly_positive.c). */
 static int pos_roots(const long double *r, size_t n, long double z2, long double *z, size_t *nz, autobal_error *err) {
-  double hs[64], re[64], im[64], big = 0.0;
-  long double pw = 1.0L;
-  size_t i, deg;
-  int st;
-  *nz = 0;
-  for (i = 0; i < n; i++) {
-    hs[i] = (double)(r[i] * pw);
-    pw *= z2;
-    big = fmax(big, fabs(hs[i]));
-  }
-  deg = n - 1;
-  while (deg > 0 && !(fabs(hs[deg]) > 1e-15 * big)) deg--;
-  if (deg < 1 || !(big > 0.0)) return AUTOBAL_SUCCESS;
-  {
-    autobal_poly_workspace *w = autobal_poly_workspace_alloc(deg);
-    if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "every phase: out of memory");
-    for (i = 0; i <= deg; i++) hs[i] /= big;
-    st = autobal_poly_roots(w, hs, deg + 1, re, im, err);
-    autobal_poly_workspace_free(w);
-    if (st != AUTOBAL_SUCCESS) return st;
-  }
-  for (i = 0; i < deg; i++) {
-    const long double z0 = (long double)re[i] * z2;
-    long double zz = z0;
-    int it;
-    if (!(re[i] > 0.0) || fabs(im[i]) > 1e-2 * fabs(re[i])) continue;
-    for (it = 0; it < 8; it++) {
-      long double v = 0.0L, dv = 0.0L, zn;
-      size_t k;
-      for (k = n; k-- > 0;) {
-        dv = dv * zz + v;
-        v = v * zz + r[k];
-      }
-      if (dv == 0.0L) break;
-      zn = zz - v / dv;
-      if (!(fabsl(zn - z0) <= 1e-2L * z0)) break;
-      zz = zn;
-    }
-    z[(*nz)++] = zz;
-  }
-  return AUTOBAL_SUCCESS;
+  return autobal_poly_positive_roots_tol_(r, n, z2, 1e-15, 1e-2, z, nz, err);
 }
 
 static int opposite(int a, int b) {
@@ -800,84 +761,35 @@ int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const double s_lo
   return restore2(s, &sv, every2(s, s_lo, s_hi, n_grid, out));
 }
 
+typedef struct {
+  const double *s_lo, *s_hi;
+  size_t n_grid;
+} speeds2_ctx;
+
+/* autobal_rotor_speed_verdict_fn_ of the two-plane speed set. */
+static int speeds2_verdict(autobal_rotor_stab *s, void *user, int *all_stable, size_t *evaluations) {
+  const speeds2_ctx *c = (const speeds2_ctx *)user;
+  autobal_rotor_unbalance_range2 ur;
+  const int st = every2(s, c->s_lo, c->s_hi, c->n_grid, &ur);
+  if (st != AUTOBAL_SUCCESS) return st;
+  *evaluations = ur.evaluations;
+  *all_stable = ur.all_stable;
+  return st;
+}
+
 int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
                                                size_t n_grid, double w_lo, double w_hi, size_t n_omega,
                                                double xtol_rel, autobal_rotor_crit *out) {
-  autobal_rotor_unbalance_range2 ur;
+  speeds2_ctx c;
   saved2 sv;
-  double w0, prev_w = 0.0;
-  int prev = 0, st = AUTOBAL_SUCCESS, open = 0;
-  size_t k;
   if (s == NULL) return AUTOBAL_EINVAL;
   if (out == NULL || s_lo == NULL || s_hi == NULL)
     return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (two planes): NULL argument");
-  memset(out, 0, sizeof *out);
-  out->param = AUTOBAL_ROTOR_PARAM_OMEGA;
-  if (!(isfinite(w_lo) && isfinite(w_hi) && w_lo < w_hi && (w_lo > 0.0 || w_hi < 0.0)))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
-                             "every unbalance: the speed range [%g, %g] rad/s must be finite, lo < hi, and not "
-                             "contain 0",
-                             w_lo, w_hi);
-  if (n_omega < 2 || n_omega > 100000000)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: n_grid = %zu must be in [2, 1e8]", n_omega);
-  if (!(xtol_rel > 0.0 && xtol_rel < 0.1))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: xtol_rel = %g must be in (0, 0.1)",
-                             xtol_rel);
+  c.s_lo = s_lo;
+  c.s_hi = s_hi;
+  c.n_grid = n_grid;
   save2(s, &sv);
-  w0 = s->cur.omega;
-  for (k = 0; k < n_omega; k++) {
-    const double w = w_lo + (w_hi - w_lo) * (double)k / (double)(n_omega - 1);
-    int v;
-    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS) break;
-    if ((st = every2(s, s_lo, s_hi, n_grid, &ur)) != AUTOBAL_SUCCESS) break;
-    out->evaluations += ur.evaluations;
-    v = ur.all_stable;
-    if (k > 0 && v != prev) {
-      double x0 = prev_w, x1 = w;
-      while (fabs(x1 - x0) > xtol_rel * fmax(fabs(x0), fabs(x1))) {
-        const double xm = 0.5 * (x0 + x1);
-        if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, xm)) != AUTOBAL_SUCCESS) break;
-        if ((st = every2(s, s_lo, s_hi, n_grid, &ur)) != AUTOBAL_SUCCESS) break;
-        out->evaluations += ur.evaluations;
-        if (ur.all_stable == prev) x0 = xm;
-        else x1 = xm;
-      }
-      if (st != AUTOBAL_SUCCESS) break;
-      if (out->n >= AUTOBAL_ROTOR_MAX_CRIT) {
-        out->truncated = 1;
-        st = AUTOBAL_WARNING;
-        autobal_error_set(&s->err, AUTOBAL_WARNING,
-                          "every unbalance: more than %d changes of the verdict; the results cover [%g, %g] rad/s",
-                          AUTOBAL_ROTOR_MAX_CRIT, w_lo, out->value[out->n - 1]);
-        break;
-      }
-      out->value[out->n] = 0.5 * (x0 + x1);
-      out->kind[out->n] = v ? 1 : -1;
-      if (v) {
-        out->stable_lo[out->n_stable] = out->value[out->n];
-        open = 1;
-      } else if (open) {
-        out->stable_hi[out->n_stable++] = out->value[out->n];
-        open = 0;
-      }
-      out->n++;
-    } else if (k == 0 && v) {
-      out->stable_lo[0] = w_lo;
-      open = 1;
-    }
-    prev = v;
-    prev_w = w;
-    if (autobal_rotor_stab_cancelled_(s)) {
-      st = autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
-      break;
-    }
-  }
-  if (st == AUTOBAL_SUCCESS && open) out->stable_hi[out->n_stable++] = w_hi;
-  {
-    const int st1 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w0);
-    if (st == AUTOBAL_SUCCESS) st = st1;
-  }
-  return restore2(s, &sv, st);
+  return restore2(s, &sv, autobal_rotor_scan_speeds_(s, w_lo, w_hi, n_omega, xtol_rel, speeds2_verdict, &c, out));
 }
 
 /* For the one-plane entry points (rotor_unbalance.c) with two planes: both planes over [s_lo, s_hi],
