@@ -527,7 +527,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
         printf("  critical unbalances (a root of Delta on the imaginary axis):");
         if (u->n_crit == 0) printf(" none in the range");
         for (i = 0; i < u->n_crit; i++) printf(" %.8g", u->s_crit[i] * 1e6);
-        printf(" g mm\n  verdict between them:");
+        printf("%s\n  verdict between them:", u->n_crit > 0 ? " g mm" : "");
         for (i = 0; i < u->n_sub; i++)
           printf(" [%.6g, %.6g] %s", u->sub_lo[i] * 1e6, u->sub_hi[i] * 1e6, autobal_verdict_name(u->sub_verdict[i]));
         printf(" (g mm)\n");
