@@ -117,12 +117,6 @@ static int read_flag(const int *f) {
   v = *f;
   return v;
 }
-static void raise_flag(int *f) {
-#ifdef AUTOBAL_HAVE_OPENMP
-#pragma omp atomic write
-#endif
-  *f = 1;
-}
 
 static int cancel_hook(void *user) {
   dctx *c = (dctx *)user;
@@ -804,6 +798,11 @@ static void map_collect(const dctx *c, autobal_study_rotor_design_summary *S, si
 }
 
 #ifdef AUTOBAL_HAVE_OPENMP
+static void raise_flag(int *f) {
+#pragma omp atomic write
+  *f = 1;
+}
+
 static int nthreads(const autobal_study_rotor_design_options *o) {
   return o->threads > 0 ? o->threads : omp_get_max_threads();
 }
