@@ -577,7 +577,8 @@ typedef struct autobal_rotor_phase_range {
   double s[2];                /* kg m, m0 r0 of plane 1 and 2 */
   size_t n_crit;              /* critical phases in [0, pi) */
   double phase_crit[AUTOBAL_ROTOR_MAX_PCRIT]; /* rad, ascending */
-  double y_crit[AUTOBAL_ROTOR_MAX_PCRIT];     /* 1/s, the root i y on the axis (rotating frame, y >= 0) */
+  double y_crit[AUTOBAL_ROTOR_MAX_PCRIT];     /* 1/s, the root i y on the axis (rotating frame, y >= 0; NaN
+                                                 for a phase found by bisection, see n_missed) */
   size_t n_sub;               /* arcs of [0, pi) between them (cyclic: the last wraps to the first + pi) */
   double sub_lo[AUTOBAL_ROTOR_MAX_PCRIT + 1], sub_hi[AUTOBAL_ROTOR_MAX_PCRIT + 1]; /* rad */
   int sub_verdict[AUTOBAL_ROTOR_MAX_PCRIT + 1]; /* AUTOBAL_VERDICT_* at the arc's midpoint */
@@ -596,7 +597,8 @@ typedef struct autobal_rotor_phase_range {
  * lambda = i y needs E(iy) + a U(iy) + b V(iy) = 0 (p = a + i b, U = Y + Y*, V = i (Y - Y*)), two real
  * linear equations whose solution has a^2 + b^2 = 1 only at the real roots of one polynomial R(y^2)
  * (and at y = 0 separately).  Every arc between critical phases is checked at its midpoint and near
- * both ends by the closed matrix (method CLOSED); disagreements are bisected (n_missed).  The working
+ * both ends by the closed matrix (method CLOSED); disagreements are bisected (n_missed) and the phase
+ * found is added to phase_crit (its y_crit NaN).  The working
  * m0 and psi0 are restored bitwise.  Statuses as autobal_rotor_stab_every_unbalance. */
 AUTOBAL_API int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1, double s2,
                                                autobal_rotor_phase_range *out);

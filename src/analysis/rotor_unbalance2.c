@@ -518,6 +518,16 @@ static int every_phase(autobal_rotor_stab *s, autobal_rotor_phase_range *out) {
           }
           out->n_missed++;
           out->all_stable = 0;
+          if (out->n_crit < AUTOBAL_ROTOR_MAX_PCRIT) { /* recorded in order, its frequency unknown (NaN) */
+            const double ph = wrap_pi(0.5 * (x0 + x1));
+            size_t at = out->n_crit++;
+            for (; at > 0 && out->phase_crit[at - 1] > ph; at--) {
+              out->phase_crit[at] = out->phase_crit[at - 1];
+              out->y_crit[at] = out->y_crit[at - 1];
+            }
+            out->phase_crit[at] = ph;
+            out->y_crit[at] = NAN;
+          }
         }
       }
       if (out->n_sub < AUTOBAL_ROTOR_MAX_PCRIT + 1) {
