@@ -12,10 +12,8 @@
 # names the file whose owner has to fix it.  When one is fixed, change `known` to `expect`.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+. "$(dirname "$0")/common.bash"
 fail=0; pass=0; xfail=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
 LIMIT=${BADINPUT_TIMEOUT:-120}
 run() { timeout -s KILL "$LIMIT" "$@" >out.txt 2>err.txt; }
 # expect CODE "needle" ["needle2" ...] -- command...

@@ -7,11 +7,8 @@
 # nothing outside the repository).
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+. "$(dirname "$0")/common.bash"
 DOCS=$(cd "$DATA/../docs" 2>/dev/null && pwd)
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
 A=$AUTOBAL
 run() { timeout -s KILL 120 "$@" >out.txt 2>err.txt; }
 # expect CODE "needle" ... -- command...: exit code and every needle in stdout or stderr

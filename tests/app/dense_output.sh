@@ -6,11 +6,7 @@
 # are refused with exit 3.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 
 P="--set transient.t_end=200 --set transient.rtol=1e-9 --set transient.atol=1e-11"
 run "$AUTOBAL" pendulum transient $P --set transient.stepper=dop853 -o pd.h5

@@ -7,19 +7,9 @@
 # ensembles under `mpirun -np 1` and `-np 2` (and a resume across rank counts) give equal archives.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 chk() { "$PY" "$here/ensemble_check.py" "$@" && ok "check $1" || bad "check $*"; }
 # expect CODE NEEDLE CMD...: exit code CODE and NEEDLE in the message
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  [ $rc -eq "$code" ] && grep -q -- "$needle" err.txt && ok "exit $code '$needle': $*" || { bad "exit $rc (want $code '$needle'): $*"; cat err.txt; }
-}
 
 # a small rotor basin map: initial angles of the two (identical) balls, 5 x 5 over [-pi, pi)
 cat > rotor.ini <<'EOF'
@@ -60,8 +50,8 @@ grep -q "2 member(s) failed" err.txt && ok "failures reported on stderr" || bad 
 run "$AUTOBAL" rotor ensemble rotor.ini --set ensemble.max_members=7 -o part.h5
 chk incomplete part.h5 7
 [ -f part.h5.journal-0 ] && ok "journal kept" || bad "no journal"
-expect 4 "ensemble.resume=true" "$AUTOBAL" rotor ensemble rotor.ini -o part.h5
-expect 3 "different configuration" "$AUTOBAL" rotor ensemble rotor.ini --set transient.t_end=9 --set ensemble.resume=true -o part.h5
+expect_err 4 "ensemble.resume=true" "$AUTOBAL" rotor ensemble rotor.ini -o part.h5
+expect_err 3 "different configuration" "$AUTOBAL" rotor ensemble rotor.ini --set transient.t_end=9 --set ensemble.resume=true -o part.h5
 run "$AUTOBAL" rotor ensemble rotor.ini --set ensemble.resume=true --set ensemble.max_members=5 -o part.h5
 chk incomplete part.h5 12
 truncate -s -100 part.h5.journal-0
@@ -69,7 +59,7 @@ run "$AUTOBAL" rotor ensemble rotor.ini --set ensemble.resume=true --set ensembl
 grep -q '"n_computed_now":14' out.txt && ok "resume recomputed the 13 missing members and the torn one" || { bad "resume count"; cat out.txt; }
 chk equal r1.h5 part.h5
 [ ! -e part.h5.journal-0 ] && ok "journals removed when complete" || bad "journal left behind"
-expect 4 "nothing to resume" "$AUTOBAL" rotor ensemble rotor.ini --set ensemble.resume=true -o part.h5
+expect_err 4 "nothing to resume" "$AUTOBAL" rotor ensemble rotor.ini --set ensemble.resume=true -o part.h5
 
 # SIGINT in the middle of a run: members being computed are cancelled (not recorded), the archive is
 # incomplete (exit 6), and a resume completes it to the same data
@@ -121,14 +111,14 @@ run "$AUTOBAL" pendulum transient --set pendulum.psi0=0.4 --set transient.t_end=
 chk member p1.h5 pt.h5 pendulum 1 3
 
 # error paths
-expect 3 "param1" "$AUTOBAL" rotor ensemble --set ensemble.param1=bogus
-expect 3 "ball 3 does not exist" "$AUTOBAL" rotor ensemble --set ensemble.param1=psi_3
-expect 3 "min1 and max1" "$AUTOBAL" rotor ensemble --set ensemble.param1=omega
-expect 3 "samples" "$AUTOBAL" pendulum ensemble --set ensemble.mode=random --set ensemble.n1=4
-expect 3 "already" "$AUTOBAL" pendulum ensemble --set ensemble.param2=psi
-expect 3 "series" "$AUTOBAL" pendulum ensemble --set ensemble.series=256
-expect 2 "needs -o" "$AUTOBAL" pendulum ensemble --set ensemble.resume=true
-expect 4 "" "$AUTOBAL" pendulum ensemble --set ensemble.n1=2 --set ensemble.n2=2 -o /nonexistent-dir/x.h5
+expect_err 3 "param1" "$AUTOBAL" rotor ensemble --set ensemble.param1=bogus
+expect_err 3 "ball 3 does not exist" "$AUTOBAL" rotor ensemble --set ensemble.param1=psi_3
+expect_err 3 "min1 and max1" "$AUTOBAL" rotor ensemble --set ensemble.param1=omega
+expect_err 3 "samples" "$AUTOBAL" pendulum ensemble --set ensemble.mode=random --set ensemble.n1=4
+expect_err 3 "already" "$AUTOBAL" pendulum ensemble --set ensemble.param2=psi
+expect_err 3 "series" "$AUTOBAL" pendulum ensemble --set ensemble.series=256
+expect_err 2 "needs -o" "$AUTOBAL" pendulum ensemble --set ensemble.resume=true
+expect_err 4 "" "$AUTOBAL" pendulum ensemble --set ensemble.n1=2 --set ensemble.n2=2 -o /nonexistent-dir/x.h5
 
 # MPI: only when the program was built with -DAUTOBAL_MPI=ON and mpirun is there
 mpi_build=$("$PY" -c "import h5py; print(h5py.File('r1.h5')['rotor/ensemble/execution'].attrs['mpi_build'])")
@@ -149,7 +139,7 @@ if [ "$mpi_build" = 1 ] && command -v mpirun >/dev/null; then
   chk incomplete mp.h5 13
   run $MPI -np 2 "$AUTOBAL" rotor ensemble rotor.ini --set ensemble.threads=1 --set ensemble.resume=true -o mp.h5
   chk equal r1.h5 mp.h5
-  expect 3 "param1" $MPI -np 2 "$AUTOBAL" rotor ensemble --set ensemble.param1=bogus
+  expect_err 3 "param1" $MPI -np 2 "$AUTOBAL" rotor ensemble --set ensemble.param1=bogus
 elif [ "$mpi_build" = 1 ]; then
   bad "the program was built with MPI but mpirun is missing"
 else

@@ -7,19 +7,9 @@
 # ramp; ramp_time and ramp_rate giving the same member; bad input named, exit 3, no file left.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 chk() { "$PY" "$here/ensemble_check.py" "$@" && ok "check $1" || bad "check $*"; }
 # expect CODE NEEDLE CMD...: exit code CODE and NEEDLE in the message
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  [ $rc -eq "$code" ] && grep -q -- "$needle" err.txt && ok "exit $code '$needle': $*" || { bad "exit $rc (want $code '$needle'): $*"; cat err.txt; }
-}
 
 # the rotor of docs/device.md "Slow ramps and the stability windows": the default rotor with balls
 # of 0.05 and 0.04 kg damped by 10 kg/s; its balanced motion is stable above about 160 rad/s.  A run
@@ -129,16 +119,16 @@ PY
 
 # bad input: named, exit 3, no archive left
 printf '[ensemble]\nparam1 = ramp_rate\nmin1 = 1\nmax1 = 2\nn1 = 2\n' > const.ini
-expect 3 "needs drive mode = ramp" "$AUTOBAL" rotor ensemble const.ini -o bad1.h5
-expect 3 "needs drive mode = ramp" "$AUTOBAL" rotor ensemble const.ini --set ensemble.param1=omega_b -o bad1.h5
-expect 3 "ramp_rate: min = -1 rad/s^2 is out of range: allowed (0, inf)" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.min2=-1 -o bad2.h5
-expect 3 "ramp_rate: min = 0 rad/s^2 is out of range" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.min2=0 -o bad3.h5
-expect 3 "ramp_time: min = -2 s is out of range" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param2=ramp_time --set ensemble.min2=-2 -o bad4.h5
-expect 3 "vary one of them" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param3=ramp_time --set ensemble.min3=1 --set ensemble.max3=2 -o bad5.h5
-expect 3 "omega is the constant speed" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param2=omega -o bad6.h5
-expect 3 "omega_a = omega_b = 150" "$AUTOBAL" rotor ensemble pair.ini --set drive.omega_b=150 -o bad7.h5
-expect 3 "t_b" "$AUTOBAL" rotor ensemble pair.ini --set drive.t_b=-1 -o bad8.h5
-expect 3 "not one of" "$AUTOBAL" rotor ensemble pair.ini --set drive.mode=sideways -o bad9.h5
+expect_err 3 "needs drive mode = ramp" "$AUTOBAL" rotor ensemble const.ini -o bad1.h5
+expect_err 3 "needs drive mode = ramp" "$AUTOBAL" rotor ensemble const.ini --set ensemble.param1=omega_b -o bad1.h5
+expect_err 3 "ramp_rate: min = -1 rad/s^2 is out of range: allowed (0, inf)" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.min2=-1 -o bad2.h5
+expect_err 3 "ramp_rate: min = 0 rad/s^2 is out of range" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.min2=0 -o bad3.h5
+expect_err 3 "ramp_time: min = -2 s is out of range" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param2=ramp_time --set ensemble.min2=-2 -o bad4.h5
+expect_err 3 "vary one of them" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param3=ramp_time --set ensemble.min3=1 --set ensemble.max3=2 -o bad5.h5
+expect_err 3 "omega is the constant speed" "$AUTOBAL" rotor ensemble pair.ini --set ensemble.param2=omega -o bad6.h5
+expect_err 3 "omega_a = omega_b = 150" "$AUTOBAL" rotor ensemble pair.ini --set drive.omega_b=150 -o bad7.h5
+expect_err 3 "t_b" "$AUTOBAL" rotor ensemble pair.ini --set drive.t_b=-1 -o bad8.h5
+expect_err 3 "not one of" "$AUTOBAL" rotor ensemble pair.ini --set drive.mode=sideways -o bad9.h5
 ls bad*.h5 >/dev/null 2>&1 && bad "bad input left an archive: $(ls bad*.h5)" || ok "bad input left no archive"
 
 echo "$pass passed, $fail failed"

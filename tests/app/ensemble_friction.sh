@@ -8,18 +8,8 @@
 # the key and writes nothing; tools/autobal_plot.py draws the residual-unbalance distribution.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${TOOLS:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 chk() { local what=$1; shift; if "$PY" "$here/ensemble_friction_check.py" "$@"; then ok "$what"; else bad "$what"; fi; }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  [ $rc -eq "$code" ] && grep -qF -- "$needle" err.txt && ok "exit $code '$needle': $*" || { bad "exit $rc (want $code '$needle'): $*"; cat err.txt; }
-}
 
 # the default rotor, balls lagging the rotor: they stick, slip, stick (tests/app/friction.sh)
 cat > model.ini <<'INI'
@@ -99,10 +89,10 @@ else bad "no unbalance plot"; cat err.txt; fi
 
 # bad input: exit 3 naming the key, nothing written
 grep -v '^\[friction\]\|^law = ' grid.ini > nolaw.ini
-expect 3 "ball_f is given but there is no friction law" "$AUTOBAL" rotor ensemble nolaw.ini -o bad1.h5
+expect_err 3 "ball_f is given but there is no friction law" "$AUTOBAL" rotor ensemble nolaw.ini -o bad1.h5
 { printf '[ensemble]\nparam1 = ball_f\nn1 = 2\nmin1 = 0\nmax1 = 0.01\n'; } > nolaw2.ini
-expect 3 "ball_f varies the friction of the balls, but there is no friction law" "$AUTOBAL" rotor ensemble nolaw2.ini -o bad2.h5
-expect 3 "ball_mu" "$AUTOBAL" rotor ensemble grid.ini --set plane1.ball_mu=0.001 -o bad3.h5
+expect_err 3 "ball_f varies the friction of the balls, but there is no friction law" "$AUTOBAL" rotor ensemble nolaw2.ini -o bad2.h5
+expect_err 3 "ball_mu" "$AUTOBAL" rotor ensemble grid.ini --set plane1.ball_mu=0.001 -o bad3.h5
 [ ! -e bad1.h5 ] && [ ! -e bad2.h5 ] && [ ! -e bad3.h5 ] && ok "nothing written for bad input" || bad "a file written for bad input"
 
 echo "$pass passed, $fail failed"

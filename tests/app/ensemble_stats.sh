@@ -7,18 +7,8 @@
 # angle psi0, a ramp with a varied final speed; the per-member datasets only on request; bad targets (exit 3 naming the key).
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 chk() { "$PY" "$here/ensemble_stats_check.py" "$@" || bad "check $*"; }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  [ $rc -eq "$code" ] && grep -q -- "$needle" err.txt && ok "exit $code '$needle': $*" || { bad "exit $rc (want $code '$needle'): $*"; cat err.txt; }
-}
 T="--set ensemble.target_grade=G6.3 --set ensemble.write_unbalance=true"
 
 # one plane, random initial angles and speed: runs of 6 s, so that some members are not yet balanced
@@ -84,16 +74,16 @@ sys.exit(0 if np.array_equal(a["balance_grade_final"][()], b["balance_grade_fina
 PY
 
 # the pendulum ensemble has no residual unbalance in g mm: the keys are refused
-expect 3 "target_grade" "$AUTOBAL" pendulum ensemble --set ensemble.target_grade=G6.3 -o bad.h5
+expect_err 3 "target_grade" "$AUTOBAL" pendulum ensemble --set ensemble.target_grade=G6.3 -o bad.h5
 
 # bad targets: exit 3, the key named, nothing written
-expect 3 "target_grade" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=0 -o bad.h5
-expect 3 "target_grade" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=-6.3 -o bad.h5
-expect 3 "target_grade = 'H7'" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=H7 -o bad.h5
-expect 3 "target_grade = 'G6.3 m'" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_grade=G6.3 m" -o bad.h5
-expect 3 "target_unbalance" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_unbalance=0 g mm" -o bad.h5
-expect 3 "target_unbalance" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_unbalance=-5 g mm" -o bad.h5
-expect 3 "target_unbalance" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_unbalance=5 m/s" -o bad.h5
+expect_err 3 "target_grade" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=0 -o bad.h5
+expect_err 3 "target_grade" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=-6.3 -o bad.h5
+expect_err 3 "target_grade = 'H7'" "$AUTOBAL" rotor ensemble --set ensemble.target_grade=H7 -o bad.h5
+expect_err 3 "target_grade = 'G6.3 m'" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_grade=G6.3 m" -o bad.h5
+expect_err 3 "target_unbalance" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_unbalance=0 g mm" -o bad.h5
+expect_err 3 "target_unbalance" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_unbalance=-5 g mm" -o bad.h5
+expect_err 3 "target_unbalance" "$AUTOBAL" rotor ensemble "--set" "ensemble.target_unbalance=5 m/s" -o bad.h5
 [ ! -e bad.h5 ] && ok "nothing written for bad targets" || bad "bad.h5 written"
 
 echo "$pass passed, $fail failed"

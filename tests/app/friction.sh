@@ -7,18 +7,7 @@
 # the key and the allowed range, leaving no file.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
-  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat out.txt err.txt; return; fi
-  ok "exit $code${needle:+ and '$needle'}: $*"
-}
+. "$(dirname "$0")/common.bash"
 check() { local what=$1; shift; if "$PY" "$here/friction_check.py" "$@"; then ok "$what"; else bad "$what"; fi; }
 
 # the balls start lagging the rotor, slow down by rolling resistance, stick, break free, stick again

@@ -9,10 +9,7 @@
 # once instead of blocking on it.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
+. "$(dirname "$0")/common.bash"
 # expect CODE NEEDLE cmd...: exit code CODE within 30 s, NEEDLE in stdout or stderr
 expect() {
   local code=$1 needle=$2; shift 2

@@ -3,19 +3,8 @@
 # checked against NumPy/SciPy recomputations (pendulum_check.py), and bad input provoked.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
+. "$(dirname "$0")/common.bash"
 # expect CODE "needle" -- command...
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
-  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat err.txt; return; fi
-  ok "exit $code${needle:+ and '$needle'}: $*"
-}
 
 expect 0 "main motion (4)" "$AUTOBAL" pendulum roots
 expect 0 "" "$AUTOBAL" pendulum roots "$DATA/pendulum_default.ini" -o roots.h5

@@ -2,12 +2,7 @@
 # App test: `autobal pendulum transient`, archives checked by pendulum_transient_check.py.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-run() { "$@" >out.txt 2>err.txt && ok "ran: $*" || { bad "exit $?: $*"; cat err.txt; }; }
+. "$(dirname "$0")/common.bash"
 
 run "$AUTOBAL" pendulum transient "$DATA/pendulum_transient.ini" -o bal.h5
 "$PY" "$here/pendulum_transient_check.py" balanced bal.h5 && ok "balanced transient" || bad "balanced transient"

@@ -8,18 +8,7 @@
 # foreign and non-HDF5 files, bad command lines.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${TOOLS:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
-expect() {
-  local code=$1 needle=$2; shift 2
-  "$@" >out.txt 2>err.txt; local rc=$?
-  if [ "$rc" -ne "$code" ]; then bad "exit $rc (want $code): $*"; cat err.txt; return; fi
-  if [ -n "$needle" ] && ! grep -qF -- "$needle" err.txt out.txt; then bad "no '$needle' in output of: $*"; cat out.txt err.txt; return; fi
-  ok "exit $code${needle:+ and '$needle'}: $*"
-}
+. "$(dirname "$0")/common.bash"
 py() { "$PY" "$here/postprocess_check.py" "$@" >py.txt 2>&1 && ok "postprocess_check.py $* ($(tail -1 py.txt))" || { bad "postprocess_check.py $*"; grep -v '^ok' py.txt; }; }
 
 # ---- 1. archives of every command (grids and durations cut to keep the test fast) -------------

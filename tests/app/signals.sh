@@ -9,12 +9,8 @@
 # ensemble (interrupted by SIGINT/SIGTERM in rotor.sh, badinput.sh, ensemble.sh) get SIGHUP here.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$SCRATCH" && mkdir -p "$SCRATCH" && cd "$SCRATCH" || exit 1
+. "$(dirname "$0")/common.bash"
 A=$AUTOBAL
-fail=0; pass=0
-ok()  { echo "ok   $*"; pass=$((pass+1)); }
-bad() { echo "FAIL $*"; fail=$((fail+1)); }
 DELAY=${SIGNALS_DELAY:-0.7}  # seconds between the start and the signal
 LIMIT=10                     # seconds a command may take to stop after the signal
 
