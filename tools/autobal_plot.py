@@ -340,7 +340,17 @@ def verdict_image(ax, x, y, v):
 
 AXIS_LABELS = {"R_m": "mass ratio R_m = m/(M + 2m)", "R_w": "rotor speed R_w = ω/ω0",
                "H": "external damping H", "h": "pendulum damping h", "k": "unbalance k = sin²(2ψ0)",
-               "psi0": "main-motion angle ψ0", "H_over_h": "damping ratio H/h"}
+               "psi0": "main-motion angle ψ0", "H_over_h": "damping ratio H/h",
+               # physical keys (pendulum.M ... pendulum.omega): each point converted to the dimensionless set
+               "M": "rotor mass M", "e": "rotor eccentricity e", "m": "pendulum mass m", "l": "pendulum length l",
+               "c": "support stiffness c", "H1": "pendulum damping H1", "H2": "support damping H2",
+               "omega": "rotor speed ω"}
+# the dimensionless parameters an axis moves (docs/pendulum.md: R_w on omega, c, M, m; R_m on M, m;
+# H on H2, c, M, m; h on H1, m, l, c, M; k on M, e, m, l): the archive's value of a moved parameter
+# (k_values, the /pendulum attributes) is the configuration's own, not that of the map's points
+MOVES = {"R_w": {"R_w"}, "R_m": {"R_m"}, "H": {"H"}, "h": {"h"}, "H_over_h": {"H", "h"}, "k": {"k"},
+         "psi0": {"k"}, "omega": {"R_w"}, "c": {"R_w", "H", "h"}, "M": {"R_w", "R_m", "H", "h", "k"},
+         "m": {"R_w", "R_m", "H", "h", "k"}, "l": {"h", "k"}, "e": {"k"}, "H1": {"h"}, "H2": {"H"}}
 
 
 def plot_pendulum_map(h, outdir, stem, written):
@@ -357,10 +367,16 @@ def plot_pendulum_map(h, outdir, stem, written):
     every = int(param(g, "every_unbalance", 0) or 0)
     ks = np.atleast_1d(g.attrs.get("k_values", []))
     p = h["pendulum"]
-    damp = "H = %s, h = %s" % (fmt(param(p, "H", np.nan), 3), fmt(param(p, "h", np.nan), 3))
+    moved = (MOVES.get(d1, set()) | MOVES.get(d2, set())) & {"H", "h"}
+    damp = ", ".join("%s = %s" % (n, fmt(param(p, n, np.nan), 3)) for n in ("H", "h") if n not in moved)
+    if moved:  # a damping that varies over the map is not the configuration's
+        damp = (damp + "; " if damp else "") + "%s var%s over the map" % (" and ".join(sorted(moved)),
+                                                                         "y" if len(moved) > 1 else "ies")
     if every:
         what = "stable for every unbalance k in %d values from %s to %s" % (len(ks), fmt(ks.min(), 3),
                                                                               fmt(ks.max(), 3))
+    elif "k" in MOVES.get(d1, set()) | MOVES.get(d2, set()):
+        what = "the unbalance k = sin²(2ψ0) varies over the map"
     else:
         what = "k = %s" % ", ".join(fmt(k, 3) for k in ks)
     ax.set_title("Stability of the main motion (4): %s\n%s%s" % (what, damp, status_note(h)), fontsize=11)
@@ -387,6 +403,12 @@ def plot_pendulum_map(h, outdir, stem, written):
             sec = ax.secondary_yaxis("right", functions=(lambda r: r * w0 * RPM_PER_RAD_S,
                                                          lambda n: n / (w0 * RPM_PER_RAD_S)))
             sec.set_ylabel("rotor speed [rev/min] (ω0 = %s rad/s)" % fmt(w0, 4), fontsize=9)
+    # a physical speed axis (pendulum.omega, rad/s) also in rev/min
+    for dim, make in ((d1, ax.secondary_xaxis), (d2, ax.secondary_yaxis)):
+        if dim == "omega" and units(g[dim]) == "rad/s":
+            sec = make("top" if make == ax.secondary_xaxis else "right",
+                       functions=(lambda w: w * RPM_PER_RAD_S, lambda n: n / RPM_PER_RAD_S))
+            (sec.set_xlabel if make == ax.secondary_xaxis else sec.set_ylabel)("rotor speed [rev/min]", fontsize=9)
     ax.legend(handles=handles, loc="upper right", fontsize=9, framealpha=0.9)
     if has_mr:
         ax2 = axes[0, 1]
@@ -416,9 +438,14 @@ def plot_pendulum_sweep(h, outdir, stem, written):
     if s(g.attrs.get("axis1_scale", "linear")) == "log":
         ax.set_xscale("log")
     ax.set_xlabel("%s %s" % (AXIS_LABELS.get(d, d), ubr(units(g[d]))))
+    if d == "omega" and units(g[d]) == "rad/s":
+        sec = ax.secondary_xaxis("top", functions=(lambda w: w * RPM_PER_RAD_S, lambda n: n / RPM_PER_RAD_S))
+        sec.set_xlabel("rotor speed [rev/min]", fontsize=9)
     every = int(param(g, "every_unbalance", 0) or 0)
     ax.set_title("Stability of the main motion (4) along %s%s (red: critical values)\n%s%s"
-                 % (d, " for every unbalance" if every else "", pendulum_params_text(h), status_note(h)), fontsize=10)
+                 % (d, " for every unbalance" if every else "",
+                    pendulum_params_text(h, skip=MOVES.get(d, {d}) | ({"k"} if every else set())), status_note(h)),
+                 fontsize=10)
     if "note" in g.attrs:
         fig.supxlabel(textwrap.fill("Note: " + s(g.attrs["note"]), 150), fontsize=6, x=0.01, ha="left")
     save(fig, outdir, stem, "sweep", written)

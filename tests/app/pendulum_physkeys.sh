@@ -44,6 +44,27 @@ chk map eRw.h5
 expect 0 '"param":"H1"' $A pendulum sweep "$C" --set sweep.param=H1 --set sweep.n=50 --json
 grep -qF '"critical":"N m s"' out.txt && ok "JSON critical values with their unit" || { bad "JSON unit"; cat out.txt; }
 
+# the plotting tool's titles and axes for physical axes: a parameter an axis moves (docs/pendulum.md: m and l move
+# h, H and k) is not printed with the configuration's value; a speed axis also in rev/min
+"$PY" - "$TOOLS" <<'PY' && ok "autobal_plot.py: titles name what varies over physical axes" || bad "autobal_plot.py titles"
+import sys, importlib.util, h5py
+spec = importlib.util.spec_from_file_location("ap", sys.argv[1] + "/autobal_plot.py"); ap = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(ap)
+figs = {}
+ap.save = lambda fig, outdir, stem, name, written: figs.__setitem__(stem, fig)
+with h5py.File("ml.h5") as h: ap.plot_pendulum_map(h, ".", "ml", [])
+with h5py.File("speed.h5") as h: ap.plot_pendulum_sweep(h, ".", "speed", [])
+with h5py.File("eRw.h5") as h: ap.plot_pendulum_map(h, ".", "eRw", [])
+t = figs["ml"].axes[0].get_title()
+assert "k = sin²(2ψ0) varies over the map" in t and "H and h vary over the map" in t and "k = 0" not in t, t
+ax = figs["speed"].axes[0]
+t = ax.get_title()
+assert "R_w =" not in t and "R_m =" in t, t  # omega moves R_w only
+assert any("rev/min" in a.get_xlabel() for a in ax.child_axes), [a.get_xlabel() for a in ax.child_axes]
+t = figs["eRw"].axes[0].get_title()
+assert "varies over the map" in t and "h = " in t and "H = " in t, t  # e moves k only
+PY
+
 # a rerun of a physical sweep: the same archive data
 run $A rerun m.h5 -o m2.h5 -q
 h5diff m.h5 m2.h5 /pendulum/sweep /pendulum/sweep >/dev/null && ok "rerun: /pendulum/sweep bit for bit" || bad "rerun differs"
