@@ -400,6 +400,58 @@ static int write_omega(autobal_archive *a, const char *g, const char *dim, const
   return st;
 }
 
+/* With a physical key on an axis every point has its own dimensionless set (the key moves R_w, R_m,
+ * H, h or psi0): written as point/<name> over the axes (dims: absolute paths into g), each point
+ * converted as the study converted it (autobal_pendulum_params_vary_physical; NaN where that
+ * fails, which a grid the study accepted does not do).  k = sin^2(2 psi0) only for one unbalance. */
+static int write_point_params(autobal_archive *a, const char *g, int rank, const char *const *dims,
+                              const double *v1, size_t n1, int p1, const double *v2, size_t n2, int p2,
+                              const autobal_pendulum_params *p, const autobal_pendulum_physical *phys, int every) {
+  static const char *names[6] = {"R_w", "R_m", "H", "h", "psi0", "k"};
+  static const char *units[6] = {"1", "1", "1", "1", "rad", "1"};
+  static const char *what[6] = {"rotor speed R_w = omega/omega0 at each point",
+                                "mass ratio R_m = m/(M + 2m) at each point",
+                                "external damping H = H2/(omega0 (M + 2m)) at each point",
+                                "pendulum damping h = H1/(m l^2 omega0) at each point",
+                                "main-motion angle psi0 (sin psi0 = M e/(2 m l)) at each point",
+                                "unbalance k = sin^2(2 psi0) at each point"};
+  char grp[64], full[2][64];
+  const char *pd[2];
+  size_t n = n1 * (rank == 2 ? n2 : 1), q, i, j;
+  double *buf;
+  int st = AUTOBAL_SUCCESS, c;
+  if (!phys || !(autobal_pendulum_param_is_physical(p1) || (rank == 2 && autobal_pendulum_param_is_physical(p2))))
+    return AUTOBAL_SUCCESS;
+  if (!n) return AUTOBAL_SUCCESS;
+  buf = malloc(6 * n * sizeof *buf);
+  if (!buf) return AUTOBAL_ENOMEM;
+  for (i = 0; i < n1; i++)
+    for (j = 0; j < (rank == 2 ? n2 : 1); j++) {
+      autobal_pendulum_params o;
+      q = i * (rank == 2 ? n2 : 1) + j;
+      if (autobal_pendulum_params_vary_physical(p, phys, p1, v1[i], rank == 2 ? p2 : -1, rank == 2 ? v2[j] : 0.0, &o,
+                                                NULL, NULL) != AUTOBAL_SUCCESS) {
+        for (c = 0; c < 6; c++) buf[(size_t)c * n + q] = NAN;
+        continue;
+      }
+      buf[0 * n + q] = o.R_w, buf[1 * n + q] = o.R_m, buf[2 * n + q] = o.H, buf[3 * n + q] = o.h;
+      buf[4 * n + q] = o.psi0, buf[5 * n + q] = sin(2.0 * o.psi0) * sin(2.0 * o.psi0);
+    }
+  snprintf(grp, sizeof grp, "%s/point", g);
+  for (c = 0; c < rank; c++) {
+    snprintf(full[c], sizeof full[c], "%s/%s", g, dims[c]);
+    pd[c] = full[c];
+  }
+  st = autobal_archive_group(a, grp);
+  if (!st) st = autobal_archive_attr_string(a, grp, "description",
+                                            "the dimensionless parameters of each point, converted from the physical set "
+                                            "with the axis keys set (the group's attributes of /pendulum are the configuration's)");
+  for (c = 0; c < (every ? 4 : 6) && !st; c++)
+    st = autobal_archive_var(a, grp, names[c], rank, pd, buf + (size_t)c * n, units[c], what[c]);
+  free(buf);
+  return st;
+}
+
 int autobal_study_pendulum_map_write(autobal_archive *a, const autobal_pendulum_params *p,
                                      const autobal_pendulum_physical *phys,
                                      const autobal_study_pendulum_map_summary *s) {
@@ -450,6 +502,7 @@ int autobal_study_pendulum_map_write(autobal_archive *a, const autobal_pendulum_
   else if (!st && phys && p1 == AUTOBAL_PENDULUM_PARAM_R_W) st = write_omega(a, g, dims[0], s->R_m, nr, phys);
   if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", every ? "stability of the main motion for every k in k_values: 1 stable, 0 marginal, -1 unstable" : "stability of the main motion (4): 1 stable, 0 marginal, -1 unstable");
   if (!st && s->max_real) st = autobal_archive_var(a, g, "max_real", 2, dims, s->max_real, "1", "largest real part of the roots of (6) (over k_values)");
+  if (!st) st = write_point_params(a, g, 2, dims, s->R_m, nr, p1, s->R_w, s->n_Rw, p2, p, phys, every);
   return st;
 }
 
@@ -608,5 +661,6 @@ int autobal_study_pendulum_sweep_write(autobal_archive *a, const autobal_pendulu
     if (!st) st = autobal_archive_var_int(a, g, "critical_above", 1, cdims, s->crit_above, "1", "verdict just above the critical value");
     if (!st) st = autobal_archive_attr_int(a, g, "critical_truncated", s->crit_truncated);
   }
+  if (!st) st = write_point_params(a, g, 1, dims, s->values, nd, s->param, NULL, 0, -1, p, phys, s->every_unbalance);
   return st;
 }

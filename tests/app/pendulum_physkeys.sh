@@ -44,6 +44,34 @@ chk map eRw.h5
 expect 0 '"param":"H1"' $A pendulum sweep "$C" --set sweep.param=H1 --set sweep.n=50 --json
 grep -qF '"critical":"N m s"' out.txt && ok "JSON critical values with their unit" || { bad "JSON unit"; cat out.txt; }
 
+# every point's own dimensionless set (/.../point), from the physical set and the axis values by the formulas of
+# docs/pendulum.md in NumPy; none for dimensionless axes
+"$PY" - <<'PY' && ok "point/: each point's R_w, R_m, H, h, psi0, k from the physical set" || bad "point/ datasets"
+import h5py, numpy as np
+def conv(P):
+    Ms = P["M"] + 2 * P["m"]; w0 = np.sqrt(P["c"] / Ms); s = P["M"] * P["e"] / (2 * P["m"] * P["l"])
+    psi0 = np.arcsin(s)
+    return dict(R_w=P["omega"] / w0, R_m=P["m"] / Ms, H=P["H2"] / (w0 * Ms), h=P["H1"] / (P["m"] * P["l"]**2 * w0),
+                psi0=psi0, k=np.sin(2 * psi0)**2)
+for f, g, axes in (("ml.h5", "pendulum/map", ("m", "l")), ("speed.h5", "pendulum/sweep", ("omega",))):
+    with h5py.File(f) as h:
+        P = {k: float(v) for k, v in h["pendulum/physical"].attrs.items() if not k.endswith("_units")}
+        grids = np.meshgrid(*[h[g][a][:] for a in axes], indexing="ij")
+        for a, v in zip(axes, grids): P[a] = v
+        want = conv(P)
+        names = ("R_w", "R_m", "H", "h") if h[g].attrs["every_unbalance"] else tuple(want)
+        for n in names:
+            got = h[g]["point"][n][:]
+            assert got.shape == grids[0].shape, (f, n, got.shape)
+            assert np.allclose(got, want[n], rtol=1e-13, atol=1e-15), (f, n, np.max(np.abs(got - want[n])))
+            for i, a in enumerate(axes):  # the axes' coordinates attached as dimension scales
+                assert h[g]["point"][n].dims[i][0].name == "/%s/%s" % (g, a), (f, n, i)
+with h5py.File("eRw.h5") as h: assert "point" in h["pendulum/map"]
+PY
+expect 0 "" $A pendulum map --set map.n1=3 --set map.n2=3 -o dimless.h5
+"$PY" -c "import h5py; assert 'point' not in h5py.File('dimless.h5')['pendulum/map']" && ok "no point/ for dimensionless axes" \
+  || bad "point/ written for dimensionless axes"
+
 # the plotting tool's titles and axes for physical axes: a parameter an axis moves (docs/pendulum.md: m and l move
 # h, H and k) is not printed with the configuration's value; a speed axis also in rev/min
 "$PY" - "$TOOLS" <<'PY' && ok "autobal_plot.py: titles name what varies over physical axes" || bad "autobal_plot.py titles"
