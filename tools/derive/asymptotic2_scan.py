@@ -4,7 +4,7 @@ against the exact roots of the closed two-plane system, recomputed here with Num
 docs/rotor.md "Two planes: degree 16" (independent of the C code), over random machines; and the
 undamped-ball (kappa = 0) scan of the one-plane Delta.
 
-Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|kappa0|all] [n_draws]   (a few minutes)
+Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|kappa0|all] [n_draws]   (a few minutes)
 
 Two planes j = 1, 2, each with two identical balls (mass m_j each, radius r_j, damping h_j, kappa_j = h_j / m_j,
 unbalance m0_j r0_j at phase psi0_j).  Rotating complex coordinates (W, Theta, sigma_1, sigma_2) and their
@@ -167,7 +167,7 @@ def light2(p, w):
     return np.array(res), np.array(errs), max(eps_b, eps_r), lam, G
 
 
-def draw(rng):
+def draw(rng, rich=False):
     p = default2()
     p['M'] *= np.exp(rng.uniform(-1, 1)); p['A'] *= np.exp(rng.uniform(-1, 1)); p['C'] = p['A'] * rng.uniform(0, 2)
     p['c'] *= np.exp(rng.uniform(-1, 1)); p['ct'] *= np.exp(rng.uniform(-1, 1)); p['cc'] *= rng.uniform(-2, 2)
@@ -179,19 +179,21 @@ def draw(rng):
     p['r'] = [0.1, 0.1]
     p['s0'] = [2 * p['m'][j] * p['r'][j] * rng.uniform(0.02, 0.98) for j in range(2)]
     p['psi0'] = [rng.uniform(0, 2 * np.pi), rng.uniform(0, 2 * np.pi)]
-    p['hb'] = [p['m'][j] * np.exp(rng.uniform(np.log(0.01), np.log(100))) for j in range(2)]
+    klo = np.log(0.3) if rich else np.log(0.01)
+    p['hb'] = [p['m'][j] * np.exp(rng.uniform(klo, np.log(100))) for j in range(2)]
     return p
 
 
-def scan(seed, n, th=TH):
+def scan(seed, n, th=TH, rich=False):
+    """rich: omega in [300, 5000] rad/s and kappa in [0.3, 100] 1/s (more points predicted STABLE)"""
     rng = np.random.default_rng(seed)
     n_app = n_dec = agree = nunst = 0
     bad = []
     for _ in range(n):
-        p = draw(rng)
+        p = draw(rng, rich)
         if p is None:
             continue
-        w = np.exp(rng.uniform(np.log(50), np.log(5000)))
+        w = np.exp(rng.uniform(np.log(300 if rich else 50), np.log(5000)))
         res, errs, small, _, _ = light2(p, w)
         if not small <= th:
             continue
@@ -207,8 +209,8 @@ def scan(seed, n, th=TH):
             agree += 1
         else:
             bad.append((w, m, res.max(), small))
-    print('two planes, scan seed %d, %d draws, small <= %g: applicable %d, decided %d, agree %d (predicted unstable %d)'
-          % (seed, n, th, n_app, n_dec, agree, nunst))
+    print('two planes, scan seed %d%s, %d draws, small <= %g: applicable %d, decided %d, agree %d (predicted unstable %d)'
+          % (seed, ' (rich)' if rich else '', n, th, n_app, n_dec, agree, nunst))
     for b_ in bad:
         print('   DISAGREES: omega %g, exact margin %g, predicted max Re %g, small %g' % b_)
     return not bad
@@ -278,6 +280,9 @@ if __name__ == '__main__':
     if what in ('scan', 'all'):
         for s, th in ((2, TH), (3, TH), (4, TH), (5, TH), (6, 0.2), (7, 0.2)):
             okay &= scan(s, n, th)
+    if what in ('rich', 'all'):
+        for s, th in ((8, TH), (9, TH), (10, 0.2)):
+            okay &= scan(s, n, th, True)
     if what in ('kappa0', 'all'):
         okay &= kappa0(2, n)
     sys.exit(0 if okay else 1)
