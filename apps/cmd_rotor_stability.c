@@ -239,6 +239,31 @@ static void print_asymptotic(const autobal_rotor_asymptotic *q) {
                           : (q->m_eff > 0 ? "UNSTABLE for unbalances near q = 0" : "UNSTABLE for every unbalance"),
            q->high_small, asym_word(q->high_applicable));
 }
+static void print_asymptotic2(const autobal_rotor_asymptotic2 *q) {
+  printf("  asymptotic condition, two planes (for comparison only; the verdict above is exact):\n");
+  printf("    light balls: G11 = %.6g%+.6gi, G12 = %.6g%+.6gi, G22 = %.6g%+.6gi m/N; ball roots max Re %.6g 1/s, rotor roots"
+         " max Re %.6g 1/s: predicts %s%s; small parameter %.3g (%s, <= %g)\n",
+         q->G_re[0], q->G_im[0], q->G_re[1], q->G_im[1], q->G_re[3], q->G_im[3], q->ball_re_max, q->rotor_re_max,
+         q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
+         q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+}
+static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
+  cli_json_object(j, "asymptotic2");
+  cli_json_number(j, "small_threshold", AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  cli_json_quantities(j, "G_real", q->G_re, 4, "m/N");
+  cli_json_quantities(j, "G_imag", q->G_im, 4, "m/N");
+  cli_json_quantities(j, "kappa", q->kappa, 2, "1/s");
+  cli_json_quantities(j, "q", q->q, 2, "1");
+  cli_json_bool(j, "light_predicts_stable", q->light_stable);
+  cli_json_quantities(j, "light_ball_root_real", q->ball_re, 8, "1/s");
+  cli_json_quantities(j, "light_ball_root_imag", q->ball_im, 8, "1/s");
+  cli_json_quantities(j, "light_rotor_root_real", q->rotor_re, 4, "1/s");
+  cli_json_quantities(j, "light_rotor_root_imag", q->rotor_im, 4, "1/s");
+  cli_json_bool(j, "light_decided", q->light_decided);
+  cli_json_number(j, "light_small", q->light_small);
+  cli_json_bool(j, "light_applicable", q->light_applicable);
+  cli_json_object_end(j);
+}
 static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {
   cli_json_object(j, "asymptotic");
   cli_json_number(j, "small_threshold", AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
@@ -417,6 +442,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     }
     if (do_crit) json_crit(&j, cr, "rad/s");
     if (sum.have_asymptotic) json_asymptotic(&j, &sum.asymptotic);
+    if (sum.have_asymptotic2) json_asymptotic2(&j, &sum.asymptotic2);
     if (sum.have_every) {
       const autobal_rotor_unbalance_range *u = &sum.every;
       cli_json_object(&j, "every_unbalance");
@@ -499,6 +525,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       else printf("vs exp(lambda T): %.3e\n", r->floquet_mismatch);
     }
     if (sum.have_asymptotic) print_asymptotic(&sum.asymptotic);
+    if (sum.have_asymptotic2) print_asymptotic2(&sum.asymptotic2);
     if (do_crit) print_intervals("speed (omega)", "rad/s", cr, c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
     if (sum.have_every) {
       const autobal_rotor_unbalance_range *u = &sum.every;

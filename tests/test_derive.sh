@@ -54,6 +54,12 @@ echo "$asy"
 for pat in 'light balls (1)' 'light balls (2)' 'light balls (3)' 'high speed (4)' 'pendulum (5)' 'rotor roots (6)'; do
   grep -F "$pat" <<<"$asy" | grep -q ': OK' || { echo "test_derive: asymptotic check '$pat' did not report OK"; exit 1; }
 done
+# two planes and kappa = 0 (tools/derive/derive_asymptotic2.py, docs/rotor.md "Asymptotic conditions")
+asy2=$("$py" "$src/tools/derive/derive_asymptotic2.py" 2>&1) || { echo "$asy2"; echo "test_derive: FAILED (asymptotic, two planes)"; exit 1; }
+echo "$asy2"
+for pat in 'two planes (1)' 'two planes (2)' 'two planes (4)' 'two planes (5)' 'kappa = 0 (6)'; do
+  grep -F "$pat" <<<"$asy2" | grep -q ': OK' || { echo "test_derive: asymptotic check '$pat' did not report OK"; exit 1; }
+done
 # every unbalance with n >= 3 identical balls (tools/derive/derive_nballs.py, docs/rotor.md "Every unbalance")
 nb=$("$py" "$src/tools/derive/derive_nballs.py" 2>&1) || { echo "$nb"; echo "test_derive: FAILED (n balls)"; exit 1; }
 echo "$nb"

@@ -320,6 +320,63 @@ static void test_default_rotor(void) {
   }
 }
 
+/* kappa = 0 (undamped balls): to leading order the ball roots are on the axis (u0 real < 0) or in
+ * +- pairs; the next order (docs/rotor.md "Asymptotic conditions", kappa = 0; tools/derive/derive_asymptotic2.py
+ * check 6) moves them by the real delta = Re g1/2 +- (q^2 Re(g1 conj g0) - Im g0 Im g1)/(2r),
+ * g(lambda) = (m_b/2) P^4 N / D = g0 + g1 lambda + ..., r = sqrt(q^2 |g0|^2 - Im^2 g0).  Written out here
+ * and compared with the exact margin: undamped balls can be asymptotically stable (the disk-like case),
+ * and are unstable at O(m_b) on the default rotor. */
+static double kappa0_delta(const autobal_rotor_lumped *L, double d, double m, double q, double w) {
+  cplx P = I * w, P4 = P * P * P * P, P3 = P * P * P;
+  cplx k11 = L->M * P * P + L->h_x * P + L->c_x, k11d = 2.0 * L->M * P + L->h_x;
+  cplx k12 = -(L->h_xbeta * P + L->c_xbeta), k12d = -L->h_xbeta;
+  cplx k22 = L->A * P * P + (L->h_alpha - I * L->C * w) * P + L->c_alpha, k22d = 2.0 * L->A * P + (L->h_alpha - I * L->C * w);
+  cplx D = k11 * k22 - k12 * k12, Dd = k11d * k22 + k11 * k22d - 2.0 * k12 * k12d;
+  cplx N = k22 - 2.0 * d * k12 + d * d * k11, Nd = k22d - 2.0 * d * k12d + d * d * k11d;
+  cplx X = P4 * N, Xd = 4.0 * P3 * N + P4 * Nd;
+  cplx g0 = m * X / D, g1 = m * (Xd * D - X * Dd) / (D * D); /* m_b / 2 = m */
+  double r = sqrt(q * q * cabs(g0) * cabs(g0) - cimag(g0) * cimag(g0)), b = q * q * creal(g1 * conj(g0)) - cimag(g0) * cimag(g1);
+  CHECK("kappa = 0: u0 real (q |G| > |Im G|) and both u0 < 0 (roots on the axis to leading order)",
+        q * cabs(g0) > fabs(cimag(g0)) && creal(g0) + r < 0.0);
+  return fmax(0.5 * creal(g1) + b / (2.0 * r), 0.5 * creal(g1) - b / (2.0 * r));
+}
+
+static void test_kappa0(void) {
+  autobal_rotor_lumped Ld = default_lumped(), Lk = default_lumped();
+  const double m = 5e-6, q = 0.9, x = sqrt((1.0 + q) / 2.0);
+  setup S;
+  autobal_rotor_stab_result res;
+  autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
+  autobal_rotor_stab *h;
+  autobal_error err;
+  double dl;
+  /* a disk-like rotor (C = 1.3 A), c_c = -1250 N/rad, d = -0.04 m, 4440 rad/s */
+  Lk.C = 0.208, Lk.c_xbeta = Lk.c_yalpha = -1250.0;
+  make(&S, &Lk, -0.04, m, 0.0, 2.0 * m * 0.1 * x, 4440.0);
+  autobal_error_clear(&err);
+  h = autobal_rotor_stab_alloc(&S.p, &o, &err);
+  CHECK("kappa = 0: analysis allocated", h != NULL);
+  if (!h) return;
+  autobal_rotor_stab_analyze(h, &res);
+  dl = kappa0_delta(&Lk, -0.04, m, q, 4440.0);
+  printf("     kappa = 0, disk-like rotor, 4440 rad/s, q = 0.9: exact margin %.8g, next-order ball roots max Re %.8g 1/s\n",
+         res.margin, dl);
+  CHECK("kappa = 0, disk-like rotor: exactly asymptotically STABLE", res.verdict == AUTOBAL_VERDICT_STABLE);
+  CHECK_CLOSE("kappa = 0, disk-like rotor: exact margin = next-order ball-root real part", res.margin, dl, 1e-3, 0.0);
+  autobal_rotor_stab_free(h);
+  /* the default rotor at 500 rad/s: unstable at O(m_b) */
+  make(&S, &Ld, 0.1, m, 0.0, 2.0 * m * 0.1 * x, 500.0);
+  h = autobal_rotor_stab_alloc(&S.p, &o, &err);
+  if (!h) return;
+  autobal_rotor_stab_analyze(h, &res);
+  dl = kappa0_delta(&Ld, 0.1, m, q, 500.0);
+  printf("     kappa = 0, default rotor, 500 rad/s, q = 0.9: exact margin %.8g, next-order ball roots max Re %.8g 1/s\n",
+         res.margin, dl);
+  CHECK("kappa = 0, default rotor: exactly UNSTABLE", res.verdict == AUTOBAL_VERDICT_UNSTABLE);
+  CHECK_CLOSE("kappa = 0, default rotor: exact margin = next-order ball-root real part", res.margin, dl, 1e-3, 0.0);
+  autobal_rotor_stab_free(h);
+}
+
 static void test_errors(void) {
   autobal_rotor_closed c;
   autobal_rotor_asymptotic q;
@@ -363,6 +420,8 @@ int main(void) {
   test_h1();
   printf("== the default rotor ==\n");
   test_default_rotor();
+  printf("== kappa = 0 ==\n");
+  test_kappa0();
   printf("== errors ==\n");
   test_errors();
   return check_summary();

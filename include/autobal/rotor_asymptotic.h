@@ -93,6 +93,39 @@ typedef struct autobal_rotor_asymptotic {
 AUTOBAL_API int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
                                                     autobal_error *err);
 
+/* TWO PLANES, light balls (docs/rotor.md "Asymptotic conditions", "Two planes"; derived in
+ * tools/derive/derive_asymptotic2.py).  Both planes with the closure and a common kappa_j > 0 each.
+ * Frozen at lambda = 0, the planes' balls couple through the 2x2 receptance
+ *     G_jk = b_j^T K(i omega)^-1 b_k   (m/N),  b_j = (1, d_j)
+ * (displacement of plane j's centre per force turning with the shaft at plane k; symmetric), and the
+ * 8 ball roots are those of the real degree-8 polynomial det(U - S),
+ *     U = diag(u1, u2, u1, u2), u_j = lambda^2 + kappa_j lambda,
+ *     S = (omega^4 / 2) [Mb G, -Q conj(G); -conj(Q) G, Mb conj(G)],  Mb = diag(m_b1, m_b2), Q = diag(Q1, Q2).
+ * For G12 = 0 it is the product of the two one-plane quartics, each decided by (L1), (L2).  The four
+ * roots of D = det K shift to first order by sum_j (m_bj / 2) P^4 N_jj / ((lambda^2 + kappa_j lambda) D')
+ * at lambda_k, N = B^T adj(K) B.  Small parameter: the larger of eps_b, the largest relative error bound
+ * of a ball root (entrywise bound of S(lambda) - S(0) through the exact coefficients of N_jk and the
+ * roots of D D*, carried to the root by the adjugate: sum |adj_ba| |dS_ab| / |p'|), and eps_r as for one
+ * plane (separations also from -kappa_1, -kappa_2).  "Decided" as for one plane. */
+typedef struct autobal_rotor_asymptotic2 {
+  double G_re[4], G_im[4];       /* m/N, G_11, G_12, G_21, G_22 (G_21 = G_12) */
+  double kappa[2];               /* 1/s */
+  double q[2];                   /* 1, |Q_j| / m_bj */
+  double ball_re[8], ball_im[8]; /* 1/s, the eight predicted ball roots */
+  double rotor_re[4], rotor_im[4]; /* 1/s, the roots of D shifted to first order */
+  double ball_re_max, rotor_re_max; /* 1/s */
+  int light_stable;              /* every predicted real part < 0: predicts STABLE (all 16 roots) */
+  double light_small;            /* max(eps_b, eps_r) */
+  int light_decided;             /* outside its error band */
+  int light_applicable;          /* light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+} autobal_rotor_asymptotic2;
+
+/* The two-plane light-ball condition above for the closed system c.  Returns AUTOBAL_SUCCESS,
+ * AUTOBAL_EINVAL (NULL, n_planes != 2, not isotropic, no closure, omega == 0, kappa_j <= 0, D(0) = 0:
+ * message in err; *out untouched), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (polynomial roots). */
+AUTOBAL_API int autobal_rotor_asymptotic2_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic2 *out,
+                                                     autobal_error *err);
+
 AUTOBAL_END_DECLS
 
 #endif

@@ -383,6 +383,11 @@ typedef struct autobal_study_rotor_stability_summary {
   autobal_rotor_unbalance_range2 every2;
   int have_every_phase;
   autobal_rotor_phase_range every_phase;
+  /* two planes: the light-ball asymptotic condition at omega (added at the end;
+     autobal_rotor_asymptotic2_conditions): computed for two planes with the closure and kappa_j > 0;
+     written to /rotor/stability/asymptotic2 */
+  int have_asymptotic2;
+  autobal_rotor_asymptotic2 asymptotic2;
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every

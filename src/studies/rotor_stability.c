@@ -131,7 +131,18 @@ static int asymptotic_conditions(autobal_rotor_stab *h, autobal_study_rotor_stab
   autobal_rotor_closed c;
   autobal_error e;
   int st;
-  if (s->result.n_poly == 0 || autobal_rotor_stab_closed(h, &c) != AUTOBAL_SUCCESS) return AUTOBAL_SUCCESS;
+  if (autobal_rotor_stab_closed(h, &c) != AUTOBAL_SUCCESS) return AUTOBAL_SUCCESS;
+  if (c.n_planes == 2) { /* two planes: the light-ball condition (autobal_rotor_asymptotic2_conditions) */
+    if (!c.isotropic || !c.closure_ok || !(c.plane[0].kappa > 0.0) || !(c.plane[1].kappa > 0.0))
+      return AUTOBAL_SUCCESS;
+    autobal_error_clear(&e);
+    st = autobal_rotor_asymptotic2_conditions(&c, &s->asymptotic2, &e);
+    if (st == AUTOBAL_EINVAL) return AUTOBAL_SUCCESS;
+    if (st) return autobal_error_set(err, st, "asymptotic conditions (two planes): %s", e.message);
+    s->have_asymptotic2 = 1;
+    return AUTOBAL_SUCCESS;
+  }
+  if (s->result.n_poly == 0) return AUTOBAL_SUCCESS;
   if (!(c.plane[0].kappa > 0.0)) return AUTOBAL_SUCCESS;
   autobal_error_clear(&e);
   st = autobal_rotor_asymptotic_conditions(&c, &s->asymptotic, &e);
@@ -386,6 +397,27 @@ static int write_asymptotic(autobal_archive *a, const autobal_rotor_asymptotic *
   return st;
 }
 
+/* /rotor/stability/asymptotic2: the two-plane light-ball condition (docs/rotor.md, Asymptotic conditions). */
+static int write_asymptotic2(autobal_archive *a, const autobal_rotor_asymptotic2 *q) {
+  const char *g = "/rotor/stability/asymptotic2";
+  int st = autobal_archive_group(a, g);
+  if (!st) st = autobal_archive_attr_string(a, g, "description", "ASYMPTOTIC light-ball condition for two planes, reported beside the exact verdict, never instead of it (docs/rotor.md, Asymptotic conditions, Two planes): the 8 ball roots of det(U - S) with the 2x2 receptance G (G_11, G_12, G_21, G_22) frozen at lambda = 0, and the rotor-housing's roots shifted to first order; applicable when light_small is at most small_threshold");
+  if (!st) st = autobal_archive_attr_double(a, g, "small_threshold", AUTOBAL_ROTOR_ASYMPTOTIC_SMALL, "1");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "G_real", 4, q->G_re, "m/N");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "G_imag", 4, q->G_im, "m/N");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "kappa", 2, q->kappa, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "q", 2, q->q, "1");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_predicts_stable", q->light_stable);
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_ball_root_real", 8, q->ball_re, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_ball_root_imag", 8, q->ball_im, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_rotor_root_real", 4, q->rotor_re, "1/s");
+  if (!st) st = autobal_archive_attr_double_array(a, g, "light_rotor_root_imag", 4, q->rotor_im, "1/s");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_decided", q->light_decided);
+  if (!st) st = autobal_archive_attr_double(a, g, "light_small", q->light_small, "1");
+  if (!st) st = autobal_archive_attr_int(a, g, "light_applicable", q->light_applicable);
+  return st;
+}
+
 int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_params *p,
                                         const autobal_study_rotor_stability_options *opt,
                                         const autobal_study_rotor_stability_summary *s) {
@@ -454,6 +486,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = write_crit(a, gc, &s->critical, "rad/s");
   }
   if (!st && s->have_asymptotic) st = write_asymptotic(a, &s->asymptotic);
+  if (!st && s->have_asymptotic2) st = write_asymptotic2(a, &s->asymptotic2);
   if (!st && s->have_every) {
     const char *ge = "/rotor/stability/every_unbalance";
     const autobal_rotor_unbalance_range *u = &s->every;

@@ -6,7 +6,8 @@
 #  (b) light balls (5e-6 kg) below the first resonance, 100 rad/s: predicted and exactly UNSTABLE;
 #  (c) light balls (5e-7 kg) at 2000 rad/s, balls at right angles (q = 0), ball damping below and above kappa_min;
 #  (d) a disk-like rotor (C > A, 0 < C - A < M d^2): (H1) fails, high speed predicts UNSTABLE;
-#  (e) two planes: no asymptotic conditions (nothing printed or written).
+#  (e) two planes: the two-plane light-ball condition (rotor_asymptotic2_check.py), not the one-plane ones;
+#      light balls below (150 rad/s) and above (800 rad/s) the resonances.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -50,5 +51,29 @@ read -r v p dec app < <(verdict_of disk.json high_predicts_stable)
 grep -q "UNSTABLE for every unbalance" disk.txt && ok "console: UNSTABLE for every unbalance" || { bad "console disk"; cat disk.txt; }
 
 expect 0 "" "$AUTOBAL" rotor stability "$DATA/rotor_two_planes.ini" --set stability.critical_speeds=false
-grep -q "asymptotic" out.txt && bad "two planes: asymptotic conditions printed" || ok "two planes: no asymptotic conditions"
+grep -q "asymptotic conditions (for comparison" out.txt && bad "two planes: one-plane conditions printed" || ok "two planes: no one-plane conditions"
+grep -q "asymptotic condition, two planes (for comparison only" out.txt && ok "two planes: the two-plane condition printed" || bad "two planes: no two-plane condition"
+
+two() { # name omega d1 d2 m1 m2 h1 h2 s1 s2 psi1 psi2: two planes, console, JSON, archive, NumPy check
+  local name=$1 w=$2 d1=$3 d2=$4 m1=$5 m2=$6 h1=$7 h2=$8 s1=$9 s2=${10} p1=${11} p2=${12}
+  printf '[rotor]\nomega = %s\n[plane1]\nd = %s\nr0 = 0.1\nm0 = %s\npsi0 = %s\nball_mass = %s, %s\nball_radius = 0.1, 0.1\nball_damping = %s, %s\n[plane2]\nd = %s\nr0 = 0.1\nm0 = %s\npsi0 = %s\nball_mass = %s, %s\nball_radius = 0.1, 0.1\nball_damping = %s, %s\n[stability]\ncritical_speeds = false\n' \
+    "$w" "$d1" "$("$PY" -c "print($s1 / 0.1)")" "$p1" "$m1" "$m1" "$h1" "$h1" "$d2" "$("$PY" -c "print($s2 / 0.1)")" "$p2" "$m2" "$m2" "$h2" "$h2" > "$name.ini"
+  expect 0 "asymptotic condition, two planes (for comparison only" "$AUTOBAL" rotor stability "$name.ini"
+  cp out.txt "$name.txt"
+  "$AUTOBAL" rotor stability "$name.ini" --json > "$name.json" 2>err.txt || bad "$name: json run"
+  "$AUTOBAL" rotor stability "$name.ini" -o "$name.h5" > /dev/null 2>err.txt || bad "$name: archive run"
+  if "$PY" "$here/rotor_asymptotic2_check.py" "$name.json" "$name.h5" "$w" "$d1" "$d2" "$m1" "$m2" "$h1" "$h2" "$s1" "$s2" "$p1" "$p2" > chk.txt 2>&1; then
+    ok "$name: NumPy check ($(grep -c '^ok' chk.txt) checks)"
+  else
+    bad "$name: NumPy check"; cat chk.txt
+  fi
+}
+verdict2() { "$PY" -c 'import json,sys; j=json.load(open(sys.argv[1])); a=j["asymptotic2"]; print(j["verdict"], a["light_predicts_stable"], a["light_decided"], a["light_applicable"])' "$1"; }
+# light balls (balls of 5e-6 / 4e-6 kg, kappa 2 and 3 1/s): below the first resonance and above it
+two two_sub 150 0.1 -0.12 5e-6 4e-6 1e-5 1.2e-5 2e-7 1.5e-7 0 2
+read -r v p dec app < <(verdict2 two_sub.json)
+[ "$v $p $dec $app" = "unstable False True True" ] && ok "two planes, 150 rad/s, light balls: exactly unstable, predicted UNSTABLE, decided, applicable" || bad "two_sub: $v $p $dec $app"
+two two_super 800 0.1 -0.12 5e-6 4e-6 1e-5 1.2e-5 2e-7 1.5e-7 0 2
+read -r v p dec app < <(verdict2 two_super.json)
+[ "$v $p $dec $app" = "stable True True True" ] && ok "two planes, 800 rad/s, light balls: exactly stable, predicted STABLE, decided, applicable" || bad "two_super: $v $p $dec $app"
 finish

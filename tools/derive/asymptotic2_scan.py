@@ -1,0 +1,288 @@
+#!/usr/bin/python3
+"""Two balancer planes: the light-ball prediction (docs/rotor.md "Asymptotic conditions", "Two planes")
+against the exact roots of the closed two-plane system, recomputed here with NumPy from the equations of
+docs/rotor.md "Two planes: degree 16" (independent of the C code), over random machines; and the
+undamped-ball (kappa = 0) scan of the one-plane Delta.
+
+Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|kappa0|all] [n_draws]   (a few minutes)
+
+Two planes j = 1, 2, each with two identical balls (mass m_j each, radius r_j, damping h_j, kappa_j = h_j / m_j,
+unbalance m0_j r0_j at phase psi0_j).  Rotating complex coordinates (W, Theta, sigma_1, sigma_2) and their
+conjugates; P = lambda + i omega, Pb = lambda - i omega:
+    K(P) (W, Theta)^T + P^2 B sigma = 0,            B = [[1, 1], [d1, d2]],
+    (lambda^2 + kappa_j lambda) sigma_j + (m_bj/2) P^2 b_j.(W, Theta) - (Q_j/2) Pb^2 b_j.(Wb, Thetab) = 0,
+and the conjugate rows (K* at Pb, conj Q_j).  The exact roots: the 16 eigenvalues of its companion matrix.
+The light-ball prediction: G = B^T K(i omega)^-1 B (2x2, symmetric), s = omega^4 / 2, the 4x4 quadratic
+eigenproblem
+    [diag(u_j) - s Mb G,  s Q conj(G);  s conj(Q) G,  diag(u_j) - s Mb conj(G)] (sigma; sigmab) = 0,
+u_j = lambda^2 + kappa_j lambda (8 ball roots), plus the roots of D = det K shifted to first order,
+    lambda_k + sum_j (m_bj/2) P^4 N_jj / ((lambda^2 + kappa_j lambda) D')   at lambda_k,  N = B^T adj(K) B.
+"""
+import sys
+
+import numpy as np
+from numpy.polynomial import polynomial as Pn
+
+TH = 0.05
+
+
+def mul(*ps):
+    r = np.array([1.0 + 0j])
+    for p in ps:
+        r = Pn.polymul(r, p)
+    return r
+
+
+def default2():
+    # data/rotor_two_planes.ini in lumped form is not needed: random machines around the one-plane default
+    return dict(M=10., A=0.16, C=0.03, c=2.5e5, ct=7375., cc=-2500., h=250., ht=7.375, hc=-2.5,
+                d=[0.1, -0.12], m=[0.05, 0.04], r=[0.1, 0.09], s0=[0.002, 0.00135], psi0=[0.0, 2.0], hb=[0.1, 0.1])
+
+
+def kpolys(p, w, conj=False):
+    """K11, K12, K22 as ascending complex polynomials in lambda (P = lambda + i w, or Pb for conj)."""
+    sgn = -1.0 if conj else 1.0
+    P = np.array([sgn * 1j * w, 1.0])
+    P2 = mul(P, P)
+    K11 = Pn.polyadd(Pn.polyadd(p['M'] * P2, p['h'] * P), [p['c']])
+    K12 = -Pn.polyadd(p['hc'] * P, [p['cc']])
+    K22 = Pn.polyadd(Pn.polyadd(p['A'] * P2, (p['ht'] - sgn * 1j * p['C'] * w) * P), [p['ct']])
+    return K11, K12, K22, P2
+
+
+def qs(p):
+    """Q_j = m_bj (2 x_j^2 - 1) e^{2 i psi0_j}, x_j = s0_j / (2 m_j r_j) (two identical balls)."""
+    Q = []
+    for j in range(2):
+        x = p['s0'][j] / (2 * p['m'][j] * p['r'][j])
+        Q.append(2 * p['m'][j] * (2 * x * x - 1) * np.exp(2j * p['psi0'][j]))
+    return Q
+
+
+def exact_roots(p, w):
+    """The 16 roots of the closed two-plane system (companion of the 8x8 quadratic matrix polynomial)."""
+    C = [np.zeros((8, 8), complex) for _ in range(3)]
+
+    def put(i, k, poly):
+        for n, v in enumerate(poly):
+            C[n][i, k] += v
+
+    d = p['d']
+    mb = [2 * p['m'][j] for j in range(2)]
+    kap = [p['hb'][j] / p['m'][j] for j in range(2)]
+    Q = qs(p)
+    for cj, off, ooff in ((False, 0, 4), (True, 4, 0)):
+        K11, K12, K22, P2 = kpolys(p, w, cj)
+        _, _, _, P2o = kpolys(p, w, not cj)
+        put(off + 0, off + 0, K11); put(off + 0, off + 1, K12)
+        put(off + 1, off + 0, K12); put(off + 1, off + 1, K22)
+        for j in range(2):
+            put(off + 0, off + 2 + j, P2)
+            put(off + 1, off + 2 + j, d[j] * P2)
+            put(off + 2 + j, off + 2 + j, [0, kap[j], 1])
+            put(off + 2 + j, off + 0, mb[j] / 2 * P2)
+            put(off + 2 + j, off + 1, mb[j] / 2 * d[j] * P2)
+            qj = np.conj(Q[j]) if cj else Q[j]
+            put(off + 2 + j, ooff + 0, -qj / 2 * P2o)
+            put(off + 2 + j, ooff + 1, -qj / 2 * d[j] * P2o)
+    Minv = np.linalg.inv(C[2])
+    comp = np.zeros((16, 16), complex)
+    comp[:8, 8:] = np.eye(8)
+    comp[8:, :8] = -Minv @ C[0]
+    comp[8:, 8:] = -Minv @ C[1]
+    return np.linalg.eigvals(comp)
+
+
+def light2(p, w):
+    """The two-plane light-ball prediction: (residual real parts, error bounds, small parameter)."""
+    d = p['d']
+    mb = np.array([2 * p['m'][j] for j in range(2)])
+    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
+    Q = np.array(qs(p))
+    K11, K12, K22, _ = kpolys(p, w)
+    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
+    # N_jk = b_j^T adj(K) b_k, adj(K) = [[K22, -K12], [-K12, K11]], b_j = (1, d_j)
+    Nm = [[Pn.polyadd(Pn.polyadd(K22, -(d[j] + d[k]) * K12), d[j] * d[k] * K11) for k in range(2)] for j in range(2)]
+    G = np.array([[Nm[j][k][0] / D[0] for k in range(2)] for j in range(2)])
+    s = w**4 / 2
+    S = np.zeros((4, 4), complex)
+    S[:2, :2] = s * np.diag(mb) @ G
+    S[:2, 2:] = -s * np.diag(Q) @ np.conj(G)
+    S[2:, :2] = -s * np.diag(np.conj(Q)) @ G
+    S[2:, 2:] = s * np.diag(mb) @ np.conj(G)
+    kk = np.concatenate([kap, kap])
+    comp = np.zeros((8, 8), complex)
+    comp[:4, 4:] = np.eye(4)
+    comp[4:, :4] = S
+    comp[4:, 4:] = -np.diag(kk)
+    lam = np.linalg.eigvals(comp)
+    # error of each ball root: the frozen entries S_ab(0) against S_ab(lambda); |dS_ab| bounded entrywise by
+    # |s_ab| [ (|N1| |l| + |N2| |l|^2) / |D0| + |G_ab| (c_D + 4/|w|) |l| ], c_D = sum 1/|root of D D*|;
+    # the root moves by sum |adj(U - S)_ba| |dS_ab| / |p'(l)|, p = det(U - S)
+    rDD = np.roots(mul(D, np.conj(D))[::-1])
+    cD = np.sum(1 / abs(rDD)) + 4 / abs(w)
+    sc = np.zeros((4, 4))
+    Gb = np.block([[G, np.conj(G)], [G, np.conj(G)]])
+    Nb = [[Nm[j % 2][k % 2] for k in range(4)] for j in range(4)]
+    errs, res = [], []
+    eps_b = 0.0
+    for l in lam:
+        U = np.diag(l * l + kk * l)
+        A_ = U - S
+        adj = np.linalg.det(A_) * np.linalg.inv(A_) if abs(np.linalg.det(A_)) > 0 else None
+        # adj via cofactors (A_ is singular at an eigenvalue)
+        adj = np.zeros((4, 4), complex)
+        for i in range(4):
+            for k in range(4):
+                mnr = np.delete(np.delete(A_, i, 0), k, 1)
+                adj[k, i] = (-1)**(i + k) * np.linalg.det(mnr)
+        dp = sum(adj[i, i] * (2 * l + kk[i]) for i in range(4))
+        e = 0.0
+        for a_ in range(4):
+            for b_ in range(4):
+                N_ = Nb[a_][b_]
+                dn = (abs(N_[1]) * abs(l) + abs(N_[2]) * abs(l)**2) / abs(D[0])
+                sab = abs(S[a_, b_]) / max(abs(Gb[a_, b_]), 1e-300)
+                e += abs(adj[b_, a_]) * sab * (dn + abs(Gb[a_, b_]) * cD * abs(l))
+        e /= max(abs(dp), 1e-300)
+        errs.append(e)
+        res.append(l.real)
+        eps_b = max(eps_b, e / max(abs(l), 1e-300))
+    # rotor roots: the roots of D shifted to first order
+    rD = np.roots(D[::-1])
+    Dp = Pn.polyder(D)
+    eps_r = 0.0
+    shifts = []
+    for lk in rD:
+        P4 = (lk + 1j * w)**4
+        dl = sum(mb[j] / 2 * P4 * Pn.polyval(lk, Nm[j][j]) / ((lk * lk + kap[j] * lk) * Pn.polyval(lk, Dp))
+                 for j in range(2))
+        sep = min([abs(lk), abs(lk + kap[0]), abs(lk + kap[1])] +
+                  [abs(lk - r) for r in rDD if abs(r - lk) > 1e-12 * abs(lk)])
+        eps_r = max(eps_r, abs(dl) / sep)
+        shifts.append((lk, dl))
+    for lk, dl in shifts:
+        res.append((lk + dl).real)
+        errs.append(eps_r * abs(dl))
+    return np.array(res), np.array(errs), max(eps_b, eps_r), lam, G
+
+
+def draw(rng, rich=False):
+    p = default2()
+    p['M'] *= np.exp(rng.uniform(-1, 1)); p['A'] *= np.exp(rng.uniform(-1, 1)); p['C'] = p['A'] * rng.uniform(0, 2)
+    p['c'] *= np.exp(rng.uniform(-1, 1)); p['ct'] *= np.exp(rng.uniform(-1, 1)); p['cc'] *= rng.uniform(-2, 2)
+    if p['cc']**2 >= p['c'] * p['ct']:
+        return None
+    sh = np.exp(rng.uniform(-6, 2)); p['h'] *= sh; p['ht'] *= sh; p['hc'] *= sh * rng.uniform(-1, 1)
+    p['d'] = [rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)]
+    p['m'] = [0.05 * np.exp(rng.uniform(np.log(1e-4), 0)) for _ in range(2)]
+    p['r'] = [0.1, 0.1]
+    p['s0'] = [2 * p['m'][j] * p['r'][j] * rng.uniform(0.02, 0.98) for j in range(2)]
+    p['psi0'] = [rng.uniform(0, 2 * np.pi), rng.uniform(0, 2 * np.pi)]
+    klo = np.log(0.3) if rich else np.log(0.01)
+    p['hb'] = [p['m'][j] * np.exp(rng.uniform(klo, np.log(100))) for j in range(2)]
+    return p
+
+
+def scan(seed, n, th=TH, rich=False):
+    """rich: omega in [300, 5000] rad/s and kappa in [0.3, 100] 1/s (more points predicted STABLE)"""
+    rng = np.random.default_rng(seed)
+    n_app = n_dec = agree = nunst = 0
+    bad = []
+    for _ in range(n):
+        p = draw(rng, rich)
+        if p is None:
+            continue
+        w = np.exp(rng.uniform(np.log(300 if rich else 50), np.log(5000)))
+        res, errs, small, _, _ = light2(p, w)
+        if not small <= th:
+            continue
+        n_app += 1
+        du = bool(np.any(res >= errs))
+        ds = bool(np.all(res <= -errs))
+        if not (du or ds):
+            continue
+        n_dec += 1
+        nunst += not ds
+        m = exact_roots(p, w).real.max()
+        if (m < 0) == ds:
+            agree += 1
+        else:
+            bad.append((w, m, res.max(), small))
+    print('two planes, scan seed %d%s, %d draws, small <= %g: applicable %d, decided %d, agree %d (predicted unstable %d)'
+          % (seed, ' (rich)' if rich else '', n, th, n_app, n_dec, agree, nunst))
+    for b_ in bad:
+        print('   DISAGREES: omega %g, exact margin %g, predicted max Re %g, small %g' % b_)
+    return not bad
+
+
+# ---- kappa = 0: the one-plane Delta with undamped balls ----------------------------------------------
+
+def delta1(p, w):
+    """Delta of docs/rotor.md (one plane, two identical balls), ascending real coefficients."""
+    M, A, C, c, ct, cc, h, ht, hc, d = [p[k] for k in 'M A C c ct cc h ht hc d'.split()]
+    mb = 2 * p['m']
+    kap = p['hb'] / p['m']
+    x = p['s0'] / (2 * p['m'] * p['r'])
+    Q = abs(mb * (2 * x * x - 1))
+    P = np.array([1j * w, 1.0])
+    K11 = Pn.polyadd(M * mul(P, P), Pn.polyadd(h * P, [c]))
+    K12 = -Pn.polyadd(hc * P, [cc])
+    K22 = Pn.polyadd(A * mul(P, P), Pn.polyadd((ht - 1j * C * w) * P, [ct]))
+    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
+    N = Pn.polyadd(Pn.polyadd(K22, -2 * d * K12), d * d * K11)
+    P4 = mul(P, P, P, P)
+    F = Pn.polysub(mul([0, kap, 1], D), mb / 2 * mul(P4, N))
+    Pb = np.array([-1j * w, 1.0])
+    De = Pn.polysub(mul(F, np.conj(F)), (Q / 2)**2 * mul(P4, mul(Pb, Pb, Pb, Pb), N, np.conj(N)))
+    return De.real
+
+
+def kappa0(seed, n):
+    """kappa = 0 over random one-plane machines (asymptotic_scan.py's ranges, any ball mass up to 0.05 kg):
+    how often is the largest real part of the 12 roots of Delta negative (asymptotically stable)?  Also the
+    Routh-Hurwitz necessary condition that every coefficient has the sign of the leading one."""
+    rng = np.random.default_rng(seed)
+    n_ok = n_stable = n_marg = n_disk = 0
+    worst = -np.inf
+    for _ in range(n):
+        p = dict(M=10., A=0.16, C=0.03, c=2.5e5, ct=7375., cc=-2500., h=250., ht=7.375, hc=-2.5, d=0.1,
+                 m=0.05, r=0.1, s0=0.002, hb=0.0)
+        p['M'] *= np.exp(rng.uniform(-1, 1)); p['A'] *= np.exp(rng.uniform(-1, 1)); p['C'] = p['A'] * rng.uniform(0, 2)
+        p['c'] *= np.exp(rng.uniform(-1, 1)); p['ct'] *= np.exp(rng.uniform(-1, 1)); p['cc'] *= rng.uniform(-2, 2)
+        if p['cc']**2 >= p['c'] * p['ct']:
+            continue
+        sh = np.exp(rng.uniform(-6, 2)); p['h'] *= sh; p['ht'] *= sh; p['hc'] *= sh * rng.uniform(-1, 1)
+        p['d'] = rng.uniform(-0.3, 0.3)
+        p['m'] *= np.exp(rng.uniform(np.log(1e-4), 0))
+        p['s0'] = 2 * p['m'] * p['r'] * rng.uniform(0.02, 0.98)
+        w = np.exp(rng.uniform(np.log(50), np.log(5000))) * (1 if rng.uniform() < 0.8 else -1)
+        De = delta1(p, w)
+        n_ok += 1
+        r = np.roots(De[::-1])
+        mre = r.real.max()
+        scale = max(1.0, abs(r).max())
+        if mre < -1e-9 * scale:
+            n_stable += 1
+            n_disk += p['C'] > p['A']
+        elif mre <= 1e-9 * scale:
+            n_marg += 1
+        worst = max(worst, -mre / scale)
+    print('kappa = 0, one plane, seed %d: %d machines, asymptotically stable %d (%d of them with C > A), within 1e-9 '
+          'of the axis %d (largest -max Re / scale %.3g)' % (seed, n_ok, n_stable, n_disk, n_marg, worst))
+    return True
+
+
+if __name__ == '__main__':
+    what = sys.argv[1] if len(sys.argv) > 1 else 'all'
+    n = int(sys.argv[2]) if len(sys.argv) > 2 else 4000
+    okay = True
+    if what in ('scan', 'all'):
+        for s, th in ((2, TH), (3, TH), (4, TH), (5, TH), (6, 0.2), (7, 0.2)):
+            okay &= scan(s, n, th)
+    if what in ('rich', 'all'):
+        for s, th in ((8, TH), (9, TH), (10, 0.2)):
+            okay &= scan(s, n, th, True)
+    if what in ('kappa0', 'all'):
+        okay &= kappa0(2, n)
+    sys.exit(0 if okay else 1)
