@@ -23,8 +23,9 @@
  *    e.g. dimensionless, states).
  *  - Dense output (stepper dop853, option exact_output = 0, the default for it): the
  *    Dormand-Prince 8(5,3) pair DOP853 (Hairer's dop853.f; 12 right-hand sides per accepted
- *    step; GSL's control, max norm, on Hairer's error estimate, O(h^8): e5 h |e5| /
- *    sqrt(|e5|^2 + 0.01 |e3|^2) with the 5th- and 3rd-order embedded differences e5, e3 and
+ *    step; the decision of GSL's control, max norm, computed in the step itself (its growth
+ *    factor rmax^(-1/8) by square roots, not pow), on Hairer's error estimate, O(h^8):
+ *    e5 h |e5| / sqrt(|e5|^2 + 0.01 |e3|^2) with the 5th- and 3rd-order embedded differences e5, e3 and
  *    their 2-norms scaled by atol + rtol max(|y0_i|, |y1_i|)) with its
  *    continuous extension of order 7 (3 more right-hand sides, only in the steps where it is
  *    used).  Then output times, event crossings and dwell completions are taken on the

@@ -4,7 +4,9 @@
  * tests/test_transient_dense.c.  No allocation in apply(). */
 #include "transient/dop853.h"
 
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,6 +40,10 @@ typedef struct dop853_state {
   double *f;    /* 4 x np: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
   double t0, h;
   double atol, rtol; /* the control's tolerances (0, 0: the componentwise estimate) */
+  double rmax;       /* the last step's largest |yerr_i| / (atol + rtol |y1_i|) (normwise mode) */
+  int finite;        /* the last step's y1, yerr, f(t + h, y1) all finite (normwise mode) */
+  unsigned nfev;     /* right-hand sides evaluated by the last apply() or prepare() */
+  double t_fail;     /* the time of the evaluation that returned non-zero (if one did) */
   int ready;
 } dop853_state;
 
@@ -75,21 +81,32 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
                                             double dydt_out[], const gsl_odeiv2_system *sys) {
   size_t i;
   int st;
+  unsigned nf = 0; /* evaluations so far (in s->nfev at every return) */
   s->ready = 0;
   s->t0 = t;
   s->h = h;
   memcpy(s->y0, y, n * sizeof(double));
   if (dydt_in != NULL) {
     memcpy(s->k, dydt_in, n * sizeof(double));
-  } else if ((st = GSL_ODEIV_FN_EVAL(sys, t, y, s->k)) != GSL_SUCCESS) {
-    return st;
+  } else {
+    nf = 1;
+    if ((st = GSL_ODEIV_FN_EVAL(sys, t, y, s->k)) != GSL_SUCCESS) {
+      s->nfev = nf;
+      s->t_fail = t;
+      return st;
+    }
   }
   /* stages 1..11, each kernel inlined here (one straight-line pass per stage argument) */
 #define DOP853_STAGE(J)                                                                      \
   do {                                                                                       \
     dop853_arg_##J(np, h, s->y0, s->k, s->ytmp);                                             \
+    nf++;                                                                                    \
     st = GSL_ODEIV_FN_EVAL(sys, t + DOP853_C[J] * h, s->ytmp, s->k + (size_t)(J) * np);       \
-    if (st != GSL_SUCCESS) return st;                                                        \
+    if (st != GSL_SUCCESS) {                                                                 \
+      s->nfev = nf;                                                                          \
+      s->t_fail = t + DOP853_C[J] * h;                                                       \
+      return st;                                                                             \
+    }                                                                                        \
   } while (0)
   DOP853_STAGE(1);
   DOP853_STAGE(2);
@@ -103,8 +120,13 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
   DOP853_STAGE(10);
   DOP853_STAGE(11);
   dop853_arg_12(np, h, s->y0, s->k, s->y1); /* row 12 holds the weights b */
+  nf++;
+  s->nfev = nf;
   st = GSL_ODEIV_FN_EVAL(sys, t + h, s->y1, s->k + (size_t)NST * np);
-  if (st != GSL_SUCCESS) return st;
+  if (st != GSL_SUCCESS) {
+    s->t_fail = t + h;
+    return st;
+  }
   /* e5 and e3 in one pass over the padded components (the same sums, term by term, as the
    * componentwise form), then the norms summed in component order */
   dop853_err_rows(np, s->k, s->e5, s->ytmp);
@@ -114,8 +136,14 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
     const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict e5 = s->e5,
                            *restrict e3 = s->ytmp;
     const double atol = s->atol, rtol = s->rtol;
-    double n5 = 0.0, n3 = 0.0, fac, hf;
-    for (i = 0; i < n; i++) {
+    const double *restrict k12 = s->k + (size_t)NST * np;
+    const uint64_t ex = UINT64_C(0x7ff0000000000000), one = UINT64_C(0x0010000000000000);
+    double n5 = 0.0, n3 = 0.0, fac, hf, rmax = DBL_MIN;
+    uint64_t bad = 0;
+    /* over the padded length np (a constant in the unrolled cases): a padding component adds
+     * +0 to the sums and r = 0 to the max below (y0, y1, e5, e3 are 0 there), so the numbers
+     * are those of the loop over dim */
+    for (i = 0; i < np; i++) {
       const double a0 = fabs(y0[i]), a1 = fabs(y1[i]);
       /* max(a0, a1) inline (fmax is a libm call here; the same value for numbers, and a NaN
        * state is refused after the step anyway) */
@@ -126,7 +154,26 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
     }
     fac = n5 + n3 > 0.0 ? sqrt(n5) / sqrt(n5 + 0.01 * n3) : 0.0;
     hf = h * fac;
-    for (i = 0; i < n; i++) yerr[i] = e5[i] * hf;
+    /* the step-size control's ratio in the same pass as yerr: GSL's standard control with
+     * a_y = 1, a_dydt = 0 (D0 = rtol |y1_i| + atol, r_i = |yerr_i| / D0, the max from DBL_MIN),
+     * the same numbers (autobal_transient_dop853_hadjust_ uses it); and the finiteness of y1,
+     * yerr and f(t + h, y1) on the bits (the exponent field plus one carries into the sign bit
+     * exactly when it is all ones: inf or NaN), which take_step would test otherwise */
+    for (i = 0; i < n; i++) {
+      const double ye = e5[i] * hf;
+      const double r = fabs(ye) / (rtol * fabs(y1[i]) + atol);
+      yerr[i] = ye;
+      rmax = r > rmax ? r : rmax;
+    }
+    for (i = 0; i < n; i++) { /* integers: a vector loop */
+      uint64_t u, v, w;
+      memcpy(&u, &yerr[i], sizeof u);
+      memcpy(&v, &y1[i], sizeof v);
+      memcpy(&w, &k12[i], sizeof w);
+      bad |= ((u & ex) + one) | ((v & ex) + one) | ((w & ex) + one);
+    }
+    s->rmax = rmax;
+    s->finite = (bad >> 63) == 0;
   } else {
     const double *restrict e5 = s->e5, *restrict e3 = s->ytmp;
     for (i = 0; i < n; i++) {
@@ -146,23 +193,31 @@ DOP853_CLONES static int dop853_apply(void *vstate, size_t dim, double t, double
                                       double yerr[], const double dydt_in[], double dydt_out[],
                                       const gsl_odeiv2_system *sys) {
   dop853_state *s = (dop853_state *)vstate;
+  /* dim a multiple of 4 (no padding): the copies of the state have a constant size too */
+#define DOP853_CASE(NP)                                                                        \
+  case NP:                                                                                     \
+    return dim == NP ? dop853_step(s, NP, NP, t, h, y, yerr, dydt_in, dydt_out, sys)           \
+                     : dop853_step(s, dim, NP, t, h, y, yerr, dydt_in, dydt_out, sys)
   switch (s->np) {
-    case 4: return dop853_step(s, dim, 4, t, h, y, yerr, dydt_in, dydt_out, sys);
-    case 8: return dop853_step(s, dim, 8, t, h, y, yerr, dydt_in, dydt_out, sys);
-    case 12: return dop853_step(s, dim, 12, t, h, y, yerr, dydt_in, dydt_out, sys);
-    case 16: return dop853_step(s, dim, 16, t, h, y, yerr, dydt_in, dydt_out, sys);
-    case 20: return dop853_step(s, dim, 20, t, h, y, yerr, dydt_in, dydt_out, sys);
-    case 24: return dop853_step(s, dim, 24, t, h, y, yerr, dydt_in, dydt_out, sys);
+    DOP853_CASE(4);
+    DOP853_CASE(8);
+    DOP853_CASE(12);
+    DOP853_CASE(16);
+    DOP853_CASE(20);
+    DOP853_CASE(24);
     default: return dop853_step(s, dim, s->np, t, h, y, yerr, dydt_in, dydt_out, sys);
   }
+#undef DOP853_CASE
 }
 
 static DOP853_INLINE int dop853_extend(dop853_state *s, const size_t np, const gsl_odeiv2_system *sys) {
   const double t = s->t0, h = s->h;
   int st;
+  unsigned nf = 0;
   DOP853_STAGE(13);
   DOP853_STAGE(14);
   DOP853_STAGE(15);
+  s->nfev = nf;
   dop853_dense_rows(np, h, s->k, s->f);
   s->ready = 1;
   return GSL_SUCCESS;
@@ -214,6 +269,37 @@ void autobal_transient_dop853_set_tol_(void *vstate, double atol, double rtol) {
   dop853_state *s = (dop853_state *)vstate;
   s->atol = atol;
   s->rtol = rtol;
+}
+
+void autobal_transient_dop853_evals_(const void *vstate, unsigned *nfev, double *t_fail) {
+  const dop853_state *s = (const dop853_state *)vstate;
+  *nfev = s->nfev;
+  *t_fail = s->t_fail;
+}
+
+int autobal_transient_dop853_finite_(const void *vstate) {
+  return ((const dop853_state *)vstate)->finite;
+}
+
+int autobal_transient_dop853_hadjust_(const void *vstate, double *h) {
+  const double rmax = ((const dop853_state *)vstate)->rmax;
+  const double S = 0.9, h_old = *h;
+  if (rmax > 1.1) {
+    /* shrink (rare: rejected steps): S / rmax^(1/7), no more than by 5 */
+    double r = S / pow(rmax, 1.0 / 7.0);
+    if (r < 0.2) r = 0.2;
+    *h = r * h_old;
+    return GSL_ODEIV_HADJ_DEC;
+  }
+  if (rmax < 0.5) {
+    /* grow: S / rmax^(1/8), rmax^(1/8) as three square roots (no pow), between 1 and 5 */
+    double r = S / sqrt(sqrt(sqrt(rmax)));
+    if (r > 5.0) r = 5.0;
+    if (r < 1.0) r = 1.0;
+    *h = r * h_old;
+    return GSL_ODEIV_HADJ_INC;
+  }
+  return GSL_ODEIV_HADJ_NIL;
 }
 
 void autobal_transient_dop853_last_step_(const void *vstate, double *t0, double *h) {

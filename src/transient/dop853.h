@@ -35,6 +35,24 @@ void autobal_transient_dop853_dense_eval_(const void *state, double theta, doubl
  * (0, 0, the state after alloc) the componentwise one above. */
 void autobal_transient_dop853_set_tol_(void *state, double atol, double rtol);
 
+/* The step-size control of the last step taken by apply() in the normwise mode (tolerances set
+ * by set_tol_): the same decision as GSL's standard control with these tolerances, a_y = 1,
+ * a_dydt = 0 and order 7 (rmax = max_i |yerr_i| / (atol + rtol |y_i|) computed by the step in
+ * the pass that writes yerr; rmax > 1.1: *h *= max(0.2, 0.9 rmax^(-1/7)), GSL_ODEIV_HADJ_DEC;
+ * rmax < 0.5: *h *= min(5, max(1, 0.9 rmax^(-1/8))), HADJ_INC; else HADJ_NIL), without its
+ * second pass over the arrays and with rmax^(1/8) as three square roots instead of pow (the
+ * grown step may differ from GSL's in the last bit). */
+int autobal_transient_dop853_hadjust_(const void *state, double *h);
+
+/* 1 if the last step taken by apply() in the normwise mode gave a finite result, error estimate
+ * and f(t + h, y1) (dydt_out), tested in the step's last pass; 0 otherwise. */
+int autobal_transient_dop853_finite_(const void *state);
+
+/* The number of right-hand sides the last apply() (or dense_prepare_) evaluated through sys,
+ * and the time of the one that returned non-zero when it failed (then the last one counted):
+ * for a caller that passes the user's function as sys directly, without a counting adapter. */
+void autobal_transient_dop853_evals_(const void *state, unsigned *nfev, double *t_fail);
+
 /* The start (t0) and the length (h) of the last step taken by apply(). */
 void autobal_transient_dop853_last_step_(const void *state, double *t0, double *h);
 

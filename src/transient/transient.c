@@ -131,6 +131,7 @@ typedef struct stepper_ctx {
   double *dydt_in;  /* f(t, y) at the start of the step */
   double *dydt_out; /* f at the end of the step */
   int have_dydt;    /* dydt_in is valid for the current (t, y) */
+  int own_ctl;      /* dop853: its own step-size control (GSL's decision, computed in the step) */
 } stepper_ctx;
 
 enum { DWELL_ABOVE = 0, DWELL_BELOW = 1, DWELL_FIRED = 2 };
@@ -160,6 +161,7 @@ struct autobal_transient {
   autobal_transient_options opt;
   const gsl_odeiv2_step_type *type;
   gsl_odeiv2_system gsys; /* the adapters below, params = this handle */
+  gsl_odeiv2_system gsys_direct; /* the user's rhs itself, for dop853's steps (see direct_status) */
   stepper_ctx main, aux;
   autobal_transient_system sys; /* the user's system during run() */
   /* finite-difference Jacobian */
@@ -369,7 +371,10 @@ static int ctx_alloc(autobal_transient *tr, stepper_ctx *c, const gsl_odeiv2_ste
    * arguments are valid, so GSL's error handler is not invoked except for
    * out-of-memory. */
   c->d = gsl_odeiv2_driver_alloc_y_new(&tr->gsys, T, 1.0, atol, rtol);
-  if (c->d && T == k_dop853) autobal_transient_dop853_set_tol_(c->d->s->state, atol, rtol);
+  if (c->d && T == k_dop853) {
+    autobal_transient_dop853_set_tol_(c->d->s->state, atol, rtol);
+    c->own_ctl = atol > 0.0 || rtol > 0.0;
+  }
   c->y0 = calloc(n, sizeof(double));
   c->yerr = calloc(n, sizeof(double));
   c->dydt_in = calloc(n, sizeof(double));
@@ -661,6 +666,28 @@ static int rhs_failure(autobal_transient *tr) {
   }
 }
 
+/* dop853 with its own control (c->own_ctl) takes its steps on the user's right-hand side
+ * directly, without rhs_adapter around each evaluation: count the step's evaluations and map a
+ * non-zero return st of one of them as rhs_adapter does (the same statuses and records). */
+static int direct_status(autobal_transient *tr, const void *state, int st) {
+  unsigned nfev;
+  double tf;
+  autobal_transient_dop853_evals_(state, &nfev, &tf);
+  tr->stats.rhs_evals += nfev;
+  if (st == GSL_SUCCESS) return st;
+  if (st == AUTOBAL_TRANSIENT_RHS_REJECT) {
+    tr->reject_t = tf;
+    tr->n_reject_calls++;
+    return GSL_FAILURE;
+  }
+  if (tr->fail_kind == 0) {
+    tr->fail_kind = 1;
+    tr->fail_code = st;
+    tr->fail_t = tf;
+  }
+  return GSL_EBADFUNC;
+}
+
 /* One accepted step of context c from (*t, y) towards t_target (> *t), never
  * past it; *h (> 0) is the trial step on entry and the suggested next step on
  * return.  The retry rules follow gsl_odeiv2_evolve_apply: a stepper failure
@@ -705,8 +732,14 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
                                "step size %.6g needed at t = %.17g is below h_min = %.6g", h0, t0,
                                tr->opt.h_min);
     }
-    st = gsl_odeiv2_step_apply(s, t0, h0, y, c->yerr, use_in ? c->dydt_in : NULL, c->dydt_out,
-                               &tr->gsys);
+    if (c->own_ctl) { /* gsl_odeiv2_step_apply without its wrapper */
+      st = s->type->apply(s->state, n, t0, h0, y, c->yerr, use_in ? c->dydt_in : NULL, c->dydt_out,
+                          &tr->gsys_direct);
+      st = direct_status(tr, s->state, st);
+    } else {
+      st = gsl_odeiv2_step_apply(s, t0, h0, y, c->yerr, use_in ? c->dydt_in : NULL, c->dydt_out,
+                                 &tr->gsys);
+    }
     if (st == GSL_EBADFUNC || tr->fail_kind != 0) {
       memcpy(y, c->y0, n * sizeof(double));
       *rejected += rej;
@@ -733,7 +766,8 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
                                "not be reduced further",
                                gsl_strerror(st), t0, h_old);
     }
-    if (!all_finite3(y, c->yerr, s->type->gives_exact_dydt_out ? c->dydt_out : y, n)) {
+    if (c->own_ctl ? !autobal_transient_dop853_finite_(s->state)
+                   : !all_finite3(y, c->yerr, s->type->gives_exact_dydt_out ? c->dydt_out : y, n)) {
       /* a stage derivative was NaN or inf (or the step overflowed); dydt_out
        * is tested only where it is reused as the next first stage */
       const double *bad = !all_finite(y, n) ? y : !all_finite(c->yerr, n) ? c->yerr : c->dydt_out;
@@ -743,7 +777,8 @@ static int take_step(autobal_transient *tr, stepper_ctx *c, double *t, double t_
       return rhs_failure(tr);
     }
     h_old = h0;
-    adj = gsl_odeiv2_control_hadjust(c->d->c, s, y, c->yerr, c->dydt_out, &h0);
+    adj = c->own_ctl ? autobal_transient_dop853_hadjust_(s->state, &h0)
+                     : gsl_odeiv2_control_hadjust(c->d->c, s, y, c->yerr, c->dydt_out, &h0);
     if (adj == GSL_ODEIV_HADJ_DEC) {
       memcpy(y, c->y0, n * sizeof(double));
       if (h0 < h_old && t0 + h0 != t0) {
@@ -1535,6 +1570,10 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
     }
   }
   tr->sys = *sys;
+  tr->gsys_direct.function = sys->rhs;
+  tr->gsys_direct.jacobian = NULL;
+  tr->gsys_direct.dimension = n;
+  tr->gsys_direct.params = sys->params;
   ctx_reset(&tr->main);
   tr->dense = tr->type == k_dop853 && !tr->opt.exact_output;
   tr->t0_run = t0;
@@ -1634,16 +1673,7 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
     tr->stats.h_last = h_taken;
     if (h_taken < tr->stats.h_min_used) tr->stats.h_min_used = h_taken;
     if (h_taken > tr->stats.h_max_used) tr->stats.h_max_used = h_taken;
-    for (i = all_finite(y, n) ? n : 0; i < n; i++) { /* the loop only to name a bad component */
-      if (!isfinite(y[i])) {
-        memcpy(y, tr->y_prev, n * sizeof(double));
-        autobal_error_set(&tr->err, AUTOBAL_ENUMERIC,
-                          "state component %zu became non-finite in the step from t = %.17g",
-                          i, t_prev);
-        return finish(tr, AUTOBAL_ENUMERIC, AUTOBAL_TRANSIENT_STOP_ERROR, t_prev, t_reached,
-                      wall0);
-      }
-    }
+    /* y is finite here: take_step tested it (with the error estimate) before accepting */
     if (tr->nev > 0) {
       rc = process_events(tr, t_prev, &t, y, h_taken);
       if (rc == OBSERVER_STOP) {
@@ -1665,17 +1695,19 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
       }
     }
     if (tr->dense) {
-      double t_stop = 0.0;
-      rc = emit_outputs(tr, t, 1, t, y, &t_stop);
-      if (rc == OBSERVER_STOP) {
-        memcpy(y, tr->y_out, n * sizeof(double));
-        autobal_error_set(&tr->err, AUTOBAL_EVENT, "observer requested a stop (%d) at t = %.17g",
-                          tr->stats.user_code, t_stop);
-        return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_OBSERVER, t_stop, t_reached, wall0);
-      }
-      if (rc != AUTOBAL_SUCCESS) {
-        tr->stats.user_code = tr->fail_code;
-        return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
+      if (tr->t_out <= t) { /* an output time in this step (emit_outputs' first test) */
+        double t_stop = 0.0;
+        rc = emit_outputs(tr, t, 1, t, y, &t_stop);
+        if (rc == OBSERVER_STOP) {
+          memcpy(y, tr->y_out, n * sizeof(double));
+          autobal_error_set(&tr->err, AUTOBAL_EVENT, "observer requested a stop (%d) at t = %.17g",
+                            tr->stats.user_code, t_stop);
+          return finish(tr, AUTOBAL_EVENT, AUTOBAL_TRANSIENT_STOP_OBSERVER, t_stop, t_reached, wall0);
+        }
+        if (rc != AUTOBAL_SUCCESS) {
+          tr->stats.user_code = tr->fail_code;
+          return finish(tr, rc, AUTOBAL_TRANSIENT_STOP_ERROR, t, t_reached, wall0);
+        }
       }
     } else if (t >= t_out) {
       if (tr->observer) {
