@@ -31,6 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/rotor_box2.h"
 #include "analysis/rotor_closed.h"
 #include "analysis/rotor_stab_handle.h"
 #include "analysis/rotor_stability.h"
@@ -660,6 +661,65 @@ static int set_unb(autobal_rotor_stab *s, size_t j, double sv) {
   return autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(j, AUTOBAL_ROTOR_PLANE_M0), sv / s->cur.plane[j].r0);
 }
 
+/* The unbalance s in [lo, hi] of two balls with |Q|^2 = q (the inverse of q2_range; NaN if none). */
+static double s_of_q2(const autobal_rotor_plane *pl, long double q, double lo, double hi) {
+  const long double m1 = pl->ball_mass[0], m2 = pl->ball_mass[1], a1 = m1 * pl->ball_radius[0],
+                    a2 = m2 * pl->ball_radius[1];
+  const long double cc = 0.5L * ((q - m1 * m1 - m2 * m2) / (2.0L * m1 * m2) + 1.0L);
+  const long double c = sqrtl(fmaxl(0.0L, cc));
+  int k;
+  for (k = 0; k < 2; k++) {
+    const long double s2 = a1 * a1 + a2 * a2 + 2.0L * a1 * a2 * (k ? -c : c);
+    const double sv = (double)sqrtl(fmaxl(0.0L, s2));
+    if (sv >= lo * (1.0 - 1e-9) && sv <= hi * (1.0 + 1e-9)) return fmin(hi, fmax(lo, sv));
+  }
+  return NAN;
+}
+
+/* Over both planes' whole ranges at once (rotor_box2.c): *verdict 0 no root on the imaginary axis
+ * anywhere in the region, 1 one found (out->found_*), -1 undecided (or the parts are not of the cos
+ * form).  The handle's unbalances are those of the caller (the parts do not depend on them). */
+static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], int *verdict,
+                     autobal_rotor_unbalance_range2 *out) {
+  autobal_rotor_closed c;
+  parts2 q;
+  autobal_rotor_box2_in in;
+  autobal_rotor_box2_out bo;
+  int st;
+  *verdict = -1;
+  if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+  if ((st = build_parts(&c, &q, &s->err)) != AUTOBAL_SUCCESS) return st;
+  if (!q.v_zero) return AUTOBAL_SUCCESS;
+  memset(&in, 0, sizeof in);
+  memcpy(in.D0, q.D0, sizeof in.D0);
+  memcpy(in.M11, q.M11, sizeof in.M11);
+  memcpy(in.M22, q.M22, sizeof in.M22);
+  memcpy(in.T12, q.T12, sizeof in.T12);
+  memcpy(in.U0, q.U0, sizeof in.U0);
+  q2_range(&s->cur.plane[0], s_lo[0], s_hi[0], &in.x_lo, &in.x_hi);
+  q2_range(&s->cur.plane[1], s_lo[1], s_hi[1], &in.y_lo, &in.y_hi);
+  in.w2 = (long double)s->cur.omega * s->cur.omega;
+  if (autobal_rotor_box2_(&in, &bo) != 0) return AUTOBAL_SUCCESS;
+  out->boxes += bo.boxes;
+  *verdict = bo.verdict;
+  if (bo.verdict == 1 && !bo.at_zero) {
+    out->found_s[0] = s_of_q2(&s->cur.plane[0], bo.x, s_lo[0], s_hi[0]);
+    out->found_s[1] = s_of_q2(&s->cur.plane[1], bo.y, s_lo[1], s_hi[1]);
+    /* t = |Q1||Q2| cos(arg p), p = e^{i arg(Q1 conj Q2)}; the relative phase phi of the unbalances
+     * from p as in every_phase, at the point's own unbalances (arg p also depends on them) */
+    if (isfinite(out->found_s[0]) && isfinite(out->found_s[1]) && bo.x > 0.0L && bo.y > 0.0L) {
+      const long double ap = acosl(fmaxl(-1.0L, fminl(1.0L, bo.t / sqrtl(bo.x * bo.y))));
+      if ((st = set_unb(s, 0, out->found_s[0])) != AUTOBAL_SUCCESS) return st;
+      if ((st = set_unb(s, 1, out->found_s[1])) != AUTOBAL_SUCCESS) return st;
+      if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+      if ((st = build_parts(&c, &q, &s->err)) != AUTOBAL_SUCCESS) return st;
+      out->found_phase =
+          wrap_pi(s->cur.plane[1].psi0 - s->cur.plane[0].psi0 - 0.5 * (double)(ap - q.p_ref_arg));
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 typedef struct saved2 {
   double m0[2], psi2;
 } saved2;
@@ -694,7 +754,7 @@ int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1, double s2, 
 static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t n_grid,
                   autobal_rotor_unbalance_range2 *out) {
   size_t i, k, n[2];
-  int st;
+  int st, any_crossing = 0;
   autobal_rotor_phase_range ph;
   memset(out, 0, sizeof *out);
   out->omega = s->cur.omega;
@@ -713,6 +773,7 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
   out->all_stable = 1;
   out->margin_worst = -INFINITY;
   out->exact_in_s1 = 1;
+  out->found_s[0] = out->found_s[1] = out->found_phase = NAN;
   /* one slice per plane-2 unbalance: exact over plane 1's range and every phase (slice_crossing), and
    * every_phase at the grid points of plane 1 (the margins, and a cross-check) */
   for (k = 0; k < n[1]; k++) {
@@ -757,6 +818,24 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
       }
       out->all_stable = 0;
     }
+    if (crossing) any_crossing = 1;
+  }
+  /* plane 2's whole range: the box search (one s2 value: the slice is already exact there) */
+  if (n[1] == 1) out->exact_in_s2 = out->exact_in_s1;
+  else if (out->exact_in_s1) {
+    int bv;
+    if ((st = box_check(s, s_lo, s_hi, &bv, out)) != AUTOBAL_SUCCESS) return st;
+    out->exact_in_s2 = bv != -1;
+    if (bv == 1) {
+      if (!any_crossing && out->all_stable) {
+        /* a crossing between the s2 grid values that every grid slice missed */
+        out->n_slices_not_stable++;
+        out->first_bad_s[0] = out->found_s[0];
+        out->first_bad_s[1] = out->found_s[1];
+      }
+      out->all_stable = 0;
+    } else if (bv == 0 && any_crossing)
+      out->n_missed++; /* a grid slice met a crossing the box search excluded: should not happen */
   }
   return AUTOBAL_SUCCESS;
 }
