@@ -33,6 +33,8 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #define BZ 31 /* z coefficients (G: degree 30) */
 #define BY 5  /* y coefficients (G: degree 4) */
@@ -142,18 +144,6 @@ static void bp_reverse(const bp *p, bp *o) {
 }
 
 /* p(i w) = pe(z) + i w po(z) */
-static void split(const long double *p, long double *pe, long double *po) {
-  int j;
-  for (j = 0; j < 9; j++) pe[j] = ((j % 2) ? -1.0L : 1.0L) * p[2 * j];
-  for (j = 0; j < 8; j++) po[j] = ((j % 2) ? -1.0L : 1.0L) * p[2 * j + 1];
-}
-
-/* o.c[.][col] += s * a * b (a even, 9; b odd, 8) */
-static void eo_add(bp *o, int col, long double s, const long double *a, const long double *b) {
-  int i, j;
-  for (i = 0; i < 9; i++)
-    for (j = 0; j < 8; j++) o->c[i + j][col] += s * a[i] * b[j];
-}
 
 typedef struct box {
   long double z0, z1, y0, y1;
@@ -213,7 +203,7 @@ static int search(const side *S, long double y_rel, size_t max_boxes, size_t *bo
     {
       const long double wz = b.z1 - b.z0, wy = yw > 0.0L ? (b.y1 - b.y0) / yw : 0.0L;
       box a1 = b, a2 = b;
-      if (wz < 1e-15L && wy < 1e-15L) return -1; /* cannot be resolved */
+      if (wz < 1e-15L && wy < 1e-15L) { if (getenv("BOXDBG")) { long double l[4],h[4]; bp_bound(&S->d,b.z0,b.z1,b.y0,b.y1,&l[0],&h[0]);bp_bound(&S->p1,b.z0,b.z1,b.y0,b.y1,&l[1],&h[1]);bp_bound(&S->p2,b.z0,b.z1,b.y0,b.y1,&l[2],&h[2]);bp_bound(&S->g,b.z0,b.z1,b.y0,b.y1,&l[3],&h[3]); fprintf(stderr,"unresolved z [%Lg %Lg] y [%Lg %Lg] d %Lg %Lg p1 %Lg %Lg p2 %Lg %Lg g %Lg %Lg\n",b.z0,b.z1,b.y0,b.y1,l[0],h[0],l[1],h[1],l[2],h[2],l[3],h[3]);} return -1; } /* cannot be resolved */
       if (wz >= wy) {
         const long double m = 0.5L * (b.z0 + b.z1);
         a1.z1 = m;
@@ -278,13 +268,14 @@ static int at_zero(const autobal_rotor_box2_in *in, size_t max_boxes, size_t *bo
   const long double u0 = xh > 0.0L ? sqrtl(fmaxl(0.0L, in->x_lo) / xh) : 1.0L, v0 = sqrtl(fmaxl(0.0L, in->y_lo) / yh);
   bp hm, hp;
   int rm, rp;
+  const long double F0 = in->w2 * in->w2 * in->w2 * in->w2; /* F(0) */
   memset(&hm, 0, sizeof hm);
   hm.nz = hm.ny = 3;
   hm.c[0][0] = in->D0[0];
-  hm.c[2][0] = in->M11[0] * xh;
-  hm.c[0][2] = in->M22[0] * yh;
-  hm.c[2][2] = in->T12[0] * xh * yh;
-  hm.c[1][1] = -fabsl(in->U0[0]) * s;
+  hm.c[2][0] = F0 * in->M11[0] * xh;
+  hm.c[0][2] = F0 * in->M22[0] * yh;
+  hm.c[2][2] = F0 * F0 * in->T12[0] * xh * yh;
+  hm.c[1][1] = -F0 * fabsl(in->U0[0]) * s;
   bp_scale(&hm, 1.0L, 1.0L);
   hp = hm;
   hp.c[1][1] = -hp.c[1][1];
@@ -302,60 +293,119 @@ static int at_zero(const autobal_rotor_box2_in *in, size_t max_boxes, size_t *bo
   return -1;
 }
 
+/* drop trailing rows / columns that are exactly zero */
+static void bp_trim(bp *p) {
+  int j;
+  for (;;) {
+    int zero = 1;
+    if (p->nz <= 1) break;
+    for (j = 0; j < p->ny; j++)
+      if (p->c[p->nz - 1][j] != 0.0L) zero = 0;
+    if (!zero) break;
+    p->nz--;
+  }
+  for (;;) {
+    int zero = 1, i;
+    if (p->ny <= 1) break;
+    for (i = 0; i < p->nz; i++)
+      if (p->c[i][p->ny - 1] != 0.0L) zero = 0;
+    if (!zero) break;
+    p->ny--;
+  }
+}
+
+/* the even (e = 1) or odd part of the ascending p (17) as a polynomial in z, in column col of o */
+static void part_col(const long double *p, int e, bp *o, int col) {
+  int j;
+  for (j = 0; j < 9; j++) {
+    const int k = 2 * j + (e ? 0 : 1);
+    o->c[j][col] = k < 17 ? ((j % 2) ? -1.0L : 1.0L) * p[k] : 0.0L;
+  }
+}
+
 int autobal_rotor_box2_(const autobal_rotor_box2_in *in, autobal_rotor_box2_out *out) {
-  long double D0e[9], D0o[8], M11e[9], M11o[8], M22e[9], M22o[8], T12e[9], T12o[8], U0e[9], U0o[8];
-  bp d, N, T, t1, t2;
+  bp d, N, T, t1, t2, f, yb, a0[2], a1[2], a2[2], D0x, m22x, m11x, t12x;
   side S[2];
   size_t max_boxes;
-  int r0, k;
+  int r0, k, big = 0;
   memset(out, 0, sizeof *out);
   out->verdict = -1;
   if (!(in->w2 > 0.0L && in->y_hi > 0.0L && in->y_lo >= 0.0L && in->y_lo <= in->y_hi && in->x_lo >= 0.0L &&
         in->x_lo <= in->x_hi && isfinite(in->w2) && isfinite(in->y_hi) && isfinite(in->x_hi)))
     return -1;
   max_boxes = in->max_boxes ? in->max_boxes : 200000;
+  if (getenv("BOXDUMP")) { FILE *fo = fopen(getenv("BOXDUMP"), "w"); int i; for (i = 0; i < 17; i++) fprintf(fo, "%.21Lg %.21Lg %.21Lg %.21Lg %.21Lg\n", in->D0[i], in->M11[i], in->M22[i], in->T12[i], in->U0[i]); fprintf(fo, "%.21Lg %.21Lg %.21Lg %.21Lg %.21Lg\n", in->x_lo, in->x_hi, in->y_lo, in->y_hi, in->w2); fclose(fo); }
   r0 = at_zero(in, max_boxes, &out->boxes);
   if (r0 == 1) {
     out->verdict = 1;
     out->at_zero = 1;
     return 0;
   }
-  split(in->D0, D0e, D0o);
-  split(in->M11, M11e, M11o);
-  split(in->M22, M22e, M22o);
-  split(in->T12, T12e, T12o);
-  split(in->U0, U0e, U0o);
-  memset(&d, 0, sizeof d);
-  d.nz = 16;
-  d.ny = 2;
-  N = d;
-  T = d;
-  T.ny = 3;
-  eo_add(&d, 0, 1.0L, M11e, U0o);
-  eo_add(&d, 0, -1.0L, U0e, M11o);
-  eo_add(&d, 1, 1.0L, T12e, U0o);
-  eo_add(&d, 1, -1.0L, U0e, T12o);
-  eo_add(&N, 0, 1.0L, U0e, D0o);
-  eo_add(&N, 0, -1.0L, D0e, U0o);
-  eo_add(&N, 1, 1.0L, U0e, M22o);
-  eo_add(&N, 1, -1.0L, M22e, U0o);
-  eo_add(&T, 0, 1.0L, D0e, M11o);
-  eo_add(&T, 0, -1.0L, M11e, D0o);
-  eo_add(&T, 1, 1.0L, D0e, T12o);
-  eo_add(&T, 1, 1.0L, M22e, M11o);
-  eo_add(&T, 1, -1.0L, M11e, M22o);
-  eo_add(&T, 1, -1.0L, T12e, D0o);
-  eo_add(&T, 2, 1.0L, M22e, T12o);
-  eo_add(&T, 2, -1.0L, T12e, M22o);
+  /* F(i w) = (w2 - z)^4 */
+  memset(&f, 0, sizeof f);
+  f.nz = 5;
+  f.ny = 1;
+  f.c[0][0] = in->w2 * in->w2 * in->w2 * in->w2;
+  f.c[1][0] = -4.0L * in->w2 * in->w2 * in->w2;
+  f.c[2][0] = 6.0L * in->w2 * in->w2;
+  f.c[3][0] = -4.0L * in->w2;
+  f.c[4][0] = 1.0L;
+  memset(&yb, 0, sizeof yb);
+  yb.nz = 1;
+  yb.ny = 2;
+  yb.c[0][1] = 1.0L;
+  /* a0 = D0 + y F M22, a1 = M11 + y F T12, a2 = U0 (e, o): Delta16 = a0 + F (x a1 + t a2) */
+  for (k = 0; k < 2; k++) {
+    memset(&D0x, 0, sizeof D0x);
+    D0x.nz = 9;
+    D0x.ny = 1;
+    m22x = m11x = t12x = a2[k] = D0x;
+    part_col(in->D0, k == 0, &D0x, 0);
+    part_col(in->M22, k == 0, &m22x, 0);
+    part_col(in->M11, k == 0, &m11x, 0);
+    part_col(in->T12, k == 0, &t12x, 0);
+    part_col(in->U0, k == 0, &a2[k], 0);
+    bp_trim(&D0x);
+    bp_trim(&m22x);
+    bp_trim(&m11x);
+    bp_trim(&t12x);
+    bp_trim(&a2[k]);
+    bp_mul(&f, &m22x, &t1);
+    bp_mul(&yb, &t1, &t2);
+    bp_axpy(1.0L, &D0x, 1.0L, &t2, &a0[k]);
+    bp_mul(&f, &t12x, &t1);
+    bp_mul(&yb, &t1, &t2);
+    bp_axpy(1.0L, &m11x, 1.0L, &t2, &a1[k]);
+    bp_trim(&a0[k]);
+    bp_trim(&a1[k]);
+  }
+  /* x = N / d, t = T / d: d = F (a1e a2o - a2e a1o), N = a2e A0o - A0e a2o, T = A0e a1o - a1e A0o */
+  bp_mul(&a1[0], &a2[1], &t1);
+  bp_mul(&a2[0], &a1[1], &t2);
+  bp_axpy(1.0L, &t1, -1.0L, &t2, &t1);
+  bp_trim(&t1);
+  bp_mul(&f, &t1, &d);
+  bp_mul(&a2[0], &a0[1], &t1);
+  bp_mul(&a0[0], &a2[1], &t2);
+  bp_axpy(1.0L, &t1, -1.0L, &t2, &N);
+  bp_mul(&a0[0], &a1[1], &t1);
+  bp_mul(&a1[0], &a0[1], &t2);
+  bp_axpy(1.0L, &t1, -1.0L, &t2, &T);
+  bp_trim(&d);
+  bp_trim(&N);
+  bp_trim(&T);
+  /* a common length in z for d, N - x_lo d, x_hi d - N (their reversals must share the power) */
+  {
+    int nz = d.nz > N.nz ? d.nz : N.nz;
+    if (2 * nz - 1 > BZ || 2 * T.nz - 1 > BZ || d.ny + N.ny > BY || 2 * T.ny - 1 > BY) big = 1;
+    if (big) return 0; /* undecided: larger than the search is built for */
+    d.nz = N.nz = nz;
+  }
   bp_axpy(1.0L, &N, -in->x_lo, &d, &S[0].p1);
   bp_axpy(in->x_hi, &d, -1.0L, &N, &S[0].p2);
   S[0].d = d;
   {
-    bp yN, yb;
-    memset(&yb, 0, sizeof yb);
-    yb.nz = 1;
-    yb.ny = 2;
-    yb.c[0][1] = 1.0L;
+    bp yN;
     bp_mul(&yb, &N, &yN);
     bp_mul(&yN, &d, &t1);
     bp_mul(&T, &T, &t2);

@@ -6,13 +6,15 @@
 
 #include <stddef.h>
 
-/* Delta16(lambda) = D0 + x M11 + y M22 + x y T12 + t U0 (real polynomials in lambda, ascending, 17
- * coefficients), x = |Q1|^2, y = |Q2|^2, t = |Q1||Q2| cos(phase). */
+/* Delta16(lambda) = D0 + F (x M11 + y M22 + t U0) + F^2 x y T12 (real polynomials in lambda,
+ * ascending, 17 coefficients, zero above their degree), F = (lambda^2 + w2)^4, x = |Q1|^2,
+ * y = |Q2|^2, t = |Q1||Q2| cos(phase).  (The factor F is common to every part but D0; kept apart, it
+ * does not make the polynomials of the search vanish together at lambda = i sqrt(w2).) */
 typedef struct autobal_rotor_box2_in {
   long double D0[17], M11[17], M22[17], T12[17], U0[17];
   long double x_lo, x_hi; /* the range of x (plane 1's unbalances) */
   long double y_lo, y_hi; /* the range of y (plane 2's), 0 < y_hi */
-  long double w2;         /* the frequency scale (omega^2 > 0): z = w2 zeta */
+  long double w2;         /* omega^2 > 0: in F, and the frequency scale z = w2 zeta */
   size_t max_boxes;       /* the budget of boxes (each side); 0: a default (200000) */
 } autobal_rotor_box2_in;
 

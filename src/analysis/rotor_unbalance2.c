@@ -93,7 +93,8 @@ typedef struct sys2 {
   long double k1, k2;   /* kappa_1, kappa_2 */
 } sys2;
 
-static void build_sys(const autobal_rotor_closed *c, sys2 *S) {
+/* with_w2 = 0: B without the factor (lambda^2 + w^2)^2 (the reduced parts of box_check) */
+static void build_sys(const autobal_rotor_closed *c, sys2 *S, int with_w2) {
   const autobal_rotor_lumped *L = &c->L;
   const long double w = c->omega;
   lp P, P2, P4, one, K11, K12, K22, Lj[2], L12, t1, t2, W2;
@@ -123,6 +124,10 @@ static void build_sys(const autobal_rotor_closed *c, sys2 *S) {
   W2.c[0] = w * w;
   W2.c[2] = 1.0L;
   lp_mul(&W2, &W2, &W2);
+  if (!with_w2) {
+    lp_zero(&W2);
+    W2.c[0] = 1.0L;
+  }
   {
     lp *K[2][2] = {{&K11, &K12}, {&K12, &K22}};
     for (a = 0; a < 2; a++)
@@ -251,7 +256,7 @@ static int build_parts(const autobal_rotor_closed *c, parts2 *o, autobal_error *
   lp D0, M[2][2], T12, Ec, Uc, Vc;
   const long double a1 = hypotl(c->plane[0].Q_re, c->plane[0].Q_im), a2 = hypotl(c->plane[1].Q_re, c->plane[1].Q_im);
   long double im = 0.0L;
-  build_sys(c, &S);
+  build_sys(c, &S, 1);
   det_parts(&S, &D0, M, &T12);
   /* E = D0 + |Q1|^2 M11 + |Q2|^2 M22 + |Q1|^2 |Q2|^2 beta^2; p = e^{i arg(Q1 conj Q2)}: |Q1||Q2| (p M12 + conj(p) M21) */
   lp_axpy(1.0L, &D0, a1 * a1, &M[0][0], &Ec);
@@ -691,11 +696,21 @@ static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s
   if ((st = build_parts(&c, &q, &s->err)) != AUTOBAL_SUCCESS) return st;
   if (!q.v_zero) return AUTOBAL_SUCCESS;
   memset(&in, 0, sizeof in);
-  memcpy(in.D0, q.D0, sizeof in.D0);
-  memcpy(in.M11, q.M11, sizeof in.M11);
-  memcpy(in.M22, q.M22, sizeof in.M22);
-  memcpy(in.T12, q.T12, sizeof in.T12);
-  memcpy(in.U0, q.U0, sizeof in.U0);
+  {
+    /* the parts without their common factors: M_jk = F m_jk, T12 = F^2 t12, F = (lambda^2 + w^2)^4
+     * (each B_j carries (lambda^2 + w^2)^2), built so (no division) */
+    sys2 S;
+    lp D0, M[2][2], T12, u0;
+    build_sys(&c, &S, 0);
+    det_parts(&S, &D0, M, &T12);
+    lp_axpy(1.0L, &M[0][1], 1.0L, &M[1][0], &u0);
+    if (D0.n > 17 || M[0][0].n > 17 || M[1][1].n > 17 || T12.n > 17 || u0.n > 17) return AUTOBAL_SUCCESS;
+    memcpy(in.D0, q.D0, sizeof in.D0);
+    real_of(&M[0][0], in.M11, 17);
+    real_of(&M[1][1], in.M22, 17);
+    real_of(&T12, in.T12, 17);
+    real_of(&u0, in.U0, 17);
+  }
   q2_range(&s->cur.plane[0], s_lo[0], s_hi[0], &in.x_lo, &in.x_hi);
   q2_range(&s->cur.plane[1], s_lo[1], s_hi[1], &in.y_lo, &in.y_hi);
   in.w2 = (long double)s->cur.omega * s->cur.omega;
@@ -820,16 +835,15 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
     }
     if (crossing) any_crossing = 1;
   }
-  /* plane 2's whole range: the box search (one s2 value: the slice is already exact there) */
-  if (n[1] == 1) out->exact_in_s2 = out->exact_in_s1;
-  else if (out->exact_in_s1) {
+  /* plane 2's whole range (or its one value): the box search.  It also decides a single slice: the
+   * slice's roots of N_t^2 - y N_x det lose a close pair when y is tiny (|Q2| near 0), the boxes do not */
+  if (out->exact_in_s1) {
     int bv;
     if ((st = box_check(s, s_lo, s_hi, &bv, out)) != AUTOBAL_SUCCESS) return st;
     out->exact_in_s2 = bv != -1;
     if (bv == 1) {
       if (!any_crossing && out->all_stable) {
-        /* a crossing between the s2 grid values that every grid slice missed */
-        out->n_slices_not_stable++;
+        /* a crossing between the s2 grid values (or one a grid slice missed) */
         out->first_bad_s[0] = out->found_s[0];
         out->first_bad_s[1] = out->found_s[1];
       }
