@@ -33,8 +33,6 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #define BZ 31 /* z coefficients (G: degree 30) */
 #define BY 5  /* y coefficients (G: degree 4) */
@@ -158,15 +156,17 @@ typedef struct side {
 static int classify(const side *S, const box *b) {
   long double l[4], h[4];
   int sd, s1, s2;
-  bp_bound(&S->g, b->z0, b->z1, b->y0, b->y1, &l[3], &h[3]);
-  if (h[3] < 0.0L) return 1;
+  /* the cheap ones first (G has twice their degree) */
   bp_bound(&S->d, b->z0, b->z1, b->y0, b->y1, &l[0], &h[0]);
   bp_bound(&S->p1, b->z0, b->z1, b->y0, b->y1, &l[1], &h[1]);
-  bp_bound(&S->p2, b->z0, b->z1, b->y0, b->y1, &l[2], &h[2]);
   sd = sgn_of(l[0], h[0]);
   s1 = sgn_of(l[1], h[1]);
+  if (sd && s1 && s1 != sd) return 1;
+  bp_bound(&S->p2, b->z0, b->z1, b->y0, b->y1, &l[2], &h[2]);
   s2 = sgn_of(l[2], h[2]);
-  if ((sd && s1 && s1 != sd) || (sd && s2 && s2 != sd) || (s1 && s2 && s1 != s2)) return 1;
+  if ((sd && s2 && s2 != sd) || (s1 && s2 && s1 != s2)) return 1;
+  bp_bound(&S->g, b->z0, b->z1, b->y0, b->y1, &l[3], &h[3]);
+  if (h[3] < 0.0L) return 1;
   {
     const long double zc = 0.5L * (b->z0 + b->z1), yc = 0.5L * (b->y0 + b->y1);
     bp_bound(&S->g, zc, zc, yc, yc, &l[3], &h[3]);
@@ -203,7 +203,7 @@ static int search(const side *S, long double y_rel, size_t max_boxes, size_t *bo
     {
       const long double wz = b.z1 - b.z0, wy = yw > 0.0L ? (b.y1 - b.y0) / yw : 0.0L;
       box a1 = b, a2 = b;
-      if (wz < 1e-15L && wy < 1e-15L) { if (getenv("BOXDBG")) { long double l[4],h[4]; bp_bound(&S->d,b.z0,b.z1,b.y0,b.y1,&l[0],&h[0]);bp_bound(&S->p1,b.z0,b.z1,b.y0,b.y1,&l[1],&h[1]);bp_bound(&S->p2,b.z0,b.z1,b.y0,b.y1,&l[2],&h[2]);bp_bound(&S->g,b.z0,b.z1,b.y0,b.y1,&l[3],&h[3]); fprintf(stderr,"unresolved z [%Lg %Lg] y [%Lg %Lg] d %Lg %Lg p1 %Lg %Lg p2 %Lg %Lg g %Lg %Lg\n",b.z0,b.z1,b.y0,b.y1,l[0],h[0],l[1],h[1],l[2],h[2],l[3],h[3]);} return -1; } /* cannot be resolved */
+      if (wz < 1e-15L && wy < 1e-15L) return -1; /* cannot be resolved */
       if (wz >= wy) {
         const long double m = 0.5L * (b.z0 + b.z1);
         a1.z1 = m;
@@ -334,7 +334,6 @@ int autobal_rotor_box2_(const autobal_rotor_box2_in *in, autobal_rotor_box2_out 
         in->x_lo <= in->x_hi && isfinite(in->w2) && isfinite(in->y_hi) && isfinite(in->x_hi)))
     return -1;
   max_boxes = in->max_boxes ? in->max_boxes : 200000;
-  if (getenv("BOXDUMP")) { FILE *fo = fopen(getenv("BOXDUMP"), "w"); int i; for (i = 0; i < 17; i++) fprintf(fo, "%.21Lg %.21Lg %.21Lg %.21Lg %.21Lg\n", in->D0[i], in->M11[i], in->M22[i], in->T12[i], in->U0[i]); fprintf(fo, "%.21Lg %.21Lg %.21Lg %.21Lg %.21Lg\n", in->x_lo, in->x_hi, in->y_lo, in->y_hi, in->w2); fclose(fo); }
   r0 = at_zero(in, max_boxes, &out->boxes);
   if (r0 == 1) {
     out->verdict = 1;
