@@ -666,6 +666,12 @@ static int set_unb(autobal_rotor_stab *s, size_t j, double sv) {
   return autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(j, AUTOBAL_ROTOR_PLANE_M0), sv / s->cur.plane[j].r0);
 }
 
+/* The box budgets (per side of the search, rotor_box2.c): about 8 us a box.  A slice (y fixed) is
+ * decided in a few hundred boxes where it is decided at all; the whole plane-2 range took 30000 to
+ * 70000 at the stable cases of the tests. */
+#define BOX_BUDGET_SLICE 5000
+#define BOX_BUDGET_RANGE 100000
+
 /* The unbalance s in [lo, hi] of two balls with |Q|^2 = q (the inverse of q2_range; NaN if none). */
 static double s_of_q2(const autobal_rotor_plane *pl, long double q, double lo, double hi) {
   const long double m1 = pl->ball_mass[0], m2 = pl->ball_mass[1], a1 = m1 * pl->ball_radius[0],
@@ -684,7 +690,7 @@ static double s_of_q2(const autobal_rotor_plane *pl, long double q, double lo, d
 /* Over both planes' whole ranges at once (rotor_box2.c): *verdict 0 no root on the imaginary axis
  * anywhere in the region, 1 one found (out->found_*), -1 undecided (or the parts are not of the cos
  * form).  The handle's unbalances are those of the caller (the parts do not depend on them). */
-static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], int *verdict,
+static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t budget, int *verdict,
                      autobal_rotor_unbalance_range2 *out) {
   autobal_rotor_closed c;
   parts2 q;
@@ -714,6 +720,7 @@ static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s
   q2_range(&s->cur.plane[0], s_lo[0], s_hi[0], &in.x_lo, &in.x_hi);
   q2_range(&s->cur.plane[1], s_lo[1], s_hi[1], &in.y_lo, &in.y_hi);
   in.w2 = (long double)s->cur.omega * s->cur.omega;
+  in.max_boxes = budget;
   if (autobal_rotor_box2_(&in, &bo) != 0) return AUTOBAL_SUCCESS;
   out->boxes += bo.boxes;
   *verdict = bo.verdict;
@@ -802,7 +809,7 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
        * pair of roots of N_t^2 - y N_x det can be lost when y = |Q2|^2 is tiny */
       const double l1[2] = {s_lo[0], s2}, h1[2] = {s_hi[0], s2};
       int bv;
-      if ((st = box_check(s, l1, h1, &bv, out)) != AUTOBAL_SUCCESS) return st;
+      if ((st = box_check(s, l1, h1, BOX_BUDGET_SLICE, &bv, out)) != AUTOBAL_SUCCESS) return st;
       if ((st = set_unb(s, 1, s2)) != AUTOBAL_SUCCESS) return st;
       if (bv != -1) crossing = bv;
     }
@@ -850,7 +857,7 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
     out->exact_in_s2 = 1; /* not stable for all: decided by a grid point or an exact slice already */
   else if (out->exact_in_s1) {
     int bv;
-    if ((st = box_check(s, s_lo, s_hi, &bv, out)) != AUTOBAL_SUCCESS) return st;
+    if ((st = box_check(s, s_lo, s_hi, BOX_BUDGET_RANGE, &bv, out)) != AUTOBAL_SUCCESS) return st;
     out->exact_in_s2 = bv != -1;
     if (bv == 1) {
       if (!any_crossing && out->all_stable) {
