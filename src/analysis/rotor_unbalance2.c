@@ -804,15 +804,6 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
     if ((st = set_unb(s, 1, s2)) != AUTOBAL_SUCCESS) return st;
     if ((st = set_unb(s, 0, s_lo[0])) != AUTOBAL_SUCCESS) return st;
     if ((st = slice_crossing(s, s_lo[0], s_hi[0], &crossing, &ok)) != AUTOBAL_SUCCESS) return st;
-    if (ok) {
-      /* the same slice by the box search (y fixed): decided, it replaces the slice's answer, whose close
-       * pair of roots of N_t^2 - y N_x det can be lost when y = |Q2|^2 is tiny */
-      const double l1[2] = {s_lo[0], s2}, h1[2] = {s_hi[0], s2};
-      int bv;
-      if ((st = box_check(s, l1, h1, BOX_BUDGET_SLICE, &bv, out)) != AUTOBAL_SUCCESS) return st;
-      if ((st = set_unb(s, 1, s2)) != AUTOBAL_SUCCESS) return st;
-      if (bv != -1) crossing = bv;
-    }
     if (!ok) out->exact_in_s1 = 0;
     for (i = 0; i < n[0]; i++) {
       const double s1 = n[0] == 1 ? s_lo[0] : s_lo[0] + (s_hi[0] - s_lo[0]) * (double)i / (double)(n[0] - 1);
@@ -851,14 +842,29 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
     }
     if (crossing) any_crossing = 1;
   }
-  /* plane 2's whole range (or its one value): the box search.  It also decides a single slice: the
-   * slice's roots of N_t^2 - y N_x det lose a close pair when y is tiny (|Q2| near 0), the boxes do not */
+  /* plane 2's whole range (or its one value): the box search, where the grid and slices say stable */
   if (!out->all_stable)
     out->exact_in_s2 = 1; /* not stable for all: decided by a grid point or an exact slice already */
   else if (out->exact_in_s1) {
     int bv;
     if ((st = box_check(s, s_lo, s_hi, BOX_BUDGET_RANGE, &bv, out)) != AUTOBAL_SUCCESS) return st;
     out->exact_in_s2 = bv != -1;
+    if (bv == -1) {
+      /* undecided over the range: each grid slice by the box search with y fixed (where the slice said
+       * stable); the slice's close pair of roots of N_t^2 - y N_x det can be lost when y = |Q2|^2 is
+       * tiny, the boxes find the root */
+      for (k = 0; k < n[1] && bv != 1; k++) {
+        const double s2 = n[1] == 1 ? s_lo[1] : s_lo[1] + (s_hi[1] - s_lo[1]) * (double)k / (double)(n[1] - 1);
+        const double l1[2] = {s_lo[0], s2}, h1[2] = {s_hi[0], s2};
+        int sv;
+        if ((st = box_check(s, l1, h1, BOX_BUDGET_SLICE, &sv, out)) != AUTOBAL_SUCCESS) return st;
+        if (sv == 1) {
+          bv = 1;
+          out->exact_in_s2 = 1; /* a point found: not stable for all, certainly */
+          out->n_slices_not_stable++;
+        }
+      }
+    }
     if (bv == 1) {
       if (!any_crossing && out->all_stable) {
         /* a crossing between the s2 grid values (or one a grid slice missed) */
