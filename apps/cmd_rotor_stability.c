@@ -471,6 +471,11 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
         cli_json_int(&j, "n_unbalance2", (long)u2->n_s[1]);
         cli_json_int(&j, "n_points_not_stable", (long)u2->n_not_stable);
         cli_json_bool(&j, "exact_in_unbalance1", u2->exact_in_s1);
+        cli_json_bool(&j, "exact_in_unbalance2", u2->exact_in_s2);
+        cli_json_int(&j, "boxes", (long)u2->boxes);
+        cli_json_quantity(&j, "found_unbalance1", u2->found_s[0], "kg m");
+        cli_json_quantity(&j, "found_unbalance2", u2->found_s[1], "kg m");
+        cli_json_quantity(&j, "found_phase", u2->found_phase, "rad");
         cli_json_int(&j, "n_unbalance2_not_stable", (long)u2->n_slices_not_stable);
         cli_json_quantity(&j, "margin_worst", u2->margin_worst, "1/s");
         cli_json_object_end(&j);
@@ -536,12 +541,16 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
                u->n_balls, umember, u->u_min, u->u_max);
       if (sum.have_every2) {
         const autobal_rotor_unbalance_range2 *u2 = &sum.every2;
-        printf("  two planes: plane 1 m0 r0 in [%.6g, %.6g] g mm (%s), plane 2 in [%.6g, %.6g] g mm at %zu value(s) "
-               "(SAMPLED), every relative phase (exact): %zu plane-2 value(s) not stable; %zu of %zu grid points not "
-               "stable; worst margin %.6e 1/s\n",
+        printf("  two planes: plane 1 m0 r0 in [%.6g, %.6g] g mm (%s), plane 2 in [%.6g, %.6g] g mm (%s; %zu grid "
+               "value(s)), every relative phase (exact): %zu plane-2 grid value(s) not stable; %zu of %zu grid points "
+               "not stable; worst margin %.6e 1/s\n",
                u2->s_lo[0] * 1e6, u2->s_hi[0] * 1e6, u2->exact_in_s1 ? "all of it, exact" : "a grid, sampled",
-               u2->s_lo[1] * 1e6, u2->s_hi[1] * 1e6, u2->n_s[1], u2->n_slices_not_stable, u2->n_not_stable,
-               u2->n_points, u2->margin_worst);
+               u2->s_lo[1] * 1e6, u2->s_hi[1] * 1e6,
+               u2->exact_in_s2 ? "all of it, exact" : "SAMPLED: the box search was undecided", u2->n_s[1],
+               u2->n_slices_not_stable, u2->n_not_stable, u2->n_points, u2->margin_worst);
+        if (!isnan(u2->found_s[1]))
+          printf("  a root on the imaginary axis (box search): m0 r0 = %.6g, %.6g g mm, phase %.6g rad\n",
+                 u2->found_s[0] * 1e6, u2->found_s[1] * 1e6, u2->found_phase);
         if (!u2->all_stable)
         {
           if (isnan(u2->first_bad_s[0]))

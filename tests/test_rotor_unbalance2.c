@@ -10,6 +10,11 @@
  *  - a slice (s2 fixed) with only the ends of plane 1's range as grid points has the verdict of 61 x 90
  *    sampled (s1, phase), also where the instability lies only inside the range (found by sampling
  *    beforehand: 360 rad/s and s2 = 3500 g mm, 380 and 400 rad/s with 4500 g mm, 410 with 5500);
+ *  - plane 2's range as a whole (the box search, exact_in_s2): the verdict against dense sampling of
+ *    (s1, s2, phase) by the closed matrix at four cases, one (420 rad/s, s2 in 4.4..5.7 g mm) stable at
+ *    both ends of s2's range and unstable only inside (found by the search, confirmed by sampling; the
+ *    6 x 6 grid case at 420 rad/s misses it: there the point found is checked by 360 sampled phases);
+ *    13 sub-ranges of that range decided one by one against the sampled verdicts at their ends;
  *  - m0 and psi0 restored bitwise; the error paths. */
 #include <math.h>
 #include <stdio.h>
@@ -168,9 +173,24 @@ static void case_grid(double w, double lo1, double hi1, double lo2, double hi2, 
       if (!ok) nbad++;
       all &= ok;
     }
-  snprintf(what, sizeof what, "w %g: grid verdict %d (%zu not stable) vs sampled %d (%zu)", w, u.all_stable,
-           u.n_not_stable, all, nbad);
-  CHECK(what, u.all_stable == all && u.n_not_stable >= nbad && u.n_points == n * n);
+  snprintf(what, sizeof what, "w %g: grid verdict %d (%zu not stable, box search found %g %g) vs sampled %d (%zu)", w,
+           u.all_stable, u.n_not_stable, u.found_s[0], u.found_s[1], all, nbad);
+  if (isnan(u.found_s[1]))
+    CHECK(what, u.all_stable == all && u.n_not_stable >= nbad && u.n_points == n * n);
+  else {
+    /* the box search found a root on the axis: not stable for all, and 360 sampled phases at that point
+     * show an unstable one (so the point is real, whatever the grid saw) */
+    size_t bad = 0;
+    for (k = 0; k < 360; k++) {
+      double mg;
+      if (sampled_verdict(s, u.found_s[0], u.found_s[1], M_PI * ((double)k + 0.5) / 360.0, &mg) !=
+          AUTOBAL_VERDICT_STABLE)
+        bad++;
+    }
+    printf("%s; %zu of 360 phases unstable there\n", what, bad);
+    CHECK(what, u.all_stable == 0 && bad > 0 && u.exact_in_s2 == 1 && u.found_s[1] >= lo2 && u.found_s[1] <= hi2 &&
+                    u.found_s[0] >= lo1 && u.found_s[0] <= hi1);
+  }
   if (lo1 == lo2 && hi1 == hi2 && n == 9) {
     /* the one-plane entry point with two planes: the same grid and verdict */
     CHECK_STATUS("dispatch", autobal_rotor_stab_every_unbalance(s, lo1, hi1, &u1), AUTOBAL_SUCCESS);
@@ -209,6 +229,100 @@ static int case_slice(double w, double s2, double lo1, double hi1) {
   CHECK(what, u.all_stable == all);
   autobal_rotor_stab_free(s);
   return !all && ends;
+}
+
+/* Plane 2's range decided as a whole (the box search) against dense sampling of (s1, s2, phase) by the
+ * closed matrix (which uses none of the polynomials): n_grid = 2, so the grid sees only the ends of
+ * both ranges.  want_window: the case where both ends of plane 2's range are stable and the
+ * instability lies only inside it (a grid with the ends alone says stable; the search must not). */
+static void case_box(double w, double lo1, double hi1, double lo2, double hi2, size_t n1, size_t n2, size_t nph,
+                     int want_window) {
+  autobal_rotor_params p = two_planes(w);
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
+  autobal_rotor_unbalance_range2 u;
+  const double lo[2] = {lo1, lo2}, hi[2] = {hi1, hi2};
+  size_t i, j, k, nbad = 0, nbad_ends = 0;
+  char what[240];
+  if (!s) {
+    CHECK("alloc", 0);
+    return;
+  }
+  CHECK_STATUS("every_unbalance2 (box)", autobal_rotor_stab_every_unbalance2(s, lo, hi, 2, &u), AUTOBAL_SUCCESS);
+  for (j = 0; j < n2; j++) {
+    const double s2 = lo2 + (hi2 - lo2) * (double)j / (double)(n2 - 1);
+    for (i = 0; i < n1; i++) {
+      const double s1 = lo1 + (hi1 - lo1) * (double)i / (double)(n1 - 1);
+      for (k = 0; k < nph; k++) {
+        double mg;
+        if (sampled_verdict(s, s1, s2, M_PI * ((double)k + 0.5) / (double)nph, &mg) != AUTOBAL_VERDICT_STABLE) {
+          nbad++;
+          if (j == 0 || j + 1 == n2) nbad_ends++;
+        }
+      }
+    }
+  }
+  snprintf(what, sizeof what,
+           "w %g, s1 in [%g, %g], s2 in [%g, %g] g mm: box verdict %d (exact_in_s2 %d, %zu boxes, found %g %g g mm), "
+           "%zu x %zu x %zu sampled: %zu unstable (%zu at the ends of s2)",
+           w, lo1 * 1e6, hi1 * 1e6, lo2 * 1e6, hi2 * 1e6, u.all_stable, u.exact_in_s2, u.boxes, u.found_s[0] * 1e6,
+           u.found_s[1] * 1e6, n1, n2, nph, nbad, nbad_ends);
+  printf("%s\n", what);
+  CHECK(what, u.exact_in_s2 == 1 && u.all_stable == (nbad == 0) && u.n_missed == 0);
+  if (want_window) {
+    CHECK("window: the ends of plane 2's range are stable (sampled) and the grid of the ends alone saw nothing",
+          nbad_ends == 0 && nbad > 0 && u.n_slices_not_stable == 0 && u.n_not_stable == 0);
+    CHECK("window: the point found lies strictly inside plane 2's range",
+          u.found_s[1] > lo2 && u.found_s[1] < hi2 && isfinite(u.found_phase));
+  }
+  autobal_rotor_stab_free(s);
+}
+
+/* Sub-ranges of plane 2's range, each decided by the box search, against the sampled verdict at their
+ * ends: where a sampled end is unstable the sub-range is not stable for all, and a sub-range decided
+ * stable has both ends stable by sampling (the window's edges located by the search agree with the
+ * independent sampling to the sub-range width). */
+static void case_subranges(double w, double lo1, double hi1, double lo2, double hi2, size_t nsub) {
+  autobal_rotor_params p = two_planes(w);
+  autobal_error err;
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
+  int ends[64];
+  size_t j, i, k, nstable = 0, nun = 0, bad = 0, nund = 0;
+  char what[200];
+  if (!s || nsub + 1 > 64) {
+    CHECK("alloc", 0);
+    return;
+  }
+  for (j = 0; j <= nsub; j++) {
+    const double s2 = lo2 + (hi2 - lo2) * (double)j / (double)nsub;
+    ends[j] = 1;
+    for (i = 0; i <= 30; i++)
+      for (k = 0; k < 60; k++) {
+        double mg;
+        if (sampled_verdict(s, lo1 + (hi1 - lo1) * (double)i / 30.0, s2, M_PI * ((double)k + 0.5) / 60.0, &mg) !=
+            AUTOBAL_VERDICT_STABLE)
+          ends[j] = 0;
+      }
+  }
+  for (j = 0; j < nsub; j++) {
+    autobal_rotor_unbalance_range2 u;
+    const double lo[2] = {lo1, lo2 + (hi2 - lo2) * (double)j / (double)nsub},
+                 hi[2] = {hi1, lo2 + (hi2 - lo2) * (double)(j + 1) / (double)nsub};
+    CHECK_STATUS("sub-range", autobal_rotor_stab_every_unbalance2(s, lo, hi, 2, &u), AUTOBAL_SUCCESS);
+    printf("  s2 in [%g, %g] g mm: sampled ends %d %d, box verdict %d (exact_in_s2 %d, %zu boxes)\n", lo[1] * 1e6,
+           hi[1] * 1e6, ends[j], ends[j + 1], u.all_stable, u.exact_in_s2, u.boxes);
+    if (!u.exact_in_s2) nund++; /* the grid verdict then (allowed: the search may run out of budget) */
+    if ((!ends[j] || !ends[j + 1]) && u.all_stable) bad++;
+    if (u.all_stable) nstable++;
+    else nun++;
+  }
+  snprintf(what, sizeof what,
+           "w %g: %zu sub-ranges of s2 in [%g, %g] g mm: %zu stable, %zu not (%zu undecided by the search); "
+           "disagreements %zu",
+           w, nsub, lo2 * 1e6, hi2 * 1e6, nstable, nun, nund, bad);
+  printf("%s\n", what);
+  CHECK(what, bad == 0 && nstable > 0 && nun > 0 && 2 * nund < nsub);
+  autobal_rotor_stab_free(s);
 }
 
 static void errors(void) {
@@ -250,6 +364,13 @@ int main(void) {
     printf("slices whose instability lies only inside the range: %d\n", interior);
     CHECK("slices unstable only inside plane 1's range (ends stable) were met", interior >= 3);
   }
+  /* plane 2's range as a whole: 420 rad/s has instability only inside s2 in (4.4, 5.7) g mm (found by
+   * the box search, confirmed here by sampling; a 6 x 6 grid over the wide ranges above misses it) */
+  case_box(420.0, 0.0005, 0.0095, 0.0044, 0.0057, 21, 27, 36, 1);
+  case_box(500.0, 0.001, 0.006, 0.001, 0.006, 11, 11, 36, 0);
+  case_box(1000.0, 0.0005, 0.0095, 0.0005, 0.0070, 11, 14, 36, 0);
+  case_box(350.0, 0.001, 0.006, 0.001, 0.006, 6, 6, 36, 0);
+  case_subranges(420.0, 0.0005, 0.0095, 0.0044, 0.0057, 13);
   errors();
   return check_summary();
 }

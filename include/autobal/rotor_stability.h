@@ -608,8 +608,11 @@ AUTOBAL_API int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1,
  * the range and every phase (with y = |Q2|^2 fixed, a root on the axis at lambda = i w has (|Q1|^2,
  * |Q1||Q2| cos) rational in w: the region's boundary crossings are polynomial roots, docs/rotor.md
  * "Every unbalance"), plus autobal_rotor_stab_every_phase at n_grid values of s1 (the margins and a
- * cross-check).  Guaranteed in s1 and the phase, SAMPLED in s2: a window of instability narrower than
- * the s2 grid can be missed. */
+ * cross-check).  Over s2's whole range (not only its grid values): a certified box search over
+ * (w^2, |Q2|^2) of the same equations either proves that no (s1, s2, phase) of the ranges has a root
+ * on the imaginary axis (then, with the grid's stable points, stable for all: exact_in_s2 = 1), or
+ * finds such a point (found_s, found_phase: not stable for all), or runs out of its budget
+ * (exact_in_s2 = 0: the s2 grid verdict stands, a window narrower than the grid can be missed). */
 typedef struct autobal_rotor_unbalance_range2 {
   double omega;               /* rad/s */
   double s_lo[2], s_hi[2];    /* kg m, per plane */
@@ -627,6 +630,13 @@ typedef struct autobal_rotor_unbalance_range2 {
                                  cos form of Delta16 held); 0: some slice fell back to plane 1's grid */
   size_t n_slices_not_stable; /* plane-2 grid values at which some s1 in the range and some phase is
                                  not stable (exact over s1 when exact_in_s1) */
+  int exact_in_s2;            /* 1: also decided over plane 2's whole range, not only at its grid values
+                                 (a certified box search over (frequency, |Q2|^2), docs/rotor.md "Every
+                                 unbalance"); 0: undecided there (budget), the grid verdict stands */
+  size_t boxes;               /* boxes the search examined */
+  double found_s[2], found_phase; /* kg m, rad: a point (s1, s2, phase) with a root on the imaginary axis
+                                 that the search found (NaN if none; found between the grid values when
+                                 the grid is stable) */
 } autobal_rotor_unbalance_range2;
 
 AUTOBAL_API int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const double s_lo[2],

@@ -31,6 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/rotor_box2.h"
 #include "analysis/rotor_closed.h"
 #include "analysis/rotor_stab_handle.h"
 #include "analysis/rotor_stability.h"
@@ -92,7 +93,8 @@ typedef struct sys2 {
   long double k1, k2;   /* kappa_1, kappa_2 */
 } sys2;
 
-static void build_sys(const autobal_rotor_closed *c, sys2 *S) {
+/* with_w2 = 0: B without the factor (lambda^2 + w^2)^2 (the reduced parts of box_check) */
+static void build_sys(const autobal_rotor_closed *c, sys2 *S, int with_w2) {
   const autobal_rotor_lumped *L = &c->L;
   const long double w = c->omega;
   lp P, P2, P4, one, K11, K12, K22, Lj[2], L12, t1, t2, W2;
@@ -122,6 +124,10 @@ static void build_sys(const autobal_rotor_closed *c, sys2 *S) {
   W2.c[0] = w * w;
   W2.c[2] = 1.0L;
   lp_mul(&W2, &W2, &W2);
+  if (!with_w2) {
+    lp_zero(&W2);
+    W2.c[0] = 1.0L;
+  }
   {
     lp *K[2][2] = {{&K11, &K12}, {&K12, &K22}};
     for (a = 0; a < 2; a++)
@@ -250,7 +256,7 @@ static int build_parts(const autobal_rotor_closed *c, parts2 *o, autobal_error *
   lp D0, M[2][2], T12, Ec, Uc, Vc;
   const long double a1 = hypotl(c->plane[0].Q_re, c->plane[0].Q_im), a2 = hypotl(c->plane[1].Q_re, c->plane[1].Q_im);
   long double im = 0.0L;
-  build_sys(c, &S);
+  build_sys(c, &S, 1);
   det_parts(&S, &D0, M, &T12);
   /* E = D0 + |Q1|^2 M11 + |Q2|^2 M22 + |Q1|^2 |Q2|^2 beta^2; p = e^{i arg(Q1 conj Q2)}: |Q1||Q2| (p M12 + conj(p) M21) */
   lp_axpy(1.0L, &D0, a1 * a1, &M[0][0], &Ec);
@@ -660,6 +666,82 @@ static int set_unb(autobal_rotor_stab *s, size_t j, double sv) {
   return autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(j, AUTOBAL_ROTOR_PLANE_M0), sv / s->cur.plane[j].r0);
 }
 
+/* The box budgets (per side of the search, rotor_box2.c): about 8 us a box.  A slice (y fixed) is
+ * decided in a few hundred boxes where it is decided at all; the whole plane-2 range took 30000 to
+ * 70000 at the stable cases of the tests. */
+#define BOX_BUDGET_SLICE 5000
+#define BOX_BUDGET_RANGE 100000
+
+/* The unbalance s in [lo, hi] of two balls with |Q|^2 = q (the inverse of q2_range; NaN if none). */
+static double s_of_q2(const autobal_rotor_plane *pl, long double q, double lo, double hi) {
+  const long double m1 = pl->ball_mass[0], m2 = pl->ball_mass[1], a1 = m1 * pl->ball_radius[0],
+                    a2 = m2 * pl->ball_radius[1];
+  const long double cc = 0.5L * ((q - m1 * m1 - m2 * m2) / (2.0L * m1 * m2) + 1.0L);
+  const long double c = sqrtl(fmaxl(0.0L, cc));
+  int k;
+  for (k = 0; k < 2; k++) {
+    const long double s2 = a1 * a1 + a2 * a2 + 2.0L * a1 * a2 * (k ? -c : c);
+    const double sv = (double)sqrtl(fmaxl(0.0L, s2));
+    if (sv >= lo * (1.0 - 1e-9) && sv <= hi * (1.0 + 1e-9)) return fmin(hi, fmax(lo, sv));
+  }
+  return NAN;
+}
+
+/* Over both planes' whole ranges at once (rotor_box2.c): *verdict 0 no root on the imaginary axis
+ * anywhere in the region, 1 one found (out->found_*), -1 undecided (or the parts are not of the cos
+ * form).  The handle's unbalances are those of the caller (the parts do not depend on them). */
+static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t budget, int *verdict,
+                     autobal_rotor_unbalance_range2 *out) {
+  autobal_rotor_closed c;
+  parts2 q;
+  autobal_rotor_box2_in in;
+  autobal_rotor_box2_out bo;
+  int st;
+  *verdict = -1;
+  if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+  if ((st = build_parts(&c, &q, &s->err)) != AUTOBAL_SUCCESS) return st;
+  if (!q.v_zero) return AUTOBAL_SUCCESS;
+  memset(&in, 0, sizeof in);
+  {
+    /* the parts without their common factors: M_jk = F m_jk, T12 = F^2 t12, F = (lambda^2 + w^2)^4
+     * (each B_j carries (lambda^2 + w^2)^2), built so (no division) */
+    sys2 S;
+    lp D0, M[2][2], T12, u0;
+    build_sys(&c, &S, 0);
+    det_parts(&S, &D0, M, &T12);
+    lp_axpy(1.0L, &M[0][1], 1.0L, &M[1][0], &u0);
+    if (D0.n > 17 || M[0][0].n > 17 || M[1][1].n > 17 || T12.n > 17 || u0.n > 17) return AUTOBAL_SUCCESS;
+    memcpy(in.D0, q.D0, sizeof in.D0);
+    real_of(&M[0][0], in.M11, 17);
+    real_of(&M[1][1], in.M22, 17);
+    real_of(&T12, in.T12, 17);
+    real_of(&u0, in.U0, 17);
+  }
+  q2_range(&s->cur.plane[0], s_lo[0], s_hi[0], &in.x_lo, &in.x_hi);
+  q2_range(&s->cur.plane[1], s_lo[1], s_hi[1], &in.y_lo, &in.y_hi);
+  in.w2 = (long double)s->cur.omega * s->cur.omega;
+  in.max_boxes = budget;
+  if (autobal_rotor_box2_(&in, &bo) != 0) return AUTOBAL_SUCCESS;
+  out->boxes += bo.boxes;
+  *verdict = bo.verdict;
+  if (bo.verdict == 1 && !bo.at_zero) {
+    out->found_s[0] = s_of_q2(&s->cur.plane[0], bo.x, s_lo[0], s_hi[0]);
+    out->found_s[1] = s_of_q2(&s->cur.plane[1], bo.y, s_lo[1], s_hi[1]);
+    /* t = |Q1||Q2| cos(arg p), p = e^{i arg(Q1 conj Q2)}; the relative phase phi of the unbalances
+     * from p as in every_phase, at the point's own unbalances (arg p also depends on them) */
+    if (isfinite(out->found_s[0]) && isfinite(out->found_s[1]) && bo.x > 0.0L && bo.y > 0.0L) {
+      const long double ap = acosl(fmaxl(-1.0L, fminl(1.0L, bo.t / sqrtl(bo.x * bo.y))));
+      if ((st = set_unb(s, 0, out->found_s[0])) != AUTOBAL_SUCCESS) return st;
+      if ((st = set_unb(s, 1, out->found_s[1])) != AUTOBAL_SUCCESS) return st;
+      if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
+      if ((st = build_parts(&c, &q, &s->err)) != AUTOBAL_SUCCESS) return st;
+      out->found_phase =
+          wrap_pi(s->cur.plane[1].psi0 - s->cur.plane[0].psi0 - 0.5 * (double)(ap - q.p_ref_arg));
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
 typedef struct saved2 {
   double m0[2], psi2;
 } saved2;
@@ -694,7 +776,7 @@ int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1, double s2, 
 static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t n_grid,
                   autobal_rotor_unbalance_range2 *out) {
   size_t i, k, n[2];
-  int st;
+  int st, any_crossing = 0;
   autobal_rotor_phase_range ph;
   memset(out, 0, sizeof *out);
   out->omega = s->cur.omega;
@@ -713,6 +795,7 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
   out->all_stable = 1;
   out->margin_worst = -INFINITY;
   out->exact_in_s1 = 1;
+  out->found_s[0] = out->found_s[1] = out->found_phase = NAN;
   /* one slice per plane-2 unbalance: exact over plane 1's range and every phase (slice_crossing), and
    * every_phase at the grid points of plane 1 (the margins, and a cross-check) */
   for (k = 0; k < n[1]; k++) {
@@ -757,6 +840,40 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
       }
       out->all_stable = 0;
     }
+    if (crossing) any_crossing = 1;
+  }
+  /* plane 2's whole range (or its one value): the box search, where the grid and slices say stable */
+  if (!out->all_stable)
+    out->exact_in_s2 = 1; /* not stable for all: decided by a grid point or an exact slice already */
+  else if (out->exact_in_s1) {
+    int bv;
+    if ((st = box_check(s, s_lo, s_hi, BOX_BUDGET_RANGE, &bv, out)) != AUTOBAL_SUCCESS) return st;
+    out->exact_in_s2 = bv != -1;
+    if (bv == -1) {
+      /* undecided over the range: each grid slice by the box search with y fixed (where the slice said
+       * stable); the slice's close pair of roots of N_t^2 - y N_x det can be lost when y = |Q2|^2 is
+       * tiny, the boxes find the root */
+      for (k = 0; k < n[1] && bv != 1; k++) {
+        const double s2 = n[1] == 1 ? s_lo[1] : s_lo[1] + (s_hi[1] - s_lo[1]) * (double)k / (double)(n[1] - 1);
+        const double l1[2] = {s_lo[0], s2}, h1[2] = {s_hi[0], s2};
+        int sv;
+        if ((st = box_check(s, l1, h1, BOX_BUDGET_SLICE, &sv, out)) != AUTOBAL_SUCCESS) return st;
+        if (sv == 1) {
+          bv = 1;
+          out->exact_in_s2 = 1; /* a point found: not stable for all, certainly */
+          out->n_slices_not_stable++;
+        }
+      }
+    }
+    if (bv == 1) {
+      if (!any_crossing && out->all_stable) {
+        /* a crossing between the s2 grid values (or one a grid slice missed) */
+        out->first_bad_s[0] = out->found_s[0];
+        out->first_bad_s[1] = out->found_s[1];
+      }
+      out->all_stable = 0;
+    } else if (bv == 0 && any_crossing)
+      out->n_missed++; /* a grid slice met a crossing the box search excluded: should not happen */
   }
   return AUTOBAL_SUCCESS;
 }

@@ -523,7 +523,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     }
     if (!st && s->have_every2) {
       const autobal_rotor_unbalance_range2 *u2 = &s->every2;
-      if (!st) st = autobal_archive_attr_string(a, ge, "two_planes", "both planes: unbalance_min..max for plane 1 (exact over the whole range when exact_in_unbalance1 = 1), unbalance2_min..max for plane 2 at n_unbalance values (SAMPLED), every relative phase (exact); the margins at an n_unbalance x n_unbalance grid; no critical unbalances; one sub-interval with the worst verdict met");
+      if (!st) st = autobal_archive_attr_string(a, ge, "two_planes", "both planes: unbalance_min..max for plane 1 (exact over the whole range when exact_in_unbalance1 = 1), unbalance2_min..max for plane 2 (exact over the whole range by a certified box search when exact_in_unbalance2 = 1, else at n_unbalance values, SAMPLED), every relative phase (exact); the margins at an n_unbalance x n_unbalance grid; no critical unbalances; one sub-interval with the worst verdict met");
       if (!st) st = autobal_archive_attr_double(a, ge, "unbalance2_min", u2->s_lo[1], "kg m");
       if (!st) st = autobal_archive_attr_double(a, ge, "unbalance2_max", u2->s_hi[1], "kg m");
       if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance1", (long)u2->n_s[0]);
@@ -531,6 +531,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
       if (!st) st = autobal_archive_attr_int(a, ge, "n_points_not_stable", (long)u2->n_not_stable);
       if (!st) st = autobal_archive_attr_int(a, ge, "n_points_with_critical_phase", (long)u2->n_with_crit);
       if (!st) st = autobal_archive_attr_int(a, ge, "exact_in_unbalance1", u2->exact_in_s1);
+      if (!st) st = autobal_archive_attr_int(a, ge, "exact_in_unbalance2", u2->exact_in_s2);
       if (!st) st = autobal_archive_attr_int(a, ge, "n_unbalance2_not_stable", (long)u2->n_slices_not_stable);
     }
     if (!st && s->have_every_phase) {

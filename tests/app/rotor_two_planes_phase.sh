@@ -25,6 +25,8 @@ assert e['stable_for_all'] is True, e
 t = e['two_planes']
 assert abs(t['unbalance2_min'] - 5e-4) < 1e-15 and abs(t['unbalance2_max'] - 7e-3) < 1e-15, t
 assert t['n_unbalance1'] == 5 and t['n_unbalance2'] == 5 and t['n_points_not_stable'] == 0, t
+assert t['exact_in_unbalance1'] is True and t['exact_in_unbalance2'] is True and t['boxes'] > 0, t
+assert t['found_unbalance2'] is None and t['found_phase'] is None, t
 p = e['phase']
 assert p['stable_for_all_phases'] is True and len(p['critical_phase']) == 0, p
 " && ok "JSON at 500 rad/s: two_planes and phase objects" || { bad "JSON fields"; head -c 3000 out.txt; }
