@@ -318,8 +318,8 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   int rc = CLI_EXIT_OK, st, have_lo = 0, have_hi = 0, do_crit = o.critical_speeds, have_umin = 0, have_umax = 0;
   const char *umember = "every";
   double umin = NAN, umax = NAN, u2min = NAN, u2max = NAN;
-  long n_unb = 9;
-  int have_u2min = 0, have_u2max = 0, have_nunb = 0;
+  long n_unb = 9, n_boxes = 0;
+  int have_u2min = 0, have_u2max = 0, have_nunb = 0, have_boxes = 0;
   size_t i;
   memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
@@ -336,14 +336,23 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_min", "kg m", NAN, &u2min, &have_u2min))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_max", "kg m", NAN, &u2max, &have_u2max))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_unbalance", n_unb, &n_unb, &have_nunb))) goto done;
+  if ((rc = cli_get_int(ctx, "stability", "unbalance2_boxes", 0, &n_boxes, &have_boxes))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
-  if ((have_u2min || have_u2max || have_nunb) && (c->p.n_planes != 2 || !have_umin)) {
+  if ((have_u2min || have_u2max || have_nunb || have_boxes) && (c->p.n_planes != 2 || !have_umin)) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
-                  "[stability]: unbalance2_min, unbalance2_max and n_unbalance are for two planes (here %zu) with "
-                  "unbalance_min and unbalance_max (every unbalance)",
+                  "[stability]: unbalance2_min, unbalance2_max, n_unbalance and unbalance2_boxes are for two planes "
+                  "(here %zu) with unbalance_min and unbalance_max (every unbalance)",
                   c->p.n_planes);
     goto done;
   }
+  if (n_boxes < -1 || n_boxes > 1000000000L) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[stability]: unbalance2_boxes = %ld is out of range: allowed -1 (no box search: plane 2 on its grid "
+                  "alone), 0 (the default budget, 100000) or [1, 1e9]",
+                  n_boxes);
+    goto done;
+  }
+  c->opt.unbalance2_boxes = n_boxes;
   if (have_u2min != have_u2max) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
                   "[stability]: unbalance2_min and unbalance2_max go together (plane 2's range of m0 r0; default: "
@@ -546,7 +555,10 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
                "not stable; worst margin %.6e 1/s\n",
                u2->s_lo[0] * 1e6, u2->s_hi[0] * 1e6, u2->exact_in_s1 ? "all of it, exact" : "a grid, sampled",
                u2->s_lo[1] * 1e6, u2->s_hi[1] * 1e6,
-               u2->exact_in_s2 ? "all of it, exact" : "SAMPLED: the box search was undecided", u2->n_s[1],
+               u2->exact_in_s2 ? "all of it, exact"
+               : u2->boxes     ? "SAMPLED: the box search was undecided"
+                               : "SAMPLED: no box search",
+               u2->n_s[1],
                u2->n_slices_not_stable, u2->n_not_stable, u2->n_points, u2->margin_worst);
         if (!isnan(u2->found_s[1]))
           printf("  a root on the imaginary axis (box search): m0 r0 = %.6g, %.6g g mm, phase %.6g rad\n",

@@ -234,8 +234,9 @@
   "            unbalance_min, unbalance_max (kg m or g mm): EVERY unbalance m0 r0 in the range (one plane, two\n" \
   "            or more balls): the critical unbalances at omega and the speeds stable for all of them (docs/rotor.md,\n" \
   "            \"Every unbalance\"); two planes of two balls: every relative phase and plane 1's whole range\n" \
-  "            (exact), plane 2's m0 r0 on n_unbalance values (sampled) of its range unbalance2_min,\n" \
-  "            unbalance2_max (default: plane 1's)   n_unbalance = 9\n" \
+  "            (exact), plane 2's m0 r0 over its range unbalance2_min, unbalance2_max (default: plane 1's) by a\n" \
+  "            certified box search (exact where decided; else its n_unbalance grid values, sampled)\n" \
+  "            n_unbalance = 9   unbalance2_boxes = 0 (budget; 0: 100000, -1: no search, grid only)\n" \
   "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: not yet)\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
   "         /rotor/stability/every_unbalance (and .../speeds, two planes .../phase)\n" \

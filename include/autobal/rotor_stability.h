@@ -280,6 +280,12 @@ typedef struct autobal_rotor_stab_options {
      its speeds and map) covers for three or more identical balls: autobal_rotor_unbalance_member
      (added at the end; no effect with two balls, whose member is unique)     (default EVERY) */
   int unbalance_member;
+  /* two planes, every unbalance (autobal_rotor_stab_every_unbalance2 and the calls that use it): the
+     budget of the certified box search over plane 2's whole range, boxes per side of the frequency
+     axis.  0 (the default; also a zeroed struct): 100000; -1: no box search (plane 2 on its grid
+     alone: faster, exact_in_s2 = 0); else in [1, 1e9].  The per-slice searches after an undecided
+     range search take at most 5000 (or this budget if smaller).  (Added at the end.) */
+  long unbalance2_boxes;
 } autobal_rotor_stab_options;
 
 /* The member rule of the every-unbalance analysis with n >= 3 balls (docs/rotor.md "Every

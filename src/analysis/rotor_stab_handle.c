@@ -216,6 +216,11 @@ static int check_options(const autobal_rotor_stab_options *o, const autobal_roto
   if (o->unbalance_member < AUTOBAL_ROTOR_UNBALANCE_EVERY || o->unbalance_member > AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "option unbalance_member = %d is not valid (0 every, 1 symmetric)", o->unbalance_member);
+  if (o->unbalance2_boxes < -1 || o->unbalance2_boxes > 1000000000L)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option unbalance2_boxes = %ld is out of range: allowed -1 (no box search), 0 (default "
+                             "budget) or [1, 1e9]",
+                             o->unbalance2_boxes);
   for (j = 0; j < p->n_planes; j++) {
     const autobal_rotor_member *m = &o->member[j];
     if (m->kind < AUTOBAL_ROTOR_MEMBER_DEFAULT || m->kind > AUTOBAL_ROTOR_MEMBER_GIVEN)

@@ -845,9 +845,11 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
   /* plane 2's whole range (or its one value): the box search, where the grid and slices say stable */
   if (!out->all_stable)
     out->exact_in_s2 = 1; /* not stable for all: decided by a grid point or an exact slice already */
-  else if (out->exact_in_s1) {
+  else if (out->exact_in_s1 && s->opt.unbalance2_boxes != -1) {
+    const size_t budget = s->opt.unbalance2_boxes > 0 ? (size_t)s->opt.unbalance2_boxes : BOX_BUDGET_RANGE;
+    const size_t budget_slice = budget < BOX_BUDGET_SLICE ? budget : BOX_BUDGET_SLICE;
     int bv;
-    if ((st = box_check(s, s_lo, s_hi, BOX_BUDGET_RANGE, &bv, out)) != AUTOBAL_SUCCESS) return st;
+    if ((st = box_check(s, s_lo, s_hi, budget, &bv, out)) != AUTOBAL_SUCCESS) return st;
     out->exact_in_s2 = bv != -1;
     if (bv == -1) {
       /* undecided over the range: each grid slice by the box search with y fixed (where the slice said
@@ -857,7 +859,7 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
         const double s2 = n[1] == 1 ? s_lo[1] : s_lo[1] + (s_hi[1] - s_lo[1]) * (double)k / (double)(n[1] - 1);
         const double l1[2] = {s_lo[0], s2}, h1[2] = {s_hi[0], s2};
         int sv;
-        if ((st = box_check(s, l1, h1, BOX_BUDGET_SLICE, &sv, out)) != AUTOBAL_SUCCESS) return st;
+        if ((st = box_check(s, l1, h1, budget_slice, &sv, out)) != AUTOBAL_SUCCESS) return st;
         if (sv == 1) {
           bv = 1;
           out->exact_in_s2 = 1; /* a point found: not stable for all, certainly */

@@ -30,7 +30,24 @@ assert t['found_unbalance2'] is None and t['found_phase'] is None, t
 p = e['phase']
 assert p['stable_for_all_phases'] is True and len(p['critical_phase']) == 0, p
 " && ok "JSON at 500 rad/s: two_planes and phase objects" || { bad "JSON fields"; head -c 3000 out.txt; }
+# unbalance2_boxes = -1: no box search, the same grid verdict, plane 2 reported as sampled; a small budget: undecided
+for b in -1 3; do
+  expect 0 "" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false "${U[@]}" \
+    --set "stability.unbalance2_min=500 g mm" --set "stability.unbalance2_max=7000 g mm" --set stability.n_unbalance=5 \
+    --set stability.unbalance2_boxes=$b --json
+  "$PY" -c "
+import json
+t = json.load(open('out.txt'))['every_unbalance']['two_planes']
+assert t['exact_in_unbalance2'] is False and t['n_points_not_stable'] == 0, t
+assert (t['boxes'] == 0) == ($b == -1), t
+" && ok "unbalance2_boxes = $b: plane 2 sampled (boxes as asked)" || { bad "unbalance2_boxes = $b"; head -c 2000 out.txt; }
+done
+expect 0 "SAMPLED: no box search" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
+  "${U[@]}" --set "stability.unbalance2_min=500 g mm" --set "stability.unbalance2_max=7000 g mm" --set stability.n_unbalance=5 \
+  --set stability.unbalance2_boxes=-1
 # bad input
+expect 3 "unbalance2_boxes = -2 is out of range: allowed -1" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
+  "${U[@]}" --set stability.unbalance2_boxes=-2
 expect 3 "unbalance2_min and unbalance2_max go together" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
   "${U[@]}" --set "stability.unbalance2_min=500 g mm"
 expect 3 "n_unbalance = 1 must be in [2, 1000]" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
