@@ -587,8 +587,8 @@ static int slice_crossing(autobal_rotor_stab *s, double lo, double hi, int *cros
   autobal_rotor_closed c;
   parts2 q;
   long double A0[17], A1[17], A0e[9], A0o[8], A1e[9], A1o[8], A2e[9], A2o[8], x_lo, x_hi, yq;
-  long double det[16], nx[16], nt[16], P1[16], P2[16], P3[31], zr[4][32], zs[140];
-  size_t nz[4], k, a, b, n = 0;
+  long double det[16], nx[16], nt[16], P1[16], P2[16], P3[31], dP[4][30], zr[9][32], zs[300];
+  size_t nz[9], k, a, b, n = 0;
   int st;
   const long double w2 = (long double)s->cur.omega * s->cur.omega;
   *crossing = 0;
@@ -642,7 +642,21 @@ static int slice_crossing(autobal_rotor_stab *s, double lo, double hi, int *cros
   if ((st = pos_roots(P2, 16, w2, zr[1], &nz[1], &s->err)) != AUTOBAL_SUCCESS) return st;
   if ((st = pos_roots(P3, 31, w2, zr[2], &nz[2], &s->err)) != AUTOBAL_SUCCESS) return st;
   if ((st = pos_roots(det, 16, w2, zr[3], &nz[3], &s->err)) != AUTOBAL_SUCCESS) return st;
-  for (a = 0; a < 4; a++)
+  /* more points to test, never fewer: with y = |Q2|^2 small the region t^2 <= x y is a sliver about
+   * N_t = 0 and P3 = N_t^2 - y N_x det has a close pair of roots there, which the root finder can
+   * return as a complex pair (lost).  The roots of N_t (the sliver's middle) and of the derivatives
+   * of the four boundary polynomials (the extremum between a close pair) are tested as well. */
+  for (k = 0; k + 1 < 31; k++) dP[0][k] = (long double)(k + 1) * P3[k + 1];
+  for (k = 0; k + 1 < 16; k++) {
+    dP[1][k] = (long double)(k + 1) * P1[k + 1];
+    dP[2][k] = (long double)(k + 1) * P2[k + 1];
+    dP[3][k] = (long double)(k + 1) * det[k + 1];
+  }
+  if ((st = pos_roots(nt, 16, w2, zr[4], &nz[4], &s->err)) != AUTOBAL_SUCCESS) return st;
+  if ((st = pos_roots(dP[0], 30, w2, zr[5], &nz[5], &s->err)) != AUTOBAL_SUCCESS) return st;
+  for (a = 1; a < 4; a++)
+    if ((st = pos_roots(dP[a], 15, w2, zr[5 + a], &nz[5 + a], &s->err)) != AUTOBAL_SUCCESS) return st;
+  for (a = 0; a < 9; a++)
     for (b = 0; b < nz[a]; b++) zs[n++] = zr[a][b];
   /* sort */
   for (a = 1; a < n; a++)
@@ -853,8 +867,8 @@ static int every2(autobal_rotor_stab *s, const double s_lo[2], const double s_hi
     out->exact_in_s2 = bv != -1;
     if (bv == -1) {
       /* undecided over the range: each grid slice by the box search with y fixed (where the slice said
-       * stable); the slice's close pair of roots of N_t^2 - y N_x det can be lost when y = |Q2|^2 is
-       * tiny, the boxes find the root */
+       * stable): a second, independent look at each slice (it found the roots the slice lost before
+       * slice_crossing tested the roots of N_t and of the derivatives) */
       for (k = 0; k < n[1] && bv != 1; k++) {
         const double s2 = n[1] == 1 ? s_lo[1] : s_lo[1] + (s_hi[1] - s_lo[1]) * (double)k / (double)(n[1] - 1);
         const double l1[2] = {s_lo[0], s2}, h1[2] = {s_hi[0], s2};
