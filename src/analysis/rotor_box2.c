@@ -179,6 +179,27 @@ static int classify(const side *S, const box *b) {
   return 0;
 }
 
+/* Split box b across its wider side (wz, wy: its widths, each relative to its axis's range) and push
+ * the two halves (the lower one on top).  -1 when the stack is full or b is too small to resolve
+ * (both relative widths below 1e-15): the caller is then undecided. */
+static int push_halves(box *st, size_t *n, const box *b, long double wz, long double wy) {
+  box a1 = *b, a2 = *b;
+  if (*n + 2 > STACK) return -1;
+  if (wz < 1e-15L && wy < 1e-15L) return -1;
+  if (wz >= wy) {
+    const long double m = 0.5L * (b->z0 + b->z1);
+    a1.z1 = m;
+    a2.z0 = m;
+  } else {
+    const long double m = 0.5L * (b->y0 + b->y1);
+    a1.y1 = m;
+    a2.y0 = m;
+  }
+  st[(*n)++] = a2;
+  st[(*n)++] = a1;
+  return 0;
+}
+
 /* The search over [0, 1] x [y_rel, 1] of one side: 0 empty, 1 found (*at), -1 undecided. */
 static int search(const side *S, long double y_rel, size_t max_boxes, size_t *boxes, box *at) {
   box st[STACK];
@@ -199,23 +220,7 @@ static int search(const side *S, long double y_rel, size_t max_boxes, size_t *bo
       *at = b;
       return 1;
     }
-    if (n + 2 > STACK) return -1;
-    {
-      const long double wz = b.z1 - b.z0, wy = yw > 0.0L ? (b.y1 - b.y0) / yw : 0.0L;
-      box a1 = b, a2 = b;
-      if (wz < 1e-15L && wy < 1e-15L) return -1; /* cannot be resolved */
-      if (wz >= wy) {
-        const long double m = 0.5L * (b.z0 + b.z1);
-        a1.z1 = m;
-        a2.z0 = m;
-      } else {
-        const long double m = 0.5L * (b.y0 + b.y1);
-        a1.y1 = m;
-        a2.y0 = m;
-      }
-      st[n++] = a2;
-      st[n++] = a1;
-    }
+    if (push_halves(st, &n, &b, b.z1 - b.z0, yw > 0.0L ? (b.y1 - b.y0) / yw : 0.0L)) return -1;
   }
   return 0;
 }
@@ -241,23 +246,8 @@ static int positive(const bp *p, long double u0, long double v0, size_t max_boxe
       bp_bound(p, uc, uc, vc, vc, &lo, &hi);
       if (hi < 0.0L) return 0;
     }
-    if (n + 2 > STACK) return -1;
-    {
-      const long double wu = uw > 0.0L ? (b.z1 - b.z0) / uw : 0.0L, wv = vw > 0.0L ? (b.y1 - b.y0) / vw : 0.0L;
-      box a1 = b, a2 = b;
-      if (wu < 1e-15L && wv < 1e-15L) return -1;
-      if (wu >= wv) {
-        const long double m = 0.5L * (b.z0 + b.z1);
-        a1.z1 = m;
-        a2.z0 = m;
-      } else {
-        const long double m = 0.5L * (b.y0 + b.y1);
-        a1.y1 = m;
-        a2.y0 = m;
-      }
-      st[n++] = a2;
-      st[n++] = a1;
-    }
+    if (push_halves(st, &n, &b, uw > 0.0L ? (b.z1 - b.z0) / uw : 0.0L, vw > 0.0L ? (b.y1 - b.y0) / vw : 0.0L))
+      return -1;
   }
   return 1;
 }
