@@ -435,7 +435,7 @@ static int write_point_params(autobal_archive *a, const char *g, int rank, const
         continue;
       }
       buf[0 * n + q] = o.R_w, buf[1 * n + q] = o.R_m, buf[2 * n + q] = o.H, buf[3 * n + q] = o.h;
-      buf[4 * n + q] = o.psi0, buf[5 * n + q] = sin(2.0 * o.psi0) * sin(2.0 * o.psi0);
+      buf[4 * n + q] = o.psi0, buf[5 * n + q] = autobal_pendulum_k(&o);
     }
   snprintf(grp, sizeof grp, "%s/point", g);
   for (c = 0; c < rank; c++) {
