@@ -40,8 +40,9 @@
  *    atol + rtol |y| over tolerances 1e-6 .. 1e-12 on a closed form; checked <= 10).
  *    With dense_order = 6 the extension is instead one of order 6 built from the step's own
  *    stages and f(t + h, y1) (no extra right-hand side at all: output is free); its local error
- *    is O(h^7), and measured at the output points it is 0.99-1.08 times contd8's (docs: README
- *    "Dense output", bench/README.md).
+ *    is O(h^7), and measured at the output points it is 0.99-1.12 times contd8's with output
+ *    every quarter revolution (more where many output times sample long steps at tight
+ *    tolerances: docs/architecture.md, "DOP853's continuous extension of order 6").
  *    With exact_output = 1 (or any other stepper) everything below holds as written.
  *  - Output on a uniform grid t0 + k dt_out (k = 0, 1, ...) plus t1, handed
  *    to an observer callback; the driver stores no history, so memory does

@@ -269,9 +269,8 @@ int autobal_transient_dop853_dense_ready_(const void *vstate) {
 /* Hairer's contd8 (and the order-6 extension, the same form with its own F3..F6): with x = theta, x1 = 1 - x,
  *   u = y0 + x (F0 + x1 (F1 + x (F2 + x1 (F3 + x (F4 + x1 (F5 + x F6)))))),
  * F0 = y1 - y0, F1 = h f0 - F0, F2 = F0 - h f1 - F1 (= 2 F0 - h (f0 + f1)), F3..F6 = h D k. */
-DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
-  const dop853_state *s = (const dop853_state *)vstate;
-  const size_t n = s->dim, np = s->np;
+static DOP853_INLINE void dop853_eval(const dop853_state *s, const size_t n, const size_t np, double theta,
+                                       double *out) {
   const double x = theta, x1 = 1.0 - theta, h = s->h;
   const double *k0 = s->k, *k12 = s->k + (size_t)NST * np;
   const double *f3 = s->f, *f4 = f3 + np, *f5 = f4 + np, *f6 = f5 + np;
@@ -287,6 +286,27 @@ DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, doub
     u = d + x1 * u;
     out[i] = s->y0[i] + x * u;
   }
+}
+
+/* the same operations in the same order for every size (bit for bit); the small sizes with
+ * their dimension and stride as constants (unrolled, as dop853_apply) */
+DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
+  const dop853_state *s = (const dop853_state *)vstate;
+#define DOP853_EVAL_CASE(NP)                                                                   \
+  case NP:                                                                                     \
+    if (s->dim == NP) dop853_eval(s, NP, NP, theta, out);                                      \
+    else dop853_eval(s, s->dim, NP, theta, out);                                               \
+    return
+  switch (s->np) {
+    DOP853_EVAL_CASE(4);
+    DOP853_EVAL_CASE(8);
+    DOP853_EVAL_CASE(12);
+    DOP853_EVAL_CASE(16);
+    DOP853_EVAL_CASE(20);
+    DOP853_EVAL_CASE(24);
+    default: dop853_eval(s, s->dim, s->np, theta, out); return;
+  }
+#undef DOP853_EVAL_CASE
 }
 
 void autobal_transient_dop853_set_dense_order_(void *vstate, int order) {
