@@ -65,8 +65,9 @@ static int read_config(cli_ctx *ctx, ptr_cfg *c) {
   if ((rc = cli_get_int(ctx, "transient", "max_steps", c->max_steps, &c->max_steps, NULL))) return rc;
   if ((rc = cli_get_string(ctx, "transient", "stepper", c->stepper, &c->stepper, NULL))) return rc;
   if ((rc = cli_get_string(ctx, "transient", "output", c->output, &c->output, NULL))) return rc;
-  if (strcmp(c->output, "dense") != 0 && strcmp(c->output, "exact") != 0)
-    return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: output = '%s' is not one of: dense, exact", c->output);
+  if (strcmp(c->output, "dense") != 0 && strcmp(c->output, "dense6") != 0 &&
+        strcmp(c->output, "exact") != 0)
+    return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: output = '%s' is not one of: dense, dense6, exact", c->output);
   if ((rc = get_d(ctx, "transient", "balance_tol", &c->balance_tol))) return rc;
   if ((rc = get_d(ctx, "transient", "balance_revs", &c->balance_revs))) return rc;
   if ((rc = cli_get_bool(ctx, "transient", "stop_at_balance", 0, &c->stop_at_balance, NULL))) return rc;
@@ -133,6 +134,7 @@ int cli_cmd_pendulum_transient(cli_ctx *ctx) {
   opt.max_steps = (unsigned long)c.max_steps;
   opt.stepper = c.stepper;
   opt.exact_output = strcmp(c.output, "exact") == 0;
+  opt.dense_order = strcmp(c.output, "dense6") == 0 ? 6 : 7;
   opt.balance_tol = c.balance_tol;
   opt.balance_revs = c.balance_revs;
   opt.stop_at_balance = c.stop_at_balance;

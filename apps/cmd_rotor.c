@@ -756,8 +756,9 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
     if ((rc = cli_get_int(ctx, "transient", "max_steps", c->max_steps, &c->max_steps, NULL))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "stepper", c->stepper, &c->stepper, NULL))) return rc;
     if ((rc = cli_get_string(ctx, "transient", "output", c->output, &c->output, NULL))) return rc;
-    if (strcmp(c->output, "dense") != 0 && strcmp(c->output, "exact") != 0)
-      return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: output = '%s' is not one of: dense, exact", c->output);
+    if (strcmp(c->output, "dense") != 0 && strcmp(c->output, "dense6") != 0 &&
+        strcmp(c->output, "exact") != 0)
+      return cli_fail(ctx, CLI_EXIT_INPUT, "[transient]: output = '%s' is not one of: dense, dense6, exact", c->output);
     if ((rc = cli_get_string(ctx, "transient", "frame", c->frame_name, &c->frame_name, NULL))) return rc;
     if ((rc = get_d(ctx, "transient", "balance_tol", &c->balance_tol))) return rc;
     if ((rc = cli_get_double(ctx, "transient", "balance_revs", c->balance_revs, &c->balance_revs, &has_brevs))) return rc;
@@ -816,6 +817,7 @@ static autobal_study_rotor_transient_options study_options(const rotor_cfg *c) {
   o.max_steps = (unsigned long)c->max_steps;
   o.stepper = c->stepper;
   o.exact_output = strcmp(c->output, "exact") == 0;
+  o.dense_order = strcmp(c->output, "dense6") == 0 ? 6 : 7;
   o.frame = c->frame;
   o.balance_tol = c->balance_tol;
   o.balance_revs = c->balance_revs;

@@ -7,7 +7,7 @@
  * MODEL pendulum (the problem of bench_pendulum.c: R_w = 3, R_m = 0.1, H = 0.05, h = 0.1,
  * psi0 = 0.5, from rest; NBALLS ignored) or rotor (the default rotor of bench_rotor.c, one plane
  * with NBALLS balls: 2 = the default example, others 0.1/n kg each at psi_i = 1.0 + 0.4 i).
- * OUTPUT dense|exact (exact_output 0|1).  REVS revolutions, output every REVS_OUT revolutions.
+ * OUTPUT dense|dense6|exact (exact_output 0, dense_order 7 | exact_output 0, dense_order 6 | exact_output 1).  REVS revolutions, output every REVS_OUT revolutions.
  * Measured, interleaved in REPEATS rounds, best of each (thread CPU time: on the shared machine,
  * load 5-10 on 2 cores, a wall-clock best of N of a few-millisecond run still includes
  * preemption; SciPy's time in dense_scipy.py is time.process_time, the same measure):
@@ -90,7 +90,7 @@ typedef struct setup {
   autobal_pendulum_params pp;
   autobal_rotor_params rp;
   const char *stepper;
-  int exact;
+  int exact, dense_order;
   double rtol, atol, t_end, period, revs, revs_out;
 } setup;
 
@@ -109,6 +109,7 @@ static double run_study(const setup *c, int grid, autobal_transient_stats *st) {
     o.atol = c->atol;
     o.stepper = c->stepper;
     o.exact_output = c->exact;
+    o.dense_order = c->dense_order;
     w0 = now_seconds();
     rc = autobal_study_pendulum_transient(&c->pp, NULL, &o, NULL, &s, &err);
     w = now_seconds() - w0;
@@ -123,6 +124,7 @@ static double run_study(const setup *c, int grid, autobal_transient_stats *st) {
     o.atol = c->atol;
     o.stepper = c->stepper;
     o.exact_output = c->exact;
+    o.dense_order = c->dense_order;
     w0 = now_seconds();
     rc = autobal_study_rotor_transient(&c->rp, &o, NULL, &s, &err);
     w = now_seconds() - w0;
@@ -155,7 +157,7 @@ int main(int argc, char **argv) {
   rhs_rec rr;
   setup c;
   if (argc != 11) {
-    fprintf(stderr, "usage: %s pendulum|rotor NBALLS STEPPER dense|exact RTOL ATOL REVS REVS_OUT REPEATS SAMPLES|-\n",
+    fprintf(stderr, "usage: %s pendulum|rotor NBALLS STEPPER dense|dense6|exact RTOL ATOL REVS REVS_OUT REPEATS SAMPLES|-\n",
             argv[0]);
     return 2;
   }
@@ -165,6 +167,7 @@ int main(int argc, char **argv) {
   nballs = (size_t)strtoul(argv[2], NULL, 10);
   c.stepper = argv[3];
   c.exact = strcmp(argv[4], "exact") == 0;
+  c.dense_order = strcmp(argv[4], "dense6") == 0 ? 6 : 7;
   c.rtol = atof(argv[5]);
   c.atol = atof(argv[6]);
   c.revs = atof(argv[7]);
@@ -228,6 +231,7 @@ int main(int argc, char **argv) {
   to.rtol = c.rtol;
   to.atol = c.atol;
   to.exact_output = c.exact;
+  to.dense_order = c.dense_order;
   to.event_tol = 1e-9 * c.t_end;
   tr = autobal_transient_alloc(dim, &to, &err);
   if (!tr) {
@@ -307,7 +311,7 @@ int main(int argc, char **argv) {
          "\"none_seconds\": %.9g, \"none_rhs\": %lu, \"none_steps\": %lu, "
          "\"bare_seconds\": %.9g, \"bare_rhs\": %lu, \"bare_steps\": %lu, "
          "\"rhs_only_seconds\": %.9g, \"rhs_share\": %.4f, \"samples\": %lu, \"samples_rhs\": %lu}\n",
-         model, nballs, dim, c.stepper, c.exact ? "exact" : "dense", c.rtol, c.atol, c.revs, c.revs_out, c.t_end,
+         model, nballs, dim, c.stepper, c.exact ? "exact" : c.dense_order == 6 ? "dense6" : "dense", c.rtol, c.atol, c.revs, c.revs_out, c.t_end,
          dt_out, repeats, best_out, st_out.rhs_evals, st_out.steps, st_out.rejected, best_none, st_none.rhs_evals,
          st_none.steps, best_bare, st_bare.rhs_evals, st_bare.steps, best_rhs, best_rhs / best_bare, rc_out.n,
          st_samp.rhs_evals);

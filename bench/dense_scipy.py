@@ -112,7 +112,7 @@ def run_case(args, model, n, tmp):
     res["ref_rhs"] = int(rs.nfev)
     res["ref_vs_autobal"] = err_of(Yc, ref, scale)
     res["autobal"] = []
-    for stepper, output in (("rk8pd", "exact"), ("dop853", "exact"), ("dop853", "dense")):
+    for stepper, output in args.configs:
         for tol in args.tols:
             atol = tol if model == "pendulum" else tol * args.rotor_atol_factor
             f = os.path.join(tmp, "s.bin")
@@ -181,7 +181,8 @@ def plot(arch, path):
     cases = arch["cases"]
     fig, axs = plt.subplots(1, len(cases), figsize=(5 * len(cases), 4.2))
     for ax, res in zip(np.atleast_1d(axs), cases):
-        for key, mk in ((("rk8pd", "exact"), "s-"), (("dop853", "exact"), "^-"), (("dop853", "dense"), "o-")):
+        for key, mk in ((("rk8pd", "exact"), "s-"), (("dop853", "exact"), "^-"), (("dop853", "dense"), "o-"),
+                        (("dop853", "dense6"), "v-")):
             pts = sorted((a["err"], a["run"]["out_seconds"]) for a in res["autobal"]
                          if (a["stepper"], a["output"]) == key)
             ax.loglog([p[1] for p in pts], [p[0] for p in pts], mk, label="autobal " + " ".join(key))
@@ -207,6 +208,8 @@ def main():
     ap.add_argument("--tols", default="1e-6,1e-8,1e-10")
     ap.add_argument("--scipy-tols", default="1e-4,3e-5,1e-5,3e-6,1e-6,3e-7,1e-7,3e-8,1e-8,3e-9,1e-9,3e-10,1e-10,3e-11,1e-11,3e-12,1e-12")
     ap.add_argument("--methods", default="DOP853,LSODA,Radau")
+    ap.add_argument("--configs", default="rk8pd:exact,dop853:exact,dop853:dense,dop853:dense6",
+                    help="autobal's stepper:output pairs (output dense: contd8, dense6: the order-6 extension)")
     ap.add_argument("--rotor-atol-factor", type=float, default=1.0,
                     help="rotor: atol = tol x this (default 1: rtol = atol = tol, as bench/rotor_scipy.py)")
     ap.add_argument("--c-repeats", type=int, default=51)
@@ -223,6 +226,7 @@ def main():
         args.tols = [float(s) for s in args.tols.split(",")]
         args.scipy_tols = [float(s) for s in args.scipy_tols.split(",")]
         args.methods = args.methods.split(",")
+        args.configs = [tuple(c.split(":")) for c in args.configs.split(",")]
         arch = dict(header=(f"python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}; "
                             f"{platform.processor() or platform.machine()}; load {os.getloadavg()[0]:.1f}; "
                             f"{time.strftime('%Y-%m-%d %H:%M:%S UTC', time.gmtime())}"), cases=[])

@@ -70,4 +70,12 @@ done
 tp=$("$py" "$src/tools/derive/derive_two_planes_phase.py" 2>&1) || { echo "$tp"; echo "test_derive: FAILED (two planes phase)"; exit 1; }
 echo "$tp"
 [ "$(grep -c ': OK' <<<"$tp")" = 4 ] || { echo "test_derive: two planes phase: not 4 checks OK"; exit 1; }
+# DOP853's order-6 continuous extension with no extra stage (tools/derive/derive_dense6.py,
+# src/transient/dop853_dense6.inc, docs/transient.md): derived at 60 digits, the include must equal
+# what the script writes, the order conditions hold after rounding
+d6=$("$py" "$src/tools/derive/derive_dense6.py" --check 2>&1) || { echo "$d6"; echo "test_derive: FAILED (dense6)"; exit 1; }
+echo "$d6"
+for pat in 'dense6 (1)' 'dense6 (2)' 'dense6 (2b)' 'dense6 (2c)' 'dense6 (3)' 'dense6 (4)' 'dense6 (5)'; do
+  grep -F "$pat" <<<"$d6" | grep -q ': OK' || { echo "test_derive: dense6 check '$pat' did not report OK"; exit 1; }
+done
 echo "test_derive: all checks passed"

@@ -150,6 +150,8 @@ typedef struct autobal_study_rotor_transient_options {
   int exact_output;     /* 1: output times and the balance monitor hit exactly (steps cut there);
                            0: on the stepper's continuous extension when it has one (dop853;
                            autobal_transient_options.exact_output)                (default 0) */
+  int dense_order;      /* 7 or 6 (0: 7): the continuous extension of that dense output
+                           (autobal_transient_options.dense_order)                 (default 0) */
 } autobal_study_rotor_transient_options;
 
 /* The defaults listed above. */
@@ -451,6 +453,8 @@ typedef struct autobal_study_pendulum_transient_options {
   int exact_output;     /* 1: output times and the balance monitor hit exactly (steps cut there);
                            0: on the stepper's continuous extension when it has one (dop853;
                            autobal_transient_options.exact_output)                (default 0) */
+  int dense_order;      /* 7 or 6 (0: 7): the continuous extension of that dense output
+                           (autobal_transient_options.dense_order)                 (default 0) */
 } autobal_study_pendulum_transient_options;
 
 AUTOBAL_API autobal_study_pendulum_transient_options autobal_study_pendulum_transient_options_default(void);

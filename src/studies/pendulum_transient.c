@@ -82,6 +82,7 @@ static int check_inputs(const autobal_pendulum_params *p, const autobal_study_pe
   to.h_max = o->h_max;
   to.max_steps = o->max_steps;
   to.exact_output = o->exact_output;
+  to.dense_order = o->dense_order;
   to.dt_out = dt;
   to.event_tol = 1e-9 * o->t_end;
   if ((st = autobal_transient_options_validate(&to, &e)))
@@ -178,7 +179,8 @@ static int write_settings(autobal_archive *a, const autobal_pendulum_physical *p
   if (!st) st = autobal_archive_attr_string(a, g, "stepper", o->stepper ? o->stepper : "rk8pd");
   /* dense output (only a stepper with a continuous extension has a choice) */
   if (!st && o->stepper && strcmp(o->stepper, "dop853") == 0)
-    st = autobal_archive_attr_string(a, g, "output", o->exact_output ? "exact" : "dense");
+    st = autobal_archive_attr_string(a, g, "output",
+                                      o->exact_output ? "exact" : o->dense_order == 6 ? "dense6" : "dense");
   if (!st) st = autobal_archive_attr_double_array(a, g, "initial_state", 8, o->y0, "1");
   if (!st)
     st = autobal_archive_attr_string(a, g, "state_order",
@@ -228,6 +230,7 @@ int autobal_study_pendulum_transient(const autobal_pendulum_params *p, const aut
   to.h_max = o->h_max;
   to.max_steps = o->max_steps;
   to.exact_output = o->exact_output;
+  to.dense_order = o->dense_order;
   to.dt_out = dt;
   to.event_tol = 1e-9 * o->t_end;
   tr = autobal_transient_alloc(8, &to, &e);

@@ -71,6 +71,7 @@ static autobal_transient_options driver_options(const autobal_study_rotor_transi
   t.h_max = o->h_max;
   t.max_steps = o->max_steps;
   t.exact_output = o->exact_output;
+  t.dense_order = o->dense_order;
   t.dt_out = dt_out_used(o, omega);
   t.event_tol = 1e-9 * o->t_end;
   return t;
@@ -428,7 +429,8 @@ static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const auto
   /* dense output (only a stepper with a continuous extension has a choice: the others' archives
    * keep their layout) */
   if (!st && o->stepper && strcmp(o->stepper, "dop853") == 0)
-    st = autobal_archive_attr_string(a, g, "output", o->exact_output ? "exact" : "dense");
+    st = autobal_archive_attr_string(a, g, "output",
+                                      o->exact_output ? "exact" : o->dense_order == 6 ? "dense6" : "dense");
   /* the prescribed speed (only when not constant: the constant drive keeps the 0.1.0 layout) */
   if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
     st = autobal_archive_attr_string(a, g, "drive_mode", "ramp");

@@ -16,9 +16,15 @@
 extern const gsl_odeiv2_step_type autobal_transient_dop853_type_;
 
 /* After an accepted step (the last apply() of this state, from (t, y0) with step h): build the
- * continuous extension, 3 more right-hand sides (stages 13..15) through sys.  Returns GSL_SUCCESS
+ * continuous extension, 3 more right-hand sides (stages 13..15) through sys (order 6: none).  Returns GSL_SUCCESS
  * or the right-hand side's non-zero status (then no interpolation is available). */
 int autobal_transient_dop853_dense_prepare_(void *state, const gsl_odeiv2_system *sys);
+
+/* The continuous extension used from now on: order 7 (Hairer's contd8, 3 more right-hand sides per
+ * step where it is used; the state after alloc) or 6 (from the step's 12 stages and f(t + h, y1)
+ * alone, no right-hand side: dop853_dense6.inc, tools/derive/derive_dense6.py; degree 7, C1 at
+ * the step ends, local error O(h^7)).  Any other value: 7. */
+void autobal_transient_dop853_set_dense_order_(void *state, int order);
 
 /* 1 if the continuous extension of the last accepted step is built (prepare succeeded since the
  * last apply or reset). */

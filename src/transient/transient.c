@@ -70,6 +70,7 @@ autobal_transient_options autobal_transient_options_default(void) {
   o.progress_step = 0.005;
   o.progress_wall = 0.0;
   o.exact_output = 0;
+  o.dense_order = 7;
   return o;
 }
 
@@ -114,6 +115,10 @@ int autobal_transient_options_validate(const autobal_transient_options *opt, aut
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "option exact_output = %d is out of range: allowed 0 or 1",
                              opt->exact_output);
+  if (opt->dense_order != 0 && opt->dense_order != 6 && opt->dense_order != 7)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option dense_order = %d is out of range: allowed 7 or 6 (0: 7)",
+                             opt->dense_order);
   return AUTOBAL_SUCCESS;
 }
 
@@ -870,7 +875,8 @@ static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
 /* ---- dense output (the main stepper's continuous extension) ------------------ */
 
 /* The state at t in [t_prev, tn] of the last accepted step of the main stepper, on its
- * continuous extension (dop853: built at the first call of a step, 3 right-hand sides), into
+ * continuous extension (dop853: built at the first call of a step, 3 right-hand sides; with
+ * dense_order = 6 none), into
  * out.  Returns AUTOBAL_SUCCESS or AUTOBAL_ERHS (a right-hand side failed or rejected the
  * state of an extra stage, or the interpolated state is not finite). */
 static int dense_at(autobal_transient *tr, double t, double *out) {
@@ -1576,6 +1582,8 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
   tr->gsys_direct.params = sys->params;
   ctx_reset(&tr->main);
   tr->dense = tr->type == k_dop853 && !tr->opt.exact_output;
+  if (tr->type == k_dop853)
+    autobal_transient_dop853_set_dense_order_(tr->main.d->s->state, tr->opt.dense_order == 6 ? 6 : 7);
   tr->t0_run = t0;
   tr->t1_run = t1;
   tr->reset_run = 0;

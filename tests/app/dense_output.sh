@@ -53,6 +53,6 @@ PYEOF
 "$AUTOBAL" pendulum transient --set transient.output=sometimes >out.txt 2>err.txt; rc=$?
 [ $rc -eq 3 ] && grep -q "output" err.txt && ok "output = sometimes -> exit 3 naming output" || bad "output = sometimes gave $rc"
 "$AUTOBAL" rotor transient --set transient.output=interp >out.txt 2>err.txt; rc=$?
-[ $rc -eq 3 ] && grep -q "dense, exact" err.txt && ok "rotor output = interp -> exit 3 listing dense, exact" || bad "rotor output = interp gave $rc"
+[ $rc -eq 3 ] && grep -q "dense, dense6, exact" err.txt && ok "rotor output = interp -> exit 3 listing dense, dense6, exact" || bad "rotor output = interp gave $rc"
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
