@@ -41,7 +41,7 @@
  * Over t in [ta, tb] q takes every value in [min q_min, max q_max] (the ends, t = 2 with q = 0, t = 1
  * with q = 9).  The verdict depends only on u, so the critical u (the roots of h) cut [u_min, u_max]
  * into sub-intervals with one verdict each, taken at a member that has that u: ball 1 at phi from S,
- * the other two placed (member FREE), phi by bisection between q_min (phi = 0) and q_max.  The
+ * the other two placed (member FREE), phi by bisection between a q_min and a q_max member.  The
  * unbalances of a critical u are {t : q_min(t) <= q <= q_max(t)}, at most three intervals, in closed
  * form.
  *
@@ -283,6 +283,7 @@ static void e3_t_set(double q, double ta, double tb, ivl4 *out) {
 /* q of the member of t with ball 1 at angle phi from S (the other two placed: z2 + z3 = t - z1). */
 static double e3_q_phi(double t, double phi) {
   const double x1 = cos(phi), y1 = sin(phi), vx = t - x1, vy = -y1, av = hypot(vx, vy);
+  if (!(av > 0.0)) return 9.0; /* t = 1, phi = 0: the limit along phi -> 0, balls 1, 1, -1 (one line) */
   const double h = sqrt(fmax(0.0, 1.0 - 0.25 * av * av));
   const double dx = av > 0.0 ? vx / av : 1.0, dy = av > 0.0 ? vy / av : 0.0;
   /* z2,3 = v / 2 +- i d h */
@@ -292,20 +293,23 @@ static double e3_q_phi(double t, double phi) {
   return re * re + im * im;
 }
 
-/* The angle phi of ball 1 (from S) of a member of t with q (clamped to the members' range): along
- * phi in [0, phi_hi] q runs from q_min(t) (phi = 0: balls 2, 3 symmetric about S, e3 = 1) to q_max(t)
- * (t <= 1: phi_hi = pi, e3 = -1; t > 1: phi_hi = alpha, cos alpha = (t^2 + 3) / (4 t), ball 1 one of
- * the two balls together, 2 e^{i alpha} + e^{i beta} = t, so balls 2, 3 stay apart); bisection on the
- * sign of q(phi) - q (continuous). */
+/* The angle phi of ball 1 (from S) of a member of t with q (clamped to the members' range), by
+ * bisection on the sign of q(phi) - q between phi_lo = theta, cos theta = (t - 1) / 2 (ball 1 one of the
+ * symmetric pair of chi = 0: q_min) and phi_hi: t <= 1: theta', cos theta' = (t + 1) / 2 (one of the
+ * pair of chi = pi), t > 1: alpha, cos alpha = (t^2 + 3) / (4 t) (one of the two balls together,
+ * 2 e^{i alpha} + e^{i beta} = t): q_max.  All in the arc of admissible phi; balls 2, 3 never
+ * coincide and never sum to zero inside (t = 1: only at phi = 0, the member on one line, q = 9). */
 static double e3_phi_of_q(double t, double q) {
-  double lo = 0.0, hi = t <= 1.0 ? M_PI : acos(fmin(1.0, (t * t + 3.0) / (4.0 * t)));
+  double lo = acos(fmax(-1.0, fmin(1.0, 0.5 * (t - 1.0)))),
+         hi = t <= 1.0 ? acos(fmin(1.0, 0.5 * (t + 1.0))) : acos(fmin(1.0, (t * t + 3.0) / (4.0 * t)));
+  const int up = e3_q_phi(t, hi) >= e3_q_phi(t, lo);
   int it;
-  if (e3_q_phi(t, lo) >= q) return lo;
-  if (e3_q_phi(t, hi) <= q) return hi;
+  if (up ? e3_q_phi(t, lo) >= q : e3_q_phi(t, lo) <= q) return lo;
+  if (up ? e3_q_phi(t, hi) <= q : e3_q_phi(t, hi) >= q) return hi;
   for (it = 0; it < 200; it++) {
     const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (e3_q_phi(t, mid) < q) lo = mid;
+    if (!(mid != lo && mid != hi)) break;
+    if ((e3_q_phi(t, mid) < q) == up) lo = mid;
     else hi = mid;
   }
   return 0.5 * (lo + hi);
