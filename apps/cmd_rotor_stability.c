@@ -463,6 +463,20 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
         cli_json_int(&j, "n_balls", (long)u->n_balls);
         cli_json_quantity(&j, "u_min", u->u_min, "kg^2");
         cli_json_quantity(&j, "u_max", u->u_max, "kg^2");
+        if (u->member_rule == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
+          double ix[3 * AUTOBAL_ROTOR_MAX_UCRIT];
+          for (i = 0; i < u->n_upiece; i++) ix[i] = (double)u->upiece_crit[i];
+          cli_json_quantities(&j, "critical_u", u->u_crit, u->n_ucrit, "kg^2");
+          cli_json_numbers(&j, "critical_u_piece_index", ix, u->n_upiece);
+          cli_json_quantities(&j, "critical_u_piece_lo", u->upiece_lo, u->n_upiece, "kg m");
+          cli_json_quantities(&j, "critical_u_piece_hi", u->upiece_hi, u->n_upiece, "kg m");
+          cli_json_quantities(&j, "u_sub_lo", u->usub_lo, u->n_usub, "kg^2");
+          cli_json_quantities(&j, "u_sub_hi", u->usub_hi, u->n_usub, "kg^2");
+          cli_json_array(&j, "u_sub_verdict");
+          for (i = 0; i < u->n_usub; i++) cli_json_string(&j, NULL, autobal_verdict_name(u->usub_verdict[i]));
+          cli_json_array_end(&j);
+          cli_json_quantities(&j, "u_sub_margin", u->usub_margin, u->n_usub, "1/s");
+        }
       }
       cli_json_quantities(&j, "critical_unbalance", u->s_crit, u->n_crit, "kg m");
       cli_json_quantities(&j, "sub_lo", u->sub_lo, u->n_sub, "kg m");
@@ -571,6 +585,21 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
           else
             printf("  first not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
         }
+      } else if (u->n_balls >= 3 && u->member_rule == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
+        /* three balls, every member: the verdict depends only on u, so the critical values are u's */
+        size_t k;
+        printf("  critical values of u (a root of Delta on the imaginary axis):%s\n",
+               u->n_ucrit == 0 ? " none inside the range of u" : "");
+        for (i = 0; i < u->n_ucrit; i++) {
+          printf("    u = %.9g kg^2, met by some member for m0 r0 in", u->u_crit[i]);
+          for (k = 0; k < u->n_upiece; k++)
+            if (u->upiece_crit[k] == i) printf(" [%.8g, %.8g]", u->upiece_lo[k] * 1e6, u->upiece_hi[k] * 1e6);
+          printf(" g mm\n");
+        }
+        printf("  verdict between them (every member whose u lies there):");
+        for (i = 0; i < u->n_usub; i++)
+          printf(" [%.9g, %.9g] %s", u->usub_lo[i], u->usub_hi[i], autobal_verdict_name(u->usub_verdict[i]));
+        printf(" (u, kg^2)\n");
       } else {
         printf("  critical unbalances (a root of Delta on the imaginary axis):");
         if (u->n_crit == 0) printf(" none in the range");

@@ -66,6 +66,10 @@ echo "$nb"
 for pat in 'n balls, common kappa' 'symmetric fan: t = ' 'symmetric fan: u(y) monotone'; do
   grep -F "$pat" <<<"$nb" | grep -q ': OK' || { echo "test_derive: n-balls check '$pat' did not report OK"; exit 1; }
 done
+# every member of three identical balls: the exact range of u (tools/derive/derive_every3.py)
+e3=$("$py" "$src/tools/derive/derive_every3.py" 2>&1) || { echo "$e3"; echo "test_derive: FAILED (three balls, every member)"; exit 1; }
+echo "$e3"
+[ "$(grep -c ': OK' <<<"$e3")" = 20 ] || { echo "test_derive: three balls, every member: not 20 checks OK"; exit 1; }
 # two planes: Delta16 depends on the relative phase through cos(arg Q1 conj Q2) only (rotor_unbalance2.c)
 tp=$("$py" "$src/tools/derive/derive_two_planes_phase.py" 2>&1) || { echo "$tp"; echo "test_derive: FAILED (two planes phase)"; exit 1; }
 echo "$tp"

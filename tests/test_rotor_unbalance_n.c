@@ -12,7 +12,7 @@
  *    approached;
  *  - the full model's eigenvalues (every ball angle, no closure) at the members of the extreme u
  *    agree with the closed roots plus the family roots (full_mismatch) and give the same verdict;
- *  - the refusals: unequal balls (naming the keys), the member rule EVERY for n >= 3; two balls give
+ *  - the refusals: unequal balls (naming the keys), the member rule EVERY for n >= 4; two balls give
  *    the same bits with either member rule. */
 #include <complex.h>
 #include <math.h>
@@ -170,15 +170,16 @@ int main(void) {
   }
   /* refusals */
   {
-    autobal_rotor_params p = params_n(3);
+    autobal_rotor_params p = params_n(4);
     autobal_rotor_unbalance_range ur;
     autobal_rotor_stab *s;
     autobal_rotor_stab_options oe = autobal_rotor_stab_options_default();
     s = autobal_rotor_stab_alloc(&p, &oe, &err);
-    CHECK_STATUS("3 balls, member rule every: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur),
+    CHECK_STATUS("4 balls, member rule every: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur),
                  AUTOBAL_EUNSUPPORTED);
     CHECK_MSG("... naming the key", autobal_rotor_stab_errmsg(s), "unbalance_member = symmetric");
     autobal_rotor_stab_free(s);
+    p = params_n(3);
     bm[2] = 0.06;
     s = autobal_rotor_stab_alloc(&p, &o, &err);
     CHECK_STATUS("3 unequal balls: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur), AUTOBAL_EUNSUPPORTED);

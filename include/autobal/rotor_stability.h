@@ -291,8 +291,8 @@ typedef struct autobal_rotor_stab_options {
 /* The member rule of the every-unbalance analysis with n >= 3 balls (docs/rotor.md "Every
  * unbalance"). */
 typedef enum autobal_rotor_unbalance_member {
-  /* every member of the family (wherever the balls settle); not yet available for n >= 3
-     (AUTOBAL_EUNSUPPORTED with a message) */
+  /* every member of the family (wherever the balls settle): three identical balls (exact range of
+     u = |Q|^2 / 4 in closed form); not available for n >= 4 (AUTOBAL_EUNSUPPORTED with a message) */
   AUTOBAL_ROTOR_UNBALANCE_EVERY = 0,
   /* the symmetric fan psi_i = psi0 + pi + (i - (n-1)/2) delta (AUTOBAL_ROTOR_MEMBER_SYMMETRIC) */
   AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC = 1
@@ -539,12 +539,27 @@ typedef struct autobal_rotor_unbalance_range {
   int member_rule;            /* autobal_rotor_unbalance_member analysed (n_balls >= 3) */
   double u_min, u_max;        /* kg^2, the range of u = |Q|^2 / 4 over the range's members (n_balls >= 3;
                                  NaN for two balls) */
+  /* added at the end: three identical balls with member_rule EVERY (every member, every unbalance in
+     the range).  The verdict depends on the member and the unbalance only through u, so the critical
+     values and the sub-intervals are in u; the fields above then hold n_crit = 0 and one sub-interval
+     [s_lo, s_hi] with the worst verdict of the u sub-intervals (sub_margin = margin_worst).  Zero
+     (n_ucrit = n_usub = n_upiece = 0) otherwise. */
+  size_t n_ucrit;             /* critical u strictly inside (u_min, u_max) */
+  double u_crit[AUTOBAL_ROTOR_MAX_UCRIT]; /* kg^2, ascending: a root of Delta on the imaginary axis */
+  size_t n_upiece;            /* pieces of the unbalances where a critical u is met */
+  size_t upiece_crit[3 * AUTOBAL_ROTOR_MAX_UCRIT]; /* index into u_crit of the piece */
+  double upiece_lo[3 * AUTOBAL_ROTOR_MAX_UCRIT], upiece_hi[3 * AUTOBAL_ROTOR_MAX_UCRIT]; /* kg m: some
+                                 member of every m0 r0 in [lo, hi] has u = u_crit (at most 3 per value) */
+  size_t n_usub;              /* sub-intervals of [u_min, u_max] between the critical u (n_ucrit + 1) */
+  double usub_lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], usub_hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* kg^2 */
+  int usub_verdict[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* AUTOBAL_VERDICT_* at the midpoint (constant inside) */
+  double usub_margin[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1/s, the margin at the midpoint */
 } autobal_rotor_unbalance_range;
 
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
  * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
- * m, r, h) with the member rule opt.unbalance_member = SYMMETRIC (the symmetric fan; EVERY is not yet
- * available for n >= 3), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
+ * m, r, h) with the member rule opt.unbalance_member: SYMMETRIC (the symmetric fan) for any n, EVERY
+ * (every member of the family, exact range of u; n_ucrit.. filled) for n = 3 only), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
  * otherwise, with a message; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
  * [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only all_stable, margin_worst, n_missed,
  * evaluations and one sub-interval filled).  Method (guaranteed, not
@@ -662,8 +677,8 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s
  * (the balls cannot balance every unbalance of the range at this point, e.g. a small ball mass);
  * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
- * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC,
- * full inertia, anisotropic supports). */
+ * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC
+ * or, for three balls, EVERY, full inertia, anisotropic supports). */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
                                                        const autobal_rotor_stab_options *opt, int param1,
                                                        const double *v1, size_t n1, int param2,

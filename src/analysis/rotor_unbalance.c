@@ -28,7 +28,22 @@
  * points: y1, the one root of U'_{n-1} in (cos(2 pi / n), cos(pi / n)) (a local maximum), and
  * y0 = cos(pi / n) (u = 0); u is monotone between them.  The range of u over [s_lo, s_hi] and the
  * unbalances of a critical u follow exactly (bisection on the monotone pieces); the verdicts use the
- * symmetric member.  The member rule EVERY is not available yet for n >= 3.
+ * symmetric member.
+ *
+ * Three identical balls, member rule EVERY (every member, docs/rotor.md "Every unbalance"): in units of
+ * m r, t = s / (m r) and q = |sum e^{2 i psi_k}|^2 = 4 u / m^2.  With S = sum z_k = t (rotated real),
+ * e3 = z1 z2 z3 = e^{i chi} and e2 = e3 conj(S) = t e^{i chi}, q = t^4 + 4 t^2 - 4 t^3 cos chi.  The
+ * cubic z^3 - t z^2 + t e^{i chi} z - e^{i chi} is self-inversive; its roots can leave the unit circle
+ * only through a double root on it (two balls together, |S| in [1, 3]), so the admissible chi at t are
+ * all chi for t <= 1 and |chi| <= chi_b(t), cos chi_b = (t^4 + 18 t^2 - 27) / (8 t^3), for t in [1, 3]
+ * (tools/derive/derive_every3.py): q_min(t) = t^2 (t - 2)^2 (chi = 0: one ball on S, two symmetric),
+ * q_max(t) = t^2 (t + 2)^2 for t <= 1 (chi = pi), 1 + (t^2 - 5)^2 / 2 for t >= 1 (two balls together).
+ * Over t in [ta, tb] q takes every value in [min q_min, max q_max] (the ends, t = 2 with q = 0, t = 1
+ * with q = 9).  The verdict depends only on u, so the critical u (the roots of h) cut [u_min, u_max]
+ * into sub-intervals with one verdict each, taken at a member that has that u: ball 1 at phi from S,
+ * the other two placed (member FREE), phi by bisection between a q_min and a q_max member.  The
+ * unbalances of a critical u are {t : q_min(t) <= q <= q_max(t)}, at most three intervals, in closed
+ * form.
  *
  * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h). */
 #include "autobal/rotor_stability.h"
@@ -203,11 +218,112 @@ static size_t fan_s_of_u(const sym_fan *f, double uc, double out[3]) {
   return n;
 }
 
-/* The balls' data of the every-unbalance analysis: two balls (m1, m2, a1, a2) or a fan. */
+/* ---- three identical balls, every member (member rule EVERY) ---- */
+
+/* q = |sum e^{2 i psi_k}|^2 (units of m r) at the least and the largest members of t = s / (m r). */
+static double e3_qmin(double t) {
+  const double w = t * (t - 2.0);
+  return w * w;
+}
+static double e3_qmax(double t) {
+  double w;
+  if (t <= 1.0) {
+    w = t * (t + 2.0);
+    return w * w;
+  }
+  w = t * t - 5.0;
+  return 1.0 + 0.5 * w * w;
+}
+
+/* Up to 4 closed intervals, ascending and disjoint. */
+typedef struct ivl4 {
+  size_t n;
+  double lo[4], hi[4];
+} ivl4;
+
+static void ivl_add(ivl4 *v, double lo, double hi) {
+  if (lo <= hi && v->n < 4) v->lo[v->n] = lo, v->hi[v->n] = hi, v->n++;
+}
+
+static void ivl_and(const ivl4 *a, const ivl4 *b, ivl4 *out) {
+  size_t i, j;
+  out->n = 0;
+  for (i = 0; i < a->n; i++)
+    for (j = 0; j < b->n; j++) ivl_add(out, fmax(a->lo[i], b->lo[j]), fmin(a->hi[i], b->hi[j]));
+}
+
+/* The t in [ta, tb] where some member has q: {q_min(t) <= q} and {q_max(t) >= q}, in closed form. */
+static void e3_t_set(double q, double ta, double tb, ivl4 *out) {
+  ivl4 a = {0}, b = {0}, ab, c = {0};
+  const double rq = sqrt(fmax(q, 0.0));
+  out->n = 0;
+  if (!(q >= 0.0 && q <= 9.0)) return;
+  /* q_min = (t (t - 2))^2 <= q: t (t - 2) <= rq, and t (t - 2) >= -rq unless rq >= 1 */
+  if (rq < 1.0) {
+    const double w = sqrt(1.0 - rq);
+    ivl_add(&a, 0.0, rq / (1.0 + w));
+    ivl_add(&a, 1.0 + w, 1.0 + sqrt(1.0 + rq));
+  } else
+    ivl_add(&a, 0.0, 1.0 + sqrt(1.0 + rq));
+  /* q_max >= q: t (t + 2) >= rq on [0, 1]; (t^2 - 5)^2 >= 2 (q - 1) on [1, 3] */
+  {
+    const double t0 = rq / (1.0 + sqrt(1.0 + rq));
+    if (q <= 1.0) ivl_add(&b, t0, 3.0);
+    else {
+      const double w = sqrt(2.0 * (q - 1.0));
+      ivl_add(&b, t0, sqrt(5.0 - w));
+      ivl_add(&b, sqrt(5.0 + w), 3.0);
+    }
+  }
+  ivl_and(&a, &b, &ab);
+  ivl_add(&c, ta, tb);
+  ivl_and(&ab, &c, out);
+}
+
+/* q of the member of t with ball 1 at angle phi from S (the other two placed: z2 + z3 = t - z1). */
+static double e3_q_phi(double t, double phi) {
+  const double x1 = cos(phi), y1 = sin(phi), vx = t - x1, vy = -y1, av = hypot(vx, vy);
+  if (!(av > 0.0)) return 9.0; /* t = 1, phi = 0: the limit along phi -> 0, balls 1, 1, -1 (one line) */
+  const double h = sqrt(fmax(0.0, 1.0 - 0.25 * av * av));
+  const double dx = av > 0.0 ? vx / av : 1.0, dy = av > 0.0 ? vy / av : 0.0;
+  /* z2,3 = v / 2 +- i d h */
+  const double x2 = 0.5 * vx - dy * h, y2 = 0.5 * vy + dx * h, x3 = 0.5 * vx + dy * h, y3 = 0.5 * vy - dx * h;
+  const double re = x1 * x1 - y1 * y1 + x2 * x2 - y2 * y2 + x3 * x3 - y3 * y3;
+  const double im = 2.0 * (x1 * y1 + x2 * y2 + x3 * y3);
+  return re * re + im * im;
+}
+
+/* The angle phi of ball 1 (from S) of a member of t with q (clamped to the members' range), by
+ * bisection on the sign of q(phi) - q between phi_lo = theta, cos theta = (t - 1) / 2 (ball 1 one of the
+ * symmetric pair of chi = 0: q_min) and phi_hi: t <= 1: theta', cos theta' = (t + 1) / 2 (one of the
+ * pair of chi = pi), t > 1: alpha, cos alpha = (t^2 + 3) / (4 t) (one of the two balls together,
+ * 2 e^{i alpha} + e^{i beta} = t): q_max.  All in the arc of admissible phi; balls 2, 3 never
+ * coincide and never sum to zero inside (t = 1: only at phi = 0, the member on one line, q = 9). */
+static double e3_phi_of_q(double t, double q) {
+  double lo = acos(fmax(-1.0, fmin(1.0, 0.5 * (t - 1.0)))),
+         hi = t <= 1.0 ? acos(fmin(1.0, 0.5 * (t + 1.0))) : acos(fmin(1.0, (t * t + 3.0) / (4.0 * t)));
+  const int up = e3_q_phi(t, hi) >= e3_q_phi(t, lo);
+  int it;
+  if (up ? e3_q_phi(t, lo) >= q : e3_q_phi(t, lo) <= q) return lo;
+  if (up ? e3_q_phi(t, hi) <= q : e3_q_phi(t, hi) >= q) return hi;
+  for (it = 0; it < 200; it++) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid != lo && mid != hi)) break;
+    if ((e3_q_phi(t, mid) < q) == up) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/* The balls' data of the every-unbalance analysis: two balls (m1, m2, a1, a2), a fan, or three balls
+ * with every member (every3: ta, tb = s_lo / a, s_hi / a; angle: ball 1 of the FREE member). */
 typedef struct balls_info {
   size_t nb;
   double m1, m2, a1, a2, r0;
   sym_fan fan;
+  int every3;
+  double ta, tb;
+  double *angle;
 } balls_info;
 
 /* The unbalances of a critical u: two balls by the closed form, a fan by fan_s_of_u. */
@@ -248,12 +364,14 @@ static int check_fan(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info
                                "plane1.ball_radius and plane1.ball_damping equal for every ball; ball %zu differs "
                                "from ball 1)",
                                n, i + 1);
-  if (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+  if (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && n != 3)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
                              "every unbalance: with %zu balls the member of the family matters; unbalance_member = "
-                             "every (every member) is not available yet for three or more balls: use "
-                             "unbalance_member = symmetric (the symmetric fan, the default balanced configuration)",
+                             "every (every member) is available for three balls only (for four or more the exact "
+                             "range of |Q| over the members is not known): use unbalance_member = symmetric (the "
+                             "symmetric fan, the default balanced configuration)",
                              n);
+  bi->every3 = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC;
   bi->nb = n;
   bi->m1 = bi->m2 = pl->ball_mass[0];
   bi->a1 = bi->a2 = pl->ball_mass[0] * pl->ball_radius[0];
@@ -263,7 +381,8 @@ static int check_fan(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info
                              "where the %zu balls (m r = %.9g kg m each) balance it off a line through the axis "
                              "(the closure of Delta), with min <= max",
                              s_lo, s_hi, (double)n * bi->a1, n, bi->a1);
-  fan_init(&bi->fan, n, bi->m1, bi->a1, s_lo, s_hi);
+  if (bi->every3) bi->ta = s_lo / bi->a1, bi->tb = s_hi / bi->a1;
+  else fan_init(&bi->fan, n, bi->m1, bi->a1, s_lo, s_hi);
   return AUTOBAL_SUCCESS;
 }
 
@@ -314,34 +433,23 @@ static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, balls_i
   return AUTOBAL_SUCCESS;
 }
 
-/* The core at the handle's current omega (m0 is changed; the caller restores it). */
-static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
-  double r0 = 0.0, A[13], B[13], cand[3 * 13 + 6], sc;
-  balls_info bi;
+/* The critical values of u at the handle's omega: u at y = 0 and at the positive roots z = y^2 of h
+ * (z = w^2 excluded), unfiltered (NaN possible), into uc (<= 12); A and B from the closed system at
+ * m0 = s_mid / r0 (any balanceable m0 will do: they do not depend on it). */
+static int critical_u(autobal_rotor_stab *s, double r0, double s_mid, double uc[12], size_t *nu) {
+  double A[13], B[13], sc;
   long double Ae[7], Ao[6], Be[7], Bo[6], h[12], w2 = (long double)s->cur.omega * (long double)s->cur.omega;
-  size_t nc = 0, i, j;
+  size_t i, j;
   int st;
   autobal_rotor_closed c;
-  memset(out, 0, sizeof *out);
-  out->s_lo = s_lo;
-  out->s_hi = s_hi;
-  out->omega = s->cur.omega;
-  out->n_balls = s->cur.plane[0].n_balls;
-  out->member_rule = s->opt.unbalance_member;
-  out->u_min = out->u_max = NAN;
-  if ((st = check_domain(s, s_lo, s_hi, &bi)) != AUTOBAL_SUCCESS) return st;
-  r0 = bi.r0;
-  if (bi.nb >= 3) fan_u_range(&bi.fan, &out->u_min, &out->u_max);
-  /* A and B at this speed (independent of m0: any balanceable m0 will do for the closed system) */
-  if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, 0.5 * (s_lo + s_hi) / r0)) !=
-      AUTOBAL_SUCCESS)
-    return st;
+  *nu = 0;
+  if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, s_mid / r0)) != AUTOBAL_SUCCESS) return st;
   if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
   if ((st = autobal_rotor_char_parts_(&c, A, B, &s->err)) != AUTOBAL_SUCCESS) return st;
   split_iy(A, Ae, Ao);
   split_iy(B, Be, Bo);
   /* y = 0: Delta(0; u) = A_0 - u w^8 B_0 */
-  if (B[0] != 0.0) nc += map_u(&bi, u_at(Ae, Ao, Be, Bo, w2, 0.0L), cand + nc);
+  if (B[0] != 0.0) uc[(*nu)++] = u_at(Ae, Ao, Be, Bo, w2, 0.0L);
   /* h(z) = Ae Bo - Ao Be (degree <= 7 with B = N N* of degree 4), scaled z = sc^2 zeta, sc = |omega| */
   sc = fabs(s->cur.omega);
   for (i = 0; i < 12; i++) h[i] = 0.0L;
@@ -354,9 +462,38 @@ static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi,
     if ((st = autobal_poly_positive_roots_ld_(h, 12, (long double)sc * (long double)sc, zr, &nz, &s->err)) !=
         AUTOBAL_SUCCESS)
       return st;
-    for (q = 0; q < nz; q++)
-      if (fabsl(zr[q] - w2) > 1e-12L * w2) nc += map_u(&bi, u_at(Ae, Ao, Be, Bo, w2, zr[q]), cand + nc);
+    for (q = 0; q < nz && *nu < 12; q++)
+      if (fabsl(zr[q] - w2) > 1e-12L * w2) uc[(*nu)++] = u_at(Ae, Ao, Be, Bo, w2, zr[q]);
   }
+  return AUTOBAL_SUCCESS;
+}
+
+static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_rotor_unbalance_range *out);
+
+/* The core at the handle's current omega (m0 is changed; the caller restores it). */
+static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi, double *angle,
+                                autobal_rotor_unbalance_range *out) {
+  double r0 = 0.0, cand[3 * 13 + 6], uc[12];
+  balls_info bi;
+  size_t nc = 0, nu = 0, i;
+  int st;
+  memset(out, 0, sizeof *out);
+  out->s_lo = s_lo;
+  out->s_hi = s_hi;
+  out->omega = s->cur.omega;
+  out->n_balls = s->cur.plane[0].n_balls;
+  out->member_rule = s->opt.unbalance_member;
+  out->u_min = out->u_max = NAN;
+  if ((st = check_domain(s, s_lo, s_hi, &bi)) != AUTOBAL_SUCCESS) return st;
+  r0 = bi.r0;
+  if (bi.every3) {
+    if (angle == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: internal (no member angle)");
+    bi.angle = angle;
+    return every3_core(s, &bi, out);
+  }
+  if (bi.nb >= 3) fan_u_range(&bi.fan, &out->u_min, &out->u_max);
+  if ((st = critical_u(s, r0, 0.5 * (s_lo + s_hi), uc, &nu)) != AUTOBAL_SUCCESS) return st;
+  for (i = 0; i < nu; i++) nc += map_u(&bi, uc[i], cand + nc);
   /* the critical unbalances inside (s_lo, s_hi), sorted, unique */
   qsort(cand, nc, sizeof cand[0], cmp_double);
   for (i = 0; i < nc; i++) {
@@ -432,18 +569,171 @@ static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi,
   return AUTOBAL_SUCCESS;
 }
 
+/* Verdict and margin at u (kg^2), three balls, every member: a member with this u (t in the middle of
+ * the longest piece of e3_t_set, ball 1 at e3_phi_of_q from S: the FREE member whose angle is
+ * *bi->angle), analysed as one unbalance; the member's u from the handle's angles is checked. */
+static int verdict_at_u(autobal_rotor_stab *s, const balls_info *bi, double u, double *margin, int *verdict) {
+  const double m = bi->m1;
+  /* q = 9 has one member only, balls at 0, 0, pi from S (t = 1): on one line, where the closure (and the
+   * ordinary analysis by Delta) does not hold, and members near it are nearly on one line: q is taken
+   * at most 9 (1 - 1e-6) */
+  const double q = fmin(4.0 * u / (m * m), 9.0 * (1.0 - 1e-6));
+  ivl4 iv;
+  size_t k, best = 0;
+  double t, psi[3], re = 0.0, im = 0.0, qm;
+  int st;
+  e3_t_set(q, bi->ta, bi->tb, &iv);
+  if (iv.n > 0) {
+    for (k = 1; k < iv.n; k++)
+      if (iv.hi[k] - iv.lo[k] > iv.hi[best] - iv.lo[best]) best = k;
+    t = 0.5 * (iv.lo[best] + iv.hi[best]);
+  } else {
+    /* rounding at an end of the range of u: the candidate t (ends, 1, 2) nearest to having q */
+    const double ts[4] = {bi->ta, bi->tb, 1.0, 2.0};
+    double dbest = INFINITY;
+    t = bi->ta;
+    for (k = 0; k < 4; k++) {
+      double d;
+      if (!(ts[k] >= bi->ta && ts[k] <= bi->tb)) continue;
+      d = fmax(0.0, fmax(e3_qmin(ts[k]) - q, q - e3_qmax(ts[k])));
+      if (d < dbest) dbest = d, t = ts[k];
+    }
+  }
+  *bi->angle = s->cur.plane[0].psi0 + M_PI + e3_phi_of_q(t, q);
+  if ((st = verdict_at(s, bi->r0, t * bi->a1, margin, verdict)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_balanced_angles(s, psi, 3)) != AUTOBAL_SUCCESS) return st;
+  for (k = 0; k < 3; k++) re += cos(2.0 * psi[k]), im += sin(2.0 * psi[k]);
+  qm = re * re + im * im;
+  if (!(fabs(qm - q) <= 1e-6))
+    return autobal_error_set(&s->err, AUTOBAL_ENUMERIC,
+                             "every unbalance, every member: the member built for u = %.9g kg^2 has u = %.9g kg^2 "
+                             "(internal error)",
+                             u, 0.25 * m * m * qm);
+  return AUTOBAL_SUCCESS;
+}
+
+/* Three identical balls, every member: the range of u, the critical u inside, one verdict per
+ * sub-interval of u (midpoint and just inside both ends; a disagreement bisected in u), the ends; the
+ * unbalances of each critical u. */
+static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_rotor_unbalance_range *out) {
+  const double m = bi->m1, ta = bi->ta, tb = bi->tb, um = 0.25 * m * m;
+  double qlo, qhi, uc[12], edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
+  size_t nu = 0, i, k, ne = 0;
+  int st, worst = AUTOBAL_VERDICT_STABLE;
+  qlo = fmin(e3_qmin(ta), e3_qmin(tb));
+  if (ta < 2.0 && tb > 2.0) qlo = 0.0;
+  qhi = fmax(e3_qmax(ta), e3_qmax(tb));
+  if (ta < 1.0 && tb > 1.0) qhi = 9.0;
+  out->u_min = um * qlo;
+  out->u_max = um * qhi;
+  *bi->angle = s->cur.plane[0].psi0 + M_PI; /* phi = 0: a member for every t */
+  if ((st = critical_u(s, bi->r0, 0.5 * (out->s_lo + out->s_hi), uc, &nu)) != AUTOBAL_SUCCESS) return st;
+  qsort(uc, nu, sizeof uc[0], cmp_double);
+  for (i = 0; i < nu; i++) {
+    if (!(uc[i] > out->u_min && uc[i] < out->u_max)) continue;
+    if (out->n_ucrit > 0 && uc[i] - out->u_crit[out->n_ucrit - 1] <= 1e-12 * uc[i]) continue;
+    if (out->n_ucrit >= AUTOBAL_ROTOR_MAX_UCRIT) break;
+    out->u_crit[out->n_ucrit++] = uc[i];
+  }
+  edges[ne++] = out->u_min;
+  for (k = 0; k < out->n_ucrit; k++) edges[ne++] = out->u_crit[k];
+  edges[ne++] = out->u_max;
+  out->all_stable = 1;
+  out->margin_worst = -INFINITY;
+  for (k = 0; k + 1 < ne; k++) {
+    const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
+    const double pts[3] = {lo + 1e-9 * wdt, lo + 0.5 * wdt, hi - 1e-9 * wdt};
+    int vv[3], q;
+    double mg[3];
+    if (autobal_rotor_stab_cancelled_(s))
+      return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
+    for (q = 0; q < 3; q++) {
+      if ((st = verdict_at_u(s, bi, wdt > 0.0 ? pts[q] : lo, &mg[q], &vv[q])) != AUTOBAL_SUCCESS) return st;
+      out->evaluations++;
+      if (mg[q] > out->margin_worst) out->margin_worst = mg[q];
+    }
+    if (opposite(vv[0], vv[1]) || opposite(vv[1], vv[2])) {
+      double x0 = opposite(vv[0], vv[1]) ? pts[0] : pts[1], x1 = opposite(vv[0], vv[1]) ? pts[1] : pts[2];
+      int v0 = opposite(vv[0], vv[1]) ? vv[0] : vv[1], it;
+      for (it = 0; it < 60 && x1 - x0 > 1e-12 * x1; it++) {
+        const double xm = 0.5 * (x0 + x1);
+        double mm;
+        int vm;
+        if ((st = verdict_at_u(s, bi, xm, &mm, &vm)) != AUTOBAL_SUCCESS) return st;
+        out->evaluations++;
+        if (vm == v0) x0 = xm;
+        else x1 = xm;
+      }
+      out->n_missed++;
+      if (out->n_ucrit < AUTOBAL_ROTOR_MAX_UCRIT) {
+        out->u_crit[out->n_ucrit++] = 0.5 * (x0 + x1);
+        qsort(out->u_crit, out->n_ucrit, sizeof out->u_crit[0], cmp_double);
+      }
+      out->all_stable = 0;
+    }
+    if (out->n_usub < AUTOBAL_ROTOR_MAX_UCRIT + 1) {
+      out->usub_lo[out->n_usub] = lo;
+      out->usub_hi[out->n_usub] = hi;
+      out->usub_verdict[out->n_usub] = vv[1];
+      out->usub_margin[out->n_usub] = mg[1];
+      out->n_usub++;
+    }
+    if (vv[1] < worst) worst = vv[1];
+    if (vv[0] != AUTOBAL_VERDICT_STABLE || vv[1] != AUTOBAL_VERDICT_STABLE || vv[2] != AUTOBAL_VERDICT_STABLE)
+      out->all_stable = 0;
+  }
+  if (out->n_ucrit > 0) out->all_stable = 0;
+  /* the ends themselves */
+  for (k = 0; k < 2; k++) {
+    double mg;
+    int vv;
+    if ((st = verdict_at_u(s, bi, k == 0 ? out->u_min : out->u_max, &mg, &vv)) != AUTOBAL_SUCCESS) return st;
+    out->evaluations++;
+    if (mg > out->margin_worst) out->margin_worst = mg;
+    if (vv != AUTOBAL_VERDICT_STABLE) out->all_stable = 0;
+  }
+  /* the unbalances of each critical u (closed form) */
+  for (k = 0; k < out->n_ucrit; k++) {
+    ivl4 iv;
+    e3_t_set(4.0 * out->u_crit[k] / (m * m), ta, tb, &iv);
+    for (i = 0; i < iv.n && out->n_upiece < 3 * AUTOBAL_ROTOR_MAX_UCRIT; i++) {
+      out->upiece_crit[out->n_upiece] = k;
+      out->upiece_lo[out->n_upiece] = iv.lo[i] * bi->a1;
+      out->upiece_hi[out->n_upiece] = iv.hi[i] * bi->a1;
+      out->n_upiece++;
+    }
+  }
+  /* the fields of one unbalance: one sub-interval, the worst verdict */
+  out->n_crit = 0;
+  out->n_sub = 1;
+  out->sub_lo[0] = out->s_lo;
+  out->sub_hi[0] = out->s_hi;
+  out->sub_verdict[0] = worst;
+  out->sub_margin[0] = out->margin_worst;
+  return AUTOBAL_SUCCESS;
+}
+
 /* The core with plane 1's member set to the rule's (n >= 3 balls, SYMMETRIC: the symmetric fan) for the
  * verdicts; the member option is restored afterwards. */
 static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
   autobal_rotor_member save;
+  double angle = 0.0; /* ball 1 of the FREE member (three balls, every member) */
   int st;
-  if (s->n_planes != 1 || s->cur.plane[0].n_balls < 3 || s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
-    return every_unbalance_core(s, s_lo, s_hi, out);
+  const int every3 = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && s->cur.plane[0].n_balls == 3;
+  if (s->n_planes != 1 || s->cur.plane[0].n_balls < 3 ||
+      (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && !every3))
+    return every_unbalance_core(s, s_lo, s_hi, NULL, out);
   save = s->opt.member[0];
-  s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_SYMMETRIC;
-  s->opt.member[0].n_angles = 0;
-  s->opt.member[0].angles = NULL;
-  st = every_unbalance_core(s, s_lo, s_hi, out);
+  if (every3) {
+    s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_FREE;
+    s->opt.member[0].n_angles = 1;
+    s->opt.member[0].angles = &angle;
+  } else {
+    s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_SYMMETRIC;
+    s->opt.member[0].n_angles = 0;
+    s->opt.member[0].angles = NULL;
+  }
+  st = every_unbalance_core(s, s_lo, s_hi, &angle, out);
   s->opt.member[0] = save;
   return st;
 }

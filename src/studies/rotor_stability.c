@@ -511,6 +511,31 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
       st = autobal_archive_dim(a, ge, "unbalance_critical", u->n_crit, "index of a critical unbalance");
       if (!st) st = autobal_archive_var(a, ge, "critical_unbalance", 1, dcu, u->s_crit, "kg m", "critical unbalance m0 r0: a root of Delta on the imaginary axis");
     }
+    if (!st && u->n_balls >= 3 && u->member_rule == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
+      /* three balls, every member: the critical u, the unbalances where each is met, the u sub-intervals */
+      static const char *const duc[] = {"u_critical"}, *const dup[] = {"u_critical_piece"}, *const dus[] = {"u_sub_interval"};
+      int v[AUTOBAL_ROTOR_MAX_UCRIT + 1], ix[3 * AUTOBAL_ROTOR_MAX_UCRIT];
+      size_t q;
+      if (!st && u->n_ucrit > 0) {
+        st = autobal_archive_dim(a, ge, "u_critical", u->n_ucrit, "index of a critical value of u = |Q|^2/4");
+        if (!st) st = autobal_archive_var(a, ge, "critical_u", 1, duc, u->u_crit, "kg^2", "critical u = |Q|^2/4: a root of Delta on the imaginary axis");
+      }
+      if (!st && u->n_upiece > 0) {
+        for (q = 0; q < u->n_upiece; q++) ix[q] = (int)u->upiece_crit[q];
+        st = autobal_archive_dim(a, ge, "u_critical_piece", u->n_upiece, "index of an interval of m0 r0 where some member has a critical u");
+        if (!st) st = autobal_archive_var_int(a, ge, "critical_u_piece_index", 1, dup, ix, "1", "index (along u_critical) of the critical u met in the interval");
+        if (!st) st = autobal_archive_var(a, ge, "critical_u_piece_lo", 1, dup, u->upiece_lo, "kg m", "lower end of the interval of m0 r0 where some member has the critical u");
+        if (!st) st = autobal_archive_var(a, ge, "critical_u_piece_hi", 1, dup, u->upiece_hi, "kg m", "upper end of the interval of m0 r0 where some member has the critical u");
+      }
+      if (!st && u->n_usub > 0) {
+        for (q = 0; q < u->n_usub; q++) v[q] = u->usub_verdict[q];
+        st = autobal_archive_dim(a, ge, "u_sub_interval", u->n_usub, "index of a sub-interval of [u_min, u_max] between critical values of u");
+        if (!st) st = autobal_archive_var(a, ge, "u_sub_lo", 1, dus, u->usub_lo, "kg^2", "lower end of the sub-interval of u");
+        if (!st) st = autobal_archive_var(a, ge, "u_sub_hi", 1, dus, u->usub_hi, "kg^2", "upper end of the sub-interval of u");
+        if (!st) st = autobal_archive_var_int(a, ge, "u_sub_verdict", 1, dus, v, "1", "verdict of every member whose u lies inside the sub-interval: 1 stable, 0 marginal, -1 unstable");
+        if (!st) st = autobal_archive_var(a, ge, "u_sub_margin", 1, dus, u->usub_margin, "1/s", "stability margin (largest real part) at the sub-interval's midpoint");
+      }
+    }
     if (!st && u->n_sub > 0) {
       int v[AUTOBAL_ROTOR_MAX_UCRIT + 1];
       size_t q;
