@@ -707,6 +707,12 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
                              "symmetric fan only: set unbalance_member = symmetric (the verdict then says 'symmetric "
                              "members only'), or n_balls_max = 2",
                              o->n_balls_max);
+  if (pl->n_balls < o->n_balls_min || pl->n_balls > o->n_balls_max)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[plane1] ball_mass: the config has %zu balls, outside the numbers of balls designed, "
+                             "[design] n_balls_min = %zu .. n_balls_max = %zu (default 2 .. 2: two balls); widen them "
+                             "(three or more balls: unbalance_member = symmetric)",
+                             pl->n_balls, o->n_balls_min, o->n_balls_max);
   if (!(isnan(o->total_mass_max) || (isfinite(o->total_mass_max) && o->total_mass_max > 0.0)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: total_mass_max = %g kg must be > 0 (or NaN: no cap)",
                              o->total_mass_max);
