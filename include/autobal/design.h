@@ -200,7 +200,7 @@ AUTOBAL_API int autobal_study_rotor_design_transients(const autobal_rotor_params
                                                       autobal_rotor_design *design, autobal_error *err);
 
 /* The machine p with the design's balls (its n_balls balls m, r, h; plane 1 at d) as INI text (malloc'ed;
- * free()); for n >= 3 also [stability] unbalance_member = symmetric (the members its verdict covers).  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
+ * free()); for n >= 3 a comment says that the verdict covers the symmetric members only.  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
 AUTOBAL_API char *autobal_study_rotor_design_config(const autobal_rotor_params *p,
                                                     const autobal_rotor_design *design, double omega);
 

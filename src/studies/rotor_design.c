@@ -1343,7 +1343,10 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   put(&b, "; written by autobal rotor design: the machine with the design's balancer (docs/rotor.md \"Design\")\n");
   put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
   if (nballs(d) >= 3)
-    put(&b, "; %zu identical balls: the verdict covers the symmetric members of the family only (the symmetric fan)\n",
+    put(&b,
+        "; %zu identical balls: the verdict covers the symmetric members of the family only (the symmetric fan, the\n"
+        "; default balanced configuration of `rotor stability`); for its every-unbalance analysis add\n"
+        "; --set stability.unbalance_member=symmetric\n",
         nballs(d));
   if (p->input == AUTOBAL_ROTOR_HARDWARE) {
     f = autobal_rotor_hardware_fields(&nf);
@@ -1385,9 +1388,6 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
       }
       put(&b, "\n");
     }
-    put(&b, "\n[stability]\n; the design's verdict for %zu balls covers the symmetric members of the family only\n"
-            "unbalance_member = symmetric\n",
-        nb);
   }
   if (has_profile(p)) {
     const autobal_rotor_drive *dr = &p->drive;
