@@ -418,12 +418,15 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                                        : 0.0) + 10.0
                             : o.t_end,
              o.balance_revs, o.balance_tol);
-      printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
-             "median ttb s", "worst ttb s");
+      if (nball) printf("  (balls 3..n start at fixed angles between balls 1 and 2's first ones)\n");
+      printf("    %4s %s%10s %10s %12s %12s %14s %13s\n", "rank", nball ? "balls " : "", "mass g", "radius mm",
+             "damping kg/s", "P(balance)", "median ttb s", "worst ttb s");
       for (i = 0; i < sum.n_designs; i++) {
         const autobal_rotor_design *d = &sum.designs[i];
+        char nbuf[16] = "";
         if (d->n_runs == 0) continue;
-        printf("    %4zu %10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, d->mass * 1e3, d->radius * 1e3,
+        if (nball) snprintf(nbuf, sizeof nbuf, "%5zu ", d->n_balls);
+        printf("    %4zu %s%10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, nbuf, d->mass * 1e3, d->radius * 1e3,
                d->damping, d->n_balanced, d->n_runs, d->ttb_median, d->ttb_worst);
       }
       printf("  %zu transients\n", sum.transients);

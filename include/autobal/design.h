@@ -4,8 +4,9 @@
  * Given the machine (rotor, supports: autobal_rotor_params with one balancer plane of two balls),
  * an operating speed range [omega_min, omega_max], a range of unbalances m0 r0 in
  * [unbalance_min, unbalance_max] and a required margin delta (1/s), the search finds the balancers
- * (two identical balls: ball mass m, track radius r, ball damping h, and the axial position d of the
- * plane, which in this one-plane model also holds the unbalance) for which every root of the
+ * (n identical balls, two by default (options.n_balls_min/max): ball mass m, track radius r, ball
+ * damping h, and the axial position d of the plane, which in this one-plane model also holds the
+ * unbalance) for which every root of the
  * balanced motion has Re lambda < -delta at every speed of the speed grid and for EVERY unbalance
  * of the range.  The verdict of a design is guaranteed in the unbalance and in the track radius
  * (autobal_rotor_stab_margin_ratio_set: the critical values, not samples; the radius enters only

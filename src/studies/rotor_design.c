@@ -1,4 +1,4 @@
-/* rotor_design.c: `autobal rotor design`: sizing a balancer of two identical balls in one plane for a
+/* rotor_design.c: `autobal rotor design`: sizing a balancer of n identical balls (two by default) in one plane for a
  * machine, a speed range and a range of unbalances, with a required margin (include/autobal/design.h,
  * docs/rotor.md "Design").  The exact test per design and speed is autobal_rotor_stab_margin_ratio_set;
  * the re-check is autobal_rotor_stab_every_unbalance_speeds (an independent path: Delta's critical
