@@ -77,7 +77,8 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
        n_damping = (long)o.n_damping, n_position = (long)o.n_position, n_best = (long)o.n_best,
        n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
        n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
-  const char *rank_by = "margin";
+  const char *rank_by = "margin", *umember = "every";
+  long n_bmin = 2, n_bmax = 2;
   double balance_from = NAN;
   int have_from = 0, profile;
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
@@ -125,7 +126,37 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   if ((rc = cli_get_double(ctx, "design", "balance_tol", o.balance_tol, &o.balance_tol, NULL))) goto done;
   if ((rc = cli_get_double(ctx, "design", "balance_revs", o.balance_revs, &o.balance_revs, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "design", "threads", threads, &threads, NULL))) goto done;
+  /* the number of balls (docs/rotor.md "Design", "Number of balls") */
+  if ((rc = cli_get_int(ctx, "design", "n_balls_min", n_bmin, &n_bmin, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "n_balls_max", n_bmax, &n_bmax, NULL))) goto done;
+  if ((rc = cli_get_quantity(ctx, "design", "total_ball_mass_max", "kg", NAN, &o.total_mass_max, NULL))) goto done;
+  /* the member rule: [design] unbalance_member, else what [stability] says, else every */
+  if ((rc = cli_get_string(ctx, "stability", "unbalance_member", umember, &umember, NULL))) goto done;
+  if ((rc = cli_get_string(ctx, "design", "unbalance_member", umember, &umember, NULL))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
+  if ((rc = need_count(ctx, "n_balls_min", n_bmin, 2, AUTOBAL_DESIGN_MAX_BALLS)) ||
+      (rc = need_count(ctx, "n_balls_max", n_bmax, n_bmin, AUTOBAL_DESIGN_MAX_BALLS)))
+    goto done;
+  if (!strcmp(umember, "every")) o.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_EVERY;
+  else if (!strcmp(umember, "symmetric")) o.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC;
+  else {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance_member = '%s' is not one of: every, symmetric", umember);
+    goto done;
+  }
+  if (n_bmax >= 3 && o.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: unbalance_member = every is not available with n_balls_max = %ld: for three or more balls "
+                  "the design's exact test covers the symmetric fan only; set unbalance_member = symmetric (the "
+                  "verdict then covers the symmetric members only) or n_balls_max = 2",
+                  n_bmax);
+    goto done;
+  }
+  if (!isnan(o.total_mass_max) && !(o.total_mass_max > 0.0)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: total_ball_mass_max = %g kg is out of range: must be > 0", o.total_mass_max);
+    goto done;
+  }
+  o.n_balls_min = (size_t)n_bmin;
+  o.n_balls_max = (size_t)n_bmax;
   profile = p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
   if (p.drive.mode == AUTOBAL_ROTOR_DRIVE_MOTOR) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
@@ -317,6 +348,10 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       cli_json_quantity(&j, "ball_damping", d->damping, "kg/s");
       cli_json_quantity(&j, "position", d->position, "m");
       cli_json_quantity(&j, "robust_margin", d->margin, "1/s");
+      if (!(o.n_balls_min == 2 && o.n_balls_max == 2)) {
+        cli_json_int(&j, "n_balls", (long)d->n_balls);
+        cli_json_string(&j, "verdict_covers", d->n_balls >= 3 ? "symmetric members only" : "every member");
+      }
       cli_json_bool(&j, "feasible", d->feasible);
       cli_json_int(&j, "recheck", d->recheck);
       if (d->n_runs > 0) {
@@ -331,9 +366,20 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     if (sum.best_config) cli_json_string(&j, "best_config", sum.best_config);
     cli_json_summary_end(&j, ctx);
   } else if (!ctx->quiet) {
-    const size_t ncells = sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
-    printf("rotor design: two identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
-           o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
+    const size_t ncells = sum.n_n * sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
+    const int nball = !(o.n_balls_min == 2 && o.n_balls_max == 2);
+    if (!nball)
+      printf("rotor design: two identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
+             o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
+    else {
+      printf("rotor design: %zu to %zu identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
+             o.n_balls_min, o.n_balls_max, o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
+      printf("  ball mass bounds per ball%s", isnan(o.total_mass_max) ? "" : ", total ball mass n m at most ");
+      if (!isnan(o.total_mass_max)) printf("%.6g g", o.total_mass_max * 1e3);
+      printf("; verdict: %s\n", o.n_balls_max >= 3 ? "two balls every member (unique); three or more balls symmetric "
+                                                   "members only (the symmetric fan), ball modes -h/m included"
+                                                 : "every member");
+    }
     if (profile)
       printf("  the speed range from the run-up profile ([drive] mode = %s): balance_from to its top speed\n",
              p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? "ramp" : "table");
@@ -345,13 +391,16 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
            sum.damping[sum.n_damping - 1], sum.n_position, sum.n_radius, sum.radius[0] * 1e3,
            sum.radius[sum.n_radius - 1] * 1e3, sum.n_feasible, ncells);
     printf("  ranked designs (robust margin rho: the exact test passes with it at every grid speed and unbalance):\n");
-    printf("    %4s %10s %10s %12s %10s %12s %8s %8s\n", "rank", "mass g", "radius mm", "damping kg/s", "d mm",
-           "rho 1/s", "feasible", "recheck");
+    printf("    %4s %s%10s %10s %12s %10s %12s %8s %8s\n", "rank", nball ? "balls " : "", "mass g", "radius mm",
+           "damping kg/s", "d mm", "rho 1/s", "feasible", "recheck");
     for (i = 0; i < sum.n_designs; i++) {
       const autobal_rotor_design *d = &sum.designs[i];
-      printf("    %4zu %10.5g %10.5g %12.5g %10.5g %12.5g %8s %8s%s\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,
-             d->position * 1e3, d->margin, d->feasible ? "yes" : "no",
-             d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "");
+      char nbuf[16] = "";
+      if (nball) snprintf(nbuf, sizeof nbuf, "%5zu ", d->n_balls);
+      printf("    %4zu %s%10.5g %10.5g %12.5g %10.5g %12.5g %8s %8s%s%s\n", i, nbuf, d->mass * 1e3, d->radius * 1e3,
+             d->damping, d->position * 1e3, d->margin, d->feasible ? "yes" : "no",
+             d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "",
+             d->n_balls >= 3 ? "  (symmetric members only)" : "");
     }
     if (sum.n_designs == 0) printf("    none: no design in the bounds balances the range with the margin\n");
     if (sum.transients > 0) {
@@ -369,12 +418,15 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                                        : 0.0) + 10.0
                             : o.t_end,
              o.balance_revs, o.balance_tol);
-      printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
-             "median ttb s", "worst ttb s");
+      if (nball) printf("  (balls 3..n start at fixed angles between balls 1 and 2's first ones)\n");
+      printf("    %4s %s%10s %10s %12s %12s %14s %13s\n", "rank", nball ? "balls " : "", "mass g", "radius mm",
+             "damping kg/s", "P(balance)", "median ttb s", "worst ttb s");
       for (i = 0; i < sum.n_designs; i++) {
         const autobal_rotor_design *d = &sum.designs[i];
+        char nbuf[16] = "";
         if (d->n_runs == 0) continue;
-        printf("    %4zu %10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, d->mass * 1e3, d->radius * 1e3,
+        if (nball) snprintf(nbuf, sizeof nbuf, "%5zu ", d->n_balls);
+        printf("    %4zu %s%10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, nbuf, d->mass * 1e3, d->radius * 1e3,
                d->damping, d->n_balanced, d->n_runs, d->ttb_median, d->ttb_worst);
       }
       printf("  %zu transients\n", sum.transients);

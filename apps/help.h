@@ -279,14 +279,18 @@
   "         ball_damping_min, ball_damping_max (kg/s; 0.1x, 10x)  n_ball_damping = 8\n" \
   "         position_min, position_max (m; plane 1's d, fixed)  n_position = 1\n" \
   "         n_best = 10  n_starts = 3 (Nelder-Mead starts)  max_iter = 80  config_out = FILE (the best as .ini)\n" \
-  "         a pair with min = max fixes that variable; one plane, two balls, inertia = paper, isotropic only\n" \
+  "         a pair with min = max fixes that variable; one plane, inertia = paper, isotropic only\n" \
+  "         n_balls_min = 2, n_balls_max = 2 (identical balls per design; mass bounds per ball)\n" \
+  "         total_ball_mass_max (kg or g; cap on n m)  unbalance_member = [stability]'s|every|symmetric (n >= 3:\n" \
+  "         symmetric only, the verdict covers the symmetric members)\n" \
   "         n_transient = 5 (best designs whose transients are run; 0 off)  rank_by = margin|time|p_balance\n" \
   "         n_start_angles = 3 (per ball)  n_transient_unbalances = 2  n_transient_speeds = 2  (grids, ends included)\n" \
   "         transient_t_end = 10 s (profile: its end + 10 s)  balance_tol = 0.01  balance_revs = 50  threads = 0\n" \
   "[drive]  mode = ramp|table (as `rotor transient`): the transients run the run-up profile from rest; the\n" \
   "         speed range is [design] balance_from (rpm or rad/s; required) .. the profile's top speed\n" \
   "\narchive: /rotor/design (feasible[ball_mass][ball_damping][plane_position][track_radius], radius windows,\n" \
-  "ranked/ designs, best_config; with transients ranked/p_balance, time_to_balance_median, _worst (s))\n" HELP_DOCS_ROTOR
+  "ranked/ designs, best_config; with transients ranked/p_balance, time_to_balance_median, _worst (s));\n" \
+  "with n_balls other than 2..2: n_balls, n_balls_N/feasible, radius windows per N, ranked/n_balls\n" HELP_DOCS_ROTOR
 #define HELP_ROTOR_CAMPBELL \
   "Rotor-housing without balls: natural frequencies at rest (undamped, damped), Campbell diagram (C omega\n" \
   "gyroscopic), steady unbalance response, critical speeds (frequency = omega) and response peaks.\n\n" \

@@ -5,7 +5,11 @@
  * and of single stability verdicts, and those per second.  Usage: bench_design [n_position]
  * (default 5; 1 fixes the position: a 3-parameter search).  The search runs twice in the same
  * process: on 1 thread (the reference) and on 2 OpenMP threads (options.threads); the two results
- * must agree bit for bit, and the wall-time ratio 1 thread / 2 threads is printed. */
+ * must agree bit for bit, and the wall-time ratio 1 thread / 2 threads is printed.
+ * bench_design N_POSITION N_BALLS_MAX (N_BALLS_MAX >= 3): then the same search with 2 .. N_BALLS_MAX
+ * identical balls (unbalance_member = symmetric) on 2 threads, in the same process; its wall time and
+ * stability analyses per second against the two-ball run on 2 threads (the reference), and the best
+ * design per number of balls. */
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -93,6 +97,40 @@ int main(int argc, char **argv) {
     printf("  #%zu: m %.4g g, r %.4g mm, h %.4g kg/s, d %.4g mm: rho %.4g 1/s, re-check %s\n", k,
            S.designs[k].mass * 1e3, S.designs[k].radius * 1e3, S.designs[k].damping, S.designs[k].position * 1e3,
            S.designs[k].margin, S.designs[k].recheck == 1 ? "ok" : "FAILED");
+  if (argc > 2 && atoi(argv[2]) >= 3) {
+    autobal_study_rotor_design_summary Sn;
+    const double ref_rate = (double)S.margin_evaluations / tw;
+    size_t nmax = (size_t)atoi(argv[2]), n;
+    double twn;
+    o.n_balls_min = 2;
+    o.n_balls_max = nmax;
+    o.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC;
+    o.threads = 2;
+    t0 = wall();
+    st = autobal_study_rotor_design(&p, &o, NULL, &Sn, &err);
+    twn = wall() - t0;
+    if (st) {
+      fprintf(stderr, "bench_design: %s\n", err.message);
+      autobal_study_rotor_design_summary_free(&S);
+      return 1;
+    }
+    printf("number of balls 2..%zu (symmetric members for n >= 3), 2 threads: wall %.2f s (%.2f x the two-ball run), "
+           "%zu feasible map points\n",
+           nmax, twn, twn / tw, Sn.n_feasible);
+    printf("  exact every-unbalance tests: %zu; single stability verdicts: %zu (%.0f per wall second; two balls: %.0f, "
+           "ratio %.2f)\n",
+           Sn.ratio_sets, Sn.margin_evaluations, (double)Sn.margin_evaluations / twn, ref_rate,
+           (double)Sn.margin_evaluations / twn / ref_rate);
+    for (n = 2; n <= nmax; n++)
+      for (k = 0; k < Sn.n_designs; k++)
+        if (Sn.designs[k].n_balls == n) {
+          printf("  best with %zu balls (rank %zu of the %zu re-checked): m %.4g g, r %.4g mm, h %.4g kg/s, d %.4g mm: rho %.4g 1/s, re-check %s\n",
+                 n, k, Sn.n_designs, Sn.designs[k].mass * 1e3, Sn.designs[k].radius * 1e3, Sn.designs[k].damping,
+                 Sn.designs[k].position * 1e3, Sn.designs[k].margin, Sn.designs[k].recheck == 1 ? "ok" : "FAILED");
+          break;
+        }
+    autobal_study_rotor_design_summary_free(&Sn);
+  }
   autobal_study_rotor_design_summary_free(&S);
   return 0;
 }

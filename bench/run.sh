@@ -21,9 +21,10 @@
 #                                    frictionless ensemble, SciPy with gap events at matched error (one
 #                                    member, e = 1); ARGS go to friction_scipy.py --contact (e.g. --quick,
 #                                    --only member, --restitutions 0.5,1, --scipy-seed 5)
-#   bench/run.sh design [N_POSITION] the design search (`autobal rotor design`) over 4 balancer parameters
-#                                    for the default machine: time, exact tests and stability verdicts per
-#                                    second (N_POSITION = 1: 3 parameters, the position fixed)
+#   bench/run.sh design [N_POSITION [N_BALLS_MAX]] the design search (`autobal rotor design`) over 4
+#                                    balancer parameters for the default machine: time, exact tests and
+#                                    stability verdicts per second (N_POSITION = 1: 3 parameters, the position
+#                                    fixed); N_BALLS_MAX >= 3: also 2..N_BALLS_MAX balls, against two balls
 #   bench/run.sh dense [ARGS...]     output every quarter revolution (issue 20): dop853 on its continuous
 #                                    extension vs exact hits (rk8pd, dop853) vs SciPy DOP853/LSODA/Radau
 #                                    with t_eval, pendulum and rotor (2, 8 balls), at matched error of the
@@ -38,7 +39,7 @@ what=all
 if [ $# -gt 0 ]; then
   case "$1" in
     all|pendulum|rotor|runup|friction|contact|design|dense) what=$1; shift ;;
-    -h|--help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design or dense; see --help)" >&2
        exit 2 ;;
   esac

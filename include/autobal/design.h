@@ -4,8 +4,9 @@
  * Given the machine (rotor, supports: autobal_rotor_params with one balancer plane of two balls),
  * an operating speed range [omega_min, omega_max], a range of unbalances m0 r0 in
  * [unbalance_min, unbalance_max] and a required margin delta (1/s), the search finds the balancers
- * (two identical balls: ball mass m, track radius r, ball damping h, and the axial position d of the
- * plane, which in this one-plane model also holds the unbalance) for which every root of the
+ * (n identical balls, two by default (options.n_balls_min/max): ball mass m, track radius r, ball
+ * damping h, and the axial position d of the plane, which in this one-plane model also holds the
+ * unbalance) for which every root of the
  * balanced motion has Re lambda < -delta at every speed of the speed grid and for EVERY unbalance
  * of the range.  The verdict of a design is guaranteed in the unbalance and in the track radius
  * (autobal_rotor_stab_margin_ratio_set: the critical values, not samples; the radius enters only
@@ -22,8 +23,11 @@
  * stability analyses take constant speeds (the drive is dropped for them); the best config
  * carries the profile ([drive]).  A MOTOR drive: AUTOBAL_EUNSUPPORTED.
  *
- * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, three or more balls,
- * balls that differ, the full inertia model, anisotropic supports, a motor drive, gravity.
+ * Number of balls: options.n_balls_min .. n_balls_max identical balls (default 2 .. 2); n >= 3 with
+ * the member rule SYMMETRIC only (the symmetric fan; the verdict says so).
+ *
+ * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, balls that differ
+ * within a design, the full inertia model, anisotropic supports, a motor drive, gravity.
  *
  * Units: SI inside (kg, m, kg/s, rad/s, 1/s, kg m).  Threads: none (one handle per call).  Errors
  * in err; the library never prints. */
@@ -77,7 +81,19 @@ typedef struct autobal_study_rotor_design_options {
   int threads;                   /* OpenMP threads of the ensembles, 0: the OpenMP default       (0) */
   autobal_study_progress_fn progress; /* fraction done; non-zero: cancel                  (NULL) */
   void *progress_user;                                                              /* (NULL) */
+  /* The number of balls (added at the end; docs/rotor.md "Design", "Number of balls"): every n in
+   * [n_balls_min, n_balls_max] is searched, n identical balls per design (0 is read as 2, so a
+   * zeroed pair is today's two balls).  The ball mass bounds apply per ball; total_mass_max caps
+   * the balls' total n m (NaN: no cap).  For n >= 3 the verdict covers the members of the family
+   * named by unbalance_member (autobal_rotor_unbalance_member): only SYMMETRIC (the symmetric fan)
+   * is available, EVERY is refused (AUTOBAL_EUNSUPPORTED) when n_balls_max >= 3. */
+  size_t n_balls_min, n_balls_max; /* [2, AUTOBAL_DESIGN_MAX_BALLS], min <= max           (2, 2) */
+  int unbalance_member;            /* for n >= 3                      (AUTOBAL_ROTOR_UNBALANCE_EVERY) */
+  double total_mass_max;           /* kg, > 0 or NaN                                          (NaN) */
 } autobal_study_rotor_design_options;
+
+/* The largest number of balls a design may have. */
+#define AUTOBAL_DESIGN_MAX_BALLS 16
 
 AUTOBAL_API autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void);
 
@@ -112,6 +128,9 @@ typedef struct autobal_rotor_design {
   double ttb_median;    /* s, median time to balance over all members (+inf counts) */
   double ttb_worst;     /* s, largest time to balance (+inf when some member does not balance) */
   size_t n_runs, n_balanced; /* members run, members balanced */
+  size_t n_balls;   /* identical balls of the design (added at the end; 0 is read as 2).  For n >= 3
+                       margin and recheck_margin are also capped by h/m, the rate of the n - 2 ball
+                       modes -h/m of the full system, and cover the members of options.unbalance_member */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */
@@ -135,6 +154,12 @@ typedef struct autobal_study_rotor_design_summary {
   size_t transients;  /* transient members run in all (options.n_transient) */
   int ranked;         /* 1: the ranking and the re-checks finished (0 after a cancellation: the
                          archive is then marked partial) */
+  /* added at the end: the numbers of balls searched, n_balls_min .. n_balls_max.  The map's arrays
+     have a leading dimension of n_n (feasible [n_n][n_mass][n_damping][n_position][n_radius],
+     window_* [n_n][n_mass][n_damping][n_position]); n_mass_done counts the rows (n, ball mass) done,
+     in that order */
+  size_t n_n;
+  int *n_balls;
 } autobal_study_rotor_design_summary;
 
 /* Run the design search.  Map: for every (m, h, d) of the grids, the exact sets of normalized
@@ -175,8 +200,8 @@ AUTOBAL_API int autobal_study_rotor_design_transients(const autobal_rotor_params
                                                       const autobal_study_rotor_design_options *opt,
                                                       autobal_rotor_design *design, autobal_error *err);
 
-/* The machine p with the design's balls (both balls m, r, h; plane 1 at d) as INI text (malloc'ed;
- * free()).  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
+/* The machine p with the design's balls (its n_balls balls m, r, h; plane 1 at d) as INI text (malloc'ed;
+ * free()); for n >= 3 a comment says that the verdict covers the symmetric members only.  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
 AUTOBAL_API char *autobal_study_rotor_design_config(const autobal_rotor_params *p,
                                                     const autobal_rotor_design *design, double omega);
 

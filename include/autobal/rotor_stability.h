@@ -688,12 +688,12 @@ AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_param
 
 /* ---- every unbalance with a margin, two identical balls (the design search) ----------- */
 
-/* The normalized unbalances t = m0 r0 / (m r) in (0, 2) of one plane with two identical balls (mass m,
- * radius r) for which every root of the balanced motion has Re lambda < -delta. */
+/* The normalized unbalances t = m0 r0 / (m r) in (0, n) of one plane with n identical balls (mass m,
+ * radius r) for which every root of Delta (the balanced motion) has Re lambda < -delta. */
 typedef struct autobal_rotor_ratio_set {
   double omega;          /* rad/s, the speed analysed (the handle's) */
   double delta;          /* 1/s, the margin demanded (any sign; 0: plain stability) */
-  size_t n_crit;         /* critical t in (0, 2): a root of Delta on Re lambda = -delta */
+  size_t n_crit;         /* critical t in (0, n): a root of Delta on Re lambda = -delta */
   double t_crit[AUTOBAL_ROTOR_MAX_UCRIT]; /* 1, ascending */
   size_t n;              /* open intervals of t where every root has Re lambda < -delta */
   double lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1, ascending, disjoint */
@@ -702,7 +702,9 @@ typedef struct autobal_rotor_ratio_set {
 } autobal_rotor_ratio_set;
 
 /* The set above at the handle's omega (docs/rotor.md "Design"): one plane with two identical balls
- * (same m, r, h), isotropic supports, the paper's inertia; r0 > 0.  Guaranteed in t (not sampled):
+ * (same m, r, h), or n >= 3 identical balls with the handle's unbalance_member = SYMMETRIC (the
+ * symmetric fan; t in (0, n); Delta's roots only: the n - 2 roots -h/m of the full system are
+ * not in the set), isotropic supports, the paper's inertia; r0 > 0.  Guaranteed in t (not sampled):
  * the critical t are those where Delta(mu - delta; u) has a root on the imaginary axis or loses its
  * degree (u = |Q|^2 / 4 = m^2 (t^2 / 2 - 1)^2), one verdict per sub-interval between them.  The
  * verdict depends on the balls' radius only through t, so the set serves every track radius.  m0

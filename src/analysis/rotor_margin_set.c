@@ -19,6 +19,15 @@
  * ends; a disagreement makes the sub-interval count as not stable and is counted in n_missed)
  * decides it.
  *
+ * Three or more identical balls (n >= 3, the handle's unbalance_member = SYMMETRIC: the symmetric fan
+ * psi_i = psi0 + pi + (i - (n-1)/2) delta, the only member rule available for n >= 3): the same
+ * closure holds with the same A~, G~ (common kappa = h/m), t = m0 r0 / (m r) ranges over (0, n),
+ * t = U_{n-1}(x) and u = m^2 U_{n-1}(y)^2 / 4 with y = cos delta = 2 x^2 - 1 (rotor_unbalance.c,
+ * docs/rotor.md "Every unbalance").  u(y) is monotone on [cos(2 pi/n), y1], [y1, cos(pi/n)],
+ * [cos(pi/n), 1] (y1 the root of U'_{n-1} between), so a critical u gives at most three t, each by
+ * bisection.  The (n - 2) neutral roots of the family and the (n - 2) roots -kappa of the full
+ * system are not roots of Delta: the set speaks of Delta's roots only (the design adds kappa).
+ *
  * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h),
  * (the margin of single configurations is not used here: the tests check the sets against it). */
 #include "autobal/rotor_stability.h"
@@ -31,6 +40,10 @@
 #include "analysis/rotor_closed.h"
 #include "analysis/rotor_stab_handle.h"
 #include "internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 /* p(z) for ascending real coefficients (long double Horner). */
 static long double lpoly(const long double *c, size_t len, long double z) {
@@ -68,11 +81,92 @@ static size_t t_of_u(double u, double m, double *out) {
   return 2;
 }
 
+/* ---- n >= 3 identical balls, the symmetric fan (the same formulas as rotor_unbalance.c) ---- */
+
+/* U_{n-1}(y) (Chebyshev, second kind) and its derivative. */
+static double cheb_u(size_t n, double y, double *dU) {
+  double u0 = 1.0, u1 = 2.0 * y, d0 = 0.0, d1 = 2.0;
+  size_t k;
+  if (n == 1) {
+    if (dU) *dU = 0.0;
+    return 1.0;
+  }
+  for (k = 2; k < n; k++) {
+    const double u2 = 2.0 * y * u1 - u0, d2 = 2.0 * u1 + 2.0 * y * d1 - d0;
+    u0 = u1, u1 = u2, d0 = d1, d1 = d2;
+  }
+  if (dU) *dU = d1;
+  return u1;
+}
+
+typedef struct fan_n {
+  size_t n;
+  double m, y_min, y1, y0;
+} fan_n;
+
+static double fan_t(const fan_n *f, double y) { return cheb_u(f->n, sqrt(0.5 * (1.0 + y)), NULL); }
+static double fan_u(const fan_n *f, double y) {
+  const double g = cheb_u(f->n, y, NULL);
+  return 0.25 * f->m * f->m * g * g;
+}
+static double fan_y_of_t(const fan_n *f, double t) {
+  double lo = f->y_min, hi = 1.0;
+  int it;
+  for (it = 0; it < 200; it++) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (fan_t(f, mid) < t) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+static void fan_setup(fan_n *f, size_t n, double m) {
+  double lo, hi, dlo;
+  int it;
+  f->n = n, f->m = m;
+  f->y_min = cos(2.0 * M_PI / (double)n);
+  f->y0 = cos(M_PI / (double)n);
+  lo = f->y_min, hi = f->y0;
+  (void)cheb_u(n, lo, &dlo);
+  for (it = 0; it < 200; it++) {
+    const double mid = 0.5 * (lo + hi);
+    double dm;
+    if (!(mid > lo && mid < hi)) break;
+    (void)cheb_u(n, mid, &dm);
+    if ((dm > 0.0) == (dlo > 0.0)) lo = mid;
+    else hi = mid;
+  }
+  f->y1 = 0.5 * (lo + hi);
+}
+/* u of the normalized unbalance t in (0, n). */
+static double fan_u_of_t(const fan_n *f, double t) { return fan_u(f, fan_y_of_t(f, t)); }
+/* The t of a critical u: one per monotone piece of u(y) that brackets it; returns the count (<= 3). */
+static size_t fan_t_of_u(const fan_n *f, double uc, double *out) {
+  const double br[4] = {f->y_min, f->y1, f->y0, 1.0};
+  size_t k, n = 0;
+  if (!isfinite(uc)) return 0;
+  for (k = 0; k < 3; k++) {
+    double lo = br[k], hi = br[k + 1], flo = fan_u(f, lo) - uc, fhi = fan_u(f, hi) - uc;
+    int it;
+    if ((flo > 0.0 && fhi > 0.0) || (flo < 0.0 && fhi < 0.0)) continue;
+    for (it = 0; it < 200; it++) {
+      const double mid = 0.5 * (lo + hi), fm = fan_u(f, mid) - uc;
+      if (!(mid > lo && mid < hi)) break;
+      if ((fm > 0.0) == (flo > 0.0)) lo = mid, flo = fm;
+      else hi = mid;
+    }
+    out[n++] = fan_t(f, 0.5 * (lo + hi));
+  }
+  return n;
+}
+
 /* Every root of Delta(. ; u(t)) left of -delta?  Routh-Hurwitz (with its error bounds, rtol 1e-12 on
  * the coefficients) on Delta~ = A~ - u G~: *ok 1 stable, 0 unstable, -1 within the tolerance of the
  * line Re lambda = -delta (MARGINAL: next to a critical t, or the neutral root at t = 0, 2). */
-static int ok_at(const long double *At, const long double *Gt, double m, double t, int *ok, autobal_error *err) {
-  const long double cc = (long double)(t * t / 2.0 - 1.0), u = (long double)m * (long double)m * cc * cc;
+static int ok_at(const long double *At, const long double *Gt, double m, const fan_n *fan, double t, int *ok,
+                 autobal_error *err) {
+  const long double cc = (long double)(t * t / 2.0 - 1.0);
+  const long double u = fan ? (long double)fan_u_of_t(fan, t) : (long double)m * (long double)m * cc * cc;
   double d[13];
   size_t k;
   int v, st;
@@ -89,27 +183,41 @@ static int ok_at(const long double *At, const long double *Gt, double m, double 
 static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_set *out) {
   const autobal_rotor_params *p = &s->cur;
   const autobal_rotor_plane *pl = &p->plane[0];
-  double m, mr, r0, A[13], Bt[13], cand[2 * 14], tcand[4 * 14];
+  double m, mr, r0, A[13], Bt[13], cand[2 * 14], tcand[4 * 14 + 4 * 14];
   long double At[13], Gt[13], Ae[7], Ao[6], Ge[7], Go[6], h[12], w2;
-  size_t nu = 0, nt = 0, i, j;
+  size_t nu = 0, nt = 0, i, j, nb;
   int st;
+  double tmax;
+  fan_n fan, *fanp = NULL;
   autobal_rotor_closed c;
-  if (p->n_planes != 1 || pl->n_balls != 2)
+  if (p->n_planes != 1 || pl->n_balls < 2)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "margin set: built for one plane with two balls (here %zu plane(s), %zu ball(s) in "
-                             "plane 1)",
+                             "margin set: built for one plane with two or more balls (here %zu plane(s), %zu ball(s) "
+                             "in plane 1)",
                              p->n_planes, pl->n_balls);
   if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
                              "margin set: needs the paper's inertia model (inertia = paper)");
   if (!autobal_rotor_lumped_isotropic_(&s->L))
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "margin set: needs isotropic supports");
-  if (!(s->m[0] == s->m[1] && s->r[0] == s->r[1] && s->h[0] == s->h[1]))
+  nb = pl->n_balls;
+  for (i = 1; i < nb; i++)
+    if (!(s->m[i] == s->m[0] && s->r[i] == s->r[0] && s->h[i] == s->h[0]))
+      return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                               "margin set: needs identical balls (the same ball_mass, ball_radius and "
+                               "ball_damping)");
+  if (nb >= 3 && s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "margin set: needs two identical balls (the same ball_mass, ball_radius and "
-                             "ball_damping)");
+                             "margin set: with %zu balls the member of the family matters; only unbalance_member = "
+                             "symmetric (the symmetric fan) is available for three or more balls",
+                             nb);
   m = s->m[0];
   mr = s->m[0] * s->r[0];
+  tmax = (double)nb;
+  if (nb >= 3) {
+    fan_setup(&fan, nb, m);
+    fanp = &fan;
+  }
   r0 = pl->r0;
   if (!(r0 > 0.0))
     return autobal_error_set(&s->err, AUTOBAL_EINVAL,
@@ -163,11 +271,11 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
       if (den > 0.0L) cand[nu++] = (double)((lpoly(Ae, 7, zz) * ge + zz * lpoly(Ao, 6, zz) * go) / den);
     }
   }
-  for (i = 0; i < nu; i++) nt += t_of_u(cand[i], m, tcand + nt);
+  for (i = 0; i < nu; i++) nt += fanp ? fan_t_of_u(fanp, cand[i], tcand + nt) : t_of_u(cand[i], m, tcand + nt);
   qsort(tcand, nt, sizeof tcand[0], cmp_double);
   out->n_crit = 0;
   for (i = 0; i < nt; i++) {
-    if (!(tcand[i] > 0.0 && tcand[i] < 2.0)) continue;
+    if (!(tcand[i] > 0.0 && tcand[i] < tmax)) continue;
     if (out->n_crit > 0 && tcand[i] - out->t_crit[out->n_crit - 1] <= 1e-12) continue;
     if (out->n_crit >= AUTOBAL_ROTOR_MAX_UCRIT)
       return autobal_error_set(&s->err, AUTOBAL_ENUMERIC,
@@ -175,13 +283,13 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
                                p->omega);
     out->t_crit[out->n_crit++] = tcand[i];
   }
-  /* one verdict per sub-interval of (0, 2) */
+  /* one verdict per sub-interval of (0, n) */
   {
     double edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
     size_t ne = 0, k;
     edges[ne++] = 0.0;
     for (k = 0; k < out->n_crit; k++) edges[ne++] = out->t_crit[k];
-    edges[ne++] = 2.0;
+    edges[ne++] = tmax;
     out->n = 0;
     for (k = 0; k + 1 < ne; k++) {
       const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
@@ -190,7 +298,7 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
       if (autobal_rotor_stab_cancelled_(s))
         return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "margin set: cancelled by the caller");
       for (q = 0; q < 3; q++) {
-        if ((st = ok_at(At, Gt, m, pts[q], &ok[q], &s->err)) != AUTOBAL_SUCCESS) return st;
+        if ((st = ok_at(At, Gt, m, fanp, pts[q], &ok[q], &s->err)) != AUTOBAL_SUCCESS) return st;
         out->evaluations++;
       }
       /* the ends just inside a critical t may be within the test's tolerance (-1): they do not vote */
@@ -205,7 +313,7 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
           /* two stable neighbours: at a true critical t a root touches -delta (no STABLE verdict
            * there); a spurious candidate (a near-real root of h) is no crossing: merge them */
           int okc;
-          if ((st = ok_at(At, Gt, m, lo, &okc, &s->err)) != AUTOBAL_SUCCESS) return st;
+          if ((st = ok_at(At, Gt, m, fanp, lo, &okc, &s->err)) != AUTOBAL_SUCCESS) return st;
           out->evaluations++;
           merge = okc == 1;
         }

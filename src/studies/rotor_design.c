@@ -1,4 +1,4 @@
-/* rotor_design.c: `autobal rotor design`: sizing a balancer of two identical balls in one plane for a
+/* rotor_design.c: `autobal rotor design`: sizing a balancer of n identical balls (two by default) in one plane for a
  * machine, a speed range and a range of unbalances, with a required margin (include/autobal/design.h,
  * docs/rotor.md "Design").  The exact test per design and speed is autobal_rotor_stab_margin_ratio_set;
  * the re-check is autobal_rotor_stab_every_unbalance_speeds (an independent path: Delta's critical
@@ -75,6 +75,9 @@ autobal_study_rotor_design_options autobal_study_rotor_design_options_default(vo
   o.balance_tol = 0.01;
   o.balance_revs = 50.0;
   o.threads = 0;
+  o.n_balls_min = o.n_balls_max = 2;
+  o.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_EVERY;
+  o.total_mass_max = NAN;
   return o;
 }
 
@@ -89,6 +92,7 @@ void autobal_study_rotor_design_summary_free(autobal_study_rotor_design_summary 
   free(s->window_hi);
   free(s->designs);
   free(s->best_config);
+  free(s->n_balls);
   memset(s, 0, sizeof *s);
 }
 
@@ -99,9 +103,11 @@ typedef struct dctx {
   autobal_study_rotor_design_options o; /* NaN bounds resolved */
   double *omega;                        /* n_omega speeds of the grid */
   autobal_rotor_params work;
-  double bm[2], br[2], bh[2], bpsi[2], brate[2];
+  double bm[AUTOBAL_DESIGN_MAX_BALLS], br[AUTOBAL_DESIGN_MAX_BALLS], bh[AUTOBAL_DESIGN_MAX_BALLS];
+  double bpsi[AUTOBAL_DESIGN_MAX_BALLS], brate[AUTOBAL_DESIGN_MAX_BALLS];
   autobal_rotor_stab *s;
-  double s_d; /* the handle's plane position */
+  double s_d;  /* the handle's plane position */
+  size_t s_n;  /* the handle's number of balls */
   autobal_error *err;
   double fraction;
   size_t ratio_sets, evaluations, nm_evals;
@@ -124,13 +130,24 @@ static int cancel_hook(void *user) {
   return c->o.progress && c->o.progress(c->fraction, c->o.progress_user) != 0;
 }
 
-/* The handle (allocated once) with its plane at position d (the key plane1.d). */
-static int handle_at(dctx *c, double d) {
+/* The number of balls of a design (0 read as 2). */
+static size_t nballs(const autobal_rotor_design *d) { return d->n_balls ? d->n_balls : 2; }
+
+/* The handle (allocated once per number of balls) with n balls and its plane at position d (the key
+ * plane1.d). */
+static int handle_at(dctx *c, size_t n, double d) {
   int st;
+  if (c->s && c->s_n != n) {
+    autobal_rotor_stab_free(c->s);
+    c->s = NULL;
+  }
   if (c->s && c->s_d == d) return AUTOBAL_SUCCESS;
   c->work.plane[0].d = d;
   if (!c->s) {
     autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+    so.unbalance_member = c->o.unbalance_member;
+    c->work.plane[0].n_balls = n;
+    c->s_n = n;
     c->s = autobal_rotor_stab_alloc(&c->work, &so, c->err);
     if (!c->s) return c->err ? c->err->status : AUTOBAL_EINVAL;
     autobal_rotor_stab_set_cancel(c->s, cancel_hook, c);
@@ -146,10 +163,10 @@ static int fail_handle(dctx *c, int st) {
   return autobal_error_set(c->err, st, "%s", autobal_rotor_stab_errmsg(c->s));
 }
 
-/* The handle at design (m, h, d) and speed k. */
-static int set_design(dctx *c, double m, double h, double d) {
+/* The handle at design (n, m, h, d). */
+static int set_design(dctx *c, size_t n, double m, double h, double d) {
   int st;
-  if ((st = handle_at(c, d)) != AUTOBAL_SUCCESS) return st;
+  if ((st = handle_at(c, n, d)) != AUTOBAL_SUCCESS) return st;
   if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_BALL_MASS, m)) != AUTOBAL_SUCCESS) return fail_handle(c, st);
   if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_BALL_DAMPING, h)) != AUTOBAL_SUCCESS)
     return fail_handle(c, st);
@@ -212,15 +229,20 @@ static size_t radius_windows(const dctx *c, const ivals *T, double m, double *wl
 
 /* The exact t-set with the required margin at every speed of the grid for (m, h, d); stops early
  * once no radius within the bounds can work. */
-static int cell_set(dctx *c, double m, double h, double d, ivals *T) {
+static int cell_set(dctx *c, size_t n, double m, double h, double d, ivals *T) {
   autobal_rotor_ratio_set rs;
   size_t k;
   int st;
   double wl, wh;
-  if ((st = set_design(c, m, h, d)) != AUTOBAL_SUCCESS) return st;
+  if ((st = set_design(c, n, m, h, d)) != AUTOBAL_SUCCESS) return st;
   T->n = 1;
   T->lo[0] = 0.0;
-  T->hi[0] = 2.0;
+  T->hi[0] = (double)n;
+  /* n >= 3: the n - 2 ball modes -h/m of the full system must decay fast enough too */
+  if (n >= 3 && !(h / m > c->o.margin)) {
+    T->n = 0;
+    return AUTOBAL_SUCCESS;
+  }
   for (k = 0; k < c->o.n_omega; k++) {
     if ((st = ratio_set_at(c, k, c->o.margin, &rs)) != AUTOBAL_SUCCESS) return st;
     intersect(T, &rs);
@@ -246,13 +268,14 @@ static int robust_margin(dctx *c, const autobal_rotor_design *dsg, double *rho) 
   const double t_lo = c->o.unbalance_min / (dsg->mass * dsg->radius);
   const double t_hi = c->o.unbalance_max / (dsg->mass * dsg->radius);
   const double r0 = c->work.plane[0].r0;
+  const size_t nb = nballs(dsg);
   autobal_rotor_ratio_set rs;
   double U = INFINITY, eps;
   size_t k;
   int st;
   *rho = -INFINITY;
-  if (!(t_hi < 2.0)) return AUTOBAL_SUCCESS;
-  if ((st = set_design(c, dsg->mass, dsg->damping, dsg->position)) != AUTOBAL_SUCCESS) return st;
+  if (!(t_hi < (double)nb)) return AUTOBAL_SUCCESS;
+  if ((st = set_design(c, nb, dsg->mass, dsg->damping, dsg->position)) != AUTOBAL_SUCCESS) return st;
   /* an upper bound: the margins at the two ends of the range, every speed */
   for (k = 0; k < c->o.n_omega; k++) {
     double mg[2];
@@ -299,7 +322,8 @@ static int robust_margin(dctx *c, const autobal_rotor_design *dsg, double *rho) 
     }
     U = lo;
   }
-  *rho = U;
+  /* n >= 3: the ball modes -h/m (not roots of Delta) */
+  *rho = nb >= 3 ? fmin(U, dsg->damping / dsg->mass) : U;
   return AUTOBAL_SUCCESS;
 }
 
@@ -356,7 +380,7 @@ static double nm_objective(const gsl_vector *x, void *user) {
     return 1e6;
   }
   if (!isfinite(rho)) { /* cannot balance the range: a slope towards larger m r */
-    return 1e5 + 1e3 * (n->c->o.unbalance_max / (2.0 * d.mass * d.radius));
+    return 1e5 + 1e3 * (n->c->o.unbalance_max / ((double)nballs(&d) * d.mass * d.radius));
   }
   return -rho;
 }
@@ -374,7 +398,9 @@ static int polish(dctx *c, const autobal_rotor_design *start, autobal_rotor_desi
   n.base = *start;
   {
     const double lo[4] = {c->o.mass_min, c->o.radius_min, c->o.damping_min, c->o.position_min};
-    const double hi[4] = {c->o.mass_max, c->o.radius_max, c->o.damping_max, c->o.position_max};
+    double hi[4] = {c->o.mass_max, c->o.radius_max, c->o.damping_max, c->o.position_max};
+    /* the cap on the total ball mass, per ball for this n */
+    if (isfinite(c->o.total_mass_max)) hi[0] = fmax(lo[0], fmin(hi[0], c->o.total_mass_max / (double)nballs(start)));
     for (i = 0; i < 4; i++)
       if (lo[i] < hi[i]) {
         n.var[n.n].which = (int)i;
@@ -429,7 +455,9 @@ static int polish(dctx *c, const autobal_rotor_design *start, autobal_rotor_desi
 static int recheck(dctx *c, autobal_rotor_design *d) {
   autobal_rotor_params q = *c->base;
   autobal_rotor_plane *pl = &q.plane[0];
-  double m[2] = {d->mass, d->mass}, r[2] = {d->radius, d->radius}, h[2] = {d->damping, d->damping};
+  const size_t nb = nballs(d);
+  double m[AUTOBAL_DESIGN_MAX_BALLS], r[AUTOBAL_DESIGN_MAX_BALLS], h[AUTOBAL_DESIGN_MAX_BALLS];
+  double psi[AUTOBAL_DESIGN_MAX_BALLS], rate[AUTOBAL_DESIGN_MAX_BALLS];
   autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
   autobal_rotor_stab *s;
   autobal_rotor_crit cr;
@@ -438,10 +466,21 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   double worst = -INFINITY;
   int st, ok;
   memset(&q.drive, 0, sizeof q.drive); /* constant speeds */
+  for (k = 0; k < nb; k++) {
+    m[k] = d->mass;
+    r[k] = d->radius;
+    h[k] = d->damping;
+    psi[k] = c->bpsi[k];
+    rate[k] = c->brate[k];
+  }
   pl->d = d->position;
+  pl->n_balls = nb;
   pl->ball_mass = m;
   pl->ball_radius = r;
   pl->ball_damping = h;
+  pl->ball_psi = psi;
+  pl->ball_rate = rate;
+  so.unbalance_member = c->o.unbalance_member;
   s = autobal_rotor_stab_alloc(&q, &so, c->err);
   if (!s) return c->err ? c->err->status : AUTOBAL_EINVAL;
   autobal_rotor_stab_set_cancel(s, cancel_hook, c);
@@ -475,6 +514,7 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   }
   autobal_rotor_stab_free(s);
   d->recheck_margin = -worst;
+  if (nb >= 3) d->recheck_margin = fmin(d->recheck_margin, d->damping / d->mass); /* the ball modes -h/m */
   if (!(d->recheck_margin > c->o.margin)) ok = 0;
   d->recheck = ok;
   if (!ok) d->feasible = 0;
@@ -497,15 +537,26 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   const autobal_study_rotor_design_options *o = &c->o;
   autobal_rotor_params q = *c->base;
   autobal_rotor_plane *pl = &q.plane[0];
-  double m[2] = {d->mass, d->mass}, r[2] = {d->radius, d->radius}, h[2] = {d->damping, d->damping};
-  double psi[2] = {0.0, 0.0}, rate[2] = {0.0, 0.0};
+  const size_t nb = nballs(d);
+  double m[AUTOBAL_DESIGN_MAX_BALLS], r[AUTOBAL_DESIGN_MAX_BALLS], h[AUTOBAL_DESIGN_MAX_BALLS];
+  double psi[AUTOBAL_DESIGN_MAX_BALLS], rate[AUTOBAL_DESIGN_MAX_BALLS];
   const double n = (double)o->n_start, step = 2.0 * M_PI / n;
   autobal_ensemble_member mem;
   autobal_ensemble_settings es = autobal_ensemble_settings_default();
   autobal_ensemble *e;
   size_t k, ai, nm;
   int st;
+  /* balls 1 and 2 on the grid below; balls 3..n at the fixed angles step (2i - 3) / (4 (n - 1)),
+   * strictly between 0 and step / 2, so that no two balls start together */
+  for (k = 0; k < nb; k++) {
+    m[k] = d->mass;
+    r[k] = d->radius;
+    h[k] = d->damping;
+    psi[k] = k < 2 ? 0.0 : step * (2.0 * (double)(k + 1) - 3.0) / (4.0 * ((double)nb - 1.0));
+    rate[k] = 0.0;
+  }
   pl->d = d->position;
+  pl->n_balls = nb;
   pl->ball_mass = m;
   pl->ball_radius = r;
   pl->ball_damping = h;
@@ -634,11 +685,37 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
                              "verdict is built for one plane with two balls",
                              p->n_planes);
   pl = &p->plane[0];
-  if (pl->n_balls != 2)
+  if (pl->n_balls < 2 || pl->n_balls > AUTOBAL_DESIGN_MAX_BALLS)
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
-                             "[plane1] ball_mass: the design covers two balls (here %zu): for three or more the verdict "
-                             "depends on the member of the family and is not guaranteed",
-                             pl->n_balls);
+                             "[plane1] ball_mass: the design needs a plane with 2 to %d balls (here %zu): their first "
+                             "ball gives the default bounds; the number of balls designed is [design] n_balls_min, "
+                             "n_balls_max",
+                             AUTOBAL_DESIGN_MAX_BALLS, pl->n_balls);
+  if (o->n_balls_min == 0) o->n_balls_min = 2;
+  if (o->n_balls_max == 0) o->n_balls_max = 2;
+  if (!(o->n_balls_min >= 2 && o->n_balls_min <= o->n_balls_max && o->n_balls_max <= AUTOBAL_DESIGN_MAX_BALLS))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: n_balls_min = %zu, n_balls_max = %zu: need 2 <= n_balls_min <= n_balls_max <= %d",
+                             o->n_balls_min, o->n_balls_max, AUTOBAL_DESIGN_MAX_BALLS);
+  if (o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_EVERY && o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: unbalance_member = %d: allowed 0 (every), 1 (symmetric)",
+                             o->unbalance_member);
+  if (o->n_balls_max >= 3 && o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[design] unbalance_member = every: with n_balls_max = %zu (three or more balls) the "
+                             "verdict depends on the member of the family, and the design's exact test covers the "
+                             "symmetric fan only: set unbalance_member = symmetric (the verdict then says 'symmetric "
+                             "members only'), or n_balls_max = 2",
+                             o->n_balls_max);
+  if (pl->n_balls < o->n_balls_min || pl->n_balls > o->n_balls_max)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[plane1] ball_mass: the config has %zu balls, outside the numbers of balls designed, "
+                             "[design] n_balls_min = %zu .. n_balls_max = %zu (default 2 .. 2: two balls); widen them "
+                             "(three or more balls: unbalance_member = symmetric)",
+                             pl->n_balls, o->n_balls_min, o->n_balls_max);
+  if (!(isnan(o->total_mass_max) || (isfinite(o->total_mass_max) && o->total_mass_max > 0.0)))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: total_mass_max = %g kg must be > 0 (or NaN: no cap)",
+                             o->total_mass_max);
   if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
                              "[rotor] inertia: the design needs inertia = paper (with full inertia the unbalance mass "
@@ -741,11 +818,12 @@ static int cmp_design(const void *a, const void *b) {
   const autobal_rotor_design *x = (const autobal_rotor_design *)a, *y = (const autobal_rotor_design *)b;
   if (x->margin > y->margin) return -1;
   if (x->margin < y->margin) return 1;
-  return (x->source > y->source) - (x->source < y->source);
+  if (x->source != y->source) return (x->source > y->source) - (x->source < y->source);
+  return (nballs(x) > nballs(y)) - (nballs(x) < nballs(y)); /* fewer balls first */
 }
 
 static int same_design(const autobal_rotor_design *a, const autobal_rotor_design *b) {
-  return fabs(a->mass - b->mass) <= 1e-6 * b->mass && fabs(a->radius - b->radius) <= 1e-6 * b->radius &&
+  return nballs(a) == nballs(b) && fabs(a->mass - b->mass) <= 1e-6 * b->mass && fabs(a->radius - b->radius) <= 1e-6 * b->radius &&
          fabs(a->damping - b->damping) <= 1e-6 * b->damping &&
          fabs(a->position - b->position) <= 1e-6 * (fabs(b->position) + 1e-3);
 }
@@ -755,13 +833,16 @@ static int same_design(const autobal_rotor_design *a, const autobal_rotor_design
 static int map_cell(dctx *c, autobal_study_rotor_design_summary *S, size_t cell) {
   const autobal_study_rotor_design_options *o = &c->o;
   const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
-               i = cell / (o->n_position * o->n_damping);
+               row = cell / (o->n_position * o->n_damping), i = row % o->n_mass, b = row / o->n_mass;
   const double m = S->mass[i];
+  const size_t nb = (size_t)S->n_balls[b];
+  const int capped = isfinite(o->total_mass_max) && (double)nb * m > o->total_mass_max;
   ivals T;
   double wl, wh;
   size_t q;
   int st;
-  if ((st = cell_set(c, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) return st;
+  if (capped) T.n = 0; /* over the cap on the total ball mass: not searched */
+  else if ((st = cell_set(c, nb, m, S->damping[j], S->position[k], &T)) != AUTOBAL_SUCCESS) return st;
   radius_windows(c, &T, m, &wl, &wh);
   S->window_lo[cell] = wl;
   S->window_hi[cell] = wh;
@@ -769,7 +850,8 @@ static int map_cell(dctx *c, autobal_study_rotor_design_summary *S, size_t cell)
     const double r = S->radius[q], t_lo = o->unbalance_min / (m * r), t_hi = o->unbalance_max / (m * r);
     size_t e;
     int f = 0;
-    if (!(t_hi < 2.0)) f = -1;
+    if (capped) f = -2;
+    else if (!(t_hi < (double)nb)) f = -1;
     else
       for (e = 0; e < T.n; e++)
         if (T.lo[e] < t_lo && t_hi < T.hi[e]) f = 1;
@@ -782,7 +864,7 @@ static void map_collect(const dctx *c, autobal_study_rotor_design_summary *S, si
                         size_t *ncand) {
   const autobal_study_rotor_design_options *o = &c->o;
   const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
-               i = cell / (o->n_position * o->n_damping);
+               row = cell / (o->n_position * o->n_damping), i = row % o->n_mass, b = row / o->n_mass;
   const double wl = S->window_lo[cell], wh = S->window_hi[cell];
   size_t q;
   for (q = 0; q < o->n_radius; q++) S->n_feasible += S->feasible[cell * o->n_radius + q] == 1;
@@ -794,6 +876,7 @@ static void map_collect(const dctx *c, autobal_study_rotor_design_summary *S, si
     d->position = S->position[k];
     d->radius = isfinite(wh) ? sqrt(wl * wh) : wl;
     d->recheck = -1;
+    d->n_balls = (size_t)S->n_balls[b];
   }
 }
 
@@ -813,6 +896,7 @@ static void dctx_clone(const dctx *c, dctx *t, autobal_error *e, int *stop) {
   *t = *c;
   t->s = NULL;
   t->s_d = NAN;
+  t->s_n = 0;
   t->err = e;
   autobal_error_clear(e);
   t->ratio_sets = t->evaluations = t->nm_evals = 0;
@@ -899,13 +983,13 @@ static int job_cell(dctx *t, size_t k, void *user) { return map_cell(t, (autobal
 /* The map over the threads, cell by cell; the rows of ball mass done in full (a prefix) count. */
 static int map_parallel(dctx *c, autobal_study_rotor_design_summary *S, autobal_rotor_design *cand, size_t *ncand) {
   const autobal_study_rotor_design_options *o = &c->o;
-  const size_t per = o->n_damping * o->n_position, ncell = o->n_mass * per;
+  const size_t per = o->n_damping * o->n_position, nrow = S->n_n * o->n_mass, ncell = nrow * per;
   unsigned char *done = calloc(ncell ? ncell : 1, 1);
   size_t i, k;
   int st, cancelled;
   if (!done) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   st = run_parallel(c, ncell, job_cell, S, 0.0, 0.7, done, &cancelled);
-  for (i = 0; i < o->n_mass; i++) {
+  for (i = 0; i < nrow; i++) {
     int full = 1;
     for (k = 0; k < per; k++) full &= done[i * per + k];
     if (!full) break;
@@ -915,7 +999,7 @@ static int map_parallel(dctx *c, autobal_study_rotor_design_summary *S, autobal_
   free(done);
   if (cancelled)
     return autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
-                             S->n_mass_done, o->n_mass);
+                             S->n_mass_done, nrow);
   return st;
 }
 
@@ -963,10 +1047,15 @@ static int margins_parallel(dctx *c, autobal_rotor_design *cand, size_t ncand) {
 
 static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   const autobal_study_rotor_design_options *o = &c->o;
-  const size_t ncell = o->n_mass * o->n_damping * o->n_position;
+  const size_t n_n = o->n_balls_max - o->n_balls_min + 1, nrow = n_n * o->n_mass;
+  const size_t ncell = nrow * o->n_damping * o->n_position;
   autobal_rotor_design *cand = NULL;
   size_t ncand = 0, i, j, k;
   int st = AUTOBAL_SUCCESS;
+  S->n_n = n_n;
+  S->n_balls = malloc(n_n * sizeof *S->n_balls);
+  if (!S->n_balls) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  for (i = 0; i < n_n; i++) S->n_balls[i] = (int)(o->n_balls_min + i);
   S->n_mass = o->n_mass;
   S->n_damping = o->n_damping;
   S->n_position = o->n_position;
@@ -991,8 +1080,8 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     st = map_parallel(c, S, cand, &ncand);
   } else
 #endif
-  for (i = 0; i < o->n_mass && st == AUTOBAL_SUCCESS; i++) {
-    c->fraction = 0.7 * (double)i / (double)o->n_mass;
+  for (i = 0; i < nrow && st == AUTOBAL_SUCCESS; i++) {
+    c->fraction = 0.7 * (double)i / (double)nrow;
     for (j = 0; j < o->n_damping && st == AUTOBAL_SUCCESS; j++)
       for (k = 0; k < o->n_position && st == AUTOBAL_SUCCESS; k++) {
         const size_t cell = (i * o->n_damping + j) * o->n_position + k;
@@ -1000,14 +1089,14 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
         map_collect(c, S, cell, cand, &ncand);
       }
     if (st == AUTOBAL_SUCCESS) S->n_mass_done = i + 1;
-    if (st == AUTOBAL_SUCCESS && o->progress && o->progress(0.7 * (double)(i + 1) / (double)o->n_mass, o->progress_user))
+    if (st == AUTOBAL_SUCCESS && o->progress && o->progress(0.7 * (double)(i + 1) / (double)nrow, o->progress_user))
       st = autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
-                             i + 1, o->n_mass);
+                             i + 1, nrow);
   }
   if (st == AUTOBAL_ECANCELLED && c->err && strstr(c->err->message, "cancelled by the caller") &&
       !strstr(c->err->message, "rows of the map"))
     autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
-                      S->n_mass_done, o->n_mass);
+                      S->n_mass_done, nrow);
   /* 2. the robust margin of every cell's design; 3. the optimizer from the best */
 #ifdef AUTOBAL_HAVE_OPENMP
   if (st == AUTOBAL_SUCCESS && nthreads(o) > 1) st = margins_parallel(c, cand, ncand);
@@ -1117,12 +1206,13 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
   {
     const autobal_rotor_plane *pl = &p->plane[0];
     size_t i;
-    for (i = 0; i < 2; i++) {
+    for (i = 0; i < AUTOBAL_DESIGN_MAX_BALLS; i++) {
       c.bm[i] = pl->ball_mass[0];
       c.br[i] = pl->ball_radius[0];
       c.bh[i] = pl->ball_damping[0];
-      c.bpsi[i] = pl->ball_psi ? pl->ball_psi[i] : 0.0;
-      c.brate[i] = pl->ball_rate ? pl->ball_rate[i] : 0.0;
+      /* the config's start angles for its balls; further balls evenly spread */
+      c.bpsi[i] = i < pl->n_balls ? (pl->ball_psi ? pl->ball_psi[i] : 0.0) : 2.0 * M_PI * (double)i / (double)AUTOBAL_DESIGN_MAX_BALLS;
+      c.brate[i] = i < pl->n_balls && pl->ball_rate ? pl->ball_rate[i] : 0.0;
     }
     c.work.plane[0].ball_mass = c.bm;
     c.work.plane[0].ball_radius = c.br;
@@ -1158,9 +1248,14 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
     return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
   c.work = *p;
   memset(&c.work.drive, 0, sizeof c.work.drive);
-  c.bm[0] = c.bm[1] = p->plane[0].ball_mass[0];
-  c.br[0] = c.br[1] = p->plane[0].ball_radius[0];
-  c.bh[0] = c.bh[1] = p->plane[0].ball_damping[0];
+  {
+    size_t i;
+    for (i = 0; i < AUTOBAL_DESIGN_MAX_BALLS; i++) {
+      c.bm[i] = p->plane[0].ball_mass[0];
+      c.br[i] = p->plane[0].ball_radius[0];
+      c.bh[i] = p->plane[0].ball_damping[0];
+    }
+  }
   c.work.plane[0].ball_mass = c.bm;
   c.work.plane[0].ball_radius = c.br;
   c.work.plane[0].ball_damping = c.bh;
@@ -1247,6 +1342,12 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   b.p[0] = '\0';
   put(&b, "; written by autobal rotor design: the machine with the design's balancer (docs/rotor.md \"Design\")\n");
   put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
+  if (nballs(d) >= 3)
+    put(&b,
+        "; %zu identical balls: the verdict covers the symmetric members of the family only (the symmetric fan, the\n"
+        "; default balanced configuration of `rotor stability`); for its every-unbalance analysis add\n"
+        "; --set stability.unbalance_member=symmetric\n",
+        nballs(d));
   if (p->input == AUTOBAL_ROTOR_HARDWARE) {
     f = autobal_rotor_hardware_fields(&nf);
     for (i = 0; i < nf; i++) {
@@ -1266,11 +1367,28 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
     for (i = 0; i < nf; i++) put(&b, "%s = %.17g\n", f[i].name, autobal_rotor_field_get(&p->lumped, &f[i]));
   }
   put(&b, "\n[plane1]\nd = %.17g\nm0 = %.17g\nr0 = %.17g\npsi0 = %.17g\n", d->position, pl->m0, pl->r0, pl->psi0);
-  put(&b, "ball_mass = %.17g, %.17g\nball_radius = %.17g, %.17g\nball_damping = %.17g, %.17g\n", d->mass, d->mass,
-      d->radius, d->radius, d->damping, d->damping);
-  put(&b, "ball_psi = %.17g, %.17g\nball_rate = %.17g, %.17g\n", pl->ball_psi ? pl->ball_psi[0] : 0.0,
-      pl->ball_psi ? pl->ball_psi[1] : 0.0, pl->ball_rate ? pl->ball_rate[0] : 0.0,
-      pl->ball_rate ? pl->ball_rate[1] : 0.0);
+  if (nballs(d) == 2) {
+    put(&b, "ball_mass = %.17g, %.17g\nball_radius = %.17g, %.17g\nball_damping = %.17g, %.17g\n", d->mass, d->mass,
+        d->radius, d->radius, d->damping, d->damping);
+    put(&b, "ball_psi = %.17g, %.17g\nball_rate = %.17g, %.17g\n", pl->ball_psi && pl->n_balls >= 2 ? pl->ball_psi[0] : 0.0,
+        pl->ball_psi && pl->n_balls >= 2 ? pl->ball_psi[1] : 0.0, pl->ball_rate && pl->n_balls >= 2 ? pl->ball_rate[0] : 0.0,
+        pl->ball_rate && pl->n_balls >= 2 ? pl->ball_rate[1] : 0.0);
+  } else {
+    /* n balls: start angles evenly spread (the transient from this config starts with no two
+       balls together), at rest relative to the rotor */
+    const size_t nb = nballs(d);
+    const char *key[5] = {"ball_mass", "ball_radius", "ball_damping", "ball_psi", "ball_rate"};
+    size_t q, k;
+    for (q = 0; q < 5; q++) {
+      put(&b, "%s = ", key[q]);
+      for (k = 0; k < nb; k++) {
+        const double v = q == 0 ? d->mass : q == 1 ? d->radius : q == 2 ? d->damping
+                       : q == 3 ? 2.0 * M_PI * (double)k / (double)nb : 0.0;
+        put(&b, "%s%.17g", k ? ", " : "", v);
+      }
+      put(&b, "\n");
+    }
+  }
   if (has_profile(p)) {
     const autobal_rotor_drive *dr = &p->drive;
     if (dr->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
@@ -1300,11 +1418,17 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   const char *dims4[4] = {"ball_mass", "ball_damping", "plane_position", "track_radius"};
   const char *rank1[1] = {"rank"};
   autobal_study_rotor_design_options res;
-  size_t nm, i;
-  int st;
+  size_t nm, i, nn = 0;
+  int st, nball; /* nball: the number of balls is a design variable (not today's two balls only) */
   if (!a || !p || !opt || !S || !S->mass) return AUTOBAL_EINVAL;
   if (resolve(p, opt, &res, NULL) == AUTOBAL_SUCCESS) opt = &res; /* the bounds and counts as used */
+  nball = !(S->n_n == 1 && S->n_balls && S->n_balls[0] == 2);
   nm = S->n_mass_done;
+  if (nball) {
+    /* the map's rows are (n, ball mass): the complete n slices are written */
+    nn = S->n_mass ? nm / S->n_mass : 0;
+    nm = nn == S->n_n ? S->n_mass : (nn > 0 ? S->n_mass : 0);
+  }
   if (nm == 0) return AUTOBAL_EINVAL;
   st = autobal_study_write_rotor_params(a, p, 0);
   if (!st) st = autobal_archive_group(a, g);
@@ -1333,11 +1457,31 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     if (!st) st = autobal_archive_attr_int(a, g, "transients", (long)S->transients);
     if (!st) st = autobal_archive_attr_string(a, g, "transient_method", "docs/rotor.md \"Design\": per design an ensemble grid over the start angles of both balls (ball 2 half a step on), the unbalances and the speeds (or the run-up profile from rest); balanced = attractor class balanced; time to balance = start of the stretch of transient_balance_revs revolutions with the residual unbalance below transient_balance_tol, inf when not balanced by transient_t_end");
   }
-  if (!st && nm == S->n_mass && !S->ranked) {
+  if (!st && nball) {
+    st = autobal_archive_attr_int(a, g, "n_balls_min", (long)opt->n_balls_min);
+    if (!st) st = autobal_archive_attr_int(a, g, "n_balls_max", (long)opt->n_balls_max);
+    if (!st) st = autobal_archive_attr_double(a, g, "total_ball_mass_max", opt->total_mass_max, "kg");
+    if (!st)
+      st = autobal_archive_attr_string(a, g, "unbalance_member",
+                                       opt->unbalance_member == AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC ? "symmetric" : "every");
+    if (!st)
+      st = autobal_archive_attr_string(a, g, "verdict_covers",
+                                       opt->n_balls_max >= 3 ? "two balls: every member (the unique one); three or more: symmetric members only (the symmetric fan), the ball modes -h/m included in the margin"
+                                                             : "every member (two balls: the balanced configuration is unique)");
+  }
+  if (!st && (nball ? nn == S->n_n : nm == S->n_mass) && !S->ranked) {
     st = autobal_archive_attr_int(a, g, "partial", 1);
     if (!st) st = autobal_archive_attr_string(a, g, "partial_what", "interrupted during the ranking: the map is complete, no ranked designs");
   }
-  if (!st && nm < S->n_mass) {
+  if (!st && nball && nn < S->n_n) {
+    char what[200];
+    snprintf(what, sizeof what, "interrupted: the first %zu of %zu numbers of balls of the map; no ranking", nn, S->n_n);
+    st = autobal_archive_attr_int(a, g, "partial", 1);
+    if (!st) st = autobal_archive_attr_int(a, g, "done", (long)nn);
+    if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)S->n_n);
+    if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
+  }
+  if (!st && !nball && nm < S->n_mass) {
     char what[200];
     snprintf(what, sizeof what, "interrupted: the first %zu of %zu rows of the map (ball_mass values); no ranking", nm,
              S->n_mass);
@@ -1346,13 +1490,33 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     if (!st) st = autobal_archive_attr_int(a, g, "requested", (long)S->n_mass);
     if (!st) st = autobal_archive_attr_string(a, g, "partial_what", what);
   }
-  if (!st) st = autobal_archive_coord(a, g, "ball_mass", nm, S->mass, "kg", "ball mass (each of the two balls)");
+  if (!st) st = autobal_archive_coord(a, g, "ball_mass", nm, S->mass, "kg", nball ? "ball mass (each ball)" : "ball mass (each of the two balls)");
   if (!st) st = autobal_archive_coord(a, g, "ball_damping", S->n_damping, S->damping, "kg/s", "ball damping h (each ball)");
   if (!st) st = autobal_archive_coord(a, g, "plane_position", S->n_position, S->position, "m", "axial position d of the plane");
-  if (!st) st = autobal_archive_coord(a, g, "track_radius", S->n_radius, S->radius, "m", "track radius r of both balls");
+  if (!st) st = autobal_archive_coord(a, g, "track_radius", S->n_radius, S->radius, "m", nball ? "track radius r of every ball" : "track radius r of both balls");
+  if (!st && nball) {
+    double *nv = malloc(nn * sizeof *nv);
+    if (!nv) return AUTOBAL_ENOMEM;
+    for (i = 0; i < nn; i++) nv[i] = (double)S->n_balls[i];
+    st = autobal_archive_coord(a, g, "n_balls", nn, nv, "1", "number of identical balls in the plane");
+    free(nv);
+    /* one group per number of balls (the archive's datasets have rank <= 4), the dimensions are
+       those of /rotor/design */
+    for (i = 0; i < nn && !st; i++) {
+      const size_t per = S->n_mass * S->n_damping * S->n_position;
+      char sg[80];
+      snprintf(sg, sizeof sg, "%s/n_balls_%d", g, S->n_balls[i]);
+      st = autobal_archive_group(a, sg);
+      if (!st) st = autobal_archive_attr_int(a, sg, "n_balls", (long)S->n_balls[i]);
+      if (!st) st = autobal_archive_var_int(a, sg, "feasible", 4, dims4, S->feasible + i * per * S->n_radius, "1", "1: every root Re lambda < -margin_required at every speed of the grid for every unbalance of the range (three or more balls: symmetric members, and h/m > margin_required); 0: not; -1: the balls cannot balance unbalance_max (n m r <= m0 r0); -2: n m exceeds total_ball_mass_max");
+      if (!st) st = autobal_archive_var(a, sg, "radius_window_lo", 3, dims4, S->window_lo + i * per, "m", "lower end of the widest open interval of feasible track radii within the bounds (exact in r; NaN: none)");
+      if (!st) st = autobal_archive_var(a, sg, "radius_window_hi", 3, dims4, S->window_hi + i * per, "m", "upper end of the same interval");
+    }
+  } else {
   if (!st) st = autobal_archive_var_int(a, g, "feasible", 4, dims4, S->feasible, "1", "1: every root Re lambda < -margin_required at every speed of the grid for every unbalance of the range; 0: not; -1: the balls cannot balance unbalance_max (2 m r <= m0 r0)");
   if (!st) st = autobal_archive_var(a, g, "radius_window_lo", 3, dims4, S->window_lo, "m", "lower end of the widest open interval of feasible track radii within the bounds (exact in r; NaN: none)");
   if (!st) st = autobal_archive_var(a, g, "radius_window_hi", 3, dims4, S->window_hi, "m", "upper end of the same interval");
+  }
   if (st || S->n_designs == 0 || !S->ranked) return st;
   {
     const size_t n = S->n_designs;
@@ -1375,7 +1539,7 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     for (i = 0; i < n; i++) iv[i] = S->designs[i].field;                        \
     st = autobal_archive_var_int(a, gr, name, 1, rank1, iv, "1", lname);        \
   }
-    COL(mass, "ball_mass", "kg", "ball mass (each of the two balls)")
+    COL(mass, "ball_mass", "kg", nball ? "ball mass (each ball)" : "ball mass (each of the two balls)")
     COL(radius, "track_radius", "m", "track radius")
     COL(damping, "ball_damping", "kg/s", "ball damping h")
     COL(position, "plane_position", "m", "plane position d")
@@ -1384,6 +1548,10 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     ICOL(feasible, "feasible", "1: robust_margin > margin_required and the re-check agrees")
     ICOL(recheck, "recheck", "1: the exact every-unbalance analysis finds it stable for every unbalance on the re-check grid with margins below -margin_required; 0: not; -1: not re-checked")
     ICOL(source, "source", "0: a grid point of the map, 1: the Nelder-Mead optimizer")
+    if (nball && !st) {
+      for (i = 0; i < n; i++) iv[i] = (int)nballs(&S->designs[i]);
+      st = autobal_archive_var_int(a, gr, "n_balls", 1, rank1, iv, "1", "number of identical balls of the design");
+    }
     if (opt->n_transient > 0) {
       COL(p_balance, "p_balance", "1", "share of the design's transients whose attractor is balanced (NaN: not run)")
       COL(ttb_median, "time_to_balance_median", "s", "median time to balance over the design's transients (inf: more than half do not balance)")

@@ -124,7 +124,7 @@ expect_err 3 "unbalance_min and unbalance_max are required" "$AUTOBAL" rotor des
 printf '[plane1]\nball_mass = 0.05, 0.05, 0.05\nball_radius = 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1\nball_psi = 0, 2, 4\nball_rate = 0, 0, 0\n' > three.ini
 cat d.ini >> three.ini
 expect_err 3 "ball_mass" "$AUTOBAL" rotor design three.ini
-grep -q "two balls" err.txt && ok "three balls: says two balls" || bad "three balls message: $(cat err.txt)"
+grep -q "n_balls_max" err.txt && ok "three balls outside n_balls 2..2: names n_balls_max" || bad "three balls message: $(cat err.txt)"
 printf '[plane2]\nd = -0.12\nm0 = 0.015\nr0 = 0.09\nball_mass = 0.04, 0.04\nball_radius = 0.09, 0.09\nball_damping = 0.5, 0.5\nball_psi = 1, 2\n' > two.ini
 cat d.ini >> two.ini
 expect_err 3 "plane2" "$AUTOBAL" rotor design two.ini
