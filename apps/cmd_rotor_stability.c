@@ -260,6 +260,18 @@ static void print_asymptotic2(const autobal_rotor_asymptotic2 *q) {
          q->G_re[0], q->G_im[0], q->G_re[1], q->G_im[1], q->G_re[3], q->G_im[3], q->ball_re_max, q->rotor_re_max,
          q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
          q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  if (q->high_defined) {
+    if (q->high_mu[0] > 0.0)
+      printf("    high speed, balls at q = 0 in both planes: (H1') Gamma positive definite [yes], (H2') mode 1: kappa %.6g >"
+             " kappa_inf %.6g 1/s [%s], mode 2: kappa %.6g > kappa_inf %.6g 1/s [%s]: predicts %s%s; small parameter %.3g (%s)\n",
+             q->high_kappa_mode[0], q->high_kappa_inf[0], q->high_re[0] < 0.0 ? "yes" : "no", q->high_kappa_mode[1],
+             q->high_kappa_inf[1], q->high_re[1] < 0.0 ? "yes" : "no", q->high_stable ? "STABLE" : "UNSTABLE",
+             q->high_decided ? "" : " (undecided: within its error)", q->high_small, asym_word(q->high_applicable));
+    else
+      printf("    high speed, balls at q = 0 in both planes: (H1') Gamma positive definite [no]: predicts UNSTABLE; small"
+             " parameter %.3g (%s)\n",
+             q->high_small, asym_word(q->high_applicable));
+  }
 }
 static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
   cli_json_object(j, "asymptotic2");
@@ -276,6 +288,19 @@ static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
   cli_json_bool(j, "light_decided", q->light_decided);
   cli_json_number(j, "light_small", q->light_small);
   cli_json_bool(j, "light_applicable", q->light_applicable);
+  cli_json_bool(j, "high_defined", q->high_defined);
+  if (q->high_defined) { /* high speed, Q1 = Q2 = 0 */
+    cli_json_quantities(j, "high_Gamma", q->high_Gamma, 4, "1/kg");
+    cli_json_quantities(j, "high_H", q->high_H, 4, "1/(kg s)");
+    cli_json_quantities(j, "high_mu", q->high_mu, 2, "1");
+    cli_json_quantities(j, "high_kappa_mode", q->high_kappa_mode, 2, "1/s");
+    cli_json_quantities(j, "high_kappa_inf", q->high_kappa_inf, 2, "1/s");
+    cli_json_quantities(j, "high_re", q->high_re, 2, "1/s");
+    cli_json_bool(j, "high_predicts_stable", q->high_stable);
+    cli_json_bool(j, "high_decided", q->high_decided);
+    cli_json_number(j, "high_small", q->high_small);
+    cli_json_bool(j, "high_applicable", q->high_applicable);
+  }
   cli_json_object_end(j);
 }
 static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {

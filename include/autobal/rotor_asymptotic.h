@@ -140,6 +140,31 @@ typedef struct autobal_rotor_asymptotic2 {
   double light_small;            /* max(eps_b, eps_r) */
   int light_decided;             /* outside its error band */
   int light_applicable;          /* light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+  /* HIGH SPEED with both planes' balls at q_j = 0 (Q1 = Q2 = 0: two identical balls at right angles in
+   * each plane), defined for paper inertia and A != C (high_defined); derived in
+   * tools/derive/derive_asymptotic2_high.py.  G -> -(Gamma + i H / omega) / omega^2 with
+   *     Gamma = B^T Mi B,  H = B^T Mi [[h, -h_c], [-h_c, h_t]] Mi B,  Mi = diag(1/M, 1/(A - C)).
+   * At Q = 0 the sigma and conj(sigma) rows decouple; with Gt = Mb^1/2 Gamma Mb^1/2 = sum mu_k z_k z_k^T
+   * (z_k unit) each mode k gives the ball roots +-i omega sqrt(mu_k / 2) with real parts
+   *     -kbar_k / 2 +- eta_k / (2 sqrt(2 mu_k)),  kbar_k = z_k^T diag(kappa) z_k,  eta_k = z_k^T Mb^1/2 H Mb^1/2 z_k,
+   * so (H1') Gamma positive definite and (H2') kbar_k > kappa_inf_k = |eta_k| / sqrt(2 mu_k), k = 1, 2.
+   * With G12 = 0 (Gamma, H diagonal) this is the one-plane (H1), (H2) in each plane.  Only Q = 0: for
+   * Q != 0 the leading-order ball roots are simple except on crossing curves, where the condition is
+   * another one (docs/rotor.md "Two planes at high speed").  Small parameter: the largest of
+   * |omega| sqrt(mu_max / 2) c_D (the ball roots against the rotor-housing's, c_D as for light balls),
+   * omega_max / |omega| and (max kappa_j + max kappa_inf_k) / (|omega| |sqrt(mu_1 / 2) - sqrt(mu_2 / 2)|)
+   * (the two modes apart); decided when every |real part| exceeds small (kbar_k + kappa_inf_k) / 2. */
+  int high_defined;
+  double high_Gamma[4];          /* 1/kg, Gamma_11, Gamma_12, Gamma_21, Gamma_22 */
+  double high_H[4];              /* 1/(kg s) */
+  double high_mu[2];             /* 1, eigenvalues of Mb^1/2 Gamma Mb^1/2, ascending */
+  double high_kappa_mode[2];     /* 1/s, kbar_k (NaN when Gamma is not positive definite) */
+  double high_kappa_inf[2];      /* 1/s */
+  double high_re[2];             /* 1/s, the larger predicted real part of mode k's ball roots */
+  int high_stable;               /* (H1') and (H2'): predicts STABLE at high speed for Q1 = Q2 = 0 */
+  double high_small;             /* 1 */
+  int high_decided;              /* outside its error band */
+  int high_applicable;           /* high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
 } autobal_rotor_asymptotic2;
 
 /* The two-plane light-ball condition above for the closed system c.  Returns AUTOBAL_SUCCESS,

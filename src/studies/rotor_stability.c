@@ -430,6 +430,20 @@ static int write_asymptotic2(autobal_archive *a, const autobal_rotor_asymptotic2
   if (!st) st = autobal_archive_attr_int(a, g, "light_decided", q->light_decided);
   if (!st) st = autobal_archive_attr_double(a, g, "light_small", q->light_small, "1");
   if (!st) st = autobal_archive_attr_int(a, g, "light_applicable", q->light_applicable);
+  if (!st) st = autobal_archive_attr_int(a, g, "high_defined", q->high_defined);
+  if (!st && q->high_defined) { /* high speed, balls at q = 0 in both planes */
+    st = autobal_archive_attr_string(a, g, "high_description", "high speed, Q1 = Q2 = 0: (H1') Gamma positive definite, (H2') kappa_mode_k > kappa_inf_k for both modes k of Mb^1/2 Gamma Mb^1/2 (docs/rotor.md, Two planes at high speed)");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_Gamma", 4, q->high_Gamma, "1/kg");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_H", 4, q->high_H, "1/(kg s)");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_mu", 2, q->high_mu, "1");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_kappa_mode", 2, q->high_kappa_mode, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_kappa_inf", 2, q->high_kappa_inf, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_re", 2, q->high_re, "1/s");
+    if (!st) st = autobal_archive_attr_int(a, g, "high_predicts_stable", q->high_stable);
+    if (!st) st = autobal_archive_attr_int(a, g, "high_decided", q->high_decided);
+    if (!st) st = autobal_archive_attr_double(a, g, "high_small", q->high_small, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "high_applicable", q->high_applicable);
+  }
   return st;
 }
 

@@ -4,7 +4,7 @@ against the exact roots of the closed two-plane system, recomputed here with Num
 docs/rotor.md "Two planes: degree 16" (independent of the C code), over random machines; and the
 undamped-ball (kappa = 0) scan of the one-plane Delta.
 
-Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|kappa0|all] [n_draws]   (a few minutes)
+Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|high|kappa0|all] [n_draws]   (a few minutes)
 
 Two planes j = 1, 2, each with two identical balls (mass m_j each, radius r_j, damping h_j, kappa_j = h_j / m_j,
 unbalance m0_j r0_j at phase psi0_j).  Rotating complex coordinates (W, Theta, sigma_1, sigma_2) and their
@@ -212,6 +212,80 @@ def scan(seed, n, th=TH, rich=False):
             bad.append((w, m, res.max(), small))
     print('two planes, scan seed %d%s, %d draws, small <= %g: applicable %d, decided %d, agree %d (predicted unstable %d)'
           % (seed, ' (rich)' if rich else '', n, th, n_app, n_dec, agree, nunst))
+    for b_ in bad:
+        print('   DISAGREES: omega %g, exact margin %g, predicted max Re %g, small %g' % b_)
+    return not bad
+
+
+# ---- two planes at high speed, balls at q = 0 in both planes (docs/rotor.md "Two planes at high speed") ----------
+
+def high2(p, w):
+    """The (H1'), (H2') prediction at Q1 = Q2 = 0 as the library computes it (autobal_rotor_asymptotic2_conditions):
+    (larger real part per mode, its error, small parameter), or None when Gamma is not positive definite."""
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Mi = np.diag([1 / M, 1 / Ap])
+    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
+    Sq = np.diag(np.sqrt([2 * p['m'][0], 2 * p['m'][1]]))
+    Gt = Sq @ B.T @ Mi @ B @ Sq
+    Ht = Sq @ B.T @ Mi @ Hs @ Mi @ B @ Sq
+    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
+    mu, Z = np.linalg.eigh(Gt)
+    if mu.min() <= 0:
+        return None
+    kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
+    kinf = np.array([abs(Z[:, k] @ Ht @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
+    tr = p['c'] / M + p['ct'] / p['A']
+    det = (p['c'] * p['ct'] - p['cc']**2) / (M * p['A'])
+    wmax = np.sqrt(0.5 * (tr + np.sqrt(max(0, tr * tr - 4 * det))))
+    K11, K12, K22, _ = kpolys(p, w)
+    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
+    cD = np.sum(1 / abs(np.roots(mul(D, np.conj(D))[::-1]))) + 4 / abs(w)
+    gap = abs(w) * abs(np.sqrt(mu[0] / 2) - np.sqrt(mu[1] / 2))
+    small = max(abs(w) * np.sqrt(mu.max() / 2) * cD, wmax / abs(w), (kap.max() + kinf.max()) / gap)
+    return (kinf - kbar) / 2, small * (kbar + kinf) / 2, small, kinf
+
+
+def high(seed, n, th=TH, rich=False):
+    """random two-plane machines (draw(), balls scaled by 1e-4..0.1), Q1 = Q2 = 0, omega in [2000, 50000] rad/s
+    (20 % negative); rich: kappa_j = max kappa_inf_k times e^U(-1, 1) (near the boundary).  Exact: the 16 roots."""
+    rng = np.random.default_rng(seed)
+    nm = n_app = n_dec = agree = nps = 0
+    bad = []
+    for _ in range(n):
+        p = draw(rng)
+        if p is None:
+            continue
+        w = np.exp(rng.uniform(np.log(2000), np.log(50000))) * (1 if rng.uniform() < 0.8 else -1)
+        fm = np.exp(rng.uniform(np.log(1e-4), np.log(1e-1)))
+        p['m'] = [x * fm for x in p['m']]
+        p['hb'] = [x * fm for x in p['hb']]
+        p['s0'] = [np.sqrt(2) * p['m'][j] * p['r'][j] for j in range(2)]  # Q_j = 0
+        r = high2(p, w)
+        if r is None:
+            continue
+        if rich:
+            ks = r[3].max()
+            p['hb'] = [p['m'][j] * ks * np.exp(rng.uniform(-1, 1)) for j in range(2)]
+            r = high2(p, w)
+        nm += 1
+        re, err, small, _ = r
+        if not small <= th:
+            continue
+        n_app += 1
+        du = bool(np.any(re >= err))
+        ds = bool(np.all(re <= -err))
+        if not (du or ds):
+            continue
+        n_dec += 1
+        nps += ds
+        m = exact_roots(p, w).real.max()
+        if (m < 0) == ds:
+            agree += 1
+        else:
+            bad.append((w, m, re.max(), small))
+    print('two planes, high speed, Q = 0, seed %d%s: %d machines (Gamma positive definite), small <= %g: applicable %d, '
+          'decided %d, agree %d (predicted STABLE %d)' % (seed, ' (rich)' if rich else '', nm, th, n_app, n_dec, agree, nps))
     for b_ in bad:
         print('   DISAGREES: omega %g, exact margin %g, predicted max Re %g, small %g' % b_)
     return not bad
@@ -434,6 +508,11 @@ if __name__ == '__main__':
     if what in ('rich', 'all'):
         for s, th in ((8, TH), (9, TH), (10, 0.2)):
             okay &= scan(s, n, th, True)
+    if what in ('high', 'all'):
+        okay &= high(2, n)
+        okay &= high(3, n, 0.2)
+        okay &= high(4, n, TH, True)
+        okay &= high(5, n, 0.2, True)
     if what in ('kappa0', 'all'):
         okay &= kappa0(2, n)
         okay &= kappa0(3, n, 1e-6, 1e-3)
