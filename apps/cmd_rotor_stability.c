@@ -238,13 +238,14 @@ static void print_asymptotic(const autobal_rotor_asymptotic *q) {
     printf(": predicts %s%s; small parameter %.3g (%s, <= %g)\n", q->undamped_stable ? "STABLE" : "UNSTABLE",
            q->undamped_decided ? "" : " (undecided: within its error)", q->undamped_small,
            asym_word(q->undamped_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
-  } else
-  printf("    light balls: (L1) Re G < 0 [%s], (L2) kappa = %.6g > kappa_min = %.6g 1/s [%s], rotor roots max Re %.6g 1/s:"
-         " predicts %s%s; small parameter %.3g (%s, <= %g)\n",
-         q->supercritical ? "yes" : "no", q->kappa, q->kappa_min,
-         q->supercritical && q->kappa > q->kappa_min ? "yes" : "no", q->rotor_re_max,
-         q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
-         q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  } else {
+    printf("    light balls: (L1) Re G < 0 [%s], (L2) kappa = %.6g > kappa_min = %.6g 1/s [%s], rotor roots max Re %.6g 1/s:"
+           " predicts %s%s; small parameter %.3g (%s, <= %g)\n",
+           q->supercritical ? "yes" : "no", q->kappa, q->kappa_min,
+           q->supercritical && q->kappa > q->kappa_min ? "yes" : "no", q->rotor_re_max,
+           q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
+           q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  }
   if (q->high_defined)
     printf("    high speed: (H1) 1/m_eff > 0 [%s], (H2) kappa > kappa_inf = %.6g 1/s [%s] (m_eff %.6g kg, h_eff %.6g N s/m):"
            " predicts %s; small parameter %.3g (%s)\n",
