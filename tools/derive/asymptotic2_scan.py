@@ -4,7 +4,7 @@ against the exact roots of the closed two-plane system, recomputed here with Num
 docs/rotor.md "Two planes: degree 16" (independent of the C code), over random machines; and the
 undamped-ball (kappa = 0) scan of the one-plane Delta.
 
-Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|high|kappa0|all] [n_draws]   (a few minutes)
+Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|high|every|kappa0|all] [n_draws]   (a few minutes)
 
 Two planes j = 1, 2, each with two identical balls (mass m_j each, radius r_j, damping h_j, kappa_j = h_j / m_j,
 unbalance m0_j r0_j at phase psi0_j).  Rotating complex coordinates (W, Theta, sigma_1, sigma_2) and their
@@ -291,6 +291,89 @@ def high(seed, n, th=TH, rich=False):
     return not bad
 
 
+def high_every(seed=11, n_mach=150, n_q=40):
+    """Machines where (H2') is decided STABLE at Q = 0 (kappa_j = max kappa_inf_k e^U(0.1, 1), small <= 0.05) and
+    exactly stable there: the exact verdict at n_q random unbalances (q_j, phases) each."""
+    rng = np.random.default_rng(seed)
+    nm = nq = nun = 0
+    worst = -np.inf
+    for _ in range(40 * n_mach):
+        p = draw(rng)
+        if p is None:
+            continue
+        w = np.exp(rng.uniform(np.log(2000), np.log(50000)))
+        fm = np.exp(rng.uniform(np.log(1e-4), np.log(1e-1)))
+        p['m'] = [x * fm for x in p['m']]
+        p['hb'] = [x * fm for x in p['hb']]
+        p['s0'] = [np.sqrt(2) * p['m'][j] * p['r'][j] for j in range(2)]
+        r = high2(p, w)
+        if r is None:
+            continue
+        p['hb'] = [p['m'][j] * r[3].max() * np.exp(rng.uniform(0.1, 1)) for j in range(2)]
+        re, err, small, _ = high2(p, w)
+        if not (small <= TH and np.all(re <= -err)) or exact_roots(p, w).real.max() >= 0:
+            continue
+        nm += 1
+        for _ in range(n_q):
+            q = dict(p)
+            q['s0'] = [2 * p['m'][j] * p['r'][j] * rng.uniform(0.02, 0.98) for j in range(2)]
+            q['psi0'] = [rng.uniform(0, 2 * np.pi), rng.uniform(0, 2 * np.pi)]
+            m = exact_roots(q, w).real.max()
+            nq += 1
+            nun += m >= 0
+            worst = max(worst, m)
+        if nm >= n_mach:
+            break
+    print('two planes, high speed: %d machines with (H2\') decided STABLE and exactly stable at Q = 0; %d random '
+          'unbalances: exactly unstable %d (largest margin %.3g 1/s)' % (nm, nq, nun, worst))
+    return True
+
+
+def crossings(seed=1, f=1e-3, w=2e4):
+    """The default two-plane machine (balls x f) at w: points (q1, q2, phase of Q2 / Q1) where two leading-order
+    ball roots coincide (Nelder-Mead on the smallest gap of the eigenvalues of T = (1/2)[[Mb, -Q], [-conj Q, Mb]]
+    diag(Gamma, Gamma)), and the exact margin there and 0.02 away in q1 for ball damping 0.01, 0.3 and 1.2 times
+    max kappa_inf_k (of Q = 0)."""
+    from scipy.optimize import minimize
+    p = default2()
+    p['m'] = [x * f for x in p['m']]
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Gam = B.T @ np.diag([1 / M, 1 / Ap]) @ B
+    mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
+
+    def gap(x):
+        Q = np.diag([mb[0] * x[0], mb[1] * x[1] * np.exp(1j * x[2])])
+        T = 0.5 * np.block([[np.diag(mb), -Q], [-np.conj(Q), np.diag(mb)]]) @ np.kron(np.eye(2), Gam)
+        e = np.sort(np.linalg.eigvals(T).real)
+        return min(np.diff(e)) / e.max()
+    p['s0'] = [np.sqrt(2) * p['m'][j] * p['r'][j] for j in range(2)]
+    p['hb'] = list(p['m'])
+    kmax = high2(p, w)[3].max()
+    rng = np.random.default_rng(seed)
+    found = []
+    for _ in range(60):
+        r = minimize(gap, [rng.uniform(0.05, 0.95), rng.uniform(0.05, 0.95), rng.uniform(0, 2 * np.pi)],
+                     method='Nelder-Mead', options=dict(xatol=1e-10, fatol=1e-14, maxiter=4000))
+        if r.fun < 1e-7 and 0.02 < r.x[0] < 0.96 and 0.02 < r.x[1] < 0.98:
+            found.append(r.x)
+    print('crossings of the leading-order ball roots (default machine, balls x %g, %g rad/s): %d found; max kappa_inf '
+          '(Q = 0) %.5g 1/s' % (f, w, len(found), kmax))
+    for fac in (0.01, 0.3, 1.2):
+        for dq in (0.0, 0.02):
+            ms = []
+            for x in found[:12]:
+                q = dict(p)
+                q['hb'] = [p['m'][j] * fac * kmax for j in range(2)]
+                q['s0'] = [2 * p['m'][j] * p['r'][j] * np.sqrt((1 + [x[0] + dq, x[1]][j]) / 2) for j in range(2)]
+                q['psi0'] = [0.0, x[2] / 2]
+                ms.append(exact_roots(q, w).real.max())
+            print('   kappa = %.2f max kappa_inf, %s: exact margins %.3g .. %.3g 1/s, %d of %d unstable'
+                  % (fac, 'at the crossings' if dq == 0 else '0.02 away in q1', min(ms), max(ms),
+                     sum(m >= 0 for m in ms), len(ms)))
+    return True
+
+
 # ---- kappa = 0: the one-plane Delta with undamped balls ----------------------------------------------
 
 def delta1(p, w):
@@ -513,6 +596,9 @@ if __name__ == '__main__':
         okay &= high(3, n, 0.2)
         okay &= high(4, n, TH, True)
         okay &= high(5, n, 0.2, True)
+    if what in ('every', 'all'):
+        okay &= high_every()
+        okay &= crossings()
     if what in ('kappa0', 'all'):
         okay &= kappa0(2, n)
         okay &= kappa0(3, n, 1e-6, 1e-3)
