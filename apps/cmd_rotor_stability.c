@@ -225,12 +225,27 @@ static void default_speed_range(const autobal_rotor_params *p, double *lo, doubl
 static const char *asym_word(int applicable) { return applicable ? "applicable" : "NOT applicable"; }
 static void print_asymptotic(const autobal_rotor_asymptotic *q) {
   printf("  asymptotic conditions (for comparison only; the verdict above is exact):\n");
-  printf("    light balls: (L1) Re G < 0 [%s], (L2) kappa = %.6g > kappa_min = %.6g 1/s [%s], rotor roots max Re %.6g 1/s:"
-         " predicts %s%s; small parameter %.3g (%s, <= %g)\n",
-         q->supercritical ? "yes" : "no", q->kappa, q->kappa_min,
-         q->supercritical && q->kappa > q->kappa_min ? "yes" : "no", q->rotor_re_max,
-         q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
-         q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  if (q->undamped_defined) {
+    if (q->undamped_on_axis)
+      printf("    undamped balls (kappa = 0): ball roots on the axis to leading order, next order (O(m_b)) real parts"
+             " delta = %.6g, %.6g 1/s, rotor roots max Re %.6g 1/s",
+             q->undamped_delta[0], q->undamped_delta[1], q->rotor_re_max);
+    else
+      printf("    undamped balls (kappa = 0): ball roots off the axis at leading order (max Re %.6g 1/s), rotor roots"
+             " max Re %.6g 1/s",
+             fmax(fmax(q->undamped_ball_re[0], q->undamped_ball_re[1]), fmax(q->undamped_ball_re[2], q->undamped_ball_re[3])),
+             q->rotor_re_max);
+    printf(": predicts %s%s; small parameter %.3g (%s, <= %g)\n", q->undamped_stable ? "STABLE" : "UNSTABLE",
+           q->undamped_decided ? "" : " (undecided: within its error)", q->undamped_small,
+           asym_word(q->undamped_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  } else {
+    printf("    light balls: (L1) Re G < 0 [%s], (L2) kappa = %.6g > kappa_min = %.6g 1/s [%s], rotor roots max Re %.6g 1/s:"
+           " predicts %s%s; small parameter %.3g (%s, <= %g)\n",
+           q->supercritical ? "yes" : "no", q->kappa, q->kappa_min,
+           q->supercritical && q->kappa > q->kappa_min ? "yes" : "no", q->rotor_re_max,
+           q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
+           q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  }
   if (q->high_defined)
     printf("    high speed: (H1) 1/m_eff > 0 [%s], (H2) kappa > kappa_inf = %.6g 1/s [%s] (m_eff %.6g kg, h_eff %.6g N s/m):"
            " predicts %s; small parameter %.3g (%s)\n",
@@ -246,6 +261,18 @@ static void print_asymptotic2(const autobal_rotor_asymptotic2 *q) {
          q->G_re[0], q->G_im[0], q->G_re[1], q->G_im[1], q->G_re[3], q->G_im[3], q->ball_re_max, q->rotor_re_max,
          q->light_stable ? "STABLE" : "UNSTABLE", q->light_decided ? "" : " (undecided: within its error)",
          q->light_small, asym_word(q->light_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
+  if (q->high_defined) {
+    if (q->high_mu[0] > 0.0)
+      printf("    high speed, balls at q = 0 in both planes: (H1') Gamma positive definite [yes], (H2') mode 1: kappa %.6g >"
+             " kappa_inf %.6g 1/s [%s], mode 2: kappa %.6g > kappa_inf %.6g 1/s [%s]: predicts %s%s; small parameter %.3g (%s)\n",
+             q->high_kappa_mode[0], q->high_kappa_inf[0], q->high_re[0] < 0.0 ? "yes" : "no", q->high_kappa_mode[1],
+             q->high_kappa_inf[1], q->high_re[1] < 0.0 ? "yes" : "no", q->high_stable ? "STABLE" : "UNSTABLE",
+             q->high_decided ? "" : " (undecided: within its error)", q->high_small, asym_word(q->high_applicable));
+    else
+      printf("    high speed, balls at q = 0 in both planes: (H1') Gamma positive definite [no]: predicts UNSTABLE; small"
+             " parameter %.3g (%s)\n",
+             q->high_small, asym_word(q->high_applicable));
+  }
 }
 static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
   cli_json_object(j, "asymptotic2");
@@ -262,6 +289,19 @@ static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
   cli_json_bool(j, "light_decided", q->light_decided);
   cli_json_number(j, "light_small", q->light_small);
   cli_json_bool(j, "light_applicable", q->light_applicable);
+  cli_json_bool(j, "high_defined", q->high_defined);
+  if (q->high_defined) { /* high speed, Q1 = Q2 = 0 */
+    cli_json_quantities(j, "high_Gamma", q->high_Gamma, 4, "1/kg");
+    cli_json_quantities(j, "high_H", q->high_H, 4, "1/(kg s)");
+    cli_json_quantities(j, "high_mu", q->high_mu, 2, "1");
+    cli_json_quantities(j, "high_kappa_mode", q->high_kappa_mode, 2, "1/s");
+    cli_json_quantities(j, "high_kappa_inf", q->high_kappa_inf, 2, "1/s");
+    cli_json_quantities(j, "high_re", q->high_re, 2, "1/s");
+    cli_json_bool(j, "high_predicts_stable", q->high_stable);
+    cli_json_bool(j, "high_decided", q->high_decided);
+    cli_json_number(j, "high_small", q->high_small);
+    cli_json_bool(j, "high_applicable", q->high_applicable);
+  }
   cli_json_object_end(j);
 }
 static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {
@@ -271,6 +311,19 @@ static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {
   cli_json_quantity(j, "G_imag", q->G_im, "m/N");
   cli_json_quantity(j, "kappa", q->kappa, "1/s");
   cli_json_number(j, "q", q->q);
+  if (q->undamped_defined) { /* kappa = 0: the undamped entry instead of (L1), (L2) */
+    cli_json_bool(j, "undamped_on_axis", q->undamped_on_axis);
+    cli_json_quantities(j, "undamped_delta", q->undamped_delta, 2, "1/s");
+    cli_json_quantities(j, "undamped_ball_root_real", q->undamped_ball_re, 4, "1/s");
+    cli_json_quantities(j, "undamped_ball_root_imag", q->undamped_ball_im, 4, "1/s");
+    cli_json_quantities(j, "undamped_rotor_root_real", q->rotor_re, 4, "1/s");
+    cli_json_quantities(j, "undamped_rotor_root_imag", q->rotor_im, 4, "1/s");
+    cli_json_bool(j, "undamped_predicts_stable", q->undamped_stable);
+    cli_json_bool(j, "undamped_decided", q->undamped_decided);
+    cli_json_number(j, "undamped_small", q->undamped_small);
+    cli_json_bool(j, "undamped_applicable", q->undamped_applicable);
+    goto high;
+  }
   cli_json_bool(j, "light_supercritical", q->supercritical);
   cli_json_quantity(j, "light_kappa_min", q->kappa_min, "1/s");
   cli_json_bool(j, "light_predicts_stable", q->light_stable);
@@ -281,6 +334,7 @@ static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {
   cli_json_bool(j, "light_decided", q->light_decided);
   cli_json_number(j, "light_small", q->light_small);
   cli_json_bool(j, "light_applicable", q->light_applicable);
+high:
   cli_json_bool(j, "high_defined", q->high_defined);
   if (q->high_defined) {
     cli_json_quantity(j, "high_m_eff", q->m_eff, "kg");

@@ -341,6 +341,39 @@ static double kappa0_delta(const autobal_rotor_lumped *L, double d, double m, do
   return fmax(0.5 * creal(g1) + b / (2.0 * r), 0.5 * creal(g1) - b / (2.0 * r));
 }
 
+/* The library's undamped entry (autobal_rotor_asymptotic_conditions at kappa = 0) at the machine S:
+ * defined, on the axis or not as expected; on the axis its delta_(+-) equal the test's own formula
+ * (kappa0_delta, through K' written out here) and the largest real part equals the exact margin
+ * (roots of Delta); decided, applicable, and its verdict is the exact one. */
+static void check_undamped(setup *S, const autobal_rotor_lumped *L, double d, double m, double q, double w, int on_axis,
+                           int stable) {
+  autobal_rotor_stab_result res;
+  autobal_rotor_asymptotic a;
+  autobal_rotor_stab *h = run(S, &res, &a);
+  double mx = -INFINITY;
+  size_t i;
+  if (!h) return;
+  for (i = 0; i < 4; i++) mx = fmax(mx, a.undamped_ball_re[i]);
+  mx = fmax(mx, a.rotor_re_max);
+  printf("     undamped entry at %g rad/s: on axis %d, delta %.9g %.9g, predicted max Re %.9g, exact margin %.9g, small %.3g\n",
+         w, a.undamped_on_axis, a.undamped_delta[0], a.undamped_delta[1], mx, res.margin, a.undamped_small);
+  CHECK("kappa = 0: undamped entry defined, light-ball entry not a condition",
+        a.undamped_defined && !a.light_applicable && !a.light_decided && isnan(a.light_small));
+  CHECK("kappa = 0: on the axis to leading order as expected", a.undamped_on_axis == on_axis);
+  if (on_axis) {
+    CHECK_CLOSE("kappa = 0: max delta = the test's own next-order formula", fmax(a.undamped_delta[0], a.undamped_delta[1]),
+                kappa0_delta(L, d, m, q, w), 1e-9, 0.0);
+    CHECK_CLOSE("kappa = 0: predicted largest real part = exact margin", mx, res.margin, 1e-3, 0.0);
+  } else {
+    CHECK("kappa = 0, off the axis: a predicted ball root with Re > 0 and the exact margin > 0", mx > 0.0 && res.margin > 0.0);
+    CHECK_CLOSE("kappa = 0, off the axis: leading-order root vs exact margin (error O(sqrt m_b))", mx, res.margin, 0.05, 0.0);
+  }
+  CHECK("kappa = 0: decided and applicable", a.undamped_decided && a.undamped_applicable);
+  CHECK("kappa = 0: predicted verdict = exact verdict", a.undamped_stable == (res.verdict == AUTOBAL_VERDICT_STABLE) &&
+                                                            (res.verdict == AUTOBAL_VERDICT_STABLE) == stable);
+  autobal_rotor_stab_free(h);
+}
+
 static void test_kappa0(void) {
   autobal_rotor_lumped Ld = default_lumped(), Lk = default_lumped();
   const double m = 5e-6, q = 0.9, x = sqrt((1.0 + q) / 2.0);
@@ -364,6 +397,7 @@ static void test_kappa0(void) {
   CHECK("kappa = 0, disk-like rotor: exactly asymptotically STABLE", res.verdict == AUTOBAL_VERDICT_STABLE);
   CHECK_CLOSE("kappa = 0, disk-like rotor: exact margin = next-order ball-root real part", res.margin, dl, 1e-3, 0.0);
   autobal_rotor_stab_free(h);
+  check_undamped(&S, &Lk, -0.04, m, q, 4440.0, 1, 1);
   /* the default rotor at 500 rad/s: unstable at O(m_b) */
   make(&S, &Ld, 0.1, m, 0.0, 2.0 * m * 0.1 * x, 500.0);
   h = autobal_rotor_stab_alloc(&S.p, &o, &err);
@@ -375,6 +409,10 @@ static void test_kappa0(void) {
   CHECK("kappa = 0, default rotor: exactly UNSTABLE", res.verdict == AUTOBAL_VERDICT_UNSTABLE);
   CHECK_CLOSE("kappa = 0, default rotor: exact margin = next-order ball-root real part", res.margin, dl, 1e-3, 0.0);
   autobal_rotor_stab_free(h);
+  check_undamped(&S, &Ld, 0.1, m, q, 500.0, 1, 0);
+  /* q = 0 (balls at right angles): q |G| < |Im G|, u complex, a root with Re of order sqrt(m_b) > 0 */
+  make(&S, &Ld, 0.1, m, 0.0, sqrt(2.0) * m * 0.1, 2000.0);
+  check_undamped(&S, &Ld, 0.1, m, 0.0, 2000.0, 0, 0);
 }
 
 static void test_errors(void) {
@@ -397,8 +435,8 @@ static void test_errors(void) {
   c.n_planes = 2;
   CHECK_STATUS("two planes", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
   c.n_planes = 1;
-  c.plane[0].kappa = 0.0;
-  CHECK_STATUS("no ball damping", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
+  c.plane[0].kappa = -1.0;
+  CHECK_STATUS("negative ball damping", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
   printf("     message: %s\n", err.message);
   c.plane[0].kappa = 2.0;
   c.omega = 0.0;

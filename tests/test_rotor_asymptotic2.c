@@ -248,6 +248,81 @@ static void test_light(void) {
   }
 }
 
+/* High speed, Q1 = Q2 = 0 (balls at right angles in both planes, balls 5e-6, 4e-6 kg, 1e5 rad/s): Gamma, H against w^2 G, w^3 Im G of the
+ * test's own Cramer solve at 1e5 rad/s; the verdict just below and above max kappa_inf_k against the exact 16x16
+ * verdict, and the predicted largest real part against the exact margin; with no cross receptance at high speed
+ * (Gamma_12 = H_12 = 0: d1 d2 = -(A - C)/M, h_c = 0, h_t = h (A - C)/M) kappa_inf_k = the one-plane
+ * sqrt(m_b/(2 m_eff)) h_eff/m_eff at d_k, written out here. */
+static void test_high(void) {
+  autobal_rotor_lumped L = default_lumped();
+  const double d[2] = {0.1, -0.12}, m[2] = {5e-6, 4e-6}, psi[2] = {0.0, 0.0}, w = 1e5;
+  double s0[2], kap[2] = {1.0, 1.0}, kstar;
+  setup S;
+  autobal_rotor_asymptotic2 q;
+  autobal_rotor_stab_result res;
+  autobal_rotor_stab *h;
+  int j, k;
+  for (j = 0; j < 2; j++) s0[j] = M_SQRT2 * m[j] * 0.1; /* Q_j = 0 */
+  make(&S, &L, d, m, kap, s0, psi, w);
+  h = run(&S, NULL, &q);
+  if (!h) return;
+  autobal_rotor_stab_free(h);
+  CHECK("high speed: defined (paper inertia, A != C)", q.high_defined);
+  for (j = 0; j < 2; j++)
+    for (k = 0; k < 2; k++) {
+      double W = 1e5;
+      cplx G = G_direct(&L, d, j, k, W);
+      CHECK_CLOSE("high speed: Gamma_jk = -lim w^2 Re G_jk", q.high_Gamma[2 * j + k], -W * W * creal(G), 1e-4, 0.0);
+      CHECK_CLOSE("high speed: H_jk = -lim w^3 Im G_jk", q.high_H[2 * j + k], -W * W * W * cimag(G), 1e-3, 0.0);
+    }
+  kstar = fmax(q.high_kappa_inf[0], q.high_kappa_inf[1]);
+  printf("     Q = 0, 1e5 rad/s: kappa_inf = %.6g, %.6g 1/s, small %.3g\n", q.high_kappa_inf[0], q.high_kappa_inf[1],
+         q.high_small);
+  {
+    const double fac[2] = {0.8, 1.25};
+    int i;
+    for (i = 0; i < 2; i++) {
+      double mx;
+      kap[0] = kap[1] = fac[i] * kstar;
+      make(&S, &L, d, m, kap, s0, psi, w);
+      h = run(&S, &res, &q);
+      if (!h) return;
+      mx = fmax(q.high_re[0], q.high_re[1]);
+      printf("     kappa = %.3g kappa_inf: predicted max Re %.9g, exact margin %.9g 1/s (small %.3g, decided %d)\n", fac[i],
+             mx, res.margin, q.high_small, q.high_decided);
+      CHECK("high speed, Q = 0: applicable and decided", q.high_applicable && q.high_decided);
+      CHECK("high speed, Q = 0: predicted verdict = exact 16x16 verdict (unstable below kappa_inf, stable above)",
+            q.high_stable == (i == 1) && (res.verdict == AUTOBAL_VERDICT_STABLE) == (i == 1));
+      CHECK_CLOSE("high speed, Q = 0: predicted largest real part = exact margin", mx, res.margin, 0.05, 0.0);
+      autobal_rotor_stab_free(h);
+    }
+  }
+  /* no cross receptance at high speed: the one-plane kappa_inf in each plane */
+  {
+    double Ap = L.A - L.C, dd[2], kone;
+    L.h_xbeta = L.h_yalpha = 0.0;
+    L.h_alpha = L.h_beta = L.h_x * Ap / L.M;
+    dd[0] = 0.1, dd[1] = -Ap / (L.M * 0.1);
+    kap[0] = kap[1] = 1.0;
+    make(&S, &L, dd, m, kap, s0, psi, w);
+    h = run(&S, NULL, &q);
+    if (!h) return;
+    autobal_rotor_stab_free(h);
+    CHECK("high speed, no cross receptance: Gamma_12 = H_12 = 0",
+          fabs(q.high_Gamma[1]) < 1e-12 * q.high_Gamma[0] && fabs(q.high_H[1]) < 1e-12 * fabs(q.high_H[0]));
+    for (j = 0; j < 2; j++) {
+      double meff = 1.0 / (1.0 / L.M + dd[j] * dd[j] / Ap), mb = 2.0 * m[j];
+      double heff = meff * meff * (L.h_x / (L.M * L.M) + dd[j] * dd[j] * L.h_alpha / (Ap * Ap));
+      kone = sqrt(mb / (2.0 * meff)) * heff / meff;
+      /* the modes are the planes; mu ascending, so match by value */
+      CHECK_CLOSE("high speed, no cross receptance: kappa_inf = the one-plane kappa_inf of that plane",
+                  fabs(q.high_kappa_inf[0] - kone) < fabs(q.high_kappa_inf[1] - kone) ? q.high_kappa_inf[0]
+                                                                                    : q.high_kappa_inf[1],
+                  kone, 1e-9, 0.0);
+    }
+  }
+}
+
 static void test_errors(void) {
   autobal_rotor_closed c;
   autobal_rotor_asymptotic2 q;
@@ -284,6 +359,8 @@ int main(void) {
   test_decoupled();
   printf("== light balls against the exact 16 roots ==\n");
   test_light();
+  printf("== high speed, Q = 0 ==\n");
+  test_high();
   printf("== errors ==\n");
   test_errors();
   return check_summary();

@@ -84,11 +84,33 @@ typedef struct autobal_rotor_asymptotic {
                                speed (with (H1) false: UNSTABLE at high speed for light balls, any kappa) */
   double high_small;        /* max(sqrt(m_b / (2 m_eff)), omega_max / |omega|) */
   int high_applicable;      /* high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+  /* undamped balls (kappa = 0, undamped_defined): the light-ball roots to the next order.  With
+   * kappa = 0 the light-ball entries above are not a condition (light_stable, light_decided and
+   * light_applicable are 0, light_small NaN; ball_re/ball_im keep the leading order, rotor_re/rotor_im
+   * the rotor roots shifted with kappa = 0) and this entry replaces them:
+   * u = a (Re G +- r0), r0 = sqrt(q^2 |G|^2 - Im^2 G); when both u are real and negative (on_axis)
+   * the four ball roots are +-i y + delta_(+-) with g(lambda) = (m_b/2) P^4 N / D = g0 + g1 lambda + ...,
+   *     delta_(+-) = Re g1 / 2 +- (q^2 Re(g1 conj g0) - Im g0 Im g1) / (2 r),  r = sqrt(q^2 |g0|^2 - Im^2 g0),
+   * (O(m_b): the support damping acting on the ball modes through the rotor); otherwise the leading
+   * order decides (a root with Re of order sqrt(m_b) > 0: UNSTABLE).  Error of delta: the Taylor
+   * terms of g beyond g1 (g2 exactly, |g_n| <= |g0| c1^n for n >= 3) and the second order,
+   *     e = s (|g2| y^2 + |g0| rho^3 / (1 - rho)) + 2 D1^2 / sep,  s = (|f_g| + |f_g*|) / (2 |f_u| y),
+   *     D1 = s |g1| y,  rho = c1 y,  f = (u - g)(u - g*) - q^2 g g*,
+   * sep = the distance of i y to the other three leading-order roots; small parameter max(rho, D1 / sep)
+   * over the roots (leading order: c1 |u| / |2 lambda|) and eps_r. */
+  int undamped_defined;     /* kappa == 0 */
+  int undamped_on_axis;     /* both u real and negative: the next order decides */
+  double undamped_delta[2]; /* 1/s, delta_+, delta_- (NaN when not on the axis) */
+  double undamped_ball_re[4], undamped_ball_im[4]; /* 1/s, the predicted ball roots (next order on the axis) */
+  int undamped_stable;      /* every predicted ball and rotor root has Re < 0: predicts STABLE */
+  double undamped_small;    /* 1 */
+  int undamped_decided;     /* outside its error band (as light_decided) */
+  int undamped_applicable;  /* undamped_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
 } autobal_rotor_asymptotic;
 
 /* The conditions above for the closed system c (autobal_rotor_stab_closed).  Returns
  * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL, n_planes != 1, not isotropic, no closure, omega == 0,
- * kappa <= 0: message in err; *out untouched), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (the roots of
+ * kappa < 0: message in err; *out untouched; kappa = 0 gives the undamped entry), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (the roots of
  * D D* or N N*).  Allocates two small polynomial workspaces per call. */
 AUTOBAL_API int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
                                                     autobal_error *err);
@@ -118,6 +140,31 @@ typedef struct autobal_rotor_asymptotic2 {
   double light_small;            /* max(eps_b, eps_r) */
   int light_decided;             /* outside its error band */
   int light_applicable;          /* light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+  /* HIGH SPEED with both planes' balls at q_j = 0 (Q1 = Q2 = 0: two identical balls at right angles in
+   * each plane), defined for paper inertia and A != C (high_defined); derived in
+   * tools/derive/derive_asymptotic2_high.py.  G -> -(Gamma + i H / omega) / omega^2 with
+   *     Gamma = B^T Mi B,  H = B^T Mi [[h, -h_c], [-h_c, h_t]] Mi B,  Mi = diag(1/M, 1/(A - C)).
+   * At Q = 0 the sigma and conj(sigma) rows decouple; with Gt = Mb^1/2 Gamma Mb^1/2 = sum mu_k z_k z_k^T
+   * (z_k unit) each mode k gives the ball roots +-i omega sqrt(mu_k / 2) with real parts
+   *     -kbar_k / 2 +- eta_k / (2 sqrt(2 mu_k)),  kbar_k = z_k^T diag(kappa) z_k,  eta_k = z_k^T Mb^1/2 H Mb^1/2 z_k,
+   * so (H1') Gamma positive definite and (H2') kbar_k > kappa_inf_k = |eta_k| / sqrt(2 mu_k), k = 1, 2.
+   * With G12 = 0 (Gamma, H diagonal) this is the one-plane (H1), (H2) in each plane.  Only Q = 0: for
+   * Q != 0 the leading-order ball roots are simple except on crossing curves, where the condition is
+   * another one (docs/rotor.md "Two planes at high speed").  Small parameter: the largest of
+   * |omega| sqrt(mu_max / 2) c_D (the ball roots against the rotor-housing's, c_D as for light balls),
+   * omega_max / |omega| and (max kappa_j + max kappa_inf_k) / (|omega| |sqrt(mu_1 / 2) - sqrt(mu_2 / 2)|)
+   * (the two modes apart); decided when every |real part| exceeds small (kbar_k + kappa_inf_k) / 2. */
+  int high_defined;
+  double high_Gamma[4];          /* 1/kg, Gamma_11, Gamma_12, Gamma_21, Gamma_22 */
+  double high_H[4];              /* 1/(kg s) */
+  double high_mu[2];             /* 1, eigenvalues of Mb^1/2 Gamma Mb^1/2, ascending */
+  double high_kappa_mode[2];     /* 1/s, kbar_k (NaN when Gamma is not positive definite) */
+  double high_kappa_inf[2];      /* 1/s */
+  double high_re[2];             /* 1/s, the larger predicted real part of mode k's ball roots */
+  int high_stable;               /* (H1') and (H2'): predicts STABLE at high speed for Q1 = Q2 = 0 */
+  double high_small;             /* 1 */
+  int high_decided;              /* outside its error band */
+  int high_applicable;           /* high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
 } autobal_rotor_asymptotic2;
 
 /* The two-plane light-ball condition above for the closed system c.  Returns AUTOBAL_SUCCESS,

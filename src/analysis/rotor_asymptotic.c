@@ -53,6 +53,53 @@ static cplx ceval(const cplx *x, size_t n, cplx z, int conj_coef) {
   return v;
 }
 
+/* Undamped balls (kappa = 0; autobal/rotor_asymptotic.h, derive_asymptotic2.py check 6): the four ball
+ * roots to the next order where the leading order puts them on the imaginary axis, with their error
+ * bounds eb and the largest relative error *eps; sets undamped_on_axis, undamped_delta,
+ * undamped_ball_re/im and undamped_stable = 1 (the caller adds the real parts and the rotor roots). */
+static void undamped(autobal_rotor_asymptotic *r, const cplx *D, const cplx *N, double w, double mb, double q, double c1,
+                     const cplx *u, double *eb, double *eps) {
+  double w2 = w * w, w4 = w2 * w2;
+  /* P^4 N = x0 + x1 lambda + x2 lambda^2 + ..., P^4 = w^4 - 4 i w^3 lambda - 6 w^2 lambda^2 + ... */
+  cplx x0 = w4 * N[0], x1 = -4.0 * I * w2 * w * N[0] + w4 * N[1], x2 = -6.0 * w2 * N[0] - 4.0 * I * w2 * w * N[1] + w4 * N[2];
+  cplx h0 = x0 / D[0], h1 = (x1 - h0 * D[1]) / D[0], h2 = (x2 - h1 * D[1] - h0 * D[2]) / D[0]; /* Taylor of X / D */
+  cplx g0 = 0.5 * mb * h0, g1 = 0.5 * mb * h1, g2 = 0.5 * mb * h2;
+  double disc = q * q * creal(g0 * conj(g0)) - cimag(g0) * cimag(g0);
+  size_t i;
+  *eps = 0.0;
+  r->undamped_stable = 1;
+  r->undamped_on_axis = disc > 0.0 && creal(g0) + sqrt(disc) < 0.0;
+  if (r->undamped_on_axis) {
+    double rr = sqrt(disc), y[2];
+    for (i = 0; i < 2; i++) y[i] = sqrt(-(creal(g0) + (i == 0 ? rr : -rr)));
+    for (i = 0; i < 2; i++) {
+      double sg = i == 0 ? 1.0 : -1.0, u0 = creal(g0) + sg * rr;
+      double dl = 0.5 * creal(g1) + sg * (q * q * creal(g1 * conj(g0)) - cimag(g0) * cimag(g1)) / (2.0 * rr);
+      /* f = (u - g)(u - g*) - q^2 g g*: the root u0 moves by -(f_g dg + f_g* dg*) / f_u, lambda by that over 2 i y */
+      double fg = cabs(-(u0 - conj(g0)) - q * q * conj(g0)), fgs = cabs(-(u0 - g0) - q * q * g0), fu = 2.0 * rr;
+      double sens = (fg + fgs) / (2.0 * fu * y[i]), rho = c1 * y[i], d1 = sens * cabs(g1) * y[i];
+      double sep = fmin(2.0 * y[i], fabs(y[0] - y[1])), e;
+      /* the Taylor terms of g beyond g1 (g2 exactly, the rest bounded by |g0| (c1 y)^n) and the second order */
+      e = sens * (cabs(g2) * y[i] * y[i] + (rho < 1.0 ? cabs(g0) * rho * rho * rho / (1.0 - rho) : INFINITY)) +
+          (sep > 0.0 ? 2.0 * d1 * d1 / sep : INFINITY);
+      *eps = fmax(*eps, fmax(rho, sep > 0.0 ? d1 / sep : INFINITY));
+      r->undamped_delta[i] = dl;
+      r->undamped_ball_re[2 * i] = r->undamped_ball_re[2 * i + 1] = dl;
+      r->undamped_ball_im[2 * i] = y[i], r->undamped_ball_im[2 * i + 1] = -y[i];
+      eb[2 * i] = eb[2 * i + 1] = e;
+    }
+  } else { /* the leading order: the roots +-sqrt(u), error c1 |u| / 2 (relative c1 |u| / |2 lambda|) */
+    r->undamped_delta[0] = r->undamped_delta[1] = NAN;
+    for (i = 0; i < 4; i++) {
+      cplx l = r->ball_re[i] + I * r->ball_im[i];
+      double al = cabs(l), au = cabs(u[i / 2]);
+      r->undamped_ball_re[i] = creal(l), r->undamped_ball_im[i] = cimag(l);
+      eb[i] = 0.5 * c1 * au;
+      *eps = fmax(*eps, al > 0.0 ? 0.5 * c1 * au / al : INFINITY);
+    }
+  }
+}
+
 int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
                                         autobal_error *err) {
   const autobal_rotor_closed_plane *pl;
@@ -78,9 +125,10 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
   kap = pl->kappa;
   if (!(w != 0.0) || !isfinite(w))
     return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: omega = %g (must be non-zero)", w);
-  if (!(kap > 0.0) || !(mb > 0.0))
+  if (!(kap >= 0.0) || !(mb > 0.0))
     return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "asymptotic conditions: ball damping rate kappa = %g 1/s, ball mass %g kg (both must be > 0)",
+                             "asymptotic conditions: ball damping rate kappa = %g 1/s (must be >= 0), ball mass %g kg "
+                             "(must be > 0)",
                              kap, mb);
   memset(&r, 0, sizeof r);
   r.kappa = kap;
@@ -119,7 +167,7 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
     r.supercritical = Gre < 0.0;
     if (Gre < 0.0) r.kappa_min = br > 0.0 ? sqrt(a * br / (-Gre)) : 0.0;
     else r.kappa_min = NAN;
-    r.light_stable = Gre < 0.0 && kap * kap * (-Gre) > a * br && q < 1.0;
+    r.light_stable = kap > 0.0 && Gre < 0.0 && kap * kap * (-Gre) > a * br && q < 1.0;
     for (i = 0; i < 2; i++) {
       cplx s = csqrt(kap * kap + 4.0 * u[i]);
       cplx l1 = 0.5 * (-kap + s), l2 = 0.5 * (-kap - s);
@@ -192,6 +240,34 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
     r.light_small = fmax(eps_b, eps_r);
     r.light_decided = dec_unstable || dec_stable;
     r.light_applicable = r.light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+    if (kap == 0.0) { /* undamped balls: the light-ball entry is no condition, the next order decides */
+      double eb[4], epsu = 0.0;
+      r.light_stable = r.light_decided = r.light_applicable = 0;
+      r.light_small = NAN;
+      r.undamped_defined = 1;
+      undamped(&r, D, N, w, mb, q, c1, u, eb, &epsu);
+      dec_unstable = 0, dec_stable = 1;
+      for (j = 0; j < 8; j++) {
+        double re, e;
+        if (j < 4) {
+          re = r.undamped_ball_re[j];
+          e = eb[j];
+        } else {
+          cplx dl = (r.rotor_re[j - 4] + I * r.rotor_im[j - 4]) - (dre[pick[j - 4]] + I * dim_[pick[j - 4]]);
+          re = r.rotor_re[j - 4];
+          e = eps_r * cabs(dl);
+        }
+        if (re >= e) dec_unstable = 1;
+        if (!(re <= -e)) dec_stable = 0;
+        if (j < 4 && !(re < 0.0)) r.undamped_stable = 0;
+      }
+      r.undamped_stable = r.undamped_stable && lre < 0.0;
+      r.undamped_small = fmax(epsu, eps_r);
+      r.undamped_decided = dec_unstable || dec_stable;
+      r.undamped_applicable = r.undamped_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+    } else {
+      r.undamped_delta[0] = r.undamped_delta[1] = r.undamped_small = NAN;
+    }
   }
   /* high speed: paper inertia, A != C */
   r.high_defined = ma == 0.0 && L->A != L->C;

@@ -71,6 +71,78 @@ static void adj4(cplx a[4][4], cplx adj[4][4]) {
     }
 }
 
+/* High speed, Q1 = Q2 = 0 (autobal/rotor_asymptotic.h; tools/derive/derive_asymptotic2_high.py).  cD: as for
+ * the light balls (sum of 1/|root| over D D* plus 4/|omega|). */
+static void high_speed(const autobal_rotor_closed *c, autobal_rotor_asymptotic2 *r, const double *mb, const double *kap,
+                       const double *dd, double w, double cD) {
+  const autobal_rotor_lumped *L = &c->L;
+  double Ap = L->A - L->C, v[2][2], Gt[3], Ht[3], z[2][2], tr, det, wmax, gap, kmax, imax;
+  size_t j, k;
+  r->high_defined = c->plane[0].m_add == 0.0 && c->plane[1].m_add == 0.0 && Ap != 0.0;
+  for (k = 0; k < 2; k++) r->high_mu[k] = r->high_kappa_mode[k] = r->high_kappa_inf[k] = r->high_re[k] = NAN;
+  r->high_small = NAN;
+  if (!r->high_defined) {
+    for (k = 0; k < 4; k++) r->high_Gamma[k] = r->high_H[k] = NAN;
+    return;
+  }
+  for (j = 0; j < 2; j++) v[j][0] = 1.0 / L->M, v[j][1] = dd[j] / Ap; /* Mi b_j */
+  for (j = 0; j < 2; j++)
+    for (k = 0; k < 2; k++) {
+      r->high_Gamma[2 * j + k] = 1.0 / L->M + dd[j] * dd[k] / Ap;
+      r->high_H[2 * j + k] = L->h_x * v[j][0] * v[k][0] - L->h_xbeta * (v[j][0] * v[k][1] + v[j][1] * v[k][0]) +
+                             L->h_alpha * v[j][1] * v[k][1];
+    }
+  /* Gt = Mb^1/2 Gamma Mb^1/2, Ht likewise (symmetric: [0] = 11, [1] = 12, [2] = 22) */
+  Gt[0] = mb[0] * r->high_Gamma[0], Gt[1] = sqrt(mb[0] * mb[1]) * r->high_Gamma[1], Gt[2] = mb[1] * r->high_Gamma[3];
+  Ht[0] = mb[0] * r->high_H[0], Ht[1] = sqrt(mb[0] * mb[1]) * r->high_H[1], Ht[2] = mb[1] * r->high_H[3];
+  {
+    double m = 0.5 * (Gt[0] + Gt[2]), dlt = hypot(0.5 * (Gt[0] - Gt[2]), Gt[1]);
+    r->high_mu[0] = m - dlt, r->high_mu[1] = m + dlt;
+    for (k = 0; k < 2; k++) { /* unit eigenvector of [[Gt0, Gt1], [Gt1, Gt2]] for mu_k */
+      double a0 = Gt[1], a1 = r->high_mu[k] - Gt[0], b0 = r->high_mu[k] - Gt[2], b1 = Gt[1], n;
+      if (hypot(a0, a1) < hypot(b0, b1)) a0 = b0, a1 = b1;
+      n = hypot(a0, a1);
+      if (n > 0.0) z[k][0] = a0 / n, z[k][1] = a1 / n;
+      else z[k][0] = k == 0, z[k][1] = k == 1; /* Gt a multiple of the identity */
+    }
+  }
+  tr = L->c_x / L->M + L->c_alpha / L->A;
+  det = (L->c_x * L->c_alpha - L->c_xbeta * L->c_xbeta) / (L->M * L->A);
+  wmax = sqrt(fmax(0.0, 0.5 * (tr + sqrt(fmax(0.0, tr * tr - 4.0 * det)))));
+  if (!(r->high_mu[0] > 0.0)) { /* (H1') fails: a real ball root of order omega sqrt(|mu| / 2) > 0 */
+    r->high_stable = 0;
+    r->high_decided = 1;
+    r->high_small = fmax(fabs(w) * sqrt(0.5 * fmax(fabs(r->high_mu[0]), fabs(r->high_mu[1]))) * cD, wmax / fabs(w));
+    r->high_applicable = r->high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+    return;
+  }
+  kmax = fmax(kap[0], kap[1]);
+  imax = 0.0;
+  r->high_stable = 1;
+  for (k = 0; k < 2; k++) {
+    double kb = z[k][0] * z[k][0] * kap[0] + z[k][1] * z[k][1] * kap[1];
+    double eta = z[k][0] * z[k][0] * Ht[0] + 2.0 * z[k][0] * z[k][1] * Ht[1] + z[k][1] * z[k][1] * Ht[2];
+    r->high_kappa_mode[k] = kb;
+    r->high_kappa_inf[k] = fabs(eta) / sqrt(2.0 * r->high_mu[k]);
+    r->high_re[k] = 0.5 * (r->high_kappa_inf[k] - kb);
+    if (!(r->high_re[k] < 0.0)) r->high_stable = 0;
+    imax = fmax(imax, r->high_kappa_inf[k]);
+  }
+  gap = fabs(w) * fabs(sqrt(0.5 * r->high_mu[0]) - sqrt(0.5 * r->high_mu[1]));
+  r->high_small = fmax(fmax(fabs(w) * sqrt(0.5 * r->high_mu[1]) * cD, wmax / fabs(w)),
+                       gap > 0.0 ? (kmax + imax) / gap : INFINITY);
+  {
+    int du = 0, ds = 1;
+    for (k = 0; k < 2; k++) {
+      double e = r->high_small * 0.5 * (r->high_kappa_mode[k] + r->high_kappa_inf[k]);
+      if (r->high_re[k] >= e) du = 1;
+      if (!(r->high_re[k] <= -e)) ds = 0;
+    }
+    r->high_decided = du || ds;
+  }
+  r->high_applicable = r->high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+}
+
 int autobal_rotor_asymptotic2_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic2 *out,
                                          autobal_error *err) {
   const autobal_rotor_lumped *L;
@@ -258,6 +330,7 @@ int autobal_rotor_asymptotic2_conditions(const autobal_rotor_closed *c, autobal_
     r.light_small = fmax(eps_b, eps_r);
     r.light_decided = dec_unstable || dec_stable;
     r.light_applicable = r.light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+    high_speed(c, &r, mb, kap, dd, w, cD);
   }
   *out = r;
   return AUTOBAL_SUCCESS;

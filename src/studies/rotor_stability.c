@@ -125,7 +125,7 @@ static void search_setup(const autobal_rotor_params *p, const autobal_study_roto
 }
 
 /* The asymptotic conditions (autobal/rotor_asymptotic.h) beside the exact verdict: one plane with
- * the closure (Delta exists) and ball damping; otherwise none (have_asymptotic = 0). */
+ * the closure (Delta exists), kappa >= 0 (kappa = 0: the undamped entry); otherwise none (have_asymptotic = 0). */
 static int asymptotic_conditions(autobal_rotor_stab *h, autobal_study_rotor_stability_summary *s,
                                  autobal_error *err) {
   autobal_rotor_closed c;
@@ -143,7 +143,7 @@ static int asymptotic_conditions(autobal_rotor_stab *h, autobal_study_rotor_stab
     return AUTOBAL_SUCCESS;
   }
   if (s->result.n_poly == 0) return AUTOBAL_SUCCESS;
-  if (!(c.plane[0].kappa > 0.0)) return AUTOBAL_SUCCESS;
+  if (!(c.plane[0].kappa >= 0.0)) return AUTOBAL_SUCCESS; /* kappa = 0: the undamped entry */
   autobal_error_clear(&e);
   st = autobal_rotor_asymptotic_conditions(&c, &s->asymptotic, &e);
   if (st == AUTOBAL_EINVAL) return AUTOBAL_SUCCESS; /* not applicable here (e.g. an undamped resonance) */
@@ -375,6 +375,20 @@ static int write_asymptotic(autobal_archive *a, const autobal_rotor_asymptotic *
   if (!st) st = autobal_archive_attr_double(a, g, "G_imag", q->G_im, "m/N");
   if (!st) st = autobal_archive_attr_double(a, g, "kappa", q->kappa, "1/s");
   if (!st) st = autobal_archive_attr_double(a, g, "q", q->q, "1");
+  if (!st && q->undamped_defined) { /* kappa = 0: the undamped entry instead of (L1), (L2) */
+    st = autobal_archive_attr_string(a, g, "undamped_description", "kappa = 0: the light-ball roots to the next order, +-i y + delta, delta = Re g1/2 +- (q^2 Re(g1 conj g0) - Im g0 Im g1)/(2 r) where the leading order puts them on the imaginary axis (undamped_on_axis), else the leading order; with the rotor roots shifted to first order (docs/rotor.md, Undamped balls)");
+    if (!st) st = autobal_archive_attr_int(a, g, "undamped_on_axis", q->undamped_on_axis);
+    if (!st) st = autobal_archive_attr_double_array(a, g, "undamped_delta", 2, q->undamped_delta, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "undamped_ball_root_real", 4, q->undamped_ball_re, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "undamped_ball_root_imag", 4, q->undamped_ball_im, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "undamped_rotor_root_real", 4, q->rotor_re, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "undamped_rotor_root_imag", 4, q->rotor_im, "1/s");
+    if (!st) st = autobal_archive_attr_int(a, g, "undamped_predicts_stable", q->undamped_stable);
+    if (!st) st = autobal_archive_attr_int(a, g, "undamped_decided", q->undamped_decided);
+    if (!st) st = autobal_archive_attr_double(a, g, "undamped_small", q->undamped_small, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "undamped_applicable", q->undamped_applicable);
+    goto high;
+  }
   if (!st) st = autobal_archive_attr_int(a, g, "light_supercritical", q->supercritical);
   if (!st) st = autobal_archive_attr_double(a, g, "light_kappa_min", q->kappa_min, "1/s");
   if (!st) st = autobal_archive_attr_int(a, g, "light_predicts_stable", q->light_stable);
@@ -385,6 +399,7 @@ static int write_asymptotic(autobal_archive *a, const autobal_rotor_asymptotic *
   if (!st) st = autobal_archive_attr_int(a, g, "light_decided", q->light_decided);
   if (!st) st = autobal_archive_attr_double(a, g, "light_small", q->light_small, "1");
   if (!st) st = autobal_archive_attr_int(a, g, "light_applicable", q->light_applicable);
+high:
   if (!st) st = autobal_archive_attr_int(a, g, "high_defined", q->high_defined);
   if (!st && q->high_defined) {
     st = autobal_archive_attr_double(a, g, "high_m_eff", q->m_eff, "kg");
@@ -415,6 +430,20 @@ static int write_asymptotic2(autobal_archive *a, const autobal_rotor_asymptotic2
   if (!st) st = autobal_archive_attr_int(a, g, "light_decided", q->light_decided);
   if (!st) st = autobal_archive_attr_double(a, g, "light_small", q->light_small, "1");
   if (!st) st = autobal_archive_attr_int(a, g, "light_applicable", q->light_applicable);
+  if (!st) st = autobal_archive_attr_int(a, g, "high_defined", q->high_defined);
+  if (!st && q->high_defined) { /* high speed, balls at q = 0 in both planes */
+    st = autobal_archive_attr_string(a, g, "high_description", "high speed, Q1 = Q2 = 0: (H1') Gamma positive definite, (H2') kappa_mode_k > kappa_inf_k for both modes k of Mb^1/2 Gamma Mb^1/2 (docs/rotor.md, Two planes at high speed)");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_Gamma", 4, q->high_Gamma, "1/kg");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_H", 4, q->high_H, "1/(kg s)");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_mu", 2, q->high_mu, "1");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_kappa_mode", 2, q->high_kappa_mode, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_kappa_inf", 2, q->high_kappa_inf, "1/s");
+    if (!st) st = autobal_archive_attr_double_array(a, g, "high_re", 2, q->high_re, "1/s");
+    if (!st) st = autobal_archive_attr_int(a, g, "high_predicts_stable", q->high_stable);
+    if (!st) st = autobal_archive_attr_int(a, g, "high_decided", q->high_decided);
+    if (!st) st = autobal_archive_attr_double(a, g, "high_small", q->high_small, "1");
+    if (!st) st = autobal_archive_attr_int(a, g, "high_applicable", q->high_applicable);
+  }
   return st;
 }
 

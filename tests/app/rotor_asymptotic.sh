@@ -7,7 +7,9 @@
 #  (c) light balls (5e-7 kg) at 2000 rad/s, balls at right angles (q = 0), ball damping below and above kappa_min;
 #  (d) a disk-like rotor (C > A, 0 < C - A < M d^2): (H1) fails, high speed predicts UNSTABLE;
 #  (e) two planes: the two-plane light-ball condition (rotor_asymptotic2_check.py), not the one-plane ones;
-#      light balls below (150 rad/s) and above (800 rad/s) the resonances.
+#      light balls below (150 rad/s) and above (800 rad/s) the resonances;
+#  (f) undamped balls (kappa = 0): the next-order entry instead of (L1), (L2);
+#  (g) two planes at high speed with the balls at q = 0: (H1'), (H2').
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -50,6 +52,15 @@ read -r v p dec app < <(verdict_of disk.json high_predicts_stable)
 [ "$v $p" = "unstable False" ] && ok "disk-like rotor (C - A = 0.04 < M d^2 = 0.1), 5000 rad/s: unstable, high speed predicts UNSTABLE" || bad "disk: $v $p"
 grep -q "UNSTABLE for every unbalance" disk.txt && ok "console: UNSTABLE for every unbalance" || { bad "console disk"; cat disk.txt; }
 
+# (f) undamped balls (kappa = 0): the default rotor at 500 rad/s, balls of 5e-6 kg, q = 0.9: on the axis to leading
+#     order, the next order says UNSTABLE (exact margin +9.64e-6 1/s, tests/test_rotor_asymptotic.c)
+m0u=$("$PY" -c 'print(2 * 5e-6 * 0.1 * (1.9 / 2) ** 0.5 / 0.1)')
+one undamped 500 0.1 5e-6 0 "$m0u"
+read -r v p dec app < <("$PY" -c 'import json,sys; j=json.load(open(sys.argv[1])); a=j["asymptotic"]; print(j["verdict"], a["undamped_predicts_stable"], a["undamped_decided"], a["undamped_applicable"])' undamped.json)
+[ "$v $p $dec $app" = "unstable False True True" ] && ok "kappa = 0, light balls, 500 rad/s: exactly unstable, next order predicts UNSTABLE, decided, applicable" || bad "undamped: $v $p $dec $app"
+grep -q "undamped balls (kappa = 0): ball roots on the axis to leading order, next order" undamped.txt && ok "console: the undamped line" || { bad "console undamped"; cat undamped.txt; }
+grep -q "light balls: (L1)" undamped.txt && bad "kappa = 0: (L1)/(L2) line printed" || ok "kappa = 0: no (L1)/(L2) line"
+
 expect 0 "" "$AUTOBAL" rotor stability "$DATA/rotor_two_planes.ini" --set stability.critical_speeds=false
 grep -q "asymptotic conditions (for comparison" out.txt && bad "two planes: one-plane conditions printed" || ok "two planes: no one-plane conditions"
 grep -q "asymptotic condition, two planes (for comparison only" out.txt && ok "two planes: the two-plane condition printed" || bad "two planes: no two-plane condition"
@@ -76,4 +87,11 @@ read -r v p dec app < <(verdict2 two_sub.json)
 two two_super 800 0.1 -0.12 5e-6 4e-6 1e-5 1.2e-5 2e-7 1.5e-7 0 2
 read -r v p dec app < <(verdict2 two_super.json)
 [ "$v $p $dec $app" = "stable True True True" ] && ok "two planes, 800 rad/s, light balls: exactly stable, predicted STABLE, decided, applicable" || bad "two_super: $v $p $dec $app"
+# (g) two planes at high speed, balls at q = 0 in both planes (m0 r0 = sqrt(2) m r), 1e5 rad/s, kappa 0.0615 1/s in both
+#     planes, 1.25 times the larger kappa_inf_k = 0.0492 1/s (tests/test_rotor_asymptotic2.c): stable, (H2') holds
+s1q=$("$PY" -c 'print(2**0.5 * 5e-6 * 0.1)'); s2q=$("$PY" -c 'print(2**0.5 * 4e-6 * 0.1)')
+two two_high 1e5 0.1 -0.12 5e-6 4e-6 3.075e-7 2.46e-7 "$s1q" "$s2q" 0 0
+read -r v p dec app < <("$PY" -c 'import json,sys; j=json.load(open(sys.argv[1])); a=j["asymptotic2"]; print(j["verdict"], a["high_predicts_stable"], a["high_decided"], a["high_applicable"])' two_high.json)
+[ "$v $p $dec $app" = "stable True True True" ] && ok "two planes, 1e5 rad/s, q = 0: exactly stable, (H2') predicts STABLE, decided, applicable" || bad "two_high: $v $p $dec $app"
+grep -q "high speed, balls at q = 0 in both planes: (H1') Gamma positive definite \[yes\]" two_high.txt && ok "console: the two-plane high-speed line" || { bad "console two_high"; cat two_high.txt; }
 finish

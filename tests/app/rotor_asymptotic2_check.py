@@ -72,4 +72,30 @@ for k, u in units.items():
 for k in ("light_predicts_stable", "light_applicable", "light_decided"):
     check("archive %s = JSON" % k, int(g5.attrs[k]) == int(a_[k]))
 check("archive description says ASYMPTOTIC", "ASYMPTOTIC" in g5.attrs["description"])
+# high speed, Q1 = Q2 = 0: Gamma = -lim w^2 Re G, H = -lim w^3 Im G from the 2x2 solve at 1e7 rad/s, the modes
+# of Mb^1/2 Gamma Mb^1/2 by NumPy's eigh
+check("high speed defined (paper inertia)", a_["high_defined"])
+W = 1e7
+KW = np.array([[-M * W * W + 1j * W * h + c, -(1j * W * hc + cc)], [-(1j * W * hc + cc), -(A - C) * W * W + 1j * W * ht + ct]])
+GW = B.T @ np.linalg.solve(KW, B)
+Gam, Hh = -W * W * GW.real, -W**3 * GW.imag
+check("high_Gamma = -lim w^2 Re G", np.allclose(a_["high_Gamma"], Gam.ravel(), rtol=1e-8, atol=0))
+check("high_H = -lim w^3 Im G", np.allclose(a_["high_H"], Hh.ravel(), rtol=1e-5, atol=0))
+Sq = np.diag(np.sqrt([2 * m1, 2 * m2]))
+mu, Z = np.linalg.eigh(Sq @ Gam @ Sq)
+kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
+kinf = np.array([abs(Z[:, k] @ Sq @ Hh @ Sq @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
+check("high_mu = eigenvalues of Mb^1/2 Gamma Mb^1/2", np.allclose(a_["high_mu"], mu, rtol=1e-8, atol=0))
+check("high_kappa_mode = z_k^T diag(kappa) z_k", np.allclose(a_["high_kappa_mode"], kbar, rtol=1e-8, atol=0))
+check("high_kappa_inf = |z_k^T Ht z_k| / sqrt(2 mu_k)", np.allclose(a_["high_kappa_inf"], kinf, rtol=1e-5, atol=0))
+check("high_predicts_stable = (kbar_k > kappa_inf_k for both modes)", a_["high_predicts_stable"] == bool(np.all(kbar > kinf)))
+if a_["high_decided"] and abs(a_["q"][0]) < 1e-9 and abs(a_["q"][1]) < 1e-9:
+    check("decided high-speed prediction at Q = 0 = exact two-plane verdict (%s)" % j["verdict"],
+          a_["high_predicts_stable"] == (j["verdict"] == "stable"))
+for k, u in {"high_Gamma": "1/kg", "high_H": "1/(kg s)", "high_mu": "1", "high_kappa_mode": "1/s",
+             "high_kappa_inf": "1/s", "high_re": "1/s", "high_small": "1"}.items():
+    check("archive %s = JSON, units %s" % (k, u),
+          np.allclose(g5.attrs[k], a_[k], rtol=1e-15, atol=0) and g5.attrs[k + "_units"] == u)
+for k in ("high_predicts_stable", "high_applicable", "high_decided"):
+    check("archive %s = JSON" % k, int(g5.attrs[k]) == int(a_[k]))
 sys.exit(1 if fails else 0)

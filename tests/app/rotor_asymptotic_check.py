@@ -51,6 +51,44 @@ kap = hb / m
 mb = 2 * m
 aa = mb * w**4 / 2
 br = G.imag**2 - q * q * abs(G)**2
+if kap == 0:
+    # undamped balls: the next-order ball roots (docs/rotor.md "Undamped balls"), g = (m_b/2) P^4 N / D with its
+    # derivative at lambda = 0 by the quotient rule on NumPy polynomials (P = lambda + i omega)
+    from numpy.polynomial import polynomial as Pn
+    Pp = np.array([1j * w, 1.0])
+    K11 = Pn.polyadd(Pn.polyadd(M * Pn.polymul(Pp, Pp), h * Pp), [c])
+    K12 = -Pn.polyadd(hc * Pp, [cc])
+    K22 = Pn.polyadd(Pn.polyadd(A * Pn.polymul(Pp, Pp), (ht - 1j * C * w) * Pp), [ct])
+    D = Pn.polysub(Pn.polymul(K11, K22), Pn.polymul(K12, K12))
+    N = Pn.polyadd(Pn.polyadd(K22, -2 * d * K12), d * d * K11)
+    X = mb / 2 * Pn.polymul(Pn.polymul(Pn.polymul(Pp, Pp), Pn.polymul(Pp, Pp)), N)
+    g0 = Pn.polyval(0, X) / Pn.polyval(0, D)
+    g1 = (Pn.polyval(0, Pn.polyder(X)) * D[0] - X[0] * Pn.polyval(0, Pn.polyder(D))) / D[0]**2
+    close("undamped: g0 = a G", g0, aa * G, 1e-9)
+    disc = q * q * abs(g0)**2 - g0.imag**2
+    on_axis = bool(disc > 0 and g0.real + np.sqrt(disc) < 0)
+    check("undamped: on the axis iff both u real and negative", a_["undamped_on_axis"] == on_axis)
+    if on_axis:
+        r_ = np.sqrt(disc)
+        dl = [g1.real / 2 + sg * (q * q * (g1 * np.conj(g0)).real - g0.imag * g1.imag) / (2 * r_) for sg in (1, -1)]
+        close("undamped: delta_(+-) = Re g1/2 +- (q^2 Re(g1 conj g0) - Im g0 Im g1)/(2r)", a_["undamped_delta"], dl, 1e-8)
+        pm = max(max(dl), max(a_["undamped_rotor_root_real"]))
+        check("undamped: predicted largest real part = exact margin of the program (rel. 1e-3)",
+              abs(pm - j["margin"]) <= 1e-3 * abs(j["margin"]), "%.9g vs %.9g" % (pm, j["margin"]))
+    if a_["undamped_decided"]:
+        check("decided undamped prediction = exact verdict (%s)" % j["verdict"],
+              a_["undamped_predicts_stable"] == (j["verdict"] == "stable"))
+    check("undamped: no light-ball keys", "light_predicts_stable" not in a_)
+    gg = h5py.File(hf, "r")["/rotor/stability/asymptotic"]
+    for k, u in (("undamped_delta", "1/s"), ("undamped_ball_root_real", "1/s"), ("undamped_ball_root_imag", "1/s"),
+                 ("undamped_rotor_root_real", "1/s"), ("undamped_small", "1")):
+        v = np.asarray(a_[k], float)
+        check("archive %s = JSON, units %s" % (k, u),
+              np.allclose(gg.attrs[k], v, rtol=1e-15, atol=0, equal_nan=True) and gg.attrs[k + "_units"] == u)
+    for k in ("undamped_on_axis", "undamped_predicts_stable", "undamped_decided", "undamped_applicable"):
+        check("archive %s = JSON" % k, int(gg.attrs[k]) == int(a_[k]))
+    check("archive: no light-ball attributes", "light_predicts_stable" not in gg.attrs)
+    sys.exit(1 if fails else 0)
 if G.real < 0:
     km = np.sqrt(aa * br / (-G.real)) if br > 0 else 0.0
     close("kappa_min = sqrt(a (Im^2 G - q^2 |G|^2) / (-Re G))", a_["light_kappa_min"], km, 1e-9) if km > 0 else \

@@ -4,7 +4,7 @@ against the exact roots of the closed two-plane system, recomputed here with Num
 docs/rotor.md "Two planes: degree 16" (independent of the C code), over random machines; and the
 undamped-ball (kappa = 0) scan of the one-plane Delta.
 
-Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|kappa0|all] [n_draws]   (a few minutes)
+Run:  /usr/bin/python3 tools/derive/asymptotic2_scan.py [scan|rich|high|every|kappa0|all] [n_draws]   (a few minutes)
 
 Two planes j = 1, 2, each with two identical balls (mass m_j each, radius r_j, damping h_j, kappa_j = h_j / m_j,
 unbalance m0_j r0_j at phase psi0_j).  Rotating complex coordinates (W, Theta, sigma_1, sigma_2) and their
@@ -20,6 +20,7 @@ u_j = lambda^2 + kappa_j lambda (8 ball roots), plus the roots of D = det K shif
 """
 import sys
 
+import mpmath as mp
 import numpy as np
 from numpy.polynomial import polynomial as Pn
 
@@ -216,6 +217,163 @@ def scan(seed, n, th=TH, rich=False):
     return not bad
 
 
+# ---- two planes at high speed, balls at q = 0 in both planes (docs/rotor.md "Two planes at high speed") ----------
+
+def high2(p, w):
+    """The (H1'), (H2') prediction at Q1 = Q2 = 0 as the library computes it (autobal_rotor_asymptotic2_conditions):
+    (larger real part per mode, its error, small parameter), or None when Gamma is not positive definite."""
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Mi = np.diag([1 / M, 1 / Ap])
+    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
+    Sq = np.diag(np.sqrt([2 * p['m'][0], 2 * p['m'][1]]))
+    Gt = Sq @ B.T @ Mi @ B @ Sq
+    Ht = Sq @ B.T @ Mi @ Hs @ Mi @ B @ Sq
+    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
+    mu, Z = np.linalg.eigh(Gt)
+    if mu.min() <= 0:
+        return None
+    kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
+    kinf = np.array([abs(Z[:, k] @ Ht @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
+    tr = p['c'] / M + p['ct'] / p['A']
+    det = (p['c'] * p['ct'] - p['cc']**2) / (M * p['A'])
+    wmax = np.sqrt(0.5 * (tr + np.sqrt(max(0, tr * tr - 4 * det))))
+    K11, K12, K22, _ = kpolys(p, w)
+    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
+    cD = np.sum(1 / abs(np.roots(mul(D, np.conj(D))[::-1]))) + 4 / abs(w)
+    gap = abs(w) * abs(np.sqrt(mu[0] / 2) - np.sqrt(mu[1] / 2))
+    small = max(abs(w) * np.sqrt(mu.max() / 2) * cD, wmax / abs(w), (kap.max() + kinf.max()) / gap)
+    return (kinf - kbar) / 2, small * (kbar + kinf) / 2, small, kinf
+
+
+def high(seed, n, th=TH, rich=False):
+    """random two-plane machines (draw(), balls scaled by 1e-4..0.1), Q1 = Q2 = 0, omega in [2000, 50000] rad/s
+    (20 % negative); rich: kappa_j = max kappa_inf_k times e^U(-1, 1) (near the boundary).  Exact: the 16 roots."""
+    rng = np.random.default_rng(seed)
+    nm = n_app = n_dec = agree = nps = 0
+    bad = []
+    for _ in range(n):
+        p = draw(rng)
+        if p is None:
+            continue
+        w = np.exp(rng.uniform(np.log(2000), np.log(50000))) * (1 if rng.uniform() < 0.8 else -1)
+        fm = np.exp(rng.uniform(np.log(1e-4), np.log(1e-1)))
+        p['m'] = [x * fm for x in p['m']]
+        p['hb'] = [x * fm for x in p['hb']]
+        p['s0'] = [np.sqrt(2) * p['m'][j] * p['r'][j] for j in range(2)]  # Q_j = 0
+        r = high2(p, w)
+        if r is None:
+            continue
+        if rich:
+            ks = r[3].max()
+            p['hb'] = [p['m'][j] * ks * np.exp(rng.uniform(-1, 1)) for j in range(2)]
+            r = high2(p, w)
+        nm += 1
+        re, err, small, _ = r
+        if not small <= th:
+            continue
+        n_app += 1
+        du = bool(np.any(re >= err))
+        ds = bool(np.all(re <= -err))
+        if not (du or ds):
+            continue
+        n_dec += 1
+        nps += ds
+        m = exact_roots(p, w).real.max()
+        if (m < 0) == ds:
+            agree += 1
+        else:
+            bad.append((w, m, re.max(), small))
+    print('two planes, high speed, Q = 0, seed %d%s: %d machines (Gamma positive definite), small <= %g: applicable %d, '
+          'decided %d, agree %d (predicted STABLE %d)' % (seed, ' (rich)' if rich else '', nm, th, n_app, n_dec, agree, nps))
+    for b_ in bad:
+        print('   DISAGREES: omega %g, exact margin %g, predicted max Re %g, small %g' % b_)
+    return not bad
+
+
+def high_every(seed=11, n_mach=150, n_q=40):
+    """Machines where (H2') is decided STABLE at Q = 0 (kappa_j = max kappa_inf_k e^U(0.1, 1), small <= 0.05) and
+    exactly stable there: the exact verdict at n_q random unbalances (q_j, phases) each."""
+    rng = np.random.default_rng(seed)
+    nm = nq = nun = 0
+    worst = -np.inf
+    for _ in range(40 * n_mach):
+        p = draw(rng)
+        if p is None:
+            continue
+        w = np.exp(rng.uniform(np.log(2000), np.log(50000)))
+        fm = np.exp(rng.uniform(np.log(1e-4), np.log(1e-1)))
+        p['m'] = [x * fm for x in p['m']]
+        p['hb'] = [x * fm for x in p['hb']]
+        p['s0'] = [np.sqrt(2) * p['m'][j] * p['r'][j] for j in range(2)]
+        r = high2(p, w)
+        if r is None:
+            continue
+        p['hb'] = [p['m'][j] * r[3].max() * np.exp(rng.uniform(0.1, 1)) for j in range(2)]
+        re, err, small, _ = high2(p, w)
+        if not (small <= TH and np.all(re <= -err)) or exact_roots(p, w).real.max() >= 0:
+            continue
+        nm += 1
+        for _ in range(n_q):
+            q = dict(p)
+            q['s0'] = [2 * p['m'][j] * p['r'][j] * rng.uniform(0.02, 0.98) for j in range(2)]
+            q['psi0'] = [rng.uniform(0, 2 * np.pi), rng.uniform(0, 2 * np.pi)]
+            m = exact_roots(q, w).real.max()
+            nq += 1
+            nun += m >= 0
+            worst = max(worst, m)
+        if nm >= n_mach:
+            break
+    print('two planes, high speed: %d machines with (H2\') decided STABLE and exactly stable at Q = 0; %d random '
+          'unbalances: exactly unstable %d (largest margin %.3g 1/s)' % (nm, nq, nun, worst))
+    return True
+
+
+def crossings(seed=1, f=1e-3, w=2e4):
+    """The default two-plane machine (balls x f) at w: points (q1, q2, phase of Q2 / Q1) where two leading-order
+    ball roots coincide (Nelder-Mead on the smallest gap of the eigenvalues of T = (1/2)[[Mb, -Q], [-conj Q, Mb]]
+    diag(Gamma, Gamma)), and the exact margin there and 0.02 away in q1 for ball damping 0.01, 0.3 and 1.2 times
+    max kappa_inf_k (of Q = 0)."""
+    from scipy.optimize import minimize
+    p = default2()
+    p['m'] = [x * f for x in p['m']]
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Gam = B.T @ np.diag([1 / M, 1 / Ap]) @ B
+    mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
+
+    def gap(x):
+        Q = np.diag([mb[0] * x[0], mb[1] * x[1] * np.exp(1j * x[2])])
+        T = 0.5 * np.block([[np.diag(mb), -Q], [-np.conj(Q), np.diag(mb)]]) @ np.kron(np.eye(2), Gam)
+        e = np.sort(np.linalg.eigvals(T).real)
+        return min(np.diff(e)) / e.max()
+    p['s0'] = [np.sqrt(2) * p['m'][j] * p['r'][j] for j in range(2)]
+    p['hb'] = list(p['m'])
+    kmax = high2(p, w)[3].max()
+    rng = np.random.default_rng(seed)
+    found = []
+    for _ in range(60):
+        r = minimize(gap, [rng.uniform(0.05, 0.95), rng.uniform(0.05, 0.95), rng.uniform(0, 2 * np.pi)],
+                     method='Nelder-Mead', options=dict(xatol=1e-10, fatol=1e-14, maxiter=4000))
+        if r.fun < 1e-7 and 0.02 < r.x[0] < 0.96 and 0.02 < r.x[1] < 0.98:
+            found.append(r.x)
+    print('crossings of the leading-order ball roots (default machine, balls x %g, %g rad/s): %d found; max kappa_inf '
+          '(Q = 0) %.5g 1/s' % (f, w, len(found), kmax))
+    for fac in (0.01, 0.3, 1.2):
+        for dq in (0.0, 0.02):
+            ms = []
+            for x in found[:12]:
+                q = dict(p)
+                q['hb'] = [p['m'][j] * fac * kmax for j in range(2)]
+                q['s0'] = [2 * p['m'][j] * p['r'][j] * np.sqrt((1 + [x[0] + dq, x[1]][j]) / 2) for j in range(2)]
+                q['psi0'] = [0.0, x[2] / 2]
+                ms.append(exact_roots(q, w).real.max())
+            print('   kappa = %.2f max kappa_inf, %s: exact margins %.3g .. %.3g 1/s, %d of %d unstable'
+                  % (fac, 'at the crossings' if dq == 0 else '0.02 away in q1', min(ms), max(ms),
+                     sum(m >= 0 for m in ms), len(ms)))
+    return True
+
+
 # ---- kappa = 0: the one-plane Delta with undamped balls ----------------------------------------------
 
 def delta1(p, w):
@@ -238,12 +396,137 @@ def delta1(p, w):
     return De.real
 
 
-def kappa0(seed, n):
+def one_polys(p, w):
+    M, A, C, c, ct, cc, h, ht, hc, d = [p[k] for k in 'M A C c ct cc h ht hc d'.split()]
+    P = np.array([1j * w, 1.0])
+    K11 = Pn.polyadd(M * mul(P, P), Pn.polyadd(h * P, [c]))
+    K12 = -Pn.polyadd(hc * P, [cc])
+    K22 = Pn.polyadd(A * mul(P, P), Pn.polyadd((ht - 1j * C * w) * P, [ct]))
+    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
+    N = Pn.polyadd(Pn.polyadd(K22, -2 * d * K12), d * d * K11)
+    return K11, K12, K22, D, N
+
+def exact1(p, w):
+    """12 roots of the closed one-plane system: companion of the 6x6 quadratic matrix polynomial"""
+    Cm = [np.zeros((6, 6), complex) for _ in range(3)]
+    def put(i, k, poly):
+        for n, v in enumerate(poly):
+            Cm[n][i, k] += v
+    d = p['d']; mb = 2 * p['m']; kap = p['hb'] / p['m']
+    x = p['s0'] / (2 * p['m'] * p['r'])
+    Q = mb * (2 * x * x - 1)
+    for cj, off, ooff in ((False, 0, 3), (True, 3, 0)):
+        sg = -1.0 if cj else 1.0
+        P = np.array([sg * 1j * w, 1.0]); P2 = mul(P, P)
+        Po = np.array([-sg * 1j * w, 1.0]); P2o = mul(Po, Po)
+        K11 = Pn.polyadd(Pn.polyadd(p['M'] * P2, p['h'] * P), [p['c']])
+        K12 = -Pn.polyadd(p['hc'] * P, [p['cc']])
+        K22 = Pn.polyadd(Pn.polyadd(p['A'] * P2, (p['ht'] - sg * 1j * p['C'] * w) * P), [p['ct']])
+        put(off, off, K11); put(off, off + 1, K12); put(off + 1, off, K12); put(off + 1, off + 1, K22)
+        put(off, off + 2, P2); put(off + 1, off + 2, d * P2)
+        put(off + 2, off + 2, [0, kap, 1])
+        put(off + 2, off, mb / 2 * P2); put(off + 2, off + 1, mb / 2 * d * P2)
+        put(off + 2, ooff, -Q / 2 * P2o); put(off + 2, ooff + 1, -Q / 2 * d * P2o)
+    Minv = np.linalg.inv(Cm[2])
+    comp = np.zeros((12, 12), complex)
+    comp[:6, 6:] = np.eye(6)
+    comp[6:, :6] = -Minv @ Cm[0]
+    comp[6:, 6:] = -Minv @ Cm[1]
+    return np.linalg.eigvals(comp)
+
+def k0pred(p, w):
+    """kappa = 0, one plane: predicted real parts, error bounds, small parameter, branch"""
+    K11, K12, K22, D, N = one_polys(p, w)
+    mb = 2 * p['m']
+    x = p['s0'] / (2 * p['m'] * p['r'])
+    q = abs(2 * x * x - 1)
+    P = np.array([1j * w, 1.0])
+    num = mul(P, P, P, P, N)
+    g0 = mb / 2 * num[0] / D[0]
+    h0 = num[0] / D[0]; h1 = (num[1] - h0 * D[1]) / D[0]; h2 = (num[2] - h1 * D[1] - h0 * D[2]) / D[0]
+    g1 = mb / 2 * h1; g2 = mb / 2 * h2
+    rDD = np.roots(mul(D, np.conj(D))[::-1]); rNN = np.roots(mul(N, np.conj(N))[::-1])
+    c1 = np.sum(1 / abs(rDD)) + np.sum(1 / abs(rNN)) + 4 / abs(w)
+    disc = q * q * abs(g0)**2 - g0.imag**2
+    res, errs, eps = [], [], 0.0
+    axis = disc > 0 and g0.real + np.sqrt(disc) < 0
+    if axis:
+        r = np.sqrt(disc)
+        ys = [np.sqrt(-(g0.real + sg * r)) for sg in (1, -1)]
+        lam0 = [1j * ys[0], -1j * ys[0], 1j * ys[1], -1j * ys[1]]
+        for i, sg in enumerate((1, -1)):
+            u0 = g0.real + sg * r
+            dl = g1.real / 2 + sg * (q * q * (g1 * np.conj(g0)).real - g0.imag * g1.imag) / (2 * r)
+            fg = abs(-(u0 - np.conj(g0)) - q * q * np.conj(g0)); fgs = abs(-(u0 - g0) - q * q * g0)
+            fu = 2 * r
+            y = ys[i]
+            sens = (fg + fgs) / (fu * 2 * y)
+            rho = c1 * y
+            Dl = sens * abs(g1) * y
+            sep = min(abs(1j * y - z) for z in lam0 if abs(z - 1j * y) > 0)
+            e = sens * (abs(g2) * y * y + (abs(g0) * rho**3 / (1 - rho) if rho < 1 else np.inf)) + 2 * Dl * Dl / sep
+            eps = max(eps, rho, Dl / sep)
+            res += [dl, dl]; errs += [e, e]
+    else:
+        sq = np.sqrt(complex(disc))
+        for u in (g0.real + sq, g0.real - sq):
+            s = np.sqrt(u)
+            for l in (s, -s):
+                rel = c1 * abs(u) / abs(2 * l)
+                eps = max(eps, rel)
+                res.append(l.real); errs.append(rel * abs(l))
+    # rotor roots shifted (kappa = 0)
+    rD = np.roots(D[::-1]); Dp = Pn.polyder(D)
+    eps_r = 0.0; sh = []
+    for lk in rD:
+        dl = mb / 2 * (lk + 1j * w)**4 * Pn.polyval(lk, N) / (lk * lk * Pn.polyval(lk, Dp))
+        sep = min([abs(lk)] + [abs(lk - z) for z in rDD if abs(z - lk) > 1e-12 * abs(lk)])
+        eps_r = max(eps_r, abs(dl) / sep); sh.append((lk, dl))
+    for lk, dl in sh:
+        res.append((lk + dl).real); errs.append(eps_r * abs(dl))
+    return np.array(res), np.array(errs), max(eps, eps_r), axis
+
+def pmul(a, b):
+    r = [mp.mpc(0)] * (len(a) + len(b) - 1)
+    for i, x in enumerate(a):
+        for j, y in enumerate(b):
+            r[i + j] += x * y
+    return r
+def padd(a, b, cb=1):
+    n = max(len(a), len(b)); a = a + [mp.mpc(0)] * (n - len(a)); b = b + [mp.mpc(0)] * (n - len(b))
+    return [x + cb * y for x, y in zip(a, b)]
+def exact_mp(p, w, dps=60):
+    """max Re of the 12 roots of Delta (one plane), coefficients and roots with dps digits"""
+    with mp.workdps(dps):
+        M, A, C, c, ct, cc, h, ht, hc, d = [mp.mpf(p[k]) for k in 'M A C c ct cc h ht hc d'.split()]
+        w = mp.mpf(w); m = mp.mpf(p['m']); mb = 2 * m; kap = mp.mpf(p['hb']) / m
+        x = mp.mpf(p['s0']) / (2 * m * mp.mpf(p['r'])); Q = abs(mb * (2 * x * x - 1))
+        P = [mp.mpc(0, w), mp.mpc(1)]; Pb = [mp.mpc(0, -w), mp.mpc(1)]
+        P2 = pmul(P, P)
+        K11 = padd(padd([M * t for t in P2], [h * t for t in P]), [c])
+        K12 = [-(hc * P[0] + cc), -hc]
+        K22 = padd(padd([A * t for t in P2], [(ht - mp.mpc(0, 1) * C * w) * t for t in P]), [ct])
+        D = padd(pmul(K11, K22), pmul(K12, K12), -1)
+        N = padd(padd(K22, [-2 * d * t for t in K12]), [d * d * t for t in K11])
+        P4 = pmul(P2, P2); Pb4 = pmul(pmul(Pb, Pb), pmul(Pb, Pb))
+        F = padd(pmul([0, kap, 1], D), [mb / 2 * t for t in pmul(P4, N)], -1)
+        Fc = [mp.conj(t) for t in F]; Nc = [mp.conj(t) for t in N]
+        De = padd(pmul(F, Fc), [(Q / 2)**2 * t for t in pmul(pmul(P4, Pb4), pmul(N, Nc))], -1)
+        co = [mp.re(t) for t in De][::-1]
+        r = mp.polyroots(co, maxsteps=400, extraprec=400)
+        return float(max(mp.re(z) for z in r))
+
+
+def kappa0(seed, n, mlo=1e-4, mhi=1.0, th=TH):
     """kappa = 0 over random one-plane machines (asymptotic_scan.py's ranges, any ball mass up to 0.05 kg):
-    how often is the largest real part of the 12 roots of Delta negative (asymptotically stable)?  Also the
-    Routh-Hurwitz necessary condition that every coefficient has the sign of the leading one."""
+    how often is the largest real part of the 12 roots of Delta negative (asymptotically stable)?  And the
+    undamped entry (k0pred, the library's rule) against the exact verdict: the 12 eigenvalues of the closed
+    one-plane system (exact1), recomputed from Delta with 60 digits (exact_mp) where the margin is below 1e-8 of
+    the largest root.  mlo, mhi: the ball mass range as fractions of 0.05 kg."""
     rng = np.random.default_rng(seed)
     n_ok = n_stable = n_marg = n_disk = 0
+    n_app = n_dec = n_next = n_agree = n_ps = n_mp = 0
+    bad = []
     worst = -np.inf
     for _ in range(n):
         p = dict(M=10., A=0.16, C=0.03, c=2.5e5, ct=7375., cc=-2500., h=250., ht=7.375, hc=-2.5, d=0.1,
@@ -254,7 +537,7 @@ def kappa0(seed, n):
             continue
         sh = np.exp(rng.uniform(-6, 2)); p['h'] *= sh; p['ht'] *= sh; p['hc'] *= sh * rng.uniform(-1, 1)
         p['d'] = rng.uniform(-0.3, 0.3)
-        p['m'] *= np.exp(rng.uniform(np.log(1e-4), 0))
+        p['m'] *= np.exp(rng.uniform(np.log(mlo), np.log(mhi)))
         p['s0'] = 2 * p['m'] * p['r'] * rng.uniform(0.02, 0.98)
         w = np.exp(rng.uniform(np.log(50), np.log(5000))) * (1 if rng.uniform() < 0.8 else -1)
         De = delta1(p, w)
@@ -268,9 +551,34 @@ def kappa0(seed, n):
         elif mre <= 1e-9 * scale:
             n_marg += 1
         worst = max(worst, -mre / scale)
-    print('kappa = 0, one plane, seed %d: %d machines, asymptotically stable %d (%d of them with C > A), within 1e-9 '
-          'of the axis %d (largest -max Re / scale %.3g)' % (seed, n_ok, n_stable, n_disk, n_marg, worst))
-    return True
+        res, errs, small, axis = k0pred(p, w)
+        if not small <= th:
+            continue
+        n_app += 1
+        du = bool(np.any(res >= errs))
+        ds = bool(np.all(res <= -errs))
+        if not (du or ds):
+            continue
+        n_dec += 1
+        n_next += bool(axis)
+        n_ps += ds
+        ex = exact1(p, w)
+        m_ex = ex.real.max()
+        if abs(m_ex) < 1e-8 * max(1.0, abs(ex).max()):
+            n_mp += 1
+            m_ex = exact_mp(p, w)
+        if (m_ex < 0) == ds:
+            n_agree += 1
+        else:
+            bad.append((w, m_ex, res.max(), small))
+    print('kappa = 0, one plane, seed %d, balls %g..%g x 0.05 kg: %d machines, asymptotically stable %d (%d of them with '
+          'C > A), within 1e-9 of the axis %d (largest -max Re / scale %.3g)'
+          % (seed, mlo, mhi, n_ok, n_stable, n_disk, n_marg, worst))
+    print('   undamped entry, small <= %g: applicable %d, decided %d (%d by the next order), agree %d (predicted STABLE %d; '
+          '%d exact margins from 60 digits)' % (th, n_app, n_dec, n_next, n_agree, n_ps, n_mp))
+    for b_ in bad:
+        print('   DISAGREES: omega %g, exact margin %g, predicted max Re %g, small %g' % b_)
+    return not bad
 
 
 if __name__ == '__main__':
@@ -283,6 +591,16 @@ if __name__ == '__main__':
     if what in ('rich', 'all'):
         for s, th in ((8, TH), (9, TH), (10, 0.2)):
             okay &= scan(s, n, th, True)
+    if what in ('high', 'all'):
+        okay &= high(2, n)
+        okay &= high(3, n, 0.2)
+        okay &= high(4, n, TH, True)
+        okay &= high(5, n, 0.2, True)
+    if what in ('every', 'all'):
+        okay &= high_every()
+        okay &= crossings()
     if what in ('kappa0', 'all'):
         okay &= kappa0(2, n)
+        okay &= kappa0(3, n, 1e-6, 1e-3)
+        okay &= kappa0(4, n, 1e-6, 1e-3, 0.2)
     sys.exit(0 if okay else 1)

@@ -1,0 +1,192 @@
+#!/usr/bin/python3
+"""Two balancer planes at HIGH SPEED with both planes' balls at q_j = 0 (Q1 = Q2 = 0), the two-plane analogue of
+the one-plane (H1), (H2) (docs/rotor.md "Asymptotic conditions", "Two planes at high speed"), derived with SymPy
+and checked against the exact 16 roots (NumPy companion of the closed system, asymptotic2_scan.exact_roots).
+
+Run with Debian's interpreter:  /usr/bin/python3 tools/derive/derive_asymptotic2_high.py
+
+Each check prints a line ending in ': OK' or raises:
+ (7) G = B^T K(i w)^-1 B = -(Gamma + i H / w) / w^2 + O(w^-4), Gamma = B^T Mi B, H = B^T Mi Hs Mi B,
+     Mi = diag(1/M, 1/(A - C)), Hs = [[h, -h_c], [-h_c, h_t]] (paper inertia, series in 1/w);
+ (8) Q = 0: the sigma rows decouple from the conj(sigma) rows and read (lambda^2 + K lambda) x + (w^2/2)(Gt + i Ht / w) x = 0,
+     Gt = Mb^1/2 Gamma Mb^1/2, Ht = Mb^1/2 H Mb^1/2, K = diag(kappa_j); with Gt = sum mu_k z_k z_k^T the root
+     +-i w sqrt(mu_k/2) moves to first order (in K and Ht) by -kbar_k/2 -+ eta_k / (2 sqrt(2 mu_k)),
+     kbar_k = z_k^T K z_k, eta_k = z_k^T Ht z_k: stable iff kbar_k > kappa_inf_k = |eta_k| / sqrt(2 mu_k) (H2');
+ (9) Gamma, H diagonal (no cross receptance at high speed): kappa_inf_k is the one-plane
+     kappa_inf = sqrt(m_b / (2 m_eff)) h_eff / m_eff at d_k (1/m_eff = Gamma_kk, h_eff = m_eff^2 H_kk);
+ (10) Q != 0 (generic): the leading-order ball roots are simple and the support damping does not move them off
+     the axis: with kappa = 0 the frozen high-speed roots have Re = 0 (to rounding), while at Q = 0 the largest is
+     max eta_k / (2 sqrt(2 mu_k)) (so Q = 0 is where (H2') is needed; on the curves in (q1, q2, phase) where two
+     roots cross for Q != 0 another condition applies, not derived here);
+ (11) the predicted real parts against the exact 16 roots at Q = 0: the error falls with lighter balls and higher speed.
+"""
+import sys
+
+import numpy as np
+import sympy as sp
+
+sys.path.insert(0, __import__('os').path.dirname(__file__))
+from asymptotic2_scan import default2, exact_roots  # noqa: E402
+
+
+def ok(msg):
+    print(msg + ': OK')
+
+
+def check_series():
+    t = sp.Symbol('t', positive=True)  # t = 1/w
+    M, Ap, h, hc, ht, c, cc, ct, d1, d2 = sp.symbols('M Ap h h_c h_t c c_c c_t d1 d2', real=True)
+    # t^2 K(i w) = -diag(M, A - C) + i t Hs + t^2 Cs, so w^2 G = B^T adj(t^2 K) B / det(t^2 K); the claim
+    # w^2 G = -(Gamma + i H t) + O(t^2) is: B^T adj(Kt) B + (Gamma + i H t) det(Kt) has no t^0, t^1 terms
+    Kt = sp.Matrix([[-M + sp.I * t * h + t**2 * c, -(sp.I * t * hc + t**2 * cc)],
+                    [-(sp.I * t * hc + t**2 * cc), -Ap + sp.I * t * ht + t**2 * ct]])
+    B = sp.Matrix([[1, 1], [d1, d2]])
+    Mi = sp.diag(1 / M, 1 / Ap)
+    Hs = sp.Matrix([[h, -hc], [-hc, ht]])
+    Gam = B.T * Mi * B
+    H = B.T * Mi * Hs * Mi * B
+    lhs = B.T * Kt.adjugate() * B + (Gam + sp.I * H * t) * Kt.det()
+    for j in range(2):
+        for k in range(2):
+            e = sp.expand(lhs[j, k] * M**2 * Ap**2)
+            for n in (0, 1):
+                assert sp.simplify(e.coeff(t, n)) == 0, (j, k, n)
+            assert sp.simplify(sp.expand(Kt.det()).coeff(t, 0) - M * Ap) == 0
+    ok('two planes, high speed (7): G = -(Gamma + i H/w)/w^2 + O(w^-4), Gamma = B^T Mi B, H = B^T Mi Hs Mi B')
+
+
+def check_perturbation():
+    lam, eps = sp.symbols('lambda epsilon')
+    w, mu1, mu2 = sp.symbols('omega mu1 mu2', positive=True)
+    cs, sn, k1, k2, a, b, cc = sp.symbols('cs sn kappa1 kappa2 a b c', real=True)  # cs^2 + sn^2 = 1
+    R = sp.Matrix([[cs, -sn], [sn, cs]])
+    Gt = R * sp.diag(mu1, mu2) * R.T
+    Ht = sp.Matrix([[a, b], [b, cc]])
+    Kd = sp.diag(k1, k2)
+    E = (lam**2 * sp.eye(2) + eps * Kd * lam + w**2 / 2 * (Gt + sp.I * eps * Ht / w)).det()
+    for k, (mu, z) in enumerate(((mu1, R[:, 0]), (mu2, R[:, 1]))):
+        kbar = (z.T * Kd * z)[0]
+        eta = (z.T * Ht * z)[0]
+        for sg in (1, -1):
+            l0 = sg * sp.I * w * sp.sqrt(mu / 2)
+            El = sp.diff(E, lam).subs({eps: 0, lam: l0})
+            Ee = sp.diff(E, eps).subs({eps: 0, lam: l0})
+            delta = -Ee / El
+            want = -kbar / 2 - sg * eta / (2 * sp.sqrt(2 * mu))
+            num, den = sp.fraction(sp.together(delta - want))
+            assert sp.expand(sp.rem(sp.expand(num), sn**2 + cs**2 - 1, sn)) == 0, (k, sg)
+    ok('two planes, high speed (8): Q = 0, root +-i w sqrt(mu_k/2) moves by -kbar_k/2 -+ eta_k/(2 sqrt(2 mu_k)) '
+       '(first order in K and Ht): (H2\') kbar_k > |eta_k|/sqrt(2 mu_k)')
+
+
+def check_reduction():
+    mb1, mb2, g1, g2, H1, H2 = sp.symbols('m_b1 m_b2 Gamma11 Gamma22 H11 H22', positive=True)
+    for mb, g, H in ((mb1, g1, H1), (mb2, g2, H2)):
+        mu = mb * g            # Gt diagonal: z_k = e_k
+        eta = mb * H
+        kinf2 = eta / sp.sqrt(2 * mu)
+        m_eff = 1 / g
+        h_eff = m_eff**2 * H
+        kinf1 = sp.sqrt(mb / (2 * m_eff)) * h_eff / m_eff
+        assert sp.simplify(kinf2 - kinf1) == 0
+    ok('two planes, high speed (9): Gamma, H diagonal: kappa_inf_k = the one-plane sqrt(m_b/(2 m_eff)) h_eff/m_eff '
+       'at d_k')
+
+
+def frozen_high_roots(p, w, Q):
+    """the 8 roots of det(U - S) with G replaced by its high-speed limit (NumPy)"""
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Mi = np.diag([1 / M, 1 / Ap])
+    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
+    G = -(B.T @ Mi @ B + 1j * B.T @ Mi @ Hs @ Mi @ B / w) / w**2
+    mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
+    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
+    s = w**4 / 2
+    S = np.zeros((4, 4), complex)
+    S[:2, :2] = s * np.diag(mb) @ G
+    S[:2, 2:] = -s * np.diag(Q) @ np.conj(G)
+    S[2:, :2] = -s * np.diag(np.conj(Q)) @ G
+    S[2:, 2:] = s * np.diag(mb) @ np.conj(G)
+    kk = np.concatenate([kap, kap])
+    comp = np.zeros((8, 8), complex)
+    comp[:4, 4:] = np.eye(4)
+    comp[4:, :4] = S
+    comp[4:, 4:] = -np.diag(kk)
+    return np.linalg.eigvals(comp)
+
+
+def predict(p):
+    """(kbar, kappa_inf, predicted larger real part per mode) at Q = 0 (as the library)"""
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Mi = np.diag([1 / M, 1 / Ap])
+    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
+    Sq = np.diag(np.sqrt([2 * p['m'][0], 2 * p['m'][1]]))
+    Gt = Sq @ B.T @ Mi @ B @ Sq
+    Ht = Sq @ B.T @ Mi @ Hs @ Mi @ B @ Sq
+    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
+    mu, Z = np.linalg.eigh(Gt)
+    kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
+    kinf = np.array([abs(Z[:, k] @ Ht @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
+    return kbar, kinf, (kinf - kbar) / 2
+
+
+def light(p, f):
+    q = dict(p)
+    q['m'] = [x * f for x in p['m']]
+    q['hb'] = [x * f for x in p['hb']]
+    q['s0'] = [np.sqrt(2) * q['m'][j] * q['r'][j] for j in range(2)]  # Q_j = 0
+    return q
+
+
+def check_q_nonzero():
+    p = light(default2(), 1e-3)
+    p['hb'] = [0.0, 0.0]
+    Qg = [2 * p['m'][0] * 0.4 * np.exp(0.7j), 2 * p['m'][1] * 0.25 * np.exp(2.1j)]
+    mq, m0 = [], []
+    for w in (1e4, 1e5, 1e6):
+        mq.append(frozen_high_roots(p, w, Qg).real.max())
+        m0.append(frozen_high_roots(p, w, [0, 0]).real.max())
+    _, kinf, _ = predict(p)
+    assert max(abs(x) for x in mq) < 1e-9 * kinf.max(), mq
+    assert all(abs(x - kinf.max() / 2) < 1e-4 * kinf.max() for x in m0), (m0, kinf)
+    ok('two planes, high speed (10): kappa = 0, Q != 0 (q 0.4, 0.25): largest Re of the frozen high-speed roots %.1e, '
+       '%.1e, %.1e 1/s at 1e4, 1e5, 1e6 rad/s (on the axis: the support damping does not move simple roots); Q = 0: '
+       '%.6g, %.6g, %.6g = max kappa_inf_k / 2 = %.6g' % (tuple(mq) + tuple(m0) + (kinf.max() / 2,)))
+
+
+def check_exact():
+    p = default2()
+    p['hb'] = [p['m'][0] * 2.0, p['m'][1] * 3.0]
+    errs = []
+    for f, w in ((1e-2, 1e4), (1e-3, 3e4)):
+        q = light(p, f)
+        _, _, re = predict(q)
+        ex = exact_roots(q, w)
+        # the ball roots: the eight closest to the predicted +-i w sqrt(mu_k/2) + re_k band; compare the largest real part
+        # of the exact roots with |Im| < 2 w sqrt(mu_max/2) (the rotor-housing's are much further) with max re
+        M, Ap = q['M'], q['A'] - q['C']
+        B = np.array([[1.0, 1.0], [q['d'][0], q['d'][1]]])
+        Sq = np.diag(np.sqrt([2 * q['m'][0], 2 * q['m'][1]]))
+        mu = np.linalg.eigvalsh(Sq @ B.T @ np.diag([1 / M, 1 / Ap]) @ B @ Sq)
+        ball = ex[abs(ex.imag) < 2 * w * np.sqrt(mu.max() / 2)]
+        assert len(ball) == 8, len(ball)
+        errs.append(abs(ball.real.max() - re.max()) / abs(re.max()))
+    assert errs[1] < errs[0] / 2 and errs[1] < 0.02, errs
+    ok('two planes, high speed (11): Q = 0, predicted largest ball-root real part vs the exact 16 roots: relative error '
+       '%.2e (balls x 1e-2, 1e4 rad/s), %.2e (x 1e-3, 3e4 rad/s)' % tuple(errs))
+
+
+def main():
+    check_series()
+    check_perturbation()
+    check_reduction()
+    check_q_nonzero()
+    check_exact()
+    print('derive_asymptotic2_high: all checks passed')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
