@@ -350,6 +350,96 @@ static int verdict_at(autobal_rotor_stab *s, double r0, double sv, double *margi
   return autobal_rotor_stab_margin(s, AUTOBAL_ROTOR_STAB_POLY, margin, verdict);
 }
 
+/* The verdicts of the sub-intervals of [x_lo, x_hi] between the critical values crit[] (of the
+ * unbalance s, or of u for every member of three balls): each at its midpoint and just inside both
+ * ends; a stable/unstable disagreement inside one (a crossing the polynomial roots missed; a
+ * MARGINAL verdict, within the verdict tolerance of a critical value, is no disagreement) is
+ * bisected and added to crit[]; then the two ends of the range.  at() gives the verdict and margin
+ * at a value of the variable. */
+typedef int (*sub_at_fn)(autobal_rotor_stab *s, const void *ctx, double x, double *margin, int *verdict);
+typedef struct {
+  double *crit;                 /* ascending critical values; a bisected one is added */
+  size_t *n_crit;
+  double *sub_lo, *sub_hi, *sub_margin; /* per sub-interval (at most AUTOBAL_ROTOR_MAX_UCRIT + 1) */
+  int *sub_verdict;             /* at the midpoint */
+  size_t *n_sub;
+  int *all_stable;              /* 1: no critical value inside and every verdict stable */
+  double *margin_worst;         /* the largest margin met */
+  size_t *evaluations, *n_missed;
+  int worst;                    /* the worst midpoint verdict */
+} sub_result;
+
+static int decide_subintervals(autobal_rotor_stab *s, sub_at_fn at, const void *ctx, double x_lo, double x_hi,
+                               sub_result *r) {
+  double edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
+  size_t ne = 0, k;
+  int st;
+  edges[ne++] = x_lo;
+  for (k = 0; k < *r->n_crit; k++) edges[ne++] = r->crit[k];
+  edges[ne++] = x_hi;
+  *r->all_stable = 1;
+  *r->margin_worst = -INFINITY;
+  r->worst = AUTOBAL_VERDICT_STABLE;
+  for (k = 0; k + 1 < ne; k++) {
+    const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
+    const double pts[3] = {lo + 1e-9 * wdt, lo + 0.5 * wdt, hi - 1e-9 * wdt};
+    int vv[3], q;
+    double mg[3];
+    if (autobal_rotor_stab_cancelled_(s))
+      return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
+    for (q = 0; q < 3; q++) {
+      if ((st = at(s, ctx, wdt > 0.0 ? pts[q] : lo, &mg[q], &vv[q])) != AUTOBAL_SUCCESS) return st;
+      (*r->evaluations)++;
+      if (mg[q] > *r->margin_worst) *r->margin_worst = mg[q];
+    }
+    if (opposite(vv[0], vv[1]) || opposite(vv[1], vv[2])) {
+      double x0 = opposite(vv[0], vv[1]) ? pts[0] : pts[1], x1 = opposite(vv[0], vv[1]) ? pts[1] : pts[2];
+      int v0 = opposite(vv[0], vv[1]) ? vv[0] : vv[1], it;
+      for (it = 0; it < 60 && x1 - x0 > 1e-12 * x1; it++) {
+        const double xm = 0.5 * (x0 + x1);
+        double mm;
+        int vm;
+        if ((st = at(s, ctx, xm, &mm, &vm)) != AUTOBAL_SUCCESS) return st;
+        (*r->evaluations)++;
+        if (vm == v0) x0 = xm;
+        else x1 = xm;
+      }
+      (*r->n_missed)++;
+      if (*r->n_crit < AUTOBAL_ROTOR_MAX_UCRIT) {
+        r->crit[(*r->n_crit)++] = 0.5 * (x0 + x1);
+        qsort(r->crit, *r->n_crit, sizeof r->crit[0], cmp_double);
+      }
+      *r->all_stable = 0;
+    }
+    if (*r->n_sub < AUTOBAL_ROTOR_MAX_UCRIT + 1) {
+      r->sub_lo[*r->n_sub] = lo;
+      r->sub_hi[*r->n_sub] = hi;
+      r->sub_verdict[*r->n_sub] = vv[1];
+      r->sub_margin[*r->n_sub] = mg[1];
+      (*r->n_sub)++;
+    }
+    if (vv[1] < r->worst) r->worst = vv[1];
+    if (vv[0] != AUTOBAL_VERDICT_STABLE || vv[1] != AUTOBAL_VERDICT_STABLE || vv[2] != AUTOBAL_VERDICT_STABLE)
+      *r->all_stable = 0;
+  }
+  /* a critical value inside the range puts a root on the axis there: not stable for it */
+  if (*r->n_crit > 0) *r->all_stable = 0;
+  /* the ends themselves */
+  for (k = 0; k < 2; k++) {
+    double mg;
+    int vv;
+    if ((st = at(s, ctx, k == 0 ? x_lo : x_hi, &mg, &vv)) != AUTOBAL_SUCCESS) return st;
+    (*r->evaluations)++;
+    if (mg > *r->margin_worst) *r->margin_worst = mg;
+    if (vv != AUTOBAL_VERDICT_STABLE) *r->all_stable = 0;
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+static int at_s(autobal_rotor_stab *s, const void *ctx, double x, double *margin, int *verdict) {
+  return verdict_at(s, *(const double *)ctx, x, margin, verdict);
+}
+
 /* The checks of n >= 3 balls: identical balls, the member rule, the range. */
 static int check_fan(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info *bi) {
   const autobal_rotor_plane *pl = &s->cur.plane[0];
@@ -504,67 +594,9 @@ static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi,
   }
   /* verdicts: each sub-interval at its midpoint and just inside both ends; disagreements bisected */
   {
-    double edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
-    size_t ne = 0, k;
-    edges[ne++] = s_lo;
-    for (k = 0; k < out->n_crit; k++) edges[ne++] = out->s_crit[k];
-    edges[ne++] = s_hi;
-    out->all_stable = 1;
-    out->margin_worst = -INFINITY;
-    for (k = 0; k + 1 < ne; k++) {
-      const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
-      const double pts[3] = {lo + 1e-9 * wdt, lo + 0.5 * wdt, hi - 1e-9 * wdt};
-      int vv[3], q;
-      double mg[3];
-      if (autobal_rotor_stab_cancelled_(s))
-        return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
-      for (q = 0; q < 3; q++) {
-        if ((st = verdict_at(s, r0, wdt > 0.0 ? pts[q] : lo, &mg[q], &vv[q])) != AUTOBAL_SUCCESS) return st;
-        out->evaluations++;
-        if (mg[q] > out->margin_worst) out->margin_worst = mg[q];
-      }
-      if (opposite(vv[0], vv[1]) || opposite(vv[1], vv[2])) {
-        /* a crossing the polynomial roots did not give (a MARGINAL verdict, within the verdict
-         * tolerance of a critical value, is no disagreement): bisect between the two that differ */
-        double x0 = opposite(vv[0], vv[1]) ? pts[0] : pts[1], x1 = opposite(vv[0], vv[1]) ? pts[1] : pts[2];
-        int v0 = opposite(vv[0], vv[1]) ? vv[0] : vv[1], it;
-        for (it = 0; it < 60 && x1 - x0 > 1e-12 * x1; it++) {
-          const double xm = 0.5 * (x0 + x1);
-          double mm;
-          int vm;
-          if ((st = verdict_at(s, r0, xm, &mm, &vm)) != AUTOBAL_SUCCESS) return st;
-          out->evaluations++;
-          if (vm == v0) x0 = xm;
-          else x1 = xm;
-        }
-        out->n_missed++;
-        if (out->n_crit < AUTOBAL_ROTOR_MAX_UCRIT) {
-          out->s_crit[out->n_crit++] = 0.5 * (x0 + x1);
-          qsort(out->s_crit, out->n_crit, sizeof out->s_crit[0], cmp_double);
-        }
-        out->all_stable = 0;
-      }
-      if (out->n_sub < AUTOBAL_ROTOR_MAX_UCRIT + 1) {
-        out->sub_lo[out->n_sub] = lo;
-        out->sub_hi[out->n_sub] = hi;
-        out->sub_verdict[out->n_sub] = vv[1];
-        out->sub_margin[out->n_sub] = mg[1];
-        out->n_sub++;
-      }
-      if (vv[0] != AUTOBAL_VERDICT_STABLE || vv[1] != AUTOBAL_VERDICT_STABLE || vv[2] != AUTOBAL_VERDICT_STABLE)
-        out->all_stable = 0;
-    }
-    /* a critical unbalance inside the range puts a root on the axis there: not stable for it */
-    if (out->n_crit > 0) out->all_stable = 0;
-    /* the ends themselves */
-    for (k = 0; k < 2; k++) {
-      double mg;
-      int vv;
-      if ((st = verdict_at(s, r0, k == 0 ? s_lo : s_hi, &mg, &vv)) != AUTOBAL_SUCCESS) return st;
-      out->evaluations++;
-      if (mg > out->margin_worst) out->margin_worst = mg;
-      if (vv != AUTOBAL_VERDICT_STABLE) out->all_stable = 0;
-    }
+    sub_result sr = {out->s_crit, &out->n_crit, out->sub_lo, out->sub_hi, out->sub_margin, out->sub_verdict,
+                     &out->n_sub, &out->all_stable, &out->margin_worst, &out->evaluations, &out->n_missed, 0};
+    if ((st = decide_subintervals(s, at_s, &r0, s_lo, s_hi, &sr)) != AUTOBAL_SUCCESS) return st;
   }
   return AUTOBAL_SUCCESS;
 }
@@ -612,13 +644,17 @@ static int verdict_at_u(autobal_rotor_stab *s, const balls_info *bi, double u, d
   return AUTOBAL_SUCCESS;
 }
 
+static int at_u(autobal_rotor_stab *s, const void *ctx, double x, double *margin, int *verdict) {
+  return verdict_at_u(s, (const balls_info *)ctx, x, margin, verdict);
+}
+
 /* Three identical balls, every member: the range of u, the critical u inside, one verdict per
  * sub-interval of u (midpoint and just inside both ends; a disagreement bisected in u), the ends; the
  * unbalances of each critical u. */
 static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_rotor_unbalance_range *out) {
   const double m = bi->m1, ta = bi->ta, tb = bi->tb, um = 0.25 * m * m;
-  double qlo, qhi, uc[12], edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
-  size_t nu = 0, i, k, ne = 0;
+  double qlo, qhi, uc[12];
+  size_t nu = 0, i, k;
   int st, worst = AUTOBAL_VERDICT_STABLE;
   qlo = fmin(e3_qmin(ta), e3_qmin(tb));
   if (ta < 2.0 && tb > 2.0) qlo = 0.0;
@@ -635,62 +671,11 @@ static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_roto
     if (out->n_ucrit >= AUTOBAL_ROTOR_MAX_UCRIT) break;
     out->u_crit[out->n_ucrit++] = uc[i];
   }
-  edges[ne++] = out->u_min;
-  for (k = 0; k < out->n_ucrit; k++) edges[ne++] = out->u_crit[k];
-  edges[ne++] = out->u_max;
-  out->all_stable = 1;
-  out->margin_worst = -INFINITY;
-  for (k = 0; k + 1 < ne; k++) {
-    const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
-    const double pts[3] = {lo + 1e-9 * wdt, lo + 0.5 * wdt, hi - 1e-9 * wdt};
-    int vv[3], q;
-    double mg[3];
-    if (autobal_rotor_stab_cancelled_(s))
-      return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "every unbalance: cancelled by the caller");
-    for (q = 0; q < 3; q++) {
-      if ((st = verdict_at_u(s, bi, wdt > 0.0 ? pts[q] : lo, &mg[q], &vv[q])) != AUTOBAL_SUCCESS) return st;
-      out->evaluations++;
-      if (mg[q] > out->margin_worst) out->margin_worst = mg[q];
-    }
-    if (opposite(vv[0], vv[1]) || opposite(vv[1], vv[2])) {
-      double x0 = opposite(vv[0], vv[1]) ? pts[0] : pts[1], x1 = opposite(vv[0], vv[1]) ? pts[1] : pts[2];
-      int v0 = opposite(vv[0], vv[1]) ? vv[0] : vv[1], it;
-      for (it = 0; it < 60 && x1 - x0 > 1e-12 * x1; it++) {
-        const double xm = 0.5 * (x0 + x1);
-        double mm;
-        int vm;
-        if ((st = verdict_at_u(s, bi, xm, &mm, &vm)) != AUTOBAL_SUCCESS) return st;
-        out->evaluations++;
-        if (vm == v0) x0 = xm;
-        else x1 = xm;
-      }
-      out->n_missed++;
-      if (out->n_ucrit < AUTOBAL_ROTOR_MAX_UCRIT) {
-        out->u_crit[out->n_ucrit++] = 0.5 * (x0 + x1);
-        qsort(out->u_crit, out->n_ucrit, sizeof out->u_crit[0], cmp_double);
-      }
-      out->all_stable = 0;
-    }
-    if (out->n_usub < AUTOBAL_ROTOR_MAX_UCRIT + 1) {
-      out->usub_lo[out->n_usub] = lo;
-      out->usub_hi[out->n_usub] = hi;
-      out->usub_verdict[out->n_usub] = vv[1];
-      out->usub_margin[out->n_usub] = mg[1];
-      out->n_usub++;
-    }
-    if (vv[1] < worst) worst = vv[1];
-    if (vv[0] != AUTOBAL_VERDICT_STABLE || vv[1] != AUTOBAL_VERDICT_STABLE || vv[2] != AUTOBAL_VERDICT_STABLE)
-      out->all_stable = 0;
-  }
-  if (out->n_ucrit > 0) out->all_stable = 0;
-  /* the ends themselves */
-  for (k = 0; k < 2; k++) {
-    double mg;
-    int vv;
-    if ((st = verdict_at_u(s, bi, k == 0 ? out->u_min : out->u_max, &mg, &vv)) != AUTOBAL_SUCCESS) return st;
-    out->evaluations++;
-    if (mg > out->margin_worst) out->margin_worst = mg;
-    if (vv != AUTOBAL_VERDICT_STABLE) out->all_stable = 0;
+  {
+    sub_result sr = {out->u_crit, &out->n_ucrit, out->usub_lo, out->usub_hi, out->usub_margin, out->usub_verdict,
+                     &out->n_usub, &out->all_stable, &out->margin_worst, &out->evaluations, &out->n_missed, 0};
+    if ((st = decide_subintervals(s, at_u, bi, out->u_min, out->u_max, &sr)) != AUTOBAL_SUCCESS) return st;
+    worst = sr.worst;
   }
   /* the unbalances of each critical u (closed form) */
   for (k = 0; k < out->n_ucrit; k++) {
