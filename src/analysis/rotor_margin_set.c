@@ -28,7 +28,7 @@
  * bisection.  The (n - 2) neutral roots of the family and the (n - 2) roots -kappa of the full
  * system are not roots of Delta: the set speaks of Delta's roots only (the design adds kappa).
  *
- * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h),
+ * May use: the handle (rotor_stab_handle.h), rotor_closed.h, rotor_fan.h, the numerics (autobal/stability.h),
  * (the margin of single configurations is not used here: the tests check the sets against it). */
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
@@ -38,6 +38,7 @@
 #include <string.h>
 
 #include "analysis/rotor_closed.h"
+#include "analysis/rotor_fan.h"
 #include "analysis/rotor_stab_handle.h"
 #include "internal.h"
 
@@ -81,82 +82,18 @@ static size_t t_of_u(double u, double m, double *out) {
   return 2;
 }
 
-/* ---- n >= 3 identical balls, the symmetric fan (the same formulas as rotor_unbalance.c) ---- */
+/* ---- n >= 3 identical balls, the symmetric fan (analysis/rotor_fan.h) ---- */
 
-/* U_{n-1}(y) (Chebyshev, second kind) and its derivative. */
-static double cheb_u(size_t n, double y, double *dU) {
-  double u0 = 1.0, u1 = 2.0 * y, d0 = 0.0, d1 = 2.0;
-  size_t k;
-  if (n == 1) {
-    if (dU) *dU = 0.0;
-    return 1.0;
-  }
-  for (k = 2; k < n; k++) {
-    const double u2 = 2.0 * y * u1 - u0, d2 = 2.0 * u1 + 2.0 * y * d1 - d0;
-    u0 = u1, u1 = u2, d0 = d1, d1 = d2;
-  }
-  if (dU) *dU = d1;
-  return u1;
-}
+typedef autobal_rotor_fan_ fan_n;
 
-typedef struct fan_n {
-  size_t n;
-  double m, y_min, y1, y0;
-} fan_n;
-
-static double fan_t(const fan_n *f, double y) { return cheb_u(f->n, sqrt(0.5 * (1.0 + y)), NULL); }
-static double fan_u(const fan_n *f, double y) {
-  const double g = cheb_u(f->n, y, NULL);
-  return 0.25 * f->m * f->m * g * g;
-}
-static double fan_y_of_t(const fan_n *f, double t) {
-  double lo = f->y_min, hi = 1.0;
-  int it;
-  for (it = 0; it < 200; it++) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (fan_t(f, mid) < t) lo = mid;
-    else hi = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-static void fan_setup(fan_n *f, size_t n, double m) {
-  double lo, hi, dlo;
-  int it;
-  f->n = n, f->m = m;
-  f->y_min = cos(2.0 * M_PI / (double)n);
-  f->y0 = cos(M_PI / (double)n);
-  lo = f->y_min, hi = f->y0;
-  (void)cheb_u(n, lo, &dlo);
-  for (it = 0; it < 200; it++) {
-    const double mid = 0.5 * (lo + hi);
-    double dm;
-    if (!(mid > lo && mid < hi)) break;
-    (void)cheb_u(n, mid, &dm);
-    if ((dm > 0.0) == (dlo > 0.0)) lo = mid;
-    else hi = mid;
-  }
-  f->y1 = 0.5 * (lo + hi);
-}
 /* u of the normalized unbalance t in (0, n). */
-static double fan_u_of_t(const fan_n *f, double t) { return fan_u(f, fan_y_of_t(f, t)); }
+static double fan_u_of_t(const fan_n *f, double t) { return autobal_rotor_fan_u_(f, autobal_rotor_fan_y_of_t_(f, t)); }
 /* The t of a critical u: one per monotone piece of u(y) that brackets it; returns the count (<= 3). */
 static size_t fan_t_of_u(const fan_n *f, double uc, double *out) {
-  const double br[4] = {f->y_min, f->y1, f->y0, 1.0};
-  size_t k, n = 0;
-  if (!isfinite(uc)) return 0;
-  for (k = 0; k < 3; k++) {
-    double lo = br[k], hi = br[k + 1], flo = fan_u(f, lo) - uc, fhi = fan_u(f, hi) - uc;
-    int it;
-    if ((flo > 0.0 && fhi > 0.0) || (flo < 0.0 && fhi < 0.0)) continue;
-    for (it = 0; it < 200; it++) {
-      const double mid = 0.5 * (lo + hi), fm = fan_u(f, mid) - uc;
-      if (!(mid > lo && mid < hi)) break;
-      if ((fm > 0.0) == (flo > 0.0)) lo = mid, flo = fm;
-      else hi = mid;
-    }
-    out[n++] = fan_t(f, 0.5 * (lo + hi));
-  }
+  double y[3];
+  const size_t n = autobal_rotor_fan_y_of_u_(f, uc, f->y_min, 1.0, y);
+  size_t k;
+  for (k = 0; k < n; k++) out[k] = autobal_rotor_fan_t_(f, y[k]);
   return n;
 }
 
@@ -215,7 +152,7 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
   mr = s->m[0] * s->r[0];
   tmax = (double)nb;
   if (nb >= 3) {
-    fan_setup(&fan, nb, m);
+    autobal_rotor_fan_init_(&fan, nb, m);
     fanp = &fan;
   }
   r0 = pl->r0;

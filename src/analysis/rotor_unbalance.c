@@ -45,7 +45,7 @@
  * unbalances of a critical u are {t : q_min(t) <= q <= q_max(t)}, at most three intervals, in closed
  * form.
  *
- * May use: the handle (rotor_stab_handle.h), rotor_closed.h, the numerics (autobal/stability.h). */
+ * May use: the handle (rotor_stab_handle.h), rotor_closed.h, rotor_fan.h, the numerics (autobal/stability.h). */
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
 
@@ -55,6 +55,7 @@
 #include <string.h>
 
 #include "analysis/rotor_closed.h"
+#include "analysis/rotor_fan.h"
 #include "analysis/rotor_stab_handle.h"
 #include "analysis/rotor_stability.h"
 #include "internal.h"
@@ -103,118 +104,42 @@ static size_t s_of_u(double u, double m1, double m2, double a1, double a2, doubl
   return n;
 }
 
-/* ---- n >= 3 identical balls, the symmetric fan ---- */
+/* ---- n >= 3 identical balls, the symmetric fan (analysis/rotor_fan.h) ---- */
 
-/* U_{n-1}(y) (Chebyshev, second kind) and its derivative, by the recurrences
- * U_{k+1} = 2 y U_k - U_{k-1}, U'_{k+1} = 2 U_k + 2 y U'_k - U'_{k-1}. */
-static double cheb_u(size_t n, double y, double *dU) {
-  double u0 = 1.0, u1 = 2.0 * y, d0 = 0.0, d1 = 2.0;
-  size_t k;
-  if (n == 1) {
-    if (dU) *dU = 0.0;
-    return 1.0;
-  }
-  for (k = 2; k < n; k++) {
-    const double u2 = 2.0 * y * u1 - u0, d2 = 2.0 * u1 + 2.0 * y * d1 - d0;
-    u0 = u1, u1 = u2, d0 = d1, d1 = d2;
-  }
-  if (dU) *dU = d1;
-  return u1;
-}
-
-/* The symmetric fan of n identical balls (mass m, a = m r): its range in y = cos(delta). */
+/* The symmetric fan of n identical balls (mass m, a = m r) over the range [s_lo, s_hi]. */
 typedef struct sym_fan {
-  size_t n;
-  double m, a;
-  double y_min;  /* cos(2 pi / n): t = 0 */
-  double y1;     /* the root of U'_{n-1} in (y_min, y0): |U_{n-1}| has its local maximum */
-  double y0;     /* cos(pi / n): U_{n-1} = 0, Q = 0 */
+  autobal_rotor_fan_ f; /* n, m, y_min, y1, y0 */
+  double a;
   double ya, yb; /* the y of s_lo, s_hi */
 } sym_fan;
 
-/* t = s / a of the fan at y (x = sqrt((1 + y) / 2)). */
-static double fan_t(const sym_fan *f, double y) { return cheb_u(f->n, sqrt(0.5 * (1.0 + y)), NULL); }
-
-/* u = |Q|^2 / 4 (kg^2) of the fan at y. */
-static double fan_u(const sym_fan *f, double y) {
-  const double g = cheb_u(f->n, y, NULL);
-  return 0.25 * f->m * f->m * g * g;
-}
-
-/* The y in [y_min, 1] with fan_t(y) = t (increasing), by bisection to the last bit. */
-static double fan_y_of_t(const sym_fan *f, double t) {
-  double lo = f->y_min, hi = 1.0;
-  int it;
-  for (it = 0; it < 200; it++) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (fan_t(f, mid) < t) lo = mid;
-    else hi = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 static void fan_init(sym_fan *f, size_t n, double m, double a, double s_lo, double s_hi) {
-  double lo, hi;
-  int it;
-  f->n = n, f->m = m, f->a = a;
-  f->y_min = cos(2.0 * M_PI / (double)n);
-  f->y0 = cos(M_PI / (double)n);
-  /* U'_{n-1} changes sign once on (y_min, y0) (interlacing): bisect on its sign */
-  lo = f->y_min, hi = f->y0;
-  {
-    double dlo;
-    (void)cheb_u(n, lo, &dlo);
-    for (it = 0; it < 200; it++) {
-      const double mid = 0.5 * (lo + hi);
-      double dm;
-      if (!(mid > lo && mid < hi)) break;
-      (void)cheb_u(n, mid, &dm);
-      if ((dm > 0.0) == (dlo > 0.0)) lo = mid;
-      else hi = mid;
-    }
-  }
-  f->y1 = 0.5 * (lo + hi);
-  f->ya = fan_y_of_t(f, s_lo / a);
-  f->yb = fan_y_of_t(f, s_hi / a);
+  autobal_rotor_fan_init_(&f->f, n, m);
+  f->a = a;
+  f->ya = autobal_rotor_fan_y_of_t_(&f->f, s_lo / a);
+  f->yb = autobal_rotor_fan_y_of_t_(&f->f, s_hi / a);
 }
 
 /* The range of u over [ya, yb]: the ends and the critical points y1, y0 inside. */
 static void fan_u_range(const sym_fan *f, double *umin, double *umax) {
-  const double ys[4] = {f->ya, f->yb, f->y1, f->y0};
+  const double ys[4] = {f->ya, f->yb, f->f.y1, f->f.y0};
   size_t k;
   *umin = INFINITY, *umax = -INFINITY;
   for (k = 0; k < 4; k++) {
     double u;
     if (k >= 2 && !(ys[k] > f->ya && ys[k] < f->yb)) continue;
-    u = k == 3 ? 0.0 : fan_u(f, ys[k]);
+    u = k == 3 ? 0.0 : autobal_rotor_fan_u_(&f->f, ys[k]);
     if (u < *umin) *umin = u;
     if (u > *umax) *umax = u;
   }
 }
 
-/* The unbalances s in [s_lo, s_hi] of the fan whose u equals uc: one per monotone piece of u(y)
- * ([y_min, y1], [y1, y0], [y0, 1] cut to [ya, yb]) that brackets it, by bisection; returns the
- * count (<= 3) written to out. */
+/* The unbalances s in [s_lo, s_hi] of the fan whose u equals uc (at most 3, written to out). */
 static size_t fan_s_of_u(const sym_fan *f, double uc, double out[3]) {
-  const double br[4] = {f->y_min, f->y1, f->y0, 1.0};
-  size_t k, n = 0;
-  if (!isfinite(uc)) return 0;
-  for (k = 0; k < 3; k++) {
-    double lo = fmax(br[k], f->ya), hi = fmin(br[k + 1], f->yb), flo, fhi;
-    int it;
-    if (!(lo <= hi)) continue;
-    flo = fan_u(f, lo) - uc;
-    fhi = fan_u(f, hi) - uc;
-    if ((flo > 0.0 && fhi > 0.0) || (flo < 0.0 && fhi < 0.0)) continue;
-    for (it = 0; it < 200; it++) {
-      const double mid = 0.5 * (lo + hi), fm = fan_u(f, mid) - uc;
-      if (!(mid > lo && mid < hi)) break;
-      if ((fm > 0.0) == (flo > 0.0)) lo = mid, flo = fm;
-      else hi = mid;
-    }
-    out[n++] = f->a * fan_t(f, 0.5 * (lo + hi));
-  }
+  double y[3];
+  const size_t n = autobal_rotor_fan_y_of_u_(&f->f, uc, f->ya, f->yb, y);
+  size_t k;
+  for (k = 0; k < n; k++) out[k] = f->a * autobal_rotor_fan_t_(&f->f, y[k]);
   return n;
 }
 
