@@ -37,36 +37,12 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pendulum_scipy  # noqa: E402
 import rotor_scipy  # noqa: E402
 
+# the rooted trees and their density gamma: the derivation's own (tools/derive/derive_dense6.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "derive"))
+from derive_dense6 import gamma, trees_upto  # noqa: E402
+
 A = dc.A.copy()
 A[12, :12] = dc.B  # stage 12: f(t + h, y1), its row the weights b
-
-
-def trees_upto(p):
-    """Rooted trees (sorted tuples of subtrees) by order, and the order of each."""
-    byorder, order = {1: [()]}, {(): 1}
-    for n in range(2, p + 1):
-        pool = [t for k in range(1, n) for t in byorder[k]]
-        res = set()
-
-        def gen(rem, lo, cur):
-            if rem == 0:
-                res.add(tuple(sorted(cur)))
-                return
-            for idx in range(lo, len(pool)):
-                if order[pool[idx]] <= rem:
-                    gen(rem - order[pool[idx]], idx, cur + [pool[idx]])
-        gen(n - 1, 0, [])
-        byorder[n] = sorted(res)
-        for t in byorder[n]:
-            order[t] = n
-    return byorder, order
-
-
-def gamma(t, order):
-    g = order[t]
-    for c in t:
-        g *= gamma(c, order)
-    return g
 
 
 def phi(t, memo):
