@@ -94,6 +94,42 @@ def exact_roots(p, w):
     return np.linalg.eigvals(comp)
 
 
+def ball_system(G, mb, Q, kap, w):
+    """The frozen 4x4 ball system of two planes, S = (w^4/2) [[Mb G, -Q conj G], [-conj Q G, Mb conj G]], and the
+    8x8 companion matrix of det(lambda^2 + kappa lambda - S) (docs/rotor.md "Two planes at high speed")."""
+    s = w**4 / 2
+    S = np.zeros((4, 4), complex)
+    S[:2, :2] = s * np.diag(mb) @ G
+    S[:2, 2:] = -s * np.diag(Q) @ np.conj(G)
+    S[2:, :2] = -s * np.diag(np.conj(Q)) @ G
+    S[2:, 2:] = s * np.diag(mb) @ np.conj(G)
+    comp = np.zeros((8, 8), complex)
+    comp[:4, 4:] = np.eye(4)
+    comp[4:, :4] = S
+    comp[4:, 4:] = -np.diag(np.concatenate([kap, kap]))
+    return S, comp
+
+
+def high_modes(p):
+    """At Q1 = Q2 = 0: (mu_k, kbar_k, kappa_inf_k, kappa_j) of the high-speed modes (H1'), (H2'), as the library
+    (autobal_rotor_asymptotic2_conditions): mu, Z the eigenpairs of M_b^1/2 Gamma M_b^1/2, kbar_k = Z_k^T diag(kappa)
+    Z_k, kappa_inf_k = |Z_k^T H~ Z_k| / sqrt(2 mu_k)."""
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Mi = np.diag([1 / M, 1 / Ap])
+    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
+    Sq = np.diag(np.sqrt([2 * p['m'][0], 2 * p['m'][1]]))
+    Gt = Sq @ B.T @ Mi @ B @ Sq
+    Ht = Sq @ B.T @ Mi @ Hs @ Mi @ B @ Sq
+    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
+    mu, Z = np.linalg.eigh(Gt)
+    if mu.min() <= 0:
+        return mu, None, None, kap  # (H1') fails: no high-speed modes
+    kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
+    kinf = np.array([abs(Z[:, k] @ Ht @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
+    return mu, kbar, kinf, kap
+
+
 def light2(p, w):
     """The two-plane light-ball prediction: (residual real parts, error bounds, small parameter)."""
     d = p['d']
@@ -105,17 +141,9 @@ def light2(p, w):
     # N_jk = b_j^T adj(K) b_k, adj(K) = [[K22, -K12], [-K12, K11]], b_j = (1, d_j)
     Nm = [[Pn.polyadd(Pn.polyadd(K22, -(d[j] + d[k]) * K12), d[j] * d[k] * K11) for k in range(2)] for j in range(2)]
     G = np.array([[Nm[j][k][0] / D[0] for k in range(2)] for j in range(2)])
-    s = w**4 / 2
-    S = np.zeros((4, 4), complex)
-    S[:2, :2] = s * np.diag(mb) @ G
-    S[:2, 2:] = -s * np.diag(Q) @ np.conj(G)
-    S[2:, :2] = -s * np.diag(np.conj(Q)) @ G
-    S[2:, 2:] = s * np.diag(mb) @ np.conj(G)
+    S, comp = ball_system(G, mb, Q, kap, w)
     kk = np.concatenate([kap, kap])
-    comp = np.zeros((8, 8), complex)
-    comp[:4, 4:] = np.eye(4)
-    comp[4:, :4] = S
-    comp[4:, 4:] = -np.diag(kk)
+    s = w**4 / 2
     lam = np.linalg.eigvals(comp)
     # error of each ball root: the frozen entries S_ab(0) against S_ab(lambda); |dS_ab| bounded entrywise by
     # |s_ab| [ (|N1| |l| + |N2| |l|^2) / |D0| + |G_ab| (c_D + 4/|w|) |l| ], c_D = sum 1/|root of D D*|;
@@ -222,19 +250,10 @@ def scan(seed, n, th=TH, rich=False):
 def high2(p, w):
     """The (H1'), (H2') prediction at Q1 = Q2 = 0 as the library computes it (autobal_rotor_asymptotic2_conditions):
     (larger real part per mode, its error, small parameter), or None when Gamma is not positive definite."""
-    M, Ap = p['M'], p['A'] - p['C']
-    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
-    Mi = np.diag([1 / M, 1 / Ap])
-    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
-    Sq = np.diag(np.sqrt([2 * p['m'][0], 2 * p['m'][1]]))
-    Gt = Sq @ B.T @ Mi @ B @ Sq
-    Ht = Sq @ B.T @ Mi @ Hs @ Mi @ B @ Sq
-    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
-    mu, Z = np.linalg.eigh(Gt)
+    M = p['M']
+    mu, kbar, kinf, kap = high_modes(p)
     if mu.min() <= 0:
         return None
-    kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
-    kinf = np.array([abs(Z[:, k] @ Ht @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
     tr = p['c'] / M + p['ct'] / p['A']
     det = (p['c'] * p['ct'] - p['cc']**2) / (M * p['A'])
     wmax = np.sqrt(0.5 * (tr + np.sqrt(max(0, tr * tr - 4 * det))))

@@ -26,7 +26,7 @@ import numpy as np
 import sympy as sp
 
 sys.path.insert(0, __import__('os').path.dirname(__file__))
-from asymptotic2_scan import default2, exact_roots  # noqa: E402
+from asymptotic2_scan import ball_system, default2, exact_roots, high_modes  # noqa: E402
 
 
 def ok(msg):
@@ -102,33 +102,12 @@ def frozen_high_roots(p, w, Q):
     G = -(B.T @ Mi @ B + 1j * B.T @ Mi @ Hs @ Mi @ B / w) / w**2
     mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
     kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
-    s = w**4 / 2
-    S = np.zeros((4, 4), complex)
-    S[:2, :2] = s * np.diag(mb) @ G
-    S[:2, 2:] = -s * np.diag(Q) @ np.conj(G)
-    S[2:, :2] = -s * np.diag(np.conj(Q)) @ G
-    S[2:, 2:] = s * np.diag(mb) @ np.conj(G)
-    kk = np.concatenate([kap, kap])
-    comp = np.zeros((8, 8), complex)
-    comp[:4, 4:] = np.eye(4)
-    comp[4:, :4] = S
-    comp[4:, 4:] = -np.diag(kk)
-    return np.linalg.eigvals(comp)
+    return np.linalg.eigvals(ball_system(G, mb, Q, kap, w)[1])
 
 
 def predict(p):
     """(kbar, kappa_inf, predicted larger real part per mode) at Q = 0 (as the library)"""
-    M, Ap = p['M'], p['A'] - p['C']
-    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
-    Mi = np.diag([1 / M, 1 / Ap])
-    Hs = np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]])
-    Sq = np.diag(np.sqrt([2 * p['m'][0], 2 * p['m'][1]]))
-    Gt = Sq @ B.T @ Mi @ B @ Sq
-    Ht = Sq @ B.T @ Mi @ Hs @ Mi @ B @ Sq
-    kap = np.array([p['hb'][j] / p['m'][j] for j in range(2)])
-    mu, Z = np.linalg.eigh(Gt)
-    kbar = np.array([Z[:, k] @ np.diag(kap) @ Z[:, k] for k in range(2)])
-    kinf = np.array([abs(Z[:, k] @ Ht @ Z[:, k]) for k in range(2)]) / np.sqrt(2 * mu)
+    _, kbar, kinf, _ = high_modes(p)
     return kbar, kinf, (kinf - kbar) / 2
 
 
