@@ -239,6 +239,10 @@ static void print_asymptotic(const autobal_rotor_asymptotic *q) {
            q->undamped_decided ? "" : " (undecided: within its error)", q->undamped_small,
            asym_word(q->undamped_applicable), AUTOBAL_ROTOR_ASYMPTOTIC_SMALL);
   } else {
+    if (q->anisotropic)
+      printf("    anisotropic supports: G = G+ = %.6g%+.6gi m/N (forward), G- = %.6g%+.6gi m/N (backward, averaged out;"
+             " estimate %.3g)\n",
+             q->G_re, q->G_im, q->G_minus_re, q->G_minus_im, q->avg_small);
     printf("    light balls: (L1) Re G < 0 [%s], (L2) kappa = %.6g > kappa_min = %.6g 1/s [%s], rotor roots max Re %.6g 1/s:"
            " predicts %s%s; small parameter %.3g (%s, <= %g)\n",
            q->supercritical ? "yes" : "no", q->kappa, q->kappa_min,
@@ -311,6 +315,12 @@ static void json_asymptotic(cli_json *j, const autobal_rotor_asymptotic *q) {
   cli_json_quantity(j, "G_imag", q->G_im, "m/N");
   cli_json_quantity(j, "kappa", q->kappa, "1/s");
   cli_json_number(j, "q", q->q);
+  if (q->anisotropic) { /* G above is G+ */
+    cli_json_bool(j, "anisotropic", 1);
+    cli_json_quantity(j, "G_minus_real", q->G_minus_re, "m/N");
+    cli_json_quantity(j, "G_minus_imag", q->G_minus_im, "m/N");
+    cli_json_number(j, "avg_small", q->avg_small);
+  }
   if (q->undamped_defined) { /* kappa = 0: the undamped entry instead of (L1), (L2) */
     cli_json_bool(j, "undamped_on_axis", q->undamped_on_axis);
     cli_json_quantities(j, "undamped_delta", q->undamped_delta, 2, "1/s");

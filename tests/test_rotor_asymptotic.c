@@ -15,6 +15,8 @@
  *    once C - A > M d^2;
  *  - the issue's measurement: the default rotor (kappa = 2 < kappa_inf) is unstable at 2000 rad/s
  *    for m0 r0 = sqrt(2) m r (q = 0) and stable for every unbalance with kappa = 1.5 kappa_inf;
+ *  - anisotropic supports: G+ and G- against a real 8x8 solve of the fixed-frame response, the isotropic
+ *    limit, light balls against the Floquet multipliers (verdict and margin);
  *  - error paths. */
 #include <complex.h>
 #include <math.h>
@@ -415,6 +417,128 @@ static void test_kappa0(void) {
   check_undamped(&S, &Ld, 0.1, m, 0.0, 2000.0, 0, 0);
 }
 
+/* G+ and G- by the test's own real route: the steady response X = Xc cos(w t) + Xs sin(w t) of the
+ * fixed-frame rotor-housing (M, H, K of (3.2) without balls) to f_u = cos(w t), f_v = sin(w t)
+ * (F = 1) at the plane, an 8x8 real solve; then u + i v = Wc cos + Ws sin = G+ e^{iwt} + G- e^{-iwt}. */
+static void Gpm_real(const autobal_rotor_lumped *L, double d, double w, cplx *Gp, cplx *Gm) {
+  const double Mm[4] = {L->M, L->M, L->A, L->A};
+  const double H[4][4] = {{L->h_x, 0, 0, -L->h_xbeta}, {0, L->h_y, L->h_yalpha, 0},
+                          {0, L->h_yalpha, L->h_alpha, L->C * w}, {-L->h_xbeta, 0, -L->C * w, L->h_beta}};
+  const double K[4][4] = {{L->c_x, 0, 0, -L->c_xbeta}, {0, L->c_y, L->c_yalpha, 0},
+                          {0, L->c_yalpha, L->c_alpha, 0}, {-L->c_xbeta, 0, 0, L->c_beta}};
+  const double eu[4] = {1, 0, 0, d}, ev[4] = {0, 1, -d, 0};
+  double A[8][9], x[8];
+  cplx Wc = 0, Ws = 0;
+  int i, j, k;
+  memset(A, 0, sizeof A);
+  for (i = 0; i < 4; i++) {
+    for (j = 0; j < 4; j++) {
+      double kk = K[i][j] - (i == j ? Mm[i] * w * w : 0.0);
+      A[i][j] = kk, A[i][4 + j] = w * H[i][j];      /* cos rows: (K - M w^2) Xc + w H Xs = e_u */
+      A[4 + i][4 + j] = kk, A[4 + i][j] = -w * H[i][j]; /* sin rows: (K - M w^2) Xs - w H Xc = e_v */
+    }
+    A[i][8] = eu[i], A[4 + i][8] = ev[i];
+  }
+  for (k = 0; k < 8; k++) {
+    int p = k;
+    for (i = k + 1; i < 8; i++)
+      if (fabs(A[i][k]) > fabs(A[p][k])) p = i;
+    for (j = 0; j < 9; j++) {
+      double t = A[k][j];
+      A[k][j] = A[p][j], A[p][j] = t;
+    }
+    for (i = k + 1; i < 8; i++) {
+      double f = A[i][k] / A[k][k];
+      for (j = k; j < 9; j++) A[i][j] -= f * A[k][j];
+    }
+  }
+  for (k = 7; k >= 0; k--) {
+    double t = A[k][8];
+    for (j = k + 1; j < 8; j++) t -= A[k][j] * x[j];
+    x[k] = t / A[k][k];
+  }
+  for (i = 0; i < 4; i++) Wc += (eu[i] + I * ev[i]) * x[i], Ws += (eu[i] + I * ev[i]) * x[4 + i];
+  *Gp = Wc / 2.0 + Ws / (2.0 * I);
+  *Gm = Wc / 2.0 - Ws / (2.0 * I);
+}
+
+/* Anisotropic supports (autobal/rotor_asymptotic.h "ANISOTROPIC"): G+ and G- against the real solve
+ * above; the isotropic limit (the anisotropic route forced on isotropic supports gives the isotropic
+ * entry's G, ball roots and rotor roots, G- = 0); light balls against the Floquet multipliers. */
+static void test_aniso(void) {
+  autobal_rotor_lumped L = default_lumped(), La = default_lumped();
+  autobal_rotor_asymptotic qi, qa;
+  autobal_rotor_closed c;
+  autobal_rotor_stab_result res;
+  autobal_error err;
+  setup S;
+  autobal_rotor_stab *h;
+  const double ws[] = {120.0, 300.0, 1000.0, -800.0};
+  size_t k;
+  cplx Gp, Gm;
+  /* y supports 1.6x stiffer on the left-right combination, damping unequal */
+  La.c_y = 4.0e5, La.c_beta = 9000.0, La.c_yalpha = -4000.0, La.h_y = 400.0, La.h_beta = 10.0, La.h_yalpha = -4.0;
+  for (k = 0; k < 4; k++) {
+    double w = ws[k];
+    make(&S, &La, 0.1, 1e-4, 2.0, 0.1 * 1e-4 * 0.1 * 2.0 * cos(0.6) / 0.1, w);
+    h = run(&S, NULL, &qa);
+    if (!h) continue;
+    Gpm_real(&La, 0.1, w, &Gp, &Gm);
+    CHECK("anisotropic: flagged", qa.anisotropic == 1);
+    CHECK_CLOSE("anisotropic: G+ = the real 8x8 solve (real)", qa.G_re, creal(Gp), 1e-10, 0.0);
+    CHECK_CLOSE("anisotropic: G+ = the real 8x8 solve (imag)", qa.G_im, cimag(Gp), 1e-9, 1e-12 * cabs(Gp));
+    CHECK_CLOSE("anisotropic: G- = the real 8x8 solve (real)", qa.G_minus_re, creal(Gm), 1e-9, 1e-12 * cabs(Gp));
+    CHECK_CLOSE("anisotropic: G- = the real 8x8 solve (imag)", qa.G_minus_im, cimag(Gm), 1e-9, 1e-12 * cabs(Gp));
+    CHECK("anisotropic: G- is not negligible here", cabs(Gm) > 1e-3 * cabs(Gp));
+    CHECK("anisotropic: no high-speed entry", !qa.high_defined && isnan(qa.kappa_inf));
+    autobal_rotor_stab_free(h);
+  }
+  /* isotropic limit: the anisotropic route on isotropic supports */
+  make(&S, &L, 0.1, 1e-4, 2.0, 2.0 * 1e-4 * 0.1 * cos(0.6), 1000.0);
+  h = run(&S, NULL, &qi);
+  if (h) {
+    autobal_error_clear(&err);
+    autobal_rotor_stab_closed(h, &c);
+    c.isotropic = 0;
+    CHECK_STATUS("isotropic supports through the anisotropic route", autobal_rotor_asymptotic_conditions(&c, &qa, &err),
+                 AUTOBAL_SUCCESS);
+    CHECK_CLOSE("isotropic limit: G+ = G (real)", qa.G_re, qi.G_re, 1e-12, 0.0);
+    CHECK_CLOSE("isotropic limit: G+ = G (imag)", qa.G_im, qi.G_im, 1e-11, 0.0);
+    CHECK("isotropic limit: G- = 0", hypot(qa.G_minus_re, qa.G_minus_im) < 1e-12 * hypot(qi.G_re, qi.G_im));
+    for (k = 0; k < 4; k++) {
+      CHECK_CLOSE("isotropic limit: ball root (real)", qa.ball_re[k], qi.ball_re[k], 1e-10, 1e-14);
+      CHECK_CLOSE("isotropic limit: ball root (imag)", qa.ball_im[k], qi.ball_im[k], 1e-10, 1e-14);
+    }
+    CHECK_CLOSE("isotropic limit: largest shifted rotor root real part", qa.rotor_re_max, qi.rotor_re_max, 1e-8, 0.0);
+    CHECK("isotropic limit: same prediction", qa.light_stable == qi.light_stable);
+    autobal_rotor_stab_free(h);
+  }
+  /* light balls against Floquet: stable (kappa 2 above kappa_min) and unstable (below the first resonance) */
+  {
+    const double wv[] = {1000.0, 1000.0, 150.0};
+    const double kv[] = {2.0, 0.002, 2.0};
+    for (k = 0; k < 3; k++) {
+      double pred;
+      size_t j;
+      make(&S, &La, 0.1, 1e-5, kv[k], 2.0 * 1e-5 * 0.1 * cos(0.3), wv[k]);
+      h = run(&S, &res, &qa);
+      if (!h) continue;
+      pred = qa.rotor_re_max;
+      for (j = 0; j < 4; j++) pred = fmax(pred, qa.ball_re[j]);
+      printf("     %g rad/s, kappa %g: Floquet margin %.9g, predicted %.9g (%s, small %.3g, decided %d)\n", wv[k], kv[k],
+             res.margin, pred, qa.light_stable ? "STABLE" : "UNSTABLE", qa.light_small, qa.light_decided);
+      CHECK("light balls, anisotropic: applicable", qa.light_applicable);
+      if (k != 1) /* kappa 0.002: the ball roots' real part -kappa/2 is inside their error (undecided) */
+        CHECK("light balls, anisotropic: decided", qa.light_decided);
+      if (qa.light_decided)
+        CHECK("light balls, anisotropic: the prediction = the Floquet verdict", qa.light_stable == (res.margin < 0.0));
+      CHECK("light balls, anisotropic: max Re within 2 small parameters of the Floquet margin",
+            fabs(pred - res.margin) <= 2.0 * qa.light_small * fabs(res.margin) + 1e-9);
+      autobal_rotor_stab_free(h);
+    }
+  }
+}
+
 static void test_errors(void) {
   autobal_rotor_closed c;
   autobal_rotor_asymptotic q;
@@ -429,8 +553,13 @@ static void test_errors(void) {
   CHECK_STATUS("NULL closed system", autobal_rotor_asymptotic_conditions(NULL, &q, &err), AUTOBAL_EINVAL);
   CHECK_STATUS("NULL output", autobal_rotor_asymptotic_conditions(&c, NULL, &err), AUTOBAL_EINVAL);
   c.isotropic = 0;
-  CHECK_STATUS("anisotropic", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
+  c.plane[0].m_add = 0.1;
+  CHECK_STATUS("anisotropic, full inertia", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
   printf("     message: %s\n", err.message);
+  c.plane[0].m_add = 0.0;
+  c.plane[0].kappa = 0.0;
+  CHECK_STATUS("anisotropic, kappa = 0", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
+  c.plane[0].kappa = 2.0;
   c.isotropic = 1;
   c.n_planes = 2;
   CHECK_STATUS("two planes", autobal_rotor_asymptotic_conditions(&c, &q, &err), AUTOBAL_EINVAL);
@@ -460,6 +589,8 @@ int main(void) {
   test_default_rotor();
   printf("== kappa = 0 ==\n");
   test_kappa0();
+  printf("== anisotropic supports ==\n");
+  test_aniso();
   printf("== errors ==\n");
   test_errors();
   return check_summary();

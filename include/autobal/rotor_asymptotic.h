@@ -41,6 +41,21 @@
  * omega grows.  Small parameter: max(sqrt(m_b / (2 m_eff)), omega_max / |omega|), omega_max the
  * highest natural frequency of the rotor-housing at rest, undamped.
  *
+ * ANISOTROPIC SUPPORTS (one plane, paper inertia, kappa > 0; docs/rotor.md "Anisotropic supports").
+ * There is no Delta (the linearization is periodic), but for light balls the same (L1), (L2) hold to
+ * leading order with G replaced by the forward receptance of the fixed-frame rotor-housing,
+ *     G+ = b^T Z(i omega)^-1 conj(b) / 2,   G- = b^T Z(-i omega)^-1 b / 2,   b = e_u + i e_v,
+ * Z(s) = M s^2 + H s + K the 4x4 matrices of (3.2) without balls, e_u = (1, 0, 0, d), e_v = (0, 1, -d, 0):
+ * a force F e^{i omega t} at the plane moves its centre by G+ F e^{i omega t} + G- conj(F) e^{-i omega t}.
+ * The backward part turns at -2 omega in the rotating frame and averages out to first order (estimate
+ * of its second-order effect on u: avg_small).  The rotor-housing's 8 fixed-frame roots s_k are shifted
+ * like the isotropic roots of D with N / D' replaced by the residue of G+ at s_k (rotor_re/rotor_im: the
+ * four with Im s_k >= 0, in rotating coordinates s_k - i omega); c1 sums 1/|s - i omega| over the roots
+ * of det Z and of n n*, n = 2 det(Z) G+.  light_small also contains avg_small.  The high-speed and the
+ * undamped entries are not derived for anisotropic supports (NaN / 0).  Not a proof: checked against the
+ * Floquet multipliers of the full model on random machines (docs/rotor.md), where every decided
+ * prediction agreed.
+ *
  * Units SI.  Conditions are "applicable" when their small parameter is at most
  * AUTOBAL_ROTOR_ASYMPTOTIC_SMALL.
  */
@@ -106,10 +121,15 @@ typedef struct autobal_rotor_asymptotic {
   double undamped_small;    /* 1 */
   int undamped_decided;     /* outside its error band (as light_decided) */
   int undamped_applicable;  /* undamped_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
+  /* anisotropic supports (see ANISOTROPIC above): G_re, G_im are then G+, these the backward part */
+  int anisotropic;          /* 1: the supports are anisotropic, G = G+ */
+  double G_minus_re, G_minus_im; /* m/N, G- (0 for isotropic supports) */
+  double avg_small;         /* 1, a |G-|^2 / (4 omega^2 |G+|): the averaging estimate (0 for isotropic) */
 } autobal_rotor_asymptotic;
 
 /* The conditions above for the closed system c (autobal_rotor_stab_closed).  Returns
- * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL, n_planes != 1, not isotropic, no closure, omega == 0,
+ * AUTOBAL_SUCCESS, AUTOBAL_EINVAL (NULL, n_planes != 1, no closure, omega == 0, anisotropic with full
+ * inertia or kappa == 0,
  * kappa < 0: message in err; *out untouched; kappa = 0 gives the undamped entry), AUTOBAL_ENOMEM, AUTOBAL_ENUMERIC (the roots of
  * D D* or N N*).  Allocates two small polynomial workspaces per call. */
 AUTOBAL_API int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,

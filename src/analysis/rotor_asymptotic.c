@@ -100,59 +100,13 @@ static void undamped(autobal_rotor_asymptotic *r, const cplx *D, const cplx *N, 
   }
 }
 
-int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
-                                        autobal_error *err) {
-  const autobal_rotor_closed_plane *pl;
-  const autobal_rotor_lumped *L;
-  autobal_rotor_asymptotic r;
-  double w, d, mb, ma, kap, a, q, lmax = 0.0;
-  cplx P[2], P2[3], K11[3], K12[3], K22[3], t1[5], t2[5], D[5], N[3], G, u[2];
+/* The light-ball roots (L1), (L2) for the receptance G (autobal/rotor_asymptotic.h): sets G_re, G_im,
+ * supercritical, kappa_min, light_stable (the balls' part), ball_re/ball_im; u[0..1] and *a_out = a. */
+static void light_ball_roots(autobal_rotor_asymptotic *rp, cplx G, double mb, double w, double q, double kap, cplx *u,
+                             double *a_out) {
+  autobal_rotor_asymptotic r = *rp;
+  double a;
   size_t i;
-  int st;
-  if (c == NULL || out == NULL)
-    return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: NULL argument");
-  if (c->n_planes != 1 || !c->isotropic || !c->closure_ok)
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "asymptotic conditions: need one plane, isotropic supports and the closure (3.16) "
-                             "(n_planes %zu, isotropic %d, closure %d)",
-                             c->n_planes, c->isotropic, c->closure_ok);
-  pl = &c->plane[0];
-  L = &c->L;
-  w = c->omega;
-  d = pl->d;
-  mb = pl->mass;
-  ma = pl->m_add;
-  kap = pl->kappa;
-  if (!(w != 0.0) || !isfinite(w))
-    return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: omega = %g (must be non-zero)", w);
-  if (!(kap >= 0.0) || !(mb > 0.0))
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "asymptotic conditions: ball damping rate kappa = %g 1/s (must be >= 0), ball mass %g kg "
-                             "(must be > 0)",
-                             kap, mb);
-  memset(&r, 0, sizeof r);
-  r.kappa = kap;
-  q = hypot(pl->Q_re, pl->Q_im) / mb;
-  r.q = q;
-  /* the polynomials of Delta (autobal/rotor_stability.h), P = lambda + i omega */
-  P[0] = I * w;
-  P[1] = 1.0;
-  cmul(P, 2, P, 2, P2);
-  for (i = 0; i < 3; i++) {
-    K11[i] = (L->M + ma) * P2[i] + (i < 2 ? L->h_x * P[i] : 0.0) + (i == 0 ? L->c_x : 0.0);
-    K12[i] = -((i < 2 ? L->h_xbeta * P[i] : 0.0) + (i == 0 ? L->c_xbeta : 0.0)) + ma * d * P2[i];
-    K22[i] = (L->A + ma * d * d) * P2[i] + (i < 2 ? (L->h_alpha - I * L->C * w) * P[i] : 0.0) +
-             (i == 0 ? L->c_alpha : 0.0);
-  }
-  cmul(K11, 3, K22, 3, t1);
-  cmul(K12, 3, K12, 3, t2);
-  for (i = 0; i < 5; i++) D[i] = t1[i] - t2[i];
-  for (i = 0; i < 3; i++) N[i] = K22[i] - 2.0 * d * K12[i] + d * d * K11[i];
-  if (!(cabs(D[0]) > 0.0))
-    return autobal_error_set(err, AUTOBAL_EINVAL,
-                             "asymptotic conditions: D(0) = 0 (an undamped resonance of the rotor-housing at omega = %g rad/s)",
-                             w);
-  G = N[0] / D[0];
   r.G_re = creal(G);
   r.G_im = cimag(G);
   /* light balls: (u - a G)(u - a conj G) = (q a |G|)^2, u = lambda^2 + kappa lambda */
@@ -173,9 +127,280 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
       cplx l1 = 0.5 * (-kap + s), l2 = 0.5 * (-kap - s);
       r.ball_re[2 * i] = creal(l1), r.ball_im[2 * i] = cimag(l1);
       r.ball_re[2 * i + 1] = creal(l2), r.ball_im[2 * i + 1] = cimag(l2);
-      lmax = fmax(lmax, fmax(cabs(l1), cabs(l2)));
     }
   }
+  *a_out = a;
+  *rp = r;
+}
+
+/* ---- anisotropic supports (one plane, paper inertia; autobal/rotor_asymptotic.h "ANISOTROPIC") ---- */
+
+/* The rotor-housing's fixed-frame matrix Z(s) = M s^2 + H s + K (coordinates x, y, alpha, beta; (3.2)
+ * without balls) as polynomials in s: Z[i][j][0..2] ascending. */
+static void z_poly(const autobal_rotor_lumped *L, double w, cplx Z[4][4][3]) {
+  const double Mm[4] = {L->M, L->M, L->A, L->A};
+  const double H[4][4] = {{L->h_x, 0, 0, -L->h_xbeta},
+                          {0, L->h_y, L->h_yalpha, 0},
+                          {0, L->h_yalpha, L->h_alpha, L->C * w},
+                          {-L->h_xbeta, 0, -L->C * w, L->h_beta}};
+  const double K[4][4] = {{L->c_x, 0, 0, -L->c_xbeta},
+                          {0, L->c_y, L->c_yalpha, 0},
+                          {0, L->c_yalpha, L->c_alpha, 0},
+                          {-L->c_xbeta, 0, 0, L->c_beta}};
+  size_t i, j;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) {
+      Z[i][j][0] = K[i][j];
+      Z[i][j][1] = H[i][j];
+      Z[i][j][2] = i == j ? Mm[i] : 0.0;
+    }
+}
+
+/* det of a 4x4 matrix of quadratics (ascending, out[0..8]) by the permutation expansion, the
+ * constant rank-one term c b^T added to every entry's s^0 coefficient when cb != NULL. */
+static void det4_poly(cplx Z[4][4][3], const cplx cb[4][4], cplx out[9]) {
+  static const int perm[24][4] = {{0,1,2,3},{0,1,3,2},{0,2,1,3},{0,2,3,1},{0,3,1,2},{0,3,2,1},
+                                  {1,0,2,3},{1,0,3,2},{1,2,0,3},{1,2,3,0},{1,3,0,2},{1,3,2,0},
+                                  {2,0,1,3},{2,0,3,1},{2,1,0,3},{2,1,3,0},{2,3,0,1},{2,3,1,0},
+                                  {3,0,1,2},{3,0,2,1},{3,1,0,2},{3,1,2,0},{3,2,0,1},{3,2,1,0}};
+  size_t p, i, k;
+  for (k = 0; k < 9; k++) out[k] = 0;
+  for (p = 0; p < 24; p++) {
+    cplx acc[9] = {1.0}, e[3], t[9];
+    size_t len = 1;
+    int inv = 0, a, b;
+    for (a = 0; a < 4; a++)
+      for (b = a + 1; b < 4; b++)
+        if (perm[p][a] > perm[p][b]) inv++;
+    for (i = 0; i < 4; i++) {
+      size_t j = (size_t)perm[p][i];
+      e[0] = Z[i][j][0] + (cb ? cb[i][j] : 0.0), e[1] = Z[i][j][1], e[2] = Z[i][j][2];
+      cmul(acc, len, e, 3, t);
+      len += 2;
+      for (k = 0; k < len; k++) acc[k] = t[k];
+    }
+    for (k = 0; k < 9; k++) out[k] += (inv % 2 ? -1.0 : 1.0) * acc[k];
+  }
+}
+
+/* b^T Z(s)^-1 c for the 4x4 matrix of z_poly at s (Gaussian elimination, partial pivoting);
+ * returns NAN + NAN i when Z(s) is singular. */
+static cplx bzc(cplx Z[4][4][3], cplx s, const cplx b[4], const cplx c[4]) {
+  cplx A[4][5], x[4], v = 0;
+  size_t i, j, k;
+  for (i = 0; i < 4; i++) {
+    for (j = 0; j < 4; j++) A[i][j] = Z[i][j][0] + s * (Z[i][j][1] + s * Z[i][j][2]);
+    A[i][4] = c[i];
+  }
+  for (k = 0; k < 4; k++) {
+    size_t piv = k;
+    for (i = k + 1; i < 4; i++)
+      if (cabs(A[i][k]) > cabs(A[piv][k])) piv = i;
+    if (!(cabs(A[piv][k]) > 0.0)) return NAN + NAN * I;
+    if (piv != k)
+      for (j = 0; j < 5; j++) {
+        cplx t = A[k][j];
+        A[k][j] = A[piv][j], A[piv][j] = t;
+      }
+    for (i = k + 1; i < 4; i++) {
+      cplx f = A[i][k] / A[k][k];
+      for (j = k; j < 5; j++) A[i][j] -= f * A[k][j];
+    }
+  }
+  for (k = 4; k-- > 0;) {
+    cplx t = A[k][4];
+    for (j = k + 1; j < 4; j++) t -= A[k][j] * x[j];
+    x[k] = t / A[k][k];
+  }
+  for (i = 0; i < 4; i++) v += b[i] * x[i];
+  return v;
+}
+
+/* Roots (re, im) of a real polynomial (ascending, length n <= 9). */
+static int roots_real(const double *p, size_t n, double *re, double *im, autobal_error *err) {
+  autobal_poly_workspace *w = autobal_poly_workspace_alloc(n - 1);
+  int st;
+  if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "asymptotic conditions: out of memory");
+  st = autobal_poly_roots(w, p, n, re, im, err);
+  autobal_poly_workspace_free(w);
+  return st;
+}
+
+/* Anisotropic supports: G = G+, Gm = G-, the rotor-housing's roots and the small parameter. The light-ball
+ * roots r->ball_*, u and q, kappa, a are already set by the caller.  Fills rotor_*, light_small,
+ * light_decided, light_applicable, G_minus_*, avg_small and clears the high-speed and undamped entries. */
+static int aniso_rest(const autobal_rotor_closed *c, autobal_rotor_asymptotic *r, cplx Z[4][4][3], const cplx *u,
+                      double a, cplx Gm, autobal_error *err) {
+  const double w = c->omega, d = c->plane[0].d, mb = c->plane[0].mass, kap = c->plane[0].kappa;
+  const cplx eu[4] = {1.0, 0.0, 0.0, d}, ev[4] = {0.0, 1.0, -d, 0.0};
+  cplx b[4], cv[4], cb[4][4], cb2[4][4], dz[9], dzc[9], dzc2[9], nn[9], n2[9], dd[8];
+  double dr[9], rre[8], rim[8], zre[12], zim[12], c1, eps_b = 0.0, eps_r = 0.0, lre = -INFINITY, eavg;
+  size_t i, j, k, nr = 0;
+  int st, dec_unstable = 0, dec_stable = 1;
+  for (i = 0; i < 4; i++) b[i] = eu[i] + I * ev[i], cv[i] = eu[i] - I * ev[i];
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) cb[i][j] = cv[i] * b[j], cb2[i][j] = b[i] * cv[j];
+  /* det Z (real coefficients, degree 8) and n = b^T adj(Z) c = det(Z + c b^T) - det Z (degree 6: the s^8
+   * and s^7 coefficients depend on M and H only and cancel), G+(s) = n / (2 det Z) */
+  det4_poly(Z, NULL, dz);
+  det4_poly(Z, cb, dzc);
+  det4_poly(Z, cb2, dzc2); /* n2 = conj(b)^T adj(Z) b: the backward-backward receptance G~ = n2 / (2 det Z) */
+  for (k = 0; k < 9; k++) dr[k] = creal(dz[k]);
+  for (k = 0; k < 7; k++) nn[k] = dzc[k] - dz[k], n2[k] = dzc2[k] - dz[k];
+  for (k = 0; k < 8; k++) dd[k] = (double)(k + 1) * dz[k + 1];
+  if ((st = roots_real(dr, 9, rre, rim, err)) != 0) return st;
+  {
+    cplx n6[7];
+    size_t len = 7;
+    for (k = 0; k < 7; k++) n6[k] = nn[k];
+    while (len > 1 && !(cabs(n6[len - 1]) > 0.0)) len--;
+    if (len > 1) {
+      /* roots of n n* (real), 2 (len - 1) of them; n n* may exceed roots_xx's cap of 5 coefficients */
+      cplx nc[7], pr[13];
+      double cr[13];
+      for (k = 0; k < len; k++) nc[k] = conj(n6[k]);
+      cmul(n6, len, nc, len, pr);
+      for (k = 0; k < 2 * len - 1; k++) cr[k] = creal(pr[k]);
+      if ((st = roots_real(cr, 2 * len - 1, zre, zim, err)) != 0) return st;
+      nr = 2 * (len - 1);
+    }
+  }
+  /* c1: a bound of |d log(a G+(i omega + lambda) P^4) / d lambda| near lambda = 0, as for isotropic supports:
+   * 4/|omega| + sum 1/|s_k - i omega| over the poles (the roots of det Z) and the zeros (of n n*) */
+  c1 = 4.0 / fabs(w);
+  for (k = 0; k < 8; k++) c1 += 1.0 / hypot(rre[k], rim[k] - w);
+  for (k = 0; k < nr; k++) c1 += 1.0 / hypot(zre[k], zim[k] - w);
+  /* averaging: the backward part G- turns at -2 omega in the rotating frame; its effect on u is of second
+   * order, a^2 |G-|^2 / (4 omega^2), relative to |u| ~ a |G+| (an estimate, checked by the scan of
+   * docs/rotor.md, not a bound) */
+  eavg = a * cabs(Gm) * cabs(Gm) / (4.0 * w * w * fmax(cabs(r->G_re + I * r->G_im), DBL_MIN));
+  r->avg_small = eavg;
+  /* the rotor-housing's 8 roots s_k (fixed frame), shifted to first order by the balls like the isotropic
+   * roots of D, through both channels: the centre's forward part seen by the balls at lambda = s_k - i omega
+   * (weight Res(G+, s_k)) and its backward part at mu = s_k + i omega (weight Res(G~, s_k)),
+   *     delta_k = (m_b / 2) s_k^4 (Res(G+, s_k) / (lambda^2 + kappa lambda) + Res(G~, s_k) / (mu^2 + kappa mu)),
+   * Res(G, s_k) = n(s_k) / (2 det'(s_k)).  For isotropic supports one of the two residues vanishes and this is
+   * the shift of the roots of D (and of their conjugates).  Reported in rotating coordinates s_k - i omega
+   * (real parts: the Floquet exponents'), the four with Im s_k >= 0; the error of each is eps_r |delta_k|. */
+  {
+    cplx shift[8];
+    j = 0;
+    for (k = 0; k < 8; k++) {
+      cplx sk = rre[k] + I * rim[k], lk = sk - I * w, mk = sk + I * w, s4 = sk * sk * sk * sk, dp = ceval(dd, 8, sk, 0);
+      double sep = fmin(fmin(cabs(lk), cabs(lk + kap)), fmin(cabs(mk), cabs(mk + kap)));
+      size_t m;
+      for (m = 0; m < 8; m++)
+        if (m != k) sep = fmin(sep, hypot(rre[m] - rre[k], rim[m] - rim[k]));
+      shift[k] = 0.5 * mb * s4 *
+                 (ceval(nn, 7, sk, 0) / (2.0 * dp * (lk * lk + kap * lk)) + ceval(n2, 7, sk, 0) / (2.0 * dp * (mk * mk + kap * mk)));
+      eps_r = fmax(eps_r, sep > 0.0 ? cabs(shift[k]) / sep : INFINITY);
+    }
+    for (k = 0; k < 8; k++) {
+      cplx nl = rre[k] + I * (rim[k] - w) + shift[k];
+      lre = fmax(lre, creal(nl));
+      if (rim[k] >= 0.0 && j < 4) r->rotor_re[j] = creal(nl), r->rotor_im[j] = cimag(nl), j++;
+      if (creal(nl) >= eps_r * cabs(shift[k])) dec_unstable = 1;
+      if (!(creal(nl) <= -eps_r * cabs(shift[k]))) dec_stable = 0; /* STABLE: every root below minus its error */
+    }
+  }
+  for (; j < 4; j++) r->rotor_re[j] = r->rotor_im[j] = NAN;
+  for (j = 0; j < 4; j++) {
+    cplx lj = r->ball_re[j] + I * r->ball_im[j];
+    double rel = (c1 * cabs(u[j / 2]) + eavg * cabs(u[j / 2])) / cabs(2.0 * lj + kap), e = rel * cabs(lj);
+    eps_b = fmax(eps_b, rel);
+    if (r->ball_re[j] >= e) dec_unstable = 1;
+    if (!(r->ball_re[j] <= -e)) dec_stable = 0;
+  }
+  r->rotor_re_max = lre;
+  r->light_stable = r->light_stable && lre < 0.0;
+  r->light_small = fmax(fmax(eps_b, eps_r), eavg);
+  r->light_decided = dec_unstable || dec_stable;
+  r->light_applicable = r->light_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+  r->G_minus_re = creal(Gm);
+  r->G_minus_im = cimag(Gm);
+  r->undamped_delta[0] = r->undamped_delta[1] = r->undamped_small = NAN;
+  r->m_eff = r->h_eff = r->kappa_inf = r->high_small = NAN;
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
+                                        autobal_error *err) {
+  const autobal_rotor_closed_plane *pl;
+  const autobal_rotor_lumped *L;
+  autobal_rotor_asymptotic r;
+  double w, d, mb, ma, kap, a, q;
+  cplx P[2], P2[3], K11[3], K12[3], K22[3], t1[5], t2[5], D[5], N[3], G, u[2];
+  size_t i;
+  int st;
+  if (c == NULL || out == NULL)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: NULL argument");
+  if (c->n_planes != 1 || !c->closure_ok)
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: need one plane and the closure (3.16) (n_planes %zu, closure %d)",
+                             c->n_planes, c->closure_ok);
+  if (!c->isotropic && (c->plane[0].m_add != 0.0 || !(c->plane[0].kappa > 0.0)))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: anisotropic supports need the paper inertia and kappa > 0 "
+                             "(m_add %g kg, kappa %g 1/s)",
+                             c->plane[0].m_add, c->plane[0].kappa);
+  pl = &c->plane[0];
+  L = &c->L;
+  w = c->omega;
+  d = pl->d;
+  mb = pl->mass;
+  ma = pl->m_add;
+  kap = pl->kappa;
+  if (!(w != 0.0) || !isfinite(w))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "asymptotic conditions: omega = %g (must be non-zero)", w);
+  if (!(kap >= 0.0) || !(mb > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: ball damping rate kappa = %g 1/s (must be >= 0), ball mass %g kg "
+                             "(must be > 0)",
+                             kap, mb);
+  memset(&r, 0, sizeof r);
+  r.kappa = kap;
+  q = hypot(pl->Q_re, pl->Q_im) / mb;
+  r.q = q;
+  r.G_minus_re = r.G_minus_im = 0.0;
+  r.avg_small = 0.0;
+  if (!c->isotropic) { /* G = G+, the forward receptance of the fixed-frame rotor-housing at i omega */
+    const cplx eu[4] = {1.0, 0.0, 0.0, d}, ev[4] = {0.0, 1.0, -d, 0.0};
+    cplx Z[4][4][3], b[4], cv[4], Gm;
+    for (i = 0; i < 4; i++) b[i] = eu[i] + I * ev[i], cv[i] = eu[i] - I * ev[i];
+    z_poly(L, w, Z);
+    G = 0.5 * bzc(Z, I * w, b, cv);
+    Gm = 0.5 * bzc(Z, -I * w, b, b);
+    if (!isfinite(creal(G)) || !isfinite(cimag(G)) || !isfinite(creal(Gm)) || !isfinite(cimag(Gm)))
+      return autobal_error_set(err, AUTOBAL_EINVAL,
+                               "asymptotic conditions: Z(+-i omega) singular (an undamped resonance of the "
+                               "rotor-housing at omega = %g rad/s)",
+                               w);
+    r.anisotropic = 1;
+    light_ball_roots(&r, G, mb, w, q, kap, u, &a);
+    if ((st = aniso_rest(c, &r, Z, u, a, Gm, err)) != 0) return st;
+    *out = r;
+    return AUTOBAL_SUCCESS;
+  }
+  /* the polynomials of Delta (autobal/rotor_stability.h), P = lambda + i omega */
+  P[0] = I * w;
+  P[1] = 1.0;
+  cmul(P, 2, P, 2, P2);
+  for (i = 0; i < 3; i++) {
+    K11[i] = (L->M + ma) * P2[i] + (i < 2 ? L->h_x * P[i] : 0.0) + (i == 0 ? L->c_x : 0.0);
+    K12[i] = -((i < 2 ? L->h_xbeta * P[i] : 0.0) + (i == 0 ? L->c_xbeta : 0.0)) + ma * d * P2[i];
+    K22[i] = (L->A + ma * d * d) * P2[i] + (i < 2 ? (L->h_alpha - I * L->C * w) * P[i] : 0.0) +
+             (i == 0 ? L->c_alpha : 0.0);
+  }
+  cmul(K11, 3, K22, 3, t1);
+  cmul(K12, 3, K12, 3, t2);
+  for (i = 0; i < 5; i++) D[i] = t1[i] - t2[i];
+  for (i = 0; i < 3; i++) N[i] = K22[i] - 2.0 * d * K12[i] + d * d * K11[i];
+  if (!(cabs(D[0]) > 0.0))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "asymptotic conditions: D(0) = 0 (an undamped resonance of the rotor-housing at omega = %g rad/s)",
+                             w);
+  G = N[0] / D[0];
+  light_ball_roots(&r, G, mb, w, q, kap, u, &a);
   {
     /* the rotor-housing's roots: the 4 roots of D among the 8 of D D*, shifted to first order in
      * the balls, delta_k = (m_b / 2) P^4 N / ((lambda^2 + kappa lambda) D') at lambda_k; their

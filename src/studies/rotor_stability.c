@@ -142,8 +142,9 @@ static int asymptotic_conditions(autobal_rotor_stab *h, autobal_study_rotor_stab
     s->have_asymptotic2 = 1;
     return AUTOBAL_SUCCESS;
   }
-  if (s->result.n_poly == 0) return AUTOBAL_SUCCESS;
+  if (s->result.n_poly == 0 && c.isotropic) return AUTOBAL_SUCCESS;
   if (!(c.plane[0].kappa >= 0.0)) return AUTOBAL_SUCCESS; /* kappa = 0: the undamped entry */
+  /* anisotropic supports: the light-ball condition with G+ (kappa > 0, paper inertia; else EINVAL: none) */
   autobal_error_clear(&e);
   st = autobal_rotor_asymptotic_conditions(&c, &s->asymptotic, &e);
   if (st == AUTOBAL_EINVAL) return AUTOBAL_SUCCESS; /* not applicable here (e.g. an undamped resonance) */
@@ -375,6 +376,13 @@ static int write_asymptotic(autobal_archive *a, const autobal_rotor_asymptotic *
   if (!st) st = autobal_archive_attr_double(a, g, "G_imag", q->G_im, "m/N");
   if (!st) st = autobal_archive_attr_double(a, g, "kappa", q->kappa, "1/s");
   if (!st) st = autobal_archive_attr_double(a, g, "q", q->q, "1");
+  if (!st && q->anisotropic) { /* anisotropic supports: G above is G+ (only then written: isotropic archives unchanged) */
+    st = autobal_archive_attr_string(a, g, "anisotropic_description", "anisotropic supports: G_real, G_imag are the forward receptance G+ = b^T Z(i omega)^-1 conj(b) / 2 of the fixed-frame rotor-housing at the plane, G_minus the backward one; (L1), (L2) with G+ to leading order, the backward part averaged out (its estimated second-order effect: avg_small, part of light_small); no high-speed or undamped entry (docs/rotor.md, Anisotropic supports)");
+    if (!st) st = autobal_archive_attr_int(a, g, "anisotropic", 1);
+    if (!st) st = autobal_archive_attr_double(a, g, "G_minus_real", q->G_minus_re, "m/N");
+    if (!st) st = autobal_archive_attr_double(a, g, "G_minus_imag", q->G_minus_im, "m/N");
+    if (!st) st = autobal_archive_attr_double(a, g, "avg_small", q->avg_small, "1");
+  }
   if (!st && q->undamped_defined) { /* kappa = 0: the undamped entry instead of (L1), (L2) */
     st = autobal_archive_attr_string(a, g, "undamped_description", "kappa = 0: the light-ball roots to the next order, +-i y + delta, delta = Re g1/2 +- (q^2 Re(g1 conj g0) - Im g0 Im g1)/(2 r) where the leading order puts them on the imaginary axis (undamped_on_axis), else the leading order; with the rotor roots shifted to first order (docs/rotor.md, Undamped balls)");
     if (!st) st = autobal_archive_attr_int(a, g, "undamped_on_axis", q->undamped_on_axis);

@@ -9,7 +9,10 @@
 #  (e) two planes: the two-plane light-ball condition (rotor_asymptotic2_check.py), not the one-plane ones;
 #      light balls below (150 rad/s) and above (800 rad/s) the resonances;
 #  (f) undamped balls (kappa = 0): the next-order entry instead of (L1), (L2);
-#  (g) two planes at high speed with the balls at q = 0: (H1'), (H2').
+#  (g) two planes at high speed with the balls at q = 0: (H1'), (H2');
+#  (h) anisotropic supports: (L1), (L2) with the forward receptance G+ (console, JSON, archive; G+ and G-
+#      against NumPy), and the scan tools/derive/asymptotic_aniso_scan.py on 60 random machines against the
+#      Floquet multipliers (every decided prediction must agree); isotropic archives carry no anisotropic keys.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -94,4 +97,39 @@ two two_high 1e5 0.1 -0.12 5e-6 4e-6 3.075e-7 2.46e-7 "$s1q" "$s2q" 0 0
 read -r v p dec app < <("$PY" -c 'import json,sys; j=json.load(open(sys.argv[1])); a=j["asymptotic2"]; print(j["verdict"], a["high_predicts_stable"], a["high_decided"], a["high_applicable"])' two_high.json)
 [ "$v $p $dec $app" = "stable True True True" ] && ok "two planes, 1e5 rad/s, q = 0: exactly stable, (H2') predicts STABLE, decided, applicable" || bad "two_high: $v $p $dec $app"
 grep -q "high speed, balls at q = 0 in both planes: (H1') Gamma positive definite \[yes\]" two_high.txt && ok "console: the two-plane high-speed line" || { bad "console two_high"; cat two_high.txt; }
+# (h) anisotropic supports, light balls (1e-5 kg, kappa 2 1/s) at 1000 rad/s: decided STABLE, and the Floquet
+#     verdict; G+ and G- recomputed with NumPy (asymptotic_aniso_scan.g_pm, a 4x4 complex solve of its own)
+printf '[rotor]\nomega = 1000\n[supports]\nc_Ly = 1.6e5\nc_Ry = 2.4e5\nh_Ly = 160\n[plane1]\nd = 0.1\nball_mass = 1e-5, 1e-5\nball_damping = 2e-5, 2e-5\nm0 = 1.9e-5\n[stability]\ncritical_speeds = false\n' > aniso.ini
+expect 0 "anisotropic supports: G = G+ = " "$AUTOBAL" rotor stability aniso.ini
+grep -q "predicts STABLE; small parameter" out.txt && ok "anisotropic: console predicts STABLE (decided)" || { bad "anisotropic console"; cat out.txt; }
+"$AUTOBAL" rotor stability aniso.ini --json > aniso.json 2>err.txt || bad "anisotropic: json run"
+"$AUTOBAL" rotor stability aniso.ini -o aniso.h5 > /dev/null 2>err.txt || bad "anisotropic: archive run"
+if "$PY" - "$TOOLS/derive" aniso.json aniso.h5 > chk.txt 2>&1 <<'PY'
+import json, sys
+import h5py
+sys.path.insert(0, sys.argv[1])
+from asymptotic_aniso_scan import g_pm
+j = json.load(open(sys.argv[2])); a = j['asymptotic']
+f = h5py.File(sys.argv[3], 'r'); g = f['rotor/stability/asymptotic'].attrs
+L = {k: float(v) for k, v in f['rotor/lumped'].attrs.items() if not k.endswith('_units')}
+gp, gm = g_pm(L, 1000.0, 0.1)
+assert j['method'] == 'floquet' and j['verdict'] == 'stable', (j['method'], j['verdict'])
+assert a['anisotropic'] is True and a['light_decided'] and a['light_applicable'] and a['light_predicts_stable']
+assert abs(complex(a['G_real'], a['G_imag']) - gp) < 1e-12 * abs(gp), (a['G_real'], a['G_imag'], gp)
+assert abs(complex(a['G_minus_real'], a['G_minus_imag']) - gm) < 1e-12 * abs(gp), (a['G_minus_real'], gm)
+assert abs(gm) > 1e-3 * abs(gp), gm
+assert g['anisotropic'] == 1 and g['G_minus_real_units'] == 'm/N' and g['avg_small_units'] == '1'
+assert g['G_minus_real'] == a['G_minus_real'] and g['G_real'] == a['G_real']
+print('ok')
+PY
+then ok "anisotropic: JSON and archive, G+ and G- = NumPy (1e-12)"; else bad "anisotropic: JSON/archive check"; cat chk.txt; fi
+"$PY" -c 'import h5py,sys; sys.exit(1 if "anisotropic" in h5py.File(sys.argv[1], "r")["rotor/stability/asymptotic"].attrs else 0)' default.h5 \
+  && ok "isotropic archive: no anisotropic keys (unchanged)" || bad "isotropic archive has anisotropic keys"
+if "$PY" "$TOOLS/derive/asymptotic_aniso_scan.py" "$AUTOBAL" 60 1 0.2 > scan.txt 2>&1; then
+  n=$(sed -n 's/.*decided \([0-9]*\), agree \([0-9]*\).*/\1 \2/p' scan.txt)
+  set -- $n
+  [ "${1:-0}" -ge 10 ] && [ "$1" = "${2:-x}" ] && ok "anisotropic scan: $1 decided predictions, all agree with Floquet" || { bad "anisotropic scan counts: $n"; cat scan.txt; }
+else
+  bad "anisotropic scan"; cat scan.txt
+fi
 finish
