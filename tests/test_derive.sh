@@ -73,7 +73,7 @@ done
 # two planes at high speed, balls at q = 0 (tools/derive/derive_asymptotic2_high.py, docs/rotor.md "Two planes at high speed")
 ah=$("$py" "$src/tools/derive/derive_asymptotic2_high.py" 2>&1) || { echo "$ah"; echo "test_derive: FAILED (asymptotic, two planes, high speed)"; exit 1; }
 echo "$ah"
-for pat in 'high speed (7)' 'high speed (8)' 'high speed (9)' 'high speed (10)' 'high speed (11)'; do
+for pat in 'high speed (7)' 'high speed (8)' 'high speed (9)' 'high speed (10)' 'high speed (11)' 'high speed (12)'; do
   grep -F "$pat" <<<"$ah" | grep -q ': OK' || { echo "test_derive: asymptotic check '$pat' did not report OK"; exit 1; }
 done
 # every unbalance with n >= 3 identical balls (tools/derive/derive_nballs.py, docs/rotor.md "Every unbalance")

@@ -297,6 +297,47 @@ static void test_high(void) {
       autobal_rotor_stab_free(h);
     }
   }
+  /* every unbalance and phase, the same kappa in both planes: kappa_all = rho sqrt(mu_2) (test's own: rho from the
+   * 2x2 matrix Gamma^-1 H, mu_2 the larger eigenvalue of Mb^1/2 Gamma Mb^1/2); at 1.05 kappa_all the exact 16x16
+   * verdict is stable for unbalances with q_j in {0.1, 0.6, 0.95} and relative phases {0, 1, 2.5} rad */
+  {
+    const double *G = q.high_Gamma, *H = q.high_H;
+    double dG = G[0] * G[3] - G[1] * G[2], Ri[4], tr, dt, rho, gt0, gt1, gt2, mu2, kall;
+    const double qs[3] = {0.1, 0.6, 0.95}, ph[3] = {0.0, 1.0, 2.5};
+    int a, b, nst = 0;
+    Ri[0] = (G[3] * H[0] - G[1] * H[2]) / dG, Ri[1] = (G[3] * H[1] - G[1] * H[3]) / dG;
+    Ri[2] = (G[0] * H[2] - G[2] * H[0]) / dG, Ri[3] = (G[0] * H[3] - G[2] * H[1]) / dG;
+    tr = Ri[0] + Ri[3], dt = Ri[0] * Ri[3] - Ri[1] * Ri[2];
+    rho = fmax(fabs(0.5 * tr + sqrt(fmax(0.0, 0.25 * tr * tr - dt))), fabs(0.5 * tr - sqrt(fmax(0.0, 0.25 * tr * tr - dt))));
+    gt0 = 2.0 * m[0] * G[0], gt1 = 2.0 * sqrt(m[0] * m[1]) * G[1], gt2 = 2.0 * m[1] * G[3];
+    mu2 = 0.5 * (gt0 + gt2) + hypot(0.5 * (gt0 - gt2), gt1);
+    kall = rho * sqrt(mu2);
+    CHECK("high speed, every unbalance: the same kappa in both planes", q.high_every_equal);
+    CHECK_CLOSE("high speed, every unbalance: kappa_all = rho sqrt(mu_2)", q.high_every_kappa, kall, 1e-12, 0.0);
+    CHECK("high speed, every unbalance: kappa_all >= sqrt(2) max kappa_inf (Q = 0)",
+          q.high_every_kappa >= M_SQRT2 * kstar * (1.0 - 1e-12));
+    printf("     every unbalance: kappa_all = %.6g 1/s (%.3f x max kappa_inf), small %.3g\n", q.high_every_kappa,
+           q.high_every_kappa / kstar, q.high_every_small);
+    kap[0] = kap[1] = 1.05 * kall;
+    for (a = 0; a < 3; a++)
+      for (b = 0; b < 3; b++) {
+        double s1[2], p2[2] = {0.0, ph[b]};
+        for (j = 0; j < 2; j++) s1[j] = 2.0 * m[j] * 0.1 * cos(0.5 * acos(qs[a] * (j ? 0.7 : 1.0)));
+        make(&S, &L, d, m, kap, s1, p2, w);
+        h = run(&S, &res, &q);
+        if (!h) return;
+        nst += res.verdict == AUTOBAL_VERDICT_STABLE;
+        CHECK("high speed, every unbalance: predicts STABLE, applicable", q.high_every_stable && q.high_every_applicable);
+        autobal_rotor_stab_free(h);
+      }
+    CHECK("high speed, every unbalance: 9 of 9 exact verdicts stable at 1.05 kappa_all", nst == 9);
+    kap[1] = 0.5 * kap[0];
+    make(&S, &L, d, m, kap, s0, psi, w);
+    h = run(&S, NULL, &q);
+    if (!h) return;
+    CHECK("high speed, every unbalance: unequal kappa: not claimed", !q.high_every_equal && !q.high_every_stable);
+    autobal_rotor_stab_free(h);
+  }
   /* no cross receptance at high speed: the one-plane kappa_inf in each plane */
   {
     double Ap = L.A - L.C, dd[2], kone;

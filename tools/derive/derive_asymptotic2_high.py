@@ -26,7 +26,7 @@ import numpy as np
 import sympy as sp
 
 sys.path.insert(0, __import__('os').path.dirname(__file__))
-from asymptotic2_scan import ball_system, default2, exact_roots, high_modes  # noqa: E402
+from asymptotic2_scan import ball_system, default2, draw, exact_roots, high_modes  # noqa: E402
 
 
 def ok(msg):
@@ -157,12 +157,89 @@ def check_exact():
        '%.2e (balls x 1e-2, 1e4 rad/s), %.2e (x 1e-3, 3e4 rad/s)' % tuple(errs))
 
 
+def every_kappa(p):
+    """kappa_all = rho sqrt(mu_2) (docs/rotor.md "Two planes at high speed", every unbalance), and (Gamma, H)"""
+    M, Ap = p['M'], p['A'] - p['C']
+    B = np.array([[1.0, 1.0], [p['d'][0], p['d'][1]]])
+    Mi = np.diag([1 / M, 1 / Ap])
+    Gam = B.T @ Mi @ B
+    H = B.T @ Mi @ np.array([[p['h'], -p['hc']], [-p['hc'], p['ht']]]) @ Mi @ B
+    rho = np.abs(np.linalg.eigvals(np.linalg.solve(Gam, H))).max()
+    mu = high_modes(p)[0]
+    return rho * np.sqrt(mu.max()), Gam, H
+
+
+def check_every():
+    """(12) every unbalance, equal kappa (for Hermitian A >= 0, B and a unit eigenvector y of A + i B / w the
+    eigenvalue is y*Ay + i y*By / w, so the ratio bound follows from |x*H^x| <= rho x*G^x): (b) numerically on random machines and random Q (q_j up to 1, every phase): every eigenvalue mu of the frozen S(Q)
+    has (Im mu)^2 / (-Re mu) <= kappa_all^2 and Re mu < 0; (c) planes decoupled: kappa_all = sqrt(2) kappa_inf of
+    the plane that sets it; (d) the exact 16 roots at 1.02 kappa_all (both planes), random Q, high speed: stable."""
+    rng = np.random.default_rng(12)
+    worst = 0.0
+    nm = 0
+    for _ in range(60):
+        p = draw(rng)
+        if p is None:
+            continue
+        ka, Gam, H = every_kappa(p)
+        if np.linalg.eigvalsh(Gam).min() <= 0:
+            continue
+        nm += 1
+        w = 3e4
+        mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
+        G = -(Gam + 1j * H / w) / w**2
+        for _ in range(200):
+            q = rng.uniform(0, 1, 2) ** rng.choice([0.2, 1.0, 5.0])
+            Q = mb * q * np.exp(1j * rng.uniform(0, 2 * np.pi, 2))
+            mu = np.linalg.eigvals(ball_system(G, mb, Q, np.zeros(2), w)[0])
+            assert mu.real.max() < 0, mu
+            worst = max(worst, np.sqrt(np.max(mu.imag**2 / -mu.real)) / ka)
+    assert nm >= 10 and worst <= 1 + 1e-9, (nm, worst)
+    # (c) decoupled planes (d_1 = 0 and 1/M terms dropped: Gamma, H diagonal): kappa_all = sqrt(2) max kappa_inf
+    p = default2()
+    M, Ap = p['M'], p['A'] - p['C']
+    Gam = np.diag([1.0 / M, 0.12**2 / Ap])
+    H = np.diag([p['h'] / M**2, p['ht'] * 0.12**2 / Ap**2])
+    rho = np.abs(np.diag(H) / np.diag(Gam)).max()
+    mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
+    mu = mb * np.diag(Gam)
+    kinf = np.abs(mb * np.diag(H)) / np.sqrt(2 * mu)
+    # the plane with the larger mu sets kappa_all = rho sqrt(mu_2); per plane rho_j sqrt(mu_j) = sqrt(2) kappa_inf_j
+    per = np.abs(np.diag(H) / np.diag(Gam)) * np.sqrt(mu)
+    assert np.allclose(per, np.sqrt(2) * kinf, rtol=1e-13), (per, kinf)
+    assert rho * np.sqrt(mu.max()) >= np.sqrt(2) * kinf.max() * (1 - 1e-13)
+    # (d) exact 16 roots: light balls at high speed, kappa = 1.02 kappa_all in both planes, random unbalances
+    rng = np.random.default_rng(13)
+    nst = nex = 0
+    for _ in range(30):
+        p = draw(rng)
+        if p is None:
+            continue
+        p['m'] = [x * 1e-3 for x in p['m']]
+        ka, Gam, H = every_kappa(p)
+        if np.linalg.eigvalsh(Gam).min() <= 0:
+            continue
+        p['hb'] = [1.02 * ka * p['m'][j] for j in range(2)]
+        for _ in range(4):
+            q = rng.uniform(0, 1, 2) ** 0.3
+            p['s0'] = [2 * p['m'][j] * p['r'][j] * np.sqrt((1 + q[j]) / 2) for j in range(2)]
+            p['psi0'] = [0.0, rng.uniform(0, np.pi)]
+            nex += 1
+            nst += exact_roots(p, 3e4).real.max() < 0
+    assert nex >= 24 and nst == nex, (nst, nex)
+    ok('two planes, high speed (12): every unbalance, the same kappa in both planes: (Im mu)^2 / (-Re mu) <= '
+       'kappa_all^2 = rho^2 mu_2 for every eigenvalue of S(Q) (%d machines x 200 unbalances, largest ratio %.3f); '
+       'decoupled planes: rho_j sqrt(mu_j) = sqrt(2) kappa_inf_j; exact 16 roots at 1.02 kappa_all, 3e4 rad/s: '
+       '%d of %d stable' % (nm, worst, nst, nex))
+
+
 def main():
     check_series()
     check_perturbation()
     check_reduction()
     check_q_nonzero()
     check_exact()
+    check_every()
     print('derive_asymptotic2_high: all checks passed')
     return 0
 
