@@ -66,5 +66,8 @@ int autobal_poly_positive_roots_ld_(const long double *h, size_t n, long double 
  * (1e-13 above) and the "near real" / Newton window `near` (1e-3 above) given. */
 int autobal_poly_positive_roots_tol_(const long double *h, size_t n, long double z2, double trim, double near,
                                      long double *z, size_t *nz, autobal_error *err);
+/* autobal_poly_roots with a workspace of its own, allocated and freed in the call (len - 1 roots into
+ * re, im).  AUTOBAL_ENOMEM ("polynomial roots: out of memory") or autobal_poly_roots' status. */
+int autobal_poly_roots_once_(const double *c, size_t len, double *re, double *im, autobal_error *err);
 
 #endif

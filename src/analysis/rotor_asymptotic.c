@@ -34,16 +34,10 @@ static int roots_xx(const cplx *x, size_t n, double *re, double *im, autobal_err
   cplx xc[5], pr[9];
   double cr[9];
   size_t i, len = 2 * n - 1;
-  autobal_poly_workspace *w;
-  int st;
   for (i = 0; i < n; i++) xc[i] = conj(x[i]);
   cmul(x, n, xc, n, pr);
   for (i = 0; i < len; i++) cr[i] = creal(pr[i]); /* X X* is real: the imaginary parts cancel */
-  w = autobal_poly_workspace_alloc(len - 1);
-  if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "asymptotic conditions: out of memory");
-  st = autobal_poly_roots(w, cr, len, re, im, err);
-  autobal_poly_workspace_free(w);
-  return st;
+  return autobal_poly_roots_once_(cr, len, re, im, err);
 }
 
 /* x(z), ascending complex coefficients; conj_coef = 1 evaluates X* instead. */
@@ -216,16 +210,6 @@ static cplx bzc(cplx Z[4][4][3], cplx s, const cplx b[4], const cplx c[4]) {
   return v;
 }
 
-/* Roots (re, im) of a real polynomial (ascending, length n <= 9). */
-static int roots_real(const double *p, size_t n, double *re, double *im, autobal_error *err) {
-  autobal_poly_workspace *w = autobal_poly_workspace_alloc(n - 1);
-  int st;
-  if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "asymptotic conditions: out of memory");
-  st = autobal_poly_roots(w, p, n, re, im, err);
-  autobal_poly_workspace_free(w);
-  return st;
-}
-
 /* Anisotropic supports: G = G+, Gm = G-, the rotor-housing's roots and the small parameter. The light-ball
  * roots r->ball_*, u and q, kappa, a are already set by the caller.  Fills rotor_*, light_small,
  * light_decided, light_applicable, G_minus_*, avg_small and clears the high-speed and undamped entries. */
@@ -248,7 +232,7 @@ static int aniso_rest(const autobal_rotor_closed *c, autobal_rotor_asymptotic *r
   for (k = 0; k < 9; k++) dr[k] = creal(dz[k]);
   for (k = 0; k < 7; k++) nn[k] = dzc[k] - dz[k], n2[k] = dzc2[k] - dz[k];
   for (k = 0; k < 8; k++) dd[k] = (double)(k + 1) * dz[k + 1];
-  if ((st = roots_real(dr, 9, rre, rim, err)) != 0) return st;
+  if ((st = autobal_poly_roots_once_(dr, 9, rre, rim, err)) != 0) return st;
   {
     cplx n6[7];
     size_t len = 7;
@@ -261,7 +245,7 @@ static int aniso_rest(const autobal_rotor_closed *c, autobal_rotor_asymptotic *r
       for (k = 0; k < len; k++) nc[k] = conj(n6[k]);
       cmul(n6, len, nc, len, pr);
       for (k = 0; k < 2 * len - 1; k++) cr[k] = creal(pr[k]);
-      if ((st = roots_real(cr, 2 * len - 1, zre, zim, err)) != 0) return st;
+      if ((st = autobal_poly_roots_once_(cr, 2 * len - 1, zre, zim, err)) != 0) return st;
       nr = 2 * (len - 1);
     }
   }

@@ -37,16 +37,6 @@ static cplx ceval2(const cplx *x, size_t n, cplx z) {
   return v;
 }
 
-/* real roots of the polynomial c (ascending, length len) */
-static int roots_real(const double *c, size_t len, double *re, double *im, autobal_error *err) {
-  autobal_poly_workspace *w = autobal_poly_workspace_alloc(len - 1);
-  int st;
-  if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "asymptotic conditions (two planes): out of memory");
-  st = autobal_poly_roots(w, c, len, re, im, err);
-  autobal_poly_workspace_free(w);
-  return st;
-}
-
 /* determinant of a 3x3 complex matrix */
 static cplx det3(cplx m[3][3]) {
   return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
@@ -271,7 +261,7 @@ int autobal_rotor_asymptotic2_conditions(const autobal_rotor_closed *c, autobal_
     size_t pick[8];
     int dec_unstable = 0, dec_stable = 1;
     for (i = 0; i < 9; i++) pr[i] = creal(pdet[i]); /* p is real: the imaginary parts are rounding */
-    if ((st = roots_real(pr, 9, r.ball_re, r.ball_im, err)) != 0) return st;
+    if ((st = autobal_poly_roots_once_(pr, 9, r.ball_re, r.ball_im, err)) != 0) return st;
     /* the roots of D D* (real, degree 8) for c_D and the rotor roots */
     {
       cplx Dc[5], DD[9];
@@ -279,7 +269,7 @@ int autobal_rotor_asymptotic2_conditions(const autobal_rotor_closed *c, autobal_
       for (i = 0; i < 5; i++) Dc[i] = conj(D[i]);
       cmul2(D, 5, Dc, 5, DD);
       for (i = 0; i < 9; i++) ddr[i] = creal(DD[i]);
-      if ((st = roots_real(ddr, 9, dre, dim_, err)) != 0) return st;
+      if ((st = autobal_poly_roots_once_(ddr, 9, dre, dim_, err)) != 0) return st;
     }
     cD = 4.0 / fabs(w);
     for (k = 0; k < 8; k++) cD += 1.0 / hypot(dre[k], dim_[k]);

@@ -1081,3 +1081,12 @@ int autobal_match_roots(size_t n, const double *a_re, const double *a_im, const 
   if (max_dist) *max_dist = sorted[lo];
   return AUTOBAL_SUCCESS;
 }
+
+int autobal_poly_roots_once_(const double *c, size_t len, double *re, double *im, autobal_error *err) {
+  autobal_poly_workspace *w = autobal_poly_workspace_alloc(len > 1 ? len - 1 : 1);
+  int st;
+  if (!w) return autobal_error_set(err, AUTOBAL_ENOMEM, "polynomial roots: out of memory");
+  st = autobal_poly_roots(w, c, len, re, im, err);
+  autobal_poly_workspace_free(w);
+  return st;
+}

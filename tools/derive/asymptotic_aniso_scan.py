@@ -18,15 +18,9 @@ import tempfile
 import h5py
 import numpy as np
 
-
-def rotor_matrices(L, w):
-    """M, H, K of (3.2) without balls, coordinates (x, y, alpha, beta) (as tests/app/rotor_stability_check.py)"""
-    M = np.diag([L["M"], L["M"], L["A"], L["A"]])
-    H = np.array([[L["h_x"], 0, 0, -L["h_xbeta"]], [0, L["h_y"], L["h_yalpha"], 0],
-                  [0, L["h_yalpha"], L["h_alpha"], L["C"] * w], [-L["h_xbeta"], 0, -L["C"] * w, L["h_beta"]]])
-    K = np.array([[L["c_x"], 0, 0, -L["c_xbeta"]], [0, L["c_y"], L["c_yalpha"], 0],
-                  [0, L["c_yalpha"], L["c_alpha"], 0], [-L["c_xbeta"], 0, 0, L["c_beta"]]])
-    return M, H, K
+# M, H, K of (3.2) without balls, coordinates (x, y, alpha, beta): the app tests' Python model
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'tests', 'app'))
+from rotor_stability_check import rotor_matrices  # noqa: E402
 
 
 def g_pm(L, w, d):
