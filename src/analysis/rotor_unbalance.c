@@ -725,7 +725,9 @@ static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unba
   qsort(uc, nu, sizeof uc[0], cmp_double);
   /* the critical u inside the inner range go to the sub-interval decision; those in the gaps aside */
   for (i = 0; i < nu; i++) {
-    if (!(uc[i] > out->u_min && uc[i] < out->u_max)) continue;
+    /* inside the enclosure; one at an end (to 1e-12 of the largest u, n^2 m^2 / 4: e.g. at the member on
+     * a line, q = n^2) is no cut */
+    if (!(uc[i] > out->u_min + 1e-12 * um * qn && uc[i] < out->u_max - 1e-12 * um * qn)) continue;
     if (uc[i] > ilo && uc[i] < ihi) {
       if (out->n_ucrit > 0 && uc[i] - out->u_crit[out->n_ucrit - 1] <= 1e-12 * uc[i]) continue;
       if (out->n_ucrit < AUTOBAL_ROTOR_MAX_UCRIT) out->u_crit[out->n_ucrit++] = uc[i];
