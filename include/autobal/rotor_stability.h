@@ -692,7 +692,8 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s
  * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
  * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC
- * or, for three balls, EVERY, full inertia, anisotropic supports). */
+ * or, for three to six balls, EVERY, full inertia, anisotropic supports).  Four to six balls with EVERY:
+ * a u sub-interval left undecided (no member found in it) makes the point MARGINAL at best. */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
                                                        const autobal_rotor_stab_options *opt, int param1,
                                                        const double *v1, size_t n1, int param2,
