@@ -555,6 +555,14 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
           for (i = 0; i < u->n_usub; i++) cli_json_string(&j, NULL, autobal_verdict_name(u->usub_verdict[i]));
           cli_json_array_end(&j);
           cli_json_quantities(&j, "u_sub_margin", u->usub_margin, u->n_usub, "1/s");
+          if (u->n_balls >= 4) { /* four or more balls: u_min, u_max enclose; the members found */
+            cli_json_quantity(&j, "u_min_inner", u->u_min_inner, "kg^2");
+            cli_json_quantity(&j, "u_max_inner", u->u_max_inner, "kg^2");
+            cli_json_quantity(&j, "u_gap", (u->u_min_inner - u->u_min) + (u->u_max - u->u_max_inner), "kg^2");
+            cli_json_bool(&j, "u_enclosure_complete", u->u_complete);
+            cli_json_int(&j, "u_boxes", u->u_boxes);
+            cli_json_int(&j, "u_sub_undecided", (long)u->n_uundecided);
+          }
         }
       }
       cli_json_quantities(&j, "critical_unbalance", u->s_crit, u->n_crit, "kg m");
@@ -641,6 +649,11 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       if (u->n_balls >= 3)
         printf("  %zu identical balls, unbalance_member = %s: u = |Q|^2/4 in [%.9g, %.9g] kg^2 over the range\n",
                u->n_balls, umember, u->u_min, u->u_max);
+      if (u->n_balls >= 4 && u->member_rule == AUTOBAL_ROTOR_UNBALANCE_EVERY)
+        printf("  (an enclosure: members found have u from %.9g to %.9g kg^2, every u between met; gap %.3g kg^2 "
+               "below, %.3g above; %ld boxes, %s; %zu sub-interval(s) of u undecided)\n",
+               u->u_min_inner, u->u_max_inner, u->u_min_inner - u->u_min, u->u_max - u->u_max_inner, u->u_boxes,
+               u->u_complete ? "closed to tolerance" : "budget reached", u->n_uundecided);
       if (sum.have_every2) {
         const autobal_rotor_unbalance_range2 *u2 = &sum.every2;
         printf("  two planes: plane 1 m0 r0 in [%.6g, %.6g] g mm (%s), plane 2 in [%.6g, %.6g] g mm (%s; %zu grid "
@@ -670,6 +683,10 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
         printf("  critical values of u (a root of Delta on the imaginary axis):%s\n",
                u->n_ucrit == 0 ? " none inside the range of u" : "");
         for (i = 0; i < u->n_ucrit; i++) {
+          if (u->n_balls >= 4) {
+            printf("    u = %.9g kg^2\n", u->u_crit[i]);
+            continue;
+          }
           printf("    u = %.9g kg^2, met by some member for m0 r0 in", u->u_crit[i]);
           for (k = 0; k < u->n_upiece; k++)
             if (u->upiece_crit[k] == i) printf(" [%.8g, %.8g]", u->upiece_lo[k] * 1e6, u->upiece_hi[k] * 1e6);

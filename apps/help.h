@@ -239,7 +239,7 @@
   "            (exact), plane 2's m0 r0 over its range unbalance2_min, unbalance2_max (default: plane 1's) by a\n" \
   "            certified box search (exact where decided; else its n_unbalance grid values, sampled)\n" \
   "            n_unbalance = 9   unbalance2_boxes = 0 (budget; 0: 100000, -1: no search, grid only)\n" \
-  "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: 3 balls only)\n" \
+  "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: 3 to 6 balls)\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
   "         /rotor/stability/every_unbalance (and .../speeds, two planes .../phase)\n" \
   HELP_DOCS_ROTOR

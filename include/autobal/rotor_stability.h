@@ -292,7 +292,8 @@ typedef struct autobal_rotor_stab_options {
  * unbalance"). */
 typedef enum autobal_rotor_unbalance_member {
   /* every member of the family (wherever the balls settle): three identical balls (exact range of
-     u = |Q|^2 / 4 in closed form); not available for n >= 4 (AUTOBAL_EUNSUPPORTED with a message) */
+     u = |Q|^2 / 4 in closed form); four to six (a certified enclosure of the range of u, members found
+     inside it); not available for n >= 7 (AUTOBAL_EUNSUPPORTED with a message) */
   AUTOBAL_ROTOR_UNBALANCE_EVERY = 0,
   /* the symmetric fan psi_i = psi0 + pi + (i - (n-1)/2) delta (AUTOBAL_ROTOR_MEMBER_SYMMETRIC) */
   AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC = 1
@@ -554,12 +555,25 @@ typedef struct autobal_rotor_unbalance_range {
   double usub_lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], usub_hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* kg^2 */
   int usub_verdict[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* AUTOBAL_VERDICT_* at the midpoint (constant inside) */
   double usub_margin[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1/s, the margin at the midpoint */
+  /* added at the end: four to six identical balls with member_rule EVERY (docs/rotor.md "Four or
+     more balls, every member").  u_min, u_max above are then an outer enclosure (every member has u
+     in it, by a branch-and-bound); the members found have u_min_inner and u_max_inner (every u
+     between is met).  A u sub-interval with no member found (between u_min and u_min_inner or
+     u_max_inner and u_max, past a critical u there) has usub_verdict AUTOBAL_ROTOR_VERDICT_NONE and
+     margin NaN; the verdict is then not "stable for all".  The fields n_upiece.. stay 0 (the
+     unbalances of a critical u are not listed).  For three balls u_min_inner = u_min, u_max_inner =
+     u_max, u_complete = 1; NaN and 0 otherwise. */
+  double u_min_inner, u_max_inner; /* kg^2, u of the least and the largest members found */
+  int u_complete;             /* 1: both searches closed to their tolerance (1e-9 n^2 in q = 4 u / m^2)
+                                 within the budget; 0: the enclosure is valid but wider */
+  long u_boxes;               /* boxes evaluated by the searches */
+  size_t n_uundecided;        /* u sub-intervals with no member (verdict NONE) */
 } autobal_rotor_unbalance_range;
 
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
  * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
  * m, r, h) with the member rule opt.unbalance_member: SYMMETRIC (the symmetric fan) for any n, EVERY
- * (every member of the family, exact range of u; n_ucrit.. filled) for n = 3 only), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
+ * (every member of the family, n_ucrit.. filled: exact range of u for n = 3, a certified enclosure for n = 4..6; refused above), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
  * otherwise, with a message; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
  * [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only all_stable, margin_worst, n_missed,
  * evaluations and one sub-interval filled).  Method (guaranteed, not
@@ -678,7 +692,8 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s
  * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
  * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC
- * or, for three balls, EVERY, full inertia, anisotropic supports). */
+ * or, for three to six balls, EVERY, full inertia, anisotropic supports).  Four to six balls with EVERY:
+ * a u sub-interval left undecided (no member found in it) makes the point MARGINAL at best. */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
                                                        const autobal_rotor_stab_options *opt, int param1,
                                                        const double *v1, size_t n1, int param2,

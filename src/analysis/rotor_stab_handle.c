@@ -178,6 +178,7 @@ void autobal_rotor_stab_free(autobal_rotor_stab *s) {
   if (s->perm_full) gsl_permutation_free(s->perm_full);
   if (s->vec_full) gsl_vector_free(s->vec_full);
   autobal_transient_free(s->tr);
+  free(s->everyn);
   free(s->store);
   free(s);
 }

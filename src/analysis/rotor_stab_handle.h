@@ -57,6 +57,8 @@ struct autobal_rotor_stab {
   autobal_error err;
   autobal_rotor_stab_cancel_fn cancel; /* autobal_rotor_stab_set_cancel (NULL: none) */
   void *cancel_user;
+  struct autobal_everyn_ *everyn;  /* the every-unbalance enclosure of n >= 4 balls, kept for the last
+                                      (n, t range) analysed (rotor_unbalance.c); NULL before */
 };
 
 /* Non-zero (message "cancelled by the caller" on the handle, status AUTOBAL_ECANCELLED) when

@@ -45,7 +45,16 @@
  * unbalances of a critical u are {t : q_min(t) <= q <= q_max(t)}, at most three intervals, in closed
  * form.
  *
- * May use: the handle (rotor_stab_handle.h), rotor_closed.h, rotor_fan.h, the numerics (autobal/stability.h). */
+ *
+ * Four to six identical balls, member rule EVERY (docs/rotor.md "Four or more balls, every member"):
+ * the same reduction to u, with the range of q over the members of [ta, tb] enclosed by the
+ * branch-and-bound of rotor_every_n.c (outer bounds, certified; members found give inner bounds, and
+ * every q between them is met: the members form a connected set).  The critical u cut the outer
+ * enclosure; each sub-interval that meets the inner range is decided at members built there (all n
+ * angles given), their u recomputed; one that lies wholly in the gap between the bounds is left
+ * undecided (verdict NONE; then not "stable for all").
+ *
+ * May use: the handle (rotor_stab_handle.h), rotor_closed.h, rotor_fan.h, rotor_every_n.h, the numerics (autobal/stability.h). */
 #include "autobal/rotor_stability.h"
 #include "autobal/stability.h"
 
@@ -55,6 +64,7 @@
 #include <string.h>
 
 #include "analysis/rotor_closed.h"
+#include "analysis/rotor_every_n.h"
 #include "analysis/rotor_fan.h"
 #include "analysis/rotor_stab_handle.h"
 #include "analysis/rotor_stability.h"
@@ -241,14 +251,16 @@ static double e3_phi_of_q(double t, double q) {
 }
 
 /* The balls' data of the every-unbalance analysis: two balls (m1, m2, a1, a2), a fan, or three balls
- * with every member (every3: ta, tb = s_lo / a, s_hi / a; angle: ball 1 of the FREE member). */
+ * with every member (every3: ta, tb = s_lo / a, s_hi / a; angle: ball 1 of the FREE member), or four to
+ * six (everyn: angle[0..n-1] of the GIVEN member; en the enclosure). */
 typedef struct balls_info {
   size_t nb;
   double m1, m2, a1, a2, r0;
   sym_fan fan;
-  int every3;
+  int every3, everyn;
   double ta, tb;
   double *angle;
+  const autobal_everyn_ *en;
 } balls_info;
 
 /* The unbalances of a critical u: two balls by the closed form, a fan by fan_s_of_u. */
@@ -379,14 +391,15 @@ static int check_fan(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info
                                "plane1.ball_radius and plane1.ball_damping equal for every ball; ball %zu differs "
                                "from ball 1)",
                                n, i + 1);
-  if (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && n != 3)
+  if (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && n > AUTOBAL_EVERYN_MAX)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
                              "every unbalance: with %zu balls the member of the family matters; unbalance_member = "
-                             "every (every member) is available for three balls only (for four or more the exact "
-                             "range of |Q| over the members is not known): use unbalance_member = symmetric (the "
+                             "every (every member) is available for 3 to %d balls (the search for the range of "
+                             "|Q| over the members grows too fast above): use unbalance_member = symmetric (the "
                              "symmetric fan, the default balanced configuration)",
-                             n);
-  bi->every3 = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC;
+                             n, AUTOBAL_EVERYN_MAX);
+  bi->every3 = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && n == 3;
+  bi->everyn = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && n >= 4;
   bi->nb = n;
   bi->m1 = bi->m2 = pl->ball_mass[0];
   bi->a1 = bi->a2 = pl->ball_mass[0] * pl->ball_radius[0];
@@ -396,7 +409,7 @@ static int check_fan(autobal_rotor_stab *s, double s_lo, double s_hi, balls_info
                              "where the %zu balls (m r = %.9g kg m each) balance it off a line through the axis "
                              "(the closure of Delta), with min <= max",
                              s_lo, s_hi, (double)n * bi->a1, n, bi->a1);
-  if (bi->every3) bi->ta = s_lo / bi->a1, bi->tb = s_hi / bi->a1;
+  if (bi->every3 || bi->everyn) bi->ta = s_lo / bi->a1, bi->tb = s_hi / bi->a1;
   else fan_init(&bi->fan, n, bi->m1, bi->a1, s_lo, s_hi);
   return AUTOBAL_SUCCESS;
 }
@@ -484,6 +497,7 @@ static int critical_u(autobal_rotor_stab *s, double r0, double s_mid, double uc[
 }
 
 static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_rotor_unbalance_range *out);
+static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unbalance_range *out);
 
 /* The core at the handle's current omega (m0 is changed; the caller restores it). */
 static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi, double *angle,
@@ -498,13 +512,13 @@ static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi,
   out->omega = s->cur.omega;
   out->n_balls = s->cur.plane[0].n_balls;
   out->member_rule = s->opt.unbalance_member;
-  out->u_min = out->u_max = NAN;
+  out->u_min = out->u_max = out->u_min_inner = out->u_max_inner = NAN;
   if ((st = check_domain(s, s_lo, s_hi, &bi)) != AUTOBAL_SUCCESS) return st;
   r0 = bi.r0;
-  if (bi.every3) {
+  if (bi.every3 || bi.everyn) {
     if (angle == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: internal (no member angle)");
     bi.angle = angle;
-    return every3_core(s, &bi, out);
+    return bi.every3 ? every3_core(s, &bi, out) : everyn_core(s, &bi, out);
   }
   if (bi.nb >= 3) fan_u_range(&bi.fan, &out->u_min, &out->u_max);
   if ((st = critical_u(s, r0, 0.5 * (s_lo + s_hi), uc, &nu)) != AUTOBAL_SUCCESS) return st;
@@ -585,8 +599,9 @@ static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_roto
   if (ta < 2.0 && tb > 2.0) qlo = 0.0;
   qhi = fmax(e3_qmax(ta), e3_qmax(tb));
   if (ta < 1.0 && tb > 1.0) qhi = 9.0;
-  out->u_min = um * qlo;
-  out->u_max = um * qhi;
+  out->u_min = out->u_min_inner = um * qlo;
+  out->u_max = out->u_max_inner = um * qhi;
+  out->u_complete = 1;
   *bi->angle = s->cur.plane[0].psi0 + M_PI; /* phi = 0: a member for every t */
   if ((st = critical_u(s, bi->r0, 0.5 * (out->s_lo + out->s_hi), uc, &nu)) != AUTOBAL_SUCCESS) return st;
   qsort(uc, nu, sizeof uc[0], cmp_double);
@@ -623,27 +638,181 @@ static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_roto
   return AUTOBAL_SUCCESS;
 }
 
+/* ---- four to six identical balls, every member ---- */
+
+/* Box budget and tolerance (in q) of the enclosure's two searches (rotor_every_n.c). */
+#define EVERYN_BOXES 4000000L
+#define EVERYN_TOL_REL 1e-9
+
+/* Plane 1's GIVEN member set to m (angles from S, S opposite the unbalance), analysed at its own
+ * unbalance t m r; the member's u from the handle's angles is checked against m's. */
+static int verdict_member(autobal_rotor_stab *s, const balls_info *bi, const autobal_everyn_member_ *mem,
+                          double *margin, int *verdict) {
+  const size_t n = bi->nb;
+  double psi[AUTOBAL_EVERYN_MAX], re = 0.0, im = 0.0, qm;
+  size_t k;
+  int st;
+  for (k = 0; k < n; k++) bi->angle[k] = s->cur.plane[0].psi0 + M_PI + mem->phi[k];
+  if ((st = verdict_at(s, bi->r0, mem->t * bi->a1, margin, verdict)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_balanced_angles(s, psi, n)) != AUTOBAL_SUCCESS) return st;
+  for (k = 0; k < n; k++) re += cos(2.0 * psi[k]), im += sin(2.0 * psi[k]);
+  qm = re * re + im * im;
+  if (!(fabs(qm - mem->q) <= 1e-9 * (double)(n * n)))
+    return autobal_error_set(&s->err, AUTOBAL_ENUMERIC,
+                             "every unbalance, every member: the member built with u = %.9g kg^2 has u = %.9g kg^2 "
+                             "in the analysis (internal error)",
+                             0.25 * bi->m1 * bi->m1 * mem->q, 0.25 * bi->m1 * bi->m1 * qm);
+  return AUTOBAL_SUCCESS;
+}
+
+/* Verdict and margin at u (kg^2): a member of [ta, tb] with this u (u clamped to the members found,
+ * and below the one member on a line, q = n^2, where the closure does not hold), built from the
+ * enclosure's members by Newton steps; it must reach u to 1e-13 n^2 in q. */
+static int verdict_at_un(autobal_rotor_stab *s, const balls_info *bi, double u, double *margin, int *verdict) {
+  const size_t n = bi->nb;
+  const double m = bi->m1, qn = (double)(n * n), tol = 1e-13 * qn;
+  double q = 4.0 * u / (m * m);
+  autobal_everyn_member_ mem;
+  if (q > bi->en->q_hi_in) q = bi->en->q_hi_in;
+  if (q > qn * (1.0 - 1e-6)) q = qn * (1.0 - 1e-6);
+  if (q < bi->en->q_lo_in) q = bi->en->q_lo_in;
+  if (autobal_everyn_member_at_(bi->en, q, tol, &mem) != 0)
+    return autobal_error_set(&s->err, AUTOBAL_ENUMERIC,
+                             "every unbalance, every member: no member with u = %.9g kg^2 was built (the nearest "
+                             "has %.9g kg^2; %zu balls, m0 r0 in [%.9g, %.9g] kg m)",
+                             0.25 * m * m * q, 0.25 * m * m * mem.q, n, bi->ta * bi->a1, bi->tb * bi->a1);
+  return verdict_member(s, bi, &mem, margin, verdict);
+}
+
+static int at_un(autobal_rotor_stab *s, const void *ctx, double x, double *margin, int *verdict) {
+  return verdict_at_un(s, (const balls_info *)ctx, x, margin, verdict);
+}
+
+/* Four to six identical balls, every member: the enclosure of u (kept on the handle for the same n
+ * and range), the critical u inside it, the verdicts of the sub-intervals on the inner range [members
+ * found], the sub-intervals wholly in the gap undecided. */
+static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unbalance_range *out) {
+  const size_t n = bi->nb;
+  const double m = bi->m1, um = 0.25 * m * m, qn = (double)(n * n);
+  double uc[12], ilo, ihi, gap_lo[AUTOBAL_ROTOR_MAX_UCRIT], gap_hi[AUTOBAL_ROTOR_MAX_UCRIT];
+  size_t nu = 0, i, ngl = 0, ngh = 0;
+  int st, worst = AUTOBAL_VERDICT_STABLE;
+  autobal_everyn_ *e = s->everyn;
+  if (e == NULL || e->n != n || e->ta != bi->ta || e->tb != bi->tb) {
+    if (e == NULL && (e = s->everyn = (autobal_everyn_ *)malloc(sizeof *e)) == NULL)
+      return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance: no memory for the member search");
+    if (autobal_everyn_range_(e, n, bi->ta, bi->tb, EVERYN_BOXES, EVERYN_TOL_REL * qn) != 0) {
+      e->n = 0;
+      return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance: the member search for %zu balls failed (no memory)", n);
+    }
+  }
+  bi->en = e;
+  out->u_min = um * e->q_lo;
+  out->u_max = um * e->q_hi;
+  out->u_min_inner = um * e->q_lo_in;
+  out->u_max_inner = um * fmin(e->q_hi_in, qn * (1.0 - 1e-6));
+  out->u_complete = e->complete;
+  out->u_boxes = e->boxes;
+  ilo = out->u_min_inner, ihi = out->u_max_inner;
+  /* a member for the crossing polynomial (any member of an unbalance in the range will do) */
+  {
+    autobal_everyn_member_ fan;
+    autobal_everyn_fan_(n, 0.5 * (bi->ta + bi->tb), &fan);
+    fan.t = 0.5 * (bi->ta + bi->tb);
+    for (i = 0; i < n; i++) bi->angle[i] = s->cur.plane[0].psi0 + M_PI + fan.phi[i];
+    if ((st = critical_u(s, bi->r0, fan.t * bi->a1, uc, &nu)) != AUTOBAL_SUCCESS) return st;
+  }
+  qsort(uc, nu, sizeof uc[0], cmp_double);
+  /* the critical u inside the inner range go to the sub-interval decision; those in the gaps aside */
+  for (i = 0; i < nu; i++) {
+    /* inside the enclosure; one at an end (to 1e-12 of the largest u, n^2 m^2 / 4: e.g. at the member on
+     * a line, q = n^2) is no cut */
+    if (!(uc[i] > out->u_min + 1e-12 * um * qn && uc[i] < out->u_max - 1e-12 * um * qn)) continue;
+    if (uc[i] > ilo && uc[i] < ihi) {
+      if (out->n_ucrit > 0 && uc[i] - out->u_crit[out->n_ucrit - 1] <= 1e-12 * uc[i]) continue;
+      if (out->n_ucrit < AUTOBAL_ROTOR_MAX_UCRIT) out->u_crit[out->n_ucrit++] = uc[i];
+    } else if (uc[i] <= ilo) {
+      if (ngl < AUTOBAL_ROTOR_MAX_UCRIT) gap_lo[ngl++] = uc[i];
+    } else if (ngh < AUTOBAL_ROTOR_MAX_UCRIT)
+      gap_hi[ngh++] = uc[i];
+  }
+  {
+    sub_result sr = {out->u_crit, &out->n_ucrit, out->usub_lo, out->usub_hi, out->usub_margin, out->usub_verdict,
+                     &out->n_usub, &out->all_stable, &out->margin_worst, &out->evaluations, &out->n_missed, 0};
+    if ((st = decide_subintervals(s, at_un, bi, ilo, ihi, &sr)) != AUTOBAL_SUCCESS) return st;
+    worst = sr.worst;
+  }
+  /* the sub-intervals reach the outer bounds: the first and the last extended to the nearest critical
+   * u in the gap (or the bound); those wholly in a gap (past a critical u there) are undecided */
+  if (out->n_usub > 0 && ngl + ngh + out->n_usub <= AUTOBAL_ROTOR_MAX_UCRIT + 1 &&
+      out->n_ucrit + ngl + ngh <= AUTOBAL_ROTOR_MAX_UCRIT) {
+    double lo2[AUTOBAL_ROTOR_MAX_UCRIT + 1], hi2[AUTOBAL_ROTOR_MAX_UCRIT + 1], mg2[AUTOBAL_ROTOR_MAX_UCRIT + 1];
+    double cr2[AUTOBAL_ROTOR_MAX_UCRIT];
+    int v2[AUTOBAL_ROTOR_MAX_UCRIT + 1];
+    size_t ns = 0, nc = 0;
+    for (i = 0; i < ngl; i++) {
+      lo2[ns] = i == 0 ? out->u_min : gap_lo[i - 1], hi2[ns] = gap_lo[i], v2[ns] = AUTOBAL_ROTOR_VERDICT_NONE,
+      mg2[ns] = NAN, ns++;
+      cr2[nc++] = gap_lo[i];
+    }
+    for (i = 0; i < out->n_ucrit; i++) cr2[nc++] = out->u_crit[i];
+    for (i = 0; i < out->n_usub; i++) {
+      lo2[ns] = out->usub_lo[i], hi2[ns] = out->usub_hi[i], v2[ns] = out->usub_verdict[i], mg2[ns] = out->usub_margin[i];
+      if (i == 0) lo2[ns] = ngl > 0 ? gap_lo[ngl - 1] : out->u_min;
+      if (i + 1 == out->n_usub) hi2[ns] = ngh > 0 ? gap_hi[0] : out->u_max;
+      ns++;
+    }
+    for (i = 0; i < ngh; i++) {
+      lo2[ns] = gap_hi[i], hi2[ns] = i + 1 < ngh ? gap_hi[i + 1] : out->u_max, v2[ns] = AUTOBAL_ROTOR_VERDICT_NONE,
+      mg2[ns] = NAN, ns++;
+      cr2[nc++] = gap_hi[i];
+    }
+    out->n_uundecided = ngl + ngh;
+    out->n_ucrit = nc;
+    for (i = 0; i < nc; i++) out->u_crit[i] = cr2[i];
+    out->n_usub = ns;
+    for (i = 0; i < ns; i++)
+      out->usub_lo[i] = lo2[i], out->usub_hi[i] = hi2[i], out->usub_verdict[i] = v2[i], out->usub_margin[i] = mg2[i];
+  } else if (ngl + ngh > 0)
+    out->n_uundecided = ngl + ngh;
+  if (out->n_uundecided > 0) out->all_stable = 0;
+  /* the fields of one unbalance: one sub-interval, the worst verdict */
+  out->n_crit = 0;
+  out->n_sub = 1;
+  out->sub_lo[0] = out->s_lo;
+  out->sub_hi[0] = out->s_hi;
+  out->sub_verdict[0] = worst;
+  out->sub_margin[0] = out->margin_worst;
+  return AUTOBAL_SUCCESS;
+}
+
 /* The core with plane 1's member set to the rule's (n >= 3 balls, SYMMETRIC: the symmetric fan) for the
  * verdicts; the member option is restored afterwards. */
 static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
   autobal_rotor_member save;
-  double angle = 0.0; /* ball 1 of the FREE member (three balls, every member) */
+  /* ball 1 of the FREE member (three balls, every member); every ball of the GIVEN member (four to six) */
+  double angle[AUTOBAL_EVERYN_MAX] = {0.0};
   int st;
-  const int every3 = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && s->cur.plane[0].n_balls == 3;
-  if (s->n_planes != 1 || s->cur.plane[0].n_balls < 3 ||
-      (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && !every3))
+  const size_t nb = s->cur.plane[0].n_balls;
+  const int every3 = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && nb == 3;
+  const int everyn = s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && nb >= 4 && nb <= AUTOBAL_EVERYN_MAX;
+  if (s->n_planes != 1 || nb < 3 || (s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC && !every3 && !everyn))
     return every_unbalance_core(s, s_lo, s_hi, NULL, out);
   save = s->opt.member[0];
   if (every3) {
     s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_FREE;
     s->opt.member[0].n_angles = 1;
-    s->opt.member[0].angles = &angle;
+    s->opt.member[0].angles = angle;
+  } else if (everyn) {
+    s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_GIVEN;
+    s->opt.member[0].n_angles = nb;
+    s->opt.member[0].angles = angle;
   } else {
     s->opt.member[0].kind = AUTOBAL_ROTOR_MEMBER_SYMMETRIC;
     s->opt.member[0].n_angles = 0;
     s->opt.member[0].angles = NULL;
   }
-  st = every_unbalance_core(s, s_lo, s_hi, &angle, out);
+  st = every_unbalance_core(s, s_lo, s_hi, angle, out);
   s->opt.member[0] = save;
   return st;
 }

@@ -575,8 +575,15 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
         st = autobal_archive_dim(a, ge, "u_sub_interval", u->n_usub, "index of a sub-interval of [u_min, u_max] between critical values of u");
         if (!st) st = autobal_archive_var(a, ge, "u_sub_lo", 1, dus, u->usub_lo, "kg^2", "lower end of the sub-interval of u");
         if (!st) st = autobal_archive_var(a, ge, "u_sub_hi", 1, dus, u->usub_hi, "kg^2", "upper end of the sub-interval of u");
-        if (!st) st = autobal_archive_var_int(a, ge, "u_sub_verdict", 1, dus, v, "1", "verdict of every member whose u lies inside the sub-interval: 1 stable, 0 marginal, -1 unstable");
+        if (!st) st = autobal_archive_var_int(a, ge, "u_sub_verdict", 1, dus, v, "1", "verdict of every member whose u lies inside the sub-interval: 1 stable, 0 marginal, -1 unstable, -2 undecided (no member found there)");
         if (!st) st = autobal_archive_var(a, ge, "u_sub_margin", 1, dus, u->usub_margin, "1/s", "stability margin (largest real part) at the sub-interval's midpoint");
+      }
+      if (!st && u->n_balls >= 4) { /* four or more balls: u_min, u_max enclose; the members found */
+        st = autobal_archive_attr_double(a, ge, "u_min_inner", u->u_min_inner, "kg^2");
+        if (!st) st = autobal_archive_attr_double(a, ge, "u_max_inner", u->u_max_inner, "kg^2");
+        if (!st) st = autobal_archive_attr_int(a, ge, "u_enclosure_complete", u->u_complete);
+        if (!st) st = autobal_archive_attr_int(a, ge, "u_boxes", u->u_boxes);
+        if (!st) st = autobal_archive_attr_int(a, ge, "u_sub_undecided", (long)u->n_uundecided);
       }
     }
     if (!st && u->n_sub > 0) {

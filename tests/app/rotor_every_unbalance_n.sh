@@ -7,7 +7,7 @@
 #  (b) u_min, u_max against NumPy: the symmetric fan solved by SciPy's brentq on a dense grid of
 #      unbalances, |sum m e^{2 i psi}|^2 / 4 (not the Chebyshev forms);
 #  (c) the archive attributes; the map with 4 balls; two balls print no member rule;
-#  (d) refusals, exit 3, nothing written: unbalance_member = every with 4 balls (3 only), unequal balls
+#  (d) refusals, exit 3, nothing written: unbalance_member = every with 7 balls (3 to 6 only), unequal balls
 #      (naming the keys), an unknown rule.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
@@ -85,9 +85,10 @@ printf '[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\ncritic
   && ok "two balls: no member rule, no u range in the output" || bad "two balls output changed"
 
 # (d) refusals
-printf "${balls4}[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\n" > d1.ini
+balls7='[plane1]\nball_mass = 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05\nball_radius = 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1\nball_psi = 1, 2, 3, 4, 5, 6, 0\nball_rate = 0, 0, 0, 0, 0, 0, 0\n'
+printf "${balls7}[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\n" > d1.ini
 expect 3 "unbalance_member = symmetric" "$AUTOBAL" rotor stability d1.ini -o d1.h5
-[ ! -e d1.h5 ] && ok "rule every with 4 balls: refused, nothing written" || bad "d1.h5 written"
+[ ! -e d1.h5 ] && ok "rule every with 7 balls: refused, nothing written" || bad "d1.h5 written"
 printf '[plane1]\nball_mass = 0.05, 0.05, 0.06\nball_radius = 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1\nball_psi = 1, 2.5, 3\nball_rate = 0, 0, 0\n[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\nunbalance_member = symmetric\n' > d2.ini
 expect 3 "plane1.ball_mass" "$AUTOBAL" rotor stability d2.ini -o d2.h5
 [ ! -e d2.h5 ] && ok "unequal balls: refused, nothing written" || bad "d2.h5 written"
