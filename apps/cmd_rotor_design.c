@@ -134,32 +134,40 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   if ((rc = cli_get_string(ctx, "stability", "unbalance_member", umember, &umember, NULL))) goto done;
   if ((rc = cli_get_string(ctx, "design", "unbalance_member", umember, &umember, NULL))) goto done;
   /* two planes (docs/rotor.md "Design", "Two planes") */
-  if ((rc = cli_get_int(ctx, "design", "planes", planes, &planes, NULL))) goto done;
-  if ((rc = need_count(ctx, "planes", planes, 1, 2))) goto done;
-  if (planes == 2) {
-    int have_t = 0, h1 = 0, h2 = 0;
+  {
+    int have_t = 0, h1 = 0, h2 = 0, hn = 0, hb = 0;
     long nt = 0;
+    if ((rc = cli_get_int(ctx, "design", "planes", planes, &planes, NULL))) goto done;
+    if ((rc = need_count(ctx, "planes", planes, 1, 2))) goto done;
     if ((rc = cli_get_int(ctx, "design", "n_transient", 0, &nt, &have_t))) goto done;
-    if (!have_t) n_transient = 0;
     if ((rc = cli_get_quantity(ctx, "design", "unbalance2_min", "kg m", NAN, &o.unbalance2_min, &h1))) goto done;
     if ((rc = cli_get_quantity(ctx, "design", "unbalance2_max", "kg m", NAN, &o.unbalance2_max, &h2))) goto done;
-    if (h1 != h2) {
-      rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance2_min and unbalance2_max go together (give both, or neither for plane 1's range)");
+    if ((rc = cli_get_int(ctx, "design", "n_unbalance2", n_unb2, &n_unb2, &hn))) goto done;
+    if ((rc = cli_get_int(ctx, "design", "unbalance2_boxes", boxes2, &boxes2, &hb))) goto done;
+    if (planes == 1 && (h1 || h2 || hn || hb)) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: %s is for two planes: allowed with planes = 2 only (here planes = 1)",
+                    h1 ? "unbalance2_min" : h2 ? "unbalance2_max" : hn ? "n_unbalance2" : "unbalance2_boxes");
       goto done;
     }
-    if (h1 && (rc = need_range(ctx, "unbalance2_min", o.unbalance2_min, "unbalance2_max", o.unbalance2_max, "kg m", 0, 1)))
-      goto done;
-    if ((rc = cli_get_int(ctx, "design", "n_unbalance2", n_unb2, &n_unb2, NULL))) goto done;
-    if ((rc = need_count(ctx, "n_unbalance2", n_unb2, 2, 100))) goto done;
-    if ((rc = cli_get_int(ctx, "design", "unbalance2_boxes", boxes2, &boxes2, NULL))) goto done;
-    if ((rc = need_count(ctx, "unbalance2_boxes", boxes2, -1, 1000000000L))) goto done;
-    o.planes = 2;
-    if (!h1) {
-      o.unbalance2_min = NAN; /* plane 1's range, set below once it is read */
-      o.unbalance2_max = NAN;
+    if (planes == 2) {
+      if (!have_t) n_transient = 0;
+      if (h1 != h2) {
+        rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance2_min and unbalance2_max go together (give both, or neither for plane 1's range)");
+        goto done;
+      }
+      if (h1 && (rc = need_range(ctx, "unbalance2_min", o.unbalance2_min, "unbalance2_max", o.unbalance2_max, "kg m", 0, 1)))
+        goto done;
+      if ((rc = need_count(ctx, "n_unbalance2", n_unb2, 2, 100))) goto done;
+      if ((rc = need_count(ctx, "unbalance2_boxes", boxes2, -1, 1000000000L))) goto done;
+      o.planes = 2;
+      if (!h1) {
+        o.unbalance2_min = NAN; /* plane 1's range, set below once it is read */
+        o.unbalance2_max = NAN;
+      }
+      o.n_unbalance2 = (size_t)n_unb2;
+      o.unbalance2_boxes = boxes2;
     }
-    o.n_unbalance2 = (size_t)n_unb2;
-    o.unbalance2_boxes = boxes2;
   }
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if ((rc = need_count(ctx, "n_balls_min", n_bmin, 2, AUTOBAL_DESIGN_MAX_BALLS)) ||
