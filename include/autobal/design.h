@@ -26,7 +26,10 @@
  * Number of balls: options.n_balls_min .. n_balls_max identical balls (default 2 .. 2); n >= 3 with
  * the member rule SYMMETRIC only (the symmetric fan; the verdict says so).
  *
- * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, balls that differ
+ * Two planes: options.planes = 2 (the same two-ball balancer in both planes of a two-plane machine;
+ * see the options' last fields).
+ *
+ * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes with planes = 1, balls that differ
  * within a design, the full inertia model, anisotropic supports, a motor drive, gravity.
  *
  * Units: SI inside (kg, m, kg/s, rad/s, 1/s, kg m).  Threads: none (one handle per call).  Errors
