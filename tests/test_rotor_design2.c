@@ -250,6 +250,18 @@ static void test_refusals(void) {
   CHECK_STATUS("three balls", autobal_study_rotor_design(&p, &b, NULL, &S, &err), AUTOBAL_EUNSUPPORTED);
   CHECK_MSG("names n_balls_max", err.message, "n_balls_max");
   autobal_study_rotor_design_summary_free(&S);
+  {
+    autobal_rotor_design d;
+    double rho = 0.0;
+    memset(&d, 0, sizeof d);
+    d.mass = 0.04, d.radius = 0.1, d.damping = 0.5, d.position = 0.1;
+    CHECK_STATUS("margin of one design, two planes", autobal_study_rotor_design_margin(&p, &o, &d, &rho, &err),
+                 AUTOBAL_EUNSUPPORTED);
+    CHECK_MSG("names planes", err.message, "planes = 2");
+    CHECK_STATUS("transients of one design, two planes", autobal_study_rotor_design_transients(&p, &o, &d, &err),
+                 AUTOBAL_EUNSUPPORTED);
+    CHECK_MSG("names planes", err.message, "planes = 2");
+  }
   b = o;
   b.unbalance2_boxes = -2;
   CHECK_STATUS("boxes", autobal_study_rotor_design(&p, &b, NULL, &S, &err), AUTOBAL_EINVAL);

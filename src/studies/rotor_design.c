@@ -1346,6 +1346,10 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   c.err = err;
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (c.o.planes == 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "options: planes = 2: the robust margin of one design is for one plane (allowed planes = 1); "
+                             "two-plane margins come from autobal_study_rotor_design (sampled)");
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
   c.work = *p;
@@ -1384,6 +1388,9 @@ int autobal_study_rotor_design_transients(const autobal_rotor_params *p, const a
   c.err = err;
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (c.o.planes == 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "options: planes = 2: transients of two-plane designs are not implemented (allowed planes = 1)");
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: mass, radius, damping must be > 0, position finite");
   design->p_balance = design->ttb_median = design->ttb_worst = NAN;
