@@ -78,7 +78,7 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
        n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
        n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
   const char *rank_by = "margin", *umember = "every";
-  long n_bmin = 2, n_bmax = 2;
+  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0;
   double balance_from = NAN;
   int have_from = 0, profile;
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
@@ -133,6 +133,42 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   /* the member rule: [design] unbalance_member, else what [stability] says, else every */
   if ((rc = cli_get_string(ctx, "stability", "unbalance_member", umember, &umember, NULL))) goto done;
   if ((rc = cli_get_string(ctx, "design", "unbalance_member", umember, &umember, NULL))) goto done;
+  /* two planes (docs/rotor.md "Design", "Two planes") */
+  {
+    int have_t = 0, h1 = 0, h2 = 0, hn = 0, hb = 0;
+    long nt = 0;
+    if ((rc = cli_get_int(ctx, "design", "planes", planes, &planes, NULL))) goto done;
+    if ((rc = need_count(ctx, "planes", planes, 1, 2))) goto done;
+    if ((rc = cli_get_int(ctx, "design", "n_transient", 0, &nt, &have_t))) goto done;
+    if ((rc = cli_get_quantity(ctx, "design", "unbalance2_min", "kg m", NAN, &o.unbalance2_min, &h1))) goto done;
+    if ((rc = cli_get_quantity(ctx, "design", "unbalance2_max", "kg m", NAN, &o.unbalance2_max, &h2))) goto done;
+    if ((rc = cli_get_int(ctx, "design", "n_unbalance2", n_unb2, &n_unb2, &hn))) goto done;
+    if ((rc = cli_get_int(ctx, "design", "unbalance2_boxes", boxes2, &boxes2, &hb))) goto done;
+    if (planes == 1 && (h1 || h2 || hn || hb)) {
+      rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[design]: %s is for two planes: allowed with planes = 2 only (here planes = 1)",
+                    h1 ? "unbalance2_min" : h2 ? "unbalance2_max" : hn ? "n_unbalance2" : "unbalance2_boxes");
+      goto done;
+    }
+    if (planes == 2) {
+      if (!have_t) n_transient = 0;
+      if (h1 != h2) {
+        rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance2_min and unbalance2_max go together (give both, or neither for plane 1's range)");
+        goto done;
+      }
+      if (h1 && (rc = need_range(ctx, "unbalance2_min", o.unbalance2_min, "unbalance2_max", o.unbalance2_max, "kg m", 0, 1)))
+        goto done;
+      if ((rc = need_count(ctx, "n_unbalance2", n_unb2, 2, 100))) goto done;
+      if ((rc = need_count(ctx, "unbalance2_boxes", boxes2, -1, 1000000000L))) goto done;
+      o.planes = 2;
+      if (!h1) {
+        o.unbalance2_min = NAN; /* plane 1's range, set below once it is read */
+        o.unbalance2_max = NAN;
+      }
+      o.n_unbalance2 = (size_t)n_unb2;
+      o.unbalance2_boxes = boxes2;
+    }
+  }
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if ((rc = need_count(ctx, "n_balls_min", n_bmin, 2, AUTOBAL_DESIGN_MAX_BALLS)) ||
       (rc = need_count(ctx, "n_balls_max", n_bmax, n_bmin, AUTOBAL_DESIGN_MAX_BALLS)))
@@ -230,6 +266,10 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                   "[design]: unbalance_min and unbalance_max are required (the range of m0 r0 the machine meets, "
                   "e.g. unbalance_min = 500 g mm, unbalance_max = 4000 g mm)");
     goto done;
+  }
+  if (o.planes == 2 && isnan(o.unbalance2_min)) {
+    o.unbalance2_min = o.unbalance_min;
+    o.unbalance2_max = o.unbalance_max;
   }
   if ((rc = need_range(ctx, "speed_min", o.omega_min, "speed_max", o.omega_max, "rad/s", 1, 1)) ||
       (rc = need_range(ctx, "unbalance_min", o.unbalance_min, "unbalance_max", o.unbalance_max, "kg m", 0, 1)) ||
@@ -336,6 +376,15 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     cli_json_quantity(&j, "unbalance_min", o.unbalance_min, "kg m");
     cli_json_quantity(&j, "unbalance_max", o.unbalance_max, "kg m");
     cli_json_quantity(&j, "margin", o.margin, "1/s");
+    if (o.planes == 2) {
+      cli_json_int(&j, "planes", 2);
+      cli_json_quantity(&j, "unbalance2_min", o.unbalance2_min, "kg m");
+      cli_json_quantity(&j, "unbalance2_max", o.unbalance2_max, "kg m");
+      cli_json_int(&j, "n_unbalance2", (long)o.n_unbalance2);
+      cli_json_int(&j, "two_plane_verdicts", (long)sum.verdicts2);
+      cli_json_int(&j, "n_undecided", (long)sum.n_undecided_cells);
+      cli_json_quantity(&j, "seconds", seconds, "s");
+    }
     cli_json_int(&j, "n_feasible", (long)sum.n_feasible);
     cli_json_int(&j, "ratio_sets", (long)sum.ratio_sets);
     cli_json_int(&j, "stability_analyses", (long)sum.margin_evaluations);
@@ -354,6 +403,18 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       }
       cli_json_bool(&j, "feasible", d->feasible);
       cli_json_int(&j, "recheck", d->recheck);
+      if (o.planes == 2) {
+        cli_json_string(&j, "margin_is", "sampled: -(largest margin met)");
+        cli_json_int(&j, "certified_speeds", (long)d->n_certified);
+        cli_json_int(&j, "certify_speeds_run", (long)d->n_certify_run);
+        cli_json_int(&j, "boxes", (long)d->boxes);
+        if (!isnan(d->found_omega)) {
+          cli_json_quantity(&j, "found_speed", d->found_omega, "rad/s");
+          cli_json_quantity(&j, "found_unbalance1", d->found_s[0], "kg m");
+          cli_json_quantity(&j, "found_unbalance2", d->found_s[1], "kg m");
+          cli_json_quantity(&j, "found_phase", d->found_phase, "rad");
+        }
+      }
       if (d->n_runs > 0) {
         cli_json_quantity(&j, "p_balance", d->p_balance, "1");
         cli_json_quantity(&j, "time_to_balance_median", d->ttb_median, "s");
@@ -365,6 +426,62 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     cli_json_array_end(&j);
     if (sum.best_config) cli_json_string(&j, "best_config", sum.best_config);
     cli_json_summary_end(&j, ctx);
+  } else if (!ctx->quiet && o.planes == 2) {
+    const size_t ncells = sum.n_mass * sum.n_damping * sum.n_radius;
+    printf("rotor design, two planes: the same two identical balls in both planes (plane 1 at d = %.6g mm, plane 2 at "
+           "%.6g mm), speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] rpm, %zu points),\n",
+           p.plane[0].d * 1e3, p.plane[1].d * 1e3, o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max),
+           o.n_omega);
+    printf("  every m0 r0 of plane 1 in [%.6g, %.6g] g mm (exact), of plane 2 in [%.6g, %.6g] g mm (map: %zu grid values; "
+           "ranked designs: certified by the box search), every relative phase (exact); required margin %.6g 1/s "
+           "(checked on the points evaluated: sampled)\n",
+           o.unbalance_min * 1e6, o.unbalance_max * 1e6, o.unbalance2_min * 1e6, o.unbalance2_max * 1e6, o.n_unbalance2,
+           o.margin);
+    printf("  map: %zu ball masses [%.6g, %.6g] g x %zu dampings [%.6g, %.6g] kg/s x %zu radii [%.6g, %.6g] mm: %zu of "
+           "%zu feasible%s",
+           sum.n_mass, sum.mass[0] * 1e3, sum.mass[sum.n_mass - 1] * 1e3, sum.n_damping, sum.damping[0],
+           sum.damping[sum.n_damping - 1], sum.n_radius, sum.radius[0] * 1e3, sum.radius[sum.n_radius - 1] * 1e3,
+           sum.n_feasible, ncells, sum.n_undecided_cells ? "" : "\n");
+    if (sum.n_undecided_cells) printf(", %zu undecided (the analysis failed there; not feasible)\n", sum.n_undecided_cells);
+    printf("    feasible map (rows ball mass g, columns track radius mm; per damping: # feasible, + stable below the "
+           "margin, . not stable, x cannot balance, ? undecided)\n");
+    for (i = 0; i < sum.n_damping; i++) {
+      size_t a_, q;
+      printf("    damping %.5g kg/s\n", sum.damping[i]);
+      for (a_ = 0; a_ < sum.n_mass; a_++) {
+        printf("      %8.4g ", sum.mass[a_] * 1e3);
+        for (q = 0; q < sum.n_radius; q++) {
+          const int f = sum.feasible[(a_ * sum.n_damping + i) * sum.n_radius + q];
+          const double mm = sum.margin_map[(a_ * sum.n_damping + i) * sum.n_radius + q];
+          putchar(f == 1 ? '#' : f == -1 ? 'x' : f == -3 ? '?' : !isnan(mm) ? '+' : '.');
+        }
+        putchar('\n');
+      }
+    }
+    printf("  ranked designs (margin: -(largest margin met), sampled; recheck: the box search over plane 2's whole "
+           "range at every grid speed):\n");
+    printf("    %4s %10s %10s %12s %12s %8s %8s %10s\n", "rank", "mass g", "radius mm", "damping kg/s", "margin 1/s",
+           "feasible", "recheck", "certified");
+    for (i = 0; i < sum.n_designs; i++) {
+      const autobal_rotor_design *d = &sum.designs[i];
+      printf("    %4zu %10.5g %10.5g %12.5g %12.5g %8s %8s %4zu of %zu\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,
+             d->margin, d->feasible ? "yes" : "no", d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"),
+             d->n_certified, d->n_certify_run);
+      if (!isnan(d->found_omega))
+        printf("         not stable at %.6g rad/s: plane 1 %.6g g mm, plane 2 %.6g g mm, phase %.6g rad\n", d->found_omega,
+               d->found_s[0] * 1e6, d->found_s[1] * 1e6, d->found_phase);
+    }
+    if (sum.n_designs == 0) printf("    none: no design in the bounds is stable for every unbalance at every grid speed\n");
+    printf("  certified: the verdict holds for every m0 r0 of plane 2's range at that speed (box search); the other "
+           "speeds: plane 2 on its grid (SAMPLED)\n");
+    printf("  %zu two-plane every-unbalance verdicts in %.3g s (%.1f per second)\n", sum.verdicts2, seconds,
+           seconds > 0 ? (double)sum.verdicts2 / seconds : 0.0);
+    if (sum.best_config) {
+      if (have_out) printf("best design as a config (written to %s):\n", config_out);
+      else printf("best design as a config ([design] config_out = FILE writes it):\n");
+      fputs(sum.best_config, stdout);
+    }
+    if (ctx->output) printf("archive: %s\n", ctx->output);
   } else if (!ctx->quiet) {
     const size_t ncells = sum.n_n * sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
     const int nball = !(o.n_balls_min == 2 && o.n_balls_max == 2);

@@ -286,11 +286,15 @@
   "         n_transient = 5 (best designs whose transients are run; 0 off)  rank_by = margin|time|p_balance\n" \
   "         n_start_angles = 3 (per ball)  n_transient_unbalances = 2  n_transient_speeds = 2  (grids, ends included)\n" \
   "         transient_t_end = 10 s (profile: its end + 10 s)  balance_tol = 0.01  balance_revs = 50  threads = 0\n" \
+  "         planes = 1|2 (2: the same two-ball balancer in both planes of a two-plane config; every phase;\n" \
+  "         unbalance2_min, unbalance2_max (plane 2; default plane 1's)  n_unbalance2 = 5 (plane 2's map grid)\n" \
+  "         unbalance2_boxes = 0 (certification of the n_best: 0 = 100000 boxes, -1 none); no transients)\n" \
   "[drive]  mode = ramp|table (as `rotor transient`): the transients run the run-up profile from rest; the\n" \
   "         speed range is [design] balance_from (rpm or rad/s; required) .. the profile's top speed\n" \
   "\narchive: /rotor/design (feasible[ball_mass][ball_damping][plane_position][track_radius], radius windows,\n" \
   "ranked/ designs, best_config; with transients ranked/p_balance, time_to_balance_median, _worst (s));\n" \
-  "with n_balls other than 2..2: n_balls, n_balls_N/feasible, radius windows per N, ranked/n_balls\n" HELP_DOCS_ROTOR
+  "with n_balls other than 2..2: n_balls, n_balls_N/feasible, radius windows per N, ranked/n_balls;\n" \
+  "planes = 2: margin_map, ranked/certified_speeds, found_* (no radius windows)\n" HELP_DOCS_ROTOR
 #define HELP_ROTOR_CAMPBELL \
   "Rotor-housing without balls: natural frequencies at rest (undamped, damped), Campbell diagram (C omega\n" \
   "gyroscopic), steady unbalance response, critical speeds (frequency = omega) and response peaks.\n\n" \

@@ -9,7 +9,12 @@
  * bench_design N_POSITION N_BALLS_MAX (N_BALLS_MAX >= 3): then the same search with 2 .. N_BALLS_MAX
  * identical balls (unbalance_member = symmetric) on 2 threads, in the same process; its wall time and
  * stability analyses per second against the two-ball run on 2 threads (the reference), and the best
- * design per number of balls. */
+ * design per number of balls.
+ * bench_design two: the two-plane design (options.planes = 2, docs/rotor.md "Design", "Two planes") of
+ * the two-plane machine of data/design_two_planes.ini, on 2 threads, without and with the certification
+ * by the box search, against the one-plane 3-parameter search of the default machine on 2 threads in
+ * the same process (the reference): wall times, verdicts (per speed: one every-unbalance test for one
+ * plane, one two-plane grid+slice or certified verdict for two) and verdicts per second, as ratios. */
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,6 +29,96 @@ static double wall(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static double m1[2] = {0.05, 0.05}, r1[2] = {0.1, 0.1}, h1[2] = {0.5, 0.5};
+static double m2[2] = {0.04, 0.04}, r2[2] = {0.09, 0.09}, h2[2] = {0.5, 0.5};
+
+static int bench_two(void) {
+  const double pi = 3.14159265358979323846;
+  autobal_rotor_params p1 = autobal_rotor_params_default(), p2 = autobal_rotor_params_default();
+  autobal_study_rotor_design_options o1 = autobal_study_rotor_design_options_default(), o2;
+  autobal_study_rotor_design_summary S1, Sm, Sc;
+  autobal_error err;
+  double t0, w1, wm, wc;
+  size_t k;
+  /* the reference: one plane, the default machine, 3 parameters (bench_design 1), 2 threads */
+  o1.omega_min = 4500.0 * pi / 30.0;
+  o1.omega_max = 9000.0 * pi / 30.0;
+  o1.unbalance_min = 500e-6;
+  o1.unbalance_max = 4000e-6;
+  o1.margin = 0.2;
+  o1.mass_min = 0.025, o1.mass_max = 0.1, o1.n_mass = 8;
+  o1.radius_min = 0.05, o1.radius_max = 0.15, o1.n_radius = 24;
+  o1.damping_min = 0.01, o1.damping_max = 1.0, o1.n_damping = 8;
+  o1.threads = 2;
+  t0 = wall();
+  if (autobal_study_rotor_design(&p1, &o1, NULL, &S1, &err)) {
+    fprintf(stderr, "bench_design: %s\n", err.message);
+    return 1;
+  }
+  w1 = wall() - t0;
+  /* data/design_two_planes.ini */
+  p2.plane[0].d = 0.10, p2.plane[0].m0 = 0.02, p2.plane[0].r0 = 0.1, p2.plane[0].psi0 = 0.0;
+  p2.plane[0].ball_mass = m1, p2.plane[0].ball_radius = r1, p2.plane[0].ball_damping = h1;
+  p2.plane[0].ball_psi = NULL, p2.plane[0].ball_rate = NULL;
+  p2.n_planes = 2;
+  p2.plane[1] = p2.plane[0];
+  p2.plane[1].d = -0.12, p2.plane[1].m0 = 0.015, p2.plane[1].r0 = 0.09, p2.plane[1].psi0 = 2.0;
+  p2.plane[1].ball_mass = m2, p2.plane[1].ball_radius = r2, p2.plane[1].ball_damping = h2;
+  o2 = autobal_study_rotor_design_options_default();
+  o2.planes = 2;
+  o2.omega_min = 4500.0 * pi / 30.0;
+  o2.omega_max = 9000.0 * pi / 30.0;
+  o2.n_omega = 9;
+  o2.unbalance_min = 500e-6, o2.unbalance_max = 3000e-6;
+  o2.unbalance2_min = 500e-6, o2.unbalance2_max = 2500e-6;
+  o2.n_unbalance2 = 5;
+  o2.margin = 0.2;
+  o2.mass_min = 0.025, o2.mass_max = 0.1, o2.n_mass = 4;
+  o2.radius_min = 0.05, o2.radius_max = 0.15, o2.n_radius = 6;
+  o2.damping_min = 0.1, o2.damping_max = 1.0, o2.n_damping = 4;
+  o2.n_best = 3;
+  o2.threads = 2;
+  o2.unbalance2_boxes = -1;
+  t0 = wall();
+  if (autobal_study_rotor_design(&p2, &o2, NULL, &Sm, &err)) {
+    fprintf(stderr, "bench_design: %s\n", err.message);
+    return 1;
+  }
+  wm = wall() - t0;
+  o2.unbalance2_boxes = 0;
+  t0 = wall();
+  if (autobal_study_rotor_design(&p2, &o2, NULL, &Sc, &err)) {
+    fprintf(stderr, "bench_design: %s\n", err.message);
+    return 1;
+  }
+  wc = wall() - t0;
+  printf("one plane (reference), default machine, 3 parameters, %zu speeds, 2 threads: wall %.2f s, %zu every-unbalance "
+         "tests (%.0f per wall second), %zu map cells\n",
+         o1.n_omega, w1, S1.ratio_sets, (double)S1.ratio_sets / w1, S1.n_mass * S1.n_damping * S1.n_radius);
+  printf("two planes, data/design_two_planes.ini, %zu speeds, %zu x %zu x %zu map, 2 threads:\n", o2.n_omega, o2.n_mass,
+         o2.n_damping, o2.n_radius);
+  printf("  map + ranking only (unbalance2_boxes = -1): wall %.2f s (%.2f x the one-plane run), %zu verdicts (%.1f per "
+         "wall second, %.2e x the one-plane rate), %zu feasible\n",
+         wm, wm / w1, Sm.verdicts2, (double)Sm.verdicts2 / wm, ((double)Sm.verdicts2 / wm) / ((double)S1.ratio_sets / w1),
+         Sm.n_feasible);
+  printf("  with the certification of the %zu best (box search at every speed): wall %.2f s (%.2f x the one-plane run), "
+         "%zu verdicts; the certification: %zu verdicts in %.2f s (%.2f per wall second)\n",
+         Sc.n_designs, wc, wc / w1, Sc.verdicts2, Sc.verdicts2 - Sm.verdicts2, wc - wm,
+         (double)(Sc.verdicts2 - Sm.verdicts2) / (wc - wm));
+  printf("  map identical with and without the certification: %s\n",
+         !memcmp(Sm.feasible, Sc.feasible, o2.n_mass * o2.n_damping * o2.n_radius * sizeof *Sm.feasible) ? "yes" : "NO");
+  for (k = 0; k < Sc.n_designs; k++)
+    printf("  #%zu: m %.4g g, r %.4g mm, h %.4g kg/s: margin %.4g 1/s (sampled), recheck %s, certified at %zu of %zu "
+           "speeds, %zu boxes\n",
+           k, Sc.designs[k].mass * 1e3, Sc.designs[k].radius * 1e3, Sc.designs[k].damping, Sc.designs[k].margin,
+           Sc.designs[k].recheck == 1 ? "ok" : "FAILED", Sc.designs[k].n_certified, Sc.designs[k].n_certify_run,
+           Sc.designs[k].boxes);
+  autobal_study_rotor_design_summary_free(&S1);
+  autobal_study_rotor_design_summary_free(&Sm);
+  autobal_study_rotor_design_summary_free(&Sc);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   autobal_rotor_params p = autobal_rotor_params_default();
   autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
@@ -34,6 +129,7 @@ int main(int argc, char **argv) {
   int st;
   size_t k;
   gsl_set_error_handler_off();
+  if (argc > 1 && !strcmp(argv[1], "two")) return bench_two();
   o.omega_min = 4500.0 * pi / 30.0;
   o.omega_max = 9000.0 * pi / 30.0;
   o.unbalance_min = 500e-6;

@@ -24,7 +24,8 @@
 #   bench/run.sh design [N_POSITION [N_BALLS_MAX]] the design search (`autobal rotor design`) over 4
 #                                    balancer parameters for the default machine: time, exact tests and
 #                                    stability verdicts per second (N_POSITION = 1: 3 parameters, the position
-#                                    fixed); N_BALLS_MAX >= 3: also 2..N_BALLS_MAX balls, against two balls
+#                                    fixed); N_BALLS_MAX >= 3: also 2..N_BALLS_MAX balls, against two balls;
+#   bench/run.sh design two          the two-plane design (planes = 2) against the one-plane search
 #   bench/run.sh dense [ARGS...]     output every quarter revolution (issue 20): dop853 on its continuous
 #                                    extension vs exact hits (rk8pd, dop853) vs SciPy DOP853/LSODA/Radau
 #                                    with t_eval, pendulum and rotor (2, 8 balls), at matched error of the

@@ -26,7 +26,10 @@
  * Number of balls: options.n_balls_min .. n_balls_max identical balls (default 2 .. 2); n >= 3 with
  * the member rule SYMMETRIC only (the symmetric fan; the verdict says so).
  *
- * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes, balls that differ
+ * Two planes: options.planes = 2 (the same two-ball balancer in both planes of a two-plane machine;
+ * see the options' last fields).
+ *
+ * Not covered (AUTOBAL_EUNSUPPORTED, the message names the key): two planes with planes = 1, balls that differ
  * within a design, the full inertia model, anisotropic supports, a motor drive, gravity.
  *
  * Units: SI inside (kg, m, kg/s, rad/s, 1/s, kg m).  Threads: none (one handle per call).  Errors
@@ -90,6 +93,20 @@ typedef struct autobal_study_rotor_design_options {
   size_t n_balls_min, n_balls_max; /* [2, AUTOBAL_DESIGN_MAX_BALLS], min <= max           (2, 2) */
   int unbalance_member;            /* for n >= 3                      (AUTOBAL_ROTOR_UNBALANCE_EVERY) */
   double total_mass_max;           /* kg, > 0 or NaN                                          (NaN) */
+  /* Two planes (added at the end; docs/rotor.md "Design", "Two planes"): planes = 2 designs the same
+   * balancer (two identical balls of mass m on radius r with damping h) in BOTH planes of a
+   * two-plane machine (p->n_planes == 2; plane positions, unbalance radii from p), for every m0 r0
+   * of plane 1 in [unbalance_min, unbalance_max], of plane 2 in [unbalance2_min, unbalance2_max] and
+   * every relative phase.  Map: autobal_rotor_stab_every_unbalance2 without the box search at every
+   * speed of the grid (exact in plane 1's unbalance and the phase, plane 2's unbalance on n_unbalance2
+   * values); the first n_best stable cells by their sampled margin are then certified over plane 2's
+   * whole range by the box search (budget unbalance2_boxes) at every speed of the grid.  The required
+   * margin is met on the evaluated points only (sampled); stability itself is exact as said.  No
+   * optimizer, no position variable, no transients (n_transient must be 0), n_balls 2 only. */
+  size_t planes;                   /* 1 or 2; 0 is read as 1                                     (1) */
+  double unbalance2_min, unbalance2_max; /* kg m, plane 2's range; NaN: plane 1's         (NaN, NaN) */
+  size_t n_unbalance2;             /* plane-2 (and plane-1 cross-check) grid, [2, 100]            (5) */
+  long unbalance2_boxes;           /* certification budget per side: 0 = 100000, -1 none, [1, 1e9] (0) */
 } autobal_study_rotor_design_options;
 
 /* The largest number of balls a design may have. */
@@ -131,6 +148,13 @@ typedef struct autobal_rotor_design {
   size_t n_balls;   /* identical balls of the design (added at the end; 0 is read as 2).  For n >= 3
                        margin and recheck_margin are also capped by h/m, the rate of the n - 2 ball
                        modes -h/m of the full system, and cover the members of options.unbalance_member */
+  /* Two planes (added at the end; 0 / NaN for one plane).  margin is then -(the largest margin the
+     two-plane analysis evaluated over the speed grid): sampled.  recheck: the same analysis with the
+     box search over plane 2's whole range at every grid speed (1 stable at all, 0 not, -1 not run) */
+  size_t n_certified;   /* grid speeds where that verdict is certified over plane 2's range (exact_in_s2) */
+  size_t n_certify_run; /* grid speeds it ran at (n_omega, fewer when it stopped at a speed not stable) */
+  double found_omega, found_s[2], found_phase; /* rad/s, kg m, rad: a point not stable the search found (NaN) */
+  size_t boxes;         /* boxes of the certification */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */
@@ -160,6 +184,13 @@ typedef struct autobal_study_rotor_design_summary {
      in that order */
   size_t n_n;
   int *n_balls;
+  /* two planes (added at the end; 0 / NULL for one plane) */
+  size_t planes;
+  double *margin_map;  /* [n_mass][n_damping][n_position][n_radius] 1/s: -(the largest margin met over
+                          the speed grid) where the two-plane grid+slice verdict is stable at every
+                          grid speed, NaN elsewhere */
+  size_t verdicts2;    /* two-plane every-unbalance verdicts (map and certification) */
+  size_t n_undecided_cells; /* map cells the two-plane analysis could not decide (an error: -3) */
 } autobal_study_rotor_design_summary;
 
 /* Run the design search.  Map: for every (m, h, d) of the grids, the exact sets of normalized

@@ -19,6 +19,7 @@
 #include "autobal/rotor_stability.h"
 #include "autobal/study.h"
 #include "internal.h"
+#include "studies/rotor_design2.h"
 
 #ifdef AUTOBAL_HAVE_OPENMP
 #include <omp.h>
@@ -78,6 +79,10 @@ autobal_study_rotor_design_options autobal_study_rotor_design_options_default(vo
   o.n_balls_min = o.n_balls_max = 2;
   o.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_EVERY;
   o.total_mass_max = NAN;
+  o.planes = 1;
+  o.unbalance2_min = o.unbalance2_max = NAN;
+  o.n_unbalance2 = 5;
+  o.unbalance2_boxes = 0;
   return o;
 }
 
@@ -93,6 +98,7 @@ void autobal_study_rotor_design_summary_free(autobal_study_rotor_design_summary 
   free(s->designs);
   free(s->best_config);
   free(s->n_balls);
+  free(s->margin_map);
   memset(s, 0, sizeof *s);
 }
 
@@ -675,15 +681,77 @@ static void rank_transients(autobal_rotor_design *d, size_t n, int key) {
 
 /* ---- options --------------------------------------------------------------------------- */
 
+/* The two-plane options (docs/rotor.md "Design", "Two planes"): the machine has two planes of two
+ * balls, the same balancer is designed for both, no position variable, no transients. */
+static int resolve2(const autobal_rotor_params *p, autobal_study_rotor_design_options *o, autobal_error *err) {
+  size_t j;
+  if (p->n_planes != 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[design] planes = 2 needs a two-plane machine: add a [plane2] section (d, m0, r0, psi0 "
+                             "and two balls; e.g. data/rotor_two_planes.ini); allowed with one plane: planes = 1");
+  for (j = 0; j < 2; j++)
+    if (p->plane[j].n_balls != 2 || !(p->plane[j].r0 > 0.0))
+      return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                               "[plane%zu] ball_mass: with [design] planes = 2 each plane needs two balls and r0 > 0 "
+                               "(here %zu balls, r0 = %g m); the same two-ball balancer is designed for both planes",
+                               j + 1, p->plane[j].n_balls, p->plane[j].r0);
+  if (!((o->n_balls_min == 0 || o->n_balls_min == 2) && (o->n_balls_max == 0 || o->n_balls_max == 2)))
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[design] n_balls_min = %zu, n_balls_max = %zu: with planes = 2 two balls per plane only "
+                             "(allowed 2, 2): the two-plane every-unbalance analysis is built for two balls per plane",
+                             o->n_balls_min, o->n_balls_max);
+  if (o->n_transient != 0)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[design] n_transient = %zu: the transients of two-plane designs are not implemented; "
+                             "allowed with planes = 2: n_transient = 0",
+                             o->n_transient);
+  if (!((isnan(o->position_min) || o->position_min == p->plane[0].d) &&
+        (isnan(o->position_max) || o->position_max == p->plane[0].d)))
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[design] position_min, position_max: with planes = 2 the plane positions are the "
+                             "config's ([plane1] d = %g m, [plane2] d = %g m); leave them unset",
+                             p->plane[0].d, p->plane[1].d);
+  if (isnan(o->unbalance2_min) && isnan(o->unbalance2_max)) {
+    o->unbalance2_min = o->unbalance_min;
+    o->unbalance2_max = o->unbalance_max;
+  }
+  if (!(isfinite(o->unbalance2_min) && isfinite(o->unbalance2_max) && o->unbalance2_min > 0.0 &&
+        o->unbalance2_min <= o->unbalance2_max))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: unbalance2_min = %g, unbalance2_max = %g kg m: need 0 < min <= max (finite; "
+                             "both NaN: plane 1's range)",
+                             o->unbalance2_min, o->unbalance2_max);
+  if (o->n_unbalance2 == 0) o->n_unbalance2 = 5;
+  if (!(o->n_unbalance2 >= 2 && o->n_unbalance2 <= 100))
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: n_unbalance2 = %zu must be in [2, 100]", o->n_unbalance2);
+  if (!(o->unbalance2_boxes >= -1 && o->unbalance2_boxes <= 1000000000L))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: unbalance2_boxes = %ld: allowed -1 (no certification), 0 (the default budget, "
+                             "100000) or [1, 1e9]",
+                             o->unbalance2_boxes);
+  o->n_balls_min = o->n_balls_max = 2;
+  o->n_position = 1;
+  o->position_min = o->position_max = p->plane[0].d;
+  return AUTOBAL_SUCCESS;
+}
+
 static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_design_options *in,
                    autobal_study_rotor_design_options *o, autobal_error *err) {
   const autobal_rotor_plane *pl;
   *o = *in;
-  if (p->n_planes != 1)
+  if (o->planes == 0) o->planes = 1;
+  if (o->planes != 1 && o->planes != 2)
+    return autobal_error_set(err, AUTOBAL_EINVAL, "options: planes = %zu: allowed 1 or 2", o->planes);
+  if (o->planes == 1 && p->n_planes != 1)
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
                              "[plane2]: the design covers one balancer plane (here %zu): the guaranteed every-unbalance "
-                             "verdict is built for one plane with two balls",
+                             "verdict is built for one plane with two balls; for the two-plane machine set "
+                             "[design] planes = 2",
                              p->n_planes);
+  if (o->planes == 2) {
+    int st = resolve2(p, o, err);
+    if (st != AUTOBAL_SUCCESS) return st;
+  }
   pl = &p->plane[0];
   if (pl->n_balls < 2 || pl->n_balls > AUTOBAL_DESIGN_MAX_BALLS)
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
@@ -1188,6 +1256,39 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   return st;
 }
 
+/* Two planes (options.planes = 2): the search of rotor_design2.c on the machine with the config's
+ * balls in writable arrays, then the best config and the archive as for one plane. */
+static int design_two_planes(dctx *c, autobal_archive *a, autobal_study_rotor_design_summary *summary) {
+  double bm[2][2], br[2][2], bh[2][2], bpsi[2][2], brate[2][2];
+  size_t j, i;
+  int st, wst;
+  for (j = 0; j < 2; j++) {
+    const autobal_rotor_plane *pl = &c->base->plane[j];
+    for (i = 0; i < 2; i++) {
+      bm[j][i] = pl->ball_mass[i];
+      br[j][i] = pl->ball_radius[i];
+      bh[j][i] = pl->ball_damping[i];
+      bpsi[j][i] = pl->ball_psi ? pl->ball_psi[i] : 0.0;
+      brate[j][i] = pl->ball_rate ? pl->ball_rate[i] : 0.0;
+    }
+    c->work.plane[j].ball_mass = bm[j];
+    c->work.plane[j].ball_radius = br[j];
+    c->work.plane[j].ball_damping = bh[j];
+    c->work.plane[j].ball_psi = bpsi[j];
+    c->work.plane[j].ball_rate = brate[j];
+  }
+  st = autobal_design2_run_(&c->work, &c->o, summary, c->err);
+  if (st == AUTOBAL_SUCCESS && summary->n_designs > 0) {
+    summary->best_config = autobal_study_rotor_design_config(c->base, &summary->designs[0], c->o.omega_max);
+    if (!summary->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  }
+  if (a && st == AUTOBAL_SUCCESS) {
+    if ((wst = autobal_study_rotor_design_write(a, c->base, &c->o, summary)) != AUTOBAL_SUCCESS)
+      return autobal_error_set(c->err, wst, "%s", autobal_archive_errmsg(a));
+  }
+  return st;
+}
+
 int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_study_rotor_design_options *opt,
                                autobal_archive *a, autobal_study_rotor_design_summary *summary, autobal_error *err) {
   autobal_study_rotor_design_options def = autobal_study_rotor_design_options_default();
@@ -1203,6 +1304,7 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
   c.work = *p;
   memset(&c.work.drive, 0, sizeof c.work.drive); /* the stability analyses: constant speeds */
+  if (c.o.planes == 2) return design_two_planes(&c, a, summary);
   {
     const autobal_rotor_plane *pl = &p->plane[0];
     size_t i;
@@ -1244,6 +1346,10 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   c.err = err;
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (c.o.planes == 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "options: planes = 2: the robust margin of one design is for one plane (allowed planes = 1); "
+                             "two-plane margins come from autobal_study_rotor_design (sampled)");
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
   c.work = *p;
@@ -1282,6 +1388,9 @@ int autobal_study_rotor_design_transients(const autobal_rotor_params *p, const a
   c.err = err;
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
+  if (c.o.planes == 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "options: planes = 2: transients of two-plane designs are not implemented (allowed planes = 1)");
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: mass, radius, damping must be > 0, position finite");
   design->p_balance = design->ttb_median = design->ttb_worst = NAN;
@@ -1341,7 +1450,15 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   if (!b.p) return NULL;
   b.p[0] = '\0';
   put(&b, "; written by autobal rotor design: the machine with the design's balancer (docs/rotor.md \"Design\")\n");
-  put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
+  if (p->n_planes == 2)
+    put(&b,
+        "; two planes, the same balancer in both: stable at every speed of the grid for every unbalance of both\n"
+        "; ranges and every relative phase (certified over plane 2's range at %zu of %zu grid speeds, the others\n"
+        "; on plane 2's grid); largest margin met -%.6g 1/s (sampled).  For its analysis: rotor stability with\n"
+        "; [stability] unbalance_min/max, unbalance2_min/max (docs/rotor.md \"Design\", \"Two planes\")\n",
+        d->n_certified, d->n_certify_run, d->margin);
+  else
+    put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
   if (nballs(d) >= 3)
     put(&b,
         "; %zu identical balls: the verdict covers the symmetric members of the family only (the symmetric fan, the\n"
@@ -1389,6 +1506,15 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
       put(&b, "\n");
     }
   }
+  if (p->n_planes == 2) {
+    const autobal_rotor_plane *p2 = &p->plane[1];
+    put(&b, "\n[plane2]\nd = %.17g\nm0 = %.17g\nr0 = %.17g\npsi0 = %.17g\n", p2->d, p2->m0, p2->r0, p2->psi0);
+    put(&b, "ball_mass = %.17g, %.17g\nball_radius = %.17g, %.17g\nball_damping = %.17g, %.17g\n", d->mass, d->mass,
+        d->radius, d->radius, d->damping, d->damping);
+    put(&b, "ball_psi = %.17g, %.17g\nball_rate = %.17g, %.17g\n", p2->ball_psi && p2->n_balls >= 2 ? p2->ball_psi[0] : 0.0,
+        p2->ball_psi && p2->n_balls >= 2 ? p2->ball_psi[1] : 0.0, p2->ball_rate && p2->n_balls >= 2 ? p2->ball_rate[0] : 0.0,
+        p2->ball_rate && p2->n_balls >= 2 ? p2->ball_rate[1] : 0.0);
+  }
   if (has_profile(p)) {
     const autobal_rotor_drive *dr = &p->drive;
     if (dr->mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
@@ -1432,7 +1558,18 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
   if (nm == 0) return AUTOBAL_EINVAL;
   st = autobal_study_write_rotor_params(a, p, 0);
   if (!st) st = autobal_archive_group(a, g);
-  if (!st) st = autobal_archive_attr_string(a, g, "method", "docs/rotor.md \"Design\": exact in the unbalance and the track radius (critical values), sampled in the speed, grid + Nelder-Mead (GSL nmsimplex2) in ball mass, damping, plane position");
+  if (!st && S->planes == 2) {
+    st = autobal_archive_attr_string(a, g, "method", "docs/rotor.md \"Design\", \"Two planes\": the same two-ball balancer in both planes; map: autobal_rotor_stab_every_unbalance2 without the box search at every grid speed (exact in plane 1's unbalance and the relative phase, plane 2's unbalance on n_unbalance2 values); the first n_best stable cells by their sampled margin certified over plane 2's whole range by the box search at every grid speed; sampled in speed, ball mass, damping, track radius");
+    if (!st) st = autobal_archive_attr_int(a, g, "planes", 2);
+    if (!st) st = autobal_archive_attr_double(a, g, "unbalance2_min", opt->unbalance2_min, "kg m");
+    if (!st) st = autobal_archive_attr_double(a, g, "unbalance2_max", opt->unbalance2_max, "kg m");
+    if (!st) st = autobal_archive_attr_int(a, g, "n_unbalance2", (long)opt->n_unbalance2);
+    if (!st) st = autobal_archive_attr_int(a, g, "unbalance2_boxes", opt->unbalance2_boxes);
+    if (!st) st = autobal_archive_attr_int(a, g, "two_plane_verdicts", (long)S->verdicts2);
+    if (!st) st = autobal_archive_attr_int(a, g, "n_undecided", (long)S->n_undecided_cells);
+    if (!st) st = autobal_archive_attr_double(a, g, "plane2_position", p->plane[1].d, "m");
+  } else if (!st)
+    st = autobal_archive_attr_string(a, g, "method", "docs/rotor.md \"Design\": exact in the unbalance and the track radius (critical values), sampled in the speed, grid + Nelder-Mead (GSL nmsimplex2) in ball mass, damping, plane position");
   if (!st) st = autobal_archive_attr_double(a, g, "omega_min", opt->omega_min, "rad/s");
   if (!st) st = autobal_archive_attr_double(a, g, "omega_max", opt->omega_max, "rad/s");
   if (!st) st = autobal_archive_attr_int(a, g, "n_omega", (long)opt->n_omega);
@@ -1512,6 +1649,9 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
       if (!st) st = autobal_archive_var(a, sg, "radius_window_lo", 3, dims4, S->window_lo + i * per, "m", "lower end of the widest open interval of feasible track radii within the bounds (exact in r; NaN: none)");
       if (!st) st = autobal_archive_var(a, sg, "radius_window_hi", 3, dims4, S->window_hi + i * per, "m", "upper end of the same interval");
     }
+  } else if (S->planes == 2) {
+    if (!st) st = autobal_archive_var_int(a, g, "feasible", 4, dims4, S->feasible, "1", "two planes, the same balancer in both: 1: stable at every speed of the grid for every unbalance of both ranges and every phase (plane 2 on its grid) and every margin met below -margin_required; 0: not; -1: the balls cannot balance the largest unbalance (2 m r <= max(unbalance_max, unbalance2_max)); -3: the analysis could not decide (an error)");
+    if (!st) st = autobal_archive_var(a, g, "margin_map", 4, dims4, S->margin_map, "1/s", "-(largest margin met over the speed grid, plane-1 unbalances, phases and plane-2 grid values evaluated): sampled; NaN where not stable at some speed");
   } else {
   if (!st) st = autobal_archive_var_int(a, g, "feasible", 4, dims4, S->feasible, "1", "1: every root Re lambda < -margin_required at every speed of the grid for every unbalance of the range; 0: not; -1: the balls cannot balance unbalance_max (2 m r <= m0 r0)");
   if (!st) st = autobal_archive_var(a, g, "radius_window_lo", 3, dims4, S->window_lo, "m", "lower end of the widest open interval of feasible track radii within the bounds (exact in r; NaN: none)");
@@ -1551,6 +1691,24 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     if (nball && !st) {
       for (i = 0; i < n; i++) iv[i] = (int)nballs(&S->designs[i]);
       st = autobal_archive_var_int(a, gr, "n_balls", 1, rank1, iv, "1", "number of identical balls of the design");
+    }
+    if (S->planes == 2) {
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].n_certified;
+        st = autobal_archive_var_int(a, gr, "certified_speeds", 1, rank1, iv, "1", "grid speeds where the verdict is certified over plane 2's whole unbalance range (box search); the others sampled on plane 2's grid");
+      }
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].n_certify_run;
+        st = autobal_archive_var_int(a, gr, "certify_speeds_run", 1, rank1, iv, "1", "grid speeds the certification ran at (0: unbalance2_boxes = -1)");
+      }
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].boxes;
+        st = autobal_archive_var_int(a, gr, "boxes", 1, rank1, iv, "1", "boxes of the certification's search");
+      }
+      COL(found_omega, "found_speed", "rad/s", "the first grid speed where the certification found the design not stable (NaN: none)")
+      COL(found_s[0], "found_unbalance1", "kg m", "plane 1's m0 r0 of a point not stable found there (NaN: none or between the slices)")
+      COL(found_s[1], "found_unbalance2", "kg m", "plane 2's m0 r0 of that point")
+      COL(found_phase, "found_phase", "rad", "relative phase of that point")
     }
     if (opt->n_transient > 0) {
       COL(p_balance, "p_balance", "1", "share of the design's transients whose attractor is balanced (NaN: not run)")
