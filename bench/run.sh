@@ -31,6 +31,9 @@
 #                                    with t_eval, pendulum and rotor (2, 8 balls), at matched error of the
 #                                    output points; archive (JSON) and work-precision plot; ARGS go to
 #                                    dense_scipy.py (e.g. --cases pendulum --tols 1e-8, --from A.json)
+#   bench/run.sh dense-ratio REV [ARGS...]  the time of output every quarter revolution, out/none of the
+#                                    CLI's transient, this library against bench_dense of git revision REV
+#                                    (e.g. main), interleaved; ARGS go to dense_ratio.py (e.g. --rounds 7)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -39,9 +42,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction|contact|design|dense) what=$1; shift ;;
-    -h|--help) sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design or dense; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact|design|dense|dense-ratio) what=$1; shift ;;
+    -h|--help) sed -n '2,37p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design, dense or dense-ratio; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -57,13 +60,26 @@ case "$what" in
   friction) targets=(bench_rotor bench_friction) ;;
   contact) targets=(bench_rotor bench_friction) ;;
   design) targets=(bench_design) ;;
-  dense) targets=(bench_dense) ;;
+  dense|dense-ratio) targets=(bench_dense) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 py=/usr/bin/python3
 if [ "$what" = dense ]; then
   exec "$py" "$here/dense_scipy.py" --bench "$build/bench_dense" "$@"
+fi
+if [ "$what" = dense-ratio ]; then
+  [ $# -ge 1 ] || { echo "run.sh: dense-ratio needs a git revision (the reference, e.g. main)" >&2; exit 2; }
+  rev=$(git -C "$here/.." rev-parse --short "$1^{commit}")
+  shift
+  old="$build-before-$rev"
+  if [ ! -x "$old/build/bench_dense" ]; then
+    rm -rf "$old"; mkdir -p "$old/src"
+    git -C "$here/.." archive "$rev" | tar -x -C "$old/src"
+    cmake -S "$old/src/bench" -B "$old/build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+    cmake --build "$old/build" --target bench_dense > /dev/null
+  fi
+  exec "$py" "$here/dense_ratio.py" --bench "$build/bench_dense" --before "$old/build/bench_dense" "$@"
 fi
 # bench_rotor of the library at git revision $1 (built once, in $build-before-REV); prints its path
 build_before() {

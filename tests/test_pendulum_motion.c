@@ -695,6 +695,41 @@ static void test_derived(void) {
     }
   }
 
+  /* wrap_angle skips remainder() for |a| <= pi and derive_m takes sin(psi0) from the motion: both
+   * must give exactly the bits of the definitions (remainder(a, 2 pi), folded to (-pi, pi];
+   * autobal_pendulum_motion_derive), compared as bytes (so -0 vs +0 and NaN count too) */
+  {
+    const double pim = nextafter(M_PI, 0.0), pip = nextafter(M_PI, 4.0);
+    const double edge[] = {0.0, -0.0, M_PI, -M_PI, pim, -pim, pip, -pip, 3.0, -3.0, 1e-300, -1e-300,
+                           4.0, -4.0, 2 * M_PI, -2 * M_PI, 3 * M_PI, -3 * M_PI, 1e6, -1e6, 1e300, INFINITY,
+                           -INFINITY, NAN};
+    int i2, bad_wrap = 0, bad_derive = 0;
+    autobal_pendulum_motion m;
+    autobal_error e;
+    for (i2 = 0; i2 < (int)(sizeof edge / sizeof edge[0]) + 2000; i2++) {
+      const double a = i2 < (int)(sizeof edge / sizeof edge[0]) ? edge[i2] : 9.0 * sin(0.37 * i2 + 0.1) * (i2 % 3 ? 1.0 : 0.4);
+      double want = remainder(a, 2.0 * M_PI), got = autobal_pendulum_wrap_angle(a);
+      if (want <= -M_PI) want += 2.0 * M_PI;
+      if (memcmp(&want, &got, sizeof want) != 0 && !(isnan(want) && isnan(got))) {
+        if (bad_wrap++ < 3) printf("     wrap(%.17g) = %.17g, definition %.17g\n", a, got, want);
+      }
+    }
+    CHECK("wrap: equals remainder(a, 2 pi) folded to (-pi, pi], bit for bit (edges +-0, +-pi and neighbours, 2000 angles)",
+          bad_wrap == 0);
+    CHECK_STATUS("derive_m: motion", autobal_pendulum_motion_init(&m, p, &e), AUTOBAL_SUCCESS);
+    for (i2 = 0; i2 < 200; i2++) {
+      autobal_pendulum_motion_derived d1, d2;
+      double yy[8];
+      int j2;
+      for (j2 = 0; j2 < 8; j2++) yy[j2] = sin(0.77 * (i2 + 1) + 1.3 * j2) * (0.5 + 0.05 * i2);
+      if (i2 == 0) yy[2] = yy[3] = p->psi0; /* alpha = beta = 0 exactly */
+      autobal_pendulum_motion_derive(p, yy, &d1);
+      autobal_pendulum_motion_derive_m(&m, yy, &d2);
+      if (memcmp(&d1, &d2, sizeof d1) != 0) bad_derive++;
+    }
+    CHECK("derive_m: the same bytes as derive on 200 states", bad_derive == 0);
+  }
+
   /* time to balance: unbalance below 1e-4 for 20 time units */
   {
     autobal_transient *tr = make("rk8pd", 1e-10, 0.5);

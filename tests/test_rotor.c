@@ -1645,6 +1645,71 @@ static void test_outputs(void) {
     CHECK_CLOSE("monitor = max_j s_rel", autobal_rotor_balance_monitor(R, AUTOBAL_ROTOR_FIXED, t, y),
                 fmax(o1[8], o1[3 + 7 + 5]), 1e-15, 0);
   }
+  {
+    /* The outputs and the monitor, bit for bit, against their definitions written out here in
+     * the order of operations of the documented formulas (eqs. (3.10), (3.11); ball angles wrapped
+     * by w = a - 2 pi ceil((a - pi) / 2 pi), folded to (-pi, pi]): cos and sin of psi0 and of
+     * phi_0 = omega t, computed per plane in the definition, are computed once by the library, and
+     * the wrap skips its formula for |a| <= 3.  States: 400, both frames, ball angles in
+     * [-12, 12] and the edges +-0, +-3, +-pi and their neighbours. */
+    const double edges[] = {0.0, -0.0, 3.0, -3.0, nextafter(3.0, 4.0), -nextafter(3.0, 4.0), M_PI, -M_PI,
+                            nextafter(M_PI, 0.0), -nextafter(M_PI, 0.0), 1e-300, -2.5e-9, 7.0, -7.0};
+    const size_t ne = sizeof edges / sizeof edges[0];
+    double yt[MAXDIM];
+    size_t trial, nbad_s = 0, nbad_w = 0, nbad_m = 0;
+    for (trial = 0; trial < 400; trial++) {
+      const int frame = trial % 2 ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED;
+      const double tt = 0.013 * (double)trial, wt = p.omega * tt;
+      double oo[64], mon_def = 0.0, mon;
+      size_t j2, kb = 0;
+      random_state(R, yt);
+      for (k = 0; k < 5; k++) {
+        const double e = edges[(trial * 5 + k) % ne];
+        yt[8 + k] = trial % 3 == 0 ? e : urand(-12.0, 12.0);
+      }
+      if (autobal_rotor_outputs(R, frame, tt, yt, oo, n) != AUTOBAL_SUCCESS) {
+        nbad_s++;
+        continue;
+      }
+      for (j2 = 0; j2 < 2; j2++) {
+        const autobal_rotor_plane *pl = &p.plane[j2];
+        double sxi = pl->m0 * pl->r0 * cos(pl->psi0), seta = pl->m0 * pl->r0 * sin(pl->psi0), def[4];
+        const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+        for (i = 0; i < pl->n_balls; i++, kb++) {
+          const double psi = yt[8 + kb] - shift, mr = pl->ball_mass[i] * pl->ball_radius[i];
+          sxi += mr * cos(psi);
+          seta += mr * sin(psi);
+        }
+        def[0] = sxi * cos(wt) - seta * sin(wt);
+        def[1] = sxi * sin(wt) + seta * cos(wt);
+        def[2] = sxi;
+        def[3] = seta;
+        if (memcmp(def, oo + 3 + 7 * j2, sizeof def) != 0 || oo[3 + 7 * j2 + 4] != hypot(sxi, seta)) nbad_s++;
+        if (oo[3 + 7 * j2 + 5] > mon_def) mon_def = oo[3 + 7 * j2 + 5];
+      }
+      mon = autobal_rotor_balance_monitor(R, frame, tt, yt);
+      if (memcmp(&mon, &mon_def, sizeof mon) != 0) nbad_m++;
+      for (k = 0; k < 5; k++) {
+        const double *b = oo + 3 + 14 + 6 * k;
+        double wdef[2];
+        int q;
+        for (q = 0; q < 2; q++) {
+          const double a = b[2 * q];
+          double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
+          if (w <= -M_PI) w += 2.0 * M_PI;
+          if (w > M_PI) w -= 2.0 * M_PI;
+          wdef[q] = w;
+        }
+        if (memcmp(&wdef[0], &b[1], sizeof(double)) != 0 || memcmp(&wdef[1], &b[3], sizeof(double)) != 0) {
+          if (nbad_w++ < 3) printf("     wrap(%.17g) = %.17g, definition %.17g\n", b[2], b[3], wdef[1]);
+        }
+      }
+    }
+    CHECK("s_u, s_v, s_xi, s_eta, s_abs of both planes = (3.10), (3.11) as written, bit for bit (400 states)",
+          nbad_s == 0);
+    CHECK("monitor = max_j s_rel, bit for bit (400 states)", nbad_m == 0);
+    CHECK("phi_w, psi_w = the wrap formula, bit for bit (2000 angles each, edges +-0, +-3, +-pi)", nbad_w == 0);
+  }
   for (k = 0; k < 5; k++) {
     const double *b = o1 + 3 + 14 + 6 * k;
     if (!(b[1] > -M_PI && b[1] <= M_PI && b[3] > -M_PI && b[3] <= M_PI)) wrapped = 0;

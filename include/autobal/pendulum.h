@@ -788,6 +788,11 @@ typedef struct autobal_pendulum_motion_derived {
 AUTOBAL_API void autobal_pendulum_motion_derive(const autobal_pendulum_params *p,
                                                 const double y[],
                                                 autobal_pendulum_motion_derived *out);
+/* The same numbers, bit for bit, for a state of the motion m (autobal_pendulum_motion_init):
+ * sin(psi0) taken from m instead of computed at every call (the transient's output points). */
+AUTOBAL_API void autobal_pendulum_motion_derive_m(const autobal_pendulum_motion *m,
+                                                  const double y[],
+                                                  autobal_pendulum_motion_derived *out);
 
 AUTOBAL_END_DECLS
 

@@ -875,7 +875,7 @@ static int pend_observe(void *wp, double t, const double y[], double *amplitude,
   pend_worker *w = wp;
   autobal_pendulum_motion_derived d;
   (void)t;
-  autobal_pendulum_motion_derive(&w->motion.p, y, &d);
+  autobal_pendulum_motion_derive_m(&w->motion, y, &d);
   *amplitude = d.amplitude;
   if (row) {
     memcpy(row, y, 8 * sizeof *y);
@@ -889,7 +889,7 @@ static void pend_finish(void *wp, double t, const double y[], double *residual, 
   pend_worker *w = wp;
   autobal_pendulum_motion_derived d;
   (void)t;
-  autobal_pendulum_motion_derive(&w->motion.p, y, &d);
+  autobal_pendulum_motion_derive_m(&w->motion, y, &d);
   *residual = d.unbalance;
   *amplitude = d.amplitude;
   angles[0] = d.alpha;
@@ -925,7 +925,7 @@ static int pend_classify(void *wp, const autobal_attractor_options *opt, double 
     const double *yk = y + k * AUTOBAL_PENDULUM_STATE_DIM;
     w->cpsi[2 * k] = yk[2] + 0.25 * TWO_PI;
     w->cpsi[2 * k + 1] = -yk[3] - 0.25 * TWO_PI;
-    autobal_pendulum_motion_derive(p, yk, &d);
+    autobal_pendulum_motion_derive_m(&w->motion, yk, &d);
     w->cres[k] = d.unbalance;
     w->camp[k] = d.amplitude;
   }

@@ -99,7 +99,7 @@ int autobal_study_pendulum_transient_check(const autobal_pendulum_params *p,
 }
 
 typedef struct run_ctx {
-  const autobal_pendulum_params *p;
+  const autobal_pendulum_motion *m; /* the parameters with sin(psi0) computed once */
   autobal_archive_series *series;
   int io_failed;
   double row[NCOLS];
@@ -112,7 +112,7 @@ typedef struct run_ctx {
 static int observer(double tau, const double y[], void *user) {
   run_ctx *r = user;
   autobal_pendulum_motion_derived d;
-  autobal_pendulum_motion_derive(r->p, y, &d);
+  autobal_pendulum_motion_derive_m(r->m, y, &d);
   memcpy(r->row, y, 8 * sizeof *y);
   r->row[8] = d.amplitude;
   r->row[9] = d.unbalance;
@@ -235,7 +235,7 @@ int autobal_study_pendulum_transient(const autobal_pendulum_params *p, const aut
   to.event_tol = 1e-9 * o->t_end;
   tr = autobal_transient_alloc(8, &to, &e);
   if (!tr) return autobal_error_set(err, e.status ? e.status : AUTOBAL_ENOMEM, "options: %s", e.message);
-  r.p = p;
+  r.m = &motion;
   r.progress = o->progress;
   r.progress_user = o->progress_user;
   memcpy(s->final_state, o->y0, sizeof s->final_state);

@@ -221,11 +221,15 @@ void autobal_pendulum_main_motion(const autobal_pendulum_params *p, double y[]) 
   y[2] = y[3] = p->psi0; /* eq. (4) */
 }
 
-double autobal_pendulum_wrap_angle(double a) {
-  double w = remainder(a, 2.0 * M_PI); /* in [-pi, pi] */
+/* remainder(a, 2 pi) is exact and is a itself when |a| <= pi (the nearest multiple of 2 pi is 0;
+ * at |a| = pi a tie, rounded to the even multiple 0): then no call, the same number bit for bit. */
+static inline double wrap_angle(double a) {
+  double w = fabs(a) <= M_PI ? a : remainder(a, 2.0 * M_PI); /* in [-pi, pi] */
   if (w <= -M_PI) w += 2.0 * M_PI;
   return w;
 }
+
+double autobal_pendulum_wrap_angle(double a) { return wrap_angle(a); }
 
 double autobal_pendulum_shaft_amplitude(const double y[]) { return hypot(y[0], y[1]); }
 
@@ -264,10 +268,10 @@ double autobal_pendulum_jacobi_power(const autobal_pendulum_params *p, const dou
 
 /* The same expressions as shaft_amplitude, residual_unbalance, wrap_angle and jacobi_integral
  * (the same numbers, bit for bit: no contraction in ISO C mode), with sin(psi0) and the sines and
- * cosines of the two angles computed once instead of twice (called at every output point). */
-void autobal_pendulum_motion_derive(const autobal_pendulum_params *p, const double y[],
-                                    autobal_pendulum_motion_derived *out) {
-  const double s0 = sin(p->psi0);
+ * cosines of the two angles computed once instead of twice (called at every output point);
+ * s0 = sin(p->psi0), computed by the caller (once per run: autobal_pendulum_motion_derive_m). */
+static void derive(const autobal_pendulum_params *p, double s0, const double y[],
+                   autobal_pendulum_motion_derived *out) {
   const double s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
   const double du = s0 - 0.5 * (s1 + s2), dv = 0.5 * (c1 - c2);
   const double Rw2 = p->R_w * p->R_w, Rm = p->R_m;
@@ -281,7 +285,17 @@ void autobal_pendulum_motion_derive(const autobal_pendulum_params *p, const doub
   out->unbalance_u = du;
   out->unbalance_v = dv;
   out->unbalance = hypot(du, dv);
-  out->alpha = autobal_pendulum_wrap_angle(y[2] - p->psi0);
-  out->beta = autobal_pendulum_wrap_angle(y[3] - p->psi0);
+  out->alpha = wrap_angle(y[2] - p->psi0);
+  out->beta = wrap_angle(y[3] - p->psi0);
   out->jacobi = T2 - T0 + V;
+}
+
+void autobal_pendulum_motion_derive(const autobal_pendulum_params *p, const double y[],
+                                    autobal_pendulum_motion_derived *out) {
+  derive(p, sin(p->psi0), y, out);
+}
+
+void autobal_pendulum_motion_derive_m(const autobal_pendulum_motion *m, const double y[],
+                                      autobal_pendulum_motion_derived *out) {
+  derive(&m->p, m->sin_psi0, y, out); /* m->sin_psi0 = sin(m->p.psi0) (motion_init) */
 }

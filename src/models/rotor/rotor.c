@@ -177,8 +177,10 @@ static double motor_L(const autobal_rotor *R, double W) {
   return Y[lo] + (Y[hi] - Y[lo]) * ((W - X[lo]) / (X[hi] - X[lo]));
 }
 
-/* Wrap an angle to (-pi, pi]. */
+/* Wrap an angle to (-pi, pi].  For |a| <= 3 the formula gives a + 0 (ceil of a value in (-1, 0)
+ * is -0): taken directly, the same number bit for bit (-0 becomes +0 as in the formula). */
 static double wrap_pi(double a) {
+  if (fabs(a) <= 3.0) return a + 0.0;
   double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
   if (w <= -M_PI) w += 2.0 * M_PI;
   if (w > M_PI) w -= 2.0 * M_PI;
@@ -2801,25 +2803,39 @@ int autobal_rotor_convert_state(const autobal_rotor *r, int from_frame, int to_f
 
 /* ---- derived quantities ------------------------------------------------------ */
 
-/* s_u, s_v, s_xi, s_eta of plane j; the state's ball angle + offset = absolute angle phi. */
-static void plane_unbalance(const autobal_rotor *r, size_t j, int frame, double t, const double *y,
-                            double s[4]) {
-  double W, wt, shift;
-  const double psi0 = r->p.plane[j].psi0;
-  double sxi = r->s0[j] * cos(psi0), seta = r->s0[j] * sin(psi0); /* eq. (3.10) */
-  size_t k;
-  spin_state(r, t, y, &W, &wt); /* wt = phi_0(t) */
+/* s_xi, s_eta of plane j (eq. (3.10)), fixed to the rotor; wt = phi_0(t).  The state's ball angle
+ * + offset = absolute angle phi.  cpsi0, spsi0 hold cos and sin of the plane's psi0 (computed once
+ * at allocation, the same numbers as computing them here). */
+static void plane_sxe(const autobal_rotor *r, size_t j, int frame, double wt, const double *y,
+                      double *sxi_out, double *seta_out) {
+  double sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
   /* relative angle = state angle - shift; absolute = state angle + (wt - shift) */
-  shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+  const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+  size_t k;
   for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) {
     const double psi = y[8 + k] - shift;
     sxi += r->mr[k] * cos(psi);
     seta += r->mr[k] * sin(psi);
   }
+  *sxi_out = sxi;
+  *seta_out = seta;
+}
+
+/* s_u, s_v, s_xi, s_eta of plane j from its s_xi, s_eta and cos, sin of phi_0(t) (eq. (3.11)). */
+static void plane_turn(double sxi, double seta, double cw, double sw, double s[4]) {
   s[2] = sxi;
   s[3] = seta;
-  s[0] = sxi * cos(wt) - seta * sin(wt); /* eq. (3.11) */
-  s[1] = sxi * sin(wt) + seta * cos(wt);
+  s[0] = sxi * cw - seta * sw; /* eq. (3.11) */
+  s[1] = sxi * sw + seta * cw;
+}
+
+/* s_u, s_v, s_xi, s_eta of plane j; the state's ball angle + offset = absolute angle phi. */
+static void plane_unbalance(const autobal_rotor *r, size_t j, int frame, double t, const double *y,
+                            double s[4]) {
+  double W, wt, sxi, seta;
+  spin_state(r, t, y, &W, &wt); /* wt = phi_0(t) */
+  plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+  plane_turn(sxi, seta, cos(wt), sin(wt), s);
 }
 
 int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t plane, int frame, double t,
@@ -2832,15 +2848,17 @@ int autobal_rotor_plane_unbalance(const autobal_rotor *r, size_t plane, int fram
 }
 
 double autobal_rotor_balance_monitor(const autobal_rotor *r, int frame, double t, const double *y) {
-  double worst = 0.0, s[4];
+  double worst = 0.0, W, wt;
   size_t j;
   if (r == NULL || y == NULL || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING))
     return NAN;
+  /* only |(s_xi, s_eta)| of each plane: phi_0(t) once, its cosine and sine not needed */
+  spin_state(r, t, y, &W, &wt);
   for (j = 0; j < r->n_planes; j++) {
-    double rel;
-    plane_unbalance(r, j, frame, t, y, s);
-    rel = hypot(s[2], s[3]) / r->sref[j];
+    double rel, sxi, seta;
+    plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+    rel = hypot(sxi, seta) / r->sref[j];
     if (rel > worst) worst = rel;
   }
   return worst;
@@ -2864,7 +2882,7 @@ size_t autobal_rotor_output_count(const autobal_rotor *r) {
 int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                           size_t n_out) {
   size_t j, k;
-  double x, yy, al, be, wt, W;
+  double x, yy, al, be, wt, W, cw, sw;
   double *o;
   if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
@@ -2875,6 +2893,8 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   al = y[2] - r->qs[2];
   be = y[3] - r->qs[3];
   spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
+  cw = cos(wt); /* once for every plane */
+  sw = sin(wt);
   out[0] = hypot(x, yy);
   /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
   out[1] = hypot(x - r->l_L * be, yy + r->l_L * al);
@@ -2882,8 +2902,9 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   o = out + N_GLOBAL_OUT;
   for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
     const double d = r->p.plane[j].d;
-    double s[4];
-    plane_unbalance(r, j, frame, t, y, s);
+    double s[4], sxi, seta;
+    plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+    plane_turn(sxi, seta, cw, sw, s);
     o[0] = s[0];
     o[1] = s[1];
     o[2] = s[2];
