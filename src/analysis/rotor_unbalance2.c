@@ -904,35 +904,129 @@ int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const double s_lo
   return restore2(s, &sv, every2(s, s_lo, s_hi, n_grid, out));
 }
 
+/* The speeds evaluated by the scan, in order (speed, verdict, plane 2 decided exactly, boxes). */
+typedef struct speed_rec {
+  double w;
+  int stable, exact;
+  size_t boxes;
+} speed_rec;
+
 typedef struct {
   const double *s_lo, *s_hi;
   size_t n_grid;
+  speed_rec *rec; /* NULL: no record kept */
+  size_t n_rec, cap;
+  int keep;
 } speeds2_ctx;
 
 /* autobal_rotor_speed_verdict_fn_ of the two-plane speed set. */
 static int speeds2_verdict(autobal_rotor_stab *s, void *user, int *all_stable, size_t *evaluations) {
-  const speeds2_ctx *c = (const speeds2_ctx *)user;
+  speeds2_ctx *c = (speeds2_ctx *)user;
   autobal_rotor_unbalance_range2 ur;
   const int st = every2(s, c->s_lo, c->s_hi, c->n_grid, &ur);
   if (st != AUTOBAL_SUCCESS) return st;
   *evaluations = ur.evaluations;
   *all_stable = ur.all_stable;
+  if (c->keep) {
+    if (c->n_rec == c->cap) {
+      const size_t cap = c->cap ? 2 * c->cap : 256;
+      speed_rec *r = realloc(c->rec, cap * sizeof *r);
+      if (r == NULL) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance (two planes): out of memory");
+      c->rec = r;
+      c->cap = cap;
+    }
+    c->rec[c->n_rec].w = s->cur.omega;
+    c->rec[c->n_rec].stable = ur.all_stable;
+    c->rec[c->n_rec].exact = ur.exact_in_s2;
+    c->rec[c->n_rec].boxes = ur.boxes;
+    c->n_rec++;
+  }
+  return st;
+}
+
+/* The detail from the record of the speeds evaluated. */
+static void fill_detail(const speeds2_ctx *c, const autobal_rotor_crit *out, double w_lo, double w_hi, size_t n_omega,
+                        autobal_rotor_speeds2_detail *d) {
+  size_t k, j;
+  d->n_evaluated = c->n_rec;
+  for (j = 0; j < c->n_rec; j++) {
+    if (!c->rec[j].exact) d->n_undecided++;
+    d->boxes += c->rec[j].boxes;
+  }
+  for (k = 0; k < n_omega; k++) {
+    /* the scan's grid speed, bit for bit (rotor_speed_scan.c) */
+    const double w = w_lo + (w_hi - w_lo) * (double)k / (double)(n_omega - 1);
+    if (d->grid_omega) d->grid_omega[k] = w;
+    if (d->grid_stable) d->grid_stable[k] = -1;
+    if (d->grid_exact) d->grid_exact[k] = 0;
+    if (d->grid_boxes) d->grid_boxes[k] = 0;
+    for (j = 0; j < c->n_rec; j++)
+      if (c->rec[j].w == w) {
+        if (d->grid_stable) d->grid_stable[k] = c->rec[j].stable;
+        if (d->grid_exact) d->grid_exact[k] = c->rec[j].exact;
+        if (d->grid_boxes) d->grid_boxes[k] = c->rec[j].boxes;
+        break;
+      }
+  }
+  for (k = 0; k < out->n_stable && k < AUTOBAL_ROTOR_MAX_CRIT; k++) {
+    const double lo = fmin(out->stable_lo[k], out->stable_hi[k]), hi = fmax(out->stable_lo[k], out->stable_hi[k]);
+    d->interval_exact[k] = 1;
+    for (j = 0; j < c->n_rec; j++)
+      if (c->rec[j].w >= lo && c->rec[j].w <= hi && !c->rec[j].exact) {
+        d->interval_exact[k] = 0;
+        d->interval_undecided[k]++;
+      }
+  }
+  for (k = 0; k < out->n && k < AUTOBAL_ROTOR_MAX_CRIT; k++) {
+    /* the final bracket: the nearest speeds evaluated on either side */
+    const double v = out->value[k];
+    size_t below = c->n_rec, above = c->n_rec;
+    for (j = 0; j < c->n_rec; j++) {
+      if (c->rec[j].w <= v && (below == c->n_rec || c->rec[j].w > c->rec[below].w)) below = j;
+      if (c->rec[j].w >= v && (above == c->n_rec || c->rec[j].w < c->rec[above].w)) above = j;
+    }
+    d->critical_exact[k] = below < c->n_rec && above < c->n_rec && c->rec[below].exact && c->rec[above].exact;
+  }
+}
+
+int autobal_rotor_stab_every_unbalance2_speeds_detail(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
+                                                      size_t n_grid, double w_lo, double w_hi, size_t n_omega,
+                                                      double xtol_rel, autobal_rotor_crit *out,
+                                                      autobal_rotor_speeds2_detail *detail) {
+  speeds2_ctx c;
+  saved2 sv;
+  int st;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL || s_lo == NULL || s_hi == NULL)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (two planes): NULL argument");
+  memset(&c, 0, sizeof c);
+  c.s_lo = s_lo;
+  c.s_hi = s_hi;
+  c.n_grid = n_grid;
+  c.keep = detail != NULL;
+  if (detail) {
+    /* the caller's arrays kept, the rest cleared */
+    double *gw = detail->grid_omega;
+    int *gs = detail->grid_stable, *ge = detail->grid_exact;
+    size_t *gb = detail->grid_boxes;
+    memset(detail, 0, sizeof *detail);
+    detail->grid_omega = gw;
+    detail->grid_stable = gs;
+    detail->grid_exact = ge;
+    detail->grid_boxes = gb;
+  }
+  save2(s, &sv);
+  st = restore2(s, &sv, autobal_rotor_scan_speeds_(s, w_lo, w_hi, n_omega, xtol_rel, speeds2_verdict, &c, out));
+  if (detail && (st == AUTOBAL_SUCCESS || st == AUTOBAL_WARNING) && n_omega >= 2) fill_detail(&c, out, w_lo, w_hi, n_omega, detail);
+  free(c.rec);
   return st;
 }
 
 int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
                                                size_t n_grid, double w_lo, double w_hi, size_t n_omega,
                                                double xtol_rel, autobal_rotor_crit *out) {
-  speeds2_ctx c;
-  saved2 sv;
-  if (s == NULL) return AUTOBAL_EINVAL;
-  if (out == NULL || s_lo == NULL || s_hi == NULL)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (two planes): NULL argument");
-  c.s_lo = s_lo;
-  c.s_hi = s_hi;
-  c.n_grid = n_grid;
-  save2(s, &sv);
-  return restore2(s, &sv, autobal_rotor_scan_speeds_(s, w_lo, w_hi, n_omega, xtol_rel, speeds2_verdict, &c, out));
+  return autobal_rotor_stab_every_unbalance2_speeds_detail(s, s_lo, s_hi, n_grid, w_lo, w_hi, n_omega, xtol_rel, out,
+                                                           NULL);
 }
 
 /* For the one-plane entry points (rotor_unbalance.c) with two planes: both planes over [s_lo, s_hi],
