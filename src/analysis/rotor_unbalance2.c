@@ -919,12 +919,62 @@ typedef struct {
   int keep;
 } speeds2_ctx;
 
+/* The speed set's verdict by the box search first (the same certificate every2 ends with, without the
+ * grid before it): a root found in the region is "not stable for all"; none, and the four corners of
+ * both ranges at the phases 0 and pi/2 stable (the closed matrix), is "stable for all" (the region is
+ * connected: no root crosses the axis inside it).  *decided 0 when the search was undecided or a
+ * corner was not stable (then every2 decides, as before).  ur gets all_stable, exact_in_s2, boxes,
+ * evaluations. */
+static int box_first(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
+                     autobal_rotor_unbalance_range2 *ur, int *decided) {
+  int st, bv, a;
+  const size_t budget = s->opt.unbalance2_boxes > 0 ? (size_t)s->opt.unbalance2_boxes : BOX_BUDGET_RANGE;
+  memset(ur, 0, sizeof *ur);
+  ur->found_s[0] = ur->found_s[1] = ur->found_phase = NAN;
+  *decided = 0;
+  if ((st = check_domain2(s, s_lo, s_hi)) != AUTOBAL_SUCCESS) return st;
+  if ((st = set_unb(s, 0, s_lo[0])) != AUTOBAL_SUCCESS) return st;
+  if ((st = set_unb(s, 1, s_lo[1])) != AUTOBAL_SUCCESS) return st;
+  if ((st = box_check(s, s_lo, s_hi, budget, &bv, ur)) != AUTOBAL_SUCCESS) return st;
+  if (bv == 1) {
+    ur->all_stable = 0;
+    ur->exact_in_s2 = 1;
+    *decided = 1;
+    return AUTOBAL_SUCCESS;
+  }
+  if (bv != 0) return AUTOBAL_SUCCESS;
+  for (a = 0; a < 8; a++) {
+    double mg;
+    int v;
+    if ((st = set_unb(s, 0, (a & 1) ? s_hi[0] : s_lo[0])) != AUTOBAL_SUCCESS) return st;
+    if ((st = set_unb(s, 1, (a & 2) ? s_hi[1] : s_lo[1])) != AUTOBAL_SUCCESS) return st;
+    if ((st = verdict_phase(s, (a & 4) ? 0.5 * M_PI : 0.0, &mg, &v)) != AUTOBAL_SUCCESS) return st;
+    ur->evaluations++;
+    if (v != AUTOBAL_VERDICT_STABLE) return AUTOBAL_SUCCESS; /* not what the search says: every2 decides */
+  }
+  ur->all_stable = 1;
+  ur->exact_in_s2 = 1;
+  *decided = 1;
+  return AUTOBAL_SUCCESS;
+}
+
 /* autobal_rotor_speed_verdict_fn_ of the two-plane speed set. */
 static int speeds2_verdict(autobal_rotor_stab *s, void *user, int *all_stable, size_t *evaluations) {
   speeds2_ctx *c = (speeds2_ctx *)user;
   autobal_rotor_unbalance_range2 ur;
-  const int st = every2(s, c->s_lo, c->s_hi, c->n_grid, &ur);
-  if (st != AUTOBAL_SUCCESS) return st;
+  int st, decided = 0;
+  size_t boxes = 0;
+  memset(&ur, 0, sizeof ur);
+  if (s->opt.unbalance2_boxes != -1) {
+    if ((st = box_first(s, c->s_lo, c->s_hi, &ur, &decided)) != AUTOBAL_SUCCESS) return st;
+    boxes = ur.boxes;
+  }
+  if (!decided) {
+    const size_t ev = ur.evaluations;
+    if ((st = every2(s, c->s_lo, c->s_hi, c->n_grid, &ur)) != AUTOBAL_SUCCESS) return st;
+    ur.boxes += boxes;
+    ur.evaluations += ev;
+  }
   *evaluations = ur.evaluations;
   *all_stable = ur.all_stable;
   if (c->keep) {
