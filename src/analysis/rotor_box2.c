@@ -12,8 +12,12 @@
  * and "some root on the axis" is "S meets (0, inf) x Y" (or the root lambda = 0, below).  The search
  * covers z in [0, w2] (z = w2 zeta) and [w2, inf] (z = w2 / u, the polynomials reversed: same signs)
  * times Y, by boxes: a box is dropped when the bounds of d, N - x_lo d, x_hi d - N, G on it show
- * two signs that must agree certainly disagree, or G < 0 throughout; a box whose centre satisfies
- * all strictly (bounds, not just values) is a point of S (the answer 1); else it is halved.
+ * two signs that must agree certainly disagree, or G < 0 throughout, or when the even or the odd
+ * equation itself, a0 + F (x a1 + t a2) = 0, has no solution with x in X, |t| <= sqrt(x_hi y) (the
+ * direct test: it decides the points where d = N = T = 0, the three pieces' even/odd vectors
+ * parallel, around which x = N / d and t = T / d take every value and no sign test can drop a box);
+ * a box whose centre satisfies all strictly (bounds, not just values) is a point of S (the answer 1);
+ * else it is halved across the side its bounds' radii come from (z alone against y).
  *
  * The bounds: the polynomial is shifted to the box's centre (Taylor shift in long double) and bounded
  * by |value| + sum |coefficient| radius^(i, j), widened by a rounding allowance
