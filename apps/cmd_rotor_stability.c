@@ -200,6 +200,63 @@ static void print_intervals(const char *what, const char *unit, const autobal_ro
            cr->value[cr->n - 1]);
 }
 
+/* Two planes: per speed whether plane 2's range was decided exactly (the box search). */
+static void print_speeds2(const autobal_rotor_crit *cr, const autobal_rotor_speeds2_detail *d, size_t n) {
+  size_t i, n_ex = 0;
+  for (i = 0; i < n; i++)
+    if (d->grid_exact[i]) n_ex++;
+  printf("  plane 2's range decided exactly (box search) at %zu of %zu speeds evaluated (%zu of %zu grid speeds); "
+         "%zu boxes\n",
+         d->n_evaluated - d->n_undecided, d->n_evaluated, n_ex, n, d->boxes);
+  if (cr->n_stable > 0) {
+    printf("  stable intervals, plane 2:");
+    for (i = 0; i < cr->n_stable; i++)
+      if (d->interval_exact[i]) printf(" [%.10g, %.10g] exact", cr->stable_lo[i], cr->stable_hi[i]);
+      else
+        printf(" [%.10g, %.10g] SAMPLED at %zu speed(s)", cr->stable_lo[i], cr->stable_hi[i], d->interval_undecided[i]);
+    printf("\n");
+  }
+  if (cr->n > 0) {
+    printf("  critical speeds, plane 2:");
+    for (i = 0; i < cr->n; i++) printf(" %.10g %s", cr->value[i], d->critical_exact[i] ? "exact" : "SAMPLED");
+    printf("\n");
+  }
+  if (d->n_undecided > 0) {
+    size_t shown = 0;
+    printf("  grid speeds where plane 2 was sampled (the box search undecided or off):");
+    for (i = 0; i < n && shown < 20; i++)
+      if (!d->grid_exact[i] && d->grid_stable[i] >= 0) {
+        printf(" %.6g", d->grid_omega[i]);
+        shown++;
+      }
+    if (shown == 20) printf(" ...");
+    printf(" rad/s\n");
+  }
+}
+
+static void json_speeds2(cli_json *j, const autobal_rotor_crit *cr, const autobal_rotor_speeds2_detail *d, size_t n) {
+  size_t i;
+  cli_json_int(j, "n_speeds_evaluated", (long)d->n_evaluated);
+  cli_json_int(j, "n_speeds_undecided_in_unbalance2", (long)d->n_undecided);
+  cli_json_int(j, "boxes", (long)d->boxes);
+  cli_json_array(j, "critical_exact_in_unbalance2");
+  for (i = 0; i < cr->n; i++) cli_json_bool(j, NULL, d->critical_exact[i]);
+  cli_json_array_end(j);
+  cli_json_array(j, "interval_exact_in_unbalance2");
+  for (i = 0; i < cr->n_stable; i++) cli_json_bool(j, NULL, d->interval_exact[i]);
+  cli_json_array_end(j);
+  cli_json_quantities(j, "grid_omega", d->grid_omega, n, "rad/s");
+  cli_json_array(j, "grid_stable");
+  for (i = 0; i < n; i++) cli_json_int(j, NULL, d->grid_stable[i]);
+  cli_json_array_end(j);
+  cli_json_array(j, "grid_exact_in_unbalance2");
+  for (i = 0; i < n; i++) cli_json_bool(j, NULL, d->grid_exact[i]);
+  cli_json_array_end(j);
+  cli_json_array(j, "grid_boxes");
+  for (i = 0; i < n; i++) cli_json_int(j, NULL, (long)d->grid_boxes[i]);
+  cli_json_array_end(j);
+}
+
 static void json_crit(cli_json *j, const autobal_rotor_crit *cr, const char *unit) {
   size_t i;
   cli_json_quantities(j, "critical_values", cr->value, cr->n, unit);
@@ -609,6 +666,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       if (sum.have_every_speeds) {
         cli_json_object(&j, "speeds");
         json_crit(&j, &sum.every_speeds, "rad/s");
+        if (sum.have_every_speeds2) json_speeds2(&j, &sum.every_speeds, &sum.every_speeds2, sum.every_speeds2_n);
         cli_json_object_end(&j);
       }
       cli_json_object_end(&j);
@@ -722,6 +780,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
       if (sum.have_every_speeds)
         print_intervals("speed for every unbalance", "rad/s", &sum.every_speeds,
                         c->p.omega > 0 ? clo : -chi, c->p.omega > 0 ? chi : -clo);
+      if (sum.have_every_speeds2) print_speeds2(&sum.every_speeds, &sum.every_speeds2, sum.every_speeds2_n);
     }
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }

@@ -685,6 +685,36 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s
                                                            double w_hi, size_t n_omega, double xtol_rel,
                                                            autobal_rotor_crit *out);
 
+/* Per speed: was plane 2's whole range decided exactly (exact_in_s2 of
+ * autobal_rotor_stab_every_unbalance2 at that speed)?  Filled by
+ * autobal_rotor_stab_every_unbalance2_speeds_detail.  The per-grid arrays are the caller's (n_omega
+ * entries each; any may be NULL); the rest is filled in place. */
+typedef struct autobal_rotor_speeds2_detail {
+  double *grid_omega;      /* [n_omega] rad/s, the grid speeds */
+  int *grid_stable;        /* [n_omega] 1 stable for all, 0 not, -1 not evaluated (a truncated scan) */
+  int *grid_exact;         /* [n_omega] 1 decided exactly over plane 2's range (stable: the box search
+                              proved it; not stable: a grid point or an exact slice or a point found),
+                              0 the plane-2 grid verdict (undecided, or the search off) */
+  size_t *grid_boxes;      /* [n_omega] boxes the search examined there */
+  int interval_exact[AUTOBAL_ROTOR_MAX_CRIT];        /* per stable interval of out: 1 every speed evaluated
+                                                        in it (grid and bisection) was decided exactly */
+  size_t interval_undecided[AUTOBAL_ROTOR_MAX_CRIT]; /* speeds evaluated in it that were not */
+  int critical_exact[AUTOBAL_ROTOR_MAX_CRIT];        /* per critical speed of out: 1 both speeds of its
+                                                        final bracket were decided exactly */
+  size_t n_evaluated;      /* speeds evaluated (grid and bisection) */
+  size_t n_undecided;      /* of them, not decided exactly over plane 2 */
+  size_t boxes;            /* boxes examined in all */
+} autobal_rotor_speeds2_detail;
+
+/* autobal_rotor_stab_every_unbalance2_speeds, and per speed whether plane 2 was decided exactly
+ * (detail NULL: the same as autobal_rotor_stab_every_unbalance2_speeds).  AUTOBAL_ENOMEM if the
+ * record of the speeds cannot be kept. */
+AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds_detail(autobal_rotor_stab *s, const double s_lo[2],
+                                                                  const double s_hi[2], size_t n_grid, double w_lo,
+                                                                  double w_hi, size_t n_omega, double xtol_rel,
+                                                                  autobal_rotor_crit *out,
+                                                                  autobal_rotor_speeds2_detail *detail);
+
 /* autobal_rotor_stab_map with, at every grid point, the verdict for EVERY unbalance m0 r0 in
  * [s_lo, s_hi] (autobal_rotor_stab_every_unbalance): STABLE (stable for all), UNSTABLE (unstable for
  * some), MARGINAL (a critical unbalance inside with stable sides: a touch), AUTOBAL_ROTOR_VERDICT_NONE

@@ -390,6 +390,14 @@ typedef struct autobal_study_rotor_stability_summary {
      written to /rotor/stability/asymptotic2 */
   int have_asymptotic2;
   autobal_rotor_asymptotic2 asymptotic2;
+  /* two planes, the speeds for every unbalance (added at the end): per grid speed, stable interval
+     and critical speed whether plane 2's range was decided exactly
+     (autobal_rotor_stab_every_unbalance2_speeds_detail); its grid arrays have every_speeds2_n
+     entries, owned by the summary */
+  int have_every_speeds2;
+  autobal_rotor_speeds2_detail every_speeds2;
+  size_t every_speeds2_n;
+  void *every_speeds2_storage_;     /* private */
 } autobal_study_rotor_stability_summary;
 
 /* Analyse the balanced motion of the rotor *p at its speed p->omega (non-zero): every

@@ -12,8 +12,12 @@
  * and "some root on the axis" is "S meets (0, inf) x Y" (or the root lambda = 0, below).  The search
  * covers z in [0, w2] (z = w2 zeta) and [w2, inf] (z = w2 / u, the polynomials reversed: same signs)
  * times Y, by boxes: a box is dropped when the bounds of d, N - x_lo d, x_hi d - N, G on it show
- * two signs that must agree certainly disagree, or G < 0 throughout; a box whose centre satisfies
- * all strictly (bounds, not just values) is a point of S (the answer 1); else it is halved.
+ * two signs that must agree certainly disagree, or G < 0 throughout, or when the even or the odd
+ * equation itself, a0 + F (x a1 + t a2) = 0, has no solution with x in X, |t| <= sqrt(x_hi y) (the
+ * direct test: it decides the points where d = N = T = 0, the three pieces' even/odd vectors
+ * parallel, around which x = N / d and t = T / d take every value and no sign test can drop a box);
+ * a box whose centre satisfies all strictly (bounds, not just values) is a point of S (the answer 1);
+ * else it is halved across the side its bounds' radii come from (z alone against y).
  *
  * The bounds: the polynomial is shifted to the box's centre (Taylor shift in long double) and bounded
  * by |value| + sum |coefficient| radius^(i, j), widened by a rounding allowance
@@ -44,9 +48,11 @@ typedef struct bp {
 } bp;
 
 /* Bounds of p over [z0, z1] x [y0, y1], 0 <= z0 <= z1, 0 <= y0 <= y1. */
-static void bp_bound(const bp *p, long double z0, long double z1, long double y0, long double y1, long double *lo,
-                     long double *hi) {
-  long double a[BZ][BY], R = 0.0L, M = 0.0L, err, v;
+/* hint (may be NULL): the split hint of a box, the parts of the radius from z alone (hint[0]) and from
+ * y (hint[1]), added relative to the radius. */
+static void bp_bound_h(const bp *p, long double z0, long double z1, long double y0, long double y1, long double *lo,
+                       long double *hi, long double *hint) {
+  long double a[BZ][BY], R = 0.0L, M = 0.0L, err, v, Rz = 0.0L, rzi = 1.0L;
   const long double zc = 0.5L * (z0 + z1), rz = 0.5L * (z1 - z0), yc = 0.5L * (y0 + y1), ry = 0.5L * (y1 - y0);
   int i, j, k;
   const int nz = p->nz, ny = p->ny;
@@ -70,11 +76,24 @@ static void bp_bound(const bp *p, long double z0, long double z1, long double y0
     R = R * rz + rr;
     M = M * z1 + mm;
   }
+  for (i = 1; i < nz; i++) {
+    rzi *= rz;
+    Rz += fabsl(a[i][0]) * rzi;
+  }
+  if (hint != NULL && R > 0.0L) {
+    hint[0] += Rz / R;
+    hint[1] += (R - Rz) / R;
+  }
   v = a[0][0];
   err = (long double)(8 * (nz + ny) + 32) * LDBL_EPSILON * M;
   R *= 1.0L + (long double)(4 * (nz + ny)) * LDBL_EPSILON;
   *lo = v - R - err;
   *hi = v + R + err;
+}
+
+static void bp_bound(const bp *p, long double z0, long double z1, long double y0, long double y1, long double *lo,
+                     long double *hi) {
+  bp_bound_h(p, z0, z1, y0, y1, lo, hi, NULL);
 }
 
 /* -1, 1: the certain sign on the box; 0: unknown */
@@ -133,6 +152,26 @@ static void bp_scale(bp *p, long double zs, long double ys) {
       for (j = 0; j < p->ny; j++) p->c[i][j] /= big;
 }
 
+/* bp_scale for n polynomials with one common positive factor (their ratios kept) */
+static void scale_common(bp *p, int n, long double zs, long double ys) {
+  long double big = 0.0L;
+  int i, j, k;
+  for (k = 0; k < n; k++) {
+    long double zi = 1.0L;
+    for (i = 0; i < p[k].nz; i++, zi *= zs) {
+      long double yj = 1.0L;
+      for (j = 0; j < p[k].ny; j++, yj *= ys) {
+        p[k].c[i][j] *= zi * yj;
+        big = fmaxl(big, fabsl(p[k].c[i][j]));
+      }
+    }
+  }
+  if (big > 0.0L)
+    for (k = 0; k < n; k++)
+      for (i = 0; i < p[k].nz; i++)
+        for (j = 0; j < p[k].ny; j++) p[k].c[i][j] /= big;
+}
+
 /* u^(nz-1) p(1/u): the same sign for u > 0 */
 static void bp_reverse(const bp *p, bp *o) {
   int i, j;
@@ -147,25 +186,59 @@ typedef struct box {
   long double z0, z1, y0, y1;
 } box;
 
-/* The four polynomials of one side (z <= w2, or z >= w2 reversed). */
+/* The four polynomials of one side (z <= w2, or z >= w2 reversed), and the parts of the two real
+ * equations themselves: e[0] + x e[1] + t e[2] (the even one), o[0] + x o[1] + t o[2] (the odd one),
+ * each triple with one common length in z and one common positive factor (so comparable). */
 typedef struct side {
   bp d, p1, p2, g;
+  bp e[3], o[3];
+  long double x_lo, x_hi, tq; /* x in [x_lo, x_hi], |t| <= tq sqrt(eta) (eta = y / y_hi) */
 } side;
 
-/* 1: box excluded; 2: its centre is a point of S; 0: neither */
-static int classify(const side *S, const box *b) {
+/* The interval of a + x b + t c over x in [x0, x1], |t| <= tm (a, b, c intervals) excludes 0 for
+ * certain: the equation has no solution (x, t) in that rectangle (which holds the region t^2 <= x y).
+ * The few products and sums are rounded: a relative slack of 16 eps on the sum of magnitudes. */
+static int no_solution(const long double a[2], const long double b[2], const long double c[2], long double x0,
+                       long double x1, long double tm) {
+  const long double p0 = x0 * b[0], p1 = x0 * b[1], p2 = x1 * b[0], p3 = x1 * b[1];
+  const long double blo = fminl(fminl(p0, p1), fminl(p2, p3)), bhi = fmaxl(fmaxl(p0, p1), fmaxl(p2, p3));
+  const long double cm = tm * fmaxl(fabsl(c[0]), fabsl(c[1]));
+  const long double lo = a[0] + blo - cm, hi = a[1] + bhi + cm;
+  const long double slack =
+      16.0L * LDBL_EPSILON * (fmaxl(fabsl(a[0]), fabsl(a[1])) + fmaxl(fabsl(blo), fabsl(bhi)) + cm);
+  return lo > slack || hi < -slack;
+}
+
+/* 1: on the box neither the even nor the odd equation has a solution in the region */
+static int direct_excluded(const side *S, const box *b, long double *hint) {
+  long double e[3][2], t;
+  int k, q;
+  t = S->tq * sqrtl(b->y1);
+  for (q = 0; q < 2; q++) {
+    const bp *P = q ? S->o : S->e;
+    for (k = 0; k < 3; k++) bp_bound_h(&P[k], b->z0, b->z1, b->y0, b->y1, &e[k][0], &e[k][1], hint);
+    if (no_solution(e[0], e[1], e[2], S->x_lo, S->x_hi, t)) return 1;
+  }
+  return 0;
+}
+
+/* 1: box excluded; 2: its centre is a point of S; 0: neither (then hint says which side of the box
+ * to split: hint[0] >= hint[1] its z side, where the bounds' radii come mostly from z) */
+static int classify(const side *S, const box *b, long double *hint) {
   long double l[4], h[4];
   int sd, s1, s2;
+  hint[0] = hint[1] = 0.0L;
   /* the cheap ones first (G has twice their degree) */
-  bp_bound(&S->d, b->z0, b->z1, b->y0, b->y1, &l[0], &h[0]);
-  bp_bound(&S->p1, b->z0, b->z1, b->y0, b->y1, &l[1], &h[1]);
+  bp_bound_h(&S->d, b->z0, b->z1, b->y0, b->y1, &l[0], &h[0], hint);
+  bp_bound_h(&S->p1, b->z0, b->z1, b->y0, b->y1, &l[1], &h[1], hint);
   sd = sgn_of(l[0], h[0]);
   s1 = sgn_of(l[1], h[1]);
   if (sd && s1 && s1 != sd) return 1;
-  bp_bound(&S->p2, b->z0, b->z1, b->y0, b->y1, &l[2], &h[2]);
+  bp_bound_h(&S->p2, b->z0, b->z1, b->y0, b->y1, &l[2], &h[2], hint);
   s2 = sgn_of(l[2], h[2]);
   if ((sd && s2 && s2 != sd) || (s1 && s2 && s1 != s2)) return 1;
-  bp_bound(&S->g, b->z0, b->z1, b->y0, b->y1, &l[3], &h[3]);
+  if (direct_excluded(S, b, hint)) return 1;
+  bp_bound_h(&S->g, b->z0, b->z1, b->y0, b->y1, &l[3], &h[3], hint);
   if (h[3] < 0.0L) return 1;
   {
     const long double zc = 0.5L * (b->z0 + b->z1), yc = 0.5L * (b->y0 + b->y1);
@@ -182,11 +255,11 @@ static int classify(const side *S, const box *b) {
 /* Split box b across its wider side (wz, wy: its widths, each relative to its axis's range) and push
  * the two halves (the lower one on top).  -1 when the stack is full or b is too small to resolve
  * (both relative widths below 1e-15): the caller is then undecided. */
-static int push_halves(box *st, size_t *n, const box *b, long double wz, long double wy) {
+static int push_halves(box *st, size_t *n, const box *b, long double wz, long double wy, int hint_z) {
   box a1 = *b, a2 = *b;
   if (*n + 2 > STACK) return -1;
   if (wz < 1e-15L && wy < 1e-15L) return -1;
-  if (wz >= wy) {
+  if (hint_z >= 0 ? (wy < 1e-15L || (hint_z && wz >= 1e-15L)) : wz >= wy) {
     const long double m = 0.5L * (b->z0 + b->z1);
     a1.z1 = m;
     a2.z0 = m;
@@ -205,6 +278,7 @@ static int search(const side *S, long double y_rel, size_t max_boxes, size_t *bo
   box st[STACK];
   size_t n = 0;
   const long double yw = 1.0L - y_rel;
+  long double hint[2];
   st[n].z0 = 0.0L;
   st[n].z1 = 1.0L;
   st[n].y0 = y_rel;
@@ -214,13 +288,13 @@ static int search(const side *S, long double y_rel, size_t max_boxes, size_t *bo
     const box b = st[--n];
     int c;
     if (++*boxes > max_boxes) return -1;
-    c = classify(S, &b);
+    c = classify(S, &b, hint);
     if (c == 1) continue;
     if (c == 2) {
       *at = b;
       return 1;
     }
-    if (push_halves(st, &n, &b, b.z1 - b.z0, yw > 0.0L ? (b.y1 - b.y0) / yw : 0.0L)) return -1;
+    if (push_halves(st, &n, &b, b.z1 - b.z0, yw > 0.0L ? (b.y1 - b.y0) / yw : 0.0L, hint[0] >= hint[1])) return -1;
   }
   return 0;
 }
@@ -246,7 +320,7 @@ static int positive(const bp *p, long double u0, long double v0, size_t max_boxe
       bp_bound(p, uc, uc, vc, vc, &lo, &hi);
       if (hi < 0.0L) return 0;
     }
-    if (push_halves(st, &n, &b, uw > 0.0L ? (b.z1 - b.z0) / uw : 0.0L, vw > 0.0L ? (b.y1 - b.y0) / vw : 0.0L))
+    if (push_halves(st, &n, &b, uw > 0.0L ? (b.z1 - b.z0) / uw : 0.0L, vw > 0.0L ? (b.y1 - b.y0) / vw : 0.0L, -1))
       return -1;
   }
   return 1;
@@ -404,6 +478,26 @@ int autobal_rotor_box2_(const autobal_rotor_box2_in *in, autobal_rotor_box2_out 
   bp_scale(&S[0].p1, in->w2, in->y_hi);
   bp_scale(&S[0].p2, in->w2, in->y_hi);
   bp_scale(&S[0].g, in->w2, in->y_hi);
+  /* the two equations' parts: a0 + F (x a1 + t a2), even (k = 0) and odd */
+  for (k = 0; k < 2; k++) {
+    bp *P = k ? S[0].o : S[0].e, *Q = k ? S[1].o : S[1].e;
+    int j, nzm = 0;
+    P[0] = a0[k];
+    bp_mul(&f, &a1[k], &P[1]);
+    bp_mul(&f, &a2[k], &P[2]);
+    for (j = 0; j < 3; j++) {
+      bp_trim(&P[j]);
+      if (P[j].nz > nzm) nzm = P[j].nz;
+    }
+    for (j = 0; j < 3; j++) P[j].nz = nzm; /* one length: the reversals share the power */
+    scale_common(P, 3, in->w2, in->y_hi);
+    for (j = 0; j < 3; j++) bp_reverse(&P[j], &Q[j]);
+  }
+  for (k = 0; k < 2; k++) {
+    S[k].x_lo = in->x_lo;
+    S[k].x_hi = in->x_hi;
+    S[k].tq = sqrtl(in->x_hi * in->y_hi);
+  }
   bp_reverse(&S[0].d, &S[1].d);
   bp_reverse(&S[0].p1, &S[1].p1);
   bp_reverse(&S[0].p2, &S[1].p2);

@@ -904,35 +904,179 @@ int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const double s_lo
   return restore2(s, &sv, every2(s, s_lo, s_hi, n_grid, out));
 }
 
+/* The speeds evaluated by the scan, in order (speed, verdict, plane 2 decided exactly, boxes). */
+typedef struct speed_rec {
+  double w;
+  int stable, exact;
+  size_t boxes;
+} speed_rec;
+
 typedef struct {
   const double *s_lo, *s_hi;
   size_t n_grid;
+  speed_rec *rec; /* NULL: no record kept */
+  size_t n_rec, cap;
+  int keep;
 } speeds2_ctx;
+
+/* The speed set's verdict by the box search first (the same certificate every2 ends with, without the
+ * grid before it): a root found in the region is "not stable for all"; none, and the four corners of
+ * both ranges at the phases 0 and pi/2 stable (the closed matrix), is "stable for all" (the region is
+ * connected: no root crosses the axis inside it).  *decided 0 when the search was undecided or a
+ * corner was not stable (then every2 decides, as before).  ur gets all_stable, exact_in_s2, boxes,
+ * evaluations. */
+static int box_first(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
+                     autobal_rotor_unbalance_range2 *ur, int *decided) {
+  int st, bv, a;
+  const size_t budget = s->opt.unbalance2_boxes > 0 ? (size_t)s->opt.unbalance2_boxes : BOX_BUDGET_RANGE;
+  memset(ur, 0, sizeof *ur);
+  ur->found_s[0] = ur->found_s[1] = ur->found_phase = NAN;
+  *decided = 0;
+  if ((st = check_domain2(s, s_lo, s_hi)) != AUTOBAL_SUCCESS) return st;
+  if ((st = set_unb(s, 0, s_lo[0])) != AUTOBAL_SUCCESS) return st;
+  if ((st = set_unb(s, 1, s_lo[1])) != AUTOBAL_SUCCESS) return st;
+  if ((st = box_check(s, s_lo, s_hi, budget, &bv, ur)) != AUTOBAL_SUCCESS) return st;
+  if (bv == 1) {
+    ur->all_stable = 0;
+    ur->exact_in_s2 = 1;
+    *decided = 1;
+    return AUTOBAL_SUCCESS;
+  }
+  if (bv != 0) return AUTOBAL_SUCCESS;
+  for (a = 0; a < 8; a++) {
+    double mg;
+    int v;
+    if ((st = set_unb(s, 0, (a & 1) ? s_hi[0] : s_lo[0])) != AUTOBAL_SUCCESS) return st;
+    if ((st = set_unb(s, 1, (a & 2) ? s_hi[1] : s_lo[1])) != AUTOBAL_SUCCESS) return st;
+    if ((st = verdict_phase(s, (a & 4) ? 0.5 * M_PI : 0.0, &mg, &v)) != AUTOBAL_SUCCESS) return st;
+    ur->evaluations++;
+    if (v != AUTOBAL_VERDICT_STABLE) return AUTOBAL_SUCCESS; /* not what the search says: every2 decides */
+  }
+  ur->all_stable = 1;
+  ur->exact_in_s2 = 1;
+  *decided = 1;
+  return AUTOBAL_SUCCESS;
+}
 
 /* autobal_rotor_speed_verdict_fn_ of the two-plane speed set. */
 static int speeds2_verdict(autobal_rotor_stab *s, void *user, int *all_stable, size_t *evaluations) {
-  const speeds2_ctx *c = (const speeds2_ctx *)user;
+  speeds2_ctx *c = (speeds2_ctx *)user;
   autobal_rotor_unbalance_range2 ur;
-  const int st = every2(s, c->s_lo, c->s_hi, c->n_grid, &ur);
-  if (st != AUTOBAL_SUCCESS) return st;
+  int st, decided = 0;
+  size_t boxes = 0;
+  memset(&ur, 0, sizeof ur);
+  if (s->opt.unbalance2_boxes != -1) {
+    if ((st = box_first(s, c->s_lo, c->s_hi, &ur, &decided)) != AUTOBAL_SUCCESS) return st;
+    boxes = ur.boxes;
+  }
+  if (!decided) {
+    const size_t ev = ur.evaluations;
+    if ((st = every2(s, c->s_lo, c->s_hi, c->n_grid, &ur)) != AUTOBAL_SUCCESS) return st;
+    ur.boxes += boxes;
+    ur.evaluations += ev;
+  }
   *evaluations = ur.evaluations;
   *all_stable = ur.all_stable;
+  if (c->keep) {
+    if (c->n_rec == c->cap) {
+      const size_t cap = c->cap ? 2 * c->cap : 256;
+      speed_rec *r = realloc(c->rec, cap * sizeof *r);
+      if (r == NULL) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance (two planes): out of memory");
+      c->rec = r;
+      c->cap = cap;
+    }
+    c->rec[c->n_rec].w = s->cur.omega;
+    c->rec[c->n_rec].stable = ur.all_stable;
+    c->rec[c->n_rec].exact = ur.exact_in_s2;
+    c->rec[c->n_rec].boxes = ur.boxes;
+    c->n_rec++;
+  }
+  return st;
+}
+
+/* The detail from the record of the speeds evaluated. */
+static void fill_detail(const speeds2_ctx *c, const autobal_rotor_crit *out, double w_lo, double w_hi, size_t n_omega,
+                        autobal_rotor_speeds2_detail *d) {
+  size_t k, j;
+  d->n_evaluated = c->n_rec;
+  for (j = 0; j < c->n_rec; j++) {
+    if (!c->rec[j].exact) d->n_undecided++;
+    d->boxes += c->rec[j].boxes;
+  }
+  for (k = 0; k < n_omega; k++) {
+    /* the scan's grid speed, bit for bit (rotor_speed_scan.c) */
+    const double w = w_lo + (w_hi - w_lo) * (double)k / (double)(n_omega - 1);
+    if (d->grid_omega) d->grid_omega[k] = w;
+    if (d->grid_stable) d->grid_stable[k] = -1;
+    if (d->grid_exact) d->grid_exact[k] = 0;
+    if (d->grid_boxes) d->grid_boxes[k] = 0;
+    for (j = 0; j < c->n_rec; j++)
+      if (c->rec[j].w == w) {
+        if (d->grid_stable) d->grid_stable[k] = c->rec[j].stable;
+        if (d->grid_exact) d->grid_exact[k] = c->rec[j].exact;
+        if (d->grid_boxes) d->grid_boxes[k] = c->rec[j].boxes;
+        break;
+      }
+  }
+  for (k = 0; k < out->n_stable && k < AUTOBAL_ROTOR_MAX_CRIT; k++) {
+    const double lo = fmin(out->stable_lo[k], out->stable_hi[k]), hi = fmax(out->stable_lo[k], out->stable_hi[k]);
+    d->interval_exact[k] = 1;
+    for (j = 0; j < c->n_rec; j++)
+      if (c->rec[j].w >= lo && c->rec[j].w <= hi && !c->rec[j].exact) {
+        d->interval_exact[k] = 0;
+        d->interval_undecided[k]++;
+      }
+  }
+  for (k = 0; k < out->n && k < AUTOBAL_ROTOR_MAX_CRIT; k++) {
+    /* the final bracket: the nearest speeds evaluated on either side */
+    const double v = out->value[k];
+    size_t below = c->n_rec, above = c->n_rec;
+    for (j = 0; j < c->n_rec; j++) {
+      if (c->rec[j].w <= v && (below == c->n_rec || c->rec[j].w > c->rec[below].w)) below = j;
+      if (c->rec[j].w >= v && (above == c->n_rec || c->rec[j].w < c->rec[above].w)) above = j;
+    }
+    d->critical_exact[k] = below < c->n_rec && above < c->n_rec && c->rec[below].exact && c->rec[above].exact;
+  }
+}
+
+int autobal_rotor_stab_every_unbalance2_speeds_detail(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
+                                                      size_t n_grid, double w_lo, double w_hi, size_t n_omega,
+                                                      double xtol_rel, autobal_rotor_crit *out,
+                                                      autobal_rotor_speeds2_detail *detail) {
+  speeds2_ctx c;
+  saved2 sv;
+  int st;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL || s_lo == NULL || s_hi == NULL)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (two planes): NULL argument");
+  memset(&c, 0, sizeof c);
+  c.s_lo = s_lo;
+  c.s_hi = s_hi;
+  c.n_grid = n_grid;
+  c.keep = detail != NULL;
+  if (detail) {
+    /* the caller's arrays kept, the rest cleared */
+    double *gw = detail->grid_omega;
+    int *gs = detail->grid_stable, *ge = detail->grid_exact;
+    size_t *gb = detail->grid_boxes;
+    memset(detail, 0, sizeof *detail);
+    detail->grid_omega = gw;
+    detail->grid_stable = gs;
+    detail->grid_exact = ge;
+    detail->grid_boxes = gb;
+  }
+  save2(s, &sv);
+  st = restore2(s, &sv, autobal_rotor_scan_speeds_(s, w_lo, w_hi, n_omega, xtol_rel, speeds2_verdict, &c, out));
+  if (detail && (st == AUTOBAL_SUCCESS || st == AUTOBAL_WARNING) && n_omega >= 2) fill_detail(&c, out, w_lo, w_hi, n_omega, detail);
+  free(c.rec);
   return st;
 }
 
 int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
                                                size_t n_grid, double w_lo, double w_hi, size_t n_omega,
                                                double xtol_rel, autobal_rotor_crit *out) {
-  speeds2_ctx c;
-  saved2 sv;
-  if (s == NULL) return AUTOBAL_EINVAL;
-  if (out == NULL || s_lo == NULL || s_hi == NULL)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (two planes): NULL argument");
-  c.s_lo = s_lo;
-  c.s_hi = s_hi;
-  c.n_grid = n_grid;
-  save2(s, &sv);
-  return restore2(s, &sv, autobal_rotor_scan_speeds_(s, w_lo, w_hi, n_omega, xtol_rel, speeds2_verdict, &c, out));
+  return autobal_rotor_stab_every_unbalance2_speeds_detail(s, s_lo, s_hi, n_grid, w_lo, w_hi, n_omega, xtol_rel, out,
+                                                           NULL);
 }
 
 /* For the one-plane entry points (rotor_unbalance.c) with two planes: both planes over [s_lo, s_hi],

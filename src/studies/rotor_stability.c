@@ -86,6 +86,11 @@ void autobal_study_rotor_stability_summary_free(autobal_study_rotor_stability_su
   if (!s) return;
   free(s->storage_);
   s->storage_ = NULL;
+  free(s->every_speeds2_storage_);
+  s->every_speeds2_storage_ = NULL;
+  s->every_speeds2.grid_omega = NULL;
+  s->every_speeds2.grid_stable = s->every_speeds2.grid_exact = NULL;
+  s->every_speeds2.grid_boxes = NULL;
   s->result.psi = s->result.full_re = s->result.full_im = s->result.mu_re = s->result.mu_im = NULL;
 }
 
@@ -282,10 +287,31 @@ int autobal_study_rotor_stability(const autobal_rotor_params *p, const autobal_s
       double lo, hi;
       progress_hook ph;
       search_setup(p, o, s, h, 0.75, &ph, &lo, &hi);
-      st = two ? autobal_rotor_stab_every_unbalance2_speeds(h, lo2, hi2, o->n_unbalance, lo, hi, o->n_omega,
-                                                            o->xtol_rel, &s->every_speeds)
-               : autobal_rotor_stab_every_unbalance_speeds(h, o->unbalance_min, o->unbalance_max, lo, hi, o->n_omega,
-                                                           o->xtol_rel, &s->every_speeds);
+      if (two) {
+        /* per speed whether plane 2 was decided exactly: the grid arrays in one block */
+        const size_t n = o->n_omega;
+        char *m = n >= 2 ? malloc(n * (sizeof(double) + 2 * sizeof(int) + sizeof(size_t))) : NULL;
+        autobal_rotor_speeds2_detail *d = &s->every_speeds2;
+        if (n >= 2 && m == NULL) {
+          st = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
+          goto fail;
+        }
+        free(s->every_speeds2_storage_);
+        s->every_speeds2_storage_ = m;
+        memset(d, 0, sizeof *d);
+        if (m) {
+          d->grid_omega = (double *)(void *)m;
+          d->grid_boxes = (size_t *)(void *)(m + n * sizeof(double));
+          d->grid_stable = (int *)(void *)(m + n * (sizeof(double) + sizeof(size_t)));
+          d->grid_exact = d->grid_stable + n;
+          s->every_speeds2_n = n;
+        }
+        st = autobal_rotor_stab_every_unbalance2_speeds_detail(h, lo2, hi2, o->n_unbalance, lo, hi, o->n_omega,
+                                                               o->xtol_rel, &s->every_speeds, m ? d : NULL);
+        if ((st == AUTOBAL_SUCCESS || st == AUTOBAL_WARNING) && m) s->have_every_speeds2 = 1;
+      } else
+        st = autobal_rotor_stab_every_unbalance_speeds(h, o->unbalance_min, o->unbalance_max, lo, hi, o->n_omega,
+                                                       o->xtol_rel, &s->every_speeds);
       autobal_rotor_stab_set_cancel(h, NULL, NULL);
       if (st == AUTOBAL_WARNING) st = AUTOBAL_SUCCESS; /* truncated: recorded in every_speeds.truncated */
       if (st) {
@@ -335,6 +361,37 @@ static int write_crit(autobal_archive *a, const char *g, const autobal_rotor_cri
     st = autobal_archive_dim(a, g, "interval", cr->n_stable, "index of a stable interval");
     if (!st) st = autobal_archive_var(a, g, "stable_lo", 1, di, cr->stable_lo, unit, "lower end of a stable interval (the sweep's start when stable there)");
     if (!st) st = autobal_archive_var(a, g, "stable_hi", 1, di, cr->stable_hi, unit, "upper end of a stable interval (the sweep's end when stable there)");
+  }
+  return st;
+}
+
+/* Two planes: per speed whether plane 2's range was decided exactly (beside write_crit's datasets,
+ * on its dimensions "critical" and "interval", and the grid's own "speed_grid"). */
+static int write_speeds2(autobal_archive *a, const char *g, const autobal_rotor_crit *cr,
+                         const autobal_rotor_speeds2_detail *d, size_t n) {
+  static const char *const dc[] = {"critical"}, *const di[] = {"interval"}, *const dg[] = {"speed_grid"};
+  int v[AUTOBAL_ROTOR_MAX_CRIT], *gb = NULL, st;
+  size_t i;
+  st = autobal_archive_attr_int(a, g, "n_speeds_evaluated", (long)d->n_evaluated);
+  if (!st) st = autobal_archive_attr_int(a, g, "n_speeds_undecided_in_unbalance2", (long)d->n_undecided);
+  if (!st && cr->n > 0) {
+    for (i = 0; i < cr->n; i++) v[i] = d->critical_exact[i];
+    st = autobal_archive_var_int(a, g, "critical_exact_in_unbalance2", 1, dc, v, "1", "1: plane 2's range was decided exactly (box search) at both speeds of the final bracket of this critical speed; 0: at one of them the plane-2 grid verdict (sampled)");
+  }
+  if (!st && cr->n_stable > 0) {
+    for (i = 0; i < cr->n_stable; i++) v[i] = d->interval_exact[i];
+    st = autobal_archive_var_int(a, g, "interval_exact_in_unbalance2", 1, di, v, "1", "1: at every speed evaluated in this stable interval (grid and bisection) plane 2's range was decided exactly (box search); 0: at some the plane-2 grid verdict (sampled)");
+  }
+  if (!st && n > 0) {
+    gb = malloc(n * sizeof *gb);
+    if (gb == NULL) return AUTOBAL_ENOMEM;
+    for (i = 0; i < n; i++) gb[i] = d->grid_boxes[i] > (size_t)0x7fffffff ? 0x7fffffff : (int)d->grid_boxes[i];
+    st = autobal_archive_dim(a, g, "speed_grid", n, "index of a speed of the scan's grid");
+    if (!st) st = autobal_archive_var(a, g, "grid_omega", 1, dg, d->grid_omega, "rad/s", "speed of the grid");
+    if (!st) st = autobal_archive_var_int(a, g, "grid_stable", 1, dg, d->grid_stable, "1", "1: stable for every unbalance of both ranges and every phase there; 0: not; -1: not evaluated (a truncated scan)");
+    if (!st) st = autobal_archive_var_int(a, g, "grid_exact_in_unbalance2", 1, dg, d->grid_exact, "1", "1: the verdict there holds over plane 2's whole range (box search, or a point not stable); 0: plane 2 sampled at its grid values");
+    if (!st) st = autobal_archive_var_int(a, g, "grid_boxes", 1, dg, gb, "1", "boxes the certified search examined there");
+    free(gb);
   }
   return st;
 }
@@ -642,6 +699,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
       if (!st) st = autobal_archive_attr_double(a, gs, "omega_max", s->omega_max, "rad/s");
       if (!st) st = autobal_archive_attr_int(a, gs, "n_omega", (long)s->n_omega);
       if (!st) st = write_crit(a, gs, &s->every_speeds, "rad/s");
+      if (!st && s->have_every_speeds2) st = write_speeds2(a, gs, &s->every_speeds, &s->every_speeds2, s->every_speeds2_n);
     }
   }
   return st;

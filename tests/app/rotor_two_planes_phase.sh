@@ -45,6 +45,43 @@ done
 expect 0 "SAMPLED: no box search" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
   "${U[@]}" --set "stability.unbalance2_min=500 g mm" --set "stability.unbalance2_max=7000 g mm" --set stability.n_unbalance=5 \
   --set stability.unbalance2_boxes=-1
+# the speed set over 360..400 rad/s (3 grid speeds): per speed whether plane 2 was decided exactly, in
+# JSON and the archive (named dimensions); with the search off every stable speed is sampled
+for b in 0 -1; do
+  rm -f sp$b.h5
+  expect 0 "" "$AUTOBAL" rotor stability "$T2" "${U[@]}" --set stability.omega_min=360 --set stability.omega_max=400 \
+    --set stability.n_omega=3 --set stability.unbalance2_boxes=$b --json -o sp$b.h5
+  "$PY" -c "
+import json, h5py
+b = $b
+s = json.load(open('out.txt'))['every_unbalance']['speeds']
+n = len(s['grid_omega'])
+assert n == 3 and len(s['grid_stable']) == n and len(s['grid_exact_in_unbalance2']) == n and len(s['grid_boxes']) == n, s
+assert abs(s['grid_omega'][0] - 360) < 1e-9 and abs(s['grid_omega'][2] - 400) < 1e-9, s
+assert len(s['interval_exact_in_unbalance2']) == len(s['stable_lo']) and len(s['critical_exact_in_unbalance2']) == len(s['critical_values']), s
+# where stable: exact iff the search ran (and then boxes were examined); not stable: decided by a point
+for st, ex, bx in zip(s['grid_stable'], s['grid_exact_in_unbalance2'], s['grid_boxes']):
+    assert st in (0, 1), s
+    assert ex == (st == 0 or b == 0) and (bx > 0) == (b == 0), s
+assert all(s['interval_exact_in_unbalance2']) == (b == 0) and s['n_speeds_evaluated'] >= n, s
+assert (s['n_speeds_undecided_in_unbalance2'] == 0) == (b == 0), s
+f = h5py.File('sp$b.h5', 'r')
+g = f['/rotor/stability/every_unbalance/speeds']
+def dim(name):
+    return [f[r].name.rsplit('/', 1)[1] for r in g[name].attrs['DIMENSION_LIST'][0]]
+for k in ('grid_omega', 'grid_stable', 'grid_exact_in_unbalance2', 'grid_boxes'):
+    assert dim(k) == ['speed_grid'] and len(g[k]) == n, k
+assert g['grid_omega'].attrs['units'] == 'rad/s'
+assert list(g['grid_exact_in_unbalance2'][()]) == [int(x) for x in s['grid_exact_in_unbalance2']]
+if len(s['stable_lo']):
+    assert dim('interval_exact_in_unbalance2') == ['interval']
+if len(s['critical_values']):
+    assert dim('critical_exact_in_unbalance2') == ['critical']
+assert g.attrs['n_speeds_evaluated'] == s['n_speeds_evaluated']
+" && ok "speed set, unbalance2_boxes = $b: per-speed exact_in_unbalance2 in JSON and archive" || { bad "speed set detail ($b)"; head -c 3000 out.txt; }
+done
+expect 0 "stable intervals, plane 2:" "$AUTOBAL" rotor stability "$T2" "${U[@]}" --set stability.omega_min=360 \
+  --set stability.omega_max=400 --set stability.n_omega=3
 # bad input
 expect 3 "unbalance2_boxes = -2 is out of range: allowed -1" "$AUTOBAL" rotor stability "$T2" --set stability.critical_speeds=false \
   "${U[@]}" --set stability.unbalance2_boxes=-2
