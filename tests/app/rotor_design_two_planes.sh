@@ -9,7 +9,9 @@
 #    one-plane design of the same machine without plane 2 calls feasible, is not stable with two planes
 #    at 4500 rpm: the design (fixed bounds) says so, `rotor stability` says so, and SciPy finds a
 #    growing Floquet multiplier; a design feasible in both (40 g, 0.46 kg/s) stays feasible;
-#  - bad input, each message naming the key.
+#  - bad input, each message naming the key;
+#  - transients of the best design at both ends of the speed range and both corners of the unbalance ranges
+#    (and a second start of the balls): each balances.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -111,5 +113,24 @@ expect_err 3 "unbalance2_boxes = -2 is out of range" "$AUTOBAL" rotor design "$D
 expect_err 3 "n_transient" "$AUTOBAL" rotor design "$D2" --set design.n_transient=2
 expect_err 3 "position_min" "$AUTOBAL" rotor design "$D2" --set design.position_min=0.05 --set design.position_max=0.15
 expect_err 3 "unbalance2_max" "$AUTOBAL" rotor design "$D2" --set "design.unbalance2_max=100 g mm"
+# transients of the best design (the full nonlinear model, rk8pd): both ends of the speed range (4500, 9000 rpm) x
+# both corners of the unbalance ranges (500/500 and 3000/2500 g mm), and a second start of the balls: each run
+# must balance (the archive's balance monitor: every plane's residual below balance_tol for balance_revs)
+nt=0
+for w in 471.238898038469 942.477796076938; do
+  for u in "0.005 0.00555555555555556 1,2.5 -0.5,2" "0.03 0.0277777777777778 1,2.5 -0.5,2" "0.03 0.0277777777777778 0,0.3 3,3.3"; do
+    set -- $u
+    if "$AUTOBAL" rotor transient best.ini --set rotor.omega=$w --set plane1.m0=$1 --set plane2.m0=$2 \
+         --set plane1.ball_psi=$3 --set plane2.ball_psi=$4 --set transient.t_end=30 --set transient.stop_at_balance=true \
+         --set transient.revs_out=10 --json > tr.json 2> tr.err \
+       && "$PY" -c 'import json,sys; d=json.load(open("tr.json")); sys.exit(0 if d["balanced"] and d["time_to_balance"] < 30 else 1)'; then
+      nt=$((nt + 1))
+    else
+      echo "transient at $w rad/s, m0 $1 / $2, balls $3 / $4 did not balance"; cat tr.err
+    fi
+  done
+done
+set --
+[ $nt -eq 6 ] && ok "best design: 6 of 6 transients balance (both speed ends, both unbalance corners, two starts)" || bad "best design transients: $nt of 6 balance"
 echo "rotor_design_two_planes: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
