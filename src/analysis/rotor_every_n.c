@@ -189,6 +189,29 @@ static void closer_of(const autobal_everyn_member_ *m, size_t n, double ta, doub
   c->sgn = (-ex * vy + ey * vx) >= 0.0 ? 1 : -1;
 }
 
+/* Central differences of q along the members at v (step h in each of the nv parameters; t = v[nv - 1]
+ * kept in [ta, tb]): g[k] = dq/dv_k, 0 where a side cannot be closed. */
+static void q_gradient(const closer *c, const double v[AUTOBAL_EVERYN_MAX], size_t nv, double ta, double tb, double h,
+                       double *g) {
+  size_t k;
+  for (k = 0; k < nv; k++) {
+    double vp[AUTOBAL_EVERYN_MAX], vm[AUTOBAL_EVERYN_MAX];
+    autobal_everyn_member_ mp, mm;
+    memcpy(vp, v, sizeof vp);
+    memcpy(vm, v, sizeof vm);
+    vp[k] += h, vm[k] -= h;
+    if (k == nv - 1) {
+      if (vp[k] > tb) vp[k] = tb;
+      if (vm[k] < ta) vm[k] = ta;
+    }
+    if (vp[k] == vm[k] || close_member(c, vp, &mp) != 0 || close_member(c, vm, &mm) != 0) {
+      g[k] = 0.0;
+      continue;
+    }
+    g[k] = (mp.q - mm.q) / (vp[k] - vm[k]);
+  }
+}
+
 /* Local search on sigma q (sigma = +1 up, -1 down) from member m over the members of [ta, tb]:
  * gradient steps (central differences) with backtracking; m is replaced by the best found. */
 static void local_search(autobal_everyn_member_ *m, size_t n, double ta, double tb, int sigma) {
@@ -203,22 +226,9 @@ static void local_search(autobal_everyn_member_ *m, size_t n, double ta, double 
     double g2 = 0.0;
     size_t k;
     int ok = 0;
+    q_gradient(&c, v, nv, ta, tb, 1e-6, g);
     for (k = 0; k < nv; k++) {
-      double vp[AUTOBAL_EVERYN_MAX], vm[AUTOBAL_EVERYN_MAX];
-      autobal_everyn_member_ mp, mm;
-      const double hstep = 1e-6;
-      memcpy(vp, v, sizeof v);
-      memcpy(vm, v, sizeof v);
-      vp[k] += hstep, vm[k] -= hstep;
-      if (k == nv - 1) {
-        if (vp[k] > tb) vp[k] = tb;
-        if (vm[k] < ta) vm[k] = ta;
-      }
-      if (vp[k] == vm[k] || close_member(&c, vp, &mp) != 0 || close_member(&c, vm, &mm) != 0) {
-        g[k] = 0.0;
-        continue;
-      }
-      g[k] = sigma * (mp.q - mm.q) / (vp[k] - vm[k]);
+      g[k] = sigma * g[k];
       /* t at an end: no step out of [ta, tb] */
       if (k == nv - 1 && ((v[k] >= tb && g[k] > 0.0) || (v[k] <= ta && g[k] < 0.0))) g[k] = 0.0;
       g2 += g[k] * g[k];
@@ -452,21 +462,8 @@ static void newton_to(autobal_everyn_member_ *m, size_t n, double ta, double tb,
     double g2 = 0.0, step = 1.0;
     size_t k;
     int ok = 0;
+    q_gradient(&c, v, nv, ta, tb, 1e-7, g);
     for (k = 0; k < nv; k++) {
-      double vp[AUTOBAL_EVERYN_MAX], vm[AUTOBAL_EVERYN_MAX];
-      autobal_everyn_member_ mp, mm;
-      memcpy(vp, v, sizeof v);
-      memcpy(vm, v, sizeof v);
-      vp[k] += 1e-7, vm[k] -= 1e-7;
-      if (k == nv - 1) {
-        if (vp[k] > tb) vp[k] = tb;
-        if (vm[k] < ta) vm[k] = ta;
-      }
-      if (vp[k] == vm[k] || close_member(&c, vp, &mp) != 0 || close_member(&c, vm, &mm) != 0) {
-        g[k] = 0.0;
-        continue;
-      }
-      g[k] = (mp.q - mm.q) / (vp[k] - vm[k]);
       if (k == nv - 1 && ((v[k] >= tb && g[k] * (q_target - cur.q) > 0.0) ||
                           (v[k] <= ta && g[k] * (q_target - cur.q) < 0.0)))
         g[k] = 0.0;

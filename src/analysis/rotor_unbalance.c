@@ -496,6 +496,17 @@ static int critical_u(autobal_rotor_stab *s, double r0, double s_mid, double uc[
   return AUTOBAL_SUCCESS;
 }
 
+/* The fields of one unbalance when the verdict comes from u (three or more balls, every member): no critical
+ * unbalance, one sub-interval [s_lo, s_hi] with the worst verdict met and the worst margin. */
+static void one_subinterval(autobal_rotor_unbalance_range *out, int worst) {
+  out->n_crit = 0;
+  out->n_sub = 1;
+  out->sub_lo[0] = out->s_lo;
+  out->sub_hi[0] = out->s_hi;
+  out->sub_verdict[0] = worst;
+  out->sub_margin[0] = out->margin_worst;
+}
+
 static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_rotor_unbalance_range *out);
 static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unbalance_range *out);
 
@@ -628,13 +639,7 @@ static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_roto
       out->n_upiece++;
     }
   }
-  /* the fields of one unbalance: one sub-interval, the worst verdict */
-  out->n_crit = 0;
-  out->n_sub = 1;
-  out->sub_lo[0] = out->s_lo;
-  out->sub_hi[0] = out->s_hi;
-  out->sub_verdict[0] = worst;
-  out->sub_margin[0] = out->margin_worst;
+  one_subinterval(out, worst);
   return AUTOBAL_SUCCESS;
 }
 
@@ -776,13 +781,7 @@ static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unba
   } else if (ngl + ngh > 0)
     out->n_uundecided = ngl + ngh;
   if (out->n_uundecided > 0) out->all_stable = 0;
-  /* the fields of one unbalance: one sub-interval, the worst verdict */
-  out->n_crit = 0;
-  out->n_sub = 1;
-  out->sub_lo[0] = out->s_lo;
-  out->sub_hi[0] = out->s_hi;
-  out->sub_verdict[0] = worst;
-  out->sub_margin[0] = out->margin_worst;
+  one_subinterval(out, worst);
   return AUTOBAL_SUCCESS;
 }
 

@@ -870,18 +870,6 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
   return AUTOBAL_SUCCESS;
 }
 
-static double *grid_of(double lo, double hi, size_t n, int geometric) {
-  double *g = malloc(n * sizeof *g);
-  size_t i;
-  if (!g) return NULL;
-  for (i = 0; i < n; i++) {
-    const double f = n > 1 ? (double)i / (double)(n - 1) : 0.0;
-    g[i] = geometric ? lo * pow(hi / lo, f) : lo + (hi - lo) * f;
-  }
-  if (n > 1) g[n - 1] = hi;
-  return g;
-}
-
 static int cmp_design(const void *a, const void *b) {
   const autobal_rotor_design *x = (const autobal_rotor_design *)a, *y = (const autobal_rotor_design *)b;
   if (x->margin > y->margin) return -1;
@@ -1128,15 +1116,15 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   S->n_damping = o->n_damping;
   S->n_position = o->n_position;
   S->n_radius = o->n_radius;
-  S->mass = grid_of(o->mass_min, o->mass_max, o->n_mass, 1);
-  S->damping = grid_of(o->damping_min, o->damping_max, o->n_damping, 1);
-  S->position = grid_of(o->position_min, o->position_max, o->n_position, 0);
-  S->radius = grid_of(o->radius_min, o->radius_max, o->n_radius, 1);
+  S->mass = autobal_design_grid_(o->mass_min, o->mass_max, o->n_mass, 1);
+  S->damping = autobal_design_grid_(o->damping_min, o->damping_max, o->n_damping, 1);
+  S->position = autobal_design_grid_(o->position_min, o->position_max, o->n_position, 0);
+  S->radius = autobal_design_grid_(o->radius_min, o->radius_max, o->n_radius, 1);
   S->feasible = malloc(ncell * o->n_radius * sizeof *S->feasible);
   S->window_lo = malloc(ncell * sizeof *S->window_lo);
   S->window_hi = malloc(ncell * sizeof *S->window_hi);
   cand = malloc((ncell + o->n_starts) * sizeof *cand);
-  c->omega = grid_of(o->omega_min, o->omega_max, o->n_omega, 0);
+  c->omega = autobal_design_grid_(o->omega_min, o->omega_max, o->n_omega, 0);
   if (!S->mass || !S->damping || !S->position || !S->radius || !S->feasible || !S->window_lo || !S->window_hi ||
       !cand || !c->omega) {
     free(cand);
@@ -1368,7 +1356,7 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
   c.work.plane[0].ball_psi = NULL;
   c.work.plane[0].ball_rate = NULL;
   c.s_d = NAN;
-  c.omega = grid_of(c.o.omega_min, c.o.omega_max, c.o.n_omega, 0);
+  c.omega = autobal_design_grid_(c.o.omega_min, c.o.omega_max, c.o.n_omega, 0);
   if (!c.omega) return autobal_error_set(err, AUTOBAL_ENOMEM, "design margin: out of memory");
   st = robust_margin(&c, design, rho);
   autobal_rotor_stab_free(c.s);

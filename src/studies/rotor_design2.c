@@ -243,7 +243,7 @@ static int run_jobs(d2ctx *c, size_t n, d2job job, void *user, size_t *verdicts,
   return AUTOBAL_SUCCESS;
 }
 
-static double *grid(double lo, double hi, size_t n, int geometric) {
+double *autobal_design_grid_(double lo, double hi, size_t n, int geometric) {
   double *g = malloc((n ? n : 1) * sizeof *g);
   size_t i;
   if (!g) return NULL;
@@ -289,15 +289,15 @@ int autobal_design2_run_(autobal_rotor_params *work, const autobal_study_rotor_d
   S->n_damping = o->n_damping;
   S->n_position = 1;
   S->n_radius = o->n_radius;
-  S->mass = grid(o->mass_min, o->mass_max, o->n_mass, 1);
-  S->damping = grid(o->damping_min, o->damping_max, o->n_damping, 1);
-  S->position = grid(work->plane[0].d, work->plane[0].d, 1, 0);
-  S->radius = grid(o->radius_min, o->radius_max, o->n_radius, 1);
+  S->mass = autobal_design_grid_(o->mass_min, o->mass_max, o->n_mass, 1);
+  S->damping = autobal_design_grid_(o->damping_min, o->damping_max, o->n_damping, 1);
+  S->position = autobal_design_grid_(work->plane[0].d, work->plane[0].d, 1, 0);
+  S->radius = autobal_design_grid_(o->radius_min, o->radius_max, o->n_radius, 1);
   S->feasible = malloc(ncell * sizeof *S->feasible);
   S->margin_map = malloc(ncell * sizeof *S->margin_map);
   S->window_lo = malloc(o->n_mass * o->n_damping * sizeof *S->window_lo);
   S->window_hi = malloc(o->n_mass * o->n_damping * sizeof *S->window_hi);
-  c.omega = grid(o->omega_min, o->omega_max, o->n_omega, 0);
+  c.omega = autobal_design_grid_(o->omega_min, o->omega_max, o->n_omega, 0);
   rk = malloc(ncell * sizeof *rk);
   if (!S->n_balls || !S->mass || !S->damping || !S->position || !S->radius || !S->feasible || !S->margin_map ||
       !S->window_lo || !S->window_hi || !c.omega || !rk) {

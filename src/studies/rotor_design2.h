@@ -8,6 +8,10 @@
 /* The search on the machine work (two planes of two balls each, drive constant; its ball arrays
  * writable) with the resolved options o: fills S's grids, map (feasible, margin_map), ranked designs
  * (margins, certification), counts; not best_config.  Statuses as autobal_study_rotor_design. */
+/* n values from lo to hi (the last exactly hi), geometric or linear; malloc'ed (NULL when out of memory).
+ * The grids of both designs' maps (rotor_design.c uses it too). */
+double *autobal_design_grid_(double lo, double hi, size_t n, int geometric);
+
 int autobal_design2_run_(autobal_rotor_params *work, const autobal_study_rotor_design_options *o,
                          autobal_study_rotor_design_summary *S, autobal_error *err);
 
