@@ -278,6 +278,31 @@ def linearization(t, w, L, planes, psis):
     return A  # state (X, X'): a permutation of autobal's order (same eigenvalues)
 
 
+def floquet_margin_two(w, L, planes, phi, s=None, rtol=1e-11, atol=1e-13):
+    """log max|mu| / T of the two-plane linearization with plane 2's unbalance at phase phi from plane 1's
+    (and the planes' m0 r0 = s[j] when given): SciPy DOP853 over one period from the identity, scaled state"""
+    pl = [dict(p) for p in planes]
+    if s is not None:
+        for j in range(2):
+            pl[j]["m0"] = s[j] / pl[j]["r0"]
+    pl[1]["psi0"] = pl[0]["psi0"] + phi
+    psis = [balanced_two(p) for p in pl]
+    n = 2 * (4 + sum(len(p["m"]) for p in pl))
+    T = 2 * np.pi / abs(w)
+    ell = 1e-3
+    sc = np.array([ell, ell, ell / 0.1, ell / 0.1] + [1.0] * (n // 2 - 4))
+    sc = np.concatenate([sc, sc * (abs(w) + 160.0)])
+
+    def rhs(t, y):
+        A = linearization(t, w, L, pl, psis)
+        As = A * sc[None, :] / sc[:, None]
+        return (As @ y.reshape(n, n)).ravel()
+
+    sol = solve_ivp(rhs, (0, T), np.eye(n).ravel(), method="DOP853", rtol=rtol, atol=atol)
+    mu = np.linalg.eigvals(sol.y[:, -1].reshape(n, n))
+    return np.log(np.abs(mu).max()) / T
+
+
 def do_floquet(fn):
     f = h5py.File(fn, "r")
     check_common(f)

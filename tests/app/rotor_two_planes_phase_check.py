@@ -13,10 +13,9 @@ import sys
 
 import h5py
 import numpy as np
-from scipy.integrate import solve_ivp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rotor_stability_check import balanced_two, linearization, load  # noqa: E402
+from rotor_stability_check import floquet_margin_two, load  # noqa: E402
 
 failures = 0
 
@@ -29,23 +28,7 @@ def check(what, ok, detail=""):
 
 
 def floquet_margin(w, L, planes, phi):
-    pl = [dict(p) for p in planes]
-    pl[1]["psi0"] = pl[0]["psi0"] + phi
-    psis = [balanced_two(p) for p in pl]
-    n = 2 * (4 + sum(len(p["m"]) for p in pl))
-    T = 2 * np.pi / abs(w)
-    ell = 1e-3
-    sc = np.array([ell, ell, ell / 0.1, ell / 0.1] + [1.0] * (n // 2 - 4))
-    sc = np.concatenate([sc, sc * (abs(w) + 160.0)])
-
-    def rhs(t, y):
-        A = linearization(t, w, L, pl, psis)
-        As = A * sc[None, :] / sc[:, None]
-        return (As @ y.reshape(n, n)).ravel()
-
-    sol = solve_ivp(rhs, (0, T), np.eye(n).ravel(), method="DOP853", rtol=1e-11, atol=1e-13)
-    mu = np.linalg.eigvals(sol.y[:, -1].reshape(n, n))
-    return np.log(np.abs(mu).max()) / T
+    return floquet_margin_two(w, L, planes, phi)
 
 
 f = h5py.File(sys.argv[1], "r")
