@@ -333,16 +333,12 @@ static void print_asymptotic2(const autobal_rotor_asymptotic2 *q) {
       printf("    high speed, balls at q = 0 in both planes: (H1') Gamma positive definite [no]: predicts UNSTABLE; small"
              " parameter %.3g (%s)\n",
              q->high_small, asym_word(q->high_applicable));
-    if (q->high_mu[0] > 0.0 && q->high_every_equal)
-      printf("    high speed, every unbalance and phase (the same kappa in both planes): kappa %.6g > %.6g 1/s [%s]: predicts"
-             " %s; small parameter %.3g (%s)\n",
-             q->kappa[0], q->high_every_kappa, q->high_every_stable ? "yes" : "no",
+    if (q->high_mu[0] > 0.0)
+      printf("    high speed, every unbalance and phase: min kappa %.6g > %.6g 1/s [%s]: predicts %s; small parameter"
+             " %.3g (%s)\n",
+             fmin(q->kappa[0], q->kappa[1]), q->high_every_kappa, q->high_every_stable ? "yes" : "no",
              q->high_every_stable ? "STABLE for every unbalance" : "nothing (a sufficient condition only)",
              q->high_every_small, asym_word(q->high_every_applicable));
-    else if (q->high_mu[0] > 0.0)
-      printf("    high speed, every unbalance and phase: needs the same kappa in both planes (here %.6g and %.6g 1/s); with"
-             " it, kappa > %.6g 1/s suffices\n",
-             q->kappa[0], q->kappa[1], q->high_every_kappa);
   }
 }
 static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
@@ -373,7 +369,7 @@ static void json_asymptotic2(cli_json *j, const autobal_rotor_asymptotic2 *q) {
     cli_json_number(j, "high_small", q->high_small);
     cli_json_bool(j, "high_applicable", q->high_applicable);
     cli_json_quantity(j, "high_every_kappa", q->high_every_kappa, "1/s");
-    cli_json_bool(j, "high_every_equal_kappa", q->high_every_equal);
+    cli_json_quantity(j, "high_every_kappa_min", fmin(q->kappa[0], q->kappa[1]), "1/s");
     cli_json_bool(j, "high_every_predicts_stable", q->high_every_stable);
     cli_json_number(j, "high_every_small", q->high_every_small);
     cli_json_bool(j, "high_every_applicable", q->high_every_applicable);

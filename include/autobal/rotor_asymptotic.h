@@ -185,18 +185,18 @@ typedef struct autobal_rotor_asymptotic2 {
   double high_small;             /* 1 */
   int high_decided;              /* outside its error band */
   int high_applicable;           /* high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
-  /* HIGH SPEED, EVERY UNBALANCE (every q1, q2 < 1 and phase; Gamma positive definite), for the same kappa in
-   * both planes: S = -(omega^2 / 2) T (Gamma^ + i H^ / omega), T = [[Mb, -Q], [-conj Q, Mb]], Gamma^ =
-   * diag(Gamma, Gamma), H^ = diag(H, -H); for a unit eigenvector y of T^1/2 (Gamma^ + i H^/omega) T^1/2 and
-   * x = T^1/2 y, each eigenvalue mu of S has -Re mu = (omega^2/2) x* Gamma^ x, Im mu = -(omega/2) x* H^ x, so
-   * (Im mu)^2 / (-Re mu) <= rho^2 x* Gamma^ x / 2 <= rho^2 mu_2 (T <= 2 diag(Mb, Mb)), rho the largest |nu| with
-   * det(H - nu Gamma) = 0.  Hence kappa > high_every_kappa = rho sqrt(mu_2) makes every root of
-   * lambda^2 + kappa lambda = mu stable, for every unbalance (no perturbation argument: exact for the frozen
-   * high-speed system).  Sufficient, not necessary: at Q = 0 it is at least sqrt(2) max_k kappa_inf_k (equal
-   * when the planes decouple).  Small parameter: max(|omega| sqrt(mu_2) c_D, omega_max / |omega|). */
+  /* HIGH SPEED, EVERY UNBALANCE (every q1, q2 < 1 and phase; Gamma positive definite): the frozen ball system
+   * (lambda^2 + K lambda) v = S v, S = -(omega^2 / 2) T (Gamma^ + i H^ / omega), T = [[Mb, -Q], [-conj Q, Mb]],
+   * Gamma^ = diag(Gamma, Gamma), H^ = diag(H, -H), K = diag(kappa_1, kappa_2, kappa_1, kappa_2), which commutes
+   * with T.  With P = T^-1: lambda^2 a + lambda d + (omega^2/2)(g + i eta/omega) = 0, a = v*Pv, d = v*PKv >=
+   * min kappa_j a, g = v*Gamma^v, eta = v*H^v, |eta| <= rho g (rho the largest |nu| with det(H - nu Gamma) = 0),
+   * g / a <= 2 mu_2 (T <= 2 diag(Mb, Mb)); a scalar lambda^2 + b lambda + c is stable iff b > 0 and
+   * b^2 Re c > (Im c)^2.  Hence min(kappa_1, kappa_2) > high_every_kappa = rho sqrt(mu_2) makes every ball root
+   * stable, for every unbalance (no perturbation argument: exact for the frozen high-speed system).
+   * Sufficient, not necessary: at Q = 0 it is at least sqrt(2) max_k kappa_inf_k (equal when the planes
+   * decouple).  Small parameter: max(|omega| sqrt(mu_2) c_D, omega_max / |omega|). */
   double high_every_kappa;       /* 1/s, rho sqrt(mu_2) (NaN when not high_defined or Gamma not positive definite) */
-  int high_every_equal;          /* kappa_1 = kappa_2 (relative 1e-12): the condition applies */
-  int high_every_stable;         /* high_every_equal and kappa > high_every_kappa: predicts STABLE for every unbalance */
+  int high_every_stable;         /* min(kappa_1, kappa_2) > high_every_kappa: predicts STABLE for every unbalance */
   double high_every_small;       /* 1 */
   int high_every_applicable;     /* high_every_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL */
 } autobal_rotor_asymptotic2;

@@ -72,7 +72,7 @@ static void high_speed(const autobal_rotor_closed *c, autobal_rotor_asymptotic2 
   for (k = 0; k < 2; k++) r->high_mu[k] = r->high_kappa_mode[k] = r->high_kappa_inf[k] = r->high_re[k] = NAN;
   r->high_small = NAN;
   r->high_every_kappa = r->high_every_small = NAN;
-  r->high_every_equal = r->high_every_stable = r->high_every_applicable = 0;
+  r->high_every_stable = r->high_every_applicable = 0;
   if (!r->high_defined) {
     for (k = 0; k < 4; k++) r->high_Gamma[k] = r->high_H[k] = NAN;
     return;
@@ -109,17 +109,16 @@ static void high_speed(const autobal_rotor_closed *c, autobal_rotor_asymptotic2 
     return;
   }
   {
-    /* every unbalance, equal kappa in both planes (docs/rotor.md "Two planes at high speed"): with
-     * S = -(omega^2 / 2) T (Gamma^ + i H^ / omega), T = [[Mb, -Q], [-conj Q, Mb]] <= 2 diag(Mb, Mb), every
-     * eigenvalue mu of S has (Im mu)^2 / (-Re mu) <= rho^2 mu_2, rho = the largest |nu| of det(H - nu Gamma) = 0;
-     * so kappa > rho sqrt(mu_2) keeps lambda^2 + kappa lambda = mu stable for every Q1, Q2 */
+    /* every unbalance (docs/rotor.md "Two planes at high speed"): with S = -(omega^2 / 2) T (Gamma^ + i H^ /
+     * omega), T = [[Mb, -Q], [-conj Q, Mb]] <= 2 diag(Mb, Mb) and K = diag(kappa_1, kappa_2, kappa_1, kappa_2)
+     * (commuting with T), every root of det(lambda^2 + K lambda - S) = 0 is stable when min kappa_j >
+     * rho sqrt(mu_2), rho = the largest |nu| of det(H - nu Gamma) = 0, for every Q1, Q2 */
     const double *G = r->high_Gamma, *H = r->high_H;
     double a2 = G[0] * G[3] - G[1] * G[1], a1 = -(H[0] * G[3] + H[3] * G[0] - 2.0 * H[1] * G[1]),
            a0 = H[0] * H[3] - H[1] * H[1], dsc = fmax(0.0, a1 * a1 - 4.0 * a2 * a0), rho;
     rho = a2 > 0.0 ? (fabs(a1) + sqrt(dsc)) / (2.0 * a2) : NAN; /* the larger |root| of a2 nu^2 + a1 nu + a0 */
     r->high_every_kappa = rho * sqrt(r->high_mu[1]);
-    r->high_every_equal = kap[0] == kap[1] || fabs(kap[0] - kap[1]) <= 1e-12 * fmax(kap[0], kap[1]);
-    r->high_every_stable = r->high_every_equal && fmin(kap[0], kap[1]) > r->high_every_kappa;
+    r->high_every_stable = fmin(kap[0], kap[1]) > r->high_every_kappa;
     r->high_every_small = fmax(fabs(w) * sqrt(r->high_mu[1]) * cD, wmax / fabs(w));
     r->high_every_applicable = r->high_every_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
   }

@@ -508,9 +508,9 @@ static int write_asymptotic2(autobal_archive *a, const autobal_rotor_asymptotic2
     if (!st) st = autobal_archive_attr_int(a, g, "high_decided", q->high_decided);
     if (!st) st = autobal_archive_attr_double(a, g, "high_small", q->high_small, "1");
     if (!st) st = autobal_archive_attr_int(a, g, "high_applicable", q->high_applicable);
-    if (!st) st = autobal_archive_attr_string(a, g, "high_every_description", "high speed, every unbalance of both planes and every phase, the same kappa in both planes: kappa > high_every_kappa = rho sqrt(mu_2), rho the largest |nu| with det(H - nu Gamma) = 0 (sufficient; docs/rotor.md, Two planes at high speed)");
+    if (!st) st = autobal_archive_attr_string(a, g, "high_every_description", "high speed, every unbalance of both planes and every phase, min(kappa_1, kappa_2) > high_every_kappa = rho sqrt(mu_2), rho the largest |nu| with det(H - nu Gamma) = 0 (sufficient; docs/rotor.md, Two planes at high speed)");
     if (!st) st = autobal_archive_attr_double(a, g, "high_every_kappa", q->high_every_kappa, "1/s");
-    if (!st) st = autobal_archive_attr_int(a, g, "high_every_equal_kappa", q->high_every_equal);
+    if (!st) st = autobal_archive_attr_double(a, g, "high_every_kappa_min", fmin(q->kappa[0], q->kappa[1]), "1/s");
     if (!st) st = autobal_archive_attr_int(a, g, "high_every_predicts_stable", q->high_every_stable);
     if (!st) st = autobal_archive_attr_double(a, g, "high_every_small", q->high_every_small, "1");
     if (!st) st = autobal_archive_attr_int(a, g, "high_every_applicable", q->high_every_applicable);

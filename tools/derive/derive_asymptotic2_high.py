@@ -26,7 +26,7 @@ import numpy as np
 import sympy as sp
 
 sys.path.insert(0, __import__('os').path.dirname(__file__))
-from asymptotic2_scan import ball_system, default2, draw, exact_roots, high_modes  # noqa: E402
+from asymptotic2_scan import Pn, ball_system, default2, draw, exact_roots, high_modes, kpolys, mul  # noqa: E402
 
 
 def ok(msg):
@@ -169,11 +169,25 @@ def every_kappa(p):
     return rho * np.sqrt(mu.max()), Gam, H
 
 
+def every_small(p, w):
+    """the small parameter of the every-unbalance condition, as the library: max(|w| sqrt(mu_2) c_D, w_max / |w|)"""
+    M = p['M']
+    mu = high_modes(p)[0]
+    tr = p['c'] / M + p['ct'] / p['A']
+    det = (p['c'] * p['ct'] - p['cc']**2) / (M * p['A'])
+    wmax = np.sqrt(0.5 * (tr + np.sqrt(max(0, tr * tr - 4 * det))))
+    K11, K12, K22, _ = kpolys(p, w)
+    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
+    cD = np.sum(1 / abs(np.roots(mul(D, np.conj(D))[::-1]))) + 4 / abs(w)
+    return max(abs(w) * np.sqrt(mu.max()) * cD, wmax / abs(w))
+
+
 def check_every():
-    """(12) every unbalance, equal kappa (for Hermitian A >= 0, B and a unit eigenvector y of A + i B / w the
+    """(12) every unbalance (for Hermitian A >= 0, B and a unit eigenvector y of A + i B / w the
     eigenvalue is y*Ay + i y*By / w, so the ratio bound follows from |x*H^x| <= rho x*G^x): (b) numerically on random machines and random Q (q_j up to 1, every phase): every eigenvalue mu of the frozen S(Q)
     has (Im mu)^2 / (-Re mu) <= kappa_all^2 and Re mu < 0; (c) planes decoupled: kappa_all = sqrt(2) kappa_inf of
-    the plane that sets it; (d) the exact 16 roots at 1.02 kappa_all (both planes), random Q, high speed: stable."""
+    the plane that sets it; (d) the exact 16 roots at 1.02 kappa_all (both planes), random Q, high speed: stable;
+    (e), (f) unequal kappa: min kappa_j > kappa_all, the frozen and the exact roots stable."""
     rng = np.random.default_rng(12)
     worst = 0.0
     nm = 0
@@ -195,6 +209,32 @@ def check_every():
             assert mu.real.max() < 0, mu
             worst = max(worst, np.sqrt(np.max(mu.imag**2 / -mu.real)) / ka)
     assert nm >= 10 and worst <= 1 + 1e-9, (nm, worst)
+    # (e) unequal kappa: K = diag(kappa_1, kappa_2, kappa_1, kappa_2) commutes with T (T couples sigma_j with
+    # conj(sigma_j) of the same plane), so min kappa_j > kappa_all suffices (docs/rotor.md); the frozen quadratic
+    # eigenproblem det(lambda^2 + K lambda - S(Q)) on the same machines, min kappa_j = 1.0001 kappa_all, the other
+    # 1 to 20 times larger (either plane), 200 unbalances each (q_j up to 1): every root has Re < 0
+    rng = np.random.default_rng(14)
+    nu = 0
+    worst_u = -np.inf
+    for _ in range(60):
+        p = draw(rng)
+        if p is None:
+            continue
+        ka, Gam, H = every_kappa(p)
+        if np.linalg.eigvalsh(Gam).min() <= 0:
+            continue
+        w = 3e4
+        mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
+        G = -(Gam + 1j * H / w) / w**2
+        for _ in range(200):
+            q = rng.uniform(0, 1, 2) ** rng.choice([0.2, 1.0, 5.0])
+            Q = mb * q * np.exp(1j * rng.uniform(0, 2 * np.pi, 2))
+            kap = 1.0001 * ka * np.array([1.0, rng.uniform(1, 20)])
+            rng.shuffle(kap)
+            lam = np.linalg.eigvals(ball_system(G, mb, Q, kap, w)[1])
+            nu += 1
+            worst_u = max(worst_u, lam.real.max() / ka)
+    assert nu >= 2000 and worst_u < 0, (nu, worst_u)
     # (c) decoupled planes (d_1 = 0 and 1/M terms dropped: Gamma, H diagonal): kappa_all = sqrt(2) max kappa_inf
     p = default2()
     M, Ap = p['M'], p['A'] - p['C']
@@ -227,10 +267,37 @@ def check_every():
             nex += 1
             nst += exact_roots(p, 3e4).real.max() < 0
     assert nex >= 24 and nst == nex, (nst, nex)
+    # (f) the exact 16 roots with unequal kappa: min kappa_j = 1.02 kappa_all, the other plane 1 to 10 times that,
+    # on machines where the condition is applicable (high_every_small <= 0.05, as the library; a machine with C close
+    # to A, e.g. C/A = 0.987, has an unstable rotor root near 450 rad/s at 3e4 rad/s whatever the ball damping)
+    rng = np.random.default_rng(15)
+    nst_u = nex_u = 0
+    for _ in range(200):
+        if nex_u >= 32:
+            break
+        p = draw(rng)
+        if p is None:
+            continue
+        p['m'] = [x * 1e-3 for x in p['m']]
+        ka, Gam, H = every_kappa(p)
+        if np.linalg.eigvalsh(Gam).min() <= 0 or every_small(p, 3e4) > 0.05:
+            continue
+        f = [1.0, rng.uniform(1, 10)]
+        rng.shuffle(f)
+        p['hb'] = [1.02 * ka * f[j] * p['m'][j] for j in range(2)]
+        for _ in range(4):
+            q = rng.uniform(0, 1, 2) ** 0.3
+            p['s0'] = [2 * p['m'][j] * p['r'][j] * np.sqrt((1 + q[j]) / 2) for j in range(2)]
+            p['psi0'] = [0.0, rng.uniform(0, np.pi)]
+            nex_u += 1
+            nst_u += exact_roots(p, 3e4).real.max() < 0
+    assert nex_u >= 24 and nst_u == nex_u, (nst_u, nex_u)
     ok('two planes, high speed (12): every unbalance, the same kappa in both planes: (Im mu)^2 / (-Re mu) <= '
        'kappa_all^2 = rho^2 mu_2 for every eigenvalue of S(Q) (%d machines x 200 unbalances, largest ratio %.3f); '
        'decoupled planes: rho_j sqrt(mu_j) = sqrt(2) kappa_inf_j; exact 16 roots at 1.02 kappa_all, 3e4 rad/s: '
-       '%d of %d stable' % (nm, worst, nst, nex))
+       '%d of %d stable; unequal kappa (min kappa_j > kappa_all suffices): frozen roots of det(lambda^2 + K lambda - S) '
+       'at min kappa_j = 1.0001 kappa_all, %d cases: largest Re / kappa_all %.2e < 0; exact 16 roots at min kappa_j = '
+       '1.02 kappa_all: %d of %d stable' % (nm, worst, nst, nex, nu, worst_u, nst_u, nex_u))
 
 
 def main():
