@@ -123,6 +123,21 @@ static int read_unbalance_member(cli_ctx *ctx, const char *sec, int *rule, const
   return CLI_EXIT_OK;
 }
 
+/* [SEC] member_boxes = N: the box budget of the enclosure of u over the members (4 to 10 identical balls,
+ * unbalance_member = every; rotor_stability.h, autobal_rotor_stab_options.member_boxes). */
+static int read_member_boxes(cli_ctx *ctx, const char *sec, long *boxes) {
+  int rc;
+  long b = 0;
+  if ((rc = cli_get_int(ctx, sec, "member_boxes", 0, &b, NULL))) return rc;
+  if (b != 0 && (b < 1000 || b > 1000000000L))
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[%s]: member_boxes = %ld is out of range: allowed 0 (the default budget, 4000000) or [1000, 1e9] "
+                    "(boxes of the search for the range of |Q| over every member, 4 to 10 identical balls)",
+                    sec, b);
+  *boxes = b;
+  return CLI_EXIT_OK;
+}
+
 /* gravity = true is refused: these analyses linearize about the weightless balanced state (the
  * library's balanced states and linear analyses ignore gravity, docs/device.md section 2). */
 static int refuse_gravity(cli_ctx *ctx, const autobal_rotor_params *p) {
@@ -465,6 +480,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = read_unbalance_member(ctx, "stability", &c->opt.unbalance_member, &umember))) goto done;
+  if ((rc = read_member_boxes(ctx, "stability", &c->opt.member_boxes))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_min", "kg m", NAN, &u2min, &have_u2min))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_max", "kg m", NAN, &u2max, &have_u2max))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_unbalance", n_unb, &n_unb, &have_nunb))) goto done;
@@ -995,6 +1011,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "map", "unbalance_min", "kg m", NAN, &umin, &have_umin))) goto done;
   if ((rc = cli_get_quantity(ctx, "map", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = read_unbalance_member(ctx, "map", &c->opt.unbalance_member, &umember))) goto done;
+  if ((rc = read_member_boxes(ctx, "map", &c->opt.member_boxes))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if (have_umin != have_umax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,

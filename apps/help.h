@@ -239,7 +239,8 @@
   "            (exact), plane 2's m0 r0 over its range unbalance2_min, unbalance2_max (default: plane 1's) by a\n" \
   "            certified box search (exact where decided; else its n_unbalance grid values, sampled)\n" \
   "            n_unbalance = 9   unbalance2_boxes = 0 (budget; 0: 100000, -1: no search, grid only)\n" \
-  "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: 3 to 6 balls)\n" \
+  "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: 3 to 10 balls)\n" \
+  "            member_boxes = 0  (every, 4 to 10 balls: the search's box budget; 0: 4000000, else 1000 .. 1e9)\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
   "         /rotor/stability/every_unbalance (and .../speeds, two planes .../phase)\n" \
   HELP_DOCS_ROTOR
@@ -262,7 +263,8 @@
   "      param1, param2: two different parameters below; min, max in their units\n" \
   "      unbalance_min, unbalance_max (kg m or g mm): each point's verdict for EVERY m0 r0 in the range\n" \
   "      (one plane, two or more balls; docs/rotor.md \"Every unbalance\"); unbalance_mass, plane1.m0 and\n" \
-  "      plane1.unbalance are then no axes; unbalance_member = every|symmetric (3 or more balls)\n\n" \
+  "      plane1.unbalance are then no axes; unbalance_member = every|symmetric (3 or more balls),\n" \
+  "      member_boxes = 0 (as in [stability])\n\n" \
   HELP_ROTOR_STAB_AXES \
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR

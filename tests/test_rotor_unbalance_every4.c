@@ -1,4 +1,4 @@
-/* test_rotor_unbalance_every4.c: every member and every unbalance of one plane with four to six
+/* test_rotor_unbalance_every4.c: every member and every unbalance of one plane with four to ten
  * identical balls (unbalance_member = EVERY; src/analysis/rotor_every_n.c, docs/rotor.md "Four or
  * more balls, every member"), against reasons that do not use the branch-and-bound:
  *  - closed forms as limits: four balls in two coincident pairs, 2 e^{ia} + 2 e^{ib} = t, have
@@ -15,7 +15,11 @@
  *  - the library verdict: each u sub-interval's verdict equals ordinary analyses (method POLY, member
  *    'given') of random members whose u lies inside it; members just either side of each critical u
  *    differ in their number of roots with Re > 0; stable for all only when all are stable;
- *  - seven balls refused with a message naming unbalance_member = symmetric. */
+ *  - seven, eight and ten balls: the same checks where the search closes (ranges with a Q = 0 member), and
+ *    with a small budget (member_boxes) where it does not: the bounds stay valid (random members inside,
+ *    and they contain the bounds of a larger budget), complete = 0;
+ *  - eleven balls refused with a message naming unbalance_member = symmetric; member_boxes out of range
+ *    refused naming it. */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
@@ -30,7 +34,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-#define NMAX 7
+#define NMAX 11
 static double bm[NMAX], br[NMAX], bh[NMAX], bpsi[NMAX];
 static const double M = 0.05, A = 0.05 * 0.1;
 
@@ -88,22 +92,37 @@ static void enclosure_checks(void) {
     }
   }
   /* Q = 0 reachable: even n up to n / sqrt 2; n = 5 at t = 3 */
-  for (n = 4; n <= 6; n++) {
+  for (n = 4; n <= 10; n++) {
     const double t = n == 5 ? 3.0 : 0.999 * (double)n / sqrt(2.0);
+    if (n == 7 || n == 9) continue;
     CHECK("enclosure runs", autobal_everyn_range_(&e, n, 0.5 * t, t, 4000000L, 1e-9 * (double)(n * n)) == 0);
     snprintf(what, sizeof what, "n = %zu, t in [%g, %g]: a member with Q = 0 found (q < 1e-20), q_lo = 0", n, 0.5 * t, t);
     CHECK(what, e.q_lo_in < 1e-20 && e.q_lo == 0.0);
   }
   /* random configurations and the fan inside the enclosure; built members */
-  for (n = 4; n <= 6; n++) {
+  for (n = 4; n <= 10; n++) {
     const double cases[3][2] = {{0.3, 0.9}, {1.7, 2.6}, {0.75 * (double)n, 0.8 * (double)n}};
     size_t c;
+    if (n == 9) continue;
     for (c = 0; c < 3; c++) {
       const double ta = cases[c][0], tb = cases[c][1];
+      /* seven balls and more: a budget of 40000 boxes (closed in [1.7, 2.6] for 8 and 10 balls; else not) */
+      const long budget = n >= 7 ? 40000L : 4000000L;
       double phi[NMAX], t, q, qmin = INFINITY, qmax = -INFINITY, d;
       long kept = 0, out = 0, it;
       size_t k, bad = 0;
-      CHECK("enclosure runs", autobal_everyn_range_(&e, n, ta, tb, 4000000L, 1e-9 * (double)(n * n)) == 0);
+      CHECK("enclosure runs", autobal_everyn_range_(&e, n, ta, tb, budget, 1e-9 * (double)(n * n)) == 0);
+      if (budget < 4000000L) {
+        /* a tenth of the budget (half per search): closed or out of budget, its outer bounds contain every member either search found */
+        autobal_everyn_ e2;
+        CHECK("enclosure runs (a tenth of the budget)",
+              autobal_everyn_range_(&e2, n, ta, tb, budget / 10, 1e-9 * (double)(n * n)) == 0);
+        snprintf(what, sizeof what,
+                 "n = %zu, t in [%g, %g]: %ld boxes: closed or budget reached, its bounds [%.6g, %.6g] contain the members of both "
+                 "budgets", n, ta, tb, e2.boxes, e2.q_lo, e2.q_hi);
+        CHECK(what, (e2.complete || e2.boxes >= budget / 20) && e2.q_lo <= fmin(e.q_lo_in, e2.q_lo_in) && e2.q_hi >= fmax(e.q_hi_in, e2.q_hi_in) &&
+                        e.q_lo <= fmin(e.q_lo_in, e2.q_lo_in) && e.q_hi >= fmax(e.q_hi_in, e2.q_hi_in));
+      }
       printf("     n = %zu, t in [%g, %g]: q outer [%.12g, %.12g], found [%.12g, %.12g], %ld boxes, complete %d\n", n, ta,
              tb, e.q_lo, e.q_hi, e.q_lo_in, e.q_hi_in, e.boxes, e.complete);
       for (it = 0; it < 200000; it++) {
@@ -305,16 +324,34 @@ int main(void) {
   verdict_case(5, 500.0, 1e-4, 0.024);
   verdict_case(6, 500.0, 1e-4, 0.029);
   verdict_case(4, 1200.0, 0.018, 0.0195);
-  /* seven balls: refused */
+  verdict_case(7, 500.0, 1e-4, 0.034);
+  verdict_case(8, 500.0, 1e-4, 0.039);
+  verdict_case(10, 500.0, 1e-4, 0.049);
+  /* eleven balls: refused */
   {
-    autobal_rotor_params p = params_n(7);
+    autobal_rotor_params p = params_n(11);
     autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
     autobal_rotor_unbalance_range ur;
     autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, &o, &err);
-    CHECK_STATUS("7 balls, member rule every: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur),
+    CHECK_STATUS("11 balls, member rule every: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur),
                  AUTOBAL_EUNSUPPORTED);
     CHECK_MSG("... naming unbalance_member = symmetric", autobal_rotor_stab_errmsg(s), "unbalance_member = symmetric");
     autobal_rotor_stab_free(s);
+  }
+  /* member_boxes out of range: refused naming it */
+  {
+    const long bad[3] = {-1, 999, 2000000000L};
+    size_t k;
+    for (k = 0; k < 3; k++) {
+      autobal_rotor_params p = params_n(4);
+      autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
+      autobal_rotor_stab *s;
+      o.member_boxes = bad[k];
+      s = autobal_rotor_stab_alloc(&p, &o, &err);
+      CHECK("member_boxes out of range: refused", s == NULL && err.status == AUTOBAL_EINVAL);
+      CHECK_MSG("... naming member_boxes", err.message, "member_boxes");
+      autobal_rotor_stab_free(s);
+    }
   }
   return check_summary();
 }

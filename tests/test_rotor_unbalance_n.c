@@ -24,7 +24,7 @@
 #include "check.h"
 
 #define NS 2001
-#define NMAX 8
+#define NMAX 11
 
 static double margins[NS], sv[NS];
 static int verdicts[NS];
@@ -170,12 +170,12 @@ int main(void) {
   }
   /* refusals */
   {
-    autobal_rotor_params p = params_n(7);
+    autobal_rotor_params p = params_n(11);
     autobal_rotor_unbalance_range ur;
     autobal_rotor_stab *s;
     autobal_rotor_stab_options oe = autobal_rotor_stab_options_default();
     s = autobal_rotor_stab_alloc(&p, &oe, &err);
-    CHECK_STATUS("7 balls, member rule every: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur),
+    CHECK_STATUS("11 balls, member rule every: refused", autobal_rotor_stab_every_unbalance(s, 1e-3, 5e-3, &ur),
                  AUTOBAL_EUNSUPPORTED);
     CHECK_MSG("... naming the key", autobal_rotor_stab_errmsg(s), "unbalance_member = symmetric");
     autobal_rotor_stab_free(s);

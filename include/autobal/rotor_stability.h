@@ -286,14 +286,19 @@ typedef struct autobal_rotor_stab_options {
      alone: faster, exact_in_s2 = 0); else in [1, 1e9].  The per-slice searches after an undecided
      range search take at most 5000 (or this budget if smaller).  (Added at the end.) */
   long unbalance2_boxes;
+  /* one plane, 4 to 10 identical balls, unbalance_member EVERY: the budget of boxes of the branch-and-bound
+     enclosure of u over the members (both searches together; docs/rotor.md "Four or more balls, every
+     member").  0 (the default; also a zeroed struct): 4000000; else in [1000, 1e9].  When the budget
+     ends first the bounds stay valid, wider (u_enclosure_complete = 0).  (Added at the end.) */
+  long member_boxes;
 } autobal_rotor_stab_options;
 
 /* The member rule of the every-unbalance analysis with n >= 3 balls (docs/rotor.md "Every
  * unbalance"). */
 typedef enum autobal_rotor_unbalance_member {
   /* every member of the family (wherever the balls settle): three identical balls (exact range of
-     u = |Q|^2 / 4 in closed form); four to six (a certified enclosure of the range of u, members found
-     inside it); not available for n >= 7 (AUTOBAL_EUNSUPPORTED with a message) */
+     u = |Q|^2 / 4 in closed form); four to ten (a certified enclosure of the range of u, members found
+     inside it); not available for n >= 11 (AUTOBAL_EUNSUPPORTED with a message) */
   AUTOBAL_ROTOR_UNBALANCE_EVERY = 0,
   /* the symmetric fan psi_i = psi0 + pi + (i - (n-1)/2) delta (AUTOBAL_ROTOR_MEMBER_SYMMETRIC) */
   AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC = 1
@@ -555,7 +560,7 @@ typedef struct autobal_rotor_unbalance_range {
   double usub_lo[AUTOBAL_ROTOR_MAX_UCRIT + 1], usub_hi[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* kg^2 */
   int usub_verdict[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* AUTOBAL_VERDICT_* at the midpoint (constant inside) */
   double usub_margin[AUTOBAL_ROTOR_MAX_UCRIT + 1]; /* 1/s, the margin at the midpoint */
-  /* added at the end: four to six identical balls with member_rule EVERY (docs/rotor.md "Four or
+  /* added at the end: four to ten identical balls with member_rule EVERY (docs/rotor.md "Four or
      more balls, every member").  u_min, u_max above are then an outer enclosure (every member has u
      in it, by a branch-and-bound); the members found have u_min_inner and u_max_inner (every u
      between is met).  A u sub-interval with no member found (between u_min and u_min_inner or
@@ -722,7 +727,7 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds_detail(autobal_rotor_
  * margin: margin_worst (1/s).  unbalance_mass, plane1.m0 and plane1.unbalance cannot be axes.  Same threads, errors and
  * determinism as autobal_rotor_stab_map; AUTOBAL_EUNSUPPORTED where the every-unbalance analysis does
  * not apply (two planes, three or more balls unless identical with opt->unbalance_member = SYMMETRIC
- * or, for three to six balls, EVERY, full inertia, anisotropic supports).  Four to six balls with EVERY:
+ * or, for three to ten balls, EVERY, full inertia, anisotropic supports).  Four to ten balls with EVERY:
  * a u sub-interval left undecided (no member found in it) makes the point MARGINAL at best. */
 AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_params *p,
                                                        const autobal_rotor_stab_options *opt, int param1,

@@ -360,7 +360,7 @@ static double search(autobal_everyn_ *e, int sigma, long max_boxes, double tol, 
                      int *complete) {
   const size_t n = e->n, nv = n - 1;
   const double fa = e->ta * e->ta, fb = e->tb * e->tb;
-  const size_t cap_max = 1u << 20; /* live boxes (at most 92 MB at n = 6) */
+  const size_t cap_max = 1u << 20; /* live boxes (at most 152 MB: NV = 9) */
   heap h = {NULL, 0, 0};
   box b0, cur;
   double bestv = -INFINITY, stuck = -INFINITY, outer;

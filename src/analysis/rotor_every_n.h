@@ -15,7 +15,7 @@
 #include <stddef.h>
 
 /* Largest number of balls supported (the search time grows fast with n: docs/rotor.md). */
-#define AUTOBAL_EVERYN_MAX 6
+#define AUTOBAL_EVERYN_MAX 10
 /* Members kept to start the search for a member of a given q (bins over [0, n^2]). */
 #define AUTOBAL_EVERYN_POOL 128
 

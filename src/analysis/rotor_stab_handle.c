@@ -222,6 +222,11 @@ static int check_options(const autobal_rotor_stab_options *o, const autobal_roto
                              "option unbalance2_boxes = %ld is out of range: allowed -1 (no box search), 0 (default "
                              "budget) or [1, 1e9]",
                              o->unbalance2_boxes);
+  if (o->member_boxes != 0 && (o->member_boxes < 1000 || o->member_boxes > 1000000000L))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option member_boxes = %ld is out of range: allowed 0 (the default budget, 4000000) or "
+                             "[1000, 1e9]",
+                             o->member_boxes);
   for (j = 0; j < p->n_planes; j++) {
     const autobal_rotor_member *m = &o->member[j];
     if (m->kind < AUTOBAL_ROTOR_MEMBER_DEFAULT || m->kind > AUTOBAL_ROTOR_MEMBER_GIVEN)

@@ -46,7 +46,7 @@
  * form.
  *
  *
- * Four to six identical balls, member rule EVERY (docs/rotor.md "Four or more balls, every member"):
+ * Four to ten identical balls, member rule EVERY (docs/rotor.md "Four or more balls, every member"):
  * the same reduction to u, with the range of q over the members of [ta, tb] enclosed by the
  * branch-and-bound of rotor_every_n.c (outer bounds, certified; members found give inner bounds, and
  * every q between them is met: the members form a connected set).  The critical u cut the outer
@@ -643,7 +643,7 @@ static int every3_core(autobal_rotor_stab *s, const balls_info *bi, autobal_roto
   return AUTOBAL_SUCCESS;
 }
 
-/* ---- four to six identical balls, every member ---- */
+/* ---- four to ten identical balls, every member ---- */
 
 /* Box budget and tolerance (in q) of the enclosure's two searches (rotor_every_n.c). */
 #define EVERYN_BOXES 4000000L
@@ -693,7 +693,7 @@ static int at_un(autobal_rotor_stab *s, const void *ctx, double x, double *margi
   return verdict_at_un(s, (const balls_info *)ctx, x, margin, verdict);
 }
 
-/* Four to six identical balls, every member: the enclosure of u (kept on the handle for the same n
+/* Four to ten identical balls, every member: the enclosure of u (kept on the handle for the same n
  * and range), the critical u inside it, the verdicts of the sub-intervals on the inner range [members
  * found], the sub-intervals wholly in the gap undecided. */
 static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unbalance_range *out) {
@@ -706,7 +706,8 @@ static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unba
   if (e == NULL || e->n != n || e->ta != bi->ta || e->tb != bi->tb) {
     if (e == NULL && (e = s->everyn = (autobal_everyn_ *)malloc(sizeof *e)) == NULL)
       return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance: no memory for the member search");
-    if (autobal_everyn_range_(e, n, bi->ta, bi->tb, EVERYN_BOXES, EVERYN_TOL_REL * qn) != 0) {
+    const long budget = s->opt.member_boxes > 0 ? s->opt.member_boxes : EVERYN_BOXES;
+    if (autobal_everyn_range_(e, n, bi->ta, bi->tb, budget, EVERYN_TOL_REL * qn) != 0) {
       e->n = 0;
       return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance: the member search for %zu balls failed (no memory)", n);
     }
@@ -789,7 +790,7 @@ static int everyn_core(autobal_rotor_stab *s, balls_info *bi, autobal_rotor_unba
  * verdicts; the member option is restored afterwards. */
 static int every_unbalance(autobal_rotor_stab *s, double s_lo, double s_hi, autobal_rotor_unbalance_range *out) {
   autobal_rotor_member save;
-  /* ball 1 of the FREE member (three balls, every member); every ball of the GIVEN member (four to six) */
+  /* ball 1 of the FREE member (three balls, every member); every ball of the GIVEN member (four to ten) */
   double angle[AUTOBAL_EVERYN_MAX] = {0.0};
   int st;
   const size_t nb = s->cur.plane[0].n_balls;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# rotor stability for EVERY member and every unbalance with four to six identical balls ([stability]
+# rotor stability for EVERY member and every unbalance with four to ten identical balls ([stability]
 # unbalance_min, unbalance_max, unbalance_member = every, the default; docs/rotor.md "Four or more
 # balls, every member"):
 #  (a) the enclosure [u_min, u_max] and the members found [u_min_inner, u_max_inner] against NumPy and
@@ -11,7 +11,10 @@
 #      method poly) of NumPy-built members with u inside it and just either side of each critical u;
 #      stable_for_all against the runs;
 #  (c) console and archive (the enclosure's attributes with units, u sub-intervals with dimensions);
-#      a map with every member of four balls runs.
+#      a map with every member of four balls runs;
+#  (d) seven and eight balls over their full ranges through (a) and (b); seven balls over a range with no Q = 0
+#      member and member_boxes = 20000: the budget ends first (console, JSON u_enclosure_complete false), the
+#      outer bounds still hold every NumPy member; member_boxes out of range and eleven balls refused.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -35,6 +38,8 @@ run_every 5 500 100 24000 a5
 run_every 5 500 18750 21500 b5
 run_every 6 500 100 29000 a6
 run_every 4 1200 18000 19500 c4
+run_every 7 500 100 34000 a7
+run_every 8 500 100 39000 a8
 
 # (a) the enclosure against NumPy and SciPy
 cat > rng.py <<'PY'
@@ -90,7 +95,7 @@ print("n %d t in [%.5f, %.5f]: random u in [%.9g, %.9g] (%d), SciPy [%.12g, %.12
       % (n, ta, tb, us.min() if len(us) else np.nan, us.max() if len(us) else np.nan, len(us), umin, umax, e["u_min"], e["u_max"], e["u_min_inner"], e["u_max_inner"], e["u_gap"]))
 sys.exit(0 if inside and found and e["unbalance_member"] == "every" else 1)
 PY
-for f in s4 s5 s6 a4 b4 a5 b5 a6 c4; do
+for f in s4 s5 s6 a4 b4 a5 b5 a6 c4 a7 a8; do
   if "$PY" rng.py $f.json; then ok "$f: enclosure holds every random and SciPy member; SciPy's optima = the members found"
   else bad "$f: enclosure vs NumPy/SciPy"; fi
 done
@@ -126,7 +131,7 @@ for i, uc in enumerate(e["critical_u"]):
         k = np.nonzero((u > lo) & (u < hi))[0]
         if len(k): emit(k[0], e["u_sub_verdict"][i + sd])
 PY
-for f in a4 b4 a5 a6 c4; do
+for f in a4 b4 a5 a6 c4 a7 a8; do
   "$PY" mk.py $f.json > $f.members || bad "$f: NumPy members"
   n=0; nbad=0; allst=1
   nb=$("$PY" -c 'import json; print(json.load(open("'$f.json'"))["every_unbalance"]["n_balls"])')
@@ -162,4 +167,32 @@ PY
 then ok "archive: the enclosure's attributes, critical_u, u sub-intervals (units, dimensions)"; else bad "archive"; fi
 { printf "[rotor]\nomega = 500\n"; balls 4; printf "[map]\nparam1 = omega\nmin1 = 500\nmax1 = 1200\nn1 = 2\nparam2 = ball_damping\nmin2 = 0.05\nmax2 = 0.1\nn2 = 2\nunbalance_min = 18000 g mm\nunbalance_max = 19500 g mm\n"; } > m.ini
 expect 0 "" "$AUTOBAL" rotor map m.ini -o m.h5
+
+# (d) seven balls, a range with no Q = 0 member, a small budget
+{ printf "[rotor]\nomega = 500\n"; balls 7; printf "[stability]\nunbalance_min = 27000 g mm\nunbalance_max = 32000 g mm\ncritical_speeds = false\nmember_boxes = 20000\n"; } > b7.ini
+expect 0 "budget reached" "$AUTOBAL" rotor stability b7.ini
+"$AUTOBAL" rotor stability b7.ini --json > b7.json 2>b7.err || bad "b7 json"
+if "$PY" - b7.json <<'PY'
+import json, sys
+import numpy as np
+e = json.load(open(sys.argv[1]))["every_unbalance"]
+n = e["n_balls"]; m, a = 0.05, 0.05 * 0.1; um = m * m / 4
+ta, tb = e["unbalance_min"] / a, e["unbalance_max"] / a
+rng = np.random.default_rng(7)
+t = rng.uniform(ta, tb, 400000); z = np.exp(1j * rng.uniform(-np.pi, np.pi, (400000, n - 2)))
+v = t - z.sum(1); av = np.abs(v); ok = (av < 2) & (av > 0); v, av, z = v[ok], av[ok], z[ok]
+d = 1j * v / av * np.sqrt(1 - av ** 2 / 4)
+z = np.concatenate([z, (v / 2 + d)[:, None], (v / 2 - d)[:, None]], 1)
+u = um * np.abs((z ** 2).sum(1)) ** 2
+tol = 1e-12 * n * n * um
+good = (n == 7 and not e["u_enclosure_complete"] and len(u) > 1000 and u.min() >= e["u_min"] - tol
+        and u.max() <= e["u_max"] + tol and e["u_min"] <= e["u_min_inner"] <= e["u_max_inner"] <= e["u_max"])
+print("%d members, u in [%.6g, %.6g]; enclosure [%.6g, %.6g], found [%.6g, %.6g]" % (len(u), u.min(), u.max(), e["u_min"], e["u_max"], e["u_min_inner"], e["u_max_inner"]))
+sys.exit(0 if good else 1)
+PY
+then ok "b7: seven balls, member_boxes = 20000: not closed, the outer bounds hold every NumPy member"; else bad "b7"; fi
+sed -i 's/^member_boxes = 20000/member_boxes = 999/' b7.ini
+expect 3 "member_boxes = 999 is out of range: allowed 0" "$AUTOBAL" rotor stability b7.ini
+{ printf "[rotor]\nomega = 500\n"; balls 11; printf "[stability]\nunbalance_min = 100 g mm\nunbalance_max = 1000 g mm\ncritical_speeds = false\n"; } > r11.ini
+expect 3 "unbalance_member = symmetric" "$AUTOBAL" rotor stability r11.ini
 finish

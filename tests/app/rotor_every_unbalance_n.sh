@@ -85,10 +85,10 @@ printf '[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\ncritic
   && ok "two balls: no member rule, no u range in the output" || bad "two balls output changed"
 
 # (d) refusals
-balls7='[plane1]\nball_mass = 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05\nball_radius = 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1\nball_psi = 1, 2, 3, 4, 5, 6, 0\nball_rate = 0, 0, 0, 0, 0, 0, 0\n'
+balls7='[plane1]\nball_mass = 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05\nball_radius = 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1\nball_psi = 1, 2, 3, 4, 5, 6, 0, 0.5, 1.5, 2.5, 3.5\nball_rate = 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0\n'
 printf "${balls7}[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\n" > d1.ini
 expect 3 "unbalance_member = symmetric" "$AUTOBAL" rotor stability d1.ini -o d1.h5
-[ ! -e d1.h5 ] && ok "rule every with 7 balls: refused, nothing written" || bad "d1.h5 written"
+[ ! -e d1.h5 ] && ok "rule every with 11 balls: refused, nothing written" || bad "d1.h5 written"
 printf '[plane1]\nball_mass = 0.05, 0.05, 0.06\nball_radius = 0.1, 0.1, 0.1\nball_damping = 0.1, 0.1, 0.1\nball_psi = 1, 2.5, 3\nball_rate = 0, 0, 0\n[stability]\nunbalance_min = 100 g mm\nunbalance_max = 4000 g mm\nunbalance_member = symmetric\n' > d2.ini
 expect 3 "plane1.ball_mass" "$AUTOBAL" rotor stability d2.ini -o d2.h5
 [ ! -e d2.h5 ] && ok "unequal balls: refused, nothing written" || bad "d2.h5 written"
