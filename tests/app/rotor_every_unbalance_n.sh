@@ -7,7 +7,7 @@
 #  (b) u_min, u_max against NumPy: the symmetric fan solved by SciPy's brentq on a dense grid of
 #      unbalances, |sum m e^{2 i psi}|^2 / 4 (not the Chebyshev forms);
 #  (c) the archive attributes; the map with 4 balls; two balls print no member rule;
-#  (d) refusals, exit 3, nothing written: unbalance_member = every with 7 balls (3 to 6 only), unequal balls
+#  (d) refusals, exit 3, nothing written: unbalance_member = every with 11 balls (3 to 10 only), unequal balls
 #      (naming the keys), an unknown rule.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
