@@ -62,6 +62,12 @@ echo "$asy"
 for pat in 'light balls (1)' 'light balls (2)' 'light balls (3)' 'high speed (4)' 'pendulum (5)' 'rotor roots (6)'; do
   grep -F "$pat" <<<"$asy" | grep -q ': OK' || { echo "test_derive: asymptotic check '$pat' did not report OK"; exit 1; }
 done
+# anisotropic supports at high speed: the expansion of G+ and G- (tools/derive/derive_aniso_high.py)
+anh=$("$py" "$src/tools/derive/derive_aniso_high.py" 2>&1) || { echo "$anh"; echo "test_derive: FAILED (anisotropic, high speed)"; exit 1; }
+echo "$anh"
+for pat in 'high speed (1)' 'high speed (2)' 'high speed (3)'; do
+  grep -F "anisotropic, $pat" <<<"$anh" | grep -q ': OK' || { echo "test_derive: anisotropic check '$pat' did not report OK"; exit 1; }
+done
 fi
 if want more; then
 # two planes and kappa = 0 (tools/derive/derive_asymptotic2.py, docs/rotor.md "Asymptotic conditions")

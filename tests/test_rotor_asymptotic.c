@@ -490,7 +490,23 @@ static void test_aniso(void) {
     CHECK_CLOSE("anisotropic: G- = the real 8x8 solve (real)", qa.G_minus_re, creal(Gm), 1e-9, 1e-12 * cabs(Gp));
     CHECK_CLOSE("anisotropic: G- = the real 8x8 solve (imag)", qa.G_minus_im, cimag(Gm), 1e-9, 1e-12 * cabs(Gp));
     CHECK("anisotropic: G- is not negligible here", cabs(Gm) > 1e-3 * cabs(Gp));
-    CHECK("anisotropic: no high-speed entry", !qa.high_defined && isnan(qa.kappa_inf));
+    /* high speed: G+ -> -(1/m_eff + i h_eff / (m_eff^2 omega)) / omega^2 (the means of the x and y planes'
+     * damping; tools/derive/derive_aniso_high.py): against the test's own real 8x8 solve at 1e6 rad/s */
+    {
+      const double wb = 1e6;
+      cplx Gpb, Gmb;
+      double ginf, eta;
+      Gpm_real(&La, 0.1, wb, &Gpb, &Gmb);
+      ginf = -wb * wb * creal(Gpb), eta = -wb * wb * wb * cimag(Gpb);
+      CHECK("anisotropic: high-speed entries defined", qa.high_defined && isfinite(qa.kappa_inf));
+      CHECK_CLOSE("anisotropic, high speed: 1/m_eff = -lim w^2 Re G+", 1.0 / qa.m_eff, ginf, 1e-6, 0.0);
+      CHECK_CLOSE("anisotropic, high speed: h_eff / m_eff^2 = -lim w^3 Im G+", qa.h_eff / (qa.m_eff * qa.m_eff), eta,
+                  1e-4, 0.0);
+      CHECK_CLOSE("anisotropic, high speed: kappa_inf = sqrt(m_b/(2 m_eff)) h_eff / m_eff", qa.kappa_inf,
+                  sqrt(0.5 * 2e-4 * ginf) * eta / ginf, 1e-4, 0.0);
+      CHECK("anisotropic, high speed: G- = O(w^-3) (the stiffness of G+ only at w^-4)",
+            cabs(Gmb) * wb * wb < 1e-4 * ginf);
+    }
     autobal_rotor_stab_free(h);
   }
   /* isotropic limit: the anisotropic route on isotropic supports */

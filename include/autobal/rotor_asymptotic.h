@@ -51,8 +51,10 @@
  * of its second-order effect on u: avg_small).  The rotor-housing's 8 fixed-frame roots s_k are shifted
  * like the isotropic roots of D with N / D' replaced by the residue of G+ at s_k (rotor_re/rotor_im: the
  * four with Im s_k >= 0, in rotating coordinates s_k - i omega); c1 sums 1/|s - i omega| over the roots
- * of det Z and of n n*, n = 2 det(Z) G+.  light_small also contains avg_small.  The high-speed and the
- * undamped entries are not derived for anisotropic supports (NaN / 0).  Not a proof: checked against the
+ * of det Z and of n n*, n = 2 det(Z) G+.  light_small also contains avg_small.  The high-speed entries use
+ * G+ -> -(1/m_eff + i h_eff / (m_eff^2 omega)) / omega^2 with the mean of the x and y planes' damping terms
+ * (G- = O(omega^-3)), high_small also contains avg_small; the undamped entry is not derived for
+ * anisotropic supports (NaN / 0).  Not a proof: checked against the
  * Floquet multipliers of the full model on random machines (docs/rotor.md), where every decided
  * prediction agreed.
  *

@@ -307,6 +307,46 @@ static int aniso_rest(const autobal_rotor_closed *c, autobal_rotor_asymptotic *r
   return AUTOBAL_SUCCESS;
 }
 
+/* The high-speed entries (H1), (H2) (paper inertia, A != C): G -> -(ginf + i eta / omega) / omega^2.  With
+ * anisotropic supports G = G+ and eta is the mean of the x and the y planes' damping terms (the stiffness enters
+ * G+ only at omega^-4; G- = O(omega^-3) turns at -2 omega and averages out: tools/derive/derive_aniso_high.py);
+ * for isotropic supports the means are the isotropic coefficients themselves, bit for bit.  The highest
+ * undamped natural frequency at rest wmax is that of the x plane and of the y plane, the larger. */
+static void high_speed(autobal_rotor_asymptotic *r, const autobal_rotor_lumped *L, double d, double mb, double ma,
+                       double kap, double w) {
+  r->high_defined = ma == 0.0 && L->A != L->C;
+  if (r->high_defined) {
+    const double hx = 0.5 * (L->h_x + L->h_y), hxb = 0.5 * (L->h_xbeta + L->h_yalpha),
+                 ha = 0.5 * (L->h_alpha + L->h_beta);
+    double M = L->M, Ap = L->A - L->C, ginf = 1.0 / M + d * d / Ap;
+    double eta = hx / (M * M) - 2.0 * d * hxb / (M * Ap) + d * d * ha / (Ap * Ap);
+    /* highest undamped natural frequency at rest: eigenvalues of diag(M, A)^-1 [[c, -c_c], [-c_c, c_t]] */
+    double tr = L->c_x / M + L->c_alpha / L->A;
+    double det = (L->c_x * L->c_alpha - L->c_xbeta * L->c_xbeta) / (M * L->A);
+    double wmax = sqrt(fmax(0.0, 0.5 * (tr + sqrt(fmax(0.0, tr * tr - 4.0 * det)))));
+    if (r->anisotropic) {
+      double tr_y = L->c_y / M + L->c_beta / L->A;
+      double det_y = (L->c_y * L->c_beta - L->c_yalpha * L->c_yalpha) / (M * L->A);
+      wmax = fmax(wmax, sqrt(fmax(0.0, 0.5 * (tr_y + sqrt(fmax(0.0, tr_y * tr_y - 4.0 * det_y))))));
+    }
+    r->m_eff = 1.0 / ginf;
+    r->h_eff = eta / (ginf * ginf);
+    if (ginf > 0.0) {
+      r->kappa_inf = sqrt(0.5 * mb * ginf) * eta / ginf;
+      r->high_stable = kap > r->kappa_inf;
+      r->high_small = fmax(sqrt(0.5 * mb * ginf), wmax / fabs(w));
+    } else { /* (H1) fails: Re G > 0 at high speed */
+      r->kappa_inf = NAN;
+      r->high_stable = 0;
+      r->high_small = fmax(sqrt(0.5 * mb * fabs(ginf)), wmax / fabs(w));
+    }
+    if (r->anisotropic) r->high_small = fmax(r->high_small, r->avg_small);
+    r->high_applicable = r->high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
+  } else {
+    r->m_eff = r->h_eff = r->kappa_inf = r->high_small = NAN;
+  }
+}
+
 int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_rotor_asymptotic *out,
                                         autobal_error *err) {
   const autobal_rotor_closed_plane *pl;
@@ -362,6 +402,7 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
     r.anisotropic = 1;
     light_ball_roots(&r, G, mb, w, q, kap, u, &a);
     if ((st = aniso_rest(c, &r, Z, u, a, Gm, err)) != 0) return st;
+    high_speed(&r, L, d, mb, 0.0, kap, w);
     *out = r;
     return AUTOBAL_SUCCESS;
   }
@@ -478,30 +519,7 @@ int autobal_rotor_asymptotic_conditions(const autobal_rotor_closed *c, autobal_r
       r.undamped_delta[0] = r.undamped_delta[1] = r.undamped_small = NAN;
     }
   }
-  /* high speed: paper inertia, A != C */
-  r.high_defined = ma == 0.0 && L->A != L->C;
-  if (r.high_defined) {
-    double M = L->M, Ap = L->A - L->C, ginf = 1.0 / M + d * d / Ap;
-    double eta = L->h_x / (M * M) - 2.0 * d * L->h_xbeta / (M * Ap) + d * d * L->h_alpha / (Ap * Ap);
-    /* highest undamped natural frequency at rest: eigenvalues of diag(M, A)^-1 [[c, -c_c], [-c_c, c_t]] */
-    double tr = L->c_x / M + L->c_alpha / L->A;
-    double det = (L->c_x * L->c_alpha - L->c_xbeta * L->c_xbeta) / (M * L->A);
-    double wmax = sqrt(fmax(0.0, 0.5 * (tr + sqrt(fmax(0.0, tr * tr - 4.0 * det)))));
-    r.m_eff = 1.0 / ginf;
-    r.h_eff = eta / (ginf * ginf);
-    if (ginf > 0.0) {
-      r.kappa_inf = sqrt(0.5 * mb * ginf) * eta / ginf;
-      r.high_stable = kap > r.kappa_inf;
-      r.high_small = fmax(sqrt(0.5 * mb * ginf), wmax / fabs(w));
-    } else { /* (H1) fails: Re G > 0 at high speed */
-      r.kappa_inf = NAN;
-      r.high_stable = 0;
-      r.high_small = fmax(sqrt(0.5 * mb * fabs(ginf)), wmax / fabs(w));
-    }
-    r.high_applicable = r.high_small <= AUTOBAL_ROTOR_ASYMPTOTIC_SMALL;
-  } else {
-    r.m_eff = r.h_eff = r.kappa_inf = r.high_small = NAN;
-  }
+  high_speed(&r, L, d, mb, ma, kap, w);
   *out = r;
   return AUTOBAL_SUCCESS;
 }

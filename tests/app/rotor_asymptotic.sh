@@ -12,7 +12,8 @@
 #  (g) two planes at high speed with the balls at q = 0: (H1'), (H2');
 #  (h) anisotropic supports: (L1), (L2) with the forward receptance G+ (console, JSON, archive; G+ and G-
 #      against NumPy), and the scan tools/derive/asymptotic_aniso_scan.py on 60 random machines against the
-#      Floquet multipliers (every decided prediction must agree); isotropic archives carry no anisotropic keys.
+#      Floquet multipliers (every decided prediction must agree); isotropic archives carry no anisotropic keys;
+#      the high-speed entries (mean damping) on 25 random machines at q = 0 against Floquet.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -155,5 +156,14 @@ if "$PY" "$TOOLS/derive/asymptotic_aniso_scan.py" "$AUTOBAL" 60 1 0.2 > scan.txt
   [ "${1:-0}" -ge 10 ] && [ "$1" = "${2:-x}" ] && ok "anisotropic scan: $1 decided predictions, all agree with Floquet" || { bad "anisotropic scan counts: $n"; cat scan.txt; }
 else
   bad "anisotropic scan"; cat scan.txt
+fi
+# anisotropic supports at high speed (H1), (H2) with the mean damping: 25 random machines at q = 0 against Floquet
+# (every applicable prediction must agree) and the scan's own kappa_inf from the archived lumped coefficients
+if "$PY" "$TOOLS/derive/asymptotic_aniso_scan.py" "$AUTOBAL" high 25 3 > scanh.txt 2>&1; then
+  n=$(sed -n 's/.*applicable \([0-9]*\), agree \([0-9]*\).*/\1 \2/p' scanh.txt)
+  set -- $n
+  [ "${1:-0}" -ge 10 ] && [ "$1" = "${2:-x}" ] && ok "anisotropic high-speed scan: $1 applicable predictions, all agree with Floquet" || { bad "anisotropic high-speed scan counts: $n"; cat scanh.txt; }
+else
+  bad "anisotropic high-speed scan"; cat scanh.txt
 fi
 finish
