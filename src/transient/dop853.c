@@ -187,6 +187,8 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
   }
   memcpy(y, s->y1, n * sizeof(double));
   if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * np, n * sizeof(double));
+  /* the order-6 extension needs nothing more: ready now (the driver then skips prepare) */
+  s->ready = s->dense_order == 6;
   return GSL_SUCCESS;
 }
 
@@ -291,15 +293,17 @@ static DOP853_INLINE void dop853_eval(const dop853_state *s, const size_t n, con
  * 14 per point for the nested form.  u(0) = y0 exactly (A = 0, g = 0); u(1) = y0 + (y1 - y0)
  * (A = 1, g = 0), y1 to rounding. */
 static DOP853_INLINE void dop853_eval6(const dop853_state *s, const size_t n, const size_t np, double theta,
-                                       double *out) {
+                                       double *restrict out) {
   const double x = theta, x1 = 1.0 - theta, h = s->h;
   const double w1 = x * x1, w2 = w1 * x, w3 = w2 * x1, w4 = w3 * x, w5 = w4 * x1, w6 = w5 * x;
   const double A = x * x * (3.0 - 2.0 * x); /* = x - w1 + 2 w2 */
   const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict k = s->k;
   double g[NEXT - 3];
   size_t i;
-  for (i = 0; i < NEXT - 3; i++)
+  /* stages 5..12 (two vectors of 4), then stage 0 (stages 1..4 have weight 0) */
+  for (i = 5; i < NEXT - 3; i++)
     g[i] = h * (w3 * DOP853_D6[0][i] + w4 * DOP853_D6[1][i] + w5 * DOP853_D6[2][i] + w6 * DOP853_D6[3][i]);
+  g[0] = h * (w3 * DOP853_D6[0][0] + w4 * DOP853_D6[1][0] + w5 * DOP853_D6[2][0] + w6 * DOP853_D6[3][0]);
   g[0] += h * (w1 - w2);
   g[NST] -= h * w2;
   for (i = 0; i < n; i++) {
@@ -318,8 +322,7 @@ static DOP853_INLINE void dop853_eval6(const dop853_state *s, const size_t n, co
 
 /* the same operations in the same order for every size (bit for bit); the small sizes with
  * their dimension and stride as constants (unrolled, as dop853_apply) */
-DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
-  const dop853_state *s = (const dop853_state *)vstate;
+static DOP853_INLINE void dop853_eval_any(const dop853_state *s, double theta, double *out) {
   if (s->dense_order == 6) {
 #define DOP853_EVAL6_CASE(NP)                                                                  \
   case NP:                                                                                     \
@@ -352,6 +355,29 @@ DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, doub
     default: dop853_eval(s, s->dim, s->np, theta, out); return;
   }
 #undef DOP853_EVAL_CASE
+}
+
+DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
+  dop853_eval_any((const dop853_state *)vstate, theta, out);
+}
+
+/* theta = (t - t0) / h clamped to [0, 1] (the driver's formula before), the extension there, and
+ * the finiteness of the result on the bits (as the step's last pass), in one call */
+DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double t, double *out) {
+  const dop853_state *s = (const dop853_state *)vstate;
+  const uint64_t ex = UINT64_C(0x7ff0000000000000), one = UINT64_C(0x0010000000000000);
+  double th = (t - s->t0) / s->h;
+  uint64_t bad = 0;
+  size_t i;
+  if (th < 0.0) th = 0.0;
+  if (th > 1.0) th = 1.0;
+  dop853_eval_any(s, th, out);
+  for (i = 0; i < s->dim; i++) {
+    uint64_t u;
+    memcpy(&u, &out[i], sizeof u);
+    bad |= (u & ex) + one;
+  }
+  return (bad >> 63) == 0;
 }
 
 void autobal_transient_dop853_set_dense_order_(void *vstate, int order) {

@@ -881,7 +881,7 @@ static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
  * state of an extra stage, or the interpolated state is not finite). */
 static int dense_at(autobal_transient *tr, double t, double *out) {
   void *st = tr->main.d->s->state;
-  double t0, h, th;
+  double t0, h;
   if (!autobal_transient_dop853_dense_ready_(st)) {
     int rc = autobal_transient_dop853_dense_prepare_(st, &tr->gsys);
     if (rc == GSL_FAILURE && tr->fail_kind == 0) {
@@ -893,12 +893,8 @@ static int dense_at(autobal_transient *tr, double t, double *out) {
     }
     if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
   }
-  autobal_transient_dop853_last_step_(st, &t0, &h);
-  th = (t - t0) / h;
-  if (th < 0.0) th = 0.0;
-  if (th > 1.0) th = 1.0;
-  autobal_transient_dop853_dense_eval_(st, th, out);
-  if (!all_finite(out, tr->dim)) {
+  /* theta = (t - t0) / h clamped to [0, 1], the extension there and its finiteness, one call */
+  if (!autobal_transient_dop853_dense_at_(st, t, out)) {
     nonfinite_failure(tr, t, out);
     return rhs_failure(tr);
   }
