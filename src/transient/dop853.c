@@ -287,7 +287,7 @@ static DOP853_INLINE void dop853_eval(const dop853_state *s, const size_t n, con
  *   u = y0 + (A F0 + sum_i g_i k_i),  F0 = y1 - y0,
  * with w1 = x x1, w2 = w1 x, w3 = w2 x1, w4 = w3 x, w5 = w4 x1, w6 = w5 x (the products of the
  * nested form), A = x - w1 + 2 w2 = x^2 (3 - 2 x) (F0's share of x F0, x x1 F1, x^2 x1 F2) and
- * g_i = h (w3 D6[0][i] + w4 D6[1][i] + w5 D6[2][i] + w6 D6[3][i]), plus h (w1 - w2) for k_0 (from
+ * g_i = (h w3) D6[0][i] + (h w4) D6[1][i] + (h w5) D6[2][i] + (h w6) D6[3][i], plus h (w1 - w2) for k_0 (from
  * F1 and F2) and - h w2 for k_12 (from F2); stages 1..4 have weight 0.  A step with an output
  * point costs 9 products per component and point instead of 36 per component for the rows and
  * 14 per point for the nested form.  u(0) = y0 exactly (A = 0, g = 0); u(1) = y0 + (y1 - y0)
@@ -301,9 +301,10 @@ static DOP853_INLINE void dop853_eval6(const dop853_state *s, const size_t n, co
   double g[NEXT - 3];
   size_t i;
   /* stages 5..12 (two vectors of 4), then stage 0 (stages 1..4 have weight 0) */
+  const double hw3 = h * w3, hw4 = h * w4, hw5 = h * w5, hw6 = h * w6; /* h folded in once */
   for (i = 5; i < NEXT - 3; i++)
-    g[i] = h * (w3 * DOP853_D6[0][i] + w4 * DOP853_D6[1][i] + w5 * DOP853_D6[2][i] + w6 * DOP853_D6[3][i]);
-  g[0] = h * (w3 * DOP853_D6[0][0] + w4 * DOP853_D6[1][0] + w5 * DOP853_D6[2][0] + w6 * DOP853_D6[3][0]);
+    g[i] = hw3 * DOP853_D6[0][i] + hw4 * DOP853_D6[1][i] + hw5 * DOP853_D6[2][i] + hw6 * DOP853_D6[3][i];
+  g[0] = hw3 * DOP853_D6[0][0] + hw4 * DOP853_D6[1][0] + hw5 * DOP853_D6[2][0] + hw6 * DOP853_D6[3][0];
   g[0] += h * (w1 - w2);
   g[NST] -= h * w2;
   for (i = 0; i < n; i++) {

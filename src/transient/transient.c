@@ -1363,8 +1363,11 @@ static int reset_restart(autobal_transient *tr, double t, const double *y) {
  * AUTOBAL_SUCCESS, OBSERVER_STOP (the observer asked to stop: the state in y_out, its time in
  * *t_stop) or a failure. */
 enum { OBSERVER_STOP = 1001 };
-static int emit_outputs(autobal_transient *tr, double t_upto, int incl, double tn, const double *yn,
-                        double *t_stop) {
+#if defined(__GNUC__)
+__attribute__((always_inline)) /* one call site per step with an output time: no call overhead */
+#endif
+static inline int emit_outputs(autobal_transient *tr, double t_upto, int incl, double tn, const double *yn,
+                               double *t_stop) {
   while (tr->t_out < t_upto || (incl && tr->t_out == t_upto)) {
     const double to = tr->t_out;
     if (tr->observer) {
