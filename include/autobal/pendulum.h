@@ -793,6 +793,13 @@ AUTOBAL_API void autobal_pendulum_motion_derive(const autobal_pendulum_params *p
 AUTOBAL_API void autobal_pendulum_motion_derive_m(const autobal_pendulum_motion *m,
                                                   const double y[],
                                                   autobal_pendulum_motion_derived *out);
+/* The same quantities by the library's own sine, cosine and hypot instead of libm's (the
+ * transient study with output = dense6, whose interpolated states are new in 0.2.0): sin and cos
+ * within 1 ulp of libm's (branch-free fdlibm kernels), hypot as sqrt(a^2 + b^2) below 1.5 ulp
+ * (libm's hypot for tiny, huge or non-finite arguments); the other expressions as derive_m. */
+AUTOBAL_API void autobal_pendulum_motion_derive_fast(const autobal_pendulum_motion *m,
+                                                     const double y[],
+                                                     autobal_pendulum_motion_derived *out);
 
 AUTOBAL_END_DECLS
 

@@ -612,6 +612,13 @@ AUTOBAL_API size_t autobal_rotor_output_count(const autobal_rotor *r);
  * AUTOBAL_EINVAL. */
 AUTOBAL_API int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y,
                                       double *out, size_t n_out);
+/* The same outputs by the library's own sine, cosine and hypot instead of libm's (the transient
+ * study with output = dense6, whose interpolated states are new in 0.2.0): sin and cos within
+ * 1 ulp of libm's (fastmath.h's branch-free fdlibm kernels, libm above 2^21 rad), hypot as
+ * sqrt(a^2 + b^2) below 1.5 ulp (libm's hypot for tiny, huge or non-finite arguments); the
+ * other expressions, the layout and the checks as autobal_rotor_outputs. */
+AUTOBAL_API int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y,
+                                           double *out, size_t n_out);
 /* Name (written to buf, NUL-terminated, truncated to len) and unit (static
  * string; "1" for dimensionless) of output k.  Returns AUTOBAL_SUCCESS or
  * AUTOBAL_EINVAL (k out of range or buf NULL). */

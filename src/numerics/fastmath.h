@@ -1,5 +1,8 @@
 /* fastmath.h (library-private): a branch-free sin/cos pair for the rotor's
- * per-ball loops, written so that GCC vectorizes it over arrays.
+ * per-ball loops, written so that GCC vectorizes it over arrays (and, at the
+ * end, a hypot by sqrt where that is safe: autobal_hypot_fast).  Both serve
+ * the derived quantities of the transients with output = dense6 too
+ * (pendulum_motion.c, rotor.c).
  *
  * Method (fdlibm/FreeBSD msun, made branch-free):
  *  - Cody-Waite reduction x = k pi/2 + r, k = nearest integer to x 2/pi
@@ -166,6 +169,96 @@ static AUTOBAL_FM_INLINE size_t autobal_sincos_array(const double *restrict x, d
     }
   }
   return nbad;
+}
+
+/* sin and cos of two arguments x[0], x[1] at once: autobal_sincos_fast's operations, in the same
+ * order, on the two lanes of one vector (GCC/Clang vector extensions; elsewhere two scalar calls),
+ * so the same bits as autobal_sincos_fast for each; libm's sin and cos for an argument out of
+ * range (as autobal_sincos1).  For two angles at a time (the pendulum's derived quantities) the
+ * loop of autobal_sincos_array leaves GCC shuffling lanes; written out, it is one pass. */
+#if defined(__GNUC__) && !defined(AUTOBAL_NO_VECTOR_EXT)
+typedef double autobal_fm_v2 __attribute__((vector_size(16)));
+typedef uint64_t autobal_fm_u2 __attribute__((vector_size(16)));
+static AUTOBAL_FM_INLINE void autobal_sincos2(const double x_in[2], double sn_out[2], double cs_out[2]) {
+  const autobal_fm_v2 inv_pio2 = {0x1.45f306dc9c883p-1, 0x1.45f306dc9c883p-1};
+  const autobal_fm_v2 P1 = {0x1.921fb544p+0, 0x1.921fb544p+0}, P2 = {0x1.0b4611a6p-34, 0x1.0b4611a6p-34};
+  const autobal_fm_v2 P3 = {0x1.3198a2ep-69, 0x1.3198a2ep-69};
+  const autobal_fm_v2 P3t = {0x1.b839a252049c1p-104, 0x1.b839a252049c1p-104};
+  const autobal_fm_v2 shift = {0x1.8p52, 0x1.8p52}, half = {0.5, 0.5}, one = {1.0, 1.0};
+#define AUTOBAL_FM_B(c) ((autobal_fm_v2){(c), (c)})
+  const autobal_fm_v2 S1 = AUTOBAL_FM_B(-1.66666666666666324348e-01), S2 = AUTOBAL_FM_B(8.33333333332248946124e-03),
+                      S3 = AUTOBAL_FM_B(-1.98412698298579493134e-04), S4 = AUTOBAL_FM_B(2.75573137070700676789e-06),
+                      S5 = AUTOBAL_FM_B(-2.50507602534068634195e-08), S6 = AUTOBAL_FM_B(1.58969099521155010221e-10);
+  const autobal_fm_v2 C1 = AUTOBAL_FM_B(4.16666666666666019037e-02), C2 = AUTOBAL_FM_B(-1.38888888888741095749e-03),
+                      C3 = AUTOBAL_FM_B(2.48015872894767294178e-05), C4 = AUTOBAL_FM_B(-2.75573143513906633035e-07),
+                      C5 = AUTOBAL_FM_B(2.08757232129817482790e-09), C6 = AUTOBAL_FM_B(-1.13596475577881948265e-11);
+#undef AUTOBAL_FM_B
+  const autobal_fm_u2 u1 = {1u, 1u}, u2 = {2u, 2u}, zero = {0u, 0u};
+  autobal_fm_v2 x, kb, kd, t1, w2, w3, s, bb, e1, s2, bb2, e2, nlo, y0, y1;
+  autobal_fm_v2 z, w, v, rs, rc, hz, wc, ks, kc;
+  autobal_fm_u2 q, ub, cb, swap, sgn_s, sgn_c, bs, bc;
+  int k;
+  memcpy(&x, x_in, sizeof x);
+  kb = x * inv_pio2 + shift;
+  kd = kb - shift;
+  memcpy(&q, &kb, sizeof q);
+  t1 = x - kd * P1;
+  w2 = kd * P2;
+  s = t1 - w2;
+  bb = s - t1;
+  e1 = (t1 - (s - bb)) - (w2 + bb);
+  w3 = kd * P3;
+  s2 = s - w3;
+  bb2 = s2 - s;
+  e2 = (s - (s2 - bb2)) - (w3 + bb2);
+  nlo = kd * P3t - (e1 + e2);
+  y0 = s2 - nlo;
+  y1 = (s2 - y0) - nlo;
+  z = y0 * y0;
+  w = z * z;
+  rs = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
+  v = z * y0;
+  ks = y0 - ((z * (half * y1 - v * rs) - y1) - v * S1);
+  rc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
+  hz = half * z;
+  wc = one - hz;
+  kc = wc + (((one - wc) - hz) + (z * rc - y0 * y1));
+  memcpy(&ub, &ks, sizeof ub);
+  memcpy(&cb, &kc, sizeof cb);
+  swap = zero - (q & u1);
+  sgn_s = (q & u2) << 62;
+  sgn_c = ((q + u1) & u2) << 62;
+  bs = ((ub & ~swap) | (cb & swap)) ^ sgn_s;
+  bc = ((cb & ~swap) | (ub & swap)) ^ sgn_c;
+  memcpy(sn_out, &bs, sizeof bs);
+  memcpy(cs_out, &bc, sizeof bc);
+  for (k = 0; k < 2; k++) {
+    if (!autobal_sincos_in_range(x_in[k])) {
+      sn_out[k] = sin(x_in[k]);
+      cs_out[k] = cos(x_in[k]);
+    }
+  }
+}
+#else
+static AUTOBAL_FM_INLINE void autobal_sincos2(const double x_in[2], double sn_out[2], double cs_out[2]) {
+  autobal_sincos1(x_in[0], &sn_out[0], &cs_out[0]);
+  autobal_sincos1(x_in[1], &sn_out[1], &cs_out[1]);
+}
+#endif
+
+/* hypot(a, b) as sqrt(a a + b b) where that is safe, else libm's hypot.  For a a + b b in
+ * [2^-968, 2^1000] the larger square is a normal number and nothing overflows: the two products
+ * and the sum are rounded once each, so the computed sum is (a^2 + b^2)(1 + e) with |e| <= 2u + u^2
+ * (u = 2^-53; a square that underflows adds at most 2^-1075, below 2^-107 of the sum); its square
+ * root is within (1 + e)^(1/2) - 1 <= u (relative), less than 1 ulp of the result, and sqrt rounds
+ * once more (1/2 ulp): below 1.5 ulp of the exact value (glibc's hypot: below 1 ulp).  Outside that
+ * range (tiny or huge arguments, inf, NaN: the comparison is false) libm's hypot gives the result,
+ * so hypot's special cases (inf with NaN gives inf) hold.  IEEE multiplications, one addition and
+ * sqrt (correctly rounded): the same bits in every clone.  tests/test_pendulum_motion.c checks it
+ * against hypotl. */
+static AUTOBAL_FM_INLINE double autobal_hypot_fast(double a, double b) {
+  const double s = a * a + b * b;
+  return s >= 0x1p-968 && s <= 0x1p1000 ? sqrt(s) : hypot(a, b);
 }
 
 #endif

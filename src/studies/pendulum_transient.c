@@ -27,6 +27,13 @@ autobal_study_pendulum_transient_options autobal_study_pendulum_transient_option
   return o;
 }
 
+/* 1 if the run interpolates with DOP853's order-6 extension (output = dense6): then the derived
+ * quantities use the library's sine, cosine and hypot (archive attribute derived_math =
+ * "fastmath"; every other mode libm's, as in 0.1.0: "libm"). */
+static int fast_derived(const autobal_study_pendulum_transient_options *o) {
+  return o->stepper && strcmp(o->stepper, "dop853") == 0 && !o->exact_output && o->dense_order == 6;
+}
+
 /* The output interval in tau and in revolutions. */
 static void output_interval(const autobal_pendulum_params *p, const autobal_study_pendulum_transient_options *o,
                             double *dt, double *revs) {
@@ -100,6 +107,7 @@ int autobal_study_pendulum_transient_check(const autobal_pendulum_params *p,
 
 typedef struct run_ctx {
   const autobal_pendulum_motion *m; /* the parameters with sin(psi0) computed once */
+  int fast; /* output = dense6: the derived quantities by autobal_pendulum_motion_derive_fast */
   autobal_archive_series *series;
   int io_failed;
   double row[NCOLS];
@@ -112,7 +120,8 @@ typedef struct run_ctx {
 static int observer(double tau, const double y[], void *user) {
   run_ctx *r = user;
   autobal_pendulum_motion_derived d;
-  autobal_pendulum_motion_derive_m(r->m, y, &d);
+  if (r->fast) autobal_pendulum_motion_derive_fast(r->m, y, &d);
+  else autobal_pendulum_motion_derive_m(r->m, y, &d);
   memcpy(r->row, y, 8 * sizeof *y);
   r->row[8] = d.amplitude;
   r->row[9] = d.unbalance;
@@ -181,6 +190,8 @@ static int write_settings(autobal_archive *a, const autobal_pendulum_physical *p
   if (!st && o->stepper && strcmp(o->stepper, "dop853") == 0)
     st = autobal_archive_attr_string(a, g, "output",
                                       o->exact_output ? "exact" : o->dense_order == 6 ? "dense6" : "dense");
+  /* how the derived quantities were computed (libm's sin, cos, hypot, or the library's) */
+  if (!st) st = autobal_archive_attr_string(a, g, "derived_math", fast_derived(o) ? "fastmath" : "libm");
   if (!st) st = autobal_archive_attr_double_array(a, g, "initial_state", 8, o->y0, "1");
   if (!st)
     st = autobal_archive_attr_string(a, g, "state_order",
@@ -236,6 +247,7 @@ int autobal_study_pendulum_transient(const autobal_pendulum_params *p, const aut
   tr = autobal_transient_alloc(8, &to, &e);
   if (!tr) return autobal_error_set(err, e.status ? e.status : AUTOBAL_ENOMEM, "options: %s", e.message);
   r.m = &motion;
+  r.fast = fast_derived(o);
   r.progress = o->progress;
   r.progress_user = o->progress_user;
   memcpy(s->final_state, o->y0, sizeof s->final_state);
@@ -271,7 +283,8 @@ int autobal_study_pendulum_transient(const autobal_pendulum_params *p, const aut
   s->balanced = autobal_transient_event_result(tr, (size_t)ev, NULL, &hit) == 1;
   if (s->balanced) s->time_to_balance = hit.t_start;
   s->t_reached = t_reached;
-  autobal_pendulum_motion_derive(p, s->final_state, &dfin);
+  if (r.fast) autobal_pendulum_motion_derive_fast(&motion, s->final_state, &dfin);
+  else autobal_pendulum_motion_derive(p, s->final_state, &dfin);
   s->unbalance_initial = r.unb_initial;
   s->unbalance_final = dfin.unbalance;
   s->amplitude_initial = r.amp_initial;

@@ -58,6 +58,13 @@ static double speed_ref(const autobal_rotor_params *p) {
   return m;
 }
 
+/* 1 if the run interpolates with DOP853's order-6 extension (output = dense6): then the output
+ * columns use the library's sine, cosine and hypot (archive attribute derived_math = "fastmath";
+ * every other mode libm's, as in 0.1.0: "libm"). */
+static int fast_derived(const autobal_study_rotor_transient_options *o) {
+  return o->stepper && strcmp(o->stepper, "dop853") == 0 && !o->exact_output && o->dense_order == 6;
+}
+
 /* The output interval actually used (0: a quarter revolution). */
 static double dt_out_used(const autobal_study_rotor_transient_options *o, double omega) {
   return o->dt_out > 0 ? o->dt_out : 0.25 * TWO_PI / fabs(omega);
@@ -222,6 +229,7 @@ _Static_assert(AUTOBAL_ROTOR_RHS_LEAVES_TRACK == AUTOBAL_TRANSIENT_RHS_REJECT,
 /* ---- the run -------------------------------------------------------------------------- */
 typedef struct run_ctx {
   autobal_rotor *rotor;
+  int fast;      /* output = dense6: the output columns by autobal_rotor_outputs_fast */
   int frame;     /* the frame of y, integrated (integration_frame) */
   int out_frame; /* the frame of the state datasets (options.frame) */
   size_t dim, nout, ncols;
@@ -273,7 +281,9 @@ static int observer(double t, const double y[], void *user) {
   if (r->frame == r->out_frame) memcpy(r->row, y, r->dim * sizeof *y);
   else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, t, y, r->row, r->dim) != AUTOBAL_SUCCESS)
     return 1;
-  if (autobal_rotor_outputs(r->rotor, r->frame, t, y, out, r->nout) != AUTOBAL_SUCCESS) return 1;
+  if ((r->fast ? autobal_rotor_outputs_fast : autobal_rotor_outputs)(r->rotor, r->frame, t, y, out, r->nout) !=
+      AUTOBAL_SUCCESS)
+    return 1;
   if (!r->first_sample_done) {
     r->first_sample_done = 1;
     r->s_rel_initial = out[plane_base(0) + 5];
@@ -431,6 +441,8 @@ static int write_inputs(autobal_archive *a, const autobal_rotor *rot, const auto
   if (!st && o->stepper && strcmp(o->stepper, "dop853") == 0)
     st = autobal_archive_attr_string(a, g, "output",
                                       o->exact_output ? "exact" : o->dense_order == 6 ? "dense6" : "dense");
+  /* how the output columns were computed (libm's sin, cos, hypot, or the library's) */
+  if (!st) st = autobal_archive_attr_string(a, g, "derived_math", fast_derived(o) ? "fastmath" : "libm");
   /* the prescribed speed (only when not constant: the constant drive keeps the 0.1.0 layout) */
   if (!st && p->drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP) {
     st = autobal_archive_attr_string(a, g, "drive_mode", "ramp");
@@ -664,6 +676,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   }
   rp = autobal_rotor_get_params(rot);
   r.rotor = rot;
+  r.fast = fast_derived(o);
   r.frame = integration_frame(o);
   r.out_frame = o->frame;
   r.progress = o->progress;

@@ -187,6 +187,8 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
   }
   memcpy(y, s->y1, n * sizeof(double));
   if (dydt_out != NULL) memcpy(dydt_out, s->k + (size_t)NST * np, n * sizeof(double));
+  /* the order-6 extension needs nothing more: ready now (the driver then skips prepare) */
+  s->ready = s->dense_order == 6;
   return GSL_SUCCESS;
 }
 
@@ -227,9 +229,9 @@ static DOP853_INLINE int dop853_extend(dop853_state *s, const size_t np, const g
   return GSL_SUCCESS;
 }
 
-/* the order-6 extension: F3..F6 from the step's 12 stages and f(t + h, y1), no right-hand side */
-static DOP853_INLINE void dop853_extend6(dop853_state *s, const size_t np) {
-  dop853_dense6_rows(np, s->h, s->k, s->f);
+/* the order-6 extension: nothing to prepare (no right-hand side, no rows F3..F6: dop853_eval6
+ * combines the step's stages with the weights of theta at each point) */
+static DOP853_INLINE void dop853_extend6(dop853_state *s) {
   s->nfev = 0;
   s->ready = 1;
 }
@@ -240,15 +242,7 @@ DOP853_CLONES int autobal_transient_dop853_dense_prepare_(void *vstate, const gs
   dop853_state *s = (dop853_state *)vstate;
   if (s->ready) return GSL_SUCCESS;
   if (s->dense_order == 6) {
-    switch (s->np) {
-      case 4: dop853_extend6(s, 4); break;
-      case 8: dop853_extend6(s, 8); break;
-      case 12: dop853_extend6(s, 12); break;
-      case 16: dop853_extend6(s, 16); break;
-      case 20: dop853_extend6(s, 20); break;
-      case 24: dop853_extend6(s, 24); break;
-      default: dop853_extend6(s, s->np); break;
-    }
+    dop853_extend6(s);
     return GSL_SUCCESS;
   }
   switch (s->np) {
@@ -288,10 +282,65 @@ static DOP853_INLINE void dop853_eval(const dop853_state *s, const size_t n, con
   }
 }
 
+/* The order-6 extension at theta in one pass, without the rows F3..F6: the same polynomial as
+ * contd8's form above with D6's F3..F6, written as a combination of the step's data,
+ *   u = y0 + (A F0 + sum_i g_i k_i),  F0 = y1 - y0,
+ * with w1 = x x1, w2 = w1 x, w3 = w2 x1, w4 = w3 x, w5 = w4 x1, w6 = w5 x (the products of the
+ * nested form), A = x - w1 + 2 w2 = x^2 (3 - 2 x) (F0's share of x F0, x x1 F1, x^2 x1 F2) and
+ * g_i = (h w3) D6[0][i] + (h w4) D6[1][i] + (h w5) D6[2][i] + (h w6) D6[3][i], plus h (w1 - w2) for k_0 (from
+ * F1 and F2) and - h w2 for k_12 (from F2); stages 1..4 have weight 0.  A step with an output
+ * point costs 9 products per component and point instead of 36 per component for the rows and
+ * 14 per point for the nested form.  u(0) = y0 exactly (A = 0, g = 0); u(1) = y0 + (y1 - y0)
+ * (A = 1, g = 0), y1 to rounding. */
+static DOP853_INLINE void dop853_eval6(const dop853_state *s, const size_t n, const size_t np, double theta,
+                                       double *restrict out) {
+  const double x = theta, x1 = 1.0 - theta, h = s->h;
+  const double w1 = x * x1, w2 = w1 * x, w3 = w2 * x1, w4 = w3 * x, w5 = w4 * x1, w6 = w5 * x;
+  const double A = x * x * (3.0 - 2.0 * x); /* = x - w1 + 2 w2 */
+  const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict k = s->k;
+  double g[NEXT - 3];
+  size_t i;
+  /* stages 5..12 (two vectors of 4), then stage 0 (stages 1..4 have weight 0) */
+  const double hw3 = h * w3, hw4 = h * w4, hw5 = h * w5, hw6 = h * w6; /* h folded in once */
+  for (i = 5; i < NEXT - 3; i++)
+    g[i] = hw3 * DOP853_D6[0][i] + hw4 * DOP853_D6[1][i] + hw5 * DOP853_D6[2][i] + hw6 * DOP853_D6[3][i];
+  g[0] = hw3 * DOP853_D6[0][0] + hw4 * DOP853_D6[1][0] + hw5 * DOP853_D6[2][0] + hw6 * DOP853_D6[3][0];
+  g[0] += h * (w1 - w2);
+  g[NST] -= h * w2;
+  for (i = 0; i < n; i++) {
+    double v = g[0] * k[i];
+    v += g[5] * k[5 * np + i];
+    v += g[6] * k[6 * np + i];
+    v += g[7] * k[7 * np + i];
+    v += g[8] * k[8 * np + i];
+    v += g[9] * k[9 * np + i];
+    v += g[10] * k[10 * np + i];
+    v += g[11] * k[11 * np + i];
+    v += g[12] * k[12 * np + i];
+    out[i] = y0[i] + (A * (y1[i] - y0[i]) + v);
+  }
+}
+
 /* the same operations in the same order for every size (bit for bit); the small sizes with
  * their dimension and stride as constants (unrolled, as dop853_apply) */
-DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
-  const dop853_state *s = (const dop853_state *)vstate;
+static DOP853_INLINE void dop853_eval_any(const dop853_state *s, double theta, double *out) {
+  if (s->dense_order == 6) {
+#define DOP853_EVAL6_CASE(NP)                                                                  \
+  case NP:                                                                                     \
+    if (s->dim == NP) dop853_eval6(s, NP, NP, theta, out);                                     \
+    else dop853_eval6(s, s->dim, NP, theta, out);                                              \
+    return
+    switch (s->np) {
+      DOP853_EVAL6_CASE(4);
+      DOP853_EVAL6_CASE(8);
+      DOP853_EVAL6_CASE(12);
+      DOP853_EVAL6_CASE(16);
+      DOP853_EVAL6_CASE(20);
+      DOP853_EVAL6_CASE(24);
+      default: dop853_eval6(s, s->dim, s->np, theta, out); return;
+    }
+#undef DOP853_EVAL6_CASE
+  }
 #define DOP853_EVAL_CASE(NP)                                                                   \
   case NP:                                                                                     \
     if (s->dim == NP) dop853_eval(s, NP, NP, theta, out);                                      \
@@ -307,6 +356,29 @@ DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, doub
     default: dop853_eval(s, s->dim, s->np, theta, out); return;
   }
 #undef DOP853_EVAL_CASE
+}
+
+DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, double theta, double *out) {
+  dop853_eval_any((const dop853_state *)vstate, theta, out);
+}
+
+/* theta = (t - t0) / h clamped to [0, 1] (the driver's formula before), the extension there, and
+ * the finiteness of the result on the bits (as the step's last pass), in one call */
+DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double t, double *out) {
+  const dop853_state *s = (const dop853_state *)vstate;
+  const uint64_t ex = UINT64_C(0x7ff0000000000000), one = UINT64_C(0x0010000000000000);
+  double th = (t - s->t0) / s->h;
+  uint64_t bad = 0;
+  size_t i;
+  if (th < 0.0) th = 0.0;
+  if (th > 1.0) th = 1.0;
+  dop853_eval_any(s, th, out);
+  for (i = 0; i < s->dim; i++) {
+    uint64_t u;
+    memcpy(&u, &out[i], sizeof u);
+    bad |= (u & ex) + one;
+  }
+  return (bad >> 63) == 0;
 }
 
 void autobal_transient_dop853_set_dense_order_(void *vstate, int order) {

@@ -27,12 +27,17 @@ int autobal_transient_dop853_dense_prepare_(void *state, const gsl_odeiv2_system
 void autobal_transient_dop853_set_dense_order_(void *state, int order);
 
 /* 1 if the continuous extension of the last accepted step is built (prepare succeeded since the
- * last apply or reset). */
+ * last apply or reset; order 6: after every successful apply, nothing to build). */
 int autobal_transient_dop853_dense_ready_(const void *state);
 
 /* The continuous extension at t0 + theta h, theta in [0, 1] (theta = 0 gives y0, theta = 1 the
  * step's result, to rounding), into out (dim doubles).  Local error O(h^8). */
 void autobal_transient_dop853_dense_eval_(const void *state, double theta, double *out);
+
+/* The continuous extension at time t of the last step, t0 + theta h with theta = (t - t0) / h
+ * clamped to [0, 1], into out (dim doubles); returns 1 if every component is finite, else 0
+ * (eval_ and the test in one call: the driver's dense output). */
+int autobal_transient_dop853_dense_at_(const void *state, double t, double *out);
 
 /* The tolerances of the control that judges the steps (GSL's standard control with these atol,
  * rtol, a_y = 1, a_dydt = 0): with them the error estimate is Hairer's normwise one (the factor

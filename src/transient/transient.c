@@ -881,7 +881,7 @@ static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
  * state of an extra stage, or the interpolated state is not finite). */
 static int dense_at(autobal_transient *tr, double t, double *out) {
   void *st = tr->main.d->s->state;
-  double t0, h, th;
+  double t0, h;
   if (!autobal_transient_dop853_dense_ready_(st)) {
     int rc = autobal_transient_dop853_dense_prepare_(st, &tr->gsys);
     if (rc == GSL_FAILURE && tr->fail_kind == 0) {
@@ -893,12 +893,8 @@ static int dense_at(autobal_transient *tr, double t, double *out) {
     }
     if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
   }
-  autobal_transient_dop853_last_step_(st, &t0, &h);
-  th = (t - t0) / h;
-  if (th < 0.0) th = 0.0;
-  if (th > 1.0) th = 1.0;
-  autobal_transient_dop853_dense_eval_(st, th, out);
-  if (!all_finite(out, tr->dim)) {
+  /* theta = (t - t0) / h clamped to [0, 1], the extension there and its finiteness, one call */
+  if (!autobal_transient_dop853_dense_at_(st, t, out)) {
     nonfinite_failure(tr, t, out);
     return rhs_failure(tr);
   }
@@ -1367,8 +1363,11 @@ static int reset_restart(autobal_transient *tr, double t, const double *y) {
  * AUTOBAL_SUCCESS, OBSERVER_STOP (the observer asked to stop: the state in y_out, its time in
  * *t_stop) or a failure. */
 enum { OBSERVER_STOP = 1001 };
-static int emit_outputs(autobal_transient *tr, double t_upto, int incl, double tn, const double *yn,
-                        double *t_stop) {
+#if defined(__GNUC__)
+__attribute__((always_inline)) /* one call site per step with an output time: no call overhead */
+#endif
+static inline int emit_outputs(autobal_transient *tr, double t_upto, int incl, double tn, const double *yn,
+                               double *t_stop) {
   while (tr->t_out < t_upto || (incl && tr->t_out == t_upto)) {
     const double to = tr->t_out;
     if (tr->observer) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # App test: [transient] output = dense6 (issue 20, "output for free") with stepper = dop853, pendulum
 # and rotor: DOP853's order-6 continuous extension from the step's own stages (no extra right-hand
-# side).  Checked: the archive records output = dense6 and `autobal rerun` reproduces it bit for bit;
+# side).  Checked: the archive records output = dense6 (and derived_math = fastmath; libm for dense and
+# rk8pd) and `autobal rerun` reproduces it bit for bit;
 # output every quarter revolution costs exactly the right-hand sides of the run without an output
 # grid (the steps are not cut and the extension needs none; the balance monitor is located on it);
 # the error at the output points against a tight reference (rk8pd, steps cut at the output times,
@@ -37,6 +38,8 @@ cases = (("pendulum", "p", "/pendulum/transient", ["xi", "eta", "psi", "phi", "x
 for kind, p, grp, names in cases:
     with h5py.File(p + "ref.h5", "r") as f:
         ref = np.array([f[grp][n][()] for n in names])
+        if attr(f[grp], "derived_math") != "libm":  # rk8pd: libm, as in 0.1.0
+            print(f"FAIL {kind} reference (rk8pd): derived_math {attr(f[grp], 'derived_math')!r}, want 'libm'"); fails += 1
     sc = np.max(np.abs(ref), axis=1)[:, None]
     sc[sc == 0] = 1
     if kind == "rotor":
@@ -49,6 +52,10 @@ for kind, p, grp, names in cases:
                 want = "dense6" if mode != "dense" else "dense"
                 if attr(g, "output") != want:
                     print(f"FAIL {kind} {mode} {tol}: output attribute {attr(g, 'output')!r}, want {want!r}"); fails += 1
+                # dense6's derived columns by the library's sin, cos, hypot; every other mode libm's
+                want_dm = "fastmath" if want == "dense6" else "libm"
+                if attr(g, "derived_math") != want_dm:
+                    print(f"FAIL {kind} {mode} {tol}: derived_math {attr(g, 'derived_math')!r}, want {want_dm!r}"); fails += 1
                 rhs[mode] = int(f[grp + "/solver"].attrs["rhs_evaluations"])
                 if mode != "none":
                     y = np.array([g[n][()] for n in names])

@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "numerics/fastmath.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -269,10 +270,22 @@ double autobal_pendulum_jacobi_power(const autobal_pendulum_params *p, const dou
 /* The same expressions as shaft_amplitude, residual_unbalance, wrap_angle and jacobi_integral
  * (the same numbers, bit for bit: no contraction in ISO C mode), with sin(psi0) and the sines and
  * cosines of the two angles computed once instead of twice (called at every output point);
- * s0 = sin(p->psi0), computed by the caller (once per run: autobal_pendulum_motion_derive_m). */
-static void derive(const autobal_pendulum_params *p, double s0, const double y[],
-                   autobal_pendulum_motion_derived *out) {
-  const double s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
+ * s0 = sin(p->psi0), computed by the caller (once per run: autobal_pendulum_motion_derive_m).
+ * fast = 1 (a constant at every call: the function is inlined and specialized): the sines and
+ * cosines by fastmath.h's autobal_sincos2 and the two hypot by autobal_hypot_fast instead of
+ * libm (autobal_pendulum_motion_derive_fast); the rest is the same expressions. */
+static AUTOBAL_FM_INLINE void derive(const autobal_pendulum_params *p, double s0, const double y[],
+                                     autobal_pendulum_motion_derived *out, int fast) {
+  double s1, c1, s2, c2;
+  if (fast) {
+    /* both angles in one pass (the two lanes of one vector) */
+    const double a[2] = {y[2], y[3]};
+    double sn[2], cs[2];
+    autobal_sincos2(a, sn, cs);
+    s1 = sn[0], c1 = cs[0], s2 = sn[1], c2 = cs[1];
+  } else {
+    s1 = sin(y[2]), c1 = cos(y[2]), s2 = sin(y[3]), c2 = cos(y[3]);
+  }
   const double du = s0 - 0.5 * (s1 + s2), dv = 0.5 * (c1 - c2);
   const double Rw2 = p->R_w * p->R_w, Rm = p->R_m;
   const double xi = y[0], eta = y[1], dxi = y[4], deta = y[5], dpsi = y[6], dphi = y[7];
@@ -281,10 +294,10 @@ static void derive(const autobal_pendulum_params *p, double s0, const double y[]
   const double T0 =
       0.5 * Rw2 * (xi * xi + eta * eta + 2.0 * Rm * (xi * (2.0 * s0 - s1 - s2) + eta * (c1 - c2)));
   const double V = 0.5 * (xi * xi + eta * eta);
-  out->amplitude = hypot(y[0], y[1]);
+  out->amplitude = fast ? autobal_hypot_fast(y[0], y[1]) : hypot(y[0], y[1]);
   out->unbalance_u = du;
   out->unbalance_v = dv;
-  out->unbalance = hypot(du, dv);
+  out->unbalance = fast ? autobal_hypot_fast(du, dv) : hypot(du, dv);
   out->alpha = wrap_angle(y[2] - p->psi0);
   out->beta = wrap_angle(y[3] - p->psi0);
   out->jacobi = T2 - T0 + V;
@@ -292,10 +305,22 @@ static void derive(const autobal_pendulum_params *p, double s0, const double y[]
 
 void autobal_pendulum_motion_derive(const autobal_pendulum_params *p, const double y[],
                                     autobal_pendulum_motion_derived *out) {
-  derive(p, sin(p->psi0), y, out);
+  derive(p, sin(p->psi0), y, out, 0);
 }
 
 void autobal_pendulum_motion_derive_m(const autobal_pendulum_motion *m, const double y[],
                                       autobal_pendulum_motion_derived *out) {
-  derive(&m->p, m->sin_psi0, y, out); /* m->sin_psi0 = sin(m->p.psi0) (motion_init) */
+  derive(&m->p, m->sin_psi0, y, out, 0); /* m->sin_psi0 = sin(m->p.psi0) (motion_init) */
+}
+
+/* compiled for AVX2 and the baseline (GCC function multiversioning, as rotor.c's ball_sincos):
+ * the constants of the two-lane sine and cosine are broadcast by one instruction each there; no
+ * FMA in either clone, so both give the same bits */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8 && defined(__x86_64__) && \
+    defined(__linux__) && !defined(AUTOBAL_NO_CLONES)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void autobal_pendulum_motion_derive_fast(const autobal_pendulum_motion *m, const double y[],
+                                         autobal_pendulum_motion_derived *out) {
+  derive(&m->p, m->sin_psi0, y, out, 1);
 }

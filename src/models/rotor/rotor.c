@@ -2821,6 +2821,30 @@ static void plane_sxe(const autobal_rotor *r, size_t j, int frame, double wt, co
   *seta_out = seta;
 }
 
+/* plane_sxe with fastmath.h's sine and cosine (autobal_rotor_outputs_fast): the balls' relative
+ * angles in chunks of 32, their sines and cosines by one vectorized pass (ball_sincos), then the
+ * same sums in the same order. */
+static void plane_sxe_fast(const autobal_rotor *r, size_t j, int frame, double wt, const double *y,
+                           double *sxi_out, double *seta_out) {
+  enum { CHUNK = 32 };
+  double sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
+  double a[CHUNK], sn[CHUNK], cs[CHUNK];
+  const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+  const size_t k1 = r->off[j] + r->cnt[j];
+  size_t k0, i, m;
+  for (k0 = r->off[j]; k0 < k1; k0 += m) {
+    m = k1 - k0 < CHUNK ? k1 - k0 : CHUNK;
+    for (i = 0; i < m; i++) a[i] = y[8 + k0 + i] - shift;
+    ball_sincos(a, sn, cs, m);
+    for (i = 0; i < m; i++) {
+      sxi += r->mr[k0 + i] * cs[i];
+      seta += r->mr[k0 + i] * sn[i];
+    }
+  }
+  *sxi_out = sxi;
+  *seta_out = seta;
+}
+
 /* s_u, s_v, s_xi, s_eta of plane j from its s_xi, s_eta and cos, sin of phi_0(t) (eq. (3.11)). */
 static void plane_turn(double sxi, double seta, double cw, double sw, double s[4]) {
   s[2] = sxi;
@@ -2879,10 +2903,15 @@ size_t autobal_rotor_output_count(const autobal_rotor *r) {
   return output_count_base(r) + (r->law != AUTOBAL_ROTOR_FRICTION_NONE ? 2u * r->N : 0u);
 }
 
-int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
-                          size_t n_out) {
+/* autobal_rotor_outputs; fast = 1 (a constant at both calls: inlined and specialized): sine,
+ * cosine and hypot by fastmath.h instead of libm, the same expressions otherwise. */
+enum { FAST_TRIG = 63 }; /* outputs_fast: up to 62 balls in one pass (with phi_0, padded: 64) */
+static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                                     size_t n_out, int fast) {
   size_t j, k;
   double x, yy, al, be, wt, W, cw, sw;
+  double ta[FAST_TRIG + 1], tsn[FAST_TRIG + 1], tcs[FAST_TRIG + 1];
+  int tab = 0;
   double *o;
   if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
@@ -2893,26 +2922,54 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   al = y[2] - r->qs[2];
   be = y[3] - r->qs[3];
   spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
-  cw = cos(wt); /* once for every plane */
-  sw = sin(wt);
-  out[0] = hypot(x, yy);
+  if (fast && r->N < FAST_TRIG) {
+    /* phi_0 and every ball's relative angle in one vectorized pass (padded with zeros to a
+     * multiple of 4, so that all of it runs in the vector loop); plane_sxe_tab sums them */
+    const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+    const size_t na = (r->N + 4) & ~(size_t)3;
+    ta[0] = wt;
+    for (k = 0; k < r->N; k++) ta[1 + k] = y[8 + k] - shift;
+    for (k = r->N + 1; k < na; k++) ta[k] = 0.0;
+    ball_sincos(ta, tsn, tcs, na);
+    sw = tsn[0];
+    cw = tcs[0];
+    tab = 1;
+  } else if (fast) {
+    autobal_sincos1(wt, &sw, &cw);
+  } else {
+    cw = cos(wt); /* once for every plane */
+    sw = sin(wt);
+  }
+#define ROTOR_HYPOT(a, b) (fast ? autobal_hypot_fast((a), (b)) : hypot((a), (b)))
+  out[0] = ROTOR_HYPOT(x, yy);
   /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
-  out[1] = hypot(x - r->l_L * be, yy + r->l_L * al);
-  out[2] = hypot(x + r->l_R * be, yy - r->l_R * al);
+  out[1] = ROTOR_HYPOT(x - r->l_L * be, yy + r->l_L * al);
+  out[2] = ROTOR_HYPOT(x + r->l_R * be, yy - r->l_R * al);
   o = out + N_GLOBAL_OUT;
   for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
     const double d = r->p.plane[j].d;
     double s[4], sxi, seta;
-    plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+    if (tab) {
+      sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
+      for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
+        sxi += r->mr[k] * tcs[1 + k];
+        seta += r->mr[k] * tsn[1 + k];
+      }
+    } else if (fast) {
+      plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
+    } else {
+      plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+    }
     plane_turn(sxi, seta, cw, sw, s);
     o[0] = s[0];
     o[1] = s[1];
     o[2] = s[2];
     o[3] = s[3];
-    o[4] = hypot(s[2], s[3]);
+    o[4] = ROTOR_HYPOT(s[2], s[3]);
     o[5] = o[4] / r->sref[j];
-    o[6] = hypot(x + d * be, yy - d * al);
+    o[6] = ROTOR_HYPOT(x + d * be, yy - d * al);
   }
+#undef ROTOR_HYPOT
   if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) {
     /* the stuck flags of all balls, then their normal forces; the solve's workspace is the
      * ball columns of out, written after it */
@@ -2951,6 +3008,16 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
     o[2] = o[1] * W;
   }
   return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                          size_t n_out) {
+  return outputs(r, frame, t, y, out, n_out, 0);
+}
+
+int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                               size_t n_out) {
+  return outputs(r, frame, t, y, out, n_out, 1);
 }
 
 int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_t len,

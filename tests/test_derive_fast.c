@@ -1,0 +1,244 @@
+/* test_derive_fast.c: the derived quantities of output = dense6 (issue 20): fastmath.h's
+ * autobal_hypot_fast and autobal_sincos2, autobal_pendulum_motion_derive_fast and
+ * autobal_rotor_outputs_fast against independent references.
+ *
+ * - autobal_hypot_fast against hypotl (64-bit long double: its own error is 2^-11 of a double
+ *   ulp) on 10^6 pairs over magnitudes 2^-600 .. 2^600 and ratios down to 2^-60, edges of its
+ *   sqrt range: at most 1.5 ulp (the bound derived in fastmath.h: 1 ulp from the rounded sum,
+ *   1/2 from sqrt); the special cases of hypot (inf with NaN is inf, NaN, 0, no overflow).
+ * - autobal_sincos2: the same bits as the scalar autobal_sincos_fast on every lane (it is
+ *   documented as the same operations), within 1 ulp of sinl/cosl, libm out of range.
+ * - derive_fast vs derive_m on 2000 states: the columns without trigonometry (alpha, beta) equal
+ *   bit for bit; the others within a few ulp of the magnitude of their terms (the only
+ *   difference: sin, cos within 1 ulp of libm, hypot within 1.5 ulp).
+ * - rotor outputs_fast vs outputs: the default rotor (2 balls), 8 balls, 70 balls (the chunked
+ *   path), both frames: angle and rate columns bit for bit, the others within 1e-13 of their
+ *   scale; the same argument checks (EINVAL). */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "autobal.h"
+#include "check.h"
+#include "fastmath.h"
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15ULL;
+static double urand(void) { /* xorshift64*, uniform in [0, 1) */
+  rng_state ^= rng_state >> 12;
+  rng_state ^= rng_state << 25;
+  rng_state ^= rng_state >> 27;
+  return (double)((rng_state * 0x2545F4914F6CDD1DULL) >> 11) * 0x1p-53;
+}
+
+/* |got - ref| in units of the double ulp at ref (ref a long double) */
+static double ulps(double got, long double ref) {
+  const double r = (double)ref;
+  int e;
+  if (r == 0.0) return got == 0.0 ? 0.0 : INFINITY;
+  if (isinf(r)) return got == r ? 0.0 : INFINITY; /* the exact value overflows: inf is right */
+  frexp(r, &e);
+  if (e - 53 < -1074) e = -1074 + 53; /* subnormal results: the ulp is 2^-1074 */
+  return (double)(fabsl((long double)got - ref) / ldexpl(1.0L, e - 53));
+}
+
+static void test_hypot(void) {
+  double worst = 0.0, wa = 0.0, wb = 0.0;
+  long n;
+  int ok_special;
+  for (n = 0; n < 1000000; n++) {
+    const double ea = -600.0 + 1200.0 * urand(), ratio = -60.0 * urand() * urand();
+    const double a = (urand() < 0.5 ? -1 : 1) * ldexp(1.0 + urand(), (int)ea);
+    const double b = (urand() < 0.5 ? -1 : 1) * a * ldexp(1.0 + urand(), (int)ratio);
+    const double u = ulps(autobal_hypot_fast(a, b), hypotl((long double)a, (long double)b));
+    if (u > worst) worst = u, wa = a, wb = b;
+  }
+  {
+    char what[200];
+    snprintf(what, sizeof what, "hypot_fast: 1e6 pairs, largest error %.3f ulp (at %.17g, %.17g) <= 1.5", worst, wa, wb);
+    CHECK(what, worst <= 1.5);
+  }
+  /* at the edges of the sqrt range and outside it (libm there) */
+  {
+    const double e[] = {0x1p-484, 0x1p-485, 0x1p-483, 0x1p500, 0x1p499, 0x1p501, 1e-310, 1e300, 1.7e308};
+    double w2 = 0.0;
+    size_t i, j;
+    for (i = 0; i < sizeof e / sizeof e[0]; i++)
+      for (j = 0; j < sizeof e / sizeof e[0]; j++) {
+        const double u = ulps(autobal_hypot_fast(e[i], e[j]), hypotl((long double)e[i], (long double)e[j]));
+        if (u > w2) w2 = u;
+      }
+    CHECK("hypot_fast at the edges of the sqrt range, tiny (subnormal result) and huge (inf only where the exact value overflows) arguments: <= 1.5 ulp", w2 <= 1.5);
+  }
+  ok_special = autobal_hypot_fast(INFINITY, NAN) == INFINITY && autobal_hypot_fast(NAN, -INFINITY) == INFINITY &&
+               isnan(autobal_hypot_fast(NAN, 1.0)) && autobal_hypot_fast(0.0, -0.0) == 0.0 &&
+               autobal_hypot_fast(-3.0, 4.0) == 5.0 && autobal_hypot_fast(1e308, 1e308) == hypot(1e308, 1e308);
+  CHECK("hypot_fast special cases: inf with NaN = inf, NaN, 0, 3-4-5 exact, 1e308 without overflow", ok_special);
+}
+
+static void test_sincos2(void) {
+  const double ranges[] = {1e-300, 1e-8, 0.1, 1.0, 4.0, 100.0, 1e4, 0x1p21};
+  double worst = 0.0;
+  long n, same = 0, total = 0;
+  size_t r;
+  for (r = 0; r < sizeof ranges / sizeof ranges[0]; r++)
+    for (n = 0; n < 50000; n++) {
+      const double x[2] = {(2.0 * urand() - 1.0) * ranges[r], (2.0 * urand() - 1.0) * ranges[r]};
+      double sn[2], cs[2];
+      int k;
+      autobal_sincos2(x, sn, cs);
+      for (k = 0; k < 2; k++) {
+        double s1, c1;
+        autobal_sincos_fast(x[k], &s1, &c1);
+        same += memcmp(&s1, &sn[k], sizeof s1) == 0 && memcmp(&c1, &cs[k], sizeof c1) == 0;
+        total++;
+        worst = fmax(worst, fmax(ulps(sn[k], sinl((long double)x[k])), ulps(cs[k], cosl((long double)x[k]))));
+      }
+    }
+  {
+    char what[200];
+    snprintf(what, sizeof what, "sincos2: %ld of %ld lanes the bits of autobal_sincos_fast", same, total);
+    CHECK(what, same == total);
+    snprintf(what, sizeof what, "sincos2: largest error %.3f ulp against sinl, cosl (<= 1)", worst);
+    CHECK(what, worst <= 1.0);
+  }
+  {
+    const double x[2] = {3e6, NAN};
+    double sn[2], cs[2];
+    autobal_sincos2(x, sn, cs);
+    CHECK("sincos2 out of range: libm's sin, cos (3e6 rad), NaN gives NaN",
+          sn[0] == sin(3e6) && cs[0] == cos(3e6) && isnan(sn[1]) && isnan(cs[1]));
+  }
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+static void test_pendulum(void) {
+  autobal_pendulum_params p = {3.0, 0.1, 0.05, 0.1, 0.5};
+  autobal_pendulum_motion m;
+  autobal_error err;
+  double wa = 0.0, wu = 0.0, wj = 0.0;
+  int bits = 1, k;
+  CHECK_STATUS("pendulum motion init", autobal_pendulum_motion_init(&m, &p, &err), AUTOBAL_SUCCESS);
+  for (k = 0; k < 2000; k++) {
+    double y[8];
+    autobal_pendulum_motion_derived d1, d2;
+    int i;
+    double sc;
+    for (i = 0; i < 8; i++) y[i] = (2.0 * urand() - 1.0) * (i < 2 ? 0.5 : i < 4 ? 8.0 : 3.0);
+    if (k % 4 == 0) y[0] *= 1e-9, y[1] *= 1e-9; /* small amplitudes */
+    autobal_pendulum_motion_derive_m(&m, y, &d1);
+    autobal_pendulum_motion_derive_fast(&m, y, &d2);
+    bits = bits && same_bits(d1.alpha, d2.alpha) && same_bits(d1.beta, d2.beta);
+    /* amplitude: both within their bounds of the exact value (1 and 1.5 ulp): at most 2.5 ulp apart */
+    wa = fmax(wa, fabs(d2.amplitude - d1.amplitude) / (DBL_EPSILON * d1.amplitude));
+    /* u, v: sums of sines and cosines (each within 1 ulp of libm's, |.| <= 1) with s0: a few eps */
+    wu = fmax(wu, fmax(fabs(d2.unbalance_u - d1.unbalance_u), fabs(d2.unbalance_v - d1.unbalance_v)) / DBL_EPSILON);
+    wu = fmax(wu, fabs(d2.unbalance - d1.unbalance) / DBL_EPSILON);
+    /* Jacobi: sines and cosines times terms of the size sc */
+    sc = 1.0 + y[4] * y[4] + y[5] * y[5] + y[6] * y[6] + y[7] * y[7] + p.R_w * p.R_w * (y[0] * y[0] + y[1] * y[1]) +
+         fabs(y[4]) * (fabs(y[6]) + fabs(y[7])) + fabs(y[5]) * (fabs(y[6]) + fabs(y[7])) +
+         p.R_w * p.R_w * (fabs(y[0]) + fabs(y[1]));
+    wj = fmax(wj, fabs(d2.jacobi - d1.jacobi) / (DBL_EPSILON * sc));
+  }
+  {
+    char what[200];
+    CHECK("derive_fast: alpha, beta (no trigonometry) bit for bit as derive_m on 2000 states", bits);
+    snprintf(what, sizeof what, "derive_fast: amplitude within %.2f eps (relative) of derive_m's (<= 3)", wa);
+    CHECK(what, wa <= 3.0);
+    snprintf(what, sizeof what, "derive_fast: unbalance u, v, |d| within %.2f eps of derive_m's (<= 4)", wu);
+    CHECK(what, wu <= 4.0);
+    snprintf(what, sizeof what, "derive_fast: Jacobi integral within %.2f eps of its terms' size (<= 8)", wj);
+    CHECK(what, wj <= 8.0);
+  }
+}
+
+static autobal_rotor *rotor_n(size_t n) {
+  autobal_rotor_params rp = autobal_rotor_params_default();
+  static double mass[70], rad[70], damp[70], psi[70], rate[70];
+  autobal_error err;
+  size_t i;
+  if (n != 2) {
+    for (i = 0; i < n; i++) {
+      mass[i] = 0.1 / (double)n;
+      rad[i] = 0.1;
+      damp[i] = 0.1;
+      psi[i] = 1.0 + 0.4 * (double)i;
+      rate[i] = 0.0;
+    }
+    rp.plane[0].n_balls = n;
+    rp.plane[0].ball_mass = mass;
+    rp.plane[0].ball_radius = rad;
+    rp.plane[0].ball_damping = damp;
+    rp.plane[0].ball_psi = psi;
+    rp.plane[0].ball_rate = rate;
+  }
+  return autobal_rotor_alloc(&rp, &err);
+}
+
+static void test_rotor(void) {
+  const size_t ns[3] = {2, 8, 70};
+  size_t c;
+  for (c = 0; c < 3; c++) {
+    autobal_rotor *R = rotor_n(ns[c]);
+    char what[200];
+    double worst = 0.0;
+    int bits = 1, frame, k;
+    size_t dim, nout, i;
+    double *y, *o1, *o2;
+    snprintf(what, sizeof what, "rotor with %zu balls allocated", ns[c]);
+    CHECK(what, R != NULL);
+    if (!R) continue;
+    dim = autobal_rotor_dim(R);
+    nout = autobal_rotor_output_count(R);
+    y = malloc(dim * sizeof *y);
+    o1 = malloc(nout * sizeof *o1);
+    o2 = malloc(nout * sizeof *o2);
+    for (frame = 0; frame < 2; frame++) {
+      const int fr = frame ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED;
+      for (k = 0; k < 200; k++) {
+        const double t = 3.0 * urand();
+        int r1, r2;
+        for (i = 0; i < dim; i++) y[i] = (2.0 * urand() - 1.0) * (i < 4 ? 1e-4 : i < 8 ? 0.05 : 600.0);
+        r1 = autobal_rotor_outputs(R, fr, t, y, o1, nout);
+        r2 = autobal_rotor_outputs_fast(R, fr, t, y, o2, nout);
+        bits = bits && r1 == AUTOBAL_SUCCESS && r2 == AUTOBAL_SUCCESS;
+        for (i = 0; i < nout; i++) {
+          char name[64];
+          const char *unit;
+          autobal_rotor_output_name(R, i, name, sizeof name, &unit);
+          if (strstr(name, "_b") != NULL) { /* ball angles and rates: no trigonometry */
+            bits = bits && same_bits(o1[i], o2[i]);
+          } else {
+            /* amplitudes (m), unbalances (kg m, about the unbalance plus the balls' capacity) */
+            const double scale = strcmp(unit, "m") == 0 ? fabs(o1[i]) : strcmp(unit, "1") == 0 ? 1.0 : 0.01;
+            if (scale > 0) worst = fmax(worst, fabs(o2[i] - o1[i]) / scale);
+          }
+        }
+      }
+    }
+    snprintf(what, sizeof what, "rotor, %zu balls, both frames, 400 states: ball columns bit for bit, status", ns[c]);
+    CHECK(what, bits);
+    snprintf(what, sizeof what, "rotor, %zu balls: amplitudes and unbalances within %.2e of their scale (<= 1e-13)", ns[c],
+             worst);
+    CHECK(what, worst <= 1e-13);
+    CHECK_STATUS("outputs_fast: wrong n_out rejected", autobal_rotor_outputs_fast(R, AUTOBAL_ROTOR_FIXED, 0.0, y, o2, nout - 1),
+                 AUTOBAL_EINVAL);
+    CHECK_STATUS("outputs_fast: NULL state rejected", autobal_rotor_outputs_fast(R, AUTOBAL_ROTOR_FIXED, 0.0, NULL, o2, nout),
+                 AUTOBAL_EINVAL);
+    free(y);
+    free(o1);
+    free(o2);
+    autobal_rotor_free(R);
+  }
+}
+
+int main(void) {
+  test_hypot();
+  test_sincos2();
+  test_pendulum();
+  test_rotor();
+  return check_summary();
+}
