@@ -155,6 +155,17 @@ typedef struct autobal_rotor_design {
   size_t n_certify_run; /* grid speeds it ran at (n_omega, fewer when it stopped at a speed not stable) */
   double found_omega, found_s[2], found_phase; /* rad/s, kg m, rad: a point not stable the search found (NaN) */
   size_t boxes;         /* boxes of the certification */
+  /* Two planes, the certified margin (added at the end; NaN / 0 for one plane and when not run:
+     options.unbalance2_boxes = -1, or recheck != 1).  Bisection in delta over
+     autobal_rotor_stab_every_unbalance2_shift at every grid speed: margin_certified is the largest
+     delta proven (every root Re lambda < -delta for every unbalance of both ranges and every phase at
+     every grid speed), margin_upper the smallest delta at which a root at Re lambda >= -delta was
+     found (or the sampled margin); they differ by at most about 1e-3 1/s when every step was decided
+     (margin_decided 1).  margin_decided 0: some step stayed undecided (counted as not proven), so
+     margin_certified is still proven but the bracket may be wider: report it as an estimate. */
+  double margin_certified, margin_upper;
+  int margin_decided;
+  size_t margin_steps;  /* shifted verdicts evaluated (speeds x bisection steps) */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */

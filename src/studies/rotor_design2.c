@@ -146,12 +146,111 @@ static int cert_job(const d2ctx *c, d2thr *t, size_t job, cert_rec *rec) {
   return AUTOBAL_SUCCESS;
 }
 
+/* The certified margin of design k (see design.h): bisection in delta over the shifted verdict at
+ * every grid speed, the most critical speeds (by the sampled margin there) first, and the speed that
+ * failed last tried first. */
+typedef struct marg_job {
+  const cert_rec *rec; /* [n_designs][n_omega] */
+} marg_job;
+
+/* 1: proven at every speed, 0: a violation found, -1: undecided somewhere (and none found) */
+static int shifted_all(const d2ctx *c, d2thr *t, size_t *order, double delta, size_t *steps, int *st) {
+  const size_t n = c->o->n_omega;
+  size_t i;
+  int und = 0;
+  for (i = 0; i < n; i++) {
+    autobal_rotor_unbalance_range2 u;
+    int v = -1;
+    *st = autobal_rotor_stab_set(t->s, AUTOBAL_ROTOR_PARAM_OMEGA, c->omega[order[i]]);
+    if (*st == AUTOBAL_SUCCESS) *st = autobal_rotor_stab_every_unbalance2_shift(t->s, c->lo, c->hi, delta, &v, &u);
+    (*steps)++;
+    t->verdicts++;
+    if (*st == AUTOBAL_ECANCELLED || *st == AUTOBAL_ENOMEM) return -1;
+    if (*st != AUTOBAL_SUCCESS) { /* an analysis failure: undecided here */
+      autobal_error_clear(&t->err);
+      *st = AUTOBAL_SUCCESS;
+      v = -1;
+    }
+    if (v == 0) {
+      const size_t f = order[i]; /* try it first next time */
+      memmove(order + 1, order, i * sizeof *order);
+      order[0] = f;
+      return 0;
+    }
+    if (v == -1) und = 1;
+  }
+  return und ? -1 : 1;
+}
+
+static int margin_job(const d2ctx *c, d2thr *t, size_t k, void *user) {
+  const marg_job *mj = (const marg_job *)user;
+  autobal_rotor_design *g = &c->des[k];
+  const size_t n = c->o->n_omega;
+  const cert_rec *rec = mj->rec + k * n;
+  const double tol = 1e-3, req = c->o->margin;
+  size_t *order, i, j;
+  double lo = 0.0, hi, viol;
+  int st = AUTOBAL_SUCCESS, r, decided = 1;
+  g->margin_certified = g->margin_upper = NAN;
+  g->margin_decided = 0;
+  if (g->recheck != 1) return AUTOBAL_SUCCESS;
+  hi = viol = fmin(g->margin, g->recheck_margin); /* a sampled point has a root at Re lambda = -hi */
+  if (!(hi > 0.0)) return AUTOBAL_SUCCESS;
+  if ((st = thr_handle(c, t, c->o->unbalance2_boxes)) != AUTOBAL_SUCCESS) return st;
+  if ((st = set_balls(t, g->mass, g->damping, g->radius)) != AUTOBAL_SUCCESS) return st;
+  if (!(order = malloc(n * sizeof *order))) return autobal_error_set(&t->err, AUTOBAL_ENOMEM, "design: out of memory");
+  /* the speeds by their sampled margin, the largest (least stable) first */
+  for (i = 0; i < n; i++) order[i] = i;
+  for (i = 1; i < n; i++)
+    for (j = i; j > 0 && rec[order[j]].margin > rec[order[j - 1]].margin; j--) {
+      const size_t x = order[j];
+      order[j] = order[j - 1];
+      order[j - 1] = x;
+    }
+  /* delta = 0: proven by the certification when every speed was decided there */
+  if (g->n_certified != n) {
+    r = shifted_all(c, t, order, 0.0, &g->margin_steps, &st);
+    if (st != AUTOBAL_SUCCESS || r != 1) {
+      free(order);
+      return st;
+    }
+  }
+  /* the required margin first (it decides feasibility), then bisection */
+  if (req > lo && req < hi) {
+    r = shifted_all(c, t, order, req, &g->margin_steps, &st);
+    if (st != AUTOBAL_SUCCESS) {
+      free(order);
+      return st;
+    }
+    if (r == 1) lo = req;
+    else hi = req;
+    if (r == 0) viol = req;
+    if (r == -1) decided = 0;
+  }
+  while (hi - lo > tol) {
+    const double mid = 0.5 * (lo + hi);
+    r = shifted_all(c, t, order, mid, &g->margin_steps, &st);
+    if (st != AUTOBAL_SUCCESS) break;
+    if (r == 1) lo = mid;
+    else hi = mid;
+    if (r == 0) viol = mid;
+    if (r == -1) decided = 0;
+  }
+  free(order);
+  if (st != AUTOBAL_SUCCESS) return st;
+  g->margin_certified = lo;
+  g->margin_upper = viol;
+  g->margin_decided = decided;
+  return AUTOBAL_SUCCESS;
+}
+
 typedef int (*d2job)(const d2ctx *c, d2thr *t, size_t k, void *user);
 static int job_cell(const d2ctx *c, d2thr *t, size_t k, void *user) {
   (void)user;
   return map_cell(c, t, k);
 }
 static int job_cert(const d2ctx *c, d2thr *t, size_t k, void *user) { return cert_job(c, t, k, (cert_rec *)user); }
+static int job_margin(const d2ctx *c, d2thr *t, size_t k, void *user) { return margin_job(c, t, k, user); }
 
 static int read_stop(const int *f) {
   int v;
@@ -351,11 +450,12 @@ int autobal_design2_run_(autobal_rotor_params *work, const autobal_study_rotor_d
     d->recheck_margin = NAN;
     d->p_balance = d->ttb_median = d->ttb_worst = NAN;
     d->found_omega = d->found_s[0] = d->found_s[1] = d->found_phase = NAN;
+    d->margin_certified = d->margin_upper = NAN;
   }
   S->n_designs = nr;
   c.des = S->designs;
   c.f0 = 0.6;
-  c.df = 0.4;
+  c.df = 0.2;
   if (o->unbalance2_boxes >= 0 && nr > 0)
     st = run_jobs(&c, nr * o->n_omega, job_cert, rec, &S->verdicts2, err);
   if (st == AUTOBAL_SUCCESS) {
@@ -388,6 +488,22 @@ int autobal_design2_run_(autobal_rotor_params *work, const autobal_study_rotor_d
       d->recheck_margin = all ? -worst : NAN;
       d->feasible = all && d->margin > o->margin;
     }
+    /* 4. the certified margin of the ranked designs that passed (bisection over the shifted verdict) */
+    {
+      marg_job mj;
+      mj.rec = rec;
+      c.f0 = 0.8;
+      c.df = 0.2;
+      if (o->unbalance2_boxes >= 0 && nr > 0) st = run_jobs(&c, nr, job_margin, &mj, &S->verdicts2, err);
+      for (k = 0; k < nr && st == AUTOBAL_SUCCESS; k++) {
+        autobal_rotor_design *d = &S->designs[k];
+        /* feasibility from the proven bracket: the required margin is proven (certified >= it) or
+           violated (upper <= it); otherwise (undecided there) the sampled rule stands */
+        if (isnan(d->margin_certified)) continue;
+        if (d->margin_certified >= o->margin) d->feasible = 1;
+        else if (d->margin_upper <= o->margin) d->feasible = 0;
+      }
+    }
     /* the best: the first feasible one */
     for (k = 0; k < nr; k++)
       if (S->designs[k].feasible) {
@@ -398,7 +514,7 @@ int autobal_design2_run_(autobal_rotor_params *work, const autobal_study_rotor_d
         }
         break;
       }
-    S->ranked = 1;
+    if (st == AUTOBAL_SUCCESS) S->ranked = 1;
   }
   free(c.omega);
   free(rk);
