@@ -100,9 +100,12 @@ typedef struct autobal_study_rotor_design_options {
    * every relative phase.  Map: autobal_rotor_stab_every_unbalance2 without the box search at every
    * speed of the grid (exact in plane 1's unbalance and the phase, plane 2's unbalance on n_unbalance2
    * values); the first n_best stable cells by their sampled margin are then certified over plane 2's
-   * whole range by the box search (budget unbalance2_boxes) at every speed of the grid.  The required
-   * margin is met on the evaluated points only (sampled); stability itself is exact as said.  No
-   * optimizer, no position variable, no transients (n_transient must be 0), n_balls 2 only. */
+   * whole range by the box search (budget unbalance2_boxes) at every speed of the grid, and get a
+   * certified margin (autobal_rotor_design.margin_certified: bisection over
+   * autobal_rotor_stab_every_unbalance2_shift), which decides feasibility where it is proven either
+   * way (else the sampled margin does).  Transients (n_transient > 0) as for one plane, over the start
+   * angles of all four balls (n_start^4) and both planes' unbalances (n_transient_unbalances each).  No
+   * optimizer, no position variable, n_balls 2 only. */
   size_t planes;                   /* 1 or 2; 0 is read as 1                                     (1) */
   double unbalance2_min, unbalance2_max; /* kg m, plane 2's range; NaN: plane 1's         (NaN, NaN) */
   size_t n_unbalance2;             /* plane-2 (and plane-1 cross-check) grid, [2, 100]            (5) */

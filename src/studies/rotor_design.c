@@ -1549,14 +1549,17 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   if (!b.p) return NULL;
   b.p[0] = '\0';
   put(&b, "; written by autobal rotor design: the machine with the design's balancer (docs/rotor.md \"Design\")\n");
-  if (p->n_planes == 2)
+  if (p->n_planes == 2) {
     put(&b,
         "; two planes, the same balancer in both: stable at every speed of the grid for every unbalance of both\n"
         "; ranges and every relative phase (certified over plane 2's range at %zu of %zu grid speeds, the others\n"
         "; on plane 2's grid); largest margin met -%.6g 1/s (sampled).  For its analysis: rotor stability with\n"
         "; [stability] unbalance_min/max, unbalance2_min/max (docs/rotor.md \"Design\", \"Two planes\")\n",
         d->n_certified, d->n_certify_run, d->margin);
-  else
+    if (!isnan(d->margin_certified) && (d->margin_certified > 0.0 || d->margin_steps > 0))
+      put(&b, "; certified margin: every root Re lambda < -%.6g 1/s at every grid speed, every unbalance and phase%s\n",
+          d->margin_certified, d->margin_decided ? "" : " (a lower bound; a bisection step was undecided: estimate)");
+  } else
     put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
   if (nballs(d) >= 3)
     put(&b,

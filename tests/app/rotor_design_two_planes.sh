@@ -42,6 +42,12 @@ r = g["ranked"]
 assert r["certified_speeds"].attrs["units"] in (b"1", "1") and r["found_speed"].attrs["units"] in (b"rad/s", "rad/s")
 assert (np.array(r["certify_speeds_run"]) == 5).all() and (np.array(r["certified_speeds"]) <= 5).all()
 assert r["recheck"][0] == 1 and r["feasible"][0] == 1
+# the certified margin (bisection over the shifted box search): proven lower end <= the found upper end <= sampled
+mc, mu = np.array(r["margin_certified"]), np.array(r["margin_upper"])
+assert r["margin_certified"].attrs["units"] in (b"1/s", "1/s") and r["margin_upper"].attrs["units"] in (b"1/s", "1/s")
+assert (mc > 0).all() and (mc <= mu).all() and (mu <= np.array(r["robust_margin"]) + 1e-12).all(), (mc, mu)
+assert (mc[np.array(r["margin_decided"]) == 1] >= mu[np.array(r["margin_decided"]) == 1] - 1.01e-3).all()
+assert mc[0] >= g.attrs["margin_required"]  # the best is feasible: its required margin proven
 fz = np.array(g["feasible"]); mm = np.array(g["margin_map"])
 assert ((fz == 1) <= (mm > g.attrs["margin_required"])).all(), "feasible cells have a margin above the required one"
 PY
@@ -53,6 +59,7 @@ d = json.load(open('out.txt'))
 assert d['planes'] == 2 and d['n_unbalance2'] == 5 and d['two_plane_verdicts'] > 0, d
 x = d['designs'][0]
 assert x['recheck'] == -1 and x['certified_speeds'] == 0 and x['certify_speeds_run'] == 0, x
+assert 'margin_certified' not in x, x  # no certification, no certified margin
 assert '[plane2]' in d['best_config']
 " && ok "JSON (no certification: recheck -1, 0 speeds certified)" || { bad "JSON"; head -c 2000 out.txt; }
 
