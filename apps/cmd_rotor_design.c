@@ -151,7 +151,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       goto done;
     }
     if (planes == 2) {
+      int have_ns = 0;
+      long ns = 0;
       if (!have_t) n_transient = 0;
+      /* the optimizer costs n_starts x up to max_iter x n_speed two-plane verdicts: asked for only */
+      if ((rc = cli_get_int(ctx, "design", "n_starts", 0, &ns, &have_ns))) goto done;
+      if (!have_ns) n_starts = 0;
       if (h1 != h2) {
         rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance2_min and unbalance2_max go together (give both, or neither for plane 1's range)");
         goto done;
@@ -476,6 +481,7 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       printf("    %4zu %10.5g %10.5g %12.5g %12.5g %8s %8s %4zu of %zu %22s\n", i, d->mass * 1e3, d->radius * 1e3,
              d->damping, d->margin, d->feasible ? "yes" : "no", d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"),
              d->n_certified, d->n_certify_run, rbuf);
+      if (d->source) printf("         (the optimizer)\n");
       if (!isnan(d->found_omega))
         printf("         not stable at %.6g rad/s: plane 1 %.6g g mm, plane 2 %.6g g mm, phase %.6g rad\n", d->found_omega,
                d->found_s[0] * 1e6, d->found_s[1] * 1e6, d->found_phase);

@@ -73,6 +73,7 @@ static autobal_study_rotor_design_options small_options(void) {
   o.damping_max = 0.6;
   o.n_damping = 3;
   o.n_best = 2;
+  o.n_starts = 0; /* the optimizer: test_nelder_mead */
   o.threads = 1;
   return o;
 }
@@ -302,8 +303,59 @@ static void test_transients(void) {
   CHECK("1 start x 2 x 2 unbalances", d.n_runs == 4);
 }
 
+/* The optimizer (n_starts, max_iter): Nelder-Mead over (m, h, r) from the best cell.  Its start is a
+ * vertex of the simplex and the result is the best vertex, so its sampled margin is at least the best
+ * cell's (the same map without the optimizer); it stays within the bounds; it is certified like the
+ * cells (box search at every grid speed, the certified margin) and, when certified stable, every point
+ * of the dense closed-matrix sample is stable with every margin below -margin_certified. */
+static void test_nelder_mead(void) {
+  autobal_rotor_params p = two_planes();
+  autobal_study_rotor_design_options o = small_options();
+  autobal_study_rotor_design_summary S0, S;
+  autobal_error err;
+  autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+  autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, &so, &err);
+  size_t k, nopt = 0;
+  o.n_omega = 3;
+  o.n_best = 3;
+  CHECK_STATUS("map without the optimizer", autobal_study_rotor_design(&p, &o, NULL, &S0, &err), AUTOBAL_SUCCESS);
+  o.n_starts = 1;
+  o.max_iter = 15;
+  CHECK_STATUS("with the optimizer", autobal_study_rotor_design(&p, &o, NULL, &S, &err), AUTOBAL_SUCCESS);
+  CHECK("optimizer evaluated", S.optimizer_evaluations > 0 && S0.optimizer_evaluations == 0);
+  CHECK("ranked designs", S.n_designs >= 1 && S0.n_designs >= 1);
+  for (k = 0; k < S.n_designs && S0.n_designs >= 1 && s; k++) {
+    const autobal_rotor_design *d = &S.designs[k];
+    size_t nu = 0, ne = 0, q;
+    double worst = -INFINITY;
+    if (!d->source) continue;
+    nopt++;
+    printf("optimizer: %.5g g, %.5g mm, %.5g kg/s: sampled margin %.5f (best cell %.5f), recheck %d, certified %.5f\n",
+           d->mass * 1e3, d->radius * 1e3, d->damping, d->margin, S0.designs[0].margin, d->recheck, d->margin_certified);
+    CHECK("within the bounds", d->mass >= o.mass_min && d->mass <= o.mass_max && d->damping >= o.damping_min &&
+                                   d->damping <= o.damping_max && d->radius >= o.radius_min && d->radius <= o.radius_max);
+    CHECK("not worse than its start (the best cell)", d->margin >= S0.designs[0].margin);
+    CHECK("certified like the cells", d->n_certify_run == o.n_omega && (d->recheck == 0 || d->recheck == 1));
+    if (d->recheck == 1) {
+      CHECK("certified margin computed", isfinite(d->margin_certified) && d->margin_certified <= d->margin_upper);
+      for (q = 0; q < o.n_omega; q++) {
+        const double w = o.omega_min + (o.omega_max - o.omega_min) * (double)q / (double)(o.n_omega - 1);
+        worst = fmax(worst, dense_max(s, &o, d->mass, d->damping, d->radius, w, 1, &nu, &ne));
+      }
+      CHECK("dense sample: stable, every margin below -margin_certified", nu == 0 && worst < -d->margin_certified);
+    }
+  }
+  CHECK("an optimizer design is ranked", nopt == 1);
+  CHECK("the best ranked margin is at least the map's best", S.designs[0].margin >= S0.designs[0].margin ||
+                                                               !S.designs[0].feasible);
+  autobal_study_rotor_design_summary_free(&S0);
+  autobal_study_rotor_design_summary_free(&S);
+  autobal_rotor_stab_free(s);
+}
+
 int main(void) {
   test_refusals();
+  test_nelder_mead();
   test_transients();
   test_search();
   return check_summary();

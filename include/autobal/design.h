@@ -104,8 +104,9 @@ typedef struct autobal_study_rotor_design_options {
    * certified margin (autobal_rotor_design.margin_certified: bisection over
    * autobal_rotor_stab_every_unbalance2_shift), which decides feasibility where it is proven either
    * way (else the sampled margin does).  Transients (n_transient > 0) as for one plane, over the start
-   * angles of all four balls (n_start^4) and both planes' unbalances (n_transient_unbalances each).  No
-   * optimizer, no position variable, n_balls 2 only. */
+   * angles of all four balls (n_start^4) and both planes' unbalances (n_transient_unbalances each).  The
+   * optimizer (n_starts, max_iter) over (m, h, r) on the sampled margin, its results certified like the
+   * cells.  No position variable, n_balls 2 only. */
   size_t planes;                   /* 1 or 2; 0 is read as 1                                     (1) */
   double unbalance2_min, unbalance2_max; /* kg m, plane 2's range; NaN: plane 1's         (NaN, NaN) */
   size_t n_unbalance2;             /* plane-2 (and plane-1 cross-check) grid, [2, 100]            (5) */
