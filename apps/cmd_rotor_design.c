@@ -151,7 +151,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       goto done;
     }
     if (planes == 2) {
+      int have_ns = 0;
+      long ns = 0;
       if (!have_t) n_transient = 0;
+      /* the optimizer costs n_starts x up to max_iter x n_speed two-plane verdicts: asked for only */
+      if ((rc = cli_get_int(ctx, "design", "n_starts", 0, &ns, &have_ns))) goto done;
+      if (!have_ns) n_starts = 0;
       if (h1 != h2) {
         rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance2_min and unbalance2_max go together (give both, or neither for plane 1's range)");
         goto done;
@@ -408,6 +413,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
         cli_json_int(&j, "certified_speeds", (long)d->n_certified);
         cli_json_int(&j, "certify_speeds_run", (long)d->n_certify_run);
         cli_json_int(&j, "boxes", (long)d->boxes);
+        if (!isnan(d->margin_certified)) {
+          cli_json_quantity(&j, "margin_certified", d->margin_certified, "1/s");
+          cli_json_quantity(&j, "margin_upper", d->margin_upper, "1/s");
+          cli_json_string(&j, "margin_certified_is", d->margin_decided ? "certified" : "estimate (a step undecided)");
+          cli_json_int(&j, "margin_steps", (long)d->margin_steps);
+        }
         if (!isnan(d->found_omega)) {
           cli_json_quantity(&j, "found_speed", d->found_omega, "rad/s");
           cli_json_quantity(&j, "found_unbalance1", d->found_s[0], "kg m");
@@ -460,13 +471,17 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     }
     printf("  ranked designs (margin: -(largest margin met), sampled; recheck: the box search over plane 2's whole "
            "range at every grid speed):\n");
-    printf("    %4s %10s %10s %12s %12s %8s %8s %10s\n", "rank", "mass g", "radius mm", "damping kg/s", "margin 1/s",
-           "feasible", "recheck", "certified");
+    printf("    %4s %10s %10s %12s %12s %8s %8s %10s %22s\n", "rank", "mass g", "radius mm", "damping kg/s", "margin 1/s",
+           "feasible", "recheck", "certified", "rho certified 1/s");
     for (i = 0; i < sum.n_designs; i++) {
       const autobal_rotor_design *d = &sum.designs[i];
-      printf("    %4zu %10.5g %10.5g %12.5g %12.5g %8s %8s %4zu of %zu\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,
-             d->margin, d->feasible ? "yes" : "no", d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"),
-             d->n_certified, d->n_certify_run);
+      char rbuf[48] = "-";
+      if (!isnan(d->margin_certified))
+        snprintf(rbuf, sizeof rbuf, "%.4f%s", d->margin_certified, d->margin_decided ? "" : " (estimate)");
+      printf("    %4zu %10.5g %10.5g %12.5g %12.5g %8s %8s %4zu of %zu %22s\n", i, d->mass * 1e3, d->radius * 1e3,
+             d->damping, d->margin, d->feasible ? "yes" : "no", d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"),
+             d->n_certified, d->n_certify_run, rbuf);
+      if (d->source) printf("         (the optimizer)\n");
       if (!isnan(d->found_omega))
         printf("         not stable at %.6g rad/s: plane 1 %.6g g mm, plane 2 %.6g g mm, phase %.6g rad\n", d->found_omega,
                d->found_s[0] * 1e6, d->found_s[1] * 1e6, d->found_phase);
@@ -474,6 +489,35 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     if (sum.n_designs == 0) printf("    none: no design in the bounds is stable for every unbalance at every grid speed\n");
     printf("  certified: the verdict holds for every m0 r0 of plane 2's range at that speed (box search); the other "
            "speeds: plane 2 on its grid (SAMPLED)\n");
+    printf("  rho certified: every root Re lambda < -rho for every unbalance of both ranges and every phase at every grid "
+           "speed (bisection to 1e-3 1/s over the box search on the shifted polynomial); (estimate): a step undecided\n");
+    if (sum.transients > 0) {
+      const int prof = p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP || p.drive.mode == AUTOBAL_ROTOR_DRIVE_TABLE;
+      char sbuf[32] = "";
+      if (!prof) snprintf(sbuf, sizeof sbuf, "%zu", o.n_transient_speeds);
+      printf("  transients of the first %zu designs (ranked by %s): %zu start angles per ball (4 balls) x %zu plane-1 x %zu "
+             "plane-2 unbalances x %s%s,\n"
+             "  %g s each; balanced = attractor class balanced; time to balance = start of %g revolutions with every "
+             "plane's residual unbalance below %g\n",
+             o.n_transient < sum.n_designs ? o.n_transient : sum.n_designs, rank_by, o.n_start,
+             o.unbalance_min < o.unbalance_max ? o.n_transient_unbalances : (size_t)1,
+             o.unbalance2_min < o.unbalance2_max ? o.n_transient_unbalances : (size_t)1, sbuf,
+             prof ? "the run-up profile from rest" : " speeds",
+             isnan(o.t_end) ? (prof ? (p.drive.mode == AUTOBAL_ROTOR_DRIVE_RAMP ? p.drive.t_b
+                                                                                : p.drive.table_t[p.drive.n_points - 1])
+                                    : 0.0) + 10.0
+                            : o.t_end,
+             o.balance_revs, o.balance_tol);
+      printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
+             "median ttb s", "worst ttb s");
+      for (i = 0; i < sum.n_designs; i++) {
+        const autobal_rotor_design *d = &sum.designs[i];
+        if (d->n_runs == 0) continue;
+        printf("    %4zu %10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,
+               d->n_balanced, d->n_runs, d->ttb_median, d->ttb_worst);
+      }
+      printf("  %zu transients\n", sum.transients);
+    }
     printf("  %zu two-plane every-unbalance verdicts in %.3g s (%.1f per second)\n", sum.verdicts2, seconds,
            seconds > 0 ? (double)sum.verdicts2 / seconds : 0.0);
     if (sum.best_config) {

@@ -100,9 +100,13 @@ typedef struct autobal_study_rotor_design_options {
    * every relative phase.  Map: autobal_rotor_stab_every_unbalance2 without the box search at every
    * speed of the grid (exact in plane 1's unbalance and the phase, plane 2's unbalance on n_unbalance2
    * values); the first n_best stable cells by their sampled margin are then certified over plane 2's
-   * whole range by the box search (budget unbalance2_boxes) at every speed of the grid.  The required
-   * margin is met on the evaluated points only (sampled); stability itself is exact as said.  No
-   * optimizer, no position variable, no transients (n_transient must be 0), n_balls 2 only. */
+   * whole range by the box search (budget unbalance2_boxes) at every speed of the grid, and get a
+   * certified margin (autobal_rotor_design.margin_certified: bisection over
+   * autobal_rotor_stab_every_unbalance2_shift), which decides feasibility where it is proven either
+   * way (else the sampled margin does).  Transients (n_transient > 0) as for one plane, over the start
+   * angles of all four balls (n_start^4) and both planes' unbalances (n_transient_unbalances each).  The
+   * optimizer (n_starts, max_iter) over (m, h, r) on the sampled margin, its results certified like the
+   * cells.  No position variable, n_balls 2 only. */
   size_t planes;                   /* 1 or 2; 0 is read as 1                                     (1) */
   double unbalance2_min, unbalance2_max; /* kg m, plane 2's range; NaN: plane 1's         (NaN, NaN) */
   size_t n_unbalance2;             /* plane-2 (and plane-1 cross-check) grid, [2, 100]            (5) */
@@ -155,6 +159,17 @@ typedef struct autobal_rotor_design {
   size_t n_certify_run; /* grid speeds it ran at (n_omega, fewer when it stopped at a speed not stable) */
   double found_omega, found_s[2], found_phase; /* rad/s, kg m, rad: a point not stable the search found (NaN) */
   size_t boxes;         /* boxes of the certification */
+  /* Two planes, the certified margin (added at the end; NaN / 0 for one plane and when not run:
+     options.unbalance2_boxes = -1, or recheck != 1).  Bisection in delta over
+     autobal_rotor_stab_every_unbalance2_shift at every grid speed: margin_certified is the largest
+     delta proven (every root Re lambda < -delta for every unbalance of both ranges and every phase at
+     every grid speed), margin_upper the smallest delta at which a root at Re lambda >= -delta was
+     found (or the sampled margin); they differ by at most about 1e-3 1/s when every step was decided
+     (margin_decided 1).  margin_decided 0: some step stayed undecided (counted as not proven), so
+     margin_certified is still proven but the bracket may be wider: report it as an estimate. */
+  double margin_certified, margin_upper;
+  int margin_decided;
+  size_t margin_steps;  /* shifted verdicts evaluated (speeds x bisection steps) */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */

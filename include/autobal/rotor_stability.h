@@ -683,6 +683,19 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance2(autobal_rotor_stab *s, const
                                                     const double s_hi[2], size_t n_grid,
                                                     autobal_rotor_unbalance_range2 *out);
 
+/* Two planes, a margin: is every root of the balanced motion left of -delta (Re lambda < -delta,
+ * delta >= 0) for every m0 r0 of both ranges and every relative phase at the handle's speed?  The
+ * box search of autobal_rotor_stab_every_unbalance2 on the shifted Delta16(mu - delta) (each part
+ * Taylor-shifted; docs/rotor.md "Every unbalance", "Margin shift, two planes"), then the closed matrix
+ * at the 8 corners (both ranges' ends, phases 0 and pi/2).  *verdict 1: certified (no root on
+ * Re lambda = -delta anywhere in the connected region, and the corners left of it); 0: a point with
+ * a root at Re lambda >= -delta found (out->found_s, found_phase; NaN when it was lambda = -delta
+ * itself); -1: undecided (the budget unbalance2_boxes, or the parts not of the cos form).  out gets
+ * omega, all_stable (= *verdict == 1), boxes, evaluations, margin_worst (of the corners evaluated). */
+AUTOBAL_API int autobal_rotor_stab_every_unbalance2_shift(autobal_rotor_stab *s, const double s_lo[2],
+                                                          const double s_hi[2], double delta, int *verdict,
+                                                          autobal_rotor_unbalance_range2 *out);
+
 /* The speeds where autobal_rotor_stab_every_unbalance2 says stable, as
  * autobal_rotor_stab_every_unbalance_speeds (grid in speed, each change bisected to xtol_rel). */
 AUTOBAL_API int autobal_rotor_stab_every_unbalance2_speeds(autobal_rotor_stab *s, const double s_lo[2],

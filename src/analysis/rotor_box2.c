@@ -38,7 +38,7 @@
 #include <math.h>
 #include <string.h>
 
-#define BZ 31 /* z coefficients (G: degree 30) */
+#define BZ 33 /* z coefficients (G: degree 30; 32 with the parts given full, in->full) */
 #define BY 5  /* y coefficients (G: degree 4) */
 #define STACK 512
 
@@ -332,7 +332,7 @@ static int at_zero(const autobal_rotor_box2_in *in, size_t max_boxes, size_t *bo
   const long double u0 = xh > 0.0L ? sqrtl(fmaxl(0.0L, in->x_lo) / xh) : 1.0L, v0 = sqrtl(fmaxl(0.0L, in->y_lo) / yh);
   bp hm, hp;
   int rm, rp;
-  const long double F0 = in->w2 * in->w2 * in->w2 * in->w2; /* F(0) */
+  const long double F0 = in->full ? 1.0L : in->w2 * in->w2 * in->w2 * in->w2; /* F(0) */
   memset(&hm, 0, sizeof hm);
   hm.nz = hm.ny = 3;
   hm.c[0][0] = in->D0[0];
@@ -413,6 +413,11 @@ int autobal_rotor_box2_(const autobal_rotor_box2_in *in, autobal_rotor_box2_out 
   f.c[2][0] = 6.0L * in->w2 * in->w2;
   f.c[3][0] = -4.0L * in->w2;
   f.c[4][0] = 1.0L;
+  if (in->full) { /* the parts carry F already */
+    memset(&f, 0, sizeof f);
+    f.nz = f.ny = 1;
+    f.c[0][0] = 1.0L;
+  }
   memset(&yb, 0, sizeof yb);
   yb.nz = 1;
   yb.ny = 2;

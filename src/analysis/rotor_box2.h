@@ -16,6 +16,9 @@ typedef struct autobal_rotor_box2_in {
   long double y_lo, y_hi; /* the range of y (plane 2's), 0 < y_hi */
   long double w2;         /* omega^2 > 0: in F, and the frequency scale z = w2 zeta */
   size_t max_boxes;       /* the budget of boxes (each side); 0: a default (200000) */
+  int full;               /* 1: the parts already carry F (M11, M22, U0 times F, T12 times F^2: Delta16 =
+                             D0 + x M11 + y M22 + t U0 + x y T12), F is taken as 1; this is how a shifted
+                             Delta16(mu - delta) (no longer of the form above in F) is given */
 } autobal_rotor_box2_in;
 
 typedef struct autobal_rotor_box2_out {

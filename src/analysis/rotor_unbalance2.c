@@ -704,8 +704,25 @@ static double s_of_q2(const autobal_rotor_plane *pl, long double q, double lo, d
 /* Over both planes' whole ranges at once (rotor_box2.c): *verdict 0 no root on the imaginary axis
  * anywhere in the region, 1 one found (out->found_*), -1 undecided (or the parts are not of the cos
  * form).  The handle's unbalances are those of the caller (the parts do not depend on them). */
+/* p(mu - delta) in place (ascending, n coefficients): the Taylor shift, in long double */
+static void shift_poly(long double *p, size_t n, long double delta) {
+  size_t k, i;
+  for (k = 0; k + 1 < n; k++)
+    for (i = n - 1; i > k; i--) p[i - 1] -= delta * p[i];
+}
+
+static int box_check_shift(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t budget,
+                           double delta, int *verdict, autobal_rotor_unbalance_range2 *out);
 static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t budget, int *verdict,
                      autobal_rotor_unbalance_range2 *out) {
+  return box_check_shift(s, s_lo, s_hi, budget, 0.0, verdict, out);
+}
+
+/* box_check for the roots right of -delta (delta > 0): the search on Delta16(mu - delta), whose parts
+ * (D0, and M11, M22, U0, T12 with their factors F) are each Taylor-shifted; a root mu = i w found is
+ * a root lambda = -delta + i w.  delta = 0: box_check as it was. */
+static int box_check_shift(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2], size_t budget,
+                           double delta, int *verdict, autobal_rotor_unbalance_range2 *out) {
   autobal_rotor_closed c;
   parts2 q;
   autobal_rotor_box2_in in;
@@ -730,6 +747,21 @@ static int box_check(autobal_rotor_stab *s, const double s_lo[2], const double s
     real_of(&M[1][1], in.M22, 17);
     real_of(&T12, in.T12, 17);
     real_of(&u0, in.U0, 17);
+  }
+  if (delta != 0.0) {
+    /* the full parts (with F), shifted: Delta16(mu - delta) = D0s + x M11s + y M22s + t U0s + x y T12s */
+    const long double dl = (long double)delta;
+    memcpy(in.D0, q.D0, sizeof in.D0);
+    memcpy(in.M11, q.M11, sizeof in.M11);
+    memcpy(in.M22, q.M22, sizeof in.M22);
+    memcpy(in.T12, q.T12, sizeof in.T12);
+    memcpy(in.U0, q.U0, sizeof in.U0);
+    shift_poly(in.D0, 17, dl);
+    shift_poly(in.M11, 17, dl);
+    shift_poly(in.M22, 17, dl);
+    shift_poly(in.T12, 17, dl);
+    shift_poly(in.U0, 17, dl);
+    in.full = 1;
   }
   q2_range(&s->cur.plane[0], s_lo[0], s_hi[0], &in.x_lo, &in.x_hi);
   q2_range(&s->cur.plane[1], s_lo[1], s_hi[1], &in.y_lo, &in.y_hi);
@@ -770,6 +802,53 @@ static int restore2(autobal_rotor_stab *s, const saved2 *v, int st) {
   const int c = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(1, AUTOBAL_ROTOR_PLANE_M0), v->m0[1]);
   if (st != AUTOBAL_SUCCESS) return st;
   return a != AUTOBAL_SUCCESS ? a : b != AUTOBAL_SUCCESS ? b : c;
+}
+
+int autobal_rotor_stab_every_unbalance2_shift(autobal_rotor_stab *s, const double s_lo[2], const double s_hi[2],
+                                              double delta, int *verdict, autobal_rotor_unbalance_range2 *out) {
+  saved2 sv;
+  int st, bv = -1, a;
+  const size_t budget = s && s->opt.unbalance2_boxes > 0 ? (size_t)s->opt.unbalance2_boxes : BOX_BUDGET_RANGE;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL || verdict == NULL)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (shift): out or verdict is NULL");
+  if (!(delta >= 0.0 && isfinite(delta)))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (shift): delta = %g: allowed [0, inf)", delta);
+  memset(out, 0, sizeof *out);
+  out->found_s[0] = out->found_s[1] = out->found_phase = NAN;
+  out->omega = s->cur.omega;
+  out->margin_worst = -INFINITY;
+  *verdict = -1;
+  if ((st = check_domain2(s, s_lo, s_hi)) != AUTOBAL_SUCCESS) return st;
+  save2(s, &sv);
+  st = set_unb(s, 0, s_lo[0]);
+  if (st == AUTOBAL_SUCCESS) st = set_unb(s, 1, s_lo[1]);
+  if (st == AUTOBAL_SUCCESS) st = box_check_shift(s, s_lo, s_hi, budget, delta, &bv, out);
+  if (st == AUTOBAL_SUCCESS && bv == 1) *verdict = 0;
+  if (st == AUTOBAL_SUCCESS && bv == 0) {
+    /* no root on Re lambda = -delta in the connected region: the count of roots right of it is the
+     * same everywhere; the corners (closed matrix) say whether it is 0 */
+    *verdict = 1;
+    for (a = 0; a < 8 && st == AUTOBAL_SUCCESS; a++) {
+      double mg;
+      int v;
+      st = set_unb(s, 0, (a & 1) ? s_hi[0] : s_lo[0]);
+      if (st == AUTOBAL_SUCCESS) st = set_unb(s, 1, (a & 2) ? s_hi[1] : s_lo[1]);
+      if (st == AUTOBAL_SUCCESS) st = verdict_phase(s, (a & 4) ? 0.5 * M_PI : 0.0, &mg, &v);
+      out->evaluations++;
+      if (st == AUTOBAL_SUCCESS && mg > out->margin_worst) out->margin_worst = mg;
+      if (st == AUTOBAL_SUCCESS && !(mg < -delta)) {
+        *verdict = 0;
+        out->found_s[0] = (a & 1) ? s_hi[0] : s_lo[0];
+        out->found_s[1] = (a & 2) ? s_hi[1] : s_lo[1];
+        out->found_phase = (a & 4) ? 0.5 * M_PI : 0.0;
+        break;
+      }
+    }
+  }
+  out->all_stable = *verdict == 1;
+  out->exact_in_s2 = out->exact_in_s1 = *verdict != -1;
+  return restore2(s, &sv, st);
 }
 
 int autobal_rotor_stab_every_phase(autobal_rotor_stab *s, double s1, double s2, autobal_rotor_phase_range *out) {

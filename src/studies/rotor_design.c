@@ -622,19 +622,124 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   return st;
 }
 
+/* Two planes (options.planes = 2): one ensemble of design d (the same balls m, r, h in both planes)
+ * at constant speed w (ignored with a profile), plane 2's unbalance u2 (kg m) and plane 2's ball start
+ * angles psi2[2], over plane 1's ball start angles (as one plane: ball 1 at 0, step, ..., ball 2 half
+ * a step on) and plane 1's unbalances (the ensemble has at most three parameters: the caller loops
+ * over plane 2's angles); times appended to ttb. */
+static int design_ensemble2(dctx *c, const autobal_rotor_design *d, double w, double u2, const double psi2[2],
+                            double *ttb, size_t *nt, size_t *nbal) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  autobal_rotor_params q = *c->base;
+  double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2];
+  const double n = (double)o->n_start, step = 2.0 * M_PI / n;
+  static const char *const pname[2] = {"psi_1", "psi_2"};
+  autobal_ensemble_member mem;
+  autobal_ensemble_settings es = autobal_ensemble_settings_default();
+  autobal_ensemble *e;
+  size_t k, j, ai, nm;
+  int st;
+  for (j = 0; j < 2; j++) {
+    for (k = 0; k < 2; k++) {
+      m[j][k] = d->mass;
+      r[j][k] = d->radius;
+      h[j][k] = d->damping;
+      psi[j][k] = j == 1 ? psi2[k] : 0.0;
+      rate[j][k] = 0.0;
+    }
+    q.plane[j].n_balls = 2;
+    q.plane[j].ball_mass = m[j];
+    q.plane[j].ball_radius = r[j];
+    q.plane[j].ball_damping = h[j];
+    q.plane[j].ball_psi = psi[j];
+    q.plane[j].ball_rate = rate[j];
+  }
+  q.plane[1].m0 = u2 / q.plane[1].r0;
+  if (!has_profile(&q)) {
+    q.drive.mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
+    q.omega = w;
+  }
+  if ((st = autobal_ensemble_rotor_member(&q, AUTOBAL_ROTOR_FIXED, "fixed", &mem, c->err)) != AUTOBAL_SUCCESS)
+    return st;
+  es.random = 0;
+  es.endpoint = 1;
+  es.n_params = 3;
+  for (k = 0; k < 2; k++) {
+    es.param[k].name = pname[k];
+    es.param[k].min = 0.5 * (double)k * step;
+    es.param[k].max = 0.5 * (double)k * step + step * (n - 1.0);
+    es.param[k].n = o->n_start;
+  }
+  es.param[2].name = "m0";
+  es.param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / q.plane[0].r0;
+  es.param[2].max = o->unbalance_max / q.plane[0].r0;
+  es.param[2].n = o->unbalance_min < o->unbalance_max ? o->n_transient_unbalances : 1;
+  es.t_end = o->t_end;
+  es.balance_tol = o->balance_tol;
+  es.use_dwell = 0;
+  es.balance_revs = o->balance_revs;
+  es.stop_at_balance = 1;
+  es.threads = o->threads;
+  e = autobal_ensemble_alloc(&mem, &es, c->err);
+  if (!e) {
+    autobal_ensemble_member_release(&mem);
+    return c->err ? c->err->status : AUTOBAL_EINVAL;
+  }
+  autobal_ensemble_set_cancel(e, ens_cancel, c);
+  st = autobal_ensemble_run(e);
+  if (st != AUTOBAL_SUCCESS) {
+    st = autobal_error_set(c->err, st, "design transients (two planes): %s", autobal_ensemble_errmsg(e));
+  } else {
+    nm = autobal_ensemble_n_members(e);
+    ai = autobal_ensemble_attractor_index(e);
+    for (k = 0; k < nm; k++) {
+      const double *sm = autobal_ensemble_summary(e, k);
+      const int bal = sm && ai != (size_t)-1 && sm[AUTOBAL_ENSEMBLE_STATUS] >= 0.0 &&
+                      (int)sm[ai] == AUTOBAL_ATTRACTOR_BALANCED;
+      const double t = sm ? sm[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] : NAN;
+      ttb[(*nt)++] = bal && isfinite(t) ? t : INFINITY;
+      *nbal += (size_t)bal;
+    }
+  }
+  autobal_ensemble_free(e);
+  autobal_ensemble_member_release(&mem);
+  return st;
+}
+
 /* P(balance), median and worst time to balance of design d (see design.h). */
 static int design_transients(dctx *c, autobal_rotor_design *d, size_t *runs) {
   const autobal_study_rotor_design_options *o = &c->o;
   const size_t nsp = has_profile(c->base) ? 1 : o->n_transient_speeds;
-  const size_t per = o->n_start * o->n_start * o->n_transient_unbalances;
+  const int two = o->planes == 2;
+  const size_t nu2 = two ? (o->unbalance2_min < o->unbalance2_max ? o->n_transient_unbalances : 1) : 1;
+  const size_t ns = two ? o->n_start * o->n_start : 1;
+  const size_t per = o->n_start * o->n_start * o->n_transient_unbalances * ns * nu2;
   double *ttb = malloc(nsp * per * sizeof *ttb);
-  size_t nt = 0, nbal = 0, k;
+  size_t nt = 0, nbal = 0, k, l;
   int st = AUTOBAL_SUCCESS;
   if (!ttb) return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design transients: out of memory");
   for (k = 0; k < nsp && st == AUTOBAL_SUCCESS; k++) {
     const double w = nsp > 1 ? o->omega_min + (o->omega_max - o->omega_min) * (double)k / (double)(nsp - 1)
                              : o->omega_max;
-    st = design_ensemble(c, d, k == nsp - 1 ? o->omega_max : w, ttb, &nt, &nbal);
+    if (!two) {
+      st = design_ensemble(c, d, k == nsp - 1 ? o->omega_max : w, ttb, &nt, &nbal);
+      continue;
+    }
+    /* plane 2's unbalances as plane 1's: linear from unbalance2_min to unbalance2_max (1: the max) */
+    for (l = 0; l < nu2 && st == AUTOBAL_SUCCESS; l++) {
+      const double u2 = nu2 > 1 ? (l == nu2 - 1 ? o->unbalance2_max
+                                                : o->unbalance2_min + (o->unbalance2_max - o->unbalance2_min) *
+                                                                          (double)l / (double)(nu2 - 1))
+                                : o->unbalance2_max;
+      /* plane 2's balls: a quarter and three quarters of a step on from plane 1's grid */
+      const double step = 2.0 * M_PI / (double)o->n_start;
+      size_t a3, a4;
+      for (a3 = 0; a3 < o->n_start && st == AUTOBAL_SUCCESS; a3++)
+        for (a4 = 0; a4 < o->n_start && st == AUTOBAL_SUCCESS; a4++) {
+          const double psi2[2] = {step * (0.25 + (double)a3), step * (0.75 + (double)a4)};
+          st = design_ensemble2(c, d, k == nsp - 1 ? o->omega_max : w, u2, psi2, ttb, &nt, &nbal);
+        }
+    }
   }
   if (st == AUTOBAL_SUCCESS && nt > 0) {
     qsort(ttb, nt, sizeof *ttb, cmp_double);
@@ -700,11 +805,6 @@ static int resolve2(const autobal_rotor_params *p, autobal_study_rotor_design_op
                              "[design] n_balls_min = %zu, n_balls_max = %zu: with planes = 2 two balls per plane only "
                              "(allowed 2, 2): the two-plane every-unbalance analysis is built for two balls per plane",
                              o->n_balls_min, o->n_balls_max);
-  if (o->n_transient != 0)
-    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
-                             "[design] n_transient = %zu: the transients of two-plane designs are not implemented; "
-                             "allowed with planes = 2: n_transient = 0",
-                             o->n_transient);
   if (!((isnan(o->position_min) || o->position_min == p->plane[0].d) &&
         (isnan(o->position_max) || o->position_max == p->plane[0].d)))
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
@@ -1266,6 +1366,20 @@ static int design_two_planes(dctx *c, autobal_archive *a, autobal_study_rotor_de
     c->work.plane[j].ball_rate = brate[j];
   }
   st = autobal_design2_run_(&c->work, &c->o, summary, c->err);
+  /* transients of the first n_transient designs; the ranking by rank_by among them (as one plane) */
+  if (st == AUTOBAL_SUCCESS && summary->n_designs > 0 && c->o.n_transient > 0) {
+    const size_t nk = c->o.n_transient < summary->n_designs ? c->o.n_transient : summary->n_designs;
+    for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
+      autobal_rotor_design *d = &summary->designs[i];
+      c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
+      d->p_balance = d->ttb_median = d->ttb_worst = NAN;
+      d->n_runs = d->n_balanced = 0;
+      st = design_transients(c, d, &summary->transients);
+    }
+    if (st == AUTOBAL_SUCCESS && c->o.rank_by != AUTOBAL_DESIGN_RANK_MARGIN)
+      rank_transients(summary->designs, nk, c->o.rank_by);
+    if (st != AUTOBAL_SUCCESS) summary->ranked = 0;
+  }
   if (st == AUTOBAL_SUCCESS && summary->n_designs > 0) {
     summary->best_config = autobal_study_rotor_design_config(c->base, &summary->designs[0], c->o.omega_max);
     if (!summary->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
@@ -1376,9 +1490,6 @@ int autobal_study_rotor_design_transients(const autobal_rotor_params *p, const a
   c.err = err;
   c.base = p;
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
-  if (c.o.planes == 2)
-    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
-                             "options: planes = 2: transients of two-plane designs are not implemented (allowed planes = 1)");
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design transients: mass, radius, damping must be > 0, position finite");
   design->p_balance = design->ttb_median = design->ttb_worst = NAN;
@@ -1438,14 +1549,17 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
   if (!b.p) return NULL;
   b.p[0] = '\0';
   put(&b, "; written by autobal rotor design: the machine with the design's balancer (docs/rotor.md \"Design\")\n");
-  if (p->n_planes == 2)
+  if (p->n_planes == 2) {
     put(&b,
         "; two planes, the same balancer in both: stable at every speed of the grid for every unbalance of both\n"
         "; ranges and every relative phase (certified over plane 2's range at %zu of %zu grid speeds, the others\n"
         "; on plane 2's grid); largest margin met -%.6g 1/s (sampled).  For its analysis: rotor stability with\n"
         "; [stability] unbalance_min/max, unbalance2_min/max (docs/rotor.md \"Design\", \"Two planes\")\n",
         d->n_certified, d->n_certify_run, d->margin);
-  else
+    if (!isnan(d->margin_certified) && (d->margin_certified > 0.0 || d->margin_steps > 0))
+      put(&b, "; certified margin: every root Re lambda < -%.6g 1/s at every grid speed, every unbalance and phase%s\n",
+          d->margin_certified, d->margin_decided ? "" : " (a lower bound; a bisection step was undecided: estimate)");
+  } else
     put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
   if (nballs(d) >= 3)
     put(&b,
@@ -1580,7 +1694,9 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     if (!st) st = autobal_archive_attr_double(a, g, "transient_balance_tol", opt->balance_tol, "1");
     if (!st) st = autobal_archive_attr_double(a, g, "transient_balance_revs", opt->balance_revs, "1");
     if (!st) st = autobal_archive_attr_int(a, g, "transients", (long)S->transients);
-    if (!st) st = autobal_archive_attr_string(a, g, "transient_method", "docs/rotor.md \"Design\": per design an ensemble grid over the start angles of both balls (ball 2 half a step on), the unbalances and the speeds (or the run-up profile from rest); balanced = attractor class balanced; time to balance = start of the stretch of transient_balance_revs revolutions with the residual unbalance below transient_balance_tol, inf when not balanced by transient_t_end");
+    if (!st && S->planes == 2)
+      st = autobal_archive_attr_string(a, g, "transient_method", "docs/rotor.md \"Design\", \"Two planes\": per design, per speed (or the run-up profile from rest) and per plane-2 unbalance (transient_n_unbalances values from unbalance2_min to unbalance2_max) an ensemble grid over the start angles of all four balls (plane 1's ball 2 half a step on, plane 2's balls a quarter and three quarters of a step on) and plane 1's unbalances; balanced = attractor class balanced; time to balance = start of the stretch of transient_balance_revs revolutions with every plane's residual unbalance below transient_balance_tol, inf when not balanced by transient_t_end");
+    else if (!st) st = autobal_archive_attr_string(a, g, "transient_method", "docs/rotor.md \"Design\": per design an ensemble grid over the start angles of both balls (ball 2 half a step on), the unbalances and the speeds (or the run-up profile from rest); balanced = attractor class balanced; time to balance = start of the stretch of transient_balance_revs revolutions with the residual unbalance below transient_balance_tol, inf when not balanced by transient_t_end");
   }
   if (!st && nball) {
     st = autobal_archive_attr_int(a, g, "n_balls_min", (long)opt->n_balls_min);
@@ -1697,6 +1813,12 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
       COL(found_s[0], "found_unbalance1", "kg m", "plane 1's m0 r0 of a point not stable found there (NaN: none or between the slices)")
       COL(found_s[1], "found_unbalance2", "kg m", "plane 2's m0 r0 of that point")
       COL(found_phase, "found_phase", "rad", "relative phase of that point")
+      COL(margin_certified, "margin_certified", "1/s", "the largest delta proven by bisection: every root Re lambda < -delta for every unbalance of both ranges and every phase at every grid speed (box search on Delta16(mu - delta)); NaN: not run")
+      COL(margin_upper, "margin_upper", "1/s", "the smallest delta where a root at Re lambda >= -delta was found (or the sampled margin)")
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = S->designs[i].margin_decided;
+        st = autobal_archive_var_int(a, gr, "margin_decided", 1, rank1, iv, "1", "1: every bisection step decided (margin_certified is certified to about 1e-3 1/s); 0: some step undecided (an estimate)");
+      }
     }
     if (opt->n_transient > 0) {
       COL(p_balance, "p_balance", "1", "share of the design's transients whose attractor is balanced (NaN: not run)")

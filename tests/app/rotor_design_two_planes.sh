@@ -10,6 +10,8 @@
 #    at 4500 rpm: the design (fixed bounds) says so, `rotor stability` says so, and SciPy finds a
 #    growing Floquet multiplier; a design feasible in both (40 g, 0.46 kg/s) stays feasible;
 #  - bad input, each message naming the key;
+#  - transients inside the command (n_transient): P(balance), median and worst time to balance against every
+#    member re-run by `rotor transient`; archive; rank_by = time;
 #  - transients of the best design at both ends of the speed range and both corners of the unbalance ranges
 #    (and a second start of the balls): each balances.
 set -u
@@ -40,6 +42,12 @@ r = g["ranked"]
 assert r["certified_speeds"].attrs["units"] in (b"1", "1") and r["found_speed"].attrs["units"] in (b"rad/s", "rad/s")
 assert (np.array(r["certify_speeds_run"]) == 5).all() and (np.array(r["certified_speeds"]) <= 5).all()
 assert r["recheck"][0] == 1 and r["feasible"][0] == 1
+# the certified margin (bisection over the shifted box search): proven lower end <= the found upper end <= sampled
+mc, mu = np.array(r["margin_certified"]), np.array(r["margin_upper"])
+assert r["margin_certified"].attrs["units"] in (b"1/s", "1/s") and r["margin_upper"].attrs["units"] in (b"1/s", "1/s")
+assert (mc > 0).all() and (mc <= mu).all() and (mu <= np.array(r["robust_margin"]) + 1e-12).all(), (mc, mu)
+assert (mc[np.array(r["margin_decided"]) == 1] >= mu[np.array(r["margin_decided"]) == 1] - 1.01e-3).all()
+assert mc[0] >= g.attrs["margin_required"]  # the best is feasible: its required margin proven
 fz = np.array(g["feasible"]); mm = np.array(g["margin_map"])
 assert ((fz == 1) <= (mm > g.attrs["margin_required"])).all(), "feasible cells have a margin above the required one"
 PY
@@ -51,6 +59,7 @@ d = json.load(open('out.txt'))
 assert d['planes'] == 2 and d['n_unbalance2'] == 5 and d['two_plane_verdicts'] > 0, d
 x = d['designs'][0]
 assert x['recheck'] == -1 and x['certified_speeds'] == 0 and x['certify_speeds_run'] == 0, x
+assert 'margin_certified' not in x, x  # no certification, no certified margin
 assert '[plane2]' in d['best_config']
 " && ok "JSON (no certification: recheck -1, 0 speeds certified)" || { bad "JSON"; head -c 2000 out.txt; }
 
@@ -110,9 +119,37 @@ sed '/^planes = 2/d; /^unbalance2_\|^n_unbalance2/d' "$D2" > noplanes.ini
 expect_err 3 "set [design] planes = 2" "$AUTOBAL" rotor design noplanes.ini
 expect_err 3 "n_unbalance2 = 1 is out of range: allowed [2, 100]" "$AUTOBAL" rotor design "$D2" --set design.n_unbalance2=1
 expect_err 3 "unbalance2_boxes = -2 is out of range" "$AUTOBAL" rotor design "$D2" --set design.unbalance2_boxes=-2
-expect_err 3 "n_transient" "$AUTOBAL" rotor design "$D2" --set design.n_transient=2
 expect_err 3 "position_min" "$AUTOBAL" rotor design "$D2" --set design.position_min=0.05 --set design.position_max=0.15
 expect_err 3 "unbalance2_max" "$AUTOBAL" rotor design "$D2" --set "design.unbalance2_max=100 g mm"
+# transients inside the command (n_transient = 1, 2 start angles per ball: 2^4 starts x 2 x 2 unbalance ends x 2
+# speed ends = 128 members): every member re-run by `rotor transient` from the documented member rule
+# (rotor_design_two_planes_transients.py): the same P(balance), median and worst time; archive and rank_by = time
+TR=(--set design.n_transient=1 --set design.n_start_angles=2 --set design.transient_t_end=10s)
+expect 0 "" "$AUTOBAL" rotor design "$D2" "${SMALL[@]}" "${TR[@]}" --set design.config_out=bt.ini -o dt.h5 --json
+cp out.txt dt.json
+"$PY" "$here/rotor_design_two_planes_transients.py" "$AUTOBAL" bt.ini dt.json 2 10 471.238898038469 942.477796076938 \
+  5e-4 3e-3 5e-4 2.5e-3 0.1 0.09 > py.txt 2>&1 \
+  && ok "transients: P(balance), median and worst time equal 128 direct rotor transient runs" || { bad "transients vs direct runs"; cat py.txt; }
+cat py.txt
+"$PY" - <<'PY' && ok "archive: two-plane transients (units, members, P = balanced / members)" || bad "archive transients"
+import h5py, numpy as np
+g = h5py.File("dt.h5", "r")["/rotor/design"]
+r = g["ranked"]
+assert g.attrs["n_transient"] == 1 and "four balls" in g.attrs["transient_method"], dict(g.attrs)
+n = r["transient_members"][:]
+assert n[0] == 128 and (n[1:] == 0).all() and g.attrs["transients"] == 128, n
+assert r["p_balance"].attrs["units"] == "1" and r["time_to_balance_worst"].attrs["units"] == "s"
+assert np.isclose(r["p_balance"][0], r["transient_balanced"][0] / 128) and np.isnan(r["p_balance"][1:]).all()
+PY
+expect 0 "transients of the first 2 designs (ranked by time)" "$AUTOBAL" rotor design "$D2" "${SMALL[@]}" \
+  --set design.n_transient=2 --set design.n_start_angles=1 --set design.rank_by=time -o dtt.h5
+"$PY" - <<'PY' && ok "rank_by = time: ordered by (feasible, worst, median time) as archived" || bad "rank_by = time order"
+import h5py
+r = h5py.File("dtt.h5", "r")["/rotor/design/ranked"]
+key = list(zip(-r["feasible"][:], r["time_to_balance_worst"][:], r["time_to_balance_median"][:], -r["p_balance"][:]))
+assert key == sorted(key) and len(key) == 2, key
+PY
+
 # transients of the best design (the full nonlinear model, rk8pd): both ends of the speed range (4500, 9000 rpm) x
 # both corners of the unbalance ranges (500/500 and 3000/2500 g mm), and a second start of the balls: each run
 # must balance (the archive's balance monitor: every plane's residual below balance_tol for balance_revs)
