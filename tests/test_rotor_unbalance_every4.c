@@ -15,7 +15,11 @@
  *  - the library verdict: each u sub-interval's verdict equals ordinary analyses (method POLY, member
  *    'given') of random members whose u lies inside it; members just either side of each critical u
  *    differ in their number of roots with Re > 0; stable for all only when all are stable;
- *  - seven balls refused with a message naming unbalance_member = symmetric. */
+ *  - seven balls refused with a message naming unbalance_member = symmetric.
+ * In the sanitizer build (AUTOBAL_TEST_SANITIZE) the same library paths run with fewer repetitions:
+ * the n = 6, t in [4.5, 4.8] enclosure (1.8 million boxes, 70% of the boxes of the test; the other
+ * n = 6 ranges and the n = 4, 5 ranges with q_lo > 0 run the same search) is left out, and 30 random
+ * members per verdict case instead of 120; the Release pass runs them all. */
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
@@ -31,6 +35,11 @@
 #endif
 
 #define NMAX 7
+#ifdef AUTOBAL_TEST_SANITIZE
+#define NSAMP 30
+#else
+#define NSAMP 120
+#endif
 static double bm[NMAX], br[NMAX], bh[NMAX], bpsi[NMAX];
 static const double M = 0.05, A = 0.05 * 0.1;
 
@@ -103,6 +112,9 @@ static void enclosure_checks(void) {
       double phi[NMAX], t, q, qmin = INFINITY, qmax = -INFINITY, d;
       long kept = 0, out = 0, it;
       size_t k, bad = 0;
+#ifdef AUTOBAL_TEST_SANITIZE
+      if (n == 6 && c == 2) continue;
+#endif
       CHECK("enclosure runs", autobal_everyn_range_(&e, n, ta, tb, 4000000L, 1e-9 * (double)(n * n)) == 0);
       printf("     n = %zu, t in [%g, %g]: q outer [%.12g, %.12g], found [%.12g, %.12g], %ld boxes, complete %d\n", n, ta,
              tb, e.q_lo, e.q_hi, e.q_lo_in, e.q_hi_in, e.boxes, e.complete);
@@ -209,7 +221,7 @@ static void verdict_case(size_t n, double w, double s_lo, double s_hi) {
   printf("     n = %zu, %g rad/s, [%g, %g] kg m: u in [%.9g, %.9g] (found [%.9g, %.9g]), %zu critical u, stable_for_all %d\n",
          n, w, s_lo, s_hi, ur.u_min, ur.u_max, ur.u_min_inner, ur.u_max_inner, ur.n_ucrit, ur.all_stable);
   /* random members: the verdict of their u sub-interval */
-  for (k = 0; k < 20000 && nsamp < 120; k++) {
+  for (k = 0; k < 20000 && nsamp < NSAMP; k++) {
     double phi[NMAX], t, q, u;
     int v, rhp;
     if (!random_member(n, ta, tb, phi, &t, &q)) continue;
@@ -226,7 +238,7 @@ static void verdict_case(size_t n, double w, double s_lo, double s_hi) {
     if (v != AUTOBAL_VERDICT_STABLE) all = 0;
   }
   snprintf(what, sizeof what, "n = %zu, %g rad/s: %zu random members have their u sub-interval's verdict", n, w, nsamp);
-  CHECK(what, nsamp >= 100 && nbad == 0);
+  CHECK(what, nsamp >= NSAMP * 5 / 6 && nbad == 0);
   snprintf(what, sizeof what, "n = %zu, %g rad/s: stable_for_all = %d agrees with the members (and no critical u)", n,
            w, ur.all_stable);
   CHECK(what, ur.all_stable == (all && ur.n_ucrit == 0));
