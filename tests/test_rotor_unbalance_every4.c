@@ -69,6 +69,21 @@ static double fan_q(size_t n, double d, double *t) {
   return qof(n, phi, t);
 }
 
+#ifdef AUTOBAL_TEST_SANITIZE
+/* In the sanitizer build (AUTOBAL_TEST_SANITIZE) the same library paths run with fewer repetitions:
+ * the enclosure of six balls for t in [4.5, 4.8] (1.8 million boxes, 70% of the test's boxes) stops
+ * at 100000 boxes (its outer bounds stay certified, the checks below hold for them; the other ranges
+ * run the same search to the end), and 30 random members per verdict case instead of 120 (NSAMP);
+ * the Release pass runs all of it. */
+static int range_sanitize(autobal_everyn_ *e, size_t n, double ta, double tb, long max_boxes, double tol) {
+  return autobal_everyn_range_(e, n, ta, tb, n == 6 && ta > 4.0 && max_boxes > 100000L ? 100000L : max_boxes, tol);
+}
+#define autobal_everyn_range_ range_sanitize
+#define NSAMP 30
+#else
+#define NSAMP 120
+#endif
+
 static void enclosure_checks(void) {
   autobal_everyn_ e;
   char what[200];
@@ -228,7 +243,7 @@ static void verdict_case(size_t n, double w, double s_lo, double s_hi) {
   printf("     n = %zu, %g rad/s, [%g, %g] kg m: u in [%.9g, %.9g] (found [%.9g, %.9g]), %zu critical u, stable_for_all %d\n",
          n, w, s_lo, s_hi, ur.u_min, ur.u_max, ur.u_min_inner, ur.u_max_inner, ur.n_ucrit, ur.all_stable);
   /* random members: the verdict of their u sub-interval */
-  for (k = 0; k < 20000 && nsamp < 120; k++) {
+  for (k = 0; k < 20000 && nsamp < NSAMP; k++) {
     double phi[NMAX], t, q, u;
     int v, rhp;
     if (!random_member(n, ta, tb, phi, &t, &q)) continue;
@@ -245,7 +260,7 @@ static void verdict_case(size_t n, double w, double s_lo, double s_hi) {
     if (v != AUTOBAL_VERDICT_STABLE) all = 0;
   }
   snprintf(what, sizeof what, "n = %zu, %g rad/s: %zu random members have their u sub-interval's verdict", n, w, nsamp);
-  CHECK(what, nsamp >= 100 && nbad == 0);
+  CHECK(what, nsamp >= NSAMP * 5 / 6 && nbad == 0);
   snprintf(what, sizeof what, "n = %zu, %g rad/s: stable_for_all = %d agrees with the members (and no critical u)", n,
            w, ur.all_stable);
   CHECK(what, ur.all_stable == (all && ur.n_ucrit == 0));

@@ -11,6 +11,7 @@ would (xarray with engine="h5netcdf", group by group, and plain h5py), `autobal 
     postprocess_check.py tracking TOOLS_DIR CAMPBELL.h5 [decoupled]
     postprocess_check.py ensemble_plot TOOLS_DIR PNG_DIR ENSEMBLE.h5...
     postprocess_check.py effective FILE.h5...
+    postprocess_check.py MODE ARGS... + MODE ARGS... + ...   (several in one process)
 
 Every check prints what it compared ("ok"/"FAIL") and the tolerance; the exit status is the
 number of failures (capped at 100).  Expected values come from the configuration files, the
@@ -24,7 +25,8 @@ import sys
 
 import h5py
 import numpy as np
-import xarray as xr
+
+xr = None  # xarray, imported by the layout checks only (a second of CPU per process)
 
 FAILS = 0
 NCHECKS = 0
@@ -969,8 +971,27 @@ def ensemble_plot_check(tools, f, outdir):
 
 
 def main(argv):
+    # several checks in one process (one interpreter start, one import of h5py and xarray):
+    # MODE ARGS... + MODE ARGS...
+    args, groups = argv[1:], [[]]
+    for a in args:
+        if a == "+":
+            groups.append([])
+        else:
+            groups[-1].append(a)
+    for g in groups:
+        run_mode([argv[0]] + g)
+    print("%d checks, %d failed" % (NCHECKS, FAILS))
+    return min(FAILS, 100)
+
+
+def run_mode(argv):
+    global xr
     mode = argv[1]
     if mode == "layout":
+        if xr is None:
+            import xarray
+            xr = xarray
         kind, f = argv[2], argv[3]
         ini = argv[4] if len(argv) > 4 and argv[4] != "-" else None
         other = argv[5] if len(argv) > 5 else None
@@ -994,8 +1015,6 @@ def main(argv):
             ensemble_plot_check(argv[2], f, argv[3])
     else:
         raise SystemExit("unknown mode %s" % mode)
-    print("%d checks, %d failed" % (NCHECKS, FAILS))
-    return min(FAILS, 100)
 
 
 if __name__ == "__main__":
