@@ -537,6 +537,51 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 
+/* The common end of design_ensemble and design_ensemble2: parameter 2 (plane 1's m0 over the unbalance
+ * range, r0 plane 1's r0), the run settings, the run, and each member's time to balance (+inf when it
+ * does not balance) appended to ttb; mem is released. */
+static int run_ensemble(dctx *c, autobal_ensemble_member *mem, autobal_ensemble_settings *es, double r0,
+                        const char *what, double *ttb, size_t *nt, size_t *nbal) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  autobal_ensemble *e;
+  size_t k, ai, nm;
+  int st;
+  es->param[2].name = "m0";
+  es->param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / r0;
+  es->param[2].max = o->unbalance_max / r0;
+  es->param[2].n = o->unbalance_min < o->unbalance_max ? o->n_transient_unbalances : 1;
+  es->t_end = o->t_end;
+  es->balance_tol = o->balance_tol;
+  es->use_dwell = 0;
+  es->balance_revs = o->balance_revs;
+  es->stop_at_balance = 1;
+  es->threads = o->threads;
+  e = autobal_ensemble_alloc(mem, es, c->err);
+  if (!e) {
+    autobal_ensemble_member_release(mem);
+    return c->err ? c->err->status : AUTOBAL_EINVAL;
+  }
+  autobal_ensemble_set_cancel(e, ens_cancel, c);
+  st = autobal_ensemble_run(e);
+  if (st != AUTOBAL_SUCCESS) {
+    st = autobal_error_set(c->err, st, "%s: %s", what, autobal_ensemble_errmsg(e));
+  } else {
+    nm = autobal_ensemble_n_members(e);
+    ai = autobal_ensemble_attractor_index(e);
+    for (k = 0; k < nm; k++) {
+      const double *sm = autobal_ensemble_summary(e, k);
+      const int bal = sm && ai != (size_t)-1 && sm[AUTOBAL_ENSEMBLE_STATUS] >= 0.0 &&
+                      (int)sm[ai] == AUTOBAL_ATTRACTOR_BALANCED;
+      const double t = sm ? sm[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] : NAN;
+      ttb[(*nt)++] = bal && isfinite(t) ? t : INFINITY;
+      *nbal += (size_t)bal;
+    }
+  }
+  autobal_ensemble_free(e);
+  autobal_ensemble_member_release(mem);
+  return st;
+}
+
 /* One ensemble of design d at constant speed w (ignored with a profile); times appended to ttb. */
 static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, double *ttb, size_t *nt,
                            size_t *nbal) {
@@ -549,8 +594,7 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   const double n = (double)o->n_start, step = 2.0 * M_PI / n;
   autobal_ensemble_member mem;
   autobal_ensemble_settings es = autobal_ensemble_settings_default();
-  autobal_ensemble *e;
-  size_t k, ai, nm;
+  size_t k;
   int st;
   /* balls 1 and 2 on the grid below; balls 3..n at the fixed angles step (2i - 3) / (4 (n - 1)),
    * strictly between 0 and step / 2, so that no two balls start together */
@@ -586,40 +630,7 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   es.param[1].min = 0.5 * step;
   es.param[1].max = 0.5 * step + step * (n - 1.0);
   es.param[1].n = o->n_start;
-  es.param[2].name = "m0";
-  es.param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / pl->r0;
-  es.param[2].max = o->unbalance_max / pl->r0;
-  es.param[2].n = o->unbalance_min < o->unbalance_max ? o->n_transient_unbalances : 1;
-  es.t_end = o->t_end;
-  es.balance_tol = o->balance_tol;
-  es.use_dwell = 0;
-  es.balance_revs = o->balance_revs;
-  es.stop_at_balance = 1;
-  es.threads = o->threads;
-  e = autobal_ensemble_alloc(&mem, &es, c->err);
-  if (!e) {
-    autobal_ensemble_member_release(&mem);
-    return c->err ? c->err->status : AUTOBAL_EINVAL;
-  }
-  autobal_ensemble_set_cancel(e, ens_cancel, c);
-  st = autobal_ensemble_run(e);
-  if (st != AUTOBAL_SUCCESS) {
-    st = autobal_error_set(c->err, st, "design transients: %s", autobal_ensemble_errmsg(e));
-  } else {
-    nm = autobal_ensemble_n_members(e);
-    ai = autobal_ensemble_attractor_index(e);
-    for (k = 0; k < nm; k++) {
-      const double *sm = autobal_ensemble_summary(e, k);
-      const int bal = sm && ai != (size_t)-1 && sm[AUTOBAL_ENSEMBLE_STATUS] >= 0.0 &&
-                      (int)sm[ai] == AUTOBAL_ATTRACTOR_BALANCED;
-      const double t = sm ? sm[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] : NAN;
-      ttb[(*nt)++] = bal && isfinite(t) ? t : INFINITY;
-      *nbal += (size_t)bal;
-    }
-  }
-  autobal_ensemble_free(e);
-  autobal_ensemble_member_release(&mem);
-  return st;
+  return run_ensemble(c, &mem, &es, pl->r0, "design transients", ttb, nt, nbal);
 }
 
 /* Two planes (options.planes = 2): one ensemble of design d (the same balls m, r, h in both planes)
@@ -636,8 +647,7 @@ static int design_ensemble2(dctx *c, const autobal_rotor_design *d, double w, do
   static const char *const pname[2] = {"psi_1", "psi_2"};
   autobal_ensemble_member mem;
   autobal_ensemble_settings es = autobal_ensemble_settings_default();
-  autobal_ensemble *e;
-  size_t k, j, ai, nm;
+  size_t k, j;
   int st;
   for (j = 0; j < 2; j++) {
     for (k = 0; k < 2; k++) {
@@ -670,40 +680,7 @@ static int design_ensemble2(dctx *c, const autobal_rotor_design *d, double w, do
     es.param[k].max = 0.5 * (double)k * step + step * (n - 1.0);
     es.param[k].n = o->n_start;
   }
-  es.param[2].name = "m0";
-  es.param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / q.plane[0].r0;
-  es.param[2].max = o->unbalance_max / q.plane[0].r0;
-  es.param[2].n = o->unbalance_min < o->unbalance_max ? o->n_transient_unbalances : 1;
-  es.t_end = o->t_end;
-  es.balance_tol = o->balance_tol;
-  es.use_dwell = 0;
-  es.balance_revs = o->balance_revs;
-  es.stop_at_balance = 1;
-  es.threads = o->threads;
-  e = autobal_ensemble_alloc(&mem, &es, c->err);
-  if (!e) {
-    autobal_ensemble_member_release(&mem);
-    return c->err ? c->err->status : AUTOBAL_EINVAL;
-  }
-  autobal_ensemble_set_cancel(e, ens_cancel, c);
-  st = autobal_ensemble_run(e);
-  if (st != AUTOBAL_SUCCESS) {
-    st = autobal_error_set(c->err, st, "design transients (two planes): %s", autobal_ensemble_errmsg(e));
-  } else {
-    nm = autobal_ensemble_n_members(e);
-    ai = autobal_ensemble_attractor_index(e);
-    for (k = 0; k < nm; k++) {
-      const double *sm = autobal_ensemble_summary(e, k);
-      const int bal = sm && ai != (size_t)-1 && sm[AUTOBAL_ENSEMBLE_STATUS] >= 0.0 &&
-                      (int)sm[ai] == AUTOBAL_ATTRACTOR_BALANCED;
-      const double t = sm ? sm[AUTOBAL_ENSEMBLE_TIME_TO_BALANCE] : NAN;
-      ttb[(*nt)++] = bal && isfinite(t) ? t : INFINITY;
-      *nbal += (size_t)bal;
-    }
-  }
-  autobal_ensemble_free(e);
-  autobal_ensemble_member_release(&mem);
-  return st;
+  return run_ensemble(c, &mem, &es, q.plane[0].r0, "design transients (two planes)", ttb, nt, nbal);
 }
 
 /* P(balance), median and worst time to balance of design d (see design.h). */

@@ -247,19 +247,25 @@ def scan(seed, n, th=TH, rich=False):
 
 # ---- two planes at high speed, balls at q = 0 in both planes (docs/rotor.md "Two planes at high speed") ----------
 
-def high2(p, w):
-    """The (H1'), (H2') prediction at Q1 = Q2 = 0 as the library computes it (autobal_rotor_asymptotic2_conditions):
-    (larger real part per mode, its error, small parameter), or None when Gamma is not positive definite."""
+def wmax_cD(p, w):
+    """The highest undamped natural frequency at rest and c_D = 4/|w| + sum 1/|s| over the roots of D D*, as the
+    library's two-plane high-speed small parameters use them."""
     M = p['M']
-    mu, kbar, kinf, kap = high_modes(p)
-    if mu.min() <= 0:
-        return None
     tr = p['c'] / M + p['ct'] / p['A']
     det = (p['c'] * p['ct'] - p['cc']**2) / (M * p['A'])
     wmax = np.sqrt(0.5 * (tr + np.sqrt(max(0, tr * tr - 4 * det))))
     K11, K12, K22, _ = kpolys(p, w)
     D = Pn.polysub(mul(K11, K22), mul(K12, K12))
-    cD = np.sum(1 / abs(np.roots(mul(D, np.conj(D))[::-1]))) + 4 / abs(w)
+    return wmax, np.sum(1 / abs(np.roots(mul(D, np.conj(D))[::-1]))) + 4 / abs(w)
+
+
+def high2(p, w):
+    """The (H1'), (H2') prediction at Q1 = Q2 = 0 as the library computes it (autobal_rotor_asymptotic2_conditions):
+    (larger real part per mode, its error, small parameter), or None when Gamma is not positive definite."""
+    mu, kbar, kinf, kap = high_modes(p)
+    if mu.min() <= 0:
+        return None
+    wmax, cD = wmax_cD(p, w)
     gap = abs(w) * abs(np.sqrt(mu[0] / 2) - np.sqrt(mu[1] / 2))
     small = max(abs(w) * np.sqrt(mu.max() / 2) * cD, wmax / abs(w), (kap.max() + kinf.max()) / gap)
     return (kinf - kbar) / 2, small * (kbar + kinf) / 2, small, kinf

@@ -26,7 +26,7 @@ import numpy as np
 import sympy as sp
 
 sys.path.insert(0, __import__('os').path.dirname(__file__))
-from asymptotic2_scan import Pn, ball_system, default2, draw, exact_roots, high_modes, kpolys, mul  # noqa: E402
+from asymptotic2_scan import ball_system, default2, draw, exact_roots, high_modes, wmax_cD  # noqa: E402
 
 
 def ok(msg):
@@ -169,16 +169,24 @@ def every_kappa(p):
     return rho * np.sqrt(mu.max()), Gam, H
 
 
+def machines(rng, n, scale=1.0):
+    """n draws of random two-plane machines (balls scaled by scale), those with Gamma positive definite:
+    (p, kappa_all, Gamma, H)"""
+    for _ in range(n):
+        p = draw(rng)
+        if p is None:
+            continue
+        p['m'] = [x * scale for x in p['m']]
+        ka, Gam, H = every_kappa(p)
+        if np.linalg.eigvalsh(Gam).min() <= 0:
+            continue
+        yield p, ka, Gam, H
+
+
 def every_small(p, w):
     """the small parameter of the every-unbalance condition, as the library: max(|w| sqrt(mu_2) c_D, w_max / |w|)"""
-    M = p['M']
     mu = high_modes(p)[0]
-    tr = p['c'] / M + p['ct'] / p['A']
-    det = (p['c'] * p['ct'] - p['cc']**2) / (M * p['A'])
-    wmax = np.sqrt(0.5 * (tr + np.sqrt(max(0, tr * tr - 4 * det))))
-    K11, K12, K22, _ = kpolys(p, w)
-    D = Pn.polysub(mul(K11, K22), mul(K12, K12))
-    cD = np.sum(1 / abs(np.roots(mul(D, np.conj(D))[::-1]))) + 4 / abs(w)
+    wmax, cD = wmax_cD(p, w)
     return max(abs(w) * np.sqrt(mu.max()) * cD, wmax / abs(w))
 
 
@@ -191,13 +199,7 @@ def check_every():
     rng = np.random.default_rng(12)
     worst = 0.0
     nm = 0
-    for _ in range(60):
-        p = draw(rng)
-        if p is None:
-            continue
-        ka, Gam, H = every_kappa(p)
-        if np.linalg.eigvalsh(Gam).min() <= 0:
-            continue
+    for p, ka, Gam, H in machines(rng, 60):
         nm += 1
         w = 3e4
         mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
@@ -216,13 +218,7 @@ def check_every():
     rng = np.random.default_rng(14)
     nu = 0
     worst_u = -np.inf
-    for _ in range(60):
-        p = draw(rng)
-        if p is None:
-            continue
-        ka, Gam, H = every_kappa(p)
-        if np.linalg.eigvalsh(Gam).min() <= 0:
-            continue
+    for p, ka, Gam, H in machines(rng, 60):
         w = 3e4
         mb = np.array([2 * p['m'][0], 2 * p['m'][1]])
         G = -(Gam + 1j * H / w) / w**2
@@ -251,14 +247,7 @@ def check_every():
     # (d) exact 16 roots: light balls at high speed, kappa = 1.02 kappa_all in both planes, random unbalances
     rng = np.random.default_rng(13)
     nst = nex = 0
-    for _ in range(30):
-        p = draw(rng)
-        if p is None:
-            continue
-        p['m'] = [x * 1e-3 for x in p['m']]
-        ka, Gam, H = every_kappa(p)
-        if np.linalg.eigvalsh(Gam).min() <= 0:
-            continue
+    for p, ka, Gam, H in machines(rng, 30, 1e-3):
         p['hb'] = [1.02 * ka * p['m'][j] for j in range(2)]
         for _ in range(4):
             q = rng.uniform(0, 1, 2) ** 0.3
@@ -272,15 +261,10 @@ def check_every():
     # to A, e.g. C/A = 0.987, has an unstable rotor root near 450 rad/s at 3e4 rad/s whatever the ball damping)
     rng = np.random.default_rng(15)
     nst_u = nex_u = 0
-    for _ in range(200):
+    for p, ka, Gam, H in machines(rng, 200, 1e-3):
         if nex_u >= 32:
             break
-        p = draw(rng)
-        if p is None:
-            continue
-        p['m'] = [x * 1e-3 for x in p['m']]
-        ka, Gam, H = every_kappa(p)
-        if np.linalg.eigvalsh(Gam).min() <= 0 or every_small(p, 3e4) > 0.05:
+        if every_small(p, 3e4) > 0.05:
             continue
         f = [1.0, rng.uniform(1, 10)]
         rng.shuffle(f)
