@@ -537,15 +537,27 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 
-/* The common end of design_ensemble and design_ensemble2: parameter 2 (plane 1's m0 over the unbalance
- * range, r0 plane 1's r0), the run settings, the run, and each member's time to balance (+inf when it
- * does not balance) appended to ttb; mem is released. */
-static int run_ensemble(dctx *c, autobal_ensemble_member *mem, autobal_ensemble_settings *es, double r0,
-                        const char *what, double *ttb, size_t *nt, size_t *nbal) {
+/* The common part of design_ensemble and design_ensemble2: the machine q with its balls set, at constant
+ * speed w (ignored with a profile) as an ensemble member; es with parameters 0 and 1 (the start
+ * angles) set; parameter 2 (plane 1's m0 over the unbalance range), the run settings, the run, and
+ * each member's time to balance (+inf when it does not balance) appended to ttb. */
+static int run_ensemble(dctx *c, autobal_rotor_params *q, double w, autobal_ensemble_settings *es, const char *what,
+                        double *ttb, size_t *nt, size_t *nbal) {
   const autobal_study_rotor_design_options *o = &c->o;
+  const double r0 = q->plane[0].r0;
+  autobal_ensemble_member mem_, *mem = &mem_;
   autobal_ensemble *e;
   size_t k, ai, nm;
   int st;
+  if (!has_profile(q)) {
+    q->drive.mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
+    q->omega = w;
+  }
+  if ((st = autobal_ensemble_rotor_member(q, AUTOBAL_ROTOR_FIXED, "fixed", mem, c->err)) != AUTOBAL_SUCCESS)
+    return st;
+  es->random = 0;
+  es->endpoint = 1;
+  es->n_params = 3;
   es->param[2].name = "m0";
   es->param[2].min = (o->n_transient_unbalances > 1 ? o->unbalance_min : o->unbalance_max) / r0;
   es->param[2].max = o->unbalance_max / r0;
@@ -592,10 +604,8 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   double m[AUTOBAL_DESIGN_MAX_BALLS], r[AUTOBAL_DESIGN_MAX_BALLS], h[AUTOBAL_DESIGN_MAX_BALLS];
   double psi[AUTOBAL_DESIGN_MAX_BALLS], rate[AUTOBAL_DESIGN_MAX_BALLS];
   const double n = (double)o->n_start, step = 2.0 * M_PI / n;
-  autobal_ensemble_member mem;
   autobal_ensemble_settings es = autobal_ensemble_settings_default();
   size_t k;
-  int st;
   /* balls 1 and 2 on the grid below; balls 3..n at the fixed angles step (2i - 3) / (4 (n - 1)),
    * strictly between 0 and step / 2, so that no two balls start together */
   for (k = 0; k < nb; k++) {
@@ -612,15 +622,6 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   pl->ball_damping = h;
   pl->ball_psi = psi;
   pl->ball_rate = rate;
-  if (!has_profile(&q)) {
-    q.drive.mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
-    q.omega = w;
-  }
-  if ((st = autobal_ensemble_rotor_member(&q, AUTOBAL_ROTOR_FIXED, "fixed", &mem, c->err)) != AUTOBAL_SUCCESS)
-    return st;
-  es.random = 0;
-  es.endpoint = 1;
-  es.n_params = 3;
   /* ball 1 at 0, step, ..., ball 2 half a step further on: no member starts with the balls together */
   es.param[0].name = "psi_1";
   es.param[0].min = 0.0;
@@ -630,7 +631,7 @@ static int design_ensemble(dctx *c, const autobal_rotor_design *d, double w, dou
   es.param[1].min = 0.5 * step;
   es.param[1].max = 0.5 * step + step * (n - 1.0);
   es.param[1].n = o->n_start;
-  return run_ensemble(c, &mem, &es, pl->r0, "design transients", ttb, nt, nbal);
+  return run_ensemble(c, &q, w, &es, "design transients", ttb, nt, nbal);
 }
 
 /* Two planes (options.planes = 2): one ensemble of design d (the same balls m, r, h in both planes)
@@ -645,10 +646,8 @@ static int design_ensemble2(dctx *c, const autobal_rotor_design *d, double w, do
   double m[2][2], r[2][2], h[2][2], psi[2][2], rate[2][2];
   const double n = (double)o->n_start, step = 2.0 * M_PI / n;
   static const char *const pname[2] = {"psi_1", "psi_2"};
-  autobal_ensemble_member mem;
   autobal_ensemble_settings es = autobal_ensemble_settings_default();
   size_t k, j;
-  int st;
   for (j = 0; j < 2; j++) {
     for (k = 0; k < 2; k++) {
       m[j][k] = d->mass;
@@ -665,22 +664,13 @@ static int design_ensemble2(dctx *c, const autobal_rotor_design *d, double w, do
     q.plane[j].ball_rate = rate[j];
   }
   q.plane[1].m0 = u2 / q.plane[1].r0;
-  if (!has_profile(&q)) {
-    q.drive.mode = AUTOBAL_ROTOR_DRIVE_CONSTANT;
-    q.omega = w;
-  }
-  if ((st = autobal_ensemble_rotor_member(&q, AUTOBAL_ROTOR_FIXED, "fixed", &mem, c->err)) != AUTOBAL_SUCCESS)
-    return st;
-  es.random = 0;
-  es.endpoint = 1;
-  es.n_params = 3;
   for (k = 0; k < 2; k++) {
     es.param[k].name = pname[k];
     es.param[k].min = 0.5 * (double)k * step;
     es.param[k].max = 0.5 * (double)k * step + step * (n - 1.0);
     es.param[k].n = o->n_start;
   }
-  return run_ensemble(c, &mem, &es, q.plane[0].r0, "design transients (two planes)", ttb, nt, nbal);
+  return run_ensemble(c, &q, w, &es, "design transients (two planes)", ttb, nt, nbal);
 }
 
 /* P(balance), median and worst time to balance of design d (see design.h). */
