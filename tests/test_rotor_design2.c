@@ -18,38 +18,11 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "rotor_two_planes.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
-
-static double m1[2] = {0.05, 0.05}, r1[2] = {0.1, 0.1}, h1[2] = {0.5, 0.5};
-static double m2[2] = {0.04, 0.04}, r2[2] = {0.09, 0.09}, h2[2] = {0.5, 0.5};
-
-/* data/rotor_two_planes.ini */
-static autobal_rotor_params two_planes(void) {
-  autobal_rotor_params p = autobal_rotor_params_default();
-  p.plane[0].d = 0.10;
-  p.plane[0].m0 = 0.02;
-  p.plane[0].r0 = 0.1;
-  p.plane[0].psi0 = 0.0;
-  p.plane[0].ball_mass = m1;
-  p.plane[0].ball_radius = r1;
-  p.plane[0].ball_damping = h1;
-  p.plane[0].ball_psi = NULL;
-  p.plane[0].ball_rate = NULL;
-  p.n_planes = 2;
-  p.plane[1] = p.plane[0];
-  p.plane[1].d = -0.12;
-  p.plane[1].m0 = 0.015;
-  p.plane[1].r0 = 0.09;
-  p.plane[1].psi0 = 2.0;
-  p.plane[1].ball_mass = m2;
-  p.plane[1].ball_radius = r2;
-  p.plane[1].ball_damping = h2;
-  p.omega = 500.0;
-  return p;
-}
 
 static autobal_study_rotor_design_options small_options(void) {
   autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
@@ -113,7 +86,7 @@ static double dense_max(autobal_rotor_stab *s, const autobal_study_rotor_design_
 }
 
 static void test_search(void) {
-  autobal_rotor_params p = two_planes();
+  autobal_rotor_params p = rotor_two_planes(500.0);
   autobal_study_rotor_design_options o = small_options();
   autobal_study_rotor_design_summary S, S1, S2;
   autobal_error err;
@@ -205,7 +178,7 @@ static void test_search(void) {
 }
 
 static void test_refusals(void) {
-  autobal_rotor_params p = two_planes(), one = autobal_rotor_params_default();
+  autobal_rotor_params p = rotor_two_planes(500.0), one = autobal_rotor_params_default();
   autobal_study_rotor_design_options o = small_options(), b;
   autobal_study_rotor_design_summary S;
   autobal_error err;
@@ -270,7 +243,7 @@ static void test_refusals(void) {
  * 0.46 kg/s (stable at every unbalance there) balance from every start: P = 1, finite times.  The
  * member count is n_start^4 (the four balls) x plane-1 x plane-2 unbalances x speeds. */
 static void test_transients(void) {
-  autobal_rotor_params p = two_planes();
+  autobal_rotor_params p = rotor_two_planes(500.0);
   autobal_study_rotor_design_options o = small_options();
   autobal_rotor_design d;
   autobal_error err;
@@ -309,7 +282,7 @@ static void test_transients(void) {
  * cells (box search at every grid speed, the certified margin) and, when certified stable, every point
  * of the dense closed-matrix sample is stable with every margin below -margin_certified. */
 static void test_nelder_mead(void) {
-  autobal_rotor_params p = two_planes();
+  autobal_rotor_params p = rotor_two_planes(500.0);
   autobal_study_rotor_design_options o = small_options();
   autobal_study_rotor_design_summary S0, S;
   autobal_error err;

@@ -22,41 +22,15 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "rotor_two_planes.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-static double m1[2] = {0.05, 0.05}, r1[2] = {0.1, 0.1}, h1[2] = {0.5, 0.5};
-static double m2[2] = {0.04, 0.04}, r2[2] = {0.09, 0.09}, h2[2] = {0.5, 0.5};
 static const double W_LO = 471.238898038469, W_HI = 942.477796076938; /* 4500, 9000 rpm */
 static const double S_LO[2] = {5e-4, 5e-4}, S_HI[2] = {3e-3, 2.5e-3};
 static const double MASS = 0.039685026299204985, RADIUS = 0.05, DAMP = 0.46415888336127786;
-
-/* data/design_two_planes.ini's machine */
-static autobal_rotor_params two_planes(void) {
-  autobal_rotor_params p = autobal_rotor_params_default();
-  p.plane[0].d = 0.10;
-  p.plane[0].m0 = 0.02;
-  p.plane[0].r0 = 0.1;
-  p.plane[0].psi0 = 0.0;
-  p.plane[0].ball_mass = m1;
-  p.plane[0].ball_radius = r1;
-  p.plane[0].ball_damping = h1;
-  p.plane[0].ball_psi = NULL;
-  p.plane[0].ball_rate = NULL;
-  p.n_planes = 2;
-  p.plane[1] = p.plane[0];
-  p.plane[1].d = -0.12;
-  p.plane[1].m0 = 0.015;
-  p.plane[1].r0 = 0.09;
-  p.plane[1].psi0 = 2.0;
-  p.plane[1].ball_mass = m2;
-  p.plane[1].ball_radius = r2;
-  p.plane[1].ball_damping = h2;
-  p.omega = 500.0;
-  return p;
-}
 
 static void set_design(autobal_rotor_stab *s, double w) {
   autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_BALL_MASS, MASS);
@@ -113,7 +87,7 @@ static int shifted(autobal_rotor_stab *s, double w, double delta, int *confirmed
 }
 
 static void test_shift_api(void) {
-  autobal_rotor_params p = two_planes();
+  autobal_rotor_params p = rotor_two_planes(500.0);
   autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
   autobal_error err;
   autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, &so, &err);
@@ -158,7 +132,7 @@ static void test_shift_api(void) {
 }
 
 static void test_design_margin(void) {
-  autobal_rotor_params p = two_planes();
+  autobal_rotor_params p = rotor_two_planes(500.0);
   autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
   autobal_study_rotor_design_summary S;
   autobal_rotor_stab_options so = autobal_rotor_stab_options_default();

@@ -23,38 +23,11 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "rotor_two_planes.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
-
-static double m1[2] = {0.05, 0.05}, r1[2] = {0.1, 0.1}, h1[2] = {0.5, 0.5};
-static double m2[2] = {0.04, 0.04}, r2[2] = {0.09, 0.09}, h2[2] = {0.5, 0.5};
-
-/* data/rotor_two_planes.ini */
-static autobal_rotor_params two_planes(double w) {
-  autobal_rotor_params p = autobal_rotor_params_default();
-  p.plane[0].d = 0.10;
-  p.plane[0].m0 = 0.02;
-  p.plane[0].r0 = 0.1;
-  p.plane[0].psi0 = 0.0;
-  p.plane[0].ball_mass = m1;
-  p.plane[0].ball_radius = r1;
-  p.plane[0].ball_damping = h1;
-  p.plane[0].ball_psi = NULL;
-  p.plane[0].ball_rate = NULL;
-  p.n_planes = 2;
-  p.plane[1] = p.plane[0];
-  p.plane[1].d = -0.12;
-  p.plane[1].m0 = 0.015;
-  p.plane[1].r0 = 0.09;
-  p.plane[1].psi0 = 2.0;
-  p.plane[1].ball_mass = m2;
-  p.plane[1].ball_radius = r2;
-  p.plane[1].ball_damping = h2;
-  p.omega = w;
-  return p;
-}
 
 static void set_point(autobal_rotor_stab *s, double s1, double s2, double phi) {
   autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_M0), s1 / 0.1);
@@ -88,7 +61,7 @@ static void axis_root(autobal_rotor_stab *s, double *re_min, double *im_at) {
 }
 
 static void case_phase(double w, double s1, double s2, int want_crit) {
-  autobal_rotor_params p = two_planes(w);
+  autobal_rotor_params p = rotor_two_planes(w);
   autobal_error err;
   autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
   autobal_rotor_phase_range ph;
@@ -148,7 +121,7 @@ static void case_phase(double w, double s1, double s2, int want_crit) {
 }
 
 static void case_grid(double w, double lo1, double hi1, double lo2, double hi2, size_t n) {
-  autobal_rotor_params p = two_planes(w);
+  autobal_rotor_params p = rotor_two_planes(w);
   autobal_error err;
   autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
   autobal_rotor_unbalance_range2 u;
@@ -203,7 +176,7 @@ static void case_grid(double w, double lo1, double hi1, double lo2, double hi2, 
  * points, against 61 x 90 sampled (s1, phase); returns 1 if the sampled instability lies only inside
  * the range (the ends stable for every phase): the case only the exact slice can see. */
 static int case_slice(double w, double s2, double lo1, double hi1) {
-  autobal_rotor_params p = two_planes(w);
+  autobal_rotor_params p = rotor_two_planes(w);
   autobal_error err;
   autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
   autobal_rotor_stab *s;
@@ -240,7 +213,7 @@ static int case_slice(double w, double s2, double lo1, double hi1) {
  * instability lies only inside it (a grid with the ends alone says stable; the search must not). */
 static void case_box(double w, double lo1, double hi1, double lo2, double hi2, size_t n1, size_t n2, size_t nph,
                      int want_window) {
-  autobal_rotor_params p = two_planes(w);
+  autobal_rotor_params p = rotor_two_planes(w);
   autobal_error err;
   autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
   autobal_rotor_unbalance_range2 u;
@@ -286,7 +259,7 @@ static void case_box(double w, double lo1, double hi1, double lo2, double hi2, s
  * stable has both ends stable by sampling (the window's edges located by the search agree with the
  * independent sampling to the sub-range width). */
 static void case_subranges(double w, double lo1, double hi1, double lo2, double hi2, size_t nsub) {
-  autobal_rotor_params p = two_planes(w);
+  autobal_rotor_params p = rotor_two_planes(w);
   autobal_error err;
   autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err);
   int ends[64];
@@ -334,7 +307,7 @@ static void case_subranges(double w, double lo1, double hi1, double lo2, double 
  * at 1900..2000 rad/s the search was undecided: a point where d = N = T = 0); with a budget of 3
  * boxes nowhere (the flags must follow the budget, the verdicts must not change). */
 static void case_speeds(double w_lo, double w_hi, size_t n_omega, double lo1, double hi1, double lo2, double hi2) {
-  autobal_rotor_params p = two_planes(w_lo);
+  autobal_rotor_params p = rotor_two_planes(w_lo);
   autobal_error err;
   autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
   const double lo[2] = {lo1, lo2}, hi[2] = {hi1, hi2};
@@ -367,7 +340,7 @@ static void case_speeds(double w_lo, double w_hi, size_t n_omega, double lo1, do
   }
   /* the grid verdicts against sampling at each grid speed */
   for (k = 0; k < n_omega; k++) {
-    autobal_rotor_params pk = two_planes(gw[k]);
+    autobal_rotor_params pk = rotor_two_planes(gw[k]);
     size_t nbad = 0;
     s = autobal_rotor_stab_alloc(&pk, NULL, &err);
     if (!s) continue;
@@ -407,7 +380,7 @@ static void case_speeds(double w_lo, double w_hi, size_t n_omega, double lo1, do
 }
 
 static void errors(void) {
-  autobal_rotor_params p = two_planes(500.0), q = autobal_rotor_params_default();
+  autobal_rotor_params p = rotor_two_planes(500.0), q = autobal_rotor_params_default();
   autobal_error err;
   autobal_rotor_stab *s = autobal_rotor_stab_alloc(&p, NULL, &err), *t = autobal_rotor_stab_alloc(&q, NULL, &err);
   autobal_rotor_phase_range ph;
