@@ -597,9 +597,11 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                "every root Re lambda < -%.6g 1/s (members' sampled margin %.5g 1/s)\n",
                d->member_speeds, d->member_u[0], d->member_u[1], o.margin, d->member_margin);
       else if (d->n_balls >= 3 && d->members_certified == -1) {
-        char mb[64] = "has a root at Re lambda >= -margin";
+        char mb[96] = "has a root at Re lambda >= -margin";
         if (!isnan(d->member_found_margin))
-          snprintf(mb, sizeof mb, "is not stable (max Re lambda %.5g 1/s)", d->member_found_margin);
+          snprintf(mb, sizeof mb, "is not stable%s (max Re lambda %.5g 1/s)",
+                   d->member_found_margin < 0.0 ? " with the margin (its verdict is not STABLE)" : "",
+                   d->member_found_margin);
         if (isnan(d->member_found_u))
           printf("           every member: NOT FEASIBLE: the ball modes -h/m = %.5g 1/s are not left of -margin\n",
                  -d->damping / d->mass);
