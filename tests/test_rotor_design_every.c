@@ -13,6 +13,8 @@
  *    pairs (z, i z, w, i w: Q = sum e^{2 i psi} = 0 exactly) is unstable (CLOSED, a root with
  *    Re lambda > 0), so the certification must reject it: members_certified = -1, feasible = 0.  This
  *    check fails if the certification is skipped;
+ *  - rejected three-ball designs whose range holds t = m0 r0 / (m r) = 1: a member near the line (two balls
+ *    together, one opposite) analysed by FULL (every ball angle) has a root right of -margin;
  *  - autobal_rotor_stab_margin_u_range at that machine: not stable over u in [0, u_max] (the Q = 0
  *    member above is unstable), and every random member whose u lies in a range it calls stable with
  *    margin delta has every root left of -delta (delta = 0 and 0.3). */
@@ -299,7 +301,7 @@ static void test_search_every(void) {
   autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
   autobal_study_rotor_design_summary S;
   autobal_error err;
-  size_t i, j, k, ncert = 0, nrej = 0, nchk = 0, bad = 0, ubad = 0;
+  size_t i, j, k, ncert = 0, nrej = 0, nchk = 0, bad = 0, ubad = 0, nline = 0;
   int st;
   o.omega_min = 471.24;
   o.omega_max = 942.48;
@@ -343,7 +345,32 @@ static void test_search_every(void) {
            d->member_u[0], d->member_u[1], d->member_found_omega, d->member_found_u);
     CHECK("feasible only when certified", !d->feasible || d->members_certified == 1);
     if (d->recheck == 1) CHECK("every re-checked design is certified or not", d->members_certified != 0);
-    if (d->members_certified == -1) nrej++;
+    if (d->members_certified == -1) {
+      nrej++;
+      /* three balls whose range holds t = 1 (two balls together, one opposite: on one line): the members
+         near it have a root near 0 (FULL: every ball angle, no closure), so no margin > 0 holds for every
+         member; the rejection is right */
+      if (n == 3 && o.unbalance_min < mr && mr < o.unbalance_max) {
+        autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+        autobal_rotor_stab *sm;
+        double a1 = q.plane[0].psi0 + 2.0 * M_PI + 0.01, mg = NAN;
+        int v;
+        q.plane[0].m0 = mr / q.plane[0].r0;
+        so.member[0].kind = AUTOBAL_ROTOR_MEMBER_FREE;
+        so.member[0].n_angles = 1;
+        so.member[0].angles = &a1;
+        sm = autobal_rotor_stab_alloc(&q, &so, NULL);
+        if (sm) {
+          autobal_rotor_stab_set(sm, AUTOBAL_ROTOR_PARAM_OMEGA, d->member_found_omega);
+          autobal_rotor_stab_margin(sm, AUTOBAL_ROTOR_STAB_FULL, &mg, &v);
+          autobal_rotor_stab_free(sm);
+        }
+        printf("    near-line member (t = 1, ball 1 0.01 rad off): FULL margin %.6g\n", mg);
+        CHECK("a rejected 3-ball design with t = 1 in range: a near-line member has a root right of -margin (FULL)",
+              mg > -o.margin);
+        nline++;
+      }
+    }
     if (d->members_certified != 1) continue;
     ncert++;
     q.plane[0].d = d->position;
@@ -367,7 +394,8 @@ static void test_search_every(void) {
       autobal_rotor_stab_free(sm);
     }
   }
-  printf("  %zu certified, %zu rejected; %zu random (member, speed) checks\n", ncert, nrej, nchk);
+  printf("  %zu certified, %zu rejected (%zu near-line checked); %zu random (member, speed) checks\n", ncert, nrej, nline,
+         nchk);
   CHECK("some designs certified", ncert > 0 && nchk > 0);
   CHECK("certified designs: every random member stable with the margin at every re-check speed (CLOSED)", bad == 0);
   CHECK("certified designs: every random member's u inside the enclosure", ubad == 0);
