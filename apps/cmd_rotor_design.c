@@ -430,6 +430,8 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
           cli_json_quantity(&j, "member_u_max", d->member_u[1], "kg^2");
           cli_json_int(&j, "member_boxes", d->member_boxes);
           cli_json_bool(&j, "member_enclosure_complete", d->member_enclosure_complete);
+          cli_json_quantity(&j, "member_margin_certified", d->member_margin_certified, "1/s");
+          cli_json_bool(&j, "member_margin_decided", d->member_margin_decided);
         }
       }
       cli_json_bool(&j, "feasible", d->feasible);
@@ -593,14 +595,15 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
              d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "",
              d->n_balls < 3 ? "" : d->members_certified == 1 ? "  (every member)" : "  (symmetric members only)");
       if (d->n_balls >= 3 && d->members_certified == 1)
-        printf("           every member certified at %zu re-check speeds: u in [%.6g, %.6g] kg^2 over the members, "
-               "every root Re lambda < -%.6g 1/s (members' sampled margin %.5g 1/s)\n",
-               d->member_speeds, d->member_u[0], d->member_u[1], o.margin, d->member_margin);
+        printf("           every member certified at %zu re-check speeds: u in [%.6g, %.6g] kg^2 over the members; "
+               "margin over every member %.5g 1/s certified%s (members' sampled %.5g 1/s)\n",
+               d->member_speeds, d->member_u[0], d->member_u[1], d->member_margin_certified,
+               d->member_margin_decided ? "" : " (a step undecided: lower bound)", d->member_margin);
       else if (d->n_balls >= 3 && d->members_certified == -1) {
         char mb[96] = "has a root at Re lambda >= -margin";
         if (!isnan(d->member_found_margin))
-          snprintf(mb, sizeof mb, "is not stable%s (max Re lambda %.5g 1/s)",
-                   d->member_found_margin < 0.0 ? " with the margin (its verdict is not STABLE)" : "",
+          snprintf(mb, sizeof mb, "%s (max Re lambda %.5g 1/s)",
+                   d->member_found_margin < 0.0 ? "is not stable with the margin" : "is not stable",
                    d->member_found_margin);
         if (isnan(d->member_found_u))
           printf("           every member: NOT FEASIBLE: the ball modes -h/m = %.5g 1/s are not left of -margin\n",

@@ -202,6 +202,14 @@ typedef struct autobal_rotor_design {
   double member_u[2];       /* kg^2, the enclosure of u over every member (the same at every speed) */
   long member_boxes;        /* boxes of the enclosure's search (4 to 10 balls) */
   int member_enclosure_complete; /* 1: the enclosure closed to its tolerance within the budget */
+  /* members_certified = 1 only: the certified margin over every member, the largest delta (bisection to
+     about 1e-3 (1 + delta) 1/s between the required margin and min(h/m, member_margin)) for which the
+     margin test passes over the enclosure at every re-check speed: every root Re lambda < -delta for every
+     member of every unbalance of the range there (proven).  It can be far below margin (rho: the fan's):
+     members near the balls-on-one-line configurations decay slowly.  NaN otherwise. */
+  double member_margin_certified; /* 1/s */
+  int member_margin_decided;      /* 1: every step decided; 0: a step failed only in the enclosure's gap */
+  size_t member_margin_steps;     /* bisection steps */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */

@@ -468,6 +468,69 @@ static void members_init(autobal_rotor_design *d) {
   d->member_u[0] = d->member_u[1] = NAN;
   d->member_boxes = 0;
   d->member_enclosure_complete = 0;
+  d->member_margin_certified = NAN;
+  d->member_margin_decided = 0;
+  d->member_margin_steps = 0;
+}
+
+/* Does every u of the design's enclosure pass the margin test with delta at every re-check speed?  *pass 1
+ * yes, 0 no (a failing u between the members found: a member with a root at Re lambda >= -delta), -1 a
+ * failing u only in the enclosure's gap (not proven either way). */
+static int members_pass(dctx *c, autobal_rotor_stab *s, const autobal_rotor_design *d, double delta,
+                        const double inner[2], int *pass) {
+  const size_t nv = c->o.n_verify;
+  size_t k;
+  int st;
+  *pass = 1;
+  for (k = 0; k < nv; k++) {
+    const double w = c->o.omega_min + (c->o.omega_max - c->o.omega_min) * (double)k / (double)(nv - 1);
+    autobal_rotor_margin_u_range mu;
+    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS ||
+        (st = autobal_rotor_stab_margin_u_range(s, delta, d->member_u[0], d->member_u[1], &mu)) != AUTOBAL_SUCCESS) {
+      if (st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM)
+        return autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s));
+      *pass = -1;
+      return AUTOBAL_SUCCESS;
+    }
+    c->evaluations += mu.evaluations;
+    if (!mu.all_stable) {
+      *pass = mu.u_found >= inner[0] && mu.u_found <= inner[1] ? 0 : -1;
+      return AUTOBAL_SUCCESS;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* The certified margin over every member of a certified design: bisection in delta between the required
+ * margin (proven) and min(h/m, the members' sampled margin) (no larger delta can hold) over the margin
+ * test at every re-check speed, to about 1e-3 (1 + |delta|) 1/s.  A step that is not proven counts as
+ * failing (member_margin_decided 0 when a step was undecided). */
+static int member_margin_certified(dctx *c, autobal_rotor_stab *s, autobal_rotor_design *d) {
+  double lo = c->o.margin, hi = d->damping / d->mass, inner[2];
+  autobal_rotor_unbalance_range ur;
+  int st, pass, it;
+  if (isfinite(d->member_margin)) hi = fmin(hi, d->member_margin);
+  d->member_margin_certified = lo;
+  d->member_margin_decided = 1;
+  /* the members found (the inner bounds): every speed's analysis has the same enclosure */
+  if ((st = autobal_rotor_stab_every_unbalance(s, c->o.unbalance_min, c->o.unbalance_max, &ur)) != AUTOBAL_SUCCESS)
+    return st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM
+               ? autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s))
+               : AUTOBAL_SUCCESS;
+  inner[0] = ur.u_min_inner;
+  inner[1] = ur.u_max_inner;
+  for (it = 0; it < 60 && hi - lo > 1e-3 * (1.0 + fabs(lo)); it++) {
+    const double mid = 0.5 * (lo + hi);
+    if ((st = members_pass(c, s, d, mid, inner, &pass)) != AUTOBAL_SUCCESS) return st;
+    d->member_margin_steps++;
+    if (pass == 1) lo = mid;
+    else {
+      if (pass < 0) d->member_margin_decided = 0;
+      hi = mid;
+    }
+  }
+  d->member_margin_certified = lo;
+  return AUTOBAL_SUCCESS;
 }
 
 /* The certification for every member (n >= 3, unbalance_member EVERY; design.h): at every speed of the
@@ -500,14 +563,18 @@ static int certify_members(dctx *c, autobal_rotor_stab *s, autobal_rotor_design 
       d->member_boxes = ur.n_balls >= 4 ? ur.u_boxes : 0;
       d->member_enclosure_complete = ur.u_complete;
       if (isfinite(ur.margin_worst)) worst = fmax(worst, ur.margin_worst);
-      /* a sub-interval of u whose member is not stable: a violation shown by an actual member */
+      /* a sub-interval of u whose member is unstable, or (delta > 0) marginal with its margin >= -delta: a
+         violation shown by an actual member; marginal with delta = 0 (a root within the test's tolerance
+         of the axis, e.g. next to the members on a line): undecided */
       for (j = 0; j < ur.n_usub && !viol; j++)
-        if (ur.usub_verdict[j] != AUTOBAL_VERDICT_STABLE && ur.usub_verdict[j] != AUTOBAL_ROTOR_VERDICT_NONE) {
+        if (ur.usub_verdict[j] == AUTOBAL_VERDICT_UNSTABLE ||
+            (ur.usub_verdict[j] == AUTOBAL_VERDICT_MARGINAL && delta > 0.0 && ur.usub_margin[j] >= -delta)) {
           viol = 1;
           d->member_found_u = 0.5 * (fmax(ur.usub_lo[j], ur.u_min_inner) + fmin(ur.usub_hi[j], ur.u_max_inner));
           d->member_found_margin = ur.usub_margin[j];
-        }
-      if (!viol && !ur.all_stable) {
+        } else if (ur.usub_verdict[j] == AUTOBAL_VERDICT_MARGINAL)
+          und = 1;
+      if (!viol && !und && !ur.all_stable) {
         /* no unstable sub-interval: a critical u inside with stable sides (a root on the axis there: not
            stable with any margin), or a sub-interval in the gap (undecided) */
         if (ur.n_uundecided > 0) und = 1;
@@ -517,7 +584,7 @@ static int certify_members(dctx *c, autobal_rotor_stab *s, autobal_rotor_design 
           d->member_found_margin = ur.margin_worst;
         }
       }
-      if (!viol && !und) {
+      if (!viol && !und && delta > 0.0) { /* delta = 0: the analysis's verdict above is the certificate */
         st = autobal_rotor_stab_margin_u_range(s, delta, ur.u_min, ur.u_max, &mu);
         if (st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM)
           return autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s));
@@ -553,6 +620,7 @@ static int certify_members(dctx *c, autobal_rotor_stab *s, autobal_rotor_design 
     return AUTOBAL_SUCCESS;
   }
   d->members_certified = undecided ? -2 : 1;
+  if (d->members_certified == 1) return member_margin_certified(c, s, d);
   return AUTOBAL_SUCCESS;
 }
 
@@ -1912,6 +1980,8 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
         st = autobal_archive_var_int(a, gr, "member_boxes", 1, rank1, iv, "1", "boxes of the enclosure's branch-and-bound (4 to 10 balls; 0 for three: closed form)");
       }
       ICOL(member_enclosure_complete, "member_enclosure_complete", "1: the enclosure of u closed to its tolerance within member_boxes (else valid but wider)")
+      COL(member_margin_certified, "member_margin_certified", "1/s", "certified designs: the largest delta proven by bisection (to about 1e-3 1/s): every root Re lambda < -delta for every member of every unbalance of the range at every re-check speed (Delta's roots and -h/m); NaN: not certified")
+      ICOL(member_margin_decided, "member_margin_decided", "1: every bisection step was decided; 0: a step failed only in the enclosure's gap (member_margin_certified still proven)")
     }
     if (S->planes == 2) {
       if (!st) {
