@@ -78,7 +78,7 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
        n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
        n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
   const char *rank_by = "margin", *umember = "every";
-  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0;
+  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0, mboxes = 0;
   double balance_from = NAN;
   int have_from = 0, profile;
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
@@ -133,6 +133,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   /* the member rule: [design] unbalance_member, else what [stability] says, else every */
   if ((rc = cli_get_string(ctx, "stability", "unbalance_member", umember, &umember, NULL))) goto done;
   if ((rc = cli_get_string(ctx, "design", "unbalance_member", umember, &umember, NULL))) goto done;
+  /* the budget of the every-member enclosure: [design] member_boxes, else [stability]'s, else 0 */
+  if ((rc = cli_get_int(ctx, "stability", "member_boxes", mboxes, &mboxes, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "member_boxes", mboxes, &mboxes, NULL))) goto done;
   /* two planes (docs/rotor.md "Design", "Two planes") */
   {
     int have_t = 0, h1 = 0, h2 = 0, hn = 0, hb = 0;
@@ -184,14 +187,22 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: unbalance_member = '%s' is not one of: every, symmetric", umember);
     goto done;
   }
-  if (n_bmax >= 3 && o.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC) {
+  if (n_bmax > 10 && o.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
-                  "[design]: unbalance_member = every is not available with n_balls_max = %ld: for three or more balls "
-                  "the design's exact test covers the symmetric fan only; set unbalance_member = symmetric (the "
-                  "verdict then covers the symmetric members only) or n_balls_max = 2",
+                  "[design]: unbalance_member = every is available for n_balls_max <= 10 (here %ld): the certification "
+                  "for every member covers 3 to 10 balls; set n_balls_max <= 10, or unbalance_member = symmetric (the "
+                  "verdict then covers the symmetric members only)",
                   n_bmax);
     goto done;
   }
+  if (!(mboxes == 0 || (mboxes >= 1000 && mboxes <= 1000000000L))) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: member_boxes = %ld is out of range: allowed 0 (the default budget, 4000000) or [1000, 1e9] "
+                  "boxes (the enclosure of u over every member, 4 to 10 balls)",
+                  mboxes);
+    goto done;
+  }
+  o.member_boxes = mboxes;
   if (!isnan(o.total_mass_max) && !(o.total_mass_max > 0.0)) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT, "[design]: total_ball_mass_max = %g kg is out of range: must be > 0", o.total_mass_max);
     goto done;
@@ -404,7 +415,24 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       cli_json_quantity(&j, "robust_margin", d->margin, "1/s");
       if (!(o.n_balls_min == 2 && o.n_balls_max == 2)) {
         cli_json_int(&j, "n_balls", (long)d->n_balls);
-        cli_json_string(&j, "verdict_covers", d->n_balls >= 3 ? "symmetric members only" : "every member");
+        cli_json_string(&j, "verdict_covers", d->n_balls < 3 || d->members_certified == 1 ? "every member" : "symmetric members only");
+        if (d->n_balls >= 3 && o.unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
+          cli_json_int(&j, "members_certified", d->members_certified);
+          cli_json_int(&j, "member_speeds", (long)d->member_speeds);
+          cli_json_int(&j, "member_speeds_undecided", (long)d->member_undecided);
+          cli_json_quantity(&j, "member_undecided_first", d->member_undecided_omega[0], "rad/s");
+          cli_json_quantity(&j, "member_undecided_last", d->member_undecided_omega[1], "rad/s");
+          cli_json_quantity(&j, "member_found_speed", d->member_found_omega, "rad/s");
+          cli_json_quantity(&j, "member_found_u", d->member_found_u, "kg^2");
+          cli_json_quantity(&j, "member_found_margin", d->member_found_margin, "1/s");
+          cli_json_quantity(&j, "member_margin", d->member_margin, "1/s");
+          cli_json_quantity(&j, "member_u_min", d->member_u[0], "kg^2");
+          cli_json_quantity(&j, "member_u_max", d->member_u[1], "kg^2");
+          cli_json_int(&j, "member_boxes", d->member_boxes);
+          cli_json_bool(&j, "member_enclosure_complete", d->member_enclosure_complete);
+          cli_json_quantity(&j, "member_margin_certified", d->member_margin_certified, "1/s");
+          cli_json_bool(&j, "member_margin_decided", d->member_margin_decided);
+        }
       }
       cli_json_bool(&j, "feasible", d->feasible);
       cli_json_int(&j, "recheck", d->recheck);
@@ -537,9 +565,13 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
              o.n_balls_min, o.n_balls_max, o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.n_omega);
       printf("  ball mass bounds per ball%s", isnan(o.total_mass_max) ? "" : ", total ball mass n m at most ");
       if (!isnan(o.total_mass_max)) printf("%.6g g", o.total_mass_max * 1e3);
-      printf("; verdict: %s\n", o.n_balls_max >= 3 ? "two balls every member (unique); three or more balls symmetric "
-                                                   "members only (the symmetric fan), ball modes -h/m included"
-                                                 : "every member");
+      printf("; verdict: %s\n", o.n_balls_max < 3 ? "every member"
+                               : o.unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY
+                                   ? "two balls every member (unique); three or more balls: search over the symmetric "
+                                     "fan, then every member certified per design on the re-check grid, ball modes -h/m "
+                                     "included"
+                                   : "two balls every member (unique); three or more balls symmetric "
+                                     "members only (the symmetric fan), ball modes -h/m included");
     }
     if (profile)
       printf("  the speed range from the run-up profile ([drive] mode = %s): balance_from to its top speed\n",
@@ -561,7 +593,29 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       printf("    %4zu %s%10.5g %10.5g %12.5g %10.5g %12.5g %8s %8s%s%s\n", i, nbuf, d->mass * 1e3, d->radius * 1e3,
              d->damping, d->position * 1e3, d->margin, d->feasible ? "yes" : "no",
              d->recheck == 1 ? "ok" : (d->recheck == 0 ? "FAILED" : "-"), d->source ? "  (optimizer)" : "",
-             d->n_balls >= 3 ? "  (symmetric members only)" : "");
+             d->n_balls < 3 ? "" : d->members_certified == 1 ? "  (every member)" : "  (symmetric members only)");
+      if (d->n_balls >= 3 && d->members_certified == 1)
+        printf("           every member certified at %zu re-check speeds: u in [%.6g, %.6g] kg^2 over the members; "
+               "margin over every member %.5g 1/s certified%s (members' sampled %.5g 1/s)\n",
+               d->member_speeds, d->member_u[0], d->member_u[1], d->member_margin_certified,
+               d->member_margin_decided ? "" : " (a step undecided: lower bound)", d->member_margin);
+      else if (d->n_balls >= 3 && d->members_certified == -1) {
+        char mb[96] = "has a root at Re lambda >= -margin";
+        if (!isnan(d->member_found_margin))
+          snprintf(mb, sizeof mb, "%s (max Re lambda %.5g 1/s)",
+                   d->member_found_margin < 0.0 ? "is not stable with the margin" : "is not stable",
+                   d->member_found_margin);
+        if (isnan(d->member_found_u))
+          printf("           every member: NOT FEASIBLE: the ball modes -h/m = %.5g 1/s are not left of -margin\n",
+                 -d->damping / d->mass);
+        else
+          printf("           every member: NOT FEASIBLE: at %.6g rad/s a member with u = %.6g kg^2 %s\n",
+                 d->member_found_omega, d->member_found_u, mb);
+      }
+      else if (d->n_balls >= 3 && d->members_certified == -2)
+        printf("           every member: UNDECIDED at %zu of %zu re-check speeds (%.6g .. %.6g rad/s): not feasible "
+               "(a larger member_boxes may decide it)\n",
+               d->member_undecided, d->member_speeds, d->member_undecided_omega[0], d->member_undecided_omega[1]);
     }
     if (sum.n_designs == 0) printf("    none: no design in the bounds balances the range with the margin\n");
     if (sum.transients > 0) {

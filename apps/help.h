@@ -284,7 +284,8 @@
   "         a pair with min = max fixes that variable; one plane, inertia = paper, isotropic only\n" \
   "         n_balls_min = 2, n_balls_max = 2 (identical balls per design; mass bounds per ball)\n" \
   "         total_ball_mass_max (kg or g; cap on n m)  unbalance_member = [stability]'s|every|symmetric (n >= 3:\n" \
-  "         symmetric only, the verdict covers the symmetric members)\n" \
+  "         the search runs over the symmetric fan; every (3 to 10 balls): each ranked design then certified for\n" \
+  "         every member at the re-check speeds, else not feasible)  member_boxes = 0 (4000000; [1000, 1e9])\n" \
   "         n_transient = 5 (best designs whose transients are run; 0 off)  rank_by = margin|time|p_balance\n" \
   "         n_start_angles = 3 (per ball)  n_transient_unbalances = 2  n_transient_speeds = 2  (grids, ends included)\n" \
   "         transient_t_end = 10 s (profile: its end + 10 s)  balance_tol = 0.01  balance_revs = 50  threads = 0\n" \

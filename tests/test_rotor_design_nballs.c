@@ -11,7 +11,7 @@
  *    analyses on a dense unbalance grid at every grid speed (with n balls), the ball modes -h/m
  *    included for n >= 3; the map's -1 cells are those with n m r <= unbalance_max (closed form);
  *  - total_mass_max: the map's -2 cells are exactly those with n m > the cap, no design exceeds it;
- *  - error paths: n_balls out of range, the member rule every for n >= 3, a bad cap. */
+ *  - error paths: n_balls out of range, the member rule every above 10 balls, member_boxes, a bad cap. */
 #include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -309,9 +309,17 @@ static void test_errors_n(void) {
   autobal_error err;
   b = o;
   b.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_EVERY;
-  CHECK_STATUS("every member with n_balls_max 4 refused", autobal_study_rotor_design(&p, &b, NULL, &S, &err),
+  b.n_balls_max = 11; /* every member: 3 to 10 balls (test_rotor_design_every.c covers 3 and 4) */
+  CHECK_STATUS("every member with n_balls_max 11 refused", autobal_study_rotor_design(&p, &b, NULL, &S, &err),
                AUTOBAL_EUNSUPPORTED);
   CHECK_MSG("names unbalance_member", err.message, "unbalance_member = symmetric");
+  CHECK_MSG("says 3 to 10 balls", err.message, "3 to 10 balls");
+  autobal_study_rotor_design_summary_free(&S);
+  b = o;
+  b.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_EVERY;
+  b.member_boxes = 999;
+  CHECK_STATUS("member_boxes 999 refused", autobal_study_rotor_design(&p, &b, NULL, &S, &err), AUTOBAL_EINVAL);
+  CHECK_MSG("names member_boxes", err.message, "member_boxes");
   autobal_study_rotor_design_summary_free(&S);
   b = o;
   b.n_balls_min = 1;

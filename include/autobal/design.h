@@ -23,8 +23,11 @@
  * stability analyses take constant speeds (the drive is dropped for them); the best config
  * carries the profile ([drive]).  A MOTOR drive: AUTOBAL_EUNSUPPORTED.
  *
- * Number of balls: options.n_balls_min .. n_balls_max identical balls (default 2 .. 2); n >= 3 with
- * the member rule SYMMETRIC only (the symmetric fan; the verdict says so).
+ * Number of balls: options.n_balls_min .. n_balls_max identical balls (default 2 .. 2).  For n >= 3 the
+ * search runs over the symmetric fan; with options.unbalance_member = EVERY (the default; n <= 10) each
+ * re-checked n >= 3 design is then certified for EVERY balanced configuration (member) of every unbalance
+ * of the range at every speed of the re-check grid (autobal_rotor_design.members_certified; a design not
+ * certified is not feasible); with SYMMETRIC the verdict covers the symmetric fan only (it says so).
  *
  * Two planes: options.planes = 2 (the same two-ball balancer in both planes of a two-plane machine;
  * see the options' last fields).
@@ -88,8 +91,9 @@ typedef struct autobal_study_rotor_design_options {
    * [n_balls_min, n_balls_max] is searched, n identical balls per design (0 is read as 2, so a
    * zeroed pair is today's two balls).  The ball mass bounds apply per ball; total_mass_max caps
    * the balls' total n m (NaN: no cap).  For n >= 3 the verdict covers the members of the family
-   * named by unbalance_member (autobal_rotor_unbalance_member): only SYMMETRIC (the symmetric fan)
-   * is available, EVERY is refused (AUTOBAL_EUNSUPPORTED) when n_balls_max >= 3. */
+   * named by unbalance_member (autobal_rotor_unbalance_member): SYMMETRIC, the symmetric fan (the search's
+   * own verdict); EVERY, every member: the search over the fan, then the certification of the re-checked
+   * n >= 3 designs (autobal_rotor_design.members_certified; n_balls_max <= 10 with EVERY). */
   size_t n_balls_min, n_balls_max; /* [2, AUTOBAL_DESIGN_MAX_BALLS], min <= max           (2, 2) */
   int unbalance_member;            /* for n >= 3                      (AUTOBAL_ROTOR_UNBALANCE_EVERY) */
   double total_mass_max;           /* kg, > 0 or NaN                                          (NaN) */
@@ -111,6 +115,10 @@ typedef struct autobal_study_rotor_design_options {
   double unbalance2_min, unbalance2_max; /* kg m, plane 2's range; NaN: plane 1's         (NaN, NaN) */
   size_t n_unbalance2;             /* plane-2 (and plane-1 cross-check) grid, [2, 100]            (5) */
   long unbalance2_boxes;           /* certification budget per side: 0 = 100000, -1 none, [1, 1e9] (0) */
+  /* Every member (added at the end; one plane, n >= 3, unbalance_member EVERY): the box budget of the
+   * enclosure of u over the members (4 to 10 balls; autobal_rotor_stab_options.member_boxes): 0 = 4000000,
+   * else [1000, 1e9].                                                                               (0) */
+  long member_boxes;
 } autobal_study_rotor_design_options;
 
 /* The largest number of balls a design may have. */
@@ -170,6 +178,38 @@ typedef struct autobal_rotor_design {
   double margin_certified, margin_upper;
   int margin_decided;
   size_t margin_steps;  /* shifted verdicts evaluated (speeds x bisection steps) */
+  /* Every member (added at the end; one plane, n >= 3 balls, options.unbalance_member EVERY; 0 / NaN
+     otherwise).  At every speed of the re-check grid (n_verify): autobal_rotor_stab_every_unbalance with
+     the member rule EVERY (the enclosure [u_min, u_max] of u = |Q|^2 / 4 over every member of every
+     unbalance of the range; its verdict at members built in every sub-interval of u) and
+     autobal_rotor_stab_margin_u_range over that enclosure with the required margin (every root
+     Re lambda < -margin for every u of it), plus h/m > margin (the n - 2 ball modes).  members_certified:
+     1 certified at every speed (then "every member"); -1 a violation found: a member not stable (the
+     analysis's member) or, with the margin, a u of the members found (u_min_inner..u_max_inner) whose
+     roots reach Re lambda >= -margin: member_found_omega (rad/s), member_found_u (kg^2), member_found_margin;
+     -2 undecided at some speed (a u failing only in the enclosure's gap, or a sub-interval of u with no
+     member; member_undecided speeds) and no violation; 0 not run (two balls: the member is unique;
+     SYMMETRIC; two planes; recheck != 1; the doubles are then NaN for one plane, 0 for two).  A design
+     with -1 or -2 is not feasible. */
+  int members_certified;
+  size_t member_speeds;     /* re-check speeds evaluated by the certification (n_verify; fewer after a violation) */
+  size_t member_undecided;  /* of them undecided */
+  double member_undecided_omega[2]; /* rad/s, the first and the last undecided speed (NaN: none) */
+  double member_found_omega; /* rad/s, speed of the violation (NaN: none) */
+  double member_found_u;    /* kg^2, u of the violation (NaN: none) */
+  double member_found_margin; /* 1/s, the margin of the member analysed there (NaN when found by the u test) */
+  double member_margin;     /* 1/s, -(the largest margin of the members analysed over the speeds): sampled */
+  double member_u[2];       /* kg^2, the enclosure of u over every member (the same at every speed) */
+  long member_boxes;        /* boxes of the enclosure's search (4 to 10 balls) */
+  int member_enclosure_complete; /* 1: the enclosure closed to its tolerance within the budget */
+  /* members_certified = 1 only: the certified margin over every member, the largest delta (bisection to
+     about 1e-3 (1 + delta) 1/s between the required margin and min(h/m, member_margin)) for which the
+     margin test passes over the enclosure at every re-check speed: every root Re lambda < -delta for every
+     member of every unbalance of the range there (proven).  It can be far below margin (rho: the fan's):
+     members near the balls-on-one-line configurations decay slowly.  NaN otherwise. */
+  double member_margin_certified; /* 1/s */
+  int member_margin_decided;      /* 1: every step decided; 0: a step failed only in the enclosure's gap */
+  size_t member_margin_steps;     /* bisection steps */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */
@@ -247,7 +287,8 @@ AUTOBAL_API int autobal_study_rotor_design_transients(const autobal_rotor_params
                                                       autobal_rotor_design *design, autobal_error *err);
 
 /* The machine p with the design's balls (its n_balls balls m, r, h; plane 1 at d) as INI text (malloc'ed;
- * free()); for n >= 3 a comment says that the verdict covers the symmetric members only.  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
+ * free()); for n >= 3 a comment says what the verdict covers (every member when members_certified = 1,
+ * else the symmetric members only).  omega: the [rotor] omega written.  NULL when out of memory or p has no plane. */
 AUTOBAL_API char *autobal_study_rotor_design_config(const autobal_rotor_params *p,
                                                     const autobal_rotor_design *design, double omega);
 

@@ -778,6 +778,32 @@ typedef struct autobal_rotor_ratio_set {
 AUTOBAL_API int autobal_rotor_stab_margin_ratio_set(autobal_rotor_stab *s, double delta,
                                                     autobal_rotor_ratio_set *out);
 
+/* Every u = |Q|^2 / 4 (kg^2) in [u_lo, u_hi] with margin delta (docs/rotor.md "Design", "Number of balls"):
+ * Delta(lambda; u) = A(lambda) - u G(lambda) depends on the unbalance and on the member of the family only
+ * through u (one plane, n >= 2 identical balls, a common h/m), so "every root Re lambda < -delta for every
+ * member and every unbalance whose u lies in [u_lo, u_hi]" is decided in u alone: the critical u where
+ * Delta(mu - delta; u) has a root on the imaginary axis or loses its degree (as in
+ * autobal_rotor_stab_margin_ratio_set) cut the range; Routh-Hurwitz at both ends, at every critical u
+ * inside and at the midpoint and just inside both ends of every sub-interval.  Delta's roots only (the
+ * n - 2 roots -h/m of the full system are not in it).  With [u_lo, u_hi] an outer enclosure of the
+ * members' u (autobal_rotor_stab_every_unbalance, unbalance_member EVERY: u_min, u_max) all_stable = 1
+ * certifies every member.  Any member rule on the handle.  Added at the end (0.2.0). */
+typedef struct autobal_rotor_margin_u_range {
+  double omega, delta;     /* rad/s, 1/s */
+  double u_lo, u_hi;       /* kg^2, the range decided */
+  size_t n_crit;           /* critical u strictly inside */
+  double u_crit[AUTOBAL_ROTOR_MAX_UCRIT]; /* kg^2, ascending */
+  int all_stable;          /* 1: every u of the range passes the test; 0: u_found does not (or is within the
+                              test's tolerance of the line Re lambda = -delta) */
+  double u_found;          /* kg^2, the first u that failed (NaN when all_stable) */
+  size_t evaluations;      /* Routh-Hurwitz tests */
+} autobal_rotor_margin_u_range;
+
+/* The test above at the handle's omega; m0 restored (bitwise).  Statuses as
+ * autobal_rotor_stab_margin_ratio_set, AUTOBAL_EINVAL also for u_lo < 0 or u_lo > u_hi.  *out zeroed first. */
+AUTOBAL_API int autobal_rotor_stab_margin_u_range(autobal_rotor_stab *s, double delta, double u_lo, double u_hi,
+                                                  autobal_rotor_margin_u_range *out);
+
 /* ---- the rotor-housing without balls: natural frequencies, Campbell diagram,
  *      unbalance response (the balls are removed; in the FULL inertia model the
  *      masses m0 + sum m_i stay attached at their planes) ------------------------- */

@@ -117,55 +117,18 @@ static int ok_at(const long double *At, const long double *Gt, double m, const f
   return AUTOBAL_SUCCESS;
 }
 
-static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_set *out) {
+/* The shifted parts A~, G~ at the handle's omega (m0 set to m r / r0: t = 1, balanceable for any n >= 2)
+ * and the candidate critical u (y = 0, infinity, the positive roots of h) into cand (<= 13, unfiltered). */
+static int shifted_parts(autobal_rotor_stab *s, double delta, long double At[13], long double Gt[13], double *cand,
+                         size_t *nu_out) {
   const autobal_rotor_params *p = &s->cur;
   const autobal_rotor_plane *pl = &p->plane[0];
-  double m, mr, r0, A[13], Bt[13], cand[2 * 14], tcand[4 * 14 + 4 * 14];
-  long double At[13], Gt[13], Ae[7], Ao[6], Ge[7], Go[6], h[12], w2;
-  size_t nu = 0, nt = 0, i, j, nb;
+  const double mr = s->m[0] * s->r[0], r0 = pl->r0;
+  double A[13], Bt[13];
+  long double Ae[7], Ao[6], Ge[7], Go[6], h[12], w2;
+  size_t nu = 0, i, j;
   int st;
-  double tmax;
-  fan_n fan, *fanp = NULL;
   autobal_rotor_closed c;
-  if (p->n_planes != 1 || pl->n_balls < 2)
-    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "margin set: built for one plane with two or more balls (here %zu plane(s), %zu ball(s) "
-                             "in plane 1)",
-                             p->n_planes, pl->n_balls);
-  if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
-    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "margin set: needs the paper's inertia model (inertia = paper)");
-  if (!autobal_rotor_lumped_isotropic_(&s->L))
-    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "margin set: needs isotropic supports");
-  nb = pl->n_balls;
-  for (i = 1; i < nb; i++)
-    if (!(s->m[i] == s->m[0] && s->r[i] == s->r[0] && s->h[i] == s->h[0]))
-      return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                               "margin set: needs identical balls (the same ball_mass, ball_radius and "
-                               "ball_damping)");
-  if (nb >= 3 && s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
-    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "margin set: with %zu balls the member of the family matters; only unbalance_member = "
-                             "symmetric (the symmetric fan) is available for three or more balls",
-                             nb);
-  m = s->m[0];
-  mr = s->m[0] * s->r[0];
-  tmax = (double)nb;
-  if (nb >= 3) {
-    autobal_rotor_fan_init_(&fan, nb, m);
-    fanp = &fan;
-  }
-  r0 = pl->r0;
-  if (!(r0 > 0.0))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
-                             "margin set: r0 = %g m must be > 0 (the unbalance is varied through m0)", r0);
-  if (!(p->omega != 0.0 && isfinite(p->omega)))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "margin set: omega must be finite and non-zero");
-  if (!isfinite(delta))
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "margin set: the margin delta = %g 1/s must be finite",
-                             delta);
-  out->omega = p->omega;
-  out->delta = delta;
   /* A and Bt (independent of m0: t = 1 is balanceable) */
   if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, mr / r0)) != AUTOBAL_SUCCESS) return st;
   if ((st = autobal_rotor_stab_closed(s, &c)) != AUTOBAL_SUCCESS) return st;
@@ -208,6 +171,69 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
       if (den > 0.0L) cand[nu++] = (double)((lpoly(Ae, 7, zz) * ge + zz * lpoly(Ao, 6, zz) * go) / den);
     }
   }
+  *nu_out = nu;
+  return AUTOBAL_SUCCESS;
+}
+
+/* The machine checks shared by the t set and the u range (what = the caller's name); member_rule: refuse
+ * n >= 3 without the SYMMETRIC rule (the t set). */
+static int check_machine(autobal_rotor_stab *s, double delta, int member_rule, const char *what) {
+  const autobal_rotor_params *p = &s->cur;
+  const autobal_rotor_plane *pl = &p->plane[0];
+  size_t i, nb;
+  if (p->n_planes != 1 || pl->n_balls < 2)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "%s: built for one plane with two or more balls (here %zu plane(s), %zu ball(s) "
+                             "in plane 1)",
+                             what, p->n_planes, pl->n_balls);
+  if (p->inertia != AUTOBAL_ROTOR_INERTIA_PAPER)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "%s: needs the paper's inertia model (inertia = paper)",
+                             what);
+  if (!autobal_rotor_lumped_isotropic_(&s->L))
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "%s: needs isotropic supports", what);
+  nb = pl->n_balls;
+  for (i = 1; i < nb; i++)
+    if (!(s->m[i] == s->m[0] && s->r[i] == s->r[0] && s->h[i] == s->h[0]))
+      return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                               "%s: needs identical balls (the same ball_mass, ball_radius and "
+                               "ball_damping)",
+                               what);
+  if (member_rule && nb >= 3 && s->opt.unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "%s: with %zu balls the member of the family matters; only unbalance_member = "
+                             "symmetric (the symmetric fan) is available for three or more balls",
+                             what, nb);
+  if (!(pl->r0 > 0.0))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "%s: r0 = %g m must be > 0 (the unbalance is varied through m0)", what, pl->r0);
+  if (!(p->omega != 0.0 && isfinite(p->omega)))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "%s: omega must be finite and non-zero", what);
+  if (!isfinite(delta))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "%s: the margin delta = %g 1/s must be finite", what,
+                             delta);
+  return AUTOBAL_SUCCESS;
+}
+
+static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_set *out) {
+  const autobal_rotor_params *p = &s->cur;
+  const autobal_rotor_plane *pl = &p->plane[0];
+  double m, cand[2 * 14], tcand[4 * 14 + 4 * 14];
+  long double At[13], Gt[13];
+  size_t nu = 0, nt = 0, i, nb;
+  int st;
+  double tmax;
+  fan_n fan, *fanp = NULL;
+  if ((st = check_machine(s, delta, 1, "margin set")) != AUTOBAL_SUCCESS) return st;
+  nb = pl->n_balls;
+  m = s->m[0];
+  tmax = (double)nb;
+  if (nb >= 3) {
+    autobal_rotor_fan_init_(&fan, nb, m);
+    fanp = &fan;
+  }
+  out->omega = p->omega;
+  out->delta = delta;
+  if ((st = shifted_parts(s, delta, At, Gt, cand, &nu)) != AUTOBAL_SUCCESS) return st;
   for (i = 0; i < nu; i++) nt += fanp ? fan_t_of_u(fanp, cand[i], tcand + nt) : t_of_u(cand[i], m, tcand + nt);
   qsort(tcand, nt, sizeof tcand[0], cmp_double);
   out->n_crit = 0;
@@ -264,6 +290,89 @@ static int ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_se
     }
   }
   return AUTOBAL_SUCCESS;
+}
+
+/* Every root of Delta~(. ; u) = A~ - u G~ left of the imaginary axis?  (ok_at's test, in u.) */
+static int ok_u(const long double *At, const long double *Gt, double u, int *ok, autobal_error *err) {
+  double d[13];
+  size_t k;
+  int v, st;
+  for (k = 0; k < 13; k++) d[k] = (double)(At[k] - (long double)u * Gt[k]);
+  if (d[12] == 0.0) {
+    *ok = -1;
+    return AUTOBAL_SUCCESS;
+  }
+  if ((st = autobal_poly_hurwitz(d, 13, 1e-12, &v, NULL, err)) != AUTOBAL_SUCCESS) return st;
+  *ok = v == AUTOBAL_VERDICT_STABLE ? 1 : (v == AUTOBAL_VERDICT_UNSTABLE ? 0 : -1);
+  return AUTOBAL_SUCCESS;
+}
+
+/* Every u in [u_lo, u_hi] with margin delta: the critical u inside cut it; the test at both ends, at every
+ * critical u inside (a root on the line there: not stable), and at the midpoint and just inside both ends
+ * of every sub-interval.  The first u that fails goes to u_found. */
+static int u_range(autobal_rotor_stab *s, double delta, double u_lo, double u_hi, autobal_rotor_margin_u_range *out) {
+  double cand[2 * 14], edges[AUTOBAL_ROTOR_MAX_UCRIT + 2];
+  long double At[13], Gt[13];
+  size_t nu = 0, i, ne = 0, k;
+  int st, ok;
+  if ((st = check_machine(s, delta, 0, "margin u range")) != AUTOBAL_SUCCESS) return st;
+  if (!(isfinite(u_lo) && isfinite(u_hi) && u_lo >= 0.0 && u_lo <= u_hi))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL,
+                             "margin u range: [%g, %g] kg^2 needs 0 <= u_lo <= u_hi, finite", u_lo, u_hi);
+  out->omega = s->cur.omega;
+  out->delta = delta;
+  out->u_lo = u_lo;
+  out->u_hi = u_hi;
+  out->u_found = NAN;
+  out->all_stable = 1;
+  if ((st = shifted_parts(s, delta, At, Gt, cand, &nu)) != AUTOBAL_SUCCESS) return st;
+  qsort(cand, nu, sizeof cand[0], cmp_double);
+  for (i = 0; i < nu; i++) {
+    if (!(cand[i] > u_lo && cand[i] < u_hi)) continue;
+    if (out->n_crit > 0 && cand[i] - out->u_crit[out->n_crit - 1] <= 1e-15 * u_hi) continue;
+    if (out->n_crit >= AUTOBAL_ROTOR_MAX_UCRIT) break;
+    out->u_crit[out->n_crit++] = cand[i];
+  }
+  edges[ne++] = u_lo;
+  for (k = 0; k < out->n_crit; k++) edges[ne++] = out->u_crit[k];
+  edges[ne++] = u_hi;
+  for (k = 0; k < ne; k++) {
+    /* the point itself (an end or a critical u), then the sub-interval after it */
+    double pts[4];
+    size_t np = 0, q;
+    pts[np++] = edges[k];
+    if (k + 1 < ne && edges[k + 1] > edges[k]) {
+      const double lo = edges[k], hi = edges[k + 1], wdt = hi - lo;
+      pts[np++] = lo + 1e-7 * wdt;
+      pts[np++] = lo + 0.5 * wdt;
+      pts[np++] = hi - 1e-7 * wdt;
+    }
+    if (autobal_rotor_stab_cancelled_(s))
+      return autobal_error_set(&s->err, AUTOBAL_ECANCELLED, "margin u range: cancelled by the caller");
+    for (q = 0; q < np; q++) {
+      if ((st = ok_u(At, Gt, pts[q], &ok, &s->err)) != AUTOBAL_SUCCESS) return st;
+      out->evaluations++;
+      if (ok != 1 && out->all_stable) {
+        out->all_stable = 0;
+        out->u_found = pts[q];
+      }
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+int autobal_rotor_stab_margin_u_range(autobal_rotor_stab *s, double delta, double u_lo, double u_hi,
+                                      autobal_rotor_margin_u_range *out) {
+  double m0;
+  int st, st2;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "margin u range: out is NULL");
+  memset(out, 0, sizeof *out);
+  if (s->cur.n_planes < 1) return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED, "margin u range: no plane");
+  m0 = s->cur.plane[0].m0;
+  st = u_range(s, delta, u_lo, u_hi, out);
+  st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
+  return st != AUTOBAL_SUCCESS ? st : st2;
 }
 
 int autobal_rotor_stab_margin_ratio_set(autobal_rotor_stab *s, double delta, autobal_rotor_ratio_set *out) {

@@ -151,7 +151,8 @@ static int handle_at(dctx *c, size_t n, double d) {
   c->work.plane[0].d = d;
   if (!c->s) {
     autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
-    so.unbalance_member = c->o.unbalance_member;
+    /* the search's exact test runs over the symmetric fan (n >= 3); every member is the certification's */
+    so.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC;
     c->work.plane[0].n_balls = n;
     c->s_n = n;
     c->s = autobal_rotor_stab_alloc(&c->work, &so, c->err);
@@ -458,6 +459,171 @@ static int polish(dctx *c, const autobal_rotor_design *start, autobal_rotor_desi
 
 /* ---- the re-check ---------------------------------------------------------------------- */
 
+/* The every-member fields of a design not (yet) certified. */
+static void members_init(autobal_rotor_design *d) {
+  d->members_certified = 0;
+  d->member_speeds = d->member_undecided = 0;
+  d->member_undecided_omega[0] = d->member_undecided_omega[1] = NAN;
+  d->member_found_omega = d->member_found_u = d->member_found_margin = d->member_margin = NAN;
+  d->member_u[0] = d->member_u[1] = NAN;
+  d->member_boxes = 0;
+  d->member_enclosure_complete = 0;
+  d->member_margin_certified = NAN;
+  d->member_margin_decided = 0;
+  d->member_margin_steps = 0;
+}
+
+/* Does every u of the design's enclosure pass the margin test with delta at every re-check speed?  *pass 1
+ * yes, 0 no (a failing u between the members found: a member with a root at Re lambda >= -delta), -1 a
+ * failing u only in the enclosure's gap (not proven either way). */
+static int members_pass(dctx *c, autobal_rotor_stab *s, const autobal_rotor_design *d, double delta,
+                        const double inner[2], int *pass) {
+  const size_t nv = c->o.n_verify;
+  size_t k;
+  int st;
+  *pass = 1;
+  for (k = 0; k < nv; k++) {
+    const double w = c->o.omega_min + (c->o.omega_max - c->o.omega_min) * (double)k / (double)(nv - 1);
+    autobal_rotor_margin_u_range mu;
+    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS ||
+        (st = autobal_rotor_stab_margin_u_range(s, delta, d->member_u[0], d->member_u[1], &mu)) != AUTOBAL_SUCCESS) {
+      if (st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM)
+        return autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s));
+      *pass = -1;
+      return AUTOBAL_SUCCESS;
+    }
+    c->evaluations += mu.evaluations;
+    if (!mu.all_stable) {
+      *pass = mu.u_found >= inner[0] && mu.u_found <= inner[1] ? 0 : -1;
+      return AUTOBAL_SUCCESS;
+    }
+  }
+  return AUTOBAL_SUCCESS;
+}
+
+/* The certified margin over every member of a certified design: bisection in delta between the required
+ * margin (proven) and min(h/m, the members' sampled margin) (no larger delta can hold) over the margin
+ * test at every re-check speed, to about 1e-3 (1 + |delta|) 1/s.  A step that is not proven counts as
+ * failing (member_margin_decided 0 when a step was undecided). */
+static int member_margin_certified(dctx *c, autobal_rotor_stab *s, autobal_rotor_design *d) {
+  double lo = c->o.margin, hi = d->damping / d->mass, inner[2];
+  autobal_rotor_unbalance_range ur;
+  int st, pass, it;
+  if (isfinite(d->member_margin)) hi = fmin(hi, d->member_margin);
+  d->member_margin_certified = lo;
+  d->member_margin_decided = 1;
+  /* the members found (the inner bounds): every speed's analysis has the same enclosure */
+  if ((st = autobal_rotor_stab_every_unbalance(s, c->o.unbalance_min, c->o.unbalance_max, &ur)) != AUTOBAL_SUCCESS)
+    return st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM
+               ? autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s))
+               : AUTOBAL_SUCCESS;
+  inner[0] = ur.u_min_inner;
+  inner[1] = ur.u_max_inner;
+  for (it = 0; it < 60 && hi - lo > 1e-3 * (1.0 + fabs(lo)); it++) {
+    const double mid = 0.5 * (lo + hi);
+    if ((st = members_pass(c, s, d, mid, inner, &pass)) != AUTOBAL_SUCCESS) return st;
+    d->member_margin_steps++;
+    if (pass == 1) lo = mid;
+    else {
+      if (pass < 0) d->member_margin_decided = 0;
+      hi = mid;
+    }
+  }
+  d->member_margin_certified = lo;
+  return AUTOBAL_SUCCESS;
+}
+
+/* The certification for every member (n >= 3, unbalance_member EVERY; design.h): at every speed of the
+ * re-check grid the every-member analysis (delta = 0, the library's verdict at members built in every
+ * sub-interval of u) and the u test with the required margin over its outer enclosure of u.  The first
+ * violation stops it. */
+static int certify_members(dctx *c, autobal_rotor_stab *s, autobal_rotor_design *d) {
+  const size_t nv = c->o.n_verify;
+  const double delta = c->o.margin;
+  size_t k, j;
+  double worst = -INFINITY;
+  int st, undecided = 0;
+  for (k = 0; k < nv; k++) {
+    const double w = c->o.omega_min + (c->o.omega_max - c->o.omega_min) * (double)k / (double)(nv - 1);
+    autobal_rotor_unbalance_range ur;
+    autobal_rotor_margin_u_range mu;
+    int viol = 0, und = 0;
+    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS)
+      return autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s));
+    st = autobal_rotor_stab_every_unbalance(s, c->o.unbalance_min, c->o.unbalance_max, &ur);
+    if (st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM)
+      return autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s));
+    d->member_speeds++;
+    if (st != AUTOBAL_SUCCESS) { /* the analysis could not decide here (e.g. no member built): undecided */
+      und = 1;
+    } else {
+      c->evaluations += ur.evaluations;
+      d->member_u[0] = ur.u_min;
+      d->member_u[1] = ur.u_max;
+      d->member_boxes = ur.n_balls >= 4 ? ur.u_boxes : 0;
+      d->member_enclosure_complete = ur.u_complete;
+      if (isfinite(ur.margin_worst)) worst = fmax(worst, ur.margin_worst);
+      /* a sub-interval of u whose member is unstable, or (delta > 0) marginal with its margin >= -delta: a
+         violation shown by an actual member; marginal with delta = 0 (a root within the test's tolerance
+         of the axis, e.g. next to the members on a line): undecided */
+      for (j = 0; j < ur.n_usub && !viol; j++)
+        if (ur.usub_verdict[j] == AUTOBAL_VERDICT_UNSTABLE ||
+            (ur.usub_verdict[j] == AUTOBAL_VERDICT_MARGINAL && delta > 0.0 && ur.usub_margin[j] >= -delta)) {
+          viol = 1;
+          d->member_found_u = 0.5 * (fmax(ur.usub_lo[j], ur.u_min_inner) + fmin(ur.usub_hi[j], ur.u_max_inner));
+          d->member_found_margin = ur.usub_margin[j];
+        } else if (ur.usub_verdict[j] == AUTOBAL_VERDICT_MARGINAL)
+          und = 1;
+      if (!viol && !und && !ur.all_stable) {
+        /* no unstable sub-interval: a critical u inside with stable sides (a root on the axis there: not
+           stable with any margin), or a sub-interval in the gap (undecided) */
+        if (ur.n_uundecided > 0) und = 1;
+        else {
+          viol = 1;
+          d->member_found_u = ur.n_ucrit > 0 ? ur.u_crit[0] : NAN;
+          d->member_found_margin = ur.margin_worst;
+        }
+      }
+      if (!viol && !und && delta > 0.0) { /* delta = 0: the analysis's verdict above is the certificate */
+        st = autobal_rotor_stab_margin_u_range(s, delta, ur.u_min, ur.u_max, &mu);
+        if (st == AUTOBAL_ECANCELLED || st == AUTOBAL_ENOMEM)
+          return autobal_error_set(c->err, st, "design, every member: %s", autobal_rotor_stab_errmsg(s));
+        c->evaluations += mu.evaluations;
+        if (st != AUTOBAL_SUCCESS) und = 1;
+        else if (!mu.all_stable) {
+          /* members exist for every u between the inner bounds (connected: docs/rotor.md "Every unbalance") */
+          if (mu.u_found >= ur.u_min_inner && mu.u_found <= ur.u_max_inner) {
+            viol = 1;
+            d->member_found_u = mu.u_found;
+            d->member_found_margin = NAN;
+          } else
+            und = 1;
+        }
+      }
+    }
+    if (viol) {
+      d->member_found_omega = w;
+      d->members_certified = -1;
+      d->member_margin = isfinite(worst) ? -worst : NAN;
+      return AUTOBAL_SUCCESS;
+    }
+    if (und) {
+      undecided = 1;
+      if (d->member_undecided++ == 0) d->member_undecided_omega[0] = w;
+      d->member_undecided_omega[1] = w;
+    }
+  }
+  d->member_margin = isfinite(worst) ? -worst : NAN;
+  if (!(d->damping / d->mass > delta)) { /* the ball modes -h/m (the re-check has it too) */
+    d->members_certified = -1;
+    d->member_found_u = NAN;
+    return AUTOBAL_SUCCESS;
+  }
+  d->members_certified = undecided ? -2 : 1;
+  if (d->members_certified == 1) return member_margin_certified(c, s, d);
+  return AUTOBAL_SUCCESS;
+}
+
 static int recheck(dctx *c, autobal_rotor_design *d) {
   autobal_rotor_params q = *c->base;
   autobal_rotor_plane *pl = &q.plane[0];
@@ -471,6 +637,7 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   size_t k, nv = c->o.n_verify;
   double worst = -INFINITY;
   int st, ok;
+  members_init(d);
   memset(&q.drive, 0, sizeof q.drive); /* constant speeds */
   for (k = 0; k < nb; k++) {
     m[k] = d->mass;
@@ -486,7 +653,7 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   pl->ball_damping = h;
   pl->ball_psi = psi;
   pl->ball_rate = rate;
-  so.unbalance_member = c->o.unbalance_member;
+  so.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC; /* the fan (n >= 3); every member: below */
   s = autobal_rotor_stab_alloc(&q, &so, c->err);
   if (!s) return c->err ? c->err->status : AUTOBAL_EINVAL;
   autobal_rotor_stab_set_cancel(s, cancel_hook, c);
@@ -524,6 +691,19 @@ static int recheck(dctx *c, autobal_rotor_design *d) {
   if (!(d->recheck_margin > c->o.margin)) ok = 0;
   d->recheck = ok;
   if (!ok) d->feasible = 0;
+  if (ok && nb >= 3 && c->o.unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
+    /* every member: a handle with the member rule EVERY (its enclosure of u is kept across the speeds) */
+    so = autobal_rotor_stab_options_default();
+    so.unbalance_member = AUTOBAL_ROTOR_UNBALANCE_EVERY;
+    so.member_boxes = c->o.member_boxes;
+    s = autobal_rotor_stab_alloc(&q, &so, c->err);
+    if (!s) return c->err ? c->err->status : AUTOBAL_EINVAL;
+    autobal_rotor_stab_set_cancel(s, cancel_hook, c);
+    st = certify_members(c, s, d);
+    autobal_rotor_stab_free(s);
+    if (st != AUTOBAL_SUCCESS) return st;
+    if (d->members_certified != 1) d->feasible = 0;
+  }
   return AUTOBAL_SUCCESS;
 }
 
@@ -835,18 +1015,20 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
   if (o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_EVERY && o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: unbalance_member = %d: allowed 0 (every), 1 (symmetric)",
                              o->unbalance_member);
-  if (o->n_balls_max >= 3 && o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
+  if (o->n_balls_max > 10 && o->unbalance_member != AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC)
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
-                             "[design] unbalance_member = every: with n_balls_max = %zu (three or more balls) the "
-                             "verdict depends on the member of the family, and the design's exact test covers the "
-                             "symmetric fan only: set unbalance_member = symmetric (the verdict then says 'symmetric "
-                             "members only'), or n_balls_max = 2",
+                             "[design] unbalance_member = every: with n_balls_max = %zu the certification for every "
+                             "member covers 3 to 10 balls: set n_balls_max <= 10, or unbalance_member = symmetric "
+                             "(the verdict then says 'symmetric members only')",
                              o->n_balls_max);
+  if (!(o->member_boxes == 0 || (o->member_boxes >= 1000 && o->member_boxes <= 1000000000L)))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: member_boxes = %ld: allowed 0 (the default budget, 4000000) or [1000, 1e9]",
+                             o->member_boxes);
   if (pl->n_balls < o->n_balls_min || pl->n_balls > o->n_balls_max)
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
                              "[plane1] ball_mass: the config has %zu balls, outside the numbers of balls designed, "
-                             "[design] n_balls_min = %zu .. n_balls_max = %zu (default 2 .. 2: two balls); widen them "
-                             "(three or more balls: unbalance_member = symmetric)",
+                             "[design] n_balls_min = %zu .. n_balls_max = %zu (default 2 .. 2: two balls); widen them",
                              pl->n_balls, o->n_balls_min, o->n_balls_max);
   if (!(isnan(o->total_mass_max) || (isfinite(o->total_mass_max) && o->total_mass_max > 0.0)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "options: total_mass_max = %g kg must be > 0 (or NaN: no cap)",
@@ -1528,12 +1710,20 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
           d->margin_certified, d->margin_decided ? "" : " (a lower bound; a bisection step was undecided: estimate)");
   } else
     put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
-  if (nballs(d) >= 3)
+  if (nballs(d) >= 3 && d->members_certified == 1)
+    put(&b,
+        "; %zu identical balls: the verdict covers EVERY member of the family (every balanced configuration of every\n"
+        "; unbalance of the range, with the required margin, certified at %zu speeds of the re-check grid); its\n"
+        "; every-unbalance analysis: rotor stability with [stability] unbalance_min/max (unbalance_member = every)\n",
+        nballs(d), d->member_speeds);
+  else if (nballs(d) >= 3)
     put(&b,
         "; %zu identical balls: the verdict covers the symmetric members of the family only (the symmetric fan, the\n"
-        "; default balanced configuration of `rotor stability`); for its every-unbalance analysis add\n"
+        "; default balanced configuration of `rotor stability`)%s; for its every-unbalance analysis add\n"
         "; --set stability.unbalance_member=symmetric\n",
-        nballs(d));
+        nballs(d),
+        d->members_certified == -1 ? ": a member that is not stable (or below the required margin) was found"
+        : d->members_certified == -2 ? ": every member was undecided at some speed" : "");
   if (p->input == AUTOBAL_ROTOR_HARDWARE) {
     f = autobal_rotor_hardware_fields(&nf);
     for (i = 0; i < nf; i++) {
@@ -1674,8 +1864,12 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
                                        opt->unbalance_member == AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC ? "symmetric" : "every");
     if (!st)
       st = autobal_archive_attr_string(a, g, "verdict_covers",
-                                       opt->n_balls_max >= 3 ? "two balls: every member (the unique one); three or more: symmetric members only (the symmetric fan), the ball modes -h/m included in the margin"
-                                                             : "every member (two balls: the balanced configuration is unique)");
+                                       opt->n_balls_max < 3 ? "every member (two balls: the balanced configuration is unique)"
+                                       : opt->unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY
+                                           ? "two balls: every member (the unique one); three or more: the search and robust_margin cover the symmetric fan; every member is certified per design at every speed of the re-check grid with the required margin (ranked/members_certified = 1: every member; else symmetric members only and not feasible), the ball modes -h/m included"
+                                           : "two balls: every member (the unique one); three or more: symmetric members only (the symmetric fan), the ball modes -h/m included in the margin");
+    if (!st && opt->n_balls_max >= 3 && opt->unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY)
+      st = autobal_archive_attr_int(a, g, "member_boxes", opt->member_boxes > 0 ? opt->member_boxes : 4000000L);
   }
   if (!st && (nball ? nn == S->n_n : nm == S->n_mass) && !S->ranked) {
     st = autobal_archive_attr_int(a, g, "partial", 1);
@@ -1762,6 +1956,32 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     if (nball && !st) {
       for (i = 0; i < n; i++) iv[i] = (int)nballs(&S->designs[i]);
       st = autobal_archive_var_int(a, gr, "n_balls", 1, rank1, iv, "1", "number of identical balls of the design");
+    }
+    if (nball && opt->n_balls_max >= 3 && opt->unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
+      ICOL(members_certified, "members_certified", "n >= 3: 1 every member (every balanced configuration of every unbalance of the range) has every root Re lambda < -margin_required at every speed of the re-check grid (certified); -1 a violation found (member_found_*); -2 undecided at some speed; 0 not run (two balls: the member is unique; or recheck != 1)")
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].member_speeds;
+        st = autobal_archive_var_int(a, gr, "member_speeds", 1, rank1, iv, "1", "re-check speeds evaluated by the every-member certification");
+      }
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].member_undecided;
+        st = autobal_archive_var_int(a, gr, "member_speeds_undecided", 1, rank1, iv, "1", "of them undecided (a u failing only in the enclosure's gap, or no member built)");
+      }
+      COL(member_undecided_omega[0], "member_undecided_first", "rad/s", "first undecided speed (NaN: none)")
+      COL(member_undecided_omega[1], "member_undecided_last", "rad/s", "last undecided speed (NaN: none)")
+      COL(member_found_omega, "member_found_speed", "rad/s", "speed of the violation found (NaN: none)")
+      COL(member_found_u, "member_found_u", "kg^2", "u = |Q|^2/4 of the violation: a member with this u is not stable, or has a root at Re lambda >= -margin_required (NaN: none, or the ball modes h/m <= margin_required)")
+      COL(member_found_margin, "member_found_margin", "1/s", "max Re lambda of the member analysed there (NaN: found by the u test with the margin)")
+      COL(member_margin, "member_margin", "1/s", "-(largest margin of the members analysed over the speeds): a sampled upper estimate")
+      COL(member_u[0], "member_u_min", "kg^2", "outer bound: every member of every unbalance of the range has u >= this")
+      COL(member_u[1], "member_u_max", "kg^2", "outer bound: every member has u <= this")
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].member_boxes;
+        st = autobal_archive_var_int(a, gr, "member_boxes", 1, rank1, iv, "1", "boxes of the enclosure's branch-and-bound (4 to 10 balls; 0 for three: closed form)");
+      }
+      ICOL(member_enclosure_complete, "member_enclosure_complete", "1: the enclosure of u closed to its tolerance within member_boxes (else valid but wider)")
+      COL(member_margin_certified, "member_margin_certified", "1/s", "certified designs: the largest delta proven by bisection (to about 1e-3 1/s): every root Re lambda < -delta for every member of every unbalance of the range at every re-check speed (Delta's roots and -h/m); NaN: not certified")
+      ICOL(member_margin_decided, "member_margin_decided", "1: every bisection step was decided; 0: a step failed only in the enclosure's gap (member_margin_certified still proven)")
     }
     if (S->planes == 2) {
       if (!st) {

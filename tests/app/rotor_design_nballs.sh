@@ -136,7 +136,7 @@ PY
 [ $? -eq 0 ] && ok "independent checks (rotor stability runs)" || bad "independent checks"
 
 # bad input
-expect_err 3 "unbalance_member" "$AUTOBAL" rotor design a.ini --set design.unbalance_member=every
+expect_err 3 "unbalance_member" "$AUTOBAL" rotor design a.ini --set design.unbalance_member=every --set design.n_balls_max=11
 expect_err 3 "n_balls_min" "$AUTOBAL" rotor design a.ini --set design.n_balls_min=1
 expect_err 3 "n_balls_max" "$AUTOBAL" rotor design a.ini --set design.n_balls_max=17
 expect_err 3 "total_ball_mass_max" "$AUTOBAL" rotor design a.ini --set "design.total_ball_mass_max=-1 g"
