@@ -583,7 +583,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
            sum.n_mass, sum.mass[0] * 1e3, sum.mass[sum.n_mass - 1] * 1e3, sum.n_damping, sum.damping[0],
            sum.damping[sum.n_damping - 1], sum.n_position, sum.n_radius, sum.radius[0] * 1e3,
            sum.radius[sum.n_radius - 1] * 1e3, sum.n_feasible, ncells);
-    printf("  ranked designs (robust margin rho: the exact test passes with it at every grid speed and unbalance):\n");
+    if (o.n_balls_max >= 3 && o.unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY)
+      printf("  ranked designs (robust margin rho: the exact test passes with it at every grid speed and unbalance, for\n"
+             "  three or more balls on the symmetric members; the feasible designs ranked by the margin their verdict\n"
+             "  covers: rho for two balls, the certified margin over every member for three or more):\n");
+    else
+      printf("  ranked designs (robust margin rho: the exact test passes with it at every grid speed and unbalance):\n");
     printf("    %4s %s%10s %10s %12s %10s %12s %8s %8s\n", "rank", nball ? "balls " : "", "mass g", "radius mm",
            "damping kg/s", "d mm", "rho 1/s", "feasible", "recheck");
     for (i = 0; i < sum.n_designs; i++) {

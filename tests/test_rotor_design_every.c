@@ -435,9 +435,82 @@ static void test_search_every(void) {
   autobal_study_rotor_design_summary_free(&S);
 }
 
+/* Two to four balls with every member: each number of balls with a feasible map cell is among the
+ * ranked designs, and the feasible designs come first, ordered by the margin their verdict covers (rho
+ * for two balls, the certified margin over every member for three or more: docs/rotor.md "Number of
+ * balls"), computed here from the designs' own fields. */
+static void test_rank_covered(void) {
+  double m0[3], r0[3], h0[3], psi0[3], rate0[3];
+  autobal_rotor_params p = machine(3, m0, r0, h0, psi0, rate0, 0.05, 0.1, 0.1);
+  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
+  autobal_study_rotor_design_summary S;
+  autobal_error err;
+  size_t i, n, cells, order_bad = 0, missing = 0, infeasible_seen = 0;
+  double prev = INFINITY;
+  int st;
+  o.omega_min = 471.24;
+  o.omega_max = 942.48;
+  o.n_omega = 5;
+  o.n_verify = 9;
+  o.unbalance_min = 500e-6;
+  o.unbalance_max = 4000e-6;
+  o.margin = 0.2;
+  o.mass_min = 0.025;
+  o.mass_max = 0.1;
+  o.n_mass = 3;
+  o.radius_min = 0.05;
+  o.radius_max = 0.15;
+  o.n_radius = 6;
+  o.damping_min = 0.1;
+  o.damping_max = 1.0;
+  o.n_damping = 3;
+  o.n_best = 3;
+  o.n_starts = 1;
+  o.max_iter = 15;
+  o.n_balls_min = 2;
+  o.n_balls_max = 4;
+  o.threads = 1;
+  printf("-- two to four balls, every member: each n present, feasible designs by the covered margin\n");
+  st = autobal_study_rotor_design(&p, &o, NULL, &S, &err);
+  CHECK_STATUS("search over 2 to 4 balls, every member", st, AUTOBAL_SUCCESS);
+  if (st) {
+    printf("  %s\n", err.message);
+    autobal_study_rotor_design_summary_free(&S);
+    return;
+  }
+  cells = S.n_mass * S.n_damping * S.n_position * S.n_radius;
+  for (n = 2; n <= 4; n++) {
+    int feas = 0, have = 0;
+    for (i = 0; i < cells; i++) feas |= S.feasible[(n - 2) * cells + i] == 1;
+    for (i = 0; i < S.n_designs; i++) have |= S.designs[i].n_balls == n;
+    printf("  n = %zu: feasible map cells %s, among the ranked designs %s\n", n, feas ? "yes" : "no", have ? "yes" : "no");
+    if (feas && !have) missing++;
+  }
+  for (i = 0; i < S.n_designs; i++) {
+    const autobal_rotor_design *d = &S.designs[i];
+    double cov = d->margin;
+    if (d->n_balls >= 3) cov = d->members_certified == 1 ? fmin(d->margin, d->member_margin_certified) : -INFINITY;
+    printf("  %zu: n %zu rho %.5g certified %d member margin %.5g covered %.5g feasible %d\n", i, d->n_balls, d->margin,
+           d->members_certified, d->member_margin_certified, cov, d->feasible);
+    if (!d->feasible) {
+      infeasible_seen = 1;
+      continue;
+    }
+    if (infeasible_seen || !(cov <= prev) || !(cov > o.margin)) order_bad++;
+    prev = cov;
+  }
+  CHECK("every number of balls with a feasible map cell is among the ranked designs", missing == 0);
+  CHECK("feasible designs first, by the covered margin (larger first), each above the required margin", order_bad == 0);
+  CHECK("some design feasible", S.n_designs > 0 && S.designs[0].feasible);
+  if (S.n_designs > 0 && S.designs[0].n_balls >= 3)
+    CHECK("the best config states the margin over every member", S.best_config && strstr(S.best_config, "over every member"));
+  autobal_study_rotor_design_summary_free(&S);
+}
+
 int main(void) {
   test_u_range();
   test_constructed();
   test_search_every();
+  test_rank_covered();
   return check_summary();
 }

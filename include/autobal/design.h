@@ -28,6 +28,11 @@
  * re-checked n >= 3 design is then certified for EVERY balanced configuration (member) of every unbalance
  * of the range at every speed of the re-check grid (autobal_rotor_design.members_certified; a design not
  * certified is not feasible); with SYMMETRIC the verdict covers the symmetric fan only (it says so).
+ * With EVERY and n_balls_max >= 3 the optimizer also starts from the best feasible cell of each n not among
+ * the first n_starts cells, the ranked designs also include the best of each n not among the first n_best,
+ * and after the certification the feasible designs come first, ranked by the margin their verdict covers:
+ * rho for two balls (one member), min(rho, member_margin_certified) for three or more (rho is then the
+ * symmetric fan's only); the designs that are not feasible keep their order after them.
  *
  * Two planes: options.planes = 2 (the same two-ball balancer in both planes of a two-plane machine;
  * see the options' last fields).
@@ -130,7 +135,8 @@ AUTOBAL_API autobal_study_rotor_design_options autobal_study_rotor_design_option
  * among the first n_transient designs, feasible ones first, then P(balance) larger first, then
  * the worst, then the median time to balance shorter first, then rho.  TIME: feasible first, then
  * the worst time to balance, then the median, shorter first, then P(balance), then rho.  The
- * designs after the first n_transient keep their order by rho. */
+ * designs after the first n_transient keep their order by rho (with every member for n >= 3: by the
+ * covered margin, see "Number of balls" above). */
 enum autobal_design_rank { AUTOBAL_DESIGN_RANK_MARGIN = 0, AUTOBAL_DESIGN_RANK_TIME = 1, AUTOBAL_DESIGN_RANK_P_BALANCE = 2 };
 
 /* One design and its figures. */
@@ -178,8 +184,8 @@ typedef struct autobal_rotor_design {
   double margin_certified, margin_upper;
   int margin_decided;
   size_t margin_steps;  /* shifted verdicts evaluated (speeds x bisection steps) */
-  /* Every member (added at the end; one plane, n >= 3 balls, options.unbalance_member EVERY; 0 / NaN
-     otherwise).  At every speed of the re-check grid (n_verify): autobal_rotor_stab_every_unbalance with
+  /* Every member (added at the end; one plane, n >= 3 balls, options.unbalance_member EVERY; when not
+     run see members_certified = 0 below).  At every speed of the re-check grid (n_verify): autobal_rotor_stab_every_unbalance with
      the member rule EVERY (the enclosure [u_min, u_max] of u = |Q|^2 / 4 over every member of every
      unbalance of the range; its verdict at members built in every sub-interval of u) and
      autobal_rotor_stab_margin_u_range over that enclosure with the required margin (every root
@@ -189,7 +195,7 @@ typedef struct autobal_rotor_design {
      roots reach Re lambda >= -margin: member_found_omega (rad/s), member_found_u (kg^2), member_found_margin;
      -2 undecided at some speed (a u failing only in the enclosure's gap, or a sub-interval of u with no
      member; member_undecided speeds) and no violation; 0 not run (two balls: the member is unique;
-     SYMMETRIC; two planes; recheck != 1; the doubles are then NaN for one plane, 0 for two).  A design
+     SYMMETRIC; two planes; recheck != 1; the counts are then 0 and the doubles NaN with one plane, every field 0 with two).  A design
      with -1 or -2 is not feasible. */
   int members_certified;
   size_t member_speeds;     /* re-check speeds evaluated by the certification (n_verify; fewer after a violation) */

@@ -2,7 +2,10 @@
  * machine, a speed range and a range of unbalances, with a required margin (include/autobal/design.h,
  * docs/rotor.md "Design").  The exact test per design and speed is autobal_rotor_stab_margin_ratio_set;
  * the re-check is autobal_rotor_stab_every_unbalance_speeds (an independent path: Delta's critical
- * unbalances without the margin shift, verdicts by the same POLY margin); the optimizer is GSL's
+ * unbalances without the margin shift, verdicts by the same POLY margin); for n >= 3 balls both run over
+ * the symmetric fan, and with unbalance_member = EVERY the re-checked designs are then certified for every
+ * member (certify_members: the every-member analysis and autobal_rotor_stab_margin_u_range at every
+ * re-check speed, and the certified margin over every member by bisection); the optimizer is GSL's
  * Nelder-Mead simplex (nmsimplex2): the robust margin is a minimum over speeds and unbalances,
  * continuous but with kinks where the worst point moves, and has no gradient. */
 #include <gsl/gsl_errno.h>
@@ -931,6 +934,32 @@ static void rank_transients(autobal_rotor_design *d, size_t n, int key) {
   }
 }
 
+/* Every member (n_balls_max >= 3, unbalance_member EVERY): the ranked designs are certified for every
+ * member, and the margin a design's verdict covers is rho for two balls (one member) and the certified
+ * margin over every member for three or more (rho is then the symmetric fan's only). */
+static int every_members(const autobal_study_rotor_design_options *o) {
+  return o->n_balls_max >= 3 && o->unbalance_member == AUTOBAL_ROTOR_UNBALANCE_EVERY;
+}
+static double covered_margin(const autobal_rotor_design *d) {
+  if (nballs(d) >= 3) return d->members_certified == 1 ? fmin(d->margin, d->member_margin_certified) : -INFINITY;
+  return d->margin;
+}
+/* Stable insertion sort: the feasible designs first, by the margin their verdict covers (larger first);
+ * the others keep their order after them. */
+static void rank_covered(autobal_rotor_design *d, size_t n) {
+  size_t i, j;
+  for (i = 1; i < n; i++) {
+    autobal_rotor_design t = d[i];
+    for (j = i; j > 0; j--) {
+      const autobal_rotor_design *u = &d[j - 1];
+      const int before = t.feasible && (!u->feasible || covered_margin(&t) > covered_margin(u));
+      if (!before) break;
+      d[j] = d[j - 1];
+    }
+    d[j] = t;
+  }
+}
+
 /* ---- options --------------------------------------------------------------------------- */
 
 /* The two-plane options (docs/rotor.md "Design", "Two planes"): the machine has two planes of two
@@ -1131,6 +1160,19 @@ static int same_design(const autobal_rotor_design *a, const autobal_rotor_design
   return nballs(a) == nballs(b) && fabs(a->mass - b->mass) <= 1e-6 * b->mass && fabs(a->radius - b->radius) <= 1e-6 * b->radius &&
          fabs(a->damping - b->damping) <= 1e-6 * b->damping &&
          fabs(a->position - b->position) <= 1e-6 * (fabs(b->position) + 1e-3);
+}
+
+/* Appends d to S's ranked designs unless an equal design is there (1: appended). */
+static int add_distinct(autobal_study_rotor_design_summary *S, autobal_rotor_design *d,
+                        const autobal_study_rotor_design_options *o) {
+  size_t j;
+  for (j = 0; j < S->n_designs; j++)
+    if (same_design(&S->designs[j], d)) return 0;
+  d->feasible = d->margin > o->margin;
+  d->p_balance = d->ttb_median = d->ttb_worst = NAN;
+  d->n_runs = d->n_balanced = 0;
+  S->designs[S->n_designs++] = *d;
+  return 1;
 }
 
 /* One cell (i, j, k) of the map: its radius window and feasible row (n_feasible and the candidates
@@ -1354,7 +1396,7 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   const autobal_study_rotor_design_options *o = &c->o;
   const size_t n_n = o->n_balls_max - o->n_balls_min + 1, nrow = n_n * o->n_mass;
   const size_t ncell = nrow * o->n_damping * o->n_position;
-  autobal_rotor_design *cand = NULL;
+  autobal_rotor_design *cand = NULL, *starts = NULL;
   size_t ncand = 0, i, j, k;
   int st = AUTOBAL_SUCCESS;
   S->n_n = n_n;
@@ -1372,11 +1414,13 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   S->feasible = malloc(ncell * o->n_radius * sizeof *S->feasible);
   S->window_lo = malloc(ncell * sizeof *S->window_lo);
   S->window_hi = malloc(ncell * sizeof *S->window_hi);
-  cand = malloc((ncell + o->n_starts) * sizeof *cand);
+  cand = malloc((ncell + o->n_starts + n_n) * sizeof *cand);
+  starts = malloc((o->n_starts + n_n) * sizeof *starts);
   c->omega = autobal_design_grid_(o->omega_min, o->omega_max, o->n_omega, 0);
   if (!S->mass || !S->damping || !S->position || !S->radius || !S->feasible || !S->window_lo || !S->window_hi ||
-      !cand || !c->omega) {
+      !cand || !starts || !c->omega) {
     free(cand);
+    free(starts);
     return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   }
   /* 1. the map, row by row of ball mass */
@@ -1412,54 +1456,61 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     st = robust_margin(c, &cand[i], &cand[i].margin);
   }
   if (st == AUTOBAL_SUCCESS) {
-    size_t n0 = ncand;
+    /* the optimizer's starts: the best n_starts cells; with every member also the best feasible cell of
+     * each number of balls not among them (the ranking by the covered margin needs each n's optimum) */
+    size_t ns = 0, n;
     qsort(cand, ncand, sizeof *cand, cmp_design);
+    for (i = 0; i < o->n_starts && i < ncand; i++) starts[ns++] = cand[i];
+    if (every_members(o) && o->n_starts > 0)
+      for (n = o->n_balls_min; n <= o->n_balls_max; n++) {
+        int have = 0;
+        for (j = 0; j < ns; j++) have |= nballs(&starts[j]) == n;
+        for (i = 0; i < ncand && !have; i++)
+          if (nballs(&cand[i]) == n && cand[i].margin > o->margin) starts[ns++] = cand[i], have = 1;
+      }
 #ifdef AUTOBAL_HAVE_OPENMP
     if (nthreads(o) > 1) {
-      st = polish_parallel(c, cand, o->n_starts < n0 ? o->n_starts : n0, cand + ncand);
-      if (st == AUTOBAL_SUCCESS) ncand += o->n_starts < n0 ? o->n_starts : n0;
+      st = polish_parallel(c, starts, ns, cand + ncand);
+      if (st == AUTOBAL_SUCCESS) ncand += ns;
     } else
 #endif
-    for (i = 0; i < o->n_starts && i < n0 && st == AUTOBAL_SUCCESS; i++) {
+    for (i = 0; i < ns && st == AUTOBAL_SUCCESS; i++) {
       autobal_rotor_design d;
-      c->fraction = 0.8 + 0.1 * (double)i / (double)o->n_starts;
-      if ((st = polish(c, &cand[i], &d)) != AUTOBAL_SUCCESS) break;
+      c->fraction = 0.8 + 0.1 * (double)i / (double)ns;
+      if ((st = polish(c, &starts[i], &d)) != AUTOBAL_SUCCESS) break;
       d.recheck = -1;
       cand[ncand++] = d;
     }
   }
-  /* 4. rank (distinct designs), re-check the best n_best */
+  /* 4. rank (distinct designs), re-check the best n_best (with every member: plus the best of each number
+   * of balls not among them, and then the order by the margin the verdict covers) */
   if (st == AUTOBAL_SUCCESS) {
     qsort(cand, ncand, sizeof *cand, cmp_design);
     S->designs = malloc((ncand ? ncand : 1) * sizeof *S->designs);
     if (!S->designs) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
-#ifdef AUTOBAL_HAVE_OPENMP
-    if (st == AUTOBAL_SUCCESS && nthreads(o) > 1) {
-      /* the distinct best n_best (as below), then their re-checks over the threads */
-      for (i = 0; i < ncand && S->n_designs < o->n_best; i++) {
-        int dup = 0;
-        for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
-        if (dup) continue;
-        cand[i].feasible = cand[i].margin > o->margin;
-        cand[i].p_balance = cand[i].ttb_median = cand[i].ttb_worst = NAN;
-        cand[i].n_runs = cand[i].n_balanced = 0;
-        S->designs[S->n_designs++] = cand[i];
+  }
+  if (st == AUTOBAL_SUCCESS) {
+    for (i = 0; i < ncand && S->n_designs < o->n_best; i++) add_distinct(S, &cand[i], o);
+    if (every_members(o)) {
+      size_t n;
+      for (n = o->n_balls_min; n <= o->n_balls_max; n++) {
+        int have = 0;
+        for (j = 0; j < S->n_designs; j++) have |= nballs(&S->designs[j]) == n;
+        for (i = 0; i < ncand && !have; i++)
+          if (nballs(&cand[i]) == n && cand[i].margin > o->margin) have = add_distinct(S, &cand[i], o);
       }
+    }
+#ifdef AUTOBAL_HAVE_OPENMP
+    if (nthreads(o) > 1) {
       st = recheck_parallel(c, S->designs, S->n_designs);
-      if (st != AUTOBAL_SUCCESS) S->n_designs = 0;
     } else
 #endif
-    for (i = 0; i < ncand && st == AUTOBAL_SUCCESS && S->n_designs < o->n_best; i++) {
-      int dup = 0;
-      for (j = 0; j < S->n_designs; j++) dup |= same_design(&S->designs[j], &cand[i]);
-      if (dup) continue;
-      cand[i].feasible = cand[i].margin > o->margin;
-      c->fraction = 0.9 + 0.1 * (double)S->n_designs / (double)o->n_best;
-      if ((st = recheck(c, &cand[i])) != AUTOBAL_SUCCESS) break;
-      cand[i].p_balance = cand[i].ttb_median = cand[i].ttb_worst = NAN;
-      cand[i].n_runs = cand[i].n_balanced = 0;
-      S->designs[S->n_designs++] = cand[i];
+    for (i = 0; i < S->n_designs && st == AUTOBAL_SUCCESS; i++) {
+      c->fraction = 0.9 + 0.1 * (double)i / (double)S->n_designs;
+      st = recheck(c, &S->designs[i]);
     }
+    if (st != AUTOBAL_SUCCESS) S->n_designs = 0;
+    if (st == AUTOBAL_SUCCESS && every_members(o)) rank_covered(S->designs, S->n_designs);
   }
   if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
     /* the best design: the first that passes its re-check, else the first */
@@ -1490,6 +1541,7 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
   }
   free(cand);
+  free(starts);
   return st;
 }
 
@@ -1708,7 +1760,12 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
     if (!isnan(d->margin_certified) && (d->margin_certified > 0.0 || d->margin_steps > 0))
       put(&b, "; certified margin: every root Re lambda < -%.6g 1/s at every grid speed, every unbalance and phase%s\n",
           d->margin_certified, d->margin_decided ? "" : " (a lower bound; a bisection step was undecided: estimate)");
-  } else
+  } else if (nballs(d) >= 3 && d->members_certified == 1)
+    put(&b,
+        "; robust margin %.6g 1/s over the speed grid and every unbalance of the range on the symmetric members;\n"
+        "; over every member %.6g 1/s (certified at every speed of the re-check grid)\n",
+        d->margin, d->member_margin_certified);
+  else
     put(&b, "; robust margin %.6g 1/s over the speed grid and every unbalance of the range\n", d->margin);
   if (nballs(d) >= 3 && d->members_certified == 1)
     put(&b,
