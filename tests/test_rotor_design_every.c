@@ -296,16 +296,9 @@ static void test_u_range(void) {
   autobal_rotor_stab_free(s);
 }
 
-/* A small search over 3 and 4 balls with the certification: every certified design's random members at
- * every re-check speed are stable with the margin and have u in the enclosure. */
-static void test_search_every(void) {
-  double m0[3], r0[3], h0[3], psi0[3], rate0[3];
-  autobal_rotor_params p = machine(3, m0, r0, h0, psi0, rate0, 0.05, 0.1, 0.1);
+/* The small searches' options: 4500-9000 rpm, 500-4000 g mm, margin 0.2 1/s, 3 x 6 x 3 cells. */
+static autobal_study_rotor_design_options search_opts(void) {
   autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
-  autobal_study_rotor_design_summary S;
-  autobal_error err;
-  size_t i, j, k, ncert = 0, nrej = 0, nchk = 0, bad = 0, ubad = 0, nline = 0, mbad = 0;
-  int st;
   o.omega_min = 471.24;
   o.omega_max = 942.48;
   o.n_omega = 5;
@@ -322,6 +315,19 @@ static void test_search_every(void) {
   o.damping_min = 0.1;
   o.damping_max = 1.0;
   o.n_damping = 3;
+  return o;
+}
+
+/* A small search over 3 and 4 balls with the certification: every certified design's random members at
+ * every re-check speed are stable with the margin and have u in the enclosure. */
+static void test_search_every(void) {
+  double m0[3], r0[3], h0[3], psi0[3], rate0[3];
+  autobal_rotor_params p = machine(3, m0, r0, h0, psi0, rate0, 0.05, 0.1, 0.1);
+  autobal_study_rotor_design_options o = search_opts();
+  autobal_study_rotor_design_summary S;
+  autobal_error err;
+  size_t i, j, k, ncert = 0, nrej = 0, nchk = 0, bad = 0, ubad = 0, nline = 0, mbad = 0;
+  int st;
   o.n_best = 8;
   o.n_starts = 1;
   o.max_iter = 15;
@@ -442,28 +448,12 @@ static void test_search_every(void) {
 static void test_rank_covered(void) {
   double m0[3], r0[3], h0[3], psi0[3], rate0[3];
   autobal_rotor_params p = machine(3, m0, r0, h0, psi0, rate0, 0.05, 0.1, 0.1);
-  autobal_study_rotor_design_options o = autobal_study_rotor_design_options_default();
+  autobal_study_rotor_design_options o = search_opts();
   autobal_study_rotor_design_summary S;
   autobal_error err;
   size_t i, n, cells, order_bad = 0, missing = 0, infeasible_seen = 0;
   double prev = INFINITY;
   int st;
-  o.omega_min = 471.24;
-  o.omega_max = 942.48;
-  o.n_omega = 5;
-  o.n_verify = 9;
-  o.unbalance_min = 500e-6;
-  o.unbalance_max = 4000e-6;
-  o.margin = 0.2;
-  o.mass_min = 0.025;
-  o.mass_max = 0.1;
-  o.n_mass = 3;
-  o.radius_min = 0.05;
-  o.radius_max = 0.15;
-  o.n_radius = 6;
-  o.damping_min = 0.1;
-  o.damping_max = 1.0;
-  o.n_damping = 3;
   o.n_best = 3;
   o.n_starts = 1;
   o.max_iter = 15;
