@@ -3015,8 +3015,10 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   return outputs(r, frame, t, y, out, n_out, 0);
 }
 
-int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
-                               size_t n_out) {
+/* compiled for AVX2 too (as ball_sincos; no FMA, so the same bits): the per-ball loop's wraps
+ * (a division and a ceil, one instruction there) and the hypots */
+ROTOR_CLONES int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                                            size_t n_out) {
   return outputs(r, frame, t, y, out, n_out, 1);
 }
 
