@@ -394,6 +394,16 @@ DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double 
   return (bad >> 63) == 0;
 }
 
+/* dense_at_ for the order-6 extension alone: a small function (no contd8 paths, so no large
+ * frame to set up at each output point) */
+DOP853_CLONES int autobal_transient_dop853_dense6_at_(const void *vstate, double t, double *out) {
+  const dop853_state *s = (const dop853_state *)vstate;
+  double th = (t - s->t0) / s->h;
+  if (th < 0.0) th = 0.0;
+  if (th > 1.0) th = 1.0;
+  return (dop853_eval6_any(s, th, out) >> 63) == 0;
+}
+
 void autobal_transient_dop853_set_dense_order_(void *vstate, int order) {
   dop853_state *s = (dop853_state *)vstate;
   s->dense_order = order == 6 ? 6 : 7;

@@ -898,7 +898,8 @@ static inline int dense_at(autobal_transient *tr, double t, double *out) {
     if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
   }
   /* theta = (t - t0) / h clamped to [0, 1], the extension there and its finiteness, one call */
-  if (!autobal_transient_dop853_dense_at_(st, t, out)) {
+  if (!(tr->opt.dense_order == 6 ? autobal_transient_dop853_dense6_at_(st, t, out)
+                                  : autobal_transient_dop853_dense_at_(st, t, out))) {
     nonfinite_failure(tr, t, out);
     return rhs_failure(tr);
   }

@@ -179,12 +179,15 @@ static double motor_L(const autobal_rotor *R, double W) {
 
 /* Wrap an angle to (-pi, pi].  For |a| <= 3 the formula gives a + 0 (ceil of a value in (-1, 0)
  * is -0): taken directly, the same number bit for bit (-0 becomes +0 as in the formula). */
-static double wrap_pi(double a) {
-  if (fabs(a) <= 3.0) return a + 0.0;
+static inline double wrap_pi_formula(double a) {
   double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
   if (w <= -M_PI) w += 2.0 * M_PI;
   if (w > M_PI) w -= 2.0 * M_PI;
   return w;
+}
+static double wrap_pi(double a) {
+  if (fabs(a) <= 3.0) return a + 0.0;
+  return wrap_pi_formula(a);
 }
 
 /* Solve a symmetric positive definite 4x4 system by the root-free Cholesky
@@ -2994,10 +2997,13 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
       psid = rate;
       phid = rate + W;
     }
+    /* fast (outputs_fast, with ceil one instruction in its AVX2 clone): the formula without the
+     * shortcut, the same numbers (see wrap_pi) without a branch on each angle that the predictor
+     * misses where ball angles move about |a| = 3 */
     o[0] = phi;
-    o[1] = wrap_pi(phi);
+    o[1] = fast ? wrap_pi_formula(phi) : wrap_pi(phi);
     o[2] = psi;
-    o[3] = wrap_pi(psi);
+    o[3] = fast ? wrap_pi_formula(psi) : wrap_pi(psi);
     o[4] = phid;
     o[5] = psid;
   }
