@@ -34,6 +34,10 @@
 #   bench/run.sh dense-ratio REV [ARGS...]  the time of output every quarter revolution, out/none of the
 #                                    CLI's transient, this library against bench_dense of git revision REV
 #                                    (e.g. main), interleaved; ARGS go to dense_ratio.py (e.g. --rounds 7)
+#   bench/run.sh issue20 REV [ARGS...] every target of issue 20 in one run: out/none (dense6, dense; this
+#                                    library and REV interleaved, and instructions), the CLI vs SciPy DOP853
+#                                    at matched error, the right-hand side's share of the bare integration
+#                                    (callgrind and time); ARGS go to issue20.py (e.g. --out FILE.json)
 #
 # Build directory: $AUTOBAL_BENCH_BUILD (default: build-bench next to bench/).
 set -euo pipefail
@@ -42,9 +46,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction|contact|design|dense|dense-ratio) what=$1; shift ;;
-    -h|--help) sed -n '2,37p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design, dense or dense-ratio; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact|design|dense|dense-ratio|issue20) what=$1; shift ;;
+    -h|--help) sed -n '2,41p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design, dense, dense-ratio or issue20; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -60,7 +64,7 @@ case "$what" in
   friction) targets=(bench_rotor bench_friction) ;;
   contact) targets=(bench_rotor bench_friction) ;;
   design) targets=(bench_design) ;;
-  dense|dense-ratio) targets=(bench_dense) ;;
+  dense|dense-ratio|issue20) targets=(bench_dense) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
@@ -68,8 +72,8 @@ py=/usr/bin/python3
 if [ "$what" = dense ]; then
   exec "$py" "$here/dense_scipy.py" --bench "$build/bench_dense" "$@"
 fi
-if [ "$what" = dense-ratio ]; then
-  [ $# -ge 1 ] || { echo "run.sh: dense-ratio needs a git revision (the reference, e.g. main)" >&2; exit 2; }
+if [ "$what" = dense-ratio ] || [ "$what" = issue20 ]; then
+  [ $# -ge 1 ] || { echo "run.sh: $what needs a git revision (the reference, e.g. main)" >&2; exit 2; }
   rev=$(git -C "$here/.." rev-parse --short "$1^{commit}")
   shift
   old="$build-before-$rev"
@@ -79,6 +83,7 @@ if [ "$what" = dense-ratio ]; then
     cmake -S "$old/src/bench" -B "$old/build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
     cmake --build "$old/build" --target bench_dense > /dev/null
   fi
+  [ "$what" = issue20 ] && exec "$py" "$here/issue20.py" --bench "$build/bench_dense" --before "$old/build/bench_dense" "$@"
   exec "$py" "$here/dense_ratio.py" --bench "$build/bench_dense" --before "$old/build/bench_dense" "$@"
 fi
 # bench_rotor of the library at git revision $1 (built once, in $build-before-REV); prints its path

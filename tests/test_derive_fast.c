@@ -155,6 +155,56 @@ static void test_pendulum(void) {
   }
 }
 
+/* derive_fast_cols: the bytes of derive_fast at every state, for block lengths around the chunk
+ * size, with the states of the slow paths among them (angles out of the wrap's identity range and
+ * out of the sine's range, -pi, NaN, amplitudes outside hypot_fast's sqrt range, -0) */
+static void test_pendulum_cols(void) {
+  autobal_pendulum_params p = {3.0, 0.1, 0.05, 0.1, 0.5};
+  autobal_pendulum_motion m;
+  autobal_error err;
+  enum { NMAX = 131 };
+  static double cols[8][NMAX], dc[7][NMAX];
+  const double *const yc[8] = {cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], cols[6], cols[7]};
+  double *const dd[7] = {dc[0], dc[1], dc[2], dc[3], dc[4], dc[5], dc[6]};
+  const size_t lens[] = {1, 5, 63, 64, 65, 131};
+  size_t li;
+  int bad = 0, edges = 0;
+  CHECK_STATUS("pendulum motion init (cols)", autobal_pendulum_motion_init(&m, &p, &err), AUTOBAL_SUCCESS);
+  for (li = 0; li < sizeof lens / sizeof lens[0]; li++) {
+    const size_t n = lens[li];
+    size_t k;
+    for (k = 0; k < n; k++) {
+      int i;
+      for (i = 0; i < 8; i++) cols[i][k] = (2.0 * urand() - 1.0) * (i < 2 ? 0.5 : i < 4 ? 3.0 : 3.0);
+      if (k % 9 == 3) cols[2][k] = p.psi0 - 3.14159265358979323846;              /* alpha: -pi -> pi */
+      if (k % 11 == 4) cols[3][k] = 7.5 + 20.0 * urand();       /* beta: remainder */
+      if (k % 13 == 5) cols[0][k] = 1e-300, cols[1][k] = -0.0;  /* amplitude: libm's hypot */
+      if (k % 17 == 6) cols[1][k] = 1e200;                      /* amplitude: libm's hypot */
+      if (k % 19 == 7) cols[2][k] = 3e6;                        /* sine out of range: libm */
+      if (k % 23 == 8) cols[3][k] = NAN;
+      if (li == 0 && n == 1) cols[2][k] = cols[3][k] = p.psi0; /* alpha = beta = 0, unbalance 0 */
+    }
+    autobal_pendulum_motion_derive_fast_cols(&m, n, yc, dd);
+    for (k = 0; k < n; k++) {
+      autobal_pendulum_motion_derived d;
+      double y[8];
+      const double *want;
+      int i;
+      for (i = 0; i < 8; i++) y[i] = cols[i][k];
+      autobal_pendulum_motion_derive_fast(&m, y, &d);
+      want = &d.amplitude;
+      for (i = 0; i < 7; i++) {
+        if (!same_bits(dc[i][k], want[i])) {
+          if (bad++ < 5) printf("     n %zu state %zu column %d: %.17g, derive_fast %.17g\n", n, k, i, dc[i][k], want[i]);
+        }
+      }
+      edges += k % 9 == 3 || k % 11 == 4 || k % 13 == 5 || k % 17 == 6 || k % 19 == 7 || k % 23 == 8;
+    }
+  }
+  CHECK("derive_fast_cols: the bytes of derive_fast in every column, blocks of 1, 5, 63, 64, 65, 131 states "
+        "with the slow paths among them", bad == 0 && edges > 20);
+}
+
 static autobal_rotor *rotor_n(size_t n) {
   autobal_rotor_params rp = autobal_rotor_params_default();
   static double mass[70], rad[70], damp[70], psi[70], rate[70];
@@ -239,6 +289,7 @@ int main(void) {
   test_hypot();
   test_sincos2();
   test_pendulum();
+  test_pendulum_cols();
   test_rotor();
   return check_summary();
 }

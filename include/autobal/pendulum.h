@@ -800,6 +800,14 @@ AUTOBAL_API void autobal_pendulum_motion_derive_m(const autobal_pendulum_motion 
 AUTOBAL_API void autobal_pendulum_motion_derive_fast(const autobal_pendulum_motion *m,
                                                      const double y[],
                                                      autobal_pendulum_motion_derived *out);
+/* The numbers of autobal_pendulum_motion_derive_fast, bit for bit, for n states at once (the
+ * buffered output points of a run with output = dense6), by columns: y[j][k] is component j of
+ * state k (j < 8, k < n), and d[0..6][k] receive amplitude, unbalance, unbalance_u, unbalance_v,
+ * alpha, beta and jacobi of state k (the order of autobal_pendulum_motion_derived).  One
+ * vectorizable pass over the states (4 per instruction with AVX2), then libm for the rare states
+ * out of the fast paths' ranges.  The arrays must not overlap. */
+AUTOBAL_API void autobal_pendulum_motion_derive_fast_cols(const autobal_pendulum_motion *m, size_t n,
+                                                          const double *const y[8], double *const d[7]);
 
 AUTOBAL_END_DECLS
 

@@ -292,12 +292,14 @@ static DOP853_INLINE void dop853_eval(const dop853_state *s, const size_t n, con
  * point costs 9 products per component and point instead of 36 per component for the rows and
  * 14 per point for the nested form.  u(0) = y0 exactly (A = 0, g = 0); u(1) = y0 + (y1 - y0)
  * (A = 1, g = 0), y1 to rounding. */
-static DOP853_INLINE void dop853_eval6(const dop853_state *s, const size_t n, const size_t np, double theta,
-                                       double *restrict out) {
+static DOP853_INLINE uint64_t dop853_eval6(const dop853_state *s, const size_t n, const size_t np, double theta,
+                                           double *restrict out) {
   const double x = theta, x1 = 1.0 - theta, h = s->h;
   const double w1 = x * x1, w2 = w1 * x, w3 = w2 * x1, w4 = w3 * x, w5 = w4 * x1, w6 = w5 * x;
   const double A = x * x * (3.0 - 2.0 * x); /* = x - w1 + 2 w2 */
   const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict k = s->k;
+  const uint64_t ex = UINT64_C(0x7ff0000000000000), one = UINT64_C(0x0010000000000000);
+  uint64_t bad = 0;
   double g[NEXT - 3];
   size_t i;
   /* stages 5..12 (two vectors of 4), then stage 0 (stages 1..4 have weight 0) */
@@ -307,39 +309,49 @@ static DOP853_INLINE void dop853_eval6(const dop853_state *s, const size_t n, co
   g[0] = hw3 * DOP853_D6[0][0] + hw4 * DOP853_D6[1][0] + hw5 * DOP853_D6[2][0] + hw6 * DOP853_D6[3][0];
   g[0] += h * (w1 - w2);
   g[NST] -= h * w2;
+  /* the 9 products summed in two chains (stages 0, 5..8 and 9..12) added at the end: half the
+   * dependent additions; the result's finiteness on the bits in the same pass (as the step's
+   * last pass: the exponent field plus one carries into the sign bit exactly for inf and NaN) */
   for (i = 0; i < n; i++) {
-    double v = g[0] * k[i];
+    double v = g[0] * k[i], v2 = g[9] * k[9 * np + i];
+    uint64_t u;
     v += g[5] * k[5 * np + i];
+    v2 += g[10] * k[10 * np + i];
     v += g[6] * k[6 * np + i];
+    v2 += g[11] * k[11 * np + i];
     v += g[7] * k[7 * np + i];
+    v2 += g[12] * k[12 * np + i];
     v += g[8] * k[8 * np + i];
-    v += g[9] * k[9 * np + i];
-    v += g[10] * k[10 * np + i];
-    v += g[11] * k[11 * np + i];
-    v += g[12] * k[12 * np + i];
-    out[i] = y0[i] + (A * (y1[i] - y0[i]) + v);
+    out[i] = y0[i] + (A * (y1[i] - y0[i]) + (v + v2));
+    memcpy(&u, &out[i], sizeof u);
+    bad |= (u & ex) + one;
   }
+  return bad;
 }
 
 /* the same operations in the same order for every size (bit for bit); the small sizes with
  * their dimension and stride as constants (unrolled, as dop853_apply) */
-static DOP853_INLINE void dop853_eval_any(const dop853_state *s, double theta, double *out) {
-  if (s->dense_order == 6) {
+/* the order-6 extension; returns its finiteness flags (top bit set: not finite) */
+static DOP853_INLINE uint64_t dop853_eval6_any(const dop853_state *s, double theta, double *out) {
 #define DOP853_EVAL6_CASE(NP)                                                                  \
   case NP:                                                                                     \
-    if (s->dim == NP) dop853_eval6(s, NP, NP, theta, out);                                     \
-    else dop853_eval6(s, s->dim, NP, theta, out);                                              \
-    return
-    switch (s->np) {
-      DOP853_EVAL6_CASE(4);
-      DOP853_EVAL6_CASE(8);
-      DOP853_EVAL6_CASE(12);
-      DOP853_EVAL6_CASE(16);
-      DOP853_EVAL6_CASE(20);
-      DOP853_EVAL6_CASE(24);
-      default: dop853_eval6(s, s->dim, s->np, theta, out); return;
-    }
+    return s->dim == NP ? dop853_eval6(s, NP, NP, theta, out) : dop853_eval6(s, s->dim, NP, theta, out)
+  switch (s->np) {
+    DOP853_EVAL6_CASE(4);
+    DOP853_EVAL6_CASE(8);
+    DOP853_EVAL6_CASE(12);
+    DOP853_EVAL6_CASE(16);
+    DOP853_EVAL6_CASE(20);
+    DOP853_EVAL6_CASE(24);
+    default: return dop853_eval6(s, s->dim, s->np, theta, out);
+  }
 #undef DOP853_EVAL6_CASE
+}
+
+static DOP853_INLINE void dop853_eval_any(const dop853_state *s, double theta, double *out) {
+  if (s->dense_order == 6) {
+    (void)dop853_eval6_any(s, theta, out);
+    return;
   }
 #define DOP853_EVAL_CASE(NP)                                                                   \
   case NP:                                                                                     \
@@ -372,6 +384,7 @@ DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double 
   size_t i;
   if (th < 0.0) th = 0.0;
   if (th > 1.0) th = 1.0;
+  if (s->dense_order == 6) return (dop853_eval6_any(s, th, out) >> 63) == 0; /* tested in its pass */
   dop853_eval_any(s, th, out);
   for (i = 0; i < s->dim; i++) {
     uint64_t u;
@@ -379,6 +392,16 @@ DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double 
     bad |= (u & ex) + one;
   }
   return (bad >> 63) == 0;
+}
+
+/* dense_at_ for the order-6 extension alone: a small function (no contd8 paths, so no large
+ * frame to set up at each output point) */
+DOP853_CLONES int autobal_transient_dop853_dense6_at_(const void *vstate, double t, double *out) {
+  const dop853_state *s = (const dop853_state *)vstate;
+  double th = (t - s->t0) / s->h;
+  if (th < 0.0) th = 0.0;
+  if (th > 1.0) th = 1.0;
+  return (dop853_eval6_any(s, th, out) >> 63) == 0;
 }
 
 void autobal_transient_dop853_set_dense_order_(void *vstate, int order) {

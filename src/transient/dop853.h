@@ -39,6 +39,10 @@ void autobal_transient_dop853_dense_eval_(const void *state, double theta, doubl
  * (eval_ and the test in one call: the driver's dense output). */
 int autobal_transient_dop853_dense_at_(const void *state, double t, double *out);
 
+/* The same for a state whose extension has order 6 (set_dense_order_(state, 6)): the same numbers,
+ * a smaller function (the driver's output points with dense6). */
+int autobal_transient_dop853_dense6_at_(const void *state, double t, double *out);
+
 /* The tolerances of the control that judges the steps (GSL's standard control with these atol,
  * rtol, a_y = 1, a_dydt = 0): with them the error estimate is Hairer's normwise one (the factor
  * |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the 2-norms scaled by atol + rtol max(|y0_i|, |y1_i|),

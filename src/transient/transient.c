@@ -879,10 +879,14 @@ static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
  * dense_order = 6 none), into
  * out.  Returns AUTOBAL_SUCCESS or AUTOBAL_ERHS (a right-hand side failed or rejected the
  * state of an extra stage, or the interpolated state is not finite). */
-static int dense_at(autobal_transient *tr, double t, double *out) {
+#if defined(__GNUC__)
+__attribute__((always_inline)) /* the output loop's call: no call overhead per output point */
+#endif
+static inline int dense_at(autobal_transient *tr, double t, double *out) {
   void *st = tr->main.d->s->state;
   double t0, h;
-  if (!autobal_transient_dop853_dense_ready_(st)) {
+  /* order 6: nothing to prepare (its prepare only marks the extension ready) */
+  if (tr->opt.dense_order != 6 && !autobal_transient_dop853_dense_ready_(st)) {
     int rc = autobal_transient_dop853_dense_prepare_(st, &tr->gsys);
     if (rc == GSL_FAILURE && tr->fail_kind == 0) {
       autobal_transient_dop853_last_step_(st, &t0, &h);
@@ -894,7 +898,8 @@ static int dense_at(autobal_transient *tr, double t, double *out) {
     if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
   }
   /* theta = (t - t0) / h clamped to [0, 1], the extension there and its finiteness, one call */
-  if (!autobal_transient_dop853_dense_at_(st, t, out)) {
+  if (!(tr->opt.dense_order == 6 ? autobal_transient_dop853_dense6_at_(st, t, out)
+                                  : autobal_transient_dop853_dense_at_(st, t, out))) {
     nonfinite_failure(tr, t, out);
     return rhs_failure(tr);
   }

@@ -324,3 +324,89 @@ void autobal_pendulum_motion_derive_fast(const autobal_pendulum_motion *m, const
                                          autobal_pendulum_motion_derived *out) {
   derive(&m->p, m->sin_psi0, y, out, 1);
 }
+
+/* derive_fast over columns: in chunks of DCOLS states, (1) the sines and cosines of psi and phi in
+ * one vectorizable pass (autobal_sincos_array: the bits of autobal_sincos2's lanes, libm out of
+ * range), (2) derive's expressions in the same order over the chunk (no FMA: the bits of derive),
+ * hypot as sqrt(a^2 + b^2) (the square roots in a pass of their own) and the wrap as the
+ * identity, with the states where either is not valid (outside hypot_fast's sqrt range, |a| >= pi,
+ * NaN) marked on the bits as in autobal_sincos_array, (3) those few states again by derive's
+ * scalar functions. */
+enum { DCOLS = 64 };
+/* one chunk of nc <= DCOLS states (a function of its own: inside the loop over the chunks GCC
+ * does not vectorize the loops) */
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 8 && defined(__x86_64__) && \
+    defined(__linux__) && !defined(AUTOBAL_NO_CLONES)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void derive_chunk(const autobal_pendulum_motion *m, size_t nc, const double *restrict xi_,
+                         const double *restrict eta_, const double *restrict psi_, const double *restrict phi_,
+                         const double *restrict dxi_, const double *restrict deta_,
+                         const double *restrict dpsi_, const double *restrict dphi_, double *restrict amp,
+                         double *restrict unb, double *restrict uu, double *restrict uv, double *restrict al,
+                         double *restrict be, double *restrict jac) {
+  const autobal_pendulum_params *p = &m->p;
+  const double s0 = m->sin_psi0, psi0 = p->psi0, Rw2 = p->R_w * p->R_w, Rm = p->R_m;
+  const double lo = 0x1p-968, hi = 0x1p1000, pi = M_PI;
+  const uint64_t absmask = ~((uint64_t)1 << 63);
+  uint64_t blo, bhi, bpi1, bad = 0;
+  double sn1[DCOLS], cs1[DCOLS], sn2[DCOLS], cs2[DCOLS];
+  size_t k;
+  memcpy(&blo, &lo, sizeof blo);
+  memcpy(&bhi, &hi, sizeof bhi);
+  memcpy(&bpi1, &pi, sizeof bpi1);
+  bpi1 -= 1; /* the double below pi */
+  (void)autobal_sincos_array(psi_, sn1, cs1, nc);
+  (void)autobal_sincos_array(phi_, sn2, cs2, nc);
+  for (k = 0; k < nc; k++) {
+    const double s1 = sn1[k], c1 = cs1[k], s2 = sn2[k], c2 = cs2[k];
+    const double xi = xi_[k], eta = eta_[k], dxi = dxi_[k], deta = deta_[k], dpsi = dpsi_[k],
+                 dphi = dphi_[k];
+    const double du = s0 - 0.5 * (s1 + s2), dv = 0.5 * (c1 - c2);
+    const double T2 = 0.5 * (dxi * dxi + deta * deta + Rm * (dpsi * dpsi + dphi * dphi)) -
+                      Rm * dxi * (c1 * dpsi + c2 * dphi) - Rm * deta * (s1 * dpsi - s2 * dphi);
+    const double T0 =
+        0.5 * Rw2 * (xi * xi + eta * eta + 2.0 * Rm * (xi * (2.0 * s0 - s1 - s2) + eta * (c1 - c2)));
+    const double V = 0.5 * (xi * xi + eta * eta);
+    const double qa = xi * xi + eta * eta, qu = du * du + dv * dv; /* hypot_fast's sums */
+    const double a1 = psi_[k] - psi0, a2 = phi_[k] - psi0;
+    uint64_t b1, b2, b3, b4;
+    memcpy(&b1, &qa, sizeof b1);
+    memcpy(&b2, &qu, sizeof b2);
+    memcpy(&b3, &a1, sizeof b3);
+    memcpy(&b4, &a2, sizeof b4);
+    /* out of range: the difference wraps around and sets the top bit (qa, qu >= 0 or NaN) */
+    bad |= (bhi - b1) | (b1 - blo) | (bhi - b2) | (b2 - blo) | (bpi1 - (b3 & absmask)) |
+           (bpi1 - (b4 & absmask));
+    amp[k] = qa; /* the square roots in the next pass (libm's sqrt sets errno: not vectorized) */
+    uu[k] = du;
+    uv[k] = dv;
+    unb[k] = qu;
+    /* wrap_angle for |a| < pi: a itself (|a| >= pi, with -pi -> pi, in the last pass) */
+    al[k] = a1;
+    be[k] = a2;
+    jac[k] = T2 - T0 + V;
+  }
+  for (k = 0; k < nc; k++) {
+    amp[k] = sqrt(amp[k]);
+    unb[k] = sqrt(unb[k]);
+  }
+  if ((bad >> 63) != 0) {
+    for (k = 0; k < nc; k++) {
+      amp[k] = autobal_hypot_fast(xi_[k], eta_[k]);
+      unb[k] = autobal_hypot_fast(uu[k], uv[k]);
+      al[k] = wrap_angle(psi_[k] - psi0);
+      be[k] = wrap_angle(phi_[k] - psi0);
+    }
+  }
+}
+
+void autobal_pendulum_motion_derive_fast_cols(const autobal_pendulum_motion *m, size_t n,
+                                              const double *const y[8], double *const d[7]) {
+  size_t k0;
+  for (k0 = 0; k0 < n; k0 += DCOLS) {
+    const size_t nc = n - k0 < DCOLS ? n - k0 : DCOLS;
+    derive_chunk(m, nc, y[0] + k0, y[1] + k0, y[2] + k0, y[3] + k0, y[4] + k0, y[5] + k0, y[6] + k0,
+                 y[7] + k0, d[0] + k0, d[1] + k0, d[2] + k0, d[3] + k0, d[4] + k0, d[5] + k0, d[6] + k0);
+  }
+}

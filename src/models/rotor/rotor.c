@@ -179,12 +179,18 @@ static double motor_L(const autobal_rotor *R, double W) {
 
 /* Wrap an angle to (-pi, pi].  For |a| <= 3 the formula gives a + 0 (ceil of a value in (-1, 0)
  * is -0): taken directly, the same number bit for bit (-0 becomes +0 as in the formula). */
-static double wrap_pi(double a) {
-  if (fabs(a) <= 3.0) return a + 0.0;
-  double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
+/* the formula with its quotient q = (a - pi) / (2 pi) given (computed by the caller, e.g. in a
+ * vectorized pass over many angles: the same division, the same bits) */
+static inline double wrap_pi_q(double a, double q) {
+  double w = a - 2.0 * M_PI * ceil(q);
   if (w <= -M_PI) w += 2.0 * M_PI;
   if (w > M_PI) w -= 2.0 * M_PI;
   return w;
+}
+static inline double wrap_pi_formula(double a) { return wrap_pi_q(a, (a - M_PI) / (2.0 * M_PI)); }
+static double wrap_pi(double a) {
+  if (fabs(a) <= 3.0) return a + 0.0;
+  return wrap_pi_formula(a);
 }
 
 /* Solve a symmetric positive definite 4x4 system by the root-free Cholesky
@@ -2980,7 +2986,34 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     for (k = 0; k < r->N; k++)
       fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
   }
-  for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
+  if (tab) {
+    /* fast, up to 62 balls: the wrap's quotients of every phi and psi in one vectorized pass (one
+     * division per 4 angles with AVX2), then the formula without the |a| <= 3 shortcut (the same
+     * numbers, see wrap_pi; no branch per angle, which the predictor misses where ball angles move
+     * about |a| = 3) */
+    double ph[FAST_TRIG], ps[FAST_TRIG], qph[FAST_TRIG], qps[FAST_TRIG];
+    const double sh_phi = frame == AUTOBAL_ROTOR_FIXED ? 0.0 : wt, sh_psi = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
+    const double W_phi = frame == AUTOBAL_ROTOR_FIXED ? 0.0 : W, W_psi = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
+    const int fixed = frame == AUTOBAL_ROTOR_FIXED;
+    for (k = 0; k < r->N; k++) { /* as the loop below: phi = ang or ang + wt, psi = ang - wt or ang */
+      ph[k] = fixed ? y[8 + k] : y[8 + k] + sh_phi;
+      ps[k] = fixed ? y[8 + k] - sh_psi : y[8 + k];
+    }
+    for (k = 0; k < r->N; k++) {
+      qph[k] = (ph[k] - M_PI) / (2.0 * M_PI);
+      qps[k] = (ps[k] - M_PI) / (2.0 * M_PI);
+    }
+    for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
+      const double rate = y[8 + r->N + k];
+      o[0] = ph[k];
+      o[1] = wrap_pi_q(ph[k], qph[k]);
+      o[2] = ps[k];
+      o[3] = wrap_pi_q(ps[k], qps[k]);
+      o[4] = fixed ? rate : rate + W_phi;
+      o[5] = fixed ? rate - W_psi : rate;
+    }
+  }
+  for (k = 0; k < r->N && !tab; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
     double phi, psi, phid, psid;
     if (frame == AUTOBAL_ROTOR_FIXED) {
@@ -2994,10 +3027,11 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
       psid = rate;
       phid = rate + W;
     }
+    /* fast with more than 62 balls: the formula without the shortcut (as above) */
     o[0] = phi;
-    o[1] = wrap_pi(phi);
+    o[1] = fast ? wrap_pi_formula(phi) : wrap_pi(phi);
     o[2] = psi;
-    o[3] = wrap_pi(psi);
+    o[3] = fast ? wrap_pi_formula(psi) : wrap_pi(psi);
     o[4] = phid;
     o[5] = psid;
   }
@@ -3015,8 +3049,10 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   return outputs(r, frame, t, y, out, n_out, 0);
 }
 
-int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
-                               size_t n_out) {
+/* compiled for AVX2 too (as ball_sincos; no FMA, so the same bits): the per-ball loop's wraps
+ * (a division and a ceil, one instruction there) and the hypots */
+ROTOR_CLONES int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                                            size_t n_out) {
   return outputs(r, frame, t, y, out, n_out, 1);
 }
 
