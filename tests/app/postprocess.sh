@@ -111,22 +111,34 @@ expect 0 "" "$AUTOBAL" rerun roots.h5 -o re_roots.h5 --force
 expect 2 "-o NEW.h5" "$AUTOBAL" rerun roots.h5
 expect 2 "is the archive being re-run" "$AUTOBAL" rerun roots.h5 -o roots.h5 --force
 expect 2 "no --set" "$AUTOBAL" rerun roots.h5 -o x.h5 --set pendulum.R_w=2
+# the damaged copies of roots.h5 for the reruns below, made by one Python process (h5py once)
+for f in noconfig badcmd badcfg baddef twice defnan garbled; do cp roots.h5 $f.h5; done
+"$PY" - <<'PYEOF' || bad "could not make the damaged copies of roots.h5"
+import h5py
+def edit(name, **attrs):
+    with h5py.File(name, 'r+') as h:
+        for k, v in attrs.items():
+            if v is None:
+                del h.attrs[k]
+            else:
+                h.attrs[k] = v
+edit('noconfig.h5', input_config=None, effective_config=None)
+edit('badcmd.h5', command='rotor levitate')
+edit('badcfg.h5', effective_config='[pendulum]\nR_w = 2\n[pendulum]\nR_q = 1\n')
+edit('baddef.h5', effective_config='[pendulum]\n;default R_q = 1\n')
+edit('twice.h5', effective_config='[pendulum]\nR_w = 2\n;default R_w = 3\n')
+edit('defnan.h5', effective_config='[pendulum]\n;default R_w = zz\n')
+edit('garbled.h5', effective_config='R_w: 2\n')
+PYEOF
 expect 4 "not an autobal archive" "$AUTOBAL" rerun foreign.h5 -o x.h5
 expect 4 "No such file" "$AUTOBAL" rerun missing.h5 -o x.h5
-cp roots.h5 noconfig.h5 && "$PY" -c "import h5py; h = h5py.File('noconfig.h5', 'r+'); del h.attrs['input_config']; del h.attrs['effective_config']"
 expect 4 "no root attribute 'effective_config' (nor 'input_config')" "$AUTOBAL" rerun noconfig.h5 -o x.h5
-cp roots.h5 badcmd.h5 && "$PY" -c "import h5py; h = h5py.File('badcmd.h5', 'r+'); h.attrs['command'] = 'rotor levitate'"
 expect 4 "rotor levitate" "$AUTOBAL" rerun badcmd.h5 -o x.h5
-cp roots.h5 badcfg.h5 && "$PY" -c "import h5py; h = h5py.File('badcfg.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\nR_w = 2\n[pendulum]\nR_q = 1\n'"
 expect 3 "R_q" "$AUTOBAL" rerun badcfg.h5 -o x.h5
-cp roots.h5 baddef.h5 && "$PY" -c "import h5py; h = h5py.File('baddef.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\n;default R_q = 1\n'"
 expect 3 "R_q" "$AUTOBAL" rerun baddef.h5 -o x.h5
-cp roots.h5 twice.h5 && "$PY" -c "import h5py; h = h5py.File('twice.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\nR_w = 2\n;default R_w = 3\n'"
 expect 4 "recorded more than once" "$AUTOBAL" rerun twice.h5 -o x.h5
-cp roots.h5 defnan.h5 && "$PY" -c "import h5py; h = h5py.File('defnan.h5', 'r+'); h.attrs['effective_config'] = '[pendulum]\n;default R_w = zz\n'"
 expect 3 "R_w = 'zz'" "$AUTOBAL" rerun defnan.h5 -o x.h5
 [ ! -e x.h5 ] && ok "no x.h5 left by the failed reruns" || bad "a failed rerun left x.h5"
-cp roots.h5 garbled.h5 && "$PY" -c "import h5py; h = h5py.File('garbled.h5', 'r+'); h.attrs['effective_config'] = 'R_w: 2\n'"
 expect 4 "neither" "$AUTOBAL" rerun garbled.h5 -o x.h5
 
 # ---- 4b. the effective configuration: every key read, defaults included ---------------------------

@@ -305,7 +305,7 @@ def derive_normal_force(dr):
     m, r, d, h = sp.symbols('m r d h', positive=True)
     R = sp.Function('R', real=True)(t)
     ph = sp.Function('phi', real=True)(t)
-    parts = dr.point_mass_energy_parts(m, R, d, ph)
+    parts = dr.point_mass_energy_parts(m, R, d, ph, orders=2)   # eps^2 is not used here
     T = parts[0] + parts[1]
     V = m * g_s * (dr.v_D(d) + R * sp.sin(ph))
 

@@ -31,7 +31,11 @@ Gs=G.applyfunc(lambda x: sp.expand(x).subs(I,-I))
 q1,q2,r1,r2=sp.symbols('q1 q2 r1 r2')
 H=q1*B[0]+q2*B[1]; Ht=r1*B[0]+r2*B[1]
 Mx=sp.BlockMatrix([[G,H],[Ht,Gs]]).as_explicit()
-det=sp.expand(Mx.det(method='berkowitz'))
+# the determinant over the polynomial ring QQ(i)[q1, q2, r1, r2, lambda] (DomainMatrix: exact, the same
+# polynomial as Matrix.det(method='berkowitz') on expressions, 7 s -> 0.4 s)
+from sympy.polys.matrices import DomainMatrix
+_dM=DomainMatrix.from_Matrix(Mx)
+det=sp.expand(_dM.domain.to_sympy(_dM.det()))
 poly=sp.Poly(det,q1,q2,r1,r2)
 mons=sorted(poly.monoms())
 ok_all = True
