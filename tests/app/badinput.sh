@@ -232,7 +232,7 @@ ls | grep -q partial && bad "temporary files left: $(ls | grep partial)" || ok "
 
 # ---- SIGTERM during a long pendulum transient -------------------------------------------------
 timeout -s KILL 300 "$A" pendulum transient --set transient.t_end=1e9 --set transient.revs_out=50 -o term.h5 >out.txt 2>err.txt &
-pid=$!; sleep 1.5; kill -TERM $pid; wait $pid; rc=$?
+pid=$!; caught $pid TERM; sleep 1.5; kill -TERM $pid; wait $pid; rc=$?
 [ $rc -eq 6 ] && ok "SIGTERM during a pendulum transient -> exit 6" || { bad "SIGTERM gave exit $rc"; cat err.txt; }
 grep -q "interrupted" err.txt && ok "the message says interrupted" || { bad "no 'interrupted' message"; cat err.txt; }
 "$PY" - <<'EOF' && ok "term.h5: valid archive, status incomplete (SIGTERM), data up to the stop" || bad "term.h5"
@@ -252,7 +252,7 @@ ls | grep -q partial && bad "temporary files left after SIGTERM" || ok "no tempo
 # either with a step-size failure (exit 5) before the signal, or honouring SIGTERM (exit 6);
 # never by grinding on until max_steps.
 timeout -s KILL 300 "$A" pendulum transient --set initial.xi=1e300 --set transient.max_steps=3000000 >out.txt 2>err.txt &
-pid=$!; sleep 0.5; kill -TERM $pid 2>/dev/null; t0=$(date +%s.%N); wait $pid; rc=$?; dt=$("$PY" -c "print(round($(date +%s.%N) - $t0, 1))")
+pid=$!; caught $pid TERM; sleep 0.5; kill -TERM $pid 2>/dev/null; t0=$(date +%s.%N); wait $pid; rc=$?; dt=$("$PY" -c "print(round($(date +%s.%N) - $t0, 1))")
 if { [ $rc -eq 5 ] || [ $rc -eq 6 ]; } && "$PY" -c "import sys; sys.exit(0 if $dt < 2 else 1)"; then ok "a stuck run ends promptly (exit $rc)"
 else bad "a stuck run: exit $rc after $dt s"; fi
 

@@ -33,7 +33,7 @@ expect 0 "" "$AUTOBAL" rotor transient --json --set transient.t_end=1
 
 # interruption: SIGINT during a long run -> exit 6, archive kept, marked incomplete
 "$AUTOBAL" rotor transient --set transient.t_end=100000 --set transient.revs_out=20 -o int.h5 >out.txt 2>err.txt &
-pid=$!; sleep 1; kill -INT $pid; wait $pid; rc=$?
+pid=$!; caught $pid INT; sleep 1; kill -INT $pid; wait $pid; rc=$?
 [ $rc -eq 6 ] && ok "SIGINT -> exit 6" || { bad "SIGINT gave exit $rc"; cat err.txt; }
 "$PY" "$here/rotor_check.py" partial int.h5 && ok "interrupted archive readable and incomplete" || bad "interrupted archive"
 # solver failure: maximum steps -> exit 5 with the partial result

@@ -132,6 +132,7 @@ expect_err 3 "plane2" "$AUTOBAL" rotor design two.ini
 # SIGINT during a long search: exit 6, the archive incomplete, the map rows done
 "$AUTOBAL" rotor design d.ini --set design.n_ball_mass=200 --set design.n_ball_damping=40 --set design.n_speed=400 -o int.h5 > int.out 2> int.err &
 pid=$!
+caught $pid INT
 sleep "$([ "${SANITIZE:-0}" = 1 ] && echo 8 || echo 3)"   # the first map row takes longer under ASan
 kill -INT $pid
 wait $pid; rc=$?

@@ -14,21 +14,6 @@ A=$AUTOBAL
 DELAY=${SIGNALS_DELAY:-0.7}  # seconds between the start and the signal
 LIMIT=10                     # seconds a command may take to stop after the signal
 
-# caught PID SIG: wait (at most 20 s) until PID catches SIG (its handler is installed: bit SIG - 1 of
-# SigCgt in /proc/PID/status), so that on a loaded machine the signal does not arrive while the
-# program is still loading (it would then die of the default action, exit 128 + SIG).  Returns at
-# once where /proc is not there or the process has ended.
-caught() {
-  local pid=$1 num mask k
-  num=$(kill -l "$2")
-  for k in $(seq 1 400); do
-    mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$pid/status" 2>/dev/null)
-    [ -n "$mask" ] || return 0
-    (( (16#$mask >> (num - 1)) & 1 )) && return 0
-    sleep 0.05
-  done
-}
-
 # interrupt SIG NAME CMD...: run CMD in the background, send SIG DELAY s after it has installed its
 # handler for SIG, wait at most LIMIT s (then SIGKILL: a failure).  Sets rc (exit code) and dt
 # (seconds from the signal to the exit).
