@@ -269,9 +269,10 @@
   "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
   HELP_DOCS_ROTOR
 #define HELP_ROTOR_DESIGN \
-  "Size a ball autobalancer (two identical balls in plane 1) for the machine of the config: the designs\n" \
-  "whose balanced motion has every root Re lambda < -margin at every speed of the range and for EVERY\n" \
-  "unbalance of the range, exact in the unbalance and the track radius, ranked by the robust margin;\n" \
+  "Size a ball autobalancer (n identical balls in plane 1, two by default) for the machine of the config:\n" \
+  "the designs whose balanced motion has every root Re lambda < -margin at every speed of the range and\n" \
+  "for EVERY unbalance of the range, exact in the unbalance and the track radius, ranked by the robust\n" \
+  "margin (n_balls_max >= 3 with every: the feasible ones by the margin their verdict covers);\n" \
   "the best re-checked by the every-unbalance analysis and printed as a runnable config.\n\n" \
   HELP_ROTOR_PARAMS \
   "[design] speed_min, speed_max (rad/s or rpm; required)  n_speed = 101  n_verify = 0 (4 (n_speed-1) + 1)\n" \

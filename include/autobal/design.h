@@ -15,7 +15,9 @@
  *
  * Ranking: by the robust margin rho of a design, the largest delta for which it is feasible
  * (1/s; the slowest decay rate over the speed grid and every unbalance of the range), computed by
- * the exact test and bisection to about 1e-3 1/s.  Larger is better.
+ * the exact test and bisection to about 1e-3 1/s.  Larger is better.  (Three or more balls with
+ * unbalance_member EVERY: the feasible designs by the margin their verdict covers, see "Number of
+ * balls" below.)
  *
  * Run-up profile: when p->drive is a RAMP or TABLE drive, the transients run that profile from
  * t = 0, and the operating speed range is [omega_min, the profile's top speed max |Omega|]:
@@ -131,7 +133,8 @@ typedef struct autobal_study_rotor_design_options {
 
 AUTOBAL_API autobal_study_rotor_design_options autobal_study_rotor_design_options_default(void);
 
-/* The ranking key (options.rank_by).  MARGIN: the robust margin rho, larger first.  P_BALANCE:
+/* The ranking key (options.rank_by).  MARGIN: the robust margin rho, larger first (with EVERY and
+ * n_balls_max >= 3: the covered margin, see "Number of balls" at the top).  P_BALANCE:
  * among the first n_transient designs, feasible ones first, then P(balance) larger first, then
  * the worst, then the median time to balance shorter first, then rho.  TIME: feasible first, then
  * the worst time to balance, then the median, shorter first, then P(balance), then rho.  The
@@ -141,12 +144,13 @@ enum autobal_design_rank { AUTOBAL_DESIGN_RANK_MARGIN = 0, AUTOBAL_DESIGN_RANK_T
 
 /* One design and its figures. */
 typedef struct autobal_rotor_design {
-  double mass;      /* kg, each of the two balls */
-  double radius;    /* m, track radius of both */
+  double mass;      /* kg, each ball */
+  double radius;    /* m, track radius of every ball */
   double damping;   /* kg/s, h of each ball */
   double position;  /* m, plane position d */
   double margin;    /* 1/s, robust margin rho (see the top); -inf: unstable beyond the bisection's reach */
-  int feasible;     /* 1: rho > the required margin (every speed of the grid, every unbalance) */
+  int feasible;     /* 1: rho > the required margin (every speed of the grid, every unbalance), the
+                       re-check passed and, n >= 3 with EVERY, members_certified = 1 */
   int source;       /* 0: a grid point of the map, 1: the optimizer */
   int recheck;      /* 1: the exact every-unbalance analysis (autobal_rotor_stab_every_unbalance_speeds)
                        finds it stable for every unbalance on the whole re-check speed grid, and the
@@ -165,7 +169,8 @@ typedef struct autobal_rotor_design {
   size_t n_runs, n_balanced; /* members run, members balanced */
   size_t n_balls;   /* identical balls of the design (added at the end; 0 is read as 2).  For n >= 3
                        margin and recheck_margin are also capped by h/m, the rate of the n - 2 ball
-                       modes -h/m of the full system, and cover the members of options.unbalance_member */
+                       modes -h/m of the full system; they cover the symmetric fan (every member:
+                       members_certified, member_margin_certified below) */
   /* Two planes (added at the end; 0 / NaN for one plane).  margin is then -(the largest margin the
      two-plane analysis evaluated over the speed grid): sampled.  recheck: the same analysis with the
      box search over plane 2's whole range at every grid speed (1 stable at all, 0 not, -1 not run) */
@@ -261,7 +266,9 @@ typedef struct autobal_study_rotor_design_summary {
  * map cell with a window contributes its design at the window's geometric middle; the best
  * n_starts are polished by the Nelder-Mead simplex (GSL gsl_multimin_fminimizer_nmsimplex2) on
  * -rho over the bounded box; the best n_best designs (distinct) are re-checked by the independent
- * every-unbalance analysis on the n_verify grid.  With an archive: /rotor (the machine) and
+ * every-unbalance analysis on the n_verify grid (n >= 3 with EVERY: also certified for every member,
+ * with extra optimizer starts and ranked places per n and the ranking by the covered margin: "Number
+ * of balls" at the top).  With an archive: /rotor (the machine) and
  * /rotor/design.  Returns AUTOBAL_SUCCESS (also when no design is feasible: n_designs counts the
  * ranked ones, feasible says which pass), AUTOBAL_EINVAL (options: the message names the field and
  * range), AUTOBAL_EUNSUPPORTED (the machine: message names the key), AUTOBAL_ENOMEM,

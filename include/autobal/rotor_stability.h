@@ -578,7 +578,7 @@ typedef struct autobal_rotor_unbalance_range {
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
  * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
  * m, r, h) with the member rule opt.unbalance_member: SYMMETRIC (the symmetric fan) for any n, EVERY
- * (every member of the family, n_ucrit.. filled: exact range of u for n = 3, a certified enclosure for n = 4..6; refused above), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
+ * (every member of the family, n_ucrit.. filled: exact range of u for n = 3, a certified enclosure for n = 4..10; refused above), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
  * otherwise, with a message; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
  * [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only all_stable, margin_worst, n_missed,
  * evaluations and one sub-interval filled).  Method (guaranteed, not
@@ -749,7 +749,7 @@ AUTOBAL_API int autobal_rotor_stab_map_every_unbalance(const autobal_rotor_param
                                                        int n_threads, double *margin, int *verdict,
                                                        autobal_error *err);
 
-/* ---- every unbalance with a margin, two identical balls (the design search) ----------- */
+/* ---- every unbalance with a margin, two or more identical balls (the design search) ---- */
 
 /* The normalized unbalances t = m0 r0 / (m r) in (0, n) of one plane with n identical balls (mass m,
  * radius r) for which every root of Delta (the balanced motion) has Re lambda < -delta. */

@@ -332,7 +332,7 @@ typedef struct autobal_study_rotor_stability_options {
                            (polled before every margin evaluation)             (default NULL) */
   void *progress_user;                                                       /* (default NULL) */
   /* every unbalance in a range (one plane, two balls or n >= 3 identical balls with
-     stab.unbalance_member = SYMMETRIC, or three with EVERY; autobal_rotor_stab_every_unbalance; added at
+     stab.unbalance_member = SYMMETRIC, or three to ten with EVERY; autobal_rotor_stab_every_unbalance; added at
      the end): non-zero = analyse m0 r0 in [unbalance_min, unbalance_max] (kg m) at omega and, with
      critical_speeds, the speeds stable for all of them            (default 0, NaN, NaN) */
   int every_unbalance;

@@ -1513,7 +1513,8 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
     if (st == AUTOBAL_SUCCESS && every_members(o)) rank_covered(S->designs, S->n_designs);
   }
   if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
-    /* the best design: the first that passes its re-check, else the first */
+    /* the best design: the first feasible one (re-check passed and, n >= 3 with every member,
+     * certified), else the first */
     size_t b = 0;
     for (i = 0; i < S->n_designs; i++)
       if (S->designs[i].feasible) {
@@ -2007,7 +2008,7 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     COL(position, "plane_position", "m", "plane position d")
     COL(margin, "robust_margin", "1/s", "robust margin rho: the exact test passes with this margin at every speed of the grid for every unbalance of the range")
     COL(recheck_margin, "recheck_margin", "1/s", "-(largest margin evaluated by the re-check on the finer speed grid): a sampled upper estimate of rho")
-    ICOL(feasible, "feasible", "1: robust_margin > margin_required and the re-check agrees")
+    ICOL(feasible, "feasible", "1: robust_margin > margin_required and the re-check agrees (n >= 3 with unbalance_member = every: and members_certified = 1)")
     ICOL(recheck, "recheck", "1: the exact every-unbalance analysis finds it stable for every unbalance on the re-check grid with margins below -margin_required; 0: not; -1: not re-checked")
     ICOL(source, "source", "0: a grid point of the map, 1: the Nelder-Mead optimizer")
     if (nball && !st) {
