@@ -27,6 +27,7 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "rotor_nballs.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -37,27 +38,6 @@ static unsigned long long rng_state = 88172645463325252ULL;
 static double urand(void) {
   rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
   return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
-}
-
-/* The default machine with n identical balls (m, r, h). */
-static autobal_rotor_params machine(size_t n, double *m, double *r, double *h, double *psi, double *rate, double mv,
-                                    double rv, double hv) {
-  autobal_rotor_params p = autobal_rotor_params_default();
-  size_t i;
-  for (i = 0; i < n; i++) {
-    m[i] = mv;
-    r[i] = rv;
-    h[i] = hv;
-    psi[i] = 2.0 * (double)i;
-    rate[i] = 0.0;
-  }
-  p.plane[0].n_balls = n;
-  p.plane[0].ball_mass = m;
-  p.plane[0].ball_radius = r;
-  p.plane[0].ball_damping = h;
-  p.plane[0].ball_psi = psi;
-  p.plane[0].ball_rate = rate;
-  return p;
 }
 
 /* A handle for one member: m0 r0 = s, the angles of all n balls given (member GIVEN); NULL if they do not

@@ -20,6 +20,7 @@
 
 #include "autobal.h"
 #include "check.h"
+#include "rotor_nballs.h"
 
 #define NT 2001
 #define NS 301
@@ -39,27 +40,6 @@ static double dist_crit(const autobal_rotor_ratio_set *rs, double t, double n) {
   size_t i;
   for (i = 0; i < rs->n_crit; i++) d = fmin(d, fabs(t - rs->t_crit[i]));
   return d;
-}
-
-/* The default machine with n identical balls (m, r, h). */
-static autobal_rotor_params machine(size_t n, double *m, double *r, double *h, double *psi, double *rate, double mv,
-                                    double rv, double hv) {
-  autobal_rotor_params p = autobal_rotor_params_default();
-  size_t i;
-  for (i = 0; i < n; i++) {
-    m[i] = mv;
-    r[i] = rv;
-    h[i] = hv;
-    psi[i] = 2.0 * (double)i;
-    rate[i] = 0.0;
-  }
-  p.plane[0].n_balls = n;
-  p.plane[0].ball_mass = m;
-  p.plane[0].ball_radius = r;
-  p.plane[0].ball_damping = h;
-  p.plane[0].ball_psi = psi;
-  p.plane[0].ball_rate = rate;
-  return p;
 }
 
 static void test_fan_sets(void) {
