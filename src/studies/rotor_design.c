@@ -425,15 +425,8 @@ static int polish(dctx *c, const autobal_rotor_design *start, autobal_rotor_desi
   f.n = n.n;
   f.f = nm_objective;
   f.params = &n;
-  mz = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, n.n);
-  x = gsl_vector_alloc(n.n);
-  step = gsl_vector_alloc(n.n);
-  if (!mz || !x || !step) {
-    gsl_multimin_fminimizer_free(mz);
-    gsl_vector_free(x);
-    gsl_vector_free(step);
+  if (autobal_design_nm_alloc_(n.n, &mz, &x, &step) != 0)
     return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory (optimizer)");
-  }
   for (i = 0; i < n.n; i++) {
     const double v = n.var[i].which == 0 ? start->mass
                      : n.var[i].which == 1 ? start->radius

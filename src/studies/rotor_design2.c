@@ -354,15 +354,8 @@ static int nm2_run(const d2ctx *c, d2thr *t, size_t k, void *user) {
   f.n = n.n;
   f.f = nm2_objective;
   f.params = &n;
-  mz = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, n.n);
-  x = gsl_vector_alloc(n.n);
-  step = gsl_vector_alloc(n.n);
-  if (!mz || !x || !step) {
-    gsl_multimin_fminimizer_free(mz);
-    gsl_vector_free(x);
-    gsl_vector_free(step);
+  if (autobal_design_nm_alloc_(n.n, &mz, &x, &step) != 0)
     return autobal_error_set(&t->err, AUTOBAL_ENOMEM, "design: out of memory (optimizer, two planes)");
-  }
   for (i = 0; i < n.n; i++) {
     const int w = n.which[i];
     const double fr = fmin(1.0, fmax(0.0, log(n.base[w] / lo[w]) / log(hi[w] / lo[w])));
@@ -488,6 +481,19 @@ static int run_jobs(d2ctx *c, size_t n, d2job job, void *user, size_t *verdicts,
   if (cancelled) return autobal_error_set(err, AUTOBAL_ECANCELLED, "design: cancelled by the caller (two planes)");
   if (fail_st != AUTOBAL_SUCCESS) return autobal_error_set(err, fail_st, "%s", fail_msg);
   return AUTOBAL_SUCCESS;
+}
+
+int autobal_design_nm_alloc_(size_t n, gsl_multimin_fminimizer **mz, gsl_vector **x, gsl_vector **step) {
+  *mz = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, n);
+  *x = gsl_vector_alloc(n);
+  *step = gsl_vector_alloc(n);
+  if (*mz && *x && *step) return 0;
+  gsl_multimin_fminimizer_free(*mz);
+  gsl_vector_free(*x);
+  gsl_vector_free(*step);
+  *mz = NULL;
+  *x = *step = NULL;
+  return -1;
 }
 
 double *autobal_design_grid_(double lo, double hi, size_t n, int geometric) {
