@@ -18,7 +18,7 @@
 
 #include "autobal.h"
 
-/* Exit codes (documented in README and `autobal --help`). */
+/* Exit codes (documented in README, docs/guide.md and `autobal --help`). */
 enum {
   CLI_EXIT_OK = 0,          /* success (the verdict may still be "unstable") */
   CLI_EXIT_USAGE = 2,       /* bad command line */

@@ -733,7 +733,7 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   c->dt_out = 0.0; /* 0: revs_out */
   /* rtol bounds the fixed-frame ball angles (|phi| ~ omega t: 3770 rad at 600 revolutions), atol
    * the rotor coordinates, which set the step count: 1e-8/1e-10 left 9e-4 (relative) in the default
-   * example's |s| at 600 revolutions, 1e-10/1e-9 leaves 2e-5 with 11% fewer rhs evaluations (README) */
+   * example's |s| at 600 revolutions, 1e-10/1e-9 leaves 2e-5 with 11% fewer rhs evaluations (docs/guide.md, "Tolerances") */
   c->rtol = 1e-10;
   c->atol = 1e-9;
   c->h_max = 0.0;

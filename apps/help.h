@@ -35,7 +35,8 @@
   "  7 internal error\n"                                                                                   \
   "\n"                                                                                                     \
   "documentation (in the autobal source tree): docs/rotor.md (the rotor model and its equations),\n"       \
-  "docs/pendulum.md (the two-pendulum model and its equations), docs/units.md (units)\n"
+  "docs/pendulum.md (the two-pendulum model and its equations), docs/units.md (units), docs/guide.md (every\n" \
+  "command with an example), docs/archive.md (the archive layout)\n"
 
 /* the "see also" line of every command */
 #define HELP_DOCS_PENDULUM "\ndocumentation: docs/pendulum.md (the model, its equations), docs/units.md (units)\n"
@@ -330,7 +331,7 @@
   "[ensemble] target_grade = G6.3 (or 6.3 mm/s)  target_unbalance = 50 g mm   (P(grade at the end <= target),\n" \
   "           P(residual unbalance <= target; two planes: each plane within half), Wilson 95% intervals)\n" \
   "           write_unbalance = false (true: per-member residual_unbalance_abs_final, balance_grade_final)\n" \
-  "           attractors: each member classified over its final window (README, \"Attractors\"): balanced,\n" \
+  "           attractors: each member classified over its final window (docs/guide.md, \"Attractors\"): balanced,\n" \
   "           heavy_side, fixed, circulating (frequency vs the natural frequency at its speed), periodic, irregular;\n" \
   "           attractor_window_revs = 100 (revolutions, (0, 1e6])  attractor_rest_tol = 0.05 rad ((0, pi])\n" \
   "           attractor_min_turns = 2 ([1, 1e9])  attractor_rate_tol = 0.02  attractor_envelope_tol = 0.05 ((0, 1))\n" \
@@ -361,7 +362,7 @@
   "[initial]   xi eta psi phi xi_rate eta_rate psi_rate phi_rate   (all 0)\n" \
   "[transient] as `pendulum transient` (t_end = 300, ...), but stop_at_balance = true by default\n" \
   HELP_ENSEMBLE_KEYS \
-  "[ensemble] attractors: each member classified over its final window (README, \"Attractors\"), as for the\n" \
+  "[ensemble] attractors: each member classified over its final window (docs/guide.md, \"Attractors\"), as for the\n" \
   "           rotor; the pendulums' directions from the shaft centre play the balls, their absolute rate\n" \
   "           (units of omega0) is compared with the shaft's natural frequency, sqrt(1 - H^2/4) (damped);\n" \
   "           the window (attractor_window_revs = 100 revolutions) must fit in\n" \

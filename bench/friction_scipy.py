@@ -429,7 +429,7 @@ def main():
     ap.add_argument("--scipy-seed", type=int, default=14,
                     help="the ensemble member (seed) compared with SciPy (--contact; 0: psi = 1.0, 2.5)")
     ap.add_argument("--scipy-t1", type=float, default=8.0,
-                    help="end time [s] of the SciPy comparison (--contact; see README: the elastic "
+                    help="end time [s] of the SciPy comparison (--contact; see docs/guide.md: the elastic "
                          "impacts make 20 s ill-conditioned)")
     args = ap.parse_args()
     if args.contact:

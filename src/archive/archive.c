@@ -815,8 +815,8 @@ int autobal_archive_provenance(autobal_archive *a, const char *title, int argc, 
     if (rc == AUTOBAL_SUCCESS)
       rc = write_root_string(a, "references",
                              "autobal model documentation: docs/rotor.md (rotor with ball autobalancers), "
-                             "docs/pendulum.md (two-pendulum autobalancer), docs/units.md (units) and the "
-                             "archive layout in README.md of the autobal repository");
+                             "docs/pendulum.md (two-pendulum autobalancer), docs/units.md (units) and "
+                             "docs/archive.md (the archive layout) of the autobal repository");
   }
   autobal_archive_h5_leave_(&q);
   free(cmd);

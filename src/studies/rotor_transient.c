@@ -20,7 +20,7 @@ autobal_study_rotor_transient_options autobal_study_rotor_transient_options_defa
   o.t_end = 20.0;
   o.dt_out = 0.0;
   /* rtol bounds the fixed-frame ball angles (|phi| ~ omega t: 3770 rad at 600 revolutions), atol
-   * the rotor coordinates, which set the step count (README: the default tolerances) */
+   * the rotor coordinates, which set the step count (docs/guide.md: the default tolerances) */
   o.rtol = 1e-10;
   o.atol = 1e-9;
   o.h_max = 0.0;

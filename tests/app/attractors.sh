@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # App test: the attractor classes of `autobal rotor ensemble` (include/autobal/attractor.h,
-# README "Attractors"), one member per class of the default rotor, each checked by
+# docs/guide.md "Attractors"), one member per class of the default rotor, each checked by
 # attractors_check.py for a reason of its own:
 #  - circulating: 500 rad/s, balls from -3 pi/4 and -pi/2 (a member of the 8 x 8 map of issue 17
 #    that does not balance), 3 s: the frequency against the series and against the forward natural

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# App test: the archives follow netCDF-CF where CF has a word for it (README, "The HDF5 archive"):
+# App test: the archives follow netCDF-CF where CF has a word for it (docs/archive.md):
 # Conventions = "CF-1.8 autobal-1", the CF attributes title, history, source, references;
 # every units attribute (datasets, groups, root; also the *_units attributes of parameters) is
 # a string UDUNITS-2 parses (checked with units_parse_check, the parser of the configuration);

@@ -76,7 +76,7 @@ grep -v '^ball_diameter' model.ini > nodia.ini
 expect_err 3 "[contact]: restitution is given but no ball has a size: set [plane1] ball_diameter" "$AUTOBAL" rotor ensemble nodia.ini -o bad_nodia.h5
 ls bad_*.h5 bt.h5 >/dev/null 2>&1 && bad "a file written for bad input: $(ls bad_*.h5 bt.h5 2>/dev/null)" || ok "nothing written for bad input"
 
-# the README's example (data/washer_contact.ini: stiction and contact), 4 members of 6 s: 1 and 2
+# the guide's example (docs/guide.md) (data/washer_contact.ini: stiction and contact), 4 members of 6 s: 1 and 2
 # threads give the same archive
 W="--set ensemble.samples=4 --set transient.t_end=6"
 "$AUTOBAL" rotor ensemble "$DATA/washer_contact.ini" $W --set ensemble.threads=1 -o wc1.h5 >out.txt 2>err.txt && grep -qF "contact: impacts per member" out.txt \

@@ -70,7 +70,7 @@ sets=$("$PY" "$here/ensemble_friction_check.py" params reg.h5 1 | awk '{print $2
 run "$AUTOBAL" rotor transient reg.ini --set "plane1.ball_psi=$sets" -q -o treg.h5
 chk "regularized law: member 1 = rotor transient" member reg.h5 1 treg.h5
 
-# gravity and friction: the washing machine of the README, 4 members of 6 s
+# gravity and friction: the washing machine of docs/guide.md, 4 members of 6 s
 W="--set ensemble.samples=4 --set transient.t_end=6"
 run "$AUTOBAL" rotor ensemble "$DATA/washer_friction.ini" $W --set ensemble.threads=1 -o w1.h5
 run "$AUTOBAL" rotor ensemble "$DATA/washer_friction.ini" $W --set ensemble.threads=2 -o w2.h5

@@ -45,7 +45,7 @@ check "gravity_ratio_final = g/(r Omega^2) < 1, the balls circulate at the end" 
 expect 0 "" "$AUTOBAL" rotor transient horiz.ini --set transient.frame=rotating -o horiz_rot.h5 -q
 check "rotating frame == fixed frame with gravity" frames horiz.h5 horiz_rot.h5
 
-# the README's washing-machine example (data/washer_gravity.ini) runs, balances, and its static
+# the washing-machine example of docs/guide.md (data/washer_gravity.ini) runs, balances, and its static
 # offset is the closed form
 expect 0 "static offset y_s = -17.7206 mm, alpha_s = 2.48435 mrad" "$AUTOBAL" rotor transient "$DATA/washer_gravity.ini" -o washer.h5
 grep -qF "BALANCED" out.txt && ok "washer example balances" || bad "washer example: not balanced"

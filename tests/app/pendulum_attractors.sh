@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# App test: the attractor classes of `autobal pendulum ensemble` (README "Attractors"): one member per
+# App test: the attractor classes of `autobal pendulum ensemble` (docs/guide.md "Attractors"): one member per
 # class of the default balancer, each checked by pendulum_attractors_check.py from the mechanics:
 #  - heavy side at R_w = 0.4 (below the first critical speed): both pendulums along the deflection;
 #  - circulating at R_w = 1.5 from psi = phi = 0: frequency against the member's series, natural

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# App test: SIGINT, SIGTERM and SIGHUP stop every long-running command (README, "Exit codes"):
+# App test: SIGINT, SIGTERM and SIGHUP stop every long-running command (README and docs/guide.md, "Exit codes"):
 # rotor stability|sweep|map|campbell, pendulum map|critical, info, rerun and plot get each signal (pendulum
 # sweep: SIGTERM) after a short delay while they run a job far longer than the test (grids of millions of points); each
 # must exit 6 within a few seconds, and the archive (-o) must be readable, status "incomplete",

@@ -3,17 +3,17 @@
 # installed must be relocatable), then, with LD_LIBRARY_PATH unset:
 #   - the installed `autobal --version` runs, and the installed program and library carry a
 #     RUNPATH that resolves to the prefix's lib directory;
-#   - consumer.c and the README's embedding example are built and run every documented way:
+#   - consumer.c and the embedding example of docs/embedding.md are built and run every documented way:
 #     CMake find_package (autobal::autobal and autobal::autobal_static), pkg-config with the
 #     shared library (-Wl,-rpath from `pkg-config --variable=libdir`), pkg-config --static with
 #     libautobal.a inside a dynamic program, and pkg-config --static fully static (-static);
 #     the static ones must not need libautobal.so;
 #   - the archive written by each consumer reads back in h5py;
-#   - only autobal_* symbols are exported; the README shows the example and the link lines.
+#   - only autobal_* symbols are exported; docs/embedding.md shows the example and the link lines.
 # Usage: smoke.sh BUILD_DIR SCRATCH
 set -euo pipefail
 build=$1; scratch=$2; here=$(cd "$(dirname "$0")" && pwd)
-readme="$here/../../README.md"
+readme="$here/../../docs/embedding.md"
 unset LD_LIBRARY_PATH
 fail() { echo "FAIL $*"; exit 1; }
 # run a build step quietly; on failure show its output
@@ -75,7 +75,7 @@ fi
 "$scratch/cmake-build/consumer_static" "$scratch/cmake-static.h5"
 check_archive "$scratch/cmake-static.h5"
 echo "ok   find_package(autobal), autobal::autobal_static: built without libautobal.so, ran"
-# the README's embedding example: a verdict, a rejected parameter, a rotor transient with a
+# the embedding example (docs/embedding.md): a verdict, a rejected parameter, a rotor transient with a
 # "time to balance" event; it exits non-zero if any step failed
 "$scratch/cmake-build/embed_example" | tee "$scratch/embed.txt"
 grep -q "pendulum at R_w = 3: stable" "$scratch/embed.txt" || fail "embed_example: no stable verdict"
@@ -91,7 +91,7 @@ tb_cli=$("$prefix/bin/autobal" rotor transient --json --set transient.t_end=12 |
   fail "time to balance: example $tb_example s, autobal rotor transient $tb_cli s"
 echo "ok   time to balance of the example ($tb_example s) = the command line's ($tb_cli s) within 0.006 s"
 
-# ---- pkg-config: the link lines the README gives ----------------------------------------------
+# ---- pkg-config: the link lines docs/embedding.md gives ----------------------------------------
 # shared: the executable finds libautobal.so through its own RUNPATH
 cflags=$(pkg-config --cflags autobal gsl)
 shared_libs="$(pkg-config --libs autobal gsl) -Wl,-rpath,$libdir"
@@ -123,21 +123,21 @@ quiet cc -static $cflags "$here/consumer.c" -o "$scratch/consumer-pc-allstatic" 
 check_archive "$scratch/pc-allstatic.h5"
 echo "ok   pkg-config --static with -static: fully static consumer built and ran"
 
-# ---- the README -----------------------------------------------------------------------------
+# ---- docs/embedding.md ----------------------------------------------------------------------
 # it shows the example verbatim and the link lines used above
-awk '/^## Embedding in an existing C code/{s=1} s&&/^```c$/{c=1; next} c&&/^```$/{exit} c' "$readme" > "$scratch/readme_embed.c"
+awk '/^# Embedding autobal in a C program/{s=1} s&&/^```c$/{c=1; next} c&&/^```$/{exit} c' "$readme" > "$scratch/readme_embed.c"
 diff -u "$here/embed_example.c" "$scratch/readme_embed.c" ||
-  fail "the README's embedding example differs from tests/install/embed_example.c"
-echo "ok   README embedding example = tests/install/embed_example.c"
+  fail "the embedding example of docs/embedding.md differs from tests/install/embed_example.c"
+echo "ok   docs/embedding.md example = tests/install/embed_example.c"
 for line in \
   'cc host.c $(pkg-config --cflags --libs autobal gsl) -Wl,-rpath,$(pkg-config --variable=libdir autobal)' \
   'cc host.c $(pkg-config --cflags autobal gsl) -Wl,--as-needed -Wl,-Bstatic -lautobal -Wl,-Bdynamic $(pkg-config --static --libs autobal gsl)' \
   'cc -static host.c $(pkg-config --cflags --static --libs autobal gsl)' \
   'target_link_libraries(host PRIVATE autobal::autobal GSL::gsl)' \
   'target_link_libraries(host PRIVATE autobal::autobal_static GSL::gsl)'; do
-  grep -qF -- "$line" "$readme" || fail "README does not show the link line: $line"
+  grep -qF -- "$line" "$readme" || fail "docs/embedding.md does not show the link line: $line"
 done
-echo "ok   README shows the five link lines tested here"
+echo "ok   docs/embedding.md shows the five link lines tested here"
 
 # ---- only the public API is exported from the shared library ----------------------------------
 bad=$(nm -D --defined-only "$lib/libautobal.so" | awk '{print $3}' |
