@@ -36,14 +36,17 @@
   "\n"                                                                                                     \
   "documentation (in the autobal source tree): docs/rotor.md (the rotor model and its equations),\n"       \
   "docs/pendulum.md (the two-pendulum model and its equations), docs/units.md (units), docs/guide.md (every\n" \
-  "command with an example), docs/archive.md (the archive layout)\n"
+  "command with an example), docs/archive.md (the archive layout), docs/device.md (run-up, motor, gravity,\n" \
+  "friction, contact), docs/embedding.md (the library in a C program)\n"
 
 /* the "see also" line of every command */
-#define HELP_DOCS_PENDULUM "\ndocumentation: docs/pendulum.md (the model, its equations), docs/units.md (units)\n"
-#define HELP_DOCS_ROTOR "\ndocumentation: docs/rotor.md (the model, its equations), docs/units.md (units)\n"
+#define HELP_DOCS_PENDULUM \
+  "\ndocumentation: docs/pendulum.md (the model, its equations), docs/units.md (units), docs/guide.md (examples)\n"
+#define HELP_DOCS_ROTOR \
+  "\ndocumentation: docs/rotor.md (the model, its equations), docs/units.md (units), docs/guide.md (examples)\n"
 #define HELP_DOCS_ARCHIVE                                                                          \
-  "\ndocumentation: docs/rotor.md and docs/pendulum.md (what the archives hold), docs/units.md " \
-  "(units)\n"
+  "\ndocumentation: docs/archive.md (the archive layout), docs/rotor.md and docs/pendulum.md (what the\n" \
+  "archives hold), docs/units.md (units)\n"
 
 /* ---- autobal MODEL --help: the model in a few lines (then its actions and HELP_DOCS_*) -------- */
 #define HELP_MODEL_PENDULUM                                                                         \
@@ -53,7 +56,7 @@
 #define HELP_MODEL_ROTOR                                                                            \
   "A rigid rotor on elastic supports in a massive housing with one or two ball autobalancers:\n"    \
   "transients, stability of the balanced motion, sweeps, maps, Campbell diagram, ensembles.\n"      \
-  "Parameters in SI units (or a lumped coefficient set).\n"
+  "Parameters in SI units or with a unit (rpm, g mm, ...: docs/units.md), or a lumped coefficient set.\n"
 
 /* ---- the pendulum commands ---------------------------------------------------------------------- */
 #define HELP_PENDULUM_PARAMS                                                                         \
@@ -198,6 +201,8 @@
   "            (m, >= 0, one value or one per ball) is given): restitution = 1 (in [0, 1])\n" \
   "            v_rest = 1e-3 rad/s (slower impacts join the pair in resting contact); with law = exact\n" \
   "            stuck balls pressed together hold as one body (docs/device.md \"Stiction and contact\")\n" \
+  "[balance]   grade = G2.5 (optional; an ISO 21940-11 grade, G and mm/s): its permissible unbalance\n" \
+  "            is reported and whether the run meets it (docs/units.md)\n" \
   "\narchive: /rotor (parameters), /rotor/transient (time series over 'time'; with a drive its\n"   \
   "attributes drive_* and the column Omega; with friction the columns p<j>_b<i>_stuck, p<j>_b<i>_N\n" \
   "and the attributes friction_*, p<j>_ball_time_stuck), /rotor/revolutions\n"                   \
@@ -293,7 +298,8 @@
   "         transient_t_end = 10 s (profile: its end + 10 s)  balance_tol = 0.01  balance_revs = 50  threads = 0\n" \
   "         planes = 1|2 (2: the same two-ball balancer in both planes of a two-plane config; every phase;\n" \
   "         unbalance2_min, unbalance2_max (plane 2; default plane 1's)  n_unbalance2 = 5 (plane 2's map grid)\n" \
-  "         unbalance2_boxes = 0 (certification of the n_best: 0 = 100000 boxes, -1 none); no transients)\n" \
+  "         unbalance2_boxes = 0 (certification of the n_best: 0 = 100000 boxes, -1 none);\n" \
+  "         n_transient and n_starts default to 0 there)\n" \
   "[drive]  mode = ramp|table (as `rotor transient`): the transients run the run-up profile from rest; the\n" \
   "         speed range is [design] balance_from (rpm or rad/s; required) .. the profile's top speed\n" \
   "\narchive: /rotor/design (feasible[ball_mass][ball_damping][plane_position][track_radius], radius windows,\n" \
