@@ -10,8 +10,8 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DAUTOBAL_WERROR=ON
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" -LE slow
 # The MPI variant (-DAUTOBAL_MPI=ON): only the program differs (the library stays serial), so the
-# Release build above is switched to it, only the program is recompiled (the library's objects are
-# kept), and the ensemble test runs, which then also runs the ensembles under `mpirun -np 1` and
+# Release build above is switched to it, only apps/cmd_ensemble.c is recompiled and the program
+# relinked (the library's and the program's other objects are kept), and the ensemble test runs, which then also runs the ensembles under `mpirun -np 1` and
 # `-np 2` and compares archives; then the build is switched back (also when the test fails).
 cmake -S . -B build -DAUTOBAL_MPI=ON
 cmake --build build -j "$jobs" --target autobal_cli
