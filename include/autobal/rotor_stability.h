@@ -573,6 +573,20 @@ typedef struct autobal_rotor_unbalance_range {
                                  within the budget; 0: the enclosure is valid but wider */
   long u_boxes;               /* boxes evaluated by the searches */
   size_t n_uundecided;        /* u sub-intervals with no member (verdict NONE) */
+  /* added at the end: anisotropic supports (one plane, two balls; docs/rotor.md "Anisotropic supports:
+     Hill's method").  No critical unbalances are computed: n_crit = 0 and one sub-interval [s_lo, s_hi]
+     whose verdict is STABLE (no Floquet multiplier can reach the unit circle anywhere in the range,
+     proven, and the Floquet verdict at the middle is stable), UNSTABLE (a member found unstable by
+     Floquet: s_unstable), or AUTOBAL_ROTOR_VERDICT_NONE (boxes left open at the budget and no unstable
+     member found there: undecided, never "stable"); sub_margin the Floquet margin at the middle,
+     margin_worst the largest Floquet margin met, evaluations the Floquet runs, u_min, u_max the range
+     of u = |Q|^2 / 4.  hill = 0 and the rest 0 otherwise. */
+  int hill;                   /* 1: anisotropic supports, Hill's method */
+  size_t hill_order;          /* N: harmonics e^{2 i k w t}, |k| <= N */
+  double hill_tail;           /* the bound of the truncated harmonics (weighted, scaled units) */
+  long hill_boxes;            /* boxes (nu, theta) evaluated */
+  size_t hill_open;           /* boxes not excluded when the budget ran out (0: proven) */
+  double s_unstable;          /* kg m: an unbalance whose balanced motion Floquet finds unstable, NaN if none */
 } autobal_rotor_unbalance_range;
 
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
