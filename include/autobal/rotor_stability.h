@@ -291,6 +291,12 @@ typedef struct autobal_rotor_stab_options {
      member").  0 (the default; also a zeroed struct): 4000000; else in [1000, 1e9].  When the budget
      ends first the bounds stay valid, wider (u_enclosure_complete = 0).  (Added at the end.) */
   long member_boxes;
+  /* one plane, two balls, ANISOTROPIC supports, every unbalance: the budget of boxes (nu, theta) of the Hill
+     exclusion (docs/rotor.md "Anisotropic supports: Hill's method").  0 (the default; also a zeroed
+     struct): 20000; else in [100, 1e8].  When the budget ends first, the boxes left open are sampled by
+     Floquet: an unstable member found is "not stable", else the verdict is undecided (never "stable").
+     (Added at the end.) */
+  long hill_boxes;
 } autobal_rotor_stab_options;
 
 /* The member rule of the every-unbalance analysis with n >= 3 balls (docs/rotor.md "Every

@@ -285,13 +285,13 @@ static double row_weight(double k) {
  *   H0: diagonal blocks M s_k^2 + C0 s_k + K0, H[k][k-1] = C+ s_{k-1} + K+, H[k][k+1] = C- s_{k+1} + K-;
  *   H1: diagonal blocks 2 M s_k + C0, off-diagonal C+, C-;   H2: diagonal blocks M
  * (s_k = i (nuh + 2k)), each block row k times row_weight(k).  Linear in the set. */
-static void hill_matrix(const hill_set *h, size_t N, double nuh, int which, gsl_matrix_complex *H) {
+static void hill_matrix_l(const hill_set *h, size_t N, cplx lam, int which, gsl_matrix_complex *H) {
   const size_t nb = 2 * N + 1;
   size_t kb, i, j;
   gsl_matrix_complex_set_zero(H);
   for (kb = 0; kb < nb; kb++) {
     const double k = (double)kb - (double)N, wk = row_weight(k);
-    const cplx sk = I * (nuh + 2.0 * k), sm = I * (nuh + 2.0 * (k - 1.0)), sp = I * (nuh + 2.0 * (k + 1.0));
+    const cplx sk = lam + I * 2.0 * k, sm = lam + I * 2.0 * (k - 1.0), sp = lam + I * 2.0 * (k + 1.0);
     for (i = 0; i < NM; i++)
       for (j = 0; j < NM; j++) {
         const size_t e = i * NM + j;
@@ -313,6 +313,10 @@ static void hill_matrix(const hill_set *h, size_t N, double nuh, int which, gsl_
           gsl_matrix_complex_set(H, kb * NM + i, (kb + 1) * NM + j, gsl_complex_rect(wk * creal(up), wk * cimag(up)));
       }
   }
+}
+
+static void hill_matrix(const hill_set *h, size_t N, double nuh, int which, gsl_matrix_complex *H) {
+  hill_matrix_l(h, N, I * nuh, which, H);
 }
 
 static double fro_m(const gsl_matrix_complex *A) {
@@ -497,7 +501,7 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
   const double a1 = m1 * pl->ball_radius[0], a2 = m2 * pl->ball_radius[1], r0 = pl->r0;
   const int identical = autobal_rotor_close_rel_(m1, m2, 1e-12) && autobal_rotor_close_rel_(a1, a2, 1e-12);
   const double tha = theta_of_s(a1, a2, s_hi), thb = theta_of_s(a1, a2, s_lo);
-  const long budget = HILL_BOXES;
+  const long budget = s->opt.hill_boxes > 0 ? s->opt.hill_boxes : HILL_BOXES;
   hill_trig *g = NULL;
   box *q = NULL;
   hill_ws ws;
@@ -631,7 +635,8 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
       }
     } else
       knu = kth = 2;
-    if (live - 1 + knu * kth >= cap) break; /* no room: left open */
+    /* finishing needs at least one evaluation per waiting box: stop when they exceed the budget left */
+    if (live - 1 + knu * kth > (size_t)(budget - out->hill_boxes) || live - 1 + knu * kth >= cap) break;
     head = (head + 1) % cap;
     for (u = 0; u < knu; u++)
       for (v = 0; v < kth; v++) {
@@ -679,4 +684,38 @@ done:
   free(q);
   free(g);
   return st;
+}
+
+double autobal_rotor_hill_sigma_min_(autobal_rotor_stab *s, double theta, size_t N, double lam_re, double lam_im) {
+  const autobal_rotor_plane *pl = &s->cur.plane[0];
+  const double w = fabs(s->cur.omega);
+  hill_trig *g;
+  hill_set hc;
+  double r = NAN, ell, rg;
+  gsl_matrix_complex *H = NULL, *G = NULL;
+  gsl_vector *ev = NULL;
+  gsl_eigen_herm_workspace *ew = NULL;
+  size_t n = NM * (2 * N + 1);
+  if (s->n_planes != 1 || pl->n_balls != 2 || s->psi_status != AUTOBAL_SUCCESS) return NAN;
+  g = (hill_trig *)calloc(1, sizeof *g);
+  if (g == NULL) return NAN;
+  rg = sqrt(s->L.A / s->L.M);
+  ell = (pl->ball_mass[0] * pl->ball_radius[0] + pl->ball_mass[1] * pl->ball_radius[1]) / s->L.M;
+  g->S[0] = g->S[1] = ell, g->S[2] = g->S[3] = ell / rg;
+  g->P[0] = g->P[1] = 1.0 / (s->L.M * ell), g->P[2] = g->P[3] = rg / (s->L.A * ell);
+  g->S[4] = ell * sqrt(s->L.M / pl->ball_mass[0]) / pl->ball_radius[0], g->P[4] = 1.0 / g->S[4];
+  g->S[5] = ell * sqrt(s->L.M / pl->ball_mass[1]) / pl->ball_radius[1], g->P[5] = 1.0 / g->S[5];
+  if (build_trig(s, g) != AUTOBAL_SUCCESS) goto out;
+  set_at(g, theta, &hc);
+  H = gsl_matrix_complex_alloc(n, n), G = gsl_matrix_complex_alloc(n, n);
+  ev = gsl_vector_alloc(n), ew = gsl_eigen_herm_alloc(n);
+  if (!H || !G || !ev || !ew) goto out;
+  hill_matrix_l(&hc, N, (lam_re + I * lam_im) / w, 0, H);
+  gsl_blas_zherk(CblasLower, CblasConjTrans, 1.0, H, 0.0, G);
+  if (gsl_eigen_herm(G, ev, ew) == 0) r = sqrt(fmax(0.0, gsl_vector_min(ev)));
+out:
+  gsl_matrix_complex_free(H), gsl_matrix_complex_free(G), gsl_vector_free(ev);
+  if (ew) gsl_eigen_herm_free(ew);
+  free(g);
+  return r;
 }

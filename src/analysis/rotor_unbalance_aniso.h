@@ -11,4 +11,9 @@
 int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, double s_hi,
                                          autobal_rotor_unbalance_range *out);
 
+/* For tests: the least singular value of the weighted, scaled Hill matrix W H_N(lambda) (lambda in 1/s,
+ * rotating frame) at the configuration psi_1 = theta, psi_2 = -theta (any phase: a time shift); the
+ * handle's balanced state must be valid (its psi is restored).  NaN on failure. */
+double autobal_rotor_hill_sigma_min_(autobal_rotor_stab *s, double theta, size_t N, double lam_re, double lam_im);
+
 #endif
