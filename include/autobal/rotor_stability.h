@@ -599,7 +599,12 @@ typedef struct autobal_rotor_unbalance_range {
  * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
  * m, r, h) with the member rule opt.unbalance_member: SYMMETRIC (the symmetric fan) for any n, EVERY
  * (every member of the family, n_ucrit.. filled: exact range of u for n = 3, a certified enclosure for n = 4..10; refused above), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
- * otherwise, with a message; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
+ * otherwise, with a message; ANISOTROPIC supports with one plane of two balls (common h/m): Hill's method,
+ * the fields hill.. filled (below the struct's last block): a guaranteed exclusion of Floquet multipliers on
+ * the unit circle over boxes of (frequency, half angle between the balls), bounded truncation, plus Floquet
+ * at the range's ends and middle; stable for all only when proven, "not stable" shown by an unstable member,
+ * otherwise undecided (sub_verdict AUTOBAL_ROTOR_VERDICT_NONE); budget opt.hill_boxes; docs/rotor.md
+ * "Anisotropic supports: Hill's method"; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
  * [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only all_stable, margin_worst, n_missed,
  * evaluations and one sub-interval filled).  Method (guaranteed, not
  * sampled): Delta(lambda; s) = A(lambda) - (|Q(s)|^2 / 4) B(lambda) with A, B independent of s, so
