@@ -481,6 +481,14 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = read_unbalance_member(ctx, "stability", &c->opt.unbalance_member, &umember))) goto done;
   if ((rc = read_member_boxes(ctx, "stability", &c->opt.member_boxes))) goto done;
+  if ((rc = cli_get_int(ctx, "stability", "hill_boxes", 0, &c->opt.hill_boxes, NULL))) goto done;
+  if (c->opt.hill_boxes != 0 && (c->opt.hill_boxes < 100 || c->opt.hill_boxes > 100000000L)) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[stability]: hill_boxes = %ld is out of range: allowed 0 (the default budget, 20000) or [100, 1e8] "
+                  "(boxes of the Hill exclusion, every unbalance with anisotropic supports)",
+                  c->opt.hill_boxes);
+    goto done;
+  }
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_min", "kg m", NAN, &u2min, &have_u2min))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_max", "kg m", NAN, &u2max, &have_u2max))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_unbalance", n_unb, &n_unb, &have_nunb))) goto done;
@@ -634,6 +642,16 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
           }
         }
       }
+      if (u->hill) { /* anisotropic supports: Hill's method */
+        cli_json_string(&j, "method", "hill");
+        cli_json_int(&j, "hill_order", (long)u->hill_order);
+        cli_json_number(&j, "hill_tail", u->hill_tail);
+        cli_json_int(&j, "hill_boxes", u->hill_boxes);
+        cli_json_int(&j, "hill_open", (long)u->hill_open);
+        cli_json_quantity(&j, "unstable_unbalance", u->s_unstable, "kg m");
+        cli_json_quantity(&j, "u_min", u->u_min, "kg^2");
+        cli_json_quantity(&j, "u_max", u->u_max, "kg^2");
+      }
       cli_json_quantities(&j, "critical_unbalance", u->s_crit, u->n_crit, "kg m");
       cli_json_quantities(&j, "sub_lo", u->sub_lo, u->n_sub, "kg m");
       cli_json_quantities(&j, "sub_hi", u->sub_hi, u->n_sub, "kg m");
@@ -715,7 +733,9 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
     if (sum.have_every) {
       const autobal_rotor_unbalance_range *u = &sum.every;
       printf("  EVERY UNBALANCE m0 r0 in [%.6g, %.6g] g mm at this speed: %s\n", u->s_lo * 1e6, u->s_hi * 1e6,
-             u->all_stable ? "STABLE for all" : "NOT stable for all");
+             u->all_stable                                                   ? "STABLE for all"
+             : u->hill && u->sub_verdict[0] == AUTOBAL_ROTOR_VERDICT_NONE ? "UNDECIDED (not shown stable for all)"
+                                                                             : "NOT stable for all");
       if (u->n_balls >= 3)
         printf("  %zu identical balls, unbalance_member = %s: u = |Q|^2/4 in [%.9g, %.9g] kg^2 over the range\n",
                u->n_balls, umember, u->u_min, u->u_max);
@@ -747,6 +767,20 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
           else
             printf("  first not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
         }
+      } else if (u->hill) {
+        /* anisotropic supports: Hill's method (no critical unbalances computed) */
+        printf("  anisotropic supports, Hill's method (harmonics |k| <= %zu, tail bound %.3g): %ld boxes of (frequency, "
+               "unbalance), %zu left open%s\n",
+               u->hill_order, u->hill_tail, u->hill_boxes, u->hill_open,
+               u->hill_open ? " (budget reached: [stability] hill_boxes)"
+               : u->hill_boxes ? ": no Floquet multiplier on the unit circle anywhere in the range"
+                               : " (not needed: a member is not stable)");
+        if (!isnan(u->s_unstable))
+          printf("  unstable member (Floquet): m0 r0 = %.8g g mm\n", u->s_unstable * 1e6);
+        printf("  verdict: [%.6g, %.6g] %s (g mm); Floquet margin at the middle %.6e 1/s, largest met %.6e 1/s (%zu "
+               "Floquet runs)\n",
+               u->sub_lo[0] * 1e6, u->sub_hi[0] * 1e6, autobal_verdict_name(u->sub_verdict[0]), u->sub_margin[0],
+               u->margin_worst, u->evaluations);
       } else if (u->n_balls >= 3 && u->member_rule == AUTOBAL_ROTOR_UNBALANCE_EVERY) {
         /* three balls, every member: the verdict depends only on u, so the critical values are u's */
         size_t k;

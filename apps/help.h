@@ -247,6 +247,8 @@
   "            n_unbalance = 9   unbalance2_boxes = 0 (budget; 0: 100000, -1: no search, grid only)\n" \
   "            unbalance_member = every|symmetric  (3 or more identical balls: which members; every: 3 to 10 balls)\n" \
   "            member_boxes = 0  (every, 4 to 10 balls: the search's box budget; 0: 4000000, else 1000 .. 1e9)\n" \
+  "            hill_boxes = 0  (anisotropic supports, two balls: Hill's method, docs/rotor.md \"Anisotropic supports:\n" \
+  "            Hill's method\"; box budget; 0: 20000, else 100 .. 1e8; at the budget undecided, never stable)\n" \
   "\narchive: /rotor (model), /rotor/stability (roots, eigenvalues, Floquet multipliers), /rotor/stability/critical,\n" \
   "         /rotor/stability/every_unbalance (and .../speeds, two planes .../phase)\n" \
   HELP_DOCS_ROTOR

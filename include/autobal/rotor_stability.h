@@ -291,6 +291,12 @@ typedef struct autobal_rotor_stab_options {
      member").  0 (the default; also a zeroed struct): 4000000; else in [1000, 1e9].  When the budget
      ends first the bounds stay valid, wider (u_enclosure_complete = 0).  (Added at the end.) */
   long member_boxes;
+  /* one plane, two balls, ANISOTROPIC supports, every unbalance: the budget of boxes (nu, theta) of the Hill
+     exclusion (docs/rotor.md "Anisotropic supports: Hill's method").  0 (the default; also a zeroed
+     struct): 20000; else in [100, 1e8].  When the budget ends first, the boxes left open are sampled by
+     Floquet: an unstable member found is "not stable", else the verdict is undecided (never "stable").
+     (Added at the end.) */
+  long hill_boxes;
 } autobal_rotor_stab_options;
 
 /* The member rule of the every-unbalance analysis with n >= 3 balls (docs/rotor.md "Every
@@ -573,13 +579,32 @@ typedef struct autobal_rotor_unbalance_range {
                                  within the budget; 0: the enclosure is valid but wider */
   long u_boxes;               /* boxes evaluated by the searches */
   size_t n_uundecided;        /* u sub-intervals with no member (verdict NONE) */
+  /* added at the end: anisotropic supports (one plane, two balls; docs/rotor.md "Anisotropic supports:
+     Hill's method").  No critical unbalances are computed: n_crit = 0 and one sub-interval [s_lo, s_hi]
+     whose verdict is STABLE (no Floquet multiplier can reach the unit circle anywhere in the range,
+     proven, and the Floquet verdict at the middle is stable), UNSTABLE (a member found unstable by
+     Floquet: s_unstable), or AUTOBAL_ROTOR_VERDICT_NONE (boxes left open at the budget and no unstable
+     member found there: undecided, never "stable"); sub_margin the Floquet margin at the middle,
+     margin_worst the largest Floquet margin met, evaluations the Floquet runs, u_min, u_max the range
+     of u = |Q|^2 / 4.  hill = 0 and the rest 0 otherwise. */
+  int hill;                   /* 1: anisotropic supports, Hill's method */
+  size_t hill_order;          /* N: harmonics e^{2 i k w t}, |k| <= N */
+  double hill_tail;           /* the bound of the truncated harmonics (weighted, scaled units) */
+  long hill_boxes;            /* boxes (nu, theta) evaluated */
+  size_t hill_open;           /* boxes not excluded when the budget ran out (0: proven) */
+  double s_unstable;          /* kg m: an unbalance whose balanced motion Floquet finds unstable, NaN if none */
 } autobal_rotor_unbalance_range;
 
 /* Stability of the balanced motion for EVERY unbalance s = m0 r0 in [s_lo, s_hi] (kg m) at the
  * handle's current omega: one plane with two balls with a common h/m, or n >= 3 identical balls (same
  * m, r, h) with the member rule opt.unbalance_member: SYMMETRIC (the symmetric fan) for any n, EVERY
  * (every member of the family, n_ucrit.. filled: exact range of u for n = 3, a certified enclosure for n = 4..10; refused above), isotropic supports, the paper's inertia model (AUTOBAL_EUNSUPPORTED
- * otherwise, with a message; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
+ * otherwise, with a message; ANISOTROPIC supports with one plane of two balls (common h/m): Hill's method,
+ * the fields hill.. filled (below the struct's last block): a guaranteed exclusion of Floquet multipliers on
+ * the unit circle over boxes of (frequency, half angle between the balls), bounded truncation, plus Floquet
+ * at the range's ends and middle; stable for all only when proven, "not stable" shown by an unstable member,
+ * otherwise undecided (sub_verdict AUTOBAL_ROTOR_VERDICT_NONE); budget opt.hill_boxes; docs/rotor.md
+ * "Anisotropic supports: Hill's method"; two planes of two balls: autobal_rotor_stab_every_unbalance2 with
  * [s_lo, s_hi] for both planes, 9 x 9 grid, every phase, only all_stable, margin_worst, n_missed,
  * evaluations and one sub-interval filled).  Method (guaranteed, not
  * sampled): Delta(lambda; s) = A(lambda) - (|Q(s)|^2 / 4) B(lambda) with A, B independent of s, so

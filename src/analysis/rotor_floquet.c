@@ -28,19 +28,15 @@
 static size_t pos_index(size_t k) { return k < 4 ? k : 8 + (k - 4); }
 static size_t vel_index(size_t k, size_t N) { return k < 4 ? 4 + k : 8 + N + (k - 4); }
 
-/* Linearization of (3.2) + (3.13) at the balanced state, time t:
- *   M(t) X'' + C(t) X' + K(t) X = 0,  X = (x, y, alpha, beta, dpsi_1..N),
- * first-order matrix in s->Afull (state order of the model). */
-int autobal_rotor_stab_lin_(autobal_rotor_stab *s, double t, int rotating) {
+/* The second-order matrices M(t) (into s->lu_full, not factored), C(t) (s->Ct), K(t) (s->Kt) of the
+ * linearization at time t (mixed frame: rotor coordinates fixed, ball angles relative). */
+static void lin_assemble(autobal_rotor_stab *s, double t) {
   const autobal_rotor_lumped *L = &s->L;
-  const size_t N = s->N, nm = s->nm, ns = s->ns;
+  const size_t nm = s->nm;
   const double w = s->cur.omega;
   gsl_matrix *Mt = s->lu_full;
-  double *Kt = s->Kt, *Ct = s->Ct, *A = s->Afull;
-  size_t i, j, k;
-  int signum, gs;
-  if (s->psi_status != AUTOBAL_SUCCESS)
-    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "linearization: no balanced configuration");
+  double *Kt = s->Kt, *Ct = s->Ct;
+  size_t j, k;
   gsl_matrix_set_zero(Mt);
   memset(Kt, 0, nm * nm * sizeof *Kt);
   memset(Ct, 0, nm * nm * sizeof *Ct);
@@ -103,6 +99,34 @@ int autobal_rotor_stab_lin_(autobal_rotor_stab *s, double t, int rotating) {
   }
 #undef CT
 #undef KT
+}
+
+int autobal_rotor_stab_lin2_(autobal_rotor_stab *s, double t, double *M, double *C, double *K) {
+  const size_t nm = s->nm;
+  size_t i, j;
+  if (s->psi_status != AUTOBAL_SUCCESS)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "linearization: no balanced configuration");
+  lin_assemble(s, t);
+  for (i = 0; i < nm; i++)
+    for (j = 0; j < nm; j++) M[i * nm + j] = gsl_matrix_get(s->lu_full, i, j);
+  memcpy(C, s->Ct, nm * nm * sizeof *C);
+  memcpy(K, s->Kt, nm * nm * sizeof *K);
+  return AUTOBAL_SUCCESS;
+}
+
+/* Linearization of (3.2) + (3.13) at the balanced state, time t:
+ *   M(t) X'' + C(t) X' + K(t) X = 0,  X = (x, y, alpha, beta, dpsi_1..N),
+ * first-order matrix in s->Afull (state order of the model). */
+int autobal_rotor_stab_lin_(autobal_rotor_stab *s, double t, int rotating) {
+  const size_t N = s->N, nm = s->nm, ns = s->ns;
+  const double w = s->cur.omega;
+  gsl_matrix *Mt = s->lu_full;
+  double *Kt = s->Kt, *Ct = s->Ct, *A = s->Afull;
+  size_t i, j, k;
+  int signum, gs;
+  if (s->psi_status != AUTOBAL_SUCCESS)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "linearization: no balanced configuration");
+  lin_assemble(s, t);
   gs = gsl_linalg_LU_decomp(Mt, s->perm_full, &signum);
   if (gs != GSL_SUCCESS)
     return autobal_error_set(&s->err, AUTOBAL_ENUMERIC, "linearization: LU failed: %s",

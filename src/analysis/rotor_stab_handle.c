@@ -227,6 +227,11 @@ static int check_options(const autobal_rotor_stab_options *o, const autobal_roto
                              "option member_boxes = %ld is out of range: allowed 0 (the default budget, 4000000) or "
                              "[1000, 1e9]",
                              o->member_boxes);
+  if (o->hill_boxes != 0 && (o->hill_boxes < 100 || o->hill_boxes > 100000000L))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "option hill_boxes = %ld is out of range: allowed 0 (the default budget, 20000) or "
+                             "[100, 1e8]",
+                             o->hill_boxes);
   for (j = 0; j < p->n_planes; j++) {
     const autobal_rotor_member *m = &o->member[j];
     if (m->kind < AUTOBAL_ROTOR_MEMBER_DEFAULT || m->kind > AUTOBAL_ROTOR_MEMBER_GIVEN)

@@ -68,6 +68,7 @@
 #include "analysis/rotor_fan.h"
 #include "analysis/rotor_stab_handle.h"
 #include "analysis/rotor_stability.h"
+#include "analysis/rotor_unbalance_aniso.h"
 #include "internal.h"
 
 /* p(z) for ascending real coefficients (long double Horner). */
@@ -258,6 +259,7 @@ typedef struct balls_info {
   double m1, m2, a1, a2, r0;
   sym_fan fan;
   int every3, everyn;
+  int aniso; /* anisotropic supports (two balls): Hill's method, rotor_unbalance_aniso.c */
   double ta, tb;
   double *angle;
   const autobal_everyn_ *en;
@@ -429,9 +431,12 @@ static int check_domain(autobal_rotor_stab *s, double s_lo, double s_hi, balls_i
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
                              "every unbalance: needs the paper's inertia model (inertia = paper): with "
                              "inertia = full the unbalance mass also enters the mass matrix");
-  if (!autobal_rotor_lumped_isotropic_(&s->L))
+  bi->aniso = !autobal_rotor_lumped_isotropic_(&s->L);
+  if (bi->aniso && pl->n_balls != 2)
     return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
-                             "every unbalance: needs isotropic supports (the closed polynomial Delta)");
+                             "every unbalance: with anisotropic supports only one plane with two balls (a common "
+                             "h/m) is supported (Hill's method); here %zu balls in plane 1",
+                             pl->n_balls);
   *r0 = pl->r0;
   if (!(*r0 > 0.0))
     return autobal_error_set(&s->err, AUTOBAL_EINVAL,
@@ -525,6 +530,7 @@ static int every_unbalance_core(autobal_rotor_stab *s, double s_lo, double s_hi,
   out->member_rule = s->opt.unbalance_member;
   out->u_min = out->u_max = out->u_min_inner = out->u_max_inner = NAN;
   if ((st = check_domain(s, s_lo, s_hi, &bi)) != AUTOBAL_SUCCESS) return st;
+  if (bi.aniso) return autobal_rotor_every_unbalance_aniso_(s, s_lo, s_hi, out);
   r0 = bi.r0;
   if (bi.every3 || bi.everyn) {
     if (angle == NULL) return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance: internal (no member angle)");
