@@ -440,6 +440,9 @@ high:
   cli_json_object_end(j);
 }
 
+/* Equal to 1e-12 (relative), the library's test of isotropic supports (rotor_closed.c). */
+static int near(double a, double b) { return fabs(a - b) <= 1e-12 * fmax(fabs(a), fabs(b)); }
+
 /* ---- rotor stability: the library's study (autobal_study_rotor_stability) -------------- */
 typedef struct stab_partial {
   const autobal_rotor_params *p;
@@ -549,6 +552,22 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   o.unbalance2_max = u2max;
   o.n_unbalance = (size_t)n_unb;
   o.progress = stop_requested;
+  /* anisotropic supports, every unbalance and the speed scan: Hill's box search at every grid speed
+   * takes seconds per speed (docs/rotor.md "Anisotropic supports: Hill's method"), so say so first */
+  if (o.every_unbalance && o.critical_speeds && c->p.n_planes == 1 && !ctx->json && !ctx->quiet) {
+    autobal_rotor_lumped L;
+    autobal_error lerr;
+    int have_l = 1;
+    autobal_error_clear(&lerr);
+    if (c->p.input == AUTOBAL_ROTOR_LUMPED) L = c->p.lumped;
+    else have_l = autobal_rotor_lumped_from_hardware(&c->p.hw, &L, &lerr) == AUTOBAL_SUCCESS;
+    if (have_l && !(near(L.c_x, L.c_y) && near(L.c_alpha, L.c_beta) && near(L.c_xbeta, L.c_yalpha) &&
+                    near(L.h_x, L.h_y) && near(L.h_alpha, L.h_beta) && near(L.h_xbeta, L.h_yalpha)))
+      fprintf(stderr,
+              "autobal: note: anisotropic supports: every unbalance runs Hill's method at each of the %zu speeds of "
+              "the scan (seconds per speed; [stability] n_omega = 40 or critical_speeds = false for a quicker run)\n",
+              o.n_omega);
+  }
   /* the analysis first, the archive afterwards: a failed analysis leaves no file */
   autobal_error_clear(&err);
   st = autobal_study_rotor_stability(&c->p, &o, NULL, &sum, &err);
@@ -767,6 +786,16 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
           else
             printf("  first not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
         }
+      } else if (u->hill && u->hill_order == 0) {
+        printf("  anisotropic supports, Hill's method: no truncation with |k| <= 40 harmonics is bounded at this "
+               "speed (tail bound %.3g > 1e-4), so the range is not proven stable%s\n",
+               u->hill_tail, isnan(u->s_unstable) ? "" : "; a member is unstable");
+        if (!isnan(u->s_unstable))
+          printf("  unstable member (Floquet): m0 r0 = %.8g g mm\n", u->s_unstable * 1e6);
+        printf("  verdict: [%.6g, %.6g] %s (g mm); Floquet margin at the middle %.6e 1/s, largest met %.6e 1/s (%zu "
+               "Floquet runs)\n",
+               u->sub_lo[0] * 1e6, u->sub_hi[0] * 1e6, autobal_verdict_name(u->sub_verdict[0]), u->sub_margin[0],
+               u->margin_worst, u->evaluations);
       } else if (u->hill) {
         /* anisotropic supports: Hill's method (no critical unbalances computed) */
         printf("  anisotropic supports, Hill's method (harmonics |k| <= %zu, tail bound %.3g): %ld boxes of (frequency, "

@@ -185,6 +185,37 @@ static void window_inside(autobal_rotor_stab *s) {
   CHECK("that member is unstable by an ordinary analysis", v == AUTOBAL_VERDICT_UNSTABLE);
 }
 
+/* Low speeds, where no truncation of at most 40 harmonics is bounded: an answer, never "stable for all"
+ * and never an error (a speed scan passes through them); a member reported unstable is unstable. */
+static void low_speed(autobal_rotor_stab *s) {
+  const double ws[3] = {5.0, 15.0, 30.0};
+  size_t i;
+  for (i = 0; i < 3; i++) {
+    autobal_rotor_unbalance_range ur;
+    char what[120];
+    int st, v;
+    autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, ws[i]);
+    st = autobal_rotor_stab_every_unbalance(s, 0.0015, 0.003, &ur);
+    snprintf(what, sizeof what, "omega %g rad/s: a verdict, not an error", ws[i]);
+    CHECK_STATUS(what, st, AUTOBAL_SUCCESS);
+    if (st != AUTOBAL_SUCCESS) continue;
+    if (ur.hill_order == 0)
+      CHECK("no bounded truncation: not stable for all, undecided or an unstable member",
+            !ur.all_stable && (ur.sub_verdict[0] == AUTOBAL_ROTOR_VERDICT_NONE ||
+                               (ur.sub_verdict[0] == AUTOBAL_VERDICT_UNSTABLE && !isnan(ur.s_unstable))));
+    if (!isnan(ur.s_unstable)) {
+      floquet_margin(s, ur.s_unstable, &v);
+      CHECK("the unstable member is unstable by an ordinary analysis", v == AUTOBAL_VERDICT_UNSTABLE);
+    }
+  }
+  {
+    autobal_rotor_unbalance_range ur;
+    autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, 5.0);
+    autobal_rotor_stab_every_unbalance(s, 0.0015, 0.003, &ur);
+    CHECK("at 5 rad/s the truncation is not bounded (the case above is met)", ur.hill_order == 0);
+  }
+}
+
 static void refusals(void) {
   autobal_rotor_params p = autobal_rotor_params_default();
   autobal_rotor_stab_options o = autobal_rotor_stab_options_default();
@@ -233,6 +264,8 @@ int main(void) {
   dense(an, 500.0, 0.0065, 0.008, 0);
   printf("an unstable window strictly inside\n");
   window_inside(small);
+  printf("low speeds\n");
+  low_speed(an);
   printf("refusals\n");
   refusals();
   autobal_rotor_stab_free(an);

@@ -588,7 +588,8 @@ typedef struct autobal_rotor_unbalance_range {
      margin_worst the largest Floquet margin met, evaluations the Floquet runs, u_min, u_max the range
      of u = |Q|^2 / 4.  hill = 0 and the rest 0 otherwise. */
   int hill;                   /* 1: anisotropic supports, Hill's method */
-  size_t hill_order;          /* N: harmonics e^{2 i k w t}, |k| <= N */
+  size_t hill_order;          /* N: harmonics e^{2 i k w t}, |k| <= N; 0: no N <= 40 bounds the truncation
+                                 (low speeds), the range is then undecided unless a member is unstable */
   double hill_tail;           /* the bound of the truncated harmonics (weighted, scaled units) */
   long hill_boxes;            /* boxes (nu, theta) evaluated */
   size_t hill_open;           /* boxes not excluded when the budget ran out (0: proven) */

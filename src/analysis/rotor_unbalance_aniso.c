@@ -539,7 +539,10 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
     goto done;
   if ((st = autobal_rotor_stab_update_member_(s)) != AUTOBAL_SUCCESS) goto done;
   if ((st = build_trig(s, g)) != AUTOBAL_SUCCESS) goto done;
-  /* N: the least with the tail bound over the whole range <= HILL_TAIL_TOL */
+  /* N: the least with the tail bound over the whole range <= HILL_TAIL_TOL.  Where no N <= HILL_NMAX
+   * gets there (low speeds: the anisotropy is not small against the harmonics' (2 k w)^2), the range
+   * cannot be proven stable: after the Floquet checks below it is undecided (hill_order 0, hill_tail
+   * the bound at HILL_NMAX), not an error, so that a speed scan goes on */
   {
     hill_set hc;
     box_consts bc;
@@ -548,19 +551,8 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
     consts_at(g, &hc, 0.5 * (thb - tha), &bc);
     for (N = 2; N <= HILL_NMAX; N++)
       if ((tb = row_weight((double)N) * tail_bound(&bc, N)) <= HILL_TAIL_TOL) break;
-    if (N > HILL_NMAX) {
-      st = autobal_error_set(&s->err, AUTOBAL_ENUMERIC,
-                             "every unbalance, anisotropic: the Hill tail bound does not fall below %g with %d "
-                             "harmonics (%.3g)",
-                             HILL_TAIL_TOL, HILL_NMAX, tb);
-      goto done;
-    }
-    out->hill_order = N;
+    out->hill_order = N <= HILL_NMAX ? N : 0;
     out->hill_tail = tb;
-  }
-  if (ws_alloc(&ws, N) != 0) {
-    st = autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance, anisotropic: no memory (Hill matrix)");
-    goto done;
   }
   /* Floquet at the middle and both ends of each branch: a member not stable there decides it ("not stable
    * for all", shown by that member), and the box search is not needed */
@@ -586,6 +578,15 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
       }
     }
   if (!out->all_stable) goto done;
+  if (out->hill_order == 0) { /* no bounded truncation: undecided (the members checked are stable) */
+    out->all_stable = 0;
+    out->sub_verdict[0] = AUTOBAL_ROTOR_VERDICT_NONE;
+    goto done;
+  }
+  if (ws_alloc(&ws, N) != 0) {
+    st = autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance, anisotropic: no memory (Hill matrix)");
+    goto done;
+  }
   /* the box search: FIFO, initial grid 16 (nu) x 4 (theta) per branch */
   cap = (size_t)budget + 2 * 64 + 16 * 16 + 8;
   q = (box *)malloc(cap * sizeof *q);
