@@ -786,24 +786,19 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
           else
             printf("  first not stable: m0 r0 = %.6g, %.6g g mm\n", u2->first_bad_s[0] * 1e6, u2->first_bad_s[1] * 1e6);
         }
-      } else if (u->hill && u->hill_order == 0) {
-        printf("  anisotropic supports, Hill's method: no truncation with |k| <= 40 harmonics is bounded at this "
-               "speed (tail bound %.3g > 1e-4), so the range is not proven stable%s\n",
-               u->hill_tail, isnan(u->s_unstable) ? "" : "; a member is unstable");
-        if (!isnan(u->s_unstable))
-          printf("  unstable member (Floquet): m0 r0 = %.8g g mm\n", u->s_unstable * 1e6);
-        printf("  verdict: [%.6g, %.6g] %s (g mm); Floquet margin at the middle %.6e 1/s, largest met %.6e 1/s (%zu "
-               "Floquet runs)\n",
-               u->sub_lo[0] * 1e6, u->sub_hi[0] * 1e6, autobal_verdict_name(u->sub_verdict[0]), u->sub_margin[0],
-               u->margin_worst, u->evaluations);
       } else if (u->hill) {
         /* anisotropic supports: Hill's method (no critical unbalances computed) */
-        printf("  anisotropic supports, Hill's method (harmonics |k| <= %zu, tail bound %.3g): %ld boxes of (frequency, "
-               "unbalance), %zu left open%s\n",
-               u->hill_order, u->hill_tail, u->hill_boxes, u->hill_open,
-               u->hill_open ? " (budget reached: [stability] hill_boxes)"
-               : u->hill_boxes ? ": no Floquet multiplier on the unit circle anywhere in the range"
-                               : " (not needed: a member is not stable)");
+        if (u->hill_order == 0) /* no bounded truncation at this speed */
+          printf("  anisotropic supports, Hill's method: no truncation with |k| <= 40 harmonics is bounded at this "
+                 "speed (tail bound %.3g > 1e-4), so the range is not proven stable%s\n",
+                 u->hill_tail, isnan(u->s_unstable) ? "" : "; a member is unstable");
+        else
+          printf("  anisotropic supports, Hill's method (harmonics |k| <= %zu, tail bound %.3g): %ld boxes of "
+                 "(frequency, unbalance), %zu left open%s\n",
+                 u->hill_order, u->hill_tail, u->hill_boxes, u->hill_open,
+                 u->hill_open ? " (budget reached: [stability] hill_boxes)"
+                 : u->hill_boxes ? ": no Floquet multiplier on the unit circle anywhere in the range"
+                                 : " (not needed: a member is not stable)");
         if (!isnan(u->s_unstable))
           printf("  unstable member (Floquet): m0 r0 = %.8g g mm\n", u->s_unstable * 1e6);
         printf("  verdict: [%.6g, %.6g] %s (g mm); Floquet margin at the middle %.6e 1/s, largest met %.6e 1/s (%zu "
