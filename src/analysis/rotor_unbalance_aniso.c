@@ -187,6 +187,18 @@ static double set_diff(const hill_set *x, const hill_set *y) {
 }
 
 /* The trig form from theta = 0, pi/2, pi (handle's psi overridden, restored), checked at theta = 1. */
+/* The scales: lengths ell = (a1 + a2) / M, tilts ell / rg; rows so that M's diagonal is 1; balls with a
+ * unit diagonal and symmetric couplings sqrt(m_b / M) (the kinetic energy's form). */
+static void set_scales(const autobal_rotor_stab *s, hill_trig *g) {
+  const autobal_rotor_plane *pl = &s->cur.plane[0];
+  const double rg = sqrt(s->L.A / s->L.M);
+  const double ell = (pl->ball_mass[0] * pl->ball_radius[0] + pl->ball_mass[1] * pl->ball_radius[1]) / s->L.M;
+  g->S[0] = g->S[1] = ell, g->S[2] = g->S[3] = ell / rg;
+  g->P[0] = g->P[1] = 1.0 / (s->L.M * ell), g->P[2] = g->P[3] = rg / (s->L.A * ell);
+  g->S[4] = ell * sqrt(s->L.M / pl->ball_mass[0]) / pl->ball_radius[0], g->P[4] = 1.0 / g->S[4];
+  g->S[5] = ell * sqrt(s->L.M / pl->ball_mass[1]) / pl->ball_radius[1], g->P[5] = 1.0 / g->S[5];
+}
+
 static int build_trig(autobal_rotor_stab *s, hill_trig *g) {
   const double save0 = s->psi[0], save1 = s->psi[1], th[4] = {0.0, 0.5 * M_PI, M_PI, 1.0};
   hill_set h[4], chk;
@@ -507,7 +519,6 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
   hill_ws ws;
   size_t N, head = 0, tail = 0, cap, nbr = identical ? 1 : 2, br, i, j;
   int st = AUTOBAL_SUCCESS;
-  double ell, rg;
   memset(&ws, 0, sizeof ws);
   out->hill = 1;
   out->s_unstable = NAN;
@@ -525,14 +536,7 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
   }
   g = (hill_trig *)calloc(1, sizeof *g);
   if (g == NULL) return autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance, anisotropic: no memory");
-  /* scales: lengths ell = (a1 + a2) / M, tilts ell / rg; rows so that M's diagonal is 1 */
-  rg = sqrt(s->L.A / s->L.M);
-  ell = (a1 + a2) / s->L.M;
-  g->S[0] = g->S[1] = ell, g->S[2] = g->S[3] = ell / rg;
-  g->P[0] = g->P[1] = 1.0 / (s->L.M * ell), g->P[2] = g->P[3] = rg / (s->L.A * ell);
-  /* balls: unit diagonal and symmetric couplings sqrt(m_b / M) (the kinetic energy's form) */
-  g->S[4] = ell * sqrt(s->L.M / m1) / pl->ball_radius[0], g->P[4] = 1.0 / g->S[4];
-  g->S[5] = ell * sqrt(s->L.M / m2) / pl->ball_radius[1], g->P[5] = 1.0 / g->S[5];
+  set_scales(s, g);
   /* a balanced state on the handle (m0 of the middle of the range), then the trig form */
   if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, 0.5 * (s_lo + s_hi) / r0)) !=
       AUTOBAL_SUCCESS)
@@ -692,7 +696,7 @@ double autobal_rotor_hill_sigma_min_(autobal_rotor_stab *s, double theta, size_t
   const double w = fabs(s->cur.omega);
   hill_trig *g;
   hill_set hc;
-  double r = NAN, ell, rg;
+  double r = NAN;
   gsl_matrix_complex *H = NULL, *G = NULL;
   gsl_vector *ev = NULL;
   gsl_eigen_herm_workspace *ew = NULL;
@@ -700,12 +704,7 @@ double autobal_rotor_hill_sigma_min_(autobal_rotor_stab *s, double theta, size_t
   if (s->n_planes != 1 || pl->n_balls != 2 || s->psi_status != AUTOBAL_SUCCESS) return NAN;
   g = (hill_trig *)calloc(1, sizeof *g);
   if (g == NULL) return NAN;
-  rg = sqrt(s->L.A / s->L.M);
-  ell = (pl->ball_mass[0] * pl->ball_radius[0] + pl->ball_mass[1] * pl->ball_radius[1]) / s->L.M;
-  g->S[0] = g->S[1] = ell, g->S[2] = g->S[3] = ell / rg;
-  g->P[0] = g->P[1] = 1.0 / (s->L.M * ell), g->P[2] = g->P[3] = rg / (s->L.A * ell);
-  g->S[4] = ell * sqrt(s->L.M / pl->ball_mass[0]) / pl->ball_radius[0], g->P[4] = 1.0 / g->S[4];
-  g->S[5] = ell * sqrt(s->L.M / pl->ball_mass[1]) / pl->ball_radius[1], g->P[5] = 1.0 / g->S[5];
+  set_scales(s, g);
   if (build_trig(s, g) != AUTOBAL_SUCCESS) goto out;
   set_at(g, theta, &hc);
   H = gsl_matrix_complex_alloc(n, n), G = gsl_matrix_complex_alloc(n, n);
