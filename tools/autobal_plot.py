@@ -324,15 +324,16 @@ def pendulum_interval_strips(h, ax, cases, top):
             sec.set_ylabel("rotor speed ω = R_w ω0 [rev/min] (ω0 = %s rad/s)" % fmt(w0, 4), fontsize=9)
 
 
-VERDICT_COLORS = {-2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
-VERDICT_NAMES = {-2: "no balanced motion", -1: "unstable", 0: "marginal", 1: "stable"}
+VERDICT_COLORS = {-3: "#9ec5e8", -2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
+VERDICT_NAMES = {-3: "undecided (Hill budget)", -2: "no balanced motion", -1: "unstable", 0: "marginal",
+                 1: "stable"}
 
 
 def verdict_image(ax, x, y, v):
-    """Draw an int verdict grid v[x, y] (values -2..1) with a fixed colour per verdict."""
-    codes = [-2, -1, 0, 1]
+    """Draw an int verdict grid v[x, y] (values -3..1) with a fixed colour per verdict."""
+    codes = [-3, -2, -1, 0, 1]
     cmap = ListedColormap([VERDICT_COLORS[c] for c in codes])
-    norm = BoundaryNorm([-2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
+    norm = BoundaryNorm([-3.5, -2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
     ax.pcolormesh(x, y, np.asarray(v).T, cmap=cmap, norm=norm, shading="nearest")
     present = sorted(set(np.unique(v).astype(int).tolist()) & set(codes))
     return [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c]) for c in present]
