@@ -8,6 +8,7 @@
 #      "undecided", not -2 "no balanced configuration" (the old code's label) and not stable; with the
 #      default budget (at 500 rad/s, ball damping 0.05 and 0.1 kg/s) each point says what `rotor
 #      stability` says there: one undecided, one stable;
+#      `autobal plot` draws the two cells of that one-row map in their colours;
 #  (c) [map] hill_boxes out of range: exit 3 naming the key and the range.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
@@ -73,6 +74,20 @@ assert d['n_undecided'] == 1 and d['n_stable'] == 1, d
 v = h5py.File('full.h5', 'r')['rotor/map/verdict'][...].tolist()
 assert v == [[-3, 1]], v
 " && ok "map, default budget: ball damping 0.05 kg/s undecided (-3), 0.1 kg/s stable (1)" || bad "map, default budget: $(cat full.json)"
+# the picture of that one-row map: both cells drawn, in the colours of undecided and stable (a map with
+# one row used to come out blank: cells of zero width)
+"$AUTOBAL" plot full.h5 -o pics > plot.txt 2>&1 || { bad "autobal plot full.h5: exit $?"; cat plot.txt; }
+"$PY" -c "
+import numpy as np, matplotlib.image as mi
+im = mi.imread('pics/full_stability_map.png')[..., :3]
+left = im[:, : im.shape[1] // 2]
+def n(hexc):
+    c = np.array([int(hexc[i:i + 2], 16) for i in (1, 3, 5)]) / 255.0
+    return int((np.abs(left - c).max(axis=2) < 0.02).sum())
+u, s = n('#9ec5e8'), n('#8fd18f')
+print('undecided pixels', u, 'stable pixels', s)
+assert u > 20000 and s > 20000, (u, s)
+" && ok "plot of the one-row map: undecided and stable cells drawn" || bad "plot of the one-row map"
 for hv in "0.05 UNDECIDED" "0.1 STABLE for all"; do
   h=${hv%% *}
   expect 0 "${hv#* }" "$AUTOBAL" rotor stability "$ini" --set plane1.ball_damping="$h, $h" \
