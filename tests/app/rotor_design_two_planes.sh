@@ -124,9 +124,14 @@ expect_err 3 "unbalance2_max" "$AUTOBAL" rotor design "$D2" --set "design.unbala
 # transients inside the command (n_transient = 1, 2 start angles per ball: 2^4 starts x 2 x 2 unbalance ends x 2
 # speed ends = 128 members): every member re-run by `rotor transient` from the documented member rule
 # (rotor_design_two_planes_transients.py): the same P(balance), median and worst time; archive and rank_by = time
+# (the certification, checked above, is off in the two searches with transients: it does not change the ranking by
+# the sampled margin nor which designs get transients, and it was most of their run time)
 TR=(--set design.n_transient=1 --set design.n_start_angles=2 --set design.transient_t_end=10s)
-expect 0 "" "$AUTOBAL" rotor design "$D2" "${SMALL[@]}" "${TR[@]}" --set design.config_out=bt.ini -o dt.h5 --json
+expect 0 "" "$AUTOBAL" rotor design "$D2" "${SMALL[@]}" "${TR[@]}" --set design.unbalance2_boxes=-1 \
+  --set design.config_out=bt.ini -o dt.h5 --json
 cp out.txt dt.json
+diff <(grep -v '^;' best.ini) <(grep -v '^;' bt.ini) >/dev/null && ok "without the certification the same best design" \
+  || bad "without the certification another best design: $(diff best.ini bt.ini)"
 "$PY" "$here/rotor_design_two_planes_transients.py" "$AUTOBAL" bt.ini dt.json 2 10 471.238898038469 942.477796076938 \
   5e-4 3e-3 5e-4 2.5e-3 0.1 0.09 > py.txt 2>&1 \
   && ok "transients: P(balance), median and worst time equal 128 direct rotor transient runs" || { bad "transients vs direct runs"; cat py.txt; }
@@ -142,7 +147,7 @@ assert r["p_balance"].attrs["units"] == "1" and r["time_to_balance_worst"].attrs
 assert np.isclose(r["p_balance"][0], r["transient_balanced"][0] / 128) and np.isnan(r["p_balance"][1:]).all()
 PY
 expect 0 "transients of the first 2 designs (ranked by time)" "$AUTOBAL" rotor design "$D2" "${SMALL[@]}" \
-  --set design.n_transient=2 --set design.n_start_angles=1 --set design.rank_by=time -o dtt.h5
+  --set design.n_transient=2 --set design.n_start_angles=1 --set design.rank_by=time --set design.unbalance2_boxes=-1 -o dtt.h5
 "$PY" - <<'PY' && ok "rank_by = time: ordered by (feasible, worst, median time) as archived" || bad "rank_by = time order"
 import h5py
 r = h5py.File("dtt.h5", "r")["/rotor/design/ranked"]
