@@ -365,9 +365,9 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   aniso = supports_aniso(&p) && o.planes == 1;
   if (aniso && !ctx->json && !ctx->quiet)
     fprintf(stderr,
-            "autobal: note: anisotropic supports: a Floquet screen of %zu designs at %zu speeds x 5 unbalances (about "
-            "0.01 s per analysis), then Hill's method with the margin for up to %zu designs at %zu speeds (seconds "
-            "each); keep the grids small (data/design_anisotropic.ini)\n",
+            "autobal: note: anisotropic supports: a Floquet screen of %zu designs at %zu speeds x 5 unbalances (a few "
+            "ms per analysis), then Hill's method with the margin for up to %zu designs at %zu speeds (about a second "
+            "each, more when the margin is near the decay rate); keep the grids small (data/design_anisotropic.ini)\n",
             o.n_mass * o.n_damping * o.n_position * o.n_radius, o.n_omega, o.n_best,
             o.n_verify ? o.n_verify : o.n_omega);
   autobal_error_clear(&err);
