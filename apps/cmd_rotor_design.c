@@ -89,7 +89,7 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
        n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
        n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
   const char *rank_by = "margin", *umember = "every";
-  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0, mboxes = 0;
+  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0, mboxes = 0, hboxes = 0;
   double balance_from = NAN;
   int have_from = 0, profile;
   int aniso = 0;
@@ -148,6 +148,17 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   /* the budget of the every-member enclosure: [design] member_boxes, else [stability]'s, else 0 */
   if ((rc = cli_get_int(ctx, "stability", "member_boxes", mboxes, &mboxes, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "design", "member_boxes", mboxes, &mboxes, NULL))) goto done;
+  /* the Hill budget (anisotropic supports): [design] hill_boxes, else [stability]'s, else 0 */
+  if ((rc = cli_get_int(ctx, "stability", "hill_boxes", hboxes, &hboxes, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "hill_boxes", hboxes, &hboxes, NULL))) goto done;
+  if (!(hboxes == 0 || (hboxes >= 100 && hboxes <= 100000000L))) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: hill_boxes = %ld is out of range: allowed 0 (the default budget, 20000) or [100, 1e8] "
+                  "boxes (each Hill verdict of the certification, anisotropic supports)",
+                  hboxes);
+    goto done;
+  }
+  o.hill_boxes = hboxes;
   /* two planes (docs/rotor.md "Design", "Two planes") */
   {
     int have_t = 0, h1 = 0, h2 = 0, hn = 0, hb = 0;
@@ -637,7 +648,7 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
                  d->hill_found_omega);
       else if (d->hill_certified == 0) snprintf(vb, sizeof vb, "NOT STABLE: the balls cannot balance the range");
       else if (d->hill_certified == -1)
-        snprintf(vb, sizeof vb, "UNDECIDED at %zu of %zu speeds (first %.6g rad/s; [stability] hill_boxes)",
+        snprintf(vb, sizeof vb, "UNDECIDED at %zu of %zu speeds (first %.6g rad/s; [design] hill_boxes)",
                  d->hill_undecided, d->hill_speeds, d->hill_found_omega);
       else snprintf(vb, sizeof vb, "not certified (not run)");
       printf("    %4zu %10.5g %10.5g %12.5g %10.5g %12.5g %8s %s\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,

@@ -294,7 +294,8 @@
   "         anisotropic supports (one plane, two balls): every grid design SCREENED by Floquet (n_speed speeds x\n" \
   "         5 unbalances: sampled), the n_best by the screen's margin CERTIFIED by Hill's method with the margin\n" \
   "         at every re-check speed (n_verify = 0: n_speed; seconds per speed); only certified designs are\n" \
-  "         feasible; no optimizer; keep the grids small (data/design_anisotropic.ini)\n" \
+  "         feasible; no optimizer; keep the grids small (data/design_anisotropic.ini); hill_boxes = 0\n" \
+  "         (each Hill verdict's budget: 0 = 20000, else [100, 1e8]; default [stability]'s)\n" \
   "         n_balls_min = 2, n_balls_max = 2 (identical balls per design; mass bounds per ball)\n" \
   "         total_ball_mass_max (kg or g; cap on n m)  unbalance_member = [stability]'s|every|symmetric (n >= 3:\n" \
   "         the search runs over the symmetric fan; every (3 to 10 balls): each ranked design then certified for\n" \

@@ -4,6 +4,8 @@
  *    every re-check speed), and an ordinary Floquet analysis of it at 40 unbalances across the range at each
  *    re-check speed (and at the speeds half-way between them) finds every multiplier |mu| < exp(-margin T);
  *    feasible exactly when certified, the first design a certified one, its config saying so;
+ *  - a Hill budget too small to prove anything (hill_boxes = 100): the screened designs undecided, none
+ *    feasible, the config saying so;
  *  - a speed range below the first critical speed (100..200 rad/s), where no balancer balances: no design
  *    passes, none is feasible;
  *  - bad input: three balls refused on anisotropic supports, a negative margin; the messages name the key. */
@@ -114,6 +116,35 @@ static void feasible_designs(void) {
   autobal_study_rotor_design_summary_free(&S);
 }
 
+/* A budget too small to prove anything (hill_boxes = 100): the designs that pass the screen stay undecided
+ * and none is feasible. */
+static void undecided(void) {
+  double bm[2] = {0.05, 0.05}, br[2] = {0.1, 0.1}, bh[2] = {0.1, 0.1}, bp[2] = {1.0, 2.5}, brt[2] = {0, 0};
+  const autobal_rotor_params p = machine(bm, br, bh, bp, brt);
+  autobal_study_rotor_design_options o = small_options();
+  autobal_study_rotor_design_summary S;
+  autobal_error err;
+  size_t i, nf = 0, nu = 0;
+  int st;
+  o.hill_boxes = 100;
+  o.n_best = 2;
+  st = autobal_study_rotor_design(&p, &o, NULL, &S, &err);
+  CHECK_STATUS("hill_boxes = 100", st, AUTOBAL_SUCCESS);
+  for (i = 0; i < S.n_designs; i++) {
+    nf += S.designs[i].feasible ? 1u : 0u;
+    nu += S.designs[i].hill_certified == -1 ? 1u : 0u;
+  }
+  printf("     hill_boxes = 100: %zu ranked, %zu undecided, %zu feasible\n", S.n_designs, nu, nf);
+  CHECK("screened designs ranked, every one undecided, none feasible", S.n_designs == 2 && nu == 2 && nf == 0);
+  CHECK("the best config says it is undecided", S.best_config && strstr(S.best_config, "UNDECIDED"));
+  autobal_study_rotor_design_summary_free(&S);
+  o = small_options();
+  o.hill_boxes = 50;
+  CHECK_STATUS("hill_boxes = 50 refused", autobal_study_rotor_design(&p, &o, NULL, &S, &err), AUTOBAL_EINVAL);
+  CHECK("the message names hill_boxes and its range", strstr(err.message, "hill_boxes") && strstr(err.message, "[100, 1e8]"));
+  autobal_study_rotor_design_summary_free(&S);
+}
+
 static void none_feasible(void) {
   double bm[2] = {0.05, 0.05}, br[2] = {0.1, 0.1}, bh[2] = {0.1, 0.1}, bp[2] = {1.0, 2.5}, brt[2] = {0, 0};
   const autobal_rotor_params p = machine(bm, br, bh, bp, brt);
@@ -152,6 +183,8 @@ static void refusals(void) {
 int main(void) {
   printf("a small search: feasible designs re-checked by dense Floquet sampling\n");
   feasible_designs();
+  printf("a budget too small: undecided, not feasible\n");
+  undecided();
   printf("a speed range where no balancer works\n");
   none_feasible();
   printf("refusals\n");

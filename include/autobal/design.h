@@ -126,6 +126,9 @@ typedef struct autobal_study_rotor_design_options {
    * enclosure of u over the members (4 to 10 balls; autobal_rotor_stab_options.member_boxes): 0 = 4000000,
    * else [1000, 1e9].                                                                               (0) */
   long member_boxes;
+  /* Anisotropic supports (added at the end; one plane, two balls): the box budget of each Hill verdict of
+   * the certification (autobal_rotor_stab_options.hill_boxes): 0 = 20000, else [100, 1e8].          (0) */
+  long hill_boxes;
 } autobal_study_rotor_design_options;
 
 /* The largest number of balls a design may have. */

@@ -1044,6 +1044,10 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
                              "member covers 3 to 10 balls: set n_balls_max <= 10, or unbalance_member = symmetric "
                              "(the verdict then says 'symmetric members only')",
                              o->n_balls_max);
+  if (!(o->hill_boxes == 0 || (o->hill_boxes >= 100 && o->hill_boxes <= 100000000L)))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: hill_boxes = %ld: allowed 0 (the default budget, 20000) or [100, 1e8]",
+                             o->hill_boxes);
   if (!(o->member_boxes == 0 || (o->member_boxes >= 1000 && o->member_boxes <= 1000000000L)))
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "options: member_boxes = %ld: allowed 0 (the default budget, 4000000) or [1000, 1e9]",
@@ -1601,6 +1605,7 @@ static int aniso_certify(dctx *c, autobal_rotor_design *d) {
   autobal_rotor_params q = *c->base;
   autobal_rotor_plane *pl = &q.plane[0];
   double m[2], r[2], h[2], psi[2], rate[2], worst = -INFINITY;
+  autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
   autobal_rotor_stab *s;
   autobal_rotor_unbalance_range ur;
   const size_t nv = c->o.n_verify;
@@ -1622,7 +1627,8 @@ static int aniso_certify(dctx *c, autobal_rotor_design *d) {
     d->hill_certified = 0, d->recheck = 0, d->feasible = 0, d->recheck_margin = -INFINITY;
     return AUTOBAL_SUCCESS;
   }
-  s = autobal_rotor_stab_alloc(&q, NULL, c->err);
+  so.hill_boxes = c->o.hill_boxes;
+  s = autobal_rotor_stab_alloc(&q, &so, c->err);
   if (!s) return c->err ? c->err->status : AUTOBAL_EINVAL;
   autobal_rotor_stab_set_cancel(s, cancel_hook, c);
   d->hill_certified = 1;

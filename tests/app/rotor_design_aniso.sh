@@ -6,7 +6,8 @@
 #      matrix) at 3 speeds x 7 unbalances across the range, is stable with margin < -[design] margin;
 #      the console names the verdict ("CERTIFIED") and says the screen is sampled;
 #  (b) a speed range below the critical speeds (100..200 rad/s): no design passes, and the output says so;
-#  (c) bad input: three balls (n_balls_max = 3) on anisotropic supports, exit 3 naming n_balls_max.
+#  (c) bad input: three balls (n_balls_max = 3) on anisotropic supports, exit 3 naming n_balls_max;
+#      hill_boxes out of range (exit 3); a budget too small (hill_boxes = 100): UNDECIDED, not feasible.
 set -u
 : "${AUTOBAL:?}" "${DATA:?}" "${SCRATCH:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -52,4 +53,6 @@ expect 0 "none: no design in the bounds passes the screen" "$AUTOBAL" rotor desi
 
 # (c)
 expect 3 "n_balls_max" "$AUTOBAL" rotor design "$ini" "${small[@]}" --set design.n_balls_max=3
+expect 3 "hill_boxes" "$AUTOBAL" rotor design "$ini" "${small[@]}" --set design.hill_boxes=10
+expect 0 "UNDECIDED" "$AUTOBAL" rotor design "$ini" "${small[@]}" --set design.hill_boxes=100
 finish
