@@ -138,6 +138,20 @@ static int read_member_boxes(cli_ctx *ctx, const char *sec, long *boxes) {
   return CLI_EXIT_OK;
 }
 
+/* [sec] hill_boxes: the box budget of Hill's method (every unbalance, anisotropic supports). */
+static int read_hill_boxes(cli_ctx *ctx, const char *sec, long *boxes) {
+  int rc;
+  long b = 0;
+  if ((rc = cli_get_int(ctx, sec, "hill_boxes", 0, &b, NULL))) return rc;
+  if (b != 0 && (b < 100 || b > 100000000L))
+    return cli_fail(ctx, CLI_EXIT_INPUT,
+                    "[%s]: hill_boxes = %ld is out of range: allowed 0 (the default budget, 20000) or [100, 1e8] "
+                    "(boxes of the Hill exclusion, every unbalance with anisotropic supports)",
+                    sec, b);
+  *boxes = b;
+  return CLI_EXIT_OK;
+}
+
 /* gravity = true is refused: these analyses linearize about the weightless balanced state (the
  * library's balanced states and linear analyses ignore gravity, docs/device.md section 2). */
 static int refuse_gravity(cli_ctx *ctx, const autobal_rotor_params *p) {
@@ -484,14 +498,7 @@ int cli_cmd_rotor_stability(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = read_unbalance_member(ctx, "stability", &c->opt.unbalance_member, &umember))) goto done;
   if ((rc = read_member_boxes(ctx, "stability", &c->opt.member_boxes))) goto done;
-  if ((rc = cli_get_int(ctx, "stability", "hill_boxes", 0, &c->opt.hill_boxes, NULL))) goto done;
-  if (c->opt.hill_boxes != 0 && (c->opt.hill_boxes < 100 || c->opt.hill_boxes > 100000000L)) {
-    rc = cli_fail(ctx, CLI_EXIT_INPUT,
-                  "[stability]: hill_boxes = %ld is out of range: allowed 0 (the default budget, 20000) or [100, 1e8] "
-                  "(boxes of the Hill exclusion, every unbalance with anisotropic supports)",
-                  c->opt.hill_boxes);
-    goto done;
-  }
+  if ((rc = read_hill_boxes(ctx, "stability", &c->opt.hill_boxes))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_min", "kg m", NAN, &u2min, &have_u2min))) goto done;
   if ((rc = cli_get_quantity(ctx, "stability", "unbalance2_max", "kg m", NAN, &u2max, &have_u2max))) goto done;
   if ((rc = cli_get_int(ctx, "stability", "n_unbalance", n_unb, &n_unb, &have_nunb))) goto done;
@@ -1049,7 +1056,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   const char *umember = "every";
   double umin = NAN, umax = NAN;
   long n1 = (long)o.n1, n2 = (long)o.n2, threads = o.threads;
-  size_t n;
+  size_t n, k, n_undecided = 0;
   memset(&sum, 0, sizeof sum);
   if (!c) return cli_fail(ctx, CLI_EXIT_INTERNAL, "out of memory");
   if ((rc = read_stab_cfg(ctx, c))) goto done;
@@ -1070,6 +1077,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
   if ((rc = cli_get_quantity(ctx, "map", "unbalance_max", "kg m", NAN, &umax, &have_umax))) goto done;
   if ((rc = read_unbalance_member(ctx, "map", &c->opt.unbalance_member, &umember))) goto done;
   if ((rc = read_member_boxes(ctx, "map", &c->opt.member_boxes))) goto done;
+  if ((rc = read_hill_boxes(ctx, "map", &c->opt.hill_boxes))) goto done;
   if ((rc = cli_config_check_unused(ctx))) goto done;
   if (have_umin != have_umax) {
     rc = cli_fail(ctx, CLI_EXIT_INPUT,
@@ -1110,6 +1118,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     rc = cli_fail(ctx, cli_exit_code(st), "%s", cli_rotor_message(err.message, msg, sizeof msg));
     goto done;
   }
+  for (k = 0; k < sum.n1_done * sum.n2; k++) n_undecided += sum.verdict[k] == AUTOBAL_ROTOR_VERDICT_UNDECIDED;
   if ((rc = cli_archive_open(ctx, "autobal rotor map", &a))) goto done;
   if (a) {
     st = autobal_study_rotor_map_write(a, &c->p, &o, &sum);
@@ -1124,6 +1133,7 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
     cli_json_int(&j, "n1", n1);
     cli_json_int(&j, "n2", n2);
     cli_json_int(&j, "n_stable", (long)sum.n_stable);
+    cli_json_int(&j, "n_undecided", (long)n_undecided);
     cli_json_bool(&j, "every_unbalance", o.every_unbalance);
     if (o.every_unbalance && c->p.plane[0].n_balls >= 3) cli_json_string(&j, "unbalance_member", umember);
     cli_json_quantity(&j, "stable_fraction", (double)sum.n_stable / (double)n, "1");
@@ -1137,6 +1147,9 @@ int cli_cmd_rotor_map(cli_ctx *ctx) {
              umin * 1e6, umax * 1e6, c->p.plane[0].n_balls >= 3 ? ", unbalance_member = " : "",
              c->p.plane[0].n_balls >= 3 ? umember : "");
     printf("  stable points: %zu of %zu (%.1f%%)\n", sum.n_stable, n, 100.0 * (double)sum.n_stable / (double)n);
+    if (n_undecided)
+      printf("  undecided points: %zu (anisotropic supports: Hill's box budget reached, no unstable member found; "
+             "[map] hill_boxes raises it)\n", n_undecided);
     if (ctx->output) printf("archive: %s\n", ctx->output);
   }
 done:

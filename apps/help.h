@@ -272,9 +272,10 @@
   "      unbalance_min, unbalance_max (kg m or g mm): each point's verdict for EVERY m0 r0 in the range\n" \
   "      (one plane, two or more balls; docs/rotor.md \"Every unbalance\"); unbalance_mass, plane1.m0 and\n" \
   "      plane1.unbalance are then no axes; unbalance_member = every|symmetric (3 or more balls),\n" \
-  "      member_boxes = 0 (as in [stability])\n\n" \
+  "      member_boxes = 0, hill_boxes = 0 (as in [stability]; anisotropic supports: -3 undecided points)\n\n" \
   HELP_ROTOR_STAB_AXES \
-  "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance)\n" \
+  "\narchive: /rotor/map (margin[param1][param2], verdict: 1 stable, 0 marginal, -1 unstable, -2 no balance,\n" \
+  "         -3 undecided)\n" \
   HELP_DOCS_ROTOR
 #define HELP_ROTOR_DESIGN \
   "Size a ball autobalancer (n identical balls in plane 1, two by default) for the machine of the config:\n" \

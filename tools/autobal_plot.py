@@ -324,16 +324,33 @@ def pendulum_interval_strips(h, ax, cases, top):
             sec.set_ylabel("rotor speed ω = R_w ω0 [rev/min] (ω0 = %s rad/s)" % fmt(w0, 4), fontsize=9)
 
 
-VERDICT_COLORS = {-2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
-VERDICT_NAMES = {-2: "no balanced motion", -1: "unstable", 0: "marginal", 1: "stable"}
+VERDICT_COLORS = {-3: "#9ec5e8", -2: "#bbbbbb", -1: "#f4a6a6", 0: "#ffe680", 1: "#8fd18f"}
+VERDICT_NAMES = {-3: "undecided (Hill budget)", -2: "no balanced motion", -1: "unstable", 0: "marginal",
+                 1: "stable"}
+
+
+def cells(a):
+    """Cell edges around grid values a (what shading="nearest" does), also for a single value, where
+    matplotlib draws a cell of zero width: a map with one row or column would come out blank."""
+    a = np.asarray(a, dtype=float)
+    if a.size == 1:
+        d = 0.05 * abs(a[0]) if a[0] != 0 else 0.5
+        return np.array([a[0] - d, a[0] + d])
+    mid = 0.5 * (a[1:] + a[:-1])
+    return np.concatenate([[a[0] - (mid[0] - a[0])], mid, [a[-1] + (a[-1] - mid[-1])]])
+
+
+def mesh(ax, x, y, z, **kw):
+    """pcolormesh of z[x, y] with the cells of cells(): correct for one row or column too."""
+    return ax.pcolormesh(cells(x), cells(y), np.asarray(z).T, shading="flat", **kw)
 
 
 def verdict_image(ax, x, y, v):
-    """Draw an int verdict grid v[x, y] (values -2..1) with a fixed colour per verdict."""
-    codes = [-2, -1, 0, 1]
+    """Draw an int verdict grid v[x, y] (values -3..1) with a fixed colour per verdict."""
+    codes = [-3, -2, -1, 0, 1]
     cmap = ListedColormap([VERDICT_COLORS[c] for c in codes])
-    norm = BoundaryNorm([-2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
-    ax.pcolormesh(x, y, np.asarray(v).T, cmap=cmap, norm=norm, shading="nearest")
+    norm = BoundaryNorm([-3.5, -2.5, -1.5, -0.5, 0.5, 1.5], cmap.N)
+    mesh(ax, x, y, v, cmap=cmap, norm=norm)
     present = sorted(set(np.unique(v).astype(int).tolist()) & set(codes))
     return [Patch(facecolor=VERDICT_COLORS[c], edgecolor="k", lw=0.5, label=VERDICT_NAMES[c]) for c in present]
 
@@ -414,8 +431,9 @@ def plot_pendulum_map(h, outdir, stem, written):
         ax2 = axes[0, 1]
         mr = g["max_real"][:]
         lim = np.nanmax(np.abs(mr)) if np.isfinite(mr).any() else 1.0
-        im = ax2.pcolormesh(rm, rw, mr.T, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
-        ax2.contour(rm, rw, mr.T, levels=[0.0], colors="k", linewidths=1.0)
+        im = mesh(ax2, rm, rw, mr, cmap="RdBu_r", vmin=-lim, vmax=lim)
+        if len(rm) > 1 and len(rw) > 1:
+            ax2.contour(rm, rw, mr.T, levels=[0.0], colors="k", linewidths=1.0)
         fig.colorbar(im, ax=ax2, label="largest real part of the roots of (6) %s" % ubr(units(g["max_real"])))
         ax2.set_title("stability margin (black line: max Re λ = 0)", fontsize=11)
         ax2.set_xlabel(ax.get_xlabel())
@@ -1088,8 +1106,8 @@ def plot_rotor_map(h, outdir, stem, written):
         mg = g["margin"][:]
         fin = mg[np.isfinite(mg)]
         lim = float(np.percentile(np.abs(fin), 98)) if fin.size else 1.0
-        im = ax2.pcolormesh(x, y, mg.T, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
-        if fin.size and fin.min() < 0 < fin.max():
+        im = mesh(ax2, x, y, mg, cmap="RdBu_r", vmin=-lim, vmax=lim)
+        if fin.size and fin.min() < 0 < fin.max() and len(x) > 1 and len(y) > 1:
             ax2.contour(x, y, mg.T, levels=[0.0], colors="k", linewidths=1.0)
         fig.colorbar(im, ax=ax2, label="stability margin (largest Re λ) %s" % ubr(units(g["margin"])))
         ax2.set_xlabel(ax.get_xlabel())
@@ -1187,7 +1205,7 @@ def outcome_image(ax, x, y, code):
     cmap = ListedColormap([OUTCOME_COLORS[c] for c in codes])
     norm = BoundaryNorm(np.arange(len(codes) + 1) - 0.5, cmap.N)
     index = np.searchsorted(codes, np.asarray(code))
-    ax.pcolormesh(x, y, index.T, cmap=cmap, norm=norm, shading="nearest", edgecolors="face")
+    mesh(ax, x, y, index, cmap=cmap, norm=norm, edgecolors="face")
     return outcome_handles(code)
 
 
@@ -1248,7 +1266,7 @@ def plot_ensemble(h, outdir, stem, written, model):
         note = ""
         if len(params) == 3:  # a third axis: the fraction balanced across it, and the mean time
             frac, _ = binomial_fraction(np.sum(code == 1, axis=2), np.sum(code >= 0, axis=2))
-            im = a_map.pcolormesh(x, y, frac.T, cmap="RdYlGn", vmin=0, vmax=1, shading="nearest")
+            im = mesh(a_map, x, y, frac, cmap="RdYlGn", vmin=0, vmax=1)
             a_map.set_facecolor("0.85")
             fig.colorbar(im, ax=a_map, label="fraction balanced over %s (grey: none ran)" % params[2])
             handles = []
@@ -1264,7 +1282,7 @@ def plot_ensemble(h, outdir, stem, written, model):
             angle_ticks(a.xaxis, x, units(g[params[0]]))
             angle_ticks(a.yaxis, y, units(g[params[1]]))
         if t2 is not None and np.isfinite(t2).any():
-            im = a_ttb.pcolormesh(x, y, np.asarray(t2).T, cmap="viridis", shading="nearest")
+            im = mesh(a_ttb, x, y, t2, cmap="viridis")
             fig.colorbar(im, ax=a_ttb, label="%s %s%s" % (tname, ubr(tu), note))
         a_ttb.set_facecolor("0.85")
         a_ttb.set_title("%s of the balanced members (grey: not balanced)" % tname, fontsize=10)

@@ -113,6 +113,10 @@ AUTOBAL_BEGIN_DECLS
 /* Verdict code used in sweeps and maps when no balanced configuration exists
  * (or it cannot be analysed) at a point; the margin is NaN there. */
 #define AUTOBAL_ROTOR_VERDICT_NONE (-2)
+/* Verdict code of a map point for every unbalance with anisotropic supports (Hill's method) when the
+ * box budget (opt.hill_boxes) ran out before the range was proven stable and no member was found
+ * unstable: undecided, never counted as stable; the margin is the largest Floquet margin met. */
+#define AUTOBAL_ROTOR_VERDICT_UNDECIDED (-3)
 
 /* ---- members of the family of balanced configurations ---------------------- */
 

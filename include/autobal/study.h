@@ -854,7 +854,8 @@ typedef struct autobal_study_rotor_map_summary {
   size_t n1, n2;              /* grid points of each */
   double *values1, *values2;  /* [n1], [n2] the grids */
   double *margin;             /* [n1 x n2] row-major, 1/s (NaN: no balanced configuration) */
-  int *verdict;               /* [n1 x n2] 1 stable, 0 marginal, -1 unstable, -2 none */
+  int *verdict;               /* [n1 x n2] 1 stable, 0 marginal, -1 unstable, -2 none, -3 undecided
+                                 (every unbalance on anisotropic supports: AUTOBAL_ROTOR_VERDICT_UNDECIDED) */
   size_t n_stable;            /* points with verdict 1 */
   size_t n1_done;             /* rows (values1) computed: n1, or fewer after a cancellation */
 } autobal_study_rotor_map_summary;

@@ -922,6 +922,7 @@ static int every_point(autobal_rotor_stab *s, void *user, double *mg, int *v) {
   for (k = 0; k < ur.n_sub; k++)
     if (ur.sub_verdict[k] < *v) *v = ur.sub_verdict[k];
   if (!ur.all_stable && *v == AUTOBAL_VERDICT_STABLE) *v = AUTOBAL_VERDICT_MARGINAL;
+  if (ur.hill && *v == AUTOBAL_ROTOR_VERDICT_NONE) *v = AUTOBAL_ROTOR_VERDICT_UNDECIDED; /* budget reached */
   *mg = ur.margin_worst;
   return AUTOBAL_SUCCESS;
 }

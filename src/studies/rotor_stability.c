@@ -592,7 +592,10 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     const autobal_rotor_unbalance_range *u = &s->every;
     static const char *const dcu[] = {"unbalance_critical"}, *const dsub[] = {"sub_interval"};
     st = autobal_archive_group(a, ge);
-    if (!st) st = autobal_archive_attr_string(a, ge, "description", "stability of the balanced motion for every unbalance m0 r0 in [unbalance_min, unbalance_max] at omega: the critical unbalances (a root of Delta on the imaginary axis), the verdict between them (docs/rotor.md, Every unbalance)");
+    if (!st)
+      st = autobal_archive_attr_string(a, ge, "description", u->hill
+        ? "stability of the balanced motion for every unbalance m0 r0 in [unbalance_min, unbalance_max] at omega, anisotropic supports: Hill's method excludes Floquet multipliers on the unit circle over the whole range (no critical unbalances; one sub-interval with the verdict: 1 stable (proven), -1 unstable (unstable_unbalance), -2 undecided (hill_open boxes left at the budget)) (docs/rotor.md, Anisotropic supports: every unbalance)"
+        : "stability of the balanced motion for every unbalance m0 r0 in [unbalance_min, unbalance_max] at omega: the critical unbalances (a root of Delta on the imaginary axis), the verdict between them (docs/rotor.md, Every unbalance)");
     if (!st) st = autobal_archive_attr_double(a, ge, "omega", u->omega, "rad/s");
     if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_min", u->s_lo, "kg m");
     if (!st) st = autobal_archive_attr_double(a, ge, "unbalance_max", u->s_hi, "kg m");
@@ -607,6 +610,14 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
     if (!st) st = autobal_archive_attr_double(a, ge, "margin_worst_evaluated", u->margin_worst, "1/s");
     if (!st) st = autobal_archive_attr_int(a, ge, "n_missed", (long)u->n_missed);
     if (!st) st = autobal_archive_attr_int(a, ge, "evaluations", (long)u->evaluations);
+    if (!st && u->hill) { /* anisotropic supports: what Hill's method did */
+      st = autobal_archive_attr_string(a, ge, "method", "hill");
+      if (!st) st = autobal_archive_attr_int(a, ge, "hill_order", (long)u->hill_order);
+      if (!st) st = autobal_archive_attr_double(a, ge, "hill_tail", u->hill_tail, "1");
+      if (!st) st = autobal_archive_attr_int(a, ge, "hill_boxes", u->hill_boxes);
+      if (!st) st = autobal_archive_attr_int(a, ge, "hill_open", (long)u->hill_open);
+      if (!st) st = autobal_archive_attr_double(a, ge, "unstable_unbalance", u->s_unstable, "kg m");
+    }
     if (!st && u->n_crit > 0) {
       st = autobal_archive_dim(a, ge, "unbalance_critical", u->n_crit, "index of a critical unbalance");
       if (!st) st = autobal_archive_var(a, ge, "critical_unbalance", 1, dcu, u->s_crit, "kg m", "critical unbalance m0 r0: a root of Delta on the imaginary axis");
@@ -650,7 +661,7 @@ int autobal_study_rotor_stability_write(autobal_archive *a, const autobal_rotor_
       st = autobal_archive_dim(a, ge, "sub_interval", u->n_sub, "index of a sub-interval between critical unbalances");
       if (!st) st = autobal_archive_var(a, ge, "sub_lo", 1, dsub, u->sub_lo, "kg m", "lower end of the sub-interval (m0 r0)");
       if (!st) st = autobal_archive_var(a, ge, "sub_hi", 1, dsub, u->sub_hi, "kg m", "upper end of the sub-interval (m0 r0)");
-      if (!st) st = autobal_archive_var_int(a, ge, "sub_verdict", 1, dsub, v, "1", "verdict inside the sub-interval: 1 stable, 0 marginal, -1 unstable");
+      if (!st) st = autobal_archive_var_int(a, ge, "sub_verdict", 1, dsub, v, "1", "verdict inside the sub-interval: 1 stable, 0 marginal, -1 unstable, -2 undecided (anisotropic supports: Hill boxes left open)");
       if (!st) st = autobal_archive_var(a, ge, "sub_margin", 1, dsub, u->sub_margin, "1/s", "stability margin (largest real part) at the sub-interval's midpoint");
     }
     if (!st && s->have_every2) {
@@ -1043,7 +1054,7 @@ int autobal_study_rotor_map_write(autobal_archive *a, const autobal_rotor_params
       st = autobal_archive_attr_string(a, g, "unbalance_member",
                                        o->stab.unbalance_member == AUTOBAL_ROTOR_UNBALANCE_SYMMETRIC ? "symmetric" : "every");
     if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "for every unbalance in [unbalance_min, unbalance_max]: the largest margin met (the least stable unbalance evaluated; NaN: the balls cannot balance every unbalance of the range)");
-    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "for every unbalance in [unbalance_min, unbalance_max]: 1 stable for all, 0 a critical unbalance touches (stable around it), -1 unstable for some, -2 the balls cannot balance every unbalance of the range");
+    if (!st) st = autobal_archive_var_int(a, g, "verdict", 2, dims, s->verdict, "1", "for every unbalance in [unbalance_min, unbalance_max]: 1 stable for all, 0 a critical unbalance touches (stable around it), -1 unstable for some, -2 the balls cannot balance every unbalance of the range, -3 undecided (anisotropic supports: Hill's box budget hill_boxes reached, no unstable member found)");
     return st;
   }
   if (!st) st = autobal_archive_var(a, g, "margin", 2, dims, s->margin, "1/s", "stability margin of the balanced motion (NaN: no balanced configuration)");

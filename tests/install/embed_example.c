@@ -55,8 +55,8 @@ int main(void) {
   rotor = autobal_rotor_alloc(&rp, &err);
   if (!rotor) return host_error("rotor", err.status, err.message);
   opt = autobal_transient_options_default();
-  opt.rtol = 1e-8;
-  opt.atol = 1e-10;
+  opt.rtol = 1e-10; /* the command line's tolerances (data/rotor_default.ini): the ball angles */
+  opt.atol = 1e-9;  /* grow like omega t in the fixed frame, so rtol bounds them; atol the rotor's */
   opt.dt_out = 0.01; /* s */
   tr = autobal_transient_alloc(autobal_rotor_dim(rotor), &opt, &err);
   y = malloc(autobal_rotor_dim(rotor) * sizeof *y);
