@@ -57,6 +57,17 @@ static int get_bounds(cli_ctx *ctx, const char *kmin, const char *kmax, const ch
   return CLI_EXIT_OK;
 }
 
+/* Anisotropic supports (the lumped set, relative 1e-12): the search then screens by Floquet and certifies by
+ * Hill's method (docs/rotor.md "Design", "Anisotropic supports"). */
+static int near12(double a, double b) { return fabs(a - b) <= 1e-12 * fmax(fabs(a), fabs(b)); }
+static int supports_aniso(const autobal_rotor_params *p) {
+  autobal_rotor_lumped L;
+  if (p->input == AUTOBAL_ROTOR_LUMPED) L = p->lumped;
+  else if (autobal_rotor_lumped_from_hardware(&p->hw, &L, NULL) != AUTOBAL_SUCCESS) return 0;
+  return !(near12(L.c_x, L.c_y) && near12(L.c_alpha, L.c_beta) && near12(L.c_xbeta, L.c_yalpha) &&
+           near12(L.h_x, L.h_y) && near12(L.h_alpha, L.h_beta) && near12(L.h_xbeta, L.h_yalpha));
+}
+
 typedef struct design_partial {
   const autobal_rotor_params *p;
   const autobal_study_rotor_design_options *o;
@@ -78,9 +89,10 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
        n_starts = (long)o.n_starts, max_iter = (long)o.max_iter, n_transient = 5, n_start = (long)o.n_start,
        n_tunb = (long)o.n_transient_unbalances, n_tspeed = (long)o.n_transient_speeds, threads = 0;
   const char *rank_by = "margin", *umember = "every";
-  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0, mboxes = 0;
+  long n_bmin = 2, n_bmax = 2, planes = 1, n_unb2 = 5, boxes2 = 0, mboxes = 0, hboxes = 0;
   double balance_from = NAN;
   int have_from = 0, profile;
+  int aniso = 0;
   int rc = CLI_EXIT_OK, st, have_wmin = 0, have_wmax = 0, have_umin = 0, have_umax = 0, have_out = 0;
   double t0, seconds;
   size_t i;
@@ -136,6 +148,17 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   /* the budget of the every-member enclosure: [design] member_boxes, else [stability]'s, else 0 */
   if ((rc = cli_get_int(ctx, "stability", "member_boxes", mboxes, &mboxes, NULL))) goto done;
   if ((rc = cli_get_int(ctx, "design", "member_boxes", mboxes, &mboxes, NULL))) goto done;
+  /* the Hill budget (anisotropic supports): [design] hill_boxes, else [stability]'s, else 0 */
+  if ((rc = cli_get_int(ctx, "stability", "hill_boxes", hboxes, &hboxes, NULL))) goto done;
+  if ((rc = cli_get_int(ctx, "design", "hill_boxes", hboxes, &hboxes, NULL))) goto done;
+  if (!(hboxes == 0 || (hboxes >= 100 && hboxes <= 100000000L))) {
+    rc = cli_fail(ctx, CLI_EXIT_INPUT,
+                  "[design]: hill_boxes = %ld is out of range: allowed 0 (the default budget, 20000) or [100, 1e8] "
+                  "boxes (each Hill verdict of the certification, anisotropic supports)",
+                  hboxes);
+    goto done;
+  }
+  o.hill_boxes = hboxes;
   /* two planes (docs/rotor.md "Design", "Two planes") */
   {
     int have_t = 0, h1 = 0, h2 = 0, hn = 0, hb = 0;
@@ -350,6 +373,14 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
   bar.last = -1.0;
   o.progress = design_progress;
   o.progress_user = &bar;
+  aniso = supports_aniso(&p) && o.planes == 1;
+  if (aniso && !ctx->json && !ctx->quiet)
+    fprintf(stderr,
+            "autobal: note: anisotropic supports: a Floquet screen of %zu designs at %zu speeds x 5 unbalances (a few "
+            "ms per analysis), then Hill's method with the margin for up to %zu designs at %zu speeds (about a second "
+            "each, more when the margin is near the decay rate); keep the grids small (data/design_anisotropic.ini)\n",
+            o.n_mass * o.n_damping * o.n_position * o.n_radius, o.n_omega, o.n_best,
+            o.n_verify ? o.n_verify : o.n_omega);
   autobal_error_clear(&err);
   t0 = wall_seconds();
   st = autobal_study_rotor_design(&p, &o, NULL, &sum, &err);
@@ -401,6 +432,12 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       cli_json_int(&j, "n_undecided", (long)sum.n_undecided_cells);
       cli_json_quantity(&j, "seconds", seconds, "s");
     }
+    if (sum.aniso) {
+      cli_json_bool(&j, "anisotropic", 1);
+      cli_json_int(&j, "n_verify", (long)(o.n_verify ? o.n_verify : o.n_omega));
+      cli_json_int(&j, "hill_verdicts", (long)sum.ratio_sets);
+      cli_json_quantity(&j, "seconds", seconds, "s");
+    }
     cli_json_int(&j, "n_feasible", (long)sum.n_feasible);
     cli_json_int(&j, "ratio_sets", (long)sum.ratio_sets);
     cli_json_int(&j, "stability_analyses", (long)sum.margin_evaluations);
@@ -436,6 +473,20 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
       }
       cli_json_bool(&j, "feasible", d->feasible);
       cli_json_int(&j, "recheck", d->recheck);
+      if (sum.aniso) {
+        cli_json_string(&j, "margin_is", "sampled: the Floquet screen, -(largest Floquet margin met)");
+        cli_json_string(&j, "verdict", d->hill_certified == 1    ? "certified"
+                                       : d->hill_certified == 0  ? "not stable with the margin"
+                                       : d->hill_certified == -1 ? "undecided"
+                                                                 : "not run");
+        cli_json_int(&j, "hill_certified", d->hill_certified);
+        cli_json_int(&j, "hill_speeds", (long)d->hill_speeds);
+        cli_json_int(&j, "hill_speeds_undecided", (long)d->hill_undecided);
+        cli_json_int(&j, "hill_boxes", d->hill_boxes);
+        cli_json_quantity(&j, "hill_found_speed", d->hill_found_omega, "rad/s");
+        cli_json_quantity(&j, "hill_found_unbalance", d->hill_found_s, "kg m");
+        cli_json_quantity(&j, "recheck_margin", d->recheck_margin, "1/s");
+      }
       if (o.planes == 2) {
         cli_json_string(&j, "margin_is", "sampled: -(largest margin met)");
         cli_json_int(&j, "certified_speeds", (long)d->n_certified);
@@ -548,6 +599,80 @@ int cli_cmd_rotor_design(cli_ctx *ctx) {
     }
     printf("  %zu two-plane every-unbalance verdicts in %.3g s (%.1f per second)\n", sum.verdicts2, seconds,
            seconds > 0 ? (double)sum.verdicts2 / seconds : 0.0);
+    if (sum.best_config) {
+      if (have_out) printf("best design as a config (written to %s):\n", config_out);
+      else printf("best design as a config ([design] config_out = FILE writes it):\n");
+      fputs(sum.best_config, stdout);
+    }
+    if (ctx->output) printf("archive: %s\n", ctx->output);
+  } else if (!ctx->quiet && sum.aniso) {
+    const size_t ncells = sum.n_mass * sum.n_damping * sum.n_position * sum.n_radius;
+    const size_t nv = o.n_verify ? o.n_verify : o.n_omega;
+    size_t q, k;
+    printf("rotor design, anisotropic supports: two identical balls in plane 1, speeds [%.6g, %.6g] rad/s ([%.6g, %.6g] "
+           "rpm), every unbalance m0 r0 in [%.6g, %.6g] g mm,\n",
+           o.omega_min, o.omega_max, cli_rpm(o.omega_min), cli_rpm(o.omega_max), o.unbalance_min * 1e6,
+           o.unbalance_max * 1e6);
+    printf("  required margin %.6g 1/s (every Floquet exponent Re < -margin, |mu| < exp(-margin T))\n", o.margin);
+    printf("  screen (Floquet, SAMPLED: %zu speeds x 5 unbalances per design): %zu ball masses [%.6g, %.6g] g x %zu "
+           "dampings [%.6g, %.6g] kg/s x %zu positions x %zu radii [%.6g, %.6g] mm: %zu of %zu pass\n",
+           o.n_omega, sum.n_mass, sum.mass[0] * 1e3, sum.mass[sum.n_mass - 1] * 1e3, sum.n_damping, sum.damping[0],
+           sum.damping[sum.n_damping - 1], sum.n_position, sum.n_radius, sum.radius[0] * 1e3,
+           sum.radius[sum.n_radius - 1] * 1e3, sum.n_feasible, ncells);
+    printf("    screen map (rows ball mass g, columns track radius mm; per damping and position: # passes, . fails, "
+           "x cannot balance)\n");
+    for (i = 0; i < sum.n_damping; i++)
+      for (k = 0; k < sum.n_position; k++) {
+        size_t a_;
+        printf("    damping %.5g kg/s, d %.5g mm\n", sum.damping[i], sum.position[k] * 1e3);
+        for (a_ = 0; a_ < sum.n_mass; a_++) {
+          printf("      %8.4g ", sum.mass[a_] * 1e3);
+          for (q = 0; q < sum.n_radius; q++) {
+            const int f = sum.feasible[((a_ * sum.n_damping + i) * sum.n_position + k) * sum.n_radius + q];
+            putchar(f == 1 ? '#' : f == -1 ? 'x' : '.');
+          }
+          putchar('\n');
+        }
+      }
+    printf("  ranked designs (rho_s: the screen's margin, SAMPLED; verdict: Hill's method with the required margin at "
+           "every one of %zu re-check speeds; only CERTIFIED designs are feasible):\n",
+           nv);
+    printf("    %4s %10s %10s %12s %10s %12s %8s %s\n", "rank", "mass g", "radius mm", "damping kg/s", "d mm",
+           "rho_s 1/s", "feasible", "verdict");
+    for (i = 0; i < sum.n_designs; i++) {
+      const autobal_rotor_design *d = &sum.designs[i];
+      char vb[160];
+      if (d->hill_certified == 1) snprintf(vb, sizeof vb, "CERTIFIED (%zu speeds)", d->hill_speeds);
+      else if (d->hill_certified == 0 && !isnan(d->hill_found_s))
+        snprintf(vb, sizeof vb, "NOT STABLE with the margin: %.6g g mm at %.6g rad/s", d->hill_found_s * 1e6,
+                 d->hill_found_omega);
+      else if (d->hill_certified == 0) snprintf(vb, sizeof vb, "NOT STABLE: the balls cannot balance the range");
+      else if (d->hill_certified == -1)
+        snprintf(vb, sizeof vb, "UNDECIDED at %zu of %zu speeds (first %.6g rad/s; [design] hill_boxes)",
+                 d->hill_undecided, d->hill_speeds, d->hill_found_omega);
+      else snprintf(vb, sizeof vb, "not certified (not run)");
+      printf("    %4zu %10.5g %10.5g %12.5g %10.5g %12.5g %8s %s\n", i, d->mass * 1e3, d->radius * 1e3, d->damping,
+             d->position * 1e3, d->margin, d->feasible ? "yes" : "no", vb);
+    }
+    if (sum.n_designs == 0)
+      printf("    none: no design in the bounds passes the screen (every sample decaying faster than the margin)\n");
+    else if (!sum.designs[0].feasible)
+      printf("  no design certified: none is reported feasible\n");
+    if (sum.transients > 0) {
+      printf("  transients of the first %zu designs: %zu start angles per ball x %zu unbalances x %zu speeds\n",
+             o.n_transient < sum.n_designs ? o.n_transient : sum.n_designs, o.n_start,
+             o.unbalance_min < o.unbalance_max ? o.n_transient_unbalances : (size_t)1, o.n_transient_speeds);
+      printf("    %4s %10s %10s %12s %12s %14s %13s\n", "rank", "mass g", "radius mm", "damping kg/s", "P(balance)",
+             "median ttb s", "worst ttb s");
+      for (i = 0; i < sum.n_designs; i++) {
+        const autobal_rotor_design *d = &sum.designs[i];
+        if (d->n_runs == 0) continue;
+        printf("    %4zu %10.5g %10.5g %12.5g %5zu/%-6zu %14.4g %13.4g\n", i, d->mass * 1e3, d->radius * 1e3,
+               d->damping, d->n_balanced, d->n_runs, d->ttb_median, d->ttb_worst);
+      }
+    }
+    printf("  %zu Floquet analyses (screen and certification ends), %zu Hill verdicts, %.3g s\n",
+           sum.margin_evaluations, sum.ratio_sets, seconds);
     if (sum.best_config) {
       if (have_out) printf("best design as a config (written to %s):\n", config_out);
       else printf("best design as a config ([design] config_out = FILE writes it):\n");

@@ -291,7 +291,12 @@
   "         ball_damping_min, ball_damping_max (kg/s; 0.1x, 10x)  n_ball_damping = 8\n" \
   "         position_min, position_max (m; plane 1's d, fixed)  n_position = 1\n" \
   "         n_best = 10  n_starts = 3 (Nelder-Mead starts)  max_iter = 80  config_out = FILE (the best as .ini)\n" \
-  "         a pair with min = max fixes that variable; one plane, inertia = paper, isotropic only\n" \
+  "         a pair with min = max fixes that variable; one plane, inertia = paper\n" \
+  "         anisotropic supports (one plane, two balls): every grid design SCREENED by Floquet (n_speed speeds x\n" \
+  "         5 unbalances: sampled), the n_best by the screen's margin CERTIFIED by Hill's method with the margin\n" \
+  "         at every re-check speed (n_verify = 0: n_speed; seconds per speed); only certified designs are\n" \
+  "         feasible; no optimizer; keep the grids small (data/design_anisotropic.ini); hill_boxes = 0\n" \
+  "         (each Hill verdict's budget: 0 = 20000, else [100, 1e8]; default [stability]'s)\n" \
   "         n_balls_min = 2, n_balls_max = 2 (identical balls per design; mass bounds per ball)\n" \
   "         total_ball_mass_max (kg or g; cap on n m)  unbalance_member = [stability]'s|every|symmetric (n >= 3:\n" \
   "         the search runs over the symmetric fan; every (3 to 10 balls): each ranked design then certified for\n" \
@@ -308,7 +313,8 @@
   "\narchive: /rotor/design (feasible[ball_mass][ball_damping][plane_position][track_radius], radius windows,\n" \
   "ranked/ designs, best_config; with transients ranked/p_balance, time_to_balance_median, _worst (s));\n" \
   "with n_balls other than 2..2: n_balls, n_balls_N/feasible, radius windows per N, ranked/n_balls;\n" \
-  "planes = 2: margin_map, ranked/certified_speeds, found_* (no radius windows)\n" HELP_DOCS_ROTOR
+  "planes = 2: margin_map, ranked/certified_speeds, found_* (no radius windows);\n" \
+  "anisotropic supports: feasible = the screen, ranked/hill_certified, hill_speeds, hill_found_* (no windows)\n" HELP_DOCS_ROTOR
 #define HELP_ROTOR_CAMPBELL \
   "Rotor-housing without balls: natural frequencies at rest (undamped, damped), Campbell diagram (C omega\n" \
   "gyroscopic), steady unbalance response, critical speeds (frequency = omega) and response peaks.\n\n" \

@@ -126,6 +126,9 @@ typedef struct autobal_study_rotor_design_options {
    * enclosure of u over the members (4 to 10 balls; autobal_rotor_stab_options.member_boxes): 0 = 4000000,
    * else [1000, 1e9].                                                                               (0) */
   long member_boxes;
+  /* Anisotropic supports (added at the end; one plane, two balls): the box budget of each Hill verdict of
+   * the certification (autobal_rotor_stab_options.hill_boxes): 0 = 20000, else [100, 1e8].          (0) */
+  long hill_boxes;
 } autobal_study_rotor_design_options;
 
 /* The largest number of balls a design may have. */
@@ -221,6 +224,19 @@ typedef struct autobal_rotor_design {
   double member_margin_certified; /* 1/s */
   int member_margin_decided;      /* 1: every step decided; 0: a step failed only in the enclosure's gap */
   size_t member_margin_steps;     /* bisection steps */
+  /* Anisotropic supports (added at the end; one plane, two balls; docs/rotor.md "Design", "Anisotropic
+     supports").  margin is then the Floquet screen's (sampled: -(the largest Floquet margin at the search
+     grid's speeds and 5 unbalances)); the certification runs autobal_rotor_stab_every_unbalance_margin with
+     the required margin at every speed of the re-check grid (n_verify).  hill_certified: 1 proven at every
+     speed (then feasible = 1, recheck = 1); 0 a member whose Floquet margin is >= -margin found
+     (hill_found_omega, hill_found_s); -1 undecided at hill_undecided speeds (the first: hill_found_omega;
+     hill_found_s NaN), no violation; -2 not run.  Not feasible unless 1.  Zero for isotropic supports. */
+  int hill_certified;
+  size_t hill_speeds;       /* re-check speeds evaluated (fewer after a violation) */
+  size_t hill_undecided;    /* of them undecided */
+  double hill_found_omega;  /* rad/s */
+  double hill_found_s;      /* kg m, the member's m0 r0 */
+  long hill_boxes;          /* boxes of the Hill searches, all speeds */
 } autobal_rotor_design;
 
 /* Results.  Arrays owned by the summary (autobal_study_rotor_design_summary_free). */
@@ -257,6 +273,11 @@ typedef struct autobal_study_rotor_design_summary {
                           grid speed, NaN elsewhere */
   size_t verdicts2;    /* two-plane every-unbalance verdicts (map and certification) */
   size_t n_undecided_cells; /* map cells the two-plane analysis could not decide (an error: -3) */
+  /* anisotropic supports (added at the end): 1 when the search ran on them.  The map (feasible,
+     n_feasible) is then the Floquet screen, SAMPLED (1: every sample of the search grid's speeds x 5
+     unbalances decays faster than the margin), window_* are NaN, ratio_sets counts the Hill verdicts of the
+     certification, margin_evaluations the Floquet analyses; the designs' verdicts: hill_certified */
+  int aniso;
 } autobal_study_rotor_design_summary;
 
 /* Run the design search.  Map: for every (m, h, d) of the grids, the exact sets of normalized

@@ -634,6 +634,22 @@ AUTOBAL_API int autobal_rotor_stab_every_unbalance_speeds(autobal_rotor_stab *s,
                                                           double w_lo, double w_hi, size_t n_grid,
                                                           double xtol_rel, autobal_rotor_crit *out);
 
+/* One plane with two balls (common h/m, the paper's inertia model), a margin: is every Floquet exponent
+ * of the balanced motion left of -delta (Re lambda < -delta, delta >= 0, 1/s) for every m0 r0 in
+ * [s_lo, s_hi] at the handle's speed?  Hill's method of autobal_rotor_stab_every_unbalance (anisotropic
+ * supports; isotropic ones are accepted too, where autobal_rotor_stab_margin_ratio_set is exact and faster)
+ * on the line Re lambda = -delta instead of the imaginary axis (docs/rotor.md "Anisotropic supports: Hill's
+ * method", "Margin"), plus Floquet at the range's ends and middle.  *verdict 1: proven (out->all_stable
+ * 1); 0: a member whose Floquet margin is >= -delta was found (out->s_unstable; sub_verdict[0] UNSTABLE,
+ * which here means "not stable with the margin"); -1: undecided (boxes left open at the budget
+ * opt.hill_boxes, or no bounded truncation).  The rest of out as autobal_rotor_stab_every_unbalance
+ * (the hill fields).  delta = 0 gives that call's anisotropic verdict.  m0 restored (bitwise).  Statuses
+ * as autobal_rotor_stab_every_unbalance; AUTOBAL_EINVAL also for delta < 0 or not finite,
+ * AUTOBAL_EUNSUPPORTED for other than one plane of two balls. */
+AUTOBAL_API int autobal_rotor_stab_every_unbalance_margin(autobal_rotor_stab *s, double s_lo, double s_hi,
+                                                          double delta, int *verdict,
+                                                          autobal_rotor_unbalance_range *out);
+
 /* ---- every unbalance and every phase, two planes of two balls (rotor_unbalance2.c) ----- */
 
 #define AUTOBAL_ROTOR_MAX_PCRIT 64

@@ -836,6 +836,41 @@ int autobal_rotor_stab_every_unbalance(autobal_rotor_stab *s, double s_lo, doubl
   return st != AUTOBAL_SUCCESS ? st : st2;
 }
 
+int autobal_rotor_stab_every_unbalance_margin(autobal_rotor_stab *s, double s_lo, double s_hi, double delta,
+                                              int *verdict, autobal_rotor_unbalance_range *out) {
+  balls_info bi;
+  double m0;
+  int st, st2;
+  if (s == NULL) return AUTOBAL_EINVAL;
+  if (out == NULL || verdict == NULL)
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (margin): out or verdict is NULL");
+  *verdict = -1;
+  if (!(delta >= 0.0 && isfinite(delta)))
+    return autobal_error_set(&s->err, AUTOBAL_EINVAL, "every unbalance (margin): delta = %g 1/s: allowed [0, inf)",
+                             delta);
+  if (s->cur.n_planes != 1 || s->cur.plane[0].n_balls != 2)
+    return autobal_error_set(&s->err, AUTOBAL_EUNSUPPORTED,
+                             "every unbalance (margin): built for one plane with two balls (here %zu plane(s), %zu "
+                             "ball(s) in plane 1); autobal_rotor_stab_margin_ratio_set for n identical balls, "
+                             "autobal_rotor_stab_every_unbalance2_shift for two planes",
+                             s->cur.n_planes, s->cur.plane[0].n_balls);
+  memset(out, 0, sizeof *out);
+  out->s_lo = s_lo;
+  out->s_hi = s_hi;
+  out->omega = s->cur.omega;
+  out->n_balls = 2;
+  out->member_rule = s->opt.unbalance_member;
+  out->u_min = out->u_max = out->u_min_inner = out->u_max_inner = NAN;
+  if ((st = check_domain(s, s_lo, s_hi, &bi)) != AUTOBAL_SUCCESS) return st;
+  m0 = s->cur.plane[0].m0;
+  st = autobal_rotor_every_unbalance_hill_(s, s_lo, s_hi, delta, out);
+  st2 = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, m0);
+  if (st == AUTOBAL_SUCCESS) st = st2;
+  if (st == AUTOBAL_SUCCESS)
+    *verdict = out->all_stable ? 1 : out->sub_verdict[0] == AUTOBAL_VERDICT_UNSTABLE ? 0 : -1;
+  return st;
+}
+
 typedef struct {
   double s_lo, s_hi;
 } speeds_ctx;

@@ -272,16 +272,18 @@ static void consts_at(const hill_trig *g, const hill_set *hc, double hth, box_co
   b->e0 = fro_c(hc->Kp) + hth * g->rKp;
 }
 
-/* The tail bound ||B T^{-1} C|| of harmonics |k| > N, for nu / w in [0, 1] (|s_k| / w >= 2N + 1 there);
- * +inf when the Neumann series does not converge. */
-static double tail_bound(const box_consts *b, size_t N) {
+/* The tail bound ||B T^{-1} C|| of harmonics |k| > N, for nu / w in [0, 1] and lambda / w = -d + i nu / w
+ * (d = delta / w >= 0, the margin's shift): |s_k| / w >= 2N + 1 for |k| > N (the imaginary part alone),
+ * |s_{k+-1}| <= |s_k| + 2, and the couplings of the truncation to the tail have |s_{+-(N+1)}| / w <=
+ * 2N + 3 + d; +inf when the Neumann series does not converge. */
+static double tail_bound(const box_consts *b, size_t N, double d) {
   const double s0 = 2.0 * (double)N + 1.0, den = b->mu * s0 * s0 - b->c * s0 - b->kap;
   double dinv, g, bc;
   if (!(b->mu > 0.0) || !(den > 0.0) || !(s0 >= b->c / (2.0 * b->mu))) return INFINITY;
   dinv = 1.0 / den;
   g = 2.0 * (b->e1 * (s0 + 2.0) + b->e0) * dinv; /* ||D^{-1} E|| (Schur test, two neighbours) */
   if (!(g < 1.0)) return INFINITY;
-  bc = b->e1 * (s0 + 2.0) + b->e0; /* ||B||, ||C|| */
+  bc = b->e1 * (s0 + 2.0 + d) + b->e0; /* ||B||, ||C|| */
   return bc * bc * dinv / (1.0 - g);
 }
 
@@ -327,8 +329,9 @@ static void hill_matrix_l(const hill_set *h, size_t N, cplx lam, int which, gsl_
   }
 }
 
-static void hill_matrix(const hill_set *h, size_t N, double nuh, int which, gsl_matrix_complex *H) {
-  hill_matrix_l(h, N, I * nuh, which, H);
+/* The Hill matrix on the line Re lambda / w = -d (d = delta / w: the margin's shift) at Im lambda / w = nuh. */
+static void hill_matrix(const hill_set *h, size_t N, double d, double nuh, int which, gsl_matrix_complex *H) {
+  hill_matrix_l(h, N, -d + I * nuh, which, H);
 }
 
 static double fro_m(const gsl_matrix_complex *A) {
@@ -369,6 +372,7 @@ static double fro_prod(const gsl_matrix_complex *R, const gsl_matrix_complex *X,
 /* Workspace of the box test. */
 typedef struct hill_ws {
   size_t N, n;
+  double d; /* delta / w: the line Re lambda = -delta of the margin */
   gsl_matrix_complex *H0, *R, *T1, *T2;
   gsl_permutation *perm;
 } hill_ws;
@@ -427,7 +431,7 @@ static double box_test(hill_ws *w, const hill_trig *g, const hill_set *hc, const
   size_t i;
   int sgn;
   *pnu = *pth = INFINITY;
-  hill_matrix(hc, N, nuh, 0, w->H0);
+  hill_matrix(hc, N, w->d, nuh, 0, w->H0);
   gsl_matrix_complex_memcpy(w->T1, w->H0);
   if (gsl_linalg_complex_LU_decomp(w->T1, w->perm, &sgn) != 0) return INFINITY;
   for (i = 0; i < n; i++) {
@@ -438,25 +442,25 @@ static double box_test(hill_ws *w, const hill_trig *g, const hill_set *hc, const
   nR = fro_m(w->R);
   if (!isfinite(nR)) return INFINITY;
   /* R H1 */
-  hill_matrix(hc, N, nuh, 1, w->T2);
+  hill_matrix(hc, N, w->d, nuh, 1, w->T2);
   rh1 = fro_prod(w->R, w->T2, N, 0);
-  hill_matrix(hc, N, nuh, 2, w->T2);
+  hill_matrix(hc, N, w->d, nuh, 2, w->T2);
   nH2 = fro_m(w->T2);
   /* the theta parts */
   sets_deriv(g, th, &dx, &y);
-  hill_matrix(&dx, N, nuh, 0, w->T2);
+  hill_matrix(&dx, N, w->d, nuh, 0, w->T2);
   rh0d = fro_prod(w->R, w->T2, N, 0);
-  hill_matrix(&dx, N, nuh, 1, w->T2);
+  hill_matrix(&dx, N, w->d, nuh, 1, w->T2);
   nH1d = fro_m(w->T2);
-  hill_matrix(&dx, N, nuh, 2, w->T2);
+  hill_matrix(&dx, N, w->d, nuh, 2, w->T2);
   nH2d = fro_m(w->T2);
-  hill_matrix(&y, N, nuh, 0, w->T2);
+  hill_matrix(&y, N, w->d, nuh, 0, w->T2);
   nY0 = fro_m(w->T2);
-  hill_matrix(&y, N, nuh, 1, w->T2);
+  hill_matrix(&y, N, w->d, nuh, 1, w->T2);
   nY1 = fro_m(w->T2);
-  hill_matrix(&y, N, nuh, 2, w->T2);
+  hill_matrix(&y, N, w->d, nuh, 2, w->T2);
   nY2 = fro_m(w->T2);
-  tb = tail_bound(bc, N);
+  tb = tail_bound(bc, N, w->d);
   *pnu = hnu * rh1 + hnu * hnu * nR * nH2;
   *pth = sin(hth) * (rh0d + hnu * nR * nH1d + hnu * hnu * nR * nH2d) +
          (1.0 - cos(hth)) * nR * (nY0 + hnu * nY1 + hnu * hnu * nY2);
@@ -508,6 +512,16 @@ static int floquet_at(autobal_rotor_stab *s, double a1, double a2, double r0, do
 
 int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, double s_hi,
                                          autobal_rotor_unbalance_range *out) {
+  return autobal_rotor_every_unbalance_hill_(s, s_lo, s_hi, 0.0, out);
+}
+
+/* A Floquet margin that fails the test: delta = 0, the verdict (not stable); delta > 0, mg >= -delta. */
+static int fails_margin(double delta, double mg, int v) {
+  return delta > 0.0 ? !(mg < -delta) : v != AUTOBAL_VERDICT_STABLE;
+}
+
+int autobal_rotor_every_unbalance_hill_(autobal_rotor_stab *s, double s_lo, double s_hi, double delta,
+                                        autobal_rotor_unbalance_range *out) {
   const autobal_rotor_plane *pl = &s->cur.plane[0];
   const double m1 = pl->ball_mass[0], m2 = pl->ball_mass[1];
   const double a1 = m1 * pl->ball_radius[0], a2 = m2 * pl->ball_radius[1], r0 = pl->r0;
@@ -554,7 +568,7 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
     set_at(g, 0.5 * (tha + thb), &hc);
     consts_at(g, &hc, 0.5 * (thb - tha), &bc);
     for (N = 2; N <= HILL_NMAX; N++)
-      if ((tb = row_weight((double)N) * tail_bound(&bc, N)) <= HILL_TAIL_TOL) break;
+      if ((tb = row_weight((double)N) * tail_bound(&bc, N, delta / fabs(s->cur.omega))) <= HILL_TAIL_TOL) break;
     out->hill_order = N <= HILL_NMAX ? N : 0;
     out->hill_tail = tb;
   }
@@ -575,7 +589,11 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
       out->evaluations++;
       if (br == 0 && i == 0) out->sub_margin[0] = mg;
       if (mg > out->margin_worst) out->margin_worst = mg;
-      if (v != AUTOBAL_VERDICT_STABLE) {
+      if (delta > 0.0 && fails_margin(delta, mg, v)) { /* a member that decays slower than delta */
+        out->all_stable = 0;
+        out->sub_verdict[0] = AUTOBAL_VERDICT_UNSTABLE;
+        if (isnan(out->s_unstable)) out->s_unstable = sv;
+      } else if (v != AUTOBAL_VERDICT_STABLE) {
         out->all_stable = 0;
         if (v < out->sub_verdict[0]) out->sub_verdict[0] = v;
         if (v == AUTOBAL_VERDICT_UNSTABLE && isnan(out->s_unstable)) out->s_unstable = sv;
@@ -591,6 +609,7 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
     st = autobal_error_set(&s->err, AUTOBAL_ENOMEM, "every unbalance, anisotropic: no memory (Hill matrix)");
     goto done;
   }
+  ws.d = delta / fabs(s->cur.omega);
   /* the box search: FIFO, initial grid 16 (nu) x 4 (theta) per branch */
   cap = (size_t)budget + 2 * 64 + 16 * 16 + 8;
   q = (box *)malloc(cap * sizeof *q);
@@ -674,7 +693,7 @@ int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, dou
       if ((st = floquet_at(s, a1, a2, r0, th, &mg, &v, &sv)) != AUTOBAL_SUCCESS) break;
       out->evaluations++;
       if (mg > out->margin_worst) out->margin_worst = mg;
-      if (v == AUTOBAL_VERDICT_UNSTABLE) {
+      if (delta > 0.0 ? fails_margin(delta, mg, v) : v == AUTOBAL_VERDICT_UNSTABLE) {
         if (!found || sv < out->s_unstable) out->s_unstable = sv;
         found = 1;
       }

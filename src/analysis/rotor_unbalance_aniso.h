@@ -11,6 +11,14 @@
 int autobal_rotor_every_unbalance_aniso_(autobal_rotor_stab *s, double s_lo, double s_hi,
                                          autobal_rotor_unbalance_range *out);
 
+/* The same with a margin delta >= 0 (1/s): the line Re lambda = -delta instead of the imaginary axis, and a
+ * member "fails" when its Floquet margin is >= -delta (delta = 0: exactly the call above).  Any supports
+ * (isotropic ones too: the harmonics +-2 then vanish).  all_stable 1: every Floquet exponent Re < -delta for
+ * every unbalance of the range (proven); sub_verdict[0] UNSTABLE with s_unstable: a member that fails;
+ * NONE: undecided. */
+int autobal_rotor_every_unbalance_hill_(autobal_rotor_stab *s, double s_lo, double s_hi, double delta,
+                                        autobal_rotor_unbalance_range *out);
+
 /* For tests: the least singular value of the weighted, scaled Hill matrix W H_N(lambda) (lambda in 1/s,
  * rotating frame) at the configuration psi_1 = theta, psi_2 = -theta (any phase: a time shift); the
  * handle's balanced state must be valid (its psi is restored).  NaN on failure. */

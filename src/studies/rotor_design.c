@@ -22,6 +22,7 @@
 #include "autobal/rotor_stability.h"
 #include "autobal/study.h"
 #include "internal.h"
+#include "analysis/rotor_closed.h"
 #include "studies/rotor_design2.h"
 
 #ifdef AUTOBAL_HAVE_OPENMP
@@ -1043,6 +1044,10 @@ static int resolve(const autobal_rotor_params *p, const autobal_study_rotor_desi
                              "member covers 3 to 10 balls: set n_balls_max <= 10, or unbalance_member = symmetric "
                              "(the verdict then says 'symmetric members only')",
                              o->n_balls_max);
+  if (!(o->hill_boxes == 0 || (o->hill_boxes >= 100 && o->hill_boxes <= 100000000L)))
+    return autobal_error_set(err, AUTOBAL_EINVAL,
+                             "options: hill_boxes = %ld: allowed 0 (the default budget, 20000) or [100, 1e8]",
+                             o->hill_boxes);
   if (!(o->member_boxes == 0 || (o->member_boxes >= 1000 && o->member_boxes <= 1000000000L)))
     return autobal_error_set(err, AUTOBAL_EINVAL,
                              "options: member_boxes = %ld: allowed 0 (the default budget, 4000000) or [1000, 1e9]",
@@ -1539,6 +1544,232 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
   return st;
 }
 
+/* ---- anisotropic supports (one plane, two identical balls; docs/rotor.md "Design", "Anisotropic
+ * supports") ------------------------------------------------------------------------------------ */
+
+#define ANISO_NU 5 /* unbalances of the Floquet screen per speed, evenly in the balls' half angle */
+
+/* Are the machine's supports anisotropic (the lumped set, relative 1e-12)? */
+static int params_aniso(const autobal_rotor_params *p) {
+  autobal_rotor_lumped L;
+  if (p->input == AUTOBAL_ROTOR_LUMPED) L = p->lumped;
+  else if (autobal_rotor_lumped_from_hardware(&p->hw, &L, NULL) != AUTOBAL_SUCCESS) return 0;
+  return !autobal_rotor_lumped_isotropic_(&L);
+}
+
+/* The Floquet screen of one design (m, h, d, r): the Floquet margin at every speed of the search grid and
+ * ANISO_NU unbalances spread evenly in the half angle theta (s = 2 m r cos theta) over [unbalance_min,
+ * unbalance_max]; *worst the largest met (stops at the first >= -margin: then not passed).  Sampled, no
+ * proof.  *pass 1: every sample decays faster than the margin. */
+static int aniso_screen(dctx *c, double m, double h, double d, double r, double *worst, int *pass) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const double a = m * r, r0 = c->work.plane[0].r0;
+  const double tha = acos(fmin(1.0, o->unbalance_max / (2.0 * a))), thb = acos(fmin(1.0, o->unbalance_min / (2.0 * a)));
+  const size_t nu = o->unbalance_min < o->unbalance_max ? ANISO_NU : 1;
+  size_t k, j;
+  int st;
+  *worst = -INFINITY;
+  *pass = 0;
+  if ((st = set_design(c, 2, m, h, d)) != AUTOBAL_SUCCESS) return st;
+  if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_PLANE(0, AUTOBAL_ROTOR_PLANE_BALL_RADIUS), r)) !=
+      AUTOBAL_SUCCESS)
+    return fail_handle(c, st);
+  for (k = 0; k < o->n_omega; k++) {
+    if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_OMEGA, c->omega[k])) != AUTOBAL_SUCCESS)
+      return fail_handle(c, st);
+    for (j = 0; j < nu; j++) {
+      const double th = nu > 1 ? tha + (thb - tha) * (double)j / (double)(nu - 1) : tha;
+      const double sv = j == 0 ? o->unbalance_max : j == nu - 1 ? o->unbalance_min : 2.0 * a * cos(th);
+      double mg = NAN;
+      int v = AUTOBAL_ROTOR_VERDICT_NONE;
+      if ((st = autobal_rotor_stab_set(c->s, AUTOBAL_ROTOR_PARAM_UNBALANCE_MASS, sv / r0)) != AUTOBAL_SUCCESS)
+        return fail_handle(c, st);
+      st = autobal_rotor_stab_margin(c->s, AUTOBAL_ROTOR_STAB_FLOQUET, &mg, &v);
+      c->evaluations++;
+      if (st == AUTOBAL_ECANCELLED) return fail_handle(c, st);
+      if (st != AUTOBAL_SUCCESS || !(mg < -o->margin)) { /* a sample that fails (or cannot be analysed) */
+        if (st == AUTOBAL_SUCCESS && mg > *worst) *worst = mg;
+        return AUTOBAL_SUCCESS;
+      }
+      if (mg > *worst) *worst = mg;
+    }
+  }
+  *pass = 1;
+  return AUTOBAL_SUCCESS;
+}
+
+/* The certification of one design: autobal_rotor_stab_every_unbalance_margin with the required margin at
+ * every speed of the re-check grid (n_verify).  hill_certified 1: proven at every speed; 0: a member that
+ * decays slower than the margin found (stops there); -1: undecided at some speed, no violation. */
+static int aniso_certify(dctx *c, autobal_rotor_design *d) {
+  autobal_rotor_params q = *c->base;
+  autobal_rotor_plane *pl = &q.plane[0];
+  double m[2], r[2], h[2], psi[2], rate[2], worst = -INFINITY;
+  autobal_rotor_stab_options so = autobal_rotor_stab_options_default();
+  autobal_rotor_stab *s;
+  autobal_rotor_unbalance_range ur;
+  const size_t nv = c->o.n_verify;
+  size_t k, i;
+  int st = AUTOBAL_SUCCESS, undecided = 0;
+  memset(&q.drive, 0, sizeof q.drive);
+  for (i = 0; i < 2; i++) {
+    m[i] = d->mass, r[i] = d->radius, h[i] = d->damping;
+    psi[i] = c->bpsi[i], rate[i] = c->brate[i];
+  }
+  pl->d = d->position;
+  pl->n_balls = 2;
+  pl->ball_mass = m, pl->ball_radius = r, pl->ball_damping = h, pl->ball_psi = psi, pl->ball_rate = rate;
+  d->hill_certified = -2;
+  d->hill_speeds = d->hill_undecided = 0;
+  d->hill_found_omega = d->hill_found_s = NAN;
+  d->hill_boxes = 0;
+  if (!(c->o.unbalance_max < 2.0 * d->mass * d->radius)) { /* the balls cannot balance the range */
+    d->hill_certified = 0, d->recheck = 0, d->feasible = 0, d->recheck_margin = -INFINITY;
+    return AUTOBAL_SUCCESS;
+  }
+  so.hill_boxes = c->o.hill_boxes;
+  s = autobal_rotor_stab_alloc(&q, &so, c->err);
+  if (!s) return c->err ? c->err->status : AUTOBAL_EINVAL;
+  autobal_rotor_stab_set_cancel(s, cancel_hook, c);
+  d->hill_certified = 1;
+  for (k = 0; k < nv; k++) {
+    const double w = k == nv - 1 ? c->o.omega_max
+                                 : c->o.omega_min + (c->o.omega_max - c->o.omega_min) * (double)k / (double)(nv - 1);
+    int v = -1;
+    if ((st = autobal_rotor_stab_set(s, AUTOBAL_ROTOR_PARAM_OMEGA, w)) != AUTOBAL_SUCCESS ||
+        (st = autobal_rotor_stab_every_unbalance_margin(s, c->o.unbalance_min, c->o.unbalance_max, c->o.margin, &v,
+                                                        &ur)) != AUTOBAL_SUCCESS) {
+      st = autobal_error_set(c->err, st, "design certification (anisotropic supports): %s", autobal_rotor_stab_errmsg(s));
+      break;
+    }
+    c->evaluations += ur.evaluations;
+    c->ratio_sets++;
+    d->hill_speeds++;
+    d->hill_boxes += ur.hill_boxes;
+    worst = fmax(worst, ur.margin_worst);
+    if (v == 0) {
+      d->hill_certified = 0;
+      d->hill_found_omega = w;
+      d->hill_found_s = ur.s_unstable;
+      break;
+    }
+    if (v != 1) {
+      undecided = 1;
+      d->hill_undecided++;
+      if (isnan(d->hill_found_omega)) d->hill_found_omega = w; /* the first undecided speed */
+    }
+  }
+  autobal_rotor_stab_free(s);
+  if (st != AUTOBAL_SUCCESS) return st;
+  if (d->hill_certified == 1 && undecided) d->hill_certified = -1;
+  d->recheck_margin = -worst;
+  d->recheck = d->hill_certified == 1 ? 1 : 0;
+  d->feasible = d->hill_certified == 1;
+  return AUTOBAL_SUCCESS;
+}
+
+/* Certified designs first, each group in the order of the screen's margin. */
+static int cmp_aniso(const void *a, const void *b) {
+  const autobal_rotor_design *x = (const autobal_rotor_design *)a, *y = (const autobal_rotor_design *)b;
+  if (x->feasible != y->feasible) return y->feasible - x->feasible;
+  return cmp_design(a, b);
+}
+
+static int run_aniso(dctx *c, autobal_study_rotor_design_summary *S) {
+  const autobal_study_rotor_design_options *o = &c->o;
+  const size_t ncell = o->n_mass * o->n_damping * o->n_position, nr = o->n_radius;
+  autobal_rotor_design *cand = NULL;
+  size_t ncand = 0, cell, q, i;
+  int st = AUTOBAL_SUCCESS;
+  S->aniso = 1;
+  S->n_n = 1;
+  S->n_balls = malloc(sizeof *S->n_balls);
+  S->n_mass = o->n_mass;
+  S->n_damping = o->n_damping;
+  S->n_position = o->n_position;
+  S->n_radius = nr;
+  S->mass = autobal_design_grid_(o->mass_min, o->mass_max, o->n_mass, 1);
+  S->damping = autobal_design_grid_(o->damping_min, o->damping_max, o->n_damping, 1);
+  S->position = autobal_design_grid_(o->position_min, o->position_max, o->n_position, 0);
+  S->radius = autobal_design_grid_(o->radius_min, o->radius_max, nr, 1);
+  S->feasible = malloc(ncell * nr * sizeof *S->feasible);
+  S->window_lo = malloc(ncell * sizeof *S->window_lo);
+  S->window_hi = malloc(ncell * sizeof *S->window_hi);
+  cand = malloc(ncell * nr * sizeof *cand);
+  c->omega = autobal_design_grid_(o->omega_min, o->omega_max, o->n_omega, 0);
+  if (!S->n_balls || !S->mass || !S->damping || !S->position || !S->radius || !S->feasible || !S->window_lo ||
+      !S->window_hi || !cand || !c->omega) {
+    free(cand);
+    return autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  }
+  S->n_balls[0] = 2;
+  /* 1. the map: the Floquet screen of every grid design */
+  for (cell = 0; cell < ncell && st == AUTOBAL_SUCCESS; cell++) {
+    const size_t k = cell % o->n_position, j = (cell / o->n_position) % o->n_damping,
+                 im = cell / (o->n_position * o->n_damping);
+    S->window_lo[cell] = S->window_hi[cell] = NAN; /* not exact in r with anisotropic supports */
+    for (q = 0; q < nr && st == AUTOBAL_SUCCESS; q++) {
+      double worst;
+      int pass;
+      c->fraction = 0.6 * (double)(cell * nr + q) / (double)(ncell * nr);
+      if (!(o->unbalance_max < 2.0 * S->mass[im] * S->radius[q])) {
+        S->feasible[cell * nr + q] = -1;
+        continue;
+      }
+      if ((st = aniso_screen(c, S->mass[im], S->damping[j], S->position[k], S->radius[q], &worst, &pass)) !=
+          AUTOBAL_SUCCESS)
+        break;
+      S->feasible[cell * nr + q] = pass;
+      if (pass) {
+        autobal_rotor_design *d = &cand[ncand++];
+        memset(d, 0, sizeof *d);
+        d->mass = S->mass[im], d->radius = S->radius[q], d->damping = S->damping[j], d->position = S->position[k];
+        d->margin = -worst;
+        d->n_balls = 2;
+        d->recheck = -1;
+        d->recheck_margin = NAN;
+        S->n_feasible++;
+      }
+    }
+    if (st == AUTOBAL_SUCCESS && (cell + 1) % (o->n_damping * o->n_position) == 0) S->n_mass_done = im + 1;
+    if (st == AUTOBAL_SUCCESS && o->progress && o->progress(0.6 * (double)(cell + 1) / (double)ncell, o->progress_user))
+      st = autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
+                             S->n_mass_done, o->n_mass);
+  }
+  if (st == AUTOBAL_ECANCELLED && c->err && !strstr(c->err->message, "rows of the map"))
+    autobal_error_set(c->err, AUTOBAL_ECANCELLED, "design: cancelled by the caller after %zu of %zu rows of the map",
+                      S->n_mass_done, o->n_mass);
+  /* 2. the best n_best by the screen's margin, certified by Hill's method at every re-check speed */
+  if (st == AUTOBAL_SUCCESS) {
+    qsort(cand, ncand, sizeof *cand, cmp_design);
+    S->designs = malloc((ncand ? ncand : 1) * sizeof *S->designs);
+    if (!S->designs) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  }
+  for (i = 0; st == AUTOBAL_SUCCESS && i < ncand && S->n_designs < o->n_best; i++) add_distinct(S, &cand[i], o);
+  for (i = 0; st == AUTOBAL_SUCCESS && i < S->n_designs; i++) {
+    c->fraction = 0.6 + 0.35 * (double)i / (double)S->n_designs;
+    st = aniso_certify(c, &S->designs[i]);
+  }
+  if (st != AUTOBAL_SUCCESS) S->n_designs = 0;
+  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
+    const size_t nk = o->n_transient < S->n_designs ? o->n_transient : S->n_designs;
+    qsort(S->designs, S->n_designs, sizeof *S->designs, cmp_aniso);
+    /* 3. transients of the first n_transient designs; the ranking by rank_by among them */
+    for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
+      c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
+      st = design_transients(c, &S->designs[i], &S->transients);
+    }
+    if (st == AUTOBAL_SUCCESS && o->rank_by != AUTOBAL_DESIGN_RANK_MARGIN) rank_transients(S->designs, nk, o->rank_by);
+  }
+  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
+  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
+    S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
+    if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+  }
+  free(cand);
+  return st;
+}
+
 /* Two planes (options.planes = 2): the search of rotor_design2.c on the machine with the config's
  * balls in writable arrays, then the best config and the archive as for one plane. */
 static int design_two_planes(dctx *c, autobal_archive *a, autobal_study_rotor_design_summary *summary) {
@@ -1590,7 +1821,7 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
                                autobal_archive *a, autobal_study_rotor_design_summary *summary, autobal_error *err) {
   autobal_study_rotor_design_options def = autobal_study_rotor_design_options_default();
   dctx c;
-  int st, wst;
+  int st, wst, aniso;
   autobal_error_clear(err);
   if (!summary) return autobal_error_set(err, AUTOBAL_EINVAL, "summary: NULL");
   memset(summary, 0, sizeof *summary);
@@ -1601,6 +1832,17 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
   if ((st = resolve(p, opt ? opt : &def, &c.o, err)) != AUTOBAL_SUCCESS) return st;
   c.work = *p;
   memset(&c.work.drive, 0, sizeof c.work.drive); /* the stability analyses: constant speeds */
+  aniso = params_aniso(p);
+  if (aniso && c.o.planes == 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[supports]: anisotropic supports are designed for one plane of two balls (planes = 1); "
+                             "two planes need isotropic supports (c_Lx = c_Ly, c_Rx = c_Ry, h_Lx = h_Ly, h_Rx = h_Ry)");
+  if (aniso && c.o.n_balls_max != 2)
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[design] n_balls_max = %zu: with anisotropic supports the design covers two balls "
+                             "(Hill's method); set n_balls_min = n_balls_max = 2",
+                             c.o.n_balls_max);
+  if (aniso && (opt ? opt : &def)->n_verify == 0) c.o.n_verify = c.o.n_omega; /* Hill verdicts: seconds each */
   if (c.o.planes == 2) return design_two_planes(&c, a, summary);
   {
     const autobal_rotor_plane *pl = &p->plane[0];
@@ -1620,7 +1862,7 @@ int autobal_study_rotor_design(const autobal_rotor_params *p, const autobal_stud
     c.work.plane[0].ball_rate = c.brate;
   }
   c.s_d = NAN;
-  st = run(&c, summary);
+  st = aniso ? run_aniso(&c, summary) : run(&c, summary);
   summary->ratio_sets = c.ratio_sets;
   summary->margin_evaluations = c.evaluations;
   summary->optimizer_evaluations = c.nm_evals;
@@ -1754,6 +1996,15 @@ char *autobal_study_rotor_design_config(const autobal_rotor_params *p, const aut
     if (!isnan(d->margin_certified) && (d->margin_certified > 0.0 || d->margin_steps > 0))
       put(&b, "; certified margin: every root Re lambda < -%.6g 1/s at every grid speed, every unbalance and phase%s\n",
           d->margin_certified, d->margin_decided ? "" : " (a lower bound; a bisection step was undecided: estimate)");
+  } else if (d->hill_certified != 0 || d->hill_speeds > 0) {
+    put(&b,
+        "; anisotropic supports: Floquet screen margin %.6g 1/s (sampled: the search grid's speeds x 5 unbalances);\n"
+        "; certification by Hill's method with the required margin at the re-check speeds: %s\n",
+        d->margin,
+        d->hill_certified == 1    ? "PROVEN at every speed (every Floquet exponent Re < -margin, every unbalance)"
+        : d->hill_certified == -1 ? "UNDECIDED at some speed (not feasible)"
+        : d->hill_certified == 0  ? "NOT STABLE with the margin (a member found; not feasible)"
+                                  : "not run");
   } else if (nballs(d) >= 3 && d->members_certified == 1)
     put(&b,
         "; robust margin %.6g 1/s over the speed grid and every unbalance of the range on the symmetric members;\n"
@@ -1878,6 +2129,9 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
     if (!st) st = autobal_archive_attr_int(a, g, "two_plane_verdicts", (long)S->verdicts2);
     if (!st) st = autobal_archive_attr_int(a, g, "n_undecided", (long)S->n_undecided_cells);
     if (!st) st = autobal_archive_attr_double(a, g, "plane2_position", p->plane[1].d, "m");
+  } else if (!st && S->aniso) {
+    st = autobal_archive_attr_string(a, g, "method", "docs/rotor.md \"Design\", \"Anisotropic supports\": map = Floquet screen (SAMPLED: the grid speeds x 5 unbalances; feasible 1 = every sample decays faster than margin_required; robust_margin = -(largest Floquet margin met)); the first n_best screened designs certified by Hill's method with margin_required at every re-check speed (hill_certified); feasible designs are the certified ones");
+    if (!st) st = autobal_archive_attr_int(a, g, "anisotropic", 1);
   } else if (!st)
     st = autobal_archive_attr_string(a, g, "method", "docs/rotor.md \"Design\": exact in the unbalance and the track radius (critical values), sampled in the speed, grid + Nelder-Mead (GSL nmsimplex2) in ball mass, damping, plane position");
   if (!st) st = autobal_archive_attr_double(a, g, "omega_min", opt->omega_min, "rad/s");
@@ -2033,6 +2287,19 @@ int autobal_study_rotor_design_write(autobal_archive *a, const autobal_rotor_par
       ICOL(member_enclosure_complete, "member_enclosure_complete", "1: the enclosure of u closed to its tolerance within member_boxes (else valid but wider)")
       COL(member_margin_certified, "member_margin_certified", "1/s", "certified designs: the largest delta proven by bisection (to about 1e-3 1/s): every root Re lambda < -delta for every member of every unbalance of the range at every re-check speed (Delta's roots and -h/m); NaN: not certified")
       ICOL(member_margin_decided, "member_margin_decided", "1: every bisection step was decided; 0: a step failed only in the enclosure's gap (member_margin_certified still proven)")
+    }
+    if (S->aniso) {
+      ICOL(hill_certified, "hill_certified", "anisotropic supports: 1 every Floquet exponent Re < -margin_required for every unbalance of the range at every re-check speed (Hill's method, proven); 0 a member decaying slower found (hill_found_*); -1 undecided at some speed; -2 not run")
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].hill_speeds;
+        st = autobal_archive_var_int(a, gr, "hill_speeds", 1, rank1, iv, "1", "re-check speeds evaluated by the certification");
+      }
+      if (!st) {
+        for (i = 0; i < n; i++) iv[i] = (int)S->designs[i].hill_undecided;
+        st = autobal_archive_var_int(a, gr, "hill_speeds_undecided", 1, rank1, iv, "1", "of them undecided (boxes left open at the budget)");
+      }
+      COL(hill_found_omega, "hill_found_speed", "rad/s", "speed of the violation (hill_certified 0) or the first undecided speed (-1); NaN: none")
+      COL(hill_found_s, "hill_found_unbalance", "kg m", "m0 r0 of a member whose Floquet margin is >= -margin_required (NaN: none)")
     }
     if (S->planes == 2) {
       if (!st) {
