@@ -8,7 +8,8 @@
  *    feasible, the config saying so;
  *  - a speed range below the first critical speed (100..200 rad/s), where no balancer balances: no design
  *    passes, none is feasible;
- *  - bad input: three balls refused on anisotropic supports, a negative margin; the messages name the key. */
+ *  - bad input: three balls refused on anisotropic supports, a negative margin; the messages name the key;
+ *    autobal_study_rotor_design_margin (isotropic bisection) refused on anisotropic supports. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,6 +179,17 @@ static void refusals(void) {
   CHECK_STATUS("margin < 0 refused", autobal_study_rotor_design(&p, &o, NULL, &S, &err), AUTOBAL_EINVAL);
   CHECK("the message names margin and its range", strstr(err.message, "margin") && strstr(err.message, ">= 0"));
   autobal_study_rotor_design_summary_free(&S);
+  { /* the robust margin of one design by bisection is isotropic only: refused, not a wrong number */
+    autobal_rotor_design d;
+    double rho = 0.0;
+    memset(&d, 0, sizeof d);
+    d.mass = 0.05, d.radius = 0.1, d.damping = 0.1, d.position = p.plane[0].d, d.n_balls = 2;
+    o = small_options();
+    CHECK_STATUS("design margin on anisotropic supports refused",
+                 autobal_study_rotor_design_margin(&p, &o, &d, &rho, &err), AUTOBAL_EUNSUPPORTED);
+    CHECK("its message names the supports and the call to use",
+          strstr(err.message, "[supports]") && strstr(err.message, "autobal_rotor_stab_every_unbalance_margin"));
+  }
 }
 
 int main(void) {

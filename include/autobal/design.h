@@ -307,7 +307,8 @@ AUTOBAL_API void autobal_study_rotor_design_summary_free(autobal_study_rotor_des
 /* The robust margin rho (1/s) of one design over the speed grid of opt (n_omega points in
  * [omega_min, omega_max]) and every unbalance in [unbalance_min, unbalance_max], by the exact test
  * and bisection (accuracy about 1e-3 (1 + |rho|) 1/s).  *rho = -INFINITY when the balls cannot
- * balance unbalance_max.  Statuses as above. */
+ * balance unbalance_max.  Statuses as above; AUTOBAL_EUNSUPPORTED for anisotropic supports (use
+ * autobal_rotor_stab_every_unbalance_margin with the margin to check at each speed). */
 AUTOBAL_API int autobal_study_rotor_design_margin(const autobal_rotor_params *p,
                                                   const autobal_study_rotor_design_options *opt,
                                                   const autobal_rotor_design *design, double *rho,

@@ -1889,6 +1889,11 @@ int autobal_study_rotor_design_margin(const autobal_rotor_params *p, const autob
     return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
                              "options: planes = 2: the robust margin of one design is for one plane (allowed planes = 1); "
                              "two-plane margins come from autobal_study_rotor_design (sampled)");
+  if (params_aniso(p))
+    return autobal_error_set(err, AUTOBAL_EUNSUPPORTED,
+                             "[supports]: anisotropic supports: the robust margin of one design by bisection is for "
+                             "isotropic supports; check a margin delta with autobal_rotor_stab_every_unbalance_margin "
+                             "(Hill's method) at each speed");
   if (!(design->mass > 0.0 && design->radius > 0.0 && design->damping > 0.0 && isfinite(design->position)))
     return autobal_error_set(err, AUTOBAL_EINVAL, "design margin: mass, radius, damping must be > 0, position finite");
   c.work = *p;
