@@ -199,6 +199,10 @@ expect 3 "h_max" "[0, inf)" -- "$A" pendulum transient --set transient.h_max=-1
 expect 3 "too many" -- "$A" pendulum transient --set transient.t_end=1e300
 expect 3 "too many" -- "$A" rotor transient --set transient.dt_out=1e-300
 expect 0 "" -- "$A" rotor transient --set transient.atol=1e-300 --set transient.t_end=0.05        # pure relative control: fine
+# dop853 too (its normwise error estimate squared e/atol and overflowed: exit 5 at t = 0), every output
+for o in exact dense dense6; do
+  expect 0 "" -- "$A" rotor transient --set transient.atol=1e-300 --set transient.t_end=0.05 --set transient.stepper=dop853 --set transient.output=$o
+done
 expect 3 "rtol" -- \
   "$A" rotor transient --set transient.rtol=1e300 --set transient.t_end=0.05
 expect 3 "rtol" -- \
