@@ -346,6 +346,15 @@ AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_trans
  * 64; not for dwell events.  Events with the same n share the interpolated states of a step.  Returns
  * AUTOBAL_SUCCESS, AUTOBAL_EINVAL or AUTOBAL_ENOMEM (the shared states are allocated here). */
 AUTOBAL_API int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n);
+/* Dense output (stepper dop853, output not exact): on = 1 also evaluates event `index` at every output
+ * time inside a step whose ends show no crossing, on the continuous extension (the state the observer
+ * then receives); the first output time past 0 in a watched direction brackets the crossing, located
+ * and handled as above before that output is emitted.  So no output point shows the event function
+ * past 0 unnoticed (e.g. balls of `rotor transient` overlapping at an output point: a grazing impact
+ * between the step's ends), as with exact output, where the output times are step ends.  Without
+ * dense output it changes nothing.  Default 0; not for dwell events.  Returns AUTOBAL_SUCCESS or
+ * AUTOBAL_EINVAL.  Counted with the probes' crossings (autobal_transient_probe_hits). */
+AUTOBAL_API int autobal_transient_set_event_output_probes(autobal_transient *tr, int index, int on);
 /* Grazing crossings found by probes since the handle was allocated. */
 AUTOBAL_API unsigned long autobal_transient_probe_hits(const autobal_transient *tr);
 
