@@ -31,6 +31,10 @@
 #                                    with t_eval, pendulum and rotor (2, 8 balls), at matched error of the
 #                                    output points; archive (JSON) and work-precision plot; ARGS go to
 #                                    dense_scipy.py (e.g. --cases pendulum --tols 1e-8, --from A.json)
+#   bench/run.sh dense-default [ARGS...]  the evidence for the default output (dop853 dense6): error at
+#                                    the output points against rk8pd at 1e-14 and the CLI's time, dense6 vs
+#                                    dense (contd8) vs rk8pd exact vs dop853 exact, rtol 1e-6 .. 1e-12;
+#                                    ARGS go to dense_default.py (e.g. --cases pendulum, --from A.json)
 #   bench/run.sh dense-ratio REV [ARGS...]  the time of output every quarter revolution, out/none of the
 #                                    CLI's transient, this library against bench_dense of git revision REV
 #                                    (e.g. main), interleaved; ARGS go to dense_ratio.py (e.g. --rounds 7)
@@ -46,9 +50,9 @@ build=${AUTOBAL_BENCH_BUILD:-$here/../build-bench}
 what=all
 if [ $# -gt 0 ]; then
   case "$1" in
-    all|pendulum|rotor|runup|friction|contact|design|dense|dense-ratio|issue20) what=$1; shift ;;
-    -h|--help) sed -n '2,41p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design, dense, dense-ratio or issue20; see --help)" >&2
+    all|pendulum|rotor|runup|friction|contact|design|dense|dense-default|dense-ratio|issue20) what=$1; shift ;;
+    -h|--help) sed -n '2,45p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "run.sh: unknown benchmark '$1' (expected all, pendulum, rotor, runup, friction, contact, design, dense, dense-default, dense-ratio or issue20; see --help)" >&2
        exit 2 ;;
   esac
 fi
@@ -64,11 +68,14 @@ case "$what" in
   friction) targets=(bench_rotor bench_friction) ;;
   contact) targets=(bench_rotor bench_friction) ;;
   design) targets=(bench_design) ;;
-  dense|dense-ratio|issue20) targets=(bench_dense) ;;
+  dense|dense-default|dense-ratio|issue20) targets=(bench_dense) ;;
   all) targets=(bench_pendulum bench_rotor) ;;
 esac
 cmake --build "$build" --target "${targets[@]}" > /dev/null
 py=/usr/bin/python3
+if [ "$what" = dense-default ]; then
+  exec "$py" "$here/dense_default.py" --bench "$build/bench_dense" "$@"
+fi
 if [ "$what" = dense ]; then
   exec "$py" "$here/dense_scipy.py" --bench "$build/bench_dense" "$@"
 fi
