@@ -2,7 +2,9 @@
  * GSL's gsl_odeiv2 steppers for first-order systems y' = f(t, y).
  *
  * What it does
- *  - Adaptive integration with a stepper chosen by name (rk8pd by default;
+ *  - Adaptive integration with a stepper chosen by name (rk8pd by default here: the engine's
+ *    default is unchanged in 0.2.0, while the transient studies and commands default to dop853
+ *    with dense_order 6, see autobal_study_rotor_transient_options; docs/architecture.md;
  *    rk2, rk4, rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams,
  *    msbdf; and autobal's own dop853), GSL's standard error control with a_y = 1,
  *    a_dydt = 0:
@@ -146,7 +148,8 @@ typedef struct autobal_transient_system {
 #define AUTOBAL_TRANSIENT_RTOL_MIN 8.8817841970012523e-16
 
 typedef struct autobal_transient_options {
-  const char *stepper;    /* GSL stepper name (list above); NULL means "rk8pd"          */
+  const char *stepper;    /* GSL stepper name (list above); NULL means "rk8pd" (the engine's
+                             default; the transient studies' is "dop853" since 0.2.0)   */
   double rtol;            /* relative tolerance, in [AUTOBAL_TRANSIENT_RTOL_MIN, 1]
                                                                        (default 1e-10)  */
   double atol;            /* absolute tolerance, > 0 and finite        (default 1e-12)  */
