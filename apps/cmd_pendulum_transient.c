@@ -54,8 +54,8 @@ static int read_config(cli_ctx *ctx, ptr_cfg *c) {
   c->max_steps = 100000000L;
   c->balance_tol = 1e-3;
   c->balance_revs = 20.0;
-  c->stepper = "rk8pd";
-  c->output = "dense";
+  c->stepper = "dop853"; /* the library's default (autobal_study_pendulum_transient_options_default) */
+  c->output = "dense6";
   if ((rc = get_d(ctx, "transient", "t_end", &c->t_end))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "dt_out", 0.0, &c->dt_out, &has_dt))) return rc;
   if ((rc = cli_get_double(ctx, "transient", "revs_out", c->revs_out, &c->revs_out, &has_revs))) return rc;

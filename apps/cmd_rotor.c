@@ -740,8 +740,8 @@ static int read_rotor_config(cli_ctx *ctx, rotor_cfg *c) {
   c->max_steps = 100000000L;
   c->balance_tol = 0.01;
   c->balance_revs = 50;
-  c->stepper = "rk8pd";
-  c->output = "dense";
+  c->stepper = "dop853"; /* the library's default (autobal_study_rotor_transient_options_default) */
+  c->output = "dense6";
   c->frame_name = "fixed";
   {
     double revs_out = 0.25;

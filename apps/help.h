@@ -145,11 +145,11 @@
   "2 m l), pendulum angles relative to the balancing position, Jacobi integral; time to balance.\n\n"    \
   HELP_PENDULUM_PARAMS                                                                                   \
   "\n[initial]   xi eta (units of l)  psi phi (rad)  xi_rate eta_rate psi_rate phi_rate   (all 0)\n"     \
-  "[transient] t_end = 300 (tau)   revs_out = 0.25 (or dt_out, tau)   stepper = rk8pd\n"                 \
+  "[transient] t_end = 300 (tau)   revs_out = 0.25 (or dt_out, tau)   stepper = dop853\n"                \
   "            rtol = 1e-10   atol = 1e-12   h_max = 0   max_steps = 1e8\n"                               \
-  "            output = dense|dense6|exact (stepper dop853: output and events on its continuous\n"        \
-  "            extension, order 7 with 3 more rhs per step | order 6 with none, or steps cut at the\n"     \
-  "            output times; the other steppers always cut)\n"                                            \
+  "            output = dense6|dense|exact (stepper dop853: output and events on its continuous\n"        \
+  "            extension, order 6 with no extra rhs | order 7 with 3 more rhs per step, or steps cut at\n" \
+  "            the output times; the other steppers always cut; until 0.2.0: stepper = rk8pd)\n"           \
   "            balance_tol = 1e-3 (units of 2 m l)   balance_revs = 20   stop_at_balance = false\n"      \
   "\narchive: /pendulum (parameters), /pendulum/transient (series over 'tau'), /pendulum/transient/solver\n" \
   HELP_DOCS_PENDULUM
@@ -176,10 +176,10 @@
   "eq. (3.13) in docs/rotor.md), integrated with a GSL stepper, streamed to HDF5; summary: balanced\n" \
   "or not, time to balance, residual unbalance and vibration before/after.\n\n" HELP_ROTOR_PARAMS     \
   "[transient] t_end = 20 (s)   revs_out = 0.25 (output every quarter revolution) or dt_out (s)\n"    \
-  "            stepper = rk8pd   rtol = 1e-10   atol = 1e-9   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
-  "            output = dense|dense6|exact (stepper dop853: output and events on its continuous\n"        \
-  "            extension, order 7 with 3 more rhs per step | order 6 with none, or steps cut at the\n"     \
-  "            output times; the other steppers always cut)\n"                                            \
+  "            stepper = dop853   rtol = 1e-10   atol = 1e-9   h_max = 0 (s, 0: none)   max_steps = 1e8\n" \
+  "            output = dense6|dense|exact (stepper dop853: output and events on its continuous\n"        \
+  "            extension, order 6 with no extra rhs | order 7 with 3 more rhs per step, or steps cut at\n" \
+  "            the output times; the other steppers always cut; until 0.2.0: stepper = rk8pd)\n"           \
   "            frame = fixed|rotating   balance_tol = 0.01 (|s|/(m0 r0))   balance_revs = 50 (or balance_dwell, s)\n" \
   "            stop_at_balance = false\n"                                                             \
   "            capture_band = 0.05, capture_time = 2 (s): a capture near a resonance (run-up outputs, with a drive)\n" \

@@ -10,7 +10,7 @@
    (dop853); this library and the reference build REV interleaved (dense_ratio.py; the median over
    the rounds of each call's best out / best none).
 2. The CLI's whole transient >= 100x SciPy DOP853 (pendulum, 2 balls), >= 50x (8 balls): "CLI out"
-   of this library (dense6, dense and rk8pd exact hits, today's default) against SciPy solve_ivp
+   of this library (dense6, dense and rk8pd exact hits, the default before 0.2.0; dense6 is the default now) against SciPy solve_ivp
    DOP853 with t_eval = the output grid, SciPy's time interpolated (log-log) at autobal's error of
    the output points (dense_scipy.py: errors against SciPy DOP853 at 1e-13); also the accuracy of
    the output points of dense6 against dense (contd8) at the same tolerances.

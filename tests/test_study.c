@@ -81,7 +81,15 @@ static void test_transient(void) {
   CHECK_CLOSE("permissible unbalance of G6.3 at 500 rad/s, m_p = 4 kg", s.permissible_unbalance, 5.04e-5, 1e-15, 0);
   CHECK("not balanced within 0.2 s (the balance needs 50 revolutions = 0.63 s)", !s.balanced && isnan(s.time_to_balance));
   CHECK("the state is kept (dim 12)", s.dim == 12 && s.state_final != NULL);
-  CHECK("solver statistics", s.solver.steps > 0 && !strcmp(s.stepper, "rk8pd"));
+  /* the default since 0.2.0: dop853 with output on its order-6 extension (the CLI's too, apps/) */
+  CHECK("solver statistics, the default stepper dop853", s.solver.steps > 0 && !strcmp(s.stepper, "dop853"));
+  CHECK("default options: stepper dop853, dense_order 6, exact_output 0",
+        o.stepper && !strcmp(o.stepper, "dop853") && o.dense_order == 6 && o.exact_output == 0);
+  {
+    autobal_study_pendulum_transient_options po = autobal_study_pendulum_transient_options_default();
+    CHECK("pendulum default options: stepper dop853, dense_order 6, exact_output 0",
+          po.stepper && !strcmp(po.stepper, "dop853") && po.dense_order == 6 && po.exact_output == 0);
+  }
   autobal_study_rotor_transient_summary_free(&s);
   CHECK("summary_free clears the pointers", s.state_final == NULL && s.ball_psi_final[0] == NULL);
   autobal_study_rotor_transient_summary_free(&s); /* twice: harmless */

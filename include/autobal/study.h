@@ -127,8 +127,9 @@ typedef struct autobal_study_rotor_transient_options {
                                                                      (default 1e-10, 1e-9) */
   double h_max;         /* s, largest step, >= 0; 0: unlimited                        (default 0) */
   unsigned long max_steps; /* accepted steps, >= 1                                  (default 1e8) */
-  const char *stepper;  /* GSL stepper name (autobal_transient_stepper_names()); NULL:
-                           "rk8pd"; the string is only read during the call            */
+  const char *stepper;  /* stepper name (autobal_transient_stepper_names()); NULL: "rk8pd"
+                           (the engine's default); the string is only read during the call
+                                                            (default "dop853"; until 0.2.0 NULL) */
   int frame;            /* AUTOBAL_ROTOR_FIXED or AUTOBAL_ROTOR_ROTATING: the frame of
                            the ball angles in the outputs (state datasets, state_final);
                            FIXED with rtol < AUTOBAL_STUDY_ROTOR_RELATIVE_RTOL is integrated
@@ -151,7 +152,7 @@ typedef struct autobal_study_rotor_transient_options {
                            0: on the stepper's continuous extension when it has one (dop853;
                            autobal_transient_options.exact_output)                (default 0) */
   int dense_order;      /* 7 or 6 (0: 7): the continuous extension of that dense output
-                           (autobal_transient_options.dense_order)                 (default 0) */
+                           (autobal_transient_options.dense_order)    (default 6; until 0.2.0 0) */
 } autobal_study_rotor_transient_options;
 
 /* The defaults listed above. */
@@ -451,7 +452,8 @@ typedef struct autobal_study_pendulum_transient_options {
   double rtol, atol;    /* tolerances of the stepper                  (default 1e-10, 1e-12) */
   double h_max;         /* largest step in tau, >= 0; 0: unlimited                  (default 0) */
   unsigned long max_steps; /* accepted steps, >= 1                                (default 1e8) */
-  const char *stepper;  /* GSL stepper name; NULL: "rk8pd" (only read during the call)          */
+  const char *stepper;  /* stepper name; NULL: "rk8pd" (the engine's default; only read during the
+                           call)                                 (default "dop853"; until 0.2.0 NULL) */
   double balance_tol;   /* balanced: the residual unbalance |d| (units of 2 m l) stays below
                            this, > 0                                               (default 1e-3) */
   double balance_revs;  /* ... for this many revolutions, >= 0 (> 0 needs R_w > 0) (default 20) */
@@ -462,7 +464,7 @@ typedef struct autobal_study_pendulum_transient_options {
                            0: on the stepper's continuous extension when it has one (dop853;
                            autobal_transient_options.exact_output)                (default 0) */
   int dense_order;      /* 7 or 6 (0: 7): the continuous extension of that dense output
-                           (autobal_transient_options.dense_order)                 (default 0) */
+                           (autobal_transient_options.dense_order)    (default 6; until 0.2.0 0) */
 } autobal_study_pendulum_transient_options;
 
 AUTOBAL_API autobal_study_pendulum_transient_options autobal_study_pendulum_transient_options_default(void);

@@ -2,7 +2,9 @@
  * GSL's gsl_odeiv2 steppers for first-order systems y' = f(t, y).
  *
  * What it does
- *  - Adaptive integration with a stepper chosen by name (rk8pd by default;
+ *  - Adaptive integration with a stepper chosen by name (rk8pd by default here: the engine's
+ *    default is unchanged in 0.2.0, while the transient studies and commands default to dop853
+ *    with dense_order 6, see autobal_study_rotor_transient_options; docs/architecture.md;
  *    rk2, rk4, rkf45, rkck, rk8pd, rk1imp, rk2imp, rk4imp, bsimp, msadams,
  *    msbdf; and autobal's own dop853), GSL's standard error control with a_y = 1,
  *    a_dydt = 0:
@@ -146,7 +148,8 @@ typedef struct autobal_transient_system {
 #define AUTOBAL_TRANSIENT_RTOL_MIN 8.8817841970012523e-16
 
 typedef struct autobal_transient_options {
-  const char *stepper;    /* GSL stepper name (list above); NULL means "rk8pd"          */
+  const char *stepper;    /* GSL stepper name (list above); NULL means "rk8pd" (the engine's
+                             default; the transient studies' is "dop853" since 0.2.0)   */
   double rtol;            /* relative tolerance, in [AUTOBAL_TRANSIENT_RTOL_MIN, 1]
                                                                        (default 1e-10)  */
   double atol;            /* absolute tolerance, > 0 and finite        (default 1e-12)  */
@@ -346,6 +349,15 @@ AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_trans
  * 64; not for dwell events.  Events with the same n share the interpolated states of a step.  Returns
  * AUTOBAL_SUCCESS, AUTOBAL_EINVAL or AUTOBAL_ENOMEM (the shared states are allocated here). */
 AUTOBAL_API int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n);
+/* Dense output (stepper dop853, output not exact): on = 1 also evaluates event `index` at every output
+ * time inside a step whose ends show no crossing, on the continuous extension (the state the observer
+ * then receives); the first output time past 0 in a watched direction brackets the crossing, located
+ * and handled as above before that output is emitted.  So no output point shows the event function
+ * past 0 unnoticed (e.g. balls of `rotor transient` overlapping at an output point: a grazing impact
+ * between the step's ends), as with exact output, where the output times are step ends.  Without
+ * dense output it changes nothing.  Default 0; not for dwell events.  Returns AUTOBAL_SUCCESS or
+ * AUTOBAL_EINVAL.  Counted with the probes' crossings (autobal_transient_probe_hits). */
+AUTOBAL_API int autobal_transient_set_event_output_probes(autobal_transient *tr, int index, int on);
 /* Grazing crossings found by probes since the handle was allocated. */
 AUTOBAL_API unsigned long autobal_transient_probe_hits(const autobal_transient *tr);
 

@@ -22,7 +22,9 @@ autobal_study_pendulum_transient_options autobal_study_pendulum_transient_option
   o.atol = 1e-12;
   o.h_max = 0.0;
   o.max_steps = 100000000UL;
-  o.stepper = NULL;
+  /* the default since 0.2.0: DOP853 with output on its order-6 extension (rotor_transient.c) */
+  o.stepper = "dop853";
+  o.dense_order = 6;
   o.balance_tol = 1e-3;
   o.balance_revs = 20.0;
   return o;

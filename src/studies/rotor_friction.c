@@ -256,6 +256,9 @@ int study_contact_begin(autobal_rotor *rot, int frame, autobal_transient *tr, do
       return autobal_error_set(err, idx, "%s", autobal_transient_errmsg(tr));
     }
     if (p == 0) c->first = (size_t)idx;
+    /* dense output: the gaps also at the output times inside a step, so that no output shows two
+     * balls overlapping after an impact the step's ends missed (a dip of the gap within one step) */
+    (void)autobal_transient_set_event_output_probes(tr, idx, 1);
   }
   autobal_transient_set_event_reset(tr, hybrid_reset, c);
   *out = c;

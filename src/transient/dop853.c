@@ -6,6 +6,7 @@
 #include "transient/dop853.h"
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -78,6 +79,50 @@ static void *dop853_alloc(size_t dim) {
     GSL_ERROR_NULL("failed to allocate space for dop853_state", GSL_ENOMEM);
   }
   return s;
+}
+
+/* Hairer's factor |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the scaled 2-norms without overflow,
+ * for the steps whose plain sums of squares overflow: every quotient q = e / sc is split into a
+ * mantissa ratio m in [1/2, 2) (frexp) and a power of 2, and the squares are summed relative to the
+ * largest power (as LAPACK's dnrm2 scales by the largest component).  The factor depends only on
+ * the ratio of the two norms, so the common scale cancels.  A quotient that is infinite (sc = 0:
+ * atol = 0 at a zero component) counts as 1 and every finite one as 0 (the limit); a NaN gives
+ * NaN (the step is then refused as not finite).  Cold path: not used in ordinary runs. */
+static double dop853_fac_scaled(size_t n, const double *y0, const double *y1, const double *e5,
+                                const double *e3, double atol, double rtol) {
+  double s5 = 0.0, s3 = 0.0, i5 = 0.0, i3 = 0.0;
+  int emax = INT_MIN, pass;
+  size_t i;
+  for (pass = 0; pass < 2; pass++) {
+    for (i = 0; i < n; i++) {
+      const double a0 = fabs(y0[i]), a1 = fabs(y1[i]);
+      const double sc = atol + rtol * (a0 >= a1 ? a0 : a1);
+      int w;
+      for (w = 0; w < 2; w++) {
+        const double e = fabs(w == 0 ? e5[i] : e3[i]);
+        int ee, es;
+        double me, ms;
+        if (isnan(e) || isnan(sc)) return NAN;
+        if (e == 0.0) continue;
+        if (sc == 0.0 || isinf(e)) { /* an infinite quotient */
+          if (pass == 0) *(w == 0 ? &i5 : &i3) += 1.0;
+          continue;
+        }
+        me = frexp(e, &ee);
+        ms = frexp(sc, &es);
+        if (pass == 0) {
+          if (ee - es > emax) emax = ee - es;
+        } else {
+          const double m = me / ms; /* in (1/2, 2) */
+          /* m^2 2^(2 (ee - es - emax)): at most 4, underflows harmlessly to 0 */
+          *(w == 0 ? &s5 : &s3) += ldexp(m * m, 2 * (ee - es - emax));
+        }
+      }
+    }
+    if (i5 + i3 > 0.0) return sqrt(i5) / sqrt(i5 + 0.01 * i3); /* the infinite ones alone */
+    if (emax == INT_MIN) return 0.0; /* every error 0 */
+  }
+  return s5 + s3 > 0.0 ? sqrt(s5) / sqrt(s5 + 0.01 * s3) : 0.0;
 }
 
 static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size_t np, double t,
@@ -156,7 +201,11 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
       n5 += q5 * q5;
       n3 += q3 * q3;
     }
-    fac = n5 + n3 > 0.0 ? sqrt(n5) / sqrt(n5 + 0.01 * n3) : 0.0;
+    /* a tiny atol (1e-300 from rest) can make the squares overflow (inf / inf = NaN): the
+     * same factor then from the scaled sums (dop853_fac_scaled; the fast sums above are kept
+     * for every other step, so those steps' numbers are unchanged) */
+    if (n5 + n3 <= DBL_MAX) fac = n5 + n3 > 0.0 ? sqrt(n5) / sqrt(n5 + 0.01 * n3) : 0.0;
+    else fac = dop853_fac_scaled(n, y0, y1, e5, e3, atol, rtol);
     hf = h * fac;
     /* the step-size control's ratio in the same pass as yerr: GSL's standard control with
      * a_y = 1, a_dydt = 0 (D0 = rtol |y1_i| + atol, r_i = |yerr_i| / D0, the max from DBL_MIN),

@@ -9,13 +9,15 @@ set -u
 . "$(dirname "$0")/common.bash"
 
 P="--set transient.t_end=200 --set transient.rtol=1e-9 --set transient.atol=1e-11"
-run "$AUTOBAL" pendulum transient $P --set transient.stepper=dop853 -o pd.h5
+# output = dense (contd8) given: dop853's default output is dense6 since 0.2.0 (tests/app/dense6.sh);
+# the references rk8pd, given since dop853 is the default stepper
+run "$AUTOBAL" pendulum transient $P --set transient.stepper=dop853 --set transient.output=dense -o pd.h5
 run "$AUTOBAL" pendulum transient $P --set transient.stepper=dop853 --set transient.output=exact -o px.h5
-run "$AUTOBAL" pendulum transient --set transient.t_end=200 --set transient.rtol=1e-13 --set transient.atol=1e-14 -o pref.h5
+run "$AUTOBAL" pendulum transient --set transient.t_end=200 --set transient.rtol=1e-13 --set transient.atol=1e-14 --set transient.stepper=rk8pd -o pref.h5
 R="--set transient.t_end=0.5 --set transient.rtol=1e-10 --set transient.atol=1e-9"
-run "$AUTOBAL" rotor transient $R --set transient.stepper=dop853 -o rd.h5
+run "$AUTOBAL" rotor transient $R --set transient.stepper=dop853 --set transient.output=dense -o rd.h5
 run "$AUTOBAL" rotor transient $R --set transient.stepper=dop853 --set transient.output=exact -o rx.h5
-run "$AUTOBAL" rotor transient --set transient.t_end=0.5 --set transient.rtol=1e-13 --set transient.atol=1e-13 -o rref.h5
+run "$AUTOBAL" rotor transient --set transient.t_end=0.5 --set transient.rtol=1e-13 --set transient.atol=1e-13 --set transient.stepper=rk8pd -o rref.h5
 "$PY" - <<'PYEOF' && ok "dense vs exact vs tight reference, archive attribute 'output', rhs counts" || bad "dense vs exact"
 import h5py, numpy as np, sys
 def series(path, grp, names):

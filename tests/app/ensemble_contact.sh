@@ -7,6 +7,8 @@
 # from its own initial angles (the grid has ball 1 behind ball 2 and ball 2 behind ball 1); random
 # ball angles that overlap fail exactly those members, with a message naming the balls, the others
 # run; bad input exits 3 with the message of `rotor transient` and writes nothing.
+# The single transients run with stepper = rk8pd, the stepper of `rotor ensemble` / `pendulum ensemble`
+# (the transients' default is dop853 with output = dense6 since 0.2.0): members equal them bit for bit.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -33,7 +35,7 @@ chk "1 and 2 threads: the same archive bit for bit" same g1.h5 g2.h5
 chk "archive: ball_diameter on /rotor/plane1, contact_restitution and contact_v_rest (default 1e-3) on /rotor/ensemble" inputs g1.h5 0.023 0.5 0.001
 for k in 0 1 2 3 4 5; do
   sets=$("$PY" "$here/ensemble_contact_check.py" params g1.h5 $k | awk '{print $2}' | paste -sd,)
-  run "$AUTOBAL" rotor transient model.ini --set "plane1.ball_psi=$sets" -q -o t$k.h5
+  run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini --set "plane1.ball_psi=$sets" -q -o t$k.h5
   chk "member $k = rotor transient with ball_psi = $sets" member g1.h5 $k t$k.h5 1
 done
 # the rotating frame and v_rest given: a member against rotor transient
@@ -41,14 +43,14 @@ R="--set transient.frame=rotating --set contact.v_rest=2"
 run "$AUTOBAL" rotor ensemble grid.ini $R -o gr.h5
 chk "archive: contact_v_rest = 2 rad/s" inputs gr.h5 0.023 0.5 2
 sets=$("$PY" "$here/ensemble_contact_check.py" params gr.h5 2 | awk '{print $2}' | paste -sd,)
-run "$AUTOBAL" rotor transient model.ini $R --set "plane1.ball_psi=$sets" -q -o tr2.h5
+run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini $R --set "plane1.ball_psi=$sets" -q -o tr2.h5
 chk "rotating frame, v_rest = 2 rad/s: member 2 = rotor transient" member gr.h5 2 tr2.h5 1
 # the regularized friction law with contact
 F="--set friction.law=regularized --set friction.u_eps=0.5 --set plane1.ball_f=0.0005"
 printf '[friction]\nlaw = none\n' >> grid.ini; printf '[friction]\nlaw = none\n' >> model.ini
 run "$AUTOBAL" rotor ensemble grid.ini $F -o gf.h5
 sets=$("$PY" "$here/ensemble_contact_check.py" params gf.h5 3 | awk '{print $2}' | paste -sd,)
-run "$AUTOBAL" rotor transient model.ini $F --set "plane1.ball_psi=$sets" -q -o tf3.h5
+run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini $F --set "plane1.ball_psi=$sets" -q -o tf3.h5
 chk "regularized friction and contact: member 3 = rotor transient" member gf.h5 3 tf3.h5 1
 
 # random ball angles with 100 mm balls (gap angle 2 asin(0.5) = 1.047 rad): about a third overlap
@@ -66,7 +68,7 @@ for case in "plane1.ball_diameter=-20mm|plane1.ball_diameter (ball 1) = -0.02 m 
             "plane1.ball_diameter=0.3|the balls of plane 1 on the track of radius 0.1 m do not fit" \
             "contact.restitution=1.5|contact.restitution = 1.5 is too large"; do
   set=${case%%|*}; needle=${case#*|}
-  "$AUTOBAL" rotor transient model.ini --set "$set" -o bt.h5 >/dev/null 2>errt.txt; rct=$?
+  "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini --set "$set" -o bt.h5 >/dev/null 2>errt.txt; rct=$?
   msg=$(sed -n 's/^autobal: error: //p' errt.txt | head -n 1)
   case "$msg" in *"$needle"*) [ $rct -eq 3 ] && ok "rotor transient: exit 3, '$needle'" || bad "rotor transient exit $rct for $set";;
     *) bad "rotor transient: no '$needle' for $set"; cat errt.txt; msg=$needle;; esac

@@ -6,6 +6,8 @@
 # psi0 and m0 with the same table drive (residual, angles, stuck balls, time stuck, switches), every
 # member ends at the table's last speed (its grade is U Omega / m_p with that speed), the transient's
 # speed follows the table, and at 900 rpm (g / (r Omega^2) = 1.4 mu) the balls slip.
+# The single transients run with stepper = rk8pd, the stepper of `rotor ensemble` / `pendulum ensemble`
+# (the transients' default is dop853 with output = dense6 since 0.2.0): members equal them bit for bit.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -35,7 +37,7 @@ sed '/^\[ensemble\]/,$d' "$DATA/washer_dip.ini" | grep -v '^unbalance' > single.
 for k in 0 1 2 3; do
   p=$("$PY" "$here/ensemble_friction_check.py" params dip.h5 $k)
   psi0=$(echo "$p" | awk '$1 == "psi0" {print $2}'); m0=$(echo "$p" | awk '$1 == "m0" {print $2}')
-  run "$AUTOBAL" rotor transient single.ini "${S[@]}" --set "plane1.psi0=$psi0" --set "plane1.m0=$m0" -q -o t$k.h5
+  run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd single.ini "${S[@]}" --set "plane1.psi0=$psi0" --set "plane1.m0=$m0" -q -o t$k.h5
   chk "member $k = rotor transient with psi0 = $psi0, m0 = $m0 and the dip" ensemble_friction_check.py member dip.h5 $k t$k.h5
 done
 chk "rotor transient: the drive table on /rotor/transient" ensemble_dip_check.py table t0.h5 rotor/transient "$T" "$W"

@@ -6,6 +6,8 @@
 # stuck balls, time stuck, switch count); with gravity (data/washer_friction.ini, shortened) the
 # threads agree and f = mu = 0 reproduces the ensemble without friction; bad input exits 3 naming
 # the key and writes nothing; tools/autobal_plot.py draws the residual-unbalance distribution.
+# The single transients run with stepper = rk8pd, the stepper of `rotor ensemble` / `pendulum ensemble`
+# (the transients' default is dop853 with output = dense6 since 0.2.0): members equal them bit for bit.
 set -u
 : "${AUTOBAL:?}" "${SCRATCH:?}" "${DATA:?}" "${TOOLS:?}" "${PY:=/usr/bin/python3}"
 . "$(dirname "$0")/common.bash"
@@ -32,7 +34,7 @@ run "$AUTOBAL" rotor ensemble grid.ini --set ensemble.threads=2 -o g2.h5
 chk "exact law: 1 and 2 threads, the same archive bit for bit" same g1.h5 g2.h5
 for k in 0 1 2 3 4 5; do
   sets=$("$PY" "$here/ensemble_friction_check.py" params g1.h5 $k | awk '{print $2}' | paste -sd,)
-  run "$AUTOBAL" rotor transient model.ini --set "plane1.ball_psi=$sets" -q -o t$k.h5
+  run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini --set "plane1.ball_psi=$sets" -q -o t$k.h5
   chk "exact law: member $k = rotor transient with ball_psi = $sets" member g1.h5 $k t$k.h5
 done
 "$PY" -c "import h5py,sys; f=h5py.File('g1.h5'); sys.exit(0 if f['rotor/ensemble'].attrs['friction']=='exact' and list(f['rotor/plane1'].attrs['ball_mu'])==[0.02,0.02] else 1)" \
@@ -45,7 +47,7 @@ run "$AUTOBAL" rotor ensemble rf.ini --set transient.frame=fixed --set ensemble.
 chk "ball_f varied: 1 and 2 threads bit for bit" same rf.h5 rf1.h5
 for k in 0 3; do
   v=$("$PY" "$here/ensemble_friction_check.py" params rf.h5 $k | awk '{print $2}')
-  run "$AUTOBAL" rotor transient model.ini --set transient.frame=fixed --set "plane1.ball_f=$v" -q -o tf$k.h5
+  run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini --set transient.frame=fixed --set "plane1.ball_f=$v" -q -o tf$k.h5
   chk "ball_f varied: member $k = rotor transient with ball_f = $v" member rf.h5 $k tf$k.h5
 done
 
@@ -55,9 +57,9 @@ done
   printf '[ensemble]\nparam1 = psi_1\nn1 = 2\nparam2 = psi_2\nn2 = 2\nwrite_unbalance = true\n'; } > rollgrid.ini
 run "$AUTOBAL" rotor ensemble rollgrid.ini -o roll.h5
 sets=$("$PY" "$here/ensemble_friction_check.py" params roll.h5 2 | awk '{print $2}' | paste -sd,)
-run "$AUTOBAL" rotor transient model.ini --set "plane1.ball_psi=$sets" --set plane1.ball_rho=0.0115 -q -o troll.h5
+run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini --set "plane1.ball_psi=$sets" --set plane1.ball_rho=0.0115 -q -o troll.h5
 chk "rolling inertia: member 2 = rotor transient with ball_rho = 11.5 mm" member roll.h5 2 troll.h5
-run "$AUTOBAL" rotor transient model.ini --set "plane1.ball_psi=$sets" -q -o tpoint.h5
+run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd model.ini --set "plane1.ball_psi=$sets" -q -o tpoint.h5
 if "$PY" "$here/ensemble_friction_check.py" member roll.h5 2 tpoint.h5 >/dev/null; then bad "rolling inertia: the member equals the point-mass run (ball_rho ignored)"; else ok "rolling inertia: the member differs from the point-mass run"; fi
 "$PY" -c "import h5py,sys; f=h5py.File('roll.h5'); sys.exit(0 if list(f['rotor/plane1'].attrs['ball_rho'])==[0.0115,0.0115] else 1)" \
   && ok "archive: ball_rho on /rotor/plane1" || bad "no ball_rho on /rotor/plane1"
@@ -67,7 +69,7 @@ sed 's/^law = exact/law = regularized\nu_eps = 0.5 rad\/s/' model.ini > reg.ini
 { cat reg.ini; printf '[ensemble]\nparam1 = psi_1\nn1 = 2\nparam2 = psi_2\nn2 = 2\nwrite_unbalance = true\n'; } > reggrid.ini
 run "$AUTOBAL" rotor ensemble reggrid.ini -o reg.h5
 sets=$("$PY" "$here/ensemble_friction_check.py" params reg.h5 1 | awk '{print $2}' | paste -sd,)
-run "$AUTOBAL" rotor transient reg.ini --set "plane1.ball_psi=$sets" -q -o treg.h5
+run "$AUTOBAL" rotor transient --set transient.stepper=rk8pd reg.ini --set "plane1.ball_psi=$sets" -q -o treg.h5
 chk "regularized law: member 1 = rotor transient" member reg.h5 1 treg.h5
 
 # gravity and friction: the washing machine of docs/guide.md, 4 members of 6 s
