@@ -928,6 +928,30 @@ static void rank_transients(autobal_rotor_design *d, size_t n, int key) {
   }
 }
 
+/* The ranked designs' last steps (one plane, isotropic or anisotropic supports): the transients of the
+ * first n_transient, the ranking by rank_by among them. */
+static int transients_and_rank(dctx *c, autobal_study_rotor_design_summary *S,
+                               const autobal_study_rotor_design_options *o) {
+  const size_t nk = o->n_transient < S->n_designs ? o->n_transient : S->n_designs;
+  size_t i;
+  int st = AUTOBAL_SUCCESS;
+  for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
+    c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
+    st = design_transients(c, &S->designs[i], &S->transients);
+  }
+  if (st == AUTOBAL_SUCCESS && o->rank_by != AUTOBAL_DESIGN_RANK_MARGIN) rank_transients(S->designs, nk, o->rank_by);
+  return st;
+}
+
+/* The ranking is done: the best design's config (the first ranked). */
+static int ranked_best_config(dctx *c, autobal_study_rotor_design_summary *S,
+                              const autobal_study_rotor_design_options *o) {
+  S->ranked = 1;
+  if (S->n_designs == 0) return AUTOBAL_SUCCESS;
+  S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
+  return S->best_config ? AUTOBAL_SUCCESS : autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
+}
+
 /* Every member (n_balls_max >= 3, unbalance_member EVERY): the ranked designs are certified for every
  * member, and the margin a design's verdict covers is rho for two balls (one member) and the certified
  * margin over every member for three or more (rho is then the symmetric fan's only). */
@@ -1525,20 +1549,9 @@ static int run(dctx *c, autobal_study_rotor_design_summary *S) {
       S->designs[0] = t;
     }
     /* 5. transients of the first n_transient designs; the ranking by rank_by among them */
-    {
-      const size_t nk = o->n_transient < S->n_designs ? o->n_transient : S->n_designs;
-      for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
-        c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
-        st = design_transients(c, &S->designs[i], &S->transients);
-      }
-      if (st == AUTOBAL_SUCCESS && o->rank_by != AUTOBAL_DESIGN_RANK_MARGIN) rank_transients(S->designs, nk, o->rank_by);
-    }
+    st = transients_and_rank(c, S, o);
   }
-  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
-  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
-    S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
-    if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
-  }
+  if (st == AUTOBAL_SUCCESS) st = ranked_best_config(c, S, o);
   free(cand);
   free(starts);
   return st;
@@ -1752,20 +1765,11 @@ static int run_aniso(dctx *c, autobal_study_rotor_design_summary *S) {
   }
   if (st != AUTOBAL_SUCCESS) S->n_designs = 0;
   if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
-    const size_t nk = o->n_transient < S->n_designs ? o->n_transient : S->n_designs;
     qsort(S->designs, S->n_designs, sizeof *S->designs, cmp_aniso);
     /* 3. transients of the first n_transient designs; the ranking by rank_by among them */
-    for (i = 0; i < nk && st == AUTOBAL_SUCCESS; i++) {
-      c->fraction = 0.95 + 0.05 * (double)i / (double)nk;
-      st = design_transients(c, &S->designs[i], &S->transients);
-    }
-    if (st == AUTOBAL_SUCCESS && o->rank_by != AUTOBAL_DESIGN_RANK_MARGIN) rank_transients(S->designs, nk, o->rank_by);
+    st = transients_and_rank(c, S, o);
   }
-  if (st == AUTOBAL_SUCCESS) S->ranked = 1;
-  if (st == AUTOBAL_SUCCESS && S->n_designs > 0) {
-    S->best_config = autobal_study_rotor_design_config(c->base, &S->designs[0], o->omega_max);
-    if (!S->best_config) st = autobal_error_set(c->err, AUTOBAL_ENOMEM, "design: out of memory");
-  }
+  if (st == AUTOBAL_SUCCESS) st = ranked_best_config(c, S, o);
   free(cand);
   return st;
 }
