@@ -2,8 +2,12 @@
 """Checks of tests/app/signals.sh: an archive left by an interrupted command is readable, marked
 incomplete with the signal named, and holds partial data that are consistent (lengths = the
 recorded count of what was done, the grid = the requested grid's first points, values in their
-ranges).  Usage: signals_check.py KIND FILE SIGNAL [ARGS...]; exit 0 when every check holds."""
+ranges).  Usage: signals_check.py KIND FILE SIGNAL [ARGS...]; exit 0 when every check holds.
+signals_check.py --batch LIST: every line of LIST is WHAT KIND FILE SIGNAL [ARGS...] (shell-quoted),
+each checked as above in this one process and reported as "ok   WHAT" or "FAIL WHAT"; exit 1 when
+one fails."""
 import math
+import shlex
 import sys
 
 import h5py
@@ -58,9 +62,9 @@ def verdict_margin(v, m=None, allowed=(-2, -1, 0, 1)):
             fail("margin is NaN exactly where the verdict is -2 (no balanced configuration): not so")
 
 
-def main():
-    kind, path, sig = sys.argv[1], sys.argv[2], sys.argv[3]
-    args = sys.argv[4:]
+def main(argv):
+    kind, path, sig = argv[0], argv[1], argv[2]
+    args = argv[3:]
     f = h5py.File(path, "r")
     if kind == "stability":  # args: reference archive (the same analysis, critical_speeds = false)
         common(f, sig, "rotor stability")
@@ -204,5 +208,27 @@ def main():
         fail("unknown kind " + kind)
 
 
+def batch(listfile):
+    """Every check of LIST in this process (fail() exits: caught per check)."""
+    nbad = 0
+    with open(listfile) as lf:
+        lines = [shlex.split(line) for line in lf if line.strip()]
+    for words in lines:
+        what, argv = words[0], words[1:]
+        try:
+            main(argv)
+            ok = True
+        except SystemExit as e:
+            ok = e.code in (None, 0)
+        except Exception as e:  # an unreadable archive, a missing dataset: this check fails
+            print(f"  check failed: {type(e).__name__}: {e}")
+            ok = False
+        print(("ok   " if ok else "FAIL ") + what, flush=True)
+        nbad += not ok
+    return 1 if nbad else 0
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1] == "--batch":
+        sys.exit(batch(sys.argv[2]))
+    main(sys.argv[1:])
