@@ -8,6 +8,7 @@ would (xarray with engine="h5netcdf", group by group, and plain h5py), `autobal 
     postprocess_check.py info FILE.h5 INFO.txt INFO.json [FILE2.h5 INFO2.txt INFO2.json ...]
     postprocess_check.py same A.h5 B.h5 [A2.h5 B2.h5 ...]
     postprocess_check.py png FILE...
+    postprocess_check.py draw TOOLS_DIR PNG_DIR FILE.h5:EXPECTED.png...
     postprocess_check.py tracking TOOLS_DIR CAMPBELL.h5 [decoupled]
     postprocess_check.py ensemble_plot TOOLS_DIR PNG_DIR ENSEMBLE.h5...
     postprocess_check.py effective FILE.h5...
@@ -21,6 +22,7 @@ stored quantities, never from the program's own output.
 import configparser
 import json
 import math
+import os
 import sys
 
 import h5py
@@ -93,6 +95,20 @@ def read_ini(path):
     return cp
 
 
+_XOPEN = {}
+
+
+def xopen(f, group=None):
+    """xarray's view of a group of archive f (engine h5netcdf), read once into memory and kept for
+    the later checks of the same group.  The archives do not change while they are checked; opening a
+    group with an unlimited dimension costs O(variables^2) in h5netcdf (each variable's shape scans the
+    group), so the rotor transient's 58 variables took 2 s per opening, twice per archive."""
+    key = (os.path.abspath(f), group)
+    if key not in _XOPEN:
+        _XOPEN[key] = xr.open_dataset(f, engine="h5netcdf", group=group).load()
+    return _XOPEN[key]
+
+
 # ---- layout: the generic part, for every archive -------------------------------------------
 def generic_layout(f, h, command):
     check("%s: root Conventions = CF-1.8 autobal-1" % f, s(h.attrs.get("Conventions")) == "CF-1.8 autobal-1")
@@ -102,7 +118,7 @@ def generic_layout(f, h, command):
               "input_config"):
         check("%s: root attribute %s is a str" % (f, a), isinstance(h.attrs.get(a), str))
     fails0 = FAILS
-    root = xr.open_dataset(f, engine="h5netcdf")
+    root = xopen(f)
     check("%s: xarray root attrs carry Conventions and command" % f,
           root.attrs.get("Conventions") == "CF-1.8 autobal-1" and root.attrs.get("command") == command)
     root.close()
@@ -121,7 +137,7 @@ def generic_layout(f, h, command):
         dsets = [k for k, o in grp.items() if isinstance(o, h5py.Dataset)]
         if not dsets:
             continue
-        xds = xr.open_dataset(f, engine="h5netcdf", group=g)
+        xds = xopen(f, g)
         for k, v in grp.attrs.items():
             if k in RESERVED:
                 continue
@@ -201,7 +217,7 @@ def pendulum_params(f, h, ini):
 def layout_roots(f, h, ini, other):
     generic_layout(f, h, "pendulum roots")
     pendulum_params(f, h, ini)
-    ds = xr.open_dataset(f, engine="h5netcdf", group="/pendulum/roots")
+    ds = xopen(f, "/pendulum/roots")
     check("%s: roots: dims root = 8, power = 9" % f, dict(ds.sizes) == {"root": 8, "power": 9}, str(dict(ds.sizes)))
     check("%s: roots: root_real(root), char_poly(power)" % f,
           ds["root_real"].dims == ("root",) and ds["char_poly"].dims == ("power",))
@@ -239,7 +255,7 @@ def layout_critical(f, h, ini, other):
     cp = read_ini(ini)
     crit = cp["critical"] if cp.has_section("critical") else {}
     n = int(crit.get("n_Rm", 499))
-    c = xr.open_dataset(f, engine="h5netcdf", group="/pendulum/critical/curves")
+    c = xopen(f, "/pendulum/critical/curves")
     check("%s: curves: dims R_m = %d, branch = 3" % (f, n), dict(c.sizes) == {"R_m": n, "branch": 3}, str(dict(c.sizes)))
     check("%s: curves: R_w_k0(R_m, branch), R_w_k1(R_m, branch)" % f,
           c["R_w_k0"].dims == ("R_m", "branch") and c["R_w_k1"].dims == ("R_m", "branch"))
@@ -257,7 +273,7 @@ def layout_critical(f, h, ini, other):
           bool(np.all(np.isfinite(c["R_w_k0"].values[below]))) and
           bool(np.all(np.isnan(c["R_w_k0"].values[~below, 1:]))))
     c.close()
-    p = xr.open_dataset(f, engine="h5netcdf", group="/pendulum/critical")
+    p = xopen(f, "/pendulum/critical")
     Rm = float(h["pendulum"].attrs["R_m"])
     k = float(h["pendulum"].attrs["k"])
     if k == 1.0 and 0.04 < Rm < 0.25:
@@ -278,7 +294,7 @@ def layout_map(f, h, ini, other):
     pendulum_params(f, h, ini)
     cp = read_ini(ini)
     mp = cp["map"] if cp.has_section("map") else {}
-    m = xr.open_dataset(f, engine="h5netcdf", group="/pendulum/map")
+    m = xopen(f, "/pendulum/map")
     nrm, nrw = int(mp.get("n_Rm", 200)), int(mp.get("n_Rw", 200))
     check("%s: map: verdict(R_m = %d, R_w = %d)" % (f, nrm, nrw),
           m["verdict"].dims == ("R_m", "R_w") and m["verdict"].shape == (nrm, nrw), str(m["verdict"].shape))
@@ -330,7 +346,7 @@ def layout_pendulum_transient(f, h, ini, other):
     pendulum_params(f, h, ini)
     cp = read_ini(ini)
     tr = cp["transient"] if cp.has_section("transient") else {}
-    ds = xr.open_dataset(f, engine="h5netcdf", group="/pendulum/transient")
+    ds = xopen(f, "/pendulum/transient")
     t = ds["tau"].values
     Rw = float(h["pendulum"].attrs["R_w"])
     psi0 = float(h["pendulum"].attrs["psi0"])
@@ -377,7 +393,7 @@ def layout_rotor_transient(f, h, ini, other):
     generic_layout(f, h, "rotor transient")
     cp = read_ini(ini)
     tr = cp["transient"] if cp.has_section("transient") else {}
-    ds = xr.open_dataset(f, engine="h5netcdf", group="/rotor/transient")
+    ds = xopen(f, "/rotor/transient")
     t = ds["time"].values
     omega = float(cp["rotor"]["omega"]) if cp.has_section("rotor") and "omega" in cp["rotor"] else 500.0
     close("%s: /rotor omega = %g rad/s" % (f, omega), h["rotor"].attrs["omega"], omega, rtol=0)
@@ -446,7 +462,7 @@ def layout_rotor_transient(f, h, ini, other):
     series_time_to_balance("%s: rotor (max over planes of |s_j|/(m0 r0))" % f, t, monitor,
                            float(ds.attrs["time_to_balance"]), tol, dwell)
     check("%s: time_to_balance_units = s" % f, ds.attrs["time_to_balance_units"] == "s")
-    rv = xr.open_dataset(f, engine="h5netcdf", group="/rotor/revolutions")
+    rv = xopen(f, "/rotor/revolutions")
     te = rv["revolution_end"].values
     # Each row closes at the first output sample at or after the revolution's end, so the spacing is
     # 2 pi / omega to within one output interval.  (Known defect, reported: apps/cmd_rotor.c sums
@@ -477,7 +493,7 @@ def layout_rotor_stability(f, h, ini, other):
     generic_layout(f, h, cmd)
     check("%s: /rotor omega in rad/s" % f, h["rotor"].attrs["omega_units"] == "rad/s")
     if cmd == "rotor stability":
-        g = xr.open_dataset(f, engine="h5netcdf", group="/rotor/stability")
+        g = xopen(f, "/rotor/stability")
         check("%s: stability: verdict string, margin in 1/s" % f,
               g.attrs["verdict"] in ("stable", "marginal", "unstable") and g.attrs["margin_units"] == "1/s")
         if "root_real" in g and int(g.attrs.get("n_family", 0)) == 0:
@@ -489,7 +505,7 @@ def layout_rotor_stability(f, h, ini, other):
               2 * math.pi / abs(float(h["rotor"].attrs["omega"])), rtol=1e-14)
         g.close()
     elif cmd == "rotor sweep":
-        g = xr.open_dataset(f, engine="h5netcdf", group="/rotor/sweep")
+        g = xopen(f, "/rotor/sweep")
         pn = g.attrs["param"]
         x, v, mg = g[pn].values, g["verdict"].values, g["margin"].values
         check("%s: sweep: margin(%s), verdict(%s)" % (f, pn, pn),
@@ -507,7 +523,7 @@ def layout_rotor_stability(f, h, ini, other):
                   bool(np.all(v[inside] == 1)) and bool(np.all(v[~closed] != 1)))
         g.close()
     elif cmd == "rotor map":
-        g = xr.open_dataset(f, engine="h5netcdf", group="/rotor/map")
+        g = xopen(f, "/rotor/map")
         p1, p2 = g.attrs["param1"], g.attrs["param2"]
         check("%s: map: verdict(%s, %s), margin in 1/s" % (f, p1, p2),
               g["verdict"].dims == (p1, p2) and g["margin"].attrs["units"] == "1/s")
@@ -516,7 +532,7 @@ def layout_rotor_stability(f, h, ini, other):
               bool(np.all(mg[v == 1] < 0)) and bool(np.all(mg[v == -1] > 0)))
         g.close()
     elif cmd == "rotor campbell":
-        g = xr.open_dataset(f, engine="h5netcdf", group="/rotor/campbell")
+        g = xopen(f, "/rotor/campbell")
         check("%s: campbell: frequency(omega, mode) in rad/s" % f,
               g["frequency"].dims == ("omega", "mode") and g["frequency"].attrs["units"] == "rad/s")
         om = g["omega"].values
@@ -849,6 +865,25 @@ def load_plot_module(tools):
     return mod
 
 
+def draw(tools, outdir, pairs):
+    """The pictures of several archives drawn in this one process by autobal_plot.main, the code that
+    `autobal plot FILE.h5 -o DIR` runs after its archive checks (postprocess.sh runs `autobal plot` itself
+    for three archives: the C path is the same for every archive, only the picture differs; one Python
+    start and one matplotlib import instead of one per archive).  pairs: FILE.h5:EXPECTED.png; each must
+    exit 0 and list EXPECTED.png, which must exist (its pixels: the png check)."""
+    import contextlib
+    import io
+    mod = load_plot_module(tools)
+    for pr in pairs:
+        f, want = pr.split(":", 1)
+        buf = io.StringIO()
+        with contextlib.redirect_stdout(buf):
+            rc = mod.main([f, "-o", outdir])
+        listed = buf.getvalue().split()
+        check("%s: autobal_plot.py %s -o %s: exit 0, lists and writes %s" % (f, f, outdir, want),
+              rc == 0 and want in listed and os.path.isfile(want), "exit %r, listed %s" % (rc, listed))
+
+
 def branches_decoupled(h, om):
     """Natural frequencies of the rotor-housing when translation and tilt are decoupled
     (c_xbeta = c_yalpha = h_xbeta = h_yalpha = 0), from the spec's equations (3.2) without balls and the
@@ -1008,6 +1043,8 @@ def run_mode(argv):
             effective_check(f)
     elif mode == "png":
         png(argv[2:])
+    elif mode == "draw":
+        draw(argv[2], argv[3], argv[4:])
     elif mode == "tracking":
         tracking_check(argv[2], argv[3], argv[4] if len(argv) > 4 else "")
     elif mode == "ensemble_plot":
