@@ -2957,6 +2957,50 @@ static AUTOBAL_FM_INLINE void wrap_pi_array(const double *restrict a, double *re
   }
 }
 
+/* o[6 k + m] = col[m][k], m < 6, k < n: the ball columns in the layout of the outputs, from six
+ * arrays.  With GCC, 4 balls at a time as a 6 x 4 transpose by two-input shuffles (12 shuffles,
+ * 6 stores of 4 doubles, instead of 24 scalar stores); the rest one by one.  Moves only. */
+#if defined(__GNUC__) && !defined(__clang__) && !defined(AUTOBAL_NO_VECTOR_EXT)
+#define ROTOR_SHUFFLE 1
+typedef double rotor_v4 __attribute__((vector_size(32)));
+typedef long long rotor_i4 __attribute__((vector_size(32)));
+#endif
+static AUTOBAL_FM_INLINE void ball_columns(double *restrict o, const double *const col[N_BALL_OUT], size_t n) {
+  size_t k = 0, m;
+#ifdef ROTOR_SHUFFLE
+  const rotor_i4 even = {0, 4, 2, 6}, odd = {1, 5, 3, 7}, lo = {0, 1, 4, 5}, hi = {2, 3, 6, 7};
+  for (; k + 4 <= n; k += 4, o += 4 * N_BALL_OUT) {
+    rotor_v4 A, B, C, D, E, F, t0, t1, t2, t3, t4, t5, v;
+    memcpy(&A, col[0] + k, sizeof A);
+    memcpy(&B, col[1] + k, sizeof B);
+    memcpy(&C, col[2] + k, sizeof C);
+    memcpy(&D, col[3] + k, sizeof D);
+    memcpy(&E, col[4] + k, sizeof E);
+    memcpy(&F, col[5] + k, sizeof F);
+    t0 = __builtin_shuffle(A, B, even); /* A0 B0 A2 B2 */
+    t1 = __builtin_shuffle(A, B, odd);  /* A1 B1 A3 B3 */
+    t2 = __builtin_shuffle(C, D, even); /* C0 D0 C2 D2 */
+    t3 = __builtin_shuffle(C, D, odd);  /* C1 D1 C3 D3 */
+    t4 = __builtin_shuffle(E, F, even); /* E0 F0 E2 F2 */
+    t5 = __builtin_shuffle(E, F, odd);  /* E1 F1 E3 F3 */
+    v = __builtin_shuffle(t0, t2, lo);  /* ball 0: A0 B0 C0 D0 */
+    memcpy(o, &v, sizeof v);
+    v = __builtin_shuffle(t4, t1, lo); /* E0 F0, ball 1: A1 B1 */
+    memcpy(o + 4, &v, sizeof v);
+    v = __builtin_shuffle(t3, t5, lo); /* C1 D1 E1 F1 */
+    memcpy(o + 8, &v, sizeof v);
+    v = __builtin_shuffle(t0, t2, hi); /* ball 2: A2 B2 C2 D2 */
+    memcpy(o + 12, &v, sizeof v);
+    v = __builtin_shuffle(t4, t1, hi); /* E2 F2, ball 3: A3 B3 */
+    memcpy(o + 16, &v, sizeof v);
+    v = __builtin_shuffle(t3, t5, hi); /* C3 D3 E3 F3 */
+    memcpy(o + 20, &v, sizeof v);
+  }
+#endif
+  for (; k < n; k++, o += N_BALL_OUT)
+    for (m = 0; m < N_BALL_OUT; m++) o[m] = col[m][k];
+}
+
 /* autobal_rotor_outputs; fast = 1 (a constant at both calls: inlined and specialized): sine,
  * cosine and hypot by fastmath.h instead of libm, the same expressions otherwise. */
 enum { FAST_TRIG = 63 }; /* outputs_fast: up to 62 balls in one pass (with phi_0, padded: 64) */
@@ -3042,34 +3086,28 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     /* fast, up to 62 balls: the wrapped angles of every phi and psi in one vectorized pass
      * (wrap_pi_array: the formula of wrap_pi without its |a| <= 3 shortcut and without branches,
      * the same numbers; the branches cost mispredictions where ball angles move about |a| = 3
-     * or pi), then the columns; psi = ta (above), phi = ang (fixed) or ang + phi_0 (rotating) */
+     * or pi), the rates likewise, then the six columns interleaved per ball (ball_columns);
+     * psi = ta (above), phi = ang (fixed) or ang + phi_0 (rotating) */
     const size_t N = r->N;
     const double *ang = y + 8, *rate = y + 8 + N;
-    double ph[FAST_TRIG], wph[FAST_TRIG], wps[FAST_TRIG];
+    double ph[FAST_TRIG], wph[FAST_TRIG], wps[FAST_TRIG], rd[FAST_TRIG];
     if (frame == AUTOBAL_ROTOR_FIXED) {
+      const double *col[N_BALL_OUT] = {ang, wph, ta, wps, rate, rd};
+      for (k = 0; k < N; k++) rd[k] = rate[k] - W;
       wrap_pi_array(ang, wph, N);
       wrap_pi_array(ta, wps, N);
-      for (k = 0; k < N; k++, o += N_BALL_OUT) {
-        o[0] = ang[k];
-        o[1] = wph[k];
-        o[2] = ta[k];
-        o[3] = wps[k];
-        o[4] = rate[k];
-        o[5] = rate[k] - W;
-      }
+      ball_columns(o, col, N);
     } else {
-      for (k = 0; k < N; k++) ph[k] = ang[k] + wt;
+      const double *col[N_BALL_OUT] = {ph, wph, ang, wps, rd, rate};
+      for (k = 0; k < N; k++) {
+        ph[k] = ang[k] + wt;
+        rd[k] = rate[k] + W;
+      }
       wrap_pi_array(ph, wph, N);
       wrap_pi_array(ang, wps, N);
-      for (k = 0; k < N; k++, o += N_BALL_OUT) {
-        o[0] = ph[k];
-        o[1] = wph[k];
-        o[2] = ang[k];
-        o[3] = wps[k];
-        o[4] = rate[k] + W;
-        o[5] = rate[k];
-      }
+      ball_columns(o, col, N);
     }
+    o += N_BALL_OUT * N;
   }
   for (k = 0; k < r->N && !tab; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
