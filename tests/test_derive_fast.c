@@ -13,7 +13,9 @@
  *   difference: sin, cos within 1 ulp of libm, hypot within 1.5 ulp).
  * - rotor outputs_fast vs outputs: the default rotor (2 balls), 8 balls, 70 balls (the chunked
  *   path), both frames: angle and rate columns bit for bit, the others within 1e-13 of their
- *   scale; the same argument checks (EINVAL). */
+ *   scale; the same argument checks (EINVAL).
+ * - the ball columns again at edge angles (next to 0, pi, 3, odd multiples of pi, 2^52 2 pi, inf,
+ *   NaN), 1 to 63 balls: bit for bit (outputs_fast wraps them without branches). */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -24,6 +26,10 @@
 #include "autobal.h"
 #include "check.h"
 #include "fastmath.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 static uint64_t rng_state = 0x9e3779b97f4a7c15ULL;
 static double urand(void) { /* xorshift64*, uniform in [0, 1) */
@@ -285,11 +291,92 @@ static void test_rotor(void) {
   }
 }
 
+/* The ball columns of outputs_fast (the wraps without branches, wrap_pi_array in rotor.c: ceil by
+ * rounding with 2^52 and masks) against autobal_rotor_outputs' (libm's ceil, branches) bit for
+ * bit, at the angles where the two ways could part: +-0, next to +-pi, +-3 and the odd multiples
+ * of pi (where the quotient (a - pi) / (2 pi) is an integer or next to one, and the corrections
+ * by 2 pi apply), next to 2^52 2 pi (the quotient's last fractional bit), beyond it, +-inf, NaN,
+ * subnormals; 1 to 62 balls (the vector loop's remainders) and 63 (the scalar path), both
+ * frames, phi_0 = 0 (t = 0: psi is the angle itself) and phi_0 != 0. */
+static void test_rotor_wrap_edges(void) {
+  const size_t ns[8] = {1, 3, 4, 5, 8, 13, 62, 63};
+  double edge[80];
+  size_t ne = 0, c, i;
+  int bits = 1, inrange = 1;
+  long compared = 0;
+  {
+    const double base[] = {0.0, M_PI, 3.0, 3.0 * M_PI, 5.0 * M_PI, 101.0 * M_PI, 2.0 * M_PI, 0x1p52 * 2.0 * M_PI,
+                           0x1p53 * 2.0 * M_PI, 1e300, 4.9e-324, 2.2e-308};
+    size_t b;
+    for (b = 0; b < sizeof base / sizeof base[0]; b++) {
+      const double v[3] = {nextafter(base[b], -INFINITY), base[b], nextafter(base[b], INFINITY)};
+      int m;
+      for (m = 0; m < 3; m++) {
+        edge[ne++] = v[m];
+        edge[ne++] = -v[m];
+      }
+    }
+    edge[ne++] = INFINITY;
+    edge[ne++] = -INFINITY;
+    edge[ne++] = NAN;
+    edge[ne++] = -0.0;
+  }
+  for (c = 0; c < 8; c++) {
+    autobal_rotor *R = rotor_n(ns[c]);
+    size_t dim, nout, nb = ns[c];
+    double *y, *o1, *o2;
+    int frame, k;
+    if (!R) {
+      bits = 0;
+      continue;
+    }
+    dim = autobal_rotor_dim(R);
+    nout = autobal_rotor_output_count(R);
+    y = calloc(dim, sizeof *y);
+    o1 = malloc(nout * sizeof *o1);
+    o2 = malloc(nout * sizeof *o2);
+    for (frame = 0; frame < 2; frame++) {
+      const int fr = frame ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED;
+      for (k = 0; k < 40; k++) {
+        const double t = k % 2 ? 0.0 : 3.0 * urand();
+        for (i = 0; i < nb; i++) { /* the edges in every lane position over the 40 states */
+          y[8 + i] = edge[(i + (size_t)k * 7) % ne];
+          y[8 + nb + i] = (2.0 * urand() - 1.0) * 600.0;
+        }
+        bits = bits && autobal_rotor_outputs(R, fr, t, y, o1, nout) == AUTOBAL_SUCCESS &&
+               autobal_rotor_outputs_fast(R, fr, t, y, o2, nout) == AUTOBAL_SUCCESS;
+        for (i = 0; i < nout; i++) {
+          char name[64];
+          autobal_rotor_output_name(R, i, name, sizeof name, NULL);
+          if (strstr(name, "_b") == NULL) continue;
+          bits = bits && same_bits(o1[i], o2[i]);
+          compared++;
+          if (strstr(name, "_w") != NULL && isfinite(o2[i]))
+            inrange = inrange && o2[i] > -M_PI && o2[i] <= M_PI; /* (-pi, pi] */
+        }
+      }
+    }
+    free(y);
+    free(o1);
+    free(o2);
+    autobal_rotor_free(R);
+  }
+  {
+    char what[240];
+    snprintf(what, sizeof what,
+             "rotor outputs_fast: ball columns at %zu edge angles (next to 0, pi, 3, odd multiples of pi, "
+             "2^52 2 pi, inf, NaN), 1..63 balls, both frames: %ld values bit for bit with outputs", ne, compared);
+    CHECK(what, bits && compared > 10000);
+    CHECK("rotor outputs_fast: the finite wrapped angles in (-pi, pi]", inrange);
+  }
+}
+
 int main(void) {
   test_hypot();
   test_sincos2();
   test_pendulum();
   test_pendulum_cols();
   test_rotor();
+  test_rotor_wrap_edges();
   return check_summary();
 }

@@ -9,6 +9,7 @@
 
 #include "autobal/study.h"
 #include "internal.h"
+#include "numerics/fastmath.h"
 #include "studies/rotor_transient_runup.h"
 #include "studies/rotor_friction.h"
 
@@ -281,9 +282,11 @@ static int observer(double t, const double y[], void *user) {
   run_ctx *r = user;
   double *out = r->row + r->dim;
   size_t j;
-  if (r->frame == r->out_frame) memcpy(r->row, y, r->dim * sizeof *y);
-  else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, t, y, r->row, r->dim) != AUTOBAL_SUCCESS)
-    return 1;
+  if (r->series) { /* the state columns of the row: only the archive reads them */
+    if (r->frame == r->out_frame) memcpy(r->row, y, r->dim * sizeof *y);
+    else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, t, y, r->row, r->dim) != AUTOBAL_SUCCESS)
+      return 1;
+  }
   if ((r->fast ? autobal_rotor_outputs_fast : autobal_rotor_outputs)(r->rotor, r->frame, t, y, out, r->nout) !=
       AUTOBAL_SUCCESS)
     return 1;
@@ -306,7 +309,8 @@ static int observer(double t, const double y[], void *user) {
       double d[2], v[2];
       point_motion(yq, r->l_sup[k], d, v);
       for (q = 0; q < 2; q++) {
-        double amp = hypot(d[q], v[q] / w1x);
+        /* hypot as the output columns compute it (fastmath with output = dense6) */
+        double amp = r->fast ? autobal_hypot_fast(d[q], v[q] / w1x) : hypot(d[q], v[q] / w1x);
         if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
       }
     }

@@ -81,6 +81,7 @@ struct autobal_rotor {
   double e_rest, v_rest, *delta, *pg, *pc, *plam, *cQ, *cW, *cG, *cy, ccache_t;
   double *cstore;
   double qs[4]; /* the static offset (autobal_rotor_static_offset; 0 without gravity): amplitudes about it */
+  size_t nout;  /* autobal_rotor_output_count, fixed at allocation (checked by every outputs call) */
   autobal_error err;
 };
 
@@ -179,15 +180,12 @@ static double motor_L(const autobal_rotor *R, double W) {
 
 /* Wrap an angle to (-pi, pi].  For |a| <= 3 the formula gives a + 0 (ceil of a value in (-1, 0)
  * is -0): taken directly, the same number bit for bit (-0 becomes +0 as in the formula). */
-/* the formula with its quotient q = (a - pi) / (2 pi) given (computed by the caller, e.g. in a
- * vectorized pass over many angles: the same division, the same bits) */
-static inline double wrap_pi_q(double a, double q) {
-  double w = a - 2.0 * M_PI * ceil(q);
+static inline double wrap_pi_formula(double a) {
+  double w = a - 2.0 * M_PI * ceil((a - M_PI) / (2.0 * M_PI));
   if (w <= -M_PI) w += 2.0 * M_PI;
   if (w > M_PI) w -= 2.0 * M_PI;
   return w;
 }
-static inline double wrap_pi_formula(double a) { return wrap_pi_q(a, (a - M_PI) / (2.0 * M_PI)); }
 static double wrap_pi(double a) {
   if (fabs(a) <= 3.0) return a + 0.0;
   return wrap_pi_formula(a);
@@ -2408,6 +2406,8 @@ int autobal_rotor_params_check(const autobal_rotor_params *p, autobal_error *err
 
 /* ---- the handle ------------------------------------------------------------ */
 
+static size_t output_count_base(const autobal_rotor *r);
+
 autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error *err) {
   autobal_rotor *R;
   autobal_error e;
@@ -2652,6 +2652,7 @@ autobal_rotor *autobal_rotor_alloc(const autobal_rotor_params *p, autobal_error 
       return NULL;
     }
   }
+  R->nout = output_count_base(R) + (R->law != AUTOBAL_ROTOR_FRICTION_NONE ? 2u * R->N : 0u);
   R->err = e;
   return R;
 }
@@ -2904,9 +2905,100 @@ static size_t output_count_base(const autobal_rotor *r) {
          (r->motor ? 3u : 0u);
 }
 
-size_t autobal_rotor_output_count(const autobal_rotor *r) {
-  if (r == NULL) return 0;
-  return output_count_base(r) + (r->law != AUTOBAL_ROTOR_FRICTION_NONE ? 2u * r->N : 0u);
+size_t autobal_rotor_output_count(const autobal_rotor *r) { return r ? r->nout : 0; }
+
+/* w[k] = wrap_pi_formula(a[k]), k < n, the same bits, by a loop without branches that GCC
+ * vectorizes (a and w must not overlap).  Under the default -ftrapping-math GCC vectorizes
+ * neither ceil nor a conditional addition, so both are written with masks:
+ *  - ceil(q): r = (q + M) - M with M = 2^52 carrying the sign of q rounds |q| < 2^52 to the
+ *    nearest integer (q + M lies where the spacing of doubles is 1, and the subtraction is
+ *    exact); r < q means the nearest is below q: r + 1 (exact).  ceil(q) has the sign of q
+ *    (-0 for q in (-1, 0]), and so has r after the sign bit of q is ORed in (r >= 0 for
+ *    q >= 0, r <= 0 for q < 0).  |q| >= 2^52, inf and NaN are their own ceil: q is taken.
+ *  - the corrections add 2 pi or +0.0 and subtract 2 pi or +0.0: w is never -0 before the
+ *    first (a - c with c = 2 pi ceil(q) is -0 only for a = -0 and c = +0, but a = +-0 gives
+ *    ceil(-0.5) = -0, c = -0), so adding +0.0 keeps its bits (NaN stays NaN), and subtracting
+ *    +0.0 keeps any value's bits.
+ * tests/test_derive_fast.c compares it with wrap_pi bit for bit (through the ball columns). */
+static AUTOBAL_FM_INLINE void wrap_pi_array(const double *restrict a, double *restrict w, size_t n) {
+  const double two52 = 0x1p52, one = 1.0, twopi = 2.0 * M_PI;
+  const uint64_t sgn = (uint64_t)1 << 63;
+  uint64_t b52, bone, btp;
+  size_t k;
+  memcpy(&b52, &two52, sizeof b52);
+  memcpy(&bone, &one, sizeof bone);
+  memcpy(&btp, &twopi, sizeof btp);
+  for (k = 0; k < n; k++) {
+    const double x = a[k], q = (x - M_PI) / (2.0 * M_PI);
+    uint64_t bq, bm, br, big, m;
+    double M, r, c, v, d;
+    memcpy(&bq, &q, sizeof bq);
+    bm = b52 | (bq & sgn);
+    memcpy(&M, &bm, sizeof M);
+    r = (q + M) - M;
+    m = (uint64_t)0 - (uint64_t)(r < q);
+    bm = bone & m;
+    memcpy(&d, &bm, sizeof d);
+    r += d;
+    memcpy(&br, &r, sizeof br);
+    br |= bq & sgn;
+    big = (uint64_t)0 - (((b52 - 1u) - (bq & ~sgn)) >> 63); /* |q| >= 2^52 (inf, NaN too) */
+    br = (bq & big) | (br & ~big);
+    memcpy(&c, &br, sizeof c);
+    v = x - 2.0 * M_PI * c;
+    m = (uint64_t)0 - (uint64_t)(v <= -M_PI);
+    bm = btp & m;
+    memcpy(&d, &bm, sizeof d);
+    v += d;
+    m = (uint64_t)0 - (uint64_t)(v > M_PI);
+    bm = btp & m;
+    memcpy(&d, &bm, sizeof d);
+    w[k] = v - d;
+  }
+}
+
+/* o[6 k + m] = col[m][k], m < 6, k < n: the ball columns in the layout of the outputs, from six
+ * arrays.  With GCC, 4 balls at a time as a 6 x 4 transpose by two-input shuffles (12 shuffles,
+ * 6 stores of 4 doubles, instead of 24 scalar stores); the rest one by one.  Moves only. */
+#if defined(__GNUC__) && !defined(__clang__) && !defined(AUTOBAL_NO_VECTOR_EXT)
+#define ROTOR_SHUFFLE 1
+typedef double rotor_v4 __attribute__((vector_size(32)));
+typedef long long rotor_i4 __attribute__((vector_size(32)));
+#endif
+static AUTOBAL_FM_INLINE void ball_columns(double *restrict o, const double *const col[N_BALL_OUT], size_t n) {
+  size_t k = 0, m;
+#ifdef ROTOR_SHUFFLE
+  const rotor_i4 even = {0, 4, 2, 6}, odd = {1, 5, 3, 7}, lo = {0, 1, 4, 5}, hi = {2, 3, 6, 7};
+  for (; k + 4 <= n; k += 4, o += 4 * N_BALL_OUT) {
+    rotor_v4 A, B, C, D, E, F, t0, t1, t2, t3, t4, t5, v;
+    memcpy(&A, col[0] + k, sizeof A);
+    memcpy(&B, col[1] + k, sizeof B);
+    memcpy(&C, col[2] + k, sizeof C);
+    memcpy(&D, col[3] + k, sizeof D);
+    memcpy(&E, col[4] + k, sizeof E);
+    memcpy(&F, col[5] + k, sizeof F);
+    t0 = __builtin_shuffle(A, B, even); /* A0 B0 A2 B2 */
+    t1 = __builtin_shuffle(A, B, odd);  /* A1 B1 A3 B3 */
+    t2 = __builtin_shuffle(C, D, even); /* C0 D0 C2 D2 */
+    t3 = __builtin_shuffle(C, D, odd);  /* C1 D1 C3 D3 */
+    t4 = __builtin_shuffle(E, F, even); /* E0 F0 E2 F2 */
+    t5 = __builtin_shuffle(E, F, odd);  /* E1 F1 E3 F3 */
+    v = __builtin_shuffle(t0, t2, lo);  /* ball 0: A0 B0 C0 D0 */
+    memcpy(o, &v, sizeof v);
+    v = __builtin_shuffle(t4, t1, lo); /* E0 F0, ball 1: A1 B1 */
+    memcpy(o + 4, &v, sizeof v);
+    v = __builtin_shuffle(t3, t5, lo); /* C1 D1 E1 F1 */
+    memcpy(o + 8, &v, sizeof v);
+    v = __builtin_shuffle(t0, t2, hi); /* ball 2: A2 B2 C2 D2 */
+    memcpy(o + 12, &v, sizeof v);
+    v = __builtin_shuffle(t4, t1, hi); /* E2 F2, ball 3: A3 B3 */
+    memcpy(o + 16, &v, sizeof v);
+    v = __builtin_shuffle(t3, t5, hi); /* C3 D3 E3 F3 */
+    memcpy(o + 20, &v, sizeof v);
+  }
+#endif
+  for (; k < n; k++, o += N_BALL_OUT)
+    for (m = 0; m < N_BALL_OUT; m++) o[m] = col[m][k];
 }
 
 /* autobal_rotor_outputs; fast = 1 (a constant at both calls: inlined and specialized): sine,
@@ -2916,12 +3008,12 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
                                      size_t n_out, int fast) {
   size_t j, k;
   double x, yy, al, be, wt, W, cw, sw;
-  double ta[FAST_TRIG + 1], tsn[FAST_TRIG + 1], tcs[FAST_TRIG + 1];
+  double ta[FAST_TRIG + 4], tsn[FAST_TRIG + 4], tcs[FAST_TRIG + 4];
   int tab = 0;
   double *o;
   if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
       (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
-      n_out != autobal_rotor_output_count(r))
+      n_out != r->nout)
     return AUTOBAL_EINVAL;
   x = y[0] - r->qs[0]; /* the amplitudes are about the static offset under gravity (qs = 0 without) */
   yy = y[1] - r->qs[1];
@@ -2929,16 +3021,20 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
   be = y[3] - r->qs[3];
   spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
   if (fast && r->N < FAST_TRIG) {
-    /* phi_0 and every ball's relative angle in one vectorized pass (padded with zeros to a
-     * multiple of 4, so that all of it runs in the vector loop); plane_sxe_tab sums them */
+    /* every ball's relative angle psi (ta[k]: ang - phi_0 in the fixed frame, ang - 0.0 = ang in
+     * the rotating one) and phi_0 (ta[N]) in one vectorized pass, padded with zeros to a
+     * multiple of 4, so that all of it runs in the vector loop (phi_0 alone by the scalar
+     * kernel costs as much as the vector it may save); the planes' sums use tsn, tcs */
     const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
-    const size_t na = (r->N + 4) & ~(size_t)3;
-    ta[0] = wt;
-    for (k = 0; k < r->N; k++) ta[1 + k] = y[8 + k] - shift;
-    for (k = r->N + 1; k < na; k++) ta[k] = 0.0;
-    ball_sincos(ta, tsn, tcs, na);
-    sw = tsn[0];
-    cw = tcs[0];
+    const size_t N = r->N;
+    for (k = 0; k < N; k++) ta[k] = y[8 + k] - shift;
+    ta[N] = wt;
+    ta[N + 1] = 0.0; /* padding (those beyond the last vector are not computed) */
+    ta[N + 2] = 0.0;
+    ta[N + 3] = 0.0;
+    ball_sincos(ta, tsn, tcs, (N + 4) & ~(size_t)3);
+    sw = tsn[N];
+    cw = tcs[N];
     tab = 1;
   } else if (fast) {
     autobal_sincos1(wt, &sw, &cw);
@@ -2958,8 +3054,8 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     if (tab) {
       sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
       for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
-        sxi += r->mr[k] * tcs[1 + k];
-        seta += r->mr[k] * tsn[1 + k];
+        sxi += r->mr[k] * tcs[k];
+        seta += r->mr[k] * tsn[k];
       }
     } else if (fast) {
       plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
@@ -2987,31 +3083,31 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
       fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
   }
   if (tab) {
-    /* fast, up to 62 balls: the wrap's quotients of every phi and psi in one vectorized pass (one
-     * division per 4 angles with AVX2), then the formula without the |a| <= 3 shortcut (the same
-     * numbers, see wrap_pi; no branch per angle, which the predictor misses where ball angles move
-     * about |a| = 3) */
-    double ph[FAST_TRIG], ps[FAST_TRIG], qph[FAST_TRIG], qps[FAST_TRIG];
-    const double sh_phi = frame == AUTOBAL_ROTOR_FIXED ? 0.0 : wt, sh_psi = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
-    const double W_phi = frame == AUTOBAL_ROTOR_FIXED ? 0.0 : W, W_psi = frame == AUTOBAL_ROTOR_FIXED ? W : 0.0;
-    const int fixed = frame == AUTOBAL_ROTOR_FIXED;
-    for (k = 0; k < r->N; k++) { /* as the loop below: phi = ang or ang + wt, psi = ang - wt or ang */
-      ph[k] = fixed ? y[8 + k] : y[8 + k] + sh_phi;
-      ps[k] = fixed ? y[8 + k] - sh_psi : y[8 + k];
+    /* fast, up to 62 balls: the wrapped angles of every phi and psi in one vectorized pass
+     * (wrap_pi_array: the formula of wrap_pi without its |a| <= 3 shortcut and without branches,
+     * the same numbers; the branches cost mispredictions where ball angles move about |a| = 3
+     * or pi), the rates likewise, then the six columns interleaved per ball (ball_columns);
+     * psi = ta (above), phi = ang (fixed) or ang + phi_0 (rotating) */
+    const size_t N = r->N;
+    const double *ang = y + 8, *rate = y + 8 + N;
+    double ph[FAST_TRIG], wph[FAST_TRIG], wps[FAST_TRIG], rd[FAST_TRIG];
+    if (frame == AUTOBAL_ROTOR_FIXED) {
+      const double *col[N_BALL_OUT] = {ang, wph, ta, wps, rate, rd};
+      for (k = 0; k < N; k++) rd[k] = rate[k] - W;
+      wrap_pi_array(ang, wph, N);
+      wrap_pi_array(ta, wps, N);
+      ball_columns(o, col, N);
+    } else {
+      const double *col[N_BALL_OUT] = {ph, wph, ang, wps, rd, rate};
+      for (k = 0; k < N; k++) {
+        ph[k] = ang[k] + wt;
+        rd[k] = rate[k] + W;
+      }
+      wrap_pi_array(ph, wph, N);
+      wrap_pi_array(ang, wps, N);
+      ball_columns(o, col, N);
     }
-    for (k = 0; k < r->N; k++) {
-      qph[k] = (ph[k] - M_PI) / (2.0 * M_PI);
-      qps[k] = (ps[k] - M_PI) / (2.0 * M_PI);
-    }
-    for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
-      const double rate = y[8 + r->N + k];
-      o[0] = ph[k];
-      o[1] = wrap_pi_q(ph[k], qph[k]);
-      o[2] = ps[k];
-      o[3] = wrap_pi_q(ps[k], qps[k]);
-      o[4] = fixed ? rate : rate + W_phi;
-      o[5] = fixed ? rate - W_psi : rate;
-    }
+    o += N_BALL_OUT * N;
   }
   for (k = 0; k < r->N && !tab; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
