@@ -185,6 +185,7 @@ struct autobal_transient {
   unsigned char pc_valid[64];
   double *y_out;  /* dense output: the interpolated state at an output time */
   int dense;      /* this run: output and events on the main stepper's continuous extension */
+  autobal_transient_dop853_at_fn d6_at; /* this run, dense_order 6: the extension at t (its size built in) */
   double t0_run, t1_run, t_out; /* the run's span and its next output time (number k_out) */
   unsigned long k_out;
   double hit_t;   /* its time; hit_valid: it belongs to the step being processed */
@@ -417,6 +418,7 @@ autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_o
   tr->dim = dim;
   tr->opt = o;
   tr->type = *se->type;
+  tr->d6_at = autobal_transient_dop853_dense6_at_; /* its size's own one at each run */
   tr->gsys.function = rhs_adapter;
   tr->gsys.jacobian = jac_adapter;
   tr->gsys.dimension = dim;
@@ -906,7 +908,7 @@ static inline int dense_at(autobal_transient *tr, double t, double *out) {
     if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
   }
   /* theta = (t - t0) / h clamped to [0, 1], the extension there and its finiteness, one call */
-  if (!(tr->opt.dense_order == 6 ? autobal_transient_dop853_dense6_at_(st, t, out)
+  if (!(tr->opt.dense_order == 6 ? tr->d6_at(st, t, out)
                                   : autobal_transient_dop853_dense_at_(st, t, out))) {
     nonfinite_failure(tr, t, out);
     return rhs_failure(tr);
@@ -1723,6 +1725,8 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
   tr->dense = tr->type == k_dop853 && !tr->opt.exact_output;
   if (tr->type == k_dop853)
     autobal_transient_dop853_set_dense_order_(tr->main.d->s->state, tr->opt.dense_order == 6 ? 6 : 7);
+  tr->d6_at = tr->type == k_dop853 ? autobal_transient_dop853_dense6_at_fn_(tr->main.d->s->state)
+                                   : autobal_transient_dop853_dense6_at_;
   tr->t0_run = t0;
   tr->t1_run = t1;
   tr->reset_run = 0;
