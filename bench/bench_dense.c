@@ -24,7 +24,9 @@
  *           storing (t, y) at every output time, written to SAMPLES (raw doubles, rows t,
  *           y[0..dim-1]; "-": not written), for the error at the output points.
  * Prints one JSON object.  REPEATS = 0: only one bare integration and nothing printed (for
- * callgrind: the share of the instructions inside the right-hand side, load-independent). */
+ * callgrind: the share of the instructions inside the right-hand side, load-independent);
+ * REPEATS = -K: K bare integrations and nothing printed (for a sampling profiler: the share of
+ * the time inside the right-hand side, bench/issue20.py's perf_share). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -174,8 +176,8 @@ int main(int argc, char **argv) {
   c.revs_out = atof(argv[8]);
   repeats = atoi(argv[9]);
   samples = argv[10];
-  only_bare = repeats == 0;
-  if (repeats < 1) repeats = 1;
+  only_bare = repeats <= 0;
+  repeats = repeats < 0 ? -repeats : repeats < 1 ? 1 : repeats;
   c.pendulum = strcmp(model, "pendulum") == 0;
   if (c.pendulum) {
     const autobal_pendulum_params pp = {3.0, 0.1, 0.05, 0.1, 0.5};

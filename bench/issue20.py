@@ -19,7 +19,12 @@
    autobal_transient_run in a bare run (bench_dense ... REVS 0 0 -: no observer, no events, no
    output grid), dop853 and rk8pd at rtol 1e-8; (b) by time: bench_dense's "rhs share" (the right-
    hand side alone replayed on every (t, y) the bare run evaluated it at, divided by the bare run's
-   time; two separate timings, so noisy under load).
+   time; two separate timings, so noisy under load); (c) by sampled time, perf (a sampling
+   profiler, Debian's linux-perf): `perf record -e cpu-clock --call-graph dwarf` of K bare runs in
+   one process (bench_dense ... REPEATS = -K), the samples whose call stack holds the model's
+   right-hand side / those whose stack holds autobal_transient_run (perf report --children):
+   the time of the right-hand side and of everything it calls (libm's sine and cosine) within
+   the integration, in the same run, without a second timing.
 Writes every number to one archive (JSON) and prints the status of each target from it.
 """
 import argparse
@@ -58,6 +63,24 @@ def callgrind_share(exe, model, n, revs, stepper, tmp):
     return dict(rhs_ir=ir[rhs_name], run_ir=ir["autobal_transient_run"], share=ir[rhs_name] / ir["autobal_transient_run"])
 
 
+def perf_share(exe, model, n, revs, stepper, tmp, runs=200):
+    """perf's sampled share: inclusive samples of the right-hand side / of autobal_transient_run"""
+    f = os.path.join(tmp, f"perf.{model}{n}.{stepper}")
+    subprocess.run(["perf", "record", "-q", "-e", "cpu-clock", "-F", "20000", "--call-graph", "dwarf", "-o", f,
+                    exe, model, str(n), stepper, "dense6", "1e-8", "1e-8", str(revs), "0", str(-runs), "-"],
+                   check=True, capture_output=True)
+    txt = subprocess.run(["perf", "report", "-i", f, "--stdio", "--children", "--sort", "symbol"], check=True,
+                         capture_output=True, text=True).stdout
+    rhs_name = "autobal_pendulum_motion_rhs" if model == "pendulum" else "autobal_rotor_rhs"
+    pct = {}
+    for line in txt.splitlines():
+        m = re.match(r"\s*([\d.]+)%\s+([\d.]+)%\s+\[\.\]\s+(\S+?)(\.avx2)?\s", line)
+        if m and m.group(3) in (rhs_name, "autobal_transient_run") and m.group(3) not in pct:
+            pct[m.group(3)] = float(m.group(1))
+    os.remove(f)
+    return pct[rhs_name] / pct["autobal_transient_run"]
+
+
 def summary(arch):
     print(f"\n==== issue 20: the targets, {arch['started']} (load {arch['load_before']:.1f} -> {arch['load_after']:.1f}) ====")
     print("\n1. output every quarter revolution: out/none of the CLI's transient (time; target <= 1.10)")
@@ -94,8 +117,11 @@ def summary(arch):
     for k, v in arch["share"].items():
         st = "met" if v["share"] >= 0.80 else "NOT met"
         t = v.get("time_share")
+        p = v.get("perf_share")
         print(f"  {k:<18} instructions {v['share']:.3f} ({v['rhs_ir'] / 1e6:.2f}M of {v['run_ir'] / 1e6:.2f}M)"
-              + (f", time {t:.2f}" if t else "") + f": {st}")
+              + (f", time by perf's samples {p:.3f}" if p else "")
+              + (f", time by the replay {t:.2f}" if t else "") + f": {st} by instructions"
+              + (f", {'met' if p >= 0.80 else 'NOT met'} by perf's samples" if p else ""))
 
 
 def main():
@@ -138,6 +164,15 @@ def main():
                         for p in os.listdir(tmp):
                             if p.startswith("cg.ratio"):
                                 os.remove(os.path.join(tmp, p))
+        # 3 (c). perf's sampled time share, where perf is installed and may sample (scripts/deps.sh --bench)
+        if shutil.which("perf"):
+            for c, (model, n, revs) in CASES.items():
+                for stepper in ("dop853", "rk8pd"):
+                    try:
+                        arch["share"].setdefault(f"{c} {stepper}", {})["perf_share"] = perf_share(
+                            a.bench, model, n, revs, stepper, tmp)
+                    except (subprocess.CalledProcessError, KeyError) as ex:
+                        print(f"perf: no sampled share for {c} {stepper} ({ex})", file=sys.stderr)
         # 1. time out/none, this library and the reference interleaved
         fr = os.path.join(tmp, "ratio.json")
         run([py, os.path.join(here, "dense_ratio.py"), "--bench", a.bench, "--before", a.before, "--rounds",

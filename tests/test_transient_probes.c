@@ -3,8 +3,12 @@
  *  - A bump: y' = (1, 2 t) (y_0 = t, y_1 = t^2: the stepper is exact, so one step of length 1 is
  *    accepted), g = w^2 - (y_0 - c)^2 > 0 only for |t - c| < w.  Both step ends have g < 0: without
  *    probes the crossing is missed; with n probes at t = k/(n + 1) it is found when a probe lies in
- *    the bump, and located at t = c - w (to event_tol); a bump between two probes is still missed
- *    (the documented limit).  The Hermite interpolant of t^2 from its values and slopes is exact.
+ *    the bump, and located at t = c - w (to event_tol); a bump between two probes is found too when
+ *    the samples show it as a maximum whose parabola reaches 0 (the search between the probes, on
+ *    the integrated state with exact output): 3 probes at 0.25, 0.5, 0.75 around the bump
+ *    (0.32, 0.42).  The Hermite interpolant of t^2 from its values and slopes is exact.
+ *  - A spike that leaves no trace at the samples (g = -1 + 2 exp(-((t - c)/w)^2), w = 1e-3: -1 to
+ *    the last bit at every probe): missed with 15 probes, the documented limit.
  *  - An exact zero: g = y_0 - 1/2 on [0, 1] reaches 0.0 exactly at a secant point of the location
  *    (the first secant of the bracket [0, 1] is 1/2): the hit is reported strictly past the
  *    crossing (g > 0 there), within event_tol of 1/2, so a reset sees the new sign. */
@@ -31,6 +35,13 @@ static double g_bump(double t, const double y[], void *p) {
   const bump *b = (const bump *)p;
   (void)t;
   return b->w * b->w - (y[0] - b->c) * (y[0] - b->c);
+}
+
+static double g_spike(double t, const double y[], void *p) {
+  const bump *b = (const bump *)p;
+  const double z = (y[0] - b->c) / b->w;
+  (void)t;
+  return -1.0 + 2.0 * exp(-z * z);
 }
 
 static double g_half(double t, const double y[], void *p) {
@@ -102,7 +113,14 @@ int main(void) {
   H = run(g_bump, &b, 15, -1);
   CHECK("15 probes, direction -1 (falling only): not reported", H.n == 0);
   H = run(g_bump, &b, 3, 0);
-  CHECK("3 probes (at 0.25, 0.5, 0.75; none in (0.32, 0.42)): missed, the documented limit", H.n == 0);
+  CHECK("3 probes (at 0.25, 0.5, 0.75; none in (0.32, 0.42)): found by the search between the probes", H.n == 1);
+  snprintf(what, sizeof what, "... located at c - w = 0.32 (t = %.15f)", H.t);
+  CHECK_CLOSE(what, H.t, 0.32, 0.0, 1e-11);
+  {
+    bump sp = {0.37, 1e-3};
+    H = run(g_spike, &sp, 15, 0);
+    CHECK("a spike 2e-3 wide between probes 1/16 apart, -1 at every probe: missed, the documented limit", H.n == 0);
+  }
   b.c = 0.5;
   H = run(g_bump, &b, 1, 1);
   CHECK("1 probe at 0.5 inside a bump at 0.5: found, rising", H.n == 1);

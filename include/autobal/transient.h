@@ -344,8 +344,12 @@ AUTOBAL_API int autobal_transient_add_event(autobal_transient *tr, autobal_trans
  * t_prev + k h / (n + 1), on the cubic Hermite interpolant of the state (y and y' at both ends:
  * the stepper's own where it hands them over, as rk8pd does, else two right-hand sides per step);
  * the first point past 0 in a watched direction is checked on the integrated state and, if
- * confirmed, the crossing is located between the step's start and that point as usual.  A
- * crossing shorter than h / (n + 1) can still be missed.  n = 0 (the default) turns it off; at most
+ * confirmed, the crossing is located between the step's start and that point as usual.  When no
+ * probe is past 0 but the samples show an extremum towards 0 whose parabola through it and its
+ * neighbours comes near 0 (within the sampled prominence), that extremum is searched between the
+ * neighbours (golden section down to event_tol) on the same interpolant and checked on the
+ * integrated state where it peaks (dense output: on the extension, no check needed).  A crossing shorter than h / (n + 1) that leaves no such trace at the samples can
+ * still be missed.  n = 0 (the default) turns it off; at most
  * 64; not for dwell events.  Events with the same n share the interpolated states of a step.  Returns
  * AUTOBAL_SUCCESS, AUTOBAL_EINVAL or AUTOBAL_ENOMEM (the shared states are allocated here). */
 AUTOBAL_API int autobal_transient_set_event_probes(autobal_transient *tr, int index, unsigned n);

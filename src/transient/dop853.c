@@ -42,6 +42,7 @@ typedef struct dop853_state {
   double *e5;   /* the 5th-order estimate (unscaled) */
   double *f;    /* 4 x np: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
   double t0, h;
+  double hinv;       /* 1 / h (the order-6 extension's theta = (t - t0) hinv: no division per point) */
   double atol, rtol; /* the control's tolerances (0, 0: the componentwise estimate) */
   double rmax;       /* the last step's largest |yerr_i| / (atol + rtol |y1_i|) (normwise mode) */
   int finite;        /* the last step's y1, yerr, f(t + h, y1) all finite (normwise mode) */
@@ -134,6 +135,7 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
   s->ready = 0;
   s->t0 = t;
   s->h = h;
+  s->hinv = 1.0 / h;
   memcpy(s->y0, y, n * sizeof(double));
   if (dydt_in != NULL) {
     memcpy(s->k, dydt_in, n * sizeof(double));
@@ -334,18 +336,22 @@ static DOP853_INLINE void dop853_eval(const dop853_state *s, const size_t n, con
 /* The order-6 extension at theta in one pass, without the rows F3..F6: the same polynomial as
  * contd8's form above with D6's F3..F6, written as a combination of the step's data,
  *   u = y0 + (A F0 + sum_i g_i k_i),  F0 = y1 - y0,
- * with w1 = x x1, w2 = w1 x, w3 = w2 x1, w4 = w3 x, w5 = w4 x1, w6 = w5 x (the products of the
- * nested form), A = x - w1 + 2 w2 = x^2 (3 - 2 x) (F0's share of x F0, x x1 F1, x^2 x1 F2) and
- * g_i = (h w3) D6[0][i] + (h w4) D6[1][i] + (h w5) D6[2][i] + (h w6) D6[3][i], plus h (w1 - w2) for k_0 (from
- * F1 and F2) and - h w2 for k_12 (from F2); stages 1..4 have weight 0.  A step with an output
- * point costs 9 products per component and point instead of 36 per component for the rows and
- * 14 per point for the nested form.  u(0) = y0 exactly (A = 0, g = 0); u(1) = y0 + (y1 - y0)
- * (A = 1, g = 0), y1 to rounding. */
+ * with w1 = x x1, w2 = w1 x, w3 = w1 w1, w4 = w3 x, w5 = w3 w1, w6 = w3 w2 (x^a x1^b: the products of
+ * the nested form, formed in three rounds of multiplications instead of six in a row),
+ * A = x - w1 + 2 w2 = x^2 (3 - 2 x) (F0's share of x F0, x x1 F1, x^2 x1 F2) and
+ * g_i = ((h w3) D6[0][i] + (h w4) D6[1][i]) + ((h w5) D6[2][i] + (h w6) D6[3][i]), plus h (w1 - w2) for
+ * k_0 (from F1 and F2) and - h w2 for k_12 (from F2); stages 1..4 have weight 0.  A step with an
+ * output point costs 9 products per component and point instead of 36 per component for the rows
+ * and 14 per point for the nested form.  The sums are trees (pairs, then pairs of pairs), not
+ * chains: an output point's work is one chain of dependent operations from t to u, and its
+ * length, not the count of operations, is what a point costs between two steps (about 30
+ * dependent floating-point operations instead of 45 with the division, the chained products and
+ * sums).  u(0) = y0 exactly (A = 0, g = 0); u(1) = y0 + (y1 - y0) (A = 1, g = 0), y1 to rounding. */
 static DOP853_INLINE uint64_t dop853_eval6(const dop853_state *s, const size_t n, const size_t np, double theta,
                                            double *restrict out) {
   const double x = theta, x1 = 1.0 - theta, h = s->h;
-  const double w1 = x * x1, w2 = w1 * x, w3 = w2 * x1, w4 = w3 * x, w5 = w4 * x1, w6 = w5 * x;
-  const double A = x * x * (3.0 - 2.0 * x); /* = x - w1 + 2 w2 */
+  const double w1 = x * x1, w2 = w1 * x, w3 = w1 * w1, w4 = w3 * x, w5 = w3 * w1, w6 = w3 * w2;
+  const double A = (x * x) * (3.0 - 2.0 * x); /* = x - w1 + 2 w2 */
   const double *restrict y0 = s->y0, *restrict y1 = s->y1, *restrict k = s->k;
   const uint64_t ex = UINT64_C(0x7ff0000000000000), one = UINT64_C(0x0010000000000000);
   uint64_t bad = 0;
@@ -354,24 +360,19 @@ static DOP853_INLINE uint64_t dop853_eval6(const dop853_state *s, const size_t n
   /* stages 5..12 (two vectors of 4), then stage 0 (stages 1..4 have weight 0) */
   const double hw3 = h * w3, hw4 = h * w4, hw5 = h * w5, hw6 = h * w6; /* h folded in once */
   for (i = 5; i < NEXT - 3; i++)
-    g[i] = hw3 * DOP853_D6[0][i] + hw4 * DOP853_D6[1][i] + hw5 * DOP853_D6[2][i] + hw6 * DOP853_D6[3][i];
-  g[0] = hw3 * DOP853_D6[0][0] + hw4 * DOP853_D6[1][0] + hw5 * DOP853_D6[2][0] + hw6 * DOP853_D6[3][0];
+    g[i] = (hw3 * DOP853_D6[0][i] + hw4 * DOP853_D6[1][i]) + (hw5 * DOP853_D6[2][i] + hw6 * DOP853_D6[3][i]);
+  g[0] = (hw3 * DOP853_D6[0][0] + hw4 * DOP853_D6[1][0]) + (hw5 * DOP853_D6[2][0] + hw6 * DOP853_D6[3][0]);
   g[0] += h * (w1 - w2);
   g[NST] -= h * w2;
-  /* the 9 products summed in two chains (stages 0, 5..8 and 9..12) added at the end: half the
-   * dependent additions; the result's finiteness on the bits in the same pass (as the step's
-   * last pass: the exponent field plus one carries into the sign bit exactly for inf and NaN) */
+  /* the 9 products summed as a tree; the result's finiteness on the bits in the same pass (as
+   * the step's last pass: the exponent field plus one carries into the sign bit exactly for inf
+   * and NaN) */
   for (i = 0; i < n; i++) {
-    double v = g[0] * k[i], v2 = g[9] * k[9 * np + i];
+    const double a = (g[0] * k[i] + g[5] * k[5 * np + i]) + (g[6] * k[6 * np + i] + g[7] * k[7 * np + i]);
+    const double b = (g[8] * k[8 * np + i] + g[9] * k[9 * np + i]) + (g[10] * k[10 * np + i] + g[11] * k[11 * np + i]);
+    const double c = A * (y1[i] - y0[i]) + g[12] * k[12 * np + i];
     uint64_t u;
-    v += g[5] * k[5 * np + i];
-    v2 += g[10] * k[10 * np + i];
-    v += g[6] * k[6 * np + i];
-    v2 += g[11] * k[11 * np + i];
-    v += g[7] * k[7 * np + i];
-    v2 += g[12] * k[12 * np + i];
-    v += g[8] * k[8 * np + i];
-    out[i] = y0[i] + (A * (y1[i] - y0[i]) + (v + v2));
+    out[i] = y0[i] + (c + (a + b));
     memcpy(&u, &out[i], sizeof u);
     bad |= (u & ex) + one;
   }
@@ -428,7 +429,8 @@ DOP853_CLONES void autobal_transient_dop853_dense_eval_(const void *vstate, doub
 DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double t, double *out) {
   const dop853_state *s = (const dop853_state *)vstate;
   const uint64_t ex = UINT64_C(0x7ff0000000000000), one = UINT64_C(0x0010000000000000);
-  double th = (t - s->t0) / s->h;
+  /* order 6 as dense6_at_ (the same numbers); contd8's theta by the division, as before */
+  double th = s->dense_order == 6 ? (t - s->t0) * s->hinv : (t - s->t0) / s->h;
   uint64_t bad = 0;
   size_t i;
   if (th < 0.0) th = 0.0;
@@ -447,10 +449,45 @@ DOP853_CLONES int autobal_transient_dop853_dense_at_(const void *vstate, double 
  * frame to set up at each output point) */
 DOP853_CLONES int autobal_transient_dop853_dense6_at_(const void *vstate, double t, double *out) {
   const dop853_state *s = (const dop853_state *)vstate;
-  double th = (t - s->t0) / s->h;
+  double th = (t - s->t0) * s->hinv; /* no division on the point's chain */
   if (th < 0.0) th = 0.0;
   if (th > 1.0) th = 1.0;
   return (dop853_eval6_any(s, th, out) >> 63) == 0;
+}
+
+/* dense6_at_ for one padded size NP with dim == NP: no switch, and a small frame (the switch's
+ * cases for 24 components make the general function spill); the driver takes the one for its size
+ * once per run (autobal_transient_dop853_dense6_at_fn_) */
+#define DOP853_AT6(NP)                                                                          \
+  DOP853_CLONES static int dop853_dense6_at_##NP(const void *vstate, double t, double *out) {  \
+    const dop853_state *s = (const dop853_state *)vstate;                                      \
+    double th = (t - s->t0) * s->hinv;                                                         \
+    if (th < 0.0) th = 0.0;                                                                    \
+    if (th > 1.0) th = 1.0;                                                                    \
+    return (dop853_eval6(s, NP, NP, th, out) >> 63) == 0;                                      \
+  }
+DOP853_AT6(4)
+DOP853_AT6(8)
+DOP853_AT6(12)
+DOP853_AT6(16)
+DOP853_AT6(20)
+DOP853_AT6(24)
+#undef DOP853_AT6
+
+autobal_transient_dop853_at_fn autobal_transient_dop853_dense6_at_fn_(const void *vstate) {
+  const dop853_state *s = (const dop853_state *)vstate;
+  if (s->dim == s->np) {
+    switch (s->np) {
+      case 4: return dop853_dense6_at_4;
+      case 8: return dop853_dense6_at_8;
+      case 12: return dop853_dense6_at_12;
+      case 16: return dop853_dense6_at_16;
+      case 20: return dop853_dense6_at_20;
+      case 24: return dop853_dense6_at_24;
+      default: break;
+    }
+  }
+  return autobal_transient_dop853_dense6_at_;
 }
 
 void autobal_transient_dop853_set_dense_order_(void *vstate, int order) {

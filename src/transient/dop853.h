@@ -43,6 +43,13 @@ int autobal_transient_dop853_dense_at_(const void *state, double t, double *out)
  * a smaller function (the driver's output points with dense6). */
 int autobal_transient_dop853_dense6_at_(const void *state, double t, double *out);
 
+/* dense6_at_ itself, or for the sizes with dim a multiple of 4 up to 24 (pendulum 8, one-plane
+ * rotors with 2 and 5 balls, ...) a function that computes the same numbers with that size
+ * built in (no dispatch per call): the driver takes it once per run and calls it at every output
+ * point and trial point of the event location. */
+typedef int (*autobal_transient_dop853_at_fn)(const void *state, double t, double *out);
+autobal_transient_dop853_at_fn autobal_transient_dop853_dense6_at_fn_(const void *state);
+
 /* The tolerances of the control that judges the steps (GSL's standard control with these atol,
  * rtol, a_y = 1, a_dydt = 0): with them the error estimate is Hairer's normwise one (the factor
  * |e5|^2 / sqrt(|e5|^2 + 0.01 |e3|^2) of the 2-norms scaled by atol + rtol max(|y0_i|, |y1_i|),

@@ -185,6 +185,7 @@ struct autobal_transient {
   unsigned char pc_valid[64];
   double *y_out;  /* dense output: the interpolated state at an output time */
   int dense;      /* this run: output and events on the main stepper's continuous extension */
+  autobal_transient_dop853_at_fn d6_at; /* this run, dense_order 6: the extension at t (its size built in) */
   double t0_run, t1_run, t_out; /* the run's span and its next output time (number k_out) */
   unsigned long k_out;
   double hit_t;   /* its time; hit_valid: it belongs to the step being processed */
@@ -417,6 +418,7 @@ autobal_transient *autobal_transient_alloc(size_t dim, const autobal_transient_o
   tr->dim = dim;
   tr->opt = o;
   tr->type = *se->type;
+  tr->d6_at = autobal_transient_dop853_dense6_at_; /* its size's own one at each run */
   tr->gsys.function = rhs_adapter;
   tr->gsys.jacobian = jac_adapter;
   tr->gsys.dimension = dim;
@@ -906,7 +908,7 @@ static inline int dense_at(autobal_transient *tr, double t, double *out) {
     if (rc != GSL_SUCCESS || tr->fail_kind != 0) return rhs_failure(tr);
   }
   /* theta = (t - t0) / h clamped to [0, 1], the extension there and its finiteness, one call */
-  if (!(tr->opt.dense_order == 6 ? autobal_transient_dop853_dense6_at_(st, t, out)
+  if (!(tr->opt.dense_order == 6 ? tr->d6_at(st, t, out)
                                   : autobal_transient_dop853_dense_at_(st, t, out))) {
     nonfinite_failure(tr, t, out);
     return rhs_failure(tr);
@@ -1006,17 +1008,22 @@ static void hermite(const autobal_transient *tr, const hseg *sg, double t, doubl
   for (i = 0; i < tr->dim; i++) out[i] = h00 * y0[i] + h10 * f0[i] + h01 * y1[i] + h11 * f1[i];
 }
 
-/* Dense output: after the probes of event e found no crossing in the step (t_prev, t_prev + h), its
- * values gs[0] (t_prev), gs[1..n] (the n probes) and g at the end: a crossing narrower than the
- * probes' spacing shows as a sampled extremum towards 0 (a maximum when g_prev < 0).  At every
- * interior sample that is such an extremum and whose parabola through it and its neighbours comes
- * within the sampled prominence of 0 (or crosses it), the extremum is searched on the continuous
- * extension between the neighbours (golden section, at most 40 evaluations, down to event_tol);
- * the first point past 0 in a watched direction is returned (*found = 1, *tc, *gc).  Without this
- * a stuck ball's |H| briefly above mu N (a slip of 0.2 ms in a step of 1.8 ms, data/washer_contact.ini
- * at rtol 1e-12) fell between dop853's probes and the run went on along another branch. */
+/* After the probes of event e found no crossing in the step (t_prev, t_prev + h), its values gs[0]
+ * (t_prev), gs[1..n] (the n probes) and g at the end: a crossing narrower than the probes' spacing
+ * shows as a sampled extremum towards 0 (a maximum when g_prev < 0).  At every interior sample that
+ * is such an extremum and whose parabola through it and its neighbours comes within the sampled
+ * prominence of 0 (or crosses it), the extremum is searched between the neighbours (golden section,
+ * at most 40 evaluations, down to event_tol): dense output, on the continuous extension (the
+ * solution there), the first point past 0 in a watched direction is returned (*found = 1, *tc,
+ * *gc); exact output, on the cubic Hermite interpolant of the step (as the probes), whose maximum
+ * (or first point past 0) only points the place: g there on the state integrated from the step's
+ * start (aux_integrate, one step of the same stepper and tolerances) decides, as the probes'
+ * confirmation does (one integration per searched extremum, not one per trial point).
+ * Without this a stuck ball's |H| briefly above mu N (a slip of 0.2 ms in a step of 1.8 ms,
+ * data/washer_contact.ini at rtol 1e-12) fell between dop853's probes and the run went on along
+ * another branch (dense output before 0.2.0, exact output until this search was shared). */
 static int probe_extremum(autobal_transient *tr, event_item *e, double t_prev, double h, double *gs, double tn,
-                          const double *yn, double *tc, double *gc, int *found) {
+                          const double *yn, const double *fa, const double *fb, double *tc, double *gc, int *found) {
   const unsigned n = e->probes;
   const double s = e->g_prev < 0.0 ? 1.0 : -1.0; /* s g rises towards 0 at a crossing */
   const double d = h / (double)(n + 1), phi = 0.6180339887498949;
@@ -1027,22 +1034,35 @@ static int probe_extremum(autobal_transient *tr, event_item *e, double t_prev, d
   for (k = 1; k <= n; k++) {
     const double a = s * gs[k - 1], b = s * gs[k], c = s * gs[k + 1], den = a - 2.0 * b + c;
     const double vert = den < 0.0 ? b - (a - c) * (a - c) / (8.0 * den) : b, prom = b - fmin(a, c);
-    double lo, hi, x1, x2, f1 = 0.0, f2 = 0.0, g = 0.0;
-    int m;
+    double lo, hi, x1, x2, f1 = 0.0, f2 = 0.0, g = 0.0, x_best = 0.0, f_best = -INFINITY;
+    int m, past = 0;
     if (!(b >= a && b >= c) || vert < -prom) continue; /* no extremum, or one far from 0 */
     lo = t_prev + (double)(k - 1) * d;
     hi = k + 1 == n + 1 ? tn : t_prev + (double)(k + 1) * d;
     x1 = hi - phi * (hi - lo);
     x2 = lo + phi * (hi - lo);
-    for (m = 0; m < 40; m++) {
+    for (m = 0; m < 40 && !past; m++) {
       /* evaluate the new point(s): both at the start, then the one golden section adds */
       const int both = m == 0;
       int w;
       for (w = 0; w < (both ? 2 : 1); w++) {
         const double x = both ? (w == 0 ? x1 : x2) : (f1 == -INFINITY ? x1 : x2);
-        if ((rc = dense_at(tr, x, tr->pr_y)) != AUTOBAL_SUCCESS) return rc;
+        if (tr->dense) {
+          if ((rc = dense_at(tr, x, tr->pr_y)) != AUTOBAL_SUCCESS) return rc;
+        } else {
+          const hseg sg = {t_prev, tn, tr->y_prev, fa, yn, fb};
+          hermite(tr, &sg, x, tr->pr_y);
+        }
         if ((rc = event_value(tr, e, x, tr->pr_y, &g)) != AUTOBAL_SUCCESS) return rc;
+        if (s * g > f_best) {
+          f_best = s * g;
+          x_best = x;
+        }
         if (s * g >= 0.0) { /* past 0: the crossing lies in (t_prev, x] */
+          if (!tr->dense) { /* to confirm below */
+            past = 1;
+            break;
+          }
           *tc = x;
           *gc = g;
           *found = 1;
@@ -1051,7 +1071,7 @@ static int probe_extremum(autobal_transient *tr, event_item *e, double t_prev, d
         if (x == x1) f1 = s * g;
         else f2 = s * g;
       }
-      if (hi - lo <= tr->opt.event_tol) break;
+      if (past || hi - lo <= tr->opt.event_tol) break;
       if (f1 > f2) { /* the maximum of s g in [lo, x2] */
         hi = x2;
         x2 = x1;
@@ -1066,6 +1086,16 @@ static int probe_extremum(autobal_transient *tr, event_item *e, double t_prev, d
         f2 = -INFINITY;
       }
       if (!(x1 > lo && x2 < hi && x1 <= x2)) break; /* adjacent doubles */
+    }
+    if (!tr->dense && f_best > -INFINITY) { /* g on the integrated state where the cubic peaks */
+      if ((rc = aux_integrate(tr, t_prev, tr->y_prev, x_best, tr->pr_y, h, fa)) != AUTOBAL_SUCCESS) return rc;
+      if ((rc = event_value(tr, e, x_best, tr->pr_y, &g)) != AUTOBAL_SUCCESS) return rc;
+      if (s * g >= 0.0) {
+        *tc = x_best;
+        *gc = g;
+        *found = 1;
+        return AUTOBAL_SUCCESS;
+      }
     }
   }
   return AUTOBAL_SUCCESS;
@@ -1083,7 +1113,7 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
   const int shared = e->probes <= tr->pc_cap && (tr->pc_n == 0 || tr->pc_n == e->probes);
   unsigned k;
   int rc;
-  double gs[66]; /* dense: g at t_prev, the probe points and tn (the extremum search below) */
+  double gs[66]; /* g at t_prev, the probe points and tn (the extremum search below) */
   *found = 0;
   gs[0] = e->g_prev;
   if (!tr->dense && !*fa && (rc = step_ends(tr, t_prev, tn, yn, fa, fb)) != AUTOBAL_SUCCESS) return rc;
@@ -1123,8 +1153,7 @@ static int probe(autobal_transient *tr, event_item *e, double t_prev, double tn,
       return AUTOBAL_SUCCESS;
     }
   }
-  if (tr->dense) return probe_extremum(tr, e, t_prev, h, gs, tn, yn, tc, gc, found);
-  return AUTOBAL_SUCCESS;
+  return probe_extremum(tr, e, t_prev, h, gs, tn, yn, *fa, *fb, tc, gc, found);
 }
 
 static double output_time(const autobal_transient *tr, double t0, double t1, unsigned long k);
@@ -1723,6 +1752,8 @@ int autobal_transient_run(autobal_transient *tr, const autobal_transient_system 
   tr->dense = tr->type == k_dop853 && !tr->opt.exact_output;
   if (tr->type == k_dop853)
     autobal_transient_dop853_set_dense_order_(tr->main.d->s->state, tr->opt.dense_order == 6 ? 6 : 7);
+  tr->d6_at = tr->type == k_dop853 ? autobal_transient_dop853_dense6_at_fn_(tr->main.d->s->state)
+                                   : autobal_transient_dop853_dense6_at_;
   tr->t0_run = t0;
   tr->t1_run = t1;
   tr->reset_run = 0;
