@@ -47,6 +47,18 @@ def run(cmd):
     subprocess.run(cmd, check=True)
 
 
+def inclusive(txt, pattern, model):
+    """the first value (group 1) of the model's right-hand side and of autobal_transient_run (group 2:
+    the function's name, an .avx2 clone's suffix dropped) in a profiler's inclusive listing"""
+    rhs_name = "autobal_pendulum_motion_rhs" if model == "pendulum" else "autobal_rotor_rhs"
+    v = {}
+    for line in txt.splitlines():
+        m = re.match(pattern, line)
+        if m and m.group(2) in (rhs_name, "autobal_transient_run") and m.group(2) not in v:
+            v[m.group(2)] = float(m.group(1).replace(",", ""))
+    return v[rhs_name], v["autobal_transient_run"]
+
+
 def callgrind_share(exe, model, n, revs, stepper, tmp):
     """inclusive Ir of the right-hand side / of autobal_transient_run in a bare run (rtol 1e-8)"""
     f = os.path.join(tmp, f"cg.{model}{n}.{stepper}")
@@ -54,13 +66,8 @@ def callgrind_share(exe, model, n, revs, stepper, tmp):
                     "dense6", "1e-8", "1e-8", str(revs), "0", "0", "-"], check=True, capture_output=True)
     txt = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", f], check=True,
                          capture_output=True, text=True).stdout
-    rhs_name = "autobal_pendulum_motion_rhs" if model == "pendulum" else "autobal_rotor_rhs"
-    ir = {}
-    for line in txt.splitlines():
-        m = re.match(r"\s*([\d,]+)\s+\([^)]*\)\s+\S*?:(\S+?)(\.avx2)?\s", line)
-        if m and m.group(2) in (rhs_name, "autobal_transient_run") and m.group(2) not in ir:
-            ir[m.group(2)] = int(m.group(1).replace(",", ""))
-    return dict(rhs_ir=ir[rhs_name], run_ir=ir["autobal_transient_run"], share=ir[rhs_name] / ir["autobal_transient_run"])
+    rhs, run = inclusive(txt, r"\s*([\d,]+)\s+\([^)]*\)\s+\S*?:(\S+?)(?:\.avx2)?\s", model)
+    return dict(rhs_ir=int(rhs), run_ir=int(run), share=rhs / run)
 
 
 def perf_share(exe, model, n, revs, stepper, tmp, runs=200):
@@ -71,14 +78,9 @@ def perf_share(exe, model, n, revs, stepper, tmp, runs=200):
                    check=True, capture_output=True)
     txt = subprocess.run(["perf", "report", "-i", f, "--stdio", "--children", "--sort", "symbol"], check=True,
                          capture_output=True, text=True).stdout
-    rhs_name = "autobal_pendulum_motion_rhs" if model == "pendulum" else "autobal_rotor_rhs"
-    pct = {}
-    for line in txt.splitlines():
-        m = re.match(r"\s*([\d.]+)%\s+([\d.]+)%\s+\[\.\]\s+(\S+?)(\.avx2)?\s", line)
-        if m and m.group(3) in (rhs_name, "autobal_transient_run") and m.group(3) not in pct:
-            pct[m.group(3)] = float(m.group(1))
     os.remove(f)
-    return pct[rhs_name] / pct["autobal_transient_run"]
+    rhs, run = inclusive(txt, r"\s*([\d.]+)%\s+[\d.]+%\s+\[\.\]\s+(\S+?)(?:\.avx2)?\s", model)
+    return rhs / run
 
 
 def summary(arch):
