@@ -8,7 +8,13 @@
  *      (0 / 0 in the plain sums) leaves the other components' yerr as without it;
  *  (b) the driver from rest with atol = 1e-300, rtol = 1e-10, output exact, dense and dense6: the
  *      forced oscillator x'' + x = cos t (x = t sin t / 2, closed form) reaches t = 20 with the
- *      error at the output points within 100 rtol max|x|, as with atol = 1e-12. */
+ *      error at the output points within 100 rtol max|x|, as with atol = 1e-12;
+ *  (c) the step's own step-size control (autobal_transient_dop853_hadjust_, its ratio max computed
+ *      inside the step) against GSL's standard control (a_y = 1, a_dydt = 0) on the same step:
+ *      systems of 1 to 31 components (the unrolled sizes and the general one, with and without
+ *      padding), components identically 0 (0 / 0 with atol = 0), three tolerance pairs, four step
+ *      sizes: the same decision, the same new step bit for bit when it shrinks or stays (GSL's
+ *      formulas), within 1e-15 when it grows (rmax^(1/8) as three square roots, not pow). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -90,6 +96,52 @@ static int run_forced(double atol, int exact, int order, obs_ctx *o, double *t_e
   return rc;
 }
 
+/* n components; every fifth from the fourth is identically 0 (and starts at 0) */
+static int coupled(double t, const double y[], double f[], void *p) {
+  const size_t dim = *(const size_t *)p;
+  size_t i;
+  (void)t;
+  for (i = 0; i < dim; i++) f[i] = i % 5 == 3 ? 0.0 : y[(i + 1) % dim] - (1.0 + 0.1 * (double)i) * sin(y[i]);
+  return GSL_SUCCESS;
+}
+
+/* (c): returns the number of failed comparisons; counts the decisions in n_dec, n_nil, n_inc */
+static int control_cases(int *n_dec, int *n_nil, int *n_inc) {
+  static const size_t dims[] = {1, 2, 3, 4, 5, 8, 11, 12, 13, 17, 20, 24, 25, 31};
+  static const double tols[3][2] = {{1e-8, 1e-8}, {0.0, 1e-6}, {1e-9, 0.0}}; /* atol, rtol */
+  static const double hs[4] = {0.003, 0.05, 0.3, 1.5};
+  size_t di, ti, hi, i;
+  int bad = 0;
+  for (di = 0; di < sizeof dims / sizeof dims[0]; di++) {
+    size_t dim = dims[di];
+    gsl_odeiv2_system sys = {coupled, NULL, dim, &dim};
+    for (ti = 0; ti < 3; ti++) {
+      gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(&autobal_transient_dop853_type_, dim);
+      gsl_odeiv2_control *c = gsl_odeiv2_control_standard_new(tols[ti][0], tols[ti][1], 1.0, 0.0);
+      for (hi = 0; hi < 4; hi++) {
+        double y[31], yerr[31], dydt[31], h1 = hs[hi], h2 = hs[hi];
+        int a1, a2, st;
+        for (i = 0; i < dim; i++) y[i] = i % 5 == 3 ? 0.0 : 0.3 + 0.7 * sin(1.3 * (double)i + 0.5);
+        autobal_transient_dop853_set_tol_(s->state, tols[ti][0], tols[ti][1]);
+        gsl_odeiv2_step_reset(s);
+        st = gsl_odeiv2_step_apply(s, 0.0, hs[hi], y, yerr, NULL, dydt, &sys);
+        a1 = autobal_transient_dop853_hadjust_(s->state, &h1);
+        a2 = gsl_odeiv2_control_hadjust(c, s, y, yerr, dydt, &h2);
+        if (st != GSL_SUCCESS || a1 != a2 || (a1 != GSL_ODEIV_HADJ_INC && h1 != h2) ||
+            (a1 == GSL_ODEIV_HADJ_INC && !(fabs(h1 - h2) <= 1e-15 * h2))) {
+          printf("  dim %zu atol %g rtol %g h %g: step %d, own %d %.17g, GSL %d %.17g\n", dim, tols[ti][0],
+                 tols[ti][1], hs[hi], st, a1, h1, a2, h2);
+          bad++;
+        }
+        *(a2 == GSL_ODEIV_HADJ_DEC ? n_dec : a2 == GSL_ODEIV_HADJ_INC ? n_inc : n_nil) += 1;
+      }
+      gsl_odeiv2_control_free(c);
+      gsl_odeiv2_step_free(s);
+    }
+  }
+  return bad;
+}
+
 int main(void) {
   /* (a) one step */
   {
@@ -131,6 +183,16 @@ int main(void) {
                cases[k].name);
       CHECK(what, rc2 == AUTOBAL_SUCCESS && o.max_err <= 100.0 * 1e-10 * o.max_x && r.max_err <= 100.0 * 1e-10 * r.max_x);
     }
+  }
+  /* (c) the step's own control against GSL's */
+  {
+    int n_dec = 0, n_nil = 0, n_inc = 0;
+    const int bad = control_cases(&n_dec, &n_nil, &n_inc);
+    printf("own control vs GSL's standard control: %d differ; decisions: %d shrink, %d keep, %d grow\n", bad, n_dec,
+           n_nil, n_inc);
+    CHECK("the step's own control: GSL's decision and step in every case (shrink, keep: bit for bit; grow: 1e-15)",
+          bad == 0);
+    CHECK("every decision occurs (the cases test shrinking, keeping and growing)", n_dec > 0 && n_nil > 0 && n_inc > 0);
   }
   return check_summary();
 }

@@ -49,6 +49,7 @@ typedef struct dop853_state {
   double *y1;   /* its result */
   double *ytmp; /* a stage's argument; e3 after the step */
   double *e5;   /* the 5th-order estimate (unscaled) */
+  double *ratio; /* the step-size control's ratios |yerr_i| / (atol + rtol |y1_i|) (normwise mode) */
   double *f;    /* 4 x np: the extension's coefficients F3..F6 (F0..F2 from y0, y1, k0, k12) */
   double t0, h;
   double hinv;       /* 1 / h (the order-6 extension's theta = (t - t0) hinv: no division per point) */
@@ -68,6 +69,7 @@ static void dop853_free(void *vstate) {
   free(s->y1);
   free(s->ytmp);
   free(s->e5);
+  free(s->ratio);
   free(s->f);
   free(s);
 }
@@ -83,8 +85,9 @@ static void *dop853_alloc(size_t dim) {
   s->y1 = calloc(s->np, sizeof(double));
   s->ytmp = calloc(s->np, sizeof(double));
   s->e5 = calloc(s->np, sizeof(double));
+  s->ratio = calloc(s->np, sizeof(double));
   s->f = calloc(4 * s->np, sizeof(double));
-  if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->e5 || !s->f) {
+  if (!s->k || !s->y0 || !s->y1 || !s->ytmp || !s->e5 || !s->ratio || !s->f) {
     dop853_free(s);
     GSL_ERROR_NULL("failed to allocate space for dop853_state", GSL_ENOMEM);
   }
@@ -222,12 +225,21 @@ static DOP853_INLINE int dop853_step(dop853_state *s, const size_t n, const size
      * a_y = 1, a_dydt = 0 (D0 = rtol |y1_i| + atol, r_i = |yerr_i| / D0, the max from DBL_MIN),
      * the same numbers (autobal_transient_dop853_hadjust_ uses it); and the finiteness of y1,
      * yerr and f(t + h, y1) on the bits (the exponent field plus one carries into the sign bit
-     * exactly when it is all ones: inf or NaN), which take_step would test otherwise */
-    for (i = 0; i < n; i++) {
-      const double ye = e5[i] * hf;
-      const double r = fabs(ye) / (rtol * fabs(y1[i]) + atol);
-      yerr[i] = ye;
-      rmax = r > rmax ? r : rmax;
+     * exactly when it is all ones: inf or NaN), which take_step would test otherwise.  The
+     * ratios first, over the padded length (divisions 4 at a time; a padding component gives
+     * r = 0 or 0 / 0, neither of which can win over DBL_MIN), then their max in 4 running maxima
+     * and the max of those: the same max as one loop in component order (a NaN r is passed over
+     * in both, and the max of numbers does not depend on the order), without a chain of up to 24
+     * dependent comparisons, each waiting for its division */
+    for (i = 0; i < n; i++) yerr[i] = e5[i] * hf;
+    {
+      double *restrict r = s->ratio, m[DOP853_LANES];
+      size_t b, l;
+      for (i = 0; i < np; i++) r[i] = fabs(e5[i] * hf) / (rtol * fabs(y1[i]) + atol);
+      for (l = 0; l < DOP853_LANES; l++) m[l] = DBL_MIN;
+      for (b = 0; b < np; b += DOP853_LANES)
+        for (l = 0; l < DOP853_LANES; l++) m[l] = r[b + l] > m[l] ? r[b + l] : m[l];
+      for (l = 0; l < DOP853_LANES; l++) rmax = m[l] > rmax ? m[l] : rmax;
     }
     for (i = 0; i < n; i++) { /* integers: a vector loop */
       uint64_t u, v, w;
