@@ -11,7 +11,7 @@
  * - derive_fast vs derive_m on 2000 states: the columns without trigonometry (alpha, beta) equal
  *   bit for bit; the others within a few ulp of the magnitude of their terms (the only
  *   difference: sin, cos within 1 ulp of libm, hypot within 1.5 ulp).
- * - rotor outputs_fast vs outputs: the default rotor (2 balls), 8 balls, 70 balls (the chunked
+ * - rotor outputs_fast vs outputs: the default rotor (2 balls), 8 balls, 70 balls (the scalar
  *   path), both frames: angle and rate columns bit for bit, the others within 1e-13 of their
  *   scale; the same argument checks (EINVAL).
  * - the ball columns again at edge angles (next to 0, pi, 3, odd multiples of pi, 2^52 2 pi, inf,
@@ -291,7 +291,7 @@ static void test_rotor(void) {
   }
 }
 
-/* The ball columns of outputs_fast (the wraps without branches, wrap_pi_array in rotor.c: ceil by
+/* The ball columns of outputs_fast (the wraps without branches, wrap_pi4 in rotor.c: ceil by
  * rounding with 2^52 and masks) against autobal_rotor_outputs' (libm's ceil, branches) bit for
  * bit, at the angles where the two ways could part: +-0, next to +-pi, +-3 and the odd multiples
  * of pi (where the quotient (a - pi) / (2 pi) is an integer or next to one, and the corrections

@@ -246,7 +246,7 @@ typedef struct run_ctx {
   /* per-revolution summary */
   double rev_period, rev_t0, rev_max_G, rev_max_s;
   unsigned long rev_index; /* revolutions completed */
-  double *rev_max_D;       /* per plane */
+  double rev_max_D[AUTOBAL_ROTOR_MAX_PLANES]; /* per plane */
   double *rev_row;
   size_t n_planes;
   /* summary */
@@ -296,9 +296,11 @@ static int observer(double t, const double y[], void *user) {
     r->rev_t0 = t;
     r->rev_index = 0;
   }
-  if (out[0] > r->max_amp) r->max_amp = out[0];
-  if (t <= r->t_first_window && out[0] > r->amp_first) r->amp_first = out[0];
-  if (t >= r->t_last_window_start && !(out[0] <= r->amp_last)) r->amp_last = out[0]; /* NaN until sampled */
+  /* the running maxima by selects, not branches: a comparison with a sample computed just before
+   * is mispredicted often, and then costs the whole dependent chain that computed the sample */
+  r->max_amp = out[0] > r->max_amp ? out[0] : r->max_amp;
+  if (t <= r->t_first_window) r->amp_first = out[0] > r->amp_first ? out[0] : r->amp_first;
+  if (t >= r->t_last_window_start) r->amp_last = !(out[0] <= r->amp_last) ? out[0] : r->amp_last; /* NaN until sampled */
   if (t >= r->t_last_window_start) {
     size_t k, q;
     double w1x = r->omega_abs, dv[3];
@@ -311,7 +313,7 @@ static int observer(double t, const double y[], void *user) {
       for (q = 0; q < 2; q++) {
         /* hypot as the output columns compute it (fastmath with output = dense6) */
         double amp = r->fast ? autobal_hypot_fast(d[q], v[q] / w1x) : hypot(d[q], v[q] / w1x);
-        if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
+        r->amax[k][q] = r->win_n == 0 || amp > r->amax[k][q] ? amp : r->amax[k][q];
       }
     }
     r->win_n++;
@@ -320,10 +322,15 @@ static int observer(double t, const double y[], void *user) {
     r->io_failed = 1;
   study_runup_sample(r->runup, t, out);
   /* per-revolution maxima (of the sampled values) */
-  if (out[0] > r->rev_max_G) r->rev_max_G = out[0];
-  for (j = 0; j < r->n_planes; j++) {
-    if (out[plane_base(j) + 6] > r->rev_max_D[j]) r->rev_max_D[j] = out[plane_base(j) + 6];
-    if (out[plane_base(j) + 5] > r->rev_max_s) r->rev_max_s = out[plane_base(j) + 5];
+  r->rev_max_G = out[0] > r->rev_max_G ? out[0] : r->rev_max_G;
+  {
+    double ms = r->rev_max_s;
+    for (j = 0; j < r->n_planes; j++) {
+      const double d = out[plane_base(j) + 6], s_rel = out[plane_base(j) + 5];
+      r->rev_max_D[j] = d > r->rev_max_D[j] ? d : r->rev_max_D[j];
+      ms = s_rel > ms ? s_rel : ms;
+    }
+    r->rev_max_s = ms;
   }
   /* revolution k ends at rev_t0 + (k+1) period; a sample within 1e-9 period of it closes it */
   if (t >= r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period) {
@@ -333,7 +340,7 @@ static int observer(double t, const double y[], void *user) {
     if (r->revs && !r->io_failed && autobal_archive_series_append(r->revs, 1, &t, r->rev_row) != AUTOBAL_SUCCESS)
       r->io_failed = 1;
     r->rev_max_G = r->rev_max_s = 0;
-    for (j = 0; j < r->n_planes; j++) r->rev_max_D[j] = 0;
+    for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) r->rev_max_D[j] = 0; /* two stores, no memset call */
     r->rev_index++;
   }
   return 0;
@@ -704,9 +711,8 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   r.l_sup[1] = rp->input == AUTOBAL_ROTOR_HARDWARE ? -rp->hw.l_L : NAN;
   r.l_sup[2] = rp->input == AUTOBAL_ROTOR_HARDWARE ? rp->hw.l_R : NAN;
   r.row = calloc(r.ncols, sizeof *r.row);
-  r.rev_max_D = calloc(r.n_planes, sizeof *r.rev_max_D);
   r.rev_row = calloc(2 + r.n_planes, sizeof *r.rev_row);
-  if (!r.row || !r.rev_max_D || !r.rev_row) {
+  if (!r.row || !r.rev_row) {
     rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
     goto done;
   }
@@ -842,7 +848,6 @@ done:
   autobal_transient_free(tr);
   autobal_rotor_free(rot);
   free(r.row);
-  free(r.rev_max_D);
   free(r.rev_row);
   study_runup_free(r.runup);
   study_friction_free(fric);
