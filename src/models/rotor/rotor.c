@@ -3051,74 +3051,85 @@ static AUTOBAL_FM_INLINE void hypot_fast4(const rotor_v4 *a, const rotor_v4 *b, 
 }
 #endif
 
-/* autobal_rotor_outputs; fast = 1 (a constant at both calls: inlined and specialized): sine,
- * cosine and hypot by fastmath.h instead of libm, the same expressions otherwise (with GCC and up
- * to 62 balls in vectors, above). */
+/* The friction columns of out (the stuck flags of all balls, then their normal forces, after the
+ * ball columns; the solve's workspace is the ball columns, written after this). */
+static void friction_columns(const autobal_rotor *r, int frame, double t, const double *y, double *out) {
+  double *fo = out + output_count_base(r);
+  size_t k;
+  if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0, NULL, 0) !=
+      GSL_SUCCESS)
+    for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
+  for (k = 0; k < r->N; k++)
+    fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
+}
+
+/* The drive's columns after the ball columns (o): Omega with a ramp or table; Omega, the motor's
+ * torque and power with a motor. */
+static AUTOBAL_FM_INLINE void spin_columns(const autobal_rotor *r, double W, double *o) {
+  if (r->dn > 0) o[0] = W;
+  if (r->motor) {
+    o[0] = W;
+    o[1] = motor_L(r, W);
+    o[2] = o[1] * W;
+  }
+}
+
 enum { FAST_TRIG = 63 }; /* the vector path: up to 62 balls (with phi_0, 63 lanes: 16 vectors) */
-static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
-                                     size_t n_out, int fast) {
-  size_t j, k;
-  double x, yy, al, be, wt, W, cw, sw;
-  double *o;
-  int vec = 0;
 #ifdef ROTOR_VEC
-  rotor_v4 ta[FAST_TRIG / 4 + 1], tsn[FAST_TRIG / 4 + 1], tcs[FAST_TRIG / 4 + 1];
-#endif
-  if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
-      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
-      n_out != r->nout)
-    return AUTOBAL_EINVAL;
-  x = y[0] - r->qs[0]; /* the amplitudes are about the static offset under gravity (qs = 0 without) */
-  yy = y[1] - r->qs[1];
-  al = y[2] - r->qs[2];
-  be = y[3] - r->qs[3];
-  spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
-#ifdef ROTOR_VEC
-  if (fast && r->N < FAST_TRIG) {
-    /* every ball's relative angle psi (lane k: ang - phi_0 in the fixed frame, ang - 0.0 = ang in
-     * the rotating one) and phi_0 (lane N), zeros after it, in N / 4 + 1 vectors */
-    const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
-    const size_t N = r->N, nt = N / 4 + 1, m = N % 4;
-    const rotor_i4 lane = {0, 1, 2, 3};
-    const rotor_u4 ball = (rotor_u4)(lane < (long long)m), last = (rotor_u4)(lane == (long long)m);
-    rotor_u4 bad = {0, 0, 0, 0};
-    const rotor_v4 wtv = {wt, wt, wt, wt}, sv = {shift, shift, shift, shift};
-    rotor_v4 a = {0.0, 0.0, 0.0, 0.0};
-    for (k = 0; k + 1 < nt; k++) {
-      load4(y + 8 + 4 * k, 4, &a);
-      ta[k] = a - shift;
-    }
-    /* the last: its m balls, phi_0, zeros (a lane without a ball subtracts +0.0 from +0.0) */
-    load4(y + 8 + 4 * k, m, &a);
-    ta[k] = (rotor_v4)((rotor_u4)(a - (rotor_v4)((rotor_u4)sv & ball)) | ((rotor_u4)wtv & last));
-    for (k = 0; k < nt; k++) {
-      autobal_sincos_fast4(&ta[k], &tsn[k], &tcs[k]);
-      autobal_sincos_out_of_range4(&ta[k], &bad);
-    }
-    if (((bad[0] | bad[1] | bad[2] | bad[3]) >> 63) != 0) {
-      for (k = 0; k <= N; k++) { /* libm out of the fast path's range (as autobal_sincos1) */
-        const double ak = ta[k / 4][k % 4];
-        if (!autobal_sincos_in_range(ak)) {
-          tsn[k / 4][k % 4] = sin(ak);
-          tcs[k / 4][k % 4] = cos(ak);
-        }
+enum { FAST_VEC = FAST_TRIG / 4 + 1 };
+
+/* The vector path's first stage for the point (t, y): Omega (*W), phi_0 (*wt), every ball's
+ * relative angle psi (lane k of ta: ang - phi_0 in the fixed frame, ang - 0.0 = ang in the
+ * rotating one) and phi_0 (lane N), zeros after it, in N / 4 + 1 vectors, and their sines and
+ * cosines (libm for a lane out of the fast path's range, as autobal_sincos1). */
+static AUTOBAL_FM_INLINE void vec_trig(const autobal_rotor *r, int frame, double t, const double *y, double *W,
+                                       double *wt, rotor_v4 *ta, rotor_v4 *tsn, rotor_v4 *tcs) {
+  const size_t N = r->N, nt = N / 4 + 1, m = N % 4;
+  const rotor_i4 lane = {0, 1, 2, 3};
+  const rotor_u4 ball = (rotor_u4)(lane < (long long)m), last = (rotor_u4)(lane == (long long)m);
+  rotor_u4 bad = {0, 0, 0, 0};
+  rotor_v4 a = {0.0, 0.0, 0.0, 0.0}, wtv, sv;
+  double shift;
+  size_t k;
+  spin_state(r, t, y, W, wt);
+  shift = frame == AUTOBAL_ROTOR_FIXED ? *wt : 0.0;
+  wtv = (rotor_v4){*wt, *wt, *wt, *wt};
+  sv = (rotor_v4){shift, shift, shift, shift};
+  for (k = 0; k + 1 < nt; k++) {
+    load4(y + 8 + 4 * k, 4, &a);
+    ta[k] = a - shift;
+  }
+  /* the last: its m balls, phi_0, zeros (a lane without a ball subtracts +0.0 from +0.0) */
+  load4(y + 8 + 4 * k, m, &a);
+  ta[k] = (rotor_v4)((rotor_u4)(a - (rotor_v4)((rotor_u4)sv & ball)) | ((rotor_u4)wtv & last));
+  for (k = 0; k < nt; k++) {
+    autobal_sincos_fast4(&ta[k], &tsn[k], &tcs[k]);
+    autobal_sincos_out_of_range4(&ta[k], &bad);
+  }
+  if (((bad[0] | bad[1] | bad[2] | bad[3]) >> 63) != 0) {
+    for (k = 0; k <= N; k++) { /* libm out of the fast path's range (as autobal_sincos1) */
+      const double ak = ta[k / 4][k % 4];
+      if (!autobal_sincos_in_range(ak)) {
+        tsn[k / 4][k % 4] = sin(ak);
+        tcs[k / 4][k % 4] = cos(ak);
       }
     }
-    sw = tsn[N / 4][m];
-    cw = tcs[N / 4][m];
-    vec = 1;
-  } else
-#endif
-      if (fast) {
-    autobal_sincos1(wt, &sw, &cw);
-  } else {
-    cw = cos(wt); /* once for every plane */
-    sw = sin(wt);
   }
-#define ROTOR_HYPOT(a, b) (fast ? autobal_hypot_fast((a), (b)) : hypot((a), (b)))
-#ifdef ROTOR_VEC
-  if (vec) {
-    /* amp_G, amp_L, amp_R and the first plane's amp_D: the expressions below, in one vector */
+}
+
+/* The vector path's second stage: every output column of the point (t, y) from vec_trig's W, wt,
+ * ta, tsn, tcs, the expressions of the scalar path below. */
+static AUTOBAL_FM_INLINE void vec_columns(const autobal_rotor *r, int frame, double t, const double *y, double W,
+                                          double wt, const rotor_v4 *ta, const rotor_v4 *tsn, const rotor_v4 *tcs,
+                                          double *out) {
+  const size_t N = r->N;
+  const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
+  const double sw = tsn[N / 4][N % 4], cw = tcs[N / 4][N % 4];
+  const double *ang = y + 8, *rate = y + 8 + N;
+  double *o = out + N_GLOBAL_OUT;
+  size_t j, k;
+  {
+    /* amp_G, amp_L, amp_R and the first plane's amp_D in one vector */
     const double d = r->p.plane[0].d;
     const rotor_v4 a = {x, x - r->l_L * be, x + r->l_R * be, x + d * be},
                    b = {yy, yy + r->l_L * al, yy - r->l_R * al, yy - d * al};
@@ -3128,95 +3139,120 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     out[1] = h[1];
     out[2] = h[2];
     out[N_GLOBAL_OUT + 6] = h[3];
-  } else
-#endif
-  {
-    out[0] = ROTOR_HYPOT(x, yy);
-    /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
-    out[1] = ROTOR_HYPOT(x - r->l_L * be, yy + r->l_L * al);
-    out[2] = ROTOR_HYPOT(x + r->l_R * be, yy - r->l_R * al);
   }
-  o = out + N_GLOBAL_OUT;
   for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
     const double d = r->p.plane[j].d;
-    double s[4], sxi, seta;
-    if (vec) {
-#ifdef ROTOR_VEC
-      sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
-      for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
-        sxi += r->mr[k] * tcs[k / 4][k % 4];
-        seta += r->mr[k] * tsn[k / 4][k % 4];
-      }
-#endif
-    } else if (fast) {
-      plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
-    } else {
-      plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+    double s[4], sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
+    for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
+      sxi += r->mr[k] * tcs[k / 4][k % 4];
+      seta += r->mr[k] * tsn[k / 4][k % 4];
     }
     plane_turn(sxi, seta, cw, sw, s);
     o[0] = s[0];
     o[1] = s[1];
     o[2] = s[2];
     o[3] = s[3];
-#ifdef ROTOR_VEC
-    o[4] = vec ? hypot_fast1(s[2], s[3]) : ROTOR_HYPOT(s[2], s[3]);
-#else
-    o[4] = ROTOR_HYPOT(s[2], s[3]);
-#endif
+    o[4] = hypot_fast1(s[2], s[3]);
     o[5] = o[4] / r->sref[j];
-    if (!vec || j > 0) o[6] = ROTOR_HYPOT(x + d * be, yy - d * al);
+    if (j > 0) o[6] = hypot_fast1(x + d * be, yy - d * al);
+  }
+  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) friction_columns(r, frame, t, y, out);
+  /* the six ball columns 4 balls at a time: phi, its wrap, psi, its wrap (wrap_pi4: the formula
+   * of wrap_pi without its |a| <= 3 shortcut and without branches, the same numbers; the branches
+   * cost mispredictions where ball angles move about |a| = 3 or pi), the rates; psi = ta (above),
+   * phi = ang (fixed) or ang + phi_0 (rotating) */
+  for (k = 0; k < N; k += 4, o += 4 * N_BALL_OUT) {
+    const size_t m = N - k < 4 ? N - k : 4;
+    rotor_v4 c[N_BALL_OUT], a = {0.0, 0.0, 0.0, 0.0}, rt = {0.0, 0.0, 0.0, 0.0};
+    load4(ang + k, m, &a);
+    load4(rate + k, m, &rt);
+    if (frame == AUTOBAL_ROTOR_FIXED) {
+      c[0] = a;
+      c[2] = ta[k / 4];
+      c[4] = rt;
+      c[5] = rt - W;
+    } else {
+      c[0] = a + wt;
+      c[2] = a;
+      c[4] = rt + W;
+      c[5] = rt;
+    }
+    if (m <= 2) { /* at most 2 balls: phi in lanes 0, 1 and psi in 2, 3 of one wrap */
+      const rotor_v4 pk = __builtin_shuffle(c[0], c[2], (rotor_i4){0, 1, 4, 5});
+      rotor_v4 wk;
+      wrap_pi4(&pk, &wk);
+      c[1] = wk;
+      c[3] = __builtin_shuffle(wk, (rotor_i4){2, 3, 0, 1});
+    } else {
+      wrap_pi4(&c[0], &c[1]);
+      wrap_pi4(&c[2], &c[3]);
+    }
+    ball_columns4(o, c, m);
+  }
+  spin_columns(r, W, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * N);
+}
+#endif
+
+/* The arguments of the outputs calls: AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+static int outputs_check(const autobal_rotor *r, int frame, double t, const double *y, const double *out,
+                         size_t n_out) {
+  if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) || n_out != r->nout)
+    return AUTOBAL_EINVAL;
+  return AUTOBAL_SUCCESS;
+}
+
+/* autobal_rotor_outputs; fast = 1 (a constant at both calls: inlined and specialized): sine,
+ * cosine and hypot by fastmath.h instead of libm, the same expressions otherwise (with GCC and up
+ * to 62 balls in vectors, above). */
+static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
+                                     size_t n_out, int fast) {
+  size_t j, k;
+  double x, yy, al, be, wt, W, cw, sw;
+  double *o;
+  if (outputs_check(r, frame, t, y, out, n_out) != AUTOBAL_SUCCESS) return AUTOBAL_EINVAL;
+#ifdef ROTOR_VEC
+  if (fast && r->N < FAST_TRIG) {
+    rotor_v4 ta[FAST_VEC], tsn[FAST_VEC], tcs[FAST_VEC];
+    vec_trig(r, frame, t, y, &W, &wt, ta, tsn, tcs);
+    vec_columns(r, frame, t, y, W, wt, ta, tsn, tcs, out);
+    return AUTOBAL_SUCCESS;
+  }
+#endif
+  x = y[0] - r->qs[0]; /* the amplitudes are about the static offset under gravity (qs = 0 without) */
+  yy = y[1] - r->qs[1];
+  al = y[2] - r->qs[2];
+  be = y[3] - r->qs[3];
+  spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
+  if (fast) {
+    autobal_sincos1(wt, &sw, &cw);
+  } else {
+    cw = cos(wt); /* once for every plane */
+    sw = sin(wt);
+  }
+#define ROTOR_HYPOT(a, b) (fast ? autobal_hypot_fast((a), (b)) : hypot((a), (b)))
+  out[0] = ROTOR_HYPOT(x, yy);
+  /* a body point at axial coordinate p moves by (x + p beta, y - p alpha) */
+  out[1] = ROTOR_HYPOT(x - r->l_L * be, yy + r->l_L * al);
+  out[2] = ROTOR_HYPOT(x + r->l_R * be, yy - r->l_R * al);
+  o = out + N_GLOBAL_OUT;
+  for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
+    const double d = r->p.plane[j].d;
+    double s[4], sxi, seta;
+    if (fast) plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
+    else plane_sxe(r, j, frame, wt, y, &sxi, &seta);
+    plane_turn(sxi, seta, cw, sw, s);
+    o[0] = s[0];
+    o[1] = s[1];
+    o[2] = s[2];
+    o[3] = s[3];
+    o[4] = ROTOR_HYPOT(s[2], s[3]);
+    o[5] = o[4] / r->sref[j];
+    o[6] = ROTOR_HYPOT(x + d * be, yy - d * al);
   }
 #undef ROTOR_HYPOT
-  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) {
-    /* the stuck flags of all balls, then their normal forces; the solve's workspace is the
-     * ball columns of out, written after it */
-    double *fo = out + output_count_base(r);
-    if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0, NULL, 0) !=
-        GSL_SUCCESS)
-      for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
-    for (k = 0; k < r->N; k++)
-      fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
-  }
-#ifdef ROTOR_VEC
-  if (vec) {
-    /* the six ball columns 4 balls at a time: phi, its wrap, psi, its wrap (wrap_pi4: the formula
-     * of wrap_pi without its |a| <= 3 shortcut and without branches, the same numbers; the branches
-     * cost mispredictions where ball angles move about |a| = 3 or pi), the rates; psi = ta (above),
-     * phi = ang (fixed) or ang + phi_0 (rotating) */
-    const size_t N = r->N;
-    const double *ang = y + 8, *rate = y + 8 + N;
-    for (k = 0; k < N; k += 4, o += 4 * N_BALL_OUT) {
-      const size_t m = N - k < 4 ? N - k : 4;
-      rotor_v4 c[N_BALL_OUT], a = {0.0, 0.0, 0.0, 0.0}, rt = {0.0, 0.0, 0.0, 0.0};
-      load4(ang + k, m, &a);
-      load4(rate + k, m, &rt);
-      if (frame == AUTOBAL_ROTOR_FIXED) {
-        c[0] = a;
-        c[2] = ta[k / 4];
-        c[4] = rt;
-        c[5] = rt - W;
-      } else {
-        c[0] = a + wt;
-        c[2] = a;
-        c[4] = rt + W;
-        c[5] = rt;
-      }
-      if (m <= 2) { /* at most 2 balls: phi in lanes 0, 1 and psi in 2, 3 of one wrap */
-        const rotor_v4 pk = __builtin_shuffle(c[0], c[2], (rotor_i4){0, 1, 4, 5});
-        rotor_v4 wk;
-        wrap_pi4(&pk, &wk);
-        c[1] = wk;
-        c[3] = __builtin_shuffle(wk, (rotor_i4){2, 3, 0, 1});
-      } else {
-        wrap_pi4(&c[0], &c[1]);
-        wrap_pi4(&c[2], &c[3]);
-      }
-      ball_columns4(o, c, m);
-    }
-    o = out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * N;
-  }
-#endif
-  for (k = 0; k < r->N && !vec; k++, o += N_BALL_OUT) {
+  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) friction_columns(r, frame, t, y, out);
+  for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
     double phi, psi, phid, psid;
     if (frame == AUTOBAL_ROTOR_FIXED) {
@@ -3230,7 +3266,7 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
       psid = rate;
       phid = rate + W;
     }
-    /* fast without the vectors: the formula without the shortcut (as above) */
+    /* fast without the vectors: wrap_pi's formula without the shortcut (the vector path's numbers) */
     o[0] = phi;
     o[1] = fast ? wrap_pi_formula(phi) : wrap_pi(phi);
     o[2] = psi;
@@ -3238,12 +3274,7 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     o[4] = phid;
     o[5] = psid;
   }
-  if (r->dn > 0) o[0] = W;
-  if (r->motor) {
-    o[0] = W;
-    o[1] = motor_L(r, W);
-    o[2] = o[1] * W;
-  }
+  spin_columns(r, W, o);
   return AUTOBAL_SUCCESS;
 }
 
@@ -3257,6 +3288,38 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
 ROTOR_CLONES int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                                             size_t n_out) {
   return outputs(r, frame, t, y, out, n_out, 1);
+}
+
+/* rotor_internal.h.  The vector path in stages over up to 8 points at a time: first every point's
+ * sines and cosines (vec_trig), then every point's columns (vec_columns).  A point's sines and
+ * cosines are one long chain of dependent operations; in a loop of their own the chains of
+ * successive points run side by side, where one point at a time waits for its chain. */
+ROTOR_CLONES int autobal_rotor_outputs_fast_block(const autobal_rotor *r, int frame, size_t n, const double *t,
+                                                  const double *y, size_t ystride, double *out, size_t ostride) {
+  size_t k;
+  if (r == NULL || (n > 0 && (t == NULL || y == NULL || out == NULL)) || ystride < r->dim || ostride < r->nout)
+    return AUTOBAL_EINVAL;
+  for (k = 0; k < n; k++)
+    if (outputs_check(r, frame, t[k], y + k * ystride, out + k * ostride, r->nout) != AUTOBAL_SUCCESS)
+      return AUTOBAL_EINVAL;
+#ifdef ROTOR_VEC
+  if (r->N < FAST_TRIG) {
+    enum { CH = 8 };
+    rotor_v4 ta[CH][FAST_VEC], tsn[CH][FAST_VEC], tcs[CH][FAST_VEC];
+    double W[CH], wt[CH];
+    size_t k0, i, m;
+    for (k0 = 0; k0 < n; k0 += m) {
+      m = n - k0 < CH ? n - k0 : CH;
+      for (i = 0; i < m; i++) vec_trig(r, frame, t[k0 + i], y + (k0 + i) * ystride, &W[i], &wt[i], ta[i], tsn[i], tcs[i]);
+      for (i = 0; i < m; i++)
+        vec_columns(r, frame, t[k0 + i], y + (k0 + i) * ystride, W[i], wt[i], ta[i], tsn[i], tcs[i],
+                    out + (k0 + i) * ostride);
+    }
+    return AUTOBAL_SUCCESS;
+  }
+#endif
+  for (k = 0; k < n; k++) (void)outputs(r, frame, t[k], y + k * ystride, out + k * ostride, r->nout, 1);
+  return AUTOBAL_SUCCESS;
 }
 
 int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_t len,
