@@ -247,6 +247,7 @@ typedef struct run_ctx {
   /* per-revolution summary */
   double rev_period, rev_t0, rev_max_G, rev_max_s;
   unsigned long rev_index; /* revolutions completed */
+  double rev_end;          /* the end of revolution rev_index (sample_summary: computed once a revolution) */
   double rev_max_D[AUTOBAL_ROTOR_MAX_PLANES]; /* per plane */
   double *rev_row;
   size_t n_planes;
@@ -300,6 +301,7 @@ static void sample_summary(run_ctx *r, double t, const double y[], const double 
     r->s_rel_initial = out[plane_base(0) + 5];
     r->rev_t0 = t;
     r->rev_index = 0;
+    r->rev_end = r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period;
   }
   /* the running maxima by selects, not branches: a comparison with a sample computed just before
    * is mispredicted often, and then costs the whole dependent chain that computed the sample */
@@ -336,7 +338,7 @@ static void sample_summary(run_ctx *r, double t, const double y[], const double 
     r->rev_max_s = ms;
   }
   /* revolution k ends at rev_t0 + (k+1) period; a sample within 1e-9 period of it closes it */
-  if (t >= r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period) {
+  if (t >= r->rev_end) {
     r->rev_row[0] = r->rev_max_G;
     r->rev_row[1] = r->rev_max_s;
     for (j = 0; j < r->n_planes; j++) r->rev_row[2 + j] = r->rev_max_D[j];
@@ -345,6 +347,7 @@ static void sample_summary(run_ctx *r, double t, const double y[], const double 
     r->rev_max_G = r->rev_max_s = 0;
     for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) r->rev_max_D[j] = 0; /* two stores, no memset call */
     r->rev_index++;
+    r->rev_end = r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period;
   }
 }
 

@@ -3080,10 +3080,10 @@ enum { FAST_VEC = FAST_TRIG / 4 + 1 };
 
 /* The vector path's first stage for the point (t, y): Omega (*W), phi_0 (*wt), every ball's
  * relative angle psi (lane k of ta: ang - phi_0 in the fixed frame, ang - 0.0 = ang in the
- * rotating one) and phi_0 (lane N), zeros after it, in N / 4 + 1 vectors, and their sines and
- * cosines (libm for a lane out of the fast path's range, as autobal_sincos1). */
+ * rotating one) and phi_0 (lane N), zeros after it, in N / 4 + 1 vectors, and their sines sn[k]
+ * and cosines cs[k] (libm for a lane out of the fast path's range, as autobal_sincos1). */
 static AUTOBAL_FM_INLINE void vec_trig(const autobal_rotor *r, int frame, double t, const double *y, double *W,
-                                       double *wt, rotor_v4 *ta, rotor_v4 *tsn, rotor_v4 *tcs) {
+                                       double *wt, rotor_v4 *ta, double *sn, double *cs) {
   const size_t N = r->N, nt = N / 4 + 1, m = N % 4;
   const rotor_i4 lane = {0, 1, 2, 3};
   const rotor_u4 ball = (rotor_u4)(lane < (long long)m), last = (rotor_u4)(lane == (long long)m);
@@ -3103,31 +3103,60 @@ static AUTOBAL_FM_INLINE void vec_trig(const autobal_rotor *r, int frame, double
   load4(y + 8 + 4 * k, m, &a);
   ta[k] = (rotor_v4)((rotor_u4)(a - (rotor_v4)((rotor_u4)sv & ball)) | ((rotor_u4)wtv & last));
   for (k = 0; k < nt; k++) {
-    autobal_sincos_fast4(&ta[k], &tsn[k], &tcs[k]);
+    rotor_v4 vs, vc;
+    autobal_sincos_fast4(&ta[k], &vs, &vc);
+    memcpy(sn + 4 * k, &vs, sizeof vs);
+    memcpy(cs + 4 * k, &vc, sizeof vc);
     autobal_sincos_out_of_range4(&ta[k], &bad);
   }
   if (((bad[0] | bad[1] | bad[2] | bad[3]) >> 63) != 0) {
     for (k = 0; k <= N; k++) { /* libm out of the fast path's range (as autobal_sincos1) */
       const double ak = ta[k / 4][k % 4];
       if (!autobal_sincos_in_range(ak)) {
-        tsn[k / 4][k % 4] = sin(ak);
-        tcs[k / 4][k % 4] = cos(ak);
+        sn[k] = sin(ak);
+        cs[k] = cos(ak);
       }
     }
   }
 }
 
-/* The vector path's second stage: every output column of the point (t, y) from vec_trig's W, wt,
- * ta, tsn, tcs, the expressions of the scalar path below. */
-static AUTOBAL_FM_INLINE void vec_columns(const autobal_rotor *r, int frame, double t, const double *y, double W,
-                                          double wt, const rotor_v4 *ta, const rotor_v4 *tsn, const rotor_v4 *tcs,
-                                          double *out) {
-  const size_t N = r->N;
-  const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
-  const double sw = tsn[N / 4][N % 4], cw = tcs[N / 4][N % 4];
-  const double *ang = y + 8, *rate = y + 8 + N;
+/* The vector path's second stage: the planes' columns of the point (t, y) but amp_D of the first
+ * (s_u, s_v, s_xi, s_eta, s_abs, s_rel; amp_D of the second) from vec_trig's sn, cs, the
+ * expressions of the scalar path below: the rest of the chain from the ball angles to s_rel. */
+static AUTOBAL_FM_INLINE void vec_planes(const autobal_rotor *r, const double *y, const double *sn,
+                                         const double *cs, double *out) {
+  const double sw = sn[r->N], cw = cs[r->N];
   double *o = out + N_GLOBAL_OUT;
   size_t j, k;
+  for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
+    double s[4], sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
+    for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
+      sxi += r->mr[k] * cs[k];
+      seta += r->mr[k] * sn[k];
+    }
+    plane_turn(sxi, seta, cw, sw, s);
+    o[0] = s[0];
+    o[1] = s[1];
+    o[2] = s[2];
+    o[3] = s[3];
+    o[4] = hypot_fast1(s[2], s[3]);
+    o[5] = o[4] / r->sref[j];
+    if (j > 0) {
+      const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
+      o[6] = hypot_fast1(x + r->p.plane[j].d * be, yy - r->p.plane[j].d * al);
+    }
+  }
+}
+
+/* The vector path's third stage: the other columns of the point (t, y) (amplitudes, friction,
+ * balls, drive) from vec_trig's W, wt, ta, the expressions of the scalar path below. */
+static AUTOBAL_FM_INLINE void vec_columns(const autobal_rotor *r, int frame, double t, const double *y, double W,
+                                          double wt, const rotor_v4 *ta, double *out) {
+  const size_t N = r->N;
+  const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
+  const double *ang = y + 8, *rate = y + 8 + N;
+  double *o = out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes;
+  size_t k;
   {
     /* amp_G, amp_L, amp_R and the first plane's amp_D in one vector */
     const double d = r->p.plane[0].d;
@@ -3139,22 +3168,6 @@ static AUTOBAL_FM_INLINE void vec_columns(const autobal_rotor *r, int frame, dou
     out[1] = h[1];
     out[2] = h[2];
     out[N_GLOBAL_OUT + 6] = h[3];
-  }
-  for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
-    const double d = r->p.plane[j].d;
-    double s[4], sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
-    for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
-      sxi += r->mr[k] * tcs[k / 4][k % 4];
-      seta += r->mr[k] * tsn[k / 4][k % 4];
-    }
-    plane_turn(sxi, seta, cw, sw, s);
-    o[0] = s[0];
-    o[1] = s[1];
-    o[2] = s[2];
-    o[3] = s[3];
-    o[4] = hypot_fast1(s[2], s[3]);
-    o[5] = o[4] / r->sref[j];
-    if (j > 0) o[6] = hypot_fast1(x + d * be, yy - d * al);
   }
   if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) friction_columns(r, frame, t, y, out);
   /* the six ball columns 4 balls at a time: phi, its wrap, psi, its wrap (wrap_pi4: the formula
@@ -3213,9 +3226,11 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
   if (outputs_check(r, frame, t, y, out, n_out) != AUTOBAL_SUCCESS) return AUTOBAL_EINVAL;
 #ifdef ROTOR_VEC
   if (fast && r->N < FAST_TRIG) {
-    rotor_v4 ta[FAST_VEC], tsn[FAST_VEC], tcs[FAST_VEC];
-    vec_trig(r, frame, t, y, &W, &wt, ta, tsn, tcs);
-    vec_columns(r, frame, t, y, W, wt, ta, tsn, tcs, out);
+    rotor_v4 ta[FAST_VEC];
+    double sn[4 * FAST_VEC], cs[4 * FAST_VEC];
+    vec_trig(r, frame, t, y, &W, &wt, ta, sn, cs);
+    vec_planes(r, y, sn, cs, out);
+    vec_columns(r, frame, t, y, W, wt, ta, out);
     return AUTOBAL_SUCCESS;
   }
 #endif
@@ -3290,10 +3305,11 @@ ROTOR_CLONES int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, d
   return outputs(r, frame, t, y, out, n_out, 1);
 }
 
-/* rotor_internal.h.  The vector path in stages over up to 8 points at a time: first every point's
- * sines and cosines (vec_trig), then every point's columns (vec_columns).  A point's sines and
- * cosines are one long chain of dependent operations; in a loop of their own the chains of
- * successive points run side by side, where one point at a time waits for its chain. */
+/* rotor_internal.h.  The vector path in stages over up to 8 points at a time: every point's sines
+ * and cosines (vec_trig), then every point's plane columns (vec_planes), then the rest
+ * (vec_columns).  The chain from a point's ball angles through the sines, the sums, sqrt and the
+ * division to s_rel is long; in short loops of their own the chains of successive points run side
+ * by side, where one point at a time waits for its own. */
 ROTOR_CLONES int autobal_rotor_outputs_fast_block(const autobal_rotor *r, int frame, size_t n, const double *t,
                                                   const double *y, size_t ystride, double *out, size_t ostride) {
   size_t k;
@@ -3305,15 +3321,15 @@ ROTOR_CLONES int autobal_rotor_outputs_fast_block(const autobal_rotor *r, int fr
 #ifdef ROTOR_VEC
   if (r->N < FAST_TRIG) {
     enum { CH = 8 };
-    rotor_v4 ta[CH][FAST_VEC], tsn[CH][FAST_VEC], tcs[CH][FAST_VEC];
-    double W[CH], wt[CH];
+    rotor_v4 ta[CH][FAST_VEC];
+    double sn[CH][4 * FAST_VEC], cs[CH][4 * FAST_VEC], W[CH], wt[CH];
     size_t k0, i, m;
     for (k0 = 0; k0 < n; k0 += m) {
       m = n - k0 < CH ? n - k0 : CH;
-      for (i = 0; i < m; i++) vec_trig(r, frame, t[k0 + i], y + (k0 + i) * ystride, &W[i], &wt[i], ta[i], tsn[i], tcs[i]);
+      for (i = 0; i < m; i++) vec_trig(r, frame, t[k0 + i], y + (k0 + i) * ystride, &W[i], &wt[i], ta[i], sn[i], cs[i]);
+      for (i = 0; i < m; i++) vec_planes(r, y + (k0 + i) * ystride, sn[i], cs[i], out + (k0 + i) * ostride);
       for (i = 0; i < m; i++)
-        vec_columns(r, frame, t[k0 + i], y + (k0 + i) * ystride, W[i], wt[i], ta[i], tsn[i], tcs[i],
-                    out + (k0 + i) * ostride);
+        vec_columns(r, frame, t[k0 + i], y + (k0 + i) * ystride, W[i], wt[i], ta[i], out + (k0 + i) * ostride);
     }
     return AUTOBAL_SUCCESS;
   }
