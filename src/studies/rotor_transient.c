@@ -764,7 +764,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   if (r.buffered) {
     r.bt = malloc(OUT_BLOCK * sizeof *r.bt);
     r.by = malloc(OUT_BLOCK * r.dim * sizeof *r.by);
-    r.rows = calloc(OUT_BLOCK * r.ncols, sizeof *r.rows);
+    r.rows = malloc(OUT_BLOCK * r.ncols * sizeof *r.rows); /* every column read is written first */
   }
   if (!r.row || !r.rev_row || (r.buffered && (!r.bt || !r.by || !r.rows))) {
     rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");

@@ -2828,9 +2828,9 @@ static void plane_sxe(const autobal_rotor *r, size_t j, int frame, double wt, co
   *seta_out = seta;
 }
 
-/* plane_sxe with fastmath.h's sine and cosine (autobal_rotor_outputs_fast): the balls' relative
- * angles in chunks of 32, their sines and cosines by one vectorized pass (ball_sincos), then the
- * same sums in the same order. */
+/* plane_sxe with fastmath.h's sine and cosine (autobal_rotor_outputs_fast without the vector path:
+ * more than 62 balls, or not GCC): the balls' relative angles in chunks of 32, their sines and
+ * cosines by one vectorized pass (ball_sincos), then the same sums in the same order. */
 static void plane_sxe_fast(const autobal_rotor *r, size_t j, int frame, double wt, const double *y,
                            double *sxi_out, double *seta_out) {
   enum { CHUNK = 32 };
@@ -3298,8 +3298,8 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   return outputs(r, frame, t, y, out, n_out, 0);
 }
 
-/* compiled for AVX2 too (as ball_sincos; no FMA, so the same bits): the per-ball loop's wraps
- * (a division and a ceil, one instruction there) and the hypots */
+/* compiled for AVX2 too (as ball_sincos; no FMA, so the same bits): the vector path's 4 lanes in
+ * one instruction (two with SSE2) */
 ROTOR_CLONES int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                                             size_t n_out) {
   return outputs(r, frame, t, y, out, n_out, 1);
