@@ -11,11 +11,14 @@
  * - derive_fast vs derive_m on 2000 states: the columns without trigonometry (alpha, beta) equal
  *   bit for bit; the others within a few ulp of the magnitude of their terms (the only
  *   difference: sin, cos within 1 ulp of libm, hypot within 1.5 ulp).
- * - rotor outputs_fast vs outputs: the default rotor (2 balls), 8 balls, 70 balls (the chunked
+ * - rotor outputs_fast vs outputs: the default rotor (2 balls), 8 balls, 70 balls (the scalar
  *   path), both frames: angle and rate columns bit for bit, the others within 1e-13 of their
  *   scale; the same argument checks (EINVAL).
  * - the ball columns again at edge angles (next to 0, pi, 3, odd multiples of pi, 2^52 2 pi, inf,
- *   NaN), 1 to 63 balls: bit for bit (outputs_fast wraps them without branches). */
+ *   NaN), 1 to 63 balls: bit for bit (outputs_fast wraps them without branches).
+ * - outputs_fast_block (the rotor study's buffered output points) against outputs_fast point by
+ *   point: every column bit for bit (two NaNs count as equal), 1 to 70 balls, 1 and 2 planes, 0 to
+ *   19 points; its refusals. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -26,6 +29,7 @@
 #include "autobal.h"
 #include "check.h"
 #include "fastmath.h"
+#include "models/rotor/rotor_internal.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -291,7 +295,7 @@ static void test_rotor(void) {
   }
 }
 
-/* The ball columns of outputs_fast (the wraps without branches, wrap_pi_array in rotor.c: ceil by
+/* The ball columns of outputs_fast (the wraps without branches, wrap_pi4 in rotor.c: ceil by
  * rounding with 2^52 and masks) against autobal_rotor_outputs' (libm's ceil, branches) bit for
  * bit, at the angles where the two ways could part: +-0, next to +-pi, +-3 and the odd multiples
  * of pi (where the quotient (a - pi) / (2 pi) is an integer or next to one, and the corrections
@@ -371,6 +375,114 @@ static void test_rotor_wrap_edges(void) {
   }
 }
 
+/* equal bits, or both NaN (C leaves a NaN's sign and payload open: two NaN inputs of one sum may
+ * give either) */
+static int same_or_nan(double a, double b) { return same_bits(a, b) || (isnan(a) && isnan(b)); }
+
+/* autobal_rotor_outputs_fast_block (the rotor study's buffered output points, rotor_internal.h)
+ * against autobal_rotor_outputs_fast one point at a time: every column, 1 to 70 balls (the vector
+ * path's lane counts and the scalar path above 62), one and two planes (the second with gravity:
+ * the amplitudes about the static offset), both frames, 0 to 19 points (the stages' chunks of 8
+ * and their remainders), states with angles out of the fast sine's range, inf and NaN among
+ * them; the refusals (EINVAL, nothing written). */
+static void test_rotor_block(void) {
+  const size_t ns[12] = {1, 2, 3, 4, 5, 6, 7, 8, 13, 62, 63, 70};
+  const double edge[6] = {0x1p21 * 1.5, -1e300, INFINITY, -INFINITY, NAN, 3.0 * M_PI};
+  static double mass[2][70], rad[2][70], damp[2][70], psi[2][70], rate[2][70];
+  long compared = 0;
+  int bits = 1, refused = 1, untouched = 1;
+  size_t c, j, i;
+  for (c = 0; c < 24; c++) {
+    autobal_rotor_params rp = autobal_rotor_params_default();
+    const size_t nb = ns[c % 12], np = c < 12 ? 1 : 2;
+    autobal_error err;
+    autobal_rotor *R;
+    size_t dim, nout, n;
+    double *t, *y, *o1, *o2;
+    int frame;
+    rp.n_planes = np;
+    for (j = 0; j < np; j++) {
+      const size_t m = np == 1 ? nb : (j == 0 ? nb - nb / 2 : (nb / 2 > 0 ? nb / 2 : 1));
+      for (i = 0; i < m; i++) {
+        mass[j][i] = 0.1 / (double)m;
+        rad[j][i] = 0.1;
+        damp[j][i] = 0.1;
+        psi[j][i] = 1.0 + 0.4 * (double)i;
+        rate[j][i] = 0.0;
+      }
+      rp.plane[j].n_balls = m;
+      rp.plane[j].ball_mass = mass[j];
+      rp.plane[j].ball_radius = rad[j];
+      rp.plane[j].ball_damping = damp[j];
+      rp.plane[j].ball_psi = psi[j];
+      rp.plane[j].ball_rate = rate[j];
+    }
+    if (np == 2) {
+      rp.plane[1].d = 0.05;
+      rp.plane[1].m0 = 0.5 * rp.plane[0].m0;
+      rp.plane[1].r0 = rp.plane[0].r0;
+      rp.plane[1].psi0 = 0.3;
+      rp.gravity = 1;
+      rp.shaft_angle = 0.5 * M_PI;
+      rp.g = 9.80665;
+    }
+    R = autobal_rotor_alloc(&rp, &err);
+    if (!R) {
+      printf("  rotor with %zu balls, %zu planes: %s\n", nb, np, err.message);
+      bits = 0;
+      continue;
+    }
+    dim = autobal_rotor_dim(R);
+    nout = autobal_rotor_output_count(R);
+    t = malloc(20 * sizeof *t);
+    y = malloc(20 * (dim + 1) * sizeof *y); /* stride dim + 1: the stride is honoured */
+    o1 = malloc(20 * (nout + 2) * sizeof *o1);
+    o2 = malloc(nout * sizeof *o2);
+    for (frame = 0; frame < 2; frame++) {
+      const int fr = frame ? AUTOBAL_ROTOR_ROTATING : AUTOBAL_ROTOR_FIXED;
+      for (n = 0; n < 20; n++) {
+        size_t k, q;
+        for (k = 0; k < n; k++) {
+          double *yk = y + k * (dim + 1);
+          t[k] = k % 5 == 4 ? 2e4 * urand() : 3.0 * urand(); /* phi_0 beyond 2^21 rad too */
+          for (q = 0; q < dim + 1; q++) yk[q] = (2.0 * urand() - 1.0) * (q < 4 ? 1e-4 : q < 8 ? 0.05 : 600.0);
+          if (k % 3 == 1) yk[8 + (size_t)(urand() * (double)nb)] = edge[(size_t)(urand() * 6.0)];
+        }
+        if (autobal_rotor_outputs_fast_block(R, fr, n, t, y, dim + 1, o1, nout + 2) != AUTOBAL_SUCCESS) {
+          bits = 0;
+          continue;
+        }
+        for (k = 0; k < n; k++) {
+          bits = bits && autobal_rotor_outputs_fast(R, fr, t[k], y + k * (dim + 1), o2, nout) == AUTOBAL_SUCCESS;
+          for (q = 0; q < nout; q++, compared++) bits = bits && same_or_nan(o1[k * (nout + 2) + q], o2[q]);
+        }
+        if (n == 19) { /* refused: a non-finite time, a short stride; nothing written */
+          for (k = 0; k < n * (nout + 2); k++) o1[k] = -7.0;
+          t[n - 1] = NAN;
+          refused = refused && autobal_rotor_outputs_fast_block(R, fr, n, t, y, dim + 1, o1, nout + 2) == AUTOBAL_EINVAL;
+          t[n - 1] = 1.0;
+          refused = refused && autobal_rotor_outputs_fast_block(R, fr, n, t, y, dim - 1, o1, nout + 2) == AUTOBAL_EINVAL &&
+                    autobal_rotor_outputs_fast_block(R, fr, n, t, y, dim + 1, o1, nout - 1) == AUTOBAL_EINVAL &&
+                    autobal_rotor_outputs_fast_block(R, 7, n, t, y, dim + 1, o1, nout + 2) == AUTOBAL_EINVAL;
+          for (k = 0; k < n * (nout + 2); k++) untouched = untouched && o1[k] == -7.0;
+        }
+      }
+    }
+    free(t);
+    free(y);
+    free(o1);
+    free(o2);
+    autobal_rotor_free(R);
+  }
+  {
+    char what[200];
+    snprintf(what, sizeof what, "rotor outputs_fast_block = outputs_fast point by point: %ld values, 1..70 balls, 1 and 2 planes, both frames, 0..19 points", compared);
+    CHECK(what, bits && compared > 1000000);
+    CHECK("rotor outputs_fast_block: a non-finite time, short strides, a bad frame refused (EINVAL)", refused);
+    CHECK("rotor outputs_fast_block: nothing written when refused", untouched);
+  }
+}
+
 int main(void) {
   test_hypot();
   test_sincos2();
@@ -378,5 +490,6 @@ int main(void) {
   test_pendulum_cols();
   test_rotor();
   test_rotor_wrap_edges();
+  test_rotor_block();
   return check_summary();
 }

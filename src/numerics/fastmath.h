@@ -171,73 +171,95 @@ static AUTOBAL_FM_INLINE size_t autobal_sincos_array(const double *restrict x, d
   return nbad;
 }
 
+/* autobal_sincos_fast's kernel on every lane of a GCC/Clang vector (VT: doubles, UT: uint64_t of
+ * the same size; x, sn, cs: VT lvalues, x not among sn, cs): the same operations in the same order,
+ * the constants broadcast from the same scalars, so each lane gets the bits of autobal_sincos_fast
+ * (no range check: the callers below do it).  Written once for the 2- and the 4-lane forms. */
+#define AUTOBAL_FM_SINCOS_LANES(VT, UT, x, sn, cs)                                                     \
+  do {                                                                                                 \
+    const VT kb_ = (x) * 0x1.45f306dc9c883p-1 + 0x1.8p52; /* inv_pio2, shift */                        \
+    const VT kd_ = kb_ - 0x1.8p52;                                                                     \
+    const UT q_ = (UT)kb_;                                                                             \
+    const VT t1_ = (x) - kd_ * 0x1.921fb544p+0; /* P1 */                                               \
+    const VT w2_ = kd_ * 0x1.0b4611a6p-34;      /* P2 */                                               \
+    const VT s_ = t1_ - w2_;                                                                           \
+    const VT bb_ = s_ - t1_;                                                                           \
+    const VT e1_ = (t1_ - (s_ - bb_)) - (w2_ + bb_);                                                   \
+    const VT w3_ = kd_ * 0x1.3198a2ep-69; /* P3 */                                                     \
+    const VT s2_ = s_ - w3_;                                                                           \
+    const VT bb2_ = s2_ - s_;                                                                          \
+    const VT e2_ = (s_ - (s2_ - bb2_)) - (w3_ + bb2_);                                                 \
+    const VT nlo_ = kd_ * 0x1.b839a252049c1p-104 - (e1_ + e2_); /* P3t */                              \
+    const VT y0_ = s2_ - nlo_;                                                                         \
+    const VT y1_ = (s2_ - y0_) - nlo_;                                                                 \
+    const VT z_ = y0_ * y0_;                                                                           \
+    const VT w_ = z_ * z_;                                                                             \
+    const VT rs_ = 8.33333333332248946124e-03 +                                                        \
+                   z_ * (-1.98412698298579493134e-04 + z_ * 2.75573137070700676789e-06) +              \
+                   z_ * w_ * (-2.50507602534068634195e-08 + z_ * 1.58969099521155010221e-10);          \
+    const VT v_ = z_ * y0_;                                                                            \
+    const VT ks_ = y0_ - ((z_ * (0.5 * y1_ - v_ * rs_) - y1_) - v_ * -1.66666666666666324348e-01);     \
+    const VT rc_ = z_ * (4.16666666666666019037e-02 +                                                  \
+                         z_ * (-1.38888888888741095749e-03 + z_ * 2.48015872894767294178e-05)) +       \
+                   w_ * w_ *                                                                           \
+                       (-2.75573143513906633035e-07 +                                                  \
+                        z_ * (2.08757232129817482790e-09 + z_ * -1.13596475577881948265e-11));         \
+    const VT hz_ = 0.5 * z_;                                                                           \
+    const VT wc_ = 1.0 - hz_;                                                                          \
+    const VT kc_ = wc_ + (((1.0 - wc_) - hz_) + (z_ * rc_ - y0_ * y1_));                               \
+    const UT ub_ = (UT)ks_, cb_ = (UT)kc_;                                                             \
+    const UT swap_ = 0u - (q_ & 1u);                                                                   \
+    const UT sgn_s_ = (q_ & 2u) << 62;                                                                 \
+    const UT sgn_c_ = ((q_ + 1u) & 2u) << 62;                                                          \
+    (sn) = (VT)(((ub_ & ~swap_) | (cb_ & swap_)) ^ sgn_s_);                                            \
+    (cs) = (VT)(((cb_ & ~swap_) | (ub_ & swap_)) ^ sgn_c_);                                            \
+  } while (0)
+
 /* sin and cos of two arguments x[0], x[1] at once: autobal_sincos_fast's operations, in the same
  * order, on the two lanes of one vector (GCC/Clang vector extensions; elsewhere two scalar calls),
  * so the same bits as autobal_sincos_fast for each; libm's sin and cos for an argument out of
  * range (as autobal_sincos1).  For two angles at a time (the pendulum's derived quantities) the
  * loop of autobal_sincos_array leaves GCC shuffling lanes; written out, it is one pass. */
 #if defined(__GNUC__) && !defined(AUTOBAL_NO_VECTOR_EXT)
+#define AUTOBAL_FM_VECTORS 1
 typedef double autobal_fm_v2 __attribute__((vector_size(16)));
 typedef uint64_t autobal_fm_u2 __attribute__((vector_size(16)));
+typedef double autobal_fm_v4 __attribute__((vector_size(32)));
+typedef uint64_t autobal_fm_u4 __attribute__((vector_size(32)));
 static AUTOBAL_FM_INLINE void autobal_sincos2(const double x_in[2], double sn_out[2], double cs_out[2]) {
-  const autobal_fm_v2 inv_pio2 = {0x1.45f306dc9c883p-1, 0x1.45f306dc9c883p-1};
-  const autobal_fm_v2 P1 = {0x1.921fb544p+0, 0x1.921fb544p+0}, P2 = {0x1.0b4611a6p-34, 0x1.0b4611a6p-34};
-  const autobal_fm_v2 P3 = {0x1.3198a2ep-69, 0x1.3198a2ep-69};
-  const autobal_fm_v2 P3t = {0x1.b839a252049c1p-104, 0x1.b839a252049c1p-104};
-  const autobal_fm_v2 shift = {0x1.8p52, 0x1.8p52}, half = {0.5, 0.5}, one = {1.0, 1.0};
-#define AUTOBAL_FM_B(c) ((autobal_fm_v2){(c), (c)})
-  const autobal_fm_v2 S1 = AUTOBAL_FM_B(-1.66666666666666324348e-01), S2 = AUTOBAL_FM_B(8.33333333332248946124e-03),
-                      S3 = AUTOBAL_FM_B(-1.98412698298579493134e-04), S4 = AUTOBAL_FM_B(2.75573137070700676789e-06),
-                      S5 = AUTOBAL_FM_B(-2.50507602534068634195e-08), S6 = AUTOBAL_FM_B(1.58969099521155010221e-10);
-  const autobal_fm_v2 C1 = AUTOBAL_FM_B(4.16666666666666019037e-02), C2 = AUTOBAL_FM_B(-1.38888888888741095749e-03),
-                      C3 = AUTOBAL_FM_B(2.48015872894767294178e-05), C4 = AUTOBAL_FM_B(-2.75573143513906633035e-07),
-                      C5 = AUTOBAL_FM_B(2.08757232129817482790e-09), C6 = AUTOBAL_FM_B(-1.13596475577881948265e-11);
-#undef AUTOBAL_FM_B
-  const autobal_fm_u2 u1 = {1u, 1u}, u2 = {2u, 2u}, zero = {0u, 0u};
-  autobal_fm_v2 x, kb, kd, t1, w2, w3, s, bb, e1, s2, bb2, e2, nlo, y0, y1;
-  autobal_fm_v2 z, w, v, rs, rc, hz, wc, ks, kc;
-  autobal_fm_u2 q, ub, cb, swap, sgn_s, sgn_c, bs, bc;
+  autobal_fm_v2 x, sn, cs;
   int k;
   memcpy(&x, x_in, sizeof x);
-  kb = x * inv_pio2 + shift;
-  kd = kb - shift;
-  memcpy(&q, &kb, sizeof q);
-  t1 = x - kd * P1;
-  w2 = kd * P2;
-  s = t1 - w2;
-  bb = s - t1;
-  e1 = (t1 - (s - bb)) - (w2 + bb);
-  w3 = kd * P3;
-  s2 = s - w3;
-  bb2 = s2 - s;
-  e2 = (s - (s2 - bb2)) - (w3 + bb2);
-  nlo = kd * P3t - (e1 + e2);
-  y0 = s2 - nlo;
-  y1 = (s2 - y0) - nlo;
-  z = y0 * y0;
-  w = z * z;
-  rs = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
-  v = z * y0;
-  ks = y0 - ((z * (half * y1 - v * rs) - y1) - v * S1);
-  rc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
-  hz = half * z;
-  wc = one - hz;
-  kc = wc + (((one - wc) - hz) + (z * rc - y0 * y1));
-  memcpy(&ub, &ks, sizeof ub);
-  memcpy(&cb, &kc, sizeof cb);
-  swap = zero - (q & u1);
-  sgn_s = (q & u2) << 62;
-  sgn_c = ((q + u1) & u2) << 62;
-  bs = ((ub & ~swap) | (cb & swap)) ^ sgn_s;
-  bc = ((cb & ~swap) | (ub & swap)) ^ sgn_c;
-  memcpy(sn_out, &bs, sizeof bs);
-  memcpy(cs_out, &bc, sizeof bc);
+  AUTOBAL_FM_SINCOS_LANES(autobal_fm_v2, autobal_fm_u2, x, sn, cs);
+  memcpy(sn_out, &sn, sizeof sn);
+  memcpy(cs_out, &cs, sizeof cs);
   for (k = 0; k < 2; k++) {
     if (!autobal_sincos_in_range(x_in[k])) {
       sn_out[k] = sin(x_in[k]);
       cs_out[k] = cos(x_in[k]);
     }
   }
+}
+
+/* The 4-lane form for callers that keep their angles in vectors (the rotor's output columns):
+ * *sn, *cs get autobal_sincos_fast's bits on every lane; no range check and no libm fallback (the
+ * caller tests autobal_sincos_out_of_range4 and redoes those lanes with libm, as autobal_sincos1). */
+static AUTOBAL_FM_INLINE void autobal_sincos_fast4(const autobal_fm_v4 *x, autobal_fm_v4 *sn, autobal_fm_v4 *cs) {
+  const autobal_fm_v4 a = *x;
+  autobal_fm_v4 s, c;
+  AUTOBAL_FM_SINCOS_LANES(autobal_fm_v4, autobal_fm_u4, a, s, c);
+  *sn = s;
+  *cs = c;
+}
+
+/* *bad |= a lane with the top bit set where x is out of the fast path's range (|x| >
+ * AUTOBAL_SINCOS_MAX, inf, NaN), as in autobal_sincos_array (integer differences of the bits of
+ * |x|: no comparisons).  (Vectors by pointer: 32-byte vectors by value change the ABI without AVX.) */
+static AUTOBAL_FM_INLINE void autobal_sincos_out_of_range4(const autobal_fm_v4 *x, autobal_fm_u4 *bad) {
+  const double bound = AUTOBAL_SINCOS_MAX;
+  uint64_t maxbits;
+  memcpy(&maxbits, &bound, sizeof maxbits);
+  *bad |= maxbits - ((autobal_fm_u4)*x & ~((uint64_t)1 << 63));
 }
 #else
 static AUTOBAL_FM_INLINE void autobal_sincos2(const double x_in[2], double sn_out[2], double cs_out[2]) {

@@ -12,6 +12,7 @@
 #include "numerics/fastmath.h"
 #include "studies/rotor_transient_runup.h"
 #include "studies/rotor_friction.h"
+#include "models/rotor/rotor_internal.h"
 
 #define TWO_PI 6.283185307179586476925286766559
 
@@ -246,7 +247,8 @@ typedef struct run_ctx {
   /* per-revolution summary */
   double rev_period, rev_t0, rev_max_G, rev_max_s;
   unsigned long rev_index; /* revolutions completed */
-  double *rev_max_D;       /* per plane */
+  double rev_end;          /* the end of revolution rev_index (sample_summary: computed once a revolution) */
+  double rev_max_D[AUTOBAL_ROTOR_MAX_PLANES]; /* per plane */
   double *rev_row;
   size_t n_planes;
   /* summary */
@@ -266,7 +268,18 @@ typedef struct run_ctx {
   double qs[4]; /* the static offset under gravity (0 without): the 1X amplitudes are about it */
   unsigned long win_n;
   study_runup *runup; /* run-up outputs: a drive with an Omega column (rotor_transient_runup.h) */
+  /* output = dense6 without friction: the output points buffered (bt, by: their times and states),
+   * their rows (state columns with an archive, then the outputs) derived a block at a time, then
+   * the summary's quantities in their order and one append (flush_block): the same numbers as one
+   * point at a time (the outputs are functions of (t, y) alone without friction, whose columns read
+   * the balls' stick-slip modes of the moment), but the points' independent chains of sines,
+   * square roots and divisions overlap instead of each point waiting for its own */
+  int buffered;
+  size_t nb;
+  double *bt, *by, *rows;
 } run_ctx;
+
+enum { OUT_BLOCK = 16 }; /* output points derived at a time (buffered) */
 
 /* Displacement and velocity at axial position p (eq. (3.3) kinematics: (x + p beta, y - p alpha)). */
 static void point_motion(const double y[], double p, double d[2], double v[2]) {
@@ -278,27 +291,23 @@ static void point_motion(const double y[], double p, double d[2], double v[2]) {
 
 static size_t plane_base(size_t j) { return 3 + 7 * j; }
 
-static int observer(double t, const double y[], void *user) {
-  run_ctx *r = user;
-  double *out = r->row + r->dim;
+/* The summary's quantities of one output point (t, y) with its outputs out, in the order of the
+ * points: the first sample, the running maxima, the last 10%'s synchronous amplitudes, the run-up
+ * outputs, the per-revolution maxima (a completed revolution appended to its series). */
+static void sample_summary(run_ctx *r, double t, const double y[], const double *out) {
   size_t j;
-  if (r->series) { /* the state columns of the row: only the archive reads them */
-    if (r->frame == r->out_frame) memcpy(r->row, y, r->dim * sizeof *y);
-    else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, t, y, r->row, r->dim) != AUTOBAL_SUCCESS)
-      return 1;
-  }
-  if ((r->fast ? autobal_rotor_outputs_fast : autobal_rotor_outputs)(r->rotor, r->frame, t, y, out, r->nout) !=
-      AUTOBAL_SUCCESS)
-    return 1;
   if (!r->first_sample_done) {
     r->first_sample_done = 1;
     r->s_rel_initial = out[plane_base(0) + 5];
     r->rev_t0 = t;
     r->rev_index = 0;
+    r->rev_end = r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period;
   }
-  if (out[0] > r->max_amp) r->max_amp = out[0];
-  if (t <= r->t_first_window && out[0] > r->amp_first) r->amp_first = out[0];
-  if (t >= r->t_last_window_start && !(out[0] <= r->amp_last)) r->amp_last = out[0]; /* NaN until sampled */
+  /* the running maxima by selects, not branches: a comparison with a sample computed just before
+   * is mispredicted often, and then costs the whole dependent chain that computed the sample */
+  r->max_amp = out[0] > r->max_amp ? out[0] : r->max_amp;
+  if (t <= r->t_first_window) r->amp_first = out[0] > r->amp_first ? out[0] : r->amp_first;
+  if (t >= r->t_last_window_start) r->amp_last = !(out[0] <= r->amp_last) ? out[0] : r->amp_last; /* NaN until sampled */
   if (t >= r->t_last_window_start) {
     size_t k, q;
     double w1x = r->omega_abs, dv[3];
@@ -311,31 +320,77 @@ static int observer(double t, const double y[], void *user) {
       for (q = 0; q < 2; q++) {
         /* hypot as the output columns compute it (fastmath with output = dense6) */
         double amp = r->fast ? autobal_hypot_fast(d[q], v[q] / w1x) : hypot(d[q], v[q] / w1x);
-        if (r->win_n == 0 || amp > r->amax[k][q]) r->amax[k][q] = amp;
+        r->amax[k][q] = r->win_n == 0 || amp > r->amax[k][q] ? amp : r->amax[k][q];
       }
     }
     r->win_n++;
   }
-  if (r->series && !r->io_failed && autobal_archive_series_append(r->series, 1, &t, r->row) != AUTOBAL_SUCCESS)
-    r->io_failed = 1;
   study_runup_sample(r->runup, t, out);
   /* per-revolution maxima (of the sampled values) */
-  if (out[0] > r->rev_max_G) r->rev_max_G = out[0];
-  for (j = 0; j < r->n_planes; j++) {
-    if (out[plane_base(j) + 6] > r->rev_max_D[j]) r->rev_max_D[j] = out[plane_base(j) + 6];
-    if (out[plane_base(j) + 5] > r->rev_max_s) r->rev_max_s = out[plane_base(j) + 5];
+  r->rev_max_G = out[0] > r->rev_max_G ? out[0] : r->rev_max_G;
+  {
+    double ms = r->rev_max_s;
+    for (j = 0; j < r->n_planes; j++) {
+      const double d = out[plane_base(j) + 6], s_rel = out[plane_base(j) + 5];
+      r->rev_max_D[j] = d > r->rev_max_D[j] ? d : r->rev_max_D[j];
+      ms = s_rel > ms ? s_rel : ms;
+    }
+    r->rev_max_s = ms;
   }
   /* revolution k ends at rev_t0 + (k+1) period; a sample within 1e-9 period of it closes it */
-  if (t >= r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period) {
+  if (t >= r->rev_end) {
     r->rev_row[0] = r->rev_max_G;
     r->rev_row[1] = r->rev_max_s;
     for (j = 0; j < r->n_planes; j++) r->rev_row[2 + j] = r->rev_max_D[j];
     if (r->revs && !r->io_failed && autobal_archive_series_append(r->revs, 1, &t, r->rev_row) != AUTOBAL_SUCCESS)
       r->io_failed = 1;
     r->rev_max_G = r->rev_max_s = 0;
-    for (j = 0; j < r->n_planes; j++) r->rev_max_D[j] = 0;
+    for (j = 0; j < AUTOBAL_ROTOR_MAX_PLANES; j++) r->rev_max_D[j] = 0; /* two stores, no memset call */
     r->rev_index++;
+    r->rev_end = r->rev_t0 + ((double)r->rev_index + 1.0 - 1e-9) * r->rev_period;
   }
+}
+
+/* The buffered output points: their rows first (independent of one another), then the summary's
+ * quantities in their order, then one append.  0, or 1 if the model refused (as the observer). */
+static int flush_block(run_ctx *r) {
+  const size_t n = r->nb, dim = r->dim, nc = r->ncols;
+  size_t k;
+  r->nb = 0;
+  if (r->series) /* the state columns of the rows: only the archive reads them */
+    for (k = 0; k < n; k++) {
+      double *row = r->rows + k * nc;
+      const double *y = r->by + k * dim;
+      if (r->frame == r->out_frame) memcpy(row, y, dim * sizeof *y);
+      else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, r->bt[k], y, row, dim) != AUTOBAL_SUCCESS)
+        return 1;
+    }
+  if (autobal_rotor_outputs_fast_block(r->rotor, r->frame, n, r->bt, r->by, dim, r->rows + dim, nc) != AUTOBAL_SUCCESS)
+    return 1;
+  for (k = 0; k < n; k++) sample_summary(r, r->bt[k], r->by + k * dim, r->rows + k * nc + dim);
+  if (n > 0 && r->series && !r->io_failed && autobal_archive_series_append(r->series, n, r->bt, r->rows) != AUTOBAL_SUCCESS)
+    r->io_failed = 1;
+  return 0;
+}
+
+static int observer(double t, const double y[], void *user) {
+  run_ctx *r = user;
+  if (r->buffered) {
+    r->bt[r->nb] = t;
+    memcpy(r->by + r->nb * r->dim, y, r->dim * sizeof *y);
+    return ++r->nb == OUT_BLOCK ? flush_block(r) : 0;
+  }
+  if (r->series) { /* the state columns of the row: only the archive reads them */
+    if (r->frame == r->out_frame) memcpy(r->row, y, r->dim * sizeof *y);
+    else if (autobal_rotor_convert_state(r->rotor, r->frame, r->out_frame, t, y, r->row, r->dim) != AUTOBAL_SUCCESS)
+      return 1;
+  }
+  if ((r->fast ? autobal_rotor_outputs_fast : autobal_rotor_outputs)(r->rotor, r->frame, t, y, r->row + r->dim,
+                                                                     r->nout) != AUTOBAL_SUCCESS)
+    return 1;
+  if (r->series && !r->io_failed && autobal_archive_series_append(r->series, 1, &t, r->row) != AUTOBAL_SUCCESS)
+    r->io_failed = 1;
+  sample_summary(r, t, y, r->row + r->dim);
   return 0;
 }
 
@@ -665,7 +720,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   study_friction *fric = NULL;
   study_contact *cont = NULL;
   double *y = NULL, t_reached = 0.0;
-  int st, rc = AUTOBAL_SUCCESS, ev;
+  int st, rc = AUTOBAL_SUCCESS, ev, fl;
   size_t j;
 
   memset(s, 0, sizeof *s);
@@ -704,9 +759,14 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
   r.l_sup[1] = rp->input == AUTOBAL_ROTOR_HARDWARE ? -rp->hw.l_L : NAN;
   r.l_sup[2] = rp->input == AUTOBAL_ROTOR_HARDWARE ? rp->hw.l_R : NAN;
   r.row = calloc(r.ncols, sizeof *r.row);
-  r.rev_max_D = calloc(r.n_planes, sizeof *r.rev_max_D);
   r.rev_row = calloc(2 + r.n_planes, sizeof *r.rev_row);
-  if (!r.row || !r.rev_max_D || !r.rev_row) {
+  r.buffered = r.fast && !autobal_rotor_friction_on(rot);
+  if (r.buffered) {
+    r.bt = malloc(OUT_BLOCK * sizeof *r.bt);
+    r.by = malloc(OUT_BLOCK * r.dim * sizeof *r.by);
+    r.rows = malloc(OUT_BLOCK * r.ncols * sizeof *r.rows); /* every column read is written first */
+  }
+  if (!r.row || !r.rev_row || (r.buffered && (!r.bt || !r.by || !r.rows))) {
     rc = autobal_error_set(err, AUTOBAL_ENOMEM, "out of memory");
     goto done;
   }
@@ -747,6 +807,7 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     goto done;
   }
   st = autobal_transient_run(tr, &sys, 0.0, o->t_end, y, &t_reached);
+  fl = r.buffered ? flush_block(&r) : 0; /* the output points still buffered */
   autobal_transient_get_stats(tr, &s->solver);
   snprintf(s->stepper, sizeof s->stepper, "%s", autobal_transient_get_options(tr).stepper);
   snprintf(s->solver_message, sizeof s->solver_message, "%s", autobal_transient_errmsg(tr));
@@ -754,6 +815,8 @@ int autobal_study_rotor_transient(const autobal_rotor_params *p, const autobal_s
     snprintf(s->solver_message, sizeof s->solver_message, "%s: %s", autobal_transient_errmsg(tr),
              autobal_rotor_errmsg(rot));
   if (st < 0) rc = autobal_error_set(err, st, "%s", s->solver_message);
+  if (fl && rc == AUTOBAL_SUCCESS) /* as the observer's refusal (not expected: checked arguments, finite t) */
+    rc = autobal_error_set(err, AUTOBAL_EINVAL, "the model refused the derived quantities of a buffered output point");
   st = study_friction_finish(fric, t_reached, s, &e);
   if (st && rc == AUTOBAL_SUCCESS) rc = autobal_error_set(err, st, "%s", e.message);
   st = study_contact_finish(cont, rot, s, &e);
@@ -842,8 +905,10 @@ done:
   autobal_transient_free(tr);
   autobal_rotor_free(rot);
   free(r.row);
-  free(r.rev_max_D);
   free(r.rev_row);
+  free(r.bt);
+  free(r.by);
+  free(r.rows);
   study_runup_free(r.runup);
   study_friction_free(fric);
   study_contact_free(cont);

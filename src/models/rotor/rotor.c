@@ -2828,9 +2828,9 @@ static void plane_sxe(const autobal_rotor *r, size_t j, int frame, double wt, co
   *seta_out = seta;
 }
 
-/* plane_sxe with fastmath.h's sine and cosine (autobal_rotor_outputs_fast): the balls' relative
- * angles in chunks of 32, their sines and cosines by one vectorized pass (ball_sincos), then the
- * same sums in the same order. */
+/* plane_sxe with fastmath.h's sine and cosine (autobal_rotor_outputs_fast without the vector path:
+ * more than 62 balls, or not GCC): the balls' relative angles in chunks of 32, their sines and
+ * cosines by one vectorized pass (ball_sincos), then the same sums in the same order. */
 static void plane_sxe_fast(const autobal_rotor *r, size_t j, int frame, double wt, const double *y,
                            double *sxi_out, double *seta_out) {
   enum { CHUNK = 32 };
@@ -2907,9 +2907,28 @@ static size_t output_count_base(const autobal_rotor *r) {
 
 size_t autobal_rotor_output_count(const autobal_rotor *r) { return r ? r->nout : 0; }
 
-/* w[k] = wrap_pi_formula(a[k]), k < n, the same bits, by a loop without branches that GCC
- * vectorizes (a and w must not overlap).  Under the default -ftrapping-math GCC vectorizes
- * neither ceil nor a conditional addition, so both are written with masks:
+/* The output columns' fast path for up to 62 balls (GCC's vector extensions): every ball column,
+ * the balls' sines and cosines and the hypots in vectors of 4 doubles, with the same operations as
+ * the scalar path, so the same bits (tests/test_derive_fast.c checks the ball columns bit for bit
+ * at edge angles, the rest against autobal_rotor_outputs):
+ *  - the relative angles psi and phi_0 in blocks of 4 lanes held in registers (no scalar stores
+ *    read back as vectors: such a load waits until the stores are written), their sines and
+ *    cosines by fastmath.h's 4-lane kernel (the bits of autobal_sincos_fast; libm for a lane out
+ *    of its range, as autobal_sincos1);
+ *  - the wraps (wrap_pi4) and the ball columns (ball_columns4: a 6 x 4 transpose by shuffles)
+ *    straight from those vectors;
+ *  - the four hypots that do not depend on the balls (amp_G, amp_L, amp_R, the first plane's
+ *    amp_D) in one vector, sqrt by SSE2's instruction on x86-64 (correctly rounded as libm's sqrt,
+ *    without the errno branch around it). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(AUTOBAL_FM_VECTORS)
+#define ROTOR_VEC 1
+typedef autobal_fm_v4 rotor_v4;
+typedef autobal_fm_u4 rotor_u4;
+typedef long long rotor_i4 __attribute__((vector_size(32)));
+
+/* wrap_pi_formula on every lane, the same bits, without branches.  Under the default
+ * -ftrapping-math GCC vectorizes neither ceil nor a conditional addition, so both are written
+ * with masks:
  *  - ceil(q): r = (q + M) - M with M = 2^52 carrying the sign of q rounds |q| < 2^52 to the
  *    nearest integer (q + M lies where the spacing of doubles is 1, and the subtraction is
  *    exact); r < q means the nearest is below q: r + 1 (exact).  ceil(q) has the sign of q
@@ -2918,125 +2937,309 @@ size_t autobal_rotor_output_count(const autobal_rotor *r) { return r ? r->nout :
  *  - the corrections add 2 pi or +0.0 and subtract 2 pi or +0.0: w is never -0 before the
  *    first (a - c with c = 2 pi ceil(q) is -0 only for a = -0 and c = +0, but a = +-0 gives
  *    ceil(-0.5) = -0, c = -0), so adding +0.0 keeps its bits (NaN stays NaN), and subtracting
- *    +0.0 keeps any value's bits.
- * tests/test_derive_fast.c compares it with wrap_pi bit for bit (through the ball columns). */
-static AUTOBAL_FM_INLINE void wrap_pi_array(const double *restrict a, double *restrict w, size_t n) {
-  const double two52 = 0x1p52, one = 1.0, twopi = 2.0 * M_PI;
+ *    +0.0 keeps any value's bits. */
+static AUTOBAL_FM_INLINE void wrap_pi4(const rotor_v4 *xp, rotor_v4 *w) {
+  const rotor_v4 x = *xp;
   const uint64_t sgn = (uint64_t)1 << 63;
+  const double two52 = 0x1p52, one = 1.0, twopi = 2.0 * M_PI;
   uint64_t b52, bone, btp;
-  size_t k;
+  rotor_v4 q, r, v;
+  rotor_u4 bq, br, big;
   memcpy(&b52, &two52, sizeof b52);
   memcpy(&bone, &one, sizeof bone);
   memcpy(&btp, &twopi, sizeof btp);
-  for (k = 0; k < n; k++) {
-    const double x = a[k], q = (x - M_PI) / (2.0 * M_PI);
-    uint64_t bq, bm, br, big, m;
-    double M, r, c, v, d;
-    memcpy(&bq, &q, sizeof bq);
-    bm = b52 | (bq & sgn);
-    memcpy(&M, &bm, sizeof M);
-    r = (q + M) - M;
-    m = (uint64_t)0 - (uint64_t)(r < q);
-    bm = bone & m;
-    memcpy(&d, &bm, sizeof d);
-    r += d;
-    memcpy(&br, &r, sizeof br);
-    br |= bq & sgn;
-    big = (uint64_t)0 - (((b52 - 1u) - (bq & ~sgn)) >> 63); /* |q| >= 2^52 (inf, NaN too) */
-    br = (bq & big) | (br & ~big);
-    memcpy(&c, &br, sizeof c);
-    v = x - 2.0 * M_PI * c;
-    m = (uint64_t)0 - (uint64_t)(v <= -M_PI);
-    bm = btp & m;
-    memcpy(&d, &bm, sizeof d);
-    v += d;
-    m = (uint64_t)0 - (uint64_t)(v > M_PI);
-    bm = btp & m;
-    memcpy(&d, &bm, sizeof d);
-    w[k] = v - d;
-  }
+  q = (x - M_PI) / (2.0 * M_PI);
+  bq = (rotor_u4)q;
+  r = (q + (rotor_v4)(b52 | (bq & sgn))) - (rotor_v4)(b52 | (bq & sgn));
+  r += (rotor_v4)(bone & (rotor_u4)(r < q));
+  br = (rotor_u4)r | (bq & sgn);
+  big = 0u - (((b52 - 1u) - (bq & ~sgn)) >> 63); /* |q| >= 2^52 (inf, NaN too) */
+  br = (bq & big) | (br & ~big);
+  v = x - 2.0 * M_PI * (rotor_v4)br;
+  v += (rotor_v4)(btp & (rotor_u4)(v <= -M_PI));
+  *w = v - (rotor_v4)(btp & (rotor_u4)(v > M_PI));
 }
 
-/* o[6 k + m] = col[m][k], m < 6, k < n: the ball columns in the layout of the outputs, from six
- * arrays.  With GCC, 4 balls at a time as a 6 x 4 transpose by two-input shuffles (12 shuffles,
- * 6 stores of 4 doubles, instead of 24 scalar stores); the rest one by one.  Moves only. */
-#if defined(__GNUC__) && !defined(__clang__) && !defined(AUTOBAL_NO_VECTOR_EXT)
-#define ROTOR_SHUFFLE 1
-typedef double rotor_v4 __attribute__((vector_size(32)));
-typedef long long rotor_i4 __attribute__((vector_size(32)));
-#endif
-static AUTOBAL_FM_INLINE void ball_columns(double *restrict o, const double *const col[N_BALL_OUT], size_t n) {
-  size_t k = 0, m;
-#ifdef ROTOR_SHUFFLE
+/* p[0 .. m-1] (m < 4: zeros after; m >= 4: p[0 .. 3]), reading nothing beyond p[m - 1]. */
+static AUTOBAL_FM_INLINE void load4(const double *p, size_t m, rotor_v4 *v) {
+  if (m >= 4) memcpy(v, p, sizeof *v);
+  else if (m == 3) *v = (rotor_v4){p[0], p[1], p[2], 0.0};
+  else if (m == 2) *v = (rotor_v4){p[0], p[1], 0.0, 0.0};
+  else if (m == 1) *v = (rotor_v4){p[0], 0.0, 0.0, 0.0};
+  else *v = (rotor_v4){0.0, 0.0, 0.0, 0.0};
+}
+
+/* o[6 k + c] = lane k of column c (A .. F), k < m: the ball columns of m <= 4 balls in the layout
+ * of the outputs, as a 6 x 4 transpose by two-input shuffles (12 shuffles, 6 stores of 4 doubles;
+ * for 2 or 3 balls the first 3 stores hold balls 0 and 1); writes nothing beyond ball m - 1.
+ * Moves only. */
+static AUTOBAL_FM_INLINE void ball_columns4(double *restrict o, const rotor_v4 col[N_BALL_OUT], size_t m) {
+  const rotor_v4 A = col[0], B = col[1], C = col[2], D = col[3], E = col[4], F = col[5];
   const rotor_i4 even = {0, 4, 2, 6}, odd = {1, 5, 3, 7}, lo = {0, 1, 4, 5}, hi = {2, 3, 6, 7};
-  for (; k + 4 <= n; k += 4, o += 4 * N_BALL_OUT) {
-    rotor_v4 A, B, C, D, E, F, t0, t1, t2, t3, t4, t5, v;
-    memcpy(&A, col[0] + k, sizeof A);
-    memcpy(&B, col[1] + k, sizeof B);
-    memcpy(&C, col[2] + k, sizeof C);
-    memcpy(&D, col[3] + k, sizeof D);
-    memcpy(&E, col[4] + k, sizeof E);
-    memcpy(&F, col[5] + k, sizeof F);
-    t0 = __builtin_shuffle(A, B, even); /* A0 B0 A2 B2 */
-    t1 = __builtin_shuffle(A, B, odd);  /* A1 B1 A3 B3 */
-    t2 = __builtin_shuffle(C, D, even); /* C0 D0 C2 D2 */
-    t3 = __builtin_shuffle(C, D, odd);  /* C1 D1 C3 D3 */
-    t4 = __builtin_shuffle(E, F, even); /* E0 F0 E2 F2 */
-    t5 = __builtin_shuffle(E, F, odd);  /* E1 F1 E3 F3 */
-    v = __builtin_shuffle(t0, t2, lo);  /* ball 0: A0 B0 C0 D0 */
+  const rotor_v4 t0 = __builtin_shuffle(A, B, even); /* A0 B0 A2 B2 */
+  const rotor_v4 t1 = __builtin_shuffle(A, B, odd);  /* A1 B1 A3 B3 */
+  const rotor_v4 t2 = __builtin_shuffle(C, D, even); /* C0 D0 C2 D2 */
+  const rotor_v4 t3 = __builtin_shuffle(C, D, odd);  /* C1 D1 C3 D3 */
+  const rotor_v4 t4 = __builtin_shuffle(E, F, even); /* E0 F0 E2 F2 */
+  const rotor_v4 t5 = __builtin_shuffle(E, F, odd);  /* E1 F1 E3 F3 */
+  rotor_v4 v;
+  if (m >= 2) {
+    v = __builtin_shuffle(t0, t2, lo); /* ball 0: A0 B0 C0 D0 */
     memcpy(o, &v, sizeof v);
     v = __builtin_shuffle(t4, t1, lo); /* E0 F0, ball 1: A1 B1 */
     memcpy(o + 4, &v, sizeof v);
     v = __builtin_shuffle(t3, t5, lo); /* C1 D1 E1 F1 */
     memcpy(o + 8, &v, sizeof v);
+  }
+  if (m >= 4) {
     v = __builtin_shuffle(t0, t2, hi); /* ball 2: A2 B2 C2 D2 */
     memcpy(o + 12, &v, sizeof v);
     v = __builtin_shuffle(t4, t1, hi); /* E2 F2, ball 3: A3 B3 */
     memcpy(o + 16, &v, sizeof v);
     v = __builtin_shuffle(t3, t5, hi); /* C3 D3 E3 F3 */
     memcpy(o + 20, &v, sizeof v);
+  } else if (m == 3 || m == 1) { /* the last ball alone */
+    const size_t k = m - 1;
+    double *ok = o + N_BALL_OUT * k;
+    ok[0] = A[k];
+    ok[1] = B[k];
+    ok[2] = C[k];
+    ok[3] = D[k];
+    ok[4] = E[k];
+    ok[5] = F[k];
   }
+}
+
+/* sqrt of every lane (IEEE, correctly rounded: libm's sqrt's bits); on x86-64 by SSE2's sqrtpd,
+ * which has no errno branch around it (the lanes are >= 0 or NaN here: no exception to raise). */
+static AUTOBAL_FM_INLINE void sqrt4(const rotor_v4 *s, rotor_v4 *h) {
+#if defined(__x86_64__) && defined(__SSE2__)
+  typedef double v2 __attribute__((vector_size(16)));
+  const v2 a = __builtin_ia32_sqrtpd((v2){(*s)[0], (*s)[1]}), b = __builtin_ia32_sqrtpd((v2){(*s)[2], (*s)[3]});
+  *h = (rotor_v4){a[0], a[1], b[0], b[1]};
+#else
+  *h = (rotor_v4){sqrt((*s)[0]), sqrt((*s)[1]), sqrt((*s)[2]), sqrt((*s)[3])};
 #endif
-  for (; k < n; k++, o += N_BALL_OUT)
-    for (m = 0; m < N_BALL_OUT; m++) o[m] = col[m][k];
+}
+
+/* autobal_hypot_fast(a, b), the same bits, with sqrt by SSE2's instruction on x86-64 (no errno
+ * branch: the sum is in range there). */
+static AUTOBAL_FM_INLINE double hypot_fast1(double a, double b) {
+  const double s = a * a + b * b;
+  if (s >= 0x1p-968 && s <= 0x1p1000) {
+#if defined(__x86_64__) && defined(__SSE2__)
+    typedef double v2 __attribute__((vector_size(16)));
+    return __builtin_ia32_sqrtsd((v2){s, 0.0})[0];
+#else
+    return sqrt(s);
+#endif
+  }
+  return hypot(a, b);
+}
+
+/* autobal_hypot_fast on every lane, the same bits: sqrt(a a + b b) where the sum lies in
+ * [2^-968, 2^1000], libm's hypot for the other lanes. */
+static AUTOBAL_FM_INLINE void hypot_fast4(const rotor_v4 *a, const rotor_v4 *b, rotor_v4 *h) {
+  const rotor_v4 s = *a * *a + *b * *b;
+  const rotor_i4 ok = (s >= 0x1p-968) & (s <= 0x1p1000);
+  sqrt4(&s, h);
+  if ((ok[0] & ok[1] & ok[2] & ok[3]) == 0) {
+    int k;
+    for (k = 0; k < 4; k++)
+      if (!ok[k]) (*h)[k] = hypot((*a)[k], (*b)[k]);
+  }
+}
+#endif
+
+/* The friction columns of out (the stuck flags of all balls, then their normal forces, after the
+ * ball columns; the solve's workspace is the ball columns, written after this). */
+static void friction_columns(const autobal_rotor *r, int frame, double t, const double *y, double *out) {
+  double *fo = out + output_count_base(r);
+  size_t k;
+  if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0, NULL, 0) !=
+      GSL_SUCCESS)
+    for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
+  for (k = 0; k < r->N; k++)
+    fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
+}
+
+/* The drive's columns after the ball columns (o): Omega with a ramp or table; Omega, the motor's
+ * torque and power with a motor. */
+static AUTOBAL_FM_INLINE void spin_columns(const autobal_rotor *r, double W, double *o) {
+  if (r->dn > 0) o[0] = W;
+  if (r->motor) {
+    o[0] = W;
+    o[1] = motor_L(r, W);
+    o[2] = o[1] * W;
+  }
+}
+
+enum { FAST_TRIG = 63 }; /* the vector path: up to 62 balls (with phi_0, 63 lanes: 16 vectors) */
+#ifdef ROTOR_VEC
+enum { FAST_VEC = FAST_TRIG / 4 + 1 };
+
+/* The vector path's first stage for the point (t, y): Omega (*W), phi_0 (*wt), every ball's
+ * relative angle psi (lane k of ta: ang - phi_0 in the fixed frame, ang - 0.0 = ang in the
+ * rotating one) and phi_0 (lane N), zeros after it, in N / 4 + 1 vectors, and their sines sn[k]
+ * and cosines cs[k] (libm for a lane out of the fast path's range, as autobal_sincos1). */
+static AUTOBAL_FM_INLINE void vec_trig(const autobal_rotor *r, int frame, double t, const double *y, double *W,
+                                       double *wt, rotor_v4 *ta, double *sn, double *cs) {
+  const size_t N = r->N, nt = N / 4 + 1, m = N % 4;
+  const rotor_i4 lane = {0, 1, 2, 3};
+  const rotor_u4 ball = (rotor_u4)(lane < (long long)m), last = (rotor_u4)(lane == (long long)m);
+  rotor_u4 bad = {0, 0, 0, 0};
+  rotor_v4 a = {0.0, 0.0, 0.0, 0.0}, wtv, sv;
+  double shift;
+  size_t k;
+  spin_state(r, t, y, W, wt);
+  shift = frame == AUTOBAL_ROTOR_FIXED ? *wt : 0.0;
+  wtv = (rotor_v4){*wt, *wt, *wt, *wt};
+  sv = (rotor_v4){shift, shift, shift, shift};
+  for (k = 0; k + 1 < nt; k++) {
+    load4(y + 8 + 4 * k, 4, &a);
+    ta[k] = a - shift;
+  }
+  /* the last: its m balls, phi_0, zeros (a lane without a ball subtracts +0.0 from +0.0) */
+  load4(y + 8 + 4 * k, m, &a);
+  ta[k] = (rotor_v4)((rotor_u4)(a - (rotor_v4)((rotor_u4)sv & ball)) | ((rotor_u4)wtv & last));
+  for (k = 0; k < nt; k++) {
+    rotor_v4 vs, vc;
+    autobal_sincos_fast4(&ta[k], &vs, &vc);
+    memcpy(sn + 4 * k, &vs, sizeof vs);
+    memcpy(cs + 4 * k, &vc, sizeof vc);
+    autobal_sincos_out_of_range4(&ta[k], &bad);
+  }
+  if (((bad[0] | bad[1] | bad[2] | bad[3]) >> 63) != 0) {
+    for (k = 0; k <= N; k++) { /* libm out of the fast path's range (as autobal_sincos1) */
+      const double ak = ta[k / 4][k % 4];
+      if (!autobal_sincos_in_range(ak)) {
+        sn[k] = sin(ak);
+        cs[k] = cos(ak);
+      }
+    }
+  }
+}
+
+/* The vector path's second stage: the planes' columns of the point (t, y) but amp_D of the first
+ * (s_u, s_v, s_xi, s_eta, s_abs, s_rel; amp_D of the second) from vec_trig's sn, cs, the
+ * expressions of the scalar path below: the rest of the chain from the ball angles to s_rel. */
+static AUTOBAL_FM_INLINE void vec_planes(const autobal_rotor *r, const double *y, const double *sn,
+                                         const double *cs, double *out) {
+  const double sw = sn[r->N], cw = cs[r->N];
+  double *o = out + N_GLOBAL_OUT;
+  size_t j, k;
+  for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
+    double s[4], sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
+    for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
+      sxi += r->mr[k] * cs[k];
+      seta += r->mr[k] * sn[k];
+    }
+    plane_turn(sxi, seta, cw, sw, s);
+    o[0] = s[0];
+    o[1] = s[1];
+    o[2] = s[2];
+    o[3] = s[3];
+    o[4] = hypot_fast1(s[2], s[3]);
+    o[5] = o[4] / r->sref[j];
+    if (j > 0) {
+      const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
+      o[6] = hypot_fast1(x + r->p.plane[j].d * be, yy - r->p.plane[j].d * al);
+    }
+  }
+}
+
+/* The vector path's third stage: the other columns of the point (t, y) (amplitudes, friction,
+ * balls, drive) from vec_trig's W, wt, ta, the expressions of the scalar path below. */
+static AUTOBAL_FM_INLINE void vec_columns(const autobal_rotor *r, int frame, double t, const double *y, double W,
+                                          double wt, const rotor_v4 *ta, double *out) {
+  const size_t N = r->N;
+  const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
+  const double *ang = y + 8, *rate = y + 8 + N;
+  double *o = out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes;
+  size_t k;
+  {
+    /* amp_G, amp_L, amp_R and the first plane's amp_D in one vector */
+    const double d = r->p.plane[0].d;
+    const rotor_v4 a = {x, x - r->l_L * be, x + r->l_R * be, x + d * be},
+                   b = {yy, yy + r->l_L * al, yy - r->l_R * al, yy - d * al};
+    rotor_v4 h;
+    hypot_fast4(&a, &b, &h);
+    out[0] = h[0];
+    out[1] = h[1];
+    out[2] = h[2];
+    out[N_GLOBAL_OUT + 6] = h[3];
+  }
+  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) friction_columns(r, frame, t, y, out);
+  /* the six ball columns 4 balls at a time: phi, its wrap, psi, its wrap (wrap_pi4: the formula
+   * of wrap_pi without its |a| <= 3 shortcut and without branches, the same numbers; the branches
+   * cost mispredictions where ball angles move about |a| = 3 or pi), the rates; psi = ta (above),
+   * phi = ang (fixed) or ang + phi_0 (rotating) */
+  for (k = 0; k < N; k += 4, o += 4 * N_BALL_OUT) {
+    const size_t m = N - k < 4 ? N - k : 4;
+    rotor_v4 c[N_BALL_OUT], a = {0.0, 0.0, 0.0, 0.0}, rt = {0.0, 0.0, 0.0, 0.0};
+    load4(ang + k, m, &a);
+    load4(rate + k, m, &rt);
+    if (frame == AUTOBAL_ROTOR_FIXED) {
+      c[0] = a;
+      c[2] = ta[k / 4];
+      c[4] = rt;
+      c[5] = rt - W;
+    } else {
+      c[0] = a + wt;
+      c[2] = a;
+      c[4] = rt + W;
+      c[5] = rt;
+    }
+    if (m <= 2) { /* at most 2 balls: phi in lanes 0, 1 and psi in 2, 3 of one wrap */
+      const rotor_v4 pk = __builtin_shuffle(c[0], c[2], (rotor_i4){0, 1, 4, 5});
+      rotor_v4 wk;
+      wrap_pi4(&pk, &wk);
+      c[1] = wk;
+      c[3] = __builtin_shuffle(wk, (rotor_i4){2, 3, 0, 1});
+    } else {
+      wrap_pi4(&c[0], &c[1]);
+      wrap_pi4(&c[2], &c[3]);
+    }
+    ball_columns4(o, c, m);
+  }
+  spin_columns(r, W, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes + N_BALL_OUT * N);
+}
+#endif
+
+/* The arguments of the outputs calls: AUTOBAL_SUCCESS or AUTOBAL_EINVAL. */
+static int outputs_check(const autobal_rotor *r, int frame, double t, const double *y, const double *out,
+                         size_t n_out) {
+  if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
+      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) || n_out != r->nout)
+    return AUTOBAL_EINVAL;
+  return AUTOBAL_SUCCESS;
 }
 
 /* autobal_rotor_outputs; fast = 1 (a constant at both calls: inlined and specialized): sine,
- * cosine and hypot by fastmath.h instead of libm, the same expressions otherwise. */
-enum { FAST_TRIG = 63 }; /* outputs_fast: up to 62 balls in one pass (with phi_0, padded: 64) */
+ * cosine and hypot by fastmath.h instead of libm, the same expressions otherwise (with GCC and up
+ * to 62 balls in vectors, above). */
 static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                                      size_t n_out, int fast) {
   size_t j, k;
   double x, yy, al, be, wt, W, cw, sw;
-  double ta[FAST_TRIG + 4], tsn[FAST_TRIG + 4], tcs[FAST_TRIG + 4];
-  int tab = 0;
   double *o;
-  if (r == NULL || y == NULL || out == NULL || !isfinite(t) ||
-      (frame != AUTOBAL_ROTOR_FIXED && frame != AUTOBAL_ROTOR_ROTATING) ||
-      n_out != r->nout)
-    return AUTOBAL_EINVAL;
+  if (outputs_check(r, frame, t, y, out, n_out) != AUTOBAL_SUCCESS) return AUTOBAL_EINVAL;
+#ifdef ROTOR_VEC
+  if (fast && r->N < FAST_TRIG) {
+    rotor_v4 ta[FAST_VEC];
+    double sn[4 * FAST_VEC], cs[4 * FAST_VEC];
+    vec_trig(r, frame, t, y, &W, &wt, ta, sn, cs);
+    vec_planes(r, y, sn, cs, out);
+    vec_columns(r, frame, t, y, W, wt, ta, out);
+    return AUTOBAL_SUCCESS;
+  }
+#endif
   x = y[0] - r->qs[0]; /* the amplitudes are about the static offset under gravity (qs = 0 without) */
   yy = y[1] - r->qs[1];
   al = y[2] - r->qs[2];
   be = y[3] - r->qs[3];
   spin_state(r, t, y, &W, &wt); /* Omega, phi_0 */
-  if (fast && r->N < FAST_TRIG) {
-    /* every ball's relative angle psi (ta[k]: ang - phi_0 in the fixed frame, ang - 0.0 = ang in
-     * the rotating one) and phi_0 (ta[N]) in one vectorized pass, padded with zeros to a
-     * multiple of 4, so that all of it runs in the vector loop (phi_0 alone by the scalar
-     * kernel costs as much as the vector it may save); the planes' sums use tsn, tcs */
-    const double shift = frame == AUTOBAL_ROTOR_FIXED ? wt : 0.0;
-    const size_t N = r->N;
-    for (k = 0; k < N; k++) ta[k] = y[8 + k] - shift;
-    ta[N] = wt;
-    ta[N + 1] = 0.0; /* padding (those beyond the last vector are not computed) */
-    ta[N + 2] = 0.0;
-    ta[N + 3] = 0.0;
-    ball_sincos(ta, tsn, tcs, (N + 4) & ~(size_t)3);
-    sw = tsn[N];
-    cw = tcs[N];
-    tab = 1;
-  } else if (fast) {
+  if (fast) {
     autobal_sincos1(wt, &sw, &cw);
   } else {
     cw = cos(wt); /* once for every plane */
@@ -3051,17 +3254,8 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
   for (j = 0; j < r->n_planes; j++, o += N_PLANE_OUT) {
     const double d = r->p.plane[j].d;
     double s[4], sxi, seta;
-    if (tab) {
-      sxi = r->s0[j] * r->cpsi0[j], seta = r->s0[j] * r->spsi0[j];
-      for (k = r->off[j]; k < r->off[j] + r->cnt[j]; k++) { /* plane_sxe's sums */
-        sxi += r->mr[k] * tcs[k];
-        seta += r->mr[k] * tsn[k];
-      }
-    } else if (fast) {
-      plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
-    } else {
-      plane_sxe(r, j, frame, wt, y, &sxi, &seta);
-    }
+    if (fast) plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
+    else plane_sxe(r, j, frame, wt, y, &sxi, &seta);
     plane_turn(sxi, seta, cw, sw, s);
     o[0] = s[0];
     o[1] = s[1];
@@ -3072,44 +3266,8 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     o[6] = ROTOR_HYPOT(x + d * be, yy - d * al);
   }
 #undef ROTOR_HYPOT
-  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) {
-    /* the stuck flags of all balls, then their normal forces; the solve's workspace is the
-     * ball columns of out, written after it */
-    double *fo = out + output_count_base(r);
-    if (fric_eval(r, out + N_GLOBAL_OUT + N_PLANE_OUT * r->n_planes, NULL, frame, t, y, NULL, fo + r->N, NULL, 0, NULL, 0) !=
-        GSL_SUCCESS)
-      for (k = 0; k < r->N; k++) fo[r->N + k] = NAN;
-    for (k = 0; k < r->N; k++)
-      fo[k] = (r->law == AUTOBAL_ROTOR_FRICTION_EXACT && r->mode[k] == AUTOBAL_ROTOR_BALL_STUCK) ? 1.0 : 0.0;
-  }
-  if (tab) {
-    /* fast, up to 62 balls: the wrapped angles of every phi and psi in one vectorized pass
-     * (wrap_pi_array: the formula of wrap_pi without its |a| <= 3 shortcut and without branches,
-     * the same numbers; the branches cost mispredictions where ball angles move about |a| = 3
-     * or pi), the rates likewise, then the six columns interleaved per ball (ball_columns);
-     * psi = ta (above), phi = ang (fixed) or ang + phi_0 (rotating) */
-    const size_t N = r->N;
-    const double *ang = y + 8, *rate = y + 8 + N;
-    double ph[FAST_TRIG], wph[FAST_TRIG], wps[FAST_TRIG], rd[FAST_TRIG];
-    if (frame == AUTOBAL_ROTOR_FIXED) {
-      const double *col[N_BALL_OUT] = {ang, wph, ta, wps, rate, rd};
-      for (k = 0; k < N; k++) rd[k] = rate[k] - W;
-      wrap_pi_array(ang, wph, N);
-      wrap_pi_array(ta, wps, N);
-      ball_columns(o, col, N);
-    } else {
-      const double *col[N_BALL_OUT] = {ph, wph, ang, wps, rd, rate};
-      for (k = 0; k < N; k++) {
-        ph[k] = ang[k] + wt;
-        rd[k] = rate[k] + W;
-      }
-      wrap_pi_array(ph, wph, N);
-      wrap_pi_array(ang, wps, N);
-      ball_columns(o, col, N);
-    }
-    o += N_BALL_OUT * N;
-  }
-  for (k = 0; k < r->N && !tab; k++, o += N_BALL_OUT) {
+  if (r->law != AUTOBAL_ROTOR_FRICTION_NONE) friction_columns(r, frame, t, y, out);
+  for (k = 0; k < r->N; k++, o += N_BALL_OUT) {
     const double ang = y[8 + k], rate = y[8 + r->N + k];
     double phi, psi, phid, psid;
     if (frame == AUTOBAL_ROTOR_FIXED) {
@@ -3123,7 +3281,7 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
       psid = rate;
       phid = rate + W;
     }
-    /* fast with more than 62 balls: the formula without the shortcut (as above) */
+    /* fast without the vectors: wrap_pi's formula without the shortcut (the vector path's numbers) */
     o[0] = phi;
     o[1] = fast ? wrap_pi_formula(phi) : wrap_pi(phi);
     o[2] = psi;
@@ -3131,12 +3289,7 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     o[4] = phid;
     o[5] = psid;
   }
-  if (r->dn > 0) o[0] = W;
-  if (r->motor) {
-    o[0] = W;
-    o[1] = motor_L(r, W);
-    o[2] = o[1] * W;
-  }
+  spin_columns(r, W, o);
   return AUTOBAL_SUCCESS;
 }
 
@@ -3145,11 +3298,44 @@ int autobal_rotor_outputs(const autobal_rotor *r, int frame, double t, const dou
   return outputs(r, frame, t, y, out, n_out, 0);
 }
 
-/* compiled for AVX2 too (as ball_sincos; no FMA, so the same bits): the per-ball loop's wraps
- * (a division and a ceil, one instruction there) and the hypots */
+/* compiled for AVX2 too (as ball_sincos; no FMA, so the same bits): the vector path's 4 lanes in
+ * one instruction (two with SSE2) */
 ROTOR_CLONES int autobal_rotor_outputs_fast(const autobal_rotor *r, int frame, double t, const double *y, double *out,
                                             size_t n_out) {
   return outputs(r, frame, t, y, out, n_out, 1);
+}
+
+/* rotor_internal.h.  The vector path in stages over up to 8 points at a time: every point's sines
+ * and cosines (vec_trig), then every point's plane columns (vec_planes), then the rest
+ * (vec_columns).  The chain from a point's ball angles through the sines, the sums, sqrt and the
+ * division to s_rel is long; in short loops of their own the chains of successive points run side
+ * by side, where one point at a time waits for its own. */
+ROTOR_CLONES int autobal_rotor_outputs_fast_block(const autobal_rotor *r, int frame, size_t n, const double *t,
+                                                  const double *y, size_t ystride, double *out, size_t ostride) {
+  size_t k;
+  if (r == NULL || (n > 0 && (t == NULL || y == NULL || out == NULL)) || ystride < r->dim || ostride < r->nout)
+    return AUTOBAL_EINVAL;
+  for (k = 0; k < n; k++)
+    if (outputs_check(r, frame, t[k], y + k * ystride, out + k * ostride, r->nout) != AUTOBAL_SUCCESS)
+      return AUTOBAL_EINVAL;
+#ifdef ROTOR_VEC
+  if (r->N < FAST_TRIG) {
+    enum { CH = 8 };
+    rotor_v4 ta[CH][FAST_VEC];
+    double sn[CH][4 * FAST_VEC], cs[CH][4 * FAST_VEC], W[CH], wt[CH];
+    size_t k0, i, m;
+    for (k0 = 0; k0 < n; k0 += m) {
+      m = n - k0 < CH ? n - k0 : CH;
+      for (i = 0; i < m; i++) vec_trig(r, frame, t[k0 + i], y + (k0 + i) * ystride, &W[i], &wt[i], ta[i], sn[i], cs[i]);
+      for (i = 0; i < m; i++) vec_planes(r, y + (k0 + i) * ystride, sn[i], cs[i], out + (k0 + i) * ostride);
+      for (i = 0; i < m; i++)
+        vec_columns(r, frame, t[k0 + i], y + (k0 + i) * ystride, W[i], wt[i], ta[i], out + (k0 + i) * ostride);
+    }
+    return AUTOBAL_SUCCESS;
+  }
+#endif
+  for (k = 0; k < n; k++) (void)outputs(r, frame, t[k], y + k * ystride, out + k * ostride, r->nout, 1);
+  return AUTOBAL_SUCCESS;
 }
 
 int autobal_rotor_output_name(const autobal_rotor *r, size_t k, char *buf, size_t len,

@@ -16,4 +16,12 @@
 /* Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (NULL r, non-finite values). */
 int autobal_rotor_friction_gravity_hook(autobal_rotor *r, double gu, double gv);
 
+/* autobal_rotor_outputs_fast for n output points at once, the same numbers as n calls: t[k], the
+ * state y + k ystride (ystride >= autobal_rotor_dim), the outputs out + k ostride (ostride >=
+ * autobal_rotor_output_count).  The rotor transient study's buffered output points (output =
+ * dense6, src/studies/rotor_transient.c).  Returns AUTOBAL_SUCCESS, or AUTOBAL_EINVAL (as
+ * outputs_fast for any point; then nothing is written). */
+int autobal_rotor_outputs_fast_block(const autobal_rotor *r, int frame, size_t n, const double *t, const double *y,
+                                     size_t ystride, double *out, size_t ostride);
+
 #endif
