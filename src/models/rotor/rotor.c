@@ -3075,6 +3075,18 @@ static AUTOBAL_FM_INLINE void spin_columns(const autobal_rotor *r, double W, dou
 }
 
 enum { FAST_TRIG = 63 }; /* the vector path: up to 62 balls (with phi_0, 63 lanes: 16 vectors) */
+
+/* a plane's columns from its unbalance sum s (plane_turn) and |s|'s amplitude amp: the same
+ * operations for the vector and the scalar paths */
+static AUTOBAL_FM_INLINE void plane_columns(double *o, const double s[4], double amp, double sref) {
+  o[0] = s[0];
+  o[1] = s[1];
+  o[2] = s[2];
+  o[3] = s[3];
+  o[4] = amp;
+  o[5] = amp / sref;
+}
+
 #ifdef ROTOR_VEC
 enum { FAST_VEC = FAST_TRIG / 4 + 1 };
 
@@ -3135,12 +3147,7 @@ static AUTOBAL_FM_INLINE void vec_planes(const autobal_rotor *r, const double *y
       seta += r->mr[k] * sn[k];
     }
     plane_turn(sxi, seta, cw, sw, s);
-    o[0] = s[0];
-    o[1] = s[1];
-    o[2] = s[2];
-    o[3] = s[3];
-    o[4] = hypot_fast1(s[2], s[3]);
-    o[5] = o[4] / r->sref[j];
+    plane_columns(o, s, hypot_fast1(s[2], s[3]), r->sref[j]);
     if (j > 0) {
       const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
       o[6] = hypot_fast1(x + r->p.plane[j].d * be, yy - r->p.plane[j].d * al);
@@ -3257,12 +3264,7 @@ static AUTOBAL_FM_INLINE int outputs(const autobal_rotor *r, int frame, double t
     if (fast) plane_sxe_fast(r, j, frame, wt, y, &sxi, &seta);
     else plane_sxe(r, j, frame, wt, y, &sxi, &seta);
     plane_turn(sxi, seta, cw, sw, s);
-    o[0] = s[0];
-    o[1] = s[1];
-    o[2] = s[2];
-    o[3] = s[3];
-    o[4] = ROTOR_HYPOT(s[2], s[3]);
-    o[5] = o[4] / r->sref[j];
+    plane_columns(o, s, ROTOR_HYPOT(s[2], s[3]), r->sref[j]);
     o[6] = ROTOR_HYPOT(x + d * be, yy - d * al);
   }
 #undef ROTOR_HYPOT
