@@ -280,7 +280,16 @@ static AUTOBAL_FM_INLINE void autobal_sincos2(const double x_in[2], double sn_ou
  * against hypotl. */
 static AUTOBAL_FM_INLINE double autobal_hypot_fast(double a, double b) {
   const double s = a * a + b * b;
-  return s >= 0x1p-968 && s <= 0x1p1000 ? sqrt(s) : hypot(a, b);
+  if (s >= 0x1p-968 && s <= 0x1p1000) {
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__SSE2__)
+    /* SSE2's sqrtsd: libm's sqrt's bits, without the errno branch around it (s is in range) */
+    typedef double autobal_fm_sd __attribute__((vector_size(16)));
+    return __builtin_ia32_sqrtsd((autobal_fm_sd){s, 0.0})[0];
+#else
+    return sqrt(s);
+#endif
+  }
+  return hypot(a, b);
 }
 
 #endif

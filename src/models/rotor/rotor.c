@@ -3022,21 +3022,6 @@ static AUTOBAL_FM_INLINE void sqrt4(const rotor_v4 *s, rotor_v4 *h) {
 #endif
 }
 
-/* autobal_hypot_fast(a, b), the same bits, with sqrt by SSE2's instruction on x86-64 (no errno
- * branch: the sum is in range there). */
-static AUTOBAL_FM_INLINE double hypot_fast1(double a, double b) {
-  const double s = a * a + b * b;
-  if (s >= 0x1p-968 && s <= 0x1p1000) {
-#if defined(__x86_64__) && defined(__SSE2__)
-    typedef double v2 __attribute__((vector_size(16)));
-    return __builtin_ia32_sqrtsd((v2){s, 0.0})[0];
-#else
-    return sqrt(s);
-#endif
-  }
-  return hypot(a, b);
-}
-
 /* autobal_hypot_fast on every lane, the same bits: sqrt(a a + b b) where the sum lies in
  * [2^-968, 2^1000], libm's hypot for the other lanes. */
 static AUTOBAL_FM_INLINE void hypot_fast4(const rotor_v4 *a, const rotor_v4 *b, rotor_v4 *h) {
@@ -3147,10 +3132,10 @@ static AUTOBAL_FM_INLINE void vec_planes(const autobal_rotor *r, const double *y
       seta += r->mr[k] * sn[k];
     }
     plane_turn(sxi, seta, cw, sw, s);
-    plane_columns(o, s, hypot_fast1(s[2], s[3]), r->sref[j]);
+    plane_columns(o, s, autobal_hypot_fast(s[2], s[3]), r->sref[j]);
     if (j > 0) {
       const double x = y[0] - r->qs[0], yy = y[1] - r->qs[1], al = y[2] - r->qs[2], be = y[3] - r->qs[3];
-      o[6] = hypot_fast1(x + r->p.plane[j].d * be, yy - r->p.plane[j].d * al);
+      o[6] = autobal_hypot_fast(x + r->p.plane[j].d * be, yy - r->p.plane[j].d * al);
     }
   }
 }
